@@ -1,0 +1,35 @@
+// Feature-tag sidecar files (`--tags FILE`). One tag per line, `#` starts a
+// comment, indices are 0-based:
+//   crease I J SHARPNESS   edge between vertices I and J; SHARPNESS float or `inf`
+//   corner I SHARPNESS     vertex sharpness (a corner, or a cusp where no sharp
+//                          edge meets the vertex)
+// Errors carry the file name and line number.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/mesh/base_mesh.h"
+#include "core/util/status.h"
+
+namespace tessera {
+
+struct FeatureTag {
+  enum class Kind { kCrease, kCorner };
+  Kind kind = Kind::kCrease;
+  int v0 = -1;
+  int v1 = -1;  // crease only
+  float sharpness = 0.0f;
+  int line = 0;  // 1-based source line, for error messages
+};
+
+Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::string& sourceName);
+
+// Applies tags to the mesh; a tag naming a missing edge or vertex is an error
+// with its line number, and leaves the mesh unchanged.
+Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh);
+
+// Reads, parses and applies the file.
+Status applyTagFile(const std::string& path, BaseMesh& mesh);
+
+}  // namespace tessera

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs every Debian package Tessera needs to build, test and benchmark.
+# Idempotent: packages already present are skipped, and apt is not touched at all
+# when nothing is missing. Debian packages only; nothing is downloaded from elsewhere.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git
+  # core: base mesh, mesh I/O, glTF, compression
+  libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev
+  # protocol and server
+  libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev
+  # viewer
+  libglfw3-dev libgl-dev libimgui-dev
+  # tests and benchmarks: OpenSubdiv is the oracle, never a runtime dependency
+  libgtest-dev libgmock-dev libbenchmark-dev libosd-dev
+  # test data and tools: real meshes (CGAL demo data), the Khronos glTF validator (npm)
+  libcgal-demo xvfb xauth
+)
+# The glTF validator runs on Node. A machine may already carry a newer Node with its own
+# npm (which conflicts with Debian's npm package): only ask Debian for it when absent.
+if ! command -v npm >/dev/null 2>&1; then
+  packages+=(nodejs npm)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+if [[ $(id -u) -ne 0 ]]; then
+  echo "install-deps: missing packages and not root; run as root or install them: ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

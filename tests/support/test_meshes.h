@@ -1,0 +1,17 @@
+// Procedural and on-disk meshes shared by the test suites.
+#pragma once
+
+#include <string>
+
+#include "core/mesh/base_mesh.h"
+
+namespace tessera::testing {
+
+// Path of a real mesh extracted from Debian's libcgal-demo (e.g. "fandisk.off").
+std::string cgalMeshPath(const std::string& name);
+// Path of a file under tests/data.
+std::string sourceTestDataPath(const std::string& relative);
+// A fresh temporary directory for one test.
+std::string makeTempDir(const std::string& prefix);
+
+}  // namespace tessera::testing

@@ -1,0 +1,115 @@
+#include "core/loop/limit.h"
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "core/loop/masks.h"
+
+namespace tessera {
+
+Vec3 LimitFrame::normal() const {
+  Vec3 n = tangent1 % tangent2;  // OpenMesh: % is the cross product
+  const double len = n.norm();
+  return len > 0.0 ? n / len : Vec3(0, 0, 0);
+}
+
+namespace {
+
+LimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3> p) {
+  auto ring = level.ringEdgesOf(v);
+  const int n = static_cast<int>(ring.size());
+  const double w = loop::smoothLimitEdgeWeight(n);
+  LimitFrame frame{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)};
+  Vec3 sum(0, 0, 0);
+  // Tangents: the first Fourier components of the ring (cos, sin of 2 pi k / n).
+  const double alpha = 2.0 * std::numbers::pi / n;
+  for (int k = 0; k < n; ++k) {
+    const Vec3& q = p[level.otherVertex(ring[k], v)];
+    sum += q;
+    frame.tangent1 += std::cos(alpha * k) * q;
+    frame.tangent2 += std::sin(alpha * k) * q;
+  }
+  frame.position = (1.0 - n * w) * p[v] + w * sum;
+  return frame;
+}
+
+LimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3> p) {
+  auto ring = level.ringEdgesOf(v);
+  const int n = static_cast<int>(ring.size());
+  std::vector<float> sharpness(n);
+  level.ringSharpness(v, sharpness.data());
+  int ends[2];
+  sharpEdgePair(sharpness, ends);
+  auto neighbour = [&](int k) -> const Vec3& { return p[level.otherVertex(ring[k], v)]; };
+
+  LimitFrame frame{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)};
+  frame.position = loop::kCreaseLimitVertexWeight * p[v] +
+                   loop::kCreaseLimitNeighbourWeight * (neighbour(ends[0]) + neighbour(ends[1]));
+  // Along the crease, scaled by 3/2 to match interior tangent magnitudes.
+  frame.tangent1 = 1.5 * (neighbour(ends[0]) - neighbour(ends[1]));
+
+  // Across the span of faces from ends[0] to ends[1] (Hoppe et al. '94 /
+  // Biermann et al. boundary masks, oriented inward as OpenSubdiv does).
+  const int interior = ends[1] - ends[0] - 1;
+  Vec3& t2 = frame.tangent2;
+  if (interior == 0) {
+    t2 = -6.0 * p[v] + 3.0 * (neighbour(ends[0]) + neighbour(ends[1]));
+  } else if (interior == 1) {
+    t2 = -3.0 * p[v] + 3.0 * neighbour(ends[0] + 1);
+  } else if (interior == 2) {
+    const double r3 = std::sqrt(3.0);
+    t2 = -r3 * p[v] - 0.5 * r3 * (neighbour(ends[0]) + neighbour(ends[1])) +
+         r3 * (neighbour(ends[0] + 1) + neighbour(ends[0] + 2));
+  } else {
+    const double theta = std::numbers::pi / (interior + 1);
+    const double cw = -3.0 * std::sin(theta);
+    const double ew = -3.0 * (2.0 * std::cos(theta) - 2.0);
+    t2 = cw * (neighbour(ends[0]) + neighbour(ends[1]));
+    for (int i = 1; i <= interior; ++i) t2 += ew * std::sin(i * theta) * neighbour(ends[0] + i);
+  }
+  return frame;
+}
+
+LimitFrame cornerFrame(const Level& level, Index v, std::span<const Vec3> p) {
+  auto ring = level.ringEdgesOf(v);
+  // Differences to the first two ring neighbours, scaled by 3 (OpenSubdiv's
+  // magnitude convention): the tangent plane of the first face's sector.
+  return {p[v], 3.0 * (p[level.otherVertex(ring[0], v)] - p[v]), 3.0 * (p[level.otherVertex(ring[1], v)] - p[v])};
+}
+
+}  // namespace
+
+LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points) {
+  switch (level.vertexRules[v]) {
+    case VertexRule::kSmooth:
+    case VertexRule::kDart:
+      return smoothFrame(level, v, points);
+    case VertexRule::kCrease:
+      return creaseFrame(level, v, points);
+    case VertexRule::kCorner:
+      return cornerFrame(level, v, points);
+  }
+  return cornerFrame(level, v, points);
+}
+
+void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
+                  std::span<Vec3> normals) {
+  const bool wantNormals = !normals.empty();
+  for (Index v = 0; v < level.numVertices; ++v) {
+    if (!wantNormals && isSmoothLike(level.vertexRules[v])) {
+      auto ring = level.ringEdgesOf(v);
+      const int n = static_cast<int>(ring.size());
+      const double w = loop::smoothLimitEdgeWeight(n);
+      Vec3 sum(0, 0, 0);
+      for (Index e : ring) sum += points[level.otherVertex(e, v)];
+      positions[v] = (1.0 - n * w) * points[v] + w * sum;
+      continue;
+    }
+    LimitFrame frame = limitFrame(level, v, points);
+    positions[v] = frame.position;
+    if (wantNormals) normals[v] = frame.normal();
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,32 @@
+// Limit positions and normals of every vertex of a level, by Loop's limit
+// masks: smooth and dart vertices use the eigenvector masks, crease vertices
+// the (1/6, 2/3, 1/6) B-spline mask, corners stay put. Normals are
+// tangent1 x tangent2 with OpenSubdiv's tangent masks (sdc/loopScheme.h):
+// at an interior crease they describe the surface in the counter-clockwise
+// span from the first to the second crease edge of the ring.
+//
+// As in OpenSubdiv's PrimvarRefiner::Limit, a vertex's rule at this level
+// decides its mask, so semi-sharp features still present count as sharp.
+#pragma once
+
+#include <span>
+
+#include "core/loop/level.h"
+#include "core/util/vec3.h"
+
+namespace tessera {
+
+struct LimitFrame {
+  Vec3 position;
+  Vec3 tangent1;
+  Vec3 tangent2;
+  Vec3 normal() const;  // unit tangent1 x tangent2 (zero if degenerate)
+};
+
+LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points);
+
+// Fills positions (and normals, if non-empty) for all vertices of the level.
+void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
+                  std::span<Vec3> normals);
+
+}  // namespace tessera

@@ -1,0 +1,76 @@
+#include "core/loop/loop_refiner.h"
+
+#include <string>
+
+#include "core/loop/interpolate.h"
+#include "core/loop/limit.h"
+#include "core/loop/refinement.h"
+
+namespace tessera {
+
+Expected<LoopRefiner> LoopRefiner::create(const BaseMesh& mesh, const LoopOptions& options, int levels,
+                                          long long maxFaces) {
+  return create(BaseTopology::fromBaseMesh(mesh), options, levels, maxFaces);
+}
+
+Expected<LoopRefiner> LoopRefiner::create(const BaseTopology& topology, const LoopOptions& options, int levels,
+                                          long long maxFaces) {
+  if (levels < 0) return invalidArgument("refinement level must be >= 0, got " + std::to_string(levels));
+  long long faces = static_cast<long long>(topology.triangles.size());
+  for (int l = 0; l < levels; ++l) {
+    faces *= 4;
+    if (faces > maxFaces) {
+      return invalidArgument("level " + std::to_string(levels) + " would exceed the limit of " +
+                             std::to_string(maxFaces) + " triangles (" +
+                             std::to_string(topology.triangles.size()) + " base triangles)");
+    }
+  }
+  TESSERA_ASSIGN_OR_RETURN(Level base, buildBaseLevel(topology, options));
+  LoopRefiner refiner;
+  refiner.options_ = options;
+  refiner.levels_.reserve(levels + 1);
+  refiner.levels_.push_back(std::move(base));
+  for (int l = 0; l < levels; ++l) refiner.levels_.push_back(refineLevel(refiner.levels_.back(), options));
+  return refiner;
+}
+
+std::vector<Vec3> LoopRefiner::refinePoints(std::span<const Vec3> basePoints) const {
+  std::vector<Vec3> current(basePoints.begin(), basePoints.end());
+  std::vector<Vec3> next;
+  for (int l = 0; l < maxLevel(); ++l) {
+    next.resize(levels_[l + 1].numVertices);
+    interpolateLevel(levels_[l], levels_[l + 1], current, next);
+    current.swap(next);
+  }
+  return current;
+}
+
+std::vector<std::vector<Vec3>> LoopRefiner::refinePointsPerLevel(std::span<const Vec3> basePoints) const {
+  std::vector<std::vector<Vec3>> points;
+  points.reserve(levels_.size());
+  points.emplace_back(basePoints.begin(), basePoints.end());
+  for (int l = 0; l < maxLevel(); ++l) {
+    std::vector<Vec3> next(levels_[l + 1].numVertices);
+    interpolateLevel(levels_[l], levels_[l + 1], points.back(), next);
+    points.push_back(std::move(next));
+  }
+  return points;
+}
+
+SurfaceMesh LoopRefiner::controlSurface(std::span<const Vec3> finestPoints) const {
+  SurfaceMesh surface;
+  surface.positions.assign(finestPoints.begin(), finestPoints.end());
+  const Level& fine = finestLevel();
+  surface.triangles.reserve(fine.numFaces());
+  for (const auto& fv : fine.faceVertices) surface.triangles.push_back({fv[0], fv[1], fv[2]});
+  return surface;
+}
+
+SurfaceMesh LoopRefiner::limitSurface(std::span<const Vec3> finestPoints) const {
+  SurfaceMesh surface = controlSurface(finestPoints);
+  surface.normals.resize(surface.positions.size());
+  computeLimit(finestLevel(), finestPoints, surface.positions, surface.normals);
+  return surface;
+}
+
+}  // namespace tessera

@@ -1,0 +1,20 @@
+// Uniform 1-to-4 refinement of a Level's topology and sharpness.
+//
+// Child numbering: vertex v of the parent is child vertex v (so the first V0
+// vertices of every level are the images of the input vertices, in order);
+// the vertex on parent edge e is child vertex numVertices + e. Parent face f
+// has children 4f+0..4f+2 at its corners 0..2 and 4f+3 in the middle. Child
+// edges 2e and 2e+1 halve parent edge e at its ends 0 and 1; child edges
+// 2E + 3f + j are interior to face f. The layout of faces, edges and rings
+// matches OpenSubdiv's TriRefinement so that ring orders, and therefore
+// limit tangents at creases and corners, agree.
+#pragma once
+
+#include "core/loop/level.h"
+#include "core/loop/loop_options.h"
+
+namespace tessera {
+
+Level refineLevel(const Level& parent, const LoopOptions& options);
+
+}  // namespace tessera

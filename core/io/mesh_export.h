@@ -1,6 +1,27 @@
 // Export of a refined or limit surface to OBJ, PLY or glTF 2.0 GLB (tinygltf),
 // optionally Draco-compressed via KHR_draco_mesh_compression (GLB only).
-// The format follows the extension of the output path.
+// The format follows the extension of the output path, case-insensitively:
+//   .obj  text; `v`, `vn` when normals are present, faces `f a//a b//b c//c`.
+//         Coordinates are printed as the shortest decimal that reads back to
+//         the same double, so OBJ is the lossless format.
+//   .ply  binary little-endian PLY 1.0, float32 x y z (and nx ny nz), faces as
+//         `list uchar int`. Binary rather than ASCII: about a third of the
+//         size, no float printing or parsing, and float32 is what every PLY
+//         reader (OpenMesh, MeshLab, Blender) accepts.
+//   .glb  glTF 2.0 binary, float32 POSITION (with min/max) and unit NORMAL,
+//         16-bit indices when every index fits, 32-bit otherwise. With
+//         `draco`, the primitive is stored only in Draco form, so
+//         KHR_draco_mesh_compression is listed in extensionsRequired.
+//
+// Errors, all naming the file and the offending element:
+//   unsupported      the extension is none of the above, or `draco` is set
+//                    for a format other than .glb;
+//   invalidArgument  Draco options out of range;
+//   invalidMesh      no triangles, an index out of range, a non-finite
+//                    position or normal, a zero normal, or a normals count
+//                    that is neither 0 nor the positions count;
+//   ioError          the file cannot be written.
+// Nothing is written unless the input is valid.
 #pragma once
 
 #include <array>
@@ -20,11 +41,21 @@ struct SurfaceMesh {
 
 struct ExportOptions {
   bool draco = false;             // GLB only: KHR_draco_mesh_compression
-  int dracoPositionBits = 16;     // quantization of positions
-  int dracoNormalBits = 12;       // quantization of normals
-  int dracoCompressionLevel = 7;  // 0 (fastest) .. 10 (smallest)
+  // Quantization of positions, 1..30 bits. Draco quantizes each coordinate on
+  // a uniform grid spanning the largest bounding-box extent, so every decoded
+  // coordinate is within maxExtent / (2^bits - 1) of the input (half a step
+  // in theory; one whole step is the bound the tests check).
+  int dracoPositionBits = 16;
+  int dracoNormalBits = 12;       // octahedral quantization of normals, 2..30
+  int dracoCompressionLevel = 7;  // 0 (fastest) .. 10 (smallest); Draco speed = 10 - level
 };
 
 Status exportMesh(const SurfaceMesh& surface, const std::string& path, const ExportOptions& options = {});
+
+// Checks what exportMesh checks before writing (see above), for any format.
+Status validateSurfaceMesh(const SurfaceMesh& surface);
+
+// Extensions exportMesh() accepts, lower case with the dot: ".obj", ...
+const std::vector<std::string>& supportedExportExtensions();
 
 }  // namespace tessera

@@ -12,22 +12,20 @@ namespace {
 // Vertex-vertex point for one rule (no blending).
 Vec3 vertexPointForRule(const Level& level, Index v, VertexRule rule, const float* ringSharpness,
                         std::span<const Vec3> p) {
-  auto ring = level.ringEdgesOf(v);
+  auto ring = level.ringVerticesOf(v);
   const int n = static_cast<int>(ring.size());
   switch (rule) {
     case VertexRule::kSmooth:
     case VertexRule::kDart: {
       const double w = loop::smoothEdgeWeight(n);
       Vec3 sum(0, 0, 0);
-      for (Index e : ring) sum += p[level.otherVertex(e, v)];
+      for (Index u : ring) sum += p[u];
       return (1.0 - n * w) * p[v] + w * sum;
     }
     case VertexRule::kCrease: {
       int ends[2];
       sharpEdgePair(std::span(ringSharpness, n), ends);
-      return loop::kCreaseVertexWeight * p[v] +
-             loop::kCreaseNeighbourWeight *
-                 (p[level.otherVertex(ring[ends[0]], v)] + p[level.otherVertex(ring[ends[1]], v)]);
+      return loop::kCreaseVertexWeight * p[v] + loop::kCreaseNeighbourWeight * (p[ring[ends[0]]] + p[ring[ends[1]]]);
     }
     case VertexRule::kCorner:
       return p[v];
@@ -37,7 +35,7 @@ Vec3 vertexPointForRule(const Level& level, Index v, VertexRule rule, const floa
 
 void interpolateVertexPoints(const Level& parent, const Level& child, std::span<const Vec3> p,
                              std::span<Vec3> out) {
-  const int maxValence = parent.maxValence();
+  const int maxValence = parent.maxValence;
   std::vector<double> smoothWeight(maxValence + 1, 0.0);
   for (int n = 3; n <= maxValence; ++n) smoothWeight[n] = loop::smoothEdgeWeight(n);
   std::vector<float> pSharp(maxValence), cSharp(maxValence);
@@ -46,10 +44,10 @@ void interpolateVertexPoints(const Level& parent, const Level& child, std::span<
     const VertexRule pRule = parent.vertexRules[v];
     if (isSmoothLike(pRule)) {
       // The common case, kept tight: (1 - n beta) v + beta sum(ring).
-      auto ring = parent.ringEdgesOf(v);
+      auto ring = parent.ringVerticesOf(v);
       const int n = static_cast<int>(ring.size());
       Vec3 sum(0, 0, 0);
-      for (Index e : ring) sum += p[parent.otherVertex(e, v)];
+      for (Index u : ring) sum += p[u];
       const double w = smoothWeight[n];
       out[v] = (1.0 - n * w) * p[v] + w * sum;
       continue;
@@ -61,7 +59,11 @@ void interpolateVertexPoints(const Level& parent, const Level& child, std::span<
       // A semi-sharp feature ends at this level: blend the parent rule with
       // the child's by the fractional sharpness (Sdc, DeRose et al. '98).
       const int n = parent.valence(v);
-      child.ringSharpness(v, cSharp.data());
+      // The child's ring is the parent's, entry for entry: read the halves at v.
+      int k = 0;
+      for (Index e : parent.ringEdgesOf(v)) {
+        cSharp[k++] = child.edgeSharpness[2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1)];
+      }
       const double pw = fractionalWeightAtVertex(parent.vertexSharpness[v], child.vertexSharpness[v],
                                                  std::span(pSharp.data(), n), std::span(cSharp.data(), n));
       const Vec3 childRulePoint = vertexPointForRule(parent, v, cRule, cSharp.data(), p);
@@ -84,9 +86,10 @@ void interpolateEdgePoints(const Level& parent, const Level& child, std::span<co
     }
     // Smooth (or crease decaying to smooth here): 3/8 ends + 1/8 opposite.
     const auto& ef = parent.edgeFaces[e];
+    const auto& el = parent.edgeFaceLocal[e];
     assert(ef[1] != kInvalidIndex && "boundary edges are infinitely sharp");
-    const Index oA = parent.faceVertices[ef[0]][(parent.edgeInFace(ef[0], e) + 2) % 3];
-    const Index oB = parent.faceVertices[ef[1]][(parent.edgeInFace(ef[1], e) + 2) % 3];
+    const Index oA = parent.faceVertices[ef[0]][(el[0] + 2) % 3];
+    const Index oB = parent.faceVertices[ef[1]][(el[1] + 2) % 3];
     Vec3 point = loop::kEdgeEndWeight * ends + loop::kEdgeOppositeWeight * (p[oA] + p[oB]);
     if (isSharp(s)) {
       // Blend with the crease rule by the parent sharpness, as Sdc does

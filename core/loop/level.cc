@@ -9,7 +9,7 @@ void Level::ringSharpness(Index v, float* out) const {
   for (Index e : ringEdgesOf(v)) out[k++] = edgeSharpness[e];
 }
 
-int Level::maxValence() const {
+int Level::computeMaxValence() const {
   int m = 0;
   for (int v = 0; v < numVertices; ++v) m = std::max(m, valence(v));
   return m;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/loop/crease.h"
+#include "core/util/buffer.h"
 
 namespace tessera {
 
@@ -25,19 +26,33 @@ inline constexpr Index kInvalidIndex = -1;
 
 struct Level {
   int numVertices = 0;
+  int maxValence = 0;
+  // False for a last level refined with RefineDetail::kFacesOnly: only
+  // faceVertices, sharpness and rules are present.
+  bool fullTopology = true;
 
-  std::vector<std::array<Index, 3>> faceVertices;
-  std::vector<std::array<Index, 3>> faceEdges;
-  std::vector<std::array<Index, 2>> edgeVertices;
-  std::vector<std::array<Index, 2>> edgeFaces;  // [1] is kInvalidIndex on a boundary
+  Buffer<std::array<Index, 3>> faceVertices;
+  Buffer<std::array<Index, 3>> faceEdges;
+  Buffer<std::array<Index, 2>> edgeVertices;
+  Buffer<std::array<Index, 2>> edgeFaces;        // [1] is kInvalidIndex on a boundary
+  Buffer<std::array<uint8_t, 2>> edgeFaceLocal;  // position of the edge in each face
+  // Bit j set: this face is edgeFaces[1] of its edge j, so it runs that edge
+  // from edgeVertices[1] to [0]. (edgeFaces[0] runs it from [0] to [1].)
+  Buffer<uint8_t> faceEdgeSides;
 
-  std::vector<Index> ringOffsets;  // numVertices + 1
-  std::vector<Index> ringEdges;
-  std::vector<Index> ringFaces;    // parallel to ringEdges
+  // Rings, in compressed rows: entries ringOffsets[v] .. ringOffsets[v+1].
+  // ringVertices[k] is the far end of ringEdges[k], stored because the
+  // interpolation and limit loops read it for every vertex; ringFaceLocal[k]
+  // is the corner of v within ringFaces[k].
+  Buffer<Index> ringOffsets;  // numVertices + 1
+  Buffer<Index> ringEdges;
+  Buffer<Index> ringVertices;
+  Buffer<Index> ringFaces;
+  Buffer<uint8_t> ringFaceLocal;
 
-  std::vector<float> edgeSharpness;
-  std::vector<float> vertexSharpness;
-  std::vector<VertexRule> vertexRules;
+  Buffer<float> edgeSharpness;
+  Buffer<float> vertexSharpness;
+  Buffer<VertexRule> vertexRules;
 
   int numFaces() const { return static_cast<int>(faceVertices.size()); }
   int numEdges() const { return static_cast<int>(edgeVertices.size()); }
@@ -45,6 +60,9 @@ struct Level {
   int valence(Index v) const { return ringOffsets[v + 1] - ringOffsets[v]; }
   std::span<const Index> ringEdgesOf(Index v) const {
     return {ringEdges.data() + ringOffsets[v], static_cast<size_t>(valence(v))};
+  }
+  std::span<const Index> ringVerticesOf(Index v) const {
+    return {ringVertices.data() + ringOffsets[v], static_cast<size_t>(valence(v))};
   }
   std::span<const Index> ringFacesOf(Index v) const {
     return {ringFaces.data() + ringOffsets[v], static_cast<size_t>(valence(v))};
@@ -67,7 +85,7 @@ struct Level {
 
   // Sharpness of the ring edges of v, in ring order, into `out` (size >= valence).
   void ringSharpness(Index v, float* out) const;
-  int maxValence() const;
+  int computeMaxValence() const;
 };
 
 }  // namespace tessera

@@ -45,8 +45,10 @@ Status buildEdges(int numVertices, Level& level, const std::vector<Index>& faces
 
   const int numFaces = level.numFaces();
   level.faceEdges.resize(numFaces);
+  level.faceEdgeSides.assign(numFaces, 0);
   level.edgeVertices.reserve(numFaces * 3 / 2 + 3);
   level.edgeFaces.reserve(numFaces * 3 / 2 + 3);
+  level.edgeFaceLocal.reserve(numFaces * 3 / 2 + 3);
   for (Index f = 0; f < numFaces; ++f) {
     const auto& fv = level.faceVertices[f];
     for (int j = 0; j < 3; ++j) {
@@ -56,6 +58,7 @@ Status buildEdges(int numVertices, Level& level, const std::vector<Index>& faces
         e = level.numEdges();
         level.edgeVertices.push_back({a, b});
         level.edgeFaces.push_back({f, kInvalidIndex});
+        level.edgeFaceLocal.push_back({static_cast<uint8_t>(j), 0});
         edgesAt[edgesAtOffset[a] + edgesAtCount[a]++] = e;
         edgesAt[edgesAtOffset[b] + edgesAtCount[b]++] = e;
       } else {
@@ -72,6 +75,8 @@ Status buildEdges(int numVertices, Level& level, const std::vector<Index>& faces
                              std::to_string(b));
         }
         ef[1] = f;
+        level.edgeFaceLocal[e][1] = static_cast<uint8_t>(j);
+        level.faceEdgeSides[f] |= static_cast<uint8_t>(1u << j);
       }
       level.faceEdges[f][j] = e;
     }
@@ -91,7 +96,9 @@ Status orderRings(int numVertices, Level& level, const std::vector<Index>& faces
   level.ringOffsets.assign(numVertices + 1, 0);
   for (int v = 0; v < numVertices; ++v) level.ringOffsets[v + 1] = level.ringOffsets[v] + edgeCount[v];
   level.ringEdges.resize(level.ringOffsets[numVertices]);
+  level.ringVertices.resize(level.ringOffsets[numVertices]);
   level.ringFaces.resize(level.ringOffsets[numVertices]);
+  level.ringFaceLocal.resize(level.ringOffsets[numVertices]);
 
   for (Index v = 0; v < numVertices; ++v) {
     const Index faceCount = facesAtOffset[v + 1] - facesAtOffset[v];
@@ -116,7 +123,9 @@ Status orderRings(int numVertices, Level& level, const std::vector<Index>& faces
       }
     }
     Index* ringE = level.ringEdges.data() + level.ringOffsets[v];
+    Index* ringV = level.ringVertices.data() + level.ringOffsets[v];
     Index* ringF = level.ringFaces.data() + level.ringOffsets[v];
+    uint8_t* ringL = level.ringFaceLocal.data() + level.ringOffsets[v];
     Index f = start;
     Index k = 0;
     for (;;) {
@@ -125,7 +134,9 @@ Status orderRings(int numVertices, Level& level, const std::vector<Index>& faces
       }
       int j = level.vertexInFace(f, v);
       ringE[k] = level.faceEdges[f][j];
+      ringV[k] = level.faceVertices[f][(j + 1) % 3];
       ringF[k] = f;
+      ringL[k] = static_cast<uint8_t>(j);
       ++k;
       Index trailing = level.faceEdges[f][(j + 2) % 3];
       const auto& ef = level.edgeFaces[trailing];
@@ -133,7 +144,9 @@ Status orderRings(int numVertices, Level& level, const std::vector<Index>& faces
       if (next == kInvalidIndex) {
         if (k >= n) return invalidMesh(vertexName(v) + " is non-manifold: its faces form more than one fan");
         ringE[k] = trailing;
+        ringV[k] = level.faceVertices[f][(j + 2) % 3];
         ringF[k] = kInvalidIndex;
+        ringL[k] = 0;
         ++k;
         break;
       }
@@ -216,8 +229,9 @@ Expected<Level> buildBaseLevel(const BaseTopology& topology, const LoopOptions& 
   for (Index e = 0; e < level.numEdges(); ++e) {
     if (level.isBoundaryEdge(e)) level.edgeSharpness[e] = kSharpnessInfinite;
   }
+  level.maxValence = level.computeMaxValence();
   level.vertexRules.resize(numVertices);
-  std::vector<float> ring(level.maxValence());
+  std::vector<float> ring(level.maxValence);
   for (Index v = 0; v < numVertices; ++v) {
     bool topologicalCorner = level.isBoundaryVertex(v) && level.valence(v) == 2;
     if (topologicalCorner && options.boundary == BoundaryInterpolation::kEdgeAndCorner) {

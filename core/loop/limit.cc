@@ -16,32 +16,56 @@ Vec3 LimitFrame::normal() const {
 
 namespace {
 
-LimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3> p) {
-  auto ring = level.ringEdgesOf(v);
-  const int n = static_cast<int>(ring.size());
-  const double w = loop::smoothLimitEdgeWeight(n);
-  LimitFrame frame{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)};
-  Vec3 sum(0, 0, 0);
-  // Tangents: the first Fourier components of the ring (cos, sin of 2 pi k / n).
-  const double alpha = 2.0 * std::numbers::pi / n;
-  for (int k = 0; k < n; ++k) {
-    const Vec3& q = p[level.otherVertex(ring[k], v)];
-    sum += q;
-    frame.tangent1 += std::cos(alpha * k) * q;
-    frame.tangent2 += std::sin(alpha * k) * q;
+// Per-valence smooth limit weights and tangent coefficients, computed once
+// per evaluation instead of once per vertex.
+class SmoothTables {
+ public:
+  explicit SmoothTables(int maxValence) : offsets_(maxValence + 2, 0), weight_(maxValence + 1, 0.0) {
+    for (int n = 0; n <= maxValence; ++n) offsets_[n + 1] = offsets_[n] + n;
+    cos_.resize(offsets_.back());
+    sin_.resize(offsets_.back());
+    for (int n = 3; n <= maxValence; ++n) {
+      weight_[n] = loop::smoothLimitEdgeWeight(n);
+      // The first Fourier components of the ring: cos, sin of 2 pi k / n.
+      for (int k = 0; k < n; ++k) {
+        cos_[offsets_[n] + k] = std::cos(2.0 * std::numbers::pi * k / n);
+        sin_[offsets_[n] + k] = std::sin(2.0 * std::numbers::pi * k / n);
+      }
+    }
   }
-  frame.position = (1.0 - n * w) * p[v] + w * sum;
-  return frame;
+  double weight(int n) const { return weight_[n]; }
+  const double* cos(int n) const { return cos_.data() + offsets_[n]; }
+  const double* sin(int n) const { return sin_.data() + offsets_[n]; }
+
+ private:
+  std::vector<int> offsets_;
+  std::vector<double> weight_, cos_, sin_;
+};
+
+LimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3> p, const SmoothTables& tables) {
+  auto ring = level.ringVerticesOf(v);
+  const int n = static_cast<int>(ring.size());
+  const double* c = tables.cos(n);
+  const double* s = tables.sin(n);
+  Vec3 sum(0, 0, 0), t1(0, 0, 0), t2(0, 0, 0);
+  for (int k = 0; k < n; ++k) {
+    const Vec3& q = p[ring[k]];
+    sum += q;
+    t1 += c[k] * q;
+    t2 += s[k] * q;
+  }
+  const double w = tables.weight(n);
+  return {(1.0 - n * w) * p[v] + w * sum, t1, t2};
 }
 
 LimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3> p) {
-  auto ring = level.ringEdgesOf(v);
+  auto ring = level.ringVerticesOf(v);
   const int n = static_cast<int>(ring.size());
   std::vector<float> sharpness(n);
   level.ringSharpness(v, sharpness.data());
   int ends[2];
   sharpEdgePair(sharpness, ends);
-  auto neighbour = [&](int k) -> const Vec3& { return p[level.otherVertex(ring[k], v)]; };
+  auto neighbour = [&](int k) -> const Vec3& { return p[ring[k]]; };
 
   LimitFrame frame{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)};
   frame.position = loop::kCreaseLimitVertexWeight * p[v] +
@@ -72,19 +96,17 @@ LimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3> p) {
 }
 
 LimitFrame cornerFrame(const Level& level, Index v, std::span<const Vec3> p) {
-  auto ring = level.ringEdgesOf(v);
+  auto ring = level.ringVerticesOf(v);
   // Differences to the first two ring neighbours, scaled by 3 (OpenSubdiv's
   // magnitude convention): the tangent plane of the first face's sector.
-  return {p[v], 3.0 * (p[level.otherVertex(ring[0], v)] - p[v]), 3.0 * (p[level.otherVertex(ring[1], v)] - p[v])};
+  return {p[v], 3.0 * (p[ring[0]] - p[v]), 3.0 * (p[ring[1]] - p[v])};
 }
 
-}  // namespace
-
-LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points) {
+LimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points, const SmoothTables& tables) {
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
     case VertexRule::kDart:
-      return smoothFrame(level, v, points);
+      return smoothFrame(level, v, points, tables);
     case VertexRule::kCrease:
       return creaseFrame(level, v, points);
     case VertexRule::kCorner:
@@ -93,20 +115,28 @@ LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points)
   return cornerFrame(level, v, points);
 }
 
+}  // namespace
+
+LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points) {
+  SmoothTables tables(level.valence(v));
+  return frameWith(level, v, points, tables);
+}
+
 void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                   std::span<Vec3> normals) {
+  const SmoothTables tables(level.maxValence);
   const bool wantNormals = !normals.empty();
   for (Index v = 0; v < level.numVertices; ++v) {
     if (!wantNormals && isSmoothLike(level.vertexRules[v])) {
-      auto ring = level.ringEdgesOf(v);
+      auto ring = level.ringVerticesOf(v);
       const int n = static_cast<int>(ring.size());
-      const double w = loop::smoothLimitEdgeWeight(n);
+      const double w = tables.weight(n);
       Vec3 sum(0, 0, 0);
-      for (Index e : ring) sum += points[level.otherVertex(e, v)];
+      for (Index u : ring) sum += points[u];
       positions[v] = (1.0 - n * w) * points[v] + w * sum;
       continue;
     }
-    LimitFrame frame = limitFrame(level, v, points);
+    const LimitFrame frame = frameWith(level, v, points, tables);
     positions[v] = frame.position;
     if (wantNormals) normals[v] = frame.normal();
   }

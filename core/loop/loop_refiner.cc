@@ -8,13 +8,15 @@
 
 namespace tessera {
 
-Expected<LoopRefiner> LoopRefiner::create(const BaseMesh& mesh, const LoopOptions& options, int levels,
-                                          long long maxFaces) {
-  return create(BaseTopology::fromBaseMesh(mesh), options, levels, maxFaces);
+Expected<LoopRefiner> LoopRefiner::create(const BaseMesh& mesh, const LoopOptions& options,
+                                          const Uniform& uniform) {
+  return create(BaseTopology::fromBaseMesh(mesh), options, uniform);
 }
 
-Expected<LoopRefiner> LoopRefiner::create(const BaseTopology& topology, const LoopOptions& options, int levels,
-                                          long long maxFaces) {
+Expected<LoopRefiner> LoopRefiner::create(const BaseTopology& topology, const LoopOptions& options,
+                                          const Uniform& uniform) {
+  const int levels = uniform.levels;
+  const long long maxFaces = uniform.maxFaces;
   if (levels < 0) return invalidArgument("refinement level must be >= 0, got " + std::to_string(levels));
   long long faces = static_cast<long long>(topology.triangles.size());
   for (int l = 0; l < levels; ++l) {
@@ -30,7 +32,12 @@ Expected<LoopRefiner> LoopRefiner::create(const BaseTopology& topology, const Lo
   refiner.options_ = options;
   refiner.levels_.reserve(levels + 1);
   refiner.levels_.push_back(std::move(base));
-  for (int l = 0; l < levels; ++l) refiner.levels_.push_back(refineLevel(refiner.levels_.back(), options));
+  for (int l = 0; l < levels; ++l) {
+    const bool last = (l + 1 == levels);
+    const RefineDetail detail =
+        (last && !uniform.fullTopologyInLastLevel) ? RefineDetail::kFacesOnly : RefineDetail::kFull;
+    refiner.levels_.push_back(refineLevel(refiner.levels_.back(), options, detail));
+  }
   return refiner;
 }
 
@@ -66,7 +73,10 @@ SurfaceMesh LoopRefiner::controlSurface(std::span<const Vec3> finestPoints) cons
   return surface;
 }
 
-SurfaceMesh LoopRefiner::limitSurface(std::span<const Vec3> finestPoints) const {
+Expected<SurfaceMesh> LoopRefiner::limitSurface(std::span<const Vec3> finestPoints) const {
+  if (!finestLevel().fullTopology) {
+    return invalidArgument("limit evaluation needs the finest level's full topology");
+  }
   SurfaceMesh surface = controlSurface(finestPoints);
   surface.normals.resize(surface.positions.size());
   computeLimit(finestLevel(), finestPoints, surface.positions, surface.normals);

@@ -1,6 +1,6 @@
 // LoopRefiner: the front door of uniform Loop refinement with sharp features.
 //
-//   auto refiner = LoopRefiner::create(baseMesh, options, /*levels=*/3);
+//   auto refiner = LoopRefiner::create(baseMesh, options, {.levels = 3});
 //   std::vector<Vec3> fine = refiner->refinePoints(baseMesh.positions());
 //   SurfaceMesh limit = refiner->limitSurface(fine);
 //
@@ -24,13 +24,18 @@ namespace tessera {
 
 class LoopRefiner {
  public:
-  // Refuses levels < 0 and refinements beyond maxFaces triangles at the finest level.
-  static constexpr long long kDefaultMaxFaces = 64LL * 1024 * 1024;
+  struct Uniform {
+    int levels = 1;
+    // Without it the finest level holds faces, sharpness and rules only:
+    // enough for refinePoints() and controlSurface(), not for limits.
+    bool fullTopologyInLastLevel = true;
+    // Refuses refinements beyond this many triangles at the finest level.
+    long long maxFaces = 64LL * 1024 * 1024;
+  };
 
-  static Expected<LoopRefiner> create(const BaseMesh& mesh, const LoopOptions& options, int levels,
-                                      long long maxFaces = kDefaultMaxFaces);
-  static Expected<LoopRefiner> create(const BaseTopology& topology, const LoopOptions& options, int levels,
-                                      long long maxFaces = kDefaultMaxFaces);
+  static Expected<LoopRefiner> create(const BaseMesh& mesh, const LoopOptions& options, const Uniform& uniform);
+  static Expected<LoopRefiner> create(const BaseTopology& topology, const LoopOptions& options,
+                                      const Uniform& uniform);
 
   int maxLevel() const { return static_cast<int>(levels_.size()) - 1; }
   const Level& level(int l) const { return levels_[l]; }
@@ -42,9 +47,10 @@ class LoopRefiner {
   // Points of every level, [0] being the base points.
   std::vector<std::vector<Vec3>> refinePointsPerLevel(std::span<const Vec3> basePoints) const;
 
-  // Surfaces of the finest level: control points, or limit positions and normals.
+  // Surfaces of the finest level: control points, or limit positions and
+  // normals (which need fullTopologyInLastLevel).
   SurfaceMesh controlSurface(std::span<const Vec3> finestPoints) const;
-  SurfaceMesh limitSurface(std::span<const Vec3> finestPoints) const;
+  Expected<SurfaceMesh> limitSurface(std::span<const Vec3> finestPoints) const;
 
  private:
   LoopRefiner() = default;

@@ -15,6 +15,13 @@
 
 namespace tessera {
 
-Level refineLevel(const Level& parent, const LoopOptions& options);
+enum class RefineDetail {
+  kFull,           // every relation: needed to refine further or evaluate limits
+  kFacesOnly,      // faces, sharpness and rules only: enough to interpolate
+                   // points into this level and draw it (OpenSubdiv's
+                   // fullTopologyInLastLevel = false)
+};
+
+Level refineLevel(const Level& parent, const LoopOptions& options, RefineDetail detail = RefineDetail::kFull);
 
 }  // namespace tessera

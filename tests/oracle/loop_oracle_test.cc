@@ -39,7 +39,7 @@ struct OracleCase {
 
 void checkAgainstOpenSubdiv(const OracleCase& c) {
   SCOPED_TRACE(c.mesh.name);
-  auto refiner = LoopRefiner::create(c.mesh.topology, c.options, c.levels);
+  auto refiner = LoopRefiner::create(c.mesh.topology, c.options, {.levels = c.levels});
   ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
   auto reference = oracle::refineWithOpenSubdiv(c.mesh.topology, c.mesh.points, c.options, *refiner, true);
   auto ours = refiner->refinePointsPerLevel(c.mesh.points);

@@ -1,0 +1,163 @@
+// Uniform refinement (topology + positions) and limit evaluation on a real
+// mesh of >= 10k triangles, Tessera against OpenSubdiv Far in the same run.
+//
+//   build/release/bench/tessera_bench_loop [--mesh PATH] [benchmark flags]
+//
+// Both start from the same triangle list and the same double-precision
+// points; OpenSubdiv uses TopologyRefinerFactory + RefineUniform +
+// PrimvarRefiner::Interpolate (and ::Limit for the limit case).
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include <benchmark/benchmark.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include "bench/ratio_reporter.h"
+#include "core/io/mesh_import.h"
+#include "core/loop/limit.h"
+#include "core/loop/loop_refiner.h"
+
+namespace {
+
+using namespace tessera;
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+struct OsdPoint {
+  double x = 0, y = 0, z = 0;
+  void Clear(void* = nullptr) { x = y = z = 0; }
+  void AddWithWeight(const OsdPoint& s, float w) {
+    x += w * s.x;
+    y += w * s.y;
+    z += w * s.z;
+  }
+};
+
+struct Input {
+  BaseTopology topology;
+  std::vector<Vec3> points;
+  std::vector<OsdPoint> osdPoints;
+  std::vector<int> vertsPerFace;
+  std::vector<int> indices;
+};
+
+Input& input() {
+  static Input in;
+  return in;
+}
+
+std::unique_ptr<Far::TopologyRefiner> osdRefiner(int level, bool fullTopology) {
+  const Input& in = input();
+  Far::TopologyDescriptor desc;
+  desc.numVertices = in.topology.numVertices;
+  desc.numFaces = static_cast<int>(in.topology.triangles.size());
+  desc.numVertsPerFace = in.vertsPerFace.data();
+  desc.vertIndicesPerFace = in.indices.data();
+  Sdc::Options sdc;
+  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+  Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Options options(Sdc::SCHEME_LOOP, sdc);
+  std::unique_ptr<Far::TopologyRefiner> refiner(
+      Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Create(desc, options));
+  Far::TopologyRefiner::UniformOptions uniform(level);
+  uniform.fullTopologyInLastLevel = fullTopology;
+  refiner->RefineUniform(uniform);
+  return refiner;
+}
+
+std::vector<OsdPoint> osdInterpolate(const Far::TopologyRefiner& refiner, int level) {
+  Far::PrimvarRefiner primvar(refiner);
+  std::vector<OsdPoint> current = input().osdPoints, next;
+  for (int l = 1; l <= level; ++l) {
+    next.resize(refiner.GetLevel(l).GetNumVertices());
+    OsdPoint* dst = next.data();
+    primvar.Interpolate(l, current.data(), dst);
+    current.swap(next);
+  }
+  return current;
+}
+
+void refineTessera(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    // Like OpenSubdiv's default: the finest level gets faces only.
+    auto refiner = LoopRefiner::create(input().topology, LoopOptions{}, {.levels = level, .fullTopologyInLastLevel = false});
+    auto points = refiner->refinePoints(input().points);
+    benchmark::DoNotOptimize(points.data());
+  }
+}
+
+void refineOpenSubdiv(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto refiner = osdRefiner(level, false);
+    auto points = osdInterpolate(*refiner, level);
+    benchmark::DoNotOptimize(points.data());
+  }
+}
+
+void limitTessera(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  auto refiner = LoopRefiner::create(input().topology, LoopOptions{}, {.levels = level});
+  auto points = refiner->refinePoints(input().points);
+  std::vector<Vec3> positions(points.size()), normals(points.size());
+  for (auto _ : state) {
+    computeLimit(refiner->finestLevel(), points, positions, normals);
+    benchmark::DoNotOptimize(positions.data());
+  }
+}
+
+void limitOpenSubdiv(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  auto refiner = osdRefiner(level, true);
+  auto points = osdInterpolate(*refiner, level);
+  Far::PrimvarRefiner primvar(*refiner);
+  std::vector<OsdPoint> positions(points.size()), t1(points.size()), t2(points.size());
+  for (auto _ : state) {
+    OsdPoint *p = positions.data(), *a = t1.data(), *b = t2.data();
+    primvar.Limit(points.data(), p, a, b);
+    benchmark::DoNotOptimize(positions.data());
+  }
+}
+
+BENCHMARK(refineTessera)->Name("Refine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv)->Name("Refine/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(limitTessera)->Name("Limit/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(limitOpenSubdiv)->Name("Limit/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--mesh") == 0) {
+      meshPath = argv[i + 1];
+      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+      argc -= 2;
+      break;
+    }
+  }
+  auto mesh = importMesh(meshPath);
+  if (!mesh.isOk()) {
+    std::fprintf(stderr, "tessera_bench_loop: %s\n", mesh.status().toString().c_str());
+    return 1;
+  }
+  Input& in = input();
+  in.topology = BaseTopology::fromBaseMesh(*mesh);
+  in.points = mesh->positions();
+  for (const auto& p : in.points) in.osdPoints.push_back({p[0], p[1], p[2]});
+  in.vertsPerFace.assign(in.topology.triangles.size(), 3);
+  for (const auto& t : in.topology.triangles) in.indices.insert(in.indices.end(), t.begin(), t.end());
+  std::printf("mesh %s: %d vertices, %zu triangles\n", meshPath.c_str(), in.topology.numVertices,
+              in.topology.triangles.size());
+
+  benchmark::Initialize(&argc, argv);
+  tessera::bench::RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  reporter.printRatios();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -11,7 +11,7 @@ cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)" --target tessera
 
 cli=build/release/client/cli/tessera
-"$cli" info deploy/samples/bracket.obj --tags deploy/samples/bracket.tags
-"$cli" refine deploy/samples/bracket.obj --tags deploy/samples/bracket.tags \
+"$cli" info deploy/samples/cube.obj --tags deploy/samples/cube.tags
+"$cli" refine deploy/samples/cube.obj --tags deploy/samples/cube.tags \
   --level 3 --limit --draco -o "$out"
 echo "wrote $out"

@@ -37,6 +37,7 @@ Expected<LoopRefiner> LoopRefiner::create(const BaseTopology& topology, const Lo
     const RefineDetail detail =
         (last && !uniform.fullTopologyInLastLevel) ? RefineDetail::kFacesOnly : RefineDetail::kFull;
     refiner.levels_.push_back(refineLevel(refiner.levels_.back(), options, detail));
+    if (uniform.onLevel) uniform.onLevel(l + 1, levels);
   }
   return refiner;
 }

@@ -9,6 +9,7 @@
 // re-evaluate (the OpenSubdiv TopologyRefiner / PrimvarRefiner split).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -31,6 +32,8 @@ class LoopRefiner {
     bool fullTopologyInLastLevel = true;
     // Refuses refinements beyond this many triangles at the finest level.
     long long maxFaces = 64LL * 1024 * 1024;
+    // Called after each level is built, for progress reports.
+    std::function<void(int level, int levels)> onLevel;
   };
 
   static Expected<LoopRefiner> create(const BaseMesh& mesh, const LoopOptions& options, const Uniform& uniform);

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
+#include "core/io/mesh_import.h"
 #include "core/loop/limit.h"
+#include "support/test_meshes.h"
 #include "oracle/osd_reference.h"
 #include "support/procedural_meshes.h"
 
@@ -153,6 +156,45 @@ TEST(LoopOracle, NamedFeaturesMatchOpenSubdiv) {
   corners.topology.vertexSharpness[3] = kSharpnessInfinite;  // cusp: no sharp edge meets it
   corners.topology.vertexSharpness[7] = 1.5f;                 // semi-sharp cusp
   checkAgainstOpenSubdiv({corners, LoopOptions{}, 4});
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+TestMesh loadReal(const std::string& name) {
+  ImportOptions options;
+  options.triangulate = true;
+  auto mesh = importMesh(testing::cgalMeshPath(name), options);
+  if (!mesh.isOk()) throw std::runtime_error(mesh.status().toString());
+  TestMesh m;
+  m.name = name;
+  m.topology = BaseTopology::fromBaseMesh(*mesh);
+  m.points = mesh->positions();
+  return m;
+}
+
+// Real meshes from Debian's libcgal-demo: fandisk (its feature lines tagged
+// at random here), the hand with a valence-20 pole, the genus-3 elephant, the
+// mushroom with a boundary, a knot, and a genus-3 quad mesh triangulated.
+TEST(LoopOracle, RealMeshesMatchOpenSubdiv) {
+  checkAgainstOpenSubdiv({loadReal("hand.off"), LoopOptions{}, 4});
+  checkAgainstOpenSubdiv({loadReal("3torus.off"), LoopOptions{}, 4});
+  checkAgainstOpenSubdiv({loadReal("mushroom.off"), LoopOptions{}, 3});
+  checkAgainstOpenSubdiv({loadReal("elephant.off"), LoopOptions{}, 3});
+  checkAgainstOpenSubdiv({loadReal("knot1.off"), LoopOptions{}, 3});
+  checkAgainstOpenSubdiv({loadReal("fandisk.off"), LoopOptions{}, 3});
+}
+
+TEST(LoopOracle, RealMeshesWithRandomTagsMatchOpenSubdiv) {
+  checkAgainstOpenSubdiv({testing::withRandomTags(loadReal("fandisk.off"), 0.05, 0.01, 41), LoopOptions{}, 3});
+  checkAgainstOpenSubdiv({testing::withRandomTags(loadReal("hand.off"), 0.1, 0.02, 42), LoopOptions{}, 3});
+  LoopOptions chaikinCorners;
+  chaikinCorners.creaseMethod = CreaseMethod::kChaikin;
+  chaikinCorners.boundary = BoundaryInterpolation::kEdgeAndCorner;
+  checkAgainstOpenSubdiv({testing::withRandomTags(loadReal("mushroom.off"), 0.1, 0.02, 43), chaikinCorners, 3});
 }
 
 }  // namespace

@@ -9,9 +9,9 @@
 namespace tessera {
 
 Vec3 LimitFrame::normal() const {
-  Vec3 n = tangent1 % tangent2;  // OpenMesh: % is the cross product
-  const double len = n.norm();
-  return len > 0.0 ? n / len : Vec3(0, 0, 0);
+  const Vec3 n = tangent1 % tangent2;  // % is the cross product
+  const double len2 = n.sqrnorm();
+  return len2 > 0.0 ? (1.0 / std::sqrt(len2)) * n : Vec3(0, 0, 0);
 }
 
 namespace {
@@ -42,9 +42,21 @@ class SmoothTables {
   std::vector<double> weight_, cos_, sin_;
 };
 
+// The regular case, valence 6, with its weights written out: cos(k pi/3) is
+// +-1 or +-1/2 and sin(k pi/3) is 0 or +-sqrt(3)/2 (loopScheme.h does the same).
+LimitFrame regularFrame(std::span<const Index> ring, Index v, std::span<const Vec3> p) {
+  const Vec3 &q0 = p[ring[0]], &q1 = p[ring[1]], &q2 = p[ring[2]];
+  const Vec3 &q3 = p[ring[3]], &q4 = p[ring[4]], &q5 = p[ring[5]];
+  constexpr double kRoot3By2 = 0.86602540378443864676;
+  const Vec3 sum = (q0 + q1) + (q2 + q3) + (q4 + q5);
+  return {0.5 * p[v] + (1.0 / 12.0) * sum, (q0 - q3) + 0.5 * ((q1 + q5) - (q2 + q4)),
+          kRoot3By2 * ((q1 + q2) - (q4 + q5))};
+}
+
 LimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3> p, const SmoothTables& tables) {
   auto ring = level.ringVerticesOf(v);
   const int n = static_cast<int>(ring.size());
+  if (n == 6) return regularFrame(ring, v, p);
   const double* c = tables.cos(n);
   const double* s = tables.sin(n);
   Vec3 sum(0, 0, 0), t1(0, 0, 0), t2(0, 0, 0);

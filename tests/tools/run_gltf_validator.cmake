@@ -14,8 +14,13 @@ if(NOT writer_result EQUAL 0)
   message(FATAL_ERROR "${WRITER} failed (exit ${writer_result})")
 endif()
 
+file(GLOB glbs "${OUT_DIR}/*.glb")
+list(LENGTH glbs glb_count)
+if(glb_count LESS 4)
+  message(FATAL_ERROR "expected 4 GLB files in ${OUT_DIR}, found ${glb_count}")
+endif()
 execute_process(
-  COMMAND "${NODE}" "${VALIDATOR_DIR}/validate.js" "${OUT_DIR}/torus.glb" "${OUT_DIR}/torus-draco.glb"
+  COMMAND "${NODE}" "${VALIDATOR_DIR}/validate.js" ${glbs}
   RESULT_VARIABLE validator_result)
 if(NOT validator_result EQUAL 0)
   message(FATAL_ERROR "glTF-Validator reported errors (exit ${validator_result})")

@@ -31,7 +31,7 @@ class LoopRefiner {
     // enough for refinePoints() and controlSurface(), not for limits.
     bool fullTopologyInLastLevel = true;
     // Refuses refinements beyond this many triangles at the finest level.
-    long long maxFaces = 64LL * 1024 * 1024;
+    long long maxFaces = 16LL * 1024 * 1024;
     // Called after each level is built, for progress reports.
     std::function<void(int level, int levels)> onLevel;
   };

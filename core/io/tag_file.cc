@@ -1,1 +1,168 @@
-// placeholder: implemented in the foundation issue
+// Feature-tag sidecar files: parsing is strict (every token accounted for)
+// because a silently ignored tag changes the surface without telling anyone.
+#include "core/io/tag_file.h"
+
+#include <charconv>
+#include <cmath>
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <utility>
+
+namespace tessera {
+namespace {
+
+std::vector<std::string> splitTokens(const std::string& line) {
+  std::vector<std::string> tokens;
+  std::istringstream in(line);
+  std::string token;
+  while (in >> token) tokens.push_back(token);
+  return tokens;
+}
+
+// Whole-token, non-negative decimal integer (no sign, no junk).
+bool parseIndex(const std::string& token, int& value) {
+  if (token.empty() || token[0] == '+' || token[0] == '-') return false;
+  const char* end = token.data() + token.size();
+  auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+bool equalsIgnoreCase(const std::string& a, const char* b) {
+  size_t i = 0;
+  for (; i < a.size() && b[i] != '\0'; ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) != b[i]) return false;
+  }
+  return i == a.size() && b[i] == '\0';
+}
+
+std::string describe(const FeatureTag& tag) {
+  if (tag.kind == FeatureTag::Kind::kCorner) return "corner " + std::to_string(tag.v0);
+  return "crease " + std::to_string(tag.v0) + " " + std::to_string(tag.v1);
+}
+
+}  // namespace
+
+bool parseSharpness(const std::string& token, float& sharpness) {
+  if (equalsIgnoreCase(token, "inf")) {
+    sharpness = kSharpnessInfinite;
+    return true;
+  }
+  // from_chars accepts "nan" and "inf" spellings; only plain numbers pass the
+  // checks below. A leading '+' is not accepted by from_chars either.
+  double value = 0.0;
+  const char* end = token.data() + token.size();
+  auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value) || value < 0.0) return false;
+  sharpness = canonicalSharpness(static_cast<float>(std::min(value, double{kSharpnessInfinite})));
+  return true;
+}
+
+Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::string& sourceName) {
+  std::vector<FeatureTag> tags;
+  std::istringstream in(text);
+  std::string line;
+  int lineNumber = 0;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    const std::string where = sourceName + ":" + std::to_string(lineNumber) + ": ";
+    if (auto hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    const std::vector<std::string> tokens = splitTokens(line);
+    if (tokens.empty()) continue;
+
+    FeatureTag tag;
+    tag.line = lineNumber;
+    size_t arity = 0;
+    if (tokens[0] == "crease") {
+      tag.kind = FeatureTag::Kind::kCrease;
+      arity = 4;
+    } else if (tokens[0] == "corner") {
+      tag.kind = FeatureTag::Kind::kCorner;
+      arity = 3;
+    } else {
+      return parseError(where + "unknown keyword '" + tokens[0] + "' (expected 'crease' or 'corner')");
+    }
+    const std::string usage = tag.kind == FeatureTag::Kind::kCrease ? "crease I J SHARPNESS" : "corner I SHARPNESS";
+    if (tokens.size() < arity) {
+      return parseError(where + tokens[0] + ": too few values, expected '" + usage + "'");
+    }
+    if (tokens.size() > arity) {
+      return parseError(where + tokens[0] + ": unexpected trailing '" + tokens[arity] + "', expected '" + usage + "'");
+    }
+    if (!parseIndex(tokens[1], tag.v0)) {
+      return parseError(where + tokens[0] + ": bad vertex index '" + tokens[1] +
+                        "' (expected a non-negative integer)");
+    }
+    if (tag.kind == FeatureTag::Kind::kCrease) {
+      if (!parseIndex(tokens[2], tag.v1)) {
+        return parseError(where + tokens[0] + ": bad vertex index '" + tokens[2] +
+                          "' (expected a non-negative integer)");
+      }
+      if (tag.v0 == tag.v1) {
+        return parseError(where + describe(tag) + ": names the same vertex twice");
+      }
+    }
+    const std::string& sharpnessToken = tokens[arity - 1];
+    if (!parseSharpness(sharpnessToken, tag.sharpness)) {
+      return parseError(where + describe(tag) + ": bad sharpness '" + sharpnessToken +
+                        "' (expected a number >= 0 or 'inf')");
+    }
+    tags.push_back(tag);
+  }
+  return tags;
+}
+
+Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh) {
+  const TriMesh& m = mesh.mesh();
+  const int n = mesh.numVertices();
+  // Validate everything first so that an error leaves the mesh unchanged.
+  std::map<std::pair<int, int>, size_t> seen;  // (v0, v1) or (v, -1) -> tag
+  for (size_t i = 0; i < tags.size(); ++i) {
+    const FeatureTag& tag = tags[i];
+    const std::string where = locate(tag) + ": " + describe(tag) + ": ";
+    const bool crease = tag.kind == FeatureTag::Kind::kCrease;
+    for (int v : crease ? std::vector<int>{tag.v0, tag.v1} : std::vector<int>{tag.v0}) {
+      if (v < 0 || v >= n) {
+        return notFound(where + "vertex " + std::to_string(v) + " does not exist (the mesh has " +
+                        std::to_string(n) + " vertices)");
+      }
+    }
+    if (!(tag.sharpness >= 0.0f)) return invalidArgument(where + "sharpness must be a number >= 0");
+    if (crease && !m.find_halfedge(m.vertex_handle(tag.v0), m.vertex_handle(tag.v1)).is_valid()) {
+      return notFound(where + "vertices " + std::to_string(tag.v0) + " and " + std::to_string(tag.v1) +
+                      " share no edge");
+    }
+    const std::pair<int, int> key = crease ? std::pair<int, int>(std::minmax(tag.v0, tag.v1)) : std::pair<int, int>(tag.v0, -1);
+    auto [it, inserted] = seen.emplace(key, i);
+    if (!inserted) {
+      return invalidArgument(where + "duplicate tag, the same " + (crease ? "edge" : "vertex") +
+                             " is already tagged at " + locate(tags[it->second]));
+    }
+  }
+  for (const FeatureTag& tag : tags) {
+    const Status status = tag.kind == FeatureTag::Kind::kCrease
+                              ? mesh.setCreaseByVertices(tag.v0, tag.v1, tag.sharpness)
+                              : mesh.setCornerByVertex(tag.v0, tag.sharpness);
+    if (!status.isOk()) return status.withContext(locate(tag));  // unreachable after the checks
+  }
+  return Status::ok();
+}
+
+Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh) {
+  return applyTags(tags, [&](const FeatureTag& tag) { return sourceName + ":" + std::to_string(tag.line); }, mesh);
+}
+
+Status applyTagFile(const std::string& path, BaseMesh& mesh) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return notFound(path + ": cannot open tag file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return ioError(path + ": read error");
+  auto tags = parseTags(text.str(), path);
+  if (!tags) return tags.status();
+  return applyTags(*tags, path, mesh);
+}
+
+}  // namespace tessera

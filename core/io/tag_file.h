@@ -3,9 +3,12 @@
 //   crease I J SHARPNESS   edge between vertices I and J; SHARPNESS float or `inf`
 //   corner I SHARPNESS     vertex sharpness (a corner, or a cusp where no sharp
 //                          edge meets the vertex)
-// Errors carry the file name and line number.
+// Errors carry the file name and line number. A second tag on the same edge
+// or vertex is an error naming both lines (a silent "last wins" would hide
+// authoring mistakes). See docs/FORMATS.md.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +31,15 @@ Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::
 // Applies tags to the mesh; a tag naming a missing edge or vertex is an error
 // with its line number, and leaves the mesh unchanged.
 Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh);
+
+// Same, for tags from another source (glTF extras): `locate` names a tag in
+// error messages, e.g. "model.glb: extras.tessera.creases[2]".
+using TagLocator = std::function<std::string(const FeatureTag&)>;
+Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh);
+
+// Parses a sharpness token: a finite number >= 0 or `inf` (any case).
+// Returns false for anything else (negative, NaN, junk).
+bool parseSharpness(const std::string& token, float& sharpness);
 
 // Reads, parses and applies the file.
 Status applyTagFile(const std::string& path, BaseMesh& mesh);

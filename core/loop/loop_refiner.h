@@ -33,7 +33,7 @@ class LoopRefiner {
     // Refuses refinements beyond this many triangles at the finest level.
     long long maxFaces = 16LL * 1024 * 1024;
     // Called after each level is built, for progress reports.
-    std::function<void(int level, int levels)> onLevel;
+    std::function<void(int level, int levels)> onLevel = nullptr;
   };
 
   static Expected<LoopRefiner> create(const BaseMesh& mesh, const LoopOptions& options, const Uniform& uniform);

@@ -80,20 +80,24 @@ std::vector<OsdPoint> osdInterpolate(const Far::TopologyRefiner& refiner, int le
   return current;
 }
 
+// Refine: the finest level gets faces only (OpenSubdiv's default).
+// RefineFull: every relation at the finest level too, as limits need.
+template <bool kFullTopology>
 void refineTessera(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    // Like OpenSubdiv's default: the finest level gets faces only.
-    auto refiner = LoopRefiner::create(input().topology, LoopOptions{}, {.levels = level, .fullTopologyInLastLevel = false});
+    auto refiner = LoopRefiner::create(input().topology, LoopOptions{},
+                                       {.levels = level, .fullTopologyInLastLevel = kFullTopology});
     auto points = refiner->refinePoints(input().points);
     benchmark::DoNotOptimize(points.data());
   }
 }
 
+template <bool kFullTopology>
 void refineOpenSubdiv(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   for (auto _ : state) {
-    auto refiner = osdRefiner(level, false);
+    auto refiner = osdRefiner(level, kFullTopology);
     auto points = osdInterpolate(*refiner, level);
     benchmark::DoNotOptimize(points.data());
   }
@@ -123,8 +127,10 @@ void limitOpenSubdiv(benchmark::State& state) {
   }
 }
 
-BENCHMARK(refineTessera)->Name("Refine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
-BENCHMARK(refineOpenSubdiv)->Name("Refine/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineTessera<false>)->Name("Refine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv<false>)->Name("Refine/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineTessera<true>)->Name("RefineFull/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv<true>)->Name("RefineFull/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitTessera)->Name("Limit/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitOpenSubdiv)->Name("Limit/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
 

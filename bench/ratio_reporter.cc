@@ -7,10 +7,13 @@ namespace tessera::bench {
 void RatioReporter::ReportRuns(const std::vector<Run>& runs) {
   ConsoleReporter::ReportRuns(runs);
   for (const auto& run : runs) {
-    if (run.run_type != Run::RT_Iteration || run.error_occurred) continue;
+    if (run.error_occurred) continue;
+    // One iteration run, or the median when repetitions are aggregated.
+    const bool median = run.run_type == Run::RT_Aggregate && run.aggregate_name == "median";
+    if (run.run_type != Run::RT_Iteration && !median) continue;
     // Adjusted time is in the run's display unit; normalise to nanoseconds.
     double ns = run.GetAdjustedRealTime() * 1e9 / benchmark::GetTimeUnitMultiplier(run.time_unit);
-    realTimeNs_[run.benchmark_name()] = ns;
+    realTimeNs_[run.run_name.str()] = ns;
   }
 }
 

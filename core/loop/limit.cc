@@ -8,12 +8,6 @@
 
 namespace tessera {
 
-Vec3 LimitFrame::normal() const {
-  const Vec3 n = tangent1 % tangent2;  // % is the cross product
-  const double len2 = n.sqrnorm();
-  return len2 > 0.0 ? (1.0 / std::sqrt(len2)) * n : Vec3(0, 0, 0);
-}
-
 namespace {
 
 // Per-valence smooth limit weights and tangent coefficients, computed once

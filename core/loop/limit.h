@@ -9,6 +9,7 @@
 // decides its mask, so semi-sharp features still present count as sharp.
 #pragma once
 
+#include <cmath>
 #include <span>
 
 #include "core/loop/level.h"
@@ -20,7 +21,13 @@ struct LimitFrame {
   Vec3 position;
   Vec3 tangent1;
   Vec3 tangent2;
-  Vec3 normal() const;  // unit tangent1 x tangent2 (zero if degenerate)
+  // Unit tangent1 x tangent2 (zero if degenerate). Inline so that the
+  // square root of one vertex overlaps the arithmetic of the next.
+  Vec3 normal() const {
+    const Vec3 n = tangent1 % tangent2;
+    const double len2 = n.sqrnorm();
+    return len2 > 0.0 ? (1.0 / std::sqrt(len2)) * n : Vec3(0, 0, 0);
+  }
 };
 
 LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points);

@@ -12,37 +12,25 @@
 #include <string>
 
 #include <benchmark/benchmark.h>
-#include <opensubdiv/far/primvarRefiner.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include "bench/ratio_reporter.h"
 #include "core/io/mesh_import.h"
 #include "core/loop/limit.h"
 #include "core/loop/loop_refiner.h"
+#include "oracle/osd_adapter.h"
 
 namespace {
 
 using namespace tessera;
 namespace Far = OpenSubdiv::Far;
-namespace Sdc = OpenSubdiv::Sdc;
 
-struct OsdPoint {
-  double x = 0, y = 0, z = 0;
-  void Clear(void* = nullptr) { x = y = z = 0; }
-  void AddWithWeight(const OsdPoint& s, float w) {
-    x += w * s.x;
-    y += w * s.y;
-    z += w * s.z;
-  }
-};
+using oracle::OsdPoint;
 
 struct Input {
   BaseTopology topology;
   std::vector<Vec3> points;
   std::vector<OsdPoint> osdPoints;
-  std::vector<int> vertsPerFace;
-  std::vector<int> indices;
+  std::unique_ptr<oracle::OsdInput> osd;
 };
 
 Input& input() {
@@ -51,33 +39,7 @@ Input& input() {
 }
 
 std::unique_ptr<Far::TopologyRefiner> osdRefiner(int level, bool fullTopology) {
-  const Input& in = input();
-  Far::TopologyDescriptor desc;
-  desc.numVertices = in.topology.numVertices;
-  desc.numFaces = static_cast<int>(in.topology.triangles.size());
-  desc.numVertsPerFace = in.vertsPerFace.data();
-  desc.vertIndicesPerFace = in.indices.data();
-  Sdc::Options sdc;
-  sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-  Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Options options(Sdc::SCHEME_LOOP, sdc);
-  std::unique_ptr<Far::TopologyRefiner> refiner(
-      Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Create(desc, options));
-  Far::TopologyRefiner::UniformOptions uniform(level);
-  uniform.fullTopologyInLastLevel = fullTopology;
-  refiner->RefineUniform(uniform);
-  return refiner;
-}
-
-std::vector<OsdPoint> osdInterpolate(const Far::TopologyRefiner& refiner, int level) {
-  Far::PrimvarRefiner primvar(refiner);
-  std::vector<OsdPoint> current = input().osdPoints, next;
-  for (int l = 1; l <= level; ++l) {
-    next.resize(refiner.GetLevel(l).GetNumVertices());
-    OsdPoint* dst = next.data();
-    primvar.Interpolate(l, current.data(), dst);
-    current.swap(next);
-  }
-  return current;
+  return oracle::createOsdRefiner(*input().osd, LoopOptions{}, level, fullTopology);
 }
 
 // Refine: the finest level gets faces only (OpenSubdiv's default).
@@ -98,7 +60,7 @@ void refineOpenSubdiv(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   for (auto _ : state) {
     auto refiner = osdRefiner(level, kFullTopology);
-    auto points = osdInterpolate(*refiner, level);
+    auto points = oracle::interpolateOsd(*refiner, input().osdPoints, level);
     benchmark::DoNotOptimize(points.data());
   }
 }
@@ -117,7 +79,7 @@ void limitTessera(benchmark::State& state) {
 void limitOpenSubdiv(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
   auto refiner = osdRefiner(level, true);
-  auto points = osdInterpolate(*refiner, level);
+  auto points = oracle::interpolateOsd(*refiner, input().osdPoints, level);
   Far::PrimvarRefiner primvar(*refiner);
   std::vector<OsdPoint> positions(points.size()), t1(points.size()), t2(points.size());
   for (auto _ : state) {
@@ -154,9 +116,8 @@ int main(int argc, char** argv) {
   Input& in = input();
   in.topology = BaseTopology::fromBaseMesh(*mesh);
   in.points = mesh->positions();
-  for (const auto& p : in.points) in.osdPoints.push_back({p[0], p[1], p[2]});
-  in.vertsPerFace.assign(in.topology.triangles.size(), 3);
-  for (const auto& t : in.topology.triangles) in.indices.insert(in.indices.end(), t.begin(), t.end());
+  for (const auto& p : in.points) in.osdPoints.push_back(OsdPoint::from(p));
+  in.osd = std::make_unique<oracle::OsdInput>(in.topology);
   std::printf("mesh %s: %d vertices, %zu triangles\n", meshPath.c_str(), in.topology.numVertices,
               in.topology.triangles.size());
 

@@ -11,18 +11,11 @@
 #include <sstream>
 #include <vector>
 
+#include "core/util/text.h"
 #include "core/util/vec3.h"
 
 namespace tessera {
 namespace {
-
-std::vector<std::string> splitTokens(const std::string& line) {
-  std::vector<std::string> tokens;
-  std::istringstream in(line);
-  std::string token;
-  while (in >> token) tokens.push_back(token);
-  return tokens;
-}
 
 // A whole-token number. OpenMesh parses coordinates as float, so a value
 // outside float range would be dropped by it: report it instead.

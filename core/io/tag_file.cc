@@ -11,16 +11,10 @@
 #include <sstream>
 #include <utility>
 
+#include "core/util/text.h"
+
 namespace tessera {
 namespace {
-
-std::vector<std::string> splitTokens(const std::string& line) {
-  std::vector<std::string> tokens;
-  std::istringstream in(line);
-  std::string token;
-  while (in >> token) tokens.push_back(token);
-  return tokens;
-}
 
 // Whole-token, non-negative decimal integer (no sign, no junk).
 bool parseIndex(const std::string& token, int& value) {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/loop/masks.h"
+#include "core/loop/refinement.h"
 
 namespace tessera {
 
@@ -62,7 +63,7 @@ void interpolateVertexPoints(const Level& parent, const Level& child, std::span<
       // The child's ring is the parent's, entry for entry: read the halves at v.
       int k = 0;
       for (Index e : parent.ringEdgesOf(v)) {
-        cSharp[k++] = child.edgeSharpness[2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1)];
+        cSharp[k++] = child.edgeSharpness[childEdgeAtEnd(parent, e, v)];
       }
       const double pw = fractionalWeightAtVertex(parent.vertexSharpness[v], child.vertexSharpness[v],
                                                  std::span(pSharp.data(), n), std::span(cSharp.data(), n));

@@ -72,11 +72,6 @@ struct Level {
 
   // The end of edge e that is not v.
   Index otherVertex(Index e, Index v) const { return edgeVertices[e][0] ^ edgeVertices[e][1] ^ v; }
-  // Local index (0..2) of edge e within face f.
-  int edgeInFace(Index f, Index e) const {
-    const auto& fe = faceEdges[f];
-    return fe[0] == e ? 0 : (fe[1] == e ? 1 : 2);
-  }
   // Local index (0..2) of vertex v within face f.
   int vertexInFace(Index f, Index v) const {
     const auto& fv = faceVertices[f];

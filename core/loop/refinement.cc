@@ -124,7 +124,7 @@ void refineRings(const Level& parent, Level& child) {
     for (Index k = from; k < to; ++k) {
       const Index e = parent.ringEdges[k];
       const Index f = parent.ringFaces[k];
-      child.ringEdges[out + k - from] = 2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1);
+      child.ringEdges[out + k - from] = childEdgeAtEnd(parent, e, v);
       child.ringVertices[out + k - from] = nV + e;
       child.ringFaces[out + k - from] = f == kInvalidIndex ? kInvalidIndex : 4 * f + parent.ringFaceLocal[k];
       child.ringFaceLocal[out + k - from] = parent.ringFaceLocal[k];
@@ -203,7 +203,7 @@ void refineSharpness(const Level& parent, const LoopOptions& options, Level& chi
     }
     int sharpEdges = 0;
     for (Index e : parent.ringEdgesOf(v)) {
-      sharpEdges += isSharp(child.edgeSharpness[2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1)]);
+      sharpEdges += isSharp(child.edgeSharpness[childEdgeAtEnd(parent, e, v)]);
     }
     child.vertexRules[v] = vertexRule(child.vertexSharpness[v], sharpEdges);
   }

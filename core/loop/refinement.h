@@ -22,6 +22,11 @@ enum class RefineDetail {
                    // fullTopologyInLastLevel = false)
 };
 
+// The child of parent edge e that touches its end vertex `end` (2e or 2e+1).
+inline Index childEdgeAtEnd(const Level& parent, Index e, Index end) {
+  return 2 * e + (parent.edgeVertices[e][0] == end ? 0 : 1);
+}
+
 Level refineLevel(const Level& parent, const LoopOptions& options, RefineDetail detail = RefineDetail::kFull);
 
 }  // namespace tessera

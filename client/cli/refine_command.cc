@@ -77,8 +77,10 @@ int runRefine(const std::vector<std::string>& rawArgs) {
   LoopRefiner::Uniform uniform;
   uniform.levels = *level;
   uniform.fullTopologyInLastLevel = limit;
+  // Stop multiplying once past the threshold: --level may be large (the
+  // refiner then refuses it with a clear error).
   long long finestFaces = mesh->numFaces();
-  for (int l = 0; l < *level; ++l) finestFaces *= 4;
+  for (int l = 0; l < *level && finestFaces < kProgressFaces; ++l) finestFaces *= 4;
   const bool showProgress = finestFaces >= kProgressFaces;
   if (showProgress) {
     uniform.onLevel = [](int done, int total) {

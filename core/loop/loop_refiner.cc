@@ -5,6 +5,7 @@
 #include "core/loop/interpolate.h"
 #include "core/loop/limit.h"
 #include "core/loop/refinement.h"
+#include "core/mesh/vertex_normals.h"
 
 namespace tessera {
 
@@ -20,12 +21,13 @@ Expected<LoopRefiner> LoopRefiner::create(const BaseTopology& topology, const Lo
   if (levels < 0) return invalidArgument("refinement level must be >= 0, got " + std::to_string(levels));
   long long faces = static_cast<long long>(topology.triangles.size());
   for (int l = 0; l < levels; ++l) {
-    faces *= 4;
-    if (faces > maxFaces) {
+    // Compare before multiplying, so that no budget can overflow the count.
+    if (faces > maxFaces / 4) {
       return invalidArgument("level " + std::to_string(levels) + " would exceed the limit of " +
                              std::to_string(maxFaces) + " triangles (" +
                              std::to_string(topology.triangles.size()) + " base triangles)");
     }
+    faces *= 4;
   }
   TESSERA_ASSIGN_OR_RETURN(Level base, buildBaseLevel(topology, options));
   LoopRefiner refiner;
@@ -65,12 +67,16 @@ std::vector<std::vector<Vec3>> LoopRefiner::refinePointsPerLevel(std::span<const
   return points;
 }
 
+std::vector<std::array<int, 3>> LoopRefiner::finestTriangles() const {
+  const Level& fine = finestLevel();
+  return {fine.faceVertices.begin(), fine.faceVertices.end()};
+}
+
 SurfaceMesh LoopRefiner::controlSurface(std::span<const Vec3> finestPoints) const {
   SurfaceMesh surface;
   surface.positions.assign(finestPoints.begin(), finestPoints.end());
-  const Level& fine = finestLevel();
-  surface.triangles.reserve(fine.numFaces());
-  for (const auto& fv : fine.faceVertices) surface.triangles.push_back({fv[0], fv[1], fv[2]});
+  surface.triangles = finestTriangles();
+  surface.normals = areaWeightedVertexNormals(surface.positions, surface.triangles);
   return surface;
 }
 
@@ -78,8 +84,10 @@ Expected<SurfaceMesh> LoopRefiner::limitSurface(std::span<const Vec3> finestPoin
   if (!finestLevel().fullTopology) {
     return invalidArgument("limit evaluation needs the finest level's full topology");
   }
-  SurfaceMesh surface = controlSurface(finestPoints);
-  surface.normals.resize(surface.positions.size());
+  SurfaceMesh surface;
+  surface.positions.resize(finestPoints.size());
+  surface.normals.resize(finestPoints.size());
+  surface.triangles = finestTriangles();
   computeLimit(finestLevel(), finestPoints, surface.positions, surface.normals);
   return surface;
 }

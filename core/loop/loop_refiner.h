@@ -50,10 +50,12 @@ class LoopRefiner {
   // Points of every level, [0] being the base points.
   std::vector<std::vector<Vec3>> refinePointsPerLevel(std::span<const Vec3> basePoints) const;
 
-  // Surfaces of the finest level: control points, or limit positions and
-  // normals (which need fullTopologyInLastLevel).
+  // Surfaces of the finest level: control points with area-weighted vertex
+  // normals, or limit positions with exact limit normals (which need
+  // fullTopologyInLastLevel).
   SurfaceMesh controlSurface(std::span<const Vec3> finestPoints) const;
   Expected<SurfaceMesh> limitSurface(std::span<const Vec3> finestPoints) const;
+  std::vector<std::array<int, 3>> finestTriangles() const;
 
  private:
   LoopRefiner() = default;

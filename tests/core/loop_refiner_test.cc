@@ -105,3 +105,28 @@ TEST(LoopRefiner, RefusesLevelsBeyondTheFaceBudget) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+TEST(LoopRefiner, SurfacesCarryOutwardUnitNormals) {
+  // On a sphere-like closed mesh centred at the origin, every normal of the
+  // control and limit surfaces points away from the centre.
+  auto mesh = testing::icosahedron();
+  auto refiner = LoopRefiner::create(mesh.topology, {}, {.levels = 2});
+  ASSERT_TRUE(refiner.isOk());
+  auto points = refiner->refinePoints(mesh.points);
+  auto limit = refiner->limitSurface(points);
+  ASSERT_TRUE(limit.isOk());
+  for (const SurfaceMesh& s : {refiner->controlSurface(points), limit.value()}) {
+    ASSERT_EQ(s.normals.size(), s.positions.size());
+    ASSERT_EQ(s.triangles.size(), 320u);
+    for (size_t v = 0; v < s.positions.size(); ++v) {
+      EXPECT_NEAR(s.normals[v].norm(), 1.0, 1e-12);
+      EXPECT_GT(dot(s.normals[v], s.positions[v].normalized()), 0.95) << "vertex " << v;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera

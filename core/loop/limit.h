@@ -32,6 +32,22 @@ struct LimitFrame {
 
 LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points);
 
+// A sector of a vertex's ring between two consecutive sharp edges: ring faces
+// firstFace .. firstFace + faceCount - 1 (modulo the valence), and the limit
+// normal of the surface on that side.
+struct LimitSector {
+  int firstFace = 0;
+  int faceCount = 0;
+  Vec3 normal;
+};
+
+// The sectors of a crease or corner vertex other than the one that
+// limitFrame()'s single normal describes (OpenSubdiv's choice). A crease is
+// one-sided in its limit normal; these give the other sides their own, so a
+// mesh can split vertices along creases and shade each side correctly.
+// Smooth, dart and cusp vertices, and boundary creases, have none.
+std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::span<const Vec3> points);
+
 // Fills positions (and normals, if non-empty) for all vertices of the level.
 void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                   std::span<Vec3> normals);

@@ -88,7 +88,25 @@ Expected<SurfaceMesh> LoopRefiner::limitSurface(std::span<const Vec3> finestPoin
   surface.positions.resize(finestPoints.size());
   surface.normals.resize(finestPoints.size());
   surface.triangles = finestTriangles();
-  computeLimit(finestLevel(), finestPoints, surface.positions, surface.normals);
+  const Level& fine = finestLevel();
+  computeLimit(fine, finestPoints, surface.positions, surface.normals);
+  // Split vertices along creases and at corners: each further side gets a
+  // copy of the vertex with its own limit normal, appended after the level's
+  // vertices so that vertex numbering is unchanged.
+  for (Index v = 0; v < fine.numVertices; ++v) {
+    if (isSmoothLike(fine.vertexRules[v])) continue;
+    auto ringF = fine.ringFacesOf(v);
+    const int n = fine.valence(v);
+    for (const LimitSector& sector : otherLimitSectors(fine, v, finestPoints)) {
+      const int copy = static_cast<int>(surface.positions.size());
+      surface.positions.push_back(surface.positions[v]);
+      surface.normals.push_back(sector.normal);
+      for (int k = sector.firstFace; k < sector.firstFace + sector.faceCount; ++k) {
+        const int ring = k % n;
+        surface.triangles[ringF[ring]][fine.ringFaceLocal[fine.ringOffsets[v] + ring]] = copy;
+      }
+    }
+  }
   return surface;
 }
 

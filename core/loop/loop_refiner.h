@@ -52,7 +52,9 @@ class LoopRefiner {
 
   // Surfaces of the finest level: control points with area-weighted vertex
   // normals, or limit positions with exact limit normals (which need
-  // fullTopologyInLastLevel).
+  // fullTopologyInLastLevel). In the limit surface, vertices on creases and
+  // corners are split, one copy per side with that side's normal; copies are
+  // appended after the level's vertices, whose numbering is unchanged.
   SurfaceMesh controlSurface(std::span<const Vec3> finestPoints) const;
   Expected<SurfaceMesh> limitSurface(std::span<const Vec3> finestPoints) const;
   std::vector<std::array<int, 3>> finestTriangles() const;

@@ -130,3 +130,47 @@ TEST(LoopRefiner, SurfacesCarryOutwardUnitNormals) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// A cube whose twelve edges are all infinitely sharp refines to the cube
+// itself: flat faces, sharp edges, corners. Each face corner of the limit
+// surface must therefore carry the normal of its cube face exactly, which
+// needs vertices split along the creases (one normal per side).
+TEST(LoopRefiner, LimitSurfaceSplitsCreasesIntoOneNormalPerSide) {
+  BaseTopology cube;
+  cube.numVertices = 8;
+  cube.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                    {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  const int cubeEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for (const auto& e : cubeEdges) cube.creases.push_back({e[0], e[1], kSharpnessInfinite});
+  const std::vector<Vec3> points = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                    {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (int levels : {1, 3}) {
+    auto refiner = LoopRefiner::create(cube, {}, {.levels = levels});
+    ASSERT_TRUE(refiner.isOk());
+    auto limit = refiner->limitSurface(refiner->refinePoints(points));
+    ASSERT_TRUE(limit.isOk());
+    const SurfaceMesh& s = *limit;
+    const int levelVertices = refiner->finestLevel().numVertices;
+    EXPECT_GT(static_cast<int>(s.positions.size()), levelVertices);  // creases were split
+    for (size_t t = 0; t < s.triangles.size(); ++t) {
+      const auto& tri = s.triangles[t];
+      const Vec3 faceNormal = ((s.positions[tri[1]] - s.positions[tri[0]]) % (s.positions[tri[2]] - s.positions[tri[0]])).normalized();
+      for (int c : tri) {
+        EXPECT_NEAR(dot(s.normals[c], faceNormal), 1.0, 1e-9) << "triangle " << t << " corner vertex " << c;
+      }
+    }
+    // Copies sit exactly on their originals.
+    for (int v = levelVertices; v < static_cast<int>(s.positions.size()); ++v) {
+      bool onOriginal = false;
+      for (int u = 0; u < levelVertices && !onOriginal; ++u) onOriginal = s.positions[u] == s.positions[v];
+      EXPECT_TRUE(onOriginal) << v;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera

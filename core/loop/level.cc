@@ -15,4 +15,13 @@ int Level::computeMaxValence() const {
   return m;
 }
 
+void Level::recomputeVertexRules() {
+  vertexRules.resize(numVertices);
+  for (Index v = 0; v < numVertices; ++v) {
+    int sharp = 0;
+    for (Index e : ringEdgesOf(v)) sharp += isSharp(edgeSharpness[e]) ? 1 : 0;
+    vertexRules[v] = vertexRule(vertexSharpness[v], sharp);
+  }
+}
+
 }  // namespace tessera

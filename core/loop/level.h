@@ -81,6 +81,8 @@ struct Level {
   // Sharpness of the ring edges of v, in ring order, into `out` (size >= valence).
   void ringSharpness(Index v, float* out) const;
   int computeMaxValence() const;
+  // Rules from the current sharpness (after tags change at this level).
+  void recomputeVertexRules();
 };
 
 }  // namespace tessera

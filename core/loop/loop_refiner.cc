@@ -3,9 +3,8 @@
 #include <string>
 
 #include "core/loop/interpolate.h"
-#include "core/loop/limit.h"
 #include "core/loop/refinement.h"
-#include "core/mesh/vertex_normals.h"
+#include "core/loop/surfaces.h"
 
 namespace tessera {
 
@@ -67,47 +66,12 @@ std::vector<std::vector<Vec3>> LoopRefiner::refinePointsPerLevel(std::span<const
   return points;
 }
 
-std::vector<std::array<int, 3>> LoopRefiner::finestTriangles() const {
-  const Level& fine = finestLevel();
-  return {fine.faceVertices.begin(), fine.faceVertices.end()};
-}
-
 SurfaceMesh LoopRefiner::controlSurface(std::span<const Vec3> finestPoints) const {
-  SurfaceMesh surface;
-  surface.positions.assign(finestPoints.begin(), finestPoints.end());
-  surface.triangles = finestTriangles();
-  surface.normals = areaWeightedVertexNormals(surface.positions, surface.triangles);
-  return surface;
+  return controlSurfaceOf(finestLevel(), finestPoints);
 }
 
 Expected<SurfaceMesh> LoopRefiner::limitSurface(std::span<const Vec3> finestPoints) const {
-  if (!finestLevel().fullTopology) {
-    return invalidArgument("limit evaluation needs the finest level's full topology");
-  }
-  SurfaceMesh surface;
-  surface.positions.resize(finestPoints.size());
-  surface.normals.resize(finestPoints.size());
-  surface.triangles = finestTriangles();
-  const Level& fine = finestLevel();
-  computeLimit(fine, finestPoints, surface.positions, surface.normals);
-  // Split vertices along creases and at corners: each further side gets a
-  // copy of the vertex with its own limit normal, appended after the level's
-  // vertices so that vertex numbering is unchanged.
-  for (Index v = 0; v < fine.numVertices; ++v) {
-    if (isSmoothLike(fine.vertexRules[v])) continue;
-    auto ringF = fine.ringFacesOf(v);
-    const int n = fine.valence(v);
-    for (const LimitSector& sector : otherLimitSectors(fine, v, finestPoints)) {
-      const int copy = static_cast<int>(surface.positions.size());
-      surface.positions.push_back(surface.positions[v]);
-      surface.normals.push_back(sector.normal);
-      for (int k = sector.firstFace; k < sector.firstFace + sector.faceCount; ++k) {
-        const int ring = k % n;
-        surface.triangles[ringF[ring]][fine.ringFaceLocal[fine.ringOffsets[v] + ring]] = copy;
-      }
-    }
-  }
-  return surface;
+  return limitSurfaceOf(finestLevel(), finestPoints);
 }
 
 }  // namespace tessera

@@ -50,14 +50,10 @@ class LoopRefiner {
   // Points of every level, [0] being the base points.
   std::vector<std::vector<Vec3>> refinePointsPerLevel(std::span<const Vec3> basePoints) const;
 
-  // Surfaces of the finest level: control points with area-weighted vertex
-  // normals, or limit positions with exact limit normals (which need
-  // fullTopologyInLastLevel). In the limit surface, vertices on creases and
-  // corners are split, one copy per side with that side's normal; copies are
-  // appended after the level's vertices, whose numbering is unchanged.
+  // Surfaces of the finest level (see surfaces.h); the limit surface needs
+  // fullTopologyInLastLevel.
   SurfaceMesh controlSurface(std::span<const Vec3> finestPoints) const;
   Expected<SurfaceMesh> limitSurface(std::span<const Vec3> finestPoints) const;
-  std::vector<std::array<int, 3>> finestTriangles() const;
 
  private:
   LoopRefiner() = default;

@@ -1,0 +1,225 @@
+#include "core/document/document.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/loop/direct_manipulation.h"
+#include "core/loop/local_frame.h"
+#include "core/loop/surfaces.h"
+
+namespace tessera {
+
+namespace {
+
+// The dense reference evaluation refuses what would not fit in memory.
+constexpr uint64_t kMaxEvaluatedFaces = 16ull * 1024 * 1024;
+
+Status checkSharpness(float sharpness, const std::string& what) {
+  if (!(sharpness >= 0.0f)) {  // also NaN
+    return invalidArgument(what + ": sharpness must be >= 0 (or inf), got " + std::to_string(sharpness));
+  }
+  return Status::ok();
+}
+
+Status checkFinite(const Vec3& p, const std::string& what) {
+  if (!isFinite(p)) return invalidArgument(what + " must be finite");
+  return Status::ok();
+}
+
+}  // namespace
+
+Document::Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options, LevelCounts counts)
+    : base_(std::move(base)), basePoints_(std::move(points)), options_(options), counts_(std::move(counts)) {}
+
+Expected<Document> Document::create(const BaseMesh& mesh, const DocumentOptions& options) {
+  return create(BaseTopology::fromBaseMesh(mesh), mesh.positions(), options);
+}
+
+Expected<Document> Document::create(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options) {
+  if (options.maxLevel < 0 || options.maxLevel > kMaxDocumentLevel) {
+    return invalidArgument("maximum level must be 0.." + std::to_string(kMaxDocumentLevel) + ", got " +
+                           std::to_string(options.maxLevel));
+  }
+  if (static_cast<int>(points.size()) != topology.numVertices) {
+    return invalidArgument("the base mesh has " + std::to_string(topology.numVertices) + " vertices but " +
+                           std::to_string(points.size()) + " points");
+  }
+  for (size_t v = 0; v < points.size(); ++v) {
+    TESSERA_RETURN_IF_ERROR(checkFinite(points[v], "base vertex " + std::to_string(v)));
+  }
+  // Building level 0 validates the topology and the base tags.
+  TESSERA_ASSIGN_OR_RETURN(Level base, buildBaseLevel(topology, options.loop));
+  LevelCounts counts(base.numVertices, base.numEdges(), base.numFaces(), options.maxLevel);
+  Document doc(std::move(topology), std::move(points), options, std::move(counts));
+  doc.baseBoundaryEdges_.resize(base.numEdges());
+  for (Index e = 0; e < base.numEdges(); ++e) doc.baseBoundaryEdges_[e] = base.isBoundaryEdge(e);
+  return doc;
+}
+
+Expected<Document> Document::restore(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options,
+                                     std::vector<Edit> edits, uint64_t nextEditId) {
+  TESSERA_ASSIGN_OR_RETURN(Document doc, create(std::move(topology), std::move(points), options));
+  uint64_t last = 0;
+  for (const Edit& edit : edits) {
+    if (edit.id.value <= last) return invalidArgument(edit.id.toString() + ": edit ids must increase");
+    last = edit.id.value;
+    TESSERA_RETURN_IF_ERROR(doc.checkEdit(edit).withContext(edit.id.toString()));
+  }
+  if (nextEditId <= last) return invalidArgument("next edit id must exceed the last edit's");
+  doc.edits_ = std::move(edits);
+  doc.nextEditId_ = nextEditId;
+  return doc;
+}
+
+bool Document::isBoundaryEdge(EdgeId edge) const {
+  // Halves of a parent edge share its boundary status; edges inside a parent
+  // face never lie on the boundary.
+  uint64_t index = edge.index();
+  for (int l = edge.level(); l > 0; --l) {
+    if (index >= 2 * counts_.edges(l - 1)) return false;
+    index /= 2;
+  }
+  return baseBoundaryEdges_[index] != 0;
+}
+
+Status Document::checkVertices(std::span<const VertexId> vertices) const {
+  if (vertices.empty()) return invalidArgument("a move names no vertex");
+  for (VertexId v : vertices) {
+    TESSERA_RETURN_IF_ERROR(counts_.check(v));
+    if (v.level() != vertices[0].level()) {
+      return invalidArgument("vertices moved together must share a level: " + vertices[0].toString() + " and " +
+                             v.toString());
+    }
+  }
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    for (size_t j = i + 1; j < vertices.size(); ++j) {
+      if (vertices[i] == vertices[j]) return invalidArgument(vertices[i].toString() + " is named twice");
+    }
+  }
+  return Status::ok();
+}
+
+Status Document::checkEdit(const Edit& edit) const {
+  if (const auto* move = std::get_if<MoveEdit>(&edit.change)) {
+    std::vector<VertexId> vertices;
+    for (const auto& o : move->offsets) {
+      vertices.push_back(o.vertex);
+      TESSERA_RETURN_IF_ERROR(checkFinite(o.localOffset, o.vertex.toString() + " offset"));
+    }
+    return checkVertices(vertices);
+  }
+  if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+    TESSERA_RETURN_IF_ERROR(counts_.check(e->edge));
+    TESSERA_RETURN_IF_ERROR(checkSharpness(e->sharpness, e->edge.toString()));
+    if (isBoundaryEdge(e->edge)) {
+      return invalidArgument(e->edge.toString() + " lies on the boundary, which is always infinitely sharp");
+    }
+    return Status::ok();
+  }
+  const auto& v = std::get<VertexSharpnessEdit>(edit.change);
+  TESSERA_RETURN_IF_ERROR(counts_.check(v.vertex));
+  return checkSharpness(v.sharpness, v.vertex.toString());
+}
+
+Expected<EditId> Document::add(Edit edit) {
+  TESSERA_RETURN_IF_ERROR(checkEdit(edit));
+  edit.id = EditId{nextEditId_++};
+  edit.active = true;
+  edits_.push_back(std::move(edit));
+  cache_.reset();
+  return edits_.back().id;
+}
+
+Expected<MoveEdit> Document::offsetsFor(std::span<const VertexId> vertices, const Vec3& world,
+                                        const Evaluation& eval) const {
+  const int level = vertices[0].level();
+  MoveEdit move;
+  for (VertexId id : vertices) {
+    // Frames come from the coarser prediction, as the evaluator applies them.
+    const LocalFrame frame = localFrame(eval.levels[level], static_cast<Index>(id.index()), eval.predicted[level]);
+    move.offsets.push_back({id, frame.toLocal(world)});
+  }
+  return move;
+}
+
+Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const Vec3& target) {
+  TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
+  TESSERA_RETURN_IF_ERROR(checkFinite(target, "target position"));
+  const int level = vertices[0].level();
+  TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(level));
+  const Index v = static_cast<Index>(vertices[0].index());
+  const auto& points = eval->points[level];
+  const Vec3 solved = solveControlPoint(eval->levels[level], v, points, target);
+  TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v], *eval));
+  return add(Edit{{}, true, std::move(move)});
+}
+
+Expected<EditId> Document::moveBy(std::span<const VertexId> vertices, const Vec3& displacement) {
+  TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
+  TESSERA_RETURN_IF_ERROR(checkFinite(displacement, "displacement"));
+  TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(vertices[0].level()));
+  TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, displacement, *eval));
+  return add(Edit{{}, true, std::move(move)});
+}
+
+Expected<EditId> Document::setEdgeSharpness(EdgeId edge, float sharpness) {
+  return add(Edit{{}, true, EdgeSharpnessEdit{edge, sharpness}});
+}
+
+Expected<EditId> Document::setVertexSharpness(VertexId vertex, float sharpness) {
+  return add(Edit{{}, true, VertexSharpnessEdit{vertex, sharpness}});
+}
+
+Edit* Document::find(EditId id) {
+  auto it = std::find_if(edits_.begin(), edits_.end(), [&](const Edit& e) { return e.id == id; });
+  return it == edits_.end() ? nullptr : &*it;
+}
+
+Status Document::undo(EditId id) {
+  Edit* edit = find(id);
+  if (edit == nullptr) return notFound(id.toString() + ": no such edit");
+  if (!edit->active) return invalidArgument(id.toString() + " is already undone");
+  edit->active = false;
+  cache_.reset();
+  return Status::ok();
+}
+
+Status Document::redo(EditId id) {
+  Edit* edit = find(id);
+  if (edit == nullptr) return notFound(id.toString() + ": no such edit");
+  if (edit->active) return invalidArgument(id.toString() + " is not undone");
+  edit->active = true;
+  cache_.reset();
+  return Status::ok();
+}
+
+Status Document::remove(EditId id) {
+  Edit* edit = find(id);
+  if (edit == nullptr) return notFound(id.toString() + ": no such edit");
+  edits_.erase(edits_.begin() + (edit - edits_.data()));
+  cache_.reset();
+  return Status::ok();
+}
+
+Expected<std::shared_ptr<const Evaluation>> Document::evaluate(int level) const {
+  if (level < 0 || level > options_.maxLevel) {
+    return invalidArgument("level " + std::to_string(level) + " is outside 0.." + std::to_string(options_.maxLevel));
+  }
+  if (counts_.faces(level) > kMaxEvaluatedFaces) {
+    return invalidArgument("level " + std::to_string(level) + " has " + std::to_string(counts_.faces(level)) +
+                           " triangles, above the evaluation limit of " + std::to_string(kMaxEvaluatedFaces));
+  }
+  if (cache_ && static_cast<int>(cache_->levels.size()) > level) return cache_;
+  TESSERA_ASSIGN_OR_RETURN(Evaluation eval, evaluateDocument(base_, basePoints_, options_.loop, edits_, level));
+  cache_ = std::make_shared<const Evaluation>(std::move(eval));
+  return cache_;
+}
+
+Expected<SurfaceMesh> Document::surface(int level, SurfaceKind kind) const {
+  TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(level));
+  if (kind == SurfaceKind::kControl) return controlSurfaceOf(eval->levels[level], eval->points[level]);
+  return limitSurfaceOf(eval->levels[level], eval->points[level]);
+}
+
+}  // namespace tessera

@@ -1,0 +1,95 @@
+// Document: a base mesh, its feature tags and a hierarchy of edits made at
+// any subdivision level (seed 000). Edits are validated before they change
+// anything: an invalid command leaves the document exactly as it was.
+//
+//   auto doc = Document::create(mesh, {}, {.maxLevel = 5});
+//   auto id = doc->moveToLimit({VertexId(2, 17)}, target);   // direct manipulation
+//   doc->undo(*id);  doc->redo(*id);
+//   auto surface = doc->surface(4, SurfaceKind::kLimit);
+//
+// Evaluation here is from scratch over the uniform hierarchy
+// (document_evaluator.h); it is the reference the sparse, incremental
+// evaluator of the hierarchy issue must match.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/document/document_evaluator.h"
+#include "core/document/edit.h"
+#include "core/hierarchy/ids.h"
+#include "core/io/mesh_export.h"
+#include "core/loop/level_builder.h"
+#include "core/loop/loop_options.h"
+#include "core/mesh/base_mesh.h"
+#include "core/util/status.h"
+
+namespace tessera {
+
+struct DocumentOptions {
+  LoopOptions loop;
+  int maxLevel = 6;  // deepest level an edit may address (at most kMaxDocumentLevel)
+};
+
+inline constexpr int kMaxDocumentLevel = 12;
+
+enum class SurfaceKind { kControl, kLimit };
+
+class Document {
+ public:
+  static Expected<Document> create(const BaseMesh& mesh, const DocumentOptions& options);
+  static Expected<Document> create(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options);
+
+  const BaseTopology& baseTopology() const { return base_; }
+  const std::vector<Vec3>& basePoints() const { return basePoints_; }
+  const DocumentOptions& options() const { return options_; }
+  const LevelCounts& counts() const { return counts_; }
+  const std::vector<Edit>& edits() const { return edits_; }
+  uint64_t nextEditId() const { return nextEditId_; }
+
+  // Direct manipulation (§2.2): the first vertex's limit position goes to
+  // `target`; the others (same level) move by the same displacement.
+  Expected<EditId> moveToLimit(std::span<const VertexId> vertices, const Vec3& target);
+  // A plain world-space displacement of the vertices' control points.
+  Expected<EditId> moveBy(std::span<const VertexId> vertices, const Vec3& displacement);
+  Expected<EditId> setEdgeSharpness(EdgeId edge, float sharpness);
+  Expected<EditId> setVertexSharpness(VertexId vertex, float sharpness);
+
+  Status undo(EditId id);    // the edit stops applying; error if unknown or already undone
+  Status redo(EditId id);    // it applies again; error if unknown or not undone
+  Status remove(EditId id);  // gone for good; error if unknown
+
+  // Control points or limit surface (limit positions and normals, creases
+  // split per side) at `level` <= maxLevel.
+  Expected<SurfaceMesh> surface(int level, SurfaceKind kind) const;
+  // Full evaluation up to `level`, cached until the next change.
+  Expected<std::shared_ptr<const Evaluation>> evaluate(int level) const;
+
+  // Restores a document from its parts (document_file.cc); every edit is
+  // validated as if it had just been made.
+  static Expected<Document> restore(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options,
+                                    std::vector<Edit> edits, uint64_t nextEditId);
+
+ private:
+  Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options, LevelCounts counts);
+
+  bool isBoundaryEdge(EdgeId edge) const;
+  Status checkVertices(std::span<const VertexId> vertices) const;
+  Status checkEdit(const Edit& edit) const;
+  Expected<EditId> add(Edit edit);
+  Edit* find(EditId id);
+  Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world, const Evaluation& eval) const;
+
+  BaseTopology base_;
+  std::vector<Vec3> basePoints_;
+  DocumentOptions options_;
+  LevelCounts counts_;
+  std::vector<uint8_t> baseBoundaryEdges_;
+  std::vector<Edit> edits_;
+  uint64_t nextEditId_ = 1;
+  mutable std::shared_ptr<const Evaluation> cache_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,75 @@
+#include "core/document/document_evaluator.h"
+
+#include "core/loop/interpolate.h"
+#include "core/loop/local_frame.h"
+#include "core/loop/refinement.h"
+
+namespace tessera {
+
+int Edit::level() const {
+  struct Visitor {
+    int operator()(const MoveEdit& m) const { return m.offsets.empty() ? 0 : m.offsets.front().vertex.level(); }
+    int operator()(const EdgeSharpnessEdit& e) const { return e.edge.level(); }
+    int operator()(const VertexSharpnessEdit& v) const { return v.vertex.level(); }
+  };
+  return std::visit(Visitor{}, change);
+}
+
+namespace {
+
+// Later edits win: they are applied in edit order.
+void applySharpnessEdits(std::span<const Edit> edits, int level, Level& topology) {
+  bool changed = false;
+  for (const Edit& edit : edits) {
+    if (!edit.active || edit.level() != level) continue;
+    if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+      topology.edgeSharpness[e->edge.index()] = canonicalSharpness(e->sharpness);
+      changed = true;
+    } else if (const auto* v = std::get_if<VertexSharpnessEdit>(&edit.change)) {
+      topology.vertexSharpness[v->vertex.index()] = canonicalSharpness(v->sharpness);
+      changed = true;
+    }
+  }
+  if (changed) topology.recomputeVertexRules();
+}
+
+void applyOffsets(std::span<const Edit> edits, int level, const Level& topology, std::span<const Vec3> predicted,
+                  std::vector<Vec3>& points) {
+  for (const Edit& edit : edits) {
+    if (!edit.active || edit.level() != level) continue;
+    const auto* move = std::get_if<MoveEdit>(&edit.change);
+    if (move == nullptr) continue;
+    for (const VertexOffset& o : move->offsets) {
+      const Index v = static_cast<Index>(o.vertex.index());
+      points[v] += localFrame(topology, v, predicted).toWorld(o.localOffset);
+    }
+  }
+}
+
+}  // namespace
+
+Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const Vec3> basePoints,
+                                      const LoopOptions& options, std::span<const Edit> edits, int level) {
+  Evaluation eval;
+  TESSERA_ASSIGN_OR_RETURN(Level base0, buildBaseLevel(base, options));
+  eval.levels.push_back(std::move(base0));
+  applySharpnessEdits(edits, 0, eval.levels[0]);
+  eval.predicted.emplace_back(basePoints.begin(), basePoints.end());
+  eval.points.push_back(eval.predicted[0]);
+  applyOffsets(edits, 0, eval.levels[0], eval.predicted[0], eval.points[0]);
+
+  for (int l = 1; l <= level; ++l) {
+    eval.levels.push_back(refineLevel(eval.levels[l - 1], options));
+    // Points of level l come from level l-1 under the rules it passes down;
+    // a tag set at level l changes how level l refines, so it applies after.
+    std::vector<Vec3> predicted(eval.levels[l].numVertices);
+    interpolateLevel(eval.levels[l - 1], eval.levels[l], eval.points[l - 1], predicted);
+    applySharpnessEdits(edits, l, eval.levels[l]);
+    eval.points.push_back(predicted);
+    applyOffsets(edits, l, eval.levels[l], predicted, eval.points[l]);
+    eval.predicted.push_back(std::move(predicted));
+  }
+  return eval;
+}
+
+}  // namespace tessera

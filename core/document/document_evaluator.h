@@ -1,0 +1,36 @@
+// From-scratch evaluation of a document: every level of the uniform
+// hierarchy up to the requested level, with the active edits applied level
+// by level. This is the reference semantics of a document; faster
+// incremental evaluators must agree with it.
+//
+// Level l is built as:
+//   topology and sharpness refined from level l-1 (level 0: the base mesh);
+//   predicted points interpolated from level l-1 (level 0: the base points);
+//   sharpness edits of level l applied and vertex rules recomputed (they
+//   govern how level l refines and its limit, not how it was predicted);
+//   each vertex offset of level l added in the vertex's local frame
+//   computed from the *predicted* points (so frames depend on coarser data
+//   only, and detail follows coarse edits).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/document/edit.h"
+#include "core/loop/level.h"
+#include "core/loop/level_builder.h"
+#include "core/loop/loop_options.h"
+#include "core/util/status.h"
+
+namespace tessera {
+
+struct Evaluation {
+  std::vector<Level> levels;
+  std::vector<std::vector<Vec3>> predicted;  // per level, before that level's offsets
+  std::vector<std::vector<Vec3>> points;     // per level, with offsets
+};
+
+Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const Vec3> basePoints,
+                                      const LoopOptions& options, std::span<const Edit> edits, int level);
+
+}  // namespace tessera

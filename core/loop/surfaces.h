@@ -1,0 +1,20 @@
+// Surfaces of one level, ready to draw or export: control points with
+// area-weighted normals, or the limit surface with exact limit normals in
+// which crease and corner vertices are split, one copy per side with that
+// side's normal (copies appended after the level's vertices, so vertex
+// numbering is unchanged).
+#pragma once
+
+#include <span>
+
+#include "core/io/mesh_export.h"
+#include "core/loop/level.h"
+#include "core/util/status.h"
+
+namespace tessera {
+
+SurfaceMesh controlSurfaceOf(const Level& level, std::span<const Vec3> points);
+// Needs the level's full topology (rings).
+Expected<SurfaceMesh> limitSurfaceOf(const Level& level, std::span<const Vec3> points);
+
+}  // namespace tessera

@@ -8,7 +8,7 @@ packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git
   # core: base mesh, mesh I/O, glTF, compression
-  libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev
+  libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev zlib1g-dev
   # protocol and server
   libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev
   # viewer

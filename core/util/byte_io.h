@@ -1,0 +1,65 @@
+// Little-endian byte writing and bounds-checked reading: a ByteReader never
+// reads past its end and names what it was reading when data runs out.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+#include "core/util/status.h"
+
+namespace tessera {
+
+class ByteWriter {
+ public:
+  template <typename T>
+  void put(T value) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));  // hosts are little-endian (x86-64, arm64)
+    out_.append(bytes, sizeof(T));
+  }
+  void putBytes(const std::string& bytes) { out_ += bytes; }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class ByteReader {
+ public:
+  ByteReader(const char* data, size_t size, std::string source) : data_(data), size_(size), source_(std::move(source)) {}
+
+  template <typename T>
+  Status get(T& value, const char* what) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (size_ - offset_ < sizeof(T)) {
+      return parseError(source_ + ": truncated at byte " + std::to_string(offset_) + " reading " + what);
+    }
+    std::memcpy(&value, data_ + offset_, sizeof(T));
+    offset_ += sizeof(T);
+    return Status::ok();
+  }
+  // A count of items of `itemSize` bytes each, refused if the rest of the
+  // data cannot hold them (so a corrupt count cannot trigger a huge allocation).
+  Status getCount(uint32_t& count, size_t itemSize, const char* what) {
+    TESSERA_RETURN_IF_ERROR(get(count, what));
+    if (static_cast<uint64_t>(count) * itemSize > size_ - offset_) {
+      return parseError(source_ + ": " + what + " " + std::to_string(count) + " exceeds the remaining " +
+                        std::to_string(size_ - offset_) + " bytes");
+    }
+    return Status::ok();
+  }
+  size_t offset() const { return offset_; }
+  size_t remaining() const { return size_ - offset_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  const char* data_;
+  size_t size_;
+  size_t offset_ = 0;
+  std::string source_;
+};
+
+}  // namespace tessera

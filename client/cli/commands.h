@@ -9,5 +9,6 @@ namespace tessera::cli {
 
 int runInfo(const std::vector<std::string>& args);
 int runRefine(const std::vector<std::string>& args);
+int runDoc(const std::vector<std::string>& args);
 
 }  // namespace tessera::cli

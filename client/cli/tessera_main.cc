@@ -16,6 +16,7 @@ constexpr const char* kUsage =
     "  info    IN [--tags FILE] [--triangulate]      describe a base mesh\n"
     "  refine  IN --level N [--limit] [--tags FILE]  Loop-refine with sharp features\n"
     "          [--triangulate] [--draco] -o OUT       and write .obj, .ply or .glb\n"
+    "  doc     new | edit | info | export          hierarchical documents with edits at any level\n"
     "\n"
     "Run 'tessera <command> --help' for the options of a command.\n";
 
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "info") return tessera::cli::runInfo(args);
     if (command == "refine") return tessera::cli::runRefine(args);
+    if (command == "doc") return tessera::cli::runDoc(args);
     std::fprintf(stderr, "tessera: unknown command '%s'\n\n%s", command.c_str(), kUsage);
     return 2;
   } catch (const std::bad_alloc&) {

@@ -141,3 +141,64 @@ TEST(Cli, ErrorsExitCleanlyWithMessages) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+TEST(CliDoc, NewEditInfoExport) {
+  const std::string dir = testing::makeTempDir("tessera-doc-cli");
+  const std::string doc = dir + "/cube.tsd";
+  CliRun made = runCli("doc new " + cube() + " --tags " + cubeTags() + " --max-level 4 -o " + doc);
+  ASSERT_EQ(made.exitCode, 0) << made.err;
+  const std::string script = dir + "/edits.txt";
+  std::ofstream(script) << "# a session\nmove v1:20 to 0.5 0.5 1.3\noffset v3:200 v3:201 by 0 0 0.05\n"
+                           "crease e2:30 inf\ncorner v2:5 inf\nundo 4\n";
+  CliRun edited = runCli("doc edit " + doc + " --script " + script);
+  ASSERT_EQ(edited.exitCode, 0) << edited.err;
+  EXPECT_NE(edited.out.find("applied 5 commands; 4 edits"), std::string::npos) << edited.out;
+  CliRun info = runCli("doc info " + doc);
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  EXPECT_NE(info.out.find("edits           4 (3 active, 1 undone)"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("edit2    move   v3:200 v3:201"), std::string::npos) << info.out;
+  for (const char* ext : {".obj", ".glb"}) {
+    CliRun exported = runCli("doc export " + doc + " --level 3 --limit -o " + dir + "/out" + ext);
+    ASSERT_EQ(exported.exitCode, 0) << exported.err;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/out" + ext));
+  }
+}
+
+TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
+  const std::string dir = testing::makeTempDir("tessera-doc-bad");
+  const std::string doc = dir + "/cube.tsd";
+  ASSERT_EQ(runCli("doc new " + cube() + " -o " + doc).exitCode, 0);
+  const std::string before = readAll(doc);
+  struct Case {
+    std::string script;
+    std::string message;
+  };
+  std::vector<Case> cases = {
+      {"offset v1:3 by 0 0 1\nmove v9:1 to 1 2 3\n", "bad.txt:2: v9:1: level 9 is above the maximum level 6"},
+      {"offset v1:3 by 0 0 nan\n", "bad.txt:1: bad number 'nan'"},
+      {"crease e1:4 -2\n", "bad.txt:1: e1:4: sharpness must be >= 0"},
+      {"undo 7\n", "bad.txt:1: edit7: no such edit"},
+      {"twist v1:1\n", "bad.txt:1: unknown command 'twist'"},
+      {"move v1:1 v1:1000000 to 0 0 0\n", "bad.txt:1: v1:1000000: level 1 has"},
+  };
+  for (const auto& c : cases) {
+    std::ofstream(dir + "/bad.txt") << c.script;
+    CliRun r = runCli("doc edit " + doc + " --script " + dir + "/bad.txt");
+    EXPECT_EQ(r.exitCode, 1) << c.script;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_EQ(readAll(doc), before) << c.script;
+  }
+  std::ofstream(dir + "/junk.tsd") << "not a document";
+  CliRun junk = runCli("doc info " + dir + "/junk.tsd");
+  EXPECT_EQ(junk.exitCode, 1);
+  EXPECT_NE(junk.err.find("not a Tessera document"), std::string::npos) << junk.err;
+  CliRun adaptive = runCli("doc export " + doc + " --adaptive -o " + dir + "/a.glb");
+  EXPECT_EQ(adaptive.exitCode, 1);
+  EXPECT_NE(adaptive.err.find("not built yet"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,29 @@
+// Edit scripts for `tessera doc edit --script FILE`: one command per line,
+// `#` starts a comment, ids as printed by `tessera doc info`:
+//
+//   move v2:40 [v2:41 ...] to X Y Z     direct manipulation: the first vertex's
+//                                       limit goes to (X, Y, Z); the others
+//                                       move by the same amount (§2.2)
+//   offset v3:7 [v3:8 ...] by DX DY DZ  plain displacement of control points
+//   crease e1:5 S                       edge sharpness at that level (S or inf)
+//   corner v4:900 S                     vertex sharpness: 0 smooth, > 0 corner/cusp
+//   undo N | redo N | remove N          by edit id (N or editN)
+//
+// A script applies entirely or not at all: the first bad line is reported as
+// "FILE:LINE: reason" and the document is left as it was.
+#pragma once
+
+#include <string>
+
+#include "core/document/document.h"
+#include "core/util/status.h"
+
+namespace tessera {
+
+struct ScriptResult {
+  int commands = 0;  // lines that did something
+};
+
+Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source, Document& document);
+
+}  // namespace tessera

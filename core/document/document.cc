@@ -176,23 +176,19 @@ Edit* Document::find(EditId id) {
   return it == edits_.end() ? nullptr : &*it;
 }
 
-Status Document::undo(EditId id) {
+Status Document::setActive(EditId id, bool active) {
   Edit* edit = find(id);
   if (edit == nullptr) return notFound(id.toString() + ": no such edit");
-  if (!edit->active) return invalidArgument(id.toString() + " is already undone");
-  edit->active = false;
+  if (edit->active == active) {
+    return invalidArgument(id.toString() + (active ? " is not undone" : " is already undone"));
+  }
+  edit->active = active;
   cache_.reset();
   return Status::ok();
 }
 
-Status Document::redo(EditId id) {
-  Edit* edit = find(id);
-  if (edit == nullptr) return notFound(id.toString() + ": no such edit");
-  if (edit->active) return invalidArgument(id.toString() + " is not undone");
-  edit->active = true;
-  cache_.reset();
-  return Status::ok();
-}
+Status Document::undo(EditId id) { return setActive(id, false); }
+Status Document::redo(EditId id) { return setActive(id, true); }
 
 Status Document::remove(EditId id) {
   Edit* edit = find(id);

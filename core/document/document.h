@@ -80,6 +80,7 @@ class Document {
   Status checkEdit(const Edit& edit) const;
   Expected<EditId> add(Edit edit);
   Edit* find(EditId id);
+  Status setActive(EditId id, bool active);
   Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world, const Evaluation& eval) const;
 
   BaseTopology base_;

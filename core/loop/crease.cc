@@ -20,12 +20,6 @@ VertexRule vertexRule(float vertexSharpness, int sharpEdgeCount) {
   }
 }
 
-VertexRule vertexRule(float vertexSharpness, std::span<const float> edgeSharpness) {
-  int sharp = 0;
-  for (float s : edgeSharpness) sharp += isSharp(s) ? 1 : 0;
-  return vertexRule(vertexSharpness, sharp);
-}
-
 float subdivideEdgeSharpnessAtVertex(CreaseMethod method, float edgeSharpness,
                                      std::span<const float> sharpnessAtVertex) {
   if (method == CreaseMethod::kUniform || sharpnessAtVertex.size() < 2) {

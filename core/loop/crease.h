@@ -25,7 +25,6 @@ inline bool isSmoothLike(VertexRule r) { return r == VertexRule::kSmooth || r ==
 float decrementSharpness(float s);
 
 VertexRule vertexRule(float vertexSharpness, int sharpEdgeCount);
-VertexRule vertexRule(float vertexSharpness, std::span<const float> edgeSharpness);
 
 // Sharpness of the child of an edge with sharpness `edgeSharpness` at one of
 // its end vertices, whose incident edges have `sharpnessAtVertex`.

@@ -10,15 +10,16 @@ namespace tessera {
 
 namespace {
 
-// Vertex-vertex point for one rule (no blending).
-Vec3 vertexPointForRule(const Level& level, Index v, VertexRule rule, const float* ringSharpness,
-                        std::span<const Vec3> p) {
+// Vertex-vertex point for one rule (no blending). `smoothWeight[n]` is
+// beta(n); ring sharpness is read only by the crease rule.
+inline Vec3 vertexPointForRule(const Level& level, Index v, VertexRule rule, const float* ringSharpness,
+                               std::span<const Vec3> p, const std::vector<double>& smoothWeight) {
   auto ring = level.ringVerticesOf(v);
   const int n = static_cast<int>(ring.size());
   switch (rule) {
     case VertexRule::kSmooth:
     case VertexRule::kDart: {
-      const double w = loop::smoothEdgeWeight(n);
+      const double w = smoothWeight[n];
       Vec3 sum(0, 0, 0);
       for (Index u : ring) sum += p[u];
       return (1.0 - n * w) * p[v] + w * sum;
@@ -44,17 +45,12 @@ void interpolateVertexPoints(const Level& parent, const Level& child, std::span<
   for (Index v = 0; v < parent.numVertices; ++v) {
     const VertexRule pRule = parent.vertexRules[v];
     if (isSmoothLike(pRule)) {
-      // The common case, kept tight: (1 - n beta) v + beta sum(ring).
-      auto ring = parent.ringVerticesOf(v);
-      const int n = static_cast<int>(ring.size());
-      Vec3 sum(0, 0, 0);
-      for (Index u : ring) sum += p[u];
-      const double w = smoothWeight[n];
-      out[v] = (1.0 - n * w) * p[v] + w * sum;
+      // The common case: no sharpness to read, no blending.
+      out[v] = vertexPointForRule(parent, v, pRule, nullptr, p, smoothWeight);
       continue;
     }
     parent.ringSharpness(v, pSharp.data());
-    Vec3 point = vertexPointForRule(parent, v, pRule, pSharp.data(), p);
+    Vec3 point = vertexPointForRule(parent, v, pRule, pSharp.data(), p, smoothWeight);
     const VertexRule cRule = child.vertexRules[v];
     if (cRule != pRule) {
       // A semi-sharp feature ends at this level: blend the parent rule with
@@ -67,7 +63,7 @@ void interpolateVertexPoints(const Level& parent, const Level& child, std::span<
       }
       const double pw = fractionalWeightAtVertex(parent.vertexSharpness[v], child.vertexSharpness[v],
                                                  std::span(pSharp.data(), n), std::span(cSharp.data(), n));
-      const Vec3 childRulePoint = vertexPointForRule(parent, v, cRule, cSharp.data(), p);
+      const Vec3 childRulePoint = vertexPointForRule(parent, v, cRule, cSharp.data(), p, smoothWeight);
       point = pw * point + (1.0 - pw) * childRulePoint;
     }
     out[v] = point;

@@ -230,16 +230,13 @@ Expected<Level> buildBaseLevel(const BaseTopology& topology, const LoopOptions& 
     if (level.isBoundaryEdge(e)) level.edgeSharpness[e] = kSharpnessInfinite;
   }
   level.maxValence = level.computeMaxValence();
-  level.vertexRules.resize(numVertices);
-  std::vector<float> ring(level.maxValence);
-  for (Index v = 0; v < numVertices; ++v) {
-    bool topologicalCorner = level.isBoundaryVertex(v) && level.valence(v) == 2;
-    if (topologicalCorner && options.boundary == BoundaryInterpolation::kEdgeAndCorner) {
-      level.vertexSharpness[v] = kSharpnessInfinite;
+  if (options.boundary == BoundaryInterpolation::kEdgeAndCorner) {
+    for (Index v = 0; v < numVertices; ++v) {
+      const bool topologicalCorner = level.isBoundaryVertex(v) && level.valence(v) == 2;
+      if (topologicalCorner) level.vertexSharpness[v] = kSharpnessInfinite;
     }
-    level.ringSharpness(v, ring.data());
-    level.vertexRules[v] = vertexRule(level.vertexSharpness[v], std::span(ring.data(), level.valence(v)));
   }
+  level.recomputeVertexRules();
   return level;
 }
 

@@ -195,15 +195,6 @@ void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Ve
   const SmoothTables tables(level.maxValence);
   const bool wantNormals = !normals.empty();
   for (Index v = 0; v < level.numVertices; ++v) {
-    if (!wantNormals && isSmoothLike(level.vertexRules[v])) {
-      auto ring = level.ringVerticesOf(v);
-      const int n = static_cast<int>(ring.size());
-      const double w = tables.weight(n);
-      Vec3 sum(0, 0, 0);
-      for (Index u : ring) sum += points[u];
-      positions[v] = (1.0 - n * w) * points[v] + w * sum;
-      continue;
-    }
     const LimitFrame frame = frameWith(level, v, points, tables);
     positions[v] = frame.position;
     if (wantNormals) normals[v] = frame.normal();

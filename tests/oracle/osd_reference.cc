@@ -48,13 +48,15 @@ std::vector<OsdLevelResult> refineWithOpenSubdiv(const BaseTopology& topology, s
   for (int l = 0; l <= levels; ++l) {
     // Limit() applies to the last level only: one refiner per level. Vertex
     // numbering up to level l does not depend on deeper levels, so the map holds.
-    auto levelRefiner = createOsdRefiner(input, options, l, true);
-    std::vector<OsdPoint> points = interpolateOsd(*levelRefiner, base, l);
-    const int count = levelRefiner->GetLevel(l).GetNumVertices();
+    // The deepest one is the refiner already built for the vertex maps.
+    std::unique_ptr<Far::TopologyRefiner> owned = l == levels ? nullptr : createOsdRefiner(input, options, l, true);
+    const Far::TopologyRefiner& levelRefiner = l == levels ? *refiner : *owned;
+    std::vector<OsdPoint> points = interpolateOsd(levelRefiner, base, l);
+    const int count = levelRefiner.GetLevel(l).GetNumVertices();
     std::vector<OsdPoint> pos(count), t1(count), t2(count);
     if (withLimit) {
       OsdPoint *posOut = pos.data(), *t1Out = t1.data(), *t2Out = t2.data();
-      Far::PrimvarRefiner(*levelRefiner).Limit(points.data(), posOut, t1Out, t2Out);
+      Far::PrimvarRefiner(levelRefiner).Limit(points.data(), posOut, t1Out, t2Out);
     }
     const int n = ours.level(l).numVertices;
     auto& r = results[l];

@@ -63,7 +63,7 @@ Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const 
     // Points of level l come from level l-1 under the rules it passes down;
     // a tag set at level l changes how level l refines, so it applies after.
     std::vector<Vec3> predicted(eval.levels[l].numVertices);
-    interpolateLevel(eval.levels[l - 1], eval.levels[l], eval.points[l - 1], predicted);
+    interpolateLevel(eval.levels[l - 1], options, eval.points[l - 1], predicted);
     applySharpnessEdits(edits, l, eval.levels[l]);
     eval.points.push_back(predicted);
     applyOffsets(edits, l, eval.levels[l], predicted, eval.points[l]);

@@ -48,7 +48,7 @@ std::vector<Vec3> LoopRefiner::refinePoints(std::span<const Vec3> basePoints) co
   std::vector<Vec3> next;
   for (int l = 0; l < maxLevel(); ++l) {
     next.resize(levels_[l + 1].numVertices);
-    interpolateLevel(levels_[l], levels_[l + 1], current, next);
+    interpolateLevel(levels_[l], options_, current, next);
     current.swap(next);
   }
   return current;
@@ -60,7 +60,7 @@ std::vector<std::vector<Vec3>> LoopRefiner::refinePointsPerLevel(std::span<const
   points.emplace_back(basePoints.begin(), basePoints.end());
   for (int l = 0; l < maxLevel(); ++l) {
     std::vector<Vec3> next(levels_[l + 1].numVertices);
-    interpolateLevel(levels_[l], levels_[l + 1], points.back(), next);
+    interpolateLevel(levels_[l], options_, points.back(), next);
     points.push_back(std::move(next));
   }
   return points;

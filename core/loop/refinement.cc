@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/loop/sharpness_inheritance.h"
+
 namespace tessera {
 
 namespace {
@@ -175,37 +177,16 @@ void refineSharpness(const Level& parent, const LoopOptions& options, Level& chi
   child.vertexSharpness.resize(child.numVertices);
   child.vertexRules.resize(child.numVertices);
 
-  std::vector<float> ring(parent.maxValence);
+  SharpnessInheritance inherit(parent, options);
   for (Index e = 0; e < nE; ++e) {
-    const float s = parent.edgeSharpness[e];
     child.vertexSharpness[nV + e] = kSharpnessSmooth;
-    child.vertexRules[nV + e] = VertexRule::kSmooth;
-    if (isSmooth(s)) continue;
-    for (int end = 0; end < 2; ++end) {
-      float cs = decrementSharpness(s);
-      if (options.creaseMethod == CreaseMethod::kChaikin && isSemiSharp(s)) {
-        const Index x = parent.edgeVertices[e][end];
-        parent.ringSharpness(x, ring.data());
-        cs = subdivideEdgeSharpnessAtVertex(options.creaseMethod, s, std::span(ring.data(), parent.valence(x)));
-      }
-      child.edgeSharpness[2 * e + end] = cs;
-    }
-    // The edge vertex: a crease if both halves stay sharp, a dart if one does.
-    int sharpHalves = isSharp(child.edgeSharpness[2 * e]) + isSharp(child.edgeSharpness[2 * e + 1]);
-    child.vertexRules[nV + e] = vertexRule(kSharpnessSmooth, sharpHalves);
+    child.vertexRules[nV + e] = inherit.edgeChildRule(e);
+    if (isSmooth(parent.edgeSharpness[e])) continue;
+    for (int end = 0; end < 2; ++end) child.edgeSharpness[2 * e + end] = inherit.halfSharpness(e, end);
   }
   for (Index v = 0; v < nV; ++v) {
-    child.vertexSharpness[v] = decrementSharpness(parent.vertexSharpness[v]);
-    // Sharpness never grows, so a smooth vertex has smooth children.
-    if (parent.vertexRules[v] == VertexRule::kSmooth) {
-      child.vertexRules[v] = VertexRule::kSmooth;
-      continue;
-    }
-    int sharpEdges = 0;
-    for (Index e : parent.ringEdgesOf(v)) {
-      sharpEdges += isSharp(child.edgeSharpness[childEdgeAtEnd(parent, e, v)]);
-    }
-    child.vertexRules[v] = vertexRule(child.vertexSharpness[v], sharpEdges);
+    child.vertexSharpness[v] = inherit.vertexChildSharpness(v);
+    child.vertexRules[v] = inherit.vertexChildRule(v);
   }
 }
 

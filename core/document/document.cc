@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "core/loop/direct_manipulation.h"
 #include "core/loop/local_frame.h"
@@ -54,6 +55,11 @@ Expected<Document> Document::create(BaseTopology topology, std::vector<Vec3> poi
   Document doc(std::move(topology), std::move(points), options, std::move(counts));
   doc.baseBoundaryEdges_.resize(base.numEdges());
   for (Index e = 0; e < base.numEdges(); ++e) doc.baseBoundaryEdges_[e] = base.isBoundaryEdge(e);
+  if (options.uniformLevel < 0 || options.uniformLevel > options.maxLevel) {
+    return invalidArgument("uniform level must be 0.." + std::to_string(options.maxLevel) + ", got " +
+                           std::to_string(options.uniformLevel));
+  }
+  TESSERA_RETURN_IF_ERROR(doc.rebuildHierarchy());
   return doc;
 }
 
@@ -69,6 +75,7 @@ Expected<Document> Document::restore(BaseTopology topology, std::vector<Vec3> po
   if (nextEditId <= last) return invalidArgument("next edit id must exceed the last edit's");
   doc.edits_ = std::move(edits);
   doc.nextEditId_ = nextEditId;
+  TESSERA_RETURN_IF_ERROR(doc.rebuildHierarchy());
   return doc;
 }
 
@@ -122,23 +129,39 @@ Status Document::checkEdit(const Edit& edit) const {
   return checkSharpness(v.sharpness, v.vertex.toString());
 }
 
+Status Document::rebuildHierarchy() {
+  TESSERA_ASSIGN_OR_RETURN(SparseEvaluator sparse, SparseEvaluator::create(base_, basePoints_, options_.loop, counts_,
+                                                                           options_.uniformLevel, edits_));
+  sparse_.emplace(std::move(sparse));
+  return Status::ok();
+}
+
+void Document::reserve(const Edit& edit) {
+  const int grown = sparse_->reserve(edit, edits_).grownFromLevel;
+  if (grown >= 0) pendingGrowth_ = pendingGrowth_ < 0 ? grown : std::min(pendingGrowth_, grown);
+}
+
 Expected<EditId> Document::add(Edit edit) {
   TESSERA_RETURN_IF_ERROR(checkEdit(edit));
   edit.id = EditId{nextEditId_++};
   edit.active = true;
+  reserve(edit);
   edits_.push_back(std::move(edit));
   cache_.reset();
+  lastUpdate_ = sparse_->update(edits_.back(), edits_);
+  lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
   return edits_.back().id;
 }
 
-Expected<MoveEdit> Document::offsetsFor(std::span<const VertexId> vertices, const Vec3& world,
-                                        const Evaluation& eval) const {
-  const int level = vertices[0].level();
+// The hierarchy grows first, so that the moved vertices have their rings.
+Expected<MoveEdit> Document::offsetsFor(std::span<const VertexId> vertices, const Vec3& world) {
   MoveEdit move;
-  for (VertexId id : vertices) {
+  for (VertexId id : vertices) move.offsets.push_back({id, Vec3(0, 0, 0)});
+  reserve(Edit{{}, true, move});
+  for (VertexOffset& o : move.offsets) {
+    TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(o.vertex));
     // Frames come from the coarser prediction, as the evaluator applies them.
-    const LocalFrame frame = localFrame(eval.levels[level], static_cast<Index>(id.index()), eval.predicted[level]);
-    move.offsets.push_back({id, frame.toLocal(world)});
+    o.localOffset = sparse_->frameOf(o.vertex.level(), v).toLocal(world);
   }
   return move;
 }
@@ -147,19 +170,20 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
   TESSERA_RETURN_IF_ERROR(checkFinite(target, "target position"));
   const int level = vertices[0].level();
-  TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(level));
-  const Index v = static_cast<Index>(vertices[0].index());
-  const auto& points = eval->points[level];
-  const Vec3 solved = solveControlPoint(eval->levels[level], v, points, target);
-  TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v], *eval));
+  MoveEdit probe;
+  for (VertexId id : vertices) probe.offsets.push_back({id, Vec3(0, 0, 0)});
+  reserve(Edit{{}, true, probe});
+  TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(vertices[0]));
+  const auto points = sparse_->points(level);
+  const Vec3 solved = solveControlPoint(sparse_->level(level).mesh, v, points, target);
+  TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v]));
   return add(Edit{{}, true, std::move(move)});
 }
 
 Expected<EditId> Document::moveBy(std::span<const VertexId> vertices, const Vec3& displacement) {
   TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
   TESSERA_RETURN_IF_ERROR(checkFinite(displacement, "displacement"));
-  TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(vertices[0].level()));
-  TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, displacement, *eval));
+  TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, displacement));
   return add(Edit{{}, true, std::move(move)});
 }
 
@@ -184,6 +208,7 @@ Status Document::setActive(EditId id, bool active) {
   }
   edit->active = active;
   cache_.reset();
+  lastUpdate_ = sparse_->update(*edit, edits_);
   return Status::ok();
 }
 
@@ -193,8 +218,10 @@ Status Document::redo(EditId id) { return setActive(id, true); }
 Status Document::remove(EditId id) {
   Edit* edit = find(id);
   if (edit == nullptr) return notFound(id.toString() + ": no such edit");
+  const Edit removed = *edit;
   edits_.erase(edits_.begin() + (edit - edits_.data()));
   cache_.reset();
+  lastUpdate_ = sparse_->update(removed, edits_);
   return Status::ok();
 }
 

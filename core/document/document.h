@@ -7,9 +7,10 @@
 //   doc->undo(*id);  doc->redo(*id);
 //   auto surface = doc->surface(4, SurfaceKind::kLimit);
 //
-// Evaluation here is from scratch over the uniform hierarchy
-// (document_evaluator.h); it is the reference the sparse, incremental
-// evaluator of the hierarchy issue must match.
+// The working state is a sparse forest of quadtrees updated incrementally
+// after every change (sparse_evaluator.h); lastUpdate() says what changed.
+// Uniform surfaces for export are evaluated from scratch by the dense
+// reference (document_evaluator.h).
 #pragma once
 
 #include <memory>
@@ -19,6 +20,7 @@
 
 #include "core/document/document_evaluator.h"
 #include "core/document/edit.h"
+#include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/ids.h"
 #include "core/io/mesh_export.h"
 #include "core/loop/level_builder.h"
@@ -31,6 +33,9 @@ namespace tessera {
 struct DocumentOptions {
   LoopOptions loop;
   int maxLevel = 6;  // deepest level an edit may address (at most kMaxDocumentLevel)
+  // Levels 0..uniformLevel are held whole (the coarsest display); deeper
+  // levels only where edits are. Not part of the saved document.
+  int uniformLevel = 0;
 };
 
 inline constexpr int kMaxDocumentLevel = 12;
@@ -64,6 +69,10 @@ class Document {
   // Control points or limit surface (limit positions and normals, creases
   // split per side) at `level` <= maxLevel.
   Expected<SurfaceMesh> surface(int level, SurfaceKind kind) const;
+  // The incremental state, and what the last change recomputed.
+  const SparseEvaluator& hierarchy() const { return *sparse_; }
+  const DirtySet& lastUpdate() const { return lastUpdate_; }
+
   // Full evaluation up to `level`, cached until the next change.
   Expected<std::shared_ptr<const Evaluation>> evaluate(int level) const;
 
@@ -81,7 +90,11 @@ class Document {
   Expected<EditId> add(Edit edit);
   Edit* find(EditId id);
   Status setActive(EditId id, bool active);
-  Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world, const Evaluation& eval) const;
+  Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world);
+  Status rebuildHierarchy();
+  // Grows the hierarchy for an edit about to be made; remembers the growth
+  // for lastUpdate().
+  void reserve(const Edit& edit);
 
   BaseTopology base_;
   std::vector<Vec3> basePoints_;
@@ -90,6 +103,9 @@ class Document {
   std::vector<uint8_t> baseBoundaryEdges_;
   std::vector<Edit> edits_;
   uint64_t nextEditId_ = 1;
+  std::optional<SparseEvaluator> sparse_;
+  DirtySet lastUpdate_;
+  int pendingGrowth_ = -1;
   mutable std::shared_ptr<const Evaluation> cache_;
 };
 

@@ -1,0 +1,327 @@
+#include "core/document/sparse_evaluator.h"
+
+#include <algorithm>
+
+#include "core/hierarchy/incidence.h"
+#include "core/loop/interpolate.h"
+#include "core/loop/limit.h"
+#include "core/loop/sharpness_inheritance.h"
+
+namespace tessera {
+
+namespace {
+
+// Faces sharing a vertex with a flagged face, added to the flags. Every
+// vertex of a flagged face must be complete (the nesting in the header).
+void growByOneRing(const SparseLevel& level, Buffer<uint8_t>& faces) {
+  const Level& m = level.mesh;
+  Buffer<uint8_t> grown = faces;
+  for (Index f = 0; f < m.numFaces(); ++f) {
+    if (!faces[f]) continue;
+    for (Index v : m.faceVertices[f]) {
+      for (Index g : m.ringFacesOf(v)) {
+        if (g >= 0) grown[g] = 1;
+      }
+    }
+  }
+  faces.swap(grown);
+}
+
+template <typename Visit>
+void forEachElement(const Edit& edit, Visit&& visit) {
+  if (const auto* move = std::get_if<MoveEdit>(&edit.change)) {
+    for (const VertexOffset& o : move->offsets) visit(o.vertex);
+  } else if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+    visit(e->edge);
+  } else {
+    visit(std::get<VertexSharpnessEdit>(edit.change).vertex);
+  }
+}
+
+}  // namespace
+
+SparseEvaluator::SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
+    : options_(options), counts_(counts), uniformLevel_(std::min(uniformLevel, counts.maxLevel())) {}
+
+Expected<SparseEvaluator> SparseEvaluator::create(const BaseTopology& base, std::span<const Vec3> basePoints,
+                                                  const LoopOptions& options, const LevelCounts& counts,
+                                                  int uniformLevel, std::span<const Edit> edits) {
+  if (uniformLevel < 0) return invalidArgument("the uniform level must be >= 0");
+  TESSERA_ASSIGN_OR_RETURN(Level level0, buildBaseLevel(base, options));
+  SparseEvaluator eval(options, counts, uniformLevel);
+  eval.baseEdgeSharpness_.assign(level0.edgeSharpness.begin(), level0.edgeSharpness.end());
+  eval.baseVertexSharpness_.assign(level0.vertexSharpness.begin(), level0.vertexSharpness.end());
+  eval.basePoints_.assign(basePoints.begin(), basePoints.end());
+  eval.levels_.resize(1);
+  eval.levels_[0].topo = sparseBaseLevel(std::move(level0));
+  for (const Edit& edit : edits) eval.addDemand(edit);
+  eval.evaluateLevel(0, edits);
+  eval.rebuildFrom(0, edits);
+  return eval;
+}
+
+// ---- Structure ---------------------------------------------------------
+
+void SparseEvaluator::addDemand(const Edit& edit) {
+  forEachElement(edit, [&](auto id) {
+    if (id.level() > 0) demand_.insert(incidentFace(levels_[0].topo.mesh, counts_, id));
+  });
+}
+
+int SparseEvaluator::deepestDemand() const {
+  int deepest = 0;
+  for (FaceId f : demand_) deepest = std::max(deepest, f.level());
+  return deepest;
+}
+
+// A demanded face adds N1(its ancestor) to Sel at each level from the
+// uniform one down to its parent's; covered if all of those are there.
+bool SparseEvaluator::demandCovered(FaceId face) const {
+  for (int k = uniformLevel_; k < face.level(); ++k) {
+    if (k + 1 >= numLevels()) return false;
+    const LevelState& state = levels_[k];
+    const Index a = state.topo.findFace(face.index() >> (2 * (face.level() - k)));
+    if (a == kInvalidIndex) return false;
+    for (Index v : state.topo.mesh.faceVertices[a]) {
+      for (Index g : state.topo.mesh.ringFacesOf(v)) {
+        if (g >= 0 && !state.selected[g]) return false;
+      }
+    }
+  }
+  return true;
+}
+
+void SparseEvaluator::selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined) const {
+  const SparseLevel& topo = levels_[l].topo;
+  const Index numFaces = topo.mesh.numFaces();
+  if (l < uniformLevel_) {
+    selected.assign(numFaces, 1);
+    refined.assign(numFaces, 1);
+    return;
+  }
+  selected.assign(numFaces, 0);
+  for (FaceId face : demand_) {
+    if (face.level() <= l) continue;
+    const Index a = topo.findFace(face.index() >> (2 * (face.level() - l)));
+    if (a != kInvalidIndex) selected[a] = 1;
+  }
+  growByOneRing(topo, selected);
+  refined = selected;
+  growByOneRing(topo, refined);
+}
+
+void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
+  const int deepest = std::max(uniformLevel_, deepestDemand());
+  levels_.resize(l + 1);
+  for (int k = l; k <= deepest; ++k) {
+    Buffer<uint8_t> refined;
+    selectFaces(k, levels_[k].selected, refined);
+    if (k == deepest) {
+      levels_[k].topo.firstChildFace.assign(levels_[k].topo.mesh.numFaces(), kInvalidIndex);
+      break;
+    }
+    SparseLevel child = refineSparse(levels_[k].topo, refined, counts_, options_);
+    levels_.emplace_back();
+    levels_[k + 1].topo = std::move(child);
+    evaluateLevel(k + 1, edits);
+  }
+  for (int k = l; k < numLevels(); ++k) markLeaves(k, k > l);
+}
+
+void SparseEvaluator::markLeaves(int l, bool freshLevel) {
+  LevelState& state = levels_[l];
+  const Level& m = state.topo.mesh;
+  Buffer<uint8_t> wasDisplayed;
+  if (!freshLevel) wasDisplayed.swap(state.displayed);
+  state.leaf.assign(m.numFaces(), 0);
+  state.displayed.assign(m.numVertices, 0);
+  for (Index f = 0; f < m.numFaces(); ++f) {
+    const bool node = l == 0 || levels_[l - 1].selected[state.topo.faceParent[f / 4]];
+    if (!node || state.selected[f]) continue;
+    state.leaf[f] = 1;
+    for (Index v : m.faceVertices[f]) state.displayed[v] = 1;
+  }
+  state.limitPosition.resize(m.numVertices);
+  state.limitNormal.resize(m.numVertices);
+  for (Index v = 0; v < m.numVertices; ++v) {
+    // Points above a rebuild are unchanged: their limits still hold.
+    if (!state.displayed[v] || (!freshLevel && !wasDisplayed.empty() && wasDisplayed[v])) continue;
+    refreshLimit(l, v);
+  }
+}
+
+void SparseEvaluator::refreshLimit(int l, Index v) {
+  LevelState& state = levels_[l];
+  const LimitFrame frame = limitFrame(state.topo.mesh, v, state.points);
+  state.limitPosition[v] = frame.position;
+  state.limitNormal[v] = frame.normal();
+}
+
+// ---- One level's points and tags -------------------------------------
+
+void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
+  LevelState& state = levels_[l];
+  const SparseLevel& topo = state.topo;
+  resolveTags(l, edits);
+  applyTags(l);
+  const Index n = topo.mesh.numVertices;
+  state.predicted.resize(n);
+  if (l == 0) {
+    std::copy(basePoints_.begin(), basePoints_.end(), state.predicted.begin());
+  } else {
+    // A tag set on this level changes how it refines, not how it was
+    // predicted: the stencils read only the parent (interpolate.h).
+    const LevelState& parent = levels_[l - 1];
+    LoopStencils stencils(parent.topo.mesh, options_);
+    for (Index v = 0; v < topo.numVertexChildren; ++v) state.predicted[v] = stencils.vertexChild(topo.origin[v], parent.points);
+    for (Index v = topo.numVertexChildren; v < n; ++v) state.predicted[v] = stencils.edgeChild(topo.origin[v], parent.points);
+  }
+  state.points = state.predicted;
+  state.offsets.clear();
+  for (const Edit& edit : edits) {
+    const auto* move = std::get_if<MoveEdit>(&edit.change);
+    if (move == nullptr || !edit.active || edit.level() != l) continue;
+    for (const VertexOffset& o : move->offsets) state.offsets[topo.findVertex(o.vertex.index())] += o.localOffset;
+  }
+  for (const auto& [v, offset] : state.offsets) applyOffset(l, v);
+}
+
+// Later edits win: they are resolved in edit order.
+void SparseEvaluator::resolveTags(int l, std::span<const Edit> edits) {
+  LevelState& state = levels_[l];
+  state.edgeTags.clear();
+  state.vertexTags.clear();
+  for (const Edit& edit : edits) {
+    if (!edit.active || edit.level() != l) continue;
+    if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+      state.edgeTags[state.topo.findEdge(e->edge.index())] = canonicalSharpness(e->sharpness);
+    } else if (const auto* v = std::get_if<VertexSharpnessEdit>(&edit.change)) {
+      state.vertexTags[state.topo.findVertex(v->vertex.index())] = canonicalSharpness(v->sharpness);
+    }
+  }
+}
+
+void SparseEvaluator::applyTags(int l) {
+  LevelState& state = levels_[l];
+  Level& m = state.topo.mesh;
+  for (const auto& [e, s] : state.edgeTags) m.edgeSharpness[e] = s;
+  for (const auto& [v, s] : state.vertexTags) m.vertexSharpness[v] = s;
+  for (const auto& [e, s] : state.edgeTags) {
+    recomputeRule(l, m.edgeVertices[e][0]);
+    recomputeRule(l, m.edgeVertices[e][1]);
+  }
+  for (const auto& [v, s] : state.vertexTags) recomputeRule(l, v);
+}
+
+float SparseEvaluator::inheritedVertexSharpness(int l, Index v) const {
+  if (l == 0) return baseVertexSharpness_[v];
+  const SparseLevel& topo = levels_[l].topo;
+  if (v >= topo.numVertexChildren) return kSharpnessSmooth;
+  return decrementSharpness(levels_[l - 1].topo.mesh.vertexSharpness[topo.origin[v]]);
+}
+
+float SparseEvaluator::inheritedEdgeSharpness(int l, Index e) const {
+  if (l == 0) return baseEdgeSharpness_[e];
+  const uint64_t id = levels_[l].topo.edgeIds[e];
+  if (id >= 2 * counts_.edges(l - 1)) return kSharpnessSmooth;  // interior to a parent face
+  const SparseLevel& parent = levels_[l - 1].topo;
+  SharpnessInheritance inherit(parent.mesh, options_);
+  return inherit.halfSharpness(parent.findEdge(id / 2), static_cast<int>(id % 2));
+}
+
+// Complete vertices read their own ring (tags on this level count); the
+// others inherit the rule their parent passes down.
+void SparseEvaluator::recomputeRule(int l, Index v) {
+  Level& m = levels_[l].topo.mesh;
+  const SparseLevel& topo = levels_[l].topo;
+  if (topo.isComplete(v)) {
+    int sharp = 0;
+    for (Index e : m.ringEdgesOf(v)) sharp += isSharp(m.edgeSharpness[e]) ? 1 : 0;
+    m.vertexRules[v] = vertexRule(m.vertexSharpness[v], sharp);
+    return;
+  }
+  SharpnessInheritance inherit(levels_[l - 1].topo.mesh, options_);
+  m.vertexRules[v] = v < topo.numVertexChildren ? inherit.vertexChildRule(topo.origin[v])
+                                                 : inherit.edgeChildRule(topo.origin[v]);
+}
+
+void SparseEvaluator::applyOffset(int l, Index v) {
+  LevelState& state = levels_[l];
+  auto it = state.offsets.find(v);
+  state.points[v] = it == state.offsets.end() ? state.predicted[v]
+                                              : state.predicted[v] + frameOf(l, v).toWorld(it->second);
+}
+
+LocalFrame SparseEvaluator::frameOf(int l, Index v) const {
+  return localFrame(levels_[l].topo.mesh, v, levels_[l].predicted);
+}
+
+// ---- Queries -------------------------------------------------------------
+
+Expected<Index> SparseEvaluator::completeVertex(VertexId id) const {
+  if (id.level() >= numLevels()) {
+    return notFound(id.toString() + ": level " + std::to_string(id.level()) + " is not in the hierarchy");
+  }
+  const SparseLevel& topo = levels_[id.level()].topo;
+  const Index v = topo.findVertex(id.index());
+  if (v == kInvalidIndex || !topo.isComplete(v)) {
+    return notFound(id.toString() + ": not held with its whole ring by the hierarchy");
+  }
+  return v;
+}
+
+HierarchyStats SparseEvaluator::stats() const {
+  HierarchyStats stats;
+  for (const LevelState& state : levels_) {
+    HierarchyStats::PerLevel level;
+    const Level& m = state.topo.mesh;
+    level.faces = m.numFaces();
+    level.vertices = m.numVertices;
+    level.completeVertices = std::count(state.topo.complete.begin(), state.topo.complete.end(), 1);
+    level.leaves = std::count(state.leaf.begin(), state.leaf.end(), 1);
+    level.displayedVertices = std::count(state.displayed.begin(), state.displayed.end(), 1);
+    const size_t vec3 = sizeof(Vec3);
+    level.bytes = state.topo.memoryBytes() + state.selected.capacity() + state.leaf.capacity() +
+                  state.displayed.capacity() +
+                  vec3 * (state.predicted.capacity() + state.points.capacity() + state.limitPosition.capacity() +
+                          state.limitNormal.capacity()) +
+                  (sizeof(Index) + vec3 + 16) * state.offsets.size() +
+                  (sizeof(Index) + sizeof(float) + 16) * (state.edgeTags.size() + state.vertexTags.size());
+    stats.vertices += level.vertices;
+    stats.displayedVertices += level.displayedVertices;
+    stats.bytes += level.bytes;
+    stats.levels.push_back(level);
+  }
+  return stats;
+}
+
+// ---- Growth ----------------------------------------------------------------
+
+DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits) {
+  DirtySet dirty;
+  bool covered = true;
+  forEachElement(edit, [&](auto id) {
+    if (id.level() > 0) covered = covered && demandCovered(incidentFace(levels_[0].topo.mesh, counts_, id));
+  });
+  if (covered) return dirty;
+  addDemand(edit);
+  // Rebuild below the first level whose selection changes: levels above
+  // keep their topology, points and limits.
+  int first = numLevels() - 1;
+  for (int k = uniformLevel_; k < numLevels(); ++k) {
+    Buffer<uint8_t> selected, refined;
+    selectFaces(k, selected, refined);
+    const auto& was = levels_[k].topo.firstChildFace;
+    bool same = selected == levels_[k].selected;
+    for (Index f = 0; same && f < static_cast<Index>(refined.size()); ++f) same = (refined[f] != 0) == (was[f] >= 0);
+    if (!same) {
+      first = k;
+      break;
+    }
+  }
+  rebuildFrom(first, edits);
+  dirty.grownFromLevel = first;
+  return dirty;
+}
+
+}  // namespace tessera

@@ -1,0 +1,141 @@
+// The document's working state: a sparse forest of triangle quadtrees, one
+// per base face (seed 000 §4.1), evaluated incrementally (§4.2, Fig. 7).
+//
+// Which faces exist: every level up to `uniformLevel` is whole; below it a
+// face is a quadtree node only where it is demanded -- an edit addresses an
+// element inside it -- or is an ancestor of a demanded face. Around the
+// nodes the levels keep the padding the Loop stencils need: the 1-ring of
+// every node (so node vertices have complete rings, for limits and frames)
+// and its 1-ring again at the parent (so node children can be computed).
+// With Sel_k the nodes that have children, the faces refined at level k are
+// R_k = N1(Sel_k), and Sel_k = N1(ancestors at k of demanded faces); these
+// nest (Sel_k+1 within the children of Sel_k, and N2 of a child face within
+// the children of N1 of its parent), so every vertex of a refined face is
+// complete and every present vertex is computed from complete stencils.
+// The *leaves* -- nodes without children -- are what is displayed.
+//
+// Semantics are those of document_evaluator.h, the dense reference: the
+// property tests require agreement to 1e-9 at every present vertex.
+#pragma once
+
+#include <cstdint>
+#include <set>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "core/document/edit.h"
+#include "core/hierarchy/ids.h"
+#include "core/hierarchy/sparse_level.h"
+#include "core/loop/level_builder.h"
+#include "core/loop/local_frame.h"
+#include "core/loop/loop_options.h"
+#include "core/util/status.h"
+
+namespace tessera {
+
+// What one change recomputed, and which displayed leaves it touched.
+struct DirtySet {
+  std::vector<FaceId> leaves;       // displayed leaves whose limit positions or normals changed
+  std::vector<uint64_t> baseFaces;  // the base faces (quadtree roots) holding them
+  int64_t pointsRecomputed = 0;     // control points, over all levels
+  int64_t limitsRecomputed = 0;     // limit positions + normals of displayed vertices
+  int grownFromLevel = -1;          // >= 0: the hierarchy grew, levels below this were rebuilt
+};
+
+struct HierarchyStats {
+  struct PerLevel {
+    int64_t faces = 0, vertices = 0, completeVertices = 0, leaves = 0, displayedVertices = 0;
+    size_t bytes = 0;
+  };
+  std::vector<PerLevel> levels;
+  int64_t vertices = 0;           // control points held, all levels
+  int64_t displayedVertices = 0;  // corners of leaves (counted per level)
+  size_t bytes = 0;               // topology, ids, points, limits, edits' indices
+};
+
+class SparseEvaluator {
+ public:
+  static Expected<SparseEvaluator> create(const BaseTopology& base, std::span<const Vec3> basePoints,
+                                          const LoopOptions& options, const LevelCounts& counts, int uniformLevel,
+                                          std::span<const Edit> edits);
+
+  // Grows the hierarchy so that it holds what `edit` addresses, with complete
+  // rings (call before solving a move there). `edits` is the current list.
+  DirtySet reserve(const Edit& edit, std::span<const Edit> edits);
+  // Brings the state up to date after `edit` was added, undone, redone or
+  // removed; `edits` is the list after that change. Only the edited
+  // elements, their stencil neighbourhoods and their descendants are
+  // recomputed.
+  DirtySet update(const Edit& edit, std::span<const Edit> edits);
+
+  int numLevels() const { return static_cast<int>(levels_.size()); }
+  int uniformLevel() const { return uniformLevel_; }
+  const SparseLevel& level(int l) const { return levels_[l].topo; }
+  std::span<const Vec3> points(int l) const { return levels_[l].points; }
+  std::span<const Vec3> predicted(int l) const { return levels_[l].predicted; }
+  bool isLeaf(int l, Index face) const { return levels_[l].leaf[face] != 0; }
+  bool isDisplayed(int l, Index vertex) const { return levels_[l].displayed[vertex] != 0; }
+  // Limit position and unit normal of a displayed vertex.
+  const Vec3& limitPosition(int l, Index vertex) const { return levels_[l].limitPosition[vertex]; }
+  const Vec3& limitNormal(int l, Index vertex) const { return levels_[l].limitNormal[vertex]; }
+
+  // The local index of a vertex with a complete ring, or a clear error.
+  Expected<Index> completeVertex(VertexId id) const;
+  // The frame offsets of `id` are stored in (from the predicted points).
+  LocalFrame frameOf(int l, Index vertex) const;
+
+  HierarchyStats stats() const;
+
+ private:
+  struct LevelState {
+    SparseLevel topo;
+    Buffer<uint8_t> selected;   // per face: a node with children
+    Buffer<uint8_t> leaf;       // per face: a node without children (displayed)
+    Buffer<uint8_t> displayed;  // per vertex: a corner of a leaf
+    std::vector<Vec3> predicted, points;
+    std::vector<Vec3> limitPosition, limitNormal;  // valid where displayed
+    std::unordered_map<Index, Vec3> offsets;       // summed local offsets of active moves
+    std::unordered_map<Index, float> edgeTags, vertexTags;
+  };
+
+  SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
+
+  // Structure (sparse_evaluator.cc).
+  void addDemand(const Edit& edit);
+  bool demandCovered(FaceId face) const;
+  int deepestDemand() const;
+  void selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined) const;
+  void rebuildFrom(int l, std::span<const Edit> edits);
+  void evaluateLevel(int l, std::span<const Edit> edits);
+  // Leaves and displayed vertices of level l; limits of vertices newly
+  // displayed (all of them on a freshly built level).
+  void markLeaves(int l, bool freshLevel);
+  void refreshLimit(int l, Index vertex);
+
+  // Edits at one level (sparse_evaluator.cc).
+  void resolveTags(int l, std::span<const Edit> edits);
+  void applyTags(int l);
+  float inheritedEdgeSharpness(int l, Index edge) const;
+  float inheritedVertexSharpness(int l, Index vertex) const;
+  void recomputeRule(int l, Index vertex);
+  void applyOffset(int l, Index vertex);
+
+  // Incremental propagation (sparse_update.cc).
+  std::vector<Index> applyEditAtItsLevel(const Edit& edit, std::span<const Edit> edits);
+  void propagate(int l, std::vector<Index> sources, DirtySet& dirty);
+  std::vector<Index> refreshChildren(int l, const std::vector<Index>& parentFaces);
+  std::vector<Index> verticesAround(int l, const std::vector<Index>& vertices) const;
+  void refreshLimitsNear(int l, const std::vector<Index>& changed, const std::vector<Index>& candidates,
+                         DirtySet& dirty);
+
+  LoopOptions options_;
+  LevelCounts counts_;
+  int uniformLevel_ = 0;
+  std::vector<float> baseEdgeSharpness_, baseVertexSharpness_;
+  std::vector<Vec3> basePoints_;
+  std::set<FaceId> demand_;
+  std::vector<LevelState> levels_;
+};
+
+}  // namespace tessera

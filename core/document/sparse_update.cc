@@ -1,0 +1,204 @@
+// Incremental update of the sparse hierarchy (seed 000 §4.2, Fig. 7): an
+// edit at level l changes the points (or rules) of a few level-l vertices;
+// level by level, only the children whose stencils read a changed vertex
+// are recomputed, plus offset vertices whose frame reads one of them;
+// limits are refreshed where a displayed vertex or a ring neighbour changed.
+#include <algorithm>
+
+#include "core/document/sparse_evaluator.h"
+#include "core/loop/interpolate.h"
+#include "core/loop/sharpness_inheritance.h"
+
+namespace tessera {
+
+namespace {
+
+void sortUnique(std::vector<Index>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+bool contains(const std::vector<Index>& sorted, Index x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
+
+bool touches(const Level& m, Index v, const std::vector<Index>& sorted) {
+  if (contains(sorted, v)) return true;
+  for (Index u : m.ringVerticesOf(v)) {
+    if (contains(sorted, u)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+DirtySet SparseEvaluator::update(const Edit& edit, std::span<const Edit> edits) {
+  DirtySet dirty;
+  const int l = edit.level();
+  std::vector<Index> sources = applyEditAtItsLevel(edit, edits);
+  if (std::holds_alternative<MoveEdit>(edit.change)) dirty.pointsRecomputed += static_cast<int64_t>(sources.size());
+  propagate(l, std::move(sources), dirty);
+  std::sort(dirty.leaves.begin(), dirty.leaves.end());
+  dirty.leaves.erase(std::unique(dirty.leaves.begin(), dirty.leaves.end()), dirty.leaves.end());
+  for (FaceId f : dirty.leaves) dirty.baseFaces.push_back(counts_.baseFace(f).index());
+  std::sort(dirty.baseFaces.begin(), dirty.baseFaces.end());
+  dirty.baseFaces.erase(std::unique(dirty.baseFaces.begin(), dirty.baseFaces.end()), dirty.baseFaces.end());
+  return dirty;
+}
+
+// Re-resolves the edited elements from the whole edit list (so adding,
+// undoing, redoing and removing are one operation) and returns the level-l
+// vertices whose point or rule changed.
+std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::span<const Edit> edits) {
+  const int l = edit.level();
+  LevelState& state = levels_[l];
+  Level& m = state.topo.mesh;
+  std::vector<Index> sources;
+  if (const auto* move = std::get_if<MoveEdit>(&edit.change)) {
+    for (const VertexOffset& target : move->offsets) {
+      const Index v = state.topo.findVertex(target.vertex.index());
+      bool any = false;
+      Vec3 sum(0, 0, 0);
+      for (const Edit& other : edits) {
+        const auto* m2 = std::get_if<MoveEdit>(&other.change);
+        if (m2 == nullptr || !other.active) continue;
+        for (const VertexOffset& o : m2->offsets) {
+          if (o.vertex == target.vertex) sum += o.localOffset, any = true;
+        }
+      }
+      if (any) {
+        state.offsets[v] = sum;
+      } else {
+        state.offsets.erase(v);
+      }
+      applyOffset(l, v);
+      sources.push_back(v);
+    }
+  } else if (const auto* tag = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+    const Index e = state.topo.findEdge(tag->edge.index());
+    state.edgeTags.erase(e);
+    for (const Edit& other : edits) {
+      const auto* t = std::get_if<EdgeSharpnessEdit>(&other.change);
+      if (t != nullptr && other.active && t->edge == tag->edge) state.edgeTags[e] = canonicalSharpness(t->sharpness);
+    }
+    auto it = state.edgeTags.find(e);
+    m.edgeSharpness[e] = it != state.edgeTags.end() ? it->second : inheritedEdgeSharpness(l, e);
+    sources = {m.edgeVertices[e][0], m.edgeVertices[e][1]};
+    for (Index v : sources) recomputeRule(l, v);
+  } else {
+    const auto& vtag = std::get<VertexSharpnessEdit>(edit.change);
+    const Index v = state.topo.findVertex(vtag.vertex.index());
+    state.vertexTags.erase(v);
+    for (const Edit& other : edits) {
+      const auto* t = std::get_if<VertexSharpnessEdit>(&other.change);
+      if (t != nullptr && other.active && t->vertex == vtag.vertex) state.vertexTags[v] = canonicalSharpness(t->sharpness);
+    }
+    auto it = state.vertexTags.find(v);
+    m.vertexSharpness[v] = it != state.vertexTags.end() ? it->second : inheritedVertexSharpness(l, v);
+    recomputeRule(l, v);
+    sources = {v};
+  }
+  sortUnique(sources);
+  return sources;
+}
+
+// Vertices of the faces around `vertices` (present faces only).
+std::vector<Index> SparseEvaluator::verticesAround(int l, const std::vector<Index>& vertices) const {
+  const Level& m = levels_[l].topo.mesh;
+  std::vector<Index> out;
+  for (Index v : vertices) {
+    for (Index f : m.ringFacesOf(v)) {
+      if (f >= 0) out.insert(out.end(), m.faceVertices[f].begin(), m.faceVertices[f].end());
+    }
+  }
+  sortUnique(out);
+  return out;
+}
+
+void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dirty) {
+  refreshLimitsNear(l, changed, verticesAround(l, changed), dirty);
+  for (int k = l; k + 1 < numLevels() && !changed.empty(); ++k) {
+    // A child's stencil reads a changed vertex exactly when the child
+    // belongs to a vertex or an edge of a face around it.
+    const Level& m = levels_[k].topo.mesh;
+    std::vector<Index> faces;
+    for (Index v : changed) {
+      for (Index f : m.ringFacesOf(v)) {
+        if (f >= 0) faces.push_back(f);
+      }
+    }
+    sortUnique(faces);
+    std::vector<Index> next = refreshChildren(k, faces);
+    if (next.empty()) break;
+    dirty.pointsRecomputed += static_cast<int64_t>(next.size());
+    // Offsets are stored in frames of the predicted ring: a frame moves when
+    // a ring neighbour's prediction does, even if the vertex's own does not.
+    LevelState& child = levels_[k + 1];
+    std::vector<Index> reframed;
+    for (Index w : verticesAround(k + 1, next)) {
+      if (child.offsets.count(w) == 0 || contains(next, w) || !touches(child.topo.mesh, w, next)) continue;
+      applyOffset(k + 1, w);
+      reframed.push_back(w);
+    }
+    dirty.pointsRecomputed += static_cast<int64_t>(reframed.size());
+    next.insert(next.end(), reframed.begin(), reframed.end());
+    sortUnique(next);
+    refreshLimitsNear(k + 1, next, verticesAround(k + 1, next), dirty);
+    changed.swap(next);
+  }
+}
+
+// Sharpness, rules, predictions and points of the children (at level l+1)
+// of the vertices and edges of `parentFaces`, in that order: each step reads
+// only what the previous one and the parent level settled.
+std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Index>& parentFaces) {
+  const LevelState& parent = levels_[l];
+  const SparseLevel& p = parent.topo;
+  LevelState& state = levels_[l + 1];
+  SparseLevel& c = state.topo;
+  const uint64_t parentVertices = counts_.vertices(l);
+  SharpnessInheritance inherit(p.mesh, options_);
+  std::vector<Index> vertices;
+  for (Index f : parentFaces) {
+    for (Index u : p.mesh.faceVertices[f]) {
+      if (const Index child = c.findVertex(p.vertexIds[u]); child >= 0) vertices.push_back(child);
+    }
+    for (Index e : p.mesh.faceEdges[f]) {
+      if (const Index child = c.findVertex(parentVertices + p.edgeIds[e]); child >= 0) vertices.push_back(child);
+      const Index half = c.findEdge(2 * p.edgeIds[e]);
+      if (half < 0) continue;
+      for (int end = 0; end < 2; ++end) {
+        auto tag = state.edgeTags.find(half + end);
+        c.mesh.edgeSharpness[half + end] = tag != state.edgeTags.end() ? tag->second : inherit.halfSharpness(e, end);
+      }
+    }
+  }
+  sortUnique(vertices);
+  for (Index v : vertices) {
+    auto tag = state.vertexTags.find(v);
+    c.mesh.vertexSharpness[v] = tag != state.vertexTags.end() ? tag->second : inheritedVertexSharpness(l + 1, v);
+  }
+  for (Index v : vertices) recomputeRule(l + 1, v);
+  LoopStencils stencils(p.mesh, options_);
+  for (Index v : vertices) {
+    state.predicted[v] = v < c.numVertexChildren ? stencils.vertexChild(c.origin[v], parent.points)
+                                                 : stencils.edgeChild(c.origin[v], parent.points);
+  }
+  // Frames read the predicted ring: only once every prediction is settled.
+  for (Index v : vertices) applyOffset(l + 1, v);
+  return vertices;
+}
+
+void SparseEvaluator::refreshLimitsNear(int l, const std::vector<Index>& changed,
+                                        const std::vector<Index>& candidates, DirtySet& dirty) {
+  const LevelState& state = levels_[l];
+  const Level& m = state.topo.mesh;
+  for (Index w : candidates) {
+    if (!state.displayed[w] || !touches(m, w, changed)) continue;
+    refreshLimit(l, w);
+    ++dirty.limitsRecomputed;
+    for (Index f : m.ringFacesOf(w)) {
+      if (f >= 0 && state.leaf[f]) dirty.leaves.push_back(FaceId(l, state.topo.faceIds[f]));
+    }
+  }
+}
+
+}  // namespace tessera

@@ -1,0 +1,321 @@
+#include "core/hierarchy/sparse_level.h"
+
+#include <algorithm>
+#include <cassert>
+
+#include "core/loop/sharpness_inheritance.h"
+
+namespace tessera {
+
+namespace {
+
+template <typename T>
+size_t bytesOf(const Buffer<T>& b) {
+  return b.capacity() * sizeof(T);
+}
+
+Index findIn(const Buffer<uint64_t>& ids, uint64_t canonical) {
+  auto it = std::lower_bound(ids.begin(), ids.end(), canonical);
+  return it != ids.end() && *it == canonical ? static_cast<Index>(it - ids.begin()) : kInvalidIndex;
+}
+
+// Local indices of everything the refined faces of a parent produce.
+struct ChildMap {
+  std::vector<Index> vertexChild;  // parent vertex -> child vertex
+  std::vector<Index> edgeVertex;   // parent edge -> child vertex on it
+  std::vector<Index> edgeHalves;   // parent edge -> first of its two halves
+  std::vector<Index> interior;     // parent face -> first of its 3 interior edges
+  std::vector<Index> firstFace;    // parent face -> first of its 4 children
+  Index faceChild(Index f) const { return f < 0 ? f : (firstFace[f] < 0 ? kAbsentFace : firstFace[f]); }
+};
+
+}  // namespace
+
+Index SparseLevel::findVertex(uint64_t canonical) const { return findIn(vertexIds, canonical); }
+Index SparseLevel::findEdge(uint64_t canonical) const { return findIn(edgeIds, canonical); }
+Index SparseLevel::findFace(uint64_t canonical) const { return findIn(faceIds, canonical); }
+
+size_t SparseLevel::memoryBytes() const {
+  const Level& m = mesh;
+  return bytesOf(m.faceVertices) + bytesOf(m.faceEdges) + bytesOf(m.edgeVertices) + bytesOf(m.edgeFaces) +
+         bytesOf(m.edgeFaceLocal) + bytesOf(m.faceEdgeSides) + bytesOf(m.ringOffsets) + bytesOf(m.ringEdges) +
+         bytesOf(m.ringVertices) + bytesOf(m.ringFaces) + bytesOf(m.ringFaceLocal) + bytesOf(m.edgeSharpness) +
+         bytesOf(m.vertexSharpness) + bytesOf(m.vertexRules) + bytesOf(vertexIds) + bytesOf(edgeIds) +
+         bytesOf(faceIds) + bytesOf(complete) + bytesOf(origin) + bytesOf(faceParent) + bytesOf(firstChildFace);
+}
+
+SparseLevel sparseBaseLevel(Level base) {
+  SparseLevel level;
+  level.mesh = std::move(base);
+  const Level& m = level.mesh;
+  level.vertexIds.resize(m.numVertices);
+  level.edgeIds.resize(m.numEdges());
+  level.faceIds.resize(m.numFaces());
+  for (Index v = 0; v < m.numVertices; ++v) level.vertexIds[v] = static_cast<uint64_t>(v);
+  for (Index e = 0; e < m.numEdges(); ++e) level.edgeIds[e] = static_cast<uint64_t>(e);
+  for (Index f = 0; f < m.numFaces(); ++f) level.faceIds[f] = static_cast<uint64_t>(f);
+  level.complete.assign(m.numVertices, 1);
+  level.numVertexChildren = m.numVertices;
+  level.firstChildFace.assign(m.numFaces(), kInvalidIndex);
+  return level;
+}
+
+namespace {
+
+// Vertices, edges and faces of the child, with their canonical ids, in the
+// order described in the header.
+ChildMap numberChildren(const SparseLevel& parent, std::span<const uint8_t> refine, const LevelCounts& counts,
+                        SparseLevel& child) {
+  const Level& p = parent.mesh;
+  ChildMap map;
+  map.vertexChild.assign(p.numVertices, kInvalidIndex);
+  map.edgeVertex.assign(p.numEdges(), kInvalidIndex);
+  map.edgeHalves.assign(p.numEdges(), kInvalidIndex);
+  map.interior.assign(p.numFaces(), kInvalidIndex);
+  map.firstFace.assign(p.numFaces(), kInvalidIndex);
+  for (Index f = 0; f < p.numFaces(); ++f) {
+    if (!refine[f]) continue;
+    for (int k = 0; k < 3; ++k) {
+      assert(parent.isComplete(p.faceVertices[f][k]) && "a refined face needs complete vertices");
+      map.vertexChild[p.faceVertices[f][k]] = 0;
+      map.edgeVertex[p.faceEdges[f][k]] = 0;
+    }
+  }
+  const int d = parent.depth;
+  const uint64_t parentVertices = counts.vertices(d), parentEdges = counts.edges(d);
+  Index nv = 0, ne = 0, nf = 0;
+  for (Index v = 0; v < p.numVertices; ++v) {
+    if (map.vertexChild[v] == 0) map.vertexChild[v] = nv++;
+  }
+  child.numVertexChildren = nv;
+  for (Index e = 0; e < p.numEdges(); ++e) {
+    if (map.edgeVertex[e] == 0) map.edgeVertex[e] = nv++, map.edgeHalves[e] = ne, ne += 2;
+  }
+  const Index numHalves = ne;
+  for (Index f = 0; f < p.numFaces(); ++f) {
+    if (refine[f]) map.interior[f] = ne, ne += 3, map.firstFace[f] = nf, nf += 4;
+  }
+
+  child.depth = d + 1;
+  child.vertexIds.resize(nv);
+  child.origin.resize(nv);
+  child.edgeIds.resize(ne);
+  child.faceIds.resize(nf);
+  child.faceParent.resize(nf / 4);
+  for (Index v = 0; v < p.numVertices; ++v) {
+    if (Index c = map.vertexChild[v]; c >= 0) child.vertexIds[c] = parent.vertexIds[v], child.origin[c] = v;
+  }
+  for (Index e = 0; e < p.numEdges(); ++e) {
+    const Index c = map.edgeVertex[e];
+    if (c < 0) continue;
+    child.vertexIds[c] = parentVertices + parent.edgeIds[e];
+    child.origin[c] = e;
+    child.edgeIds[map.edgeHalves[e]] = 2 * parent.edgeIds[e];
+    child.edgeIds[map.edgeHalves[e] + 1] = 2 * parent.edgeIds[e] + 1;
+  }
+  for (Index f = 0; f < p.numFaces(); ++f) {
+    if (!refine[f]) continue;
+    for (int j = 0; j < 3; ++j) child.edgeIds[map.interior[f] + j] = 2 * parentEdges + 3 * parent.faceIds[f] + j;
+    for (int k = 0; k < 4; ++k) child.faceIds[map.firstFace[f] + k] = 4 * parent.faceIds[f] + k;
+    child.faceParent[map.firstFace[f] / 4] = f;
+  }
+  assert(numHalves <= ne);
+  (void)numHalves;
+  return map;
+}
+
+// As refinement.cc's uniform version, through the child map.
+void refineFacesAndEdges(const Level& p, const ChildMap& map, std::span<const uint8_t> refine, Level& c) {
+  for (Index e = 0; e < p.numEdges(); ++e) {
+    const Index h = map.edgeHalves[e];
+    if (h < 0) continue;
+    const Index m = map.edgeVertex[e];
+    const auto& ev = p.edgeVertices[e];
+    const auto& ef = p.edgeFaces[e];
+    const auto& el = p.edgeFaceLocal[e];
+    c.edgeVertices[h] = {map.vertexChild[ev[0]], m};
+    c.edgeVertices[h + 1] = {m, map.vertexChild[ev[1]]};
+    for (int end = 0; end < 2; ++end) {
+      const Index fa = map.faceChild(ef[0]), fb = map.faceChild(ef[1]);
+      c.edgeFaces[h + end] = {fa < 0 ? fa : fa + (el[0] + end) % 3, fb < 0 ? fb : fb + (el[1] + 1 - end) % 3};
+      c.edgeFaceLocal[h + end] = el;
+    }
+  }
+  for (Index f = 0; f < p.numFaces(); ++f) {
+    if (!refine[f]) continue;
+    const auto& fv = p.faceVertices[f];
+    const auto& fe = p.faceEdges[f];
+    const uint8_t sides = p.faceEdgeSides[f];
+    const Index m0 = map.edgeVertex[fe[0]], m1 = map.edgeVertex[fe[1]], m2 = map.edgeVertex[fe[2]];
+    const Index i0 = map.interior[f], i1 = i0 + 1, i2 = i0 + 2;
+    const Index k = map.firstFace[f];
+    auto atStart = [&](int j) { return map.edgeHalves[fe[j]] + ((sides >> j) & 1); };
+    auto atEnd = [&](int j) { return map.edgeHalves[fe[j]] + 1 - ((sides >> j) & 1); };
+    const Index v0 = map.vertexChild[fv[0]], v1 = map.vertexChild[fv[1]], v2 = map.vertexChild[fv[2]];
+
+    c.faceVertices[k + 0] = {v0, m0, m2};
+    c.faceVertices[k + 1] = {m0, v1, m1};
+    c.faceVertices[k + 2] = {m2, m1, v2};
+    c.faceVertices[k + 3] = {m1, m2, m0};
+    c.faceEdges[k + 0] = {atStart(0), i0, atEnd(2)};
+    c.faceEdges[k + 1] = {atEnd(0), atStart(1), i1};
+    c.faceEdges[k + 2] = {i2, atEnd(1), atStart(2)};
+    c.faceEdges[k + 3] = {i2, i0, i1};
+    c.faceEdgeSides[k + 0] = sides & 0b101;
+    c.faceEdgeSides[k + 1] = sides & 0b011;
+    c.faceEdgeSides[k + 2] = sides & 0b110;
+    c.faceEdgeSides[k + 3] = 0b111;
+    c.edgeVertices[i0] = {m0, m2};
+    c.edgeVertices[i1] = {m1, m0};
+    c.edgeVertices[i2] = {m2, m1};
+    c.edgeFaces[i0] = {k + 0, k + 3};
+    c.edgeFaces[i1] = {k + 1, k + 3};
+    c.edgeFaces[i2] = {k + 2, k + 3};
+    c.edgeFaceLocal[i0] = {1, 1};
+    c.edgeFaceLocal[i1] = {2, 2};
+    c.edgeFaceLocal[i2] = {0, 0};
+  }
+}
+
+bool isPresentChild(const ChildMap& map, Index f) { return f == kInvalidIndex || map.firstFace[f] >= 0; }
+
+// Rings of the complete child vertices, in the order refinement.cc gives the
+// uniform level (so frames and limit tangents agree with it exactly); an
+// incomplete vertex lists just its present faces, for the incremental update.
+void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& child) {
+  const Level& p = parent.mesh;
+  Level& c = child.mesh;
+  child.complete.assign(c.numVertices, 0);
+  std::vector<Index> presentFaces(c.numVertices, 0);
+  for (const auto& fv : c.faceVertices) {
+    for (Index v : fv) ++presentFaces[v];
+  }
+  c.ringOffsets.resize(c.numVertices + 1);
+  c.ringOffsets[0] = 0;
+  for (Index v = 0; v < c.numVertices; ++v) {
+    int valence = 0;
+    const Index o = child.origin[v];
+    if (v < child.numVertexChildren) {
+      bool all = true;
+      for (Index f : p.ringFacesOf(o)) all = all && isPresentChild(map, f);
+      if (all) valence = p.valence(o);
+    } else {
+      const auto& ef = p.edgeFaces[o];
+      if (map.firstFace[ef[0]] >= 0 && (ef[1] == kInvalidIndex || (ef[1] >= 0 && map.firstFace[ef[1]] >= 0))) {
+        valence = ef[1] == kInvalidIndex ? 4 : 6;
+      }
+    }
+    child.complete[v] = valence > 0;
+    c.ringOffsets[v + 1] = c.ringOffsets[v] + (valence > 0 ? valence : presentFaces[v]);
+  }
+  const Index total = c.ringOffsets[c.numVertices];
+  c.ringEdges.resize(total);
+  c.ringVertices.resize(total);
+  c.ringFaces.resize(total);
+  c.ringFaceLocal.resize(total);
+
+  for (Index f = 0; f < static_cast<Index>(c.faceVertices.size()); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const Index v = c.faceVertices[f][k];
+      if (child.complete[v]) continue;
+      const Index slot = c.ringOffsets[v] + --presentFaces[v];
+      c.ringEdges[slot] = c.ringVertices[slot] = kInvalidIndex;
+      c.ringFaces[slot] = f;
+      c.ringFaceLocal[slot] = static_cast<uint8_t>(k);
+    }
+  }
+  for (Index v = 0; v < c.numVertices; ++v) {
+    if (!child.complete[v]) continue;
+    const Index o = child.origin[v];
+    Index* ringE = c.ringEdges.data() + c.ringOffsets[v];
+    Index* ringV = c.ringVertices.data() + c.ringOffsets[v];
+    Index* ringF = c.ringFaces.data() + c.ringOffsets[v];
+    uint8_t* ringL = c.ringFaceLocal.data() + c.ringOffsets[v];
+    if (v < child.numVertexChildren) {
+      const Index from = p.ringOffsets[o], to = p.ringOffsets[o + 1];
+      for (Index k = from; k < to; ++k) {
+        const Index e = p.ringEdges[k];
+        const Index f = p.ringFaces[k];
+        ringE[k - from] = map.edgeHalves[e] + (p.edgeVertices[e][0] == o ? 0 : 1);
+        ringV[k - from] = map.edgeVertex[e];
+        ringF[k - from] = f == kInvalidIndex ? kInvalidIndex : map.firstFace[f] + p.ringFaceLocal[k];
+        ringL[k - from] = p.ringFaceLocal[k];
+      }
+      continue;
+    }
+    const Index e = o;
+    const auto& ev = p.edgeVertices[e];
+    const Index h = map.edgeHalves[e];
+    const Index fA = p.edgeFaces[e][0];
+    const int j = p.edgeFaceLocal[e][0];
+    const int jn = (j + 1) % 3, jp = (j + 2) % 3;
+    const Index iA = map.interior[fA], cA = map.firstFace[fA];
+    const auto& feA = p.faceEdges[fA];
+    ringE[0] = h + 1, ringV[0] = map.vertexChild[ev[1]], ringF[0] = cA + jn, ringL[0] = static_cast<uint8_t>(j);
+    ringE[1] = iA + jn, ringV[1] = map.edgeVertex[feA[jn]], ringF[1] = cA + 3, ringL[1] = static_cast<uint8_t>(jp);
+    ringE[2] = iA + j, ringV[2] = map.edgeVertex[feA[jp]], ringF[2] = cA + j, ringL[2] = static_cast<uint8_t>(jn);
+    ringE[3] = h, ringV[3] = map.vertexChild[ev[0]];
+    const Index fB = p.edgeFaces[e][1];
+    if (fB == kInvalidIndex) {
+      ringF[3] = kInvalidIndex, ringL[3] = 0;
+      continue;
+    }
+    const int k = p.edgeFaceLocal[e][1];
+    const int kn = (k + 1) % 3, kp = (k + 2) % 3;
+    const Index iB = map.interior[fB], cB = map.firstFace[fB];
+    const auto& feB = p.faceEdges[fB];
+    ringF[3] = cB + kn, ringL[3] = static_cast<uint8_t>(k);
+    ringE[4] = iB + kn, ringV[4] = map.edgeVertex[feB[kn]], ringF[4] = cB + 3, ringL[4] = static_cast<uint8_t>(kp);
+    ringE[5] = iB + k, ringV[5] = map.edgeVertex[feB[kp]], ringF[5] = cB + k, ringL[5] = static_cast<uint8_t>(kn);
+  }
+  c.maxValence = std::max(p.maxValence, 6);
+}
+
+void inheritSharpness(const SparseLevel& parent, const ChildMap& map, const LoopOptions& options,
+                      SparseLevel& child) {
+  const Level& p = parent.mesh;
+  Level& c = child.mesh;
+  SharpnessInheritance inherit(p, options);
+  c.edgeSharpness.assign(c.numEdges(), kSharpnessSmooth);
+  c.vertexSharpness.resize(c.numVertices);
+  c.vertexRules.resize(c.numVertices);
+  for (Index e = 0; e < p.numEdges(); ++e) {
+    const Index h = map.edgeHalves[e];
+    if (h < 0) continue;
+    c.vertexSharpness[map.edgeVertex[e]] = kSharpnessSmooth;
+    c.vertexRules[map.edgeVertex[e]] = inherit.edgeChildRule(e);
+    if (isSmooth(p.edgeSharpness[e])) continue;
+    c.edgeSharpness[h] = inherit.halfSharpness(e, 0);
+    c.edgeSharpness[h + 1] = inherit.halfSharpness(e, 1);
+  }
+  for (Index v = 0; v < child.numVertexChildren; ++v) {
+    const Index o = child.origin[v];
+    c.vertexSharpness[v] = inherit.vertexChildSharpness(o);
+    c.vertexRules[v] = inherit.vertexChildRule(o);
+  }
+}
+
+}  // namespace
+
+SparseLevel refineSparse(SparseLevel& parent, std::span<const uint8_t> refine, const LevelCounts& counts,
+                         const LoopOptions& options) {
+  SparseLevel child;
+  const ChildMap map = numberChildren(parent, refine, counts, child);
+  Level& c = child.mesh;
+  c.numVertices = static_cast<int>(child.vertexIds.size());
+  const size_t nf = child.faceIds.size(), ne = child.edgeIds.size();
+  c.faceVertices.resize(nf);
+  c.faceEdges.resize(nf);
+  c.faceEdgeSides.resize(nf);
+  c.edgeVertices.resize(ne);
+  c.edgeFaces.resize(ne);
+  c.edgeFaceLocal.resize(ne);
+  refineFacesAndEdges(parent.mesh, map, refine, c);
+  refineRings(parent, map, child);
+  inheritSharpness(parent, map, options, child);
+  child.firstChildFace.assign(nf, kInvalidIndex);
+  parent.firstChildFace.assign(map.firstFace.begin(), map.firstFace.end());
+  return child;
+}
+
+}  // namespace tessera

@@ -117,7 +117,11 @@ void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
     Buffer<uint8_t> refined;
     selectFaces(k, levels_[k].selected, refined);
     if (k == deepest) {
-      levels_[k].topo.firstChildFace.assign(levels_[k].topo.mesh.numFaces(), kInvalidIndex);
+      SparseLevel& last = levels_[k].topo;
+      last.firstChildFace.assign(last.mesh.numFaces(), kInvalidIndex);
+      last.childOfVertex.assign(last.mesh.numVertices, kInvalidIndex);
+      last.childOfEdge.assign(last.mesh.numEdges(), kInvalidIndex);
+      last.halvesOfEdge.assign(last.mesh.numEdges(), kInvalidIndex);
       break;
     }
     SparseLevel child = refineSparse(levels_[k].topo, refined, counts_, options_);
@@ -143,16 +147,17 @@ void SparseEvaluator::markLeaves(int l, bool freshLevel) {
   }
   state.limitPosition.resize(m.numVertices);
   state.limitNormal.resize(m.numVertices);
+  const LimitEvaluator limits(m);
   for (Index v = 0; v < m.numVertices; ++v) {
     // Points above a rebuild are unchanged: their limits still hold.
     if (!state.displayed[v] || (!freshLevel && !wasDisplayed.empty() && wasDisplayed[v])) continue;
-    refreshLimit(l, v);
+    refreshLimit(l, v, limits);
   }
 }
 
-void SparseEvaluator::refreshLimit(int l, Index v) {
+void SparseEvaluator::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
   LevelState& state = levels_[l];
-  const LimitFrame frame = limitFrame(state.topo.mesh, v, state.points);
+  const LimitFrame frame = limits.frame(v, state.points);
   state.limitPosition[v] = frame.position;
   state.limitNormal[v] = frame.normal();
 }
@@ -165,6 +170,8 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
   resolveTags(l, edits);
   applyTags(l);
   const Index n = topo.mesh.numVertices;
+  state.vertexMarks.assign(n, 0);
+  state.faceMarks.assign(topo.mesh.numFaces(), 0);
   state.predicted.resize(n);
   if (l == 0) {
     std::copy(basePoints_.begin(), basePoints_.end(), state.predicted.begin());
@@ -282,7 +289,7 @@ HierarchyStats SparseEvaluator::stats() const {
     level.displayedVertices = std::count(state.displayed.begin(), state.displayed.end(), 1);
     const size_t vec3 = sizeof(Vec3);
     level.bytes = state.topo.memoryBytes() + state.selected.capacity() + state.leaf.capacity() +
-                  state.displayed.capacity() +
+                  state.displayed.capacity() + state.vertexMarks.capacity() + state.faceMarks.capacity() +
                   vec3 * (state.predicted.capacity() + state.points.capacity() + state.limitPosition.capacity() +
                           state.limitNormal.capacity()) +
                   (sizeof(Index) + vec3 + 16) * state.offsets.size() +

@@ -28,6 +28,7 @@
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_level.h"
 #include "core/loop/level_builder.h"
+#include "core/loop/limit.h"
 #include "core/loop/local_frame.h"
 #include "core/loop/loop_options.h"
 #include "core/util/status.h"
@@ -97,6 +98,8 @@ class SparseEvaluator {
     std::vector<Vec3> limitPosition, limitNormal;  // valid where displayed
     std::unordered_map<Index, Vec3> offsets;       // summed local offsets of active moves
     std::unordered_map<Index, float> edgeTags, vertexTags;
+    // Scratch for the incremental update: all zero between updates.
+    std::vector<uint8_t> vertexMarks, faceMarks;
   };
 
   SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
@@ -111,7 +114,7 @@ class SparseEvaluator {
   // Leaves and displayed vertices of level l; limits of vertices newly
   // displayed (all of them on a freshly built level).
   void markLeaves(int l, bool freshLevel);
-  void refreshLimit(int l, Index vertex);
+  void refreshLimit(int l, Index vertex, const LimitEvaluator& limits);
 
   // Edits at one level (sparse_evaluator.cc).
   void resolveTags(int l, std::span<const Edit> edits);
@@ -125,7 +128,7 @@ class SparseEvaluator {
   std::vector<Index> applyEditAtItsLevel(const Edit& edit, std::span<const Edit> edits);
   void propagate(int l, std::vector<Index> sources, DirtySet& dirty);
   std::vector<Index> refreshChildren(int l, const std::vector<Index>& parentFaces);
-  std::vector<Index> verticesAround(int l, const std::vector<Index>& vertices) const;
+  std::vector<Index> verticesAround(int l, const std::vector<Index>& vertices);
   void refreshLimitsNear(int l, const std::vector<Index>& changed, const std::vector<Index>& candidates,
                          DirtySet& dirty);
 

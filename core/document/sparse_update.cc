@@ -13,17 +13,36 @@ namespace tessera {
 
 namespace {
 
+// Deduplication and membership through per-level marks, which are left all
+// zero again: the cost follows the edit's footprint, never the level's size.
+class Marked {
+ public:
+  explicit Marked(std::vector<uint8_t>& marks) : marks_(marks) {}
+  ~Marked() {
+    for (Index i : items_) marks_[i] = 0;
+  }
+  void add(Index i) {
+    if (!marks_[i]) marks_[i] = 1, items_.push_back(i);
+  }
+  bool has(Index i) const { return marks_[i] != 0; }
+  const std::vector<Index>& items() const { return items_; }
+  std::vector<Index> toVector() const { return items_; }
+
+ private:
+  std::vector<uint8_t>& marks_;
+  std::vector<Index> items_;
+};
+
 void sortUnique(std::vector<Index>& v) {
   std::sort(v.begin(), v.end());
   v.erase(std::unique(v.begin(), v.end()), v.end());
 }
 
-bool contains(const std::vector<Index>& sorted, Index x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
-
-bool touches(const Level& m, Index v, const std::vector<Index>& sorted) {
-  if (contains(sorted, v)) return true;
+// A complete vertex whose ring or self is marked.
+bool touches(const Level& m, Index v, const Marked& set) {
+  if (set.has(v)) return true;
   for (Index u : m.ringVerticesOf(v)) {
-    if (contains(sorted, u)) return true;
+    if (set.has(u)) return true;
   }
   return false;
 }
@@ -101,16 +120,16 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
 }
 
 // Vertices of the faces around `vertices` (present faces only).
-std::vector<Index> SparseEvaluator::verticesAround(int l, const std::vector<Index>& vertices) const {
+std::vector<Index> SparseEvaluator::verticesAround(int l, const std::vector<Index>& vertices) {
   const Level& m = levels_[l].topo.mesh;
-  std::vector<Index> out;
+  Marked out(levels_[l].vertexMarks);
   for (Index v : vertices) {
     for (Index f : m.ringFacesOf(v)) {
-      if (f >= 0) out.insert(out.end(), m.faceVertices[f].begin(), m.faceVertices[f].end());
+      if (f < 0) continue;
+      for (Index x : m.faceVertices[f]) out.add(x);
     }
   }
-  sortUnique(out);
-  return out;
+  return out.toVector();
 }
 
 void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dirty) {
@@ -119,28 +138,33 @@ void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dir
     // A child's stencil reads a changed vertex exactly when the child
     // belongs to a vertex or an edge of a face around it.
     const Level& m = levels_[k].topo.mesh;
-    std::vector<Index> faces;
+    Marked faces(levels_[k].faceMarks);
     for (Index v : changed) {
       for (Index f : m.ringFacesOf(v)) {
-        if (f >= 0) faces.push_back(f);
+        if (f >= 0) faces.add(f);
       }
     }
-    sortUnique(faces);
-    std::vector<Index> next = refreshChildren(k, faces);
+    std::vector<Index> next = refreshChildren(k, faces.items());
     if (next.empty()) break;
     dirty.pointsRecomputed += static_cast<int64_t>(next.size());
     // Offsets are stored in frames of the predicted ring: a frame moves when
     // a ring neighbour's prediction does, even if the vertex's own does not.
     LevelState& child = levels_[k + 1];
     std::vector<Index> reframed;
-    for (Index w : verticesAround(k + 1, next)) {
-      if (child.offsets.count(w) == 0 || contains(next, w) || !touches(child.topo.mesh, w, next)) continue;
-      applyOffset(k + 1, w);
-      reframed.push_back(w);
+    if (!child.offsets.empty()) {
+      const std::vector<Index> near = verticesAround(k + 1, next);
+      Marked predictedChanged(child.vertexMarks);
+      for (Index v : next) predictedChanged.add(v);
+      for (Index w : near) {
+        if (child.offsets.count(w) == 0 || predictedChanged.has(w) || !touches(child.topo.mesh, w, predictedChanged)) {
+          continue;
+        }
+        applyOffset(k + 1, w);
+        reframed.push_back(w);
+      }
     }
     dirty.pointsRecomputed += static_cast<int64_t>(reframed.size());
     next.insert(next.end(), reframed.begin(), reframed.end());
-    sortUnique(next);
     refreshLimitsNear(k + 1, next, verticesAround(k + 1, next), dirty);
     changed.swap(next);
   }
@@ -154,16 +178,15 @@ std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Ind
   const SparseLevel& p = parent.topo;
   LevelState& state = levels_[l + 1];
   SparseLevel& c = state.topo;
-  const uint64_t parentVertices = counts_.vertices(l);
   SharpnessInheritance inherit(p.mesh, options_);
-  std::vector<Index> vertices;
+  Marked vertices(state.vertexMarks);
   for (Index f : parentFaces) {
     for (Index u : p.mesh.faceVertices[f]) {
-      if (const Index child = c.findVertex(p.vertexIds[u]); child >= 0) vertices.push_back(child);
+      if (const Index child = p.childOfVertex[u]; child >= 0) vertices.add(child);
     }
     for (Index e : p.mesh.faceEdges[f]) {
-      if (const Index child = c.findVertex(parentVertices + p.edgeIds[e]); child >= 0) vertices.push_back(child);
-      const Index half = c.findEdge(2 * p.edgeIds[e]);
+      if (const Index child = p.childOfEdge[e]; child >= 0) vertices.add(child);
+      const Index half = p.halvesOfEdge[e];
       if (half < 0) continue;
       for (int end = 0; end < 2; ++end) {
         auto tag = state.edgeTags.find(half + end);
@@ -171,29 +194,31 @@ std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Ind
       }
     }
   }
-  sortUnique(vertices);
-  for (Index v : vertices) {
+  for (Index v : vertices.items()) {
     auto tag = state.vertexTags.find(v);
     c.mesh.vertexSharpness[v] = tag != state.vertexTags.end() ? tag->second : inheritedVertexSharpness(l + 1, v);
   }
-  for (Index v : vertices) recomputeRule(l + 1, v);
+  for (Index v : vertices.items()) recomputeRule(l + 1, v);
   LoopStencils stencils(p.mesh, options_);
-  for (Index v : vertices) {
+  for (Index v : vertices.items()) {
     state.predicted[v] = v < c.numVertexChildren ? stencils.vertexChild(c.origin[v], parent.points)
                                                  : stencils.edgeChild(c.origin[v], parent.points);
   }
   // Frames read the predicted ring: only once every prediction is settled.
-  for (Index v : vertices) applyOffset(l + 1, v);
-  return vertices;
+  for (Index v : vertices.items()) applyOffset(l + 1, v);
+  return vertices.toVector();
 }
 
 void SparseEvaluator::refreshLimitsNear(int l, const std::vector<Index>& changed,
                                         const std::vector<Index>& candidates, DirtySet& dirty) {
   const LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
+  const LimitEvaluator limits(m);
+  Marked changedSet(levels_[l].vertexMarks);
+  for (Index v : changed) changedSet.add(v);
   for (Index w : candidates) {
-    if (!state.displayed[w] || !touches(m, w, changed)) continue;
-    refreshLimit(l, w);
+    if (!state.displayed[w] || !touches(m, w, changedSet)) continue;
+    refreshLimit(l, w, limits);
     ++dirty.limitsRecomputed;
     for (Index f : m.ringFacesOf(w)) {
       if (f >= 0 && state.leaf[f]) dirty.leaves.push_back(FaceId(l, state.topo.faceIds[f]));

@@ -41,7 +41,8 @@ size_t SparseLevel::memoryBytes() const {
          bytesOf(m.edgeFaceLocal) + bytesOf(m.faceEdgeSides) + bytesOf(m.ringOffsets) + bytesOf(m.ringEdges) +
          bytesOf(m.ringVertices) + bytesOf(m.ringFaces) + bytesOf(m.ringFaceLocal) + bytesOf(m.edgeSharpness) +
          bytesOf(m.vertexSharpness) + bytesOf(m.vertexRules) + bytesOf(vertexIds) + bytesOf(edgeIds) +
-         bytesOf(faceIds) + bytesOf(complete) + bytesOf(origin) + bytesOf(faceParent) + bytesOf(firstChildFace);
+         bytesOf(faceIds) + bytesOf(complete) + bytesOf(origin) + bytesOf(faceParent) + bytesOf(firstChildFace) +
+         bytesOf(childOfVertex) + bytesOf(childOfEdge) + bytesOf(halvesOfEdge);
 }
 
 SparseLevel sparseBaseLevel(Level base) {
@@ -315,6 +316,9 @@ SparseLevel refineSparse(SparseLevel& parent, std::span<const uint8_t> refine, c
   inheritSharpness(parent, map, options, child);
   child.firstChildFace.assign(nf, kInvalidIndex);
   parent.firstChildFace.assign(map.firstFace.begin(), map.firstFace.end());
+  parent.childOfVertex.assign(map.vertexChild.begin(), map.vertexChild.end());
+  parent.childOfEdge.assign(map.edgeVertex.begin(), map.edgeVertex.end());
+  parent.halvesOfEdge.assign(map.edgeHalves.begin(), map.edgeHalves.end());
   return child;
 }
 

@@ -42,9 +42,11 @@ struct SparseLevel {
   Index numVertexChildren = 0;
   Buffer<Index> origin;
   Buffer<Index> faceParent;  // per group of four child faces: the parent face
-  // Set when the next level is built: each face's first child face there
-  // (children are 4 consecutive faces), or kInvalidIndex if not refined.
-  Buffer<Index> firstChildFace;
+  // Set when the next level is built, kInvalidIndex where there is no child:
+  Buffer<Index> firstChildFace;  // per face: the first of its 4 consecutive children
+  Buffer<Index> childOfVertex;   // per vertex: its child vertex
+  Buffer<Index> childOfEdge;     // per edge: the vertex on it
+  Buffer<Index> halvesOfEdge;    // per edge: the first of its two consecutive halves
 
   Index findVertex(uint64_t canonical) const;  // kInvalidIndex if not present
   Index findEdge(uint64_t canonical) const;

@@ -1,6 +1,7 @@
 #include "core/loop/limit.h"
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -8,7 +9,7 @@
 
 namespace tessera {
 
-namespace {
+namespace detail {
 
 // Per-valence smooth limit weights and tangent coefficients, computed once
 // per evaluation instead of once per vertex.
@@ -35,6 +36,12 @@ class SmoothTables {
   std::vector<int> offsets_;
   std::vector<double> weight_, cos_, sin_;
 };
+
+}  // namespace detail
+
+namespace {
+
+using detail::SmoothTables;
 
 // The regular case, valence 6, with its weights written out: cos(k pi/3) is
 // +-1 or +-1/2 and sin(k pi/3) is 0 or +-sqrt(3)/2 (loopScheme.h does the same).
@@ -188,6 +195,15 @@ std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::spa
 LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points) {
   SmoothTables tables(level.valence(v));
   return frameWith(level, v, points, tables);
+}
+
+LimitEvaluator::LimitEvaluator(const Level& level)
+    : level_(level), tables_(std::make_unique<const SmoothTables>(level.maxValence)) {}
+
+LimitEvaluator::~LimitEvaluator() = default;
+
+LimitFrame LimitEvaluator::frame(Index v, std::span<const Vec3> points) const {
+  return frameWith(level_, v, points, *tables_);
 }
 
 void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,

@@ -9,6 +9,8 @@
 // decides its mask, so semi-sharp features still present count as sharp.
 #pragma once
 
+#include <memory>
+
 #include <cmath>
 #include <span>
 
@@ -31,6 +33,23 @@ struct LimitFrame {
 };
 
 LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points);
+
+namespace detail {
+class SmoothTables;
+}
+
+// limitFrame() for many vertices of one level, one at a time, with the
+// per-valence tables built once (the incremental hierarchy's use).
+class LimitEvaluator {
+ public:
+  explicit LimitEvaluator(const Level& level);
+  ~LimitEvaluator();
+  LimitFrame frame(Index v, std::span<const Vec3> points) const;
+
+ private:
+  const Level& level_;
+  std::unique_ptr<const detail::SmoothTables> tables_;
+};
 
 // A sector of a vertex's ring between two consecutive sharp edges: ring faces
 // firstFace .. firstFace + faceCount - 1 (modulo the valence), and the limit

@@ -56,7 +56,7 @@ void editTessera(benchmark::State& state) {
   Document& doc = *input().doc;
   std::mt19937 rng(42 + level);
   std::vector<double> samples;
-  int64_t points = 0, limits = 0, leaves = 0;
+  int64_t points = 0, limits = 0;
   for (auto _ : state) {
     const VertexId v(level, std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
     const Index local = *doc.hierarchy().completeVertex(v);
@@ -72,7 +72,6 @@ void editTessera(benchmark::State& state) {
     samples.push_back(seconds);
     points += doc.lastUpdate().pointsRecomputed;
     limits += doc.lastUpdate().limitsRecomputed;
-    leaves += static_cast<int64_t>(doc.lastUpdate().leaves.size());
     (void)doc.remove(*id);
   }
   const double n = static_cast<double>(samples.size());
@@ -80,7 +79,6 @@ void editTessera(benchmark::State& state) {
   state.counters["p99_us"] = percentile(samples, 0.99) * 1e6;
   state.counters["points"] = static_cast<double>(points) / n;
   state.counters["limits"] = static_cast<double>(limits) / n;
-  state.counters["leaves"] = static_cast<double>(leaves) / n;
 }
 
 // The same document evaluated from scratch: hierarchy, points and the

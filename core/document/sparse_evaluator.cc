@@ -71,6 +71,7 @@ void SparseEvaluator::addDemand(const Edit& edit) {
 int SparseEvaluator::deepestDemand() const {
   int deepest = 0;
   for (FaceId f : demand_) deepest = std::max(deepest, f.level());
+  for (FaceId f : extraDemand_) deepest = std::max(deepest, f.level());
   return deepest;
 }
 
@@ -91,20 +92,30 @@ bool SparseEvaluator::demandCovered(FaceId face) const {
   return true;
 }
 
-void SparseEvaluator::selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined) const {
+void SparseEvaluator::selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined,
+                                  Buffer<uint8_t>* editSelected) const {
   const SparseLevel& topo = levels_[l].topo;
   const Index numFaces = topo.mesh.numFaces();
+  auto mark = [&](const std::set<FaceId>& demand, Buffer<uint8_t>& faces) {
+    for (FaceId face : demand) {
+      if (face.level() <= l) continue;
+      const Index a = topo.findFace(face.index() >> (2 * (face.level() - l)));
+      if (a != kInvalidIndex) faces[a] = 1;
+    }
+  };
+  if (editSelected != nullptr) {
+    editSelected->assign(numFaces, 0);
+    mark(demand_, *editSelected);
+    growByOneRing(topo, *editSelected);
+  }
   if (l < uniformLevel_) {
     selected.assign(numFaces, 1);
     refined.assign(numFaces, 1);
     return;
   }
   selected.assign(numFaces, 0);
-  for (FaceId face : demand_) {
-    if (face.level() <= l) continue;
-    const Index a = topo.findFace(face.index() >> (2 * (face.level() - l)));
-    if (a != kInvalidIndex) selected[a] = 1;
-  }
+  mark(demand_, selected);
+  mark(extraDemand_, selected);
   growByOneRing(topo, selected);
   refined = selected;
   growByOneRing(topo, refined);
@@ -112,10 +123,13 @@ void SparseEvaluator::selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8
 
 void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
   const int deepest = std::max(uniformLevel_, deepestDemand());
+  std::vector<uint64_t> generations;
+  for (const LevelState& state : levels_) generations.push_back(state.generation);
   levels_.resize(l + 1);
   for (int k = l; k <= deepest; ++k) {
     Buffer<uint8_t> refined;
-    selectFaces(k, levels_[k].selected, refined);
+    selectFaces(k, levels_[k].selected, refined, &levels_[k].editSelected);
+    ++levels_[k].generation;
     if (k == deepest) {
       SparseLevel& last = levels_[k].topo;
       last.firstChildFace.assign(last.mesh.numFaces(), kInvalidIndex);
@@ -126,6 +140,7 @@ void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
     }
     SparseLevel child = refineSparse(levels_[k].topo, refined, counts_, options_);
     levels_.emplace_back();
+    levels_[k + 1].generation = k + 1 < static_cast<int>(generations.size()) ? generations[k + 1] : 0;
     levels_[k + 1].topo = std::move(child);
     evaluateLevel(k + 1, edits);
   }
@@ -135,8 +150,6 @@ void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
 void SparseEvaluator::markLeaves(int l, bool freshLevel) {
   LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
-  Buffer<uint8_t> wasDisplayed;
-  if (!freshLevel) wasDisplayed.swap(state.displayed);
   state.leaf.assign(m.numFaces(), 0);
   state.displayed.assign(m.numVertices, 0);
   for (Index f = 0; f < m.numFaces(); ++f) {
@@ -145,14 +158,18 @@ void SparseEvaluator::markLeaves(int l, bool freshLevel) {
     state.leaf[f] = 1;
     for (Index v : m.faceVertices[f]) state.displayed[v] = 1;
   }
+  // Above a rebuild, points and completeness are unchanged: limits hold.
+  if (!freshLevel && !state.limitPosition.empty()) return;
   state.limitPosition.resize(m.numVertices);
   state.limitNormal.resize(m.numVertices);
   const LimitEvaluator limits(m);
   for (Index v = 0; v < m.numVertices; ++v) {
-    // Points above a rebuild are unchanged: their limits still hold.
-    if (!state.displayed[v] || (!freshLevel && !wasDisplayed.empty() && wasDisplayed[v])) continue;
-    refreshLimit(l, v, limits);
+    if (state.topo.isComplete(v)) refreshLimit(l, v, limits);
   }
+}
+
+LimitFrame SparseEvaluator::limitFrameOf(int l, Index v) const {
+  return limitFrame(levels_[l].topo.mesh, v, levels_[l].points);
 }
 
 void SparseEvaluator::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
@@ -312,23 +329,43 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
   });
   if (covered) return dirty;
   addDemand(edit);
-  // Rebuild below the first level whose selection changes: levels above
-  // keep their topology, points and limits.
-  int first = numLevels() - 1;
-  for (int k = uniformLevel_; k < numLevels(); ++k) {
-    Buffer<uint8_t> selected, refined;
-    selectFaces(k, selected, refined);
-    const auto& was = levels_[k].topo.firstChildFace;
-    bool same = selected == levels_[k].selected;
-    for (Index f = 0; same && f < static_cast<Index>(refined.size()); ++f) same = (refined[f] != 0) == (was[f] >= 0);
-    if (!same) {
-      first = k;
-      break;
-    }
-  }
+  const int first = firstChangedSelection();
   rebuildFrom(first, edits);
   dirty.grownFromLevel = first;
   return dirty;
+}
+
+// Rebuild below the first level whose selection changes: levels above keep
+// their topology, points and limits.
+int SparseEvaluator::firstChangedSelection() const {
+  for (int k = 0; k < numLevels(); ++k) {
+    Buffer<uint8_t> selected, refined, editSelected;
+    selectFaces(k, selected, refined, &editSelected);
+    const auto& was = levels_[k].topo.firstChildFace;
+    bool same = selected == levels_[k].selected && editSelected == levels_[k].editSelected;
+    for (Index f = 0; same && f < static_cast<Index>(refined.size()); ++f) same = (refined[f] != 0) == (was[f] >= 0);
+    if (!same) return k;
+  }
+  return numLevels() - 1;
+}
+
+int SparseEvaluator::reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits) {
+  bool covered = true;
+  for (FaceId face : faces) {
+    if (face.level() > 0 && !demandCovered(face)) covered = false, extraDemand_.insert(face);
+  }
+  if (covered) return -1;
+  const int first = firstChangedSelection();
+  rebuildFrom(first, edits);
+  return first;
+}
+
+void SparseEvaluator::raiseUniformLevel(int level, std::span<const Edit> edits) {
+  level = std::min(level, counts_.maxLevel());
+  if (level <= uniformLevel_) return;
+  const int first = uniformLevel_;
+  uniformLevel_ = level;
+  rebuildFrom(first, edits);
 }
 
 }  // namespace tessera

@@ -12,7 +12,9 @@
 // nest (Sel_k+1 within the children of Sel_k, and N2 of a child face within
 // the children of N1 of its parent), so every vertex of a refined face is
 // complete and every present vertex is computed from complete stencils.
-// The *leaves* -- nodes without children -- are what is displayed.
+// Limits are kept for every complete vertex; the *leaves* -- nodes without
+// children -- are the hierarchy's own display (tessellations cut through
+// the nodes by their LOD profiles, core/tessellation).
 //
 // Semantics are those of document_evaluator.h, the dense reference: the
 // property tests require agreement to 1e-9 at every present vertex.
@@ -35,13 +37,13 @@
 
 namespace tessera {
 
-// What one change recomputed, and which displayed leaves it touched.
+// What one change recomputed: the limits it refreshed (the dirty set a
+// tessellation starts from) and how much work that was.
 struct DirtySet {
-  std::vector<FaceId> leaves;       // displayed leaves whose limit positions or normals changed
-  std::vector<uint64_t> baseFaces;  // the base faces (quadtree roots) holding them
-  int64_t pointsRecomputed = 0;     // control points, over all levels
-  int64_t limitsRecomputed = 0;     // limit positions + normals of displayed vertices
-  int grownFromLevel = -1;          // >= 0: the hierarchy grew, levels below this were rebuilt
+  std::vector<VertexId> limits;  // complete vertices whose limit position or normal was recomputed, sorted
+  int64_t pointsRecomputed = 0;  // control points, over all levels
+  int64_t limitsRecomputed = 0;
+  int grownFromLevel = -1;       // >= 0: the hierarchy grew; levels below this one were rebuilt
 };
 
 struct HierarchyStats {
@@ -64,6 +66,11 @@ class SparseEvaluator {
   // Grows the hierarchy so that it holds what `edit` addresses, with complete
   // rings (call before solving a move there). `edits` is the current list.
   DirtySet reserve(const Edit& edit, std::span<const Edit> edits);
+  // Grows it so that each face is a node whose vertices are complete (a
+  // tessellation refining there). Returns the first rebuilt level or -1.
+  int reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits);
+  // Holds levels 0..level whole from now on.
+  void raiseUniformLevel(int level, std::span<const Edit> edits);
   // Brings the state up to date after `edit` was added, undone, redone or
   // removed; `edits` is the list after that change. Only the edited
   // elements, their stencil neighbourhoods and their descendants are
@@ -77,9 +84,16 @@ class SparseEvaluator {
   std::span<const Vec3> predicted(int l) const { return levels_[l].predicted; }
   bool isLeaf(int l, Index face) const { return levels_[l].leaf[face] != 0; }
   bool isDisplayed(int l, Index vertex) const { return levels_[l].displayed[vertex] != 0; }
-  // Limit position and unit normal of a displayed vertex.
+  // A node with children because of an edit (not a tessellation's request).
+  bool isEditNode(int l, Index face) const { return levels_[l].editSelected[face] != 0; }
+  bool isNodeWithChildren(int l, Index face) const { return levels_[l].selected[face] != 0; }
+  // Bumped whenever level l is rebuilt (its local indices change).
+  uint64_t generation(int l) const { return levels_[l].generation; }
+  // Limit position and unit normal of a complete vertex, and its limit
+  // tangents (for crease tangents, §3.1.2).
   const Vec3& limitPosition(int l, Index vertex) const { return levels_[l].limitPosition[vertex]; }
   const Vec3& limitNormal(int l, Index vertex) const { return levels_[l].limitNormal[vertex]; }
+  LimitFrame limitFrameOf(int l, Index vertex) const;
 
   // The local index of a vertex with a complete ring, or a clear error.
   Expected<Index> completeVertex(VertexId id) const;
@@ -91,7 +105,9 @@ class SparseEvaluator {
  private:
   struct LevelState {
     SparseLevel topo;
-    Buffer<uint8_t> selected;   // per face: a node with children
+    Buffer<uint8_t> selected;      // per face: a node with children
+    Buffer<uint8_t> editSelected;  // per face: one because of an edit
+    uint64_t generation = 0;
     Buffer<uint8_t> leaf;       // per face: a node without children (displayed)
     Buffer<uint8_t> displayed;  // per vertex: a corner of a leaf
     std::vector<Vec3> predicted, points;
@@ -108,11 +124,12 @@ class SparseEvaluator {
   void addDemand(const Edit& edit);
   bool demandCovered(FaceId face) const;
   int deepestDemand() const;
-  void selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined) const;
+  void selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined, Buffer<uint8_t>* editSelected) const;
+  int firstChangedSelection() const;
   void rebuildFrom(int l, std::span<const Edit> edits);
   void evaluateLevel(int l, std::span<const Edit> edits);
-  // Leaves and displayed vertices of level l; limits of vertices newly
-  // displayed (all of them on a freshly built level).
+  // Leaves and displayed vertices of level l; on a freshly built level, the
+  // limits of every complete vertex.
   void markLeaves(int l, bool freshLevel);
   void refreshLimit(int l, Index vertex, const LimitEvaluator& limits);
 
@@ -137,7 +154,8 @@ class SparseEvaluator {
   int uniformLevel_ = 0;
   std::vector<float> baseEdgeSharpness_, baseVertexSharpness_;
   std::vector<Vec3> basePoints_;
-  std::set<FaceId> demand_;
+  std::set<FaceId> demand_;       // faces edits address
+  std::set<FaceId> extraDemand_;  // faces tessellations refine
   std::vector<LevelState> levels_;
 };
 

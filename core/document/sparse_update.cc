@@ -55,11 +55,7 @@ DirtySet SparseEvaluator::update(const Edit& edit, std::span<const Edit> edits) 
   std::vector<Index> sources = applyEditAtItsLevel(edit, edits);
   if (std::holds_alternative<MoveEdit>(edit.change)) dirty.pointsRecomputed += static_cast<int64_t>(sources.size());
   propagate(l, std::move(sources), dirty);
-  std::sort(dirty.leaves.begin(), dirty.leaves.end());
-  dirty.leaves.erase(std::unique(dirty.leaves.begin(), dirty.leaves.end()), dirty.leaves.end());
-  for (FaceId f : dirty.leaves) dirty.baseFaces.push_back(counts_.baseFace(f).index());
-  std::sort(dirty.baseFaces.begin(), dirty.baseFaces.end());
-  dirty.baseFaces.erase(std::unique(dirty.baseFaces.begin(), dirty.baseFaces.end()), dirty.baseFaces.end());
+  std::sort(dirty.limits.begin(), dirty.limits.end());
   return dirty;
 }
 
@@ -217,12 +213,10 @@ void SparseEvaluator::refreshLimitsNear(int l, const std::vector<Index>& changed
   Marked changedSet(levels_[l].vertexMarks);
   for (Index v : changed) changedSet.add(v);
   for (Index w : candidates) {
-    if (!state.displayed[w] || !touches(m, w, changedSet)) continue;
+    if (!state.topo.isComplete(w) || !touches(m, w, changedSet)) continue;
     refreshLimit(l, w, limits);
     ++dirty.limitsRecomputed;
-    for (Index f : m.ringFacesOf(w)) {
-      if (f >= 0 && state.leaf[f]) dirty.leaves.push_back(FaceId(l, state.topo.faceIds[f]));
-    }
+    dirty.limits.push_back(VertexId(l, state.topo.vertexIds[w]));
   }
 }
 

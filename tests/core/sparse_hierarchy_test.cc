@@ -63,7 +63,7 @@ void expectMatchesDense(const Document& doc, const std::string& where) {
                       << " predicted err " << (sparse.predicted(l)[v] - dense->predicted[l][id]).norm();
       }
       worstPoint = std::max(worstPoint, err);
-      if (!sparse.isDisplayed(l, v)) continue;
+      if (!level.isComplete(v)) continue;
       const LimitFrame ref = limitFrame(dense->levels[l], static_cast<Index>(id), dense->points[l]);
       worstLimit = std::max(worstLimit, (sparse.limitPosition(l, v) - ref.position).norm());
       worstNormal = std::max(worstNormal, (sparse.limitNormal(l, v) - ref.normal()).norm());
@@ -74,12 +74,12 @@ void expectMatchesDense(const Document& doc, const std::string& where) {
   EXPECT_LE(worstNormal, 1e-9) << where;
 }
 
-// Displayed limits, keyed by (level, canonical vertex).
-std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> displayedLimits(const SparseEvaluator& sparse) {
+// Limits of complete vertices, keyed by (level, canonical vertex).
+std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> completeLimits(const SparseEvaluator& sparse) {
   std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> out;
   for (int l = 0; l < sparse.numLevels(); ++l) {
     for (Index v = 0; v < sparse.level(l).mesh.numVertices; ++v) {
-      if (sparse.isDisplayed(l, v)) {
+      if (sparse.level(l).isComplete(v)) {
         out[{l, sparse.level(l).vertexIds[v]}] = {sparse.limitPosition(l, v), sparse.limitNormal(l, v)};
       }
     }
@@ -87,26 +87,22 @@ std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> displayedLimits(const 
   return out;
 }
 
-// Every displayed vertex whose limit changed lies on a reported leaf.
+// Every complete vertex whose limit changed is in the dirty set.
 void expectDirtySetCovers(const Document& doc, const std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>>& before,
                           const std::string& where) {
   const SparseEvaluator& sparse = doc.hierarchy();
   const DirtySet& dirty = doc.lastUpdate();
-  if (dirty.grownFromLevel >= 0) return;  // growth redraws what it rebuilt
+  if (dirty.grownFromLevel >= 0) return;  // growth rebuilds the levels below it
   for (int l = 0; l < sparse.numLevels(); ++l) {
-    const Level& m = sparse.level(l).mesh;
-    for (Index v = 0; v < m.numVertices; ++v) {
-      if (!sparse.isDisplayed(l, v)) continue;
-      auto it = before.find({l, sparse.level(l).vertexIds[v]});
+    const SparseLevel& level = sparse.level(l);
+    for (Index v = 0; v < level.mesh.numVertices; ++v) {
+      if (!level.isComplete(v)) continue;
+      auto it = before.find({l, level.vertexIds[v]});
       ASSERT_TRUE(it != before.end()) << where;
-      const bool changed = sparse.limitPosition(l, v) != it->second.first || sparse.limitNormal(l, v) != it->second.second;
-      if (!changed) continue;
-      for (Index f : m.ringFacesOf(v)) {
-        if (f < 0 || !sparse.isLeaf(l, f)) continue;
-        const FaceId leaf(l, sparse.level(l).faceIds[f]);
-        ASSERT_TRUE(std::binary_search(dirty.leaves.begin(), dirty.leaves.end(), leaf))
-            << where << ": leaf " << leaf.toString() << " changed but is not in the dirty set";
-      }
+      if (sparse.limitPosition(l, v) == it->second.first && sparse.limitNormal(l, v) == it->second.second) continue;
+      const VertexId id(l, level.vertexIds[v]);
+      ASSERT_TRUE(std::binary_search(dirty.limits.begin(), dirty.limits.end(), id))
+          << where << ": the limit of " << id.toString() << " changed but is not in the dirty set";
     }
   }
 }
@@ -133,7 +129,7 @@ void runRandomHistory(const PropertyCase& c, uint32_t seed) {
     const uint64_t spot = pick(std::min<uint64_t>(doc->counts().vertices(0), 3));
     // A vertex descended from one of the few spots, or on an edge near one.
     const uint64_t vertex = pick(10) < 7 ? spot : pick(doc->counts().vertices(level));
-    const auto before = displayedLimits(doc->hierarchy());
+    const auto before = completeLimits(doc->hierarchy());
     const int op = static_cast<int>(pick(100));
     std::string what;
     if (op < 40) {
@@ -209,7 +205,7 @@ TEST(SparseHierarchy, RecomputeCountsDoNotGrowWithMeshSize) {
   const testing::TestMesh small = testing::torus(10, 8), large = testing::torus(32, 25);
   ASSERT_GE(large.topology.triangles.size(), 10 * small.topology.triangles.size());
   for (int level = 0; level <= 3; ++level) {
-    std::vector<int64_t> points, limits, leaves;
+    std::vector<int64_t> points, limits;
     int64_t largeVertices = 0;
     for (const testing::TestMesh* mesh : {&small, &large}) {
       auto doc = Document::create(mesh->topology, mesh->points, {.maxLevel = 4, .uniformLevel = 3});
@@ -220,18 +216,16 @@ TEST(SparseHierarchy, RecomputeCountsDoNotGrowWithMeshSize) {
       EXPECT_EQ(dirty.grownFromLevel, -1);
       points.push_back(dirty.pointsRecomputed);
       limits.push_back(dirty.limitsRecomputed);
-      leaves.push_back(static_cast<int64_t>(dirty.leaves.size()));
       largeVertices = doc->hierarchy().stats().vertices;
     }
     SCOPED_TRACE("edit at level " + std::to_string(level));
     EXPECT_EQ(points[0], points[1]);
     EXPECT_EQ(limits[0], limits[1]);
-    EXPECT_EQ(leaves[0], leaves[1]);
     EXPECT_GT(points[0], 0);
     EXPECT_LT(points[1] * 10, largeVertices);
-    std::printf("edit at level %d: %lld points, %lld limits, %lld leaves recomputed (of %lld points held)\n",
-                level, static_cast<long long>(points[1]), static_cast<long long>(limits[1]),
-                static_cast<long long>(leaves[1]), static_cast<long long>(largeVertices));
+    std::printf("edit at level %d: %lld points, %lld limits recomputed (of %lld points held)\n", level,
+                static_cast<long long>(points[1]), static_cast<long long>(limits[1]),
+                static_cast<long long>(largeVertices));
   }
 }
 

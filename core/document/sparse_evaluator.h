@@ -40,7 +40,9 @@ namespace tessera {
 // What one change recomputed: the limits it refreshed (the dirty set a
 // tessellation starts from) and how much work that was.
 struct DirtySet {
-  std::vector<VertexId> limits;  // complete vertices whose limit position or normal was recomputed, sorted
+  std::vector<VertexId> limits;     // complete vertices whose limit position or normal was recomputed, sorted
+  std::vector<FaceId> leaves;       // the hierarchy's displayed leaves around them, sorted
+  std::vector<uint64_t> baseFaces;  // the quadtree roots holding those leaves, sorted
   int64_t pointsRecomputed = 0;  // control points, over all levels
   int64_t limitsRecomputed = 0;
   int grownFromLevel = -1;       // >= 0: the hierarchy grew; levels below this one were rebuilt

@@ -56,6 +56,11 @@ DirtySet SparseEvaluator::update(const Edit& edit, std::span<const Edit> edits) 
   if (std::holds_alternative<MoveEdit>(edit.change)) dirty.pointsRecomputed += static_cast<int64_t>(sources.size());
   propagate(l, std::move(sources), dirty);
   std::sort(dirty.limits.begin(), dirty.limits.end());
+  std::sort(dirty.leaves.begin(), dirty.leaves.end());
+  dirty.leaves.erase(std::unique(dirty.leaves.begin(), dirty.leaves.end()), dirty.leaves.end());
+  for (FaceId f : dirty.leaves) dirty.baseFaces.push_back(counts_.baseFace(f).index());
+  std::sort(dirty.baseFaces.begin(), dirty.baseFaces.end());
+  dirty.baseFaces.erase(std::unique(dirty.baseFaces.begin(), dirty.baseFaces.end()), dirty.baseFaces.end());
   return dirty;
 }
 
@@ -217,6 +222,10 @@ void SparseEvaluator::refreshLimitsNear(int l, const std::vector<Index>& changed
     refreshLimit(l, w, limits);
     ++dirty.limitsRecomputed;
     dirty.limits.push_back(VertexId(l, state.topo.vertexIds[w]));
+    if (!state.displayed[w]) continue;
+    for (Index f : m.ringFacesOf(w)) {
+      if (f >= 0 && state.leaf[f]) dirty.leaves.push_back(FaceId(l, state.topo.faceIds[f]));
+    }
   }
 }
 

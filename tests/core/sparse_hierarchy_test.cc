@@ -103,6 +103,13 @@ void expectDirtySetCovers(const Document& doc, const std::map<std::pair<int, uin
       const VertexId id(l, level.vertexIds[v]);
       ASSERT_TRUE(std::binary_search(dirty.limits.begin(), dirty.limits.end(), id))
           << where << ": the limit of " << id.toString() << " changed but is not in the dirty set";
+      // So are the displayed leaves it is a corner of, and their roots.
+      for (Index f : level.mesh.ringFacesOf(v)) {
+        if (f < 0 || !sparse.isLeaf(l, f)) continue;
+        const FaceId leaf(l, level.faceIds[f]);
+        ASSERT_TRUE(std::binary_search(dirty.leaves.begin(), dirty.leaves.end(), leaf)) << where << " " << leaf.toString();
+        ASSERT_TRUE(std::binary_search(dirty.baseFaces.begin(), dirty.baseFaces.end(), doc.counts().baseFace(leaf).index()));
+      }
     }
   }
 }

@@ -1,5 +1,6 @@
 // tessera doc: hierarchical documents -- create, edit by script, inspect, export.
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
 #include "core/document/edit_script.h"
+#include "core/tessellation/tessellation.h"
 
 namespace tessera::cli {
 
@@ -23,6 +25,9 @@ constexpr const char* kHelp =
     "  doc info DOC                             base mesh, options and the edit history\n"
     "  doc export DOC --level N [--limit] [--draco] -o OUT\n"
     "                                           write the surface at level N (.obj .ply .glb)\n"
+    "  doc export DOC --adaptive [--base-level N] [--max-level N] [--angle DEG] [--draco] -o OUT\n"
+    "                                           write the adaptive, crack-free limit tessellation\n"
+    "                                           (defaults: base level 2, max level 5, 10 degrees)\n"
     "\n"
     "Edit scripts: one command per line ('#' comments), ids as 'doc info' prints them:\n"
     "  move v2:40 [v2:41 ...] to X Y Z     put v2:40's limit at X Y Z; others move alike\n"
@@ -30,7 +35,7 @@ constexpr const char* kHelp =
     "  crease e1:5 S                       edge sharpness at that level (S or inf)\n"
     "  corner v4:900 S                     vertex sharpness (0 smooth, > 0 corner or cusp)\n"
     "  undo N | redo N | remove N          by edit id\n"
-    "Adaptive export (--adaptive) arrives with the tessellation issue.\n";
+    "";
 
 int fail(const char* command, const Status& status) {
   std::fprintf(stderr, "tessera doc %s: %s\n", command, status.toString().c_str());
@@ -133,11 +138,47 @@ int runInfo(const Arguments& args) {
   return 0;
 }
 
+Expected<LodProfile> profileFrom(const Arguments& args) {
+  LodProfile profile{.baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10};
+  if (const std::string* text = args.option("--base-level")) {
+    TESSERA_ASSIGN_OR_RETURN(profile.baseLevel, parseLevel("--base-level", *text));
+  }
+  if (const std::string* text = args.option("--max-level")) {
+    TESSERA_ASSIGN_OR_RETURN(profile.maxLevel, parseLevel("--max-level", *text));
+  }
+  if (const std::string* text = args.option("--angle")) {
+    char* end = nullptr;
+    profile.angleThresholdDegrees = std::strtod(text->c_str(), &end);
+    if (text->empty() || *end != '\0') return invalidArgument("--angle expects degrees, got '" + *text + "'");
+  }
+  TESSERA_RETURN_IF_ERROR(profile.check());
+  return profile;
+}
+
+int runAdaptiveExport(const Arguments& args) {
+  const std::string* out = args.option("--output");
+  if (!out) return usage("doc export needs -o OUT");
+  if (args.option("--level") || args.has("--limit")) return usage("--adaptive replaces --level and --limit");
+  auto profile = profileFrom(args);
+  if (!profile.isOk()) return usage(profile.status().message());
+  auto doc = loadDocument(args.positional[0]);
+  if (!doc.isOk()) return fail("export", doc.status());
+  auto tessellation = Tessellation::build(*doc, *profile);
+  if (!tessellation.isOk()) return fail("export", tessellation.status().withContext(args.positional[0]));
+  const SurfaceMesh surface = tessellation->surface();
+  ExportOptions exportOptions;
+  exportOptions.draco = args.has("--draco");
+  Status written = exportMesh(surface, *out, exportOptions);
+  if (!written.isOk()) return fail("export", written);
+  std::printf("wrote %s: %zu vertices, %zu triangles in %zu regions (adaptive, %s)\n", out->c_str(),
+              surface.positions.size(), surface.triangles.size(), tessellation->regions().size(),
+              profile->key().c_str());
+  return 0;
+}
+
 int runExport(const Arguments& args) {
   if (args.positional.size() != 1) return usage("doc export expects one document");
-  if (args.has("--adaptive")) {
-    return fail("export", unsupported("--adaptive needs adaptive tessellation, which is not built yet; use --level N"));
-  }
+  if (args.has("--adaptive")) return runAdaptiveExport(args);
   const std::string* out = args.option("--output");
   const std::string* levelText = args.option("--level");
   if (!out || !levelText) return usage("doc export needs --level N and -o OUT");
@@ -166,7 +207,8 @@ int runDoc(const std::vector<std::string>& rawArgs) {
   const std::string sub = rawArgs[0];
   const std::vector<std::string> rest(rawArgs.begin() + 1, rawArgs.end());
   ArgumentSpec spec{{"--limit", "--draco", "--triangulate", "--adaptive"},
-                    {"--tags", "--output", "--script", "--level", "--max-level", "--crease-method", "--boundary"}};
+                    {"--tags", "--output", "--script", "--level", "--max-level", "--crease-method", "--boundary",
+                     "--base-level", "--angle"}};
   auto args = parseArguments(rest, spec);
   if (!args.isOk()) return usage(args.status().message());
   if (args->has("--help")) {

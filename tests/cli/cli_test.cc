@@ -195,9 +195,32 @@ TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
   CliRun junk = runCli("doc info " + dir + "/junk.tsd");
   EXPECT_EQ(junk.exitCode, 1);
   EXPECT_NE(junk.err.find("not a Tessera document"), std::string::npos) << junk.err;
-  CliRun adaptive = runCli("doc export " + doc + " --adaptive -o " + dir + "/a.glb");
-  EXPECT_EQ(adaptive.exitCode, 1);
-  EXPECT_NE(adaptive.err.find("not built yet"), std::string::npos);
+  CliRun badProfile = runCli("doc export " + doc + " --adaptive --base-level 4 --max-level 2 -o " + dir + "/a.glb");
+  EXPECT_EQ(badProfile.exitCode, 2);
+  EXPECT_NE(badProfile.err.find("max level 2 is below the base level 4"), std::string::npos) << badProfile.err;
+  CliRun badAngle = runCli("doc export " + doc + " --adaptive --angle nan -o " + dir + "/a.glb");
+  EXPECT_EQ(badAngle.exitCode, 2);
+  EXPECT_NE(badAngle.err.find("angle threshold"), std::string::npos) << badAngle.err;
+}
+
+// The adaptive export writes a crack-free tessellation that reads back with
+// the triangle count it reported, fewer than the uniform level it reaches.
+TEST(CliDoc, ExportsTheAdaptiveTessellation) {
+  const std::string dir = testing::makeTempDir("tessera-doc-adaptive");
+  const std::string doc = dir + "/cube.tsd";
+  ASSERT_EQ(runCli("doc new " + cube() + " --tags " + cubeTags() + " -o " + doc).exitCode, 0);
+  std::ofstream(dir + "/edit.txt") << "offset v4:3 by 0 0 0.05\n";
+  ASSERT_EQ(runCli("doc edit " + doc + " --script " + dir + "/edit.txt").exitCode, 0);
+  CliRun r = runCli("doc export " + doc + " --adaptive --base-level 1 --max-level 4 --angle 20 -o " + dir + "/a.ply");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("(adaptive, base1-max4"), std::string::npos) << r.out;
+  CliRun info = runCli("info " + dir + "/a.ply");
+  ASSERT_EQ(info.exitCode, 0) << info.err;
+  const size_t at = r.out.find(" triangles in ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string count = r.out.substr(r.out.rfind(' ', at - 1) + 1, at - r.out.rfind(' ', at - 1) - 1);
+  EXPECT_NE(info.out.find(count), std::string::npos) << info.out;
+  EXPECT_LT(std::stoll(count), 12 * 256);
 }
 
 }  // namespace

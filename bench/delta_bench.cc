@@ -1,0 +1,164 @@
+// Edit to encoded region deltas (tessellation issue §5): a document whose
+// displayed surface has more than 1M triangles, single-vertex edits at
+// levels 0-4 timed from the call until every changed region is
+// re-tessellated and Draco-encoded, against a full re-tessellation and a
+// full encode of the whole surface in the same run.
+//
+//   build/release/bench/tessera_bench_delta [--mesh PATH] [benchmark flags]
+//
+// The document holds fandisk whole to level 4; the profile shows level 3
+// everywhere and level 4 where limit normals differ by more than 5 degrees,
+// so no edit makes the hierarchy grow (growth is measured apart, below).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+#include <random>
+#include <string>
+
+#include <benchmark/benchmark.h>
+
+#include "core/document/document.h"
+#include "core/io/mesh_import.h"
+#include "core/loop/limit.h"
+#include "core/tessellation/region_codec.h"
+#include "core/tessellation/tessellation.h"
+
+namespace {
+
+using namespace tessera;
+using Clock = std::chrono::steady_clock;
+
+const LodProfile kProfile{.baseLevel = 3, .maxLevel = 4, .angleThresholdDegrees = 5, .triangleBudget = 20'000'000};
+
+struct State {
+  std::optional<Document> doc;
+  std::optional<Tessellation> tessellation;
+  QuantizationGrid grid;
+  uint64_t version = 1;
+};
+
+State& state() {
+  static State s;
+  return s;
+}
+
+double percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
+}
+
+// Encodes the listed regions; returns the bytes.
+size_t encodeRegions(const std::vector<uint64_t>& ids) {
+  State& s = state();
+  size_t bytes = 0;
+  for (uint64_t id : ids) {
+    const RegionHeader header{id, s.version, s.tessellation->profile(), s.grid};
+    auto encoded = encodeRegion(header, s.tessellation->regions().at(id));
+    if (!encoded.isOk()) {
+      std::fprintf(stderr, "encode: %s\n", encoded.status().toString().c_str());
+      std::exit(1);
+    }
+    bytes += encoded->size();
+  }
+  return bytes;
+}
+
+void editToDelta(benchmark::State& bm) {
+  const int level = static_cast<int>(bm.range(0));
+  State& s = state();
+  Document& doc = *s.doc;
+  std::mt19937 rng(7 + level);
+  std::vector<double> samples;
+  double bytes = 0, regions = 0, rebuilds = 0;
+  for (auto _ : bm) {
+    const VertexId v(level, std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
+    const Index local = *doc.hierarchy().completeVertex(v);
+    const Vec3 limit = doc.hierarchy().limitFrameOf(level, local).position;
+    const auto start = Clock::now();
+    auto id = doc.moveToLimit(std::span(&v, 1), limit + Vec3(0.002, -0.001, 0.003));
+    auto changes = s.tessellation->update(doc);
+    ++s.version;
+    const size_t delta = encodeRegions(changes->changed);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    bm.SetIterationTime(seconds);
+    samples.push_back(seconds);
+    bytes += static_cast<double>(delta);
+    regions += static_cast<double>(changes->changed.size());
+    rebuilds += changes->rebuilt ? 1 : 0;
+    // Restore the document outside the timing.
+    (void)doc.remove(*id);
+    (void)s.tessellation->update(doc);
+    ++s.version;
+  }
+  const double n = static_cast<double>(samples.size());
+  bm.counters["p50_us"] = percentile(samples, 0.5) * 1e6;
+  bm.counters["p99_us"] = percentile(samples, 0.99) * 1e6;
+  bm.counters["delta_bytes"] = bytes / n;
+  bm.counters["regions"] = regions / n;
+  bm.counters["rebuilds"] = rebuilds;
+}
+
+void fullTessellateAndEncode(benchmark::State& bm) {
+  State& s = state();
+  size_t bytes = 0;
+  for (auto _ : bm) {
+    auto fresh = Tessellation::build(*s.doc, kProfile);
+    std::vector<uint64_t> ids;
+    for (const auto& [id, mesh] : fresh->regions()) ids.push_back(id);
+    s.tessellation.emplace(std::move(*fresh));
+    bytes = encodeRegions(ids);
+  }
+  bm.counters["bytes"] = static_cast<double>(bytes);
+  bm.counters["triangles"] = static_cast<double>(s.tessellation->numTriangles());
+  bm.counters["regions"] = static_cast<double>(s.tessellation->regions().size());
+}
+
+BENCHMARK(editToDelta)->Name("EditToDelta")->DenseRange(0, 1)->Iterations(100)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(editToDelta)->Name("EditToDelta")->DenseRange(2, 4)->Iterations(1000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(fullTessellateAndEncode)->Name("FullTessellateAndEncode")->Iterations(2)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--mesh") == 0) {
+      meshPath = argv[i + 1];
+      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+      argc -= 2;
+      break;
+    }
+  }
+  auto mesh = importMesh(meshPath);
+  if (!mesh.isOk()) {
+    std::fprintf(stderr, "tessera_bench_delta: %s\n", mesh.status().toString().c_str());
+    return 1;
+  }
+  State& s = state();
+  auto doc = Document::create(*mesh, {.maxLevel = 6, .uniformLevel = 4});
+  if (!doc.isOk()) return 1;
+  s.doc.emplace(std::move(*doc));
+  Vec3 lo = mesh->positions()[0], hi = lo;
+  for (const Vec3& p : mesh->positions()) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  }
+  auto grid = gridFor(lo, hi);
+  if (!grid.isOk()) return 1;
+  s.grid = *grid;
+  auto t = Tessellation::build(*s.doc, kProfile);
+  if (!t.isOk()) {
+    std::fprintf(stderr, "tessera_bench_delta: %s\n", t.status().toString().c_str());
+    return 1;
+  }
+  s.tessellation.emplace(std::move(*t));
+  std::printf("mesh %s: %zu triangles; displayed (%s): %lld triangles in %zu regions; grid %d position bits\n",
+              meshPath.c_str(), static_cast<size_t>(mesh->numFaces()), kProfile.key().c_str(),
+              static_cast<long long>(s.tessellation->numTriangles()), s.tessellation->regions().size(),
+              s.grid.positionBits);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,88 @@
+#include "core/tessellation/leaf_triangulation.h"
+
+#include <algorithm>
+
+namespace tessera {
+
+namespace {
+
+using Points = std::vector<VertexRef>;
+
+// The vertices strictly inside edge e (level l) from x to y, as the face g
+// on its far side refines it: its midpoint where g is split, recursively
+// the points of the halves from g's corner children.
+void collectEdge(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index e, Index g, Index x, Index y,
+                 Points& out) {
+  if (g < 0 || !cut.isSplit(l, g)) return;
+  const SparseLevel& level = h.level(l);
+  const Index m = level.childOfEdge[e];
+  const Index half = level.halvesOfEdge[e];
+  const int endX = level.mesh.edgeVertices[e][0] == x ? 0 : 1;
+  const Index first = level.firstChildFace[g];
+  const Index gx = first + level.mesh.vertexInFace(g, x), gy = first + level.mesh.vertexInFace(g, y);
+  collectEdge(h, cut, l + 1, half + endX, gx, level.childOfVertex[x], m, out);
+  out.push_back({l + 1, m});
+  collectEdge(h, cut, l + 1, half + 1 - endX, gy, m, level.childOfVertex[y], out);
+}
+
+// Splits edge points at their midpoint: the coarsest point among them.
+struct Split {
+  Points before, after;
+  VertexRef mid;
+};
+
+Split splitAtMidpoint(const Points& points) {
+  const auto mid = std::min_element(points.begin(), points.end(),
+                                    [](const VertexRef& a, const VertexRef& b) { return a.level < b.level; });
+  return {Points(points.begin(), mid), Points(mid + 1, points.end()), *mid};
+}
+
+void cover(VertexRef a, VertexRef b, VertexRef c, const Points& ab, const Points& bc, const Points& ca,
+           std::vector<RefTriangle>& out) {
+  const int withPoints = !ab.empty() + !bc.empty() + !ca.empty();
+  if (withPoints == 0) {
+    out.push_back({a, b, c});
+    return;
+  }
+  if (withPoints == 1) {
+    // One fan from the corner opposite the edge with points.
+    if (!bc.empty()) return cover(b, c, a, bc, ca, ab, out);
+    if (!ca.empty()) return cover(c, a, b, ca, ab, bc, out);
+    VertexRef prev = a;
+    for (const VertexRef& p : ab) out.push_back({c, prev, p}), prev = p;
+    out.push_back({c, prev, b});
+    return;
+  }
+  if (withPoints == 2) {
+    // Rotate so that the edge without points is c-a.
+    if (ab.empty()) return cover(b, c, a, bc, ca, ab, out);
+    if (bc.empty()) return cover(c, a, b, ca, ab, bc, out);
+    const Split s0 = splitAtMidpoint(ab), s1 = splitAtMidpoint(bc);
+    cover(a, s0.mid, c, s0.before, {}, {}, out);
+    cover(s0.mid, b, s1.mid, s0.after, s1.before, {}, out);
+    cover(s0.mid, s1.mid, c, {}, s1.after, {}, out);
+    return;
+  }
+  const Split s0 = splitAtMidpoint(ab), s1 = splitAtMidpoint(bc), s2 = splitAtMidpoint(ca);
+  cover(a, s0.mid, s2.mid, s0.before, {}, s2.after, out);
+  cover(s0.mid, b, s1.mid, s0.after, s1.before, {}, out);
+  cover(s2.mid, s1.mid, c, {}, s1.after, s2.before, out);
+  out.push_back({s1.mid, s2.mid, s0.mid});
+}
+
+}  // namespace
+
+void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index f, std::vector<RefTriangle>& out) {
+  const Level& m = h.level(l).mesh;
+  const auto& fv = m.faceVertices[f];
+  std::array<Points, 3> edges;
+  for (int j = 0; j < 3; ++j) {
+    const Index e = m.faceEdges[f][j];
+    const auto& ef = m.edgeFaces[e];
+    const Index far = ef[0] == f ? ef[1] : ef[0];
+    collectEdge(h, cut, l, e, far, fv[j], fv[(j + 1) % 3], edges[j]);
+  }
+  cover({l, fv[0]}, {l, fv[1]}, {l, fv[2]}, edges[0], edges[1], edges[2], out);
+}
+
+}  // namespace tessera

@@ -1,0 +1,30 @@
+// Crack-free triangles for one leaf of a cut (seed 000 §3.2.2). A leaf
+// next to finer neighbours collects, recursively, the finer vertices on its
+// edges; it is then covered by a fan from the opposite corner when one edge
+// has such vertices. When two or three do, it is first split at those
+// edges' midpoints (which always exist there: a finer neighbour's first
+// vertex on a shared edge is its midpoint), and each part is covered the
+// same way -- the paper's two fans generalised so that no triangle ever
+// has three points on one line of the parent triangle. No T-vertices, no
+// degenerate triangles, and the leaf's orientation is kept.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "core/document/sparse_evaluator.h"
+#include "core/tessellation/adaptive_cut.h"
+
+namespace tessera {
+
+struct VertexRef {
+  int level;
+  Index local;
+};
+
+using RefTriangle = std::array<VertexRef, 3>;
+
+void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int level, Index face,
+                     std::vector<RefTriangle>& out);
+
+}  // namespace tessera

@@ -1,0 +1,248 @@
+#include "core/tessellation/tessellation.h"
+
+#include <algorithm>
+#include <cstring>
+#include <unordered_map>
+
+#include "core/loop/limit.h"
+#include "core/tessellation/leaf_triangulation.h"
+
+namespace tessera {
+
+namespace {
+
+// Regions are cut nodes this many levels above the profile's deepest, so a
+// region holds at most 4^5 = 1,024 leaf triangles before fans.
+constexpr int kRegionDepth = 5;
+
+// Where a displayed vertex's limit comes from: the deepest level at which
+// its ring is held. Vertex children keep their canonical index, so this
+// depends on the vertex alone, never on which leaf reaches it, and regions
+// sharing a border agree bit for bit.
+VertexRef deepest(const SparseEvaluator& h, VertexRef v) {
+  while (v.level + 1 < h.numLevels()) {
+    const Index child = h.level(v.level).childOfVertex[v.local];
+    if (child < 0 || !h.level(v.level + 1).isComplete(child)) break;
+    v = {v.level + 1, child};
+  }
+  return v;
+}
+
+// The limit normals of each side of a vertex: one for smooth and dart
+// vertices, one per sector between sharp edges otherwise.
+std::vector<Vec3> sideNormals(const SparseEvaluator& h, VertexRef v) {
+  std::vector<Vec3> normals{h.limitNormal(v.level, v.local)};
+  const Level& m = h.level(v.level).mesh;
+  if (isSmoothLike(m.vertexRules[v.local])) return normals;
+  for (const LimitSector& s : otherLimitSectors(m, v.local, h.points(v.level))) normals.push_back(s.normal);
+  return normals;
+}
+
+bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
+  auto sameVec = [](const std::vector<Vec3>& x, const std::vector<Vec3>& y) {
+    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(Vec3)) == 0);
+  };
+  return a.triangles == b.triangles && a.vertexIds == b.vertexIds && sameVec(a.positions, b.positions) &&
+         sameVec(a.normals, b.normals);
+}
+
+}  // namespace
+
+Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile) {
+  TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));
+  const int regionLevel = std::max(0, cut.profile().maxLevel - kRegionDepth);
+  Tessellation tessellation(std::move(cut), regionLevel, doc.counts());
+  const SparseEvaluator& h = doc.hierarchy();
+  std::vector<uint64_t> ids;
+  for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
+  for (uint64_t id : ids) {
+    RegionMesh& mesh = tessellation.regions_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id));
+    tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
+  }
+  TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
+  return tessellation;
+}
+
+Status Tessellation::checkBudget() const {
+  const int64_t triangles = numTriangles();
+  if (triangles > profile().triangleBudget) {
+    return invalidArgument("LOD profile " + profile().key() + " needs " + std::to_string(triangles) +
+                           " triangles, above its budget of " + std::to_string(profile().triangleBudget));
+  }
+  return Status::ok();
+}
+
+void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::vector<uint64_t>& out) const {
+  if (l == regionLevel_ || !cut_.isSplit(l, f)) {
+    out.push_back(FaceId(l, h.level(l).faceIds[f]).packed());
+    return;
+  }
+  const Index first = h.level(l).firstChildFace[f];
+  for (int k = 0; k < 4; ++k) regionsUnder(h, l + 1, first + k, out);
+}
+
+RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region) const {
+  std::vector<RefTriangle> triangles;
+  std::vector<VertexRef> stack{{region.level(), h.level(region.level()).findFace(region.index())}};
+  while (!stack.empty()) {
+    const VertexRef node = stack.back();  // (level, face)
+    stack.pop_back();
+    if (!cut_.isSplit(node.level, node.local)) {
+      triangulateLeaf(h, cut_, node.level, node.local, triangles);
+      continue;
+    }
+    const Index first = h.level(node.level).firstChildFace[node.local];
+    for (int k = 3; k >= 0; --k) stack.push_back({node.level + 1, first + k});
+  }
+  RegionMesh mesh;
+  std::unordered_map<uint64_t, int> index;  // (canonical vertex, side) -> region vertex
+  for (const RefTriangle& t : triangles) {
+    VertexRef at[3];
+    for (int k = 0; k < 3; ++k) at[k] = deepest(h, t[k]);
+    const Vec3& p0 = h.limitPosition(at[0].level, at[0].local);
+    const Vec3 flat = (h.limitPosition(at[1].level, at[1].local) - p0) % (h.limitPosition(at[2].level, at[2].local) - p0);
+    std::array<int, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      const bool smooth = isSmoothLike(h.level(at[k].level).mesh.vertexRules[at[k].local]);
+      std::vector<Vec3> sides;
+      int side = 0;
+      if (!smooth) {
+        sides = sideNormals(h, at[k]);
+        for (int s = 1; s < static_cast<int>(sides.size()); ++s) {
+          if (dot(sides[s], flat) > dot(sides[side], flat)) side = s;
+        }
+      }
+      const uint64_t canonical = h.level(at[k].level).vertexIds[at[k].local];
+      const uint64_t key = canonical * 64 + static_cast<uint64_t>(side);
+      auto [it, fresh] = index.emplace(key, static_cast<int>(mesh.positions.size()));
+      if (fresh) {
+        const VertexId id(counts_.birthLevel(VertexId(at[k].level, canonical)), canonical);
+        mesh.positions.push_back(h.limitPosition(at[k].level, at[k].local));
+        mesh.normals.push_back(smooth ? h.limitNormal(at[k].level, at[k].local) : sides[side]);
+        mesh.vertexIds.push_back(id.packed());
+      }
+      tri[k] = it->second;
+    }
+    mesh.triangles.push_back(tri);
+  }
+  return mesh;
+}
+
+SurfaceMesh Tessellation::surface() const {
+  SurfaceMesh out;
+  std::map<std::pair<uint64_t, std::array<double, 3>>, int> index;
+  for (const auto& [id, mesh] : regions_) {
+    std::vector<int> map(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      const Vec3& n = mesh.normals[v];
+      auto [it, fresh] = index.emplace(std::make_pair(mesh.vertexIds[v], std::array<double, 3>{n[0], n[1], n[2]}),
+                                       static_cast<int>(out.positions.size()));
+      if (fresh) out.positions.push_back(mesh.positions[v]), out.normals.push_back(n);
+      map[v] = it->second;
+    }
+    for (const auto& t : mesh.triangles) out.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
+  }
+  return out;
+}
+
+Expected<Tessellation::Changes> Tessellation::rebuildAll(Document& doc) {
+  TESSERA_ASSIGN_OR_RETURN(Tessellation fresh, build(doc, profile()));
+  Changes changes;
+  changes.rebuilt = true;
+  for (const auto& [id, mesh] : fresh.regions_) {
+    auto old = regions_.find(id);
+    if (old == regions_.end() || !sameMesh(old->second, mesh)) changes.changed.push_back(id);
+  }
+  for (const auto& [id, mesh] : regions_) {
+    if (fresh.regions_.count(id) == 0) changes.removed.push_back(id);
+  }
+  *this = std::move(fresh);
+  return changes;
+}
+
+Expected<Tessellation::Changes> Tessellation::update(Document& doc) {
+  if (!cut_.isCurrent(doc.hierarchy())) return rebuildAll(doc);
+  const DirtySet& dirty = doc.lastUpdate();
+  auto flipped = cut_.redecide(doc, dirty.limits);
+  if (!flipped) return rebuildAll(doc);
+  const SparseEvaluator& h = doc.hierarchy();
+
+  // The area whose triangles may differ: the faces around every vertex
+  // whose limit changed (every triangle using it lies in them) and around
+  // the corners of every node whose decision flipped (its neighbours' fans).
+  // Below the region level only the ancestor there matters (regions and
+  // their cut nodes all lie at or above it), so areas collapse onto it.
+  std::vector<std::pair<int, uint64_t>> areas;
+  auto addAround = [&](int l, Index v) {
+    for (Index f : h.level(l).mesh.ringFacesOf(v)) {
+      if (f < 0) continue;
+      const uint64_t canonical = h.level(l).faceIds[f];
+      if (l <= regionLevel_) {
+        areas.emplace_back(l, canonical);
+      } else {
+        areas.emplace_back(regionLevel_, canonical >> (2 * (l - regionLevel_)));
+      }
+    }
+  };
+  for (VertexId id : dirty.limits) addAround(id.level(), h.level(id.level()).findVertex(id.index()));
+  for (auto [l, f] : *flipped) {
+    for (Index v : h.level(l).mesh.faceVertices[f]) addAround(l, v);
+  }
+  std::sort(areas.begin(), areas.end());
+  areas.erase(std::unique(areas.begin(), areas.end()), areas.end());
+
+  std::vector<uint64_t> candidates, gone;
+  for (auto [l, canonical] : areas) {
+    // New regions overlapping the area: walk down its ancestors in the cut.
+    for (int j = 0; j <= l; ++j) {
+      const uint64_t a = canonical >> (2 * (l - j));
+      if (j == regionLevel_) {
+        candidates.push_back(FaceId(j, a).packed());
+        break;
+      }
+      const Index local = h.level(j).findFace(a);
+      if (!cut_.isSplit(j, local)) {
+        candidates.push_back(FaceId(j, a).packed());
+        break;
+      }
+      if (j == l) regionsUnder(h, l, local, candidates);
+    }
+    // Old regions overlapping it: an ancestor, or descendants down to the
+    // region level.
+    for (int j = 0; j <= l; ++j) {
+      const uint64_t id = FaceId(j, canonical >> (2 * (l - j))).packed();
+      if (regions_.count(id)) gone.push_back(id);
+    }
+    for (int j = l + 1; j <= regionLevel_; ++j) {
+      const int shift = 2 * (j - l);
+      auto it = regions_.lower_bound(FaceId(j, canonical << shift).packed());
+      const auto end = regions_.lower_bound(FaceId(j, (canonical + 1) << shift).packed());
+      for (; it != end; ++it) gone.push_back(it->first);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::sort(gone.begin(), gone.end());
+  gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
+
+  Changes changes;
+  for (uint64_t id : candidates) {
+    RegionMesh mesh = buildRegion(h, FaceId::fromPacked(id));
+    auto old = regions_.find(id);
+    if (old != regions_.end() && sameMesh(old->second, mesh)) continue;
+    triangles_ += static_cast<int64_t>(mesh.triangles.size());
+    if (old != regions_.end()) triangles_ -= static_cast<int64_t>(old->second.triangles.size());
+    regions_[id] = std::move(mesh);
+    changes.changed.push_back(id);
+  }
+  for (uint64_t id : gone) {
+    if (std::binary_search(candidates.begin(), candidates.end(), id)) continue;
+    triangles_ -= static_cast<int64_t>(regions_.at(id).triangles.size());
+    regions_.erase(id);
+    changes.removed.push_back(id);
+  }
+  TESSERA_RETURN_IF_ERROR(checkBudget());
+  return changes;
+}
+
+}  // namespace tessera

@@ -153,6 +153,21 @@ Expected<EditId> Document::add(Edit edit) {
   return edits_.back().id;
 }
 
+Status Document::replay(const Edit& edit) {
+  if (edit.id.value != nextEditId_) {
+    return invalidArgument(edit.id.toString() + ": replayed out of order (next is edit" + std::to_string(nextEditId_) +
+                           ")");
+  }
+  TESSERA_RETURN_IF_ERROR(checkEdit(edit));
+  ++nextEditId_;
+  reserve(edit);
+  edits_.push_back(edit);
+  cache_.reset();
+  lastUpdate_ = sparse_->update(edits_.back(), edits_);
+  lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
+  return Status::ok();
+}
+
 // The hierarchy grows first, so that the moved vertices have their rings.
 Expected<MoveEdit> Document::offsetsFor(std::span<const VertexId> vertices, const Vec3& world) {
   MoveEdit move;
@@ -209,6 +224,16 @@ Status Document::setActive(EditId id, bool active) {
   edit->active = active;
   cache_.reset();
   lastUpdate_ = sparse_->update(*edit, edits_);
+  return Status::ok();
+}
+
+Status Document::retractLast() {
+  if (edits_.empty() || edits_.back().id.value + 1 != nextEditId_) return invalidArgument("no edit to retract");
+  const Edit removed = edits_.back();
+  edits_.pop_back();
+  --nextEditId_;
+  cache_.reset();
+  lastUpdate_ = sparse_->update(removed, edits_);
   return Status::ok();
 }
 

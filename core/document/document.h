@@ -62,6 +62,14 @@ class Document {
   Expected<EditId> setEdgeSharpness(EdgeId edge, float sharpness);
   Expected<EditId> setVertexSharpness(VertexId vertex, float sharpness);
 
+  // Re-applies an edit exactly as it was recorded (journal replay): its id
+  // must be the next one, and it is validated as if just made.
+  Status replay(const Edit& edit);
+
+  // Takes back the most recent edit as if it had never been made (its id is
+  // reused): for a server refusing an edit after applying it.
+  Status retractLast();
+
   Status undo(EditId id);    // the edit stops applying; error if unknown or already undone
   Status redo(EditId id);    // it applies again; error if unknown or not undone
   Status remove(EditId id);  // gone for good; error if unknown

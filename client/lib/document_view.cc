@@ -1,0 +1,81 @@
+#include "client/lib/document_view.h"
+
+#include <cstring>
+
+namespace tessera::client {
+
+Status DocumentView::apply(const wire::ServerMessage& message) {
+  if (message.has_snapshot() && message.snapshot().document_id() == documentId_) {
+    const wire::Snapshot& s = message.snapshot();
+    for (const wire::Region& r : s.regions()) {
+      bytes_ += r.draco().size();
+      TESSERA_ASSIGN_OR_RETURN(auto decoded, decodeRegion(r.draco()));
+      staging_[r.region_id()] = std::move(decoded.second);
+    }
+    if (s.remaining_parts() == 0) {
+      regions_.swap(staging_);
+      staging_.clear();
+      version_ = s.version();
+      ready_ = true;
+    }
+    return Status::ok();
+  }
+  if (!message.has_delta() || message.delta().document_id() != documentId_) return Status::ok();
+  const wire::Delta& d = message.delta();
+  if (!ready_) return Status::ok();  // a resync snapshot is on its way
+  if (d.from_version() != version_) {
+    ++gaps_;
+    ready_ = false;
+    return invalidArgument("document " + std::to_string(documentId_) + ": delta " + std::to_string(d.from_version()) +
+                           "->" + std::to_string(d.to_version()) + " does not follow version " + std::to_string(version_));
+  }
+  for (const wire::Region& r : d.regions()) {
+    bytes_ += r.draco().size();
+    TESSERA_ASSIGN_OR_RETURN(auto decoded, decodeRegion(r.draco()));
+    regions_[r.region_id()] = std::move(decoded.second);
+  }
+  for (uint64_t id : d.removed_region_ids()) regions_.erase(id);
+  version_ = d.to_version();
+  return Status::ok();
+}
+
+int64_t DocumentView::numTriangles() const {
+  int64_t n = 0;
+  for (const auto& [id, mesh] : regions_) n += static_cast<int64_t>(mesh.triangles.size());
+  return n;
+}
+
+SurfaceMesh DocumentView::surface() const {
+  SurfaceMesh out;
+  std::map<std::pair<uint64_t, std::array<double, 3>>, int> index;
+  for (const auto& [id, mesh] : regions_) {
+    std::vector<int> map(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      const Vec3& n = mesh.normals[v];
+      auto [it, fresh] = index.emplace(std::make_pair(mesh.vertexIds[v], std::array<double, 3>{n[0], n[1], n[2]}),
+                                       static_cast<int>(out.positions.size()));
+      if (fresh) out.positions.push_back(mesh.positions[v]), out.normals.push_back(n);
+      map[v] = it->second;
+    }
+    for (const auto& t : mesh.triangles) out.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
+  }
+  return out;
+}
+
+uint64_t DocumentView::surfaceHash() const {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  auto mix = [&](const void* data, size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  };
+  for (const auto& [id, mesh] : regions_) {
+    mix(&id, sizeof id);
+    mix(mesh.vertexIds.data(), mesh.vertexIds.size() * sizeof(uint64_t));
+    mix(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    mix(mesh.normals.data(), mesh.normals.size() * sizeof(Vec3));
+    mix(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+  }
+  return h;
+}
+
+}  // namespace tessera::client

@@ -1,0 +1,46 @@
+// A document as one subscriber sees it (issue 6 §1): the decoded regions of
+// its LOD profile, kept current by snapshots and deltas, with version
+// continuity checked -- a delta that does not start at the current version
+// is a gap, after which the view waits for a resync snapshot.
+#pragma once
+
+#include <cstdint>
+#include <map>
+
+#include "core/io/mesh_export.h"
+#include "core/tessellation/region_codec.h"
+#include "protocol/tessera.pb.h"
+
+namespace tessera::client {
+
+class DocumentView {
+ public:
+  explicit DocumentView(uint64_t documentId) : documentId_(documentId) {}
+
+  // A Snapshot part or a Delta of this document; other messages are ignored.
+  // Errors: a version gap, a region that does not decode.
+  Status apply(const wire::ServerMessage& message);
+
+  bool ready() const { return ready_; }
+  uint64_t version() const { return version_; }
+  uint64_t documentId() const { return documentId_; }
+  const std::map<uint64_t, RegionMesh>& regions() const { return regions_; }
+  int64_t numTriangles() const;
+  // Everything decoded, merged by vertex id and normal (for export and tests).
+  SurfaceMesh surface() const;
+  // A hash of the decoded regions (ids, positions, normals, triangles, in
+  // region order): equal for equal document states and profiles.
+  uint64_t surfaceHash() const;
+  uint64_t gaps() const { return gaps_; }
+  uint64_t bytesReceived() const { return bytes_; }
+
+ private:
+  uint64_t documentId_;
+  uint64_t version_ = 0;
+  bool ready_ = false;
+  std::map<uint64_t, RegionMesh> regions_;
+  std::map<uint64_t, RegionMesh> staging_;  // snapshot parts still arriving
+  uint64_t gaps_ = 0, bytes_ = 0;
+};
+
+}  // namespace tessera::client

@@ -1,0 +1,120 @@
+#include "client/lib/session.h"
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/write.hpp>
+
+#include "protocol/handshake.h"
+
+namespace tessera::client {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+uint64_t replyTo(const wire::ServerMessage& m) {
+  switch (m.body_case()) {
+    case wire::ServerMessage::kHelloAck: return m.hello_ack().client_seq();
+    case wire::ServerMessage::kAck: return m.ack().client_seq();
+    case wire::ServerMessage::kReject: return m.reject().client_seq();
+    case wire::ServerMessage::kDocumentList: return m.document_list().client_seq();
+    case wire::ServerMessage::kExportResult: return m.export_result().client_seq();
+    case wire::ServerMessage::kPong: return m.pong().client_seq();
+    case wire::ServerMessage::kStatsReply: return m.stats_reply().client_seq();
+    default: return 0;
+  }
+}
+
+Session::Session(const SessionOptions& options)
+    : options_(options), socket_(io_), decoder_(FrameDecoderOptions{options.maxFrameBytes}) {}
+
+Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options) {
+  std::unique_ptr<Session> s(new Session(options));
+  boost::system::error_code ec;
+  tcp::resolver resolver(s->io_);
+  auto endpoints = resolver.resolve(options.host, std::to_string(options.port), ec);
+  if (ec) return ioError("cannot resolve " + options.host + ": " + ec.message());
+  asio::connect(s->socket_, endpoints, ec);
+  if (ec) return ioError("cannot connect to " + options.host + ":" + std::to_string(options.port) + ": " + ec.message());
+  s->socket_.set_option(tcp::no_delay(true), ec);
+  HelloOptions hello;
+  hello.clientSeq = s->nextSeq_++;
+  hello.clientName = options.name;
+  hello.token = options.token;
+  TESSERA_ASSIGN_OR_RETURN(uint64_t seq, s->send(makeHello(hello)));
+  (void)seq;
+  TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage first, s->readMessage(options.timeoutSeconds));
+  TESSERA_RETURN_IF_ERROR(checkHelloAck(first));
+  s->sessionId_ = first.hello_ack().session_id();
+  s->role_ = first.hello_ack().role();
+  return s;
+}
+
+Expected<uint64_t> Session::send(wire::ClientMessage message) {
+  if (message.client_seq() == 0) message.set_client_seq(nextSeq_++);
+  TESSERA_ASSIGN_OR_RETURN(std::string frame, encodeFrame(message, options_.maxFrameBytes));
+  TESSERA_RETURN_IF_ERROR(sendRaw(frame));
+  return message.client_seq();
+}
+
+Status Session::sendRaw(const std::string& bytes) {
+  boost::system::error_code ec;
+  asio::write(socket_, asio::buffer(bytes), ec);
+  if (ec) return ioError("send failed: " + ec.message());
+  return Status::ok();
+}
+
+Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeoutSeconds));
+  for (;;) {
+    wire::ServerMessage message;
+    TESSERA_ASSIGN_OR_RETURN(bool got, decoder_.next(message));
+    if (got) return message;
+    boost::system::error_code result = asio::error::would_block;
+    size_t n = 0;
+    socket_.async_read_some(asio::buffer(buffer_), [&](const boost::system::error_code& ec, size_t bytes) {
+      result = ec;
+      n = bytes;
+    });
+    io_.restart();
+    io_.run_until(deadline);
+    if (result == asio::error::would_block) {
+      socket_.cancel();
+      io_.restart();
+      io_.run();  // let the cancelled read finish
+      return ioError("no message from the server within " + std::to_string(timeoutSeconds) + " s");
+    }
+    if (result) return ioError("connection closed: " + result.message());
+    TESSERA_RETURN_IF_ERROR(decoder_.feed(std::string_view(buffer_.data(), n)));
+  }
+}
+
+Expected<wire::ServerMessage> Session::receive(double timeoutSeconds) {
+  if (!backlog_.empty()) {
+    wire::ServerMessage m = std::move(backlog_.front());
+    backlog_.pop_front();
+    return m;
+  }
+  return readMessage(timeoutSeconds);
+}
+
+Expected<wire::ServerMessage> Session::call(wire::ClientMessage message, double timeoutSeconds) {
+  TESSERA_ASSIGN_OR_RETURN(uint64_t seq, send(std::move(message)));
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeoutSeconds));
+  for (;;) {
+    const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) return ioError("no reply to message " + std::to_string(seq) + " within " + std::to_string(timeoutSeconds) + " s");
+    TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage m, readMessage(left));
+    if (replyTo(m) == seq) return m;
+    if (m.has_error() && m.error().fatal()) return ioError("server error: " + m.error().message());
+    backlog_.push_back(std::move(m));
+  }
+}
+
+void Session::close() {
+  boost::system::error_code ignored;
+  socket_.shutdown(tcp::socket::shutdown_both, ignored);
+  socket_.close(ignored);
+}
+
+}  // namespace tessera::client

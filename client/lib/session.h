@@ -1,0 +1,72 @@
+// A client's connection to tessera-server (issue 6 §1): TCP, the version
+// handshake, and frames in and out through the bounds-checked decoder.
+// Blocking calls with deadlines, so the viewer, the replay client, the CLI
+// and tests drive it from their own threads.
+//
+//   auto s = Session::connect({.port = 7878, .name = "alice", .token = t});
+//   auto reply = (*s)->call(openDocument(3));      // waits for its Ack/Reject
+//   auto next = (*s)->receive(1.0);                  // deltas, presence, ...
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "protocol/framing.h"
+#include "protocol/tessera.pb.h"
+#include "core/util/status.h"
+
+namespace tessera::client {
+
+struct SessionOptions {
+  std::string host = "127.0.0.1";
+  uint16_t port = 7878;
+  std::string name = "tessera-client";
+  std::string token;
+  double timeoutSeconds = 10;
+  uint32_t maxFrameBytes = 64u << 20;
+};
+
+class Session {
+ public:
+  static Expected<std::unique_ptr<Session>> connect(const SessionOptions& options);
+
+  uint64_t sessionId() const { return sessionId_; }
+  wire::Role role() const { return role_; }
+
+  // Sends a message; a zero client_seq gets the next one. Returns the seq.
+  Expected<uint64_t> send(wire::ClientMessage message);
+  // The next server message, or an error after `timeoutSeconds`, on a
+  // closed connection, or on a malformed frame.
+  Expected<wire::ServerMessage> receive(double timeoutSeconds);
+  // Sends and waits for the reply to it (Ack, Reject, DocumentList, Pong,
+  // StatsReply, ExportResult); other messages meanwhile are kept, in order,
+  // for receive().
+  Expected<wire::ServerMessage> call(wire::ClientMessage message, double timeoutSeconds);
+  // Raw bytes, for tests of the server's frame checks.
+  Status sendRaw(const std::string& bytes);
+  void close();
+
+ private:
+  Session(const SessionOptions& options);
+  Expected<wire::ServerMessage> readMessage(double timeoutSeconds);
+
+  SessionOptions options_;
+  boost::asio::io_context io_;
+  boost::asio::ip::tcp::socket socket_;
+  FrameDecoder decoder_;
+  std::array<char, 64 * 1024> buffer_{};
+  std::deque<wire::ServerMessage> backlog_;
+  uint64_t nextSeq_ = 1;
+  uint64_t sessionId_ = 0;
+  wire::Role role_ = wire::ROLE_UNSPECIFIED;
+};
+
+// The client_seq a server message answers, or 0 for unsolicited ones.
+uint64_t replyTo(const wire::ServerMessage& message);
+
+}  // namespace tessera::client

@@ -1,0 +1,50 @@
+// tessera-server's settings: where it listens and stores, and every limit
+// (issue §5), each settable on the command line.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/util/status.h"
+
+namespace tessera::server {
+
+struct Limits {
+  uint32_t maxFrameBytes = 64u << 20;         // a frame's payload (CreateDocument carries a mesh)
+  uint64_t maxBaseMeshBytes = 48u << 20;      // CreateDocument.mesh
+  int maxLevel = 6;                           // of any document
+  int64_t maxTrianglesPerSubscriber = 4'000'000;
+  double commandsPerSecond = 200;             // per connection (token bucket, burst = 1 s)
+  int connectionsPerAddress = 2000;
+  uint64_t queueSoftBytes = 8u << 20;         // per client: coalesce queued deltas above this
+  uint64_t queueHardBytes = 32u << 20;        // per client: drop them and resync with a snapshot
+  uint32_t queueMaxMessages = 4096;
+};
+
+struct Timeouts {
+  double handshakeSeconds = 10;
+  double idleSeconds = 300;   // no frame at all from the client
+  double writeSeconds = 30;   // one write making no progress
+};
+
+struct ServerConfig {
+  std::string listenAddress = "127.0.0.1";
+  uint16_t port = 7878;              // 0: any free port
+  std::string dataDirectory = "tessera-data";
+  std::string portFile;              // write the bound port here (tests, scripts)
+  std::string adminTokenFile;        // a token read at start-up and granted admin on everything
+  std::string tlsCertificate, tlsPrivateKey;  // both set: TLS on the listening port
+  int networkThreads = 1;
+  int workerThreads = 1;
+  uint64_t snapshotEvery = 200;      // journal entries between document snapshots
+  Limits limits;
+  Timeouts timeouts;
+  bool verbose = false;
+};
+
+// Parses `tessera-server` arguments; errors name the option and the value.
+Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args);
+extern const char* const kServerUsage;
+
+}  // namespace tessera::server

@@ -1,0 +1,551 @@
+#include "server/connection.h"
+
+#include <boost/asio/bind_executor.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/write.hpp>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "core/document/document_file.h"
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
+#include "protocol/handshake.h"
+#include "server/log.h"
+
+namespace tessera::server {
+
+namespace asio = boost::asio;
+
+namespace {
+
+constexpr const char* kServerVersion = "tessera-server 0.1.0";
+
+wire::Role wireRole(Role role) {
+  switch (role) {
+    case Role::kViewer: return wire::ROLE_VIEWER;
+    case Role::kEditor: return wire::ROLE_EDITOR;
+    case Role::kAdmin: return wire::ROLE_ADMIN;
+  }
+  return wire::ROLE_UNSPECIFIED;
+}
+
+const char* extensionOf(wire::MeshFormat format) {
+  switch (format) {
+    case wire::MESH_FORMAT_OBJ: return ".obj";
+    case wire::MESH_FORMAT_OFF: return ".off";
+    case wire::MESH_FORMAT_PLY: return ".ply";
+    case wire::MESH_FORMAT_STL: return ".stl";
+    case wire::MESH_FORMAT_GLB: return ".glb";
+    default: return nullptr;
+  }
+}
+
+// Imports a base mesh sent as bytes: the readers take files, so the bytes
+// go through a private temporary file.
+Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, uint64_t session) {
+  const char* extension = extensionOf(request.mesh_format());
+  if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("tessera-import-" + std::to_string(::getpid()) + "-" + std::to_string(session) + extension))
+                               .string();
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.write(request.mesh().data(), static_cast<std::streamsize>(request.mesh().size()));
+    if (!out) return ioError("create: cannot stage the mesh");
+  }
+  auto mesh = importMesh(path);
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+  const std::string source = "mesh '" + request.name() + "'";
+  if (!mesh.isOk()) return Status(mesh.status().code(), source + ": " + mesh.status().message());
+  if (!request.tags().empty()) {
+    TESSERA_ASSIGN_OR_RETURN(auto tags, parseTags(request.tags(), "tags of '" + request.name() + "'"));
+    TESSERA_RETURN_IF_ERROR(applyTags(tags, "tags of '" + request.name() + "'", *mesh));
+  }
+  DocumentOptions options;
+  options.maxLevel = request.max_level() == 0 ? std::min(5, maxLevel) : static_cast<int>(request.max_level());
+  if (options.maxLevel > maxLevel) {
+    return invalidArgument("create: max level " + std::to_string(request.max_level()) + " exceeds the server's " +
+                           std::to_string(maxLevel));
+  }
+  return Document::create(*mesh, options);
+}
+
+}  // namespace
+
+Connection::Connection(asio::ip::tcp::socket socket, ServerContext& context, uint64_t sessionId, std::string address)
+    : socket_(std::move(socket)),
+      strand_(asio::make_strand(socket_.get_executor())),
+      idleTimer_(strand_),
+      writeTimer_(strand_),
+      context_(context),
+      sessionId_(sessionId),
+      address_(std::move(address)),
+      decoder_(FrameDecoderOptions{context.config.limits.maxFrameBytes}),
+      outbox_(context.config.limits),
+      bucket_(context.config.limits.commandsPerSecond),
+      refilled_(std::chrono::steady_clock::now()) {
+  ++context_.stats.connections;
+  ++context_.stats.connectionsTotal;
+}
+
+Connection::~Connection() { --context_.stats.connections; }
+
+void Connection::start() {
+  asio::post(strand_, [self = shared_from_this()] {
+    logEvent(LogLevel::kInfo, "connected", {{"session", self->sessionId_}, {"address", self->address_}});
+    self->armIdleTimer(self->context_.config.timeouts.handshakeSeconds);
+    self->readMore();
+  });
+}
+
+void Connection::armIdleTimer(double seconds) {
+  idleTimer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds)));
+  idleTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+    if (ec || self->closed_) return;
+    self->fatal(wire::ERROR_CODE_TIMEOUT, self->helloDone_ ? "idle timeout" : "no Hello in time");
+  });
+}
+
+void Connection::readMore() {
+  if (closed_ || closing_) return;
+  socket_.async_read_some(
+      asio::buffer(buffer_),
+      asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t n) {
+        if (self->closed_) return;
+        if (ec) {
+          if (ec != asio::error::eof && ec != asio::error::operation_aborted) {
+            logEvent(LogLevel::kDebug, "read_failed", {{"session", self->sessionId_}, {"error", ec.message()}});
+          }
+          self->closeNow();
+          return;
+        }
+        self->armIdleTimer(self->helloDone_ ? self->context_.config.timeouts.idleSeconds
+                                            : self->context_.config.timeouts.handshakeSeconds);
+        Status fed = self->decoder_.feed(std::string_view(self->buffer_.data(), n));
+        while (!self->closing_) {
+          wire::ClientMessage message;
+          auto got = self->decoder_.next(message);
+          if (!got.isOk()) {
+            const FrameError kind = self->decoder_.error();
+            self->fatal(kind == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE : wire::ERROR_CODE_MALFORMED_FRAME,
+                        got.status().message());
+            return;
+          }
+          if (!*got) break;
+          self->handle(std::move(message));
+        }
+        if (!fed.isOk() && !self->closing_) {
+          self->fatal(self->decoder_.error() == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE
+                                                                       : wire::ERROR_CODE_MALFORMED_FRAME,
+                      fed.message());
+          return;
+        }
+        self->readMore();
+      }));
+}
+
+void Connection::send(Outgoing message) {
+  asio::post(strand_, [self = shared_from_this(), message = std::move(message)]() mutable {
+    self->queue(std::move(message));
+  });
+}
+
+void Connection::queue(Outgoing message) {
+  if (closed_ || !message.frame) return;
+  const uint64_t merges = outbox_.merges();
+  outbox_.push(std::move(message), context_.config.limits.maxFrameBytes);
+  context_.stats.deltaMerges += static_cast<int64_t>(outbox_.merges() - merges);
+  queueBytes_ = outbox_.bytes();
+  queueMessages_ = outbox_.size();
+  int64_t biggest = context_.stats.queueBytesMax.load();
+  while (static_cast<int64_t>(outbox_.bytes()) > biggest &&
+         !context_.stats.queueBytesMax.compare_exchange_weak(biggest, static_cast<int64_t>(outbox_.bytes()))) {
+  }
+  writeNext();
+}
+
+void Connection::reply(const wire::ServerMessage& message) {
+  queue({frameOf(message, context_.config.limits.maxFrameBytes), nullptr});
+}
+
+void Connection::reject(uint64_t clientSeq, wire::RejectReason reason, const std::string& text) {
+  ++context_.stats.rejects;
+  wire::ServerMessage m;
+  m.mutable_reject()->set_client_seq(clientSeq);
+  m.mutable_reject()->set_reason(reason);
+  m.mutable_reject()->set_message(text);
+  reply(m);
+}
+
+void Connection::fatal(wire::ErrorCode code, const std::string& message) {
+  if (closing_ || closed_) return;
+  logEvent(LogLevel::kInfo, "connection_error", {{"session", sessionId_}, {"code", wire::ErrorCode_Name(code)}, {"message", message}});
+  wire::ServerMessage m;
+  m.mutable_error()->set_code(code);
+  m.mutable_error()->set_message(message);
+  m.mutable_error()->set_fatal(true);
+  reply(m);
+  closing_ = true;
+  if (!outbox_.writing() && outbox_.empty()) closeNow();
+}
+
+void Connection::refuse(wire::ErrorCode code, const std::string& message) {
+  asio::post(strand_, [self = shared_from_this(), code, message] { self->fatal(code, message); });
+}
+
+void Connection::shutdown() {
+  asio::post(strand_, [self = shared_from_this()] { self->fatal(wire::ERROR_CODE_SHUTTING_DOWN, "the server is stopping"); });
+}
+
+void Connection::writeNext() {
+  if (closed_ || outbox_.writing()) return;
+  if (outbox_.empty()) {
+    if (closing_) return closeNow();
+    // Documents whose deltas were dropped get a fresh snapshot.
+    for (uint64_t doc : outbox_.takeResyncs()) {
+      auto host = open_.find(doc);
+      auto profile = subscriptions_.find(doc);
+      if (host != open_.end() && profile != subscriptions_.end()) {
+        host->second->subscribe(shared_from_this(), profile->second, 0, true);
+      }
+    }
+    return;
+  }
+  outbox_.markWriting();
+  auto frame = outbox_.front().frame;  // keeps the bytes alive during the write
+  writeTimer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(context_.config.timeouts.writeSeconds)));
+  writeTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+    if (ec || self->closed_) return;
+    logEvent(LogLevel::kInfo, "write_timeout", {{"session", self->sessionId_}});
+    self->closeNow();  // the peer stopped reading: nothing more can reach it
+  });
+  asio::async_write(socket_, asio::buffer(*frame),
+                    asio::bind_executor(strand_, [self = shared_from_this(), frame](const boost::system::error_code& ec, size_t n) {
+                      self->writeTimer_.cancel();
+                      if (self->closed_) return;
+                      if (ec) return self->closeNow();
+                      self->context_.stats.bytesSent += static_cast<int64_t>(n);
+                      ++self->context_.stats.framesSent;
+                      self->outbox_.popFront();
+                      self->queueBytes_ = self->outbox_.bytes();
+                      self->queueMessages_ = self->outbox_.size();
+                      self->writeNext();
+                    }));
+}
+
+void Connection::closeNow() {
+  if (closed_) return;
+  closed_ = true;
+  boost::system::error_code ignored;
+  idleTimer_.cancel();
+  writeTimer_.cancel();
+  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  socket_.close(ignored);
+  for (auto& [id, host] : open_) host->leave(sessionId_);
+  open_.clear();
+  logEvent(LogLevel::kInfo, "disconnected", {{"session", sessionId_}});
+}
+
+bool Connection::allowedByRate(uint64_t clientSeq) {
+  const double rate = context_.config.limits.commandsPerSecond;
+  const auto now = std::chrono::steady_clock::now();
+  bucket_ = std::min(rate, bucket_ + rate * std::chrono::duration<double>(now - refilled_).count());
+  refilled_ = now;
+  if (bucket_ >= 1.0) {
+    bucket_ -= 1.0;
+    return true;
+  }
+  reject(clientSeq, wire::REJECT_REASON_RATE_LIMITED,
+         "more than " + std::to_string(static_cast<int>(rate)) + " commands per second");
+  return false;
+}
+
+std::optional<Role> Connection::roleFor(DocumentId id) {
+  if (token_.empty()) return std::nullopt;
+  if (auto it = roles_.find(id.value); it != roles_.end()) return it->second;
+  auto role = context_.store.roleFor(token_, TokenScope::document(id));
+  if (!role.isOk()) return std::nullopt;
+  roles_[id.value] = *role;
+  return *role;
+}
+
+void Connection::handle(wire::ClientMessage message) {
+  const uint64_t seq = message.client_seq();
+  if (!helloDone_) return handleHello(message);
+  using C = wire::ClientMessage;
+  switch (message.command_case()) {
+    case C::kHello: return reject(seq, wire::REJECT_REASON_INVALID_STATE, "already said hello");
+    case C::kPing: {
+      wire::ServerMessage m;
+      m.mutable_pong()->set_client_seq(seq);
+      m.mutable_pong()->set_server_time_unix_ms(static_cast<uint64_t>(
+          std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch()).count()));
+      return reply(m);
+    }
+    case C::COMMAND_NOT_SET: return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "no command in the message");
+    default: break;
+  }
+  if (token_.empty()) {
+    return reject(seq, wire::REJECT_REASON_NOT_AUTHENTICATED, "authenticate with a token in Hello first");
+  }
+  if (!allowedByRate(seq)) return;
+  switch (message.command_case()) {
+    case C::kListDocuments: return listDocuments(seq);
+    case C::kStats: return stats(seq);
+    case C::kCreateDocument: return createDocument(seq, message.create_document());
+    case C::kOpenDocument: return openDocument(seq, message.open_document().document_id());
+    case C::kCloseDocument: return closeDocument(seq, message.close_document().document_id());
+    case C::kDeleteDocument: return deleteDocument(seq, message.delete_document().document_id());
+    case C::kGrantToken: return grantToken(seq, message.grant_token());
+    default: break;
+  }
+  const uint64_t doc = documentOf(message);
+  auto host = openHost(doc, seq);
+  if (!host) return;
+  switch (message.command_case()) {
+    case C::kSubscribe:
+      subscriptions_[doc] = message.subscribe().profile();
+      return host->subscribe(shared_from_this(), message.subscribe().profile(), seq, false);
+    case C::kUnsubscribe: {
+      subscriptions_.erase(doc);
+      host->unsubscribe(sessionId_);
+      wire::ServerMessage ack;
+      ack.mutable_ack()->set_client_seq(seq);
+      ack.mutable_ack()->set_document_id(doc);
+      return reply(ack);
+    }
+    case C::kSelect: return host->select(sessionId_, message.select().selection());
+    case C::kExportDocument: return host->exportGlb(shared_from_this(), seq, message.export_document());
+    case C::kMoveVertex:
+    case C::kSetEdgeSharpness:
+    case C::kSetVertexType:
+    case C::kUndo:
+    case C::kRedo: {
+      const auto role = roleFor(DocumentId{doc});
+      if (!role || *role < Role::kEditor) {
+        return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "editing document " + std::to_string(doc) + " needs the editor role");
+      }
+      return host->command(shared_from_this(), name_, std::move(message));
+    }
+    default: return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "unknown command");
+  }
+}
+
+void Connection::handleHello(const wire::ClientMessage& message) {
+  Status ok = checkHandshake(message);
+  if (!ok.isOk()) {
+    reply(makeHandshakeError(ok));
+    closing_ = true;
+    return;
+  }
+  helloDone_ = true;
+  token_ = message.hello().token();
+  name_ = message.hello().client_name().empty() ? "session " + std::to_string(sessionId_) : message.hello().client_name();
+  if (!token_.empty()) {
+    auto role = context_.store.roleFor(token_, TokenScope::allDocuments());
+    if (role.isOk()) globalRole_ = *role;
+  }
+  armIdleTimer(context_.config.timeouts.idleSeconds);
+  logEvent(LogLevel::kInfo, "hello", {{"session", sessionId_}, {"name", name_}, {"token", !token_.empty()},
+                                      {"role", globalRole_ ? roleName(*globalRole_) : "per-document"}});
+  HelloAckOptions ack;
+  ack.clientSeq = message.client_seq();
+  ack.serverVersion = kServerVersion;
+  ack.sessionId = sessionId_;
+  ack.role = globalRole_ ? wireRole(*globalRole_) : wire::ROLE_UNSPECIFIED;
+  ack.maxFrameBytes = context_.config.limits.maxFrameBytes;
+  reply(makeHelloAck(ack));
+}
+
+uint64_t Connection::documentOf(const wire::ClientMessage& m) const {
+  using C = wire::ClientMessage;
+  switch (m.command_case()) {
+    case C::kSubscribe: return m.subscribe().document_id();
+    case C::kUnsubscribe: return m.unsubscribe().document_id();
+    case C::kSelect: return m.select().document_id();
+    case C::kExportDocument: return m.export_document().document_id();
+    case C::kMoveVertex: return m.move_vertex().document_id();
+    case C::kSetEdgeSharpness: return m.set_edge_sharpness().document_id();
+    case C::kSetVertexType: return m.set_vertex_type().document_id();
+    case C::kUndo: return m.undo().document_id();
+    case C::kRedo: return m.redo().document_id();
+    default: return 0;
+  }
+}
+
+std::shared_ptr<DocumentHost> Connection::openHost(uint64_t documentId, uint64_t clientSeq) {
+  auto it = open_.find(documentId);
+  if (it == open_.end()) {
+    reject(clientSeq, wire::REJECT_REASON_NOT_OPEN, "document " + std::to_string(documentId) + " is not open here");
+    return nullptr;
+  }
+  return it->second;
+}
+
+void Connection::listDocuments(uint64_t seq) {
+  auto documents = context_.store.listDocuments();
+  if (!documents.isOk()) return reject(seq, wire::REJECT_REASON_INTERNAL, documents.status().message());
+  wire::ServerMessage m;
+  m.mutable_document_list()->set_client_seq(seq);
+  for (const DocumentSummary& d : *documents) {
+    if (!roleFor(d.id)) continue;  // only what this token may read
+    wire::DocumentInfo* info = m.mutable_document_list()->add_documents();
+    info->set_document_id(d.id.value);
+    info->set_name(d.name);
+    info->set_version(DocumentHost::versionOf(d.latestVersion));
+  }
+  reply(m);
+}
+
+void Connection::createDocument(uint64_t seq, const wire::CreateDocument& request) {
+  if (!globalRole_ || *globalRole_ < Role::kAdmin) {
+    return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "creating documents needs an admin token");
+  }
+  if (request.mesh().size() > context_.config.limits.maxBaseMeshBytes) {
+    return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
+                  "create: the mesh has " + std::to_string(request.mesh().size()) + " bytes, above the limit of " +
+                      std::to_string(context_.config.limits.maxBaseMeshBytes));
+  }
+  // Importing is CPU work: off the network threads.
+  asio::post(context_.workers, [self = shared_from_this(), seq, request] {
+    auto doc = importDocument(request, self->context_.config.limits.maxLevel, self->sessionId_);
+    Expected<DocumentId> id = doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
+                                         : Expected<DocumentId>(doc.status());
+    asio::post(self->strand_, [self, seq, id] {
+      if (!id.isOk()) {
+        const bool mesh = id.status().code() == ErrorCode::kInvalidMesh || id.status().code() == ErrorCode::kParseError;
+        return self->reject(seq, mesh ? wire::REJECT_REASON_INVALID_MESH : wire::REJECT_REASON_INVALID_ARGUMENT,
+                            id.status().message());
+      }
+      logEvent(LogLevel::kInfo, "document_created", {{"doc", id->value}, {"session", self->sessionId_}});
+      wire::ServerMessage ack;
+      ack.mutable_ack()->set_client_seq(seq);
+      ack.mutable_ack()->set_document_id(id->value);
+      ack.mutable_ack()->set_version(1);
+      self->reply(ack);
+    });
+  });
+}
+
+void Connection::openDocument(uint64_t seq, uint64_t documentId) {
+  const auto role = roleFor(DocumentId{documentId});
+  if (!role) {
+    return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "no access to document " + std::to_string(documentId));
+  }
+  asio::post(context_.workers, [self = shared_from_this(), seq, documentId, role = *role] {
+    auto host = self->context_.documents.open(DocumentId{documentId});
+    asio::post(self->strand_, [self, seq, documentId, role, host] {
+      if (!host.isOk()) {
+        return self->reject(seq, host.status().code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND
+                                                                               : wire::REJECT_REASON_INTERNAL,
+                            host.status().message());
+      }
+      if (self->closed_) return;
+      self->open_[documentId] = *host;
+      (*host)->join(self, self->name_, wireRole(role));
+      wire::ServerMessage ack;
+      ack.mutable_ack()->set_client_seq(seq);
+      ack.mutable_ack()->set_document_id(documentId);
+      self->reply(ack);
+    });
+  });
+}
+
+void Connection::closeDocument(uint64_t seq, uint64_t documentId) {
+  auto host = openHost(documentId, seq);
+  if (!host) return;
+  host->leave(sessionId_);
+  open_.erase(documentId);
+  subscriptions_.erase(documentId);
+  wire::ServerMessage ack;
+  ack.mutable_ack()->set_client_seq(seq);
+  ack.mutable_ack()->set_document_id(documentId);
+  reply(ack);
+}
+
+void Connection::deleteDocument(uint64_t seq, uint64_t documentId) {
+  const auto role = roleFor(DocumentId{documentId});
+  if (!role || *role < Role::kAdmin) {
+    return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "deleting document " + std::to_string(documentId) + " needs the admin role");
+  }
+  Status deleted = context_.store.deleteDocument(DocumentId{documentId});
+  if (!deleted.isOk()) {
+    return reject(seq, deleted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND : wire::REJECT_REASON_INTERNAL,
+                  deleted.message());
+  }
+  context_.documents.forget(DocumentId{documentId});
+  open_.erase(documentId);
+  roles_.erase(documentId);
+  logEvent(LogLevel::kInfo, "document_deleted", {{"doc", documentId}, {"session", sessionId_}});
+  wire::ServerMessage ack;
+  ack.mutable_ack()->set_client_seq(seq);
+  ack.mutable_ack()->set_document_id(documentId);
+  reply(ack);
+}
+
+void Connection::grantToken(uint64_t seq, const wire::GrantToken& request) {
+  if (!globalRole_ || *globalRole_ < Role::kAdmin) {
+    return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "granting tokens needs an admin token");
+  }
+  if (request.token().empty() || request.token().size() > kMaxTokenBytes) {
+    return reject(seq, wire::REJECT_REASON_INVALID_ARGUMENT, "grant: the token must have 1.." + std::to_string(kMaxTokenBytes) + " bytes");
+  }
+  Role role;
+  switch (request.role()) {
+    case wire::ROLE_VIEWER: role = Role::kViewer; break;
+    case wire::ROLE_EDITOR: role = Role::kEditor; break;
+    case wire::ROLE_ADMIN: role = Role::kAdmin; break;
+    default: return reject(seq, wire::REJECT_REASON_INVALID_ARGUMENT, "grant: no role given");
+  }
+  const TokenScope scope = request.document_id() == 0 ? TokenScope::allDocuments() : TokenScope::document(DocumentId{request.document_id()});
+  Status granted = context_.store.addToken(scope, request.token(), role);
+  if (!granted.isOk()) {
+    return reject(seq, granted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND : wire::REJECT_REASON_INVALID_ARGUMENT,
+                  granted.message());
+  }
+  logEvent(LogLevel::kInfo, "token_granted", {{"session", sessionId_}, {"scope", scope.toString()}, {"role", roleName(role)}});
+  wire::ServerMessage ack;
+  ack.mutable_ack()->set_client_seq(seq);
+  ack.mutable_ack()->set_document_id(request.document_id());
+  reply(ack);
+}
+
+void Connection::stats(uint64_t seq) {
+  const ServerStats& s = context_.stats;
+  const double uptime = std::max(1e-9, s.uptimeSeconds());
+  const double edits = static_cast<double>(s.edits.load());
+  const double regions = std::max<double>(1, static_cast<double>(s.regionsEncoded.load()));
+  const StoreStats store = context_.store.stats();
+  wire::ServerMessage m;
+  m.mutable_stats_reply()->set_client_seq(seq);
+  auto add = [&](const char* name, double value) {
+    wire::Stat* stat = m.mutable_stats_reply()->add_stats();
+    stat->set_name(name);
+    stat->set_value(value);
+  };
+  add("connections", static_cast<double>(s.connections.load()));
+  add("connections_total", static_cast<double>(s.connectionsTotal.load()));
+  add("uptime_seconds", uptime);
+  add("edits", edits);
+  add("edits_per_second", edits / uptime);
+  add("rejects", static_cast<double>(s.rejects.load()));
+  add("bytes_sent", static_cast<double>(s.bytesSent.load()));
+  add("bytes_per_second", static_cast<double>(s.bytesSent.load()) / uptime);
+  add("frames_sent", static_cast<double>(s.framesSent.load()));
+  add("queue_bytes_max", static_cast<double>(s.queueBytesMax.load()));
+  add("queue_bytes_self", static_cast<double>(outbox_.bytes()));
+  add("delta_merges", static_cast<double>(s.deltaMerges.load()));
+  add("resyncs", static_cast<double>(s.resyncs.load()));
+  add("tessellate_ms_per_edit", edits > 0 ? s.tessellateMicros.load() / 1000.0 / edits : 0.0);
+  add("encode_ms_per_region", s.encodeMicros.load() / 1000.0 / regions);
+  add("edit_to_durable_ms", edits > 0 ? s.commitMicros.load() / 1000.0 / edits : 0.0);
+  add("store_batches", static_cast<double>(store.batches));
+  add("store_average_batch", store.averageBatchSize);
+  add("store_last_commit_ms", static_cast<double>(store.lastCommitLatency.count()) / 1000.0);
+  reply(m);
+}
+
+}  // namespace tessera::server

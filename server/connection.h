@@ -1,0 +1,89 @@
+// One client connection (issue §1-§3, §5): frames in through a bounded
+// decoder, a handshake, per-document roles from the access token, a rate
+// limit, commands routed to document hosts, and a bounded outbox written
+// out one frame at a time. Everything runs on the connection's strand; a
+// slow client only ever fills its own outbox.
+#pragma once
+
+#include <array>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "protocol/framing.h"
+#include "protocol/tessera.pb.h"
+#include "server/outbox.h"
+#include "server/server_context.h"
+#include "server/subscriber.h"
+
+namespace tessera::server {
+
+class Connection : public Subscriber, public std::enable_shared_from_this<Connection> {
+ public:
+  Connection(boost::asio::ip::tcp::socket socket, ServerContext& context, uint64_t sessionId, std::string address);
+  ~Connection() override;
+
+  void start();
+  uint64_t sessionId() const override { return sessionId_; }
+  void send(Outgoing message) override;
+  // Server stopping: a fatal Error, then close once it is written.
+  void shutdown();
+  // Refuses the connection (per-address limit) with a fatal Error.
+  void refuse(wire::ErrorCode code, const std::string& message);
+  const std::string& address() const { return address_; }
+  // Snapshot of the queue for stats: bytes, messages.
+  std::pair<uint64_t, size_t> queueDepth() const { return {queueBytes_.load(), queueMessages_.load()}; }
+
+ private:
+  void readMore();
+  void handle(wire::ClientMessage message);
+  void handleHello(const wire::ClientMessage& message);
+  void queue(Outgoing message);
+  void reply(const wire::ServerMessage& message);
+  void reject(uint64_t clientSeq, wire::RejectReason reason, const std::string& text);
+  void fatal(wire::ErrorCode code, const std::string& message);
+  void writeNext();
+  void closeNow();
+  void armIdleTimer(double seconds);
+
+  // Command handlers.
+  bool allowedByRate(uint64_t clientSeq);
+  std::optional<Role> roleFor(DocumentId id);
+  std::shared_ptr<DocumentHost> openHost(uint64_t documentId, uint64_t clientSeq);
+  void listDocuments(uint64_t clientSeq);
+  void createDocument(uint64_t clientSeq, const wire::CreateDocument& request);
+  void openDocument(uint64_t clientSeq, uint64_t documentId);
+  void closeDocument(uint64_t clientSeq, uint64_t documentId);
+  void deleteDocument(uint64_t clientSeq, uint64_t documentId);
+  void stats(uint64_t clientSeq);
+  void grantToken(uint64_t clientSeq, const wire::GrantToken& request);
+  uint64_t documentOf(const wire::ClientMessage& message) const;
+
+  boost::asio::ip::tcp::socket socket_;
+  boost::asio::strand<boost::asio::any_io_executor> strand_;
+  boost::asio::steady_timer idleTimer_, writeTimer_;
+  ServerContext& context_;
+  const uint64_t sessionId_;
+  const std::string address_;
+  FrameDecoder decoder_;
+  std::array<char, 64 * 1024> buffer_{};
+  Outbox outbox_;
+  std::atomic<uint64_t> queueBytes_{0};
+  std::atomic<size_t> queueMessages_{0};
+
+  bool helloDone_ = false, closing_ = false, closed_ = false;
+  std::string token_;  // never logged
+  std::string name_;
+  std::optional<Role> globalRole_;
+  std::map<uint64_t, std::shared_ptr<DocumentHost>> open_;
+  std::map<uint64_t, Role> roles_;
+  std::map<uint64_t, wire::LodProfile> subscriptions_;
+  double bucket_ = 0;
+  std::chrono::steady_clock::time_point refilled_;
+};
+
+}  // namespace tessera::server

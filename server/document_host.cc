@@ -1,0 +1,513 @@
+#include "server/document_host.h"
+
+#include <boost/asio/post.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "core/document/document_file.h"
+#include "core/io/mesh_export.h"
+#include "protocol/framing.h"
+#include "server/journal_entry.h"
+#include "server/log.h"
+
+namespace tessera::server {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t microsSince(Clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - t).count();
+}
+
+wire::RejectReason reasonFor(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::kInvalidArgument: return wire::REJECT_REASON_INVALID_ARGUMENT;
+    case ErrorCode::kNotFound: return wire::REJECT_REASON_NOT_FOUND;
+    case ErrorCode::kInvalidMesh:
+    case ErrorCode::kParseError: return wire::REJECT_REASON_INVALID_MESH;
+    case ErrorCode::kUnsupported: return wire::REJECT_REASON_INVALID_ARGUMENT;
+    default: return wire::REJECT_REASON_INTERNAL;
+  }
+}
+
+bool insideGrid(const RegionMesh& mesh, const QuantizationGrid& grid) {
+  for (const Vec3& p : mesh.positions) {
+    for (int k = 0; k < 3; ++k) {
+      if (!(p[k] >= grid.origin[k] && p[k] <= grid.origin[k] + grid.range)) return false;
+    }
+  }
+  return true;
+}
+
+// Snapshot parts stay well under any client's frame limit.
+constexpr size_t kSnapshotPartBytes = 4u << 20;
+
+}  // namespace
+
+std::shared_ptr<const std::string> frameOf(const wire::ServerMessage& message, uint32_t maxFrameBytes) {
+  auto frame = encodeFrame(message, maxFrameBytes);
+  if (!frame.isOk()) {
+    logEvent(LogLevel::kError, "frame_encode_failed", {{"error", frame.status().message()}});
+    return nullptr;
+  }
+  return std::make_shared<const std::string>(std::move(*frame));
+}
+
+wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
+  wire::ServerMessage m;
+  wire::Reject* r = m.mutable_reject();
+  r->set_client_seq(clientSeq);
+  r->set_reason(reasonFor(status.code()));
+  r->set_message(status.message());
+  return m;
+}
+
+DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
+                           boost::asio::any_io_executor workers, Store& store, const ServerConfig& config,
+                           ServerStats& stats)
+    : id_(id),
+      name_(std::move(name)),
+      doc_(std::move(doc)),
+      version_(version),
+      durableVersion_(version),
+      lastSnapshot_(version),
+      strand_(boost::asio::make_strand(workers)),
+      store_(store),
+      config_(config),
+      stats_(stats) {
+  // One quantization grid for every region and profile of the document, so
+  // border vertices decode identically on both sides (issue 4, §4). It
+  // spans the base mesh's box grown to five times its largest extent, so
+  // edits have room, with the bits for 1e-4 of the base box's diagonal; an
+  // edit that would leave it is refused (afterApply).
+  const auto& points = doc_.basePoints();
+  Vec3 lo = points.empty() ? Vec3(0, 0, 0) : points[0], hi = lo;
+  for (const Vec3& p : points) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-9});
+  const Vec3 center = 0.5 * (lo + hi), half(2.5 * extent, 2.5 * extent, 2.5 * extent);
+  const double ratio = (hi - lo).norm() / (2.0 * half).norm();
+  auto grid = gridFor(center - half, center + half, kDefaultMaxErrorFraction * std::max(ratio, 1e-3));
+  if (grid.isOk()) grid_ = *grid;
+}
+
+void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
+  boost::asio::post(strand_, [self = shared_from_this(), who, name = std::move(name), role] {
+    self->participants_[who->sessionId()] = {who, name, role, {}};
+    self->broadcastPresence();
+  });
+}
+
+void DocumentHost::leave(uint64_t session) {
+  boost::asio::post(strand_, [self = shared_from_this(), session] {
+    self->participants_.erase(session);
+    for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
+    self->broadcastPresence();
+  });
+}
+
+void DocumentHost::select(uint64_t session, wire::Selection selection) {
+  boost::asio::post(strand_, [self = shared_from_this(), session, selection = std::move(selection)] {
+    auto it = self->participants_.find(session);
+    if (it == self->participants_.end()) return;
+    it->second.selection = selection;
+    self->broadcastPresence();
+  });
+}
+
+void DocumentHost::broadcastPresence() {
+  wire::ServerMessage m;
+  wire::Presence* p = m.mutable_presence();
+  p->set_document_id(id_.value);
+  for (const auto& [session, participant] : participants_) {
+    wire::Participant* out = p->add_participants();
+    out->set_session_id(session);
+    out->set_name(participant.name);
+    out->set_role(participant.role);
+    *out->mutable_selection() = participant.selection;
+  }
+  auto frame = frameOf(m, config_.limits.maxFrameBytes);
+  if (!frame) return;
+  for (const auto& [session, participant] : participants_) {
+    if (auto who = participant.who.lock()) who->send({frame, nullptr});
+  }
+}
+
+void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested, uint64_t clientSeq,
+                             bool resync) {
+  boost::asio::post(strand_, [self = shared_from_this(), who, requested, clientSeq, resync] {
+    const Limits& limits = self->config_.limits;
+    LodProfile profile;
+    profile.baseLevel = static_cast<int>(std::min<uint32_t>(requested.base_level(), 64));
+    profile.maxLevel = static_cast<int>(std::min<uint32_t>(requested.max_level(), 64));
+    profile.angleThresholdDegrees = requested.angle_threshold_degrees();
+    profile.triangleBudget = requested.triangle_budget() == 0
+                                 ? limits.maxTrianglesPerSubscriber
+                                 : std::min<int64_t>(static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX)),
+                                                     limits.maxTrianglesPerSubscriber);
+    profile.fidelity = requested.fidelity() > 0;
+    Status valid = profile.check();
+    if (valid.isOk() && profile.maxLevel > self->doc_.options().maxLevel) {
+      valid = invalidArgument("LOD profile: max level " + std::to_string(profile.maxLevel) + " exceeds the document's " +
+                              std::to_string(self->doc_.options().maxLevel));
+    }
+    if (!valid.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, valid), self->config_.limits.maxFrameBytes), nullptr});
+      return;
+    }
+    const std::string key = profile.key();
+    auto it = self->views_.find(key);
+    if (it == self->views_.end()) {
+      const auto start = Clock::now();
+      auto tessellation = Tessellation::build(self->doc_, profile);
+      self->stats_.tessellateMicros += microsSince(start);
+      if (!tessellation.isOk()) {
+        auto reject = rejectFor(clientSeq, tessellation.status());
+        reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
+        who->send({frameOf(reject, self->config_.limits.maxFrameBytes), nullptr});
+        return;
+      }
+      View view;
+      view.tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
+      view.wireProfile = requested;
+      it = self->views_.emplace(key, std::move(view)).first;
+    }
+    View& view = it->second;
+    if (!resync) {
+      wire::ServerMessage ack;
+      ack.mutable_ack()->set_client_seq(clientSeq);
+      ack.mutable_ack()->set_document_id(self->id_.value);
+      ack.mutable_ack()->set_version(self->version_);
+      who->send({frameOf(ack, self->config_.limits.maxFrameBytes), nullptr});
+    }
+    self->sendSnapshot(view, who, resync);
+    // Other views may have rebuilt (the hierarchy can grow); their next
+    // update notices it by itself.
+  });
+}
+
+void DocumentHost::unsubscribe(uint64_t session) {
+  boost::asio::post(strand_, [self = shared_from_this(), session] {
+    for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
+  });
+}
+
+Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t region, const View& view) {
+  const auto start = Clock::now();
+  const RegionHeader header{region, version_, view.tessellation->profile(), grid_};
+  TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
+  stats_.encodeMicros += microsSince(start);
+  ++stats_.regionsEncoded;
+  return std::make_shared<const std::string>(std::move(bytes));
+}
+
+void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync) {
+  // Encoded once per region and version; later subscribers share the bytes.
+  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;
+  for (const auto& [region, mesh] : view.tessellation->regions()) {
+    auto& cached = view.encoded[region];
+    if (!cached) {
+      auto encoded = encode(region, view);
+      if (!encoded.isOk()) {
+        logEvent(LogLevel::kError, "encode_failed", {{"doc", id_.value}, {"error", encoded.status().message()}});
+        continue;
+      }
+      cached = *encoded;
+    }
+    regions.emplace_back(region, cached);
+  }
+  std::vector<std::vector<size_t>> parts(1);
+  size_t partBytes = 0;
+  for (size_t i = 0; i < regions.size(); ++i) {
+    if (partBytes > 0 && partBytes + regions[i].second->size() > kSnapshotPartBytes) parts.emplace_back(), partBytes = 0;
+    parts.back().push_back(i);
+    partBytes += regions[i].second->size() + 16;
+  }
+  for (size_t p = 0; p < parts.size(); ++p) {
+    wire::ServerMessage m;
+    wire::Snapshot* s = m.mutable_snapshot();
+    s->set_document_id(id_.value);
+    s->set_version(version_);
+    *s->mutable_profile() = view.wireProfile;
+    s->set_remaining_parts(static_cast<uint32_t>(parts.size() - p - 1));
+    s->set_resync(resync);
+    for (size_t i : parts[p]) {
+      wire::Region* r = s->add_regions();
+      r->set_region_id(regions[i].first);
+      r->set_draco(*regions[i].second);
+    }
+    who->send({frameOf(m, config_.limits.maxFrameBytes), nullptr});
+  }
+  view.subscribers[who->sessionId()] = who;
+  view.knownVersion[who->sessionId()] = version_;
+  if (resync) ++stats_.resyncs;
+}
+
+void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) {
+  boost::asio::post(strand_, [self = shared_from_this(), author, authorName = std::move(authorName),
+                              message = std::move(message)] {
+    const uint64_t seq = message.client_seq();
+    if (self->failed_) {
+      author->send({frameOf(rejectFor(seq, internalError("the document's journal failed; reopen it")),
+                            self->config_.limits.maxFrameBytes),
+                    nullptr});
+      return;
+    }
+    JournalEntry entry;
+    uint64_t editId = 0;
+    Status applied = self->apply(message, editId, entry);
+    if (!applied.isOk()) {
+      ++self->stats_.rejects;
+      auto reject = rejectFor(seq, applied);
+      if (message.command_case() == wire::ClientMessage::kUndo || message.command_case() == wire::ClientMessage::kRedo) {
+        if (applied.code() == ErrorCode::kInvalidArgument) reject.mutable_reject()->set_reason(wire::REJECT_REASON_INVALID_STATE);
+      }
+      author->send({frameOf(reject, self->config_.limits.maxFrameBytes), nullptr});
+      return;
+    }
+    self->afterApply(author, seq, editId, entry, authorName);
+  });
+}
+
+Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry) {
+  auto addedEdit = [&](Expected<EditId> id) -> Status {
+    TESSERA_RETURN_IF_ERROR(id.status());
+    editId = id->value;
+    entry.kind = JournalEntry::Kind::kEdit;
+    entry.edit = doc_.edits().back();
+    return Status::ok();
+  };
+  switch (message.command_case()) {
+    case wire::ClientMessage::kMoveVertex: {
+      const auto& m = message.move_vertex();
+      std::vector<VertexId> vertices;
+      for (uint64_t packed : m.vertex_ids()) vertices.push_back(VertexId::fromPacked(packed));
+      const Vec3 target(m.target().x(), m.target().y(), m.target().z());
+      if (m.mode() == wire::MOVE_MODE_OFFSET) return addedEdit(doc_.moveBy(vertices, target));
+      if (m.mode() != wire::MOVE_MODE_DIRECT_MANIPULATION) return invalidArgument("move: mode is not set");
+      return addedEdit(doc_.moveToLimit(vertices, target));
+    }
+    case wire::ClientMessage::kSetEdgeSharpness: {
+      const auto& m = message.set_edge_sharpness();
+      return addedEdit(doc_.setEdgeSharpness(EdgeId::fromPacked(m.edge_id()), m.sharpness()));
+    }
+    case wire::ClientMessage::kSetVertexType: {
+      const auto& m = message.set_vertex_type();
+      float sharpness = 0.0f;
+      if (m.value_case() == wire::SetVertexType::kSharpness) {
+        sharpness = m.sharpness();
+      } else if (m.type() == wire::VERTEX_TYPE_CUSP || m.type() == wire::VERTEX_TYPE_CORNER) {
+        sharpness = kSharpnessInfinite;
+      } else if (m.type() != wire::VERTEX_TYPE_SMOOTH) {
+        return invalidArgument("vertex type: no type or sharpness given");
+      }
+      return addedEdit(doc_.setVertexSharpness(VertexId::fromPacked(m.vertex_id()), sharpness));
+    }
+    case wire::ClientMessage::kUndo:
+    case wire::ClientMessage::kRedo: {
+      const bool undo = message.command_case() == wire::ClientMessage::kUndo;
+      const EditId target{undo ? message.undo().edit_id() : message.redo().edit_id()};
+      TESSERA_RETURN_IF_ERROR(undo ? doc_.undo(target) : doc_.redo(target));
+      editId = target.value;
+      entry.kind = undo ? JournalEntry::Kind::kUndo : JournalEntry::Kind::kRedo;
+      entry.target = target;
+      return Status::ok();
+    }
+    default:
+      return invalidArgument("not an edit command");
+  }
+}
+
+Status DocumentHost::retract(const JournalEntry& entry) {
+  switch (entry.kind) {
+    case JournalEntry::Kind::kEdit: TESSERA_RETURN_IF_ERROR(doc_.retractLast()); break;
+    case JournalEntry::Kind::kUndo: TESSERA_RETURN_IF_ERROR(doc_.redo(entry.target)); break;
+    case JournalEntry::Kind::kRedo: TESSERA_RETURN_IF_ERROR(doc_.undo(entry.target)); break;
+  }
+  for (auto& [key, view] : views_) {
+    auto changes = view.tessellation->update(doc_);
+    if (!changes.isOk()) return changes.status();
+  }
+  return Status::ok();
+}
+
+void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
+                              const JournalEntry& entry, const std::string& authorName) {
+  // Every view first: an edit that moves the surface out of the document's
+  // quantization grid is taken back and refused before anything is sent.
+  std::map<std::string, Tessellation::Changes> updates;
+  bool outside = false;
+  for (auto it = views_.begin(); it != views_.end(); ++it) {
+    const auto start = Clock::now();
+    auto changes = it->second.tessellation->update(doc_);
+    stats_.tessellateMicros += microsSince(start);
+    if (!changes.isOk()) {
+      updates.emplace(it->first, Tessellation::Changes{});
+      failedViews_.insert(it->first);
+      continue;
+    }
+    for (uint64_t region : changes->changed) outside = outside || !insideGrid(it->second.tessellation->regions().at(region), grid_);
+    updates.emplace(it->first, std::move(*changes));
+  }
+  if (outside) {
+    Status back = retract(entry);
+    ++stats_.rejects;
+    if (!back.isOk()) logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
+    wire::ServerMessage reject;
+    reject.mutable_reject()->set_client_seq(clientSeq);
+    reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
+    reject.mutable_reject()->set_message("the edit would move the surface outside the document's bounds " +
+                                         std::to_string(grid_.origin[0]) + ".." +
+                                         std::to_string(grid_.origin[0] + grid_.range) + " (per axis)");
+    author->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
+  ++stats_.edits;
+  const uint64_t from = version_++;
+  Pending pending{version_, author, clientSeq, editId, {}, {}, Clock::now()};
+  for (auto it = views_.begin(); it != views_.end();) {
+    View& view = it->second;
+    auto changes = failedViews_.count(it->first) ? Expected<Tessellation::Changes>(internalError("over its triangle budget"))
+                                                 : Expected<Tessellation::Changes>(std::move(updates.at(it->first)));
+    failedViews_.erase(it->first);
+    if (!changes.isOk()) {
+      // Over its triangle budget now: its subscribers get an error and the
+      // view goes; they may subscribe again with another profile.
+      wire::ServerMessage error;
+      error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+      error.mutable_error()->set_message("LOD profile " + it->first + " dropped: " + changes.status().message());
+      auto frame = frameOf(error, config_.limits.maxFrameBytes);
+      for (auto& [session, weak] : view.subscribers) {
+        if (auto who = weak.lock()) who->send({frame, nullptr});
+      }
+      it = views_.erase(it);
+      continue;
+    }
+    auto delta = std::make_shared<DeltaContent>();
+    delta->documentId = id_.value;
+    delta->fromVersion = from;
+    delta->toVersion = version_;
+    delta->authorSession = author->sessionId();
+    delta->editId = editId;
+    for (uint64_t region : changes->changed) {
+      auto encoded = encode(region, view);
+      if (!encoded.isOk()) {
+        logEvent(LogLevel::kError, "encode_failed", {{"doc", id_.value}, {"error", encoded.status().message()}});
+        continue;
+      }
+      view.encoded[region] = *encoded;
+      delta->regions.emplace_back(region, *encoded);
+    }
+    for (uint64_t region : changes->removed) view.encoded.erase(region);
+    delta->removed = changes->removed;
+    pending.frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
+    pending.deltas[it->first] = std::move(delta);
+    ++it;
+  }
+  pending_.push_back(std::move(pending));
+  store_.append(id_, version_ - 1, authorName, encodeJournalEntry(entry),
+                [self = shared_from_this(), version = version_](Status status) {
+                  boost::asio::post(self->strand_, [self, version, status] { self->committed(version, status); });
+                });
+}
+
+void DocumentHost::committed(uint64_t version, Status status) {
+  if (!status.isOk()) {
+    failed_ = true;
+    logEvent(LogLevel::kError, "journal_failed", {{"doc", id_.value}, {"version", version}, {"error", status.message()}});
+    wire::ServerMessage error;
+    error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+    error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": journal write failed");
+    auto frame = frameOf(error, config_.limits.maxFrameBytes);
+    for (auto& [session, p] : participants_) {
+      if (auto who = p.who.lock()) who->send({frame, nullptr});
+    }
+    return;
+  }
+  durableVersion_ = std::max(durableVersion_, version);
+  while (!pending_.empty() && pending_.front().version <= durableVersion_) {
+    Pending& p = pending_.front();
+    stats_.commitMicros += microsSince(p.applied);
+    if (auto author = p.author.lock()) {
+      wire::ServerMessage ack;
+      ack.mutable_ack()->set_client_seq(p.clientSeq);
+      ack.mutable_ack()->set_document_id(id_.value);
+      ack.mutable_ack()->set_version(p.version);
+      ack.mutable_ack()->set_edit_id(p.editId);
+      author->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
+    }
+    for (auto& [key, view] : views_) {
+      auto frame = p.frames.find(key);
+      if (frame == p.frames.end() || !frame->second) continue;
+      for (auto& [session, weak] : view.subscribers) {
+        if (view.knownVersion[session] >= p.version) continue;  // its snapshot holds this one
+        if (auto who = weak.lock()) who->send({frame->second, p.deltas[key]});
+      }
+    }
+    pending_.pop_front();
+  }
+  maybeSnapshot();
+}
+
+void DocumentHost::maybeSnapshot() {
+  // Only at rest: a snapshot must never hold an edit the journal lacks.
+  if (!pending_.empty() || version_ != durableVersion_ || version_ - lastSnapshot_ < config_.snapshotEvery) return;
+  Status saved = store_.putSnapshot(id_, version_ - 1, serializeDocument(doc_));
+  if (!saved.isOk()) {
+    logEvent(LogLevel::kWarn, "snapshot_failed", {{"doc", id_.value}, {"error", saved.message()}});
+    return;
+  }
+  lastSnapshot_ = version_;
+}
+
+void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) {
+  boost::asio::post(strand_, [self = shared_from_this(), who, clientSeq, request] {
+    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
+    auto surface = self->doc_.surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
+                                      request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
+    if (!surface.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, surface.status()), maxFrame), nullptr});
+      return;
+    }
+    // The GLB writer targets files: a private temporary one.
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("tessera-export-" + std::to_string(::getpid()) + "-" + std::to_string(clientSeq) + "-" +
+                               std::to_string(who->sessionId()) + ".glb"))
+                                 .string();
+    ExportOptions options;
+    options.draco = request.draco();
+    Status written = exportMesh(*surface, path, options);
+    std::string bytes;
+    if (written.isOk()) {
+      std::ifstream in(path, std::ios::binary);
+      std::stringstream ss;
+      ss << in.rdbuf();
+      bytes = ss.str();
+    }
+    std::error_code ignored;
+    std::filesystem::remove(path, ignored);
+    if (!written.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, written), maxFrame), nullptr});
+      return;
+    }
+    wire::ServerMessage m;
+    wire::ExportResult* r = m.mutable_export_result();
+    r->set_client_seq(clientSeq);
+    r->set_document_id(self->id_.value);
+    r->set_version(self->version_);
+    r->set_glb(std::move(bytes));
+    auto frame = frameOf(m, maxFrame);
+    if (!frame) {
+      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the export exceeds the frame limit")), maxFrame), nullptr});
+      return;
+    }
+    who->send({frame, nullptr});
+  });
+}
+
+}  // namespace tessera::server

@@ -1,0 +1,108 @@
+// One open document on the server: its single writer (issue §2). Every
+// command runs on the host's strand, on the worker pool, never on network
+// threads, so the document has a total order of versions. After an edit it
+// updates each LOD profile's tessellation, encodes the changed regions once
+// per profile, journals the edit, and -- once the journal commit is durable
+// -- releases the author's ack and everyone's deltas, in version order
+// (edits are applied and tessellated while earlier commits are in flight).
+#pragma once
+
+#include <boost/asio/any_io_executor.hpp>
+#include <boost/asio/strand.hpp>
+#include <deque>
+#include <map>
+#include <set>
+#include <memory>
+#include <string>
+
+#include "core/document/document.h"
+#include "core/tessellation/region_codec.h"
+#include "core/tessellation/tessellation.h"
+#include "protocol/tessera.pb.h"
+#include "server/config.h"
+#include "server/journal_entry.h"
+#include "server/server_stats.h"
+#include "server/store/store.h"
+#include "server/subscriber.h"
+
+namespace tessera::server {
+
+class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
+ public:
+  DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
+               boost::asio::any_io_executor workers, Store& store, const ServerConfig& config,
+               ServerStats& stats);
+
+  DocumentId id() const { return id_; }
+
+  // All of these post onto the host's strand and answer through the
+  // subscriber; they never block the caller.
+  void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role);
+  void leave(uint64_t session);
+  void select(uint64_t session, wire::Selection selection);
+  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync);
+  void unsubscribe(uint64_t session);
+  void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message);
+  void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request);
+
+  // Document version (1 at creation, +1 per journaled command).
+  static uint64_t versionOf(uint64_t journalEntries) { return journalEntries + 1; }
+
+ private:
+  struct Participant {
+    std::weak_ptr<Subscriber> who;
+    std::string name;
+    wire::Role role;
+    wire::Selection selection;
+  };
+  struct View {  // one LOD profile's tessellation and its subscribers
+    std::unique_ptr<Tessellation> tessellation;
+    std::map<uint64_t, std::shared_ptr<const std::string>> encoded;  // region -> Draco, at `version_`
+    std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;       // session -> subscriber
+    std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
+    wire::LodProfile wireProfile;
+  };
+  struct Pending {  // applied and tessellated, waiting for its commit
+    uint64_t version;
+    std::weak_ptr<Subscriber> author;
+    uint64_t clientSeq, editId;
+    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
+    std::map<std::string, std::shared_ptr<const std::string>> frames;
+    std::chrono::steady_clock::time_point applied;
+  };
+
+  Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
+  void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
+                  const JournalEntry& entry, const std::string& authorName);
+  void committed(uint64_t version, Status status);
+  // Takes an applied command back (an edit refused after applying it).
+  Status retract(const JournalEntry& entry);
+  void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  void broadcastPresence();
+  Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view);
+  void maybeSnapshot();
+
+  const DocumentId id_;
+  const std::string name_;
+  Document doc_;
+  uint64_t version_;         // applied
+  uint64_t durableVersion_;  // committed to the journal
+  uint64_t lastSnapshot_;
+  bool failed_ = false;
+  boost::asio::strand<boost::asio::any_io_executor> strand_;
+  Store& store_;
+  const ServerConfig& config_;
+  ServerStats& stats_;
+  QuantizationGrid grid_;
+  std::map<uint64_t, Participant> participants_;
+  std::map<std::string, View> views_;  // by LodProfile::key()
+  std::deque<Pending> pending_;
+  std::set<std::string> failedViews_;
+};
+
+// Builds the frame of a server message (length prefix + payload).
+std::shared_ptr<const std::string> frameOf(const wire::ServerMessage& message, uint32_t maxFrameBytes);
+// A Reject for a failed command, its reason chosen from the Status code.
+wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status);
+
+}  // namespace tessera::server

@@ -1,0 +1,125 @@
+#include "server/outbox.h"
+
+#include <algorithm>
+#include <map>
+
+#include "protocol/framing.h"
+#include "protocol/tessera.pb.h"
+
+namespace tessera::server {
+
+std::shared_ptr<const std::string> encodeDeltaFrame(const DeltaContent& delta, uint32_t maxFrameBytes) {
+  wire::ServerMessage message;
+  wire::Delta* d = message.mutable_delta();
+  d->set_document_id(delta.documentId);
+  d->set_from_version(delta.fromVersion);
+  d->set_to_version(delta.toVersion);
+  d->set_author_session_id(delta.authorSession);
+  d->set_edit_id(delta.editId);
+  for (const auto& [id, bytes] : delta.regions) {
+    wire::Region* r = d->add_regions();
+    r->set_region_id(id);
+    r->set_draco(*bytes);
+  }
+  for (uint64_t id : delta.removed) d->add_removed_region_ids(id);
+  auto frame = encodeFrame(message, maxFrameBytes);
+  return frame.isOk() ? std::make_shared<const std::string>(std::move(*frame)) : nullptr;
+}
+
+void Outbox::push(Outgoing message, uint32_t maxFrameBytes) {
+  if (message.delta && resyncs_.count(message.delta->documentId)) {
+    ++drops_;  // a snapshot is coming that already holds it
+    return;
+  }
+  bytes_ += message.frame->size();
+  queue_.push_back(std::move(message));
+  if (bytes_ > limits_.queueSoftBytes || queue_.size() > limits_.queueMaxMessages) mergeDeltas(maxFrameBytes);
+  if (bytes_ > limits_.queueHardBytes || queue_.size() > limits_.queueMaxMessages) dropDeltas();
+}
+
+void Outbox::popFront() {
+  bytes_ -= queue_.front().frame->size();
+  queue_.pop_front();
+  writing_ = false;
+}
+
+std::set<uint64_t> Outbox::takeResyncs() { return std::exchange(resyncs_, {}); }
+
+// Merges every queued delta of a document (except one being written) into
+// the position of the first: newest payload per region, removals that
+// stand, versions spanning them all.
+void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
+  std::map<uint64_t, size_t> first;  // document -> index of its first mergeable delta
+  std::deque<Outgoing> kept;
+  std::map<uint64_t, DeltaContent> merged;
+  const size_t start = writing_ ? 1 : 0;
+  for (size_t i = 0; i < queue_.size(); ++i) {
+    Outgoing& m = queue_[i];
+    if (i < start || !m.delta) {
+      kept.push_back(std::move(m));
+      continue;
+    }
+    const DeltaContent& d = *m.delta;
+    auto [it, fresh] = merged.try_emplace(d.documentId, d);
+    if (fresh) {
+      first[d.documentId] = kept.size();
+      kept.push_back({});  // filled below
+      continue;
+    }
+    DeltaContent& into = it->second;
+    ++merges_;
+    into.toVersion = d.toVersion;
+    into.authorSession = d.authorSession;
+    into.editId = d.editId;
+    for (const auto& [id, bytes] : d.regions) {
+      auto r = std::find_if(into.regions.begin(), into.regions.end(), [&](const auto& e) { return e.first == id; });
+      if (r != into.regions.end()) {
+        r->second = bytes;
+      } else {
+        into.regions.emplace_back(id, bytes);
+      }
+      into.removed.erase(std::remove(into.removed.begin(), into.removed.end(), id), into.removed.end());
+    }
+    for (uint64_t id : d.removed) {
+      into.regions.erase(std::remove_if(into.regions.begin(), into.regions.end(),
+                                        [&](const auto& e) { return e.first == id; }),
+                         into.regions.end());
+      if (std::find(into.removed.begin(), into.removed.end(), id) == into.removed.end()) into.removed.push_back(id);
+    }
+  }
+  bytes_ = 0;
+  for (auto& [document, content] : merged) {
+    auto shared = std::make_shared<const DeltaContent>(std::move(content));
+    auto frame = encodeDeltaFrame(*shared, maxFrameBytes);
+    if (!frame) {
+      resyncs_.insert(document);  // too big to send as one delta
+      kept[first[document]] = {};
+      continue;
+    }
+    kept[first[document]] = {frame, shared};
+  }
+  queue_.clear();
+  for (Outgoing& m : kept) {
+    if (!m.frame) continue;
+    bytes_ += m.frame->size();
+    queue_.push_back(std::move(m));
+  }
+}
+
+void Outbox::dropDeltas() {
+  std::deque<Outgoing> kept;
+  bytes_ = 0;
+  for (size_t i = 0; i < queue_.size(); ++i) {
+    Outgoing& m = queue_[i];
+    if (m.delta && !(writing_ && i == 0)) {
+      resyncs_.insert(m.delta->documentId);
+      ++drops_;
+      continue;
+    }
+    bytes_ += m.frame->size();
+    kept.push_back(std::move(m));
+  }
+  queue_.swap(kept);
+}
+
+}  // namespace tessera::server

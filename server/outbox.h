@@ -1,0 +1,69 @@
+// A client's bounded outgoing queue (issue §2): frames are shared between
+// clients (encoded once), and a client that falls behind never grows server
+// memory without bound. Above the soft limit, queued deltas of a document
+// are merged into one that keeps only the newest payload per region; above
+// the hard limit (or the message cap) they are dropped, and the document is
+// marked for a resync snapshot.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "server/config.h"
+
+namespace tessera::server {
+
+// What a delta carries, kept beside its frame so queued deltas can merge.
+struct DeltaContent {
+  uint64_t documentId = 0, fromVersion = 0, toVersion = 0, authorSession = 0, editId = 0;
+  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;  // region id -> Draco bytes
+  std::vector<uint64_t> removed;
+};
+
+struct Outgoing {
+  std::shared_ptr<const std::string> frame;   // length prefix + payload
+  std::shared_ptr<const DeltaContent> delta;  // set for deltas
+};
+
+class Outbox {
+ public:
+  explicit Outbox(const Limits& limits) : limits_(limits) {}
+
+  // Queues a message. Deltas may be merged, or dropped (their documents then
+  // appear in takeResyncs()).
+  void push(Outgoing message, uint32_t maxFrameBytes);
+  bool empty() const { return queue_.empty(); }
+  // The next frame to write; it stays queued (and is never merged) until
+  // popFront() after the write completes.
+  const Outgoing& front() const { return queue_.front(); }
+  void popFront();
+  void markWriting() { writing_ = true; }
+  bool writing() const { return writing_; }
+
+  uint64_t bytes() const { return bytes_; }
+  size_t size() const { return queue_.size(); }
+  uint64_t merges() const { return merges_; }
+  uint64_t drops() const { return drops_; }
+  // Documents whose deltas were dropped: each needs a fresh snapshot.
+  std::set<uint64_t> takeResyncs();
+
+ private:
+  void mergeDeltas(uint32_t maxFrameBytes);
+  void dropDeltas();
+
+  const Limits& limits_;
+  std::deque<Outgoing> queue_;
+  uint64_t bytes_ = 0;
+  bool writing_ = false;
+  uint64_t merges_ = 0, drops_ = 0;
+  std::set<uint64_t> resyncs_;
+};
+
+// The frame of a delta (also used after merging).
+std::shared_ptr<const std::string> encodeDeltaFrame(const DeltaContent& delta, uint32_t maxFrameBytes);
+
+}  // namespace tessera::server

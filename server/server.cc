@@ -1,0 +1,131 @@
+#include "server/server.h"
+
+#include <boost/asio/post.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <fstream>
+#include <thread>
+
+#include "server/log.h"
+#include "server/store/sqlite_store.h"
+
+namespace tessera::server {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+Server::Server(const ServerConfig& config)
+    : config_(config),
+      workers_(static_cast<size_t>(config.workerThreads)),
+      acceptor_(io_),
+      signals_(io_, SIGINT, SIGTERM) {}
+
+Server::~Server() {
+  workers_.join();
+}
+
+Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
+  std::unique_ptr<Server> server(new Server(config));
+  TESSERA_ASSIGN_OR_RETURN(auto store, SqliteStore::open(config.dataDirectory));
+  server->store_ = std::move(store);
+  if (!config.adminTokenFile.empty()) {
+    std::ifstream in(config.adminTokenFile);
+    std::string token;
+    std::getline(in, token);
+    if (token.empty()) return invalidArgument(config.adminTokenFile + ": no admin token in the file");
+    TESSERA_RETURN_IF_ERROR(server->store_->addToken(TokenScope::allDocuments(), token, Role::kAdmin));
+  }
+  server->registry_ = std::make_unique<DocumentRegistry>(*server->store_, server->workers_.get_executor(),
+                                                         server->config_, server->stats_);
+  server->context_ = std::make_unique<ServerContext>(ServerContext{
+      server->config_, *server->store_, *server->registry_, server->stats_, server->workers_.get_executor()});
+  boost::system::error_code ec;
+  const auto address = asio::ip::make_address(config.listenAddress, ec);
+  if (ec) return invalidArgument("--listen: bad address '" + config.listenAddress + "'");
+  const tcp::endpoint endpoint(address, config.port);
+  server->acceptor_.open(endpoint.protocol(), ec);
+  if (!ec) server->acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+  if (!ec) server->acceptor_.bind(endpoint, ec);
+  if (!ec) server->acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+  if (ec) {
+    return ioError("cannot listen on " + config.listenAddress + ":" + std::to_string(config.port) + ": " + ec.message());
+  }
+  server->port_ = server->acceptor_.local_endpoint().port();
+  if (!config.portFile.empty()) {
+    const std::string temporary = config.portFile + ".tmp";
+    std::ofstream(temporary) << server->port_ << "\n";
+    std::rename(temporary.c_str(), config.portFile.c_str());
+  }
+  return server;
+}
+
+void Server::run() {
+  logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
+                                          {"data", config_.dataDirectory}});
+  signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
+    if (ec) return;
+    logEvent(LogLevel::kInfo, "signal", {{"signal", static_cast<int64_t>(signal)}});
+    shutdown();
+  });
+  accept();
+  std::vector<std::thread> threads;
+  for (int i = 1; i < config_.networkThreads; ++i) threads.emplace_back([this] { io_.run(); });
+  io_.run();
+  for (auto& t : threads) t.join();
+  workers_.join();
+  logEvent(LogLevel::kInfo, "stopped", {});
+}
+
+void Server::stop() {
+  asio::post(io_, [this] { shutdown(); });
+}
+
+void Server::accept() {
+  acceptor_.async_accept(asio::make_strand(io_), [this](const boost::system::error_code& ec, tcp::socket socket) {
+    if (ec) {
+      if (!stopping_) accept();
+      return;
+    }
+    boost::system::error_code ignored;
+    socket.set_option(tcp::no_delay(true), ignored);
+    const auto remote = socket.remote_endpoint(ignored);
+    const std::string address = remote.address().to_string();
+    // Prune finished connections, count this address's live ones.
+    int sameAddress = 0;
+    for (auto it = connections_.begin(); it != connections_.end();) {
+      auto live = it->second.lock();
+      if (!live) {
+        it = connections_.erase(it);
+        continue;
+      }
+      sameAddress += live->address() == address ? 1 : 0;
+      ++it;
+    }
+    const uint64_t session = nextSession_++;
+    auto connection = std::make_shared<Connection>(std::move(socket), *context_, session, address);
+    connection->start();
+    if (sameAddress >= config_.limits.connectionsPerAddress) {
+      connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS,
+                         "more than " + std::to_string(config_.limits.connectionsPerAddress) + " connections from " + address);
+    } else {
+      connections_[session] = connection;
+    }
+    accept();
+  });
+}
+
+void Server::shutdown() {
+  if (stopping_) return;
+  stopping_ = true;
+  boost::system::error_code ignored;
+  acceptor_.close(ignored);
+  signals_.cancel(ignored);
+  // Durable writes first: their acks are queued before the goodbye.
+  store_->close();
+  for (auto& [session, weak] : connections_) {
+    if (auto c = weak.lock()) c->shutdown();
+  }
+  auto timer = std::make_shared<asio::steady_timer>(io_, std::chrono::milliseconds(500));
+  timer->async_wait([this, timer](const boost::system::error_code&) { io_.stop(); });
+}
+
+}  // namespace tessera::server

@@ -1,0 +1,52 @@
+// tessera-server: the acceptor, the network threads, the worker pool for
+// document strands, the store, and graceful shutdown on SIGTERM/SIGINT:
+// stop accepting, make pending journal writes durable (their acks go out),
+// tell every client, close.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/thread_pool.hpp>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "server/config.h"
+#include "server/connection.h"
+#include "server/server_context.h"
+#include "server/store/store.h"
+
+namespace tessera::server {
+
+class Server {
+ public:
+  static Expected<std::unique_ptr<Server>> create(const ServerConfig& config);
+  ~Server();
+
+  uint16_t port() const { return port_; }
+  // Serves until a signal or stop(); returns once everything is closed.
+  void run();
+  void stop();
+
+ private:
+  explicit Server(const ServerConfig& config);
+  void accept();
+  void shutdown();
+
+  ServerConfig config_;
+  boost::asio::io_context io_;
+  boost::asio::thread_pool workers_;
+  boost::asio::ip::tcp::acceptor acceptor_;
+  boost::asio::signal_set signals_;
+  std::unique_ptr<Store> store_;
+  ServerStats stats_;
+  std::unique_ptr<DocumentRegistry> registry_;
+  std::unique_ptr<ServerContext> context_;
+  uint16_t port_ = 0;
+  uint64_t nextSession_ = 1;
+  bool stopping_ = false;
+  std::map<uint64_t, std::weak_ptr<Connection>> connections_;
+};
+
+}  // namespace tessera::server

@@ -1,0 +1,47 @@
+// What every connection shares: settings, the store, the open documents,
+// counters, and the worker pool that runs document strands.
+#pragma once
+
+#include <boost/asio/any_io_executor.hpp>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "server/config.h"
+#include "server/document_host.h"
+#include "server/server_stats.h"
+#include "server/store/store.h"
+
+namespace tessera::server {
+
+// Open documents, loaded from the store on first use and shared by every
+// connection that opened them.
+class DocumentRegistry {
+ public:
+  DocumentRegistry(Store& store, boost::asio::any_io_executor workers, const ServerConfig& config, ServerStats& stats)
+      : store_(store), workers_(workers), config_(config), stats_(stats) {}
+
+  // Loads (on the calling thread) or shares the host of a document.
+  Expected<std::shared_ptr<DocumentHost>> open(DocumentId id);
+  // Forgets a deleted document's host.
+  void forget(DocumentId id);
+
+ private:
+  Store& store_;
+  boost::asio::any_io_executor workers_;
+  const ServerConfig& config_;
+  ServerStats& stats_;
+  std::mutex mutex_;
+  std::map<uint64_t, std::weak_ptr<DocumentHost>> hosts_;
+};
+
+struct ServerContext {
+  const ServerConfig& config;
+  Store& store;
+  DocumentRegistry& documents;
+  ServerStats& stats;
+  boost::asio::any_io_executor workers;
+};
+
+}  // namespace tessera::server

@@ -1,0 +1,34 @@
+// Server-wide counters for the stats command and logs. Atomics: updated
+// from document strands and connection strands alike.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+
+namespace tessera::server {
+
+struct ServerStats {
+  std::atomic<int64_t> connections{0};
+  std::atomic<int64_t> connectionsTotal{0};
+  std::atomic<int64_t> documentsOpen{0};
+  std::atomic<int64_t> edits{0};
+  std::atomic<int64_t> rejects{0};
+  std::atomic<int64_t> bytesSent{0};
+  std::atomic<int64_t> framesSent{0};
+  std::atomic<int64_t> deltaMerges{0};
+  std::atomic<int64_t> resyncs{0};
+  std::atomic<int64_t> queueBytes{0};      // sum over clients
+  std::atomic<int64_t> queueBytesMax{0};   // largest single client queue seen
+  std::atomic<int64_t> tessellateMicros{0};
+  std::atomic<int64_t> encodeMicros{0};
+  std::atomic<int64_t> commitMicros{0};    // apply to durable, summed
+  std::atomic<int64_t> regionsEncoded{0};
+  const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+
+  double uptimeSeconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
+};
+
+}  // namespace tessera::server

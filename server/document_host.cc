@@ -9,6 +9,7 @@
 
 #include "core/document/document_file.h"
 #include "core/io/mesh_export.h"
+#include "core/tessellation/document_grid.h"
 #include "protocol/framing.h"
 #include "server/journal_entry.h"
 #include "server/log.h"
@@ -32,15 +33,6 @@ wire::RejectReason reasonFor(ErrorCode code) {
     case ErrorCode::kUnsupported: return wire::REJECT_REASON_INVALID_ARGUMENT;
     default: return wire::REJECT_REASON_INTERNAL;
   }
-}
-
-bool insideGrid(const RegionMesh& mesh, const QuantizationGrid& grid) {
-  for (const Vec3& p : mesh.positions) {
-    for (int k = 0; k < 3; ++k) {
-      if (!(p[k] >= grid.origin[k] && p[k] <= grid.origin[k] + grid.range)) return false;
-    }
-  }
-  return true;
 }
 
 // Snapshot parts stay well under any client's frame limit.
@@ -79,20 +71,7 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       store_(store),
       config_(config),
       stats_(stats) {
-  // One quantization grid for every region and profile of the document, so
-  // border vertices decode identically on both sides (issue 4, §4). It
-  // spans the base mesh's box grown to five times its largest extent, so
-  // edits have room, with the bits for 1e-4 of the base box's diagonal; an
-  // edit that would leave it is refused (afterApply).
-  const auto& points = doc_.basePoints();
-  Vec3 lo = points.empty() ? Vec3(0, 0, 0) : points[0], hi = lo;
-  for (const Vec3& p : points) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  }
-  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-9});
-  const Vec3 center = 0.5 * (lo + hi), half(2.5 * extent, 2.5 * extent, 2.5 * extent);
-  const double ratio = (hi - lo).norm() / (2.0 * half).norm();
-  auto grid = gridFor(center - half, center + half, kDefaultMaxErrorFraction * std::max(ratio, 1e-3));
+  auto grid = documentGrid(doc_);
   if (grid.isOk()) grid_ = *grid;
 }
 
@@ -338,11 +317,18 @@ Status DocumentHost::retract(const JournalEntry& entry) {
 
 void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
                               const JournalEntry& entry, const std::string& authorName) {
-  // Every view first: an edit that moves the surface out of the document's
-  // quantization grid is taken back and refused before anything is sent.
-  std::map<std::string, Tessellation::Changes> updates;
+  // An edit that moves the surface out of the document's quantization grid
+  // is taken back and refused before anything is sent: every displayed
+  // vertex is a hierarchy limit, and the changed ones are listed.
   bool outside = false;
-  for (auto it = views_.begin(); it != views_.end(); ++it) {
+  const SparseEvaluator& h = doc_.hierarchy();
+  for (VertexId id : doc_.lastUpdate().limits) {
+    const Index v = h.level(id.level()).findVertex(id.index());
+    const Vec3& p = h.limitPosition(id.level(), v);
+    for (int k = 0; k < 3; ++k) outside = outside || !(p[k] >= grid_.origin[k] && p[k] <= grid_.origin[k] + grid_.range);
+  }
+  std::map<std::string, Tessellation::Changes> updates;
+  for (auto it = views_.begin(); !outside && it != views_.end(); ++it) {
     const auto start = Clock::now();
     auto changes = it->second.tessellation->update(doc_);
     stats_.tessellateMicros += microsSince(start);
@@ -351,7 +337,6 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
       failedViews_.insert(it->first);
       continue;
     }
-    for (uint64_t region : changes->changed) outside = outside || !insideGrid(it->second.tessellation->regions().at(region), grid_);
     updates.emplace(it->first, std::move(*changes));
   }
   if (outside) {

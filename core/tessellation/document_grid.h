@@ -1,0 +1,17 @@
+// The one quantization grid of a document (tessellation issue §4): every
+// region of every LOD profile is encoded on it, so border vertices decode
+// identically on both sides. It spans the base mesh's box grown to five
+// times its largest extent, so edits have room, with the bits that keep the
+// decoded error within 1e-4 of the base box's diagonal. A surface leaving
+// it cannot be encoded: servers refuse such edits.
+#pragma once
+
+#include "core/document/document.h"
+#include "core/tessellation/region_codec.h"
+
+namespace tessera {
+
+Expected<QuantizationGrid> documentGrid(const Document& doc);
+bool insideGrid(const RegionMesh& mesh, const QuantizationGrid& grid);
+
+}  // namespace tessera

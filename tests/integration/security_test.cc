@@ -1,0 +1,147 @@
+// Access and bad input against the real server (server issue §5): an
+// unauthenticated or under-privileged client gets typed refusals, bad
+// frames get a fatal error naming the problem, and none of it disturbs
+// another client.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "client/lib/session.h"
+#include "core/hierarchy/ids.h"
+#include "integration/messages.h"
+#include "integration/server_process.h"
+#include "support/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+using client::Session;
+using testing::ServerProcess;
+
+wire::RejectReason rejected(const Expected<wire::ServerMessage>& reply) {
+  return reply.isOk() && reply->has_reject() ? reply->reject().reason() : wire::REJECT_REASON_UNSPECIFIED;
+}
+
+TEST(ServerSecurity, RefusesWhatARoleDoesNotAllowAndBadInput) {
+  const std::string dir = testing::makeTempDir("tessera-server-security");
+  auto server = ServerProcess::start(dir + "/data", {"--max-frame-bytes", "1048576", "--max-level", "5"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  const std::string cube = testing::fileBytes(testing::sourceTestDataPath("cube.obj"));
+  auto created = (*admin)->call(testing::createDocument("cube", cube, "", 4), 30);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+  ASSERT_TRUE((*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "viewer-token-0123456789"), 10)->has_ack());
+
+  // A bystander whose service must not suffer.
+  auto bystander = Session::connect(server->session("bystander", "viewer-token-0123456789"));
+  ASSERT_TRUE(bystander.isOk());
+  ASSERT_TRUE((*bystander)->call(testing::openDocument(doc), 10)->has_ack());
+
+  // Unauthenticated: may ping, nothing else.
+  auto anonymous = Session::connect(server->session("anonymous", ""));
+  ASSERT_TRUE(anonymous.isOk());
+  EXPECT_TRUE((*anonymous)->call(testing::ping(), 10)->has_pong());
+  wire::ClientMessage list;
+  list.mutable_list_documents();
+  EXPECT_EQ(rejected((*anonymous)->call(list, 10)), wire::REJECT_REASON_NOT_AUTHENTICATED);
+  EXPECT_EQ(rejected((*anonymous)->call(testing::openDocument(doc), 10)), wire::REJECT_REASON_NOT_AUTHENTICATED);
+
+  // A viewer may read but not edit, create or grant; an unknown token sees nothing.
+  auto viewer = Session::connect(server->session("viewer", "viewer-token-0123456789"));
+  ASSERT_TRUE(viewer.isOk());
+  auto listed = (*viewer)->call(list, 10);
+  ASSERT_TRUE(listed.isOk() && listed->has_document_list());
+  EXPECT_EQ(listed->document_list().documents_size(), 1);
+  ASSERT_TRUE((*viewer)->call(testing::openDocument(doc), 10)->has_ack());
+  EXPECT_EQ(rejected((*viewer)->call(testing::moveVertex(doc, VertexId(1, 2).packed(), 0, 0, 1), 10)),
+            wire::REJECT_REASON_PERMISSION_DENIED);
+  EXPECT_EQ(rejected((*viewer)->call(testing::createDocument("x", cube, "", 3), 10)), wire::REJECT_REASON_PERMISSION_DENIED);
+  EXPECT_EQ(rejected((*viewer)->call(testing::grant(doc, wire::ROLE_ADMIN, "stolen-token-0123456789"), 10)),
+            wire::REJECT_REASON_PERMISSION_DENIED);
+  auto stranger = Session::connect(server->session("stranger", "unknown-token-0123456789"));
+  ASSERT_TRUE(stranger.isOk());
+  auto none = (*stranger)->call(list, 10);
+  ASSERT_TRUE(none.isOk() && none->has_document_list());
+  EXPECT_EQ(none->document_list().documents_size(), 0);
+  EXPECT_EQ(rejected((*stranger)->call(testing::openDocument(doc), 10)), wire::REJECT_REASON_PERMISSION_DENIED);
+
+  // Bad commands from an admin: NaN, unknown ids, levels past the maximum,
+  // bad profiles, an oversized and a malformed mesh.
+  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10)->has_ack());
+  EXPECT_EQ(rejected((*admin)->call(testing::moveVertex(doc, VertexId(1, 2).packed(), std::nan(""), 0, 1), 10)),
+            wire::REJECT_REASON_INVALID_ARGUMENT);
+  auto unknown = (*admin)->call(testing::moveVertex(doc, VertexId(1, 999999).packed(), 0, 0, 1), 10);
+  EXPECT_EQ(rejected(unknown), wire::REJECT_REASON_NOT_FOUND);
+  EXPECT_NE(unknown->reject().message().find("v1:999999"), std::string::npos) << unknown->reject().message();
+  auto tooDeep = (*admin)->call(testing::moveVertex(doc, VertexId(9, 1).packed(), 0, 0, 1), 10);
+  EXPECT_EQ(rejected(tooDeep), wire::REJECT_REASON_NOT_FOUND);
+  EXPECT_NE(tooDeep->reject().message().find("above the maximum level 4"), std::string::npos) << tooDeep->reject().message();
+  EXPECT_EQ(rejected((*admin)->call(testing::moveVertex(doc, VertexId(1, 2).packed(), 1e6, 0, 1), 10)),
+            wire::REJECT_REASON_LIMIT_EXCEEDED);
+  EXPECT_EQ(rejected((*admin)->call(testing::subscribe(doc, 3, 2), 10)), wire::REJECT_REASON_INVALID_ARGUMENT);
+  EXPECT_EQ(rejected((*admin)->call(testing::subscribe(doc, 1, 9), 10)), wire::REJECT_REASON_INVALID_ARGUMENT);
+  EXPECT_EQ(rejected((*admin)->call(testing::openDocument(777), 10)), wire::REJECT_REASON_NOT_FOUND);
+  EXPECT_EQ(rejected((*admin)->call(testing::createDocument("deep", cube, "", 9), 30)), wire::REJECT_REASON_INVALID_ARGUMENT);
+  EXPECT_EQ(rejected((*admin)->call(testing::createDocument("junk", "v 0 0 0\nf 1 2 3\n", "", 3), 30)),
+            wire::REJECT_REASON_INVALID_MESH);
+  wire::ClientMessage undo;
+  undo.mutable_undo()->set_document_id(doc);
+  undo.mutable_undo()->set_edit_id(42);
+  EXPECT_EQ(rejected((*admin)->call(undo, 10)), wire::REJECT_REASON_NOT_FOUND);
+
+  // A frame announcing more than the limit: a fatal error naming sizes.
+  auto rogue = Session::connect(server->session("rogue", ""));
+  ASSERT_TRUE(rogue.isOk());
+  ASSERT_TRUE((*rogue)->sendRaw(std::string("\x7f\xff\xff\xff", 4)).isOk());
+  auto error = (*rogue)->receive(10);
+  ASSERT_TRUE(error.isOk() && error->has_error()) << (error.isOk() ? error->DebugString() : error.status().message());
+  EXPECT_EQ(error->error().code(), wire::ERROR_CODE_FRAME_TOO_LARGE);
+  EXPECT_TRUE(error->error().fatal());
+  EXPECT_NE(error->error().message().find("1048576"), std::string::npos) << error->error().message();
+  EXPECT_FALSE((*rogue)->receive(5).isOk());  // closed
+
+  // Garbage where a payload should be.
+  auto garbler = Session::connect(server->session("garbler", ""));
+  ASSERT_TRUE(garbler.isOk());
+  ASSERT_TRUE((*garbler)->sendRaw(std::string("\x00\x00\x00\x04\xff\xff\xff\xff", 8)).isOk());
+  auto garbled = (*garbler)->receive(10);
+  ASSERT_TRUE(garbled.isOk() && garbled->has_error());
+  EXPECT_EQ(garbled->error().code(), wire::ERROR_CODE_MALFORMED_FRAME);
+
+  // No Hello first.
+  auto rude = Session::connect(server->session("rude", ""));
+  ASSERT_TRUE(rude.isOk());
+
+  // The bystander still gets service.
+  EXPECT_TRUE((*bystander)->call(testing::ping(), 10)->has_pong());
+  auto subscribed = (*bystander)->call(testing::subscribe(doc, 1, 3), 30);
+  ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack());
+  EXPECT_EQ(server->stop(), 0);
+}
+
+TEST(ServerSecurity, LimitsConnectionsPerAddressAndCommandRate) {
+  const std::string dir = testing::makeTempDir("tessera-server-limits");
+  auto server = ServerProcess::start(dir + "/data", {"--connections-per-address", "3", "--commands-per-second", "5"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  std::vector<std::unique_ptr<Session>> sessions;
+  for (int i = 0; i < 3; ++i) {
+    auto s = Session::connect(server->session("client", server->adminToken()));
+    ASSERT_TRUE(s.isOk()) << s.status().message();
+    sessions.push_back(std::move(*s));
+  }
+  auto fourth = Session::connect(server->session("fourth", ""));
+  ASSERT_FALSE(fourth.isOk());
+  EXPECT_NE(fourth.status().message().find("connections from 127.0.0.1"), std::string::npos) << fourth.status().message();
+
+  wire::ClientMessage list;
+  list.mutable_list_documents();
+  int limited = 0;
+  for (int i = 0; i < 20; ++i) limited += rejected(sessions[0]->call(list, 10)) == wire::REJECT_REASON_RATE_LIMITED;
+  EXPECT_GE(limited, 10);
+  EXPECT_EQ(server->stop(), 0);
+}
+
+}  // namespace
+}  // namespace tessera

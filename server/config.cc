@@ -24,6 +24,7 @@ const char* const kServerUsage =
     "  --commands-per-second X    per connection, default 200\n"
     "  --connections-per-address N  default 2000\n"
     "  --queue-soft-bytes N --queue-hard-bytes N --queue-messages N\n"
+    "  --send-buffer-bytes N      kernel send buffer per connection (0: system default)\n"
     "  --idle-timeout S --write-timeout S --handshake-timeout S\n"
     "  --snapshot-every N         journal entries between snapshots, default 200\n"
     "  --verbose                  debug logs\n";
@@ -85,6 +86,7 @@ Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args
       {"--queue-soft-bytes", number(c.limits.queueSoftBytes, 1024)},
       {"--queue-hard-bytes", number(c.limits.queueHardBytes, 1024)},
       {"--queue-messages", number(c.limits.queueMaxMessages, 4)},
+      {"--send-buffer-bytes", number(c.limits.sendBufferBytes, 0)},
       {"--idle-timeout", number(c.timeouts.idleSeconds, 0.01)},
       {"--write-timeout", number(c.timeouts.writeSeconds, 0.01)},
       {"--handshake-timeout", number(c.timeouts.handshakeSeconds, 0.01)},

@@ -20,6 +20,7 @@ struct Limits {
   uint64_t queueSoftBytes = 8u << 20;         // per client: coalesce queued deltas above this
   uint64_t queueHardBytes = 32u << 20;        // per client: drop them and resync with a snapshot
   uint32_t queueMaxMessages = 4096;
+  int sendBufferBytes = 0;  // SO_SNDBUF per connection; 0 keeps the system's
 };
 
 struct Timeouts {

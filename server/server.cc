@@ -87,6 +87,9 @@ void Server::accept() {
     }
     boost::system::error_code ignored;
     socket.set_option(tcp::no_delay(true), ignored);
+    if (config_.limits.sendBufferBytes > 0) {
+      socket.set_option(asio::socket_base::send_buffer_size(config_.limits.sendBufferBytes), ignored);
+    }
     const auto remote = socket.remote_endpoint(ignored);
     const std::string address = remote.address().to_string();
     // Prune finished connections, count this address's live ones.

@@ -32,7 +32,14 @@ Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& option
   tcp::resolver resolver(s->io_);
   auto endpoints = resolver.resolve(options.host, std::to_string(options.port), ec);
   if (ec) return ioError("cannot resolve " + options.host + ": " + ec.message());
-  asio::connect(s->socket_, endpoints, ec);
+  if (options.receiveBufferBytes > 0) {
+    // Before connecting, so the TCP window is negotiated with it.
+    s->socket_.open(endpoints.begin()->endpoint().protocol(), ec);
+    if (!ec) s->socket_.set_option(asio::socket_base::receive_buffer_size(options.receiveBufferBytes), ec);
+    if (!ec) s->socket_.connect(endpoints.begin()->endpoint(), ec);
+  } else {
+    asio::connect(s->socket_, endpoints, ec);
+  }
   if (ec) return ioError("cannot connect to " + options.host + ":" + std::to_string(options.port) + ": " + ec.message());
   s->socket_.set_option(tcp::no_delay(true), ec);
   HelloOptions hello;

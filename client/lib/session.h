@@ -29,6 +29,7 @@ struct SessionOptions {
   std::string token;
   double timeoutSeconds = 10;
   uint32_t maxFrameBytes = 64u << 20;
+  int receiveBufferBytes = 0;  // SO_RCVBUF; 0 keeps the system's (tests shrink it to act slow)
 };
 
 class Session {

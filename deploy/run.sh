@@ -1,17 +1,46 @@
 #!/usr/bin/env bash
-# The main job. For now, a demo: refine a sample mesh with creases and a corner
-# to level 3 on its limit surface, and write a Draco-compressed GLB.
-# Usage: bash deploy/run.sh [OUTPUT.glb]
+# The main job: tessera-server on the embedded SQLite store, with a sample
+# document and a short scripted editing session streamed through it.
+#
+#   bash deploy/run.sh              # serves until Ctrl-C
+#   TESSERA_DEMO_ONLY=1 bash deploy/run.sh   # run the session, then stop
+#
+# Settings: TESSERA_DATA (default tessera-data), TESSERA_PORT (default 7878).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out="${1:-tessera-demo.glb}"
+data="${TESSERA_DATA:-tessera-data}"
+port="${TESSERA_PORT:-7878}"
 
 bash deploy/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$(nproc)" --target tessera
+cmake --build --preset release -j "$(nproc)" --target tessera tessera-server
 
 cli=build/release/client/cli/tessera
-"$cli" info deploy/samples/cube.obj --tags deploy/samples/cube.tags
-"$cli" refine deploy/samples/cube.obj --tags deploy/samples/cube.tags \
-  --level 3 --limit --draco -o "$out"
-echo "wrote $out"
+server=build/release/server/tessera-server
+mkdir -p "$data"
+token_file="$data/admin.token"
+if [ ! -s "$token_file" ]; then
+  (umask 077; head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' > "$token_file")
+fi
+rm -f "$data/port"
+"$server" --data "$data/store" --port "$port" --admin-token-file "$token_file" --port-file "$data/port" \
+  2>>"$data/server.log" &
+server_pid=$!
+trap 'kill -TERM $server_pid 2>/dev/null; wait $server_pid 2>/dev/null' EXIT
+for _ in $(seq 100); do [ -s "$data/port" ] && break; sleep 0.1; done
+[ -s "$data/port" ] || { echo "tessera-server did not start; see $data/server.log" >&2; exit 1; }
+remote=("$cli" remote --port "$port" --token-file "$token_file" --name demo)
+
+doc=$("${remote[@]}" list | awk 'NR==1 {print $1}')
+if [ -z "$doc" ]; then
+  doc=$("${remote[@]}" create deploy/samples/cube.obj --tags deploy/samples/cube.tags --max-level 5 --doc-name "sample cube")
+  echo "created document $doc"
+  "${remote[@]}" edit "$doc" --script deploy/samples/session.txt
+fi
+"${remote[@]}" list
+"${remote[@]}" export "$doc" --level 3 --limit -o tessera-demo.glb
+"${remote[@]}" stats | head -8
+echo "tessera-server: 127.0.0.1:$port, store in $data/store, admin token in $token_file, log in $data/server.log"
+if [ "${TESSERA_DEMO_ONLY:-0}" = 1 ]; then exit 0; fi
+echo "serving; Ctrl-C stops it"
+wait $server_pid

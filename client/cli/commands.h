@@ -10,5 +10,6 @@ namespace tessera::cli {
 int runInfo(const std::vector<std::string>& args);
 int runRefine(const std::vector<std::string>& args);
 int runDoc(const std::vector<std::string>& args);
+int runRemote(const std::vector<std::string>& args);
 
 }  // namespace tessera::cli

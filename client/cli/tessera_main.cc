@@ -17,6 +17,7 @@ constexpr const char* kUsage =
     "  refine  IN --level N [--limit] [--tags FILE]  Loop-refine with sharp features\n"
     "          [--triangulate] [--draco] -o OUT       and write .obj, .ply or .glb\n"
     "  doc     new | edit | info | export          hierarchical documents with edits at any level\n"
+    "  remote  list | create | grant | edit | export | stats   talk to a tessera-server\n"
     "\n"
     "Run 'tessera <command> --help' for the options of a command.\n";
 
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
     if (command == "info") return tessera::cli::runInfo(args);
     if (command == "refine") return tessera::cli::runRefine(args);
     if (command == "doc") return tessera::cli::runDoc(args);
+    if (command == "remote") return tessera::cli::runRemote(args);
     std::fprintf(stderr, "tessera: unknown command '%s'\n\n%s", command.c_str(), kUsage);
     return 2;
   } catch (const std::bad_alloc&) {

@@ -51,39 +51,41 @@ Status parseMove(const std::vector<std::string>& t, const char* keyword, std::ve
   return Status::ok();
 }
 
-Status applyLine(const std::vector<std::string>& t, Document& doc) {
+Expected<ScriptCommand> parseLine(const std::vector<std::string>& t) {
+  using Kind = ScriptCommand::Kind;
   const std::string& cmd = t[0];
+  ScriptCommand c{};
   if (cmd == "move" || cmd == "offset") {
-    std::vector<VertexId> ids;
-    Vec3 value;
-    TESSERA_RETURN_IF_ERROR(parseMove(t, cmd == "move" ? "to" : "by", ids, value));
-    auto id = cmd == "move" ? doc.moveToLimit(ids, value) : doc.moveBy(ids, value);
-    return id.status();
+    c.kind = cmd == "move" ? Kind::kMove : Kind::kOffset;
+    TESSERA_RETURN_IF_ERROR(parseMove(t, cmd == "move" ? "to" : "by", c.vertices, c.value));
+    return c;
   }
   if (cmd == "crease" || cmd == "corner") {
     if (t.size() != 3) return parseError("expected '" + cmd + " ID SHARPNESS'");
-    float s = 0;
-    if (!parseSharpness(t[2], s)) return parseError("bad sharpness '" + t[2] + "'");
+    if (!parseSharpness(t[2], c.sharpness)) return parseError("bad sharpness '" + t[2] + "'");
     if (cmd == "crease") {
-      TESSERA_ASSIGN_OR_RETURN(EdgeId edge, parseEdgeId(t[1]));
-      return doc.setEdgeSharpness(edge, s).status();
+      c.kind = Kind::kCrease;
+      TESSERA_ASSIGN_OR_RETURN(c.edge, parseEdgeId(t[1]));
+      return c;
     }
+    c.kind = Kind::kCorner;
     TESSERA_ASSIGN_OR_RETURN(VertexId vertex, parseVertexId(t[1]));
-    return doc.setVertexSharpness(vertex, s).status();
+    c.vertices.push_back(vertex);
+    return c;
   }
   if (cmd == "undo" || cmd == "redo" || cmd == "remove") {
     if (t.size() != 2) return parseError("expected '" + cmd + " EDIT'");
-    TESSERA_ASSIGN_OR_RETURN(EditId id, parseEditId(t[1]));
-    return cmd == "undo" ? doc.undo(id) : cmd == "redo" ? doc.redo(id) : doc.remove(id);
+    c.kind = cmd == "undo" ? Kind::kUndo : cmd == "redo" ? Kind::kRedo : Kind::kRemove;
+    TESSERA_ASSIGN_OR_RETURN(c.edit, parseEditId(t[1]));
+    return c;
   }
   return parseError("unknown command '" + cmd + "' (move, offset, crease, corner, undo, redo, remove)");
 }
 
 }  // namespace
 
-Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source, Document& document) {
-  Document working = document;  // all or nothing
-  ScriptResult result;
+Expected<std::vector<ScriptCommand>> parseEditScript(const std::string& text, const std::string& source) {
+  std::vector<ScriptCommand> commands;
   std::istringstream in(text);
   std::string line;
   int lineNumber = 0;
@@ -93,12 +95,39 @@ Expected<ScriptResult> applyEditScript(const std::string& text, const std::strin
     if (hash != std::string::npos) line.resize(hash);
     const std::vector<std::string> tokens = splitTokens(line);
     if (tokens.empty()) continue;
-    Status status = applyLine(tokens, working);
-    if (!status.isOk()) return Status(status.code(), source + ":" + std::to_string(lineNumber) + ": " + status.message());
-    ++result.commands;
+    auto command = parseLine(tokens);
+    if (!command.isOk()) {
+      return Status(command.status().code(), source + ":" + std::to_string(lineNumber) + ": " + command.status().message());
+    }
+    command->line = lineNumber;
+    commands.push_back(std::move(*command));
+  }
+  return commands;
+}
+
+Status applyScriptCommand(const ScriptCommand& c, Document& doc) {
+  using Kind = ScriptCommand::Kind;
+  switch (c.kind) {
+    case Kind::kMove: return doc.moveToLimit(c.vertices, c.value).status();
+    case Kind::kOffset: return doc.moveBy(c.vertices, c.value).status();
+    case Kind::kCrease: return doc.setEdgeSharpness(c.edge, c.sharpness).status();
+    case Kind::kCorner: return doc.setVertexSharpness(c.vertices[0], c.sharpness).status();
+    case Kind::kUndo: return doc.undo(c.edit);
+    case Kind::kRedo: return doc.redo(c.edit);
+    case Kind::kRemove: return doc.remove(c.edit);
+  }
+  return internalError("unknown script command");
+}
+
+Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source, Document& document) {
+  TESSERA_ASSIGN_OR_RETURN(std::vector<ScriptCommand> commands, parseEditScript(text, source));
+  Document working = document;  // all or nothing
+  for (const ScriptCommand& c : commands) {
+    Status status = applyScriptCommand(c, working);
+    if (!status.isOk()) return Status(status.code(), source + ":" + std::to_string(c.line) + ": " + status.message());
   }
   document = std::move(working);
-  return result;
+  return ScriptResult{static_cast<int>(commands.size())};
 }
 
 }  // namespace tessera

@@ -14,6 +14,9 @@
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include <string>
 
 #include "core/document/document.h"
 #include "core/util/status.h"
@@ -23,6 +26,23 @@ namespace tessera {
 struct ScriptResult {
   int commands = 0;  // lines that did something
 };
+
+// One parsed line: what to do, independent of where it is done (a local
+// document, or a server through the client library).
+struct ScriptCommand {
+  enum class Kind { kMove, kOffset, kCrease, kCorner, kUndo, kRedo, kRemove };
+  Kind kind;
+  std::vector<VertexId> vertices;  // kMove, kOffset, kCorner
+  EdgeId edge;                     // kCrease
+  Vec3 value;                      // kMove target, kOffset displacement
+  float sharpness = 0.0f;          // kCrease, kCorner
+  EditId edit;                     // kUndo, kRedo, kRemove
+  int line = 0;
+};
+
+// Errors are "SOURCE:LINE: reason".
+Expected<std::vector<ScriptCommand>> parseEditScript(const std::string& text, const std::string& source);
+Status applyScriptCommand(const ScriptCommand& command, Document& document);
 
 Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source, Document& document);
 

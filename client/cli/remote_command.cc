@@ -28,8 +28,9 @@ constexpr const char* kHelp =
     "\n"
     "Scripts use the format of 'tessera doc edit' (move, offset, crease, corner, undo, redo).\n";
 
-std::string readFile(const std::string& path) {
+Expected<std::string> readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  if (!in) return ioError(path + ": cannot open");
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
@@ -105,7 +106,9 @@ int runEdit(client::Session& s, const Arguments& args) {
   if (!script) return usage("edit needs --script FILE");
   auto doc = parseDocument(args.positional[1]);
   if (!doc.isOk()) return usage(doc.status().message());
-  auto commands = parseEditScript(readFile(*script), *script);
+  auto text = readFile(*script);
+  if (!text.isOk()) return fail("edit", text.status().message());
+  auto commands = parseEditScript(*text, *script);
   if (!commands.isOk()) return fail("edit", commands.status().message());
   wire::ClientMessage open;
   open.mutable_open_document()->set_document_id(*doc);
@@ -180,9 +183,15 @@ int runRemote(const std::vector<std::string>& rawArgs) {
     wire::ClientMessage m;
     auto* c = m.mutable_create_document();
     c->set_name(args->option("--doc-name") ? *args->option("--doc-name") : path.substr(path.find_last_of('/') + 1));
-    c->set_mesh(readFile(path));
+    auto mesh = readFile(path);
+    if (!mesh.isOk()) return fail(command, mesh.status().message());
+    c->set_mesh(std::move(*mesh));
     c->set_mesh_format(format->second);
-    if (const std::string* tags = args->option("--tags")) c->set_tags(readFile(*tags));
+    if (const std::string* tags = args->option("--tags")) {
+      auto text = readFile(*tags);
+      if (!text.isOk()) return fail(command, text.status().message());
+      c->set_tags(std::move(*text));
+    }
     if (const std::string* level = args->option("--max-level")) {
       auto parsed = parseLevel("--max-level", *level);
       if (!parsed.isOk()) return usage(parsed.status().message());

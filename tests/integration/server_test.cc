@@ -2,6 +2,9 @@
 // 127.0.0.1, a real SQLite data directory, real clients.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
+#include <fstream>
 #include <thread>
 
 #include "client/lib/document_view.h"
@@ -127,6 +130,74 @@ TEST(Server, EditsStreamToEveryViewerAndLateJoinersCatchUp) {
   EXPECT_EQ(restored.version(), 3u);
   EXPECT_EQ(restored.surfaceHash(), seen.surfaceHash());
   EXPECT_EQ(again->stop(), 0);
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// Presence (§3): each client sees who else is connected and what they have
+// selected.
+TEST(Server, PresenceShowsCollaboratorsAndTheirSelections) {
+  Fixture f;
+  startWithCube(f, "tessera-server-presence");
+  if (::testing::Test::HasFatalFailure()) return;
+  auto alice = Session::connect(f.server->session("alice", "editor-token-0123456789"));
+  auto bob = Session::connect(f.server->session("bob", "viewer-token-0123456789"));
+  ASSERT_TRUE(alice.isOk() && bob.isOk());
+  ASSERT_TRUE((*alice)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*bob)->call(testing::openDocument(f.doc), 10)->has_ack());
+  wire::ClientMessage select;
+  select.mutable_select()->set_document_id(f.doc);
+  select.mutable_select()->mutable_selection()->add_vertex_ids(VertexId(2, 17).packed());
+  ASSERT_TRUE((*alice)->send(select).isOk());
+  bool seen = false;
+  for (int i = 0; i < 20 && !seen; ++i) {
+    auto m = (*bob)->receive(10);
+    ASSERT_TRUE(m.isOk()) << m.status().message();
+    if (!m->has_presence()) continue;
+    for (const auto& p : m->presence().participants()) {
+      if (p.name() == "alice" && p.role() == wire::ROLE_EDITOR && p.selection().vertex_ids_size() == 1 &&
+          p.selection().vertex_ids(0) == VertexId(2, 17).packed()) {
+        seen = m->presence().participants_size() == 2;
+      }
+    }
+  }
+  EXPECT_TRUE(seen);
+  EXPECT_EQ(f.server->stop(), 0);
+}
+
+// The CLI talks to the server through the same client library.
+TEST(Server, TheCliCreatesEditsAndListsRemotely) {
+  const std::string dir = testing::makeTempDir("tessera-server-cli");
+  auto server = ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk());
+  std::ofstream(dir + "/token") << server->adminToken() << "\n";
+  std::ofstream(dir + "/script.txt") << "move v1:20 to 0.5 0.5 1.25\noffset v3:200 by 0 0 0.04\nundo 1\n";
+  const std::string remote = std::string(TESSERA_CLI_PATH) + " remote --port " + std::to_string(server->port()) +
+                             " --token-file " + dir + "/token ";
+  auto run = [&](const std::string& args) {
+    const std::string out = dir + "/out.txt";
+    const int status = std::system((remote + args + " >" + out + " 2>&1").c_str());
+    return std::make_pair(WEXITSTATUS(status), testing::fileBytes(out));
+  };
+  auto created = run("create " + testing::sourceTestDataPath("cube.obj") + " --doc-name box --max-level 4");
+  ASSERT_EQ(created.first, 0) << created.second;
+  EXPECT_EQ(created.second, "1\n");
+  auto edited = run("edit 1 --script " + dir + "/script.txt");
+  ASSERT_EQ(edited.first, 0) << edited.second;
+  EXPECT_NE(edited.second.find("script.txt:3: version 4, edit 1"), std::string::npos) << edited.second;
+  auto listed = run("list");
+  EXPECT_EQ(listed.second, "1\tbox\tversion 4\n");
+  auto bad = run("edit 1 --script /nonexistent");
+  EXPECT_EQ(bad.first, 1);
+  auto denied = std::system((std::string(TESSERA_CLI_PATH) + " remote --port " + std::to_string(server->port()) +
+                             " --token nobody-token-0123456789 create " + testing::sourceTestDataPath("cube.obj") +
+                             " >/dev/null 2>&1").c_str());
+  EXPECT_EQ(WEXITSTATUS(denied), 1);
+  EXPECT_EQ(server->stop(), 0);
 }
 
 }  // namespace

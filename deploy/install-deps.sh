@@ -10,7 +10,7 @@ packages=(
   # core: base mesh, mesh I/O, glTF, compression
   libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev zlib1g-dev
   # protocol and server
-  libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev
+  libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev libssl-dev openssl
   # viewer
   libglfw3-dev libgl-dev libimgui-dev
   # tests and benchmarks: OpenSubdiv is the oracle, never a runtime dependency

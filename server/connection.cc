@@ -74,9 +74,10 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
 
 }  // namespace
 
-Connection::Connection(asio::ip::tcp::socket socket, ServerContext& context, uint64_t sessionId, std::string address)
-    : socket_(std::move(socket)),
-      strand_(asio::make_strand(socket_.get_executor())),
+Connection::Connection(asio::ip::tcp::socket socket, asio::ssl::context* tls, ServerContext& context,
+                       uint64_t sessionId, std::string address)
+    : socket_(socket.get_executor()),
+      strand_(asio::make_strand(socket.get_executor())),
       idleTimer_(strand_),
       writeTimer_(strand_),
       context_(context),
@@ -86,6 +87,11 @@ Connection::Connection(asio::ip::tcp::socket socket, ServerContext& context, uin
       outbox_(context.config.limits),
       bucket_(context.config.limits.commandsPerSecond),
       refilled_(std::chrono::steady_clock::now()) {
+  if (tls != nullptr) {
+    tls_.emplace(std::move(socket), *tls);
+  } else {
+    socket_ = std::move(socket);
+  }
   ++context_.stats.connections;
   ++context_.stats.connectionsTotal;
 }
@@ -96,7 +102,17 @@ void Connection::start() {
   asio::post(strand_, [self = shared_from_this()] {
     logEvent(LogLevel::kInfo, "connected", {{"session", self->sessionId_}, {"address", self->address_}});
     self->armIdleTimer(self->context_.config.timeouts.handshakeSeconds);
-    self->readMore();
+    if (!self->tls_) return self->readMore();
+    self->tls_->async_handshake(asio::ssl::stream_base::server,
+                                asio::bind_executor(self->strand_, [self](const boost::system::error_code& ec) {
+                                  if (self->closed_) return;
+                                  if (ec) {
+                                    logEvent(LogLevel::kInfo, "tls_handshake_failed",
+                                             {{"session", self->sessionId_}, {"error", ec.message()}});
+                                    return self->closeNow();
+                                  }
+                                  self->readMore();
+                                }));
   });
 }
 
@@ -110,9 +126,7 @@ void Connection::armIdleTimer(double seconds) {
 
 void Connection::readMore() {
   if (closed_ || closing_) return;
-  socket_.async_read_some(
-      asio::buffer(buffer_),
-      asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t n) {
+  auto onRead = asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t n) {
         if (self->closed_) return;
         if (ec) {
           if (ec != asio::error::eof && ec != asio::error::operation_aborted) {
@@ -143,7 +157,12 @@ void Connection::readMore() {
           return;
         }
         self->readMore();
-      }));
+      });
+  if (tls_) {
+    tls_->async_read_some(asio::buffer(buffer_), std::move(onRead));
+  } else {
+    socket_.async_read_some(asio::buffer(buffer_), std::move(onRead));
+  }
 }
 
 void Connection::send(Outgoing message) {
@@ -222,8 +241,7 @@ void Connection::writeNext() {
     logEvent(LogLevel::kInfo, "write_timeout", {{"session", self->sessionId_}});
     self->closeNow();  // the peer stopped reading: nothing more can reach it
   });
-  asio::async_write(socket_, asio::buffer(*frame),
-                    asio::bind_executor(strand_, [self = shared_from_this(), frame](const boost::system::error_code& ec, size_t n) {
+  auto onWritten = asio::bind_executor(strand_, [self = shared_from_this(), frame](const boost::system::error_code& ec, size_t n) {
                       self->writeTimer_.cancel();
                       if (self->closed_) return;
                       if (ec) return self->closeNow();
@@ -233,7 +251,12 @@ void Connection::writeNext() {
                       self->queueBytes_ = self->outbox_.bytes();
                       self->queueMessages_ = self->outbox_.size();
                       self->writeNext();
-                    }));
+                    });
+  if (tls_) {
+    asio::async_write(*tls_, asio::buffer(*frame), std::move(onWritten));
+  } else {
+    asio::async_write(socket_, asio::buffer(*frame), std::move(onWritten));
+  }
 }
 
 void Connection::closeNow() {
@@ -242,8 +265,8 @@ void Connection::closeNow() {
   boost::system::error_code ignored;
   idleTimer_.cancel();
   writeTimer_.cancel();
-  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
+  socket().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  socket().close(ignored);
   for (auto& [id, host] : open_) host->leave(sessionId_);
   open_.clear();
   logEvent(LogLevel::kInfo, "disconnected", {{"session", sessionId_}});

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
 #include <map>
@@ -24,7 +25,9 @@ namespace tessera::server {
 
 class Connection : public Subscriber, public std::enable_shared_from_this<Connection> {
  public:
-  Connection(boost::asio::ip::tcp::socket socket, ServerContext& context, uint64_t sessionId, std::string address);
+  // With `tls` set, the connection first runs a TLS handshake on the socket.
+  Connection(boost::asio::ip::tcp::socket socket, boost::asio::ssl::context* tls, ServerContext& context,
+             uint64_t sessionId, std::string address);
   ~Connection() override;
 
   void start();
@@ -40,6 +43,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
 
  private:
   void readMore();
+  boost::asio::ip::tcp::socket& socket() { return tls_ ? tls_->next_layer() : socket_; }
   void handle(wire::ClientMessage message);
   void handleHello(const wire::ClientMessage& message);
   void queue(Outgoing message);
@@ -63,7 +67,8 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   void grantToken(uint64_t clientSeq, const wire::GrantToken& request);
   uint64_t documentOf(const wire::ClientMessage& message) const;
 
-  boost::asio::ip::tcp::socket socket_;
+  boost::asio::ip::tcp::socket socket_;  // plain connections
+  std::optional<boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> tls_;
   boost::asio::strand<boost::asio::any_io_executor> strand_;
   boost::asio::steady_timer idleTimer_, writeTimer_;
   ServerContext& context_;

@@ -34,6 +34,17 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     if (token.empty()) return invalidArgument(config.adminTokenFile + ": no admin token in the file");
     TESSERA_RETURN_IF_ERROR(server->store_->addToken(TokenScope::allDocuments(), token, Role::kAdmin));
   }
+  if (!config.tlsCertificate.empty()) {
+    auto tls = std::make_unique<asio::ssl::context>(asio::ssl::context::tls_server);
+    boost::system::error_code ec;
+    tls->set_options(asio::ssl::context::default_workarounds | asio::ssl::context::no_sslv2 |
+                     asio::ssl::context::no_sslv3 | asio::ssl::context::no_tlsv1 | asio::ssl::context::no_tlsv1_1);
+    tls->use_certificate_chain_file(config.tlsCertificate, ec);
+    if (ec) return invalidArgument("--tls-cert " + config.tlsCertificate + ": " + ec.message());
+    tls->use_private_key_file(config.tlsPrivateKey, asio::ssl::context::pem, ec);
+    if (ec) return invalidArgument("--tls-key " + config.tlsPrivateKey + ": " + ec.message());
+    server->tls_ = std::move(tls);
+  }
   server->registry_ = std::make_unique<DocumentRegistry>(*server->store_, server->workers_.get_executor(),
                                                          server->config_, server->stats_);
   server->context_ = std::make_unique<ServerContext>(ServerContext{
@@ -60,7 +71,7 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
 
 void Server::run() {
   logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
-                                          {"data", config_.dataDirectory}});
+                                          {"data", config_.dataDirectory}, {"tls", tls_ != nullptr}});
   signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
     if (ec) return;
     logEvent(LogLevel::kInfo, "signal", {{"signal", static_cast<int64_t>(signal)}});
@@ -104,7 +115,7 @@ void Server::accept() {
       ++it;
     }
     const uint64_t session = nextSession_++;
-    auto connection = std::make_shared<Connection>(std::move(socket), *context_, session, address);
+    auto connection = std::make_shared<Connection>(std::move(socket), tls_.get(), *context_, session, address);
     connection->start();
     if (sameAddress >= config_.limits.connectionsPerAddress) {
       connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS,

@@ -7,6 +7,7 @@
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/signal_set.hpp>
+#include <boost/asio/ssl/context.hpp>
 #include <boost/asio/thread_pool.hpp>
 #include <map>
 #include <memory>
@@ -40,6 +41,7 @@ class Server {
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::signal_set signals_;
   std::unique_ptr<Store> store_;
+  std::unique_ptr<boost::asio::ssl::context> tls_;
   ServerStats stats_;
   std::unique_ptr<DocumentRegistry> registry_;
   std::unique_ptr<ServerContext> context_;

@@ -42,6 +42,20 @@ Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& option
   }
   if (ec) return ioError("cannot connect to " + options.host + ":" + std::to_string(options.port) + ": " + ec.message());
   s->socket_.set_option(tcp::no_delay(true), ec);
+  if (options.tls) {
+    s->tlsContext_ = std::make_unique<asio::ssl::context>(asio::ssl::context::tls_client);
+    if (options.tlsCaFile.empty()) {
+      s->tlsContext_->set_default_verify_paths(ec);
+    } else {
+      s->tlsContext_->load_verify_file(options.tlsCaFile, ec);
+    }
+    if (ec) return invalidArgument("TLS: cannot load trusted certificates: " + ec.message());
+    s->tls_.emplace(s->socket_, *s->tlsContext_);
+    s->tls_->set_verify_mode(asio::ssl::verify_peer);
+    s->tls_->set_verify_callback(asio::ssl::host_name_verification(options.host));
+    s->tls_->handshake(asio::ssl::stream_base::client, ec);
+    if (ec) return ioError("TLS handshake with " + options.host + " failed: " + ec.message());
+  }
   HelloOptions hello;
   hello.clientSeq = s->nextSeq_++;
   hello.clientName = options.name;
@@ -64,7 +78,11 @@ Expected<uint64_t> Session::send(wire::ClientMessage message) {
 
 Status Session::sendRaw(const std::string& bytes) {
   boost::system::error_code ec;
-  asio::write(socket_, asio::buffer(bytes), ec);
+  if (tls_) {
+    asio::write(*tls_, asio::buffer(bytes), ec);
+  } else {
+    asio::write(socket_, asio::buffer(bytes), ec);
+  }
   if (ec) return ioError("send failed: " + ec.message());
   return Status::ok();
 }
@@ -78,10 +96,15 @@ Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
     if (got) return message;
     boost::system::error_code result = asio::error::would_block;
     size_t n = 0;
-    socket_.async_read_some(asio::buffer(buffer_), [&](const boost::system::error_code& ec, size_t bytes) {
+    auto done = [&](const boost::system::error_code& ec, size_t bytes) {
       result = ec;
       n = bytes;
-    });
+    };
+    if (tls_) {
+      tls_->async_read_some(asio::buffer(buffer_), done);
+    } else {
+      socket_.async_read_some(asio::buffer(buffer_), done);
+    }
     io_.restart();
     io_.run_until(deadline);
     if (result == asio::error::would_block) {

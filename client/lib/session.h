@@ -10,6 +10,8 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
+#include <optional>
 #include <array>
 #include <cstdint>
 #include <deque>
@@ -30,6 +32,8 @@ struct SessionOptions {
   double timeoutSeconds = 10;
   uint32_t maxFrameBytes = 64u << 20;
   int receiveBufferBytes = 0;  // SO_RCVBUF; 0 keeps the system's (tests shrink it to act slow)
+  bool tls = false;            // TLS, verifying the server's certificate and host name
+  std::string tlsCaFile;       // trusted certificates (PEM); empty: the system's
 };
 
 class Session {
@@ -59,6 +63,8 @@ class Session {
   SessionOptions options_;
   boost::asio::io_context io_;
   boost::asio::ip::tcp::socket socket_;
+  std::unique_ptr<boost::asio::ssl::context> tlsContext_;
+  std::optional<boost::asio::ssl::stream<boost::asio::ip::tcp::socket&>> tls_;
   FrameDecoder decoder_;
   std::array<char, 64 * 1024> buffer_{};
   std::deque<wire::ServerMessage> backlog_;

@@ -1,0 +1,37 @@
+#include "server/store/store.h"
+
+namespace tessera {
+
+std::string toString(DocumentId id) {
+  return "document " + std::to_string(id.value);
+}
+
+const char* roleName(Role role) {
+  switch (role) {
+    case Role::kViewer:
+      return "viewer";
+    case Role::kEditor:
+      return "editor";
+    case Role::kAdmin:
+      return "admin";
+  }
+  return "unknown role";
+}
+
+Expected<Role> parseRole(std::string_view name) {
+  for (Role role : {Role::kViewer, Role::kEditor, Role::kAdmin}) {
+    if (name == roleName(role)) return role;
+  }
+  return invalidArgument("unknown role \"" + std::string(name) + "\" (expected viewer, editor or admin)");
+}
+
+std::string TokenScope::toString() const {
+  return isAllDocuments() ? std::string("all documents") : tessera::toString(documentId());
+}
+
+uint64_t StoredDocument::latestVersion() const {
+  if (!entries.empty()) return entries.back().version;
+  return snapshot ? snapshot->version : 0;
+}
+
+}  // namespace tessera

@@ -1,0 +1,210 @@
+// Region codec (issue 4, §4): encode time, encoded size and decode time of
+// typical regions at every compression level, to choose the default for
+// latency (docs/REGION_ENCODING.md).
+//
+//   build/release/bench/tessera_bench_region [--mesh PATH] [benchmark flags]
+//
+// Regions are compact patches of ~512, ~2k and ~8k triangles grown
+// breadth-first from one triangle of the smooth Loop limit surface of the
+// mesh (fandisk by default) at level 2, like the quadtree regions of the
+// displayed surface; every region is quantized on the grid of the whole
+// surface, as a document's regions are.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "core/hierarchy/ids.h"
+#include "core/io/mesh_import.h"
+#include "core/loop/loop_refiner.h"
+#include "core/tessellation/region_codec.h"
+
+namespace {
+
+using namespace tessera;
+
+constexpr int kLevel = 2;
+constexpr int kRegionSizes[] = {512, 2048, 8192};
+
+struct Input {
+  RegionMesh surface;
+  RegionHeader header;
+  std::map<int, RegionMesh> regions;  // by target triangle count
+};
+
+Input& input() {
+  static Input in;
+  return in;
+}
+
+// Grows a patch of `count` triangles breadth-first over shared edges.
+RegionMesh patch(const RegionMesh& s, size_t seed, size_t count) {
+  std::map<std::pair<int, int>, std::vector<size_t>> byEdge;
+  for (size_t f = 0; f < s.triangles.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.triangles[f][k], b = s.triangles[f][(k + 1) % 3];
+      byEdge[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  }
+  std::vector<char> taken(s.triangles.size(), 0);
+  std::vector<int> local(s.positions.size(), -1);
+  std::deque<size_t> queue{seed};
+  taken[seed] = 1;
+  RegionMesh out;
+  while (!queue.empty() && out.triangles.size() < count) {
+    const size_t f = queue.front();
+    queue.pop_front();
+    std::array<int, 3> mapped{};
+    for (int k = 0; k < 3; ++k) {
+      const int v = s.triangles[f][k];
+      if (local[v] < 0) {
+        local[v] = static_cast<int>(out.positions.size());
+        out.positions.push_back(s.positions[v]);
+        out.normals.push_back(s.normals[v]);
+        out.vertexIds.push_back(s.vertexIds[v]);
+      }
+      mapped[k] = local[v];
+      const int w = s.triangles[f][(k + 1) % 3];
+      for (size_t g : byEdge[{std::min(v, w), std::max(v, w)}]) {
+        if (!taken[g]) taken[g] = 1, queue.push_back(g);
+      }
+    }
+    out.triangles.push_back(mapped);
+  }
+  return out;
+}
+
+void encode(benchmark::State& state) {
+  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
+  const int level = static_cast<int>(state.range(1));
+  size_t bytes = 0;
+  for (auto _ : state) {
+    auto encoded = encodeRegion(input().header, region, level);
+    if (!encoded.isOk()) {
+      state.SkipWithError(encoded.status().toString().c_str());
+      break;
+    }
+    bytes = encoded->size();
+    benchmark::DoNotOptimize(encoded->data());
+  }
+  state.counters["triangles"] = static_cast<double>(region.triangles.size());
+  state.counters["bytes"] = static_cast<double>(bytes);
+  state.counters["bytes_per_tri"] = static_cast<double>(bytes) / static_cast<double>(region.triangles.size());
+}
+
+void decode(benchmark::State& state) {
+  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
+  const auto encoded = encodeRegion(input().header, region, static_cast<int>(state.range(1)));
+  if (!encoded.isOk()) {
+    state.SkipWithError(encoded.status().toString().c_str());
+    return;
+  }
+  for (auto _ : state) {
+    auto decoded = decodeRegion(*encoded);
+    benchmark::DoNotOptimize(decoded);
+  }
+  state.counters["bytes"] = static_cast<double>(encoded->size());
+}
+
+// With --benchmark_repetitions, the minimum is the figure least disturbed by
+// other work on a shared machine; the median is reported beside it.
+double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+
+BENCHMARK(encode)
+    ->Name("Encode")
+    ->ArgsProduct({{512, 2048, 8192}, benchmark::CreateDenseRange(0, 10, 1)})
+    ->ArgNames({"tris", "level"})
+    ->ComputeStatistics("min", minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(decode)
+    ->Name("Decode")
+    ->ArgsProduct({{512, 2048, 8192}, benchmark::CreateDenseRange(0, 10, 1)})
+    ->ArgNames({"tris", "level"})
+    ->ComputeStatistics("min", minimum)
+    ->Unit(benchmark::kMicrosecond);
+
+// The decoded error over the whole surface at the default level, against
+// the grid's bound and the issue's 1e-4 of the diagonal.
+void reportQuantizationError(const Vec3& lo, const Vec3& hi) {
+  const Input& in = input();
+  auto encoded = encodeRegion(in.header, in.surface);
+  auto decoded = encoded.isOk() ? decodeRegion(*encoded) : encoded.status();
+  if (!decoded.isOk()) {
+    std::fprintf(stderr, "tessera_bench_region: %s\n", decoded.status().toString().c_str());
+    return;
+  }
+  std::map<uint64_t, size_t> byId;
+  for (size_t i = 0; i < in.surface.vertexIds.size(); ++i) byId[in.surface.vertexIds[i]] = i;
+  double position = 0.0, normal = 0.0;
+  const RegionMesh& out = decoded->second;
+  for (size_t i = 0; i < out.positions.size(); ++i) {
+    const size_t j = byId.at(out.vertexIds[i]);
+    position = std::max(position, (out.positions[i] - in.surface.positions[j]).norm());
+    normal = std::max(normal, std::atan2(cross(out.normals[i], in.surface.normals[j]).norm(),
+                                         dot(out.normals[i], in.surface.normals[j])));
+  }
+  const double diagonal = (hi - lo).norm();
+  std::printf("whole surface, %zu triangles, level %d: %zu bytes; %d position bits, max position error %.3g = %.3g "
+              "of the diagonal (bound %.3g), max normal error %.3f degrees (%d bits)\n",
+              in.surface.triangles.size(), kDefaultRegionCompressionLevel, encoded->size(), in.header.grid.positionBits,
+              position, position / diagonal, in.header.grid.maxPositionError() / diagonal, normal * 180.0 / M_PI,
+              in.header.grid.normalBits);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--mesh") == 0) {
+      meshPath = argv[i + 1];
+      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+      argc -= 2;
+      break;
+    }
+  }
+  auto mesh = importMesh(meshPath);
+  if (!mesh.isOk()) {
+    std::fprintf(stderr, "tessera_bench_region: %s\n", mesh.status().toString().c_str());
+    return 1;
+  }
+  auto refiner = LoopRefiner::create(BaseTopology::fromBaseMesh(*mesh), LoopOptions{}, {.levels = kLevel});
+  auto limit = refiner.isOk() ? refiner->limitSurface(refiner->refinePoints(mesh->positions()))
+                              : Expected<SurfaceMesh>(refiner.status());
+  if (!limit.isOk()) {
+    std::fprintf(stderr, "tessera_bench_region: %s\n", limit.status().toString().c_str());
+    return 1;
+  }
+  Input& in = input();
+  in.surface.positions = limit->positions;
+  in.surface.normals = limit->normals;
+  in.surface.triangles = limit->triangles;
+  // Crease copies (appended after the level's vertices) pick the id of
+  // nothing in particular; fandisk without tags has none.
+  for (size_t i = 0; i < limit->positions.size(); ++i) in.surface.vertexIds.push_back(VertexId(kLevel, i).packed());
+  Vec3 lo = limit->positions[0], hi = lo;
+  for (const Vec3& p : limit->positions) lo.minimize(p), hi.maximize(p);
+  auto grid = gridFor(lo, hi);
+  if (!grid.isOk()) {
+    std::fprintf(stderr, "tessera_bench_region: %s\n", grid.status().toString().c_str());
+    return 1;
+  }
+  in.header.grid = *grid;
+  in.header.regionId = 1;
+  in.header.documentVersion = 1;
+  for (int size : kRegionSizes) in.regions[size] = patch(in.surface, in.surface.triangles.size() / 3, size);
+  std::printf("mesh %s: limit surface at level %d, %zu triangles\n", meshPath.c_str(), kLevel,
+              in.surface.triangles.size());
+  reportQuantizationError(lo, hi);
+
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

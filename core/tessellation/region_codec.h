@@ -1,0 +1,147 @@
+// Region codec: one region of a document's displayed surface to and from the
+// self-describing bytes streamed to viewers after an edit (issue 4, §4
+// "Draco deltas").
+//
+// Input:  a RegionHeader (region id, document version, LOD profile and the
+//         document's quantization grid) and a RegionMesh: positions inside the
+//         grid, unit normals and packed VertexIds, one per vertex, and
+//         triangles using every vertex.
+// Output: little-endian bytes, format version 1:
+//           offset  size  field
+//                0     4  magic "TSRG"
+//                4     2  format version (1)
+//                6     2  reserved, 0
+//                8     8  region id
+//               16     8  document version
+//               24    25  LOD profile: baseLevel i32, maxLevel i32,
+//                         angleThresholdDegrees f64, triangleBudget i64,
+//                         fidelity u8
+//               49    34  grid: origin 3 x f64, range f64, positionBits u8,
+//                         normalBits u8
+//               83     4  triangle count
+//               87     4  Draco payload size n
+//               91     n  Draco mesh (bitstream 2.2): POSITION quantized on
+//                         the grid, NORMAL octahedral, GENERIC ids as 8 x
+//                         uint8, least significant byte first
+//           91 + n     4  CRC-32 (zlib) of every byte before it
+//
+// Why one grid per document: Draco quantizes each position to the nearest
+// point of a lattice given by an origin, a range and a bit count. When every
+// region uses the same lattice (an explicit origin and range, not each
+// region's own bounding box) a vertex shared by two regions lands on the same
+// lattice point in both and decodes to bit-identical floats, so the union of
+// separately decoded regions has no cracks (issue 4, §4).
+//
+// Errors name the region, the element and the reason: invalidArgument for a
+// bad header, grid or compression level, invalidMesh for a mesh that breaks
+// the rules of encodeRegion; parseError for bytes that are
+// truncated, corrupted, foreign or oversized; unsupported for a later format
+// version. Neither function throws, and decodeRegion bounds every count by the
+// input size before anything is allocated.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/tessellation/lod_profile.h"
+#include "core/util/status.h"
+#include "core/util/vec3.h"
+
+namespace tessera {
+
+struct RegionMesh {
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;      // unit, one per position
+  std::vector<uint64_t> vertexIds;  // packed VertexId (ids.h) of the control vertex each vertex is the limit of
+  std::vector<std::array<int, 3>> triangles;  // counter-clockwise
+};
+
+// The quantization lattice shared by every region of a document. Positions
+// must lie in the cube [origin, origin + range]^3; each coordinate is stored
+// as one of 2^positionBits evenly spaced values. origin and range must be
+// float32 values because Draco stores them as float32: the header then states
+// exactly what the decoder uses.
+struct QuantizationGrid {
+  Vec3 origin;
+  double range = 1.0;
+  int positionBits = 13;  // 1..24: a float32 has no finer steps to offer
+  int normalBits = 10;    // octahedral quantization of normals, 2..24
+
+  friend bool operator==(const QuantizationGrid&, const QuantizationGrid&) = default;
+
+  // Ok when Draco can use the grid as is: finite float32 origin and range,
+  // range > 0, bits in range, and float32 rounding unable to push the lattice
+  // index of a point inside the grid out of [0, 2^bits - 1] (this fails for a
+  // fine grid far from the origin).
+  Status check() const;
+
+  // Worst-case distance between a position inside the grid and its decoded
+  // value: sqrt(3) * (step (1/2 + s) + u (2 range + M)), where
+  // step = range / (2^bits - 1), u = 2^-24 (float32 rounding), M the largest
+  // |coordinate| of the grid's corners and s = u 2^bits (M / range + 5) the
+  // float32 error of the encoder's lattice index, in steps. Half a step is
+  // Draco's rounding to the nearest lattice point; the other terms bound the
+  // float32 arithmetic of Draco's quantizer and dequantizer
+  // (attribute_quantization_transform.cc, quantization_utils.h).
+  double maxPositionError() const;
+};
+
+inline constexpr double kDefaultMaxErrorFraction = 1e-4;  // of the bbox diagonal (issue 4, §4)
+// Each side of the bounding box is moved out by this fraction of its
+// diagonal, so edits that move the surface a little keep it inside the grid;
+// when it leaves anyway, encodeRegion says so and the document needs a new
+// grid (and a full re-encode).
+inline constexpr double kGridPaddingFraction = 0.1;
+inline constexpr int kDefaultNormalBits = 10;
+
+// The grid for a document whose surface lies in [bboxMin, bboxMax]: the box
+// padded by kGridPaddingFraction of its diagonal D, origin rounded down and
+// range rounded up to float32, and the smallest positionBits with
+// maxPositionError() <= maxErrorFraction * D (13 bits for a cube at 1e-4).
+// normalBits is kDefaultNormalBits. Errors: a non-finite or inverted box, a
+// zero diagonal, a fraction outside (0, 1), or a box so far from the origin
+// relative to its size that float32 cannot reach the precision.
+Expected<QuantizationGrid> gridFor(const Vec3& bboxMin, const Vec3& bboxMax,
+                                   double maxErrorFraction = kDefaultMaxErrorFraction);
+
+struct RegionHeader {
+  uint64_t regionId = 0;
+  uint64_t documentVersion = 0;
+  LodProfile profile;
+  QuantizationGrid grid;
+
+  friend bool operator==(const RegionHeader&, const RegionHeader&) = default;
+};
+
+inline constexpr uint16_t kRegionFormatVersion = 1;
+inline constexpr size_t kRegionHeaderBytes = 91;   // everything before the Draco payload
+inline constexpr size_t kRegionTrailerBytes = 4;   // the CRC-32
+inline constexpr uint32_t kMaxRegionTriangles = 1u << 24;  // LoopRefiner's default face cap
+inline constexpr size_t kMaxRegionBytes = size_t{1} << 28;
+// Compression levels follow core/io: 0 is Draco's fastest (sequential
+// coding), 10 its smallest; Draco speed = 10 - level. The default, chosen for
+// latency in docs/REGION_ENCODING.md, is the fastest Edgebreaker setting with
+// parallelogram prediction: as fast as levels 1-2 and 20% smaller, 3.4x
+// smaller than level 0, within 7% of level 10's size at a third of its time.
+inline constexpr int kDefaultRegionCompressionLevel = 3;
+
+// Encodes one region. The mesh must have at least one triangle, one normal
+// and one id per position, finite values, unit normals, every position
+// inside header.grid, triangle indices in range with three distinct
+// corners, and no unused vertex (Draco's Edgebreaker drops unused vertices
+// and triangles with a repeated corner, which would lose ids silently).
+Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh& mesh,
+                                   int compressionLevel = kDefaultRegionCompressionLevel);
+
+// Decodes what encodeRegion produced. Draco may reorder vertices and split
+// non-manifold ones, so the decoded mesh describes the same triangles over
+// the same ids, not the same vertex numbering. Positions are dequantized
+// exactly as a plain Draco decoder does (float32), normals renormalized.
+Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view bytes);
+
+}  // namespace tessera

@@ -111,7 +111,9 @@ void Connection::start() {
                                              {{"session", self->sessionId_}, {"error", ec.message()}});
                                     return self->closeNow();
                                   }
+                                  self->tlsReady_ = true;
                                   self->readMore();
+                                  self->writeNext();
                                 }));
   });
 }
@@ -208,6 +210,7 @@ void Connection::fatal(wire::ErrorCode code, const std::string& message) {
   reply(m);
   closing_ = true;
   if (!outbox_.writing() && outbox_.empty()) closeNow();
+  if (tls_ && !tlsReady_) closeNow();
 }
 
 void Connection::refuse(wire::ErrorCode code, const std::string& message) {
@@ -220,6 +223,10 @@ void Connection::shutdown() {
 
 void Connection::writeNext() {
   if (closed_ || outbox_.writing()) return;
+  if (tls_ && !tlsReady_) {
+    if (closing_) closeNow();  // refused before the handshake: nothing to say over TLS yet
+    return;
+  }
   if (outbox_.empty()) {
     if (closing_) return closeNow();
     // Documents whose deltas were dropped get a fresh snapshot.

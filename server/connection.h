@@ -81,6 +81,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   std::atomic<size_t> queueMessages_{0};
 
   bool helloDone_ = false, closing_ = false, closed_ = false;
+  bool tlsReady_ = false;  // no write may start while a TLS handshake runs
   std::string token_;  // never logged
   std::string name_;
   std::optional<Role> globalRole_;

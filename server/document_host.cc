@@ -140,6 +140,10 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       return;
     }
     const std::string key = profile.key();
+    // One profile per subscriber and document: a new one replaces the old.
+    for (auto& [other, view] : self->views_) {
+      if (other != key) view.subscribers.erase(who->sessionId()), view.knownVersion.erase(who->sessionId());
+    }
     auto it = self->views_.find(key);
     if (it == self->views_.end()) {
       const auto start = Clock::now();
@@ -220,7 +224,7 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
       r->set_region_id(regions[i].first);
       r->set_draco(*regions[i].second);
     }
-    who->send({frameOf(m, config_.limits.maxFrameBytes), nullptr});
+    who->send({frameOf(m, config_.limits.maxFrameBytes), nullptr, id_.value});
   }
   view.subscribers[who->sessionId()] = who;
   view.knownVersion[who->sessionId()] = version_;
@@ -346,9 +350,10 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
     wire::ServerMessage reject;
     reject.mutable_reject()->set_client_seq(clientSeq);
     reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
-    reject.mutable_reject()->set_message("the edit would move the surface outside the document's bounds " +
-                                         std::to_string(grid_.origin[0]) + ".." +
-                                         std::to_string(grid_.origin[0] + grid_.range) + " (per axis)");
+    reject.mutable_reject()->set_message(
+        "the edit would move the surface outside the document's bounds: the cube from (" +
+        std::to_string(grid_.origin[0]) + ", " + std::to_string(grid_.origin[1]) + ", " + std::to_string(grid_.origin[2]) +
+        ") with side " + std::to_string(grid_.range));
     author->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
     return;
   }
@@ -412,6 +417,15 @@ void DocumentHost::committed(uint64_t version, Status status) {
     for (auto& [session, p] : participants_) {
       if (auto who = p.who.lock()) who->send({frame, nullptr});
     }
+    // Every edit still waiting for its commit is lost: tell its author.
+    for (const Pending& p : pending_) {
+      if (auto author = p.author.lock()) {
+        author->send({frameOf(rejectFor(p.clientSeq, internalError("the journal write failed; the edit is lost")),
+                              config_.limits.maxFrameBytes),
+                      nullptr});
+      }
+    }
+    pending_.clear();
     return;
   }
   durableVersion_ = std::max(durableVersion_, version);

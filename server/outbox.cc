@@ -52,9 +52,27 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
   std::map<uint64_t, size_t> first;  // document -> index of its first mergeable delta
   std::deque<Outgoing> kept;
   std::map<uint64_t, DeltaContent> merged;
+  // Puts a document's merged delta in the place of its group's first.
+  auto flush = [&](uint64_t document, DeltaContent& content) {
+    auto shared = std::make_shared<const DeltaContent>(std::move(content));
+    auto frame = encodeDeltaFrame(*shared, maxFrameBytes);
+    if (!frame) {
+      resyncs_.insert(document);  // too big to send as one delta
+      return;
+    }
+    kept[first[document]] = {frame, shared, 0};
+  };
   const size_t start = writing_ ? 1 : 0;
   for (size_t i = 0; i < queue_.size(); ++i) {
     Outgoing& m = queue_[i];
+    if (m.snapshotOf != 0) {
+      // Deltas after a snapshot start a new group: merging them into one
+      // queued before it would apply them to the wrong version.
+      if (auto it = merged.find(m.snapshotOf); it != merged.end()) {
+        flush(m.snapshotOf, it->second);
+        merged.erase(it);
+      }
+    }
     if (i < start || !m.delta) {
       kept.push_back(std::move(m));
       continue;
@@ -88,16 +106,7 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
     }
   }
   bytes_ = 0;
-  for (auto& [document, content] : merged) {
-    auto shared = std::make_shared<const DeltaContent>(std::move(content));
-    auto frame = encodeDeltaFrame(*shared, maxFrameBytes);
-    if (!frame) {
-      resyncs_.insert(document);  // too big to send as one delta
-      kept[first[document]] = {};
-      continue;
-    }
-    kept[first[document]] = {frame, shared};
-  }
+  for (auto& [document, content] : merged) flush(document, content);
   queue_.clear();
   for (Outgoing& m : kept) {
     if (!m.frame) continue;

@@ -27,6 +27,7 @@ struct DeltaContent {
 struct Outgoing {
   std::shared_ptr<const std::string> frame;   // length prefix + payload
   std::shared_ptr<const DeltaContent> delta;  // set for deltas
+  uint64_t snapshotOf = 0;                    // set for snapshot parts: deltas never merge across them
 };
 
 class Outbox {

@@ -133,13 +133,18 @@ void Server::shutdown() {
   boost::system::error_code ignored;
   acceptor_.close(ignored);
   signals_.cancel(ignored);
-  // Durable writes first: their acks are queued before the goodbye.
+  // Durable writes first; their acks pass through the document strands, so
+  // the goodbye waits a moment for them, then the clients get their queues
+  // flushed before the loop stops.
   store_->close();
-  for (auto& [session, weak] : connections_) {
-    if (auto c = weak.lock()) c->shutdown();
-  }
-  auto timer = std::make_shared<asio::steady_timer>(io_, std::chrono::milliseconds(500));
-  timer->async_wait([this, timer](const boost::system::error_code&) { io_.stop(); });
+  auto goodbye = std::make_shared<asio::steady_timer>(io_, std::chrono::milliseconds(200));
+  goodbye->async_wait([this, goodbye](const boost::system::error_code&) {
+    for (auto& [session, weak] : connections_) {
+      if (auto c = weak.lock()) c->shutdown();
+    }
+    auto stop = std::make_shared<asio::steady_timer>(io_, std::chrono::milliseconds(500));
+    stop->async_wait([this, stop](const boost::system::error_code&) { io_.stop(); });
+  });
 }
 
 }  // namespace tessera::server

@@ -116,6 +116,12 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_document_id(42);
     fillSelection(m->mutable_selection());
   }
+  {
+    auto* m = add().mutable_grant_token();
+    m->set_document_id(42);
+    m->set_role(wire::ROLE_EDITOR);
+    m->set_token("token-of-sixteen-bytes-at-least");
+  }
   // The second alternative of SetVertexType's oneof.
   {
     auto* m = add().mutable_set_vertex_type();

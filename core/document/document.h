@@ -31,7 +31,7 @@
 namespace tessera {
 
 struct DocumentOptions {
-  LoopOptions loop;
+  LoopOptions loop{};
   int maxLevel = 6;  // deepest level an edit may address (at most kMaxDocumentLevel)
   // Levels 0..uniformLevel are held whole (the coarsest display); deeper
   // levels only where edits are. Not part of the saved document.

@@ -115,7 +115,9 @@ void expectSoundTessellation(const Document& doc, const Tessellation& t, bool ex
     ASSERT_TRUE(onBoundary(edge.first) && onBoundary(edge.second))
         << where << ": open edge v" << edge.first << "-v" << edge.second << " inside the surface";
   }
-  if (!closed) EXPECT_GT(open, 0) << where;
+  if (!closed) {
+    EXPECT_GT(open, 0) << where;
+  }
 }
 
 const LodProfile kProfile{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 12, .triangleBudget = 10'000'000};

@@ -64,7 +64,7 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
   const std::string cubePath = testing::sourceTestDataPath("cube.obj");
   std::optional<ServerProcess> server;
   {
-    auto started = ServerProcess::start(data);
+    auto started = ServerProcess::start(data, {"--snapshot-every", "7"});
     ASSERT_TRUE(started.isOk()) << started.status().message();
     server.emplace(std::move(*started));
   }
@@ -118,7 +118,8 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
     for (auto& t : editors) t.join();
     totalAcked += static_cast<int>(acked.size());
 
-    auto restarted = ServerProcess::start(data);
+    // Frequent snapshots: recovery reads a snapshot plus the journal after it.
+    auto restarted = ServerProcess::start(data, {"--snapshot-every", "7"});
     ASSERT_TRUE(restarted.isOk()) << restarted.status().message();
     server.emplace(std::move(*restarted));
     auto viewer = Session::connect(server->session("checker", token));

@@ -24,7 +24,8 @@ wire::RejectReason rejected(const Expected<wire::ServerMessage>& reply) {
 
 TEST(ServerSecurity, RefusesWhatARoleDoesNotAllowAndBadInput) {
   const std::string dir = testing::makeTempDir("tessera-server-security");
-  auto server = ServerProcess::start(dir + "/data", {"--max-frame-bytes", "1048576", "--max-level", "5"});
+  auto server = ServerProcess::start(dir + "/data", {"--max-frame-bytes", "1048576", "--max-level", "5",
+                                                     "--max-mesh-bytes", "4000", "--max-triangles", "5000"});
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
@@ -86,6 +87,18 @@ TEST(ServerSecurity, RefusesWhatARoleDoesNotAllowAndBadInput) {
   EXPECT_EQ(rejected((*admin)->call(testing::createDocument("deep", cube, "", 9), 30)), wire::REJECT_REASON_INVALID_ARGUMENT);
   EXPECT_EQ(rejected((*admin)->call(testing::createDocument("junk", "v 0 0 0\nf 1 2 3\n", "", 3), 30)),
             wire::REJECT_REASON_INVALID_MESH);
+  auto big = (*admin)->call(testing::createDocument("big", std::string(5000, '#') + cube, "", 3), 30);
+  EXPECT_EQ(rejected(big), wire::REJECT_REASON_LIMIT_EXCEEDED);
+  EXPECT_NE(big->reject().message().find("above the limit of 4000"), std::string::npos) << big->reject().message();
+  // Level 4 of the cube has 3,072 triangles: within the server's 5,000, over
+  // a subscriber's own budget of 1,000.
+  EXPECT_EQ(rejected((*admin)->call(testing::subscribe(doc, 4, 4), 30)), wire::REJECT_REASON_UNSPECIFIED);
+  wire::ClientMessage tight = testing::subscribe(doc, 4, 4);
+  tight.mutable_subscribe()->mutable_profile()->set_triangle_budget(1000);
+  auto overBudget = (*admin)->call(tight, 30);
+  EXPECT_EQ(rejected(overBudget), wire::REJECT_REASON_LIMIT_EXCEEDED);
+  EXPECT_NE(overBudget->reject().message().find("above its budget of 1000"), std::string::npos)
+      << overBudget->reject().message();
   wire::ClientMessage undo;
   undo.mutable_undo()->set_document_id(doc);
   undo.mutable_undo()->set_edit_id(42);

@@ -1,0 +1,42 @@
+// OrbitCamera: a camera circling a target point (yaw, pitch, distance), with
+// pan, zoom, framing of a bounding box, and the conversions picking needs
+// between window pixels (origin top-left, y down) and world space.
+#pragma once
+
+#include <optional>
+
+#include "client/view/view_math.h"
+
+namespace tessera::view {
+
+struct Ray {
+  V3 origin;
+  V3 direction;  // unit
+};
+
+class OrbitCamera {
+ public:
+  void orbit(float dxPixels, float dyPixels);
+  void pan(float dxPixels, float dyPixels, int viewportHeight);
+  void zoom(float steps);  // > 0 moves closer
+  // Looks at the box from the current direction, far enough to see it all.
+  void frame(V3 lo, V3 hi);
+
+  V3 eye() const;
+  V3 target() const { return target_; }
+  float distance() const { return distance_; }
+  Mat4 view() const;
+  Mat4 projection(float aspect) const;
+
+  // The ray from the eye through a window pixel.
+  Ray rayThrough(float px, float py, int width, int height) const;
+  // The window pixel of a world point, or nothing behind the eye.
+  std::optional<std::array<float, 2>> project(V3 p, int width, int height) const;
+
+ private:
+  V3 target_;
+  float yaw_ = 0.6f, pitch_ = 0.45f, distance_ = 4.0f, radius_ = 1.0f;
+  static constexpr float kFovY = 0.8f;  // radians
+};
+
+}  // namespace tessera::view

@@ -1,0 +1,316 @@
+#include "client/view/connection.h"
+
+#include <algorithm>
+
+namespace tessera::view {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Status expectAck(const Expected<wire::ServerMessage>& reply, const std::string& what) {
+  if (!reply.isOk()) return reply.status().withContext(what);
+  if (reply->has_reject()) {
+    return invalidArgument(what + ": " + wire::RejectReason_Name(reply->reject().reason()) + ": " +
+                           reply->reject().message());
+  }
+  if (!reply->has_ack())
+    return internalError(what + ": the server answered with something other than an Ack");
+  return Status::ok();
+}
+
+wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile) {
+  wire::ClientMessage m;
+  m.mutable_subscribe()->set_document_id(document);
+  *m.mutable_subscribe()->mutable_profile() = profile;
+  return m;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& options) {
+  client::SessionOptions s;
+  s.host = options.host;
+  s.port = options.port;
+  s.name = options.name;
+  s.token = options.token;
+  s.timeoutSeconds = options.timeoutSeconds;
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, client::Session::connect(s));
+  wire::ClientMessage open;
+  open.mutable_open_document()->set_document_id(options.document);
+  TESSERA_RETURN_IF_ERROR(expectAck(session->call(open, options.timeoutSeconds),
+                                    "open document " + std::to_string(options.document)));
+  wire::LodProfile profile;
+  profile.set_base_level(options.baseLevel);
+  profile.set_max_level(options.maxLevel);
+  profile.set_angle_threshold_degrees(options.angle);
+  TESSERA_RETURN_IF_ERROR(
+      expectAck(session->call(subscribeMessage(options.document, profile), options.timeoutSeconds),
+                "subscribe to document " + std::to_string(options.document)));
+  std::unique_ptr<Connection> c(new Connection(std::move(session), options.document));
+  c->profile_ = profile;
+  c->thread_ = std::thread([raw = c.get()] { raw->run(); });
+  return c;
+}
+
+Connection::Connection(std::unique_ptr<client::Session> session, uint64_t document)
+    : session_(std::move(session)), document_(document), view_(document) {
+  stats_.sessionId = session_->sessionId();
+}
+
+Connection::~Connection() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+  session_->close();
+}
+
+RegionMap Connection::regions() const {
+  std::lock_guard lock(mutex_);
+  return published_;
+}
+
+ConnectionStats Connection::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+std::vector<Collaborator> Connection::collaborators() const {
+  std::lock_guard lock(mutex_);
+  return collaborators_;
+}
+
+void Connection::enqueue(wire::ClientMessage message, Sent kind) {
+  std::lock_guard lock(mutex_);
+  if (kind.edit) ++stats_.editsPending;
+  outbox_.push_back({std::move(message), kind});
+}
+
+void Connection::countPending() {
+  uint64_t queued = 0;
+  for (const Outgoing& o : outbox_) queued += o.sent.edit ? 1 : 0;
+  stats_.editsPending = queued + inFlight_.size() + ackedVersions_.size();
+}
+
+void Connection::moveVertex(uint64_t packedVertex, const Vec3& target) {
+  wire::ClientMessage m;
+  auto* move = m.mutable_move_vertex();
+  move->set_document_id(document_);
+  move->add_vertex_ids(packedVertex);
+  move->mutable_target()->set_x(target[0]);
+  move->mutable_target()->set_y(target[1]);
+  move->mutable_target()->set_z(target[2]);
+  move->set_mode(wire::MOVE_MODE_DIRECT_MANIPULATION);
+  enqueue(std::move(m), {.at = {}, .edit = true});
+}
+
+void Connection::setVertexType(uint64_t packedVertex, wire::VertexType type) {
+  wire::ClientMessage m;
+  m.mutable_set_vertex_type()->set_document_id(document_);
+  m.mutable_set_vertex_type()->set_vertex_id(packedVertex);
+  m.mutable_set_vertex_type()->set_type(type);
+  enqueue(std::move(m), {.at = {}, .edit = true});
+}
+
+void Connection::select(std::optional<uint64_t> packedVertex) {
+  wire::ClientMessage m;
+  m.mutable_select()->set_document_id(document_);
+  if (packedVertex) m.mutable_select()->mutable_selection()->add_vertex_ids(*packedVertex);
+  enqueue(std::move(m), {});
+}
+
+void Connection::undo() {
+  wire::ClientMessage m;
+  {
+    std::lock_guard lock(mutex_);
+    if (done_.empty()) return;
+    m.mutable_undo()->set_document_id(document_);
+    m.mutable_undo()->set_edit_id(done_.back());
+    undone_.push_back(done_.back());
+    done_.pop_back();
+  }
+  enqueue(std::move(m), {.at = {}, .edit = true, .undo = true});
+}
+
+void Connection::redo() {
+  wire::ClientMessage m;
+  {
+    std::lock_guard lock(mutex_);
+    if (undone_.empty()) return;
+    m.mutable_redo()->set_document_id(document_);
+    m.mutable_redo()->set_edit_id(undone_.back());
+    done_.push_back(undone_.back());
+    undone_.pop_back();
+  }
+  enqueue(std::move(m), {.at = {}, .edit = true, .redo = true});
+}
+
+void Connection::changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle) {
+  wire::ClientMessage un;
+  un.mutable_unsubscribe()->set_document_id(document_);
+  enqueue(std::move(un), {});
+  wire::LodProfile p;
+  p.set_base_level(baseLevel);
+  p.set_max_level(maxLevel);
+  p.set_angle_threshold_degrees(angle);
+  enqueue(subscribeMessage(document_, p), {});
+}
+
+void Connection::run() {
+  while (!stop_) {
+    std::deque<Outgoing> out;
+    {
+      std::lock_guard lock(mutex_);
+      out.swap(outbox_);
+    }
+    for (Outgoing& o : out) {
+      if (o.message.has_subscribe()) profile_ = o.message.subscribe().profile();
+      auto seq = session_->send(std::move(o.message));
+      if (!seq.isOk()) {
+        std::lock_guard lock(mutex_);
+        stats_.connected = false;
+        stats_.lastError = seq.status().message();
+        return;
+      }
+      o.sent.at = Clock::now();
+      if (o.sent.edit) inFlight_[*seq] = o.sent;
+    }
+    if (!out.empty()) {
+      std::lock_guard lock(mutex_);
+      for (const Outgoing& o : out) stats_.editsSent += o.sent.edit ? 1 : 0;
+      countPending();
+    }
+    // Short waits keep queued edits from waiting long for the next send.
+    auto message = session_->receive(0.005);
+    if (!message.isOk()) {
+      if (message.status().message().rfind("no message from the server", 0) == 0) continue;
+      std::lock_guard lock(mutex_);
+      stats_.connected = false;
+      stats_.lastError = message.status().message();
+      return;
+    }
+    handle(*message);
+    std::lock_guard lock(mutex_);
+    countPending();
+  }
+}
+
+void Connection::recordLatency(Clock::duration d) {
+  const double ms = std::chrono::duration<double, std::milli>(d).count();
+  std::lock_guard lock(mutex_);
+  stats_.lastLatencyMs = ms;
+  stats_.maxLatencyMs = std::max(stats_.maxLatencyMs, ms);
+  ++stats_.latencySamples;
+}
+
+void Connection::publishAll() {
+  RegionMap all;
+  for (const auto& [id, mesh] : view_.regions()) all[id] = std::make_shared<const RegionMesh>(mesh);
+  std::lock_guard lock(mutex_);
+  published_.swap(all);
+  ++stats_.regionUpdates;
+}
+
+void Connection::handle(const wire::ServerMessage& m) {
+  const Clock::time_point now = Clock::now();
+  if (m.has_snapshot() || m.has_delta()) {
+    const bool wasReady = view_.ready();
+    const Status applied = view_.apply(m);
+    if (!applied.isOk()) {
+      // A gap: ask for a fresh snapshot with the same profile.
+      auto resent = session_->send(subscribeMessage(document_, profile_));
+      std::lock_guard lock(mutex_);
+      stats_.lastError = applied.message();
+      if (!resent.isOk()) stats_.connected = false;
+    } else if (m.has_snapshot() && m.snapshot().remaining_parts() == 0 &&
+               m.snapshot().document_id() == document_) {
+      publishAll();
+      std::lock_guard lock(mutex_);
+      ++stats_.snapshots;
+    } else if (m.has_delta() && wasReady && view_.ready() && m.delta().document_id() == document_) {
+      const wire::Delta& d = m.delta();
+      std::map<uint64_t, std::shared_ptr<const RegionMesh>> changed;
+      for (const wire::Region& r : d.regions()) {
+        auto it = view_.regions().find(r.region_id());
+        if (it != view_.regions().end())
+          changed[r.region_id()] = std::make_shared<const RegionMesh>(it->second);
+      }
+      // Latency: an acked version inside this delta's range, else remember the arrival.
+      bool matched = false;
+      for (auto it = ackedVersions_.upper_bound(d.from_version());
+           it != ackedVersions_.end() && it->first <= d.to_version();) {
+        recordLatency(now - it->second);
+        it = ackedVersions_.erase(it);
+        matched = true;
+      }
+      if (!matched && d.author_session_id() == session_->sessionId()) deltaArrivals_[d.to_version()] = now;
+      while (deltaArrivals_.size() > 256) deltaArrivals_.erase(deltaArrivals_.begin());
+      std::lock_guard lock(mutex_);
+      for (auto& [id, mesh] : changed) published_[id] = std::move(mesh);
+      for (uint64_t id : d.removed_region_ids()) published_.erase(id);
+      ++stats_.deltas;
+      ++stats_.regionUpdates;
+    }
+    std::lock_guard lock(mutex_);
+    stats_.ready = view_.ready();
+    stats_.version = view_.version();
+    stats_.bytesReceived = view_.bytesReceived();
+    stats_.gaps = view_.gaps();
+    return;
+  }
+  if (m.has_ack() || m.has_reject()) {
+    const uint64_t seq = client::replyTo(m);
+    auto it = inFlight_.find(seq);
+    if (it == inFlight_.end()) {
+      if (m.has_reject()) {
+        std::lock_guard lock(mutex_);
+        stats_.lastError = wire::RejectReason_Name(m.reject().reason()) + ": " + m.reject().message();
+      }
+      return;
+    }
+    const Sent sent = it->second;
+    inFlight_.erase(it);
+    if (m.has_reject()) {
+      std::lock_guard lock(mutex_);
+      stats_.lastError = wire::RejectReason_Name(m.reject().reason()) + ": " + m.reject().message();
+      ++stats_.editsRejected;
+      return;
+    }
+    const uint64_t version = m.ack().version();
+    // The first delta reaching the version (deltas may be merged).
+    auto arrived = deltaArrivals_.lower_bound(version);
+    if (arrived != deltaArrivals_.end() && version <= view_.version()) {
+      recordLatency(arrived->second - sent.at);
+      deltaArrivals_.erase(arrived);
+    } else if (version > view_.version()) {
+      ackedVersions_[version] = sent.at;
+    }
+    if (!sent.undo && !sent.redo && m.ack().edit_id() != 0) {
+      std::lock_guard lock(mutex_);
+      done_.push_back(m.ack().edit_id());
+      undone_.clear();
+    }
+    return;
+  }
+  if (m.has_presence() && m.presence().document_id() == document_) {
+    std::vector<Collaborator> list;
+    for (const wire::Participant& p : m.presence().participants()) {
+      Collaborator c{.sessionId = p.session_id(),
+                     .name = p.name(),
+                     .role = p.role(),
+                     .selectedVertices = {},
+                     .self = p.session_id() == session_->sessionId()};
+      c.selectedVertices.assign(p.selection().vertex_ids().begin(), p.selection().vertex_ids().end());
+      list.push_back(std::move(c));
+    }
+    std::lock_guard lock(mutex_);
+    collaborators_ = std::move(list);
+    return;
+  }
+  if (m.has_error()) {
+    std::lock_guard lock(mutex_);
+    stats_.lastError = m.error().message();
+    if (m.error().fatal()) stats_.connected = false;
+  }
+}
+
+}  // namespace tessera::view

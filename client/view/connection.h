@@ -1,0 +1,118 @@
+// Connection: tessera-view's link to the server. It connects, opens the
+// document and subscribes with the LOD profile, then a background thread owns
+// the Session: it sends queued commands, receives snapshots, deltas and
+// presence, keeps a DocumentView current (resubscribing after a gap) and
+// publishes immutable region meshes for the render thread. It also measures
+// edit-to-delta latency: from sending an edit to receiving the delta that
+// carries the version its Ack names.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "client/lib/document_view.h"
+#include "client/lib/session.h"
+#include "client/view/view_options.h"
+
+namespace tessera::view {
+
+// Region id -> decoded mesh. A changed region gets a new pointer, so the
+// renderer re-uploads exactly the regions whose pointer changed.
+using RegionMap = std::map<uint64_t, std::shared_ptr<const RegionMesh>>;
+
+struct Collaborator {
+  uint64_t sessionId = 0;
+  std::string name;
+  wire::Role role = wire::ROLE_UNSPECIFIED;
+  std::vector<uint64_t> selectedVertices;
+  bool self = false;
+};
+
+struct ConnectionStats {
+  bool connected = true;
+  bool ready = false;  // a snapshot has arrived
+  uint64_t sessionId = 0;
+  uint64_t version = 0;
+  uint64_t bytesReceived = 0;  // region bytes
+  uint64_t gaps = 0;
+  uint64_t snapshots = 0, deltas = 0;
+  uint64_t regionUpdates = 0;  // bumps whenever the published regions change
+  double lastLatencyMs = -1;   // edit to delta; -1 before the first
+  double maxLatencyMs = 0;
+  uint64_t latencySamples = 0;
+  uint64_t editsSent = 0, editsRejected = 0;
+  // Edits queued, unanswered, or acked without their delta yet.
+  uint64_t editsPending = 0;
+  std::string lastError;  // the latest Reject or Error, for the HUD
+};
+
+class Connection {
+ public:
+  // Blocking: connect, open, subscribe (each bounded by options.timeoutSeconds).
+  static Expected<std::unique_ptr<Connection>> open(const ViewOptions& options);
+  ~Connection();
+  Connection(const Connection&) = delete;
+  Connection& operator=(const Connection&) = delete;
+
+  uint64_t documentId() const { return document_; }
+  RegionMap regions() const;
+  ConnectionStats stats() const;
+  std::vector<Collaborator> collaborators() const;
+
+  // Queued for the network thread. document_id is filled in by the caller.
+  void moveVertex(uint64_t packedVertex, const Vec3& target);
+  void setVertexType(uint64_t packedVertex, wire::VertexType type);
+  void select(std::optional<uint64_t> packedVertex);  // nothing clears the selection
+  void undo();
+  void redo();
+  // Unsubscribe and subscribe again with another profile.
+  void changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle);
+
+ private:
+  struct Sent {
+    std::chrono::steady_clock::time_point at;
+    bool edit = false;  // an edit, undo or redo: its Ack names a version
+    bool undo = false, redo = false;
+  };
+  struct Outgoing {
+    wire::ClientMessage message;
+    Sent sent;
+  };
+
+  Connection(std::unique_ptr<client::Session> session, uint64_t document);
+  void run();
+  void enqueue(wire::ClientMessage message, Sent kind);
+  void handle(const wire::ServerMessage& message);
+  void publishAll();
+  void recordLatency(std::chrono::steady_clock::duration d);
+  void countPending();  // with mutex_ held
+
+  std::unique_ptr<client::Session> session_;
+  const uint64_t document_;
+  client::DocumentView view_;          // network thread only
+  wire::LodProfile profile_;           // network thread only
+  std::map<uint64_t, Sent> inFlight_;  // by client_seq; network thread only
+  // Versions acked but whose delta has not arrived, and the reverse.
+  std::map<uint64_t, std::chrono::steady_clock::time_point> ackedVersions_, deltaArrivals_;
+
+  mutable std::mutex mutex_;  // guards everything below
+  std::deque<Outgoing> outbox_;
+  RegionMap published_;
+  ConnectionStats stats_;
+  std::vector<Collaborator> collaborators_;
+  std::vector<uint64_t> done_, undone_;  // own edit ids for undo / redo
+
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace tessera::view

@@ -1,0 +1,269 @@
+#include "client/view/renderer.h"
+
+#include <cmath>
+#include <string>
+
+namespace tessera::view {
+
+namespace {
+
+constexpr const char* kMeshVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+uniform mat4 uView;
+uniform mat4 uProjection;
+out vec3 vNormal;
+out vec3 vPosition;
+void main() {
+  vec4 p = uView * vec4(aPosition, 1.0);
+  vPosition = p.xyz;
+  vNormal = mat3(uView) * aNormal;  // the view matrix is a rotation and a translation
+  gl_Position = uProjection * p;
+}
+)";
+
+// A headlight: diffuse plus a little specular, lit from the eye.
+constexpr const char* kMeshFragment = R"(#version 330 core
+in vec3 vNormal;
+in vec3 vPosition;
+uniform vec3 uColour;
+uniform int uFlat;
+out vec4 fragColour;
+void main() {
+  if (uFlat != 0) { fragColour = vec4(uColour, 1.0); return; }
+  vec3 n = normalize(vNormal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 toEye = normalize(-vPosition);
+  float diffuse = max(dot(n, toEye), 0.0);
+  float specular = pow(max(dot(reflect(-toEye, n), toEye), 0.0), 40.0);
+  fragColour = vec4(uColour * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular), 1.0);
+}
+)";
+
+constexpr const char* kPointVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+uniform mat4 uView;
+uniform mat4 uProjection;
+uniform float uSize;
+void main() {
+  gl_Position = uProjection * uView * vec4(aPosition, 1.0);
+  gl_PointSize = uSize;
+}
+)";
+
+constexpr const char* kPointFragment = R"(#version 330 core
+uniform vec3 uColour;
+out vec4 fragColour;
+void main() {
+  vec2 d = gl_PointCoord - vec2(0.5);
+  float r = dot(d, d);
+  if (r > 0.25) discard;
+  fragColour = vec4(r > 0.14 ? vec3(0.05) : uColour, 1.0);
+}
+)";
+
+Expected<GLuint> compile(GLenum type, const char* source) {
+  GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    return internalError(std::string("shader does not compile: ") + log);
+  }
+  return shader;
+}
+
+Expected<GLuint> link(const char* vertex, const char* fragment) {
+  TESSERA_ASSIGN_OR_RETURN(GLuint vs, compile(GL_VERTEX_SHADER, vertex));
+  auto fs = compile(GL_FRAGMENT_SHADER, fragment);
+  if (!fs.isOk()) {
+    glDeleteShader(vs);
+    return fs.status();
+  }
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, *fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(*fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    return internalError(std::string("shader program does not link: ") + log);
+  }
+  return program;
+}
+
+// A stable, well-spread colour for a region id.
+std::array<float, 3> regionColour(uint64_t id) {
+  uint64_t h = id * 0x9E3779B97F4A7C15ull;
+  h ^= h >> 31;
+  const float hue = static_cast<float>(h % 360) / 60.0f;
+  const float x = 1 - std::abs(std::fmod(hue, 2.0f) - 1);
+  std::array<float, 3> c{};
+  switch (static_cast<int>(hue)) {
+    case 0:
+      c = {1, x, 0};
+      break;
+    case 1:
+      c = {x, 1, 0};
+      break;
+    case 2:
+      c = {0, 1, x};
+      break;
+    case 3:
+      c = {0, x, 1};
+      break;
+    case 4:
+      c = {x, 0, 1};
+      break;
+    default:
+      c = {1, 0, x};
+      break;
+  }
+  for (float& v : c) v = 0.35f + 0.55f * v;
+  return c;
+}
+
+void setMatrices(GLuint program, const DrawOptions& o) {
+  glUniformMatrix4fv(glGetUniformLocation(program, "uView"), 1, GL_FALSE, o.view.data());
+  glUniformMatrix4fv(glGetUniformLocation(program, "uProjection"), 1, GL_FALSE, o.projection.data());
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<Renderer>> Renderer::create() {
+  std::unique_ptr<Renderer> r(new Renderer());
+  TESSERA_ASSIGN_OR_RETURN(r->meshProgram_, link(kMeshVertex, kMeshFragment));
+  TESSERA_ASSIGN_OR_RETURN(r->pointProgram_, link(kPointVertex, kPointFragment));
+  glGenVertexArrays(1, &r->pointVao_);
+  glGenBuffers(1, &r->pointVbo_);
+  glBindVertexArray(r->pointVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, r->pointVbo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  glBindVertexArray(0);
+  return r;
+}
+
+Renderer::~Renderer() {
+  for (auto& [id, r] : regions_) release(r);
+  glDeleteBuffers(1, &pointVbo_);
+  glDeleteVertexArrays(1, &pointVao_);
+  glDeleteProgram(meshProgram_);
+  glDeleteProgram(pointProgram_);
+}
+
+void Renderer::release(GpuRegion& r) {
+  glDeleteBuffers(1, &r.vbo);
+  glDeleteBuffers(1, &r.ibo);
+  glDeleteVertexArrays(1, &r.vao);
+  r = {};
+}
+
+void Renderer::sync(const RegionMap& regions) {
+  for (auto it = regions_.begin(); it != regions_.end();) {
+    if (regions.count(it->first)) {
+      ++it;
+      continue;
+    }
+    triangles_ -= it->second.indices / 3;
+    release(it->second);
+    it = regions_.erase(it);
+  }
+  for (const auto& [id, mesh] : regions) {
+    GpuRegion& r = regions_[id];
+    if (r.mesh == mesh) continue;
+    if (r.vao == 0) {
+      glGenVertexArrays(1, &r.vao);
+      glGenBuffers(1, &r.vbo);
+      glGenBuffers(1, &r.ibo);
+      r.colour = regionColour(id);
+    }
+    triangles_ -= r.indices / 3;
+    r.mesh = mesh;
+    std::vector<float> vertices;
+    vertices.reserve(mesh->positions.size() * 6);
+    for (size_t v = 0; v < mesh->positions.size(); ++v) {
+      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<float>(mesh->positions[v][k]));
+      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<float>(mesh->normals[v][k]));
+    }
+    std::vector<uint32_t> indices;
+    indices.reserve(mesh->triangles.size() * 3);
+    for (const auto& t : mesh->triangles)
+      for (int k = 0; k < 3; ++k) indices.push_back(static_cast<uint32_t>(t[k]));
+    glBindVertexArray(r.vao);
+    glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.ibo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
+                 indices.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    glBindVertexArray(0);
+    r.indices = static_cast<GLsizei>(indices.size());
+    triangles_ += r.indices / 3;
+    ++uploads_;
+  }
+}
+
+void Renderer::drawSurface(const DrawOptions& o) {
+  glEnable(GL_DEPTH_TEST);
+  glUseProgram(meshProgram_);
+  setMatrices(meshProgram_, o);
+  const GLint colour = glGetUniformLocation(meshProgram_, "uColour");
+  const GLint flat = glGetUniformLocation(meshProgram_, "uFlat");
+  // Push the filled surface back a little so the wireframe lies on top.
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(1.0f, 1.0f);
+  glUniform1i(flat, 0);
+  for (const auto& [id, r] : regions_) {
+    const std::array<float, 3> c = o.regionColours ? r.colour : std::array<float, 3>{0.72f, 0.74f, 0.78f};
+    glUniform3fv(colour, 1, c.data());
+    glBindVertexArray(r.vao);
+    glDrawElements(GL_TRIANGLES, r.indices, GL_UNSIGNED_INT, nullptr);
+  }
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  if (o.wireframe) {
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glUniform1i(flat, 1);
+    const std::array<float, 3> line{0.1f, 0.12f, 0.16f};
+    glUniform3fv(colour, 1, line.data());
+    for (const auto& [id, r] : regions_) {
+      glBindVertexArray(r.vao);
+      glDrawElements(GL_TRIANGLES, r.indices, GL_UNSIGNED_INT, nullptr);
+    }
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  }
+  glBindVertexArray(0);
+}
+
+void Renderer::drawPoints(const std::vector<V3>& points, const PointStyle& style, const DrawOptions& o) {
+  if (points.empty()) return;
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glUseProgram(pointProgram_);
+  setMatrices(pointProgram_, o);
+  glUniform3fv(glGetUniformLocation(pointProgram_, "uColour"), 1, style.colour.data());
+  glUniform1f(glGetUniformLocation(pointProgram_, "uSize"), style.size);
+  glBindVertexArray(pointVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, pointVbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(V3)), points.data(),
+               GL_STREAM_DRAW);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size()));
+  glBindVertexArray(0);
+  glEnable(GL_DEPTH_TEST);
+}
+
+}  // namespace tessera::view

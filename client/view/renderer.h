@@ -1,0 +1,66 @@
+// Renderer: the GPU side of tessera-view. One vertex buffer and one index
+// buffer per region, re-uploaded only when the region's mesh pointer changes;
+// smooth shading with the limit normals under a headlight, an optional
+// wireframe overlay and per-region colours; control vertices as round points.
+// Needs a current OpenGL 3.3 core context for its whole life.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "client/view/connection.h"
+#include "client/view/control_points.h"
+#include "client/view/gl.h"
+#include "client/view/view_math.h"
+
+namespace tessera::view {
+
+struct DrawOptions {
+  Mat4 view{}, projection{};
+  bool wireframe = false;
+  bool regionColours = false;
+};
+
+struct PointStyle {
+  std::array<float, 3> colour{1.0f, 0.85f, 0.1f};
+  float size = 8;
+};
+
+class Renderer {
+ public:
+  static Expected<std::unique_ptr<Renderer>> create();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Uploads new and changed regions and frees removed ones.
+  void sync(const RegionMap& regions);
+  void drawSurface(const DrawOptions& options);
+  // Points are drawn over the surface; callers pass only the visible ones.
+  void drawPoints(const std::vector<V3>& points, const PointStyle& style, const DrawOptions& options);
+
+  int64_t triangles() const { return triangles_; }
+  size_t regionCount() const { return regions_.size(); }
+  uint64_t uploads() const { return uploads_; }
+
+ private:
+  struct GpuRegion {
+    std::shared_ptr<const RegionMesh> mesh;  // what was uploaded
+    GLuint vao = 0, vbo = 0, ibo = 0;
+    GLsizei indices = 0;
+    std::array<float, 3> colour{};
+  };
+  Renderer() = default;
+  static void release(GpuRegion& r);
+
+  GLuint meshProgram_ = 0, pointProgram_ = 0;
+  GLuint pointVao_ = 0, pointVbo_ = 0;
+  std::map<uint64_t, GpuRegion> regions_;
+  int64_t triangles_ = 0;
+  uint64_t uploads_ = 0;
+};
+
+}  // namespace tessera::view

@@ -1,0 +1,445 @@
+// tessera-view: a GLFW + OpenGL 3.3 core viewer and editor for one document
+// of a tessera-server (issue 6 §2, docs/VIEWER.md). The Connection keeps the
+// document current on its own thread; each frame uploads changed regions,
+// draws them, handles picking and dragging of control vertices, and draws
+// the HUD. With --screenshot it renders a number of frames once the first
+// snapshot is in, writes a PNG and exits.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "client/view/gl.h"
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include "client/view/camera.h"
+#include "client/view/connection.h"
+#include "client/view/control_points.h"
+#include "client/view/hud.h"
+#include "client/view/renderer.h"
+#include "client/view/screenshot.h"
+#include "client/view/view_options.h"
+
+namespace tessera::view {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Input state shared with the GLFW callbacks (through the window user pointer).
+struct App {
+  OrbitCamera camera;
+  ViewToggles toggles;
+  Connection* connection = nullptr;
+  float scroll = 0;
+  std::optional<uint64_t> picked;  // packed id at toggles.controlLevel
+  std::set<uint64_t> corners;      // vertices this viewer made corners
+  bool frameRequested = false, quit = false;
+  bool undo = false, redo = false;
+};
+
+void onScroll(GLFWwindow* window, double, double dy) {
+  static_cast<App*>(glfwGetWindowUserPointer(window))->scroll += static_cast<float>(dy);
+}
+
+void onKey(GLFWwindow* window, int key, int, int action, int mods) {
+  if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+  if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
+  App& app = *static_cast<App*>(glfwGetWindowUserPointer(window));
+  const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0, shift = (mods & GLFW_MOD_SHIFT) != 0;
+  switch (key) {
+    case GLFW_KEY_W:
+      app.toggles.wireframe = !app.toggles.wireframe;
+      break;
+    case GLFW_KEY_C:
+      app.toggles.regionColours = !app.toggles.regionColours;
+      break;
+    case GLFW_KEY_V:
+      app.toggles.showControls = !app.toggles.showControls;
+      break;
+    case GLFW_KEY_F:
+      app.frameRequested = true;
+      break;
+    case GLFW_KEY_LEFT_BRACKET:
+      if (app.toggles.controlLevel > 0) --app.toggles.controlLevel, app.picked.reset();
+      break;
+    case GLFW_KEY_RIGHT_BRACKET:
+      if (app.toggles.controlLevel < 10) ++app.toggles.controlLevel, app.picked.reset();
+      break;
+    case GLFW_KEY_K:
+      if (app.picked) {
+        const bool corner = app.corners.count(*app.picked) == 0;
+        app.connection->setVertexType(*app.picked,
+                                      corner ? wire::VERTEX_TYPE_CORNER : wire::VERTEX_TYPE_SMOOTH);
+        if (corner) {
+          app.corners.insert(*app.picked);
+        } else {
+          app.corners.erase(*app.picked);
+        }
+      }
+      break;
+    case GLFW_KEY_Z:
+      if (ctrl) (shift ? app.redo : app.undo) = true;
+      break;
+    case GLFW_KEY_Y:
+      if (ctrl) app.redo = true;
+      break;
+    case GLFW_KEY_ESCAPE:
+      app.picked.reset();
+      app.connection->select(std::nullopt);
+      break;
+    case GLFW_KEY_Q:
+      app.quit = true;
+      break;
+    default:
+      break;
+  }
+}
+
+// One frame of mouse state, in framebuffer pixels; from GLFW or from the
+// headless drag script.
+struct MouseInput {
+  float px = 0, py = 0;
+  bool left = false, right = false, shift = false;
+  float scroll = 0;
+  bool captured = false;  // ImGui wants the mouse
+};
+
+MouseInput readMouse(GLFWwindow* window, App& app, int width, int height) {
+  MouseInput in;
+  double x = 0, y = 0;
+  glfwGetCursorPos(window, &x, &y);
+  // Cursor positions are in window coordinates; the camera works in framebuffer pixels.
+  int ww = 1, wh = 1;
+  glfwGetWindowSize(window, &ww, &wh);
+  in.px = static_cast<float>(x) * static_cast<float>(width) / static_cast<float>(std::max(ww, 1));
+  in.py = static_cast<float>(y) * static_cast<float>(height) / static_cast<float>(std::max(wh, 1));
+  in.captured = ImGui::GetIO().WantCaptureMouse;
+  in.left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+  in.right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
+             glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+  in.shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+  in.scroll = app.scroll;
+  app.scroll = 0;
+  return in;
+}
+
+// Mouse: left on a control vertex drags it, left elsewhere orbits, right or
+// shift+left pans, the wheel zooms.
+class MouseTool {
+ public:
+  void update(const MouseInput& in, App& app, const std::vector<ControlPoint>& points, int width,
+              int height) {
+    if (!in.captured && in.scroll != 0) app.camera.zoom(in.scroll);
+    if (in.left && !wasLeft_ && !in.captured) {
+      mode_ = in.shift ? Mode::kPan : Mode::kOrbit;
+      if (!in.shift && app.toggles.showControls) {
+        if (auto hit = pickPoint(points, app.camera, width, height, in.px, in.py, 10.0f)) {
+          mode_ = Mode::kDrag;
+          app.picked = points[*hit].id;
+          anchor_ = points[*hit].position;
+          app.connection->select(app.picked);
+        }
+      }
+    } else if (in.right && !wasRight_ && !in.captured) {
+      mode_ = Mode::kPan;
+    }
+    const float dx = in.px - lastX_, dy = in.py - lastY_;
+    if (mode_ == Mode::kOrbit && in.left) app.camera.orbit(dx, dy);
+    if (mode_ == Mode::kPan && (in.left || in.right)) app.camera.pan(dx, dy, height);
+    if (mode_ == Mode::kDrag && app.picked) {
+      const auto now = Clock::now();
+      if (dx != 0 || dy != 0) pending_ = true;
+      // At most 30 edits a second while dragging, and the last one on release.
+      if (pending_ && (!in.left || now - lastSend_ > std::chrono::milliseconds(33))) {
+        const V3 t = dragTarget(app.camera, anchor_, in.px, in.py, width, height);
+        app.connection->moveVertex(*app.picked, Vec3(t.x, t.y, t.z));
+        lastSend_ = now;
+        pending_ = false;
+      }
+    }
+    if (!in.left && !in.right) mode_ = Mode::kNone;
+    wasLeft_ = in.left, wasRight_ = in.right, lastX_ = in.px, lastY_ = in.py;
+  }
+
+ private:
+  enum class Mode { kNone, kOrbit, kPan, kDrag };
+  Mode mode_ = Mode::kNone;
+  bool wasLeft_ = false, wasRight_ = false, pending_ = false;
+  float lastX_ = 0, lastY_ = 0;
+  V3 anchor_;
+  Clock::time_point lastSend_;
+};
+
+// The headless --drag script: hover over the control vertex nearest the
+// centre, press, move by (dx, dy) in 10 steps, release. Then the frames wait
+// until every edit it made has come back as a delta.
+class DragScript {
+ public:
+  DragScript(int dx, int dy) : dx_(static_cast<float>(dx)), dy_(static_cast<float>(dy)) {}
+  bool done() const { return step_ > kSteps + 2; }
+  std::optional<MouseInput> next(const App& app, const std::vector<ControlPoint>& points, int width,
+                                 int height) {
+    if (step_ == 0) {
+      auto hit = pickPoint(points, app.camera, width, height, width / 2.0f, height / 2.0f, 1e9f);
+      if (!hit) return std::nullopt;
+      auto s = app.camera.project(points[*hit].position, width, height);
+      if (!s) return std::nullopt;
+      x0_ = (*s)[0], y0_ = (*s)[1];
+    }
+    MouseInput in;
+    const float t = std::clamp(static_cast<float>(step_ - 1) / kSteps, 0.0f, 1.0f);
+    in.px = x0_ + dx_ * t, in.py = y0_ + dy_ * t;
+    in.left = step_ >= 1 && step_ <= kSteps + 1;
+    ++step_;
+    return in;
+  }
+
+ private:
+  static constexpr int kSteps = 10;
+  float dx_, dy_, x0_ = 0, y0_ = 0;
+  int step_ = 0;
+};
+
+std::vector<V3> visible(const std::vector<ControlPoint>& points, V3 eye) {
+  std::vector<V3> out;
+  for (const ControlPoint& p : points)
+    if (dot(p.normal, eye - p.position) >= 0) out.push_back(p.position);
+  return out;
+}
+
+int run(const ViewOptions& options) {
+  const bool headless = !options.screenshot.empty();
+  auto connection = Connection::open(options);
+  if (!connection.isOk()) {
+    std::fprintf(stderr, "tessera-view: %s\n", connection.status().toString().c_str());
+    return 1;
+  }
+  glfwSetErrorCallback(
+      [](int code, const char* text) { std::fprintf(stderr, "tessera-view: GLFW %d: %s\n", code, text); });
+  if (!glfwInit()) return 1;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SAMPLES, headless ? 0 : 4);
+  const std::string title = "tessera-view: document " + std::to_string(options.document);
+  GLFWwindow* window = glfwCreateWindow(options.width, options.height, title.c_str(), nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "tessera-view: no OpenGL 3.3 core window (is DISPLAY set?)\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(headless ? 0 : 1);
+
+  App app;
+  app.connection = connection->get();
+  app.toggles.wireframe = options.wireframe;
+  app.toggles.regionColours = options.regionColours;
+  app.toggles.controlLevel = options.controlLevel;
+  app.toggles.baseLevel = static_cast<int>(options.baseLevel);
+  app.toggles.maxLevel = static_cast<int>(options.maxLevel);
+  app.toggles.angle = static_cast<float>(options.angle);
+  glfwSetWindowUserPointer(window, &app);
+  // Installed before ImGui's, which chain to them.
+  glfwSetScrollCallback(window, onScroll);
+  glfwSetKeyCallback(window, onKey);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  int rc = 0;
+  {
+    auto renderer = Renderer::create();
+    if (!renderer.isOk()) {
+      std::fprintf(stderr, "tessera-view: %s\n", renderer.status().toString().c_str());
+      rc = 1;
+    }
+    MouseTool mouse;
+    std::optional<DragScript> script;
+    if (headless && options.drag) script.emplace(options.dragX, options.dragY);
+    RegionMap regions;
+    std::vector<ControlPoint> points;
+    uint64_t seenUpdates = 0;
+    int pointsLevel = -1;
+    bool framed = false;
+    int framesReady = 0, framesCounted = 0;
+    double fps = 0, bytesPerSecond = 0;
+    uint64_t bytesAtSample = 0;
+    const auto start = Clock::now();
+    auto lastFrame = start, lastSample = start;
+    while (rc == 0 && !glfwWindowShouldClose(window) && !app.quit) {
+      glfwPollEvents();
+      const auto now = Clock::now();
+      const double dt = std::chrono::duration<double>(now - lastFrame).count();
+      lastFrame = now;
+      if (dt > 0) fps = fps == 0 ? 1 / dt : 0.9 * fps + 0.1 / dt;
+      const ConnectionStats stats = (*connection)->stats();
+      if (std::chrono::duration<double>(now - lastSample).count() >= 1) {
+        bytesPerSecond = static_cast<double>(stats.bytesReceived - bytesAtSample) /
+                         std::chrono::duration<double>(now - lastSample).count();
+        bytesAtSample = stats.bytesReceived;
+        lastSample = now;
+      }
+      if (headless && (!stats.connected || (!stats.ready && now - start > std::chrono::duration<double>(
+                                                                              options.timeoutSeconds)))) {
+        std::fprintf(stderr, "tessera-view: no snapshot of document %llu: %s\n",
+                     static_cast<unsigned long long>(options.document),
+                     stats.lastError.empty() ? "timed out" : stats.lastError.c_str());
+        rc = 1;
+        break;
+      }
+      if (stats.regionUpdates != seenUpdates) {
+        seenUpdates = stats.regionUpdates;
+        regions = (*connection)->regions();
+        (*renderer)->sync(regions);
+        pointsLevel = -1;
+      }
+      if (pointsLevel != app.toggles.controlLevel) {
+        points = controlPoints(regions, app.toggles.controlLevel);
+        pointsLevel = app.toggles.controlLevel;
+      }
+      V3 lo, hi;
+      if ((!framed || app.frameRequested) && bounds(regions, &lo, &hi)) {
+        app.camera.frame(lo, hi);
+        framed = true;
+        app.frameRequested = false;
+      }
+      if (app.toggles.profileChanged) {
+        app.toggles.profileChanged = false;
+        (*connection)
+            ->changeProfile(static_cast<uint32_t>(app.toggles.baseLevel),
+                            static_cast<uint32_t>(app.toggles.maxLevel), app.toggles.angle);
+      }
+      if (app.undo) (*connection)->undo(), app.undo = false;
+      if (app.redo) (*connection)->redo(), app.redo = false;
+
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window, &width, &height);
+      if (options.hud) {
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+      }
+      if (!headless) {
+        mouse.update(readMouse(window, app, width, height), app, points, width, height);
+      } else if (script && stats.ready && framesReady >= 2 && !script->done()) {
+        auto in = script->next(app, points, width, height);
+        if (!in) {
+          std::fprintf(stderr, "tessera-view: --drag: no visible control vertex at level %d\n",
+                       app.toggles.controlLevel);
+          rc = 1;
+          break;
+        }
+        mouse.update(*in, app, points, width, height);
+      }
+
+      glViewport(0, 0, width, height);
+      glClearColor(0.16f, 0.18f, 0.22f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      DrawOptions draw;
+      draw.view = app.camera.view();
+      draw.projection =
+          app.camera.projection(static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+      draw.wireframe = app.toggles.wireframe;
+      draw.regionColours = app.toggles.regionColours;
+      (*renderer)->drawSurface(draw);
+      if (app.toggles.showControls) {
+        (*renderer)->drawPoints(visible(points, app.camera.eye()), PointStyle{}, draw);
+        // Collaborators' selections in cyan, this viewer's pick in red.
+        std::vector<V3> theirs, mine;
+        std::set<uint64_t> selected;
+        for (const Collaborator& c : (*connection)->collaborators())
+          if (!c.self) selected.insert(c.selectedVertices.begin(), c.selectedVertices.end());
+        for (const ControlPoint& p : points) {
+          if (app.picked && p.id == *app.picked) mine.push_back(p.position);
+          if (selected.count(p.id)) theirs.push_back(p.position);
+        }
+        (*renderer)->drawPoints(theirs, PointStyle{{0.2f, 0.9f, 1.0f}, 12}, draw);
+        (*renderer)->drawPoints(mine, PointStyle{{1.0f, 0.2f, 0.2f}, 12}, draw);
+      }
+      if (options.hud) {
+        HudFacts facts{.fps = fps,
+                       .triangles = (*renderer)->triangles(),
+                       .regions = (*renderer)->regionCount(),
+                       .bytesPerSecond = bytesPerSecond,
+                       .controlPoints = points.size(),
+                       .pickedVertex = app.picked,
+                       .stats = stats,
+                       .collaborators = (*connection)->collaborators()};
+        drawHud(facts, app.toggles);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      }
+      // With --drag, frames count from when every edit has its delta.
+      // Fresh counts: the mouse may have queued an edit this frame.
+      const ConnectionStats after = script ? (*connection)->stats() : stats;
+      const bool waiting = script && (!script->done() || after.editsPending > 0);
+      if (script && script->done() && after.editsPending == 0 && after.editsSent == 0) {
+        std::fprintf(stderr, "tessera-view: --drag: the drag sent no edit\n");
+        rc = 1;
+        break;
+      }
+      if (waiting && now - start > std::chrono::duration<double>(options.timeoutSeconds)) {
+        std::fprintf(stderr, "tessera-view: --drag: edits unanswered after %g s\n", options.timeoutSeconds);
+        rc = 1;
+        break;
+      }
+      if (headless && stats.ready) ++framesReady;
+      if (headless && stats.ready && !waiting && ++framesCounted >= options.frames) {
+        if (script) {
+          std::printf(
+              "dragged %s by (%d, %d): %llu edits sent, %llu rejected, edit to delta %.1f ms (max %.1f ms)\n",
+              app.picked ? vertexName(*app.picked).c_str() : "nothing", options.dragX, options.dragY,
+              static_cast<unsigned long long>(after.editsSent),
+              static_cast<unsigned long long>(after.editsRejected), after.lastLatencyMs, after.maxLatencyMs);
+        }
+        const Status written = writeScreenshot(options.screenshot, width, height);
+        if (!written.isOk()) {
+          std::fprintf(stderr, "tessera-view: %s\n", written.toString().c_str());
+          rc = 1;
+        } else {
+          std::printf("wrote %s (%dx%d, document version %llu, %lld triangles)\n", options.screenshot.c_str(),
+                      width, height, static_cast<unsigned long long>(stats.version),
+                      static_cast<long long>((*renderer)->triangles()));
+        }
+        break;
+      }
+      glfwSwapBuffers(window);
+    }
+  }  // the renderer's GL objects go while the context is current
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return rc;
+}
+
+}  // namespace
+}  // namespace tessera::view
+
+int main(int argc, char** argv) {
+  auto options = tessera::view::parseViewOptions(std::vector<std::string>(argv + 1, argv + argc));
+  if (!options.isOk()) {
+    std::fprintf(stderr, "tessera-view: %s\n\n%s", options.status().message().c_str(),
+                 tessera::view::kViewHelp);
+    return 2;
+  }
+  if (options->help) {
+    std::fputs(tessera::view::kViewHelp, stdout);
+    return 0;
+  }
+  return tessera::view::run(*options);
+}

@@ -1,0 +1,45 @@
+// The command line of tessera-view (docs/VIEWER.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/util/status.h"
+
+namespace tessera::view {
+
+struct ViewOptions {
+  std::string host = "127.0.0.1";
+  uint16_t port = 7878;
+  std::string token;
+  std::string name = "tessera-view";
+  uint64_t document = 0;
+  // The LOD profile to subscribe with.
+  uint32_t baseLevel = 1;
+  uint32_t maxLevel = 3;
+  double angle = 15;
+  // The level whose control vertices are shown and dragged.
+  int controlLevel = 0;
+  int width = 800, height = 600;
+  bool wireframe = false;
+  bool regionColours = false;
+  bool hud = true;
+  // Headless: render `frames` frames once the document is in, write the PNG, exit.
+  std::string screenshot;
+  int frames = 30;
+  // Headless self-test of picking: pick the visible control vertex nearest
+  // the window centre and drag it by (dx, dy) pixels with synthetic mouse
+  // input, wait for the edits' deltas, then count the frames.
+  bool drag = false;
+  int dragX = 0, dragY = 0;
+  double timeoutSeconds = 30;  // to connect and receive the first snapshot
+  bool help = false;
+};
+
+extern const char* const kViewHelp;
+
+// Errors name the option and the reason.
+Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args);
+
+}  // namespace tessera::view

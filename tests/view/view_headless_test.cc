@@ -1,0 +1,278 @@
+// tessera-view end to end (issue 6 §2): the real server, the real viewer
+// rendering headless under Xvfb with Mesa's llvmpipe, and the PNG read back.
+// The object must be visible with a plausible silhouette, an edit made by
+// another client must change the picture, and so must the viewer's own pick
+// and drag of a control vertex (--drag, synthetic mouse input).
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "client/lib/session.h"
+#include "core/hierarchy/ids.h"
+#include "integration/messages.h"
+#include "integration/server_process.h"
+#include "support/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::optional<std::string> findXvfb() {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  size_t start = 0;
+  while (start <= dirs.size()) {
+    const size_t end = dirs.find(':', start);
+    const std::string candidate = dirs.substr(start, end - start) + "/Xvfb";
+    if (access(candidate.c_str(), X_OK) == 0) return candidate;
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return std::nullopt;
+}
+
+// Runs argv with extra environment, stdout and stderr to `log`; kills it
+// after `seconds`. Returns the exit code, or -1 on a timeout or a signal.
+int runBounded(const std::vector<std::string>& args,
+               const std::vector<std::pair<std::string, std::string>>& env, const std::string& log,
+               double seconds) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
+    FILE* out = std::freopen(log.c_str(), "a", stdout);
+    FILE* err = std::freopen(log.c_str(), "a", stderr);
+    (void)out, (void)err;
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
+  int status = 0;
+  while (Clock::now() < deadline) {
+    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  waitpid(pid, &status, 0);
+  return -1;
+}
+
+// An Xvfb server on a free display number, stopped on destruction.
+class Xvfb {
+ public:
+  ~Xvfb() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      int status = 0;
+      for (int i = 0; i < 100 && waitpid(pid_, &status, WNOHANG) != pid_; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      if (waitpid(pid_, &status, WNOHANG) == 0) kill(pid_, SIGKILL), waitpid(pid_, &status, 0);
+    }
+  }
+
+  // Tries a few display numbers; each gets at most 10 s to open its socket.
+  bool start(const std::string& binary, const std::string& log) {
+    const int first = 200 + static_cast<int>(getpid() % 500);
+    for (int n = first; n < first + 10; ++n) {
+      const std::string lock = "/tmp/.X" + std::to_string(n) + "-lock";
+      const std::string socket = "/tmp/.X11-unix/X" + std::to_string(n);
+      if (std::filesystem::exists(lock) || std::filesystem::exists(socket)) continue;
+      const std::string display = ":" + std::to_string(n);
+      pid_ = fork();
+      if (pid_ == 0) {
+        FILE* out = std::freopen(log.c_str(), "a", stdout);
+        FILE* err = std::freopen(log.c_str(), "a", stderr);
+        (void)out, (void)err;
+        execl(binary.c_str(), binary.c_str(), display.c_str(), "-screen", "0", "800x600x24", "-nolisten",
+              "tcp", static_cast<char*>(nullptr));
+        _exit(127);
+      }
+      const auto deadline = Clock::now() + std::chrono::seconds(10);
+      while (Clock::now() < deadline) {
+        int status = 0;
+        if (waitpid(pid_, &status, WNOHANG) == pid_) {
+          pid_ = -1;
+          break;  // lost a race for this display: try the next
+        }
+        if (std::filesystem::exists(socket)) {
+          display_ = display;
+          return true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+      if (pid_ > 0) kill(pid_, SIGKILL), waitpid(pid_, nullptr, 0), pid_ = -1;
+    }
+    return false;
+  }
+  const std::string& display() const { return display_; }
+
+ private:
+  pid_t pid_ = -1;
+  std::string display_;
+};
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  std::array<int, 3> at(int x, int y) const {
+    const size_t i = (static_cast<size_t>(y) * width + x) * 3;
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+std::optional<Image> readPng(const std::string& path) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
+  if (!data) return std::nullopt;
+  Image image{w, h, std::vector<unsigned char>(data, data + static_cast<size_t>(w) * h * 3)};
+  stbi_image_free(data);
+  return image;
+}
+
+bool differ(std::array<int, 3> a, std::array<int, 3> b) {
+  return std::abs(a[0] - b[0]) > 8 || std::abs(a[1] - b[1]) > 8 || std::abs(a[2] - b[2]) > 8;
+}
+
+TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
+  const auto xvfbBinary = findXvfb();
+  if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed (deploy/install-deps.sh installs it)";
+  const std::string dir = testing::makeTempDir("tessera-view");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = client::Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk()) << admin.status().message();
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
+      30);
+  ASSERT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
+  const uint64_t doc = created->ack().document_id();
+  auto granted = (*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "viewer-token-0123456789"), 10);
+  ASSERT_TRUE(granted.isOk() && granted->has_ack());
+
+  Xvfb xvfb;
+  ASSERT_TRUE(xvfb.start(*xvfbBinary, dir + "/xvfb.log")) << "Xvfb did not start; see " << dir << "/xvfb.log";
+  const std::vector<std::pair<std::string, std::string>> env = {{"DISPLAY", xvfb.display()},
+                                                                {"LIBGL_ALWAYS_SOFTWARE", "1"}};
+  auto screenshot = [&](const std::string& png, const std::string& token = "viewer-token-0123456789",
+                        std::vector<std::string> extra = {}) {
+    std::vector<std::string> args = {TESSERA_VIEW_PATH,
+                                     "--connect",
+                                     "127.0.0.1:" + std::to_string(server->port()),
+                                     "--token",
+                                     token,
+                                     "--document",
+                                     std::to_string(doc),
+                                     "--base-level",
+                                     "2",
+                                     "--max-level",
+                                     "3",
+                                     "--screenshot",
+                                     png,
+                                     "--frames",
+                                     "30",
+                                     "--no-hud",
+                                     "--timeout",
+                                     "60"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return runBounded(args, env, dir + "/view.log", 120);
+  };
+
+  const std::string first = dir + "/a.png";
+  ASSERT_EQ(screenshot(first), 0) << "tessera-view failed; see " << dir << "/view.log";
+  auto a = readPng(first);
+  ASSERT_TRUE(a.has_value()) << first << " is not a readable PNG";
+  ASSERT_EQ(a->width, 800);
+  ASSERT_EQ(a->height, 600);
+  // The corner shows the background colour; the silhouette is everything else.
+  const auto background = a->at(0, 0);
+  size_t covered = 0;
+  for (int y = 0; y < a->height; ++y)
+    for (int x = 0; x < a->width; ++x) covered += differ(a->at(x, y), background);
+  const double fraction = static_cast<double>(covered) / (a->width * a->height);
+  EXPECT_GT(fraction, 0.02) << "the surface is not visible";
+  EXPECT_LT(fraction, 0.80) << "the surface fills the frame";
+  // Shaded, not flat: the lit surface shows more than a couple of colours.
+  std::set<std::array<int, 3>> colours;
+  for (int y = 0; y < a->height; y += 3)
+    for (int x = 0; x < a->width; x += 3) colours.insert(a->at(x, y));
+  EXPECT_GT(colours.size(), 20u);
+
+  // Another client pulls a corner far out; a new screenshot must show it.
+  auto editor = client::Session::connect(server->session("editor", server->adminToken()));
+  ASSERT_TRUE(editor.isOk()) << editor.status().message();
+  auto opened = (*editor)->call(testing::openDocument(doc), 10);
+  ASSERT_TRUE(opened.isOk() && opened->has_ack());
+  auto moved = (*editor)->call(testing::moveVertex(doc, VertexId(2, 0).packed(), 0.1, 0.2, 1.4), 10);
+  ASSERT_TRUE(moved.isOk() && moved->has_ack())
+      << (moved.isOk() ? moved->DebugString() : moved.status().message());
+
+  const std::string second = dir + "/b.png";
+  ASSERT_EQ(screenshot(second), 0) << "tessera-view failed; see " << dir << "/view.log";
+  auto b = readPng(second);
+  ASSERT_TRUE(b.has_value() && b->width == a->width && b->height == a->height);
+  size_t changed = 0;
+  for (int y = 0; y < a->height; ++y)
+    for (int x = 0; x < a->width; ++x) changed += differ(a->at(x, y), b->at(x, y));
+  EXPECT_GT(changed, static_cast<size_t>(a->width * a->height / 100))
+      << "the edit did not change the picture";
+
+  // The viewer's own pick and drag: a control vertex near the centre, dragged
+  // 80 pixels up and right, becomes MoveVertex edits whose deltas come back.
+  const std::string editorToken = "editor-token-0123456789";
+  auto editorGrant = (*admin)->call(testing::grant(doc, wire::ROLE_EDITOR, editorToken), 10);
+  ASSERT_TRUE(editorGrant.isOk() && editorGrant->has_ack());
+  const std::string third = dir + "/c.png";
+  ASSERT_EQ(screenshot(third, editorToken, {"--drag", "80,-80"}), 0)
+      << "tessera-view failed; see " << dir << "/view.log";
+  const std::string log = testing::fileBytes(dir + "/view.log");
+  EXPECT_NE(log.find("dragged v0:"), std::string::npos) << log;
+  EXPECT_NE(log.find(" 0 rejected"), std::string::npos) << log;
+  wire::ClientMessage list;
+  list.mutable_list_documents();
+  auto listed = (*admin)->call(list, 10);
+  ASSERT_TRUE(listed.isOk() && listed->has_document_list());
+  ASSERT_EQ(listed->document_list().documents_size(), 1);
+  EXPECT_GT(listed->document_list().documents(0).version(), 2u) << "the drag made no edit";
+  auto c = readPng(third);
+  ASSERT_TRUE(c.has_value() && c->width == b->width && c->height == b->height);
+  size_t dragged = 0;
+  for (int y = 0; y < b->height; ++y)
+    for (int x = 0; x < b->width; ++x) dragged += differ(b->at(x, y), c->at(x, y));
+  EXPECT_GT(dragged, static_cast<size_t>(b->width * b->height / 200))
+      << "the drag did not change the picture";
+  EXPECT_EQ(server->stop(), 0);
+}
+
+TEST(View, ExitsWithAnErrorWhenTheDocumentDoesNotExist) {
+  const auto xvfbBinary = findXvfb();
+  if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed";
+  const std::string dir = testing::makeTempDir("tessera-view-missing");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  // Refused at open, before any window: no display needed.
+  const int rc = runBounded(
+      {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()), "--token",
+       server->adminToken(), "--document", "99", "--screenshot", dir + "/x.png", "--timeout", "10"},
+      {}, dir + "/view.log", 60);
+  EXPECT_EQ(rc, 1);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/x.png"));
+  EXPECT_EQ(runBounded({TESSERA_VIEW_PATH, "--document", "1"}, {}, dir + "/usage.log", 30), 2);
+}
+
+}  // namespace
+}  // namespace tessera

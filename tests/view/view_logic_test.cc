@@ -1,0 +1,139 @@
+// tessera-view without a window: options, the orbit camera's pixel/world
+// conversions, control vertices of a level, picking and dragging.
+#include <gtest/gtest.h>
+
+#include "client/view/camera.h"
+#include "client/view/control_points.h"
+#include "client/view/view_options.h"
+#include "core/hierarchy/ids.h"
+
+namespace tessera::view {
+namespace {
+
+TEST(ViewOptions, ParsesTheConnectionProfileAndHeadlessMode) {
+  auto o = parseViewOptions({"--connect",
+                             "example.org:7000",
+                             "--token",
+                             "t",
+                             "--document",
+                             "3",
+                             "--base-level",
+                             "2",
+                             "--max-level",
+                             "4",
+                             "--angle",
+                             "7.5",
+                             "--screenshot",
+                             "a.png",
+                             "--frames",
+                             "5",
+                             "--size",
+                             "320x200",
+                             "--no-hud",
+                             "--level",
+                             "1"});
+  ASSERT_TRUE(o.isOk()) << o.status().message();
+  EXPECT_EQ(o->host, "example.org");
+  EXPECT_EQ(o->port, 7000);
+  EXPECT_EQ(o->token, "t");
+  EXPECT_EQ(o->document, 3u);
+  EXPECT_EQ(o->baseLevel, 2u);
+  EXPECT_EQ(o->maxLevel, 4u);
+  EXPECT_DOUBLE_EQ(o->angle, 7.5);
+  EXPECT_EQ(o->screenshot, "a.png");
+  EXPECT_EQ(o->frames, 5);
+  EXPECT_EQ(o->width, 320);
+  EXPECT_EQ(o->height, 200);
+  EXPECT_FALSE(o->hud);
+  EXPECT_EQ(o->controlLevel, 1);
+}
+
+TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
+  EXPECT_FALSE(parseViewOptions({"--document", "1"}).isOk());   // no --connect
+  EXPECT_FALSE(parseViewOptions({"--connect", "h:1"}).isOk());  // no --document
+  auto port = parseViewOptions({"--connect", "h:99999", "--document", "1"});
+  ASSERT_FALSE(port.isOk());
+  EXPECT_NE(port.status().message().find("--connect"), std::string::npos);
+  auto levels =
+      parseViewOptions({"--connect", "h:1", "--document", "1", "--base-level", "4", "--max-level", "2"});
+  EXPECT_FALSE(levels.isOk());
+  auto frames = parseViewOptions({"--connect", "h:1", "--document", "1", "--frames", "x"});
+  ASSERT_FALSE(frames.isOk());
+  EXPECT_NE(frames.status().message().find("--frames"), std::string::npos);
+  EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--bogus", "1"}).isOk());
+  EXPECT_TRUE(parseViewOptions({"--help"})->help);
+}
+
+TEST(ViewCamera, ProjectingAPointOnAPixelsRayLandsOnThatPixel) {
+  OrbitCamera camera;
+  camera.frame({0, 0, 0}, {1, 1, 1});
+  camera.orbit(40, -25);
+  for (auto [px, py] : {std::pair{400.0f, 300.0f}, std::pair{10.0f, 590.0f}, std::pair{700.0f, 120.0f}}) {
+    const Ray ray = camera.rayThrough(px, py, 800, 600);
+    auto s = camera.project(ray.origin + ray.direction * camera.distance(), 800, 600);
+    ASSERT_TRUE(s.has_value());
+    EXPECT_NEAR((*s)[0], px, 0.05f);
+    EXPECT_NEAR((*s)[1], py, 0.05f);
+  }
+  // The target is in the middle of the frame.
+  auto centre = camera.project(camera.target(), 800, 600);
+  ASSERT_TRUE(centre.has_value());
+  EXPECT_NEAR((*centre)[0], 400, 0.05f);
+  EXPECT_NEAR((*centre)[1], 300, 0.05f);
+}
+
+// Two regions sharing a border vertex; vertices born at levels 0, 1 and 2.
+RegionMap twoRegions() {
+  auto a = std::make_shared<RegionMesh>();
+  a->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  a->normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  a->vertexIds = {VertexId(0, 0).packed(), VertexId(1, 8).packed(), VertexId(2, 30).packed()};
+  a->triangles = {{0, 1, 2}};
+  auto b = std::make_shared<RegionMesh>();
+  b->positions = {{1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  b->normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, -1}};
+  b->vertexIds = {VertexId(1, 8).packed(), VertexId(0, 3).packed(), VertexId(1, 12).packed()};
+  b->triangles = {{0, 1, 2}};
+  return {{1, a}, {2, b}};
+}
+
+TEST(ViewControlPoints, ALevelShowsVerticesBornAtOrAboveItOnceRenamedToIt) {
+  const RegionMap regions = twoRegions();
+  auto level0 = controlPoints(regions, 0);
+  ASSERT_EQ(level0.size(), 2u);
+  EXPECT_EQ(level0[0].id, VertexId(0, 0).packed());
+  EXPECT_EQ(level0[1].id, VertexId(0, 3).packed());
+  auto level1 = controlPoints(regions, 1);
+  ASSERT_EQ(level1.size(), 4u);  // v1:8 is shared by both regions: once
+  for (const ControlPoint& p : level1) EXPECT_EQ(VertexId::fromPacked(p.id).level(), 1);
+  EXPECT_EQ(controlPoints(regions, 2).size(), 5u);
+  V3 lo, hi;
+  ASSERT_TRUE(bounds(regions, &lo, &hi));
+  EXPECT_FLOAT_EQ(hi.x, 1);
+  EXPECT_FLOAT_EQ(lo.z, 0);
+}
+
+TEST(ViewControlPoints, PickingTakesTheNearestFrontFacingPointAndDragStaysInItsPlane) {
+  OrbitCamera camera;
+  camera.frame({0, 0, 0}, {1, 1, 0});
+  const auto points = controlPoints(twoRegions(), 1);
+  for (size_t i = 0; i < points.size(); ++i) {
+    auto s = camera.project(points[i].position, 800, 600);
+    ASSERT_TRUE(s.has_value());
+    auto hit = pickPoint(points, camera, 800, 600, (*s)[0] + 2, (*s)[1] - 2, 10);
+    if (points[i].id == VertexId(1, 12).packed()) {
+      // Its normal faces away from the eye.
+      EXPECT_TRUE(!hit || points[*hit].id != points[i].id);
+      continue;
+    }
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_EQ(points[*hit].id, points[i].id);
+    // Dragging to the pixel it is on leaves it where it is.
+    const V3 t = dragTarget(camera, points[i].position, (*s)[0], (*s)[1], 800, 600);
+    EXPECT_NEAR(length(t - points[i].position), 0, 1e-3f);
+  }
+  EXPECT_FALSE(pickPoint(points, camera, 800, 600, -500, -500, 10).has_value());
+}
+
+}  // namespace
+}  // namespace tessera::view

@@ -22,6 +22,9 @@ class DocumentView {
   Status apply(const wire::ServerMessage& message);
 
   bool ready() const { return ready_; }
+  // After a gap the view waits for a snapshot: subscribe again (the server
+  // answers with one) and keep applying.
+  bool needsResync() const { return !ready_ && gaps_ > 0; }
   uint64_t version() const { return version_; }
   uint64_t documentId() const { return documentId_; }
   const std::map<uint64_t, RegionMesh>& regions() const { return regions_; }

@@ -2,6 +2,7 @@
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/write.hpp>
+#include <thread>
 
 #include "protocol/handshake.h"
 
@@ -67,6 +68,22 @@ Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& option
   s->sessionId_ = first.hello_ack().session_id();
   s->role_ = first.hello_ack().role();
   return s;
+}
+
+Expected<std::unique_ptr<Session>> Session::connectWithBackoff(const SessionOptions& options, int attempts,
+                                                               double firstDelaySeconds) {
+  double delay = firstDelaySeconds;
+  Status last = ioError("no connection attempt was made");
+  for (int i = 0; i < attempts; ++i) {
+    auto session = connect(options);
+    if (session.isOk()) return session;
+    last = session.status();
+    if (i + 1 < attempts) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+      delay = std::min(delay * 2.0, 5.0);
+    }
+  }
+  return Status(last.code(), last.message() + " (after " + std::to_string(attempts) + " attempts)");
 }
 
 Expected<uint64_t> Session::send(wire::ClientMessage message) {

@@ -28,17 +28,22 @@ struct SessionOptions {
   std::string host = "127.0.0.1";
   uint16_t port = 7878;
   std::string name = "tessera-client";
-  std::string token;
+  std::string token = {};
   double timeoutSeconds = 10;
   uint32_t maxFrameBytes = 64u << 20;
   int receiveBufferBytes = 0;  // SO_RCVBUF; 0 keeps the system's (tests shrink it to act slow)
   bool tls = false;            // TLS, verifying the server's certificate and host name
-  std::string tlsCaFile;       // trusted certificates (PEM); empty: the system's
+  std::string tlsCaFile = {};  // trusted certificates (PEM); empty: the system's
 };
 
 class Session {
  public:
   static Expected<std::unique_ptr<Session>> connect(const SessionOptions& options);
+  // connect(), retried with exponential backoff (delay doubling from
+  // `firstDelaySeconds`, at most 5 s apart) until it succeeds or `attempts`
+  // are spent; the last error is returned.
+  static Expected<std::unique_ptr<Session>> connectWithBackoff(const SessionOptions& options, int attempts,
+                                                               double firstDelaySeconds = 0.1);
 
   uint64_t sessionId() const { return sessionId_; }
   wire::Role role() const { return role_; }

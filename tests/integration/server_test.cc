@@ -202,3 +202,44 @@ TEST(Server, TheCliCreatesEditsAndListsRemotely) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// Issue 6 §1: a client reconnects with backoff to a server that comes back,
+// and a view that saw a gap recovers through a fresh snapshot.
+TEST(Server, ClientsReconnectWithBackoffAndResyncAfterAGap) {
+  Fixture f;
+  startWithCube(f, "tessera-server-reconnect");
+  if (::testing::Test::HasFatalFailure()) return;
+  const uint16_t port = f.server->port();
+  EXPECT_EQ(f.server->stop(), 0);
+  client::SessionOptions options = f.server->session("patient", "viewer-token-0123456789");
+  options.port = port;
+  options.timeoutSeconds = 2;
+  EXPECT_FALSE(Session::connectWithBackoff(options, 2, 0.01).isOk());
+
+  auto again = ServerProcess::start(f.dir + "/data");
+  ASSERT_TRUE(again.isOk());
+  options.port = again->port();
+  auto viewer = Session::connectWithBackoff(options, 5, 0.01);
+  ASSERT_TRUE(viewer.isOk()) << viewer.status().message();
+  ASSERT_TRUE((*viewer)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*viewer)->call(testing::subscribe(f.doc, 1, 3), 30)->has_ack());
+  DocumentView view(f.doc);
+  waitForSnapshot(**viewer, view);
+  // A delta that does not follow: the view refuses it and asks for a resync.
+  wire::ServerMessage stray;
+  stray.mutable_delta()->set_document_id(f.doc);
+  stray.mutable_delta()->set_from_version(view.version() + 5);
+  stray.mutable_delta()->set_to_version(view.version() + 6);
+  EXPECT_FALSE(view.apply(stray).isOk());
+  EXPECT_TRUE(view.needsResync());
+  ASSERT_TRUE((*viewer)->call(testing::subscribe(f.doc, 1, 3), 30)->has_ack());
+  waitForSnapshot(**viewer, view);
+  EXPECT_FALSE(view.needsResync());
+  EXPECT_EQ(again->stop(), 0);
+}
+
+}  // namespace
+}  // namespace tessera

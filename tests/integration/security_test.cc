@@ -4,6 +4,7 @@
 // another client.
 #include <gtest/gtest.h>
 
+#include <boost/asio/ip/tcp.hpp>
 #include <cmath>
 
 #include "client/lib/session.h"
@@ -153,6 +154,42 @@ TEST(ServerSecurity, LimitsConnectionsPerAddressAndCommandRate) {
   int limited = 0;
   for (int i = 0; i < 20; ++i) limited += rejected(sessions[0]->call(list, 10)) == wire::REJECT_REASON_RATE_LIMITED;
   EXPECT_GE(limited, 10);
+  EXPECT_EQ(server->stop(), 0);
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// Timeouts (§2): a connection that never says hello, and one that falls
+// silent, are told why and closed.
+TEST(ServerSecurity, TimesOutSilentConnections) {
+  const std::string dir = testing::makeTempDir("tessera-server-timeouts");
+  auto server = ServerProcess::start(dir + "/data", {"--handshake-timeout", "0.3", "--idle-timeout", "0.6"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  // Raw TCP: connect and say nothing.
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::socket mute(io);
+  boost::system::error_code ec;
+  mute.connect({boost::asio::ip::make_address("127.0.0.1"), server->port()}, ec);
+  ASSERT_FALSE(ec) << ec.message();
+  std::string received;
+  char buffer[512];
+  for (;;) {
+    const size_t n = mute.read_some(boost::asio::buffer(buffer), ec);
+    if (ec) break;
+    received.append(buffer, n);
+  }
+  EXPECT_NE(received.find("no Hello in time"), std::string::npos);
+
+  auto quiet = Session::connect(server->session("quiet", ""));
+  ASSERT_TRUE(quiet.isOk());
+  auto error = (*quiet)->receive(10);
+  ASSERT_TRUE(error.isOk() && error->has_error()) << (error.isOk() ? error->DebugString() : error.status().message());
+  EXPECT_EQ(error->error().code(), wire::ERROR_CODE_TIMEOUT);
+  EXPECT_EQ(error->error().message(), "idle timeout");
   EXPECT_EQ(server->stop(), 0);
 }
 

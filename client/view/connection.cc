@@ -26,6 +26,19 @@ wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& 
   return m;
 }
 
+// Connect, open the document and subscribe with `profile`.
+Expected<std::unique_ptr<client::Session>> establish(const client::SessionOptions& s, uint64_t document,
+                                                     const wire::LodProfile& profile) {
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, client::Session::connect(s));
+  wire::ClientMessage open;
+  open.mutable_open_document()->set_document_id(document);
+  TESSERA_RETURN_IF_ERROR(
+      expectAck(session->call(open, s.timeoutSeconds), "open document " + std::to_string(document)));
+  TESSERA_RETURN_IF_ERROR(expectAck(session->call(subscribeMessage(document, profile), s.timeoutSeconds),
+                                    "subscribe to document " + std::to_string(document)));
+  return session;
+}
+
 }  // namespace
 
 Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& options) {
@@ -35,19 +48,13 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   s.name = options.name;
   s.token = options.token;
   s.timeoutSeconds = options.timeoutSeconds;
-  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, client::Session::connect(s));
-  wire::ClientMessage open;
-  open.mutable_open_document()->set_document_id(options.document);
-  TESSERA_RETURN_IF_ERROR(expectAck(session->call(open, options.timeoutSeconds),
-                                    "open document " + std::to_string(options.document)));
   wire::LodProfile profile;
   profile.set_base_level(options.baseLevel);
   profile.set_max_level(options.maxLevel);
   profile.set_angle_threshold_degrees(options.angle);
-  TESSERA_RETURN_IF_ERROR(
-      expectAck(session->call(subscribeMessage(options.document, profile), options.timeoutSeconds),
-                "subscribe to document " + std::to_string(options.document)));
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, establish(s, options.document, profile));
   std::unique_ptr<Connection> c(new Connection(std::move(session), options.document));
+  c->sessionOptions_ = s;
   c->profile_ = profile;
   c->thread_ = std::thread([raw = c.get()] { raw->run(); });
   return c;
@@ -56,6 +63,46 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
 Connection::Connection(std::unique_ptr<client::Session> session, uint64_t document)
     : session_(std::move(session)), document_(document), view_(document) {
   stats_.sessionId = session_->sessionId();
+}
+
+void Connection::lost(const std::string& why) {
+  session_->close();
+  std::lock_guard lock(mutex_);
+  stats_.connected = false;
+  stats_.lastError = why;
+}
+
+bool Connection::reconnect() {
+  // The wait doubles from 0.1 s up to 5 s; each attempt is bounded too, so
+  // the destructor never waits long for this thread.
+  client::SessionOptions s = sessionOptions_;
+  s.timeoutSeconds = std::min(s.timeoutSeconds, 5.0);
+  double delay = 0.1;
+  while (!stop_) {
+    const auto until = Clock::now() + std::chrono::duration<double>(delay);
+    while (!stop_ && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (stop_) return false;
+    auto session = establish(s, document_, profile_);
+    if (session.isOk()) {
+      session_ = std::move(*session);
+      view_ = client::DocumentView(document_);
+      inFlight_.clear();
+      ackedVersions_.clear();
+      deltaArrivals_.clear();
+      std::lock_guard lock(mutex_);
+      stats_.connected = true;
+      stats_.ready = false;
+      stats_.sessionId = session_->sessionId();
+      ++stats_.reconnects;
+      return true;
+    }
+    {
+      std::lock_guard lock(mutex_);
+      stats_.lastError = "reconnecting: " + session.status().message();
+    }
+    delay = std::min(delay * 2, 5.0);
+  }
+  return false;
 }
 
 Connection::~Connection() {
@@ -166,13 +213,16 @@ void Connection::run() {
       if (o.message.has_subscribe()) profile_ = o.message.subscribe().profile();
       auto seq = session_->send(std::move(o.message));
       if (!seq.isOk()) {
-        std::lock_guard lock(mutex_);
-        stats_.connected = false;
-        stats_.lastError = seq.status().message();
-        return;
+        lost(seq.status().message());
+        break;
       }
       o.sent.at = Clock::now();
       if (o.sent.edit) inFlight_[*seq] = o.sent;
+    }
+    if (!stats().connected) {
+      // Commands not sent yet are dropped with the connection.
+      if (!reconnect()) return;
+      continue;
     }
     if (!out.empty()) {
       std::lock_guard lock(mutex_);
@@ -183,10 +233,9 @@ void Connection::run() {
     auto message = session_->receive(0.005);
     if (!message.isOk()) {
       if (message.status().message().rfind("no message from the server", 0) == 0) continue;
-      std::lock_guard lock(mutex_);
-      stats_.connected = false;
-      stats_.lastError = message.status().message();
-      return;
+      lost(message.status().message());
+      if (!reconnect()) return;
+      continue;
     }
     handle(*message);
     std::lock_guard lock(mutex_);

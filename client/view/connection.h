@@ -2,9 +2,10 @@
 // document and subscribes with the LOD profile, then a background thread owns
 // the Session: it sends queued commands, receives snapshots, deltas and
 // presence, keeps a DocumentView current (resubscribing after a gap) and
-// publishes immutable region meshes for the render thread. It also measures
-// edit-to-delta latency: from sending an edit to receiving the delta that
-// carries the version its Ack names.
+// publishes immutable region meshes for the render thread. When the
+// connection is lost it connects, opens and subscribes again, with backoff.
+// It also measures edit-to-delta latency: from sending an edit to receiving
+// the delta that carries the version its Ack names.
 #pragma once
 
 #include <atomic>
@@ -49,6 +50,7 @@ struct ConnectionStats {
   double lastLatencyMs = -1;   // edit to delta; -1 before the first
   double maxLatencyMs = 0;
   uint64_t latencySamples = 0;
+  uint64_t reconnects = 0;  // after a lost connection: connect, open, subscribe again
   uint64_t editsSent = 0, editsRejected = 0;
   // Edits queued, unanswered, or acked without their delta yet.
   uint64_t editsPending = 0;
@@ -95,8 +97,12 @@ class Connection {
   void publishAll();
   void recordLatency(std::chrono::steady_clock::duration d);
   void countPending();  // with mutex_ held
+  void lost(const std::string& why);
+  // Tries again with backoff until it succeeds (true) or the destructor stops it.
+  bool reconnect();
 
-  std::unique_ptr<client::Session> session_;
+  std::unique_ptr<client::Session> session_;  // network thread only
+  client::SessionOptions sessionOptions_;
   const uint64_t document_;
   client::DocumentView view_;          // network thread only
   wire::LodProfile profile_;           // network thread only

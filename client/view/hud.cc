@@ -26,7 +26,9 @@ void drawHud(const HudFacts& f, ViewToggles& t) {
   } else {
     ImGui::Text("edit to delta: no edit yet");
   }
-  if (!f.stats.connected) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "disconnected");
+  if (!f.stats.connected) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "disconnected: reconnecting");
+  if (f.stats.reconnects > 0)
+    ImGui::Text("reconnected %llu times", static_cast<unsigned long long>(f.stats.reconnects));
   if (!f.stats.lastError.empty()) ImGui::TextWrapped("last error: %s", f.stats.lastError.c_str());
 
   ImGui::Separator();

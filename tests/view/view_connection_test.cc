@@ -104,5 +104,48 @@ TEST(ViewConnection, FollowsItsOwnEditsThroughUndoAndRedoAndShowsSelections) {
   EXPECT_EQ(c.stats().gaps, 0u);
 }
 
+TEST(ViewConnection, ReconnectsAndResubscribesAfterTheServerRestarts) {
+  const std::string dir = testing::makeTempDir("tessera-view-reconnect");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  uint64_t doc = 0;
+  {
+    auto admin = client::Session::connect(server->session("admin", server->adminToken()));
+    ASSERT_TRUE(admin.isOk()) << admin.status().message();
+    auto created = (*admin)->call(
+        testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 4),
+        30);
+    ASSERT_TRUE(created.isOk() && created->has_ack());
+    doc = created->ack().document_id();
+  }
+  ViewOptions options;
+  options.port = server->port();
+  options.token = server->adminToken();
+  options.document = doc;
+  options.baseLevel = options.maxLevel = 1;
+  auto connection = Connection::open(options);
+  ASSERT_TRUE(connection.isOk()) << connection.status().message();
+  Connection& c = **connection;
+  ASSERT_TRUE(waitFor([&] { return c.stats().ready; }));
+  const uint64_t firstSession = c.stats().sessionId;
+
+  // Stop the server, then start it again on the same port and data.
+  const uint16_t port = server->port();
+  EXPECT_EQ(server->stop(), 0);
+  ASSERT_TRUE(waitFor([&] { return !c.stats().connected; }));
+  auto again = testing::ServerProcess::start(dir + "/data", {"--port", std::to_string(port)});
+  ASSERT_TRUE(again.isOk()) << again.status().message();
+  ASSERT_EQ(again->port(), port);
+  ASSERT_TRUE(waitFor([&] { return c.stats().connected && c.stats().ready; })) << c.stats().lastError;
+  EXPECT_EQ(c.stats().reconnects, 1u);
+  EXPECT_NE(c.stats().sessionId, firstSession);
+  EXPECT_FALSE(c.regions().empty());
+  // Edits work on the new connection.
+  c.moveVertex(VertexId(1, 0).packed(), Vec3(-0.2, -0.2, -0.2));
+  ASSERT_TRUE(waitFor([&] { return c.stats().version == 2 && c.stats().editsPending == 0; }))
+      << c.stats().lastError;
+  EXPECT_EQ(c.stats().editsRejected, 0u);
+}
+
 }  // namespace
 }  // namespace tessera::view

@@ -20,7 +20,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
+#include "bench/bench_mesh.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/tessellation.h"
@@ -122,20 +122,8 @@ BENCHMARK(fullTessellateAndEncode)->Name("FullTessellateAndEncode")->Iterations(
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], "--mesh") == 0) {
-      meshPath = argv[i + 1];
-      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-      argc -= 2;
-      break;
-    }
-  }
-  auto mesh = importMesh(meshPath);
-  if (!mesh.isOk()) {
-    std::fprintf(stderr, "tessera_bench_delta: %s\n", mesh.status().toString().c_str());
-    return 1;
-  }
+  auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_delta");
+  if (!mesh.isOk()) return 1;
   State& s = state();
   auto doc = Document::create(*mesh, {.maxLevel = 6, .uniformLevel = 4});
   if (!doc.isOk()) return 1;
@@ -153,8 +141,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   s.tessellation.emplace(std::move(*t));
-  std::printf("mesh %s: %zu triangles; displayed (%s): %lld triangles in %zu regions; grid %d position bits\n",
-              meshPath.c_str(), static_cast<size_t>(mesh->numFaces()), kProfile.key().c_str(),
+  std::printf("displayed (%s): %lld triangles in %zu regions; grid %d position bits\n", kProfile.key().c_str(),
               static_cast<long long>(s.tessellation->numTriangles()), s.tessellation->regions().size(),
               s.grid.positionBits);
   benchmark::Initialize(&argc, argv);

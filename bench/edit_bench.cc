@@ -22,7 +22,7 @@
 
 #include "bench/ratio_reporter.h"
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
+#include "bench/bench_mesh.h"
 #include "core/loop/limit.h"
 #include "oracle/osd_adapter.h"
 
@@ -135,20 +135,8 @@ void reportAdaptiveMemory(const Input& in) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], "--mesh") == 0) {
-      meshPath = argv[i + 1];
-      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-      argc -= 2;
-      break;
-    }
-  }
-  auto mesh = importMesh(meshPath);
-  if (!mesh.isOk()) {
-    std::fprintf(stderr, "tessera_bench_edit: %s\n", mesh.status().toString().c_str());
-    return 1;
-  }
+  auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_edit");
+  if (!mesh.isOk()) return 1;
   Input& in = input();
   in.topology = BaseTopology::fromBaseMesh(*mesh);
   in.points = mesh->positions();
@@ -160,8 +148,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   in.doc.emplace(std::move(*doc));
-  std::printf("mesh %s: %zu triangles; document displayed at level %d: %llu triangles\n", meshPath.c_str(),
-              in.topology.triangles.size(), kDisplayLevel,
+  std::printf("document displayed at level %d: %llu triangles\n", kDisplayLevel,
               static_cast<unsigned long long>(in.doc->counts().faces(kDisplayLevel)));
   printMemory("uniform display", in.doc->hierarchy().stats());
   reportAdaptiveMemory(in);

@@ -14,7 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/ratio_reporter.h"
-#include "core/io/mesh_import.h"
+#include "bench/bench_mesh.h"
 #include "core/loop/limit.h"
 #include "core/loop/loop_refiner.h"
 #include "oracle/osd_adapter.h"
@@ -99,27 +99,13 @@ BENCHMARK(limitOpenSubdiv)->Name("Limit/OpenSubdiv")->DenseRange(1, 4)->Unit(ben
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], "--mesh") == 0) {
-      meshPath = argv[i + 1];
-      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-      argc -= 2;
-      break;
-    }
-  }
-  auto mesh = importMesh(meshPath);
-  if (!mesh.isOk()) {
-    std::fprintf(stderr, "tessera_bench_loop: %s\n", mesh.status().toString().c_str());
-    return 1;
-  }
+  auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_loop");
+  if (!mesh.isOk()) return 1;
   Input& in = input();
   in.topology = BaseTopology::fromBaseMesh(*mesh);
   in.points = mesh->positions();
   for (const auto& p : in.points) in.osdPoints.push_back(OsdPoint::from(p));
   in.osd = std::make_unique<oracle::OsdInput>(in.topology);
-  std::printf("mesh %s: %d vertices, %zu triangles\n", meshPath.c_str(), in.topology.numVertices,
-              in.topology.triangles.size());
 
   benchmark::Initialize(&argc, argv);
   tessera::bench::RatioReporter reporter;

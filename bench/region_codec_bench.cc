@@ -21,7 +21,7 @@
 #include <benchmark/benchmark.h>
 
 #include "core/hierarchy/ids.h"
-#include "core/io/mesh_import.h"
+#include "bench/bench_mesh.h"
 #include "core/loop/loop_refiner.h"
 #include "core/tessellation/region_codec.h"
 
@@ -160,20 +160,8 @@ void reportQuantizationError(const Vec3& lo, const Vec3& hi) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string meshPath = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], "--mesh") == 0) {
-      meshPath = argv[i + 1];
-      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
-      argc -= 2;
-      break;
-    }
-  }
-  auto mesh = importMesh(meshPath);
-  if (!mesh.isOk()) {
-    std::fprintf(stderr, "tessera_bench_region: %s\n", mesh.status().toString().c_str());
-    return 1;
-  }
+  auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_region");
+  if (!mesh.isOk()) return 1;
   auto refiner = LoopRefiner::create(BaseTopology::fromBaseMesh(*mesh), LoopOptions{}, {.levels = kLevel});
   auto limit = refiner.isOk() ? refiner->limitSurface(refiner->refinePoints(mesh->positions()))
                               : Expected<SurfaceMesh>(refiner.status());
@@ -199,7 +187,7 @@ int main(int argc, char** argv) {
   in.header.regionId = 1;
   in.header.documentVersion = 1;
   for (int size : kRegionSizes) in.regions[size] = patch(in.surface, in.surface.triangles.size() / 3, size);
-  std::printf("mesh %s: limit surface at level %d, %zu triangles\n", meshPath.c_str(), kLevel,
+  std::printf("limit surface at level %d, %zu triangles\n", kLevel,
               in.surface.triangles.size());
   reportQuantizationError(lo, hi);
 

@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "core/tessellation/region_merge.h"
+
 namespace tessera::client {
 
 Status DocumentView::apply(const wire::ServerMessage& message) {
@@ -45,22 +47,7 @@ int64_t DocumentView::numTriangles() const {
   return n;
 }
 
-SurfaceMesh DocumentView::surface() const {
-  SurfaceMesh out;
-  std::map<std::pair<uint64_t, std::array<double, 3>>, int> index;
-  for (const auto& [id, mesh] : regions_) {
-    std::vector<int> map(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      const Vec3& n = mesh.normals[v];
-      auto [it, fresh] = index.emplace(std::make_pair(mesh.vertexIds[v], std::array<double, 3>{n[0], n[1], n[2]}),
-                                       static_cast<int>(out.positions.size()));
-      if (fresh) out.positions.push_back(mesh.positions[v]), out.normals.push_back(n);
-      map[v] = it->second;
-    }
-    for (const auto& t : mesh.triangles) out.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
-  }
-  return out;
-}
+SurfaceMesh DocumentView::surface() const { return mergeRegions(regions_); }
 
 uint64_t DocumentView::surfaceHash() const {
   uint64_t h = 1469598103934665603ull;  // FNV-1a

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstring>
+
+#include "core/tessellation/region_merge.h"
 #include <unordered_map>
 
 #include "core/loop/limit.h"
@@ -128,22 +130,7 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region) co
   return mesh;
 }
 
-SurfaceMesh Tessellation::surface() const {
-  SurfaceMesh out;
-  std::map<std::pair<uint64_t, std::array<double, 3>>, int> index;
-  for (const auto& [id, mesh] : regions_) {
-    std::vector<int> map(mesh.positions.size());
-    for (size_t v = 0; v < mesh.positions.size(); ++v) {
-      const Vec3& n = mesh.normals[v];
-      auto [it, fresh] = index.emplace(std::make_pair(mesh.vertexIds[v], std::array<double, 3>{n[0], n[1], n[2]}),
-                                       static_cast<int>(out.positions.size()));
-      if (fresh) out.positions.push_back(mesh.positions[v]), out.normals.push_back(n);
-      map[v] = it->second;
-    }
-    for (const auto& t : mesh.triangles) out.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
-  }
-  return out;
-}
+SurfaceMesh Tessellation::surface() const { return mergeRegions(regions_); }
 
 Expected<Tessellation::Changes> Tessellation::rebuildAll(Document& doc) {
   TESSERA_ASSIGN_OR_RETURN(Tessellation fresh, build(doc, profile()));

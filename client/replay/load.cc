@@ -40,6 +40,13 @@ struct Shared {
   std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0}, viewersReady{0},
       viewersDone{0};
   std::atomic<uint64_t> maxAckedVersion{0};
+  // Editors connect and open first, then wait for the start: joins make
+  // Presence messages to every participant, and the edits should not queue
+  // behind them.
+  std::atomic<int64_t> editorsReady{0};
+  std::atomic<bool> startEditing{false};
+  std::atomic<int64_t> startNs{0};              // steady_clock, set before startEditing
+  std::atomic<int64_t> lastPresenceNs{0};       // the latest Presence any viewer received
   // Viewers joining at once: connecting, subscribing and reading the snapshot.
   std::counting_semaphore<1024> joining{32};
   std::mutex mu;  // guards what follows
@@ -54,7 +61,7 @@ struct Shared {
   }
 };
 
-void runEditor(const LoadOptions& o, int index, Clock::time_point start, Clock::time_point drainDeadline, Shared& shared) {
+void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, Shared& shared) {
   client::SessionOptions so = o.session;
   so.name = "editor-" + std::to_string(index + 1);
   auto connected = client::Session::connect(so);
@@ -62,6 +69,14 @@ void runEditor(const LoadOptions& o, int index, Clock::time_point start, Clock::
   client::Session& s = **connected;
   // Editors open the document but do not subscribe: the viewers measure.
   if (Status st = openDocument(s, o.document, so.timeoutSeconds); !st.isOk()) return shared.error(so.name + ": " + st.message());
+  ++shared.editorsReady;
+  while (!shared.startEditing) {
+    if (Clock::now() > hardDeadline) return shared.error(so.name + ": the run never started");
+    (void)s.receive(0.05);  // presence meanwhile
+  }
+  const Clock::time_point start{Clock::duration(shared.startNs.load())};
+  const auto drainDeadline =
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds + o.drainSeconds));
   std::mt19937_64 rng(o.seed * 1000003u + static_cast<uint64_t>(index));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<uint64_t> vertex(0, o.vertexCount == 0 ? 0 : o.vertexCount - 1);
@@ -131,7 +146,7 @@ struct ViewerResult {
   uint64_t version = 0;
   uint64_t hash = 0;  // decoding viewers only
   bool decoded = false;
-  int64_t snapshotBytes = 0, deltaBytes = 0;
+  int64_t snapshotBytes = 0, deltaBytes = 0, presenceBytes = 0, presenceMessages = 0;
   std::vector<std::pair<uint64_t, Clock::time_point>> deltaTimes;  // to_version, arrival
 };
 
@@ -174,7 +189,7 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
       (void)s.send(ping);
       lastPing = now;
     }
-    auto m = s.receive(ready ? 1.0 : 0.25);
+    auto m = s.receive(ready ? o.viewerPollSeconds : 0.25);
     if (!m.isOk()) {
       if (isTimeout(m.status())) continue;
       shared.error(so.name + ": " + m.status().message());
@@ -210,6 +225,10 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
           if (out.deltaTimes.size() < 1000000) out.deltaTimes.emplace_back(d.to_version(), arrival);
         }
       }
+    } else if (m->has_presence()) {
+      shared.lastPresenceNs = arrival.time_since_epoch().count();
+      out.presenceBytes += bytes;
+      ++out.presenceMessages;
     } else if (m->has_error() && m->error().fatal()) {
       shared.error(so.name + ": server error: " + m->error().message());
       break;
@@ -286,21 +305,27 @@ Expected<json> runLoad(const LoadOptions& o) {
     viewerThreads.emplace_back(runViewer, std::cref(o), i, i < decode, hardDeadline, std::ref(shared),
                                std::ref(viewerResults[static_cast<size_t>(i)]));
   }
-  // Every viewer subscribed (or failed) before the first edit.
+  std::vector<std::thread> editorThreads;
+  for (int i = 0; i < o.editors; ++i) editorThreads.emplace_back(runEditor, std::cref(o), i, hardDeadline, std::ref(shared));
+  // Every viewer subscribed and every editor in (or failed) before the first
+  // edit, then until no Presence came for 500 ms (the joins' fan-out).
   const auto connectDeadline = begin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.connectSeconds));
-  while (shared.viewersReady + shared.viewersDone < o.viewers && Clock::now() < connectDeadline) {
+  while ((shared.viewersReady + shared.viewersDone < o.viewers || shared.editorsReady + shared.errors < o.editors) &&
+         Clock::now() < connectDeadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   const double connectMs = msBetween(begin, Clock::now());
+  while (Clock::now() < connectDeadline &&
+         Clock::now() - Clock::time_point(Clock::duration(shared.lastPresenceNs.load())) < std::chrono::milliseconds(500)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const double settleMs = msBetween(begin, Clock::now()) - connectMs;
   const ProcSample cpuBefore = sampleProcess(o.serverPid);
   int64_t rssPeak = cpuBefore.rssBytes;
   const auto start = Clock::now();
   const auto editEnd = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
-  const auto drainDeadline = editEnd + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.drainSeconds));
-  std::vector<std::thread> editorThreads;
-  for (int i = 0; i < o.editors; ++i) {
-    editorThreads.emplace_back(runEditor, std::cref(o), i, start, drainDeadline, std::ref(shared));
-  }
+  shared.startNs = start.time_since_epoch().count();
+  shared.startEditing = true;
   int64_t lastAcked = 0;
   for (int second = 1; Clock::now() < editEnd; ++second) {
     std::this_thread::sleep_until(std::min(editEnd, start + std::chrono::seconds(second)));
@@ -332,12 +357,16 @@ Expected<json> runLoad(const LoadOptions& o) {
   // Edit to delta: each delta's to_version against the send time of the edit
   // whose Ack carried that version.
   std::vector<double> toDelta;
-  int64_t deltaBytes = 0, snapshotBytes = 0, readyViewers = 0;
+  int64_t deltaBytes = 0, snapshotBytes = 0, readyViewers = 0, presenceBytes = 0, presenceMessages = 0;
   uint64_t minVersion = UINT64_MAX, maxVersion = 0;
   std::set<uint64_t> hashes;
   int decodedReady = 0;
+  int64_t behind = 0;
   for (const ViewerResult& v : viewerResults) {
+    if (v.version < shared.maxAckedVersion) ++behind;
     deltaBytes += v.deltaBytes;
+    presenceBytes += v.presenceBytes;
+    presenceMessages += v.presenceMessages;
     snapshotBytes += v.snapshotBytes;
     if (v.ready) ++readyViewers;
     minVersion = std::min(minVersion, v.version);
@@ -363,6 +392,7 @@ Expected<json> runLoad(const LoadOptions& o) {
                       {"decoding_viewers", decode},
                       {"vertices", "v" + std::to_string(o.vertexLevel) + ":0.." + std::to_string(o.vertexCount - 1)}};
   report["connect_ms"] = std::round(connectMs);
+  report["settle_ms"] = std::round(settleMs);
   report["edit_seconds"] = editSeconds;
   report["edits"] = {{"sent", shared.sent.load()},
                      {"acked", shared.acked.load()},
@@ -379,6 +409,9 @@ Expected<json> runLoad(const LoadOptions& o) {
                        {"bytes_per_second_per_viewer", o.viewers && editSeconds > 0 ? deltaBytes / o.viewers / editSeconds : 0.0},
                        {"version_min", minVersion},
                        {"version_max", maxVersion},
+                       {"behind_at_end", behind},
+                       {"presence_messages_per_viewer", o.viewers ? presenceMessages / o.viewers : 0},
+                       {"presence_bytes_per_viewer", o.viewers ? presenceBytes / o.viewers : 0},
                        {"decoded_at_final_version", decodedReady},
                        {"decoded_hashes_agree", hashes.size() <= 1}};
   report["errors"] = {{"count", shared.errors.load()}, {"messages", shared.errorMessages}};
@@ -427,7 +460,8 @@ std::string summarize(const json& r) {
       << " rejected, " << r["edits"]["throughput_per_second"].get<double>() << " acked/s\n";
   out << "  edit -> ack:   " << lat(r["latency_ms"]["edit_to_ack"]) << "\n";
   out << "  edit -> delta: " << lat(r["latency_ms"]["edit_to_delta"]) << "\n";
-  out << "  viewers: " << r["viewers"]["ready_at_end"] << " ready, gaps " << r["viewers"]["gaps"] << ", resyncs "
+  out << "  viewers: " << r["viewers"]["ready_at_end"] << " ready, " << r["viewers"]["behind_at_end"]
+      << " behind the last acked version at the end, gaps " << r["viewers"]["gaps"] << ", resyncs "
       << r["viewers"]["resyncs"] << ", " << r["viewers"]["bytes_per_second_per_viewer"].get<double>() / 1024
       << " KiB/s each (snapshot " << r["viewers"]["snapshot_bytes_per_viewer"] << " B)\n";
   out << "  errors: " << r["errors"]["count"] << "\n";

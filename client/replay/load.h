@@ -33,6 +33,7 @@ struct LoadOptions {
   double connectSeconds = 120;     // connecting and subscribing every viewer
   int serverPid = 0;               // > 0: sample its CPU and RSS from /proc
   bool progress = true;            // one line per second on stderr
+  double viewerPollSeconds = 1;    // a ready viewer's receive timeout (checks for the end)
 };
 
 Expected<nlohmann::json> runLoad(const LoadOptions& options);

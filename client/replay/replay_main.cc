@@ -256,8 +256,12 @@ int runLoadCommand(const Args& a) {
     if (!f.flush()) return fail(ioError(*path + ": cannot write"));
   }
   std::fputs(summarize(*report).c_str(), stdout);
-  // A run whose connections failed or whose viewers saw gaps is a failed run.
-  return (*report)["errors"]["count"].get<int64_t>() == 0 && (*report)["viewers"]["gaps"].get<int64_t>() == 0 ? 0 : 3;
+  // A run whose connections failed, whose viewers saw gaps or did not catch
+  // up by the end of the drain time is a failed run.
+  const nlohmann::json& r = *report;
+  const bool clean = r["errors"]["count"].get<int64_t>() == 0 && r["viewers"]["gaps"].get<int64_t>() == 0 &&
+                     r["viewers"]["behind_at_end"].get<int64_t>() == 0;
+  return clean ? 0 : 3;
 }
 
 }  // namespace

@@ -156,6 +156,7 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   EXPECT_EQ(r["viewers"]["resyncs"], 0);
   EXPECT_EQ(r["viewers"]["ready_at_end"], 3);
   EXPECT_EQ(r["viewers"]["version_min"], r["final_version"]);
+  EXPECT_EQ(r["viewers"]["behind_at_end"], 0);
   EXPECT_EQ(r["final_version"], 1 + sent);
   EXPECT_TRUE(r["viewers"]["decoded_hashes_agree"].get<bool>());
   EXPECT_EQ(r["viewers"]["decoded_at_final_version"], 3);

@@ -1,5 +1,6 @@
 #include "server/document_host.h"
 
+#include <boost/asio/bind_executor.hpp>
 #include <boost/asio/post.hpp>
 #include <cmath>
 #include <filesystem>
@@ -68,6 +69,7 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       durableVersion_(version),
       lastSnapshot_(version),
       strand_(boost::asio::make_strand(workers)),
+      presenceTimer_(strand_),
       store_(store),
       config_(config),
       stats_(stats) {
@@ -78,7 +80,7 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
 void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
   boost::asio::post(strand_, [self = shared_from_this(), who, name = std::move(name), role] {
     self->participants_[who->sessionId()] = {who, name, role, {}};
-    self->broadcastPresence();
+    self->presenceChanged();
   });
 }
 
@@ -86,7 +88,7 @@ void DocumentHost::leave(uint64_t session) {
   boost::asio::post(strand_, [self = shared_from_this(), session] {
     self->participants_.erase(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
-    self->broadcastPresence();
+    self->presenceChanged();
   });
 }
 
@@ -95,8 +97,20 @@ void DocumentHost::select(uint64_t session, wire::Selection selection) {
     auto it = self->participants_.find(session);
     if (it == self->participants_.end()) return;
     it->second.selection = selection;
-    self->broadcastPresence();
+    self->presenceChanged();
   });
+}
+
+// Presence is the whole participant list, so a burst of joins would send
+// n lists to n clients; changes within 100 ms share one broadcast.
+void DocumentHost::presenceChanged() {
+  if (presencePending_) return;
+  presencePending_ = true;
+  presenceTimer_.expires_after(std::chrono::milliseconds(100));
+  presenceTimer_.async_wait(boost::asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code&) {
+    self->presencePending_ = false;
+    self->broadcastPresence();
+  }));
 }
 
 void DocumentHost::broadcastPresence() {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <boost/asio/any_io_executor.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
 #include <deque>
 #include <map>
@@ -78,6 +79,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   // Takes an applied command back (an edit refused after applying it).
   Status retract(const JournalEntry& entry);
   void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  void presenceChanged();
   void broadcastPresence();
   Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view);
   void maybeSnapshot();
@@ -90,6 +92,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   uint64_t lastSnapshot_;
   bool failed_ = false;
   boost::asio::strand<boost::asio::any_io_executor> strand_;
+  boost::asio::steady_timer presenceTimer_;
+  bool presencePending_ = false;
   Store& store_;
   const ServerConfig& config_;
   ServerStats& stats_;

@@ -282,6 +282,27 @@ TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
   for (int y = 10; y < 60; ++y)
     for (int x = 10; x < 200; ++x) hud += differ(c->at(x, y), h->at(x, y));
   EXPECT_GT(hud, 500u) << "no HUD in the top-left corner";
+
+  // Interactive mode (no --screenshot) keeps running until closed.
+  const pid_t interactive = fork();
+  if (interactive == 0) {
+    setenv("DISPLAY", xvfb.display().c_str(), 1);
+    setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+    FILE* out = std::freopen((dir + "/interactive.log").c_str(), "a", stderr);
+    (void)out;
+    execl(TESSERA_VIEW_PATH, TESSERA_VIEW_PATH, "--connect",
+          ("127.0.0.1:" + std::to_string(server->port())).c_str(), "--token", "viewer-token-0123456789",
+          "--document", std::to_string(doc).c_str(), "--wireframe", "--region-colours",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ASSERT_GT(interactive, 0);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  int status = 0;
+  EXPECT_EQ(waitpid(interactive, &status, WNOHANG), 0)
+      << "the interactive viewer exited early; see " << dir << "/interactive.log";
+  kill(interactive, SIGTERM);
+  waitpid(interactive, &status, 0);
   EXPECT_EQ(server->stop(), 0);
 }
 

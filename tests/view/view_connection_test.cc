@@ -102,6 +102,19 @@ TEST(ViewConnection, FollowsItsOwnEditsThroughUndoAndRedoAndShowsSelections) {
   }));
   EXPECT_TRUE(c.stats().connected);
   EXPECT_EQ(c.stats().gaps, 0u);
+
+  // A coarser LOD profile: unsubscribe, subscribe, a new snapshot.
+  auto triangles = [](const RegionMap& regions) {
+    size_t n = 0;
+    for (const auto& [id, mesh] : regions) n += mesh->triangles.size();
+    return n;
+  };
+  const size_t fine = triangles(c.regions());
+  EXPECT_EQ(c.stats().snapshots, 1u);
+  c.changeProfile(1, 1, 15);
+  ASSERT_TRUE(waitFor([&] { return c.stats().snapshots == 2 && c.stats().ready; })) << c.stats().lastError;
+  EXPECT_LT(triangles(c.regions()), fine);
+  EXPECT_EQ(c.stats().version, 5u);
 }
 
 TEST(ViewConnection, ReconnectsAndResubscribesAfterTheServerRestarts) {

@@ -115,6 +115,12 @@ TEST(ViewConnection, FollowsItsOwnEditsThroughUndoAndRedoAndShowsSelections) {
   ASSERT_TRUE(waitFor([&] { return c.stats().snapshots == 2 && c.stats().ready; })) << c.stats().lastError;
   EXPECT_LT(triangles(c.regions()), fine);
   EXPECT_EQ(c.stats().version, 5u);
+
+  // The K key: the picked vertex becomes a corner.
+  c.setVertexType(VertexId(0, 6).packed(), wire::VERTEX_TYPE_CORNER);
+  ASSERT_TRUE(waitFor([&] { return c.stats().version == 6 && c.stats().editsPending == 0; }))
+      << c.stats().lastError;
+  EXPECT_EQ(c.stats().editsRejected, 0u);
 }
 
 TEST(ViewConnection, ReconnectsAndResubscribesAfterTheServerRestarts) {

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The main job: tessera-server on the embedded SQLite store, with a sample
-# document and a short scripted editing session streamed through it.
+# document, a viewer (a window when a display exists, otherwise a headless
+# render to tessera-demo.png under Xvfb), and a short scripted editing
+# session streamed through the server.
 #
 #   bash deploy/run.sh              # serves until Ctrl-C
 #   TESSERA_DEMO_ONLY=1 bash deploy/run.sh   # run the session, then stop
@@ -13,7 +15,7 @@ port="${TESSERA_PORT:-7878}"
 
 bash deploy/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$(nproc)" --target tessera tessera-server
+cmake --build --preset release -j "$(nproc)" --target tessera tessera-server tessera-view
 
 cli=build/release/client/cli/tessera
 server=build/release/server/tessera-server
@@ -31,11 +33,23 @@ for _ in $(seq 100); do [ -s "$data/port" ] && break; sleep 0.1; done
 [ -s "$data/port" ] || { echo "tessera-server did not start; see $data/server.log" >&2; exit 1; }
 remote=("$cli" remote --port "$port" --token-file "$token_file" --name demo)
 
+viewer=build/release/client/view/tessera-view
 doc=$("${remote[@]}" list | awk 'NR==1 {print $1}')
+fresh=0
 if [ -z "$doc" ]; then
   doc=$("${remote[@]}" create deploy/samples/cube.obj --tags deploy/samples/cube.tags --max-level 5 --doc-name "sample cube")
   echo "created document $doc"
-  "${remote[@]}" edit "$doc" --script deploy/samples/session.txt
+  fresh=1
+fi
+view=("$viewer" --connect "127.0.0.1:$port" --token-file "$token_file" --document "$doc")
+if [ -n "${DISPLAY:-}" ] && [ "${TESSERA_DEMO_ONLY:-0}" != 1 ]; then
+  "${view[@]}" &  # watch the session's edits stream in
+  sleep 2
+fi
+if [ "$fresh" = 1 ]; then "${remote[@]}" edit "$doc" --script deploy/samples/session.txt; fi
+if [ -z "${DISPLAY:-}" ] || [ "${TESSERA_DEMO_ONLY:-0}" = 1 ]; then
+  LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1024x768x24" \
+    "${view[@]}" --screenshot tessera-demo.png --frames 20 && echo "rendered tessera-demo.png"
 fi
 "${remote[@]}" list
 "${remote[@]}" export "$doc" --level 3 --limit -o tessera-demo.glb

@@ -239,8 +239,10 @@ void Connection::writeNext() {
     }
     return;
   }
-  outbox_.markWriting();
-  auto frame = outbox_.front().frame;  // keeps the bytes alive during the write
+  // The frames stay alive in `frames` (shared) until the write completes.
+  auto frames = std::make_shared<std::vector<std::shared_ptr<const std::string>>>(outbox_.startWrite(64, 1u << 20));
+  auto buffers = std::make_shared<std::vector<asio::const_buffer>>();
+  for (const auto& f : *frames) buffers->push_back(asio::buffer(*f));
   writeTimer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(context_.config.timeouts.writeSeconds)));
   writeTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
@@ -248,21 +250,21 @@ void Connection::writeNext() {
     logEvent(LogLevel::kInfo, "write_timeout", {{"session", self->sessionId_}});
     self->closeNow();  // the peer stopped reading: nothing more can reach it
   });
-  auto onWritten = asio::bind_executor(strand_, [self = shared_from_this(), frame](const boost::system::error_code& ec, size_t n) {
+  auto onWritten = asio::bind_executor(strand_, [self = shared_from_this(), frames, buffers](const boost::system::error_code& ec, size_t n) {
                       self->writeTimer_.cancel();
                       if (self->closed_) return;
                       if (ec) return self->closeNow();
                       self->context_.stats.bytesSent += static_cast<int64_t>(n);
-                      ++self->context_.stats.framesSent;
-                      self->outbox_.popFront();
+                      self->context_.stats.framesSent += static_cast<int64_t>(frames->size());
+                      self->outbox_.finishWrite();
                       self->queueBytes_ = self->outbox_.bytes();
                       self->queueMessages_ = self->outbox_.size();
                       self->writeNext();
                     });
   if (tls_) {
-    asio::async_write(*tls_, asio::buffer(*frame), std::move(onWritten));
+    asio::async_write(*tls_, *buffers, std::move(onWritten));
   } else {
-    asio::async_write(socket_, asio::buffer(*frame), std::move(onWritten));
+    asio::async_write(socket_, *buffers, std::move(onWritten));
   }
 }
 

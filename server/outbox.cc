@@ -37,10 +37,23 @@ void Outbox::push(Outgoing message, uint32_t maxFrameBytes) {
   if (bytes_ > limits_.queueHardBytes || queue_.size() > limits_.queueMaxMessages) dropDeltas();
 }
 
-void Outbox::popFront() {
-  bytes_ -= queue_.front().frame->size();
-  queue_.pop_front();
-  writing_ = false;
+std::vector<std::shared_ptr<const std::string>> Outbox::startWrite(size_t maxFrames, uint64_t maxBytes) {
+  std::vector<std::shared_ptr<const std::string>> frames;
+  uint64_t bytes = 0;
+  for (const Outgoing& m : queue_) {
+    if (frames.size() == maxFrames || (!frames.empty() && bytes + m.frame->size() > maxBytes)) break;
+    frames.push_back(m.frame);
+    bytes += m.frame->size();
+  }
+  inFlight_ = frames.size();
+  return frames;
+}
+
+void Outbox::finishWrite() {
+  for (; inFlight_ > 0; --inFlight_) {
+    bytes_ -= queue_.front().frame->size();
+    queue_.pop_front();
+  }
 }
 
 std::set<uint64_t> Outbox::takeResyncs() { return std::exchange(resyncs_, {}); }
@@ -62,7 +75,7 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
     }
     kept[first[document]] = {frame, shared, 0};
   };
-  const size_t start = writing_ ? 1 : 0;
+  const size_t start = inFlight_;
   for (size_t i = 0; i < queue_.size(); ++i) {
     Outgoing& m = queue_[i];
     if (m.snapshotOf != 0) {
@@ -120,7 +133,7 @@ void Outbox::dropDeltas() {
   bytes_ = 0;
   for (size_t i = 0; i < queue_.size(); ++i) {
     Outgoing& m = queue_[i];
-    if (m.delta && !(writing_ && i == 0)) {
+    if (m.delta && i >= inFlight_) {
       resyncs_.insert(m.delta->documentId);
       ++drops_;
       continue;

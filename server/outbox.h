@@ -38,12 +38,14 @@ class Outbox {
   // appear in takeResyncs()).
   void push(Outgoing message, uint32_t maxFrameBytes);
   bool empty() const { return queue_.empty(); }
-  // The next frame to write; it stays queued (and is never merged) until
-  // popFront() after the write completes.
-  const Outgoing& front() const { return queue_.front(); }
-  void popFront();
-  void markWriting() { writing_ = true; }
-  bool writing() const { return writing_; }
+  // Takes the frames at the front for one gathered write (at most
+  // `maxFrames` and about `maxBytes`): they stay queued, and are never merged
+  // or dropped, until finishWrite() after the write completes. One write
+  // per burst instead of one per frame is what keeps a server with many
+  // subscribers out of the send() syscall.
+  std::vector<std::shared_ptr<const std::string>> startWrite(size_t maxFrames, uint64_t maxBytes);
+  void finishWrite();
+  bool writing() const { return inFlight_ > 0; }
 
   uint64_t bytes() const { return bytes_; }
   size_t size() const { return queue_.size(); }
@@ -59,7 +61,7 @@ class Outbox {
   const Limits& limits_;
   std::deque<Outgoing> queue_;
   uint64_t bytes_ = 0;
-  bool writing_ = false;
+  size_t inFlight_ = 0;  // frames at the front being written
   uint64_t merges_ = 0, drops_ = 0;
   std::set<uint64_t> resyncs_;
 };

@@ -143,13 +143,9 @@ void Document::reserve(const Edit& edit) {
 
 Expected<EditId> Document::add(Edit edit) {
   TESSERA_RETURN_IF_ERROR(checkEdit(edit));
-  edit.id = EditId{nextEditId_++};
+  edit.id = EditId{nextEditId_};
   edit.active = true;
-  reserve(edit);
-  edits_.push_back(std::move(edit));
-  cache_.reset();
-  lastUpdate_ = sparse_->update(edits_.back(), edits_);
-  lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
+  append(std::move(edit));
   return edits_.back().id;
 }
 
@@ -159,20 +155,32 @@ Status Document::replay(const Edit& edit) {
                            ")");
   }
   TESSERA_RETURN_IF_ERROR(checkEdit(edit));
-  ++nextEditId_;
-  reserve(edit);
-  edits_.push_back(edit);
-  cache_.reset();
-  lastUpdate_ = sparse_->update(edits_.back(), edits_);
-  lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
+  append(edit);
   return Status::ok();
 }
 
+// A checked edit with the next id: the hierarchy grows for it, then takes
+// it in incrementally.
+void Document::append(Edit edit) {
+  ++nextEditId_;
+  reserve(edit);
+  edits_.push_back(std::move(edit));
+  cache_.reset();
+  lastUpdate_ = sparse_->update(edits_.back(), edits_);
+  lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
+}
+
 // The hierarchy grows first, so that the moved vertices have their rings.
+void Document::reserveVertices(std::span<const VertexId> vertices) {
+  MoveEdit probe;
+  for (VertexId id : vertices) probe.offsets.push_back({id, Vec3(0, 0, 0)});
+  reserve(Edit{{}, true, std::move(probe)});
+}
+
+// Needs reserveVertices(vertices) first.
 Expected<MoveEdit> Document::offsetsFor(std::span<const VertexId> vertices, const Vec3& world) {
   MoveEdit move;
   for (VertexId id : vertices) move.offsets.push_back({id, Vec3(0, 0, 0)});
-  reserve(Edit{{}, true, move});
   for (VertexOffset& o : move.offsets) {
     TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(o.vertex));
     // Frames come from the coarser prediction, as the evaluator applies them.
@@ -185,9 +193,7 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
   TESSERA_RETURN_IF_ERROR(checkFinite(target, "target position"));
   const int level = vertices[0].level();
-  MoveEdit probe;
-  for (VertexId id : vertices) probe.offsets.push_back({id, Vec3(0, 0, 0)});
-  reserve(Edit{{}, true, probe});
+  reserveVertices(vertices);
   TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(vertices[0]));
   const auto points = sparse_->points(level);
   const Vec3 solved = solveControlPoint(sparse_->level(level).mesh, v, points, target);
@@ -198,6 +204,7 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
 Expected<EditId> Document::moveBy(std::span<const VertexId> vertices, const Vec3& displacement) {
   TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
   TESSERA_RETURN_IF_ERROR(checkFinite(displacement, "displacement"));
+  reserveVertices(vertices);
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, displacement));
   return add(Edit{{}, true, std::move(move)});
 }

@@ -102,6 +102,8 @@ class Document {
   Status checkVertices(std::span<const VertexId> vertices) const;
   Status checkEdit(const Edit& edit) const;
   Expected<EditId> add(Edit edit);
+  void append(Edit edit);
+  void reserveVertices(std::span<const VertexId> vertices);
   Edit* find(EditId id);
   Status setActive(EditId id, bool active);
   Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world);

@@ -4,13 +4,12 @@
 #include <boost/asio/post.hpp>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <unistd.h>
 
 #include "core/document/document_file.h"
 #include "core/io/mesh_export.h"
 #include "core/tessellation/document_grid.h"
+#include "core/util/file_io.h"
 #include "protocol/framing.h"
 #include "server/journal_entry.h"
 #include "server/log.h"
@@ -342,8 +341,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   const SparseEvaluator& h = doc_.hierarchy();
   for (VertexId id : doc_.lastUpdate().limits) {
     const Index v = h.level(id.level()).findVertex(id.index());
-    const Vec3& p = h.limitPosition(id.level(), v);
-    for (int k = 0; k < 3; ++k) outside = outside || !(p[k] >= grid_.origin[k] && p[k] <= grid_.origin[k] + grid_.range);
+    outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
   }
   std::map<std::string, Tessellation::Changes> updates;
   for (auto it = views_.begin(); !outside && it != views_.end(); ++it) {
@@ -495,17 +493,11 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
     ExportOptions options;
     options.draco = request.draco();
     Status written = exportMesh(*surface, path, options);
-    std::string bytes;
-    if (written.isOk()) {
-      std::ifstream in(path, std::ios::binary);
-      std::stringstream ss;
-      ss << in.rdbuf();
-      bytes = ss.str();
-    }
+    Expected<std::string> bytes = written.isOk() ? readFile(path) : Expected<std::string>(written);
     std::error_code ignored;
     std::filesystem::remove(path, ignored);
-    if (!written.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, written), maxFrame), nullptr});
+    if (!bytes.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, bytes.status()), maxFrame), nullptr});
       return;
     }
     wire::ServerMessage m;
@@ -513,7 +505,7 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
     r->set_client_seq(clientSeq);
     r->set_document_id(self->id_.value);
     r->set_version(self->version_);
-    r->set_glb(std::move(bytes));
+    r->set_glb(std::move(*bytes));
     auto frame = frameOf(m, maxFrame);
     if (!frame) {
       who->send({frameOf(rejectFor(clientSeq, invalidArgument("the export exceeds the frame limit")), maxFrame), nullptr});

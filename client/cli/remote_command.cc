@@ -10,6 +10,7 @@
 #include "client/cli/commands.h"
 #include "client/lib/session.h"
 #include "core/document/edit_script.h"
+#include "core/util/file_io.h"
 
 namespace tessera::cli {
 
@@ -27,14 +28,6 @@ constexpr const char* kHelp =
     "  stats                                  the server's counters\n"
     "\n"
     "Scripts use the format of 'tessera doc edit' (move, offset, crease, corner, undo, redo).\n";
-
-Expected<std::string> readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ioError(path + ": cannot open");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 int fail(const std::string& what, const std::string& message) {
   std::fprintf(stderr, "tessera remote %s: %s\n", what.c_str(), message.c_str());

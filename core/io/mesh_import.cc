@@ -12,6 +12,8 @@
 // different mesh. buildBaseMesh() does the topological validation.
 #include "core/io/mesh_import.h"
 
+#include "core/util/file_io.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -80,18 +82,6 @@ Status readWithOpenMesh(const std::string& path, const std::string& ext, const s
   }
   if (!ok) return parseError(path + ": malformed or truncated " + ext.substr(1) + " data");
   return Status::ok();
-}
-
-Expected<std::string> readFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) return notFound(path + ": file not found");
-  if (!std::filesystem::is_regular_file(path, ec)) return ioError(path + ": not a regular file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return ioError(path + ": cannot open for reading");
-  std::ostringstream data;
-  data << in.rdbuf();
-  if (in.bad()) return ioError(path + ": read error");
-  return data.str();
 }
 
 std::string lowerExtension(const std::string& path) {

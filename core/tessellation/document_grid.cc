@@ -18,13 +18,4 @@ Expected<QuantizationGrid> documentGrid(const Document& doc) {
   return gridFor(center - half, center + half, kDefaultMaxErrorFraction * ratio);
 }
 
-bool insideGrid(const RegionMesh& mesh, const QuantizationGrid& grid) {
-  for (const Vec3& p : mesh.positions) {
-    for (int k = 0; k < 3; ++k) {
-      if (!(p[k] >= grid.origin[k] && p[k] <= grid.origin[k] + grid.range)) return false;
-    }
-  }
-  return true;
-}
-
 }  // namespace tessera

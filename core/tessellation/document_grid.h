@@ -12,6 +12,5 @@
 namespace tessera {
 
 Expected<QuantizationGrid> documentGrid(const Document& doc);
-bool insideGrid(const RegionMesh& mesh, const QuantizationGrid& grid);
 
 }  // namespace tessera

@@ -201,12 +201,9 @@ Status checkMesh(const RegionMesh& mesh, const QuantizationGrid& grid) {
       return "vertex " + std::to_string(i) + " (" + VertexId::fromPacked(mesh.vertexIds[i]).toString() + ")";
     };
     if (!isFinite(p)) return invalidMesh(vertex() + ": position " + vecText(p) + " is not finite");
-    for (int k = 0; k < 3; ++k) {
-      const double t = p[k] - grid.origin[k];
-      if (!(t >= 0.0 && t <= grid.range)) {
-        return invalidMesh(vertex() + ": position " + vecText(p) + " is outside the quantization grid " +
-                           vecText(grid.origin) + " + [0, " + num(grid.range) + "]^3");
-      }
+    if (!grid.contains(p)) {
+      return invalidMesh(vertex() + ": position " + vecText(p) + " is outside the quantization grid " +
+                         vecText(grid.origin) + " + [0, " + num(grid.range) + "]^3");
     }
     const Vec3& normal = mesh.normals[i];
     if (!isFinite(normal)) return invalidMesh(vertex() + ": normal " + vecText(normal) + " is not finite");

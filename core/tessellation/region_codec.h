@@ -89,6 +89,16 @@ struct QuantizationGrid {
   // float32 arithmetic of Draco's quantizer and dequantizer
   // (attribute_quantization_transform.cc, quantization_utils.h).
   double maxPositionError() const;
+
+  // Whether a position can be encoded on the grid: within [0, range] of the
+  // origin on every axis (the one test the encoder and servers share).
+  bool contains(const Vec3& p) const {
+    for (int k = 0; k < 3; ++k) {
+      const double t = p[k] - origin[k];
+      if (!(t >= 0.0 && t <= range)) return false;
+    }
+    return true;
+  }
 };
 
 inline constexpr double kDefaultMaxErrorFraction = 1e-4;  // of the bbox diagonal (issue 4, §4)

@@ -51,9 +51,9 @@ Expected<AdaptiveCut> AdaptiveCut::build(Document& doc, const LodProfile& profil
   // Top-down: a level's decisions need the nodes of that level, which the
   // decisions above it create. Growth rebuilds the hierarchy below the
   // first level whose selection changed; restart from there.
+  if (cut.profile_.fidelity) cut.markEditedVertices(doc);
   for (int l = 0; l < doc.hierarchy().numLevels(); ++l) {
     const SparseEvaluator& h = doc.hierarchy();
-    if (cut.profile_.fidelity) cut.markEditedVertices(doc);
     cut.split_.resize(h.numLevels());
     cut.split_[l].assign(h.level(l).mesh.numFaces(), 0);
     std::vector<FaceId> requests;
@@ -73,19 +73,16 @@ Expected<AdaptiveCut> AdaptiveCut::build(Document& doc, const LodProfile& profil
   return cut;
 }
 
+// By canonical id, so the set does not depend on the hierarchy's local
+// indices and costs what the edit list costs, not what the levels hold.
 void AdaptiveCut::markEditedVertices(const Document& doc) {
-  const SparseEvaluator& h = doc.hierarchy();
-  editedVertices_.assign(h.numLevels(), {});
-  for (int k = 0; k < h.numLevels(); ++k) editedVertices_[k].assign(h.level(k).mesh.numVertices, 0);
+  editedVertices_.clear();
   for (const Edit& edit : doc.edits()) {
     const auto* move = std::get_if<MoveEdit>(&edit.change);
     if (move == nullptr) continue;
-    for (const VertexOffset& o : move->offsets) {
-      const int k = o.vertex.level();
-      if (k >= h.numLevels()) continue;
-      if (const Index v = h.level(k).findVertex(o.vertex.index()); v >= 0) editedVertices_[k][v] = 1;
-    }
+    for (const VertexOffset& o : move->offsets) editedVertices_.push_back(o.vertex.packed());
   }
+  std::sort(editedVertices_.begin(), editedVertices_.end());
 }
 
 bool AdaptiveCut::isCurrent(const SparseEvaluator& h) const {
@@ -104,9 +101,9 @@ bool AdaptiveCut::wantsSplit(const SparseEvaluator& h, int l, Index f) const {
 }
 
 bool AdaptiveCut::aroundEditedVertex(const SparseEvaluator& h, int l, Index f) const {
-  if (l >= static_cast<int>(editedVertices_.size())) return false;
   for (Index v : h.level(l).mesh.faceVertices[f]) {
-    if (editedVertices_[l][v]) return true;
+    const uint64_t id = VertexId(l, h.level(l).vertexIds[v]).packed();
+    if (std::binary_search(editedVertices_.begin(), editedVertices_.end(), id)) return true;
   }
   return false;
 }

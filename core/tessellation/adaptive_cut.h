@@ -61,7 +61,7 @@ class AdaptiveCut {
   double cosThreshold_ = 1.0;
   std::vector<Buffer<uint8_t>> split_;
   std::vector<uint64_t> generations_;
-  std::vector<std::vector<uint8_t>> editedVertices_;  // per level: vertices an edit addresses (fidelity)
+  std::vector<uint64_t> editedVertices_;  // packed ids of vertices an edit moves, sorted (fidelity)
 };
 
 }  // namespace tessera

@@ -21,6 +21,7 @@
 
 #include "core/document/document.h"
 #include "bench/bench_mesh.h"
+#include "bench/percentile.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/tessellation.h"
@@ -42,11 +43,6 @@ struct State {
 State& state() {
   static State s;
   return s;
-}
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
 }
 
 // Encodes the listed regions; returns the bytes.
@@ -93,8 +89,8 @@ void editToDelta(benchmark::State& bm) {
     ++s.version;
   }
   const double n = static_cast<double>(samples.size());
-  bm.counters["p50_us"] = percentile(samples, 0.5) * 1e6;
-  bm.counters["p99_us"] = percentile(samples, 0.99) * 1e6;
+  bm.counters["p50_us"] = tessera::bench::percentile(samples, 0.5) * 1e6;
+  bm.counters["p99_us"] = tessera::bench::percentile(samples, 0.99) * 1e6;
   bm.counters["delta_bytes"] = bytes / n;
   bm.counters["regions"] = regions / n;
   bm.counters["rebuilds"] = rebuilds;

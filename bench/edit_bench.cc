@@ -23,6 +23,7 @@
 #include "bench/ratio_reporter.h"
 #include "core/document/document.h"
 #include "bench/bench_mesh.h"
+#include "bench/percentile.h"
 #include "core/loop/limit.h"
 #include "oracle/osd_adapter.h"
 
@@ -44,11 +45,6 @@ struct Input {
 Input& input() {
   static Input in;
   return in;
-}
-
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())))];
 }
 
 void editTessera(benchmark::State& state) {
@@ -75,8 +71,8 @@ void editTessera(benchmark::State& state) {
     (void)doc.remove(*id);
   }
   const double n = static_cast<double>(samples.size());
-  state.counters["p50_us"] = percentile(samples, 0.50) * 1e6;
-  state.counters["p99_us"] = percentile(samples, 0.99) * 1e6;
+  state.counters["p50_us"] = tessera::bench::percentile(samples, 0.50) * 1e6;
+  state.counters["p99_us"] = tessera::bench::percentile(samples, 0.99) * 1e6;
   state.counters["points"] = static_cast<double>(points) / n;
   state.counters["limits"] = static_cast<double>(limits) / n;
 }

@@ -24,6 +24,7 @@
 #include <system_error>
 #include <vector>
 
+#include "bench/percentile.h"
 #include "server/store/sqlite_store.h"
 
 namespace tessera {
@@ -80,17 +81,12 @@ void finishRun(benchmark::State& state, Run& run) {
   for (const std::vector<double>& latencies : run.latenciesUs)
     all.insert(all.end(), latencies.begin(), latencies.end());
   std::sort(all.begin(), all.end());
-  auto percentile = [&](double p) {
-    return all.empty()
-               ? 0.0
-               : all[std::min(all.size() - 1, static_cast<size_t>(p * static_cast<double>(all.size())))];
-  };
   const StoreStats stats = run.store->stats();
   const double entries = static_cast<double>(stats.entriesCommitted - run.statsBefore.entriesCommitted);
   const double batches = static_cast<double>(stats.batches - run.statsBefore.batches);
   // Counters of a threaded run are summed over threads; only thread 0 sets these.
-  state.counters["p50_us"] = percentile(0.50);
-  state.counters["p99_us"] = percentile(0.99);
+  state.counters["p50_us"] = tessera::bench::percentile(all, 0.50);
+  state.counters["p99_us"] = tessera::bench::percentile(all, 0.99);
   state.counters["max_us"] = all.empty() ? 0.0 : all.back();
   state.counters["per_batch"] = batches > 0 ? entries / batches : 0.0;
   run.store->close();

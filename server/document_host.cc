@@ -67,6 +67,7 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       version_(version),
       durableVersion_(version),
       lastSnapshot_(version),
+      flushedVersion_(version),
       strand_(boost::asio::make_strand(workers)),
       presenceTimer_(strand_),
       store_(store),
@@ -133,6 +134,8 @@ void DocumentHost::broadcastPresence() {
 void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested, uint64_t clientSeq,
                              bool resync) {
   boost::asio::post(strand_, [self = shared_from_this(), who, requested, clientSeq, resync] {
+    // The snapshot is taken at version_: every view's encodings must reach it.
+    self->flush();
     const Limits& limits = self->config_.limits;
     LodProfile profile;
     profile.baseLevel = static_cast<int>(std::min<uint32_t>(requested.base_level(), 64));
@@ -343,17 +346,11 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
     const Index v = h.level(id.level()).findVertex(id.index());
     outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
   }
-  std::map<std::string, Tessellation::Changes> updates;
+  std::map<std::string, Expected<Tessellation::Changes>> updates;
   for (auto it = views_.begin(); !outside && it != views_.end(); ++it) {
     const auto start = Clock::now();
-    auto changes = it->second.tessellation->update(doc_);
+    updates.emplace(it->first, it->second.tessellation->update(doc_));
     stats_.tessellateMicros += microsSince(start);
-    if (!changes.isOk()) {
-      updates.emplace(it->first, Tessellation::Changes{});
-      failedViews_.insert(it->first);
-      continue;
-    }
-    updates.emplace(it->first, std::move(*changes));
   }
   if (outside) {
     Status back = retract(entry);
@@ -370,13 +367,11 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
     return;
   }
   ++stats_.edits;
-  const uint64_t from = version_++;
-  Pending pending{version_, author, clientSeq, editId, {}, {}, Clock::now()};
+  ++version_;
+  pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, {}, {}, Clock::now()});
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
-    auto changes = failedViews_.count(it->first) ? Expected<Tessellation::Changes>(internalError("over its triangle budget"))
-                                                 : Expected<Tessellation::Changes>(std::move(updates.at(it->first)));
-    failedViews_.erase(it->first);
+    const Expected<Tessellation::Changes>& changes = updates.at(it->first);
     if (!changes.isOk()) {
       // Over its triangle budget now: its subscribers get an error and the
       // view goes; they may subscribe again with another profile.
@@ -390,13 +385,43 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
       it = views_.erase(it);
       continue;
     }
+    for (uint64_t region : changes->changed) view.dirty.insert(region), view.removed.erase(region);
+    for (uint64_t region : changes->removed) view.dirty.erase(region), view.removed.insert(region);
+    ++it;
+  }
+  // Posted before the journal append, so it runs before this edit's commit
+  // can be handled (committed() flushes anyway, should the order change).
+  scheduleFlush();
+  store_.append(id_, version_ - 1, authorName, encodeJournalEntry(entry),
+                [self = shared_from_this(), version = version_](Status status) {
+                  boost::asio::post(self->strand_, [self, version, status] { self->committed(version, status); });
+                });
+}
+
+void DocumentHost::scheduleFlush() {
+  if (flushScheduled_) return;
+  flushScheduled_ = true;
+  boost::asio::post(strand_, [self = shared_from_this()] { self->flush(); });
+}
+
+void DocumentHost::flush() {
+  flushScheduled_ = false;
+  if (version_ == flushedVersion_) return;
+  if (pending_.empty()) {  // the journal failed and the edits are lost: nothing to send
+    for (auto& [key, view] : views_) view.dirty.clear(), view.removed.clear();
+    flushedVersion_ = version_;
+    return;
+  }
+  Pending& last = pending_.back();
+  ++stats_.deltaFlushes;
+  for (auto& [key, view] : views_) {
     auto delta = std::make_shared<DeltaContent>();
     delta->documentId = id_.value;
-    delta->fromVersion = from;
+    delta->fromVersion = flushedVersion_;
     delta->toVersion = version_;
-    delta->authorSession = author->sessionId();
-    delta->editId = editId;
-    for (uint64_t region : changes->changed) {
+    delta->authorSession = last.authorSession;
+    delta->editId = last.editId;
+    for (uint64_t region : view.dirty) {
       auto encoded = encode(region, view);
       if (!encoded.isOk()) {
         logEvent(LogLevel::kError, "encode_failed", {{"doc", id_.value}, {"error", encoded.status().message()}});
@@ -405,17 +430,14 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
       view.encoded[region] = *encoded;
       delta->regions.emplace_back(region, *encoded);
     }
-    for (uint64_t region : changes->removed) view.encoded.erase(region);
-    delta->removed = changes->removed;
-    pending.frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
-    pending.deltas[it->first] = std::move(delta);
-    ++it;
+    for (uint64_t region : view.removed) view.encoded.erase(region);
+    delta->removed.assign(view.removed.begin(), view.removed.end());
+    view.dirty.clear();
+    view.removed.clear();
+    last.frames[key] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
+    last.deltas[key] = std::move(delta);
   }
-  pending_.push_back(std::move(pending));
-  store_.append(id_, version_ - 1, authorName, encodeJournalEntry(entry),
-                [self = shared_from_this(), version = version_](Status status) {
-                  boost::asio::post(self->strand_, [self, version, status] { self->committed(version, status); });
-                });
+  flushedVersion_ = version_;
 }
 
 void DocumentHost::committed(uint64_t version, Status status) {
@@ -441,6 +463,7 @@ void DocumentHost::committed(uint64_t version, Status status) {
     return;
   }
   durableVersion_ = std::max(durableVersion_, version);
+  if (!pending_.empty() && pending_.front().version <= durableVersion_) flush();
   while (!pending_.empty() && pending_.front().version <= durableVersion_) {
     Pending& p = pending_.front();
     stats_.commitMicros += microsSince(p.applied);

@@ -5,6 +5,14 @@
 // per profile, journals the edit, and -- once the journal commit is durable
 // -- releases the author's ack and everyone's deltas, in version order
 // (edits are applied and tessellated while earlier commits are in flight).
+//
+// Edits queued on the strand together share one encode: each is applied
+// and its tessellation updated at once (its ack and the grid check need
+// that), but the changed regions are only encoded by a flush posted behind
+// them, which makes one delta spanning every version since the last one.
+// Under light load a flush follows each edit; under heavy load one flush
+// covers a burst, so the encode and fan-out cost follows the delta rate the
+// viewers can use, not the edit rate.
 #pragma once
 
 #include <boost/asio/any_io_executor.hpp>
@@ -62,12 +70,16 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;       // session -> subscriber
     std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
     wire::LodProfile wireProfile;
+    std::set<uint64_t> dirty;    // regions changed since the last flush
+    std::set<uint64_t> removed;  // regions gone since the last flush
   };
   struct Pending {  // applied and tessellated, waiting for its commit
     uint64_t version;
     std::weak_ptr<Subscriber> author;
-    uint64_t clientSeq, editId;
-    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
+    uint64_t authorSession, clientSeq, editId;
+    // Set on the last edit of a flush: the delta from the previous flush's
+    // version to this one, by view key.
+    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;
     std::map<std::string, std::shared_ptr<const std::string>> frames;
     std::chrono::steady_clock::time_point applied;
   };
@@ -75,6 +87,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
   void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
                   const JournalEntry& entry, const std::string& authorName);
+  void scheduleFlush();
+  // Encodes every view's regions changed since the last flush and hangs
+  // the deltas on the newest pending edit.
+  void flush();
   void committed(uint64_t version, Status status);
   // Takes an applied command back (an edit refused after applying it).
   Status retract(const JournalEntry& entry);
@@ -90,6 +106,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   uint64_t version_;         // applied
   uint64_t durableVersion_;  // committed to the journal
   uint64_t lastSnapshot_;
+  uint64_t flushedVersion_;  // the version views' encoded regions and the last delta reach
+  bool flushScheduled_ = false;
   bool failed_ = false;
   boost::asio::strand<boost::asio::any_io_executor> strand_;
   boost::asio::steady_timer presenceTimer_;
@@ -101,7 +119,6 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   std::map<uint64_t, Participant> participants_;
   std::map<std::string, View> views_;  // by LodProfile::key()
   std::deque<Pending> pending_;
-  std::set<std::string> failedViews_;
 };
 
 // Builds the frame of a server message (length prefix + payload).

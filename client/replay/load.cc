@@ -20,46 +20,19 @@
 #include <unordered_map>
 
 #include "client/lib/document_view.h"
+#include "client/replay/load_state.h"
 #include "client/replay/replay.h"
+#include "client/replay/viewer_pool.h"
 
 namespace tessera::replay {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 
 double msBetween(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
 bool isTimeout(const Status& s) { return s.message().rfind("no message from the server", 0) == 0; }
-
-// Counters every connection thread adds to; the rest is merged at the end.
-struct Shared {
-  std::atomic<bool> stopEditing{false};
-  std::atomic<bool> stopViewing{false};
-  std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0}, viewersReady{0},
-      viewersDone{0};
-  std::atomic<uint64_t> maxAckedVersion{0};
-  // Editors connect and open first, then wait for the start: joins make
-  // Presence messages to every participant, and the edits should not queue
-  // behind them.
-  std::atomic<int64_t> editorsReady{0};
-  std::atomic<bool> startEditing{false};
-  std::atomic<int64_t> startNs{0};              // steady_clock, set before startEditing
-  std::atomic<int64_t> lastPresenceNs{0};       // the latest Presence any viewer received
-  // Viewers joining at once: connecting, subscribing and reading the snapshot.
-  std::counting_semaphore<1024> joining{32};
-  std::mutex mu;  // guards what follows
-  std::unordered_map<uint64_t, Clock::time_point> sendTimeOfVersion;
-  std::vector<double> ackLatencyMs;
-  std::vector<std::string> errorMessages;  // the first 20
-
-  void error(const std::string& message) {
-    ++errors;
-    std::lock_guard lock(mu);
-    if (errorMessages.size() < 20) errorMessages.push_back(message);
-  }
-};
 
 void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, Shared& shared) {
   client::SessionOptions so = o.session;
@@ -141,15 +114,6 @@ void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, 
   s.close();
 }
 
-struct ViewerResult {
-  bool ready = false;
-  uint64_t version = 0;
-  uint64_t hash = 0;  // decoding viewers only
-  bool decoded = false;
-  int64_t snapshotBytes = 0, deltaBytes = 0, presenceBytes = 0, presenceMessages = 0;
-  std::vector<std::pair<uint64_t, Clock::time_point>> deltaTimes;  // to_version, arrival
-};
-
 void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point hardDeadline, Shared& shared,
                ViewerResult& out) {
   client::SessionOptions so = o.session;
@@ -174,7 +138,6 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
   }
   client::DocumentView view(o.document);
   out.decoded = decode;
-  bool ready = false;
   auto lastPing = Clock::now();
   std::optional<Clock::time_point> stopSeen;
   for (;;) {
@@ -182,54 +145,24 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
     if (now > hardDeadline) break;
     if (shared.stopViewing && !stopSeen) stopSeen = now;
     if (stopSeen && now - *stopSeen > std::chrono::duration<double>(o.drainSeconds)) break;
-    if (shared.stopViewing && ready && out.version >= shared.maxAckedVersion.load()) break;
+    if (shared.stopViewing && out.ready && out.version >= shared.maxAckedVersion.load()) break;
     if (now - lastPing > std::chrono::seconds(30)) {
       wire::ClientMessage ping;
       ping.mutable_ping();
       (void)s.send(ping);
       lastPing = now;
     }
-    auto m = s.receive(ready ? o.viewerPollSeconds : 0.25);
+    auto m = s.receive(out.ready ? o.viewerPollSeconds : 0.25);
     if (!m.isOk()) {
       if (isTimeout(m.status())) continue;
       shared.error(so.name + ": " + m.status().message());
       break;
     }
     const auto arrival = Clock::now();
-    const int64_t bytes = static_cast<int64_t>(m->ByteSizeLong()) + 4;
-    if (m->has_snapshot() && m->snapshot().document_id() == o.document) {
-      out.snapshotBytes += bytes;
-      if (m->snapshot().resync()) ++shared.resyncs;
-      if (m->snapshot().remaining_parts() == 0) {
-        if (!ready) ++shared.viewersReady;
-        ready = true;
-        joined();
-        out.version = m->snapshot().version();
-      }
-    } else if (m->has_delta() && m->delta().document_id() == o.document) {
-      out.deltaBytes += bytes;
-      ++shared.deltas;
-      const auto& d = m->delta();
-      if (ready) {
-        if (d.from_version() != out.version) {
-          ++shared.gaps;
-          ++shared.resyncs;
-          ready = false;
-          --shared.viewersReady;
-          wire::ClientMessage sub;
-          sub.mutable_subscribe()->set_document_id(o.document);
-          *sub.mutable_subscribe()->mutable_profile() = o.profile;
-          (void)s.send(sub);
-        } else {
-          out.version = d.to_version();
-          if (out.deltaTimes.size() < 1000000) out.deltaTimes.emplace_back(d.to_version(), arrival);
-        }
-      }
-    } else if (m->has_presence()) {
-      shared.lastPresenceNs = arrival.time_since_epoch().count();
-      out.presenceBytes += bytes;
-      ++out.presenceMessages;
-    } else if (m->has_error() && m->error().fatal()) {
+    const ViewerEvent event = trackViewerMessage(*m, arrival, o.document, out, shared);
+    if (event == ViewerEvent::kReady) joined();
+    if (event == ViewerEvent::kGap) (void)s.send(subscribeMessage(o.document, o.profile));
+    if (event == ViewerEvent::kFatal) {
       shared.error(so.name + ": server error: " + m->error().message());
       break;
     }
@@ -237,7 +170,6 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
       if (Status st = view.apply(*m); !st.isOk() && !m->has_delta()) shared.error(so.name + ": " + st.message());
     }
   }
-  out.ready = ready;
   if (decode && view.ready()) out.hash = view.surfaceHash();
   s.close();
   done();
@@ -300,11 +232,17 @@ Expected<json> runLoad(const LoadOptions& o) {
   const auto begin = Clock::now();
   const auto hardDeadline = begin + std::chrono::duration_cast<Clock::duration>(
                                         std::chrono::duration<double>(o.connectSeconds + o.seconds + o.drainSeconds + 5));
+  // Decoding viewers (and every viewer over TLS) get a thread each; the
+  // counting ones share the pool's threads.
+  const int threaded = o.session.tls || o.poolThreads <= 0 ? o.viewers : decode;
   std::vector<std::thread> viewerThreads;
-  for (int i = 0; i < o.viewers; ++i) {
+  for (int i = 0; i < threaded; ++i) {
     viewerThreads.emplace_back(runViewer, std::cref(o), i, i < decode, hardDeadline, std::ref(shared),
                                std::ref(viewerResults[static_cast<size_t>(i)]));
   }
+  const ViewerPoolOptions poolOptions{.firstIndex = threaded, .threads = std::max(o.poolThreads, 1)};
+  viewerThreads.emplace_back(runViewerPool, std::cref(o), std::cref(poolOptions), hardDeadline, std::ref(shared),
+                             std::span<ViewerResult>(viewerResults).subspan(static_cast<size_t>(threaded)));
   std::vector<std::thread> editorThreads;
   for (int i = 0; i < o.editors; ++i) editorThreads.emplace_back(runEditor, std::cref(o), i, hardDeadline, std::ref(shared));
   // Every viewer subscribed and every editor in (or failed) before the first
@@ -354,8 +292,9 @@ Expected<json> runLoad(const LoadOptions& o) {
   for (auto& t : viewerThreads) t.join();
   const double editSeconds = std::chrono::duration<double>(editsDone - start).count();
 
-  // Edit to delta: each delta's to_version against the send time of the edit
-  // whose Ack carried that version.
+  // Edit to delta: the send time of the edit whose Ack carried version V
+  // against the arrival of the delta that brought the viewer to V (a delta
+  // spans several versions when the server or a full queue batched edits).
   std::vector<double> toDelta;
   int64_t deltaBytes = 0, snapshotBytes = 0, readyViewers = 0, presenceBytes = 0, presenceMessages = 0;
   uint64_t minVersion = UINT64_MAX, maxVersion = 0;
@@ -372,9 +311,11 @@ Expected<json> runLoad(const LoadOptions& o) {
     minVersion = std::min(minVersion, v.version);
     maxVersion = std::max(maxVersion, v.version);
     if (v.decoded && v.hash != 0 && v.version == shared.maxAckedVersion) hashes.insert(v.hash), ++decodedReady;
-    for (const auto& [version, arrival] : v.deltaTimes) {
-      auto it = shared.sendTimeOfVersion.find(version);
-      if (it != shared.sendTimeOfVersion.end()) toDelta.push_back(msBetween(it->second, arrival));
+    for (const auto& d : v.deltaTimes) {
+      for (uint64_t version = d.fromVersion + 1; version <= d.toVersion; ++version) {
+        auto it = shared.sendTimeOfVersion.find(version);
+        if (it != shared.sendTimeOfVersion.end()) toDelta.push_back(msBetween(it->second, d.arrival));
+      }
     }
   }
   if (o.viewers == 0) minVersion = 0;
@@ -440,7 +381,9 @@ Expected<json> runLoad(const LoadOptions& o) {
   getrusage(RUSAGE_SELF, &self);
   const double cpu = static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
                      static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec) / 1e6;
-  report["client"] = {{"cpu_seconds", std::round(cpu * 100) / 100}, {"threads", o.editors + o.viewers}};
+  report["client"] = {{"cpu_seconds", std::round(cpu * 100) / 100},
+                      {"threads", o.editors + threaded + (o.viewers > threaded ? poolOptions.threads : 0)},
+                      {"pooled_viewers", o.viewers - threaded}};
   return report;
 }
 

@@ -30,7 +30,7 @@ constexpr const char* kHelp =
     "  surface --document D    print the version and surface hash of a document\n"
     "  load --document D [--editors E] [--viewers M] [--rate R] [--seconds S] [--max-edits N]\n"
     "       [--decode-viewers K] [--vertex-level L] [--vertex-count N] [--step X] [--seed N]\n"
-    "       [--drain-seconds S] [--server-pid PID] [--report FILE] [--quiet]\n"
+    "       [--drain-seconds S] [--pool-threads T] [--server-pid PID] [--report FILE] [--quiet]\n"
     "      a bounded load run; progress on stderr, a summary on stdout, JSON with --report\n"
     "\n"
     "connection: [--host H] [--port N] [--token T | --token-file F] [--viewer-token T]\n"
@@ -50,7 +50,7 @@ const std::set<std::string> kFlags = {"--no-undo", "--quiet", "--help"};
 const std::set<std::string> kOptions = {"--host", "--port", "--token", "--token-file", "--viewer-token", "--document",
                                         "--editors", "--viewers", "--rate", "--seconds", "--seed", "--vertex-level",
                                         "--vertex-count", "--step", "--speed", "--max-edits", "--decode-viewers",
-                                        "--drain-seconds", "--server-pid", "--report", "--output", "--profile"};
+                                        "--drain-seconds", "--pool-threads", "--server-pid", "--report", "--output", "--profile"};
 
 Expected<Args> parseArgs(int argc, char** argv) {
   Args a;
@@ -223,13 +223,16 @@ int runLoadCommand(const Args& a) {
   auto seed = number<uint64_t>(a, "--seed", 1);
   auto drain = number<double>(a, "--drain-seconds", 10);
   auto pid = number<int>(a, "--server-pid", 0);
+  auto poolThreads = number<int>(a, "--pool-threads", 1);
   for (const Status* s : {&doc.status(), &editors.status(), &viewers.status(), &rate.status(), &seconds.status(),
                           &maxEdits.status(), &decode.status(), &level.status(), &count.status(), &step.status(),
-                          &seed.status(), &drain.status(), &pid.status()}) {
+                          &seed.status(), &drain.status(), &pid.status(), &poolThreads.status()}) {
     if (!s->isOk()) return usage(s->message());
   }
-  if (*level < 0 || *level > 12 || *count == 0 || *maxEdits < 1 || !(*drain >= 0 && *drain <= 600)) {
-    return usage("load: --vertex-level 0..12, --vertex-count > 0, --max-edits >= 1, --drain-seconds 0..600");
+  if (*level < 0 || *level > 12 || *count == 0 || *maxEdits < 1 || !(*drain >= 0 && *drain <= 600) || *poolThreads < 0 ||
+      *poolThreads > 16) {
+    return usage("load: --vertex-level 0..12, --vertex-count > 0, --max-edits >= 1, --drain-seconds 0..600, "
+                 "--pool-threads 0..16");
   }
   auto header = profileOption(a, ScriptHeader{});
   if (!header.isOk()) return usage(header.status().message());
@@ -246,6 +249,7 @@ int runLoadCommand(const Args& a) {
   o.seed = *seed;
   o.drainSeconds = *drain;
   o.serverPid = *pid;
+  o.poolThreads = *poolThreads;
   o.profile = profileOf(*header);
   o.progress = !a.flags.count("--quiet");
   auto report = runLoad(o);

@@ -5,11 +5,13 @@
 #include <sys/wait.h>
 
 #include <fstream>
+#include <map>
 #include <thread>
 
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
+#include "protocol/framing.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
@@ -130,6 +132,73 @@ TEST(Server, EditsStreamToEveryViewerAndLateJoinersCatchUp) {
   EXPECT_EQ(restored.version(), 3u);
   EXPECT_EQ(restored.surfaceHash(), seen.surfaceHash());
   EXPECT_EQ(again->stop(), 0);
+}
+
+// Edits queued together share one encode (server/document_host.h): a burst
+// of pipelined edits is acked one version each, while viewers receive fewer
+// deltas, some spanning several versions, with no gap, ending at the state
+// a fresh subscriber sees.
+TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
+  Fixture f;
+  startWithCube(f, "tessera-server-burst");
+  if (::testing::Test::HasFatalFailure()) return;
+  auto viewer = Session::connect(f.server->session("viewer", "viewer-token-0123456789"));
+  auto editor = Session::connect(f.server->session("editor", "editor-token-0123456789"));
+  ASSERT_TRUE(viewer.isOk() && editor.isOk());
+  ASSERT_TRUE((*viewer)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*viewer)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
+  ASSERT_TRUE((*editor)->call(testing::openDocument(f.doc), 10)->has_ack());
+  DocumentView seen(f.doc);
+  waitForSnapshot(**viewer, seen);
+
+  // One write holding 60 edits: the server reads them together and queues
+  // them on the document's strand faster than it applies them.
+  constexpr int kEdits = 60;
+  std::string burst;
+  for (int i = 0; i < kEdits; ++i) {
+    wire::ClientMessage m = testing::moveVertex(f.doc, VertexId(2, static_cast<uint64_t>(i * 7 % 98)).packed(), 0.002 * (i % 5),
+                                                -0.001 * (i % 3), 0.0015, wire::MOVE_MODE_OFFSET);
+    m.set_client_seq(1000 + static_cast<uint64_t>(i));
+    auto frame = encodeFrame(m);
+    ASSERT_TRUE(frame.isOk());
+    burst += *frame;
+  }
+  ASSERT_TRUE((*editor)->sendRaw(burst).isOk());
+  std::map<uint64_t, uint64_t> versionOfSeq;
+  for (int i = 0; i < 400 && versionOfSeq.size() < kEdits; ++i) {
+    auto m = (*editor)->receive(10);
+    ASSERT_TRUE(m.isOk()) << m.status().message();
+    if (m->has_reject()) FAIL() << m->DebugString();
+    if (m->has_ack()) versionOfSeq[m->ack().client_seq()] = m->ack().version();
+  }
+  ASSERT_EQ(versionOfSeq.size(), static_cast<size_t>(kEdits));
+  for (int i = 0; i < kEdits; ++i) EXPECT_EQ(versionOfSeq[1000 + static_cast<uint64_t>(i)], 2u + static_cast<uint64_t>(i));
+
+  int deltas = 0, spanning = 0;
+  for (int i = 0; i < 400 && seen.version() < 1 + kEdits; ++i) {
+    auto m = (*viewer)->receive(10);
+    ASSERT_TRUE(m.isOk()) << m.status().message();
+    if (m->has_delta()) {
+      ++deltas;
+      if (m->delta().to_version() > m->delta().from_version() + 1) ++spanning;
+    }
+    Status applied = seen.apply(*m);
+    ASSERT_TRUE(applied.isOk()) << applied.message();
+  }
+  EXPECT_EQ(seen.version(), 1u + kEdits);
+  EXPECT_EQ(seen.gaps(), 0u);
+  EXPECT_LT(deltas, kEdits);
+  EXPECT_GT(spanning, 0);
+
+  auto late = Session::connect(f.server->session("late", "viewer-token-0123456789"));
+  ASSERT_TRUE(late.isOk());
+  ASSERT_TRUE((*late)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*late)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
+  DocumentView fresh(f.doc);
+  waitForSnapshot(**late, fresh);
+  EXPECT_EQ(fresh.version(), seen.version());
+  EXPECT_EQ(fresh.surfaceHash(), seen.surfaceHash());
+  EXPECT_EQ(f.server->stop(), 0);
 }
 
 }  // namespace

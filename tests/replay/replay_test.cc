@@ -139,7 +139,8 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   if (HasFatalFailure()) return;
   const std::string report = testing::makeTempDir("tessera-replay-report") + "/report.json";
   auto [out, code] = run(std::string(TESSERA_REPLAY_PATH) + " load" + s.connection() +
-                         " --editors 2 --viewers 3 --rate 10 --seconds 2 --profile 2,5,10 --drain-seconds 5 --report " + report);
+                         " --editors 2 --viewers 6 --decode-viewers 2 --rate 10 --seconds 2 --profile 2,5,10 --drain-seconds 5"
+                         " --report " + report);
   EXPECT_EQ(code, 0) << out;
   std::ifstream in(report);
   ASSERT_TRUE(in) << out;
@@ -154,16 +155,17 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   EXPECT_EQ(r["errors"]["count"], 0) << r["errors"].dump();
   EXPECT_EQ(r["viewers"]["gaps"], 0);
   EXPECT_EQ(r["viewers"]["resyncs"], 0);
-  EXPECT_EQ(r["viewers"]["ready_at_end"], 3);
+  EXPECT_EQ(r["viewers"]["ready_at_end"], 6);
+  EXPECT_EQ(r["client"]["pooled_viewers"], 4);  // the counting viewers share the pool's thread
   EXPECT_EQ(r["viewers"]["version_min"], r["final_version"]);
   EXPECT_EQ(r["viewers"]["behind_at_end"], 0);
   EXPECT_EQ(r["final_version"], 1 + sent);
   EXPECT_TRUE(r["viewers"]["decoded_hashes_agree"].get<bool>());
-  EXPECT_EQ(r["viewers"]["decoded_at_final_version"], 3);
+  EXPECT_EQ(r["viewers"]["decoded_at_final_version"], 2);
   EXPECT_GT(r["viewers"]["bytes_per_second_per_viewer"].get<double>(), 0);
   for (const char* which : {"edit_to_ack", "edit_to_delta"}) {
     const auto& p = r["latency_ms"][which];
-    EXPECT_EQ(p["count"], std::string(which) == "edit_to_ack" ? sent : 3 * sent) << which;
+    EXPECT_EQ(p["count"], std::string(which) == "edit_to_ack" ? sent : 6 * sent) << which;
     EXPECT_GT(p["p50"].get<double>(), 0) << which;
     EXPECT_LE(p["p50"].get<double>(), p["p90"].get<double>()) << which;
     EXPECT_LE(p["p90"].get<double>(), p["p99"].get<double>()) << which;

@@ -1,0 +1,51 @@
+#include "client/replay/load_state.h"
+
+namespace tessera::replay {
+
+ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point arrival, uint64_t document,
+                               ViewerResult& out, Shared& shared) {
+  const int64_t bytes = static_cast<int64_t>(m.ByteSizeLong()) + 4;
+  if (m.has_snapshot() && m.snapshot().document_id() == document) {
+    out.snapshotBytes += bytes;
+    if (m.snapshot().resync()) ++shared.resyncs;
+    if (m.snapshot().remaining_parts() != 0) return ViewerEvent::kNone;
+    out.version = m.snapshot().version();
+    if (out.ready) return ViewerEvent::kNone;
+    out.ready = true;
+    ++shared.viewersReady;
+    return ViewerEvent::kReady;
+  }
+  if (m.has_delta() && m.delta().document_id() == document) {
+    out.deltaBytes += bytes;
+    ++shared.deltas;
+    const auto& d = m.delta();
+    if (!out.ready) return ViewerEvent::kNone;  // waiting for a resync snapshot
+    if (d.from_version() != out.version) {
+      ++shared.gaps;
+      ++shared.resyncs;
+      out.ready = false;
+      --shared.viewersReady;
+      return ViewerEvent::kGap;
+    }
+    out.version = d.to_version();
+    if (out.deltaTimes.size() < 1000000) out.deltaTimes.push_back({d.from_version(), d.to_version(), arrival});
+    return ViewerEvent::kNone;
+  }
+  if (m.has_presence()) {
+    shared.lastPresenceNs = arrival.time_since_epoch().count();
+    out.presenceBytes += bytes;
+    ++out.presenceMessages;
+    return ViewerEvent::kNone;
+  }
+  if (m.has_error() && m.error().fatal()) return ViewerEvent::kFatal;
+  return ViewerEvent::kNone;
+}
+
+wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile) {
+  wire::ClientMessage sub;
+  sub.mutable_subscribe()->set_document_id(document);
+  *sub.mutable_subscribe()->mutable_profile() = profile;
+  return sub;
+}
+
+}  // namespace tessera::replay

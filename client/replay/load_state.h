@@ -1,0 +1,73 @@
+// What the connections of one load run share (load.cc, viewer_pool.cc):
+// counters every connection adds to, and each viewer's own results, merged
+// into the report at the end.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <semaphore>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "protocol/tessera.pb.h"
+
+namespace tessera::replay {
+
+using Clock = std::chrono::steady_clock;
+
+// Counters every connection thread adds to; the rest is merged at the end.
+struct Shared {
+  std::atomic<bool> stopEditing{false};
+  std::atomic<bool> stopViewing{false};
+  std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0}, viewersReady{0},
+      viewersDone{0};
+  std::atomic<uint64_t> maxAckedVersion{0};
+  // Editors connect and open first, then wait for the start: joins make
+  // Presence messages to every participant, and the edits should not queue
+  // behind them.
+  std::atomic<int64_t> editorsReady{0};
+  std::atomic<bool> startEditing{false};
+  std::atomic<int64_t> startNs{0};              // steady_clock, set before startEditing
+  std::atomic<int64_t> lastPresenceNs{0};       // the latest Presence any viewer received
+  // Viewers joining at once: connecting, subscribing and reading the snapshot.
+  std::counting_semaphore<1024> joining{32};
+  std::mutex mu;  // guards what follows
+  std::unordered_map<uint64_t, Clock::time_point> sendTimeOfVersion;
+  std::vector<double> ackLatencyMs;
+  std::vector<std::string> errorMessages;  // the first 20
+
+  void error(const std::string& message) {
+    ++errors;
+    std::lock_guard lock(mu);
+    if (errorMessages.size() < 20) errorMessages.push_back(message);
+  }
+};
+
+struct ViewerResult {
+  bool ready = false;
+  uint64_t version = 0;
+  uint64_t hash = 0;  // decoding viewers only
+  bool decoded = false;
+  int64_t snapshotBytes = 0, deltaBytes = 0, presenceBytes = 0, presenceMessages = 0;
+  struct DeltaArrival {
+    uint64_t fromVersion, toVersion;
+    Clock::time_point arrival;
+  };
+  std::vector<DeltaArrival> deltaTimes;
+};
+
+enum class ViewerEvent { kNone, kReady, kGap, kFatal };
+
+// What a viewer makes of one server message, however it reads them (a
+// thread per connection, or the pool): bytes, readiness, version
+// continuity and delta arrivals. kGap: the viewer must subscribe again;
+// kFatal: the server closed the connection with an error.
+ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point arrival, uint64_t document,
+                               ViewerResult& out, Shared& shared);
+
+wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile);
+
+}  // namespace tessera::replay

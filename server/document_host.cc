@@ -322,15 +322,13 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
   }
 }
 
+// The views never saw the command (they update at the next flush), so only
+// the document goes back; its limits are restored bit for bit.
 Status DocumentHost::retract(const JournalEntry& entry) {
   switch (entry.kind) {
-    case JournalEntry::Kind::kEdit: TESSERA_RETURN_IF_ERROR(doc_.retractLast()); break;
-    case JournalEntry::Kind::kUndo: TESSERA_RETURN_IF_ERROR(doc_.redo(entry.target)); break;
-    case JournalEntry::Kind::kRedo: TESSERA_RETURN_IF_ERROR(doc_.undo(entry.target)); break;
-  }
-  for (auto& [key, view] : views_) {
-    auto changes = view.tessellation->update(doc_);
-    if (!changes.isOk()) return changes.status();
+    case JournalEntry::Kind::kEdit: return doc_.retractLast();
+    case JournalEntry::Kind::kUndo: return doc_.redo(entry.target);
+    case JournalEntry::Kind::kRedo: return doc_.undo(entry.target);
   }
   return Status::ok();
 }
@@ -345,12 +343,6 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   for (VertexId id : doc_.lastUpdate().limits) {
     const Index v = h.level(id.level()).findVertex(id.index());
     outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
-  }
-  std::map<std::string, Expected<Tessellation::Changes>> updates;
-  for (auto it = views_.begin(); !outside && it != views_.end(); ++it) {
-    const auto start = Clock::now();
-    updates.emplace(it->first, it->second.tessellation->update(doc_));
-    stats_.tessellateMicros += microsSince(start);
   }
   if (outside) {
     Status back = retract(entry);
@@ -369,26 +361,8 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   ++stats_.edits;
   ++version_;
   pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, {}, {}, Clock::now()});
-  for (auto it = views_.begin(); it != views_.end();) {
-    View& view = it->second;
-    const Expected<Tessellation::Changes>& changes = updates.at(it->first);
-    if (!changes.isOk()) {
-      // Over its triangle budget now: its subscribers get an error and the
-      // view goes; they may subscribe again with another profile.
-      wire::ServerMessage error;
-      error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-      error.mutable_error()->set_message("LOD profile " + it->first + " dropped: " + changes.status().message());
-      auto frame = frameOf(error, config_.limits.maxFrameBytes);
-      for (auto& [session, weak] : view.subscribers) {
-        if (auto who = weak.lock()) who->send({frame, nullptr});
-      }
-      it = views_.erase(it);
-      continue;
-    }
-    for (uint64_t region : changes->changed) view.dirty.insert(region), view.removed.erase(region);
-    for (uint64_t region : changes->removed) view.dirty.erase(region), view.removed.insert(region);
-    ++it;
-  }
+  const auto& limits = doc_.lastUpdate().limits;
+  changedLimits_.insert(changedLimits_.end(), limits.begin(), limits.end());
   // Posted before the journal append, so it runs before this edit's commit
   // can be handled (committed() flushes anyway, should the order change).
   scheduleFlush();
@@ -407,21 +381,37 @@ void DocumentHost::scheduleFlush() {
 void DocumentHost::flush() {
   flushScheduled_ = false;
   if (version_ == flushedVersion_) return;
-  if (pending_.empty()) {  // the journal failed and the edits are lost: nothing to send
-    for (auto& [key, view] : views_) view.dirty.clear(), view.removed.clear();
-    flushedVersion_ = version_;
-    return;
-  }
-  Pending& last = pending_.back();
-  ++stats_.deltaFlushes;
-  for (auto& [key, view] : views_) {
+  std::sort(changedLimits_.begin(), changedLimits_.end());
+  changedLimits_.erase(std::unique(changedLimits_.begin(), changedLimits_.end()), changedLimits_.end());
+  // After a failed journal write the edits are lost: views still follow
+  // the document, but nothing is sent.
+  Pending* last = pending_.empty() ? nullptr : &pending_.back();
+  if (last) ++stats_.deltaFlushes;
+  for (auto it = views_.begin(); it != views_.end();) {
+    View& view = it->second;
+    const auto start = Clock::now();
+    auto changes = view.tessellation->update(doc_, changedLimits_);
+    stats_.tessellateMicros += microsSince(start);
+    if (!changes.isOk()) {
+      // Over its triangle budget now: its subscribers get an error and the
+      // view goes; they may subscribe again with another profile.
+      wire::ServerMessage error;
+      error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+      error.mutable_error()->set_message("LOD profile " + it->first + " dropped: " + changes.status().message());
+      auto frame = frameOf(error, config_.limits.maxFrameBytes);
+      for (auto& [session, weak] : view.subscribers) {
+        if (auto who = weak.lock()) who->send({frame, nullptr});
+      }
+      it = views_.erase(it);
+      continue;
+    }
     auto delta = std::make_shared<DeltaContent>();
     delta->documentId = id_.value;
     delta->fromVersion = flushedVersion_;
     delta->toVersion = version_;
-    delta->authorSession = last.authorSession;
-    delta->editId = last.editId;
-    for (uint64_t region : view.dirty) {
+    delta->authorSession = last ? last->authorSession : 0;
+    delta->editId = last ? last->editId : 0;
+    for (uint64_t region : changes->changed) {
       auto encoded = encode(region, view);
       if (!encoded.isOk()) {
         logEvent(LogLevel::kError, "encode_failed", {{"doc", id_.value}, {"error", encoded.status().message()}});
@@ -430,13 +420,15 @@ void DocumentHost::flush() {
       view.encoded[region] = *encoded;
       delta->regions.emplace_back(region, *encoded);
     }
-    for (uint64_t region : view.removed) view.encoded.erase(region);
-    delta->removed.assign(view.removed.begin(), view.removed.end());
-    view.dirty.clear();
-    view.removed.clear();
-    last.frames[key] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
-    last.deltas[key] = std::move(delta);
+    for (uint64_t region : changes->removed) view.encoded.erase(region);
+    delta->removed = changes->removed;
+    if (last) {
+      last->frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
+      last->deltas[it->first] = std::move(delta);
+    }
+    ++it;
   }
+  changedLimits_.clear();
   flushedVersion_ = version_;
 }
 

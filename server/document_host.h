@@ -6,13 +6,14 @@
 // -- releases the author's ack and everyone's deltas, in version order
 // (edits are applied and tessellated while earlier commits are in flight).
 //
-// Edits queued on the strand together share one encode: each is applied
-// and its tessellation updated at once (its ack and the grid check need
-// that), but the changed regions are only encoded by a flush posted behind
-// them, which makes one delta spanning every version since the last one.
+// Edits queued on the strand together share one tessellation update and
+// one encode: each is applied, checked against the grid and journaled at
+// once (its ack needs only that), and a flush posted behind them updates
+// every view from the union of their changed limits, encodes the changed
+// regions and makes one delta spanning every version since the last flush.
 // Under light load a flush follows each edit; under heavy load one flush
-// covers a burst, so the encode and fan-out cost follows the delta rate the
-// viewers can use, not the edit rate.
+// covers a burst, so the tessellation, encode and fan-out cost follows the
+// delta rate, not the edit rate.
 #pragma once
 
 #include <boost/asio/any_io_executor.hpp>
@@ -70,8 +71,6 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;       // session -> subscriber
     std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
     wire::LodProfile wireProfile;
-    std::set<uint64_t> dirty;    // regions changed since the last flush
-    std::set<uint64_t> removed;  // regions gone since the last flush
   };
   struct Pending {  // applied and tessellated, waiting for its commit
     uint64_t version;
@@ -88,8 +87,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
                   const JournalEntry& entry, const std::string& authorName);
   void scheduleFlush();
-  // Encodes every view's regions changed since the last flush and hangs
-  // the deltas on the newest pending edit.
+  // Updates every view from the limits changed since the last flush,
+  // encodes the changed regions and hangs the deltas on the newest edit.
   void flush();
   void committed(uint64_t version, Status status);
   // Takes an applied command back (an edit refused after applying it).
@@ -119,6 +118,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   std::map<uint64_t, Participant> participants_;
   std::map<std::string, View> views_;  // by LodProfile::key()
   std::deque<Pending> pending_;
+  std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
 };
 
 // Builds the frame of a server message (length prefix + payload).

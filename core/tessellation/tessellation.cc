@@ -147,10 +147,9 @@ Expected<Tessellation::Changes> Tessellation::rebuildAll(Document& doc) {
   return changes;
 }
 
-Expected<Tessellation::Changes> Tessellation::update(Document& doc) {
+Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<const VertexId> changedLimits) {
   if (!cut_.isCurrent(doc.hierarchy())) return rebuildAll(doc);
-  const DirtySet& dirty = doc.lastUpdate();
-  auto flipped = cut_.redecide(doc, dirty.limits);
+  auto flipped = cut_.redecide(doc, changedLimits);
   if (!flipped) return rebuildAll(doc);
   const SparseEvaluator& h = doc.hierarchy();
 
@@ -171,7 +170,7 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc) {
       }
     }
   };
-  for (VertexId id : dirty.limits) addAround(id.level(), h.level(id.level()).findVertex(id.index()));
+  for (VertexId id : changedLimits) addAround(id.level(), h.level(id.level()).findVertex(id.index()));
   for (auto [l, f] : *flipped) {
     for (Index v : h.level(l).mesh.faceVertices[f]) addAround(l, v);
   }

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <map>
+#include <span>
 #include <vector>
 
 #include "core/document/document.h"
@@ -37,7 +38,11 @@ class Tessellation {
   // After the document changed (doc.lastUpdate()): re-decides and
   // re-triangulates only around what changed, and reports exactly the
   // regions whose triangles differ.
-  Expected<Changes> update(Document& doc);
+  Expected<Changes> update(Document& doc) { return update(doc, doc.lastUpdate().limits); }
+  // The same after several changes since the last update: `changedLimits`
+  // is the sorted union of their dirty sets' limits (a server batching the
+  // edits queued together updates once).
+  Expected<Changes> update(Document& doc, std::span<const VertexId> changedLimits);
 
   const LodProfile& profile() const { return cut_.profile(); }
   int regionLevel() const { return regionLevel_; }

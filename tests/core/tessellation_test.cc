@@ -245,9 +245,11 @@ TEST(Tessellation, ASingleDeepEditNeedsFarFewerTrianglesThanUniform) {
               static_cast<double>(uniformTriangles) / static_cast<double>(t->numTriangles()), worst / diagonal);
 }
 
-// §3: after every random edit the reported regions are exactly those whose
-// triangles differ in a full diff against a fresh tessellation.
-TEST(Tessellation, RegionChangesEqualAFullDiff) {
+// §3: after every update the reported regions are exactly those whose
+// triangles differ in a full diff against a fresh tessellation. An update
+// follows 1..maxBatch random edits, given the union of their changed limits
+// (as a server batching queued edits does).
+void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
   struct Case {
     TestMesh mesh;
     LodProfile profile;
@@ -258,7 +260,6 @@ TEST(Tessellation, RegionChangesEqualAFullDiff) {
       {testing::icosahedron(), {.baseLevel = 2, .maxLevel = 6, .angleThresholdDegrees = 20, .fidelity = true}},
       {testing::openGrid(4, 4), {.baseLevel = 0, .maxLevel = 5, .angleThresholdDegrees = 8}},
   };
-  uint32_t seed = 21;
   for (const Case& c : cases) {
     auto doc = Document::create(c.mesh.topology, c.mesh.points, {.maxLevel = 6, .uniformLevel = 1});
     ASSERT_TRUE(doc.isOk());
@@ -269,17 +270,27 @@ TEST(Tessellation, RegionChangesEqualAFullDiff) {
     int rebuilt = 0, incremental = 0;
     for (int step = 0; step < 60; ++step) {
       const std::map<uint64_t, RegionMesh> before = t->regions();
-      const int level = static_cast<int>(pick(7));
-      const VertexId v(level, pick(std::min<uint64_t>(doc->counts().vertices(level), 40)));
-      const int op = static_cast<int>(pick(10));
-      if (op < 7) {
-        ASSERT_TRUE(doc->moveBy(std::span(&v, 1), Vec3(0.02 * (op - 3), 0.03, -0.01)).isOk());
-      } else if (op < 9) {
-        if (!doc->setEdgeSharpness(EdgeId(level, pick(doc->counts().edges(level))), op == 7 ? 1.5f : kSharpnessInfinite).isOk()) continue;
-      } else if (!doc->edits().empty()) {
-        ASSERT_TRUE(doc->remove(doc->edits()[pick(doc->edits().size())].id).isOk());
+      std::vector<VertexId> limits;
+      const int batch = 1 + static_cast<int>(pick(static_cast<uint64_t>(maxBatch)));
+      for (int e = 0; e < batch; ++e) {
+        const int level = static_cast<int>(pick(7));
+        const VertexId v(level, pick(std::min<uint64_t>(doc->counts().vertices(level), 40)));
+        const int op = static_cast<int>(pick(10));
+        if (op < 7) {
+          ASSERT_TRUE(doc->moveBy(std::span(&v, 1), Vec3(0.02 * (op - 3), 0.03, -0.01)).isOk());
+        } else if (op < 9) {
+          const EdgeId edge(level, pick(doc->counts().edges(level)));
+          if (!doc->setEdgeSharpness(edge, op == 7 ? 1.5f : kSharpnessInfinite).isOk()) continue;
+        } else if (!doc->edits().empty()) {
+          ASSERT_TRUE(doc->remove(doc->edits()[pick(doc->edits().size())].id).isOk());
+        } else {
+          continue;
+        }
+        limits.insert(limits.end(), doc->lastUpdate().limits.begin(), doc->lastUpdate().limits.end());
       }
-      auto changes = t->update(*doc);
+      std::sort(limits.begin(), limits.end());
+      limits.erase(std::unique(limits.begin(), limits.end()), limits.end());
+      auto changes = t->update(*doc, limits);
       ASSERT_TRUE(changes.isOk()) << changes.status().message();
       (changes->rebuilt ? rebuilt : incremental) += 1;
       auto fresh = Tessellation::build(*doc, c.profile);
@@ -300,11 +311,15 @@ TEST(Tessellation, RegionChangesEqualAFullDiff) {
       ASSERT_EQ(changes->removed, removed) << where;
       ASSERT_EQ(t->regions().size(), fresh->regions().size()) << where;
     }
-    std::printf("%s: %d incremental updates, %d rebuilds (hierarchy growth)\n", c.mesh.name.c_str(), incremental,
-                rebuilt);
+    std::printf("%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth)\n",
+                c.mesh.name.c_str(), maxBatch, incremental, rebuilt);
     EXPECT_GT(incremental, 0);
   }
 }
+
+TEST(Tessellation, RegionChangesEqualAFullDiff) { expectChangesEqualAFullDiff(1, 21); }
+
+TEST(Tessellation, RegionChangesAfterSeveralEditsEqualAFullDiff) { expectChangesEqualAFullDiff(5, 77); }
 
 TEST(Tessellation, RefusesProfilesOverTheirTriangleBudget) {
   const TestMesh mesh = testing::icosahedron();

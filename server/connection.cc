@@ -243,15 +243,9 @@ void Connection::writeNext() {
   auto frames = std::make_shared<std::vector<std::shared_ptr<const std::string>>>(outbox_.startWrite(64, 1u << 20));
   auto buffers = std::make_shared<std::vector<asio::const_buffer>>();
   for (const auto& f : *frames) buffers->push_back(asio::buffer(*f));
-  writeTimer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(context_.config.timeouts.writeSeconds)));
-  writeTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
-    if (ec || self->closed_) return;
-    logEvent(LogLevel::kInfo, "write_timeout", {{"session", self->sessionId_}});
-    self->closeNow();  // the peer stopped reading: nothing more can reach it
-  });
+  writeStarted_ = std::chrono::steady_clock::now();
+  armWriteWatchdog();
   auto onWritten = asio::bind_executor(strand_, [self = shared_from_this(), frames, buffers](const boost::system::error_code& ec, size_t n) {
-                      self->writeTimer_.cancel();
                       if (self->closed_) return;
                       if (ec) return self->closeNow();
                       self->context_.stats.bytesSent += static_cast<int64_t>(n);
@@ -266,6 +260,27 @@ void Connection::writeNext() {
   } else {
     asio::async_write(socket_, *buffers, std::move(onWritten));
   }
+}
+
+// One timer per connection, not one per write: with a thousand subscribers
+// and a delta every few milliseconds, arming and cancelling a timer around
+// every write costs more than the write. The watchdog wakes when the oldest
+// possible deadline passes and re-arms for the write in flight, if any.
+void Connection::armWriteWatchdog() {
+  if (watchdogArmed_) return;
+  watchdogArmed_ = true;
+  const auto limit = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(context_.config.timeouts.writeSeconds));
+  writeTimer_.expires_at(writeStarted_ + limit);
+  writeTimer_.async_wait([self = shared_from_this(), limit](const boost::system::error_code& ec) {
+    self->watchdogArmed_ = false;
+    if (ec || self->closed_ || !self->outbox_.writing()) return;
+    if (std::chrono::steady_clock::now() - self->writeStarted_ >= limit) {
+      logEvent(LogLevel::kInfo, "write_timeout", {{"session", self->sessionId_}});
+      return self->closeNow();  // the peer stopped reading: nothing more can reach it
+    }
+    self->armWriteWatchdog();
+  });
 }
 
 void Connection::closeNow() {

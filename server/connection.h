@@ -9,6 +9,7 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/ssl.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <chrono>
 #include <boost/asio/strand.hpp>
 #include <map>
 #include <memory>
@@ -53,6 +54,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   void writeNext();
   void closeNow();
   void armIdleTimer(double seconds);
+  void armWriteWatchdog();
 
   // Command handlers.
   bool allowedByRate(uint64_t clientSeq);
@@ -71,6 +73,8 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   std::optional<boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> tls_;
   boost::asio::strand<boost::asio::any_io_executor> strand_;
   boost::asio::steady_timer idleTimer_, writeTimer_;
+  std::chrono::steady_clock::time_point writeStarted_;  // of the write in flight
+  bool watchdogArmed_ = false;
   ServerContext& context_;
   const uint64_t sessionId_;
   const std::string address_;

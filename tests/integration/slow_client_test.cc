@@ -4,6 +4,9 @@
 // again it converges to the same surface.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
@@ -108,6 +111,45 @@ TEST(ServerBackpressure, AViewerTooFarBehindIsResyncedWithASnapshot) {
   runWithASlowViewer(1'500, 3'000, o);
   EXPECT_LE(o.queueMax, 3'000 + 100'000);
   EXPECT_GT(o.resyncs, 0);
+}
+
+// A viewer that reads nothing at all is closed once a write has made no
+// progress for --write-timeout seconds (one watchdog per connection), and
+// the server keeps serving the others.
+TEST(ServerBackpressure, AViewerThatStopsReadingIsClosedAfterTheWriteTimeout) {
+  const std::string dir = testing::makeTempDir("tessera-server-stalled");
+  auto server = ServerProcess::start(dir + "/data", {"--write-timeout", "1", "--send-buffer-bytes", "4096"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 5), 30);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+
+  client::SessionOptions stalledOptions = server->session("stalled", server->adminToken());
+  stalledOptions.receiveBufferBytes = 4096;
+  auto stalled = Session::connect(stalledOptions);
+  ASSERT_TRUE(stalled.isOk());
+  ASSERT_TRUE((*stalled)->call(testing::openDocument(doc), 10)->has_ack());
+  // A level-5 snapshot (12,288 triangles) is far more than both buffers hold.
+  ASSERT_TRUE((*stalled)->send(testing::subscribe(doc, 5, 5)).isOk());
+  const auto start = std::chrono::steady_clock::now();
+  double connections = statOf(**admin, "connections");
+  EXPECT_EQ(connections, 2);
+  while (connections == 2 && std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    connections = statOf(**admin, "connections");
+  }
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(connections, 1) << "the stalled viewer is still connected after " << waited << " s";
+  EXPECT_GE(waited, 0.9);
+  EXPECT_TRUE((*admin)->call(testing::ping(), 10)->has_pong());
+  // What was buffered can still be read; then the connection is closed.
+  Status end = Status::ok();
+  for (int i = 0; i < 1000 && end.isOk(); ++i) end = (*stalled)->receive(5).status();
+  EXPECT_NE(end.message().find("connection closed"), std::string::npos) << end.message();
+  EXPECT_EQ(server->stop(), 0);
 }
 
 }  // namespace

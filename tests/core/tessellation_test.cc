@@ -10,9 +10,12 @@
 
 #include "core/document/document.h"
 #include "core/document/document_evaluator.h"
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
+#include "support/test_meshes.h"
 
 namespace tessera {
 namespace {
@@ -310,6 +313,14 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
       ASSERT_EQ(changes->changed, changed) << where;
       ASSERT_EQ(changes->removed, removed) << where;
       ASSERT_EQ(t->regions().size(), fresh->regions().size()) << where;
+      // And what the updated regions hold is what a fresh build holds.
+      for (const auto& [id, mesh] : fresh->regions()) {
+        const RegionMesh& kept = t->regions().at(id);
+        ASSERT_EQ(kept.vertexIds, mesh.vertexIds) << where << " region " << id;
+        ASSERT_EQ(kept.triangles, mesh.triangles) << where << " region " << id;
+        ASSERT_EQ(kept.positions, mesh.positions) << where << " region " << id;
+        ASSERT_EQ(kept.normals, mesh.normals) << where << " region " << id;
+      }
     }
     std::printf("%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth)\n",
                 c.mesh.name.c_str(), maxBatch, incremental, rebuilt);
@@ -320,6 +331,73 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
 TEST(Tessellation, RegionChangesEqualAFullDiff) { expectChangesEqualAFullDiff(1, 21); }
 
 TEST(Tessellation, RegionChangesAfterSeveralEditsEqualAFullDiff) { expectChangesEqualAFullDiff(5, 77); }
+
+// What a server does to the demo document: the creased cube (infinitely
+// sharp, semi-sharp and one-level creases, a corner) under the load
+// tester's profile, with offsets of level-2 vertices, undo and redo, new
+// creases and corners, 1..6 at a time; every update's regions equal a
+// fresh build's.
+TEST(Tessellation, TheCreasedCubeUnderMixedEditsMatchesAFreshBuild) {
+  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
+  ASSERT_TRUE(mesh.isOk());
+  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *mesh).isOk());
+  auto doc = Document::create(*mesh, {.maxLevel = 5});
+  ASSERT_TRUE(doc.isOk());
+  const LodProfile profile{.baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10};
+  auto t = Tessellation::build(*doc, profile);
+  ASSERT_TRUE(t.isOk()) << t.status().message();
+  std::mt19937 rng(5);
+  auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
+  std::vector<EditId> made, undone;
+  for (int step = 0; step < 80; ++step) {
+    std::vector<VertexId> limits;
+    const int batch = 1 + static_cast<int>(pick(6));
+    for (int e = 0; e < batch; ++e) {
+      const int op = static_cast<int>(pick(20));
+      if (op < 14) {
+        const VertexId v(2, pick(98));
+        const Vec3 d(0.01 * (static_cast<double>(pick(21)) - 10) / 10, 0.01 * (static_cast<double>(pick(21)) - 10) / 10, 0.005);
+        auto id = doc->moveBy(std::span(&v, 1), d);
+        ASSERT_TRUE(id.isOk());
+        made.push_back(*id);
+      } else if (op < 16 && !made.empty()) {
+        const EditId id = made.back();
+        made.pop_back();
+        ASSERT_TRUE(doc->undo(id).isOk());
+        undone.push_back(id);
+      } else if (op < 18 && !undone.empty()) {
+        const EditId id = undone.back();
+        undone.pop_back();
+        ASSERT_TRUE(doc->redo(id).isOk());
+        made.push_back(id);
+      } else if (op == 18) {
+        const int level = 1 + static_cast<int>(pick(2));
+        if (!doc->setEdgeSharpness(EdgeId(level, pick(doc->counts().edges(level))), pick(2) ? 2.0f : kSharpnessInfinite).isOk()) continue;
+      } else {
+        if (!doc->setVertexSharpness(VertexId(1, pick(doc->counts().vertices(1))), kSharpnessInfinite).isOk()) continue;
+      }
+      limits.insert(limits.end(), doc->lastUpdate().limits.begin(), doc->lastUpdate().limits.end());
+    }
+    std::sort(limits.begin(), limits.end());
+    limits.erase(std::unique(limits.begin(), limits.end()), limits.end());
+    auto changes = t->update(*doc, limits);
+    ASSERT_TRUE(changes.isOk()) << changes.status().message();
+    auto fresh = Tessellation::build(*doc, profile);
+    ASSERT_TRUE(fresh.isOk());
+    ASSERT_EQ(t->regions().size(), fresh->regions().size()) << "step " << step;
+    for (const auto& [id, region] : fresh->regions()) {
+      const RegionMesh& kept = t->regions().at(id);
+      ASSERT_EQ(kept.vertexIds, region.vertexIds) << "step " << step << " region " << id;
+      ASSERT_EQ(kept.triangles, region.triangles) << "step " << step << " region " << id;
+      for (size_t i = 0; i < region.positions.size(); ++i) {
+        ASSERT_EQ(kept.positions[i], region.positions[i]) << "step " << step << " region " << id << " vertex "
+                                                          << VertexId::fromPacked(region.vertexIds[i]).toString();
+        ASSERT_EQ(kept.normals[i], region.normals[i]) << "step " << step << " region " << id << " vertex "
+                                                      << VertexId::fromPacked(region.vertexIds[i]).toString();
+      }
+    }
+  }
+}
 
 TEST(Tessellation, RefusesProfilesOverTheirTriangleBudget) {
   const TestMesh mesh = testing::icosahedron();

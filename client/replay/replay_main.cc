@@ -186,6 +186,12 @@ int runReplayCommand(const Args& a) {
   if (!doc.isOk() || !speed.isOk() || *speed < 0) return usage("replay: bad --document or --speed");
   auto header = profileOption(a, script->header);
   if (!header.isOk()) return usage(header.status().message());
+  // A subscriber with the final profile before the first command too: the
+  // server then updates that profile's tessellation edit by edit, as it does
+  // for a live session's viewers and recorder, rather than building it at the
+  // end (the two can differ in a normal: docs/REPLAY.md §2).
+  auto before = readSurface(*session, *doc, profileOf(*header));
+  if (!before.isOk()) return fail(before.status());
   ReplayOptions options{.session = *session, .document = *doc, .speed = *speed};
   auto result = runReplay(*script, options);
   if (!result.isOk()) return fail(result.status());

@@ -10,6 +10,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <thread>
 
 #include "client/replay/record.h"
 #include "client/replay/script.h"
@@ -202,6 +203,42 @@ TEST(RecordCommand, RefusedRecordingsSayWhy) {
   EXPECT_EQ(field(late, "commands"), "0") << late;
 }
 
+// `tessera-replay record` on `s` until `version`, once it has subscribed.
+FILE* startRecorder(const ReplayServer& s, int version, const std::string& script, const std::string& errors) {
+  FILE* recorder = popen((kReplay + " record" + s.connection(testing::kViewerToken) + " --until-version " +
+                          std::to_string(version) + " --seconds 20 -o " + script + " 2>" + errors)
+                             .c_str(),
+                         "r");
+  char first[256] = {};
+  if (recorder == nullptr || fgets(first, sizeof first, recorder) == nullptr) return nullptr;
+  EXPECT_EQ(std::string(first), "recording document 1 from version 1\n");
+  return recorder;
+}
+
+// The recorder's summary, after checking that it ended as asked.
+std::string finishRecorder(FILE* recorder, const std::string& errors) {
+  std::string summary;
+  char buffer[4096];
+  for (size_t n; (n = fread(buffer, 1, sizeof buffer, recorder)) > 0;) summary.append(buffer, n);
+  const int status = pclose(recorder);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << summary << testing::fileBytes(errors);
+  return summary;
+}
+
+// Replays the recording on a fresh server: the original's version and hash.
+void expectReplayOnFreshServer(const std::string& recorded, const std::string& commands, const std::string& original) {
+  ReplayServer fresh;
+  testing::startServer(fresh, "tessera-record-fresh");
+  if (::testing::Test::HasFatalFailure()) return;
+  auto [again, againCode] = run(kReplay + " replay " + recorded + fresh.connection() + " --speed 0");
+  EXPECT_EQ(againCode, 0) << again;
+  EXPECT_EQ(field(again, "commands"), commands) << again;
+  EXPECT_EQ(field(again, "rejected"), "0") << again;
+  EXPECT_EQ(field(again, "version"), field(original, "version")) << again;
+  EXPECT_EQ(field(again, "surface_hash"), field(original, "surface_hash")) << again;
+  EXPECT_FALSE(field(again, "surface_hash").empty());
+}
+
 TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   const std::string dir = testing::makeTempDir("tessera-record-session");
   const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl", recorded = dir + "/recorded.jsonl";
@@ -220,14 +257,9 @@ TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   testing::startServer(original, "tessera-record-original");
   if (HasFatalFailure()) return;
   // The recorder, with a viewer token, until the last version of the session.
-  FILE* recorder = popen((kReplay + " record" + original.connection(testing::kViewerToken) +
-                          " --until-version 67 --seconds 20 -o " + recorded + " 2>" + dir + "/record.err")
-                             .c_str(),
-                         "r");
-  ASSERT_NE(recorder, nullptr);
-  char first[256] = {};
-  ASSERT_NE(fgets(first, sizeof first, recorder), nullptr) << "the recorder did not start";
-  EXPECT_EQ(std::string(first), "recording document 1 from version 1\n");
+  const std::string errors = dir + "/record.err";
+  FILE* recorder = startRecorder(original, 67, recorded, errors);
+  ASSERT_NE(recorder, nullptr) << "the recorder did not start: " << testing::fileBytes(errors);
   auto [replayed, replayCode] = run(kReplay + " replay " + generated + original.connection() + " --speed 4");
   EXPECT_EQ(replayCode, 0) << replayed;
   EXPECT_EQ(field(replayed, "rejected"), "0") << replayed;
@@ -235,11 +267,7 @@ TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   EXPECT_EQ(moreCode, 0) << more;
   EXPECT_EQ(field(more, "rejected"), "0") << more;
   EXPECT_EQ(field(more, "version"), "67") << more;
-  std::string summary;
-  char buffer[4096];
-  for (size_t n; (n = fread(buffer, 1, sizeof buffer, recorder)) > 0;) summary.append(buffer, n);
-  const int status = pclose(recorder);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << summary << testing::fileBytes(dir + "/record.err");
+  const std::string summary = finishRecorder(recorder, errors);
   EXPECT_EQ(field(summary, "commands"), "66") << summary;
   EXPECT_EQ(field(summary, "actors"), "5") << summary;
   EXPECT_EQ(field(summary, "version"), "67") << summary;
@@ -264,16 +292,50 @@ TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   EXPECT_FALSE(undoRedo["editor-1"].empty()) << "the generated undos";
   for (int64_t edit : undoRedo["editor-1"]) EXPECT_EQ(edit, -1);
 
-  ReplayServer fresh;
-  testing::startServer(fresh, "tessera-record-fresh");
+  expectReplayOnFreshServer(recorded, "66", more);
+}
+
+// Editors at the same time, under the server's order: a replay of the
+// recording reaches the very surface the original server shows.
+TEST(RecordCommand, ConcurrentEditorsReplayToTheOriginalSurface) {
+  const std::string dir = testing::makeTempDir("tessera-record-concurrent");
+  const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl", recorded = dir + "/recorded.jsonl";
+  ASSERT_EQ(run(kReplay + " generate -o " + generated +
+                " --editors 4 --rate 20 --seconds 3 --seed 7 --vertex-level 2 --vertex-count 98")
+                .second,
+            0);
+  std::ofstream(extra) << "{\"format\":\"tessera-replay\",\"version\":1}\n"
+                       << "{\"t\":0,\"actor\":\"editor-1\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
+                       << "{\"t\":150,\"actor\":\"editor-1\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
+                       << "{\"t\":300,\"actor\":\"editor-1\",\"cmd\":\"undo\",\"edit\":-1}\n"
+                       << "{\"t\":450,\"actor\":\"editor-1\",\"cmd\":\"move\",\"vertex\":[\"v1:3\",\"v1:4\"],"
+                          "\"mode\":\"direct\",\"to\":[0.5,0.5,1.1]}\n"
+                       << "{\"t\":600,\"actor\":\"editor-1\",\"cmd\":\"redo\",\"edit\":-2}\n";
+  ReplayServer original;
+  testing::startServer(original, "tessera-record-concurrent-original");
   if (HasFatalFailure()) return;
-  auto [again, againCode] = run(kReplay + " replay " + recorded + fresh.connection() + " --speed 0");
-  EXPECT_EQ(againCode, 0) << again;
-  EXPECT_EQ(field(again, "commands"), "66") << again;
-  EXPECT_EQ(field(again, "rejected"), "0") << again;
-  EXPECT_EQ(field(again, "version"), field(more, "version")) << again;
-  EXPECT_EQ(field(again, "surface_hash"), field(more, "surface_hash")) << again;
-  ASSERT_FALSE(field(again, "surface_hash").empty());
+  const std::string errors = dir + "/record.err";
+  FILE* recorder = startRecorder(original, 246, recorded, errors);
+  ASSERT_NE(recorder, nullptr) << "the recorder did not start: " << testing::fileBytes(errors);
+  FILE* editors = popen((kReplay + " replay " + generated + original.connection() + " --speed 1 2>&1").c_str(), "r");
+  ASSERT_NE(editors, nullptr);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto [more, moreCode] = run(kReplay + " replay " + extra + original.connection() + " --speed 1");
+  EXPECT_EQ(moreCode, 0) << more;
+  EXPECT_EQ(field(more, "rejected"), "0") << more;
+  std::string replayed;
+  char buffer[4096];
+  for (size_t n; (n = fread(buffer, 1, sizeof buffer, editors)) > 0;) replayed.append(buffer, n);
+  EXPECT_EQ(pclose(editors), 0) << replayed;
+  EXPECT_EQ(field(replayed, "rejected"), "0") << replayed;
+  const std::string summary = finishRecorder(recorder, errors);
+  auto [surface, surfaceCode] = run(kReplay + " surface" + original.connection(testing::kViewerToken) + " --profile 2,5,10");
+  ASSERT_EQ(surfaceCode, 0) << surface;
+  EXPECT_EQ(field(surface, "version"), "246");
+  EXPECT_EQ(field(summary, "commands"), "245") << summary;
+  EXPECT_EQ(field(summary, "actors"), "5") << summary;
+  EXPECT_EQ(field(summary, "surface_hash"), field(surface, "surface_hash")) << summary;
+  expectReplayOnFreshServer(recorded, "245", surface);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <set>
 #include <thread>
 
+#include "client/lib/command_feed.h"
 #include "client/replay/record.h"
 #include "client/replay/script.h"
 #include "replay/replay_support.h"
@@ -112,6 +113,27 @@ TEST(RecordScript, LongNamesStayDistinctWithinTheActorLimit) {
   EXPECT_FALSE(r.add(applied(4, 3, 1, name, 0)).isOk()) << "no command in it";
 }
 
+TEST(RecordFeed, CommandsFollowTheStartVersionWithoutHoles) {
+  client::CommandFeed feed(1, 4);
+  wire::ServerMessage m;
+  m.mutable_delta()->set_document_id(1);
+  auto none = feed.apply(m);
+  ASSERT_TRUE(none.isOk());
+  EXPECT_EQ(*none, nullptr);
+  *m.mutable_applied_command() = move(5, 1, 7, "a", 0);
+  auto first = feed.apply(m);
+  ASSERT_TRUE(first.isOk() && *first != nullptr);
+  EXPECT_EQ((*first)->version(), 5u);
+  m.mutable_applied_command()->set_document_id(2);
+  EXPECT_EQ(*feed.apply(m), nullptr) << "another document's";
+  *m.mutable_applied_command() = move(7, 2, 7, "a", 0);
+  auto hole = feed.apply(m);
+  ASSERT_FALSE(hole.isOk());
+  EXPECT_EQ(hole.status().message(), "document 1: command of version 7 does not follow version 5");
+  EXPECT_EQ(feed.version(), 5u);
+  EXPECT_EQ(feed.received(), 1u);
+}
+
 // The next message with an AppliedCommand, or none within `seconds`.
 std::optional<wire::AppliedCommand> nextCommand(client::Session& s, double seconds) {
   for (;;) {
@@ -175,6 +197,10 @@ TEST(RecordProtocol, DurableCommandsReachViewersThatAskedAndNothingElse) {
   EXPECT_EQ(second->set_edge_sharpness().sharpness(), 2.5f);
   EXPECT_FALSE(nextCommand(**recorder, 0.3)) << "nothing else was applied";
   EXPECT_FALSE(nextCommand(**plain, 0.3)) << "a subscriber that did not ask gets no commands";
+  // Subscribing again without with_commands stops them.
+  ASSERT_TRUE((*recorder)->call(testing::subscribe(s.doc, 1, 2), 30)->has_ack());
+  ASSERT_TRUE((*editor)->call(testing::moveVertex(s.doc, v5, 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 10)->has_ack());
+  EXPECT_FALSE(nextCommand(**recorder, 0.3)) << "the recorder asked to stop";
 }
 
 TEST(RecordCommand, RefusedRecordingsSayWhy) {
@@ -239,20 +265,54 @@ void expectReplayOnFreshServer(const std::string& recorded, const std::string& c
   EXPECT_FALSE(field(again, "surface_hash").empty());
 }
 
+// A script for a second session of `editor-1` (another actor than the
+// generated one): a crease, a corner and the undo of that corner, `stepMs`
+// apart, then `more` lines.
+void writeSecondSession(const std::string& path, int stepMs, const std::vector<std::string>& more) {
+  std::ofstream out(path);
+  out << "{\"format\":\"tessera-replay\",\"version\":1}\n"
+      << "{\"t\":0,\"actor\":\"editor-1\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
+      << "{\"t\":" << stepMs << ",\"actor\":\"editor-1\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
+      << "{\"t\":" << 2 * stepMs << ",\"actor\":\"editor-1\",\"cmd\":\"undo\",\"edit\":-1}\n";
+  for (const std::string& line : more) out << line << "\n";
+}
+
+// A recording bounded by time only: the commands before the stop, and the
+// recorder's view at the last of them.
+TEST(RecordCommand, TimedRecordingEndsAtItsLastCommand) {
+  const std::string dir = testing::makeTempDir("tessera-record-timed");
+  const std::string script = dir + "/script.jsonl", recorded = dir + "/recorded.jsonl";
+  ReplayServer original;
+  testing::startServer(original, "tessera-record-timed");
+  if (HasFatalFailure()) return;
+  ASSERT_EQ(run(kReplay + " generate -o " + script + " --editors 2 --rate 20 --seconds 0.5 --seed 3").second, 0);
+  FILE* recorder = popen((kReplay + " record" + original.connection(testing::kViewerToken) + " --seconds 1.5 -o " +
+                          recorded + " 2>/dev/null")
+                             .c_str(),
+                         "r");
+  char first[256] = {};
+  ASSERT_TRUE(recorder != nullptr && fgets(first, sizeof first, recorder) != nullptr);
+  auto [replayed, code] = run(kReplay + " replay " + script + original.connection() + " --speed 0");
+  ASSERT_EQ(code, 0) << replayed;
+  const std::string summary = finishRecorder(recorder, "/dev/null");
+  EXPECT_EQ(field(summary, "commands"), "20") << summary;
+  EXPECT_EQ(field(summary, "version"), "21") << summary;
+  EXPECT_EQ(field(summary, "surface_hash"), field(replayed, "surface_hash")) << summary;
+  auto [checked, checkCode] = run(kReplay + " check " + recorded);
+  EXPECT_EQ(checked, recorded + ": 20 commands\n");
+}
+
 TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   const std::string dir = testing::makeTempDir("tessera-record-session");
   const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl", recorded = dir + "/recorded.jsonl";
   ASSERT_EQ(run(kReplay + " generate -o " + generated + " --editors 3 --rate 20 --seconds 1 --seed 42").second, 0);
-  // New sessions named like the generated actors (so other actors): a crease,
-  // a corner, undo and redo of their own edits and of another session's.
-  std::ofstream(extra) << "{\"format\":\"tessera-replay\",\"version\":1}\n"
-                       << "{\"t\":0,\"actor\":\"editor-1\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
-                       << "{\"t\":10,\"actor\":\"editor-1\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
-                       << "{\"t\":20,\"actor\":\"editor-1\",\"cmd\":\"undo\",\"edit\":-1}\n"
-                       << "{\"t\":30,\"actor\":\"editor-2\",\"cmd\":\"undo\",\"edit\":2}\n"
-                       << "{\"t\":40,\"actor\":\"editor-2\",\"cmd\":\"move\",\"vertex\":[\"v1:3\",\"v1:4\"],"
-                          "\"mode\":\"direct\",\"to\":[0.5,0.5,1.1]}\n"
-                       << "{\"t\":50,\"actor\":\"editor-1\",\"cmd\":\"redo\",\"edit\":-1}\n";
+  // New sessions named like the generated actors (so other actors): undo and
+  // redo of their own edits and of another session's, a direct move.
+  writeSecondSession(extra, 10,
+                     {"{\"t\":30,\"actor\":\"editor-2\",\"cmd\":\"undo\",\"edit\":2}",
+                      "{\"t\":40,\"actor\":\"editor-2\",\"cmd\":\"move\",\"vertex\":[\"v1:3\",\"v1:4\"],"
+                      "\"mode\":\"direct\",\"to\":[0.5,0.5,1.1]}",
+                      "{\"t\":50,\"actor\":\"editor-1\",\"cmd\":\"redo\",\"edit\":-1}"});
   ReplayServer original;
   testing::startServer(original, "tessera-record-original");
   if (HasFatalFailure()) return;
@@ -304,13 +364,10 @@ TEST(RecordCommand, ConcurrentEditorsReplayToTheOriginalSurface) {
                 " --editors 4 --rate 20 --seconds 3 --seed 7 --vertex-level 2 --vertex-count 98")
                 .second,
             0);
-  std::ofstream(extra) << "{\"format\":\"tessera-replay\",\"version\":1}\n"
-                       << "{\"t\":0,\"actor\":\"editor-1\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
-                       << "{\"t\":150,\"actor\":\"editor-1\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
-                       << "{\"t\":300,\"actor\":\"editor-1\",\"cmd\":\"undo\",\"edit\":-1}\n"
-                       << "{\"t\":450,\"actor\":\"editor-1\",\"cmd\":\"move\",\"vertex\":[\"v1:3\",\"v1:4\"],"
-                          "\"mode\":\"direct\",\"to\":[0.5,0.5,1.1]}\n"
-                       << "{\"t\":600,\"actor\":\"editor-1\",\"cmd\":\"redo\",\"edit\":-2}\n";
+  writeSecondSession(extra, 150,
+                     {"{\"t\":450,\"actor\":\"editor-1\",\"cmd\":\"move\",\"vertex\":[\"v1:3\",\"v1:4\"],"
+                      "\"mode\":\"direct\",\"to\":[0.5,0.5,1.1]}",
+                      "{\"t\":600,\"actor\":\"editor-1\",\"cmd\":\"redo\",\"edit\":-2}"});
   ReplayServer original;
   testing::startServer(original, "tessera-record-concurrent-original");
   if (HasFatalFailure()) return;

@@ -9,7 +9,8 @@ Expected<const wire::AppliedCommand*> CommandFeed::apply(const wire::ServerMessa
   const wire::AppliedCommand& c = message.applied_command();
   if (c.version() != version_ + 1) {
     return invalidArgument("document " + std::to_string(documentId_) + ": command of version " +
-                           std::to_string(c.version()) + " does not follow version " + std::to_string(version_));
+                           std::to_string(c.version()) + " does not follow version " +
+                           std::to_string(version_));
   }
   version_ = c.version();
   ++received_;

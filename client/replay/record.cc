@@ -63,11 +63,13 @@ std::string ScriptRecorder::actorFor(uint64_t session, const std::string& name) 
 Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
   const std::string where = "version " + std::to_string(a.version()) + ": ";
   if (!actorOf_.count(a.author_session_id()) && actorOf_.size() >= kMaxActors) {
-    return invalidArgument(where + "more than " + std::to_string(kMaxActors) + " actors (a replay opens at most that many)");
+    return invalidArgument(where + "more than " + std::to_string(kMaxActors) +
+                           " actors (a replay opens at most that many)");
   }
   ScriptCommand c;
   // Server times, so that the client's clock and its delays do not matter.
-  const int64_t t = a.server_time_unix_ms() > startMs_ ? static_cast<int64_t>(a.server_time_unix_ms() - startMs_) : 0;
+  const int64_t t =
+      a.server_time_unix_ms() > startMs_ ? static_cast<int64_t>(a.server_time_unix_ms() - startMs_) : 0;
   lastMs_ = std::max(lastMs_, t);
   c.timeMs = lastMs_;
   c.actor = actorFor(a.author_session_id(), a.author_name());
@@ -117,17 +119,20 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
 
 Expected<RecordResult> runRecord(const RecordOptions& o) {
   if (o.document == 0) return invalidArgument("record: no document given");
-  if (!(o.seconds > 0) && o.untilVersion == 0) return invalidArgument("record: give a duration or a version to stop at");
+  if (!(o.seconds > 0) && o.untilVersion == 0)
+    return invalidArgument("record: give a duration or a version to stop at");
   TESSERA_ASSIGN_OR_RETURN(auto session, client::Session::connect(o.session));
   client::Session& s = *session;
   client::DocumentView view(o.document);
-  TESSERA_RETURN_IF_ERROR(openAndSubscribe(s, o.document, profileOf(o.header), &view, o.session.timeoutSeconds,
+  TESSERA_RETURN_IF_ERROR(openAndSubscribe(s, o.document, profileOf(o.header), &view,
+                                           o.session.timeoutSeconds,
                                            /*withCommands=*/true));
   RecordResult result;
   result.fromVersion = result.lastVersion = view.version();
   if (o.untilVersion != 0 && o.untilVersion <= result.fromVersion) {
     return invalidArgument("document " + std::to_string(o.document) + " is already at version " +
-                           std::to_string(result.fromVersion) + ", not before " + std::to_string(o.untilVersion));
+                           std::to_string(result.fromVersion) + ", not before " +
+                           std::to_string(o.untilVersion));
   }
   wire::ClientMessage ping;
   ping.mutable_ping();
@@ -152,11 +157,13 @@ Expected<RecordResult> runRecord(const RecordOptions& o) {
     if (now >= deadline) {
       if (o.untilVersion != 0) {
         result.stopped = ioError("version " + std::to_string(o.untilVersion) + " was not reached within " +
-                                 secondsText(o.seconds) + " (recorded up to version " + std::to_string(feed.version()) + ")");
+                                 secondsText(o.seconds) + " (recorded up to version " +
+                                 std::to_string(feed.version()) + ")");
         break;
       }
       // Timed stop: record the commands whose deltas already arrived too.
-      if (!view.ready() || feed.version() >= view.version() || now >= deadline + secondsOf(o.drainSeconds)) break;
+      if (!view.ready() || feed.version() >= view.version() || now >= deadline + secondsOf(o.drainSeconds))
+        break;
     }
     if (now - lastPing > std::chrono::seconds(30)) {  // the server's idle timeout counts only bytes from us
       if (auto sent = s.send(ping); !sent.isOk()) {

@@ -47,11 +47,11 @@ class ScriptRecorder {
 struct RecordOptions {
   client::SessionOptions session;  // the recorder's own connection (any role that may open the document)
   uint64_t document = 0;
-  ScriptHeader header;        // its profile is the recorder's subscription and goes into the script
-  double seconds = 0;         // stop after this long (0: only --until-version)
-  uint64_t untilVersion = 0;  // stop once the command making this version is recorded (0: none)
-  double drainSeconds = 2;    // after a timed stop: catch up with deltas already received
-  std::ostream* out = nullptr;                      // the script, written and flushed line by line
+  ScriptHeader header;          // its profile is the recorder's subscription and goes into the script
+  double seconds = 0;           // stop after this long (0: only --until-version)
+  uint64_t untilVersion = 0;    // stop once the command making this version is recorded (0: none)
+  double drainSeconds = 2;      // after a timed stop: catch up with deltas already received
+  std::ostream* out = nullptr;  // the script, written and flushed line by line
   std::function<void(uint64_t fromVersion)> started;  // once subscribed, before any command
 };
 

@@ -39,7 +39,8 @@ wire::AppliedCommand applied(uint64_t version, uint64_t editId, uint64_t session
   return a;
 }
 
-wire::AppliedCommand move(uint64_t version, uint64_t editId, uint64_t session, const std::string& name, uint64_t timeMs) {
+wire::AppliedCommand move(uint64_t version, uint64_t editId, uint64_t session, const std::string& name,
+                          uint64_t timeMs) {
   wire::AppliedCommand a = applied(version, editId, session, name, timeMs);
   a.mutable_move_vertex()->add_vertex_ids(5);
   a.mutable_move_vertex()->mutable_target()->set_z(0.01);
@@ -47,7 +48,8 @@ wire::AppliedCommand move(uint64_t version, uint64_t editId, uint64_t session, c
   return a;
 }
 
-wire::AppliedCommand undo(uint64_t version, uint64_t target, uint64_t session, const std::string& name, uint64_t timeMs) {
+wire::AppliedCommand undo(uint64_t version, uint64_t target, uint64_t session, const std::string& name,
+                          uint64_t timeMs) {
   wire::AppliedCommand a = applied(version, target, session, name, timeMs);
   a.mutable_undo()->set_edit_id(target);
   return a;
@@ -157,7 +159,8 @@ TEST(RecordProtocol, DurableCommandsReachViewersThatAskedAndNothingElse) {
   auto early = (*recorder)->call(sub, 10);
   ASSERT_TRUE(early.isOk());
   EXPECT_EQ(early->reject().reason(), wire::REJECT_REASON_NOT_OPEN) << early->DebugString();
-  for (auto* session : {&*editor, &*recorder, &*plain}) ASSERT_TRUE((*session)->call(testing::openDocument(s.doc), 10)->has_ack());
+  for (auto* session : {&*editor, &*recorder, &*plain})
+    ASSERT_TRUE((*session)->call(testing::openDocument(s.doc), 10)->has_ack());
   auto subscribed = (*recorder)->call(sub, 30);
   ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack()) << "a viewer may record";
   EXPECT_EQ(subscribed->ack().version(), 1u);
@@ -171,7 +174,10 @@ TEST(RecordProtocol, DurableCommandsReachViewersThatAskedAndNothingElse) {
   badUndo.mutable_undo()->set_document_id(s.doc);
   badUndo.mutable_undo()->set_edit_id(99);
   EXPECT_TRUE((*editor)->call(badUndo, 10)->has_reject());
-  EXPECT_EQ((*editor)->call(testing::moveVertex(s.doc, v5, 1e9, 0, 0, wire::MOVE_MODE_OFFSET), 10)->reject().reason(),
+  EXPECT_EQ((*editor)
+                ->call(testing::moveVertex(s.doc, v5, 1e9, 0, 0, wire::MOVE_MODE_OFFSET), 10)
+                ->reject()
+                .reason(),
             wire::REJECT_REASON_LIMIT_EXCEEDED);
   wire::ClientMessage crease;
   crease.mutable_set_edge_sharpness()->set_document_id(s.doc);
@@ -199,7 +205,8 @@ TEST(RecordProtocol, DurableCommandsReachViewersThatAskedAndNothingElse) {
   EXPECT_FALSE(nextCommand(**plain, 0.3)) << "a subscriber that did not ask gets no commands";
   // Subscribing again without with_commands stops them.
   ASSERT_TRUE((*recorder)->call(testing::subscribe(s.doc, 1, 2), 30)->has_ack());
-  ASSERT_TRUE((*editor)->call(testing::moveVertex(s.doc, v5, 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 10)->has_ack());
+  ASSERT_TRUE(
+      (*editor)->call(testing::moveVertex(s.doc, v5, 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 10)->has_ack());
   EXPECT_FALSE(nextCommand(**recorder, 0.3)) << "the recorder asked to stop";
 }
 
@@ -208,29 +215,35 @@ TEST(RecordCommand, RefusedRecordingsSayWhy) {
   testing::startServer(s, "tessera-record-refused");
   if (HasFatalFailure()) return;
   const std::string out = testing::makeTempDir("tessera-record-refused") + "/r.jsonl";
-  auto [unknown, unknownCode] =
-      run(kReplay + " record" + s.connection("never-granted-token-0123456789") + " --seconds 1 -o " + out, true);
+  auto [unknown, unknownCode] = run(
+      kReplay + " record" + s.connection("never-granted-token-0123456789") + " --seconds 1 -o " + out, true);
   EXPECT_EQ(unknownCode, 1) << unknown;
-  EXPECT_NE(unknown.find("record: document 1: open: REJECT_REASON_PERMISSION_DENIED: no access to document 1"),
-            std::string::npos)
+  EXPECT_NE(
+      unknown.find("record: document 1: open: REJECT_REASON_PERMISSION_DENIED: no access to document 1"),
+      std::string::npos)
       << unknown;
-  auto [other, otherCode] = run(kReplay + " record --port " + std::to_string(s.process->port()) + " --token " +
-                                    testing::kViewerToken + " --document 7 --seconds 1 -o " + out,
-                                true);
+  auto [other, otherCode] =
+      run(kReplay + " record --port " + std::to_string(s.process->port()) + " --token " +
+              testing::kViewerToken + " --document 7 --seconds 1 -o " + out,
+          true);
   EXPECT_EQ(otherCode, 1) << other;
   EXPECT_NE(other.find("no access to document 7"), std::string::npos) << other;
-  auto [bounded, boundedCode] = run(kReplay + " record" + s.connection(testing::kViewerToken) + " -o " + out, true);
+  auto [bounded, boundedCode] =
+      run(kReplay + " record" + s.connection(testing::kViewerToken) + " -o " + out, true);
   EXPECT_EQ(boundedCode, 2) << bounded;
   EXPECT_NE(bounded.find("record needs --seconds S or --until-version V"), std::string::npos) << bounded;
-  auto [late, lateCode] =
-      run(kReplay + " record" + s.connection(testing::kViewerToken) + " --until-version 3 --seconds 0.5 -o " + out, true);
+  auto [late, lateCode] = run(kReplay + " record" + s.connection(testing::kViewerToken) +
+                                  " --until-version 3 --seconds 0.5 -o " + out,
+                              true);
   EXPECT_EQ(lateCode, 1) << late;
-  EXPECT_NE(late.find("version 3 was not reached within 0.5 s (recorded up to version 1)"), std::string::npos) << late;
+  EXPECT_NE(late.find("version 3 was not reached within 0.5 s (recorded up to version 1)"), std::string::npos)
+      << late;
   EXPECT_EQ(field(late, "commands"), "0") << late;
 }
 
 // `tessera-replay record` on `s` until `version`, once it has subscribed.
-FILE* startRecorder(const ReplayServer& s, int version, const std::string& script, const std::string& errors) {
+FILE* startRecorder(const ReplayServer& s, int version, const std::string& script,
+                    const std::string& errors) {
   FILE* recorder = popen((kReplay + " record" + s.connection(testing::kViewerToken) + " --until-version " +
                           std::to_string(version) + " --seconds 20 -o " + script + " 2>" + errors)
                              .c_str(),
@@ -252,7 +265,8 @@ std::string finishRecorder(FILE* recorder, const std::string& errors) {
 }
 
 // Replays the recording on a fresh server: the original's version and hash.
-void expectReplayOnFreshServer(const std::string& recorded, const std::string& commands, const std::string& original) {
+void expectReplayOnFreshServer(const std::string& recorded, const std::string& commands,
+                               const std::string& original) {
   ReplayServer fresh;
   testing::startServer(fresh, "tessera-record-fresh");
   if (::testing::Test::HasFatalFailure()) return;
@@ -272,7 +286,8 @@ void writeSecondSession(const std::string& path, int stepMs, const std::vector<s
   std::ofstream out(path);
   out << "{\"format\":\"tessera-replay\",\"version\":1}\n"
       << "{\"t\":0,\"actor\":\"editor-1\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
-      << "{\"t\":" << stepMs << ",\"actor\":\"editor-1\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
+      << "{\"t\":" << stepMs
+      << ",\"actor\":\"editor-1\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
       << "{\"t\":" << 2 * stepMs << ",\"actor\":\"editor-1\",\"cmd\":\"undo\",\"edit\":-1}\n";
   for (const std::string& line : more) out << line << "\n";
 }
@@ -285,9 +300,10 @@ TEST(RecordCommand, TimedRecordingEndsAtItsLastCommand) {
   ReplayServer original;
   testing::startServer(original, "tessera-record-timed");
   if (HasFatalFailure()) return;
-  ASSERT_EQ(run(kReplay + " generate -o " + script + " --editors 2 --rate 20 --seconds 0.5 --seed 3").second, 0);
-  FILE* recorder = popen((kReplay + " record" + original.connection(testing::kViewerToken) + " --seconds 1.5 -o " +
-                          recorded + " 2>/dev/null")
+  ASSERT_EQ(run(kReplay + " generate -o " + script + " --editors 2 --rate 20 --seconds 0.5 --seed 3").second,
+            0);
+  FILE* recorder = popen((kReplay + " record" + original.connection(testing::kViewerToken) +
+                          " --seconds 1.5 -o " + recorded + " 2>/dev/null")
                              .c_str(),
                          "r");
   char first[256] = {};
@@ -304,8 +320,10 @@ TEST(RecordCommand, TimedRecordingEndsAtItsLastCommand) {
 
 TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   const std::string dir = testing::makeTempDir("tessera-record-session");
-  const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl", recorded = dir + "/recorded.jsonl";
-  ASSERT_EQ(run(kReplay + " generate -o " + generated + " --editors 3 --rate 20 --seconds 1 --seed 42").second, 0);
+  const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl",
+                    recorded = dir + "/recorded.jsonl";
+  ASSERT_EQ(
+      run(kReplay + " generate -o " + generated + " --editors 3 --rate 20 --seconds 1 --seed 42").second, 0);
   // New sessions named like the generated actors (so other actors): undo and
   // redo of their own edits and of another session's, a direct move.
   writeSecondSession(extra, 10,
@@ -344,7 +362,8 @@ TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
   std::map<std::string, std::vector<int64_t>> undoRedo;  // actor -> edit fields
   for (const ScriptCommand& c : script->commands) {
     actors.insert(c.actor);
-    if (c.kind == ScriptCommand::Kind::kUndo || c.kind == ScriptCommand::Kind::kRedo) undoRedo[c.actor].push_back(c.edit);
+    if (c.kind == ScriptCommand::Kind::kUndo || c.kind == ScriptCommand::Kind::kRedo)
+      undoRedo[c.actor].push_back(c.edit);
   }
   EXPECT_EQ(actors, (std::set<std::string>{"editor-1", "editor-2", "editor-3", "editor-1#2", "editor-2#2"}));
   EXPECT_EQ(undoRedo["editor-1#2"], (std::vector<int64_t>{-1, -1}));
@@ -359,7 +378,8 @@ TEST(RecordCommand, RecordingThenReplayingOnAFreshServerGivesTheSameSurface) {
 // recording reaches the very surface the original server shows.
 TEST(RecordCommand, ConcurrentEditorsReplayToTheOriginalSurface) {
   const std::string dir = testing::makeTempDir("tessera-record-concurrent");
-  const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl", recorded = dir + "/recorded.jsonl";
+  const std::string generated = dir + "/generated.jsonl", extra = dir + "/extra.jsonl",
+                    recorded = dir + "/recorded.jsonl";
   ASSERT_EQ(run(kReplay + " generate -o " + generated +
                 " --editors 4 --rate 20 --seconds 3 --seed 7 --vertex-level 2 --vertex-count 98")
                 .second,
@@ -374,7 +394,8 @@ TEST(RecordCommand, ConcurrentEditorsReplayToTheOriginalSurface) {
   const std::string errors = dir + "/record.err";
   FILE* recorder = startRecorder(original, 246, recorded, errors);
   ASSERT_NE(recorder, nullptr) << "the recorder did not start: " << testing::fileBytes(errors);
-  FILE* editors = popen((kReplay + " replay " + generated + original.connection() + " --speed 1 2>&1").c_str(), "r");
+  FILE* editors =
+      popen((kReplay + " replay " + generated + original.connection() + " --speed 1 2>&1").c_str(), "r");
   ASSERT_NE(editors, nullptr);
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   auto [more, moreCode] = run(kReplay + " replay " + extra + original.connection() + " --speed 1");
@@ -386,7 +407,8 @@ TEST(RecordCommand, ConcurrentEditorsReplayToTheOriginalSurface) {
   EXPECT_EQ(pclose(editors), 0) << replayed;
   EXPECT_EQ(field(replayed, "rejected"), "0") << replayed;
   const std::string summary = finishRecorder(recorder, errors);
-  auto [surface, surfaceCode] = run(kReplay + " surface" + original.connection(testing::kViewerToken) + " --profile 2,5,10");
+  auto [surface, surfaceCode] =
+      run(kReplay + " surface" + original.connection(testing::kViewerToken) + " --profile 2,5,10");
   ASSERT_EQ(surfaceCode, 0) << surface;
   EXPECT_EQ(field(surface, "version"), "246");
   EXPECT_EQ(field(summary, "commands"), "245") << summary;

@@ -48,7 +48,8 @@ struct ReplayServer {
   std::optional<ServerProcess> process;
   uint64_t doc = 0;
   std::string connection(const std::string& token = kEditorToken) const {
-    return " --port " + std::to_string(process->port()) + " --token " + token + " --document " + std::to_string(doc);
+    return " --port " + std::to_string(process->port()) + " --token " + token + " --document " +
+           std::to_string(doc);
   }
 };
 
@@ -61,9 +62,11 @@ inline void startServer(ReplayServer& s, const std::string& name) {
   auto created = (*admin)->call(createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
                                                fileBytes(sourceTestDataPath("cube.tags")), 5),
                                 30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  ASSERT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
   s.doc = created->ack().document_id();
-  for (auto [role, token] : {std::pair{wire::ROLE_EDITOR, kEditorToken}, std::pair{wire::ROLE_VIEWER, kViewerToken}}) {
+  for (auto [role, token] :
+       {std::pair{wire::ROLE_EDITOR, kEditorToken}, std::pair{wire::ROLE_VIEWER, kViewerToken}}) {
     auto granted = (*admin)->call(grant(s.doc, role, token), 10);
     ASSERT_TRUE(granted.isOk() && granted->has_ack());
   }

@@ -355,7 +355,8 @@ void Connection::handle(wire::ClientMessage message) {
   switch (message.command_case()) {
     case C::kSubscribe:
       subscriptions_[doc] = message.subscribe().profile();
-      return host->subscribe(shared_from_this(), message.subscribe().profile(), seq, false);
+      return host->subscribe(shared_from_this(), message.subscribe().profile(), seq, false,
+                             message.subscribe().with_commands());
     case C::kUnsubscribe: {
       subscriptions_.erase(doc);
       host->unsubscribe(sessionId_);

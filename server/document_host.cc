@@ -87,6 +87,7 @@ void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire:
 void DocumentHost::leave(uint64_t session) {
   boost::asio::post(strand_, [self = shared_from_this(), session] {
     self->participants_.erase(session);
+    self->recorders_.erase(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
     self->presenceChanged();
   });
@@ -132,8 +133,8 @@ void DocumentHost::broadcastPresence() {
 }
 
 void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested, uint64_t clientSeq,
-                             bool resync) {
-  boost::asio::post(strand_, [self = shared_from_this(), who, requested, clientSeq, resync] {
+                             bool resync, bool withCommands) {
+  boost::asio::post(strand_, [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
     const Limits& limits = self->config_.limits;
@@ -183,6 +184,11 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       ack.mutable_ack()->set_document_id(self->id_.value);
       ack.mutable_ack()->set_version(self->version_);
       who->send({frameOf(ack, self->config_.limits.maxFrameBytes), nullptr});
+      if (withCommands) {
+        self->recorders_.try_emplace(who->sessionId(), Recorder{who, self->version_});
+      } else {
+        self->recorders_.erase(who->sessionId());
+      }
     }
     self->sendSnapshot(view, who, resync);
     // Other views may have rebuilt (the hierarchy can grow); their next
@@ -192,6 +198,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
 
 void DocumentHost::unsubscribe(uint64_t session) {
   boost::asio::post(strand_, [self = shared_from_this(), session] {
+    self->recorders_.erase(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
   });
 }
@@ -269,7 +276,7 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
       author->send({frameOf(reject, self->config_.limits.maxFrameBytes), nullptr});
       return;
     }
-    self->afterApply(author, seq, editId, entry, authorName);
+    self->afterApply(author, seq, editId, entry, authorName, message);
   });
 }
 
@@ -334,7 +341,8 @@ Status DocumentHost::retract(const JournalEntry& entry) {
 }
 
 void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
-                              const JournalEntry& entry, const std::string& authorName) {
+                              const JournalEntry& entry, const std::string& authorName,
+                              const wire::ClientMessage& command) {
   // An edit that moves the surface out of the document's quantization grid
   // is taken back and refused before anything is sent: every displayed
   // vertex is a hierarchy limit, and the changed ones are listed.
@@ -360,7 +368,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   }
   ++stats_.edits;
   ++version_;
-  pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, {}, {}, Clock::now()});
+  pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, {}, {}, Clock::now(), command, authorName});
   const auto& limits = doc_.lastUpdate().limits;
   changedLimits_.insert(changedLimits_.end(), limits.begin(), limits.end());
   // Posted before the journal append, so it runs before this edit's commit
@@ -475,9 +483,44 @@ void DocumentHost::committed(uint64_t version, Status status) {
         if (auto who = weak.lock()) who->send({frame->second, p.deltas[key]});
       }
     }
+    notifyRecorders(p);
     pending_.pop_front();
   }
   maybeSnapshot();
+}
+
+void DocumentHost::notifyRecorders(const Pending& p) {
+  if (recorders_.empty()) return;
+  wire::ServerMessage m;
+  wire::AppliedCommand* a = m.mutable_applied_command();
+  a->set_document_id(id_.value);
+  a->set_version(p.version);
+  a->set_edit_id(p.editId);
+  a->set_author_session_id(p.authorSession);
+  a->set_author_name(p.authorName);
+  const auto appliedAt = std::chrono::system_clock::now() -
+                         std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - p.applied);
+  a->set_server_time_unix_ms(static_cast<uint64_t>(
+      std::chrono::duration_cast<std::chrono::milliseconds>(appliedAt.time_since_epoch()).count()));
+  switch (p.command.command_case()) {
+    case wire::ClientMessage::kMoveVertex: *a->mutable_move_vertex() = p.command.move_vertex(); break;
+    case wire::ClientMessage::kSetEdgeSharpness: *a->mutable_set_edge_sharpness() = p.command.set_edge_sharpness(); break;
+    case wire::ClientMessage::kSetVertexType: *a->mutable_set_vertex_type() = p.command.set_vertex_type(); break;
+    case wire::ClientMessage::kUndo: *a->mutable_undo() = p.command.undo(); break;
+    case wire::ClientMessage::kRedo: *a->mutable_redo() = p.command.redo(); break;
+    default: break;
+  }
+  auto frame = frameOf(m, config_.limits.maxFrameBytes);
+  if (!frame) return;
+  for (auto it = recorders_.begin(); it != recorders_.end();) {
+    auto who = it->second.who.lock();
+    if (!who) {
+      it = recorders_.erase(it);
+      continue;
+    }
+    if (p.version > it->second.fromVersion) who->send({frame, nullptr});
+    ++it;
+  }
 }
 
 void DocumentHost::maybeSnapshot() {

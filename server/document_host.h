@@ -50,7 +50,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role);
   void leave(uint64_t session);
   void select(uint64_t session, wire::Selection selection);
-  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync);
+  // `withCommands`: also an AppliedCommand per command after the Ack's
+  // version (docs/PROTOCOL.md, AppliedCommand); a later subscribe without it stops them.
+  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
+                 bool withCommands = false);
   void unsubscribe(uint64_t session);
   void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message);
   void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request);
@@ -81,16 +84,24 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;
     std::map<std::string, std::shared_ptr<const std::string>> frames;
     std::chrono::steady_clock::time_point applied;
+    wire::ClientMessage command;  // as the author sent it, for recorders
+    std::string authorName;
+  };
+  struct Recorder {  // a subscriber that asked with_commands
+    std::weak_ptr<Subscriber> who;
+    uint64_t fromVersion;  // its subscribe's Ack version: later commands only
   };
 
   Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
   void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
-                  const JournalEntry& entry, const std::string& authorName);
+                  const JournalEntry& entry, const std::string& authorName, const wire::ClientMessage& command);
   void scheduleFlush();
   // Updates every view from the limits changed since the last flush,
   // encodes the changed regions and hangs the deltas on the newest edit.
   void flush();
   void committed(uint64_t version, Status status);
+  // Sends a durable command to the recorders (from committed()).
+  void notifyRecorders(const Pending& p);
   // Takes an applied command back (an edit refused after applying it).
   Status retract(const JournalEntry& entry);
   void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
@@ -119,6 +130,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   std::map<std::string, View> views_;  // by LodProfile::key()
   std::deque<Pending> pending_;
   std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
+  std::map<uint64_t, Recorder> recorders_;  // by session
 };
 
 // Builds the frame of a server message (length prefix + payload).

@@ -11,6 +11,8 @@ namespace tessera::client {
 namespace asio = boost::asio;
 using asio::ip::tcp;
 
+const std::string kReceiveTimeout = "no message from the server within ";
+
 uint64_t replyTo(const wire::ServerMessage& m) {
   switch (m.body_case()) {
     case wire::ServerMessage::kHelloAck: return m.hello_ack().client_seq();
@@ -23,6 +25,8 @@ uint64_t replyTo(const wire::ServerMessage& m) {
     default: return 0;
   }
 }
+
+bool isReceiveTimeout(const Status& status) { return status.message().rfind(kReceiveTimeout, 0) == 0; }
 
 Session::Session(const SessionOptions& options)
     : options_(options), socket_(io_), decoder_(FrameDecoderOptions{options.maxFrameBytes}) {}
@@ -128,7 +132,7 @@ Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
       socket_.cancel();
       io_.restart();
       io_.run();  // let the cancelled read finish
-      return ioError("no message from the server within " + std::to_string(timeoutSeconds) + " s");
+      return ioError(kReceiveTimeout + std::to_string(timeoutSeconds) + " s");
     }
     if (result) return ioError("connection closed: " + result.message());
     TESSERA_RETURN_IF_ERROR(decoder_.feed(std::string_view(buffer_.data(), n)));

@@ -80,5 +80,8 @@ class Session {
 
 // The client_seq a server message answers, or 0 for unsolicited ones.
 uint64_t replyTo(const wire::ServerMessage& message);
+// Whether receive() failed only because nothing arrived in time (the
+// connection is still usable).
+bool isReceiveTimeout(const Status& status);
 
 }  // namespace tessera::client

@@ -32,7 +32,6 @@ using nlohmann::json;
 
 double msBetween(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
-bool isTimeout(const Status& s) { return s.message().rfind("no message from the server", 0) == 0; }
 
 void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, Shared& shared) {
   client::SessionOptions so = o.session;
@@ -82,7 +81,7 @@ void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, 
     const double wait = editing ? std::clamp(std::chrono::duration<double>(next - now).count(), 0.0005, 0.05) : 0.05;
     auto reply = s.receive(wait);
     if (!reply.isOk()) {
-      if (isTimeout(reply.status())) continue;
+      if (client::isReceiveTimeout(reply.status())) continue;
       return shared.error(so.name + ": " + reply.status().message());
     }
     const auto received = Clock::now();
@@ -154,7 +153,7 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
     }
     auto m = s.receive(out.ready ? o.viewerPollSeconds : 0.25);
     if (!m.isOk()) {
-      if (isTimeout(m.status())) continue;
+      if (client::isReceiveTimeout(m.status())) continue;
       shared.error(so.name + ": " + m.status().message());
       break;
     }

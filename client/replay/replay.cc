@@ -35,11 +35,12 @@ Status openDocument(client::Session& s, uint64_t document, double timeoutSeconds
 }
 
 Status openAndSubscribe(client::Session& s, uint64_t document, const wire::LodProfile& profile,
-                        client::DocumentView* view, double timeoutSeconds) {
+                        client::DocumentView* view, double timeoutSeconds, bool withCommands) {
   TESSERA_RETURN_IF_ERROR(openDocument(s, document, timeoutSeconds));
   wire::ClientMessage sub;
   sub.mutable_subscribe()->set_document_id(document);
   *sub.mutable_subscribe()->mutable_profile() = profile;
+  sub.mutable_subscribe()->set_with_commands(withCommands);
   TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage subscribed, s.call(sub, timeoutSeconds));
   if (!subscribed.has_ack()) {
     return invalidArgument("document " + std::to_string(document) + ": subscribe: " + describe(subscribed));

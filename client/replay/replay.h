@@ -32,8 +32,10 @@ Expected<ReplayResult> runReplay(const Script& script, const ReplayOptions& opti
 
 Status openDocument(client::Session& session, uint64_t document, double timeoutSeconds);
 // Opens and subscribes `session` to `document`, waits for the snapshot.
+// `withCommands`: the server also sends every later command
+// (AppliedCommand, client/lib/command_feed.h).
 Status openAndSubscribe(client::Session& session, uint64_t document, const wire::LodProfile& profile,
-                        client::DocumentView* view, double timeoutSeconds);
+                        client::DocumentView* view, double timeoutSeconds, bool withCommands = false);
 
 struct SurfaceState {
   uint64_t version = 0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "client/replay/load.h"
+#include "client/replay/record.h"
 #include "client/replay/replay.h"
 #include "client/replay/script.h"
 
@@ -27,6 +28,9 @@ constexpr const char* kHelp =
     "  replay SCRIPT [--document D] [--speed X]\n"
     "      replay it, one connection per actor, in script order (speed 0: no waiting);\n"
     "      then print the final version and surface hash a fresh subscriber sees\n"
+    "  record --document D -o SCRIPT [--seconds S | --until-version V]\n"
+    "      record the document's commands live, as a script (any role that may open it);\n"
+    "      stops after S seconds, or once version V is recorded (then at most S, default 600)\n"
     "  surface --document D    print the version and surface hash of a document\n"
     "  load --document D [--editors E] [--viewers M] [--rate R] [--seconds S] [--max-edits N]\n"
     "       [--decode-viewers K] [--vertex-level L] [--vertex-count N] [--step X] [--seed N]\n"
@@ -34,7 +38,7 @@ constexpr const char* kHelp =
     "      a bounded load run; progress on stderr, a summary on stdout, JSON with --report\n"
     "\n"
     "connection: [--host H] [--port N] [--token T | --token-file F] [--viewer-token T]\n"
-    "profile (surface, replay, load): [--profile BASE,MAX,ANGLE] (default: the script's, or 2,5,10)\n";
+    "profile (surface, replay, record, load): [--profile BASE,MAX,ANGLE] (default: the script's, or 2,5,10)\n";
 
 struct Args {
   std::vector<std::string> positional;
@@ -50,7 +54,8 @@ const std::set<std::string> kFlags = {"--no-undo", "--quiet", "--help"};
 const std::set<std::string> kOptions = {"--host", "--port", "--token", "--token-file", "--viewer-token", "--document",
                                         "--editors", "--viewers", "--rate", "--seconds", "--seed", "--vertex-level",
                                         "--vertex-count", "--step", "--speed", "--max-edits", "--decode-viewers",
-                                        "--drain-seconds", "--pool-threads", "--server-pid", "--report", "--output", "--profile"};
+                                        "--drain-seconds", "--pool-threads", "--server-pid", "--report", "--output", "--profile",
+                                        "--until-version"};
 
 Expected<Args> parseArgs(int argc, char** argv) {
   Args a;
@@ -181,6 +186,12 @@ int runReplayCommand(const Args& a) {
   if (!doc.isOk() || !speed.isOk() || *speed < 0) return usage("replay: bad --document or --speed");
   auto header = profileOption(a, script->header);
   if (!header.isOk()) return usage(header.status().message());
+  // A subscriber with the final profile before the first command too: the
+  // server then updates that profile's tessellation edit by edit, as it does
+  // for a live session's viewers and recorder, rather than building it at the
+  // end (the two can differ in a normal: docs/REPLAY.md §2).
+  auto before = readSurface(*session, *doc, profileOf(*header));
+  if (!before.isOk()) return fail(before.status());
   ReplayOptions options{.session = *session, .document = *doc, .speed = *speed};
   auto result = runReplay(*script, options);
   if (!result.isOk()) return fail(result.status());
@@ -188,6 +199,55 @@ int runReplayCommand(const Args& a) {
   auto surface = readSurface(*session, *doc, profileOf(*header));
   if (!surface.isOk()) return fail(surface.status());
   printSurface(*surface);
+  return 0;
+}
+
+int runRecordCommand(const Args& a) {
+  const std::string* out = a.get("--output");
+  if (!out) return usage("record needs -o SCRIPT");
+  auto session = sessionOptions(a);
+  if (!session.isOk()) return usage(session.status().message());
+  session->name = "tessera-replay-record";
+  auto doc = number<uint64_t>(a, "--document", 0);
+  auto seconds = number<double>(a, "--seconds", 0);
+  auto until = number<uint64_t>(a, "--until-version", 0);
+  if (!doc.isOk() || *doc == 0) return usage("record needs --document D");
+  if (!seconds.isOk() || !until.isOk()) return usage("record: bad --seconds or --until-version");
+  if (!(*seconds >= 0 && *seconds <= 86400)) return usage("record: --seconds must be between 0 and 86400");
+  if (*seconds == 0 && *until == 0) return usage("record needs --seconds S or --until-version V");
+  auto header = profileOption(a, ScriptHeader{});
+  if (!header.isOk()) return usage(header.status().message());
+  std::ofstream f(*out, std::ios::binary);
+  if (!f) return fail(ioError(*out + ": cannot write"));
+  RecordOptions o;
+  o.session = *session;
+  o.document = *doc;
+  o.header = *header;
+  o.seconds = *seconds == 0 ? 600 : *seconds;
+  o.untilVersion = *until;
+  o.out = &f;
+  o.started = [&](uint64_t from) {
+    std::printf("recording document %llu from version %llu\n", static_cast<unsigned long long>(*doc),
+                static_cast<unsigned long long>(from));
+    std::fflush(stdout);
+    if (from != 1) {
+      std::fprintf(stderr, "tessera-replay: the recording starts at version %llu: replay it on a copy of the document "
+                   "at that version, not on a fresh one\n", static_cast<unsigned long long>(from));
+    }
+  };
+  auto result = runRecord(o);
+  if (!result.isOk()) return fail(result.status().withContext("record"));
+  if (!f.flush()) return fail(ioError(*out + ": cannot write"));
+  std::printf("commands %lld\nactors %zu\nfrom_version %llu\n", static_cast<long long>(result->commands),
+              result->actors, static_cast<unsigned long long>(result->fromVersion));
+  if (result->surface) {
+    printSurface(*result->surface);
+  } else {
+    std::printf("version %llu\n", static_cast<unsigned long long>(result->lastVersion));
+    std::fprintf(stderr, "tessera-replay: record: no surface hash: the recorder's view was not at the last version\n");
+  }
+  std::printf("wrote %s\n", out->c_str());
+  if (!result->stopped.isOk()) return fail(result->stopped.withContext("record"));
   return 0;
 }
 
@@ -289,6 +349,7 @@ int main(int argc, char** argv) {
   }
   if (command == "replay") return runReplayCommand(*args);
   if (command == "surface") return runSurface(*args);
+  if (command == "record") return runRecordCommand(*args);
   if (command == "load") return runLoadCommand(*args);
   return usage("unknown command '" + command + "'");
 }

@@ -130,6 +130,10 @@ std::string parseHeader(const json& j, ScriptHeader& h) {
     h.maxLevel = p[1].get<uint32_t>();
     h.angleDegrees = p[2].get<double>();
   }
+  if (j.contains("generator")) {
+    if (!j["generator"].is_string()) return "\"generator\" must be a string";
+    h.generator = j["generator"].get<std::string>();
+  }
   return "";
 }
 
@@ -177,6 +181,7 @@ std::string headerLine(const ScriptHeader& h) {
   nlohmann::ordered_json j = {{"format", "tessera-replay"}, {"version", kScriptVersion}};
   if (h.document != 0) j["document"] = h.document;
   j["profile"] = {h.baseLevel, h.maxLevel, h.angleDegrees};
+  if (!h.generator.empty()) j["generator"] = h.generator;
   return j.dump();
 }
 

@@ -25,6 +25,7 @@ struct ScriptHeader {
   uint32_t baseLevel = 2;   // the profile a replay's final subscriber uses
   uint32_t maxLevel = 5;
   double angleDegrees = 10;
+  std::string generator;    // free-form: the tool that wrote the script
 };
 
 struct ScriptCommand {

@@ -68,6 +68,7 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     auto* m = add().mutable_subscribe();
     m->set_document_id(42);
     fillProfile(m->mutable_profile());
+    m->set_with_commands(true);
   }
   add().mutable_unsubscribe()->set_document_id(42);
   {
@@ -223,6 +224,31 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     s = m->add_stats();
     s->set_name("edits_per_second");
     s->set_value(12.5);
+  }
+  {
+    auto* m = add().mutable_applied_command();
+    m->set_document_id(42);
+    m->set_version(19);
+    m->set_edit_id(18);
+    m->set_author_session_id(77);
+    m->set_author_name("alice");
+    m->set_server_time_unix_ms(1700000000123);
+    auto* move = m->mutable_move_vertex();
+    move->set_document_id(42);
+    move->add_vertex_ids(packedId(3, 1234));
+    move->mutable_target()->set_z(0.01);
+    move->set_mode(wire::MOVE_MODE_OFFSET);
+  }
+  {
+    auto* m = add().mutable_applied_command();
+    m->set_document_id(42);
+    m->set_version(20);
+    m->set_edit_id(18);
+    m->set_author_session_id(78);
+    m->set_author_name("bob");
+    m->set_server_time_unix_ms(1700000000456);
+    m->mutable_undo()->set_document_id(42);
+    m->mutable_undo()->set_edit_id(18);
   }
   return out;
 }

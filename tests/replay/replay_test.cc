@@ -3,26 +3,21 @@
 // replayed on two fresh servers ending at the same surface hash.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <optional>
-#include <sstream>
 
-#include "client/lib/session.h"
 #include "client/replay/script.h"
-#include "integration/messages.h"
-#include "integration/server_process.h"
-#include "support/test_meshes.h"
+#include "replay/replay_support.h"
 
 namespace tessera {
 namespace {
 
 using replay::parseScript;
-using testing::ServerProcess;
+using testing::field;
+using testing::ReplayServer;
+using testing::run;
 
 constexpr const char* kHeader = "{\"format\":\"tessera-replay\",\"version\":1,\"document\":1}\n";
-constexpr const char* kEditorToken = "replay-editor-token-0123456789";
 
 std::string errorOf(const std::string& text) {
   auto parsed = parseScript(text, "s.jsonl");
@@ -99,43 +94,9 @@ TEST(ReplayScript, GeneratedScriptsAreDeterministicAndParse) {
   EXPECT_EQ(parsed->header.document, 3u);
 }
 
-// Runs a command; its stdout, and the exit code.
-std::pair<std::string, int> run(const std::string& command) {
-  FILE* pipe = popen((command + " 2>/dev/null").c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  for (size_t n; pipe && (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
-  const int status = pipe ? pclose(pipe) : -1;
-  return {out, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
-}
-
-// A fresh server with the creased cube as document 1 and an editor token.
-struct Server {
-  std::optional<ServerProcess> process;
-  uint64_t doc = 0;
-  std::string connection() const {
-    return " --port " + std::to_string(process->port()) + " --token " + kEditorToken + " --document " + std::to_string(doc);
-  }
-};
-
-void startServer(Server& s, const std::string& name) {
-  auto server = ServerProcess::start(testing::makeTempDir(name) + "/data");
-  ASSERT_TRUE(server.isOk()) << server.status().message();
-  s.process.emplace(std::move(*server));
-  auto admin = client::Session::connect(s.process->session("admin", s.process->adminToken()));
-  ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
-                                30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
-  s.doc = created->ack().document_id();
-  auto granted = (*admin)->call(testing::grant(s.doc, wire::ROLE_EDITOR, kEditorToken), 10);
-  ASSERT_TRUE(granted.isOk() && granted->has_ack());
-}
-
 TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
-  Server s;
-  startServer(s, "tessera-replay-load");
+  ReplayServer s;
+  testing::startServer(s, "tessera-replay-load");
   if (HasFatalFailure()) return;
   const std::string report = testing::makeTempDir("tessera-replay-report") + "/report.json";
   auto [out, code] = run(std::string(TESSERA_REPLAY_PATH) + " load" + s.connection() +
@@ -175,15 +136,6 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   EXPECT_NE(out.find("edit -> delta"), std::string::npos) << out;
 }
 
-// "version V", "surface_hash H" from the replay's stdout.
-std::string field(const std::string& out, const std::string& name) {
-  std::istringstream in(out);
-  for (std::string key, value; in >> key >> value;) {
-    if (key == name) return value;
-  }
-  return "";
-}
-
 TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
   const std::string script = testing::makeTempDir("tessera-replay-script") + "/session.jsonl";
   auto [generated, code] = run(std::string(TESSERA_REPLAY_PATH) + " generate -o " + script +
@@ -191,8 +143,8 @@ TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
   ASSERT_EQ(code, 0) << generated;
   std::string hashes[2], versions[2];
   for (int i = 0; i < 2; ++i) {
-    Server s;
-    startServer(s, "tessera-replay-twice");
+    ReplayServer s;
+    testing::startServer(s, "tessera-replay-twice");
     if (HasFatalFailure()) return;
     auto [before, beforeCode] = run(std::string(TESSERA_REPLAY_PATH) + " surface" + s.connection() + " --profile 2,5,10");
     ASSERT_EQ(beforeCode, 0) << before;

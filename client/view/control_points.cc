@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "core/hierarchy/ids.h"
 
@@ -53,6 +54,31 @@ V3 dragTarget(const OrbitCamera& camera, V3 anchor, float px, float py, int widt
   if (std::abs(denom) < 1e-6f) return anchor;
   const float t = dot(anchor - ray.origin, n) / denom;
   return ray.origin + ray.direction * t;
+}
+
+std::vector<uint64_t> triangleNeighbours(const RegionMap& regions, uint64_t vertex, int level) {
+  auto atLevel = [level](uint64_t packed) -> std::optional<uint64_t> {
+    const VertexId born = VertexId::fromPacked(packed);
+    if (born.level() > level) return std::nullopt;
+    return VertexId(level, born.index()).packed();
+  };
+  std::set<uint64_t> out;
+  for (const auto& [regionId, mesh] : regions) {
+    for (const auto& t : mesh->triangles) {
+      std::array<std::optional<uint64_t>, 3> ids;
+      for (int k = 0; k < 3; ++k) ids[k] = atLevel(mesh->vertexIds[t[k]]);
+      if (std::find(ids.begin(), ids.end(), vertex) == ids.end()) continue;
+      for (const auto& id : ids)
+        if (id && *id != vertex) out.insert(*id);
+    }
+  }
+  return {out.begin(), out.end()};
+}
+
+std::vector<V3> segmentPoints(V3 a, V3 b, int count) {
+  std::vector<V3> out;
+  for (int i = 0; i < count; ++i) out.push_back(a + (b - a) * (static_cast<float>(i) / static_cast<float>(count - 1)));
+  return out;
 }
 
 bool bounds(const RegionMap& regions, V3* lo, V3* hi) {

@@ -36,6 +36,15 @@ std::optional<size_t> pickPoint(const std::vector<ControlPoint>& points, const O
 // through `anchor` facing the camera.
 V3 dragTarget(const OrbitCamera& camera, V3 anchor, float px, float py, int width, int height);
 
+// The control vertices of `level` sharing a displayed triangle with `vertex`
+// (packed, at `level`), in id order. Where the tessellation shows that level,
+// they are its neighbours along the level's edges; elsewhere some are not.
+std::vector<uint64_t> triangleNeighbours(const RegionMap& regions, uint64_t vertex, int level);
+
+// `count` >= 2 points evenly spaced from a to b, both included: a picked
+// edge drawn as a dotted line.
+std::vector<V3> segmentPoints(V3 a, V3 b, int count);
+
 // The bounding box of every region vertex; false when there is none.
 bool bounds(const RegionMap& regions, V3* lo, V3* hi);
 

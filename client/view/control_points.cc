@@ -56,21 +56,34 @@ V3 dragTarget(const OrbitCamera& camera, V3 anchor, float px, float py, int widt
   return ray.origin + ray.direction * t;
 }
 
-std::vector<uint64_t> triangleNeighbours(const RegionMap& regions, uint64_t vertex, int level) {
-  auto atLevel = [level](uint64_t packed) -> std::optional<uint64_t> {
-    const VertexId born = VertexId::fromPacked(packed);
-    if (born.level() > level) return std::nullopt;
-    return VertexId(level, born.index()).packed();
-  };
-  std::set<uint64_t> out;
+std::vector<uint64_t> levelNeighbours(const RegionMap& regions, uint64_t vertex, int level) {
+  // Displayed triangle edges among the vertices born at level + 1 or before,
+  // by index (an index has one birth level).
+  std::map<uint64_t, std::set<uint64_t>> joined;
+  std::map<uint64_t, int> born;
   for (const auto& [regionId, mesh] : regions) {
     for (const auto& t : mesh->triangles) {
-      std::array<std::optional<uint64_t>, 3> ids;
-      for (int k = 0; k < 3; ++k) ids[k] = atLevel(mesh->vertexIds[t[k]]);
-      if (std::find(ids.begin(), ids.end(), vertex) == ids.end()) continue;
-      for (const auto& id : ids)
-        if (id && *id != vertex) out.insert(*id);
+      for (int k = 0; k < 3; ++k) {
+        const VertexId a = VertexId::fromPacked(mesh->vertexIds[t[k]]);
+        const VertexId b = VertexId::fromPacked(mesh->vertexIds[t[(k + 1) % 3]]);
+        if (a.level() > level + 1 || b.level() > level + 1) continue;
+        joined[a.index()].insert(b.index());
+        joined[b.index()].insert(a.index());
+        born[a.index()] = a.level(), born[b.index()] = b.level();
+      }
     }
+  }
+  const uint64_t v = VertexId::fromPacked(vertex).index();
+  std::set<uint64_t> out;
+  for (uint64_t n : joined[v]) {
+    if (born[n] <= level) {
+      out.insert(VertexId(level, n).packed());  // shown at `level`: a triangle edge is an edge
+      continue;
+    }
+    // Shown at level + 1: n lies on an edge of `level`, whose other end is
+    // its only other neighbour born by then.
+    for (uint64_t far : joined[n])
+      if (far != v && born[far] <= level) out.insert(VertexId(level, far).packed());
   }
   return {out.begin(), out.end()};
 }

@@ -36,10 +36,13 @@ std::optional<size_t> pickPoint(const std::vector<ControlPoint>& points, const O
 // through `anchor` facing the camera.
 V3 dragTarget(const OrbitCamera& camera, V3 anchor, float px, float py, int width, int height);
 
-// The control vertices of `level` sharing a displayed triangle with `vertex`
-// (packed, at `level`), in id order. Where the tessellation shows that level,
-// they are its neighbours along the level's edges; elsewhere some are not.
-std::vector<uint64_t> triangleNeighbours(const RegionMap& regions, uint64_t vertex, int level);
+// The control vertices of `level` joined to `vertex` (packed, at `level`)
+// by an edge of that level, as far as the displayed triangles show, in id
+// order: where the tessellation shows `level`, its triangle edges; where it
+// shows level + 1, the far ends of the vertices on those edges. Deeper
+// tessellations show none, and crack-closing fans may show a wrong one: the
+// server has the last word (Document::edgeBetween).
+std::vector<uint64_t> levelNeighbours(const RegionMap& regions, uint64_t vertex, int level);
 
 // `count` >= 2 points evenly spaced from a to b, both included: a picked
 // edge drawn as a dotted line.

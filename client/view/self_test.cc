@@ -53,7 +53,7 @@ KeyScript::Frame KeyScript::next(App& app, const RegionMap& regions, const std::
     std::optional<std::array<float, 2>> sb;
     uint64_t b = 0;
     float best = 1e30f;
-    for (uint64_t n : triangleNeighbours(regions, points[*a].id, app.toggles.controlLevel)) {
+    for (uint64_t n : levelNeighbours(regions, points[*a].id, app.toggles.controlLevel)) {
       auto it = std::find_if(points.begin(), points.end(), [n](const ControlPoint& p) { return p.id == n; });
       if (it == points.end()) continue;
       const auto s = app.camera.project(it->position, width, height);

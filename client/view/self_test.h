@@ -29,7 +29,7 @@ class DragScript {
 };
 
 // --edit-keys: click the visible control vertex nearest the centre,
-// shift+click its visible triangle neighbour nearest to it on screen, then
+// shift+click the visible neighbour (levelNeighbours) nearest to it on screen, then
 // press E, K, Ctrl+Z, Ctrl+Z and Ctrl+Y, each once the edits before it have
 // come back, noting the surface hash (DocumentView::surfaceHash) at the
 // start and after each key. Needs Connection::hashSurfaces(true).

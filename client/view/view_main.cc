@@ -223,7 +223,8 @@ int run(const ViewOptions& options) {
           in = script->next(app, points, width, height);
           if (!in) error = "--drag: no visible control vertex";
         } else {
-          KeyScript::Frame frame = keys->next(app, regions, points, stats, width, height);
+          // Fresh counts: the frame loop may just have sent an undo or redo.
+          KeyScript::Frame frame = keys->next(app, regions, points, (*connection)->stats(), width, height);
           in = frame.mouse;
           if (!frame.error.empty()) error = "--edit-keys: " + frame.error;
         }

@@ -118,7 +118,7 @@ TEST(ViewControlPoints, ALevelShowsVerticesBornAtOrAboveItOnceRenamedToIt) {
   EXPECT_FLOAT_EQ(lo.z, 0);
 }
 
-TEST(ViewControlPoints, TriangleNeighboursAtALevelAndADottedEdge) {
+TEST(ViewControlPoints, NeighboursAtALevelShownAtItOrOneFinerAndADottedEdge) {
   const RegionMap regions = twoRegions();
   const auto ids = [](std::initializer_list<VertexId> list) {
     std::vector<uint64_t> out;
@@ -127,9 +127,20 @@ TEST(ViewControlPoints, TriangleNeighboursAtALevelAndADottedEdge) {
   };
   // At level 1, v1:8 shares a triangle with v1:0 (region 1) and v1:3, v1:12
   // (region 2); v2:30 is not a level-1 vertex.
-  EXPECT_EQ(triangleNeighbours(regions, VertexId(1, 8).packed(), 1), ids({{1, 0}, {1, 3}, {1, 12}}));
-  EXPECT_EQ(triangleNeighbours(regions, VertexId(2, 0).packed(), 2), ids({{2, 8}, {2, 30}}));
-  EXPECT_TRUE(triangleNeighbours(regions, VertexId(1, 99).packed(), 1).empty());
+  EXPECT_EQ(levelNeighbours(regions, VertexId(1, 8).packed(), 1), ids({{1, 0}, {1, 3}, {1, 12}}));
+  EXPECT_EQ(levelNeighbours(regions, VertexId(2, 0).packed(), 2), ids({{2, 8}, {2, 30}}));
+  EXPECT_TRUE(levelNeighbours(regions, VertexId(1, 99).packed(), 1).empty());
+  // Shown one level finer: v0:1 and v0:2 are joined through v1:20, the
+  // vertex on their edge; v1:21 is no level-0 vertex.
+  auto fine = std::make_shared<RegionMesh>();
+  fine->positions.resize(4);
+  fine->normals.resize(4);
+  fine->vertexIds = {VertexId(0, 1).packed(), VertexId(1, 20).packed(), VertexId(1, 21).packed(),
+                     VertexId(0, 2).packed()};
+  fine->triangles = {{0, 1, 2}, {1, 3, 2}};
+  const RegionMap finer = {{1, fine}};
+  EXPECT_EQ(levelNeighbours(finer, VertexId(0, 1).packed(), 0), ids({{0, 2}}));
+  EXPECT_EQ(levelNeighbours(finer, VertexId(0, 2).packed(), 0), ids({{0, 1}}));
   const auto dots = segmentPoints({0, 0, 0}, {2, 4, 0}, 5);
   ASSERT_EQ(dots.size(), 5u);
   EXPECT_FLOAT_EQ(dots[2].y, 2);

@@ -18,6 +18,7 @@
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
+#include "view/cube_document.h"
 
 namespace tessera::view {
 namespace {
@@ -44,14 +45,9 @@ TEST(ViewConnection, FollowsItsOwnEditsThroughUndoAndRedoAndShowsSelections) {
   const std::string dir = testing::makeTempDir("tessera-view-connection");
   auto server = testing::ServerProcess::start(dir + "/data");
   ASSERT_TRUE(server.isOk()) << server.status().message();
-  auto admin = client::Session::connect(server->session("admin", server->adminToken()));
-  ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  auto created = (*admin)->call(
-      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
-      30);
-  ASSERT_TRUE(created.isOk() && created->has_ack());
-  const uint64_t doc = created->ack().document_id();
+  auto created = testing::createCube(*server, true, 5);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  const uint64_t doc = *created;
 
   ViewOptions options;
   options.port = server->port();
@@ -132,16 +128,9 @@ TEST(ViewConnection, ReconnectsAndResubscribesAfterTheServerRestarts) {
   const std::string dir = testing::makeTempDir("tessera-view-reconnect");
   auto server = testing::ServerProcess::start(dir + "/data");
   ASSERT_TRUE(server.isOk()) << server.status().message();
-  uint64_t doc = 0;
-  {
-    auto admin = client::Session::connect(server->session("admin", server->adminToken()));
-    ASSERT_TRUE(admin.isOk()) << admin.status().message();
-    auto created = (*admin)->call(
-        testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 4),
-        30);
-    ASSERT_TRUE(created.isOk() && created->has_ack());
-    doc = created->ack().document_id();
-  }
+  auto created = testing::createCube(*server, false, 4);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  const uint64_t doc = *created;
   ViewOptions options;
   options.port = server->port();
   options.token = server->adminToken();
@@ -182,14 +171,9 @@ struct CubeFixture {
     auto started = testing::ServerProcess::start(testing::makeTempDir(name) + "/data");
     ASSERT_TRUE(started.isOk()) << started.status().message();
     server.emplace(std::move(*started));
-    auto admin = client::Session::connect(server->session("admin", server->adminToken()));
-    ASSERT_TRUE(admin.isOk()) << admin.status().message();
-    auto created = (*admin)->call(
-        testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 4),
-        30);
-    ASSERT_TRUE(created.isOk() && created->has_ack());
-    doc = created->ack().document_id();
+    auto created = testing::createCube(*server, true, 4);
+    ASSERT_TRUE(created.isOk()) << created.status().message();
+    doc = *created;
     ViewOptions options;
     options.port = server->port();
     options.token = server->adminToken();

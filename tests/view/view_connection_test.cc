@@ -15,6 +15,7 @@
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/incidence.h"
 #include "core/io/mesh_import.h"
+#include "protocol/wire_ids.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
@@ -271,6 +272,25 @@ TEST(ViewConnection, SetsAnEdgeSharpByItsEndsAndUndoesIt) {
             std::string::npos)
       << c.stats().lastError;
   EXPECT_EQ(c.stats().version, 4u) << "a refused edit makes no version";
+
+  // On the wire: edge_id must be all ones beside the ends, and the ends two.
+  auto raw = client::Session::connect(f.server->session("raw", f.server->adminToken()));
+  ASSERT_TRUE(raw.isOk()) << raw.status().message();
+  ASSERT_TRUE((*raw)->call(testing::openDocument(f.doc), 10)->has_ack());
+  for (int ids : {1, 2, 3}) {
+    wire::ClientMessage m;
+    auto* e = m.mutable_set_edge_sharpness();
+    e->set_document_id(f.doc);
+    e->set_edge_id(ids == 2 ? 0 : kEdgeIdNamedByEnds);  // 0 would name e0:0 on an older server
+    for (int i = 0; i < ids; ++i) e->add_end_vertex_ids(ends[i % 2].packed());
+    e->set_sharpness(10.0f);
+    auto reply = (*raw)->call(m, 10);
+    ASSERT_TRUE(reply.isOk() && reply->has_reject()) << ids << " ids";
+    EXPECT_EQ(reply->reject().reason(), wire::REJECT_REASON_INVALID_ARGUMENT);
+    EXPECT_NE(reply->reject().message().find("end_vertex_ids needs exactly two ids and edge_id all ones"),
+              std::string::npos)
+        << reply->reject().message();
+  }
   // The refused edits are no undo steps: undo takes back the sharp edge.
   ASSERT_TRUE(c.undo());
   ASSERT_TRUE(f.reaches(5)) << c.stats().lastError;

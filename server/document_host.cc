@@ -294,9 +294,9 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
       EdgeId edge = EdgeId::fromPacked(m.edge_id());
       if (m.end_vertex_ids_size() > 0) {  // the edge named by its ends instead
         if (m.end_vertex_ids_size() != 2 || m.edge_id() != kEdgeIdNamedByEnds) {
-          return invalidArgument("edge sharpness: end_vertex_ids needs exactly two ids and edge_id all ones, got " +
-                                 std::to_string(m.end_vertex_ids_size()) + " ids and edge_id " +
-                                 std::to_string(m.edge_id()));
+          return invalidArgument(
+              "edge sharpness: end_vertex_ids needs exactly two ids and edge_id all ones, got " +
+              std::to_string(m.end_vertex_ids_size()) + " ids and edge_id " + std::to_string(m.edge_id()));
         }
         TESSERA_ASSIGN_OR_RETURN(edge, doc_.edgeBetween(VertexId::fromPacked(m.end_vertex_ids(0)),
                                                         VertexId::fromPacked(m.end_vertex_ids(1))));

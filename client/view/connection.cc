@@ -143,7 +143,8 @@ void Connection::enqueueEdit(wire::ClientMessage message, UndoHistory::StepId st
   history_.sent(step);
   if (own) history_.close(step);
   ++stats_.editsPending;
-  outbox_.push_back({std::move(message), {.at = {}, .edit = true, .undo = false, .redo = false, .step = step}});
+  outbox_.push_back(
+      {std::move(message), {.at = {}, .edit = true, .undo = false, .redo = false, .step = step}});
 }
 
 void Connection::forget(const Sent& sent) {
@@ -206,8 +207,12 @@ void Connection::select(const std::vector<uint64_t>& packedVertices) {
   enqueue(std::move(m), {});
 }
 
-bool Connection::undo() { return step(true); }
-bool Connection::redo() { return step(false); }
+bool Connection::undo() {
+  return step(true);
+}
+bool Connection::redo() {
+  return step(false);
+}
 
 bool Connection::step(bool undo) {
   std::vector<uint64_t> ids;

@@ -90,7 +90,8 @@ std::vector<uint64_t> levelNeighbours(const RegionMap& regions, uint64_t vertex,
 
 std::vector<V3> segmentPoints(V3 a, V3 b, int count) {
   std::vector<V3> out;
-  for (int i = 0; i < count; ++i) out.push_back(a + (b - a) * (static_cast<float>(i) / static_cast<float>(count - 1)));
+  for (int i = 0; i < count; ++i)
+    out.push_back(a + (b - a) * (static_cast<float>(i) / static_cast<float>(count - 1)));
   return out;
 }
 

@@ -39,7 +39,8 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_K:
       if (app.picked) {
         const bool corner = app.corners.count(*app.picked) == 0;
-        app.connection->setVertexType(*app.picked, corner ? wire::VERTEX_TYPE_CORNER : wire::VERTEX_TYPE_SMOOTH);
+        app.connection->setVertexType(*app.picked,
+                                      corner ? wire::VERTEX_TYPE_CORNER : wire::VERTEX_TYPE_SMOOTH);
         if (corner) {
           app.corners.insert(*app.picked);
         } else {
@@ -75,8 +76,9 @@ void MouseTool::update(const MouseInput& in, App& app, const std::vector<Control
   if (!in.captured && in.scroll != 0) app.camera.zoom(in.scroll);
   if (in.left && !wasLeft_ && !in.captured) {
     mode_ = in.shift ? Mode::kPan : Mode::kOrbit;
-    const auto hit = app.toggles.showControls ? pickPoint(points, app.camera, width, height, in.px, in.py, 10.0f)
-                                              : std::nullopt;
+    const auto hit = app.toggles.showControls
+                         ? pickPoint(points, app.camera, width, height, in.px, in.py, 10.0f)
+                         : std::nullopt;
     if (hit && in.shift && app.picked && points[*hit].id != *app.picked) {
       // The second end of an edge: picked, not dragged.
       mode_ = Mode::kNone;

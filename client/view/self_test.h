@@ -20,7 +20,8 @@ class DragScript {
   DragScript(int dx, int dy) : dx_(static_cast<float>(dx)), dy_(static_cast<float>(dy)) {}
   bool done() const { return step_ > kSteps + 2; }
   // Nothing when no control vertex is visible.
-  std::optional<MouseInput> next(const App& app, const std::vector<ControlPoint>& points, int width, int height);
+  std::optional<MouseInput> next(const App& app, const std::vector<ControlPoint>& points, int width,
+                                 int height);
 
  private:
   static constexpr int kSteps = 10;

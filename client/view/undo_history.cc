@@ -52,7 +52,8 @@ template <typename Step>
 Status ready(const std::vector<Step>& steps, const char* what) {
   if (steps.empty()) return invalidArgument(std::string("nothing of this viewer's to ") + what);
   const Step& s = steps.back();
-  if (s.open) return invalidArgument(std::string("cannot ") + what + " while the last step is still being made");
+  if (s.open)
+    return invalidArgument(std::string("cannot ") + what + " while the last step is still being made");
   if (s.pending > 0) {
     return invalidArgument(std::string("cannot ") + what + " yet: " + std::to_string(s.pending) +
                            " edits of the last step await their answer");

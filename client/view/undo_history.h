@@ -26,9 +26,9 @@ class UndoHistory {
  public:
   using StepId = uint64_t;
 
-  StepId open();             // a new step, newest in the history
-  void close(StepId step);   // no more edits will join it
-  void sent(StepId step);    // one more edit of the step awaits its answer
+  StepId open();            // a new step, newest in the history
+  void close(StepId step);  // no more edits will join it
+  void sent(StepId step);   // one more edit of the step awaits its answer
   void acked(StepId step, uint64_t editId);
   void dropped(StepId step);  // rejected, or lost with the connection
 

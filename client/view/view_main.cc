@@ -83,7 +83,8 @@ void drawSelections(Renderer& renderer, const App& app, const std::vector<Contro
       if (it != points.end() && it->id == id) ends.push_back(it->position);
     }
     renderer.drawPoints(ends, PointStyle{colour, 12}, draw);
-    if (ends.size() == 2) renderer.drawPoints(segmentPoints(ends[0], ends[1], 24), PointStyle{colour, 5}, draw);
+    if (ends.size() == 2)
+      renderer.drawPoints(segmentPoints(ends[0], ends[1], 24), PointStyle{colour, 5}, draw);
   };
   for (const Collaborator& c : collaborators)
     if (!c.self) mark(c.selectedVertices, {0.2f, 0.9f, 1.0f});
@@ -275,7 +276,8 @@ int run(const ViewOptions& options) {
         break;
       }
       if (waiting && now - start > std::chrono::duration<double>(options.timeoutSeconds)) {
-        std::fprintf(stderr, "tessera-view: self-test: edits unanswered after %g s\n", options.timeoutSeconds);
+        std::fprintf(stderr, "tessera-view: self-test: edits unanswered after %g s\n",
+                     options.timeoutSeconds);
         rc = 1;
         break;
       }

@@ -15,9 +15,9 @@
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/incidence.h"
 #include "core/io/mesh_import.h"
-#include "protocol/wire_ids.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
+#include "protocol/wire_ids.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
 
@@ -189,7 +189,8 @@ struct CubeFixture {
   }
   // Waits until the document is at `version` with nothing pending.
   bool reaches(uint64_t version) {
-    return waitFor([&] { return connection->stats().version == version && connection->stats().editsPending == 0; });
+    return waitFor(
+        [&] { return connection->stats().version == version && connection->stats().editsPending == 0; });
   }
 };
 
@@ -201,7 +202,8 @@ TEST(ViewConnection, UndoAndRedoStepOverAWholeDrag) {
 
   // A drag: five moves of one vertex in one step, as the mouse sends them.
   const UndoHistory::StepId drag = c.openStep();
-  for (int i = 1; i <= 5; ++i) c.moveVertex(VertexId(2, 0).packed(), Vec3(-0.05 * i, -0.05 * i, -0.02 * i), drag);
+  for (int i = 1; i <= 5; ++i)
+    c.moveVertex(VertexId(2, 0).packed(), Vec3(-0.05 * i, -0.05 * i, -0.02 * i), drag);
   EXPECT_FALSE(c.undo()) << "undo while the drag is still being made";
   c.closeStep(drag);
   ASSERT_TRUE(f.reaches(6)) << c.stats().lastError;
@@ -263,8 +265,10 @@ TEST(ViewConnection, SetsAnEdgeSharpByItsEndsAndUndoesIt) {
   const VertexId far(0, 0), opposite(0, 6);  // opposite corners of the cube
   c.setEdgeSharpness(far.packed(), opposite.packed(), 10.0f);
   ASSERT_TRUE(waitFor([&] { return c.stats().editsRejected == 1 && c.stats().editsPending == 0; }));
-  EXPECT_NE(c.stats().lastError.find("REJECT_REASON_INVALID_ARGUMENT"), std::string::npos) << c.stats().lastError;
-  EXPECT_NE(c.stats().lastError.find("v0:0 and v0:6 are not joined"), std::string::npos) << c.stats().lastError;
+  EXPECT_NE(c.stats().lastError.find("REJECT_REASON_INVALID_ARGUMENT"), std::string::npos)
+      << c.stats().lastError;
+  EXPECT_NE(c.stats().lastError.find("v0:0 and v0:6 are not joined"), std::string::npos)
+      << c.stats().lastError;
   c.setEdgeSharpness(ends[0].packed(), VertexId(2, ends[1].index()).packed(), 10.0f);
   ASSERT_TRUE(waitFor([&] { return c.stats().editsRejected == 2 && c.stats().editsPending == 0; }));
   EXPECT_NE(c.stats().lastError.find(ends[0].toString() + " and v2:" + std::to_string(ends[1].index()) +

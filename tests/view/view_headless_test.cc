@@ -340,11 +340,29 @@ TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   // Level-1 control vertices over a uniform level-2 tessellation: a sharp
   // level-1 edge changes the level-2 vertex on it. (At the displayed level a
   // lone sharp edge changes no limit position: both its ends are darts.)
-  const int rc = runBounded({TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
-                             "--token", server->adminToken(), "--document", std::to_string(doc), "--base-level",
-                             "2", "--max-level", "2", "--level", "1", "--edit-keys", "--screenshot",
-                             dir + "/keys.png", "--frames", "3", "--no-hud", "--timeout", "30"},
-                            {{"DISPLAY", xvfb.display()}, {"LIBGL_ALWAYS_SOFTWARE", "1"}}, dir + "/view.log", 60);
+  const int rc =
+      runBounded({TESSERA_VIEW_PATH,
+                  "--connect",
+                  "127.0.0.1:" + std::to_string(server->port()),
+                  "--token",
+                  server->adminToken(),
+                  "--document",
+                  std::to_string(doc),
+                  "--base-level",
+                  "2",
+                  "--max-level",
+                  "2",
+                  "--level",
+                  "1",
+                  "--edit-keys",
+                  "--screenshot",
+                  dir + "/keys.png",
+                  "--frames",
+                  "3",
+                  "--no-hud",
+                  "--timeout",
+                  "30"},
+                 {{"DISPLAY", xvfb.display()}, {"LIBGL_ALWAYS_SOFTWARE", "1"}}, dir + "/view.log", 60);
   const std::string log = testing::fileBytes(dir + "/view.log");
   ASSERT_EQ(rc, 0) << log;
   EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;

@@ -63,7 +63,8 @@ TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   EXPECT_NE(frames.status().message().find("--frames"), std::string::npos);
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--bogus", "1"}).isOk());
   EXPECT_TRUE(parseViewOptions({"--help"})->help);
-  auto keys = parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys", "--screenshot", "k.png"});
+  auto keys =
+      parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys", "--screenshot", "k.png"});
   ASSERT_TRUE(keys.isOk()) << keys.status().message();
   EXPECT_TRUE(keys->editKeys && keys->hashSurfaces);
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys"}).isOk());

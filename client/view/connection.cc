@@ -254,8 +254,17 @@ void Connection::run() {
   while (!stop_) {
     std::deque<Outgoing> out;
     {
+      // Paced below the server's default rate limit (200 commands a second,
+      // in bursts of up to 200): undoing a long drag sends one Undo per edit.
+      const auto now = Clock::now();
+      sendBudget_ = std::min(
+          kSendBurst, sendBudget_ + kSendRate * std::chrono::duration<double>(now - budgetAt_).count());
+      budgetAt_ = now;
       std::lock_guard lock(mutex_);
-      out.swap(outbox_);
+      for (; !outbox_.empty() && sendBudget_ >= 1; sendBudget_ -= 1) {
+        out.push_back(std::move(outbox_.front()));
+        outbox_.pop_front();
+      }
     }
     for (auto it = out.begin(); it != out.end(); ++it) {
       Outgoing& o = *it;

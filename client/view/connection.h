@@ -127,6 +127,10 @@ class Connection {
   client::DocumentView view_;          // network thread only
   wire::LodProfile profile_;           // network thread only
   std::map<uint64_t, Sent> inFlight_;  // by client_seq; network thread only
+  // Commands the network thread may send now: at most kSendRate a second.
+  static constexpr double kSendRate = 150, kSendBurst = 150;
+  double sendBudget_ = kSendBurst;
+  std::chrono::steady_clock::time_point budgetAt_ = std::chrono::steady_clock::now();
   // Versions acked but whose delta has not arrived, and the reverse.
   std::map<uint64_t, std::chrono::steady_clock::time_point> ackedVersions_, deltaArrivals_;
 

@@ -231,6 +231,24 @@ TEST(ViewConnection, UndoAndRedoStepOverAWholeDrag) {
   EXPECT_EQ(c.stats().editsRejected, 0u);
 }
 
+// A long drag (30 edits a second for over 8 s) has more edits than the
+// server's burst of 200 commands: its undo is paced, and none is refused.
+TEST(ViewConnection, UndoOfALongDragStaysUnderTheRateLimit) {
+  CubeFixture f;
+  ASSERT_NO_FATAL_FAILURE(f.start("tessera-view-long-drag"));
+  Connection& c = *f.connection;
+  const uint64_t before = c.stats().surfaceHash;
+  const UndoHistory::StepId drag = c.openStep();
+  const int moves = 250;
+  for (int i = 1; i <= moves; ++i) c.moveVertex(VertexId(2, 3).packed(), Vec3(0.001 * i, 0.0, 0.0), drag);
+  c.closeStep(drag);
+  ASSERT_TRUE(f.reaches(1 + moves)) << c.stats().lastError;
+  ASSERT_TRUE(c.undo()) << c.stats().lastError;
+  ASSERT_TRUE(f.reaches(1 + 2 * moves)) << c.stats().lastError;
+  EXPECT_EQ(c.stats().surfaceHash, before);
+  EXPECT_EQ(c.stats().editsRejected, 0u) << c.stats().lastError;
+}
+
 TEST(ViewConnection, SetsAnEdgeSharpByItsEndsAndUndoesIt) {
   CubeFixture f;
   ASSERT_NO_FATAL_FAILURE(f.start("tessera-view-edge"));

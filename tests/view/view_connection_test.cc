@@ -187,6 +187,15 @@ struct CubeFixture {
     ASSERT_TRUE(waitFor([&] { return connection->stats().ready; }));
     ASSERT_NE(connection->stats().surfaceHash, 0u);
   }
+  // A drag as the mouse makes it: `moves` MoveVertex edits of one vertex,
+  // the i-th to i * `step`, in one undo step. With `open`, the step is left
+  // open (the button still down).
+  UndoHistory::StepId drag(VertexId vertex, int moves, const Vec3& step, bool open = false) {
+    const UndoHistory::StepId id = connection->openStep();
+    for (int i = 1; i <= moves; ++i) connection->moveVertex(vertex.packed(), step * i, id);
+    if (!open) connection->closeStep(id);
+    return id;
+  }
   // Waits until the document is at `version` with nothing pending.
   bool reaches(uint64_t version) {
     return waitFor(
@@ -201,9 +210,7 @@ TEST(ViewConnection, UndoAndRedoStepOverAWholeDrag) {
   const uint64_t before = c.stats().surfaceHash;
 
   // A drag: five moves of one vertex in one step, as the mouse sends them.
-  const UndoHistory::StepId drag = c.openStep();
-  for (int i = 1; i <= 5; ++i)
-    c.moveVertex(VertexId(2, 0).packed(), Vec3(-0.05 * i, -0.05 * i, -0.02 * i), drag);
+  const UndoHistory::StepId drag = f.drag(VertexId(2, 0), 5, Vec3(-0.05, -0.05, -0.02), true);
   EXPECT_FALSE(c.undo()) << "undo while the drag is still being made";
   c.closeStep(drag);
   ASSERT_TRUE(f.reaches(6)) << c.stats().lastError;
@@ -238,10 +245,8 @@ TEST(ViewConnection, UndoOfALongDragStaysUnderTheRateLimit) {
   ASSERT_NO_FATAL_FAILURE(f.start("tessera-view-long-drag"));
   Connection& c = *f.connection;
   const uint64_t before = c.stats().surfaceHash;
-  const UndoHistory::StepId drag = c.openStep();
   const int moves = 250;
-  for (int i = 1; i <= moves; ++i) c.moveVertex(VertexId(2, 3).packed(), Vec3(0.001 * i, 0.0, 0.0), drag);
-  c.closeStep(drag);
+  f.drag(VertexId(2, 3), moves, Vec3(0.001, 0.0, 0.0));
   ASSERT_TRUE(f.reaches(1 + moves)) << c.stats().lastError;
   ASSERT_TRUE(c.undo()) << c.stats().lastError;
   ASSERT_TRUE(f.reaches(1 + 2 * moves)) << c.stats().lastError;

@@ -11,6 +11,7 @@
 #include "core/tessellation/document_grid.h"
 #include "core/util/file_io.h"
 #include "protocol/framing.h"
+#include "protocol/wire_ids.h"
 #include "server/journal_entry.h"
 #include "server/log.h"
 
@@ -300,7 +301,17 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
     }
     case wire::ClientMessage::kSetEdgeSharpness: {
       const auto& m = message.set_edge_sharpness();
-      return addedEdit(doc_.setEdgeSharpness(EdgeId::fromPacked(m.edge_id()), m.sharpness()));
+      EdgeId edge = EdgeId::fromPacked(m.edge_id());
+      if (m.end_vertex_ids_size() > 0) {  // the edge named by its ends instead
+        if (m.end_vertex_ids_size() != 2 || m.edge_id() != kEdgeIdNamedByEnds) {
+          return invalidArgument(
+              "edge sharpness: end_vertex_ids needs exactly two ids and edge_id all ones, got " +
+              std::to_string(m.end_vertex_ids_size()) + " ids and edge_id " + std::to_string(m.edge_id()));
+        }
+        TESSERA_ASSIGN_OR_RETURN(edge, doc_.edgeBetween(VertexId::fromPacked(m.end_vertex_ids(0)),
+                                                        VertexId::fromPacked(m.end_vertex_ids(1))));
+      }
+      return addedEdit(doc_.setEdgeSharpness(edge, m.sharpness()));
     }
     case wire::ClientMessage::kSetVertexType: {
       const auto& m = message.set_vertex_type();

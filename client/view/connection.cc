@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "protocol/wire_ids.h"
+
 namespace tessera::view {
 
 namespace {
@@ -56,6 +58,7 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   std::unique_ptr<Connection> c(new Connection(std::move(session), options.document));
   c->sessionOptions_ = s;
   c->profile_ = profile;
+  c->hashSurfaces_ = options.hashSurfaces;
   c->thread_ = std::thread([raw = c.get()] { raw->run(); });
   return c;
 }
@@ -86,6 +89,7 @@ bool Connection::reconnect() {
     if (session.isOk()) {
       session_ = std::move(*session);
       view_ = client::DocumentView(document_);
+      for (const auto& [seq, sent] : inFlight_) forget(sent);
       inFlight_.clear();
       ackedVersions_.clear();
       deltaArrivals_.clear();
@@ -132,13 +136,40 @@ void Connection::enqueue(wire::ClientMessage message, Sent kind) {
   outbox_.push_back({std::move(message), kind});
 }
 
+void Connection::enqueueEdit(wire::ClientMessage message, UndoHistory::StepId step) {
+  std::lock_guard lock(mutex_);
+  const bool own = step == 0;
+  if (own) step = history_.open();
+  history_.sent(step);
+  if (own) history_.close(step);
+  ++stats_.editsPending;
+  outbox_.push_back(
+      {std::move(message), {.at = {}, .edit = true, .undo = false, .redo = false, .step = step}});
+}
+
+void Connection::forget(const Sent& sent) {
+  if (sent.step == 0) return;
+  std::lock_guard lock(mutex_);
+  history_.dropped(sent.step);
+}
+
+UndoHistory::StepId Connection::openStep() {
+  std::lock_guard lock(mutex_);
+  return history_.open();
+}
+
+void Connection::closeStep(UndoHistory::StepId step) {
+  std::lock_guard lock(mutex_);
+  history_.close(step);
+}
+
 void Connection::countPending() {
   uint64_t queued = 0;
   for (const Outgoing& o : outbox_) queued += o.sent.edit ? 1 : 0;
   stats_.editsPending = queued + inFlight_.size() + ackedVersions_.size();
 }
 
-void Connection::moveVertex(uint64_t packedVertex, const Vec3& target) {
+void Connection::moveVertex(uint64_t packedVertex, const Vec3& target, UndoHistory::StepId step) {
   wire::ClientMessage m;
   auto* move = m.mutable_move_vertex();
   move->set_document_id(document_);
@@ -147,7 +178,7 @@ void Connection::moveVertex(uint64_t packedVertex, const Vec3& target) {
   move->mutable_target()->set_y(target[1]);
   move->mutable_target()->set_z(target[2]);
   move->set_mode(wire::MOVE_MODE_DIRECT_MANIPULATION);
-  enqueue(std::move(m), {.at = {}, .edit = true});
+  enqueueEdit(std::move(m), step);
 }
 
 void Connection::setVertexType(uint64_t packedVertex, wire::VertexType type) {
@@ -155,40 +186,57 @@ void Connection::setVertexType(uint64_t packedVertex, wire::VertexType type) {
   m.mutable_set_vertex_type()->set_document_id(document_);
   m.mutable_set_vertex_type()->set_vertex_id(packedVertex);
   m.mutable_set_vertex_type()->set_type(type);
-  enqueue(std::move(m), {.at = {}, .edit = true});
+  enqueueEdit(std::move(m), 0);
 }
 
-void Connection::select(std::optional<uint64_t> packedVertex) {
+void Connection::setEdgeSharpness(uint64_t packedA, uint64_t packedB, float sharpness) {
+  wire::ClientMessage m;
+  auto* e = m.mutable_set_edge_sharpness();
+  e->set_document_id(document_);
+  e->set_edge_id(kEdgeIdNamedByEnds);
+  e->add_end_vertex_ids(packedA);
+  e->add_end_vertex_ids(packedB);
+  e->set_sharpness(sharpness);
+  enqueueEdit(std::move(m), 0);
+}
+
+void Connection::select(const std::vector<uint64_t>& packedVertices) {
   wire::ClientMessage m;
   m.mutable_select()->set_document_id(document_);
-  if (packedVertex) m.mutable_select()->mutable_selection()->add_vertex_ids(*packedVertex);
+  for (uint64_t id : packedVertices) m.mutable_select()->mutable_selection()->add_vertex_ids(id);
   enqueue(std::move(m), {});
 }
 
-void Connection::undo() {
-  wire::ClientMessage m;
-  {
-    std::lock_guard lock(mutex_);
-    if (done_.empty()) return;
-    m.mutable_undo()->set_document_id(document_);
-    m.mutable_undo()->set_edit_id(done_.back());
-    undone_.push_back(done_.back());
-    done_.pop_back();
-  }
-  enqueue(std::move(m), {.at = {}, .edit = true, .undo = true});
+bool Connection::undo() {
+  return step(true);
+}
+bool Connection::redo() {
+  return step(false);
 }
 
-void Connection::redo() {
-  wire::ClientMessage m;
+bool Connection::step(bool undo) {
+  std::vector<uint64_t> ids;
   {
     std::lock_guard lock(mutex_);
-    if (undone_.empty()) return;
-    m.mutable_redo()->set_document_id(document_);
-    m.mutable_redo()->set_edit_id(undone_.back());
-    done_.push_back(undone_.back());
-    undone_.pop_back();
+    auto planned = undo ? history_.undo() : history_.redo();
+    if (!planned.isOk()) {
+      stats_.lastError = planned.status().message();
+      return false;
+    }
+    ids = std::move(*planned);
   }
-  enqueue(std::move(m), {.at = {}, .edit = true, .redo = true});
+  for (uint64_t id : ids) {
+    wire::ClientMessage m;
+    if (undo) {
+      m.mutable_undo()->set_document_id(document_);
+      m.mutable_undo()->set_edit_id(id);
+    } else {
+      m.mutable_redo()->set_document_id(document_);
+      m.mutable_redo()->set_edit_id(id);
+    }
+    enqueue(std::move(m), {.at = {}, .edit = true, .undo = undo, .redo = !undo});
+  }
+  return true;
 }
 
 void Connection::changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle) {
@@ -206,14 +254,25 @@ void Connection::run() {
   while (!stop_) {
     std::deque<Outgoing> out;
     {
+      // Paced below the server's default rate limit (200 commands a second,
+      // in bursts of up to 200): undoing a long drag sends one Undo per edit.
+      const auto now = Clock::now();
+      sendBudget_ = std::min(
+          kSendBurst, sendBudget_ + kSendRate * std::chrono::duration<double>(now - budgetAt_).count());
+      budgetAt_ = now;
       std::lock_guard lock(mutex_);
-      out.swap(outbox_);
+      for (; !outbox_.empty() && sendBudget_ >= 1; sendBudget_ -= 1) {
+        out.push_back(std::move(outbox_.front()));
+        outbox_.pop_front();
+      }
     }
-    for (Outgoing& o : out) {
+    for (auto it = out.begin(); it != out.end(); ++it) {
+      Outgoing& o = *it;
       if (o.message.has_subscribe()) profile_ = o.message.subscribe().profile();
       auto seq = session_->send(std::move(o.message));
       if (!seq.isOk()) {
         lost(seq.status().message());
+        for (; it != out.end(); ++it) forget(it->sent);  // dropped with the connection
         break;
       }
       o.sent.at = Clock::now();
@@ -299,7 +358,9 @@ void Connection::handle(const wire::ServerMessage& m) {
       ++stats_.deltas;
       ++stats_.regionUpdates;
     }
+    const uint64_t hash = hashSurfaces_ ? view_.surfaceHash() : 0;
     std::lock_guard lock(mutex_);
+    stats_.surfaceHash = hash;
     stats_.ready = view_.ready();
     stats_.version = view_.version();
     stats_.bytesReceived = view_.bytesReceived();
@@ -319,6 +380,7 @@ void Connection::handle(const wire::ServerMessage& m) {
     const Sent sent = it->second;
     inFlight_.erase(it);
     if (m.has_reject()) {
+      forget(sent);
       std::lock_guard lock(mutex_);
       stats_.lastError = wire::RejectReason_Name(m.reject().reason()) + ": " + m.reject().message();
       ++stats_.editsRejected;
@@ -333,10 +395,9 @@ void Connection::handle(const wire::ServerMessage& m) {
     } else if (version > view_.version()) {
       ackedVersions_[version] = sent.at;
     }
-    if (!sent.undo && !sent.redo && m.ack().edit_id() != 0) {
+    if (sent.step != 0 && m.ack().edit_id() != 0) {
       std::lock_guard lock(mutex_);
-      done_.push_back(m.ack().edit_id());
-      undone_.clear();
+      history_.acked(sent.step, m.ack().edit_id());
     }
     return;
   }

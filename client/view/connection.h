@@ -22,6 +22,7 @@
 
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
+#include "client/view/undo_history.h"
 #include "client/view/view_options.h"
 
 namespace tessera::view {
@@ -54,7 +55,10 @@ struct ConnectionStats {
   uint64_t editsSent = 0, editsRejected = 0;
   // Edits queued, unanswered, or acked without their delta yet.
   uint64_t editsPending = 0;
-  std::string lastError;  // the latest Reject or Error, for the HUD
+  std::string lastError;  // the latest Reject or Error, or why undo waits, for the HUD
+  // DocumentView::surfaceHash() after the latest snapshot or delta; only
+  // with ViewOptions::hashSurfaces (a pass over every region per delta).
+  uint64_t surfaceHash = 0;
 };
 
 class Connection {
@@ -70,12 +74,22 @@ class Connection {
   ConnectionStats stats() const;
   std::vector<Collaborator> collaborators() const;
 
-  // Queued for the network thread. document_id is filled in by the caller.
-  void moveVertex(uint64_t packedVertex, const Vec3& target);
+  // Undo steps (undo_history.h): a drag opens one and closes it on release.
+  UndoHistory::StepId openStep();
+  void closeStep(UndoHistory::StepId step);
+
+  // Queued for the network thread. An edit without a step is a step of its own.
+  void moveVertex(uint64_t packedVertex, const Vec3& target, UndoHistory::StepId step = 0);
   void setVertexType(uint64_t packedVertex, wire::VertexType type);
-  void select(std::optional<uint64_t> packedVertex);  // nothing clears the selection
-  void undo();
-  void redo();
+  // The edge joining two vertices of one level, named by its ends: the
+  // server finds it (SetEdgeSharpness.end_vertex_ids).
+  void setEdgeSharpness(uint64_t packedA, uint64_t packedB, float sharpness);
+  void select(const std::vector<uint64_t>& packedVertices);  // empty clears the selection
+  // Undo or redo this viewer's newest step. False, with stats().lastError
+  // saying why, when there is none or it is not finished.
+  bool undo();
+  bool redo();
+
   // Unsubscribe and subscribe again with another profile.
   void changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle);
 
@@ -84,6 +98,7 @@ class Connection {
     std::chrono::steady_clock::time_point at;
     bool edit = false;  // an edit, undo or redo: its Ack names a version
     bool undo = false, redo = false;
+    UndoHistory::StepId step = 0;  // edits only
   };
   struct Outgoing {
     wire::ClientMessage message;
@@ -93,6 +108,11 @@ class Connection {
   Connection(std::unique_ptr<client::Session> session, uint64_t document);
   void run();
   void enqueue(wire::ClientMessage message, Sent kind);
+  void enqueueEdit(wire::ClientMessage message, UndoHistory::StepId step);
+  // Sends Undo (or Redo) for each of the history's ids, in its order.
+  bool step(bool undo);
+  // Edits whose answer will never come leave their undo step.
+  void forget(const Sent& sent);
   void handle(const wire::ServerMessage& message);
   void publishAll();
   void recordLatency(std::chrono::steady_clock::duration d);
@@ -107,6 +127,10 @@ class Connection {
   client::DocumentView view_;          // network thread only
   wire::LodProfile profile_;           // network thread only
   std::map<uint64_t, Sent> inFlight_;  // by client_seq; network thread only
+  // Commands the network thread may send now: at most kSendRate a second.
+  static constexpr double kSendRate = 150, kSendBurst = 150;
+  double sendBudget_ = kSendBurst;
+  std::chrono::steady_clock::time_point budgetAt_ = std::chrono::steady_clock::now();
   // Versions acked but whose delta has not arrived, and the reverse.
   std::map<uint64_t, std::chrono::steady_clock::time_point> ackedVersions_, deltaArrivals_;
 
@@ -115,9 +139,10 @@ class Connection {
   RegionMap published_;
   ConnectionStats stats_;
   std::vector<Collaborator> collaborators_;
-  std::vector<uint64_t> done_, undone_;  // own edit ids for undo / redo
+  UndoHistory history_;
 
   std::atomic<bool> stop_{false};
+  bool hashSurfaces_ = false;
   std::thread thread_;
 };
 

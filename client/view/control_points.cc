@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "core/hierarchy/ids.h"
 
@@ -53,6 +54,45 @@ V3 dragTarget(const OrbitCamera& camera, V3 anchor, float px, float py, int widt
   if (std::abs(denom) < 1e-6f) return anchor;
   const float t = dot(anchor - ray.origin, n) / denom;
   return ray.origin + ray.direction * t;
+}
+
+std::vector<uint64_t> levelNeighbours(const RegionMap& regions, uint64_t vertex, int level) {
+  // Displayed triangle edges among the vertices born at level + 1 or before,
+  // by index (an index has one birth level).
+  std::map<uint64_t, std::set<uint64_t>> joined;
+  std::map<uint64_t, int> born;
+  for (const auto& [regionId, mesh] : regions) {
+    for (const auto& t : mesh->triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const VertexId a = VertexId::fromPacked(mesh->vertexIds[t[k]]);
+        const VertexId b = VertexId::fromPacked(mesh->vertexIds[t[(k + 1) % 3]]);
+        if (a.level() > level + 1 || b.level() > level + 1) continue;
+        joined[a.index()].insert(b.index());
+        joined[b.index()].insert(a.index());
+        born[a.index()] = a.level(), born[b.index()] = b.level();
+      }
+    }
+  }
+  const uint64_t v = VertexId::fromPacked(vertex).index();
+  std::set<uint64_t> out;
+  for (uint64_t n : joined[v]) {
+    if (born[n] <= level) {
+      out.insert(VertexId(level, n).packed());  // shown at `level`: a triangle edge is an edge
+      continue;
+    }
+    // Shown at level + 1: n lies on an edge of `level`, whose other end is
+    // its only other neighbour born by then.
+    for (uint64_t far : joined[n])
+      if (far != v && born[far] <= level) out.insert(VertexId(level, far).packed());
+  }
+  return {out.begin(), out.end()};
+}
+
+std::vector<V3> segmentPoints(V3 a, V3 b, int count) {
+  std::vector<V3> out;
+  for (int i = 0; i < count; ++i)
+    out.push_back(a + (b - a) * (static_cast<float>(i) / static_cast<float>(count - 1)));
+  return out;
 }
 
 bool bounds(const RegionMap& regions, V3* lo, V3* hi) {

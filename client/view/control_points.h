@@ -36,6 +36,18 @@ std::optional<size_t> pickPoint(const std::vector<ControlPoint>& points, const O
 // through `anchor` facing the camera.
 V3 dragTarget(const OrbitCamera& camera, V3 anchor, float px, float py, int width, int height);
 
+// The control vertices of `level` joined to `vertex` (packed, at `level`)
+// by an edge of that level, as far as the displayed triangles show, in id
+// order: where the tessellation shows `level`, its triangle edges; where it
+// shows level + 1, the far ends of the vertices on those edges. Deeper
+// tessellations show none, and crack-closing fans may show a wrong one: the
+// server has the last word (Document::edgeBetween).
+std::vector<uint64_t> levelNeighbours(const RegionMap& regions, uint64_t vertex, int level);
+
+// `count` >= 2 points evenly spaced from a to b, both included: a picked
+// edge drawn as a dotted line.
+std::vector<V3> segmentPoints(V3 a, V3 b, int count);
+
 // The bounding box of every region vertex; false when there is none.
 bool bounds(const RegionMap& regions, V3* lo, V3* hi);
 

@@ -37,8 +37,15 @@ void drawHud(const HudFacts& f, ViewToggles& t) {
   ImGui::Checkbox("region colours (C)", &t.regionColours);
   ImGui::Checkbox("control vertices (V)", &t.showControls);
   ImGui::SliderInt("control level ([ ])", &t.controlLevel, 0, 10);
-  ImGui::Text("%zu control vertices; picked %s", f.controlPoints,
-              f.pickedVertex ? vertexName(*f.pickedVertex).c_str() : "none");
+  if (f.pickedVertex && f.pickedEdgeEnd) {
+    ImGui::Text("%zu control vertices; picked the edge %s - %s", f.controlPoints,
+                vertexName(*f.pickedVertex).c_str(), vertexName(*f.pickedEdgeEnd).c_str());
+    ImGui::Text("E: infinitely sharp, Shift+E: smooth");
+  } else {
+    ImGui::Text("%zu control vertices; picked %s", f.controlPoints,
+                f.pickedVertex ? vertexName(*f.pickedVertex).c_str() : "none");
+    if (f.pickedVertex) ImGui::Text("shift+click a neighbour to pick an edge");
+  }
 
   if (ImGui::CollapsingHeader("LOD profile")) {
     ImGui::SliderInt("base level", &t.baseLevel, 0, 8);

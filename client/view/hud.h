@@ -31,6 +31,7 @@ struct HudFacts {
   double bytesPerSecond = 0;
   size_t controlPoints = 0;
   std::optional<uint64_t> pickedVertex;
+  std::optional<uint64_t> pickedEdgeEnd;  // with pickedVertex: the picked edge's other end
   ConnectionStats stats;
   std::vector<Collaborator> collaborators;
 };

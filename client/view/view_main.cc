@@ -5,10 +5,10 @@
 // the HUD. With --screenshot it renders a number of frames once the first
 // snapshot is in, writes a PNG and exits.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -23,26 +23,16 @@
 #include "client/view/connection.h"
 #include "client/view/control_points.h"
 #include "client/view/hud.h"
+#include "client/view/input.h"
 #include "client/view/renderer.h"
 #include "client/view/screenshot.h"
+#include "client/view/self_test.h"
 #include "client/view/view_options.h"
 
 namespace tessera::view {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// Input state shared with the GLFW callbacks (through the window user pointer).
-struct App {
-  OrbitCamera camera;
-  ViewToggles toggles;
-  Connection* connection = nullptr;
-  float scroll = 0;
-  std::optional<uint64_t> picked;  // packed id at toggles.controlLevel
-  std::set<uint64_t> corners;      // vertices this viewer made corners
-  bool frameRequested = false, quit = false;
-  bool undo = false, redo = false;
-};
 
 void onScroll(GLFWwindow* window, double, double dy) {
   static_cast<App*>(glfwGetWindowUserPointer(window))->scroll += static_cast<float>(dy);
@@ -51,65 +41,8 @@ void onScroll(GLFWwindow* window, double, double dy) {
 void onKey(GLFWwindow* window, int key, int, int action, int mods) {
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
-  App& app = *static_cast<App*>(glfwGetWindowUserPointer(window));
-  const bool ctrl = (mods & GLFW_MOD_CONTROL) != 0, shift = (mods & GLFW_MOD_SHIFT) != 0;
-  switch (key) {
-    case GLFW_KEY_W:
-      app.toggles.wireframe = !app.toggles.wireframe;
-      break;
-    case GLFW_KEY_C:
-      app.toggles.regionColours = !app.toggles.regionColours;
-      break;
-    case GLFW_KEY_V:
-      app.toggles.showControls = !app.toggles.showControls;
-      break;
-    case GLFW_KEY_F:
-      app.frameRequested = true;
-      break;
-    case GLFW_KEY_LEFT_BRACKET:
-      if (app.toggles.controlLevel > 0) --app.toggles.controlLevel, app.picked.reset();
-      break;
-    case GLFW_KEY_RIGHT_BRACKET:
-      if (app.toggles.controlLevel < 10) ++app.toggles.controlLevel, app.picked.reset();
-      break;
-    case GLFW_KEY_K:
-      if (app.picked) {
-        const bool corner = app.corners.count(*app.picked) == 0;
-        app.connection->setVertexType(*app.picked,
-                                      corner ? wire::VERTEX_TYPE_CORNER : wire::VERTEX_TYPE_SMOOTH);
-        if (corner) {
-          app.corners.insert(*app.picked);
-        } else {
-          app.corners.erase(*app.picked);
-        }
-      }
-      break;
-    case GLFW_KEY_Z:
-      if (ctrl) (shift ? app.redo : app.undo) = true;
-      break;
-    case GLFW_KEY_Y:
-      if (ctrl) app.redo = true;
-      break;
-    case GLFW_KEY_ESCAPE:
-      app.picked.reset();
-      app.connection->select(std::nullopt);
-      break;
-    case GLFW_KEY_Q:
-      app.quit = true;
-      break;
-    default:
-      break;
-  }
+  handleKey(*static_cast<App*>(glfwGetWindowUserPointer(window)), key, mods);
 }
-
-// One frame of mouse state, in framebuffer pixels; from GLFW or from the
-// headless drag script.
-struct MouseInput {
-  float px = 0, py = 0;
-  bool left = false, right = false, shift = false;
-  float scroll = 0;
-  bool captured = false;  // ImGui wants the mouse
-};
 
 MouseInput readMouse(GLFWwindow* window, App& app, int width, int height) {
   MouseInput in;
@@ -124,94 +57,41 @@ MouseInput readMouse(GLFWwindow* window, App& app, int width, int height) {
   in.left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
   in.right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS ||
              glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
-  in.shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS;
+  in.shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+             glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
   in.scroll = app.scroll;
   app.scroll = 0;
   return in;
 }
-
-// Mouse: left on a control vertex drags it, left elsewhere orbits, right or
-// shift+left pans, the wheel zooms.
-class MouseTool {
- public:
-  void update(const MouseInput& in, App& app, const std::vector<ControlPoint>& points, int width,
-              int height) {
-    if (!in.captured && in.scroll != 0) app.camera.zoom(in.scroll);
-    if (in.left && !wasLeft_ && !in.captured) {
-      mode_ = in.shift ? Mode::kPan : Mode::kOrbit;
-      if (!in.shift && app.toggles.showControls) {
-        if (auto hit = pickPoint(points, app.camera, width, height, in.px, in.py, 10.0f)) {
-          mode_ = Mode::kDrag;
-          app.picked = points[*hit].id;
-          anchor_ = points[*hit].position;
-          app.connection->select(app.picked);
-        }
-      }
-    } else if (in.right && !wasRight_ && !in.captured) {
-      mode_ = Mode::kPan;
-    }
-    const float dx = in.px - lastX_, dy = in.py - lastY_;
-    if (mode_ == Mode::kOrbit && in.left) app.camera.orbit(dx, dy);
-    if (mode_ == Mode::kPan && (in.left || in.right)) app.camera.pan(dx, dy, height);
-    if (mode_ == Mode::kDrag && app.picked) {
-      const auto now = Clock::now();
-      if (dx != 0 || dy != 0) pending_ = true;
-      // At most 30 edits a second while dragging, and the last one on release.
-      if (pending_ && (!in.left || now - lastSend_ > std::chrono::milliseconds(33))) {
-        const V3 t = dragTarget(app.camera, anchor_, in.px, in.py, width, height);
-        app.connection->moveVertex(*app.picked, Vec3(t.x, t.y, t.z));
-        lastSend_ = now;
-        pending_ = false;
-      }
-    }
-    if (!in.left && !in.right) mode_ = Mode::kNone;
-    wasLeft_ = in.left, wasRight_ = in.right, lastX_ = in.px, lastY_ = in.py;
-  }
-
- private:
-  enum class Mode { kNone, kOrbit, kPan, kDrag };
-  Mode mode_ = Mode::kNone;
-  bool wasLeft_ = false, wasRight_ = false, pending_ = false;
-  float lastX_ = 0, lastY_ = 0;
-  V3 anchor_;
-  Clock::time_point lastSend_;
-};
-
-// The headless --drag script: hover over the control vertex nearest the
-// centre, press, move by (dx, dy) in 10 steps, release. Then the frames wait
-// until every edit it made has come back as a delta.
-class DragScript {
- public:
-  DragScript(int dx, int dy) : dx_(static_cast<float>(dx)), dy_(static_cast<float>(dy)) {}
-  bool done() const { return step_ > kSteps + 2; }
-  std::optional<MouseInput> next(const App& app, const std::vector<ControlPoint>& points, int width,
-                                 int height) {
-    if (step_ == 0) {
-      auto hit = pickPoint(points, app.camera, width, height, width / 2.0f, height / 2.0f, 1e9f);
-      if (!hit) return std::nullopt;
-      auto s = app.camera.project(points[*hit].position, width, height);
-      if (!s) return std::nullopt;
-      x0_ = (*s)[0], y0_ = (*s)[1];
-    }
-    MouseInput in;
-    const float t = std::clamp(static_cast<float>(step_ - 1) / kSteps, 0.0f, 1.0f);
-    in.px = x0_ + dx_ * t, in.py = y0_ + dy_ * t;
-    in.left = step_ >= 1 && step_ <= kSteps + 1;
-    ++step_;
-    return in;
-  }
-
- private:
-  static constexpr int kSteps = 10;
-  float dx_, dy_, x0_ = 0, y0_ = 0;
-  int step_ = 0;
-};
 
 std::vector<V3> visible(const std::vector<ControlPoint>& points, V3 eye) {
   std::vector<V3> out;
   for (const ControlPoint& p : points)
     if (dot(p.normal, eye - p.position) >= 0) out.push_back(p.position);
   return out;
+}
+
+// Collaborators' selections in cyan, this viewer's pick in red. Two
+// selected vertices are an edge, drawn as a dotted line between them.
+void drawSelections(Renderer& renderer, const App& app, const std::vector<ControlPoint>& points,
+                    const std::vector<Collaborator>& collaborators, const DrawOptions& draw) {
+  auto mark = [&](const std::vector<uint64_t>& ids, std::array<float, 3> colour) {
+    std::vector<V3> ends;
+    for (uint64_t id : ids) {
+      auto it = std::lower_bound(points.begin(), points.end(), id,
+                                 [](const ControlPoint& p, uint64_t v) { return p.id < v; });
+      if (it != points.end() && it->id == id) ends.push_back(it->position);
+    }
+    renderer.drawPoints(ends, PointStyle{colour, 12}, draw);
+    if (ends.size() == 2)
+      renderer.drawPoints(segmentPoints(ends[0], ends[1], 24), PointStyle{colour, 5}, draw);
+  };
+  for (const Collaborator& c : collaborators)
+    if (!c.self) mark(c.selectedVertices, {0.2f, 0.9f, 1.0f});
+  std::vector<uint64_t> own;
+  if (app.picked) own.push_back(*app.picked);
+  if (app.edgeEnd) own.push_back(*app.edgeEnd);
+  mark(own, {1.0f, 0.2f, 0.2f});
 }
 
 int run(const ViewOptions& options) {
@@ -269,6 +149,9 @@ int run(const ViewOptions& options) {
     MouseTool mouse;
     std::optional<DragScript> script;
     if (headless && options.drag) script.emplace(options.dragX, options.dragY);
+    std::optional<KeyScript> keys;
+    if (headless && options.editKeys) keys.emplace();
+    const bool scripted = script || keys;
     RegionMap regions;
     std::vector<ControlPoint> points;
     uint64_t seenUpdates = 0;
@@ -334,15 +217,24 @@ int run(const ViewOptions& options) {
       }
       if (!headless) {
         mouse.update(readMouse(window, app, width, height), app, points, width, height);
-      } else if (script && stats.ready && framesReady >= 2 && !script->done()) {
-        auto in = script->next(app, points, width, height);
-        if (!in) {
-          std::fprintf(stderr, "tessera-view: --drag: no visible control vertex at level %d\n",
-                       app.toggles.controlLevel);
+      } else if (scripted && stats.ready && framesReady >= 2 && !(script ? script->done() : keys->done())) {
+        std::optional<MouseInput> in;
+        std::string error;
+        if (script) {
+          in = script->next(app, points, width, height);
+          if (!in) error = "--drag: no visible control vertex";
+        } else {
+          // Fresh counts: the frame loop may just have sent an undo or redo.
+          KeyScript::Frame frame = keys->next(app, regions, points, (*connection)->stats(), width, height);
+          in = frame.mouse;
+          if (!frame.error.empty()) error = "--edit-keys: " + frame.error;
+        }
+        if (!error.empty()) {
+          std::fprintf(stderr, "tessera-view: %s at level %d\n", error.c_str(), app.toggles.controlLevel);
           rc = 1;
           break;
         }
-        mouse.update(*in, app, points, width, height);
+        if (in) mouse.update(*in, app, points, width, height);
       }
 
       glViewport(0, 0, width, height);
@@ -357,17 +249,7 @@ int run(const ViewOptions& options) {
       (*renderer)->drawSurface(draw);
       if (app.toggles.showControls) {
         (*renderer)->drawPoints(visible(points, app.camera.eye()), PointStyle{}, draw);
-        // Collaborators' selections in cyan, this viewer's pick in red.
-        std::vector<V3> theirs, mine;
-        std::set<uint64_t> selected;
-        for (const Collaborator& c : (*connection)->collaborators())
-          if (!c.self) selected.insert(c.selectedVertices.begin(), c.selectedVertices.end());
-        for (const ControlPoint& p : points) {
-          if (app.picked && p.id == *app.picked) mine.push_back(p.position);
-          if (selected.count(p.id)) theirs.push_back(p.position);
-        }
-        (*renderer)->drawPoints(theirs, PointStyle{{0.2f, 0.9f, 1.0f}, 12}, draw);
-        (*renderer)->drawPoints(mine, PointStyle{{1.0f, 0.2f, 0.2f}, 12}, draw);
+        drawSelections(**renderer, app, points, (*connection)->collaborators(), draw);
       }
       if (options.hud) {
         HudFacts facts{.fps = fps,
@@ -376,23 +258,26 @@ int run(const ViewOptions& options) {
                        .bytesPerSecond = bytesPerSecond,
                        .controlPoints = points.size(),
                        .pickedVertex = app.picked,
+                       .pickedEdgeEnd = app.edgeEnd,
                        .stats = stats,
                        .collaborators = (*connection)->collaborators()};
         drawHud(facts, app.toggles);
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
       }
-      // With --drag, frames count from when every edit has its delta.
-      // Fresh counts: the mouse may have queued an edit this frame.
-      const ConnectionStats after = script ? (*connection)->stats() : stats;
-      const bool waiting = script && (!script->done() || after.editsPending > 0);
-      if (script && script->done() && after.editsPending == 0 && after.editsSent == 0) {
-        std::fprintf(stderr, "tessera-view: --drag: the drag sent no edit\n");
+      // With a self-test, frames count from when every edit has its delta.
+      // Fresh counts: the mouse or a key may have queued an edit this frame.
+      const ConnectionStats after = scripted ? (*connection)->stats() : stats;
+      const bool scriptDone = script ? script->done() : (!keys || keys->done());
+      const bool waiting = scripted && (!scriptDone || after.editsPending > 0);
+      if (scripted && scriptDone && after.editsPending == 0 && after.editsSent == 0) {
+        std::fprintf(stderr, "tessera-view: the self-test sent no edit\n");
         rc = 1;
         break;
       }
       if (waiting && now - start > std::chrono::duration<double>(options.timeoutSeconds)) {
-        std::fprintf(stderr, "tessera-view: --drag: edits unanswered after %g s\n", options.timeoutSeconds);
+        std::fprintf(stderr, "tessera-view: self-test: edits unanswered after %g s\n",
+                     options.timeoutSeconds);
         rc = 1;
         break;
       }
@@ -404,6 +289,11 @@ int run(const ViewOptions& options) {
               app.picked ? vertexName(*app.picked).c_str() : "nothing", options.dragX, options.dragY,
               static_cast<unsigned long long>(after.editsSent),
               static_cast<unsigned long long>(after.editsRejected), after.lastLatencyMs, after.maxLatencyMs);
+        }
+        if (keys) {
+          std::printf("keys: %s; %llu edits sent, %llu rejected\n", keys->report().c_str(),
+                      static_cast<unsigned long long>(after.editsSent),
+                      static_cast<unsigned long long>(after.editsRejected));
         }
         const Status written = writeScreenshot(options.screenshot, width, height);
         if (!written.isOk()) {

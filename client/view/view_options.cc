@@ -21,6 +21,8 @@ const char* const kViewHelp =
     "                         first snapshot, write OUT.png and exit\n"
     "  --drag DX,DY           headless: first drag the control vertex nearest the centre\n"
     "                         by DX,DY pixels (a self-test of picking and editing)\n"
+    "  --edit-keys            headless: first pick an edge and press E, K, Ctrl+Z, Ctrl+Z,\n"
+    "                         Ctrl+Y, printing the surface hash after each (a self-test)\n"
     "  --timeout SECONDS      to connect and get the first snapshot (default 30)\n";
 
 namespace {
@@ -58,6 +60,10 @@ Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
     }
     if (a == "--no-hud") {
       o.hud = false;
+      continue;
+    }
+    if (a == "--edit-keys") {
+      o.editKeys = o.hashSurfaces = true;
       continue;
     }
     if (i + 1 >= args.size()) return invalidArgument(a + ": unknown option or missing value");
@@ -112,6 +118,8 @@ Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
   if (!haveConnect) return invalidArgument("--connect HOST:PORT is required");
   if (o.document == 0) return invalidArgument("--document D is required");
   if (o.drag && o.screenshot.empty()) return invalidArgument("--drag needs --screenshot");
+  if (o.editKeys && o.screenshot.empty()) return invalidArgument("--edit-keys needs --screenshot");
+  if (o.editKeys && o.drag) return invalidArgument("--edit-keys and --drag are separate self-tests");
   if (o.baseLevel > o.maxLevel) return invalidArgument("--base-level must not exceed --max-level");
   return o;
 }

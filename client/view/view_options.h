@@ -33,6 +33,11 @@ struct ViewOptions {
   // input, wait for the edits' deltas, then count the frames.
   bool drag = false;
   int dragX = 0, dragY = 0;
+  // Headless self-test of the edit keys: pick an edge, press E, K, Ctrl+Z,
+  // Ctrl+Z, Ctrl+Y (self_test.h) and print the surface hash after each.
+  bool editKeys = false;
+  // Keep ConnectionStats::surfaceHash (set by editKeys, and by tests).
+  bool hashSurfaces = false;
   double timeoutSeconds = 30;  // to connect and receive the first snapshot
   bool help = false;
 };

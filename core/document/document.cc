@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "core/hierarchy/incidence.h"
 #include "core/loop/direct_manipulation.h"
 #include "core/loop/local_frame.h"
 #include "core/loop/surfaces.h"
@@ -215,6 +216,10 @@ Expected<EditId> Document::setEdgeSharpness(EdgeId edge, float sharpness) {
 
 Expected<EditId> Document::setVertexSharpness(VertexId vertex, float sharpness) {
   return add(Edit{{}, true, VertexSharpnessEdit{vertex, sharpness}});
+}
+
+Expected<EdgeId> Document::edgeBetween(VertexId a, VertexId b) const {
+  return tessera::edgeBetween(sparse_->level(0).mesh, counts_, a, b);
 }
 
 Edit* Document::find(EditId id) {

@@ -61,6 +61,10 @@ class Document {
   Expected<EditId> moveBy(std::span<const VertexId> vertices, const Vec3& displacement);
   Expected<EditId> setEdgeSharpness(EdgeId edge, float sharpness);
   Expected<EditId> setVertexSharpness(VertexId vertex, float sharpness);
+  // The edge joining two vertices of one level, in either order: how a
+  // client that knows only vertex ids names an edge (hierarchy/incidence.h).
+  // Errors name both ids.
+  Expected<EdgeId> edgeBetween(VertexId a, VertexId b) const;
 
   // Re-applies an edit exactly as it was recorded (journal replay): its id
   // must be the next one, and it is validated as if just made.

@@ -88,6 +88,15 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_sharpness(2.5f);
   }
   {
+    // The same edit naming the edge by its end vertices.
+    auto* m = add().mutable_set_edge_sharpness();
+    m->set_document_id(42);
+    m->set_edge_id(~uint64_t{0});
+    m->add_end_vertex_ids(packedId(2, 7));
+    m->add_end_vertex_ids(packedId(2, 31));
+    m->set_sharpness(10.0f);
+  }
+  {
     auto* m = add().mutable_set_vertex_type();
     m->set_document_id(42);
     m->set_vertex_id(packedId(1, 9));

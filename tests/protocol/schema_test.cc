@@ -103,6 +103,7 @@ MoveVertex.mode = 4 MoveMode
 SetEdgeSharpness.document_id = 1 uint64
 SetEdgeSharpness.edge_id = 2 uint64
 SetEdgeSharpness.sharpness = 3 float
+SetEdgeSharpness.end_vertex_ids = 4 repeated uint64
 SetVertexType.document_id = 1 uint64
 SetVertexType.vertex_id = 2 uint64
 SetVertexType.type = 3 VertexType oneof value

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "client/lib/session.h"
@@ -22,6 +23,7 @@
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
+#include "view/cube_document.h"
 
 namespace tessera {
 namespace {
@@ -304,6 +306,77 @@ TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
   kill(interactive, SIGTERM);
   waitpid(interactive, &status, 0);
   EXPECT_EQ(server->stop(), 0);
+}
+
+// "name=hash" pairs after "surface hashes:" in the --edit-keys line, in order.
+std::vector<std::pair<std::string, std::string>> surfaceHashes(const std::string& log) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const size_t at = log.find("surface hashes:");
+  if (at == std::string::npos) return out;
+  std::istringstream line(log.substr(at + 15, log.find(';', at) - at - 15));
+  std::string token;
+  while (line >> token) {
+    const size_t eq = token.find('=');
+    if (eq != std::string::npos) out.push_back({token.substr(0, eq), token.substr(eq + 1)});
+  }
+  return out;
+}
+
+// --edit-keys: the E, K, Ctrl+Z and Ctrl+Y keys go through the viewer's own
+// key handling. E on an edge picked by click and shift+click, and K, change
+// the surface; two undos restore it step by step; redo brings the edge back.
+TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
+  const auto xvfbBinary = findXvfb();
+  if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed (deploy/install-deps.sh installs it)";
+  const std::string dir = testing::makeTempDir("tessera-view-keys");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  // No tags: every edge starts smooth.
+  auto created = testing::createCube(*server, false, 4);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  const uint64_t doc = *created;
+  Xvfb xvfb;
+  ASSERT_TRUE(xvfb.start(*xvfbBinary, dir + "/xvfb.log")) << "Xvfb did not start; see " << dir << "/xvfb.log";
+  // Level-1 control vertices over a uniform level-2 tessellation: a sharp
+  // level-1 edge changes the level-2 vertex on it. (At the displayed level a
+  // lone sharp edge changes no limit position: both its ends are darts.)
+  const int rc =
+      runBounded({TESSERA_VIEW_PATH,
+                  "--connect",
+                  "127.0.0.1:" + std::to_string(server->port()),
+                  "--token",
+                  server->adminToken(),
+                  "--document",
+                  std::to_string(doc),
+                  "--base-level",
+                  "2",
+                  "--max-level",
+                  "2",
+                  "--level",
+                  "1",
+                  "--edit-keys",
+                  "--screenshot",
+                  dir + "/keys.png",
+                  "--frames",
+                  "3",
+                  "--no-hud",
+                  "--timeout",
+                  "30"},
+                 {{"DISPLAY", xvfb.display()}, {"LIBGL_ALWAYS_SOFTWARE", "1"}}, dir + "/view.log", 60);
+  const std::string log = testing::fileBytes(dir + "/view.log");
+  ASSERT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;
+  EXPECT_NE(log.find("5 edits sent, 0 rejected"), std::string::npos) << log;
+  const auto h = surfaceHashes(log);
+  ASSERT_EQ(h.size(), 6u) << log;
+  const std::vector<std::string> names = {"start", "E", "K", "undo", "undo", "redo"};
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
+  EXPECT_NE(h[1].second, h[0].second) << "E did not change the surface: " << log;
+  EXPECT_NE(h[2].second, h[1].second) << "K did not change the surface: " << log;
+  EXPECT_EQ(h[3].second, h[1].second) << "the first undo did not take back K alone: " << log;
+  EXPECT_EQ(h[4].second, h[0].second) << "the second undo did not restore the surface: " << log;
+  EXPECT_EQ(h[5].second, h[1].second) << "redo did not bring the sharp edge back: " << log;
+  EXPECT_NE(log.find("document version 6,"), std::string::npos) << "five keys, five versions: " << log;
 }
 
 TEST(View, ExitsWithAnErrorWhenTheDocumentDoesNotExist) {

@@ -4,6 +4,7 @@
 
 #include "client/view/camera.h"
 #include "client/view/control_points.h"
+#include "client/view/undo_history.h"
 #include "client/view/view_options.h"
 #include "core/hierarchy/ids.h"
 
@@ -62,6 +63,11 @@ TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   EXPECT_NE(frames.status().message().find("--frames"), std::string::npos);
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--bogus", "1"}).isOk());
   EXPECT_TRUE(parseViewOptions({"--help"})->help);
+  auto keys =
+      parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys", "--screenshot", "k.png"});
+  ASSERT_TRUE(keys.isOk()) << keys.status().message();
+  EXPECT_TRUE(keys->editKeys && keys->hashSurfaces);
+  EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys"}).isOk());
 }
 
 TEST(ViewCamera, ProjectingAPointOnAPixelsRayLandsOnThatPixel) {
@@ -111,6 +117,76 @@ TEST(ViewControlPoints, ALevelShowsVerticesBornAtOrAboveItOnceRenamedToIt) {
   ASSERT_TRUE(bounds(regions, &lo, &hi));
   EXPECT_FLOAT_EQ(hi.x, 1);
   EXPECT_FLOAT_EQ(lo.z, 0);
+}
+
+TEST(ViewControlPoints, NeighboursAtALevelShownAtItOrOneFinerAndADottedEdge) {
+  const RegionMap regions = twoRegions();
+  const auto ids = [](std::initializer_list<VertexId> list) {
+    std::vector<uint64_t> out;
+    for (VertexId v : list) out.push_back(v.packed());
+    return out;
+  };
+  // At level 1, v1:8 shares a triangle with v1:0 (region 1) and v1:3, v1:12
+  // (region 2); v2:30 is not a level-1 vertex.
+  EXPECT_EQ(levelNeighbours(regions, VertexId(1, 8).packed(), 1), ids({{1, 0}, {1, 3}, {1, 12}}));
+  EXPECT_EQ(levelNeighbours(regions, VertexId(2, 0).packed(), 2), ids({{2, 8}, {2, 30}}));
+  EXPECT_TRUE(levelNeighbours(regions, VertexId(1, 99).packed(), 1).empty());
+  // Shown one level finer: v0:1 and v0:2 are joined through v1:20, the
+  // vertex on their edge; v1:21 is no level-0 vertex.
+  auto fine = std::make_shared<RegionMesh>();
+  fine->positions.resize(4);
+  fine->normals.resize(4);
+  fine->vertexIds = {VertexId(0, 1).packed(), VertexId(1, 20).packed(), VertexId(1, 21).packed(),
+                     VertexId(0, 2).packed()};
+  fine->triangles = {{0, 1, 2}, {1, 3, 2}};
+  const RegionMap finer = {{1, fine}};
+  EXPECT_EQ(levelNeighbours(finer, VertexId(0, 1).packed(), 0), ids({{0, 2}}));
+  EXPECT_EQ(levelNeighbours(finer, VertexId(0, 2).packed(), 0), ids({{0, 1}}));
+  const auto dots = segmentPoints({0, 0, 0}, {2, 4, 0}, 5);
+  ASSERT_EQ(dots.size(), 5u);
+  EXPECT_FLOAT_EQ(dots[2].y, 2);
+  EXPECT_FLOAT_EQ(dots[4].x, 2);
+}
+
+// The undo rule of docs/VIEWER.md: a step is a drag or one key's edit.
+TEST(ViewUndoHistory, UndoesAndRedoesWholeStepsOnceAnswered) {
+  UndoHistory h;
+  EXPECT_FALSE(h.undo().isOk());
+  const auto drag = h.open();
+  for (int i = 0; i < 3; ++i) h.sent(drag);
+  h.acked(drag, 10);
+  h.acked(drag, 11);
+  EXPECT_NE(h.undo().status().message().find("still being made"), std::string::npos);
+  h.close(drag);
+  EXPECT_NE(h.undo().status().message().find("1 edits of the last step await"), std::string::npos);
+  h.dropped(drag);  // the third move was rejected
+  auto undo = h.undo();
+  ASSERT_TRUE(undo.isOk()) << undo.status().message();
+  EXPECT_EQ(*undo, (std::vector<uint64_t>{11, 10}));  // newest first
+  EXPECT_FALSE(h.undo().isOk());
+  auto redo = h.redo();
+  ASSERT_TRUE(redo.isOk());
+  EXPECT_EQ(*redo, (std::vector<uint64_t>{10, 11}));  // oldest first
+
+  // A key's edit is a step of its own; its first Ack drops what could be redone.
+  ASSERT_TRUE(h.undo().isOk());
+  EXPECT_EQ(h.redoable(), 1u);
+  const auto key = h.open();
+  h.sent(key);
+  h.close(key);
+  h.acked(key, 12);
+  EXPECT_EQ(h.redoable(), 0u);
+  EXPECT_EQ(*h.undo(), (std::vector<uint64_t>{12}));
+  EXPECT_EQ(h.undoable(), 0u);
+
+  // A step all of whose edits were refused, or a click without a move, is no step.
+  const auto refused = h.open();
+  h.sent(refused);
+  h.close(refused);
+  h.dropped(refused);
+  h.close(h.open());
+  EXPECT_EQ(h.undoable(), 0u);
+  EXPECT_EQ(h.redoable(), 1u);
 }
 
 TEST(ViewControlPoints, PickingTakesTheNearestFrontFacingPointAndDragStaysInItsPlane) {

@@ -1,0 +1,64 @@
+// The input of tessera-view: keys and mouse, from GLFW or from the headless
+// self-test scripts (self_test.h), which go through the same functions.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <vector>
+
+#include "client/view/camera.h"
+#include "client/view/connection.h"
+#include "client/view/control_points.h"
+#include "client/view/hud.h"
+
+namespace tessera::view {
+
+// Input state shared with the GLFW callbacks (through the window user pointer).
+struct App {
+  OrbitCamera camera;
+  ViewToggles toggles;
+  Connection* connection = nullptr;
+  float scroll = 0;
+  std::optional<uint64_t> picked;   // packed id at toggles.controlLevel
+  std::optional<uint64_t> edgeEnd;  // with `picked`: the other end of the picked edge
+  std::set<uint64_t> corners;       // vertices this viewer made corners
+  bool frameRequested = false, quit = false;
+  bool undo = false, redo = false;  // done by the frame loop
+};
+
+// A key press (GLFW_KEY_*, GLFW_MOD_* bits). E and Shift+E make the picked
+// edge infinitely sharp and smooth again; K toggles the picked vertex between
+// corner and smooth; Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z) undo and redo.
+void handleKey(App& app, int key, int mods);
+
+// Drops the pick, and the selection others see.
+void dropPick(App& app);
+
+// One frame of mouse state, in framebuffer pixels.
+struct MouseInput {
+  float px = 0, py = 0;
+  bool left = false, right = false, shift = false;
+  float scroll = 0;
+  bool captured = false;  // ImGui wants the mouse
+};
+
+// Mouse: left on a control vertex picks and drags it, left elsewhere orbits,
+// shift+left on another control vertex picks the edge to it, right or
+// shift+left elsewhere pans, the wheel zooms. A drag is one undo step.
+class MouseTool {
+ public:
+  void update(const MouseInput& in, App& app, const std::vector<ControlPoint>& points, int width, int height);
+
+ private:
+  enum class Mode { kNone, kOrbit, kPan, kDrag };
+  Mode mode_ = Mode::kNone;
+  bool wasLeft_ = false, wasRight_ = false, pending_ = false;
+  float lastX_ = 0, lastY_ = 0;
+  V3 anchor_;
+  std::chrono::steady_clock::time_point lastSend_;
+  UndoHistory::StepId step_ = 0;
+};
+
+}  // namespace tessera::view

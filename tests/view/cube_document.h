@@ -1,0 +1,28 @@
+// The cube of tests/data as a document on a running test server, for the
+// viewer's tests.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "client/lib/session.h"
+#include "integration/messages.h"
+#include "integration/server_process.h"
+#include "support/test_meshes.h"
+
+namespace tessera::testing {
+
+// Creates cube.obj (with cube.tags when `tags`) through an admin session:
+// the document id, or an error saying what failed.
+inline Expected<uint64_t> createCube(const ServerProcess& server, bool tags, int maxLevel) {
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> admin,
+                           client::Session::connect(server.session("admin", server.adminToken())));
+  auto created = admin->call(createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
+                                            tags ? fileBytes(sourceTestDataPath("cube.tags")) : "", maxLevel),
+                             30);
+  if (!created.isOk()) return created.status();
+  if (!created->has_ack()) return internalError("creating the cube: " + created->DebugString());
+  return created->ack().document_id();
+}
+
+}  // namespace tessera::testing

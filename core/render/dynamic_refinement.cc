@@ -1,0 +1,185 @@
+#include "core/render/dynamic_refinement.h"
+
+#include <bit>
+#include <cmath>
+#include <string>
+
+#include "core/render/split_table.h"
+
+namespace tessera {
+
+namespace {
+
+using Bits = std::array<uint64_t, 3>;
+
+Bits bitsOf(const Vec3& p) {
+  return {std::bit_cast<uint64_t>(p[0]), std::bit_cast<uint64_t>(p[1]), std::bit_cast<uint64_t>(p[2])};
+}
+
+uint64_t mix(uint64_t h, uint64_t x) {
+  h ^= x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
+  return h * 0xBF58476D1CE4E5B9ull;
+}
+
+struct BitsHash {
+  size_t operator()(const Bits& b) const { return mix(mix(mix(0, b[0]), b[1]), b[2]); }
+};
+
+// The edges of a mesh, found by position: each edge lists the half-edges
+// (3 * triangle + k, from corner k to corner k + 1) on it, at most two; a
+// third triangle on an edge (non-manifold) gets an edge of its own.
+struct MeshEdges {
+  std::vector<int> vertexClass;          // one per vertex: equal positions, equal class
+  std::vector<std::array<int, 2>> sides;  // half-edges of each edge; sides[e][1] < 0 when alone
+};
+
+MeshEdges findEdges(const RefineInput& mesh) {
+  MeshEdges out;
+  std::unordered_map<Bits, int, BitsHash> classes;
+  classes.reserve(mesh.positions.size());
+  out.vertexClass.resize(mesh.positions.size());
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    out.vertexClass[v] = classes.try_emplace(bitsOf(mesh.positions[v]), static_cast<int>(classes.size())).first->second;
+  std::unordered_map<uint64_t, int> byEnds;
+  byEnds.reserve(mesh.triangles.size() * 2);
+  out.sides.reserve(mesh.triangles.size() * 2);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const auto a = static_cast<uint64_t>(out.vertexClass[mesh.triangles[t][k]]);
+      const auto b = static_cast<uint64_t>(out.vertexClass[mesh.triangles[t][(k + 1) % 3]]);
+      const uint64_t key = std::min(a, b) << 32 | std::max(a, b);
+      const int half = static_cast<int>(3 * t) + k;
+      auto [it, fresh] = byEnds.try_emplace(key, static_cast<int>(out.sides.size()));
+      if (!fresh && out.sides[it->second][1] < 0) {
+        out.sides[it->second][1] = half;
+      } else {
+        if (!fresh) it->second = static_cast<int>(out.sides.size());
+        out.sides.push_back({half, -1});
+      }
+    }
+  }
+  return out;
+}
+
+int corner(const RefineInput& mesh, int half, int offset) {
+  return mesh.triangles[half / 3][(half % 3 + offset) % 3];
+}
+
+Status checkInput(const RefineInput& mesh, const SplitCriterion& c) {
+  if (c.maxSplits < 0 || c.maxSplits > 2)
+    return invalidArgument("refinement: maxSplits " + std::to_string(c.maxSplits) + " is not 0, 1 or 2");
+  if (!std::isfinite(c.splitOnceBelow) || !std::isfinite(c.splitTwiceBelow) || c.splitTwiceBelow > c.splitOnceBelow)
+    return invalidArgument("refinement: thresholds must be finite with splitTwiceBelow <= splitOnceBelow");
+  if (mesh.normals.size() != mesh.positions.size())
+    return invalidArgument("refinement: " + std::to_string(mesh.normals.size()) + " normals for " +
+                           std::to_string(mesh.positions.size()) + " positions");
+  const auto n = static_cast<int64_t>(mesh.positions.size());
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      if (tri[k] < 0 || tri[k] >= n || tri[k] == tri[(k + 1) % 3])
+        return invalidArgument("refinement: triangle " + std::to_string(t) + ": corner " + std::to_string(k) +
+                               " is out of range or repeated");
+    }
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+size_t EdgeKeyHash::operator()(const EdgeKey& k) const {
+  uint64_t h = 0;
+  for (uint64_t b : k.bits) h = mix(h, b);
+  return h;
+}
+
+EdgeKey edgeKey(const Vec3& a, const Vec3& b) {
+  const Bits x = bitsOf(bitsLess(b, a) ? b : a), y = bitsOf(bitsLess(b, a) ? a : b);
+  return {{x[0], x[1], x[2], y[0], y[1], y[2]}};
+}
+
+void BorderEdges::add(const RefineInput& mesh) {
+  const MeshEdges edges = findEdges(mesh);
+  for (const auto& sides : edges.sides) {
+    if (sides[1] >= 0) continue;
+    const int u = corner(mesh, sides[0], 0), v = corner(mesh, sides[0], 1);
+    const bool flip = bitsLess(mesh.positions[v], mesh.positions[u]);
+    const EdgeSide side = flip ? EdgeSide{mesh.normals[v], mesh.normals[u]} : EdgeSide{mesh.normals[u], mesh.normals[v]};
+    auto& recorded = sides_[edgeKey(mesh.positions[u], mesh.positions[v])];
+    bool known = false;
+    for (const EdgeSide& s : recorded) known = known || (bitsEqual(s.n0, side.n0) && bitsEqual(s.n1, side.n1));
+    if (!known) recorded.push_back(side);
+  }
+}
+
+std::optional<EdgeSide> BorderEdges::other(const Vec3& p0, const Vec3& p1, const EdgeSide& mine) const {
+  const auto it = sides_.find(edgeKey(p0, p1));
+  if (it == sides_.end()) return std::nullopt;
+  const bool flip = bitsLess(p1, p0);
+  const EdgeSide m = flip ? EdgeSide{mine.n1, mine.n0} : mine;
+  for (const EdgeSide& s : it->second) {
+    if (bitsEqual(s.n0, m.n0) && bitsEqual(s.n1, m.n1)) continue;
+    return flip ? EdgeSide{s.n1, s.n0} : s;
+  }
+  return std::nullopt;
+}
+
+Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion, const BorderEdges* borders) {
+  TESSERA_RETURN_IF_ERROR(checkInput(mesh, criterion));
+  RefinedMesh out;
+  out.positions.assign(mesh.positions.begin(), mesh.positions.end());
+  out.normals.assign(mesh.normals.begin(), mesh.normals.end());
+  out.originalVertices = out.positions.size();
+  const MeshEdges edges = findEdges(mesh);
+  const size_t halves = 3 * mesh.triangles.size();
+  std::vector<int8_t> splits(halves, 0);
+  // Output vertex of the point q/4 along each half-edge, in its direction.
+  std::vector<std::array<int, 3>> points(halves, {-1, -1, -1});
+  auto emit = [&](const Vec3& p, const Vec3& n) {
+    out.positions.push_back(p);
+    out.normals.push_back(n);
+    return static_cast<int>(out.positions.size() - 1);
+  };
+
+  for (const auto& [h0, h1] : edges.sides) {
+    const int u = corner(mesh, h0, 0), v = corner(mesh, h0, 1);
+    const EdgeSide side{mesh.normals[u], mesh.normals[v]};
+    std::optional<EdgeSide> other;
+    bool reversed = true;  // h1 runs v -> u, as on an oriented surface
+    if (h1 >= 0) {
+      const int u1 = corner(mesh, h1, 0), v1 = corner(mesh, h1, 1);
+      reversed = edges.vertexClass[u1] != edges.vertexClass[u];
+      other = reversed ? EdgeSide{mesh.normals[v1], mesh.normals[u1]} : EdgeSide{mesh.normals[u1], mesh.normals[v1]};
+    } else if (borders) {
+      other = borders->other(mesh.positions[u], mesh.positions[v], side);
+    }
+    const EdgeSplit s = splitEdge(mesh.positions[u], mesh.positions[v], side, other, criterion);
+    splits[h0] = static_cast<int8_t>(s.splits);
+    if (h1 >= 0) splits[h1] = static_cast<int8_t>(s.splits);
+    for (int q = 0; q < 3; ++q) {
+      if (s.splits == 0 || (s.splits == 1 && q != 1)) continue;
+      points[h0][q] = emit(s.points[q], s.normals[q]);
+      if (h1 < 0) continue;
+      // One vertex where both sides agree on the normal, two at a crease.
+      const int far = bitsEqual(s.normals[q], s.otherNormals[q]) ? points[h0][q] : emit(s.points[q], s.otherNormals[q]);
+      points[h1][reversed ? 2 - q : q] = far;
+    }
+  }
+
+  out.triangles.reserve(mesh.triangles.size() * 2);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const size_t h = 3 * t;
+    const SplitPattern& pattern = splitPattern(splitTableIndex(splits[h], splits[h + 1], splits[h + 2]));
+    auto vertex = [&](int slot) {
+      if (slot < 3) return mesh.triangles[t][slot];
+      return points[h + (slot - 3) / 3][(slot - 3) % 3];
+    };
+    for (int i = 0; i < pattern.count; ++i) {
+      const auto& tri = pattern.triangles[i];
+      out.triangles.push_back({vertex(tri[0]), vertex(tri[1]), vertex(tri[2])});
+    }
+  }
+  return out;
+}
+
+}  // namespace tessera

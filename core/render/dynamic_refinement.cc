@@ -1,5 +1,6 @@
 #include "core/render/dynamic_refinement.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <string>
@@ -21,42 +22,49 @@ uint64_t mix(uint64_t h, uint64_t x) {
   return h * 0xBF58476D1CE4E5B9ull;
 }
 
-struct BitsHash {
-  size_t operator()(const Bits& b) const { return mix(mix(mix(0, b[0]), b[1]), b[2]); }
-};
+}  // namespace
 
 // The edges of a mesh, found by position: each edge lists the half-edges
 // (3 * triangle + k, from corner k to corner k + 1) on it, at most two; a
-// third triangle on an edge (non-manifold) gets an edge of its own.
+// third triangle on an edge (non-manifold) gets an edge of its own. Sorting
+// rather than hashing: a frame refines thousands of small regions.
 struct MeshEdges {
-  std::vector<int> vertexClass;          // one per vertex: equal positions, equal class
+  std::vector<int> vertexClass;           // one per vertex: equal positions, equal class
   std::vector<std::array<int, 2>> sides;  // half-edges of each edge; sides[e][1] < 0 when alone
 };
 
+namespace {
+
 MeshEdges findEdges(const RefineInput& mesh) {
   MeshEdges out;
-  std::unordered_map<Bits, int, BitsHash> classes;
-  classes.reserve(mesh.positions.size());
-  out.vertexClass.resize(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v)
-    out.vertexClass[v] = classes.try_emplace(bitsOf(mesh.positions[v]), static_cast<int>(classes.size())).first->second;
-  std::unordered_map<uint64_t, int> byEnds;
-  byEnds.reserve(mesh.triangles.size() * 2);
-  out.sides.reserve(mesh.triangles.size() * 2);
+  const size_t n = mesh.positions.size();
+  std::vector<std::pair<Bits, int>> byPosition(n);
+  for (size_t v = 0; v < n; ++v) byPosition[v] = {bitsOf(mesh.positions[v]), static_cast<int>(v)};
+  std::sort(byPosition.begin(), byPosition.end());
+  out.vertexClass.resize(n);
+  int classes = -1;
+  for (size_t i = 0; i < n; ++i) {
+    if (i == 0 || byPosition[i].first != byPosition[i - 1].first) ++classes;
+    out.vertexClass[byPosition[i].second] = classes;
+  }
+  std::vector<std::pair<uint64_t, int>> halves;
+  halves.reserve(mesh.triangles.size() * 3);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
       const auto a = static_cast<uint64_t>(out.vertexClass[mesh.triangles[t][k]]);
       const auto b = static_cast<uint64_t>(out.vertexClass[mesh.triangles[t][(k + 1) % 3]]);
-      const uint64_t key = std::min(a, b) << 32 | std::max(a, b);
-      const int half = static_cast<int>(3 * t) + k;
-      auto [it, fresh] = byEnds.try_emplace(key, static_cast<int>(out.sides.size()));
-      if (!fresh && out.sides[it->second][1] < 0) {
-        out.sides[it->second][1] = half;
-      } else {
-        if (!fresh) it->second = static_cast<int>(out.sides.size());
-        out.sides.push_back({half, -1});
-      }
+      halves.push_back({std::min(a, b) << 32 | std::max(a, b), static_cast<int>(3 * t) + k});
     }
+  }
+  std::sort(halves.begin(), halves.end());
+  out.sides.reserve(halves.size() / 2 + 1);
+  for (size_t i = 0; i < halves.size(); ++i) {
+    const bool paired = i + 1 < halves.size() && halves[i + 1].first == halves[i].first;
+    out.sides.push_back({halves[i].second, paired ? halves[i + 1].second : -1});
+    if (!paired) continue;
+    ++i;
+    // A third side and beyond: alone (non-manifold input).
+    while (i + 1 < halves.size() && halves[i + 1].first == halves[i].first) out.sides.push_back({halves[++i].second, -1});
   }
   return out;
 }
@@ -98,17 +106,19 @@ EdgeKey edgeKey(const Vec3& a, const Vec3& b) {
   return {{x[0], x[1], x[2], y[0], y[1], y[2]}};
 }
 
-void BorderEdges::add(const RefineInput& mesh) {
-  const MeshEdges edges = findEdges(mesh);
+void BorderEdges::add(const RefineInput& mesh) { add(mesh, findEdges(mesh)); }
+
+void BorderEdges::add(const RefineInput& mesh, const MeshEdges& edges) {
   for (const auto& sides : edges.sides) {
     if (sides[1] >= 0) continue;
     const int u = corner(mesh, sides[0], 0), v = corner(mesh, sides[0], 1);
     const bool flip = bitsLess(mesh.positions[v], mesh.positions[u]);
     const EdgeSide side = flip ? EdgeSide{mesh.normals[v], mesh.normals[u]} : EdgeSide{mesh.normals[u], mesh.normals[v]};
-    auto& recorded = sides_[edgeKey(mesh.positions[u], mesh.positions[v])];
+    Sides& recorded = sides_[edgeKey(mesh.positions[u], mesh.positions[v])];
     bool known = false;
-    for (const EdgeSide& s : recorded) known = known || (bitsEqual(s.n0, side.n0) && bitsEqual(s.n1, side.n1));
-    if (!known) recorded.push_back(side);
+    for (int i = 0; i < recorded.count; ++i)
+      known = known || (bitsEqual(recorded.side[i].n0, side.n0) && bitsEqual(recorded.side[i].n1, side.n1));
+    if (!known && recorded.count < 2) recorded.side[recorded.count++] = side;
   }
 }
 
@@ -117,20 +127,22 @@ std::optional<EdgeSide> BorderEdges::other(const Vec3& p0, const Vec3& p1, const
   if (it == sides_.end()) return std::nullopt;
   const bool flip = bitsLess(p1, p0);
   const EdgeSide m = flip ? EdgeSide{mine.n1, mine.n0} : mine;
-  for (const EdgeSide& s : it->second) {
+  for (int i = 0; i < it->second.count; ++i) {
+    const EdgeSide& s = it->second.side[i];
     if (bitsEqual(s.n0, m.n0) && bitsEqual(s.n1, m.n1)) continue;
     return flip ? EdgeSide{s.n1, s.n0} : s;
   }
   return std::nullopt;
 }
 
-Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion, const BorderEdges* borders) {
-  TESSERA_RETURN_IF_ERROR(checkInput(mesh, criterion));
+namespace {
+
+RefinedMesh refineWith(const RefineInput& mesh, const MeshEdges& edges, const SplitCriterion& criterion,
+                       const BorderEdges* borders) {
   RefinedMesh out;
   out.positions.assign(mesh.positions.begin(), mesh.positions.end());
   out.normals.assign(mesh.normals.begin(), mesh.normals.end());
   out.originalVertices = out.positions.size();
-  const MeshEdges edges = findEdges(mesh);
   const size_t halves = 3 * mesh.triangles.size();
   std::vector<int8_t> splits(halves, 0);
   // Output vertex of the point q/4 along each half-edge, in its direction.
@@ -179,6 +191,29 @@ Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& 
       out.triangles.push_back({vertex(tri[0]), vertex(tri[1]), vertex(tri[2])});
     }
   }
+  return out;
+}
+
+}  // namespace
+
+Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion, const BorderEdges* borders) {
+  TESSERA_RETURN_IF_ERROR(checkInput(mesh, criterion));
+  return refineWith(mesh, findEdges(mesh), criterion, borders);
+}
+
+Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes, const SplitCriterion& criterion) {
+  BorderEdges borders;
+  std::vector<MeshEdges> edges;
+  edges.reserve(meshes.size());
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    const Status ok = checkInput(meshes[i], criterion);
+    if (!ok.isOk()) return ok.withContext("mesh " + std::to_string(i));
+    edges.push_back(findEdges(meshes[i]));
+    borders.add(meshes[i], edges.back());
+  }
+  std::vector<RefinedMesh> out;
+  out.reserve(meshes.size());
+  for (size_t i = 0; i < meshes.size(); ++i) out.push_back(refineWith(meshes[i], edges[i], criterion, &borders));
   return out;
 }
 

@@ -54,6 +54,8 @@ struct EdgeKeyHash {
 };
 EdgeKey edgeKey(const Vec3& a, const Vec3& b);
 
+struct MeshEdges;  // dynamic_refinement.cc
+
 // The normals each region has along its border edges (edges with one
 // triangle in the region), so that a region can see across a crease that a
 // border separates it from its neighbour.
@@ -67,8 +69,16 @@ class BorderEdges {
   size_t size() const { return sides_.size(); }
 
  private:
-  // Normals at the key's first and second end, per recorded side.
-  std::unordered_map<EdgeKey, std::vector<EdgeSide>, EdgeKeyHash> sides_;
+  friend Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput>, const SplitCriterion&);
+  void add(const RefineInput& mesh, const MeshEdges& edges);
+
+  // Normals at the key's first and second end, per recorded side (a third,
+  // on a non-manifold edge, is dropped).
+  struct Sides {
+    std::array<EdgeSide, 2> side{};
+    int count = 0;
+  };
+  std::unordered_map<EdgeKey, Sides, EdgeKeyHash> sides_;
 };
 
 // Errors (invalidArgument): maxSplits outside 0..2, thresholds not finite
@@ -76,5 +86,9 @@ class BorderEdges {
 // triangle index out of range or repeated.
 Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion,
                                  const BorderEdges* borders = nullptr);
+
+// One frame of a viewer: every mesh (region) refined on its own, with the
+// BorderEdges of all of them, so that together they stay crack-free.
+Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes, const SplitCriterion& criterion);
 
 }  // namespace tessera

@@ -96,6 +96,7 @@ EdgeSplit splitEdge(const Vec3& p0In, const Vec3& p1In, const EdgeSide& sideIn, 
   const double dotProduct = std::min(a.n0 | a.n1, b.n0 | b.n1);
   out.splits = dotProduct < criterion.splitTwiceBelow ? 2 : dotProduct < criterion.splitOnceBelow ? 1 : 0;
   out.splits = std::clamp(out.splits, 0, std::max(criterion.maxSplits, 0));
+  if (out.splits == 0) return out;  // no points needed (most edges of a fine LOD)
 
   const Vec3 e = p1 - p0;
   const Vec3 t0 = endTangent(e, a.n0, b.n0), t1 = endTangent(e, a.n1, b.n1);

@@ -40,7 +40,7 @@ struct SplitCriterion {
 struct EdgeSplit {
   int splits = 0;  // 0, 1 or 2
   // The points at 1/4, 1/2 and 3/4 of the way from p0 to p1 (only the
-  // middle one when splits == 1), with their normals on each side.
+  // middle one when splits == 1; none when 0), with their normals on each side.
   std::array<Vec3, 3> points{};
   std::array<Vec3, 3> normals{};       // for `side`
   std::array<Vec3, 3> otherNormals{};  // for `other` (equal to normals without one)

@@ -81,13 +81,18 @@ Document cubeDocument() {
 
 RefineInput inputOf(const RegionMesh& m) { return {m.positions, m.normals, m.triangles}; }
 
-// Every region refined on its own, told only the border normals of all.
+// Every region refined on its own, told the border normals of all (or not).
 std::vector<RefinedMesh> refineRegions(const Tessellation& t, const SplitCriterion& c, bool withBorders) {
-  BorderEdges borders;
-  for (const auto& [id, m] : t.regions()) borders.add(inputOf(m));
+  std::vector<RefineInput> inputs;
+  for (const auto& [id, m] : t.regions()) inputs.push_back(inputOf(m));
+  if (withBorders) {
+    auto all = refineMeshes(inputs, c);
+    EXPECT_TRUE(all.isOk()) << all.status().message();
+    return all.isOk() ? std::move(*all) : std::vector<RefinedMesh>{};
+  }
   std::vector<RefinedMesh> out;
-  for (const auto& [id, m] : t.regions()) {
-    auto r = refineMesh(inputOf(m), c, withBorders ? &borders : nullptr);
+  for (const RefineInput& in : inputs) {
+    auto r = refineMesh(in, c);
     EXPECT_TRUE(r.isOk()) << r.status().message();
     out.push_back(std::move(*r));
   }

@@ -66,6 +66,9 @@ void onKey(GLFWwindow* window, int key, int, int action, int mods) {
     case GLFW_KEY_F:
       app.frameRequested = true;
       break;
+    case GLFW_KEY_R:
+      app.toggles.refine = (app.toggles.refine + 1) % 3;
+      break;
     case GLFW_KEY_LEFT_BRACKET:
       if (app.toggles.controlLevel > 0) --app.toggles.controlLevel, app.picked.reset();
       break;
@@ -207,6 +210,34 @@ class DragScript {
   int step_ = 0;
 };
 
+struct RefineTiming {
+  int64_t receivedTriangles = 0;
+  double refineMs = 0, uploadMs = 0;
+};
+
+// Client-side refinement (seed 002, docs/VIEWER.md): every frame, the
+// received regions are refined afresh, each on its own with the border
+// normals of all, and streamed to the GPU.
+void refineFrame(const RegionMap& regions, int splits, Renderer& renderer, RefineTiming& timing) {
+  const auto start = Clock::now();
+  std::vector<RefineInput> inputs;
+  inputs.reserve(regions.size());
+  timing.receivedTriangles = 0;
+  for (const auto& [id, m] : regions) {
+    inputs.push_back({m->positions, m->normals, m->triangles});
+    timing.receivedTriangles += static_cast<int64_t>(m->triangles.size());
+  }
+  auto refined = refineMeshes(inputs, {.maxSplits = splits});
+  const auto refinedAt = Clock::now();
+  if (!refined.isOk()) {
+    std::fprintf(stderr, "tessera-view: refinement: %s\n", refined.status().toString().c_str());
+    return;
+  }
+  renderer.stream(regions, *refined);
+  timing.refineMs = std::chrono::duration<double, std::milli>(refinedAt - start).count();
+  timing.uploadMs = std::chrono::duration<double, std::milli>(Clock::now() - refinedAt).count();
+}
+
 std::vector<V3> visible(const std::vector<ControlPoint>& points, V3 eye) {
   std::vector<V3> out;
   for (const ControlPoint& p : points)
@@ -244,6 +275,7 @@ int run(const ViewOptions& options) {
   app.toggles.wireframe = options.wireframe;
   app.toggles.regionColours = options.regionColours;
   app.toggles.controlLevel = options.controlLevel;
+  app.toggles.refine = options.refine;
   app.toggles.baseLevel = static_cast<int>(options.baseLevel);
   app.toggles.maxLevel = static_cast<int>(options.maxLevel);
   app.toggles.angle = static_cast<float>(options.angle);
@@ -272,6 +304,8 @@ int run(const ViewOptions& options) {
     RegionMap regions;
     std::vector<ControlPoint> points;
     uint64_t seenUpdates = 0;
+    bool synced = false;
+    RefineTiming refineTiming;
     int pointsLevel = -1;
     bool framed = false;
     int framesReady = 0, framesCounted = 0;
@@ -303,8 +337,15 @@ int run(const ViewOptions& options) {
       if (stats.regionUpdates != seenUpdates) {
         seenUpdates = stats.regionUpdates;
         regions = (*connection)->regions();
-        (*renderer)->sync(regions);
         pointsLevel = -1;
+        synced = false;
+      }
+      if (app.toggles.refine > 0) {
+        refineFrame(regions, app.toggles.refine, **renderer, refineTiming);
+        synced = false;
+      } else if (!synced) {
+        (*renderer)->sync(regions);
+        synced = true;
       }
       if (pointsLevel != app.toggles.controlLevel) {
         points = controlPoints(regions, app.toggles.controlLevel);
@@ -372,6 +413,9 @@ int run(const ViewOptions& options) {
       if (options.hud) {
         HudFacts facts{.fps = fps,
                        .triangles = (*renderer)->triangles(),
+                       .receivedTriangles = refineTiming.receivedTriangles,
+                       .refineMs = refineTiming.refineMs,
+                       .uploadMs = refineTiming.uploadMs,
                        .regions = (*renderer)->regionCount(),
                        .bytesPerSecond = bytesPerSecond,
                        .controlPoints = points.size(),

@@ -203,6 +203,9 @@ Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& 
 
 Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes, const SplitCriterion& criterion) {
   BorderEdges borders;
+  size_t triangles = 0;
+  for (const RefineInput& m : meshes) triangles += m.triangles.size();
+  borders.reserve(triangles);  // border edges are fewer than 3/2 per triangle; most regions are not tiny
   std::vector<MeshEdges> edges;
   edges.reserve(meshes.size());
   for (size_t i = 0; i < meshes.size(); ++i) {

@@ -67,6 +67,7 @@ class BorderEdges {
   // has the same normals (a smooth edge) or nothing was recorded.
   std::optional<EdgeSide> other(const Vec3& p0, const Vec3& p1, const EdgeSide& mine) const;
   size_t size() const { return sides_.size(); }
+  void reserve(size_t edges) { sides_.reserve(edges); }
 
  private:
   friend Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput>, const SplitCriterion&);

@@ -6,10 +6,8 @@
 
 namespace tessera {
 
-namespace {
-
-// The nearest point of triangle abc to p, by the Voronoi regions of its
-// corners, edges and face (Ericson, Real-Time Collision Detection, 5.1.5).
+// By the Voronoi regions of the corners, edges and face (Ericson,
+// Real-Time Collision Detection, 5.1.5).
 Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab | ap, d2 = ac | ap;
@@ -30,6 +28,8 @@ Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& 
   if (!(sum > 0)) return a;  // a degenerate triangle: its corner will do
   return a + (vb / sum) * ab + (vc / sum) * ac;
 }
+
+namespace {
 
 constexpr int kMaxCells = 1 << 22;
 

@@ -32,6 +32,9 @@ struct SurfaceDistance {
 
 SurfaceDistance surfaceDistance(const MeshView& approximation, const MeshView& reference);
 
+// The point of triangle abc nearest to p (a corner of a degenerate one).
+Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 // Nearest-point queries against one mesh, through a uniform grid of cells
 // about as wide as its triangles.
 class NearestTriangle {

@@ -17,13 +17,6 @@ Bits bitsOf(const Vec3& p) {
   return {std::bit_cast<uint64_t>(p[0]), std::bit_cast<uint64_t>(p[1]), std::bit_cast<uint64_t>(p[2])};
 }
 
-uint64_t mix(uint64_t h, uint64_t x) {
-  h ^= x + 0x9E3779B97F4A7C15ull + (h << 6) + (h >> 2);
-  return h * 0xBF58476D1CE4E5B9ull;
-}
-
-}  // namespace
-
 // The edges of a mesh, found by position: each edge lists the half-edges
 // (3 * triangle + k, from corner k to corner k + 1) on it, at most two; a
 // third triangle on an edge (non-manifold) gets an edge of its own. Sorting
@@ -32,8 +25,6 @@ struct MeshEdges {
   std::vector<int> vertexClass;           // one per vertex: equal positions, equal class
   std::vector<std::array<int, 2>> sides;  // half-edges of each edge; sides[e][1] < 0 when alone
 };
-
-namespace {
 
 MeshEdges findEdges(const RefineInput& mesh) {
   MeshEdges out;
@@ -93,53 +84,21 @@ Status checkInput(const RefineInput& mesh, const SplitCriterion& c) {
   return Status::ok();
 }
 
-}  // namespace
-
-size_t EdgeKeyHash::operator()(const EdgeKey& k) const {
-  uint64_t h = 0;
-  for (uint64_t b : k.bits) h = mix(h, b);
-  return h;
-}
-
-EdgeKey edgeKey(const Vec3& a, const Vec3& b) {
-  const Bits x = bitsOf(bitsLess(b, a) ? b : a), y = bitsOf(bitsLess(b, a) ? a : b);
-  return {{x[0], x[1], x[2], y[0], y[1], y[2]}};
-}
-
-void BorderEdges::add(const RefineInput& mesh) { add(mesh, findEdges(mesh)); }
-
-void BorderEdges::add(const RefineInput& mesh, const MeshEdges& edges) {
+void recordBorders(const RefineInput& mesh, const MeshEdges& edges, BorderEdges& borders) {
   for (const auto& sides : edges.sides) {
     if (sides[1] >= 0) continue;
     const int u = corner(mesh, sides[0], 0), v = corner(mesh, sides[0], 1);
-    const bool flip = bitsLess(mesh.positions[v], mesh.positions[u]);
-    const EdgeSide side = flip ? EdgeSide{mesh.normals[v], mesh.normals[u]} : EdgeSide{mesh.normals[u], mesh.normals[v]};
-    Sides& recorded = sides_[edgeKey(mesh.positions[u], mesh.positions[v])];
-    bool known = false;
-    for (int i = 0; i < recorded.count; ++i)
-      known = known || (bitsEqual(recorded.side[i].n0, side.n0) && bitsEqual(recorded.side[i].n1, side.n1));
-    if (!known && recorded.count < 2) recorded.side[recorded.count++] = side;
+    borders.record(mesh.positions[u], mesh.positions[v], {mesh.normals[u], mesh.normals[v]});
   }
 }
-
-std::optional<EdgeSide> BorderEdges::other(const Vec3& p0, const Vec3& p1, const EdgeSide& mine) const {
-  const auto it = sides_.find(edgeKey(p0, p1));
-  if (it == sides_.end()) return std::nullopt;
-  const bool flip = bitsLess(p1, p0);
-  const EdgeSide m = flip ? EdgeSide{mine.n1, mine.n0} : mine;
-  for (int i = 0; i < it->second.count; ++i) {
-    const EdgeSide& s = it->second.side[i];
-    if (bitsEqual(s.n0, m.n0) && bitsEqual(s.n1, m.n1)) continue;
-    return flip ? EdgeSide{s.n1, s.n0} : s;
-  }
-  return std::nullopt;
-}
-
-namespace {
 
 RefinedMesh refineWith(const RefineInput& mesh, const MeshEdges& edges, const SplitCriterion& criterion,
                        const BorderEdges* borders) {
   RefinedMesh out;
+  // At most one point per edge and side with one split, three with two.
+  const size_t most = mesh.positions.size() + 2 * pointsForSplits(criterion.maxSplits) * edges.sides.size();
+  out.positions.reserve(most);
+  out.normals.reserve(most);
   out.positions.assign(mesh.positions.begin(), mesh.positions.end());
   out.normals.assign(mesh.normals.begin(), mesh.normals.end());
   out.originalVertices = out.positions.size();
@@ -178,10 +137,15 @@ RefinedMesh refineWith(const RefineInput& mesh, const MeshEdges& edges, const Sp
     }
   }
 
-  out.triangles.reserve(mesh.triangles.size() * 2);
+  auto patternOf = [&](size_t t) -> const SplitPattern& {
+    return splitPattern(splitTableIndex(splits[3 * t], splits[3 * t + 1], splits[3 * t + 2]));
+  };
+  size_t count = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) count += patternOf(t).count;
+  out.triangles.reserve(count);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const size_t h = 3 * t;
-    const SplitPattern& pattern = splitPattern(splitTableIndex(splits[h], splits[h + 1], splits[h + 2]));
+    const SplitPattern& pattern = patternOf(t);
     auto vertex = [&](int slot) {
       if (slot < 3) return mesh.triangles[t][slot];
       return points[h + (slot - 3) / 3][(slot - 3) % 3];
@@ -196,6 +160,12 @@ RefinedMesh refineWith(const RefineInput& mesh, const MeshEdges& edges, const Sp
 
 }  // namespace
 
+Status addBorderEdges(const RefineInput& mesh, BorderEdges& borders) {
+  TESSERA_RETURN_IF_ERROR(checkInput(mesh, SplitCriterion{}));
+  recordBorders(mesh, findEdges(mesh), borders);
+  return Status::ok();
+}
+
 Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion, const BorderEdges* borders) {
   TESSERA_RETURN_IF_ERROR(checkInput(mesh, criterion));
   return refineWith(mesh, findEdges(mesh), criterion, borders);
@@ -203,16 +173,13 @@ Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& 
 
 Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes, const SplitCriterion& criterion) {
   BorderEdges borders;
-  size_t triangles = 0;
-  for (const RefineInput& m : meshes) triangles += m.triangles.size();
-  borders.reserve(triangles);  // border edges are fewer than 3/2 per triangle; most regions are not tiny
   std::vector<MeshEdges> edges;
   edges.reserve(meshes.size());
   for (size_t i = 0; i < meshes.size(); ++i) {
     const Status ok = checkInput(meshes[i], criterion);
     if (!ok.isOk()) return ok.withContext("mesh " + std::to_string(i));
     edges.push_back(findEdges(meshes[i]));
-    borders.add(meshes[i], edges.back());
+    recordBorders(meshes[i], edges.back(), borders);
   }
   std::vector<RefinedMesh> out;
   out.reserve(meshes.size());

@@ -23,9 +23,9 @@
 #include <array>
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
+#include "core/render/border_edges.h"
 #include "core/render/edge_split.h"
 #include "core/util/status.h"
 
@@ -44,43 +44,9 @@ struct RefinedMesh {
   size_t originalVertices = 0;  // positions[0, originalVertices) are the input's
 };
 
-// Both ends of an edge by position bits, in canonical order.
-struct EdgeKey {
-  std::array<uint64_t, 6> bits{};
-  friend bool operator==(const EdgeKey&, const EdgeKey&) = default;
-};
-struct EdgeKeyHash {
-  size_t operator()(const EdgeKey& k) const;
-};
-EdgeKey edgeKey(const Vec3& a, const Vec3& b);
-
-struct MeshEdges;  // dynamic_refinement.cc
-
-// The normals each region has along its border edges (edges with one
-// triangle in the region), so that a region can see across a crease that a
-// border separates it from its neighbour.
-class BorderEdges {
- public:
-  void add(const RefineInput& mesh);
-  // The normals at p0 and p1 on the far side of the edge p0 -> p1 from a
-  // triangle whose normals there are `mine`; none when every recorded side
-  // has the same normals (a smooth edge) or nothing was recorded.
-  std::optional<EdgeSide> other(const Vec3& p0, const Vec3& p1, const EdgeSide& mine) const;
-  size_t size() const { return sides_.size(); }
-  void reserve(size_t edges) { sides_.reserve(edges); }
-
- private:
-  friend Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput>, const SplitCriterion&);
-  void add(const RefineInput& mesh, const MeshEdges& edges);
-
-  // Normals at the key's first and second end, per recorded side (a third,
-  // on a non-manifold edge, is dropped).
-  struct Sides {
-    std::array<EdgeSide, 2> side{};
-    int count = 0;
-  };
-  std::unordered_map<EdgeKey, Sides, EdgeKeyHash> sides_;
-};
+// Records the border edges of `mesh` (edges with one triangle in it) in
+// `borders`, for refineMesh on its neighbours. Errors: as refineMesh's.
+Status addBorderEdges(const RefineInput& mesh, BorderEdges& borders);
 
 // Errors (invalidArgument): maxSplits outside 0..2, thresholds not finite
 // or splitTwiceBelow above splitOnceBelow, normals not one per position, a

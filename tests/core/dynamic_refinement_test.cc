@@ -185,6 +185,17 @@ TEST(DynamicRefinement, RegionsRefinedSeparatelyAreWatertight) {
   auto t = Tessellation::build(cube, cases[0].profile);
   ASSERT_TRUE(t.isOk());
   EXPECT_GT(unmatchedEdges(mergeByPosition(pointers(refineRegions(*t, {.maxSplits = 2}, false)))), 0);
+  // By hand, as a client that refines only some regions would: the same.
+  BorderEdges borders;
+  for (const auto& [id, m] : t->regions()) ASSERT_TRUE(addBorderEdges(inputOf(m), borders).isOk());
+  const auto all = refineRegions(*t, {.maxSplits = 2}, true);
+  size_t i = 0;
+  for (const auto& [id, m] : t->regions()) {
+    auto one = refineMesh(inputOf(m), {.maxSplits = 2}, &borders);
+    ASSERT_TRUE(one.isOk());
+    EXPECT_EQ(one->positions, all[i].positions);
+    EXPECT_EQ(one->triangles, all[i++].triangles);
+  }
 }
 
 struct Distances {

@@ -23,6 +23,7 @@
 #include "client/view/connection.h"
 #include "client/view/control_points.h"
 #include "client/view/hud.h"
+#include "client/view/refinement.h"
 #include "client/view/renderer.h"
 #include "client/view/screenshot.h"
 #include "client/view/view_options.h"
@@ -210,34 +211,6 @@ class DragScript {
   int step_ = 0;
 };
 
-struct RefineTiming {
-  int64_t receivedTriangles = 0;
-  double refineMs = 0, uploadMs = 0;
-};
-
-// Client-side refinement (seed 002, docs/VIEWER.md): every frame, the
-// received regions are refined afresh, each on its own with the border
-// normals of all, and streamed to the GPU.
-void refineFrame(const RegionMap& regions, int splits, Renderer& renderer, RefineTiming& timing) {
-  const auto start = Clock::now();
-  std::vector<RefineInput> inputs;
-  inputs.reserve(regions.size());
-  timing.receivedTriangles = 0;
-  for (const auto& [id, m] : regions) {
-    inputs.push_back({m->positions, m->normals, m->triangles});
-    timing.receivedTriangles += static_cast<int64_t>(m->triangles.size());
-  }
-  auto refined = refineMeshes(inputs, {.maxSplits = splits});
-  const auto refinedAt = Clock::now();
-  if (!refined.isOk()) {
-    std::fprintf(stderr, "tessera-view: refinement: %s\n", refined.status().toString().c_str());
-    return;
-  }
-  renderer.stream(regions, *refined);
-  timing.refineMs = std::chrono::duration<double, std::milli>(refinedAt - start).count();
-  timing.uploadMs = std::chrono::duration<double, std::milli>(Clock::now() - refinedAt).count();
-}
-
 std::vector<V3> visible(const std::vector<ControlPoint>& points, V3 eye) {
   std::vector<V3> out;
   for (const ControlPoint& p : points)
@@ -341,7 +314,7 @@ int run(const ViewOptions& options) {
         synced = false;
       }
       if (app.toggles.refine > 0) {
-        refineFrame(regions, app.toggles.refine, **renderer, refineTiming);
+        refineTiming = refineAndStream(regions, app.toggles.refine, **renderer);
         synced = false;
       } else if (!synced) {
         (*renderer)->sync(regions);

@@ -305,7 +305,9 @@ TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
                                        "--screenshot",
                                        withHud,
                                        "--frames",
-                                       "5"};
+                                       "5",
+                                       "--refine",  // the HUD's refinement line too
+                                       "1"};
   ASSERT_EQ(runBounded(args, env, dir + "/view.log", 120), 0)
       << "tessera-view failed; see " << dir << "/view.log";
   auto h = readPng(withHud);

@@ -89,5 +89,18 @@ TEST(SplitTable, EveryEntryIsAValidOrientedTriangulation) {
   EXPECT_EQ(seen, kSplitTableSize);
 }
 
+// Every edge split once: the four triangles of a Loop step, the middle one
+// on the three midpoints (slots 4, 7 and 10).
+TEST(SplitTable, EveryEdgeSplitOnceIsALoopStep) {
+  const SplitPattern& p = splitPattern(1 + 3 + 9);
+  ASSERT_EQ(p.count, 4);
+  bool middle = false;
+  for (int i = 0; i < p.count; ++i) {
+    const auto& t = p.triangles[i];
+    for (int r = 0; r < 3; ++r) middle = middle || (t[r] == 4 && t[(r + 1) % 3] == 7 && t[(r + 2) % 3] == 10);
+  }
+  EXPECT_TRUE(middle);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -15,8 +15,8 @@
 // bounding-box diagonal. One benchmark per (document, coarse profile,
 // splits) times one frame's refinement of all regions.
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <map>
 #include <string>
 #include <vector>
@@ -53,7 +53,7 @@ struct Row {
   int64_t triangles = 0;
   uint64_t bytes = 0, fineBytes = 0;
   double rms = 0, max = 0;  // over the fine surface's diagonal
-  double frameMs = 0;        // median CPU time to refine all regions (one frame)
+  double frameMs = 0;       // median CPU time to refine all regions (one frame)
 };
 
 struct Coarse {
@@ -86,7 +86,8 @@ std::vector<RefinedMesh> refineFrame(const std::map<uint64_t, RegionMesh>& regio
 
 // Encodes every region on the document's grid; the sum of their sizes,
 // and optionally the decoded regions.
-Expected<uint64_t> encodeAll(const Document& doc, const Tessellation& t, std::map<uint64_t, RegionMesh>* decoded) {
+Expected<uint64_t> encodeAll(const Document& doc, const Tessellation& t,
+                             std::map<uint64_t, RegionMesh>* decoded) {
   TESSERA_ASSIGN_OR_RETURN(const QuantizationGrid grid, documentGrid(doc));
   uint64_t bytes = 0;
   for (const auto& [id, mesh] : t.regions()) {
@@ -121,7 +122,8 @@ Status measure(const std::string& name, Document& doc, const LodProfile& finePro
   for (const auto& [id, m] : fine.regions()) fineSoup.add(m.positions, m.triangles);
   Vec3 lo = fineSoup.positions[0], hi = lo;
   for (const Vec3& p : fineSoup.positions) lo.minimize(p), hi.maximize(p);
-  rows().push_back({name, fineProfile.key() + " (fine)", 0, fine.numTriangles(), fineBytes, fineBytes, 0, 0, 0});
+  rows().push_back(
+      {name, fineProfile.key() + " (fine)", 0, fine.numTriangles(), fineBytes, fineBytes, 0, 0, 0});
   for (const LodProfile& profile : coarseProfiles) {
     TESSERA_ASSIGN_OR_RETURN(Tessellation t, Tessellation::build(doc, profile));
     Coarse c{name, profile.key(), {}, fineSoup, (hi - lo).norm(), 0, fineBytes};
@@ -134,8 +136,9 @@ Status measure(const std::string& name, Document& doc, const LodProfile& finePro
         for (const RefinedMesh& r : refineFrame(c.regions, splits)) drawn.add(r.positions, r.triangles);
       }
       const SurfaceDistance d = surfaceDistance(drawn.view(), fineSoup.view());
-      rows().push_back({name, c.profile, splits, static_cast<int64_t>(drawn.triangles.size()), c.bytes, fineBytes,
-                        d.rms / c.diagonal, d.max / c.diagonal, splits ? medianFrameMs(c, splits) : 0});
+      rows().push_back({name, c.profile, splits, static_cast<int64_t>(drawn.triangles.size()), c.bytes,
+                        fineBytes, d.rms / c.diagonal, d.max / c.diagonal,
+                        splits ? medianFrameMs(c, splits) : 0});
     }
     coarseCases().push_back(std::move(c));
   }
@@ -146,7 +149,8 @@ void BM_RefineFrame(benchmark::State& state, const Coarse* c, int splits) {
   int64_t triangles = 0;
   for (auto _ : state) {
     triangles = 0;
-    for (const RefinedMesh& r : refineFrame(c->regions, splits)) triangles += static_cast<int64_t>(r.triangles.size());
+    for (const RefinedMesh& r : refineFrame(c->regions, splits))
+      triangles += static_cast<int64_t>(r.triangles.size());
   }
   for (const Row& r : rows()) {
     if (r.document != c->document || r.profile != c->profile || r.splits != splits) continue;
@@ -156,15 +160,17 @@ void BM_RefineFrame(benchmark::State& state, const Coarse* c, int splits) {
   state.counters["triangles"] = static_cast<double>(triangles);
   state.counters["bytes_coarse"] = static_cast<double>(c->bytes);
   state.counters["bytes_fine"] = static_cast<double>(c->fineBytes);
-  state.counters["saved_pct"] = 100.0 * (1.0 - static_cast<double>(c->bytes) / static_cast<double>(c->fineBytes));
+  state.counters["saved_pct"] =
+      100.0 * (1.0 - static_cast<double>(c->bytes) / static_cast<double>(c->fineBytes));
 }
 
 void printTable() {
-  std::printf("\n%-8s %-40s %6s %9s %10s %7s %11s %11s %9s\n", "document", "profile", "splits", "triangles", "bytes",
-              "saved", "rms/diag", "max/diag", "ms/frame");
+  std::printf("\n%-8s %-40s %6s %9s %10s %7s %11s %11s %9s\n", "document", "profile", "splits", "triangles",
+              "bytes", "saved", "rms/diag", "max/diag", "ms/frame");
   for (const Row& r : rows()) {
-    std::printf("%-8s %-40s %6d %9lld %10llu %6.1f%% %11.3e %11.3e %9.2f\n", r.document.c_str(), r.profile.c_str(),
-                r.splits, static_cast<long long>(r.triangles), static_cast<unsigned long long>(r.bytes),
+    std::printf("%-8s %-40s %6d %9lld %10llu %6.1f%% %11.3e %11.3e %9.2f\n", r.document.c_str(),
+                r.profile.c_str(), r.splits, static_cast<long long>(r.triangles),
+                static_cast<unsigned long long>(r.bytes),
                 100.0 * (1.0 - static_cast<double>(r.bytes) / static_cast<double>(r.fineBytes)), r.rms, r.max,
                 r.frameMs);
   }
@@ -186,7 +192,8 @@ Status run(int& argc, char** argv) {
   TESSERA_RETURN_IF_ERROR(measure("cube", cube, {.baseLevel = 5, .maxLevel = 6, .angleThresholdDegrees = 3},
                                   {{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15},
                                    {.baseLevel = 1, .maxLevel = 2, .angleThresholdDegrees = 20}}));
-  TESSERA_RETURN_IF_ERROR(measure("fandisk", fandisk, {.baseLevel = 2, .maxLevel = 3, .angleThresholdDegrees = 3},
+  TESSERA_RETURN_IF_ERROR(measure("fandisk", fandisk,
+                                  {.baseLevel = 2, .maxLevel = 3, .angleThresholdDegrees = 3},
                                   {{.baseLevel = 1, .maxLevel = 2, .angleThresholdDegrees = 15},
                                    {.baseLevel = 0, .maxLevel = 1, .angleThresholdDegrees = 20}}));
   return Status::ok();
@@ -202,7 +209,8 @@ int main(int argc, char** argv) {
   }
   for (const Coarse& c : coarseCases()) {
     for (int splits = 1; splits <= 2; ++splits) {
-      const std::string name = "BM_RefineFrame/" + c.document + "/" + c.profile + "/splits:" + std::to_string(splits);
+      const std::string name =
+          "BM_RefineFrame/" + c.document + "/" + c.profile + "/splits:" + std::to_string(splits);
       benchmark::RegisterBenchmark(name.c_str(), BM_RefineFrame, &c, splits)->Unit(benchmark::kMillisecond);
     }
   }

@@ -17,8 +17,9 @@ void drawHud(const HudFacts& f, ViewToggles& t) {
   ImGui::Text("%.1f fps   %lld triangles in %zu regions", f.fps, static_cast<long long>(f.triangles),
               f.regions);
   if (t.refine > 0) {
-    ImGui::Text("refined: %lld triangles from %lld, %.2f ms + %.2f ms upload", static_cast<long long>(f.triangles),
-                static_cast<long long>(f.receivedTriangles), f.refineMs, f.uploadMs);
+    ImGui::Text("refined: %lld triangles from %lld, %.2f ms + %.2f ms upload",
+                static_cast<long long>(f.triangles), static_cast<long long>(f.receivedTriangles), f.refineMs,
+                f.uploadMs);
   }
   ImGui::Text("document version %llu%s", static_cast<unsigned long long>(f.stats.version),
               f.stats.ready ? "" : " (waiting for a snapshot)");

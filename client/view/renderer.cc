@@ -206,14 +206,16 @@ void Renderer::upload(GpuRegion& r, std::span<const Vec3> positions, std::span<c
     for (int k = 0; k < 3; ++k) indices.push_back(static_cast<uint32_t>(t[k]));
   glBindVertexArray(r.vao);
   glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(), usage);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.ibo);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)), indices.data(),
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(),
                usage);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.ibo);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
+               indices.data(), usage);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
   glEnableVertexAttribArray(1);
-  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<const void*>(3 * sizeof(float)));
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
   glBindVertexArray(0);
   r.indices = static_cast<GLsizei>(indices.size());
   triangles_ += r.indices / 3;

@@ -27,9 +27,13 @@ uint64_t hashOf(const Key& k) {
   return h;
 }
 
-bool sameSide(const EdgeSide& a, const EdgeSide& b) { return bitsEqual(a.n0, b.n0) && bitsEqual(a.n1, b.n1); }
+bool sameSide(const EdgeSide& a, const EdgeSide& b) {
+  return bitsEqual(a.n0, b.n0) && bitsEqual(a.n1, b.n1);
+}
 
-EdgeSide flip(const EdgeSide& s) { return {s.n1, s.n0}; }
+EdgeSide flip(const EdgeSide& s) {
+  return {s.n1, s.n0};
+}
 
 }  // namespace
 
@@ -43,7 +47,9 @@ void BorderEdges::reserve(size_t edges) {
   }
 }
 
-void BorderEdges::grow() { reserve(std::max<size_t>(16, entries_.size() * 2)); }
+void BorderEdges::grow() {
+  reserve(std::max<size_t>(16, entries_.size() * 2));
+}
 
 size_t BorderEdges::find(const Key& key) const {
   const size_t mask = slots_.size() - 1;

@@ -32,7 +32,7 @@ class BorderEdges {
 
  private:
   struct Entry {
-    std::array<uint64_t, 6> key{};  // end positions' bits, in canonical order
+    std::array<uint64_t, 6> key{};   // end positions' bits, in canonical order
     std::array<EdgeSide, 2> side{};  // normals at the key's first and second end
     int count = 0;
   };

@@ -55,7 +55,8 @@ MeshEdges findEdges(const RefineInput& mesh) {
     if (!paired) continue;
     ++i;
     // A third side and beyond: alone (non-manifold input).
-    while (i + 1 < halves.size() && halves[i + 1].first == halves[i].first) out.sides.push_back({halves[++i].second, -1});
+    while (i + 1 < halves.size() && halves[i + 1].first == halves[i].first)
+      out.sides.push_back({halves[++i].second, -1});
   }
   return out;
 }
@@ -67,7 +68,8 @@ int corner(const RefineInput& mesh, int half, int offset) {
 Status checkInput(const RefineInput& mesh, const SplitCriterion& c) {
   if (c.maxSplits < 0 || c.maxSplits > 2)
     return invalidArgument("refinement: maxSplits " + std::to_string(c.maxSplits) + " is not 0, 1 or 2");
-  if (!std::isfinite(c.splitOnceBelow) || !std::isfinite(c.splitTwiceBelow) || c.splitTwiceBelow > c.splitOnceBelow)
+  if (!std::isfinite(c.splitOnceBelow) || !std::isfinite(c.splitTwiceBelow) ||
+      c.splitTwiceBelow > c.splitOnceBelow)
     return invalidArgument("refinement: thresholds must be finite with splitTwiceBelow <= splitOnceBelow");
   if (mesh.normals.size() != mesh.positions.size())
     return invalidArgument("refinement: " + std::to_string(mesh.normals.size()) + " normals for " +
@@ -120,7 +122,8 @@ RefinedMesh refineWith(const RefineInput& mesh, const MeshEdges& edges, const Sp
     if (h1 >= 0) {
       const int u1 = corner(mesh, h1, 0), v1 = corner(mesh, h1, 1);
       reversed = edges.vertexClass[u1] != edges.vertexClass[u];
-      other = reversed ? EdgeSide{mesh.normals[v1], mesh.normals[u1]} : EdgeSide{mesh.normals[u1], mesh.normals[v1]};
+      other = reversed ? EdgeSide{mesh.normals[v1], mesh.normals[u1]}
+                       : EdgeSide{mesh.normals[u1], mesh.normals[v1]};
     } else if (borders) {
       other = borders->other(mesh.positions[u], mesh.positions[v], side);
     }
@@ -132,7 +135,8 @@ RefinedMesh refineWith(const RefineInput& mesh, const MeshEdges& edges, const Sp
       points[h0][q] = emit(s.points[q], s.normals[q]);
       if (h1 < 0) continue;
       // One vertex where both sides agree on the normal, two at a crease.
-      const int far = bitsEqual(s.normals[q], s.otherNormals[q]) ? points[h0][q] : emit(s.points[q], s.otherNormals[q]);
+      const int far =
+          bitsEqual(s.normals[q], s.otherNormals[q]) ? points[h0][q] : emit(s.points[q], s.otherNormals[q]);
       points[h1][reversed ? 2 - q : q] = far;
     }
   }
@@ -166,12 +170,14 @@ Status addBorderEdges(const RefineInput& mesh, BorderEdges& borders) {
   return Status::ok();
 }
 
-Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion, const BorderEdges* borders) {
+Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& criterion,
+                                 const BorderEdges* borders) {
   TESSERA_RETURN_IF_ERROR(checkInput(mesh, criterion));
   return refineWith(mesh, findEdges(mesh), criterion, borders);
 }
 
-Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes, const SplitCriterion& criterion) {
+Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes,
+                                                const SplitCriterion& criterion) {
   BorderEdges borders;
   std::vector<MeshEdges> edges;
   edges.reserve(meshes.size());
@@ -183,7 +189,8 @@ Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> mes
   }
   std::vector<RefinedMesh> out;
   out.reserve(meshes.size());
-  for (size_t i = 0; i < meshes.size(); ++i) out.push_back(refineWith(meshes[i], edges[i], criterion, &borders));
+  for (size_t i = 0; i < meshes.size(); ++i)
+    out.push_back(refineWith(meshes[i], edges[i], criterion, &borders));
   return out;
 }
 

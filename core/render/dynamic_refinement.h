@@ -56,6 +56,7 @@ Expected<RefinedMesh> refineMesh(const RefineInput& mesh, const SplitCriterion& 
 
 // One frame of a viewer: every mesh (region) refined on its own, with the
 // BorderEdges of all of them, so that together they stay crack-free.
-Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes, const SplitCriterion& criterion);
+Expected<std::vector<RefinedMesh>> refineMeshes(std::span<const RefineInput> meshes,
+                                                const SplitCriterion& criterion);
 
 }  // namespace tessera

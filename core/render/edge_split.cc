@@ -59,7 +59,9 @@ bool bitsLess(const Vec3& a, const Vec3& b) {
   return false;
 }
 
-bool bitsEqual(const Vec3& a, const Vec3& b) { return !bitsLess(a, b) && !bitsLess(b, a); }
+bool bitsEqual(const Vec3& a, const Vec3& b) {
+  return !bitsLess(a, b) && !bitsLess(b, a);
+}
 
 // Seed §4.2 computes a first-level point with Loop's edge mask, 3/8 of each
 // end plus 1/8 of each opposite vertex, and a second-level point with the
@@ -77,8 +79,8 @@ bool bitsEqual(const Vec3& a, const Vec3& b) { return !bitsLess(a, b) && !bitsLe
 // that is the cubic at 1/4 and 3/4. The original vertices are not moved
 // (the seed smooths them for the first level only): here they are limit
 // points already, and their rings straddle regions.
-EdgeSplit splitEdge(const Vec3& p0In, const Vec3& p1In, const EdgeSide& sideIn, const std::optional<EdgeSide>& otherIn,
-                    const SplitCriterion& criterion) {
+EdgeSplit splitEdge(const Vec3& p0In, const Vec3& p1In, const EdgeSide& sideIn,
+                    const std::optional<EdgeSide>& otherIn, const SplitCriterion& criterion) {
   // Canonical order: ends by position bits, then sides by normal bits.
   const bool flip = bitsLess(p1In, p0In);
   Vec3 p0 = p0In, p1 = p1In;

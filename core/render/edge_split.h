@@ -32,8 +32,8 @@ struct EdgeSide {
 // a streamed LOD has no undeformed state, and the bending it leaves is what
 // refinement should remove, so the thresholds are absolute.
 struct SplitCriterion {
-  int maxSplits = 2;              // 0, 1 or 2
-  double splitOnceBelow = 0.9994;  // cos 2 degrees
+  int maxSplits = 2;                // 0, 1 or 2
+  double splitOnceBelow = 0.9994;   // cos 2 degrees
   double splitTwiceBelow = 0.9945;  // cos 6 degrees
 };
 
@@ -48,8 +48,8 @@ struct EdgeSplit {
 
 // The edge p0 -> p1 as the triangle holding `side` sees it; `other` is the
 // triangle across it, if any, with its normals at p0 and p1.
-EdgeSplit splitEdge(const Vec3& p0, const Vec3& p1, const EdgeSide& side, const std::optional<EdgeSide>& other,
-                    const SplitCriterion& criterion);
+EdgeSplit splitEdge(const Vec3& p0, const Vec3& p1, const EdgeSide& side,
+                    const std::optional<EdgeSide>& other, const SplitCriterion& criterion);
 
 // Strict total order on the bits of a position (then used to orient edges).
 bool bitsLess(const Vec3& a, const Vec3& b);

@@ -84,7 +84,8 @@ constexpr SplitPattern triangulate(int s0, int s1, int s2) {
       const int j = i + span;
       ch.best[i][j] = kNoTriangulation;
       for (int k = i + 1; k < j; ++k) {
-        const double cost = ch.best[i][k] + ch.best[k][j] + triangleCost(poly.slots[i], poly.slots[k], poly.slots[j]);
+        const double cost =
+            ch.best[i][k] + ch.best[k][j] + triangleCost(poly.slots[i], poly.slots[k], poly.slots[j]);
         if (cost < ch.best[i][j]) ch.best[i][j] = cost, ch.apex[i][j] = k;
       }
     }
@@ -118,8 +119,12 @@ static_assert(kTable[26].count == kMaxSplitTriangles, "the seed's maximum of ten
 
 }  // namespace
 
-const SplitPattern& splitPattern(int index) { return kTable[index]; }
+const SplitPattern& splitPattern(int index) {
+  return kTable[index];
+}
 
-std::array<double, 2> slotPosition(int slot) { return position(slot); }
+std::array<double, 2> slotPosition(int slot) {
+  return position(slot);
+}
 
 }  // namespace tessera

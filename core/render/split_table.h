@@ -30,11 +30,19 @@ struct SplitPattern {
   std::array<std::array<uint8_t, 3>, kMaxSplitTriangles> triangles{};
 };
 
-constexpr int splitTableIndex(int s0, int s1, int s2) { return s0 + 3 * s1 + 9 * s2; }
-constexpr int cornerSlot(int corner) { return corner; }
-constexpr int edgeSlot(int edge, int quarter) { return 3 + 3 * edge + (quarter - 1); }
+constexpr int splitTableIndex(int s0, int s1, int s2) {
+  return s0 + 3 * s1 + 9 * s2;
+}
+constexpr int cornerSlot(int corner) {
+  return corner;
+}
+constexpr int edgeSlot(int edge, int quarter) {
+  return 3 + 3 * edge + (quarter - 1);
+}
 // Points an edge gains when split `splits` times: 0, 1 or 3.
-constexpr int pointsForSplits(int splits) { return splits == 0 ? 0 : splits == 1 ? 1 : 3; }
+constexpr int pointsForSplits(int splits) {
+  return splits == 0 ? 0 : splits == 1 ? 1 : 3;
+}
 
 // The entry for index splitTableIndex(s0, s1, s2), 0 <= index < 27.
 const SplitPattern& splitPattern(int index);

@@ -35,12 +35,14 @@ constexpr int kMaxCells = 1 << 22;
 
 }  // namespace
 
-NearestTriangle::NearestTriangle(const MeshView& mesh, const Vec3& lo, const Vec3& hi) : mesh_(mesh), lo_(lo) {
+NearestTriangle::NearestTriangle(const MeshView& mesh, const Vec3& lo, const Vec3& hi)
+    : mesh_(mesh), lo_(lo) {
   double edges = 0;
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) edges += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
   const Vec3 extent = hi - lo;
-  cell_ = mesh.triangles.empty() ? extent.max() + 1 : std::max(2 * edges / (3.0 * mesh.triangles.size()), 1e-12);
+  cell_ =
+      mesh.triangles.empty() ? extent.max() + 1 : std::max(2 * edges / (3.0 * mesh.triangles.size()), 1e-12);
   for (;;) {
     for (int k = 0; k < 3; ++k) dims_[k] = static_cast<int>(std::floor(extent[k] / cell_)) + 1;
     if (static_cast<int64_t>(dims_[0]) * dims_[1] * dims_[2] <= kMaxCells) break;
@@ -79,7 +81,8 @@ double NearestTriangle::distance(const Vec3& p) const {
           const int c = cellIndex(x, y, z);
           for (int i = start_[c]; i < start_[c + 1]; ++i) {
             const auto& t = mesh_.triangles[items_[i]];
-            const Vec3 q = closestOnTriangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]);
+            const Vec3 q =
+                closestOnTriangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]);
             best2 = std::min(best2, (q - p).sqrnorm());
           }
         }
@@ -103,7 +106,8 @@ SurfaceDistance surfaceDistance(const MeshView& approximation, const MeshView& r
   const NearestTriangle toReference(reference, lo, hi), toApproximation(approximation, lo, hi);
   double sum = 0, area = 0;
   for (const auto& t : approximation.triangles) {
-    const Vec3 &a = approximation.positions[t[0]], &b = approximation.positions[t[1]], &c = approximation.positions[t[2]];
+    const Vec3 &a = approximation.positions[t[0]], &b = approximation.positions[t[1]],
+               &c = approximation.positions[t[2]];
     const double w = 0.5 * ((b - a) % (c - a)).norm() / 10.0;
     for (int i = 0; i <= 3; ++i) {
       for (int j = 0; i + j <= 3; ++j) {

@@ -25,7 +25,9 @@ namespace {
 
 using testing::TestMesh;
 
-bool same(const Vec3& a, const Vec3& b) { return bitsEqual(a, b); }
+bool same(const Vec3& a, const Vec3& b) {
+  return bitsEqual(a, b);
+}
 
 Vec3 randomUnit(std::mt19937& rng) {
   std::normal_distribution<double> g(0.0, 1.0);
@@ -44,8 +46,9 @@ TEST(EdgeSplit, DecisionAndPointsAreTheSameFromEitherEndAndSide) {
     std::optional<EdgeSide> other;
     if (trial % 2) other = EdgeSide{randomUnit(rng), randomUnit(rng)};  // a crease: the far side differs
     const EdgeSplit s = splitEdge(p0, p1, a, other, {});
-    const EdgeSplit reversed = splitEdge(p1, p0, {a.n1, a.n0},
-                                         other ? std::optional<EdgeSide>(EdgeSide{other->n1, other->n0}) : std::nullopt, {});
+    const EdgeSplit reversed =
+        splitEdge(p1, p0, {a.n1, a.n0},
+                  other ? std::optional<EdgeSide>(EdgeSide{other->n1, other->n0}) : std::nullopt, {});
     ++bySplits[s.splits];
     ASSERT_EQ(s.splits, reversed.splits) << "trial " << trial;
     for (int q = 0; q < 3; ++q) {
@@ -57,7 +60,8 @@ TEST(EdgeSplit, DecisionAndPointsAreTheSameFromEitherEndAndSide) {
     const EdgeSplit across = splitEdge(p1, p0, {other->n1, other->n0}, EdgeSide{a.n1, a.n0}, {});
     ASSERT_EQ(s.splits, across.splits) << "trial " << trial;
     for (int q = 0; q < 3; ++q) {
-      ASSERT_TRUE(same(s.points[q], across.points[2 - q])) << "trial " << trial << " point " << q << " across";
+      ASSERT_TRUE(same(s.points[q], across.points[2 - q]))
+          << "trial " << trial << " point " << q << " across";
       ASSERT_TRUE(same(s.normals[q], across.otherNormals[2 - q])) << "trial " << trial << " across";
     }
   }
@@ -80,7 +84,9 @@ Document cubeDocument() {
   return std::move(*doc);
 }
 
-RefineInput inputOf(const RegionMesh& m) { return {m.positions, m.normals, m.triangles}; }
+RefineInput inputOf(const RegionMesh& m) {
+  return {m.positions, m.normals, m.triangles};
+}
 
 // Every region refined on its own, told the border normals of all (or not).
 std::vector<RefinedMesh> refineRegions(const Tessellation& t, const SplitCriterion& c, bool withBorders) {
@@ -163,8 +169,9 @@ TEST(DynamicRefinement, RegionsRefinedSeparatelyAreWatertight) {
     const char* name;
     Document* doc;
     LodProfile profile;
-  } cases[] = {{"cube", &cube, {.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15}},
-               {"torus with random tags", &*torusDoc, {.baseLevel = 0, .maxLevel = 3, .angleThresholdDegrees = 20}}};
+  } cases[] = {
+      {"cube", &cube, {.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15}},
+      {"torus with random tags", &*torusDoc, {.baseLevel = 0, .maxLevel = 3, .angleThresholdDegrees = 20}}};
   for (auto& c : cases) {
     auto t = Tessellation::build(*c.doc, c.profile);
     ASSERT_TRUE(t.isOk()) << c.name << ": " << t.status().message();
@@ -176,7 +183,8 @@ TEST(DynamicRefinement, RegionsRefinedSeparatelyAreWatertight) {
       EXPECT_EQ(unmatchedEdges(merged), 0) << c.name << ", " << maxSplits << " splits";
       EXPECT_GT(merged.triangles.size(), 3 * t->numTriangles() / 2) << c.name << ": refinement did little";
       for (const auto& tri : merged.triangles) {
-        const Vec3 n = (merged.positions[tri[1]] - merged.positions[tri[0]]) % (merged.positions[tri[2]] - merged.positions[tri[0]]);
+        const Vec3 n = (merged.positions[tri[1]] - merged.positions[tri[0]]) %
+                       (merged.positions[tri[2]] - merged.positions[tri[0]]);
         ASSERT_GT(n.norm(), 1e-12) << c.name << ": a refined triangle has no area";
       }
     }
@@ -193,7 +201,8 @@ TEST(DynamicRefinement, RegionsRefinedSeparatelyAreWatertight) {
   ASSERT_TRUE(grid.isOk());
   std::vector<RegionMesh> decoded;
   for (const auto& [id, m] : t->regions()) {
-    auto bytes = encodeRegion({.regionId = id, .documentVersion = 1, .profile = t->profile(), .grid = *grid}, m);
+    auto bytes =
+        encodeRegion({.regionId = id, .documentVersion = 1, .profile = t->profile(), .grid = *grid}, m);
     ASSERT_TRUE(bytes.isOk()) << bytes.status().message();
     auto back = decodeRegion(*bytes);
     ASSERT_TRUE(back.isOk()) << back.status().message();
@@ -204,7 +213,8 @@ TEST(DynamicRefinement, RegionsRefinedSeparatelyAreWatertight) {
   auto fromDecoded = refineMeshes(inputs, {.maxSplits = 2});
   ASSERT_TRUE(fromDecoded.isOk());
   EXPECT_EQ(unmatchedEdges(mergeByPosition(pointers(decoded))), 0);
-  EXPECT_EQ(unmatchedEdges(mergeByPosition(pointers(*fromDecoded))), 0) << "decoded regions crack when refined";
+  EXPECT_EQ(unmatchedEdges(mergeByPosition(pointers(*fromDecoded))), 0)
+      << "decoded regions crack when refined";
 
   // By hand, as a client that refines only some regions would: the same.
   BorderEdges borders;
@@ -224,16 +234,19 @@ struct Distances {
 };
 
 Distances distancesToDense(Document& doc, const LodProfile& coarse, int denseLevel) {
-  auto dense = Tessellation::build(doc, {.baseLevel = denseLevel, .maxLevel = denseLevel, .angleThresholdDegrees = 90});
+  auto dense = Tessellation::build(
+      doc, {.baseLevel = denseLevel, .maxLevel = denseLevel, .angleThresholdDegrees = 90});
   auto t = Tessellation::build(doc, coarse);
   EXPECT_TRUE(dense.isOk() && t.isOk());
   const Merged reference = mergeByPosition(pointers(*dense));
   Distances d;
   d.coarse = surfaceDistance(mergeByPosition(pointers(*t)).view(), reference.view());
-  d.once = surfaceDistance(mergeByPosition(pointers(refineRegions(*t, {.maxSplits = 1}, true))).view(), reference.view());
-  d.twice = surfaceDistance(mergeByPosition(pointers(refineRegions(*t, {.maxSplits = 2}, true))).view(), reference.view());
-  std::printf("rms %.5f %.5f %.5f  max %.5f %.5f %.5f  (coarse, 1 split, 2 splits)\n", d.coarse.rms, d.once.rms,
-              d.twice.rms, d.coarse.max, d.once.max, d.twice.max);
+  d.once = surfaceDistance(mergeByPosition(pointers(refineRegions(*t, {.maxSplits = 1}, true))).view(),
+                           reference.view());
+  d.twice = surfaceDistance(mergeByPosition(pointers(refineRegions(*t, {.maxSplits = 2}, true))).view(),
+                            reference.view());
+  std::printf("rms %.5f %.5f %.5f  max %.5f %.5f %.5f  (coarse, 1 split, 2 splits)\n", d.coarse.rms,
+              d.once.rms, d.twice.rms, d.coarse.max, d.once.max, d.twice.max);
   return d;
 }
 
@@ -243,7 +256,8 @@ TEST(DynamicRefinement, RefinedCoarseLodIsCloserToTheDenseLimitSurface) {
   auto smooth = Document::create(ico.topology, ico.points, {.maxLevel = 5});
   ASSERT_TRUE(smooth.isOk());
   for (Document* doc : {&cube, &*smooth}) {
-    const Distances d = distancesToDense(*doc, {.baseLevel = 1, .maxLevel = 2, .angleThresholdDegrees = 20}, 5);
+    const Distances d =
+        distancesToDense(*doc, {.baseLevel = 1, .maxLevel = 2, .angleThresholdDegrees = 20}, 5);
     EXPECT_LT(d.once.rms, 0.8 * d.coarse.rms);
     EXPECT_LT(d.twice.rms, d.once.rms);
     EXPECT_LT(d.once.max, d.coarse.max);

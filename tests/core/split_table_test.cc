@@ -56,7 +56,8 @@ TEST(SplitTable, EveryEntryIsAValidOrientedTriangulation) {
         for (int i = 0; i < p.count; ++i) {
           const auto& t = p.triangles[i];
           for (int k = 0; k < 3; ++k) {
-            ASSERT_TRUE(allowed.count(t[k])) << where << ": slot " << int(t[k]) << " is not a point of this entry";
+            ASSERT_TRUE(allowed.count(t[k]))
+                << where << ": slot " << int(t[k]) << " is not a point of this entry";
             used.insert(t[k]);
             ++directed[{t[k], t[(k + 1) % 3]}];
           }
@@ -64,8 +65,10 @@ TEST(SplitTable, EveryEntryIsAValidOrientedTriangulation) {
           const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
           EXPECT_GT(twice, 1e-3) << where << ": triangle " << i << " is clockwise or degenerate";
           area += twice / 2;
-          const Vec3 n = (placeOn(t[1], corners) - placeOn(t[0], corners)) % (placeOn(t[2], corners) - placeOn(t[0], corners));
-          EXPECT_GT(n | normal, 1e-3 * normal.sqrnorm()) << where << ": triangle " << i << " flips or has no area in 3D";
+          const Vec3 n = (placeOn(t[1], corners) - placeOn(t[0], corners)) %
+                         (placeOn(t[2], corners) - placeOn(t[0], corners));
+          EXPECT_GT(n | normal, 1e-3 * normal.sqrnorm())
+              << where << ": triangle " << i << " flips or has no area in 3D";
         }
         EXPECT_EQ(used, allowed) << where << ": every point is used";
         EXPECT_NEAR(area, 0.4330127018922193, 1e-12) << where << ": the triangles cover the triangle once";
@@ -73,7 +76,8 @@ TEST(SplitTable, EveryEntryIsAValidOrientedTriangulation) {
         for (size_t i = 0; i < boundary.size(); ++i) {
           const int a = boundary[i], b = boundary[(i + 1) % boundary.size()];
           EXPECT_EQ(directed[std::make_pair(a, b)], 1) << where << ": boundary " << a << "->" << b;
-          EXPECT_EQ(directed[std::make_pair(b, a)], 0) << where << ": boundary " << b << "->" << a << " reversed";
+          EXPECT_EQ(directed[std::make_pair(b, a)], 0)
+              << where << ": boundary " << b << "->" << a << " reversed";
           directed.erase({a, b});
           directed.erase({b, a});
         }

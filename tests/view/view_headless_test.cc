@@ -10,8 +10,8 @@
 #include <unistd.h>
 
 #include <array>
-#include <cstdio>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -273,7 +273,8 @@ TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
       refinedChanged += differ(r2->at(x, y), r0->at(x, y));
     }
   }
-  EXPECT_GT(refinedCovered, static_cast<size_t>(r2->width * r2->height / 50)) << "the refined surface is not visible";
+  EXPECT_GT(refinedCovered, static_cast<size_t>(r2->width * r2->height / 50))
+      << "the refined surface is not visible";
   EXPECT_LT(refinedCovered, static_cast<size_t>(r2->width * r2->height * 4 / 5));
   std::printf("--refine 2: %zu of %d pixels differ from the unrefined picture\n", refinedChanged,
               r2->width * r2->height);

@@ -16,6 +16,11 @@ void drawHud(const HudFacts& f, ViewToggles& t) {
   ImGui::Begin("tessera-view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
   ImGui::Text("%.1f fps   %lld triangles in %zu regions", f.fps, static_cast<long long>(f.triangles),
               f.regions);
+  if (t.refine > 0) {
+    ImGui::Text("refined: %lld triangles from %lld, %.2f ms + %.2f ms upload",
+                static_cast<long long>(f.triangles), static_cast<long long>(f.receivedTriangles), f.refineMs,
+                f.uploadMs);
+  }
   ImGui::Text("document version %llu%s", static_cast<unsigned long long>(f.stats.version),
               f.stats.ready ? "" : " (waiting for a snapshot)");
   ImGui::Text("received %.1f KiB/s  (%.1f KiB in all)", f.bytesPerSecond / 1024,
@@ -36,6 +41,7 @@ void drawHud(const HudFacts& f, ViewToggles& t) {
   ImGui::SameLine();
   ImGui::Checkbox("region colours (C)", &t.regionColours);
   ImGui::Checkbox("control vertices (V)", &t.showControls);
+  ImGui::SliderInt("refine: splits per edge (R)", &t.refine, 0, 2);
   ImGui::SliderInt("control level ([ ])", &t.controlLevel, 0, 10);
   if (f.pickedVertex && f.pickedEdgeEnd) {
     ImGui::Text("%zu control vertices; picked the edge %s - %s", f.controlPoints,

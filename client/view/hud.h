@@ -18,6 +18,7 @@ struct ViewToggles {
   bool regionColours = false;
   bool showControls = true;
   int controlLevel = 0;
+  int refine = 0;  // client-side refinement: splits per edge, 0..2
   // LOD profile; `profileChanged` is set when the user applies a new one.
   int baseLevel = 1, maxLevel = 3;
   float angle = 15;
@@ -26,7 +27,9 @@ struct ViewToggles {
 
 struct HudFacts {
   double fps = 0;
-  int64_t triangles = 0;
+  int64_t triangles = 0;  // drawn: refined when refining
+  int64_t receivedTriangles = 0;
+  double refineMs = 0, uploadMs = 0;  // this frame's refinement and its upload
   size_t regions = 0;
   double bytesPerSecond = 0;
   size_t controlPoints = 0;

@@ -24,6 +24,9 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_C:
       app.toggles.regionColours = !app.toggles.regionColours;
       break;
+    case GLFW_KEY_R:
+      app.toggles.refine = (app.toggles.refine + 1) % 3;
+      break;
     case GLFW_KEY_V:
       app.toggles.showControls = !app.toggles.showControls;
       break;

@@ -168,7 +168,7 @@ void Renderer::release(GpuRegion& r) {
   r = {};
 }
 
-void Renderer::sync(const RegionMap& regions) {
+void Renderer::evict(const RegionMap& regions) {
   for (auto it = regions_.begin(); it != regions_.end();) {
     if (regions.count(it->first)) {
       ++it;
@@ -178,43 +178,69 @@ void Renderer::sync(const RegionMap& regions) {
     release(it->second);
     it = regions_.erase(it);
   }
+}
+
+Renderer::GpuRegion& Renderer::slot(uint64_t id) {
+  GpuRegion& r = regions_[id];
+  if (r.vao == 0) {
+    glGenVertexArrays(1, &r.vao);
+    glGenBuffers(1, &r.vbo);
+    glGenBuffers(1, &r.ibo);
+    r.colour = regionColour(id);
+  }
+  return r;
+}
+
+void Renderer::upload(GpuRegion& r, std::span<const Vec3> positions, std::span<const Vec3> normals,
+                      std::span<const std::array<int, 3>> triangles, GLenum usage) {
+  triangles_ -= r.indices / 3;
+  std::vector<float> vertices;
+  vertices.reserve(positions.size() * 6);
+  for (size_t v = 0; v < positions.size(); ++v) {
+    for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<float>(positions[v][k]));
+    for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<float>(normals[v][k]));
+  }
+  std::vector<uint32_t> indices;
+  indices.reserve(triangles.size() * 3);
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) indices.push_back(static_cast<uint32_t>(t[k]));
+  glBindVertexArray(r.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(),
+               usage);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.ibo);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
+               indices.data(), usage);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  glBindVertexArray(0);
+  r.indices = static_cast<GLsizei>(indices.size());
+  triangles_ += r.indices / 3;
+  ++uploads_;
+}
+
+void Renderer::sync(const RegionMap& regions) {
+  evict(regions);
   for (const auto& [id, mesh] : regions) {
-    GpuRegion& r = regions_[id];
+    GpuRegion& r = slot(id);
     if (r.mesh == mesh) continue;
-    if (r.vao == 0) {
-      glGenVertexArrays(1, &r.vao);
-      glGenBuffers(1, &r.vbo);
-      glGenBuffers(1, &r.ibo);
-      r.colour = regionColour(id);
-    }
-    triangles_ -= r.indices / 3;
     r.mesh = mesh;
-    std::vector<float> vertices;
-    vertices.reserve(mesh->positions.size() * 6);
-    for (size_t v = 0; v < mesh->positions.size(); ++v) {
-      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<float>(mesh->positions[v][k]));
-      for (int k = 0; k < 3; ++k) vertices.push_back(static_cast<float>(mesh->normals[v][k]));
-    }
-    std::vector<uint32_t> indices;
-    indices.reserve(mesh->triangles.size() * 3);
-    for (const auto& t : mesh->triangles)
-      for (int k = 0; k < 3; ++k) indices.push_back(static_cast<uint32_t>(t[k]));
-    glBindVertexArray(r.vao);
-    glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(),
-                 GL_STATIC_DRAW);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r.ibo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(uint32_t)),
-                 indices.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
-                          reinterpret_cast<const void*>(3 * sizeof(float)));
-    glBindVertexArray(0);
-    r.indices = static_cast<GLsizei>(indices.size());
-    triangles_ += r.indices / 3;
-    ++uploads_;
+    upload(r, mesh->positions, mesh->normals, mesh->triangles, GL_STATIC_DRAW);
+  }
+}
+
+void Renderer::stream(const RegionMap& regions, const std::vector<RefinedMesh>& refined) {
+  evict(regions);
+  size_t i = 0;
+  for (const auto& [id, mesh] : regions) {
+    if (i >= refined.size()) break;
+    GpuRegion& r = slot(id);
+    r.mesh = nullptr;  // what is on the GPU is not the received mesh
+    const RefinedMesh& m = refined[i++];
+    upload(r, m.positions, m.normals, m.triangles, GL_STREAM_DRAW);
   }
 }
 

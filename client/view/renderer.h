@@ -9,12 +9,14 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "client/view/connection.h"
 #include "client/view/control_points.h"
 #include "client/view/gl.h"
 #include "client/view/view_math.h"
+#include "core/render/dynamic_refinement.h"
 
 namespace tessera::view {
 
@@ -38,6 +40,11 @@ class Renderer {
 
   // Uploads new and changed regions and frees removed ones.
   void sync(const RegionMap& regions);
+  // Client-side refinement: draws refined[i] for the i-th region of
+  // `regions` (in map order), uploaded every frame as a stream (seed 002
+  // keeps nothing between frames); a later sync() uploads the received
+  // regions again.
+  void stream(const RegionMap& regions, const std::vector<RefinedMesh>& refined);
   void drawSurface(const DrawOptions& options);
   // Points are drawn over the surface; callers pass only the visible ones.
   void drawPoints(const std::vector<V3>& points, const PointStyle& style, const DrawOptions& options);
@@ -55,6 +62,12 @@ class Renderer {
   };
   Renderer() = default;
   static void release(GpuRegion& r);
+  // Frees the regions not in `regions`.
+  void evict(const RegionMap& regions);
+  // The region's GL objects, created on first use.
+  GpuRegion& slot(uint64_t id);
+  void upload(GpuRegion& r, std::span<const Vec3> positions, std::span<const Vec3> normals,
+              std::span<const std::array<int, 3>> triangles, GLenum usage);
 
   GLuint meshProgram_ = 0, pointProgram_ = 0;
   GLuint pointVao_ = 0, pointVbo_ = 0;

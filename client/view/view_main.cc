@@ -24,6 +24,7 @@
 #include "client/view/control_points.h"
 #include "client/view/hud.h"
 #include "client/view/input.h"
+#include "client/view/refinement.h"
 #include "client/view/renderer.h"
 #include "client/view/screenshot.h"
 #include "client/view/self_test.h"
@@ -124,6 +125,7 @@ int run(const ViewOptions& options) {
   app.toggles.wireframe = options.wireframe;
   app.toggles.regionColours = options.regionColours;
   app.toggles.controlLevel = options.controlLevel;
+  app.toggles.refine = options.refine;
   app.toggles.baseLevel = static_cast<int>(options.baseLevel);
   app.toggles.maxLevel = static_cast<int>(options.maxLevel);
   app.toggles.angle = static_cast<float>(options.angle);
@@ -155,6 +157,8 @@ int run(const ViewOptions& options) {
     RegionMap regions;
     std::vector<ControlPoint> points;
     uint64_t seenUpdates = 0;
+    bool synced = false;
+    RefineTiming refineTiming;
     int pointsLevel = -1;
     bool framed = false;
     int framesReady = 0, framesCounted = 0;
@@ -186,8 +190,15 @@ int run(const ViewOptions& options) {
       if (stats.regionUpdates != seenUpdates) {
         seenUpdates = stats.regionUpdates;
         regions = (*connection)->regions();
-        (*renderer)->sync(regions);
         pointsLevel = -1;
+        synced = false;
+      }
+      if (app.toggles.refine > 0) {
+        refineTiming = refineAndStream(regions, app.toggles.refine, **renderer);
+        synced = false;
+      } else if (!synced) {
+        (*renderer)->sync(regions);
+        synced = true;
       }
       if (pointsLevel != app.toggles.controlLevel) {
         points = controlPoints(regions, app.toggles.controlLevel);
@@ -254,6 +265,9 @@ int run(const ViewOptions& options) {
       if (options.hud) {
         HudFacts facts{.fps = fps,
                        .triangles = (*renderer)->triangles(),
+                       .receivedTriangles = refineTiming.receivedTriangles,
+                       .refineMs = refineTiming.refineMs,
+                       .uploadMs = refineTiming.uploadMs,
                        .regions = (*renderer)->regionCount(),
                        .bytesPerSecond = bytesPerSecond,
                        .controlPoints = points.size(),

@@ -17,6 +17,8 @@ const char* const kViewHelp =
     "  --wireframe            start with the wireframe overlay on\n"
     "  --region-colours       start with one colour per region\n"
     "  --no-hud               hide the HUD\n"
+    "  --refine N             refine the received surface on the client, splitting each\n"
+    "                         edge up to N times (0, 1 or 2; default 0; key R cycles)\n"
     "  --screenshot OUT.png   headless: render --frames N frames (default 30) after the\n"
     "                         first snapshot, write OUT.png and exit\n"
     "  --drag DX,DY           headless: first drag the control vertex nearest the centre\n"
@@ -94,6 +96,8 @@ Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
       TESSERA_RETURN_IF_ERROR(parseNumber<double>(a, v, 0.0, 180.0, &o.angle));
     } else if (a == "--level") {
       TESSERA_RETURN_IF_ERROR(parseNumber<int>(a, v, 0, 20, &o.controlLevel));
+    } else if (a == "--refine") {
+      TESSERA_RETURN_IF_ERROR(parseNumber<int>(a, v, 0, 2, &o.refine));
     } else if (a == "--size") {
       const size_t x = v.find('x');
       if (x == std::string::npos) return invalidArgument("--size expects WxH, got '" + v + "'");

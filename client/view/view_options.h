@@ -25,6 +25,8 @@ struct ViewOptions {
   bool wireframe = false;
   bool regionColours = false;
   bool hud = true;
+  // Client-side refinement (seed 002): at most this many splits per edge, 0 for none.
+  int refine = 0;
   // Headless: render `frames` frames once the document is in, write the PNG, exit.
   std::string screenshot;
   int frames = 30;

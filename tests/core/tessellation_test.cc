@@ -13,6 +13,7 @@
 #include "core/io/mesh_import.h"
 #include "core/io/tag_file.h"
 #include "core/loop/limit.h"
+#include "core/render/surface_distance.h"
 #include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
 #include "support/test_meshes.h"
@@ -173,26 +174,7 @@ namespace tessera {
 namespace {
 
 double pointTriangleDistance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Closest point by region tests (Ericson, Real-Time Collision Detection 5.1.5).
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + (d1 / (d1 - d3)) * ab)).norm();
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + (d2 / (d2 - d6)) * ac)).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    return (p - (b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b))).norm();
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + (vb * denom) * ab + (vc * denom) * ac)).norm();
+  return (p - closestOnTriangle(p, a, b, c)).norm();
 }
 
 // §2 quality: one level-4 edit on a 768-triangle torus. The adaptive

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -259,6 +260,38 @@ TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
   EXPECT_GT(dragged, static_cast<size_t>(b->width * b->height / 200))
       << "the drag did not change the picture";
 
+  // Client-side refinement: the same document refined with up to 2 splits
+  // per edge still shows the object, with more triangles drawn than received.
+  const std::string plain = dir + "/r0.png", refined = dir + "/r2.png";
+  ASSERT_EQ(screenshot(plain), 0) << "tessera-view failed; see " << dir << "/view.log";
+  ASSERT_EQ(screenshot(refined, "viewer-token-0123456789", {"--refine", "2"}), 0)
+      << "tessera-view --refine 2 failed; see " << dir << "/view.log";
+  auto r0 = readPng(plain), r2 = readPng(refined);
+  ASSERT_TRUE(r0.has_value() && r2.has_value() && r2->width == r0->width && r2->height == r0->height);
+  size_t refinedCovered = 0, refinedChanged = 0;
+  for (int y = 0; y < r2->height; ++y) {
+    for (int x = 0; x < r2->width; ++x) {
+      refinedCovered += differ(r2->at(x, y), background);
+      refinedChanged += differ(r2->at(x, y), r0->at(x, y));
+    }
+  }
+  EXPECT_GT(refinedCovered, static_cast<size_t>(r2->width * r2->height / 50))
+      << "the refined surface is not visible";
+  EXPECT_LT(refinedCovered, static_cast<size_t>(r2->width * r2->height * 4 / 5));
+  std::printf("--refine 2: %zu of %d pixels differ from the unrefined picture\n", refinedChanged,
+              r2->width * r2->height);
+  std::fflush(stdout);  // before the next fork copies the buffer
+  // The "wrote PNG (..., N triangles)" lines of the two runs.
+  const std::string logs = testing::fileBytes(dir + "/view.log");
+  auto trianglesOf = [&](const std::string& png) -> long long {
+    const size_t at = logs.find("wrote " + png + " ");
+    const size_t end = at == std::string::npos ? at : logs.find(" triangles)", at);
+    if (end == std::string::npos) return -1;
+    return std::atoll(logs.c_str() + logs.rfind(' ', end - 1) + 1);
+  };
+  EXPECT_GT(trianglesOf(plain), 0) << logs;
+  EXPECT_GT(trianglesOf(refined), 2 * trianglesOf(plain)) << logs;
+
   // The HUD (Dear ImGui) draws its window in the top-left corner.
   const std::string withHud = dir + "/hud.png";
   auto args = std::vector<std::string>{TESSERA_VIEW_PATH,
@@ -275,7 +308,9 @@ TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
                                        "--screenshot",
                                        withHud,
                                        "--frames",
-                                       "5"};
+                                       "5",
+                                       "--refine",  // the HUD's refinement line too
+                                       "1"};
   ASSERT_EQ(runBounded(args, env, dir + "/view.log", 120), 0)
       << "tessera-view failed; see " << dir << "/view.log";
   auto h = readPng(withHud);

@@ -32,7 +32,9 @@ TEST(ViewOptions, ParsesTheConnectionProfileAndHeadlessMode) {
                              "320x200",
                              "--no-hud",
                              "--level",
-                             "1"});
+                             "1",
+                             "--refine",
+                             "2"});
   ASSERT_TRUE(o.isOk()) << o.status().message();
   EXPECT_EQ(o->host, "example.org");
   EXPECT_EQ(o->port, 7000);
@@ -47,6 +49,8 @@ TEST(ViewOptions, ParsesTheConnectionProfileAndHeadlessMode) {
   EXPECT_EQ(o->height, 200);
   EXPECT_FALSE(o->hud);
   EXPECT_EQ(o->controlLevel, 1);
+  EXPECT_EQ(o->refine, 2);
+  EXPECT_EQ(parseViewOptions({"--connect", "h:1", "--document", "1"})->refine, 0);
 }
 
 TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
@@ -62,6 +66,9 @@ TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   ASSERT_FALSE(frames.isOk());
   EXPECT_NE(frames.status().message().find("--frames"), std::string::npos);
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--bogus", "1"}).isOk());
+  auto refine = parseViewOptions({"--connect", "h:1", "--document", "1", "--refine", "3"});
+  ASSERT_FALSE(refine.isOk());  // at most 2 splits per edge (seed 002)
+  EXPECT_NE(refine.status().message().find("--refine"), std::string::npos);
   EXPECT_TRUE(parseViewOptions({"--help"})->help);
   auto keys =
       parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys", "--screenshot", "k.png"});

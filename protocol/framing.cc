@@ -137,6 +137,16 @@ Expected<bool> FrameDecoder::next(google::protobuf::MessageLite& message) {
   return true;
 }
 
+Expected<bool> FrameDecoder::nextPayload(std::string& payload) {
+  if (ready_.empty()) {
+    if (failed()) return status_;
+    return false;
+  }
+  payload = std::move(ready_.front().payload);
+  ready_.pop_front();
+  return true;
+}
+
 Status FrameDecoder::finish() {
   if (failed() || headerFill_ == 0) return status_;
   const std::string where = "stream ended inside " + describeFrame(current_.number, current_.offset);

@@ -73,6 +73,10 @@ class FrameDecoder {
   // so it takes that failure's place: once next() has drained, status() is the
   // first failure in stream order, whatever the chunking.
   Expected<bool> next(google::protobuf::MessageLite& message);
+  // The oldest complete frame's payload, unparsed (moved out): for readers
+  // that need only a few fields of most messages (the load tester's
+  // counting viewers) and parse the rest themselves.
+  Expected<bool> nextPayload(std::string& payload);
 
   // Call at end of stream: fails (kTruncated) if a frame was left unfinished.
   Status finish();

@@ -27,6 +27,8 @@ const char* const kServerUsage =
     "  --send-buffer-bytes N      kernel send buffer per connection (0: system default)\n"
     "  --idle-timeout S --write-timeout S --handshake-timeout S\n"
     "  --snapshot-every N         journal entries between snapshots, default 200\n"
+    "  --delta-interval-ms X      at most one delta per document every X ms (edits between\n"
+    "                             share it; acks are not delayed), default 0\n"
     "  --verbose                  debug logs\n";
 
 namespace {
@@ -91,6 +93,7 @@ Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args
       {"--write-timeout", number(c.timeouts.writeSeconds, 0.01)},
       {"--handshake-timeout", number(c.timeouts.handshakeSeconds, 0.01)},
       {"--snapshot-every", number(c.snapshotEvery, 1)},
+      {"--delta-interval-ms", number(c.deltaIntervalMs, 0.0)},
   };
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--verbose") {

@@ -39,6 +39,9 @@ struct ServerConfig {
   int networkThreads = 1;
   int workerThreads = 1;
   uint64_t snapshotEvery = 200;      // journal entries between document snapshots
+  // Deltas of one document at most this often: under load a delta covers the
+  // edits of the interval (0: a flush right behind every burst).
+  double deltaIntervalMs = 0;
   Limits limits;
   Timeouts timeouts;
   bool verbose = false;

@@ -73,7 +73,9 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       presenceTimer_(strand_),
       store_(store),
       config_(config),
-      stats_(stats) {
+      stats_(stats),
+      ackedVersion_(version),
+      flushTimer_(strand_) {
   auto grid = documentGrid(doc_);
   if (grid.isOk()) grid_ = *grid;
 }
@@ -379,7 +381,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   }
   ++stats_.edits;
   ++version_;
-  pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, {}, {}, Clock::now(), command, authorName});
+  pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, Clock::now(), command, authorName});
   const auto& limits = doc_.lastUpdate().limits;
   changedLimits_.insert(changedLimits_.end(), limits.begin(), limits.end());
   // Posted before the journal append, so it runs before this edit's commit
@@ -391,10 +393,23 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
                 });
 }
 
+// With --delta-interval-ms a flush waits until that long after the last
+// one: the edits meanwhile share its delta, which bounds the deltas every
+// subscriber is sent per second (and the bytes: a delta re-sends whole
+// regions) at the cost of at most that interval of latency.
 void DocumentHost::scheduleFlush() {
   if (flushScheduled_) return;
   flushScheduled_ = true;
-  boost::asio::post(strand_, [self = shared_from_this()] { self->flush(); });
+  const auto due = lastFlush_ + std::chrono::duration_cast<Clock::duration>(
+                                    std::chrono::duration<double, std::milli>(config_.deltaIntervalMs));
+  if (config_.deltaIntervalMs <= 0 || Clock::now() >= due) {
+    boost::asio::post(strand_, [self = shared_from_this()] { self->flush(); });
+    return;
+  }
+  flushTimer_.expires_at(due);
+  flushTimer_.async_wait(boost::asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec) {
+    if (ec != boost::asio::error::operation_aborted) self->flush();
+  }));
 }
 
 void DocumentHost::flush() {
@@ -404,7 +419,8 @@ void DocumentHost::flush() {
   changedLimits_.erase(std::unique(changedLimits_.begin(), changedLimits_.end()), changedLimits_.end());
   // After a failed journal write the edits are lost: views still follow
   // the document, but nothing is sent.
-  Pending* last = pending_.empty() ? nullptr : &pending_.back();
+  const Pending* last = pending_.empty() ? nullptr : &pending_.back();
+  Batch batch{version_, {}, {}};
   if (last) ++stats_.deltaFlushes;
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
@@ -441,14 +457,17 @@ void DocumentHost::flush() {
     }
     for (uint64_t region : changes->removed) view.encoded.erase(region);
     delta->removed = changes->removed;
-    if (last) {
-      last->frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
-      last->deltas[it->first] = std::move(delta);
-    }
+    batch.frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
+    batch.deltas[it->first] = std::move(delta);
     ++it;
   }
   changedLimits_.clear();
   flushedVersion_ = version_;
+  lastFlush_ = Clock::now();
+  if (!last) return;
+  batches_.push_back(std::move(batch));
+  release();  // its commit may already be durable
+  maybeSnapshot();
 }
 
 void DocumentHost::committed(uint64_t version, Status status) {
@@ -464,6 +483,7 @@ void DocumentHost::committed(uint64_t version, Status status) {
     }
     // Every edit still waiting for its commit is lost: tell its author.
     for (const Pending& p : pending_) {
+      if (p.version <= ackedVersion_) continue;  // durable, acked
       if (auto author = p.author.lock()) {
         author->send({frameOf(rejectFor(p.clientSeq, internalError("the journal write failed; the edit is lost")),
                               config_.limits.maxFrameBytes),
@@ -471,12 +491,19 @@ void DocumentHost::committed(uint64_t version, Status status) {
       }
     }
     pending_.clear();
+    batches_.clear();
     return;
   }
   durableVersion_ = std::max(durableVersion_, version);
-  if (!pending_.empty() && pending_.front().version <= durableVersion_) flush();
-  while (!pending_.empty() && pending_.front().version <= durableVersion_) {
-    Pending& p = pending_.front();
+  release();
+  maybeSnapshot();
+}
+
+void DocumentHost::release() {
+  for (const Pending& p : pending_) {
+    if (p.version > durableVersion_) break;
+    if (p.version <= ackedVersion_) continue;
+    ackedVersion_ = p.version;
     stats_.commitMicros += microsSince(p.applied);
     if (auto author = p.author.lock()) {
       wire::ServerMessage ack;
@@ -486,18 +513,24 @@ void DocumentHost::committed(uint64_t version, Status status) {
       ack.mutable_ack()->set_edit_id(p.editId);
       author->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
     }
+  }
+  while (!batches_.empty() && batches_.front().toVersion <= durableVersion_) {
+    Batch& b = batches_.front();
     for (auto& [key, view] : views_) {
-      auto frame = p.frames.find(key);
-      if (frame == p.frames.end() || !frame->second) continue;
+      auto frame = b.frames.find(key);
+      if (frame == b.frames.end() || !frame->second) continue;
       for (auto& [session, weak] : view.subscribers) {
-        if (view.knownVersion[session] >= p.version) continue;  // its snapshot holds this one
-        if (auto who = weak.lock()) who->send({frame->second, p.deltas[key]});
+        if (view.knownVersion[session] >= b.toVersion) continue;  // its snapshot holds this one
+        if (auto who = weak.lock()) who->send({frame->second, b.deltas[key]});
       }
     }
-    notifyRecorders(p);
-    pending_.pop_front();
+    // A recorder gets each command after the delta that carries it.
+    while (!pending_.empty() && pending_.front().version <= b.toVersion) {
+      notifyRecorders(pending_.front());
+      pending_.pop_front();
+    }
+    batches_.pop_front();
   }
-  maybeSnapshot();
 }
 
 void DocumentHost::notifyRecorders(const Pending& p) {

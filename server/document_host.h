@@ -75,17 +75,18 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
     wire::LodProfile wireProfile;
   };
-  struct Pending {  // applied and tessellated, waiting for its commit
+  struct Pending {  // applied, waiting for its commit (its ack) and for its delta (recorders)
     uint64_t version;
     std::weak_ptr<Subscriber> author;
     uint64_t authorSession, clientSeq, editId;
-    // Set on the last edit of a flush: the delta from the previous flush's
-    // version to this one, by view key.
-    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;
-    std::map<std::string, std::shared_ptr<const std::string>> frames;
     std::chrono::steady_clock::time_point applied;
     wire::ClientMessage command;  // as the author sent it, for recorders
     std::string authorName;
+  };
+  struct Batch {  // one flush: the delta of every view up to `toVersion`
+    uint64_t toVersion;
+    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
+    std::map<std::string, std::shared_ptr<const std::string>> frames;
   };
   struct Recorder {  // a subscriber that asked with_commands
     std::weak_ptr<Subscriber> who;
@@ -97,9 +98,12 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
                   const JournalEntry& entry, const std::string& authorName, const wire::ClientMessage& command);
   void scheduleFlush();
   // Updates every view from the limits changed since the last flush,
-  // encodes the changed regions and hangs the deltas on the newest edit.
+  // encodes the changed regions once and queues them as one batch.
   void flush();
   void committed(uint64_t version, Status status);
+  // Acks every durable edit, then sends every durable batch's deltas and,
+  // after them, their commands to the recorders.
+  void release();
   // Sends a durable command to the recorders (from committed()).
   void notifyRecorders(const Pending& p);
   // Takes an applied command back (an edit refused after applying it).
@@ -129,6 +133,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   std::map<uint64_t, Participant> participants_;
   std::map<std::string, View> views_;  // by LodProfile::key()
   std::deque<Pending> pending_;
+  std::deque<Batch> batches_;
+  uint64_t ackedVersion_;  // the newest edit whose ack was sent
+  boost::asio::steady_timer flushTimer_;
+  std::chrono::steady_clock::time_point lastFlush_{};
   std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
   std::map<uint64_t, Recorder> recorders_;  // by session
 };

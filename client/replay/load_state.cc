@@ -15,21 +15,9 @@ ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point a
     ++shared.viewersReady;
     return ViewerEvent::kReady;
   }
-  if (m.has_delta() && m.delta().document_id() == document) {
-    out.deltaBytes += bytes;
-    ++shared.deltas;
+  if (m.has_delta()) {
     const auto& d = m.delta();
-    if (!out.ready) return ViewerEvent::kNone;  // waiting for a resync snapshot
-    if (d.from_version() != out.version) {
-      ++shared.gaps;
-      ++shared.resyncs;
-      out.ready = false;
-      --shared.viewersReady;
-      return ViewerEvent::kGap;
-    }
-    out.version = d.to_version();
-    if (out.deltaTimes.size() < 1000000) out.deltaTimes.push_back({d.from_version(), d.to_version(), arrival});
-    return ViewerEvent::kNone;
+    return trackDelta({d.document_id(), d.from_version(), d.to_version()}, bytes, arrival, document, out, shared);
   }
   if (m.has_presence()) {
     shared.lastPresenceNs = arrival.time_since_epoch().count();
@@ -38,6 +26,24 @@ ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point a
     return ViewerEvent::kNone;
   }
   if (m.has_error() && m.error().fatal()) return ViewerEvent::kFatal;
+  return ViewerEvent::kNone;
+}
+
+ViewerEvent trackDelta(const DeltaHeader& d, int64_t bytes, Clock::time_point arrival, uint64_t document,
+                       ViewerResult& out, Shared& shared) {
+  if (d.documentId != document) return ViewerEvent::kNone;
+  out.deltaBytes += bytes;
+  ++shared.deltas;
+  if (!out.ready) return ViewerEvent::kNone;  // waiting for a resync snapshot
+  if (d.fromVersion != out.version) {
+    ++shared.gaps;
+    ++shared.resyncs;
+    out.ready = false;
+    --shared.viewersReady;
+    return ViewerEvent::kGap;
+  }
+  out.version = d.toVersion;
+  if (out.deltaTimes.size() < 1000000) out.deltaTimes.push_back({d.fromVersion, d.toVersion, arrival});
   return ViewerEvent::kNone;
 }
 

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "client/replay/delta_peek.h"
 #include "protocol/tessera.pb.h"
 
 namespace tessera::replay {
@@ -67,6 +68,10 @@ enum class ViewerEvent { kNone, kReady, kGap, kFatal };
 // kFatal: the server closed the connection with an error.
 ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point arrival, uint64_t document,
                                ViewerResult& out, Shared& shared);
+
+// The same for a delta known by its header alone; `bytes` is its frame size.
+ViewerEvent trackDelta(const DeltaHeader& d, int64_t bytes, Clock::time_point arrival, uint64_t document,
+                       ViewerResult& out, Shared& shared);
 
 wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile);
 

@@ -49,6 +49,8 @@ class PoolViewer : public std::enable_shared_from_this<PoolViewer> {
   void send(wire::ClientMessage message);
   void writeNext();
   void read();
+  // Deltas are counted from their header alone; anything else is parsed.
+  void handle(const std::string& payload, Clock::time_point arrival);
   void handle(const wire::ServerMessage& m, Clock::time_point arrival);
   void fail(const std::string& message);
   void joined();
@@ -235,16 +237,32 @@ void PoolViewer::read() {
         if (Status fed = self->decoder_.feed(std::string_view(self->buffer_.data(), n)); !fed.isOk()) {
           return self->fail(fed.message());
         }
-        for (;;) {
-          wire::ServerMessage m;
-          auto got = self->decoder_.next(m);
+        for (std::string payload;;) {
+          auto got = self->decoder_.nextPayload(payload);
           if (!got.isOk()) return self->fail(got.status().message());
           if (!*got) break;
-          self->handle(m, arrival);
+          self->handle(payload, arrival);
           if (self->stage_ == Stage::kClosed) return;
         }
         self->read();
       }));
+}
+
+void PoolViewer::handle(const std::string& payload, Clock::time_point arrival) {
+  const LoadOptions& o = pool_.options();
+  if (stage_ == Stage::kStreaming) {
+    if (auto delta = peekDelta(payload)) {
+      const int64_t bytes = static_cast<int64_t>(payload.size() + kFrameHeaderBytes);
+      if (trackDelta(*delta, bytes, arrival, o.document, out_, pool_.shared()) == ViewerEvent::kGap) {
+        subscribeSeq_ = nextSeq_;
+        send(subscribeMessage(o.document, o.profile));
+      }
+      return;
+    }
+  }
+  wire::ServerMessage m;
+  if (!m.ParseFromString(payload)) return fail("a " + std::to_string(payload.size()) + "-byte frame is not a ServerMessage");
+  handle(m, arrival);
 }
 
 void PoolViewer::handle(const wire::ServerMessage& m, Clock::time_point arrival) {

@@ -51,9 +51,9 @@ struct Fixture {
 };
 
 // A server with the creased cube as document, and viewer/editor tokens.
-void startWithCube(Fixture& f, const std::string& name) {
+void startWithCube(Fixture& f, const std::string& name, const std::vector<std::string>& serverArgs = {}) {
   f.dir = testing::makeTempDir(name);
-  auto server = ServerProcess::start(f.dir + "/data");
+  auto server = ServerProcess::start(f.dir + "/data", serverArgs);
   ASSERT_TRUE(server.isOk()) << server.status().message();
   f.server.emplace(std::move(*server));
   auto admin = Session::connect(f.server->session("admin", f.server->adminToken()));
@@ -197,6 +197,52 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
   DocumentView fresh(f.doc);
   waitForSnapshot(**late, fresh);
   EXPECT_EQ(fresh.version(), seen.version());
+  EXPECT_EQ(fresh.surfaceHash(), seen.surfaceHash());
+  EXPECT_EQ(f.server->stop(), 0);
+}
+
+// --delta-interval-ms: edits acked one after another within the interval
+// share a delta (the first goes out at once, the rest after the interval),
+// while each is acked on its own as soon as it is durable.
+TEST(Server, PacedDeltasCoverTheEditsOfTheirInterval) {
+  Fixture f;
+  startWithCube(f, "tessera-server-paced", {"--delta-interval-ms", "1500"});
+  if (::testing::Test::HasFatalFailure()) return;
+  auto viewer = Session::connect(f.server->session("viewer", "viewer-token-0123456789"));
+  auto editor = Session::connect(f.server->session("editor", "editor-token-0123456789"));
+  ASSERT_TRUE(viewer.isOk() && editor.isOk());
+  ASSERT_TRUE((*viewer)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*viewer)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
+  ASSERT_TRUE((*editor)->call(testing::openDocument(f.doc), 10)->has_ack());
+  DocumentView seen(f.doc);
+  waitForSnapshot(**viewer, seen);
+  constexpr uint64_t kEdits = 10;
+  for (uint64_t i = 0; i < kEdits; ++i) {
+    auto acked = (*editor)->call(
+        testing::moveVertex(f.doc, VertexId(2, i * 9).packed(), 0.002, 0.001, -0.002, wire::MOVE_MODE_OFFSET), 10);
+    ASSERT_TRUE(acked.isOk() && acked->has_ack()) << (acked.isOk() ? acked->DebugString() : acked.status().message());
+    EXPECT_EQ(acked->ack().version(), 2 + i);
+  }
+  std::vector<std::pair<uint64_t, uint64_t>> spans;
+  for (int i = 0; i < 200 && seen.version() < 1 + kEdits; ++i) {
+    auto m = (*viewer)->receive(10);
+    ASSERT_TRUE(m.isOk()) << m.status().message();
+    if (m->has_delta()) spans.emplace_back(m->delta().from_version(), m->delta().to_version());
+    ASSERT_TRUE(seen.apply(*m).isOk());
+  }
+  EXPECT_EQ(seen.version(), 1 + kEdits);
+  EXPECT_EQ(seen.gaps(), 0u);
+  // Ten edits acked one by one span at most a few intervals, not ten deltas.
+  ASSERT_GE(spans.size(), 2u);
+  EXPECT_LE(spans.size(), 4u);
+  EXPECT_EQ(spans.front(), std::make_pair(uint64_t{1}, uint64_t{2}));  // the first edit is not held back
+  EXPECT_GE(spans.back().second - spans.back().first, 3u);
+  auto late = Session::connect(f.server->session("late", "viewer-token-0123456789"));
+  ASSERT_TRUE(late.isOk());
+  ASSERT_TRUE((*late)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*late)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
+  DocumentView fresh(f.doc);
+  waitForSnapshot(**late, fresh);
   EXPECT_EQ(fresh.surfaceHash(), seen.surfaceHash());
   EXPECT_EQ(f.server->stop(), 0);
 }

@@ -29,6 +29,8 @@ const char* const kServerUsage =
     "  --snapshot-every N         journal entries between snapshots, default 200\n"
     "  --delta-interval-ms X      at most one delta per document every X ms (edits between\n"
     "                             share it; acks are not delayed), default 0\n"
+    "  --delta-frames-per-second N  and at most N delta frames per second per document over\n"
+    "                             all its subscribers (interval = subscribers / N), default 40000\n"
     "  --verbose                  debug logs\n";
 
 namespace {
@@ -94,6 +96,7 @@ Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args
       {"--handshake-timeout", number(c.timeouts.handshakeSeconds, 0.01)},
       {"--snapshot-every", number(c.snapshotEvery, 1)},
       {"--delta-interval-ms", number(c.deltaIntervalMs, 0.0)},
+      {"--delta-frames-per-second", number(c.deltaFramesPerSecond, 0.0)},
   };
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--verbose") {

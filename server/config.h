@@ -39,9 +39,13 @@ struct ServerConfig {
   int networkThreads = 1;
   int workerThreads = 1;
   uint64_t snapshotEvery = 200;      // journal entries between document snapshots
-  // Deltas of one document at most this often: under load a delta covers the
-  // edits of the interval (0: a flush right behind every burst).
+  // Deltas of one document at most every max(deltaIntervalMs, subscribers /
+  // deltaFramesPerSecond): under load a delta covers the edits of the
+  // interval. The frame budget keeps the fan-out (deltas x subscribers) of a
+  // document bounded, so a thousand viewers get fewer, fuller deltas while
+  // ten get every burst at once. 0 turns either bound off.
   double deltaIntervalMs = 0;
+  double deltaFramesPerSecond = 40000;
   Limits limits;
   Timeouts timeouts;
   bool verbose = false;

@@ -393,16 +393,27 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
                 });
 }
 
-// With --delta-interval-ms a flush waits until that long after the last
-// one: the edits meanwhile share its delta, which bounds the deltas every
-// subscriber is sent per second (and the bytes: a delta re-sends whole
-// regions) at the cost of at most that interval of latency.
+// A flush waits until the pacing interval after the last one has passed:
+// the edits meanwhile share its delta. The interval is the larger of
+// --delta-interval-ms and subscribers / --delta-frames-per-second, so the
+// frames a document fans out per second stay bounded (every delta re-sends
+// whole regions to every subscriber) at the cost of at most that interval
+// of latency, and only under load: an edit after a quiet spell goes at once.
+Clock::duration DocumentHost::flushInterval() const {
+  double ms = config_.deltaIntervalMs;
+  if (config_.deltaFramesPerSecond > 0) {
+    size_t subscribers = 0;
+    for (const auto& [key, view] : views_) subscribers += view.subscribers.size();
+    ms = std::max(ms, 1000.0 * static_cast<double>(subscribers) / config_.deltaFramesPerSecond);
+  }
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(ms));
+}
+
 void DocumentHost::scheduleFlush() {
   if (flushScheduled_) return;
   flushScheduled_ = true;
-  const auto due = lastFlush_ + std::chrono::duration_cast<Clock::duration>(
-                                    std::chrono::duration<double, std::milli>(config_.deltaIntervalMs));
-  if (config_.deltaIntervalMs <= 0 || Clock::now() >= due) {
+  const auto due = lastFlush_ + flushInterval();
+  if (Clock::now() >= due) {
     boost::asio::post(strand_, [self = shared_from_this()] { self->flush(); });
     return;
   }

@@ -97,6 +97,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
                   const JournalEntry& entry, const std::string& authorName, const wire::ClientMessage& command);
   void scheduleFlush();
+  std::chrono::steady_clock::duration flushInterval() const;
   // Updates every view from the limits changed since the last flush,
   // encodes the changed regions once and queues them as one batch.
   void flush();

@@ -34,7 +34,7 @@ struct LoadOptions {
   int serverPid = 0;               // > 0: sample its CPU and RSS from /proc
   bool progress = true;            // one line per second on stderr
   double viewerPollSeconds = 1;    // a ready viewer's receive timeout (checks for the end)
-  int poolThreads = 1;             // threads of the counting viewers' pool; 0: a thread per viewer
+  int poolThreads = 2;             // threads of the counting viewers' pool; 0: a thread per viewer
 };
 
 Expected<nlohmann::json> runLoad(const LoadOptions& options);

@@ -283,7 +283,7 @@ int runLoadCommand(const Args& a) {
   auto seed = number<uint64_t>(a, "--seed", 1);
   auto drain = number<double>(a, "--drain-seconds", 10);
   auto pid = number<int>(a, "--server-pid", 0);
-  auto poolThreads = number<int>(a, "--pool-threads", 1);
+  auto poolThreads = number<int>(a, "--pool-threads", 2);
   for (const Status* s : {&doc.status(), &editors.status(), &viewers.status(), &rate.status(), &seconds.status(),
                           &maxEdits.status(), &decode.status(), &level.status(), &count.status(), &step.status(),
                           &seed.status(), &drain.status(), &pid.status(), &poolThreads.status()}) {

@@ -134,6 +134,35 @@ TEST(Server, EditsStreamToEveryViewerAndLateJoinersCatchUp) {
   EXPECT_EQ(again->stop(), 0);
 }
 
+// A viewer subscribed with the profile 2,5,10 (snapshot read into `seen`)
+// and an editor, both with the document open.
+struct ViewerAndEditor {
+  std::unique_ptr<Session> viewer, editor;
+  DocumentView seen{0};
+};
+
+void connectViewerAndEditor(const Fixture& f, ViewerAndEditor& c) {
+  auto viewer = Session::connect(f.server->session("viewer", "viewer-token-0123456789"));
+  auto editor = Session::connect(f.server->session("editor", "editor-token-0123456789"));
+  ASSERT_TRUE(viewer.isOk() && editor.isOk());
+  c.viewer = std::move(*viewer);
+  c.editor = std::move(*editor);
+  ASSERT_TRUE(c.viewer->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE(c.viewer->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
+  ASSERT_TRUE(c.editor->call(testing::openDocument(f.doc), 10)->has_ack());
+  c.seen = DocumentView(f.doc);
+  waitForSnapshot(*c.viewer, c.seen);
+}
+
+// A new subscriber's snapshot (profile 2,5,10) read into `view`.
+void subscribeFresh(const Fixture& f, DocumentView& view) {
+  auto late = Session::connect(f.server->session("late", "viewer-token-0123456789"));
+  ASSERT_TRUE(late.isOk());
+  ASSERT_TRUE((*late)->call(testing::openDocument(f.doc), 10)->has_ack());
+  ASSERT_TRUE((*late)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
+  waitForSnapshot(**late, view);
+}
+
 // Edits queued together share one encode (server/document_host.h): a burst
 // of pipelined edits is acked one version each, while viewers receive fewer
 // deltas, some spanning several versions, with no gap, ending at the state
@@ -142,14 +171,12 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
   Fixture f;
   startWithCube(f, "tessera-server-burst");
   if (::testing::Test::HasFatalFailure()) return;
-  auto viewer = Session::connect(f.server->session("viewer", "viewer-token-0123456789"));
-  auto editor = Session::connect(f.server->session("editor", "editor-token-0123456789"));
-  ASSERT_TRUE(viewer.isOk() && editor.isOk());
-  ASSERT_TRUE((*viewer)->call(testing::openDocument(f.doc), 10)->has_ack());
-  ASSERT_TRUE((*viewer)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
-  ASSERT_TRUE((*editor)->call(testing::openDocument(f.doc), 10)->has_ack());
-  DocumentView seen(f.doc);
-  waitForSnapshot(**viewer, seen);
+  ViewerAndEditor c;
+  connectViewerAndEditor(f, c);
+  if (::testing::Test::HasFatalFailure()) return;
+  auto& viewer = c.viewer;
+  auto& editor = c.editor;
+  DocumentView& seen = c.seen;
 
   // One write holding 60 edits: the server reads them together and queues
   // them on the document's strand faster than it applies them.
@@ -163,10 +190,10 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
     ASSERT_TRUE(frame.isOk());
     burst += *frame;
   }
-  ASSERT_TRUE((*editor)->sendRaw(burst).isOk());
+  ASSERT_TRUE(editor->sendRaw(burst).isOk());
   std::map<uint64_t, uint64_t> versionOfSeq;
   for (int i = 0; i < 400 && versionOfSeq.size() < kEdits; ++i) {
-    auto m = (*editor)->receive(10);
+    auto m = editor->receive(10);
     ASSERT_TRUE(m.isOk()) << m.status().message();
     if (m->has_reject()) FAIL() << m->DebugString();
     if (m->has_ack()) versionOfSeq[m->ack().client_seq()] = m->ack().version();
@@ -176,7 +203,7 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
 
   int deltas = 0, spanning = 0;
   for (int i = 0; i < 400 && seen.version() < 1 + kEdits; ++i) {
-    auto m = (*viewer)->receive(10);
+    auto m = viewer->receive(10);
     ASSERT_TRUE(m.isOk()) << m.status().message();
     if (m->has_delta()) {
       ++deltas;
@@ -190,12 +217,8 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
   EXPECT_LT(deltas, kEdits);
   EXPECT_GT(spanning, 0);
 
-  auto late = Session::connect(f.server->session("late", "viewer-token-0123456789"));
-  ASSERT_TRUE(late.isOk());
-  ASSERT_TRUE((*late)->call(testing::openDocument(f.doc), 10)->has_ack());
-  ASSERT_TRUE((*late)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
   DocumentView fresh(f.doc);
-  waitForSnapshot(**late, fresh);
+  subscribeFresh(f, fresh);
   EXPECT_EQ(fresh.version(), seen.version());
   EXPECT_EQ(fresh.surfaceHash(), seen.surfaceHash());
   EXPECT_EQ(f.server->stop(), 0);
@@ -208,24 +231,22 @@ TEST(Server, PacedDeltasCoverTheEditsOfTheirInterval) {
   Fixture f;
   startWithCube(f, "tessera-server-paced", {"--delta-interval-ms", "1500"});
   if (::testing::Test::HasFatalFailure()) return;
-  auto viewer = Session::connect(f.server->session("viewer", "viewer-token-0123456789"));
-  auto editor = Session::connect(f.server->session("editor", "editor-token-0123456789"));
-  ASSERT_TRUE(viewer.isOk() && editor.isOk());
-  ASSERT_TRUE((*viewer)->call(testing::openDocument(f.doc), 10)->has_ack());
-  ASSERT_TRUE((*viewer)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
-  ASSERT_TRUE((*editor)->call(testing::openDocument(f.doc), 10)->has_ack());
-  DocumentView seen(f.doc);
-  waitForSnapshot(**viewer, seen);
+  ViewerAndEditor c;
+  connectViewerAndEditor(f, c);
+  if (::testing::Test::HasFatalFailure()) return;
+  auto& viewer = c.viewer;
+  auto& editor = c.editor;
+  DocumentView& seen = c.seen;
   constexpr uint64_t kEdits = 10;
   for (uint64_t i = 0; i < kEdits; ++i) {
-    auto acked = (*editor)->call(
+    auto acked = editor->call(
         testing::moveVertex(f.doc, VertexId(2, i * 9).packed(), 0.002, 0.001, -0.002, wire::MOVE_MODE_OFFSET), 10);
     ASSERT_TRUE(acked.isOk() && acked->has_ack()) << (acked.isOk() ? acked->DebugString() : acked.status().message());
     EXPECT_EQ(acked->ack().version(), 2 + i);
   }
   std::vector<std::pair<uint64_t, uint64_t>> spans;
   for (int i = 0; i < 200 && seen.version() < 1 + kEdits; ++i) {
-    auto m = (*viewer)->receive(10);
+    auto m = viewer->receive(10);
     ASSERT_TRUE(m.isOk()) << m.status().message();
     if (m->has_delta()) spans.emplace_back(m->delta().from_version(), m->delta().to_version());
     ASSERT_TRUE(seen.apply(*m).isOk());
@@ -237,12 +258,8 @@ TEST(Server, PacedDeltasCoverTheEditsOfTheirInterval) {
   EXPECT_LE(spans.size(), 4u);
   EXPECT_EQ(spans.front(), std::make_pair(uint64_t{1}, uint64_t{2}));  // the first edit is not held back
   EXPECT_GE(spans.back().second - spans.back().first, 3u);
-  auto late = Session::connect(f.server->session("late", "viewer-token-0123456789"));
-  ASSERT_TRUE(late.isOk());
-  ASSERT_TRUE((*late)->call(testing::openDocument(f.doc), 10)->has_ack());
-  ASSERT_TRUE((*late)->call(testing::subscribe(f.doc, 2, 5, 10), 30)->has_ack());
   DocumentView fresh(f.doc);
-  waitForSnapshot(**late, fresh);
+  subscribeFresh(f, fresh);
   EXPECT_EQ(fresh.surfaceHash(), seen.surfaceHash());
   EXPECT_EQ(f.server->stop(), 0);
 }

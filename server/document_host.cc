@@ -150,6 +150,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
                                  : std::min<int64_t>(static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX)),
                                                      limits.maxTrianglesPerSubscriber);
     profile.fidelity = requested.fidelity() > 0;
+    profile.vertexIds = !requested.omit_vertex_ids();
     Status valid = profile.check();
     if (valid.isOk() && profile.maxLevel > self->doc_.options().maxLevel) {
       valid = invalidArgument("LOD profile: max level " + std::to_string(profile.maxLevel) + " exceeds the document's " +

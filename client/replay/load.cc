@@ -329,6 +329,7 @@ Expected<json> runLoad(const LoadOptions& o) {
                       {"seconds", o.seconds},
                       {"max_edits_per_editor", o.maxEdits},
                       {"profile", {o.profile.base_level(), o.profile.max_level(), o.profile.angle_threshold_degrees()}},
+                      {"display_only", o.profile.omit_vertex_ids()},
                       {"decoding_viewers", decode},
                       {"vertices", "v" + std::to_string(o.vertexLevel) + ":0.." + std::to_string(o.vertexCount - 1)}};
   report["connect_ms"] = std::round(connectMs);

@@ -34,7 +34,7 @@ constexpr const char* kHelp =
     "  surface --document D    print the version and surface hash of a document\n"
     "  load --document D [--editors E] [--viewers M] [--rate R] [--seconds S] [--max-edits N]\n"
     "       [--decode-viewers K] [--vertex-level L] [--vertex-count N] [--step X] [--seed N]\n"
-    "       [--drain-seconds S] [--pool-threads T] [--server-pid PID] [--report FILE] [--quiet]\n"
+    "       [--drain-seconds S] [--pool-threads T] [--display-only] [--server-pid PID] [--report FILE] [--quiet]\n"
     "      a bounded load run; progress on stderr, a summary on stdout, JSON with --report\n"
     "\n"
     "connection: [--host H] [--port N] [--token T | --token-file F] [--viewer-token T]\n"
@@ -50,7 +50,7 @@ struct Args {
   }
 };
 
-const std::set<std::string> kFlags = {"--no-undo", "--quiet", "--help"};
+const std::set<std::string> kFlags = {"--no-undo", "--quiet", "--help", "--display-only"};
 const std::set<std::string> kOptions = {"--host", "--port", "--token", "--token-file", "--viewer-token", "--document",
                                         "--editors", "--viewers", "--rate", "--seconds", "--seed", "--vertex-level",
                                         "--vertex-count", "--step", "--speed", "--max-edits", "--decode-viewers",
@@ -311,6 +311,8 @@ int runLoadCommand(const Args& a) {
   o.serverPid = *pid;
   o.poolThreads = *poolThreads;
   o.profile = profileOf(*header);
+  // Viewers that only watch: regions without vertex ids (docs/PROTOCOL.md).
+  o.profile.set_omit_vertex_ids(a.flags.count("--display-only") > 0);
   o.progress = !a.flags.count("--quiet");
   auto report = runLoad(o);
   if (!report.isOk()) return fail(report.status());

@@ -23,7 +23,7 @@ Status LodProfile::check() const {
 std::string LodProfile::key() const {
   return "base" + std::to_string(baseLevel) + "-max" + std::to_string(maxLevel) + "-angle" +
          std::to_string(angleThresholdDegrees) + "-budget" + std::to_string(triangleBudget) + "-fid" +
-         (fidelity ? "1" : "0");
+         (fidelity ? "1" : "0") + (vertexIds ? "" : "-noids");
 }
 
 }  // namespace tessera

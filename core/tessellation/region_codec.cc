@@ -45,6 +45,9 @@ constexpr uint64_t kMaxTrianglesPerPayloadByte = 1024;
 // below 512: on fandisk regions that encodes twice as fast as four 16-bit
 // components, and smaller.
 constexpr int kIdComponents = 8;
+// The header's flags (formerly a reserved zero): bit 0 set = the regions of
+// a display-only profile, with no vertex id attribute.
+constexpr uint16_t kFlagNoVertexIds = 1;
 
 std::string num(double x) {
   char text[32];
@@ -243,7 +246,7 @@ int addAttribute(draco::Mesh& mesh, draco::GeometryAttribute::Type type, int com
 }
 
 // draco::Mesh is neither copyable nor movable, hence the unique_ptr.
-Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region) {
+Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region, bool withIds) {
   auto meshPtr = std::make_unique<draco::Mesh>();
   draco::Mesh& mesh = *meshPtr;
   const size_t n = region.positions.size();
@@ -256,7 +259,7 @@ Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region) 
   }
   const int positionId = addAttribute(mesh, draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32, 4, n);
   const int normalId = addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, 4, n);
-  const int idId = addAttribute(mesh, draco::GeometryAttribute::GENERIC, kIdComponents, draco::DT_UINT8, 1, n);
+  const int idId = withIds ? addAttribute(mesh, draco::GeometryAttribute::GENERIC, kIdComponents, draco::DT_UINT8, 1, n) : 0;
   if (positionId < 0 || normalId < 0 || idId < 0) return internalError("Draco refused to add an attribute");
   for (size_t i = 0; i < n; ++i) {
     const draco::AttributeValueIndex index(static_cast<uint32_t>(i));
@@ -266,6 +269,7 @@ Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region) 
     const Vec3 u = region.normals[i].normalized();
     const float normal[3] = {static_cast<float>(u[0]), static_cast<float>(u[1]), static_cast<float>(u[2])};
     mesh.attribute(normalId)->SetAttributeValue(index, normal);
+    if (!withIds) continue;
     uint8_t id[kIdComponents];
     for (int c = 0; c < kIdComponents; ++c) id[c] = static_cast<uint8_t>(region.vertexIds[i] >> (8 * c));
     mesh.attribute(idId)->SetAttributeValue(index, id);
@@ -304,7 +308,7 @@ Status setExplicitQuantization(draco::Encoder& encoder, const QuantizationGrid& 
 void writeHeader(ByteWriter& w, const RegionHeader& header, uint32_t triangles, uint32_t payloadBytes) {
   w.bytes().append(kMagic, sizeof(kMagic));
   w.put<uint16_t>(kRegionFormatVersion);
-  w.put<uint16_t>(0);
+  w.put<uint16_t>(header.profile.vertexIds ? 0 : kFlagNoVertexIds);
   w.put<uint64_t>(header.regionId);
   w.put<uint64_t>(header.documentVersion);
   w.put<int32_t>(header.profile.baseLevel);
@@ -331,7 +335,7 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
                            std::to_string(kMaxCompressionLevel) + "]");
   }
   TESSERA_RETURN_IF_ERROR(checkMesh(mesh, header.grid).withContext(where));
-  TESSERA_ASSIGN_OR_RETURN(const std::unique_ptr<draco::Mesh> dracoMesh, buildDracoMesh(mesh));
+  TESSERA_ASSIGN_OR_RETURN(const std::unique_ptr<draco::Mesh> dracoMesh, buildDracoMesh(mesh, header.profile.vertexIds));
 
   draco::Encoder encoder;
   TESSERA_RETURN_IF_ERROR(setExplicitQuantization(encoder, header.grid).withContext(where));
@@ -498,18 +502,24 @@ Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& h
   if (!decodedOr.ok()) return parseError(where + ": Draco rejected the payload: " + decodedOr.status().error_msg_string());
   const std::unique_ptr<draco::Mesh> mesh = std::move(decodedOr).value();
   const uint32_t points = mesh->num_points();
-  if (mesh->num_faces() != triangles || points > 3 * static_cast<uint64_t>(triangles) || mesh->num_attributes() != 3) {
+  const bool withIds = header.profile.vertexIds;
+  const int attributes = withIds ? 3 : 2;
+  if (mesh->num_faces() != triangles || points > 3 * static_cast<uint64_t>(triangles) ||
+      mesh->num_attributes() != attributes) {
     return parseError(where + ": Draco decoded " + std::to_string(mesh->num_faces()) + " faces, " +
                       std::to_string(points) + " points and " + std::to_string(mesh->num_attributes()) +
-                      " attributes; expected " + std::to_string(triangles) + " faces, 3 attributes");
+                      " attributes; expected " + std::to_string(triangles) + " faces, " + std::to_string(attributes) +
+                      " attributes");
   }
   TESSERA_ASSIGN_OR_RETURN(const draco::PointAttribute* positions,
                            findAttribute(*mesh, draco::GeometryAttribute::POSITION, draco::DT_INT32, 3, where + ": POSITION"));
   TESSERA_ASSIGN_OR_RETURN(const draco::PointAttribute* normals,
                            findAttribute(*mesh, draco::GeometryAttribute::NORMAL, draco::DT_FLOAT32, 3, where + ": NORMAL"));
-  TESSERA_ASSIGN_OR_RETURN(const draco::PointAttribute* ids,
-                           findAttribute(*mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8, kIdComponents,
-                                         where + ": vertex ids"));
+  const draco::PointAttribute* ids = nullptr;
+  if (withIds) {
+    TESSERA_ASSIGN_OR_RETURN(ids, findAttribute(*mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8, kIdComponents,
+                                                where + ": vertex ids"));
+  }
 
   draco::AttributeQuantizationTransform quantization;
   const QuantizationGrid& grid = header.grid;
@@ -527,12 +537,12 @@ Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& h
   RegionMesh out;
   out.positions.resize(points);
   out.normals.resize(points);
-  out.vertexIds.resize(points);
+  if (withIds) out.vertexIds.resize(points);
   for (draco::PointIndex p(0); p < points; ++p) {
     const auto point = [&p] { return "point " + std::to_string(p.value()); };
     const draco::AttributeValueIndex pi = positions->mapped_index(p), ni = normals->mapped_index(p),
-                                     ii = ids->mapped_index(p);
-    if (pi.value() >= positions->size() || ni.value() >= normals->size() || ii.value() >= ids->size()) {
+                                     ii = withIds ? ids->mapped_index(p) : draco::AttributeValueIndex(0);
+    if (pi.value() >= positions->size() || ni.value() >= normals->size() || (withIds && ii.value() >= ids->size())) {
       return parseError(where + ": " + point() + " maps to no attribute value");
     }
     int32_t q[3];
@@ -549,6 +559,7 @@ Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& h
     const Vec3 normal(n[0], n[1], n[2]);
     if (!isFinite(normal) || !(normal.norm() > 0.5)) return parseError(where + ": " + point() + " has no unit normal");
     out.normals[p.value()] = normal.normalized();
+    if (!withIds) continue;
     uint8_t id[kIdComponents];
     ids->GetValue(ii, id);
     uint64_t packed = 0;
@@ -584,17 +595,20 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
     std::memcpy(&value, magic.data(), sizeof(value));
     return parseError(source + ": not a Tessera region (magic " + hex32(value) + ", expected \"TSRG\")");
   }
-  uint16_t version = 0, reserved = 0;
+  uint16_t version = 0, flags = 0;
   TESSERA_RETURN_IF_ERROR(r.get(version, "the format version"));
   if (version != kRegionFormatVersion) {
     return unsupported(source + ": format version " + std::to_string(version) + " is not supported (this build reads " +
                        std::to_string(kRegionFormatVersion) + ")");
   }
-  TESSERA_RETURN_IF_ERROR(r.get(reserved, "the reserved field"));
-  if (reserved != 0) return parseError(source + ": reserved field is " + std::to_string(reserved) + ", expected 0");
+  TESSERA_RETURN_IF_ERROR(r.get(flags, "the flags"));
+  if ((flags & ~kFlagNoVertexIds) != 0) {
+    return parseError(source + ": unknown flags " + std::to_string(flags) + " (only bit 0, no vertex ids, is defined)");
+  }
   RegionHeader header;
   Counts counts;
   TESSERA_RETURN_IF_ERROR(readHeader(r, header, counts));
+  header.profile.vertexIds = (flags & kFlagNoVertexIds) == 0;
   if (r.offset() != kRegionHeaderBytes) return internalError(source + ": header layout and kRegionHeaderBytes disagree");
   const uint64_t expected = static_cast<uint64_t>(counts.payloadBytes) + kRegionTrailerBytes;
   if (r.remaining() < expected) {

@@ -485,6 +485,57 @@ void fixChecksum(std::string& bytes) {
   std::memcpy(bytes.data() + bytes.size() - 4, &crc, 4);
 }
 
+// A display-only profile's regions carry no ids: the same triangles over
+// the same decoded positions and normals, fewer bytes; a flag the decoder
+// does not know, or a flag that disagrees with the payload, is refused.
+TEST(RegionCodec, DisplayOnlyRegionsOmitIdsAndKeepTheGeometry) {
+  const Surface s = torusSurface(2);
+  const RegionMesh region = splitIntoSectors(s, 4)[1];
+  const RegionHeader withIds = headerFor(s, 77);
+  RegionHeader displayOnly = withIds;
+  displayOnly.profile.vertexIds = false;
+  auto full = encodeRegion(withIds, region);
+  auto thin = encodeRegion(displayOnly, region);
+  ASSERT_TRUE(full.isOk() && thin.isOk());
+  auto a = decodeRegion(*full);
+  auto b = decodeRegion(*thin);
+  ASSERT_TRUE(a.isOk() && b.isOk()) << b.status().toString();
+  EXPECT_EQ(b->first, displayOnly);
+  EXPECT_FALSE(b->first.profile.vertexIds);
+  EXPECT_TRUE(b->second.vertexIds.empty());
+  EXPECT_EQ(b->second.triangles.size(), region.triangles.size());
+  // Same geometry: every decoded triangle's corners (positions and
+  // normals, bit for bit) appear in both decodes.
+  auto corners = [](const RegionMesh& m) {
+    std::multiset<std::array<double, 6>> out;
+    for (const auto& t : m.triangles) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = m.positions[t[k]];
+        const Vec3& n = m.normals[t[k]];
+        out.insert({p[0], p[1], p[2], n[0], n[1], n[2]});
+      }
+    }
+    return out;
+  };
+  EXPECT_EQ(corners(a->second), corners(b->second));
+  EXPECT_LT(thin->size(), full->size());
+  std::cout << "[ measured ] " << region.triangles.size() << " triangles: " << full->size() << " bytes with ids, "
+            << thin->size() << " display-only\n";
+
+  std::string unknownFlag = *thin;
+  unknownFlag[6] = 3;  // the flags follow the magic and the version
+  fixChecksum(unknownFlag);
+  auto refused = decodeRegion(unknownFlag);
+  EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
+  EXPECT_NE(refused.status().message().find("unknown flags 3"), std::string::npos) << refused.status().toString();
+  std::string noFlag = *thin;
+  noFlag[6] = 0;  // claims ids the payload does not hold
+  fixChecksum(noFlag);
+  refused = decodeRegion(noFlag);
+  EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
+  EXPECT_NE(refused.status().message().find("attributes"), std::string::npos) << refused.status().toString();
+}
+
 TEST(RegionCodec, RejectsEveryTruncation) {
   for (int level : {0, 10}) {
     const std::string bytes = smallEncoding(level);

@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <map>
+#include <set>
 #include <thread>
 
 #include "client/lib/document_view.h"
@@ -221,6 +222,39 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
   subscribeFresh(f, fresh);
   EXPECT_EQ(fresh.version(), seen.version());
   EXPECT_EQ(fresh.surfaceHash(), seen.surfaceHash());
+  EXPECT_EQ(f.server->stop(), 0);
+}
+
+// A display-only subscriber (LodProfile.omit_vertex_ids) gets the same
+// surface as one with ids, in fewer bytes, and its own tessellation.
+TEST(Server, DisplayOnlySubscribersGetTheSameSurfaceWithoutIds) {
+  Fixture f;
+  startWithCube(f, "tessera-server-display-only");
+  if (::testing::Test::HasFatalFailure()) return;
+  ViewerAndEditor c;
+  connectViewerAndEditor(f, c);
+  if (::testing::Test::HasFatalFailure()) return;
+  auto thin = Session::connect(f.server->session("thin", "viewer-token-0123456789"));
+  ASSERT_TRUE(thin.isOk());
+  ASSERT_TRUE((*thin)->call(testing::openDocument(f.doc), 10)->has_ack());
+  wire::ClientMessage sub = testing::subscribe(f.doc, 2, 5, 10);
+  sub.mutable_subscribe()->mutable_profile()->set_omit_vertex_ids(true);
+  ASSERT_TRUE((*thin)->call(sub, 30)->has_ack());
+  DocumentView thinView(f.doc);
+  waitForSnapshot(**thin, thinView);
+  EXPECT_LT(thinView.bytesReceived(), c.seen.bytesReceived());
+  auto acked = c.editor->call(testing::moveVertex(f.doc, VertexId(2, 5).packed(), 0.02, 0.0, 0.01, wire::MOVE_MODE_OFFSET), 10);
+  ASSERT_TRUE(acked.isOk() && acked->has_ack());
+  waitForVersion(*c.viewer, c.seen, 2);
+  waitForVersion(**thin, thinView, 2);
+  for (const auto& [id, region] : thinView.regions()) EXPECT_TRUE(region.vertexIds.empty()) << id;
+  const SurfaceMesh a = c.seen.surface(), b = thinView.surface();
+  EXPECT_EQ(a.triangles.size(), b.triangles.size());
+  EXPECT_EQ(a.positions.size(), b.positions.size());
+  std::multiset<std::array<double, 3>> pa, pb;
+  for (const Vec3& p : a.positions) pa.insert({p[0], p[1], p[2]});
+  for (const Vec3& p : b.positions) pb.insert({p[0], p[1], p[2]});
+  EXPECT_EQ(pa, pb);
   EXPECT_EQ(f.server->stop(), 0);
 }
 

@@ -22,6 +22,7 @@ inline void fillProfile(wire::LodProfile* profile) {
   profile->set_angle_threshold_degrees(7.5);
   profile->set_triangle_budget(250000);
   profile->set_fidelity(1);
+  profile->set_omit_vertex_ids(true);
 }
 
 inline void fillSelection(wire::Selection* selection) {

@@ -58,6 +58,7 @@ LodProfile.max_level = 2 uint32
 LodProfile.angle_threshold_degrees = 3 double
 LodProfile.triangle_budget = 4 uint64
 LodProfile.fidelity = 5 uint32
+LodProfile.omit_vertex_ids = 6 bool
 Selection.vertex_ids = 1 repeated uint64
 Selection.edge_ids = 2 repeated uint64
 Selection.face_ids = 3 repeated uint64

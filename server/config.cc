@@ -1,9 +1,11 @@
 #include "server/config.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <functional>
 #include <map>
+#include <thread>
 
 namespace tessera::server {
 
@@ -15,7 +17,7 @@ const char* const kServerUsage =
     "  --port-file PATH           write the bound port to PATH once listening\n"
     "  --admin-token-file PATH    grant the token in PATH admin rights on every document\n"
     "  --tls-cert PATH --tls-key PATH   serve TLS (PEM files)\n"
-    "  --network-threads N        default 1\n"
+    "  --network-threads N        default: one per core\n"
     "  --worker-threads N         tessellation and encoding, default 1\n"
     "  --max-frame-bytes N        default 67108864\n"
     "  --max-mesh-bytes N         default 50331648\n"
@@ -56,6 +58,8 @@ Status parseNumber(const std::string& option, const std::string& text, T minimum
 }
 
 }  // namespace
+
+int defaultNetworkThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
 
 Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args) {
   ServerConfig c;

@@ -29,6 +29,9 @@ struct Timeouts {
   double writeSeconds = 30;   // one write making no progress
 };
 
+// std::thread::hardware_concurrency(), at least 1.
+int defaultNetworkThreads();
+
 struct ServerConfig {
   std::string listenAddress = "127.0.0.1";
   uint16_t port = 7878;              // 0: any free port
@@ -36,7 +39,9 @@ struct ServerConfig {
   std::string portFile;              // write the bound port here (tests, scripts)
   std::string adminTokenFile;        // a token read at start-up and granted admin on everything
   std::string tlsCertificate, tlsPrivateKey;  // both set: TLS on the listening port
-  int networkThreads = 1;
+  // Connections' reads, writes and the fan-out of deltas: one per core, so
+  // a thousand subscribers' writes do not hold up editors' reads and acks.
+  int networkThreads = defaultNetworkThreads();
   int workerThreads = 1;
   uint64_t snapshotEvery = 200;      // journal entries between document snapshots
   // Deltas of one document at most every max(deltaIntervalMs, subscribers /

@@ -15,9 +15,10 @@ using asio::ip::tcp;
 
 Server::Server(const ServerConfig& config)
     : config_(config),
+      strand_(asio::make_strand(io_)),
       workers_(static_cast<size_t>(config.workerThreads)),
-      acceptor_(io_),
-      signals_(io_, SIGINT, SIGTERM) {}
+      acceptor_(strand_),
+      signals_(strand_, SIGINT, SIGTERM) {}
 
 Server::~Server() {
   workers_.join();
@@ -87,7 +88,7 @@ void Server::run() {
 }
 
 void Server::stop() {
-  asio::post(io_, [this] { shutdown(); });
+  asio::post(strand_, [this] { shutdown(); });
 }
 
 void Server::accept() {
@@ -137,7 +138,7 @@ void Server::shutdown() {
   // the goodbye waits a moment for them, then the clients get their queues
   // flushed before the loop stops.
   store_->close();
-  auto goodbye = std::make_shared<asio::steady_timer>(io_, std::chrono::milliseconds(200));
+  auto goodbye = std::make_shared<asio::steady_timer>(strand_, std::chrono::milliseconds(200));
   goodbye->async_wait([this, goodbye](const boost::system::error_code&) {
     for (auto& [session, weak] : connections_) {
       if (auto c = weak.lock()) c->shutdown();

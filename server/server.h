@@ -5,6 +5,7 @@
 #pragma once
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/strand.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/ssl/context.hpp>
@@ -37,6 +38,9 @@ class Server {
 
   ServerConfig config_;
   boost::asio::io_context io_;
+  // Accepting, signals and shutdown share connections_: one strand, whatever
+  // the number of network threads.
+  boost::asio::strand<boost::asio::io_context::executor_type> strand_;
   boost::asio::thread_pool workers_;
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::signal_set signals_;

@@ -117,13 +117,15 @@ void Server::accept() {
     }
     const uint64_t session = nextSession_++;
     auto connection = std::make_shared<Connection>(std::move(socket), tls_.get(), *context_, session, address);
-    connection->start();
+    // The refusal is queued on the connection's strand before its start, so
+    // with several network threads no Hello can be read and answered first.
     if (sameAddress >= config_.limits.connectionsPerAddress) {
       connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS,
                          "more than " + std::to_string(config_.limits.connectionsPerAddress) + " connections from " + address);
     } else {
       connections_[session] = connection;
     }
+    connection->start();
     accept();
   });
 }

@@ -10,7 +10,8 @@
 //           offset  size  field
 //                0     4  magic "TSRG"
 //                4     2  format version (1)
-//                6     2  reserved, 0
+//                6     2  flags: bit 0 = no vertex ids (a display-only
+//                         profile; the Draco mesh has no GENERIC attribute)
 //                8     8  region id
 //               16     8  document version
 //               24    25  LOD profile: baseLevel i32, maxLevel i32,

@@ -293,7 +293,8 @@ void writeSecondSession(const std::string& path, int stepMs, const std::vector<s
 }
 
 // A recording bounded by time only: the commands before the stop, and the
-// recorder's view at the last of them.
+// recorder's view at the last of them. 4 s leaves room for a slow (ASan)
+// build to replay the 20 commands inside it.
 TEST(RecordCommand, TimedRecordingEndsAtItsLastCommand) {
   const std::string dir = testing::makeTempDir("tessera-record-timed");
   const std::string script = dir + "/script.jsonl", recorded = dir + "/recorded.jsonl";
@@ -303,7 +304,7 @@ TEST(RecordCommand, TimedRecordingEndsAtItsLastCommand) {
   ASSERT_EQ(run(kReplay + " generate -o " + script + " --editors 2 --rate 20 --seconds 0.5 --seed 3").second,
             0);
   FILE* recorder = popen((kReplay + " record" + original.connection(testing::kViewerToken) +
-                          " --seconds 1.5 -o " + recorded + " 2>/dev/null")
+                          " --seconds 4 -o " + recorded + " 2>/dev/null")
                              .c_str(),
                          "r");
   char first[256] = {};

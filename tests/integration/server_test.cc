@@ -155,6 +155,14 @@ void connectViewerAndEditor(const Fixture& f, ViewerAndEditor& c) {
   waitForSnapshot(*c.viewer, c.seen);
 }
 
+// startWithCube, then connectViewerAndEditor.
+void startWithViewerAndEditor(Fixture& f, ViewerAndEditor& c, const std::string& name,
+                              const std::vector<std::string>& serverArgs = {}) {
+  startWithCube(f, name, serverArgs);
+  if (::testing::Test::HasFatalFailure()) return;
+  connectViewerAndEditor(f, c);
+}
+
 // A new subscriber's snapshot (profile 2,5,10) read into `view`.
 void subscribeFresh(const Fixture& f, DocumentView& view) {
   auto late = Session::connect(f.server->session("late", "viewer-token-0123456789"));
@@ -170,10 +178,8 @@ void subscribeFresh(const Fixture& f, DocumentView& view) {
 // a fresh subscriber sees.
 TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
   Fixture f;
-  startWithCube(f, "tessera-server-burst");
-  if (::testing::Test::HasFatalFailure()) return;
   ViewerAndEditor c;
-  connectViewerAndEditor(f, c);
+  startWithViewerAndEditor(f, c, "tessera-server-burst");
   if (::testing::Test::HasFatalFailure()) return;
   auto& viewer = c.viewer;
   auto& editor = c.editor;
@@ -229,10 +235,8 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
 // surface as one with ids, in fewer bytes, and its own tessellation.
 TEST(Server, DisplayOnlySubscribersGetTheSameSurfaceWithoutIds) {
   Fixture f;
-  startWithCube(f, "tessera-server-display-only");
-  if (::testing::Test::HasFatalFailure()) return;
   ViewerAndEditor c;
-  connectViewerAndEditor(f, c);
+  startWithViewerAndEditor(f, c, "tessera-server-display-only");
   if (::testing::Test::HasFatalFailure()) return;
   auto thin = Session::connect(f.server->session("thin", "viewer-token-0123456789"));
   ASSERT_TRUE(thin.isOk());
@@ -263,10 +267,8 @@ TEST(Server, DisplayOnlySubscribersGetTheSameSurfaceWithoutIds) {
 // while each is acked on its own as soon as it is durable.
 TEST(Server, PacedDeltasCoverTheEditsOfTheirInterval) {
   Fixture f;
-  startWithCube(f, "tessera-server-paced", {"--delta-interval-ms", "1500"});
-  if (::testing::Test::HasFatalFailure()) return;
   ViewerAndEditor c;
-  connectViewerAndEditor(f, c);
+  startWithViewerAndEditor(f, c, "tessera-server-paced", {"--delta-interval-ms", "1500"});
   if (::testing::Test::HasFatalFailure()) return;
   auto& viewer = c.viewer;
   auto& editor = c.editor;

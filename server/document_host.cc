@@ -385,8 +385,8 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, Clock::now(), command, authorName});
   const auto& limits = doc_.lastUpdate().limits;
   changedLimits_.insert(changedLimits_.end(), limits.begin(), limits.end());
-  // Posted before the journal append, so it runs before this edit's commit
-  // can be handled (committed() flushes anyway, should the order change).
+  // The flush and the commit may finish in either order: each calls
+  // release(), which sends a batch once its last edit is durable.
   scheduleFlush();
   store_.append(id_, version_ - 1, authorName, encodeJournalEntry(entry),
                 [self = shared_from_this(), version = version_](Status status) {

@@ -1,19 +1,17 @@
 // One open document on the server: its single writer (issue §2). Every
 // command runs on the host's strand, on the worker pool, never on network
-// threads, so the document has a total order of versions. After an edit it
-// updates each LOD profile's tessellation, encodes the changed regions once
-// per profile, journals the edit, and -- once the journal commit is durable
-// -- releases the author's ack and everyone's deltas, in version order
-// (edits are applied and tessellated while earlier commits are in flight).
+// threads, so the document has a total order of versions.
 //
-// Edits queued on the strand together share one tessellation update and
-// one encode: each is applied, checked against the grid and journaled at
-// once (its ack needs only that), and a flush posted behind them updates
-// every view from the union of their changed limits, encodes the changed
-// regions and makes one delta spanning every version since the last flush.
-// Under light load a flush follows each edit; under heavy load one flush
-// covers a burst, so the tessellation, encode and fan-out cost follows the
-// delta rate, not the edit rate.
+// An edit is applied, checked against the grid and journaled at once; its
+// ack goes out when the journal commit is durable (edits are applied while
+// earlier commits are in flight). The views follow in flushes: a flush,
+// posted behind the commands already queued and paced by flushInterval(),
+// updates every LOD profile's tessellation from the union of the edits'
+// changed limits, encodes the changed regions once per profile and queues
+// one delta spanning every version since the last flush, sent once its last
+// edit is durable. Under light load a flush follows each edit; under heavy
+// load one covers a burst, so the tessellation, encode and fan-out cost
+// follows the delta rate, not the edit rate.
 #pragma once
 
 #include <boost/asio/any_io_executor.hpp>
@@ -105,7 +103,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   // Acks every durable edit, then sends every durable batch's deltas and,
   // after them, their commands to the recorders.
   void release();
-  // Sends a durable command to the recorders (from committed()).
+  // Sends a durable command to the recorders (from release(), after its delta).
   void notifyRecorders(const Pending& p);
   // Takes an applied command back (an edit refused after applying it).
   Status retract(const JournalEntry& entry);

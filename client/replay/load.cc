@@ -32,7 +32,6 @@ using nlohmann::json;
 
 double msBetween(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
-
 void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, Shared& shared) {
   client::SessionOptions so = o.session;
   so.name = "editor-" + std::to_string(index + 1);

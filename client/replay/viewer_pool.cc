@@ -38,7 +38,7 @@ class PoolViewer : public std::enable_shared_from_this<PoolViewer> {
   // Takes one of the pool's joining places (given back by joined()).
   void start(const tcp::resolver::results_type& endpoints);
   // From the pool's clock, on any thread: ping, or close when the run is over.
-  void tick(Clock::time_point now, bool pingDue);
+  void tick(bool pingDue);
   void close();
 
  private:
@@ -126,7 +126,7 @@ class Pool {
     const bool pingDue = now - lastPing_ > std::chrono::seconds(30);
     if (pingDue) lastPing_ = now;
     if (over || pingDue || shared_.stopViewing) {
-      for (auto& v : viewers_) over ? v->close() : v->tick(now, pingDue);
+      for (auto& v : viewers_) over ? v->close() : v->tick(pingDue);
     }
     {
       std::lock_guard lock(mu_);
@@ -173,7 +173,7 @@ void PoolViewer::connect(const tcp::resolver::results_type& endpoints) {
   }));
 }
 
-void PoolViewer::tick(Clock::time_point, bool pingDue) {
+void PoolViewer::tick(bool pingDue) {
   asio::post(strand_, [self = shared_from_this(), pingDue] {
     if (self->stage_ != Stage::kStreaming) return;
     Shared& shared = self->pool_.shared();

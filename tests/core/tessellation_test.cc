@@ -230,6 +230,24 @@ TEST(Tessellation, ASingleDeepEditNeedsFarFewerTrianglesThanUniform) {
               static_cast<double>(uniformTriangles) / static_cast<double>(t->numTriangles()), worst / diagonal);
 }
 
+// An updated tessellation holds what a fresh build holds: the same
+// regions, and in each the same ids, triangles, and positions and normals
+// bit for bit (the message names the first vertex that differs).
+void expectSameRegions(const Tessellation& updated, const Tessellation& fresh, const std::string& where) {
+  ASSERT_EQ(updated.regions().size(), fresh.regions().size()) << where;
+  for (const auto& [id, region] : fresh.regions()) {
+    ASSERT_EQ(updated.regions().count(id), 1u) << where << " region " << id;
+    const RegionMesh& kept = updated.regions().at(id);
+    ASSERT_EQ(kept.vertexIds, region.vertexIds) << where << " region " << id;
+    ASSERT_EQ(kept.triangles, region.triangles) << where << " region " << id;
+    for (size_t i = 0; i < region.positions.size(); ++i) {
+      const std::string vertex = VertexId::fromPacked(region.vertexIds[i]).toString();
+      ASSERT_EQ(kept.positions[i], region.positions[i]) << where << " region " << id << " vertex " << vertex;
+      ASSERT_EQ(kept.normals[i], region.normals[i]) << where << " region " << id << " vertex " << vertex;
+    }
+  }
+}
+
 // §3: after every update the reported regions are exactly those whose
 // triangles differ in a full diff against a fresh tessellation. An update
 // follows 1..maxBatch random edits, given the union of their changed limits
@@ -296,13 +314,8 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
       ASSERT_EQ(changes->removed, removed) << where;
       ASSERT_EQ(t->regions().size(), fresh->regions().size()) << where;
       // And what the updated regions hold is what a fresh build holds.
-      for (const auto& [id, mesh] : fresh->regions()) {
-        const RegionMesh& kept = t->regions().at(id);
-        ASSERT_EQ(kept.vertexIds, mesh.vertexIds) << where << " region " << id;
-        ASSERT_EQ(kept.triangles, mesh.triangles) << where << " region " << id;
-        ASSERT_EQ(kept.positions, mesh.positions) << where << " region " << id;
-        ASSERT_EQ(kept.normals, mesh.normals) << where << " region " << id;
-      }
+      expectSameRegions(*t, *fresh, where);
+      if (::testing::Test::HasFatalFailure()) return;
     }
     std::printf("%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth)\n",
                 c.mesh.name.c_str(), maxBatch, incremental, rebuilt);
@@ -366,18 +379,8 @@ TEST(Tessellation, TheCreasedCubeUnderMixedEditsMatchesAFreshBuild) {
     ASSERT_TRUE(changes.isOk()) << changes.status().message();
     auto fresh = Tessellation::build(*doc, profile);
     ASSERT_TRUE(fresh.isOk());
-    ASSERT_EQ(t->regions().size(), fresh->regions().size()) << "step " << step;
-    for (const auto& [id, region] : fresh->regions()) {
-      const RegionMesh& kept = t->regions().at(id);
-      ASSERT_EQ(kept.vertexIds, region.vertexIds) << "step " << step << " region " << id;
-      ASSERT_EQ(kept.triangles, region.triangles) << "step " << step << " region " << id;
-      for (size_t i = 0; i < region.positions.size(); ++i) {
-        ASSERT_EQ(kept.positions[i], region.positions[i]) << "step " << step << " region " << id << " vertex "
-                                                          << VertexId::fromPacked(region.vertexIds[i]).toString();
-        ASSERT_EQ(kept.normals[i], region.normals[i]) << "step " << step << " region " << id << " vertex "
-                                                      << VertexId::fromPacked(region.vertexIds[i]).toString();
-      }
-    }
+    expectSameRegions(*t, *fresh, "step " + std::to_string(step));
+    if (::testing::Test::HasFatalFailure()) return;
   }
 }
 

@@ -46,12 +46,11 @@ void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, 
     (void)s.receive(0.05);  // presence meanwhile
   }
   const Clock::time_point start{Clock::duration(shared.startNs.load())};
-  const auto drainDeadline =
-      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds + o.drainSeconds));
+  const auto drainDeadline = start + secondsOf(o.seconds + o.drainSeconds);
   std::mt19937_64 rng(o.seed * 1000003u + static_cast<uint64_t>(index));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<uint64_t> vertex(0, o.vertexCount == 0 ? 0 : o.vertexCount - 1);
-  const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / o.rate));
+  const auto period = secondsOf(1.0 / o.rate);
   auto next = start + period * index / std::max(o.editors, 1);
   std::unordered_map<uint64_t, Clock::time_point> outstanding;
   int64_t sentHere = 0;
@@ -245,7 +244,7 @@ Expected<json> runLoad(const LoadOptions& o) {
   for (int i = 0; i < o.editors; ++i) editorThreads.emplace_back(runEditor, std::cref(o), i, hardDeadline, std::ref(shared));
   // Every viewer subscribed and every editor in (or failed) before the first
   // edit, then until no Presence came for 500 ms (the joins' fan-out).
-  const auto connectDeadline = begin + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.connectSeconds));
+  const auto connectDeadline = begin + secondsOf(o.connectSeconds);
   while ((shared.viewersReady + shared.viewersDone < o.viewers || shared.editorsReady + shared.errors < o.editors) &&
          Clock::now() < connectDeadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -259,7 +258,7 @@ Expected<json> runLoad(const LoadOptions& o) {
   const ProcSample cpuBefore = sampleProcess(o.serverPid);
   int64_t rssPeak = cpuBefore.rssBytes;
   const auto start = Clock::now();
-  const auto editEnd = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(o.seconds));
+  const auto editEnd = start + secondsOf(o.seconds);
   shared.startNs = start.time_since_epoch().count();
   shared.startEditing = true;
   int64_t lastAcked = 0;

@@ -41,10 +41,6 @@ std::string secondsText(double s) {
   return text;
 }
 
-Clock::duration secondsOf(double s) {
-  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
-}
-
 }  // namespace
 
 std::string ScriptRecorder::actorFor(uint64_t session, const std::string& name) {

@@ -4,6 +4,7 @@
 // order -- and therefore the final surface hash -- is the script's.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -46,5 +47,10 @@ struct SurfaceState {
 Expected<SurfaceState> readSurface(const client::SessionOptions& session, uint64_t document, const wire::LodProfile& profile);
 
 wire::LodProfile profileOf(const ScriptHeader& header);
+
+// Seconds as a steady_clock duration, for deadlines and pacing.
+inline std::chrono::steady_clock::duration secondsOf(double seconds) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
 
 }  // namespace tessera::replay

@@ -9,6 +9,7 @@
 #include "core/document/document_file.h"
 #include "core/io/mesh_export.h"
 #include "core/tessellation/document_grid.h"
+#include "core/tessellation/region_lattice.h"
 #include "core/util/file_io.h"
 #include "protocol/framing.h"
 #include "protocol/wire_ids.h"
@@ -210,7 +211,13 @@ void DocumentHost::unsubscribe(uint64_t session) {
 
 Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t region, const View& view, bool idsInline) {
   const auto start = Clock::now();
-  const RegionHeader header{region, version_, view.layout.at(region), view.tessellation->profile(), grid_, idsInline};
+  RegionHeader header{region, version_, view.layout.at(region), view.tessellation->profile(), grid_, idsInline};
+  if (header.profile.vertexIds && idsInline) {
+    // Ids as points of the region's lattice: a third of the bytes they
+    // took as eight-byte labels (region_lattice.h).
+    auto frame = regionFrame(doc_.hierarchy(), doc_.counts(), FaceId::fromPacked(region));
+    if (frame.isOk()) header.frame = *frame;
+  }
   TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
   stats_.encodeMicros += microsSince(start);
   ++stats_.regionsEncoded;

@@ -50,6 +50,13 @@ constexpr int kIdComponents = 8;
 // leaves them to the receiver's copy of the layout. Never both.
 constexpr uint16_t kFlagNoVertexIds = 1;
 constexpr uint16_t kFlagLayoutIds = 2;
+// Bit 2: ids as points of the region's lattice (region_lattice.h), two
+// bytes that Draco predicts from the neighbours instead of eight per id.
+constexpr uint16_t kFlagLatticeIds = 4;
+constexpr int kLatticeComponents = 2;
+
+// How a payload carries vertex ids.
+enum class IdCoding { kNone, kBytes, kLattice };
 
 std::string num(double x) {
   char text[32];
@@ -248,7 +255,8 @@ int addAttribute(draco::Mesh& mesh, draco::GeometryAttribute::Type type, int com
 }
 
 // draco::Mesh is neither copyable nor movable, hence the unique_ptr.
-Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region, bool withIds) {
+Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region, IdCoding coding,
+                                                      const RegionLattice* lattice) {
   auto meshPtr = std::make_unique<draco::Mesh>();
   draco::Mesh& mesh = *meshPtr;
   const size_t n = region.positions.size();
@@ -261,7 +269,10 @@ Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region, 
   }
   const int positionId = addAttribute(mesh, draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32, 4, n);
   const int normalId = addAttribute(mesh, draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32, 4, n);
-  const int idId = withIds ? addAttribute(mesh, draco::GeometryAttribute::GENERIC, kIdComponents, draco::DT_UINT8, 1, n) : 0;
+  const int idComponents = coding == IdCoding::kLattice ? kLatticeComponents : kIdComponents;
+  const int idId = coding == IdCoding::kNone
+                       ? 0
+                       : addAttribute(mesh, draco::GeometryAttribute::GENERIC, idComponents, draco::DT_UINT8, 1, n);
   if (positionId < 0 || normalId < 0 || idId < 0) return internalError("Draco refused to add an attribute");
   for (size_t i = 0; i < n; ++i) {
     const draco::AttributeValueIndex index(static_cast<uint32_t>(i));
@@ -271,9 +282,19 @@ Expected<std::unique_ptr<draco::Mesh>> buildDracoMesh(const RegionMesh& region, 
     const Vec3 u = region.normals[i].normalized();
     const float normal[3] = {static_cast<float>(u[0]), static_cast<float>(u[1]), static_cast<float>(u[2])};
     mesh.attribute(normalId)->SetAttributeValue(index, normal);
-    if (!withIds) continue;
+    if (coding == IdCoding::kNone) continue;
     uint8_t id[kIdComponents];
-    for (int c = 0; c < kIdComponents; ++c) id[c] = static_cast<uint8_t>(region.vertexIds[i] >> (8 * c));
+    if (coding == IdCoding::kLattice) {
+      const auto point = lattice->pointOf(VertexId::fromPacked(region.vertexIds[i]));
+      if (!point) {
+        return invalidMesh("vertex " + std::to_string(i) + " (" + VertexId::fromPacked(region.vertexIds[i]).toString() +
+                           ") is not a vertex of the region's root face");
+      }
+      id[0] = static_cast<uint8_t>((*point)[0]);
+      id[1] = static_cast<uint8_t>((*point)[1]);
+    } else {
+      for (int c = 0; c < kIdComponents; ++c) id[c] = static_cast<uint8_t>(region.vertexIds[i] >> (8 * c));
+    }
     mesh.attribute(idId)->SetAttributeValue(index, id);
   }
   return meshPtr;
@@ -307,10 +328,31 @@ Status setExplicitQuantization(draco::Encoder& encoder, const QuantizationGrid& 
   return Status::ok();
 }
 
-void writeHeader(ByteWriter& w, const RegionHeader& header, uint32_t triangles, uint32_t payloadBytes) {
+// LEB128: 7 bits a byte, low first, at most 10 bytes for 64 bits.
+void putVarint(ByteWriter& w, uint64_t value) {
+  for (; value >= 0x80; value >>= 7) w.put<uint8_t>(static_cast<uint8_t>(value | 0x80));
+  w.put<uint8_t>(static_cast<uint8_t>(value));
+}
+
+Status getVarint64(ByteReader& r, uint64_t& value, const char* what) {
+  value = 0;
+  for (int i = 0; i < 10; ++i) {
+    uint8_t byte = 0;
+    TESSERA_RETURN_IF_ERROR(r.get(byte, what));
+    if (i == 9 && byte > 1) break;
+    value |= static_cast<uint64_t>(byte & 0x7f) << (7 * i);
+    if ((byte & 0x80) == 0) return Status::ok();
+  }
+  return parseError(r.source() + ": " + what + " is not a 64-bit varint");
+}
+
+void writeHeader(ByteWriter& w, const RegionHeader& header, IdCoding coding, uint32_t triangles, uint32_t payloadBytes) {
   w.bytes().append(kMagic, sizeof(kMagic));
   w.put<uint16_t>(kRegionFormatVersion);
-  w.put<uint16_t>(!header.profile.vertexIds ? kFlagNoVertexIds : header.idsInline ? 0 : kFlagLayoutIds);
+  w.put<uint16_t>(!header.profile.vertexIds ? kFlagNoVertexIds
+                  : !header.idsInline       ? kFlagLayoutIds
+                  : coding == IdCoding::kLattice ? kFlagLatticeIds
+                                                 : 0);
   w.put<uint64_t>(header.regionId);
   w.put<uint64_t>(header.documentVersion);
   w.put<uint64_t>(header.layoutVersion);
@@ -325,6 +367,22 @@ void writeHeader(ByteWriter& w, const RegionHeader& header, uint32_t triangles, 
   w.put<uint8_t>(static_cast<uint8_t>(header.grid.normalBits));
   w.put<uint32_t>(triangles);
   w.put<uint32_t>(payloadBytes);
+  if (coding != IdCoding::kLattice) return;
+  // The frame, in varints: a dozen bytes for a small mesh rather than 81.
+  const RegionFrame& f = *header.frame;
+  const FaceId face = FaceId::fromPacked(f.face);
+  w.put<uint8_t>(static_cast<uint8_t>(face.level()));
+  putVarint(w, face.index());
+  for (uint64_t c : f.corners) putVarint(w, c);
+  for (uint64_t e : f.edges) putVarint(w, e);
+  w.put<uint8_t>(f.forward);
+  for (uint64_t n : f.baseCounts) putVarint(w, n);
+}
+
+// The lattice depth of a frame under a profile: how far its deepest level
+// lies below the root face.
+int latticeDepth(const RegionFrame& frame, const LodProfile& profile) {
+  return profile.maxLevel - FaceId::fromPacked(frame.face).level();
 }
 
 }  // namespace
@@ -345,8 +403,22 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
     return invalidArgument(where + ": the layout's ids stand in for inline ids only in a profile with vertex ids");
   }
   TESSERA_RETURN_IF_ERROR(checkMesh(mesh, header.grid).withContext(where));
+  IdCoding coding = header.profile.vertexIds && header.idsInline ? IdCoding::kBytes : IdCoding::kNone;
+  std::optional<RegionLattice> lattice;
+  if (coding == IdCoding::kBytes && header.frame) {
+    if (header.frame->face != header.regionId) {
+      return invalidArgument(where + ": the frame is that of region " + std::to_string(header.frame->face));
+    }
+    const int depth = latticeDepth(*header.frame, header.profile);
+    if (depth >= 0 && depth <= kMaxLatticeDepth) {
+      auto built = RegionLattice::build(*header.frame, depth);
+      if (!built.isOk()) return built.status().withContext(where);
+      lattice = std::move(*built);
+      coding = IdCoding::kLattice;
+    }
+  }
   TESSERA_ASSIGN_OR_RETURN(const std::unique_ptr<draco::Mesh> dracoMesh,
-                           buildDracoMesh(mesh, header.profile.vertexIds && header.idsInline));
+                           buildDracoMesh(mesh, coding, lattice ? &*lattice : nullptr));
 
   draco::Encoder encoder;
   TESSERA_RETURN_IF_ERROR(setExplicitQuantization(encoder, header.grid).withContext(where));
@@ -355,8 +427,11 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
   // while the difference from the previous vertex in Draco's traversal
   // follows the locality of the numbering (smaller and faster on fandisk
   // regions; docs/REGION_ENCODING.md).
-  const draco::Status idPrediction =
-      encoder.SetAttributePredictionScheme(draco::GeometryAttribute::GENERIC, draco::PREDICTION_DIFFERENCE);
+  // Lattice points are coordinates on the mesh: a parallelogram of them
+  // predicts the next exactly wherever the tessellation is regular.
+  const draco::Status idPrediction = encoder.SetAttributePredictionScheme(
+      draco::GeometryAttribute::GENERIC,
+      coding == IdCoding::kLattice ? draco::MESH_PREDICTION_PARALLELOGRAM : draco::PREDICTION_DIFFERENCE);
   if (!idPrediction.ok()) return internalError(where + ": Draco refused the id prediction: " + idPrediction.error_msg_string());
   const int speed = kMaxCompressionLevel - compressionLevel;
   encoder.SetSpeedOptions(speed, speed);
@@ -371,8 +446,8 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
                          " Draco bytes fall outside what decodeRegion accepts");
   }
   ByteWriter w;
-  w.bytes().reserve(kRegionHeaderBytes + buffer.size() + kRegionTrailerBytes);
-  writeHeader(w, header, static_cast<uint32_t>(triangles), static_cast<uint32_t>(buffer.size()));
+  w.bytes().reserve(kRegionHeaderBytes + kMaxRegionFrameBytes + buffer.size() + kRegionTrailerBytes);
+  writeHeader(w, header, coding, static_cast<uint32_t>(triangles), static_cast<uint32_t>(buffer.size()));
   w.bytes().append(buffer.data(), buffer.size());
   w.put<uint32_t>(crc32Of(w.bytes().data(), w.bytes().size()));
   return std::move(w.bytes());
@@ -503,7 +578,7 @@ Expected<const draco::PointAttribute*> findAttribute(const draco::Mesh& mesh, dr
 }
 
 Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& header, uint32_t triangles,
-                                 const std::string& where) {
+                                 const RegionLattice* lattice, const std::string& where) {
   draco::DecoderBuffer buffer;
   buffer.Init(payload.data(), payload.size());
   draco::Decoder decoder;
@@ -529,8 +604,8 @@ Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& h
                            findAttribute(*mesh, draco::GeometryAttribute::NORMAL, draco::DT_FLOAT32, 3, where + ": NORMAL"));
   const draco::PointAttribute* ids = nullptr;
   if (withIds) {
-    TESSERA_ASSIGN_OR_RETURN(ids, findAttribute(*mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8, kIdComponents,
-                                                where + ": vertex ids"));
+    TESSERA_ASSIGN_OR_RETURN(ids, findAttribute(*mesh, draco::GeometryAttribute::GENERIC, draco::DT_UINT8,
+                                                lattice ? kLatticeComponents : kIdComponents, where + ": vertex ids"));
   }
 
   draco::AttributeQuantizationTransform quantization;
@@ -574,6 +649,16 @@ Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& h
     if (!withIds) continue;
     uint8_t id[kIdComponents];
     ids->GetValue(ii, id);
+    if (lattice) {
+      const auto at = lattice->idAt(id[0], id[1]);
+      if (!at) {
+        return parseError(where + ": " + point() + " has lattice point (" + std::to_string(id[0]) + ", " +
+                          std::to_string(id[1]) + "), outside the root face's lattice of side " +
+                          std::to_string(lattice->side()));
+      }
+      out.vertexIds[p.value()] = at->packed();
+      continue;
+    }
     uint64_t packed = 0;
     for (int c = 0; c < kIdComponents; ++c) packed |= static_cast<uint64_t>(id[c]) << (8 * c);
     out.vertexIds[p.value()] = packed;
@@ -614,12 +699,12 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
                        std::to_string(kRegionFormatVersion) + ")");
   }
   TESSERA_RETURN_IF_ERROR(r.get(flags, "the flags"));
-  if ((flags & ~(kFlagNoVertexIds | kFlagLayoutIds)) != 0) {
+  if ((flags & ~(kFlagNoVertexIds | kFlagLayoutIds | kFlagLatticeIds)) != 0) {
     return parseError(source + ": unknown flags " + std::to_string(flags) +
-                      " (bit 0, no vertex ids, and bit 1, the layout's ids, are defined)");
+                      " (bit 0, no vertex ids, bit 1, the layout's ids, and bit 2, lattice ids, are defined)");
   }
-  if ((flags & kFlagNoVertexIds) != 0 && (flags & kFlagLayoutIds) != 0) {
-    return parseError(source + ": flags " + std::to_string(flags) + " claim both no vertex ids and the layout's ids");
+  if ((flags & (flags - 1)) != 0) {
+    return parseError(source + ": flags " + std::to_string(flags) + " claim more than one way of carrying ids");
   }
   RegionHeader header;
   Counts counts;
@@ -627,6 +712,24 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   header.profile.vertexIds = (flags & kFlagNoVertexIds) == 0;
   header.idsInline = (flags & kFlagLayoutIds) == 0;
   if (r.offset() != kRegionHeaderBytes) return internalError(source + ": header layout and kRegionHeaderBytes disagree");
+  if ((flags & kFlagLatticeIds) != 0) {
+    RegionFrame f;
+    uint8_t level = 0;
+    uint64_t index = 0;
+    TESSERA_RETURN_IF_ERROR(r.get(level, "the frame's face level"));
+    TESSERA_RETURN_IF_ERROR(getVarint64(r, index, "the frame's face"));
+    if (level > kMaxIdLevel || index > FaceId::kIndexMask) {
+      return parseError(source + ": the frame's face f" + std::to_string(level) + ":" + std::to_string(index) +
+                        " is not a face id");
+    }
+    f.face = FaceId(level, index).packed();
+    for (uint64_t& c : f.corners) TESSERA_RETURN_IF_ERROR(getVarint64(r, c, "the frame's corners"));
+    for (uint64_t& e : f.edges) TESSERA_RETURN_IF_ERROR(getVarint64(r, e, "the frame's edges"));
+    TESSERA_RETURN_IF_ERROR(r.get(f.forward, "the frame's edge directions"));
+    for (uint64_t& n : f.baseCounts) TESSERA_RETURN_IF_ERROR(getVarint64(r, n, "the frame's base counts"));
+    header.frame = f;
+  }
+  const size_t payloadAt = r.offset();
   const uint64_t expected = static_cast<uint64_t>(counts.payloadBytes) + kRegionTrailerBytes;
   if (r.remaining() < expected) {
     return parseError(source + ": truncated: the header announces " + std::to_string(counts.payloadBytes) +
@@ -658,9 +761,20 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
     return parseError(where + ": " + std::to_string(counts.triangles) + " triangles in " +
                       std::to_string(counts.payloadBytes) + " Draco bytes is outside the accepted bounds");
   }
-  const std::string_view payload = bytes.substr(kRegionHeaderBytes, counts.payloadBytes);
+  std::optional<RegionLattice> lattice;
+  if (header.frame) {
+    const int depth = latticeDepth(*header.frame, header.profile);
+    if (header.frame->face != header.regionId || header.frame->forward > 7) {
+      return parseError(where + ": the frame names region " + std::to_string(header.frame->face) + " with edge directions " +
+                        std::to_string(header.frame->forward));
+    }
+    auto built = RegionLattice::build(*header.frame, depth);
+    if (!built.isOk()) return parseError(where + ": " + built.status().message());
+    lattice = std::move(*built);
+  }
+  const std::string_view payload = bytes.substr(payloadAt, counts.payloadBytes);
   TESSERA_RETURN_IF_ERROR(checkDracoCounts(payload, counts.triangles, where));
-  TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, decodeDraco(payload, header, counts.triangles, where));
+  TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, decodeDraco(payload, header, counts.triangles, lattice ? &*lattice : nullptr, where));
   return std::make_pair(std::move(header), std::move(mesh));
 }
 

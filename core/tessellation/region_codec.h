@@ -10,11 +10,14 @@
 //           offset  size  field
 //                0     4  magic "TSRG"
 //                4     2  format version (2)
-//                6     2  flags: bit 0 = no vertex ids (a display-only
-//                         profile; the Draco mesh has no GENERIC attribute);
-//                         bit 1 = the layout's ids (the profile has ids but
-//                         this payload leaves them out: the receiver holds
-//                         the same layout and keeps its ids, adoptLayoutIds)
+//                6     2  flags, at most one set: bit 0 = no vertex ids (a
+//                         display-only profile; the Draco mesh has no
+//                         GENERIC attribute); bit 1 = the layout's ids (the
+//                         profile has ids but this payload leaves them out:
+//                         the receiver holds the same layout and keeps its
+//                         ids, adoptLayoutIds); bit 2 = lattice ids (a
+//                         frame follows the header and GENERIC holds each
+//                         vertex's lattice point (u, v) as 2 x uint8)
 //                8     8  region id
 //               16     8  document version
 //               24     8  layout version: the document version since which
@@ -26,10 +29,15 @@
 //                         normalBits u8
 //               91     4  triangle count
 //               95     4  Draco payload size n
-//               99     n  Draco mesh (bitstream 2.2): POSITION quantized on
+//               99     k  with bit 2 only, the frame: root face level u8 and
+//                         index, corner vertex indices x 3, edge indices x 3,
+//                         edge directions u8, base counts x 3 (V, E, F), the
+//                         numbers as LEB128 varints (k is 12 bytes for a cube)
+//           99 (+k)   n  Draco mesh (bitstream 2.2): POSITION quantized on
 //                         the grid, NORMAL octahedral, GENERIC ids as 8 x
-//                         uint8, least significant byte first
-//           99 + n     4  CRC-32 (zlib) of every byte before it
+//                         uint8, least significant byte first (or lattice
+//                         points, bit 2)
+//              ... + n 4  CRC-32 (zlib) of every byte before it
 //
 // Why layouts: an edit moves vertices but rarely changes which triangles a
 // region has over which control vertices, and the ids are a third of a
@@ -63,6 +71,7 @@
 #include <vector>
 
 #include "core/tessellation/lod_profile.h"
+#include "core/tessellation/region_lattice.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
@@ -142,12 +151,17 @@ struct RegionHeader {
   // With a profile that has ids: false leaves them out of the payload, for
   // receivers that hold this layout already (deltas after a move).
   bool idsInline = true;
+  // With inline ids: the region's root face, so that the ids travel as
+  // lattice points (region_lattice.h) when the profile's depth below the
+  // face allows (at most kMaxLatticeDepth), as eight bytes otherwise.
+  std::optional<RegionFrame> frame;
 
   friend bool operator==(const RegionHeader&, const RegionHeader&) = default;
 };
 
 inline constexpr uint16_t kRegionFormatVersion = 2;
-inline constexpr size_t kRegionHeaderBytes = 99;   // everything before the Draco payload
+inline constexpr size_t kRegionHeaderBytes = 99;   // everything before the Draco payload, but a frame
+inline constexpr size_t kMaxRegionFrameBytes = 2 + 10 * 10;  // level, forward and ten varints
 inline constexpr size_t kRegionTrailerBytes = 4;   // the CRC-32
 inline constexpr uint32_t kMaxRegionTriangles = 1u << 24;  // LoopRefiner's default face cap
 inline constexpr size_t kMaxRegionBytes = size_t{1} << 28;

@@ -1,5 +1,8 @@
 #include "core/tessellation/region_lattice.h"
 
+#include <tuple>
+
+#include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/incidence.h"
 
 namespace tessera {
@@ -53,13 +56,19 @@ Expected<RegionLattice> RegionLattice::build(const RegionFrame& frame, int depth
                            " outside [0, " + std::to_string(kMaxLatticeDepth) + "]");
   }
   const int deepest = root.level() + depth;
-  const LevelCounts counts(frame.baseCounts[0], frame.baseCounts[1], frame.baseCounts[2], deepest);
-  // Ids beyond 58 bits would wrap: refuse counts that large.
-  if (counts.vertices(deepest) > VertexId::kIndexMask || counts.edges(deepest) > EdgeId::kIndexMask ||
-      counts.faces(deepest) > FaceId::kIndexMask) {
-    return invalidArgument("region lattice of " + root.toString() + ": the base counts overflow the ids at level " +
-                           std::to_string(deepest));
+  // Ids beyond 58 bits would wrap (a frame may come off the wire): the
+  // counts are checked level by level before LevelCounts computes them.
+  // Below 2^58 a level's counts cannot wrap 64 bits on the way to the next.
+  uint64_t v = frame.baseCounts[0], e = frame.baseCounts[1], f = frame.baseCounts[2];
+  for (int l = 0;; ++l) {
+    if (v > VertexId::kIndexMask || e > EdgeId::kIndexMask || f > FaceId::kIndexMask) {
+      return invalidArgument("region lattice of " + root.toString() + ": the base counts overflow the ids at level " +
+                             std::to_string(l));
+    }
+    if (l == deepest) break;
+    std::tie(v, e, f) = std::make_tuple(v + e, 2 * e + 3 * f, 4 * f);
   }
+  const LevelCounts counts(frame.baseCounts[0], frame.baseCounts[1], frame.baseCounts[2], deepest);
   for (int j = 0; j < 3; ++j) {
     if (frame.corners[j] >= counts.vertices(root.level()) || frame.edges[j] >= counts.edges(root.level())) {
       return invalidArgument("region lattice of " + root.toString() + ": corner or edge " + std::to_string(j) +

@@ -15,11 +15,12 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/ids.h"
 #include "core/util/status.h"
 
 namespace tessera {
+
+class SparseEvaluator;
 
 // What names the vertices of one region's root face.
 struct RegionFrame {

@@ -4,8 +4,21 @@
 // several meshes, for root faces at levels 0 and 1 and depths up to 4.
 #include <gtest/gtest.h>
 
+#include <zlib.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include <map>
+#include <set>
+
 #include "core/document/document.h"
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
+#include "core/tessellation/document_grid.h"
+#include "core/tessellation/region_codec.h"
 #include "core/tessellation/region_lattice.h"
+#include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
 #include "support/test_meshes.h"
 
@@ -100,6 +113,108 @@ TEST(RegionLattice, RefusesBadDepthsAndFrames) {
   EXPECT_TRUE(lattice->idAt(4, 0).has_value());
   EXPECT_EQ(RegionLattice::build(*frame, 2)->idAt(0, 0)->index(), frame->corners[0]);
   EXPECT_EQ(regionFrame(doc->hierarchy(), doc->counts(), FaceId(3, 0)).status().code(), ErrorCode::kNotFound);
+}
+
+// The triangles of a region over ids, each rotated to start at its smallest.
+std::multiset<std::array<uint64_t, 3>> trianglesOverIds(const RegionMesh& m) {
+  std::multiset<std::array<uint64_t, 3>> out;
+  for (const auto& t : m.triangles) {
+    std::array<uint64_t, 3> key{m.vertexIds[t[0]], m.vertexIds[t[1]], m.vertexIds[t[2]]};
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    out.insert(key);
+  }
+  return out;
+}
+
+// Every region of real tessellations (the creased cube after edits, an
+// icosahedron at a profile deeper than five levels, whose regions lie at
+// level 1) round-trips its ids through lattice points, in fewer bytes.
+TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
+  auto cube = importMesh(testing::sourceTestDataPath("cube.obj"));
+  ASSERT_TRUE(cube.isOk());
+  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *cube).isOk());
+  auto cubeDoc = Document::create(*cube, {.maxLevel = 5});
+  ASSERT_TRUE(cubeDoc.isOk());
+  for (int i = 0; i < 6; ++i) {
+    const VertexId v(2, static_cast<uint64_t>(i * 17 % 98));
+    ASSERT_TRUE(cubeDoc->moveBy(std::span(&v, 1), Vec3(0.01 * i, -0.02, 0.015)).isOk());
+  }
+  const auto ico = testing::icosahedron();
+  auto icoDoc = Document::create(ico.topology, ico.points, {.maxLevel = 6});
+  ASSERT_TRUE(icoDoc.isOk());
+  struct Case {
+    Document* doc;
+    LodProfile profile;
+  };
+  for (const Case& c : {Case{&*cubeDoc, {.baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10}},
+                        Case{&*icoDoc, {.baseLevel = 2, .maxLevel = 6, .angleThresholdDegrees = 5}}}) {
+    auto t = Tessellation::build(*c.doc, c.profile);
+    ASSERT_TRUE(t.isOk()) << t.status().message();
+    auto grid = documentGrid(*c.doc);
+    ASSERT_TRUE(grid.isOk());
+    size_t bytesAsIds = 0, bytesAsPoints = 0;
+    for (const auto& [id, region] : t->regions()) {
+      RegionHeader header{.regionId = id, .documentVersion = 3, .layoutVersion = 2, .profile = c.profile, .grid = *grid};
+      auto plain = encodeRegion(header, region);
+      auto frame = regionFrame(c.doc->hierarchy(), c.doc->counts(), FaceId::fromPacked(id));
+      ASSERT_TRUE(frame.isOk()) << frame.status().message();
+      header.frame = *frame;
+      auto lattice = encodeRegion(header, region);
+      ASSERT_TRUE(plain.isOk() && lattice.isOk()) << lattice.status().message();
+      bytesAsIds += plain->size();
+      bytesAsPoints += lattice->size();
+      auto decoded = decodeRegion(*lattice);
+      ASSERT_TRUE(decoded.isOk()) << decoded.status().message();
+      EXPECT_EQ(decoded->first, header);
+      EXPECT_EQ(trianglesOverIds(decoded->second), trianglesOverIds(region)) << FaceId::fromPacked(id).toString();
+    }
+    EXPECT_LT(bytesAsPoints, bytesAsIds);
+    std::printf("[ measured ] %zu regions, %lld triangles: %zu bytes with 8-byte ids, %zu with lattice points\n",
+                t->regions().size(), static_cast<long long>(t->numTriangles()), bytesAsIds, bytesAsPoints);
+  }
+}
+
+// A frame that names another region, and flags that combine two ways of
+// carrying ids, are refused.
+TEST(RegionLattice, RefusesFramesOfOtherRegionsAndMixedFlags) {
+  const auto ico = testing::icosahedron();
+  auto doc = Document::create(ico.topology, ico.points, {.maxLevel = 4});
+  ASSERT_TRUE(doc.isOk());
+  const LodProfile profile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 10};
+  auto t = Tessellation::build(*doc, profile);
+  ASSERT_TRUE(t.isOk());
+  auto grid = documentGrid(*doc);
+  ASSERT_TRUE(grid.isOk());
+  const auto& [id, region] = *t->regions().begin();
+  RegionHeader header{.regionId = id, .documentVersion = 1, .layoutVersion = 1, .profile = profile, .grid = *grid};
+  auto other = regionFrame(doc->hierarchy(), doc->counts(), FaceId(0, 5));
+  ASSERT_TRUE(other.isOk());
+  header.frame = *other;
+  Status status = encodeRegion(header, region).status();
+  EXPECT_EQ(status.code(), ErrorCode::kInvalidArgument);
+  EXPECT_NE(status.message().find("the frame is that of region"), std::string::npos) << status.toString();
+
+  header.frame = *regionFrame(doc->hierarchy(), doc->counts(), FaceId::fromPacked(id));
+  auto bytes = encodeRegion(header, region);
+  ASSERT_TRUE(bytes.isOk());
+  auto fixCrc = [](std::string& b) {
+    const uint32_t crc = static_cast<uint32_t>(
+        ::crc32(0L, reinterpret_cast<const Bytef*>(b.data()), static_cast<uInt>(b.size() - 4)));
+    std::memcpy(b.data() + b.size() - 4, &crc, 4);
+  };
+  std::string mixed = *bytes;
+  mixed[6] = 6;  // layout ids and lattice ids
+  fixCrc(mixed);
+  status = decodeRegion(mixed).status();
+  EXPECT_EQ(status.code(), ErrorCode::kParseError);
+  EXPECT_NE(status.message().find("more than one way"), std::string::npos) << status.toString();
+  std::string moved = *bytes;
+  ASSERT_EQ(FaceId::fromPacked(id), FaceId(0, 0));
+  moved[kRegionHeaderBytes + 1] = 5;  // the frame's face index (a one-byte varint here)
+  fixCrc(moved);
+  status = decodeRegion(moved).status();
+  EXPECT_EQ(status.code(), ErrorCode::kParseError);
+  EXPECT_NE(status.message().find("the frame names region"), std::string::npos) << status.toString();
 }
 
 }  // namespace

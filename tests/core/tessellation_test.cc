@@ -16,6 +16,7 @@
 #include "core/render/surface_distance.h"
 #include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
+#include "support/region_checks.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -230,23 +231,9 @@ TEST(Tessellation, ASingleDeepEditNeedsFarFewerTrianglesThanUniform) {
               static_cast<double>(uniformTriangles) / static_cast<double>(t->numTriangles()), worst / diagonal);
 }
 
-// An updated tessellation holds what a fresh build holds: the same
-// regions, and in each the same ids, triangles, and positions and normals
-// bit for bit (the message names the first vertex that differs).
-void expectSameRegions(const Tessellation& updated, const Tessellation& fresh, const std::string& where) {
-  ASSERT_EQ(updated.regions().size(), fresh.regions().size()) << where;
-  for (const auto& [id, region] : fresh.regions()) {
-    ASSERT_EQ(updated.regions().count(id), 1u) << where << " region " << id;
-    const RegionMesh& kept = updated.regions().at(id);
-    ASSERT_EQ(kept.vertexIds, region.vertexIds) << where << " region " << id;
-    ASSERT_EQ(kept.triangles, region.triangles) << where << " region " << id;
-    for (size_t i = 0; i < region.positions.size(); ++i) {
-      const std::string vertex = VertexId::fromPacked(region.vertexIds[i]).toString();
-      ASSERT_EQ(kept.positions[i], region.positions[i]) << where << " region " << id << " vertex " << vertex;
-      ASSERT_EQ(kept.normals[i], region.normals[i]) << where << " region " << id << " vertex " << vertex;
-    }
-  }
-}
+// An updated tessellation holds what a fresh build holds
+// (support/region_checks.h).
+using testing::expectSameRegions;
 
 // §3: after every update the reported regions are exactly those whose
 // triangles differ in a full diff against a fresh tessellation. An update

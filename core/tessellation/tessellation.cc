@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstring>
 
-#include "core/tessellation/region_merge.h"
+#include <optional>
 #include <unordered_map>
 
+#include "core/hierarchy/incidence.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/leaf_triangulation.h"
+#include "core/tessellation/region_merge.h"
 
 namespace tessera {
 
@@ -17,17 +19,56 @@ namespace {
 // region holds at most 4^5 = 1,024 leaf triangles before fans.
 constexpr int kRegionDepth = 5;
 
-// Where a displayed vertex's limit comes from: the deepest level at which
-// its ring is held. Vertex children keep their canonical index, so this
-// depends on the vertex alone, never on which leaf reaches it, and regions
-// sharing a border agree bit for bit.
-VertexRef deepest(const SparseEvaluator& h, VertexRef v) {
-  while (v.level + 1 < h.numLevels()) {
-    const Index child = h.level(v.level).childOfVertex[v.local];
-    if (child < 0 || !h.level(v.level + 1).isComplete(child)) break;
-    v = {v.level + 1, child};
+// Whether the limit mask of a complete vertex at this level may differ
+// from its true limit: a semi-sharp edge or vertex sharpness still acts on
+// it (its own sharpness or one of its edges' is finite and not yet decayed:
+// the mask counts it as sharp, ARCHITECTURE "Semi-sharp limits"), or it is
+// a dart, whose mask is the smooth one (limit.cc, as OpenSubdiv's) although
+// its sharp edge refines by the crease rule: a dart's mask only converges
+// towards its limit level by level.
+bool maskInexact(const Level& m, Index v) {
+  if (m.vertexRules[v] == VertexRule::kDart || isSemiSharp(m.vertexSharpness[v])) return true;
+  for (Index e : m.ringEdgesOf(v)) {
+    if (isSemiSharp(m.edgeSharpness[e])) return true;
   }
-  return v;
+  return false;
+}
+
+// Where a displayed vertex's limit comes from, a function of the document
+// alone (the rule and its reasons are in tessellation.h): from the level
+// the vertex was born at, down to the deepest level whose active edits
+// reach its limit, then further while its limit mask is inexact (semi-sharp
+// features, darts), up to the document's deepest level. Vertex children keep
+// their canonical index, so whichever leaf reaches the vertex (any `v` of
+// it) gives the same answer, and regions sharing a border agree bit for
+// bit. When the hierarchy does not hold the vertex's ring at the chosen
+// level, a face to grow it there is appended to `growth` and nothing is
+// returned.
+std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts& counts, VertexRef v,
+                                     std::vector<FaceId>& growth) {
+  while (v.level > 0 && v.local < h.level(v.level).numVertexChildren) {
+    v = {v.level - 1, h.level(v.level).origin[v.local]};
+  }
+  VertexRef at = v;
+  for (VertexRef w = v;;) {
+    if (h.isReachedByEdit(w.level, w.local)) at = w;
+    if (w.level + 1 >= h.numLevels()) break;
+    const Index child = h.level(w.level).childOfVertex[w.local];
+    if (child < 0) break;
+    w = {w.level + 1, child};
+  }
+  auto held = [&](int l, Index local) { return local >= 0 && h.level(l).isComplete(local); };
+  auto grow = [&](int l, uint64_t canonical) {
+    growth.push_back(incidentFace(h.level(0).mesh, counts, VertexId(l, canonical)));
+    return std::nullopt;
+  };
+  if (!held(at.level, at.local)) return grow(at.level, h.level(at.level).vertexIds[at.local]);
+  while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local)) {
+    const Index child = at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kInvalidIndex;
+    if (!held(at.level + 1, child)) return grow(at.level + 1, h.level(at.level).vertexIds[at.local]);
+    at = {at.level + 1, child};
+  }
+  return at;
 }
 
 // The limit normals of each side of a vertex: one for smooth and dart
@@ -51,18 +92,31 @@ bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
 }  // namespace
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile) {
-  TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));
-  const int regionLevel = std::max(0, cut.profile().maxLevel - kRegionDepth);
-  Tessellation tessellation(std::move(cut), regionLevel, doc.counts());
-  const SparseEvaluator& h = doc.hierarchy();
-  std::vector<uint64_t> ids;
-  for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
-  for (uint64_t id : ids) {
-    RegionMesh& mesh = tessellation.regions_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id));
-    tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
+  // Growing the hierarchy for the limits' levels rebuilds levels (new local
+  // indices), so the cut is made again over the grown hierarchy; its
+  // decisions do not change, and the second round needs no growth.
+  for (int round = 0;; ++round) {
+    TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));
+    const int regionLevel = std::max(0, cut.profile().maxLevel - kRegionDepth);
+    Tessellation tessellation(std::move(cut), regionLevel, doc.counts());
+    const SparseEvaluator& h = doc.hierarchy();
+    std::vector<uint64_t> ids;
+    for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
+    std::vector<FaceId> growth;
+    for (uint64_t id : ids) {
+      RegionMesh& mesh = tessellation.regions_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
+      tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
+    }
+    if (growth.empty()) {
+      TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
+      return tessellation;
+    }
+    if (round > kMaxDocumentLevel) {
+      return internalError("LOD profile " + profile.key() + ": the hierarchy does not hold the limits' rings after " +
+                           std::to_string(round) + " growths");
+    }
+    doc.refineHierarchy(growth);
   }
-  TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
-  return tessellation;
 }
 
 Status Tessellation::checkBudget() const {
@@ -83,7 +137,7 @@ void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::v
   for (int k = 0; k < 4; ++k) regionsUnder(h, l + 1, first + k, out);
 }
 
-RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region) const {
+RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, std::vector<FaceId>& growth) const {
   std::vector<RefTriangle> triangles;
   std::vector<VertexRef> stack{{region.level(), h.level(region.level()).findFace(region.index())}};
   while (!stack.empty()) {
@@ -100,7 +154,13 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region) co
   std::unordered_map<uint64_t, int> index;  // (canonical vertex, side) -> region vertex
   for (const RefTriangle& t : triangles) {
     VertexRef at[3];
-    for (int k = 0; k < 3; ++k) at[k] = deepest(h, t[k]);
+    bool held = true;
+    for (int k = 0; k < 3; ++k) {
+      const std::optional<VertexRef> source = limitSource(h, counts_, t[k], growth);
+      held = held && source.has_value();
+      if (source) at[k] = *source;
+    }
+    if (!held) continue;  // the caller grows the hierarchy and starts again
     const Vec3& p0 = h.limitPosition(at[0].level, at[0].local);
     const Vec3 flat = (h.limitPosition(at[1].level, at[1].local) - p0) % (h.limitPosition(at[2].level, at[2].local) - p0);
     std::array<int, 3> tri;
@@ -211,9 +271,20 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   std::sort(gone.begin(), gone.end());
   gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
 
+  // Every candidate is built before any is stored: when a limit needs a
+  // level the hierarchy does not hold, it grows and everything is rebuilt
+  // (and diffed against the regions as they were).
+  std::vector<FaceId> growth;
+  std::vector<RegionMesh> meshes;
+  for (uint64_t id : candidates) meshes.push_back(buildRegion(h, FaceId::fromPacked(id), growth));
+  if (!growth.empty()) {
+    doc.refineHierarchy(growth);
+    return rebuildAll(doc);
+  }
   Changes changes;
-  for (uint64_t id : candidates) {
-    RegionMesh mesh = buildRegion(h, FaceId::fromPacked(id));
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const uint64_t id = candidates[i];
+    RegionMesh& mesh = meshes[i];
     auto old = regions_.find(id);
     if (old != regions_.end() && sameMesh(old->second, mesh)) continue;
     triangles_ += static_cast<int64_t>(mesh.triangles.size());

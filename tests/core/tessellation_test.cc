@@ -50,12 +50,11 @@ struct Check {
 // Watertight (closed) or boundary-preserving (open), consistently oriented,
 // no T-junctions (every edge of the union is shared by two triangles, or is
 // on the boundary), no degenerate triangles, and every vertex its limit.
-void expectSoundTessellation(const Document& doc, const Tessellation& t, bool exactLimits, const std::string& where) {
+void expectSoundTessellation(const Document& doc, const Tessellation& t, const std::string& where) {
   const SparseEvaluator& h = doc.hierarchy();
-  auto dense = evaluateDocument(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.edits(),
-                                h.numLevels() - 1);
+  const int finest = doc.options().maxLevel;
+  auto dense = evaluateDocument(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.edits(), finest);
   ASSERT_TRUE(dense.isOk());
-  const int finest = h.numLevels() - 1;
   std::map<std::pair<uint64_t, uint64_t>, int> directed;
   double worstLimit = 0.0;
   int degenerate = 0;
@@ -70,21 +69,16 @@ void expectSoundTessellation(const Document& doc, const Tessellation& t, bool ex
       for (int k = 0; k < 3; ++k) ++directed[{v[k], v[(k + 1) % 3]}];
     }
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
-      // OpenSubdiv's limit at the deepest level holding the vertex's ring;
-      // with `exactLimits` (no semi-sharp tags, whose limit masks at a level
-      // still count them as sharp) that is the true limit of the finest level.
+      // OpenSubdiv's limit at the document's finest level: the true limit
+      // wherever semi-sharp features decay by then (their limit masks at a
+      // level still count them as sharp), and what the tessellation shows
+      // where they do not (tessellation.h).
       const uint64_t index = VertexId::fromPacked(mesh.vertexIds[i]).index();
-      int held = 0;
-      for (int l = 0; l < h.numLevels(); ++l) {
-        const Index local = h.level(l).findVertex(index);
-        if (local >= 0 && h.level(l).isComplete(local)) held = l;
-      }
-      const int at = exactLimits ? finest : held;
-      const Vec3 truth = limitFrame(dense->levels[at], static_cast<Index>(index), dense->points[at]).position;
+      const Vec3 truth = limitFrame(dense->levels[finest], static_cast<Index>(index), dense->points[finest]).position;
       const double err = (mesh.positions[i] - truth).norm();
       if (err > 1e-9 && worstLimit <= 1e-9) {
         std::string info;
-        for (int l = 0; l < h.numLevels(); ++l) {
+        for (int l = 0; l < std::min(h.numLevels(), finest + 1); ++l) {
           const Index local = h.level(l).findVertex(index);
           info += " L" + std::to_string(l) + (local < 0 ? ":absent" : (h.level(l).isComplete(local) ? ":complete" : ":partial"));
           if (local >= 0 && h.level(l).isComplete(local)) {
@@ -130,28 +124,26 @@ const LodProfile kProfile{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees 
 TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
   LoopOptions corners;
   corners.boundary = BoundaryInterpolation::kEdgeAndCorner;
-  // Semi-sharp creases, and darts (a crease's ends), have limit masks that
-  // are exact only once their features decay, so with tags the limit is
-  // checked at the level the tessellation reads; without, against the
-  // finest level: the true limit. (crease < 0: moves only.)
+  // Every displayed vertex is the limit of the document's finest level,
+  // with or without tags (semi-sharp creases are evaluated past their
+  // decay, tessellation.h). (crease < 0: moves only.)
   struct Case {
     TestMesh mesh;
     LoopOptions options;
     float crease;
-    bool exact;
   };
   const std::vector<Case> cases = {
-      {testing::icosahedron(), {}, -1, true},
-      {testing::icosahedron(), {}, kSharpnessInfinite, false},
-      {testing::icosahedron(), {}, 2.0f, false},
-      {testing::withRandomTags(testing::torus(8, 6), 0.15, 0.05, 3), {}, 1.5f, false},
-      {testing::openGrid(5, 4), corners, -1, true},
-      {testing::openGrid(5, 4), {}, kSharpnessInfinite, false},
-      {testing::withRandomTags(testing::diskWithPole(9), 0.3, 0.2, 11), {}, kSharpnessInfinite, false},
-      {testing::withRandomFlips(testing::torus(6, 5), 6, 2), {}, -1, true},
+      {testing::icosahedron(), {}, -1},
+      {testing::icosahedron(), {}, kSharpnessInfinite},
+      {testing::icosahedron(), {}, 2.0f},
+      {testing::withRandomTags(testing::torus(8, 6), 0.15, 0.05, 3), {}, 1.5f},
+      {testing::openGrid(5, 4), corners, -1},
+      {testing::openGrid(5, 4), {}, kSharpnessInfinite},
+      {testing::withRandomTags(testing::diskWithPole(9), 0.3, 0.2, 11), {}, kSharpnessInfinite},
+      {testing::withRandomFlips(testing::torus(6, 5), 6, 2), {}, -1},
   };
   uint32_t seed = 5;
-  for (const auto& [mesh, options, crease, exact] : cases) {
+  for (const auto& [mesh, options, crease] : cases) {
     for (int round = 0; round < 3; ++round) {
       auto doc = Document::create(mesh.topology, mesh.points, {.loop = options, .maxLevel = 4});
       ASSERT_TRUE(doc.isOk());
@@ -161,7 +153,7 @@ TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
         profile.fidelity = fidelity;
         auto t = Tessellation::build(*doc, profile);
         ASSERT_TRUE(t.isOk()) << t.status().message();
-        expectSoundTessellation(*doc, *t, exact, mesh.name + " crease " + std::to_string(crease) + " round " + std::to_string(round));
+        expectSoundTessellation(*doc, *t, mesh.name + " crease " + std::to_string(crease) + " round " + std::to_string(round));
         if (HasFailure()) return;
       }
     }
@@ -415,7 +407,7 @@ TEST(Tessellation, RefinesAlongCurvedCreasesWhereNormalsAgree) {
     auto t = Tessellation::build(*doc, profile);
     ASSERT_TRUE(t.isOk());
     triangles[k] = t->numTriangles();
-    expectSoundTessellation(*doc, *t, false, mesh.name);
+    expectSoundTessellation(*doc, *t, mesh.name);
   }
   EXPECT_EQ(triangles[0], 72);
   EXPECT_GT(triangles[1], 2 * triangles[0]);
@@ -434,7 +426,7 @@ TEST(Tessellation, FidelityRefinesAroundEditsOneLevelFurther) {
   auto fine = Tessellation::build(*doc, profile);
   ASSERT_TRUE(plain.isOk() && fine.isOk());
   EXPECT_GT(fine->numTriangles(), plain->numTriangles());
-  expectSoundTessellation(*doc, *fine, true, "fidelity");
+  expectSoundTessellation(*doc, *fine, "fidelity");
 }
 
 }  // namespace

@@ -370,30 +370,30 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
 
 // What selectFaces() adds to editSelected for one more demanded face, in
 // place: N1 of its ancestor at every coarser level. A tessellation decides
-// again only around changed limits, so the corners of faces that just
-// became edit nodes are reported as such (recomputed, unchanged).
+// again only around changed limits, so where faces just became edit nodes
+// the ancestor's corners, whose rings are exactly those faces, are
+// reported as such (recomputed, unchanged).
 void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
   for (int k = 0; k < face.level() && k < numLevels(); ++k) {
     LevelState& state = levels_[k];
     const Level& m = state.topo.mesh;
     const Index a = state.topo.findFace(face.index() >> (2 * (face.level() - k)));
     if (a == kInvalidIndex) continue;
-    std::vector<Index> corners;
+    bool marked = false;
     for (Index v : m.faceVertices[a]) {
       for (Index g : m.ringFacesOf(v)) {
         if (g < 0 || state.editSelected[g]) continue;
         state.editSelected[g] = 1;
-        corners.insert(corners.end(), m.faceVertices[g].begin(), m.faceVertices[g].end());
+        marked = true;
       }
     }
-    std::sort(corners.begin(), corners.end());
-    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    if (!marked) continue;
     const LimitEvaluator limits(m);
-    for (Index x : corners) {
-      if (!state.topo.isComplete(x)) continue;
-      refreshLimit(k, x, limits);
+    for (Index v : m.faceVertices[a]) {
+      if (!state.topo.isComplete(v)) continue;
+      refreshLimit(k, v, limits);
       ++dirty.limitsRecomputed;
-      dirty.limits.push_back(VertexId(k, state.topo.vertexIds[x]));
+      dirty.limits.push_back(VertexId(k, state.topo.vertexIds[v]));
     }
   }
 }

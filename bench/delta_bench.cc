@@ -50,7 +50,7 @@ size_t encodeRegions(const std::vector<uint64_t>& ids) {
   State& s = state();
   size_t bytes = 0;
   for (uint64_t id : ids) {
-    const RegionHeader header{id, s.version, s.tessellation->profile(), s.grid};
+    const RegionHeader header{.regionId = id, .documentVersion = s.version, .profile = s.tessellation->profile(), .grid = s.grid};
     auto encoded = encodeRegion(header, s.tessellation->regions().at(id));
     if (!encoded.isOk()) {
       std::fprintf(stderr, "encode: %s\n", encoded.status().toString().c_str());

@@ -590,6 +590,8 @@ void Connection::stats(uint64_t seq) {
   add("tessellate_ms_per_edit", edits > 0 ? s.tessellateMicros.load() / 1000.0 / edits : 0.0);
   add("encode_ms_per_region", s.encodeMicros.load() / 1000.0 / regions);
   add("deltas", static_cast<double>(s.deltaFlushes.load()));
+  add("delta_regions", static_cast<double>(s.deltaRegions.load()));
+  add("delta_regions_layout_ids", static_cast<double>(s.deltaRegionsLayoutIds.load()));
   add("edits_per_delta", s.deltaFlushes.load() > 0 ? edits / static_cast<double>(s.deltaFlushes.load()) : 0.0);
   add("edit_to_durable_ms", edits > 0 ? s.commitMicros.load() / 1000.0 / edits : 0.0);
   add("store_batches", static_cast<double>(store.batches));

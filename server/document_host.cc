@@ -179,6 +179,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       View view;
       view.tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
       view.wireProfile = requested;
+      for (const auto& [region, mesh] : view.tessellation->regions()) view.layout[region] = self->version_;
       it = self->views_.emplace(key, std::move(view)).first;
     }
     View& view = it->second;
@@ -207,9 +208,9 @@ void DocumentHost::unsubscribe(uint64_t session) {
   });
 }
 
-Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t region, const View& view) {
+Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t region, const View& view, bool idsInline) {
   const auto start = Clock::now();
-  const RegionHeader header{region, version_, view.tessellation->profile(), grid_};
+  const RegionHeader header{region, version_, view.layout.at(region), view.tessellation->profile(), grid_, idsInline};
   TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
   stats_.encodeMicros += microsSince(start);
   ++stats_.regionsEncoded;
@@ -222,7 +223,7 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
   for (const auto& [region, mesh] : view.tessellation->regions()) {
     auto& cached = view.encoded[region];
     if (!cached) {
-      auto encoded = encode(region, view);
+      auto encoded = encode(region, view, /*idsInline=*/true);
       if (!encoded.isOk()) {
         logEvent(LogLevel::kError, "encode_failed", {{"doc", id_.value}, {"error", encoded.status().message()}});
         continue;
@@ -458,16 +459,29 @@ void DocumentHost::flush() {
     delta->toVersion = version_;
     delta->authorSession = last ? last->authorSession : 0;
     delta->editId = last ? last->editId : 0;
+    // A region that only moved keeps its layout: its delta leaves the ids
+    // out (a third of its bytes) and a later snapshot encodes them afresh.
+    const bool withIds = view.tessellation->profile().vertexIds;
     for (uint64_t region : changes->changed) {
-      auto encoded = encode(region, view);
+      const bool relaid = std::binary_search(changes->relaid.begin(), changes->relaid.end(), region);
+      if (relaid) view.layout[region] = version_;
+      const bool idsInline = relaid || !withIds;
+      auto encoded = encode(region, view, idsInline);
       if (!encoded.isOk()) {
         logEvent(LogLevel::kError, "encode_failed", {{"doc", id_.value}, {"error", encoded.status().message()}});
+        view.encoded.erase(region);
         continue;
       }
-      view.encoded[region] = *encoded;
-      delta->regions.emplace_back(region, *encoded);
+      if (idsInline) {
+        view.encoded[region] = *encoded;
+      } else {
+        view.encoded.erase(region);
+      }
+      delta->regions.push_back({region, *encoded, idsInline});
+      ++stats_.deltaRegions;
+      if (!idsInline) ++stats_.deltaRegionsLayoutIds;
     }
-    for (uint64_t region : changes->removed) view.encoded.erase(region);
+    for (uint64_t region : changes->removed) view.encoded.erase(region), view.layout.erase(region);
     delta->removed = changes->removed;
     batch.frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
     batch.deltas[it->first] = std::move(delta);

@@ -68,7 +68,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   };
   struct View {  // one LOD profile's tessellation and its subscribers
     std::unique_ptr<Tessellation> tessellation;
-    std::map<uint64_t, std::shared_ptr<const std::string>> encoded;  // region -> Draco, at `version_`
+    std::map<uint64_t, std::shared_ptr<const std::string>> encoded;  // region -> Draco with ids, at `version_`
+    std::map<uint64_t, uint64_t> layout;                             // region -> its layout version
     std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;       // session -> subscriber
     std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
     wire::LodProfile wireProfile;
@@ -110,7 +111,9 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
   void presenceChanged();
   void broadcastPresence();
-  Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view);
+  // A region at version_; without inline ids (a delta after a move) it
+  // carries its layout's version for receivers holding the ids.
+  Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view, bool idsInline);
   void maybeSnapshot();
 
   const DocumentId id_;

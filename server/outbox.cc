@@ -16,10 +16,10 @@ std::shared_ptr<const std::string> encodeDeltaFrame(const DeltaContent& delta, u
   d->set_to_version(delta.toVersion);
   d->set_author_session_id(delta.authorSession);
   d->set_edit_id(delta.editId);
-  for (const auto& [id, bytes] : delta.regions) {
+  for (const RegionPayload& payload : delta.regions) {
     wire::Region* r = d->add_regions();
-    r->set_region_id(id);
-    r->set_draco(*bytes);
+    r->set_region_id(payload.id);
+    r->set_draco(*payload.bytes);
   }
   for (uint64_t id : delta.removed) d->add_removed_region_ids(id);
   auto frame = encodeFrame(message, maxFrameBytes);
@@ -102,18 +102,27 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
     into.toVersion = d.toVersion;
     into.authorSession = d.authorSession;
     into.editId = d.editId;
-    for (const auto& [id, bytes] : d.regions) {
-      auto r = std::find_if(into.regions.begin(), into.regions.end(), [&](const auto& e) { return e.first == id; });
-      if (r != into.regions.end()) {
-        r->second = bytes;
+    for (const RegionPayload& payload : d.regions) {
+      const auto same = [&](const RegionPayload& e) { return e.id == payload.id; };
+      if (payload.selfContained) {
+        // The newest self-contained payload replaces everything before it.
+        into.regions.erase(std::remove_if(into.regions.begin(), into.regions.end(), same), into.regions.end());
+        into.regions.push_back(payload);
       } else {
-        into.regions.emplace_back(id, bytes);
+        // A moved region needs its layout's ids: it replaces an earlier
+        // move, but goes behind the payload that brought the layout.
+        auto last = std::find_if(into.regions.rbegin(), into.regions.rend(), same);
+        if (last != into.regions.rend() && !last->selfContained) {
+          *last = payload;
+        } else {
+          into.regions.push_back(payload);
+        }
       }
-      into.removed.erase(std::remove(into.removed.begin(), into.removed.end(), id), into.removed.end());
+      into.removed.erase(std::remove(into.removed.begin(), into.removed.end(), payload.id), into.removed.end());
     }
     for (uint64_t id : d.removed) {
       into.regions.erase(std::remove_if(into.regions.begin(), into.regions.end(),
-                                        [&](const auto& e) { return e.first == id; }),
+                                        [&](const RegionPayload& e) { return e.id == id; }),
                          into.regions.end());
       if (std::find(into.removed.begin(), into.removed.end(), id) == into.removed.end()) into.removed.push_back(id);
     }

@@ -17,10 +17,21 @@
 
 namespace tessera::server {
 
+// One region's encoding in a delta.
+struct RegionPayload {
+  uint64_t id = 0;
+  std::shared_ptr<const std::string> bytes;
+  // Decodes on its own; false for a region that only moved, whose payload
+  // leaves out the ids of the layout the receiver holds (region_codec.h).
+  bool selfContained = true;
+};
+
 // What a delta carries, kept beside its frame so queued deltas can merge.
+// A region appears once, or twice when a merge put a moved region's
+// payload behind the self-contained one that brought its layout.
 struct DeltaContent {
   uint64_t documentId = 0, fromVersion = 0, toVersion = 0, authorSession = 0, editId = 0;
-  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;  // region id -> Draco bytes
+  std::vector<RegionPayload> regions;  // applied in order
   std::vector<uint64_t> removed;
 };
 

@@ -24,6 +24,8 @@ struct ServerStats {
   std::atomic<int64_t> encodeMicros{0};
   std::atomic<int64_t> commitMicros{0};    // apply to durable, summed
   std::atomic<int64_t> regionsEncoded{0};
+  std::atomic<int64_t> deltaRegions{0};           // region payloads queued in deltas
+  std::atomic<int64_t> deltaRegionsLayoutIds{0};  // of those, moved regions sent without their layout's ids
   std::atomic<int64_t> deltaFlushes{0};    // deltas made per view; a flush covers every edit queued together
   const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 

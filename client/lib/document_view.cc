@@ -12,11 +12,15 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
     for (const wire::Region& r : s.regions()) {
       bytes_ += r.draco().size();
       TESSERA_ASSIGN_OR_RETURN(auto decoded, decodeRegion(r.draco()));
+      TESSERA_RETURN_IF_ERROR(adoptIds(decoded.first, decoded.second));
       staging_[r.region_id()] = std::move(decoded.second);
+      stagingLayouts_[r.region_id()] = decoded.first.layoutVersion;
     }
     if (s.remaining_parts() == 0) {
       regions_.swap(staging_);
+      layouts_.swap(stagingLayouts_);
       staging_.clear();
+      stagingLayouts_.clear();
       version_ = s.version();
       ready_ = true;
     }
@@ -34,11 +38,28 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
   for (const wire::Region& r : d.regions()) {
     bytes_ += r.draco().size();
     TESSERA_ASSIGN_OR_RETURN(auto decoded, decodeRegion(r.draco()));
+    if (Status adopted = adoptIds(decoded.first, decoded.second); !adopted.isOk()) {
+      // Ids this view does not hold: as good as a gap, resync.
+      ++gaps_;
+      ready_ = false;
+      return adopted;
+    }
     regions_[r.region_id()] = std::move(decoded.second);
+    layouts_[r.region_id()] = decoded.first.layoutVersion;
   }
-  for (uint64_t id : d.removed_region_ids()) regions_.erase(id);
+  for (uint64_t id : d.removed_region_ids()) regions_.erase(id), layouts_.erase(id);
   version_ = d.to_version();
   return Status::ok();
+}
+
+Status DocumentView::adoptIds(const RegionHeader& header, RegionMesh& decoded) const {
+  if (header.idsInline || !header.profile.vertexIds) return Status::ok();
+  const auto held = regions_.find(header.regionId);
+  if (held == regions_.end()) {
+    return invalidArgument("document " + std::to_string(documentId_) + ": region " + std::to_string(header.regionId) +
+                           " comes without its ids, and this view does not hold it");
+  }
+  return adoptLayoutIds(header, decoded, held->second, layouts_.at(header.regionId));
 }
 
 int64_t DocumentView::numTriangles() const {

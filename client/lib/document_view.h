@@ -41,8 +41,14 @@ class DocumentView {
   uint64_t documentId_;
   uint64_t version_ = 0;
   bool ready_ = false;
+  // A region that comes without its ids (it only moved) takes those of the
+  // held copy of its layout (region_codec.h).
+  Status adoptIds(const RegionHeader& header, RegionMesh& decoded) const;
+
   std::map<uint64_t, RegionMesh> regions_;
+  std::map<uint64_t, uint64_t> layouts_;  // region -> layout version of the held copy
   std::map<uint64_t, RegionMesh> staging_;  // snapshot parts still arriving
+  std::map<uint64_t, uint64_t> stagingLayouts_;
   uint64_t gaps_ = 0, bytes_ = 0;
 };
 

@@ -45,9 +45,11 @@ constexpr uint64_t kMaxTrianglesPerPayloadByte = 1024;
 // below 512: on fandisk regions that encodes twice as fast as four 16-bit
 // components, and smaller.
 constexpr int kIdComponents = 8;
-// The header's flags (formerly a reserved zero): bit 0 set = the regions of
-// a display-only profile, with no vertex id attribute.
+// The header's flags: bit 0 set = the regions of a display-only profile,
+// with no vertex id attribute; bit 1 set = a profile with ids whose payload
+// leaves them to the receiver's copy of the layout. Never both.
 constexpr uint16_t kFlagNoVertexIds = 1;
+constexpr uint16_t kFlagLayoutIds = 2;
 
 std::string num(double x) {
   char text[32];
@@ -308,9 +310,10 @@ Status setExplicitQuantization(draco::Encoder& encoder, const QuantizationGrid& 
 void writeHeader(ByteWriter& w, const RegionHeader& header, uint32_t triangles, uint32_t payloadBytes) {
   w.bytes().append(kMagic, sizeof(kMagic));
   w.put<uint16_t>(kRegionFormatVersion);
-  w.put<uint16_t>(header.profile.vertexIds ? 0 : kFlagNoVertexIds);
+  w.put<uint16_t>(!header.profile.vertexIds ? kFlagNoVertexIds : header.idsInline ? 0 : kFlagLayoutIds);
   w.put<uint64_t>(header.regionId);
   w.put<uint64_t>(header.documentVersion);
+  w.put<uint64_t>(header.layoutVersion);
   w.put<int32_t>(header.profile.baseLevel);
   w.put<int32_t>(header.profile.maxLevel);
   w.put<double>(header.profile.angleThresholdDegrees);
@@ -334,8 +337,16 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
     return invalidArgument(where + ": compression level " + std::to_string(compressionLevel) + " outside [0, " +
                            std::to_string(kMaxCompressionLevel) + "]");
   }
+  if (header.layoutVersion > header.documentVersion) {
+    return invalidArgument(where + ": layout version " + std::to_string(header.layoutVersion) +
+                           " is later than the document version " + std::to_string(header.documentVersion));
+  }
+  if (!header.idsInline && !header.profile.vertexIds) {
+    return invalidArgument(where + ": the layout's ids stand in for inline ids only in a profile with vertex ids");
+  }
   TESSERA_RETURN_IF_ERROR(checkMesh(mesh, header.grid).withContext(where));
-  TESSERA_ASSIGN_OR_RETURN(const std::unique_ptr<draco::Mesh> dracoMesh, buildDracoMesh(mesh, header.profile.vertexIds));
+  TESSERA_ASSIGN_OR_RETURN(const std::unique_ptr<draco::Mesh> dracoMesh,
+                           buildDracoMesh(mesh, header.profile.vertexIds && header.idsInline));
 
   draco::Encoder encoder;
   TESSERA_RETURN_IF_ERROR(setExplicitQuantization(encoder, header.grid).withContext(where));
@@ -378,6 +389,7 @@ Status readHeader(ByteReader& r, RegionHeader& header, Counts& counts) {
   uint8_t fidelity = 0, positionBits = 0, normalBits = 0;
   TESSERA_RETURN_IF_ERROR(r.get(header.regionId, "the region id"));
   TESSERA_RETURN_IF_ERROR(r.get(header.documentVersion, "the document version"));
+  TESSERA_RETURN_IF_ERROR(r.get(header.layoutVersion, "the layout version"));
   int32_t baseLevel = 0, maxLevel = 0;
   TESSERA_RETURN_IF_ERROR(r.get(baseLevel, "the LOD base level"));
   TESSERA_RETURN_IF_ERROR(r.get(maxLevel, "the LOD max level"));
@@ -502,7 +514,7 @@ Expected<RegionMesh> decodeDraco(std::string_view payload, const RegionHeader& h
   if (!decodedOr.ok()) return parseError(where + ": Draco rejected the payload: " + decodedOr.status().error_msg_string());
   const std::unique_ptr<draco::Mesh> mesh = std::move(decodedOr).value();
   const uint32_t points = mesh->num_points();
-  const bool withIds = header.profile.vertexIds;
+  const bool withIds = header.profile.vertexIds && header.idsInline;
   const int attributes = withIds ? 3 : 2;
   if (mesh->num_faces() != triangles || points > 3 * static_cast<uint64_t>(triangles) ||
       mesh->num_attributes() != attributes) {
@@ -602,13 +614,18 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
                        std::to_string(kRegionFormatVersion) + ")");
   }
   TESSERA_RETURN_IF_ERROR(r.get(flags, "the flags"));
-  if ((flags & ~kFlagNoVertexIds) != 0) {
-    return parseError(source + ": unknown flags " + std::to_string(flags) + " (only bit 0, no vertex ids, is defined)");
+  if ((flags & ~(kFlagNoVertexIds | kFlagLayoutIds)) != 0) {
+    return parseError(source + ": unknown flags " + std::to_string(flags) +
+                      " (bit 0, no vertex ids, and bit 1, the layout's ids, are defined)");
+  }
+  if ((flags & kFlagNoVertexIds) != 0 && (flags & kFlagLayoutIds) != 0) {
+    return parseError(source + ": flags " + std::to_string(flags) + " claim both no vertex ids and the layout's ids");
   }
   RegionHeader header;
   Counts counts;
   TESSERA_RETURN_IF_ERROR(readHeader(r, header, counts));
   header.profile.vertexIds = (flags & kFlagNoVertexIds) == 0;
+  header.idsInline = (flags & kFlagLayoutIds) == 0;
   if (r.offset() != kRegionHeaderBytes) return internalError(source + ": header layout and kRegionHeaderBytes disagree");
   const uint64_t expected = static_cast<uint64_t>(counts.payloadBytes) + kRegionTrailerBytes;
   if (r.remaining() < expected) {
@@ -633,6 +650,9 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   for (const Status& status : {header.profile.check(), header.grid.check()}) {
     if (!status.isOk()) return parseError(where + ": " + status.message());
   }
+  if (header.layoutVersion > header.documentVersion) {
+    return parseError(where + ": layout version " + std::to_string(header.layoutVersion) + " is later than the document's");
+  }
   if (counts.triangles == 0 || counts.triangles > kMaxRegionTriangles ||
       counts.triangles > kMaxTrianglesPerPayloadByte * counts.payloadBytes) {
     return parseError(where + ": " + std::to_string(counts.triangles) + " triangles in " +
@@ -642,6 +662,26 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   TESSERA_RETURN_IF_ERROR(checkDracoCounts(payload, counts.triangles, where));
   TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, decodeDraco(payload, header, counts.triangles, where));
   return std::make_pair(std::move(header), std::move(mesh));
+}
+
+Status adoptLayoutIds(const RegionHeader& header, RegionMesh& decoded, const RegionMesh& held, uint64_t heldLayout) {
+  const std::string where = "region " + std::to_string(header.regionId) + " (document version " +
+                            std::to_string(header.documentVersion) + ")";
+  if (header.idsInline || !header.profile.vertexIds) {
+    return invalidArgument(where + ": the payload has no layout ids to adopt");
+  }
+  if (heldLayout != header.layoutVersion) {
+    return invalidArgument(where + ": its ids are those of layout " + std::to_string(header.layoutVersion) +
+                           ", the receiver holds layout " + std::to_string(heldLayout));
+  }
+  // Equal decoded triangles mean Draco decoded the same connectivity in the
+  // same order, so vertex k is the held vertex k.
+  if (held.triangles != decoded.triangles || held.vertexIds.size() != decoded.positions.size()) {
+    return invalidArgument(where + ": its triangles differ from those of the held layout " +
+                           std::to_string(heldLayout));
+  }
+  decoded.vertexIds = held.vertexIds;
+  return Status::ok();
 }
 
 }  // namespace tessera

@@ -6,25 +6,38 @@
 //         document's quantization grid) and a RegionMesh: positions inside the
 //         grid, unit normals and packed VertexIds, one per vertex, and
 //         triangles using every vertex.
-// Output: little-endian bytes, format version 1:
+// Output: little-endian bytes, format version 2:
 //           offset  size  field
 //                0     4  magic "TSRG"
-//                4     2  format version (1)
+//                4     2  format version (2)
 //                6     2  flags: bit 0 = no vertex ids (a display-only
-//                         profile; the Draco mesh has no GENERIC attribute)
+//                         profile; the Draco mesh has no GENERIC attribute);
+//                         bit 1 = the layout's ids (the profile has ids but
+//                         this payload leaves them out: the receiver holds
+//                         the same layout and keeps its ids, adoptLayoutIds)
 //                8     8  region id
 //               16     8  document version
-//               24    25  LOD profile: baseLevel i32, maxLevel i32,
+//               24     8  layout version: the document version since which
+//                         the region's triangles and vertex ids are unchanged
+//               32    25  LOD profile: baseLevel i32, maxLevel i32,
 //                         angleThresholdDegrees f64, triangleBudget i64,
 //                         fidelity u8
-//               49    34  grid: origin 3 x f64, range f64, positionBits u8,
+//               57    34  grid: origin 3 x f64, range f64, positionBits u8,
 //                         normalBits u8
-//               83     4  triangle count
-//               87     4  Draco payload size n
-//               91     n  Draco mesh (bitstream 2.2): POSITION quantized on
+//               91     4  triangle count
+//               95     4  Draco payload size n
+//               99     n  Draco mesh (bitstream 2.2): POSITION quantized on
 //                         the grid, NORMAL octahedral, GENERIC ids as 8 x
 //                         uint8, least significant byte first
-//           91 + n     4  CRC-32 (zlib) of every byte before it
+//           99 + n     4  CRC-32 (zlib) of every byte before it
+//
+// Why layouts: an edit moves vertices but rarely changes which triangles a
+// region has over which control vertices, and the ids are a third of a
+// region's bytes. Draco's Edgebreaker orders the decoded vertices by the
+// connectivity alone (identity-mapped attributes have no seams, so no
+// attribute value steers the traversal), so two encodings of the same
+// triangles over the same vertex order decode in the same order: ids sent
+// once per layout stay valid for every later payload of that layout.
 //
 // Why one grid per document: Draco quantizes each position to the nearest
 // point of a lattice given by an origin, a range and a bit count. When every
@@ -123,14 +136,18 @@ Expected<QuantizationGrid> gridFor(const Vec3& bboxMin, const Vec3& bboxMax,
 struct RegionHeader {
   uint64_t regionId = 0;
   uint64_t documentVersion = 0;
+  uint64_t layoutVersion = 0;  // <= documentVersion: since when triangles and ids are unchanged
   LodProfile profile;
   QuantizationGrid grid;
+  // With a profile that has ids: false leaves them out of the payload, for
+  // receivers that hold this layout already (deltas after a move).
+  bool idsInline = true;
 
   friend bool operator==(const RegionHeader&, const RegionHeader&) = default;
 };
 
-inline constexpr uint16_t kRegionFormatVersion = 1;
-inline constexpr size_t kRegionHeaderBytes = 91;   // everything before the Draco payload
+inline constexpr uint16_t kRegionFormatVersion = 2;
+inline constexpr size_t kRegionHeaderBytes = 99;   // everything before the Draco payload
 inline constexpr size_t kRegionTrailerBytes = 4;   // the CRC-32
 inline constexpr uint32_t kMaxRegionTriangles = 1u << 24;  // LoopRefiner's default face cap
 inline constexpr size_t kMaxRegionBytes = size_t{1} << 28;
@@ -153,6 +170,14 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
 // non-manifold ones, so the decoded mesh describes the same triangles over
 // the same ids, not the same vertex numbering. Positions are dequantized
 // exactly as a plain Draco decoder does (float32), normals renormalized.
+// A payload without its layout's ids (header.idsInline false) decodes with
+// no vertexIds; adoptLayoutIds completes it.
 Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view bytes);
+
+// Gives `decoded` (a payload without inline ids) the ids of `held`, the
+// receiver's decoded copy of the same region at layout `heldLayout`. Errors
+// (the receiver must resync): another layout, or triangles that differ from
+// the held ones -- the sign that the decoded order is not the held one.
+Status adoptLayoutIds(const RegionHeader& header, RegionMesh& decoded, const RegionMesh& held, uint64_t heldLayout);
 
 }  // namespace tessera

@@ -81,12 +81,17 @@ std::vector<Vec3> sideNormals(const SparseEvaluator& h, VertexRef v) {
   return normals;
 }
 
+// The same triangles over the same vertex ids in the same order: Draco
+// decodes both in the same order (region_codec.h, "Why layouts").
+bool sameLayout(const RegionMesh& a, const RegionMesh& b) {
+  return a.triangles == b.triangles && a.vertexIds == b.vertexIds;
+}
+
 bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
   auto sameVec = [](const std::vector<Vec3>& x, const std::vector<Vec3>& y) {
     return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(Vec3)) == 0);
   };
-  return a.triangles == b.triangles && a.vertexIds == b.vertexIds && sameVec(a.positions, b.positions) &&
-         sameVec(a.normals, b.normals);
+  return sameLayout(a, b) && sameVec(a.positions, b.positions) && sameVec(a.normals, b.normals);
 }
 
 }  // namespace
@@ -199,6 +204,7 @@ Expected<Tessellation::Changes> Tessellation::rebuildAll(Document& doc) {
   for (const auto& [id, mesh] : fresh.regions_) {
     auto old = regions_.find(id);
     if (old == regions_.end() || !sameMesh(old->second, mesh)) changes.changed.push_back(id);
+    if (old == regions_.end() || !sameLayout(old->second, mesh)) changes.relaid.push_back(id);
   }
   for (const auto& [id, mesh] : regions_) {
     if (fresh.regions_.count(id) == 0) changes.removed.push_back(id);
@@ -289,6 +295,7 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
     if (old != regions_.end() && sameMesh(old->second, mesh)) continue;
     triangles_ += static_cast<int64_t>(mesh.triangles.size());
     if (old != regions_.end()) triangles_ -= static_cast<int64_t>(old->second.triangles.size());
+    if (old == regions_.end() || !sameLayout(old->second, mesh)) changes.relaid.push_back(id);
     regions_[id] = std::move(mesh);
     changes.changed.push_back(id);
   }

@@ -53,6 +53,9 @@ class Tessellation {
 
   struct Changes {
     std::vector<uint64_t> changed;  // regions whose triangles changed, or that are new (sorted)
+    // Those of `changed` with a new layout: new, or other triangles or
+    // vertex ids than before (the rest only moved; sorted).
+    std::vector<uint64_t> relaid;
     std::vector<uint64_t> removed;  // regions that no longer exist (sorted)
     bool rebuilt = false;           // the cut had to be rebuilt (the hierarchy grew)
   };

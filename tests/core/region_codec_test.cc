@@ -523,17 +523,128 @@ TEST(RegionCodec, DisplayOnlyRegionsOmitIdsAndKeepTheGeometry) {
             << thin->size() << " display-only\n";
 
   std::string unknownFlag = *thin;
-  unknownFlag[6] = 3;  // the flags follow the magic and the version
+  unknownFlag[6] = 5;  // the flags follow the magic and the version
   fixChecksum(unknownFlag);
   auto refused = decodeRegion(unknownFlag);
   EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
-  EXPECT_NE(refused.status().message().find("unknown flags 3"), std::string::npos) << refused.status().toString();
+  EXPECT_NE(refused.status().message().find("unknown flags 5"), std::string::npos) << refused.status().toString();
   std::string noFlag = *thin;
   noFlag[6] = 0;  // claims ids the payload does not hold
   fixChecksum(noFlag);
   refused = decodeRegion(noFlag);
   EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
   EXPECT_NE(refused.status().message().find("attributes"), std::string::npos) << refused.status().toString();
+}
+
+// A region that only moved keeps its layout (triangles over ids): its
+// payload leaves the ids out and the receiver adopts those of the copy it
+// holds. This rests on Draco decoding the same connectivity in the same
+// order whatever the attribute values; the check is against an encoding of
+// the moved region with its ids, vertex by vertex, at every compression
+// level and on several regions.
+TEST(RegionCodec, LayoutIdsAreAdoptedInTheDecodedOrder) {
+  const Surface s = torusSurface(2);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.02, 0.02);
+  for (const RegionMesh& region : splitIntoSectors(s, 3)) {
+    RegionMesh moved = region;
+    for (size_t v = 0; v < moved.positions.size(); ++v) {
+      moved.positions[v] += moved.normals[v] * jitter(rng);
+      moved.normals[v] = (moved.normals[v] + Vec3(jitter(rng), jitter(rng), jitter(rng))).normalized();
+    }
+    for (int level : {0, 3, 7, 10}) {
+      RegionHeader layout = headerFor(s, 5);
+      layout.documentVersion = layout.layoutVersion = 7;
+      const auto held = roundTrip(layout, region, level).second;
+      RegionHeader later = layout;
+      later.documentVersion = 9;
+      later.idsInline = false;
+      auto thin = encodeRegion(later, moved, level);
+      RegionHeader inlined = later;
+      inlined.idsInline = true;
+      auto full = encodeRegion(inlined, moved, level);
+      ASSERT_TRUE(thin.isOk() && full.isOk()) << thin.status().toString();
+      EXPECT_LT(thin->size(), full->size());
+      auto decoded = decodeRegion(*thin);
+      ASSERT_TRUE(decoded.isOk()) << decoded.status().toString();
+      EXPECT_EQ(decoded->first, later);
+      EXPECT_TRUE(decoded->second.vertexIds.empty());
+      ASSERT_TRUE(adoptLayoutIds(decoded->first, decoded->second, held, 7).isOk());
+      auto reference = decodeRegion(*full);
+      ASSERT_TRUE(reference.isOk());
+      EXPECT_EQ(decoded->second.vertexIds, reference->second.vertexIds) << "level " << level;
+      EXPECT_EQ(decoded->second.triangles, reference->second.triangles);
+      ASSERT_EQ(decoded->second.positions.size(), reference->second.positions.size());
+      for (size_t v = 0; v < decoded->second.positions.size(); ++v) {
+        EXPECT_EQ(decoded->second.positions[v], reference->second.positions[v]) << v;
+      }
+      if (level == 3) {
+        std::cout << "[ measured ] " << region.triangles.size() << " triangles moved: " << full->size()
+                  << " bytes with ids, " << thin->size() << " with the layout's\n";
+      }
+    }
+  }
+}
+
+TEST(RegionCodec, LayoutIdsRefuseAnotherLayoutAndBadFlags) {
+  const Surface s = torusSurface(2);
+  const auto sectors = splitIntoSectors(s, 4);
+  RegionHeader header = headerFor(s, 5);
+  header.layoutVersion = 40;
+  const auto held = roundTrip(header, sectors[0], 3).second;
+  const auto other = roundTrip(header, splitIntoSectors(s, 3)[0], 3).second;  // more triangles
+  header.idsInline = false;
+  auto thin = encodeRegion(header, sectors[0]);
+  ASSERT_TRUE(thin.isOk());
+  auto decoded = decodeRegion(*thin);
+  ASSERT_TRUE(decoded.isOk());
+  RegionMesh mesh = decoded->second;
+  Status status = adoptLayoutIds(decoded->first, mesh, held, 39);
+  EXPECT_EQ(status.code(), ErrorCode::kInvalidArgument);
+  EXPECT_NE(status.message().find("layout 40, the receiver holds layout 39"), std::string::npos) << status.toString();
+  status = adoptLayoutIds(decoded->first, mesh, other, 40);
+  EXPECT_NE(status.message().find("triangles differ"), std::string::npos) << status.toString();
+  EXPECT_TRUE(mesh.vertexIds.empty());
+  EXPECT_TRUE(adoptLayoutIds(decoded->first, mesh, held, 40).isOk());
+  EXPECT_EQ(mesh.vertexIds.size(), mesh.positions.size());
+
+  // The encoder refuses a layout later than the document and layout ids in
+  // a display-only profile.
+  RegionHeader bad = header;
+  bad.layoutVersion = 43;
+  status = encodeRegion(bad, sectors[0]).status();
+  EXPECT_EQ(status.code(), ErrorCode::kInvalidArgument);
+  EXPECT_NE(status.message().find("layout version 43 is later than the document version 42"), std::string::npos)
+      << status.toString();
+  bad = header;
+  bad.profile.vertexIds = false;
+  status = encodeRegion(bad, sectors[0]).status();
+  EXPECT_NE(status.message().find("only in a profile with vertex ids"), std::string::npos) << status.toString();
+
+  // The decoder refuses both flags at once, a flag that disagrees with the
+  // payload, and a layout later than the document.
+  std::string both = *thin;
+  both[6] = 3;
+  fixChecksum(both);
+  status = decodeRegion(both).status();
+  EXPECT_EQ(status.code(), ErrorCode::kParseError);
+  EXPECT_NE(status.message().find("both"), std::string::npos) << status.toString();
+  RegionHeader inlined = header;
+  inlined.idsInline = true;
+  auto full = encodeRegion(inlined, sectors[0]);
+  ASSERT_TRUE(full.isOk());
+  std::string claims = *full;
+  claims[6] = 2;  // the layout's ids, yet the payload holds ids
+  fixChecksum(claims);
+  status = decodeRegion(claims).status();
+  EXPECT_NE(status.message().find("attributes"), std::string::npos) << status.toString();
+  std::string late = *thin;
+  const uint64_t layout = 99;
+  std::memcpy(late.data() + 24, &layout, 8);
+  fixChecksum(late);
+  status = decodeRegion(late).status();
+  EXPECT_EQ(status.code(), ErrorCode::kParseError);
+  EXPECT_NE(status.message().find("layout version 99 is later"), std::string::npos) << status.toString();
 }
 
 TEST(RegionCodec, RejectsEveryTruncation) {
@@ -565,18 +676,18 @@ TEST(RegionCodec, RejectsForeignBytesWrongMagicAndWrongVersion) {
   EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos) << decoded.status().toString();
 
   std::string future = bytes;
-  future[4] = 2;
+  future[4] = 3;
   fixChecksum(future);
   decoded = decodeRegion(future);
   EXPECT_EQ(decoded.status().code(), ErrorCode::kUnsupported);
-  EXPECT_NE(decoded.status().message().find("format version 2"), std::string::npos) << decoded.status().toString();
+  EXPECT_NE(decoded.status().message().find("format version 3"), std::string::npos) << decoded.status().toString();
 }
 
 TEST(RegionCodec, RejectsOversizedAndInconsistentCounts) {
   const std::string bytes = smallEncoding();
   const auto withTriangles = [&](uint32_t triangles) {
     std::string b = bytes;
-    std::memcpy(b.data() + 83, &triangles, 4);
+    std::memcpy(b.data() + 91, &triangles, 4);
     fixChecksum(b);
     return decodeRegion(b).status();
   };
@@ -591,7 +702,7 @@ TEST(RegionCodec, RejectsOversizedAndInconsistentCounts) {
   // A payload size far beyond the bytes present.
   std::string b = bytes;
   const uint32_t huge = 0x7FFFFFFFu;
-  std::memcpy(b.data() + 87, &huge, 4);
+  std::memcpy(b.data() + 95, &huge, 4);
   status = decodeRegion(b).status();
   EXPECT_NE(status.message().find("truncated"), std::string::npos) << status.toString();
 }

@@ -249,7 +249,7 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
     ASSERT_TRUE(t.isOk()) << t.status().message();
     std::mt19937 rng(seed++);
     auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
-    int rebuilt = 0, incremental = 0;
+    int rebuilt = 0, incremental = 0, moved = 0;
     for (int step = 0; step < 60; ++step) {
       const std::map<uint64_t, RegionMesh> before = t->regions();
       std::vector<VertexId> limits;
@@ -277,12 +277,15 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
       (changes->rebuilt ? rebuilt : incremental) += 1;
       auto fresh = Tessellation::build(*doc, c.profile);
       ASSERT_TRUE(fresh.isOk());
-      std::vector<uint64_t> changed, removed;
+      std::vector<uint64_t> changed, relaid, removed;
       for (const auto& [id, mesh] : fresh->regions()) {
         auto old = before.find(id);
         if (old == before.end() || old->second.triangles != mesh.triangles || old->second.positions != mesh.positions ||
             old->second.normals != mesh.normals || old->second.vertexIds != mesh.vertexIds) {
           changed.push_back(id);
+        }
+        if (old == before.end() || old->second.triangles != mesh.triangles || old->second.vertexIds != mesh.vertexIds) {
+          relaid.push_back(id);
         }
       }
       for (const auto& [id, mesh] : before) {
@@ -290,15 +293,18 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
       }
       const std::string where = c.mesh.name + " step " + std::to_string(step);
       ASSERT_EQ(changes->changed, changed) << where;
+      ASSERT_EQ(changes->relaid, relaid) << where;  // the rest keep their layout: deltas omit their ids
+      moved += static_cast<int>(changed.size() - relaid.size());
       ASSERT_EQ(changes->removed, removed) << where;
       ASSERT_EQ(t->regions().size(), fresh->regions().size()) << where;
       // And what the updated regions hold is what a fresh build holds.
       expectSameRegions(*t, *fresh, where);
       if (::testing::Test::HasFatalFailure()) return;
     }
-    std::printf("%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth)\n",
-                c.mesh.name.c_str(), maxBatch, incremental, rebuilt);
+    std::printf("%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth), %d regions only moved\n",
+                c.mesh.name.c_str(), maxBatch, incremental, rebuilt, moved);
     EXPECT_GT(incremental, 0);
+    EXPECT_GT(moved, 0);
   }
 }
 

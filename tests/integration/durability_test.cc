@@ -47,7 +47,7 @@ uint64_t expectedHash(Document doc, uint64_t documentId) {
   snapshot.mutable_snapshot()->set_document_id(documentId);
   for (const auto& [id, mesh] : t->regions()) {
     LodProfile profile = t->profile();
-    auto bytes = encodeRegion({id, 1, profile, *grid}, mesh);
+    auto bytes = encodeRegion({.regionId = id, .documentVersion = 1, .profile = profile, .grid = *grid}, mesh);
     if (!bytes.isOk()) return 0;
     wire::Region* r = snapshot.mutable_snapshot()->add_regions();
     r->set_region_id(id);

@@ -262,6 +262,44 @@ TEST(Server, DisplayOnlySubscribersGetTheSameSurfaceWithoutIds) {
   EXPECT_EQ(f.server->stop(), 0);
 }
 
+// A region that only moved keeps its layout, and its delta payload leaves
+// the ids out (region_codec.h): the viewer keeps the ids of its copy and
+// ends with the same surface, ids included, as a fresh subscriber.
+TEST(Server, MovedRegionsStreamWithoutIdsAndViewersKeepTheirIds) {
+  Fixture f;
+  ViewerAndEditor c;
+  startWithViewerAndEditor(f, c, "tessera-server-layout-ids");
+  if (::testing::Test::HasFatalFailure()) return;
+  int withoutIds = 0, withIds = 0;
+  for (int i = 0; i < 12; ++i) {
+    const VertexId v(2, static_cast<uint64_t>(i * 11 % 98));
+    auto acked = c.editor->call(testing::moveVertex(f.doc, v.packed(), 0.004, -0.003, 0.002, wire::MOVE_MODE_OFFSET), 10);
+    ASSERT_TRUE(acked.isOk() && acked->has_ack());
+    while (c.seen.version() < acked->ack().version()) {
+      auto m = c.viewer->receive(10);
+      ASSERT_TRUE(m.isOk()) << m.status().message();
+      if (m->has_delta()) {
+        for (const wire::Region& r : m->delta().regions()) {
+          auto decoded = decodeRegion(r.draco());
+          ASSERT_TRUE(decoded.isOk()) << decoded.status().message();
+          ++(decoded->first.idsInline ? withIds : withoutIds);
+        }
+      }
+      Status applied = c.seen.apply(*m);
+      ASSERT_TRUE(applied.isOk()) << applied.message();
+    }
+  }
+  EXPECT_GT(withoutIds, 0);
+  EXPECT_EQ(c.seen.gaps(), 0u);
+  for (const auto& [id, region] : c.seen.regions()) EXPECT_EQ(region.vertexIds.size(), region.positions.size()) << id;
+  DocumentView fresh(f.doc);
+  subscribeFresh(f, fresh);
+  EXPECT_EQ(fresh.version(), c.seen.version());
+  EXPECT_EQ(fresh.surfaceHash(), c.seen.surfaceHash());
+  std::printf("[ measured ] 12 moves: %d delta regions without ids, %d with\n", withoutIds, withIds);
+  EXPECT_EQ(f.server->stop(), 0);
+}
+
 // --delta-interval-ms: edits acked one after another within the interval
 // share a delta (the first goes out at once, the rest after the interval),
 // while each is acked on its own as soon as it is durable.

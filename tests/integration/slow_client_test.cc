@@ -34,6 +34,7 @@ double statOf(Session& s, const std::string& name) {
 
 struct Outcome {
   double queueMax = -1, merges = -1, resyncs = -1;
+  uint64_t slowGaps = 0;
 };
 
 // 400 edits while one viewer reads nothing; returns the server's counters.
@@ -91,6 +92,7 @@ void runWithASlowViewer(uint64_t softBytes, uint64_t hardBytes, Outcome& outcome
   }
   EXPECT_EQ(slowView.version(), version);
   EXPECT_EQ(slowView.surfaceHash(), fastView.surfaceHash());
+  outcome.slowGaps = slowView.gaps();
   outcome.resyncs = statOf(**admin, "resyncs");
   std::printf("slow viewer, queue limits %llu/%llu bytes: largest queue %.0f bytes, %.0f delta merges, %.0f resyncs\n",
               static_cast<unsigned long long>(softBytes), static_cast<unsigned long long>(hardBytes), outcome.queueMax,
@@ -104,6 +106,10 @@ TEST(ServerBackpressure, ASlowViewerIsMergedThenCatchesUp) {
   // Bounded: the hard limit plus at most the one frame being written.
   EXPECT_LE(o.queueMax, 200'000 + 100'000);
   EXPECT_GT(o.merges, 0);
+  // Merged deltas apply without a gap: a moved region whose layout came
+  // in an earlier merged delta stays behind that layout's payload.
+  EXPECT_EQ(o.slowGaps, 0u);
+  EXPECT_EQ(o.resyncs, 0);
 }
 
 TEST(ServerBackpressure, AViewerTooFarBehindIsResyncedWithASnapshot) {

@@ -71,14 +71,41 @@ std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts
   return at;
 }
 
-// The limit normals of each side of a vertex: one for smooth and dart
-// vertices, one per sector between sharp edges otherwise.
-std::vector<Vec3> sideNormals(const SparseEvaluator& h, VertexRef v) {
-  std::vector<Vec3> normals{h.limitNormal(v.level, v.local)};
-  const Level& m = h.level(v.level).mesh;
-  if (isSmoothLike(m.vertexRules[v.local])) return normals;
-  for (const LimitSector& s : otherLimitSectors(m, v.local, h.points(v.level))) normals.push_back(s.normal);
-  return normals;
+// The limit normal of side `side` > 0 of a crease or corner vertex
+// (limitSideOfRingFace's numbering; side 0's is its limit normal).
+Vec3 sideNormal(const SparseEvaluator& h, VertexRef v, int side) {
+  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level))[side - 1].normal;
+}
+
+// The side of a displayed vertex (`at`: its limit's level and index) that
+// a triangle inside leaf face f of level l lies on, chosen topologically:
+// the sector, at the limit's level, of the ring face that descends from f
+// or that f descends from. Those ring faces are one contiguous run of the
+// ring (a single face, for a corner of f: its corner child and that one's,
+// and so on); a tag set below f's level can put a sharp edge among them,
+// so the run's first face (counter-clockwise) decides. Sides then follow
+// the leaves around the vertex in ring order, each side's triangles form
+// one fan, and every leaf or region that reaches the vertex agrees -- where
+// a flat triangle's normal against the sectors' normals need not: at the
+// limit's level, deeper than the display, a semi-sharp edge may have
+// decayed and merged two displayed sectors into one whose normal is far
+// from (even perpendicular to) the faces in it.
+int sideOf(const SparseEvaluator& h, VertexRef at, int l, Index f) {
+  const SparseLevel& level = h.level(at.level);
+  if (isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
+  const uint64_t leaf = h.level(l).faceIds[f];
+  auto ring = level.mesh.ringFacesOf(at.local);
+  const int n = static_cast<int>(ring.size());
+  auto inLeaf = [&](int k) {
+    if (ring[k] < 0) return false;
+    const uint64_t g = level.faceIds[ring[k]];
+    return at.level >= l ? (g >> (2 * (at.level - l))) == leaf : (leaf >> (2 * (l - at.level))) == g;
+  };
+  int k = 0;
+  while (k < n && !inLeaf(k)) ++k;
+  if (k == n) return 0;  // not reached: the leaf holds the vertex
+  for (int steps = 1; steps < n && inLeaf((k + n - 1) % n); ++steps) k = (k + n - 1) % n;
+  return limitSideOfRingFace(level.mesh, at.local, k);
 }
 
 // The same triangles over the same vertex ids in the same order: Draco
@@ -144,12 +171,14 @@ void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::v
 
 RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, std::vector<FaceId>& growth) const {
   std::vector<RefTriangle> triangles;
+  std::vector<VertexRef> leaves;  // per triangle, its leaf (level, face)
   std::vector<VertexRef> stack{{region.level(), h.level(region.level()).findFace(region.index())}};
   while (!stack.empty()) {
     const VertexRef node = stack.back();  // (level, face)
     stack.pop_back();
     if (!cut_.isSplit(node.level, node.local)) {
       triangulateLeaf(h, cut_, node.level, node.local, triangles);
+      leaves.resize(triangles.size(), node);
       continue;
     }
     const Index first = h.level(node.level).firstChildFace[node.local];
@@ -157,7 +186,8 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, st
   }
   RegionMesh mesh;
   std::unordered_map<uint64_t, int> index;  // (canonical vertex, side) -> region vertex
-  for (const RefTriangle& t : triangles) {
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const RefTriangle& t = triangles[i];
     VertexRef at[3];
     bool held = true;
     for (int k = 0; k < 3; ++k) {
@@ -166,26 +196,16 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, st
       if (source) at[k] = *source;
     }
     if (!held) continue;  // the caller grows the hierarchy and starts again
-    const Vec3& p0 = h.limitPosition(at[0].level, at[0].local);
-    const Vec3 flat = (h.limitPosition(at[1].level, at[1].local) - p0) % (h.limitPosition(at[2].level, at[2].local) - p0);
     std::array<int, 3> tri;
     for (int k = 0; k < 3; ++k) {
-      const bool smooth = isSmoothLike(h.level(at[k].level).mesh.vertexRules[at[k].local]);
-      std::vector<Vec3> sides;
-      int side = 0;
-      if (!smooth) {
-        sides = sideNormals(h, at[k]);
-        for (int s = 1; s < static_cast<int>(sides.size()); ++s) {
-          if (dot(sides[s], flat) > dot(sides[side], flat)) side = s;
-        }
-      }
+      const int side = sideOf(h, at[k], leaves[i].level, leaves[i].local);
       const uint64_t canonical = h.level(at[k].level).vertexIds[at[k].local];
       const uint64_t key = canonical * 64 + static_cast<uint64_t>(side);
       auto [it, fresh] = index.emplace(key, static_cast<int>(mesh.positions.size()));
       if (fresh) {
         const VertexId id(counts_.birthLevel(VertexId(at[k].level, canonical)), canonical);
         mesh.positions.push_back(h.limitPosition(at[k].level, at[k].local));
-        mesh.normals.push_back(smooth ? h.limitNormal(at[k].level, at[k].local) : sides[side]);
+        mesh.normals.push_back(side == 0 ? h.limitNormal(at[k].level, at[k].local) : sideNormal(h, at[k], side));
         mesh.vertexIds.push_back(id.packed());
       }
       tri[k] = it->second;

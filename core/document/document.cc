@@ -138,8 +138,10 @@ Status Document::rebuildHierarchy() {
 }
 
 void Document::reserve(const Edit& edit) {
-  const int grown = sparse_->reserve(edit, edits_).grownFromLevel;
+  const DirtySet reserved = sparse_->reserve(edit, edits_);
+  const int grown = reserved.grownFromLevel;
   if (grown >= 0) pendingGrowth_ = pendingGrowth_ < 0 ? grown : std::min(pendingGrowth_, grown);
+  pendingLimits_.insert(pendingLimits_.end(), reserved.limits.begin(), reserved.limits.end());
 }
 
 Expected<EditId> Document::add(Edit edit) {
@@ -169,6 +171,13 @@ void Document::append(Edit edit) {
   cache_.reset();
   lastUpdate_ = sparse_->update(edits_.back(), edits_);
   lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
+  if (!pendingLimits_.empty()) {
+    std::vector<VertexId>& limits = lastUpdate_.limits;
+    limits.insert(limits.end(), pendingLimits_.begin(), pendingLimits_.end());
+    std::sort(limits.begin(), limits.end());
+    limits.erase(std::unique(limits.begin(), limits.end()), limits.end());
+    pendingLimits_.clear();
+  }
 }
 
 // The hierarchy grows first, so that the moved vertices have their rings.

@@ -126,6 +126,7 @@ class Document {
   std::optional<SparseEvaluator> sparse_;
   DirtySet lastUpdate_;
   int pendingGrowth_ = -1;
+  std::vector<VertexId> pendingLimits_;  // limits reserve() reported, for lastUpdate()
   mutable std::shared_ptr<const Evaluation> cache_;
 };
 

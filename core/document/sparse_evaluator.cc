@@ -208,6 +208,27 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
     for (const VertexOffset& o : move->offsets) state.offsets[topo.findVertex(o.vertex.index())] += o.localOffset;
   }
   for (const auto& [v, offset] : state.offsets) applyOffset(l, v);
+  state.reached.assign(n, 0);
+  std::vector<Index> edited;
+  for (const auto& [v, offset] : state.offsets) edited.push_back(v);
+  for (const auto& [v, s] : state.vertexTags) edited.push_back(v);
+  for (const auto& [e, s] : state.edgeTags) edited.insert(edited.end(), {topo.mesh.edgeVertices[e][0], topo.mesh.edgeVertices[e][1]});
+  if (!edited.empty()) refreshReached(l, verticesAround(l, edited));
+}
+
+void SparseEvaluator::refreshReached(int l, const std::vector<Index>& vertices) {
+  LevelState& state = levels_[l];
+  const SparseLevel& topo = state.topo;
+  auto moved = [&](Index u) { return u >= 0 && (state.offsets.count(u) != 0 || state.vertexTags.count(u) != 0); };
+  for (Index v : vertices) {
+    bool reached = false;
+    if (topo.isComplete(v)) {
+      reached = moved(v);
+      for (Index u : topo.mesh.ringVerticesOf(v)) reached = reached || moved(u);
+      for (Index e : topo.mesh.ringEdgesOf(v)) reached = reached || state.edgeTags.count(e) != 0;
+    }
+    state.reached[v] = reached ? 1 : 0;
+  }
 }
 
 // Later edits win: they are resolved in edit order.
@@ -306,7 +327,8 @@ HierarchyStats SparseEvaluator::stats() const {
     level.displayedVertices = std::count(state.displayed.begin(), state.displayed.end(), 1);
     const size_t vec3 = sizeof(Vec3);
     level.bytes = state.topo.memoryBytes() + state.selected.capacity() + state.leaf.capacity() +
-                  state.displayed.capacity() + state.vertexMarks.capacity() + state.faceMarks.capacity() +
+                  state.displayed.capacity() + state.reached.capacity() + state.vertexMarks.capacity() +
+                  state.faceMarks.capacity() +
                   vec3 * (state.predicted.capacity() + state.points.capacity() + state.limitPosition.capacity() +
                           state.limitNormal.capacity()) +
                   (sizeof(Index) + vec3 + 16) * state.offsets.size() +
@@ -327,12 +349,53 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
   forEachElement(edit, [&](auto id) {
     if (id.level() > 0) covered = covered && demandCovered(incidentFace(levels_[0].topo.mesh, counts_, id));
   });
-  if (covered) return dirty;
+  if (covered) {
+    // Held already (for a tessellation or an earlier edit): the edit still
+    // makes its edit nodes, as in a document created with it.
+    forEachElement(edit, [&](auto id) {
+      if (id.level() == 0) return;
+      const FaceId face = incidentFace(levels_[0].topo.mesh, counts_, id);
+      if (demand_.insert(face).second) markEditNodes(face, dirty);
+    });
+    std::sort(dirty.limits.begin(), dirty.limits.end());
+    dirty.limits.erase(std::unique(dirty.limits.begin(), dirty.limits.end()), dirty.limits.end());
+    return dirty;
+  }
   addDemand(edit);
   const int first = firstChangedSelection();
   rebuildFrom(first, edits);
   dirty.grownFromLevel = first;
   return dirty;
+}
+
+// What selectFaces() adds to editSelected for one more demanded face, in
+// place: N1 of its ancestor at every coarser level. A tessellation decides
+// again only around changed limits, so where faces just became edit nodes
+// the ancestor's corners, whose rings are exactly those faces, are
+// reported as such (recomputed, unchanged).
+void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
+  for (int k = 0; k < face.level() && k < numLevels(); ++k) {
+    LevelState& state = levels_[k];
+    const Level& m = state.topo.mesh;
+    const Index a = state.topo.findFace(face.index() >> (2 * (face.level() - k)));
+    if (a == kInvalidIndex) continue;
+    bool marked = false;
+    for (Index v : m.faceVertices[a]) {
+      for (Index g : m.ringFacesOf(v)) {
+        if (g < 0 || state.editSelected[g]) continue;
+        state.editSelected[g] = 1;
+        marked = true;
+      }
+    }
+    if (!marked) continue;
+    const LimitEvaluator limits(m);
+    for (Index v : m.faceVertices[a]) {
+      if (!state.topo.isComplete(v)) continue;
+      refreshLimit(k, v, limits);
+      ++dirty.limitsRecomputed;
+      dirty.limits.push_back(VertexId(k, state.topo.vertexIds[v]));
+    }
+  }
 }
 
 // Rebuild below the first level whose selection changes: levels above keep

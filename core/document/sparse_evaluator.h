@@ -67,6 +67,8 @@ class SparseEvaluator {
 
   // Grows the hierarchy so that it holds what `edit` addresses, with complete
   // rings (call before solving a move there). `edits` is the current list.
+  // Where it held that already, the limits around the faces that became
+  // edit nodes are reported (a tessellation's cut changes there).
   DirtySet reserve(const Edit& edit, std::span<const Edit> edits);
   // Grows it so that each face is a node whose vertices are complete (a
   // tessellation refining there). Returns the first rebuilt level or -1.
@@ -96,6 +98,16 @@ class SparseEvaluator {
   const Vec3& limitPosition(int l, Index vertex) const { return levels_[l].limitPosition[vertex]; }
   const Vec3& limitNormal(int l, Index vertex) const { return levels_[l].limitNormal[vertex]; }
   LimitFrame limitFrameOf(int l, Index vertex) const;
+  // Whether an active edit at level l reaches the limit of this vertex (as
+  // a level-l vertex): a move or a vertex sharpness of the vertex or of a
+  // ring neighbour (its limit mask reads their points; a vertex tag is
+  // counted like a move, conservatively), or a sharpness on one of its
+  // edges (its rule). Only complete vertices are reached; every vertex an
+  // active edit reaches is complete, since the edit's node holds the
+  // 1-rings of its vertices. Limits taken deeper than every level whose
+  // edits reach a vertex, and past its semi-sharp features, are exact
+  // (core/tessellation/tessellation.h).
+  bool isReachedByEdit(int l, Index vertex) const { return levels_[l].reached[vertex] != 0; }
 
   // The local index of a vertex with a complete ring, or a clear error.
   Expected<Index> completeVertex(VertexId id) const;
@@ -116,6 +128,7 @@ class SparseEvaluator {
     std::vector<Vec3> limitPosition, limitNormal;  // valid where displayed
     std::unordered_map<Index, Vec3> offsets;       // summed local offsets of active moves
     std::unordered_map<Index, float> edgeTags, vertexTags;
+    Buffer<uint8_t> reached;  // per vertex: isReachedByEdit
     // Scratch for the incremental update: all zero between updates.
     std::vector<uint8_t> vertexMarks, faceMarks;
   };
@@ -124,6 +137,7 @@ class SparseEvaluator {
 
   // Structure (sparse_evaluator.cc).
   void addDemand(const Edit& edit);
+  void markEditNodes(FaceId face, DirtySet& dirty);
   bool demandCovered(FaceId face) const;
   int deepestDemand() const;
   void selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined, Buffer<uint8_t>* editSelected) const;
@@ -142,6 +156,9 @@ class SparseEvaluator {
   float inheritedVertexSharpness(int l, Index vertex) const;
   void recomputeRule(int l, Index vertex);
   void applyOffset(int l, Index vertex);
+  // Re-derives isReachedByEdit for these vertices from the level's offsets
+  // and tags (the vertices around the edited ones).
+  void refreshReached(int l, const std::vector<Index>& vertices);
 
   // Incremental propagation (sparse_update.cc).
   std::vector<Index> applyEditAtItsLevel(const Edit& edit, std::span<const Edit> edits);

@@ -117,6 +117,7 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
     sources = {v};
   }
   sortUnique(sources);
+  refreshReached(l, verticesAround(l, sources));
   return sources;
 }
 

@@ -192,6 +192,22 @@ std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::spa
   return sectors;
 }
 
+int limitSideOfRingFace(const Level& level, Index v, int ringFace) {
+  if (isSmoothLike(level.vertexRules[v])) return 0;
+  const std::vector<int> sharp = sharpRingEdges(level, v);
+  const int m = static_cast<int>(sharp.size());
+  if (m < 2) return 0;
+  // Sector i runs from sharp edge i to sharp edge i + 1; the last wraps
+  // past ring edge 0 (ring faces before the first sharp edge lie in it).
+  int sector = m - 1;
+  for (int i = 0; i < m && sharp[i] <= ringFace; ++i) sector = i;
+  // As otherLimitSectors() numbers them: the primary sector first, then
+  // the others in ring order (a boundary's wrap, the last, has no faces).
+  const int primary = (level.vertexRules[v] == VertexRule::kCrease || sharp[0] == 0) ? 0 : m - 1;
+  if (sector == primary) return 0;
+  return sector < primary ? sector + 1 : sector;
+}
+
 LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points) {
   SmoothTables tables(level.valence(v));
   return frameWith(level, v, points, tables);

@@ -67,6 +67,13 @@ struct LimitSector {
 // Smooth, dart and cusp vertices, and boundary creases, have none.
 std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::span<const Vec3> points);
 
+// The side of v that ring face `ringFace` (its position in v's ring) lies
+// on, numbered as a mesh splits the vertex: 0 for the sector limitFrame()
+// describes (and for smooth, dart and cusp vertices, which have one side),
+// 1 + j for otherLimitSectors()[j]. Topological: a triangle inside that
+// face takes that side's copy whatever its shape.
+int limitSideOfRingFace(const Level& level, Index v, int ringFace);
+
 // Fills positions (and normals, if non-empty) for all vertices of the level.
 void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                   std::span<Vec3> normals);

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cstring>
 
-#include "core/tessellation/region_merge.h"
+#include <optional>
 #include <unordered_map>
 
+#include "core/hierarchy/incidence.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/leaf_triangulation.h"
+#include "core/tessellation/region_merge.h"
 
 namespace tessera {
 
@@ -17,27 +19,93 @@ namespace {
 // region holds at most 4^5 = 1,024 leaf triangles before fans.
 constexpr int kRegionDepth = 5;
 
-// Where a displayed vertex's limit comes from: the deepest level at which
-// its ring is held. Vertex children keep their canonical index, so this
-// depends on the vertex alone, never on which leaf reaches it, and regions
-// sharing a border agree bit for bit.
-VertexRef deepest(const SparseEvaluator& h, VertexRef v) {
-  while (v.level + 1 < h.numLevels()) {
-    const Index child = h.level(v.level).childOfVertex[v.local];
-    if (child < 0 || !h.level(v.level + 1).isComplete(child)) break;
-    v = {v.level + 1, child};
+// Whether the limit mask of a complete vertex at this level may differ
+// from its true limit: a semi-sharp edge or vertex sharpness still acts on
+// it (its own sharpness or one of its edges' is finite and not yet decayed:
+// the mask counts it as sharp, ARCHITECTURE "Semi-sharp limits"), or it is
+// a dart, whose mask is the smooth one (limit.cc, as OpenSubdiv's) although
+// its sharp edge refines by the crease rule: a dart's mask only converges
+// towards its limit level by level.
+bool maskInexact(const Level& m, Index v) {
+  if (m.vertexRules[v] == VertexRule::kDart || isSemiSharp(m.vertexSharpness[v])) return true;
+  for (Index e : m.ringEdgesOf(v)) {
+    if (isSemiSharp(m.edgeSharpness[e])) return true;
   }
-  return v;
+  return false;
 }
 
-// The limit normals of each side of a vertex: one for smooth and dart
-// vertices, one per sector between sharp edges otherwise.
-std::vector<Vec3> sideNormals(const SparseEvaluator& h, VertexRef v) {
-  std::vector<Vec3> normals{h.limitNormal(v.level, v.local)};
-  const Level& m = h.level(v.level).mesh;
-  if (isSmoothLike(m.vertexRules[v.local])) return normals;
-  for (const LimitSector& s : otherLimitSectors(m, v.local, h.points(v.level))) normals.push_back(s.normal);
-  return normals;
+// Where a displayed vertex's limit comes from, a function of the document
+// alone (the rule and its reasons are in tessellation.h): from the level
+// the vertex was born at, down to the deepest level whose active edits
+// reach its limit, then further while its limit mask is inexact (semi-sharp
+// features, darts), up to the document's deepest level. Vertex children keep
+// their canonical index, so whichever leaf reaches the vertex (any `v` of
+// it) gives the same answer, and regions sharing a border agree bit for
+// bit. When the hierarchy does not hold the vertex's ring at the chosen
+// level, a face to grow it there is appended to `growth` and nothing is
+// returned.
+std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts& counts, VertexRef v,
+                                     std::vector<FaceId>& growth) {
+  while (v.level > 0 && v.local < h.level(v.level).numVertexChildren) {
+    v = {v.level - 1, h.level(v.level).origin[v.local]};
+  }
+  VertexRef at = v;
+  for (VertexRef w = v;;) {
+    if (h.isReachedByEdit(w.level, w.local)) at = w;
+    if (w.level + 1 >= h.numLevels()) break;
+    const Index child = h.level(w.level).childOfVertex[w.local];
+    if (child < 0) break;
+    w = {w.level + 1, child};
+  }
+  auto held = [&](int l, Index local) { return local >= 0 && h.level(l).isComplete(local); };
+  auto grow = [&](int l, uint64_t canonical) {
+    growth.push_back(incidentFace(h.level(0).mesh, counts, VertexId(l, canonical)));
+    return std::nullopt;
+  };
+  if (!held(at.level, at.local)) return grow(at.level, h.level(at.level).vertexIds[at.local]);
+  while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local)) {
+    const Index child = at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kInvalidIndex;
+    if (!held(at.level + 1, child)) return grow(at.level + 1, h.level(at.level).vertexIds[at.local]);
+    at = {at.level + 1, child};
+  }
+  return at;
+}
+
+// The limit normal of side `side` > 0 of a crease or corner vertex
+// (limitSideOfRingFace's numbering; side 0's is its limit normal).
+Vec3 sideNormal(const SparseEvaluator& h, VertexRef v, int side) {
+  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level))[side - 1].normal;
+}
+
+// The side of a displayed vertex (`at`: its limit's level and index) that
+// a triangle inside leaf face f of level l lies on, chosen topologically:
+// the sector, at the limit's level, of the ring face that descends from f
+// or that f descends from. Those ring faces are one contiguous run of the
+// ring (a single face, for a corner of f: its corner child and that one's,
+// and so on); a tag set below f's level can put a sharp edge among them,
+// so the run's first face (counter-clockwise) decides. Sides then follow
+// the leaves around the vertex in ring order, each side's triangles form
+// one fan, and every leaf or region that reaches the vertex agrees -- where
+// a flat triangle's normal against the sectors' normals need not: at the
+// limit's level, deeper than the display, a semi-sharp edge may have
+// decayed and merged two displayed sectors into one whose normal is far
+// from (even perpendicular to) the faces in it.
+int sideOf(const SparseEvaluator& h, VertexRef at, int l, Index f) {
+  const SparseLevel& level = h.level(at.level);
+  if (isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
+  const uint64_t leaf = h.level(l).faceIds[f];
+  auto ring = level.mesh.ringFacesOf(at.local);
+  const int n = static_cast<int>(ring.size());
+  auto inLeaf = [&](int k) {
+    if (ring[k] < 0) return false;
+    const uint64_t g = level.faceIds[ring[k]];
+    return at.level >= l ? (g >> (2 * (at.level - l))) == leaf : (leaf >> (2 * (l - at.level))) == g;
+  };
+  int k = 0;
+  while (k < n && !inLeaf(k)) ++k;
+  if (k == n) return 0;  // not reached: the leaf holds the vertex
+  for (int steps = 1; steps < n && inLeaf((k + n - 1) % n); ++steps) k = (k + n - 1) % n;
+  return limitSideOfRingFace(level.mesh, at.local, k);
 }
 
 // The same triangles over the same vertex ids in the same order: Draco
@@ -56,18 +124,31 @@ bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
 }  // namespace
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile) {
-  TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));
-  const int regionLevel = std::max(0, cut.profile().maxLevel - kRegionDepth);
-  Tessellation tessellation(std::move(cut), regionLevel, doc.counts());
-  const SparseEvaluator& h = doc.hierarchy();
-  std::vector<uint64_t> ids;
-  for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
-  for (uint64_t id : ids) {
-    RegionMesh& mesh = tessellation.regions_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id));
-    tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
+  // Growing the hierarchy for the limits' levels rebuilds levels (new local
+  // indices), so the cut is made again over the grown hierarchy; its
+  // decisions do not change, and the second round needs no growth.
+  for (int round = 0;; ++round) {
+    TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));
+    const int regionLevel = std::max(0, cut.profile().maxLevel - kRegionDepth);
+    Tessellation tessellation(std::move(cut), regionLevel, doc.counts());
+    const SparseEvaluator& h = doc.hierarchy();
+    std::vector<uint64_t> ids;
+    for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
+    std::vector<FaceId> growth;
+    for (uint64_t id : ids) {
+      RegionMesh& mesh = tessellation.regions_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
+      tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
+    }
+    if (growth.empty()) {
+      TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
+      return tessellation;
+    }
+    if (round > kMaxDocumentLevel) {
+      return internalError("LOD profile " + profile.key() + ": the hierarchy does not hold the limits' rings after " +
+                           std::to_string(round) + " growths");
+    }
+    doc.refineHierarchy(growth);
   }
-  TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
-  return tessellation;
 }
 
 Status Tessellation::checkBudget() const {
@@ -88,14 +169,16 @@ void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::v
   for (int k = 0; k < 4; ++k) regionsUnder(h, l + 1, first + k, out);
 }
 
-RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region) const {
+RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, std::vector<FaceId>& growth) const {
   std::vector<RefTriangle> triangles;
+  std::vector<VertexRef> leaves;  // per triangle, its leaf (level, face)
   std::vector<VertexRef> stack{{region.level(), h.level(region.level()).findFace(region.index())}};
   while (!stack.empty()) {
     const VertexRef node = stack.back();  // (level, face)
     stack.pop_back();
     if (!cut_.isSplit(node.level, node.local)) {
       triangulateLeaf(h, cut_, node.level, node.local, triangles);
+      leaves.resize(triangles.size(), node);
       continue;
     }
     const Index first = h.level(node.level).firstChildFace[node.local];
@@ -103,29 +186,26 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region) co
   }
   RegionMesh mesh;
   std::unordered_map<uint64_t, int> index;  // (canonical vertex, side) -> region vertex
-  for (const RefTriangle& t : triangles) {
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const RefTriangle& t = triangles[i];
     VertexRef at[3];
-    for (int k = 0; k < 3; ++k) at[k] = deepest(h, t[k]);
-    const Vec3& p0 = h.limitPosition(at[0].level, at[0].local);
-    const Vec3 flat = (h.limitPosition(at[1].level, at[1].local) - p0) % (h.limitPosition(at[2].level, at[2].local) - p0);
+    bool held = true;
+    for (int k = 0; k < 3; ++k) {
+      const std::optional<VertexRef> source = limitSource(h, counts_, t[k], growth);
+      held = held && source.has_value();
+      if (source) at[k] = *source;
+    }
+    if (!held) continue;  // the caller grows the hierarchy and starts again
     std::array<int, 3> tri;
     for (int k = 0; k < 3; ++k) {
-      const bool smooth = isSmoothLike(h.level(at[k].level).mesh.vertexRules[at[k].local]);
-      std::vector<Vec3> sides;
-      int side = 0;
-      if (!smooth) {
-        sides = sideNormals(h, at[k]);
-        for (int s = 1; s < static_cast<int>(sides.size()); ++s) {
-          if (dot(sides[s], flat) > dot(sides[side], flat)) side = s;
-        }
-      }
+      const int side = sideOf(h, at[k], leaves[i].level, leaves[i].local);
       const uint64_t canonical = h.level(at[k].level).vertexIds[at[k].local];
       const uint64_t key = canonical * 64 + static_cast<uint64_t>(side);
       auto [it, fresh] = index.emplace(key, static_cast<int>(mesh.positions.size()));
       if (fresh) {
         const VertexId id(counts_.birthLevel(VertexId(at[k].level, canonical)), canonical);
         mesh.positions.push_back(h.limitPosition(at[k].level, at[k].local));
-        mesh.normals.push_back(smooth ? h.limitNormal(at[k].level, at[k].local) : sides[side]);
+        mesh.normals.push_back(side == 0 ? h.limitNormal(at[k].level, at[k].local) : sideNormal(h, at[k], side));
         mesh.vertexIds.push_back(id.packed());
       }
       tri[k] = it->second;
@@ -217,9 +297,20 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   std::sort(gone.begin(), gone.end());
   gone.erase(std::unique(gone.begin(), gone.end()), gone.end());
 
+  // Every candidate is built before any is stored: when a limit needs a
+  // level the hierarchy does not hold, it grows and everything is rebuilt
+  // (and diffed against the regions as they were).
+  std::vector<FaceId> growth;
+  std::vector<RegionMesh> meshes;
+  for (uint64_t id : candidates) meshes.push_back(buildRegion(h, FaceId::fromPacked(id), growth));
+  if (!growth.empty()) {
+    doc.refineHierarchy(growth);
+    return rebuildAll(doc);
+  }
   Changes changes;
-  for (uint64_t id : candidates) {
-    RegionMesh mesh = buildRegion(h, FaceId::fromPacked(id));
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const uint64_t id = candidates[i];
+    RegionMesh& mesh = meshes[i];
     auto old = regions_.find(id);
     if (old != regions_.end() && sameMesh(old->second, mesh)) continue;
     triangles_ += static_cast<int64_t>(mesh.triangles.size());

@@ -5,13 +5,34 @@
 // Regions are the cut's nodes at level maxLevel - 5 (or its leaves above
 // that level), so a region never holds more than 4^5 leaf triangles before
 // crack-closing fans; their ids are the nodes' packed FaceIds, stable as
-// long as the cut above them is. Every displayed vertex takes its limit at
-// the deepest level where its ring is held (edits deeper than that cannot
-// reach it), so it has one position whichever leaf reaches it. That is the
-// true limit wherever no semi-sharp crease or dart acts at that level
-// (their limit masks, as in OpenSubdiv, are exact only once the feature
-// has decayed). At a crease or corner the normal is that of the sector the
-// triangle lies in, so shading breaks only along sharp features.
+// long as the cut above them is. At a crease or corner the normal is that
+// of the sector the triangle lies in, so shading breaks only along sharp
+// features.
+//
+// Every region is a function of the document (base mesh, tags, active
+// edits) and the profile alone, never of how far the hierarchy happens to
+// be held (earlier profiles, undone or earlier edits): replaying a journal
+// into a fresh document gives the same regions bit for bit. So a displayed
+// vertex takes its limit at a level chosen from the document, the same
+// whichever leaf reaches it:
+//   * the level it was born at, or deeper: the deepest level k at which an
+//     active edit reaches its limit -- a move (or vertex sharpness) of the
+//     vertex or of a neighbour in its level-k 1-ring, or a sharpness on one
+//     of its level-k edges. A limit mask reads only the vertex's 1-ring
+//     (§2.2, OpenSubdiv's PrimvarRefiner::Limit), so an offset at level k
+//     on w moves the limit of exactly the level-k vertices in w's 1-ring
+//     and nothing else's, and from that level on every limit of the vertex
+//     agrees in exact arithmetic: the chosen level is exact;
+//   * then deeper while its limit mask there is not its limit: while a
+//     semi-sharp edge or vertex sharpness still acts on it (OpenSubdiv's
+//     masks count a not yet decayed sharpness as sharp; refined ceil(s)
+//     levels it has decayed and the mask is exact, ARCHITECTURE "Semi-sharp
+//     limits") and at darts (the smooth mask, which a dart's sharp edge
+//     makes only converge level by level), but never past the document's
+//     maximum level, a fixed cap: a sharpness still acting there, and every
+//     infinitely sharp dart, shows the limit mask of that level.
+// The hierarchy is grown (Document::refineHierarchy) where it does not
+// hold the vertex's ring at that level.
 #pragma once
 
 #include <map>
@@ -60,7 +81,9 @@ class Tessellation {
 
   // The regions of the cut under (level, face), appended as packed FaceIds.
   void regionsUnder(const SparseEvaluator& h, int l, Index f, std::vector<uint64_t>& out) const;
-  RegionMesh buildRegion(const SparseEvaluator& h, FaceId region) const;
+  // Appends to `growth` the faces the hierarchy must hold for the limits
+  // the region shows (the mesh is then incomplete).
+  RegionMesh buildRegion(const SparseEvaluator& h, FaceId region, std::vector<FaceId>& growth) const;
   Expected<Changes> rebuildAll(Document& doc);
   Status checkBudget() const;
 

@@ -1,0 +1,156 @@
+// What a profile displays is a function of the document (base mesh, tags,
+// active edits) and the profile, never of how the hierarchy grew: a
+// document edited step by step with tessellations of two profiles kept up
+// to date, an undo and a redo, shows exactly -- bit for bit -- what a fresh
+// document given the same edit list shows (bit-identical replay of a
+// journal, tessellation.h).
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/document/document.h"
+#include "core/document/document_file.h"
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
+#include "core/tessellation/tessellation.h"
+#include "support/procedural_meshes.h"
+#include "support/region_checks.h"
+#include "support/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+using testing::expectSameRegions;
+using testing::TestMesh;
+
+// The profile compared, and a finer one whose tessellation grows the
+// hierarchy deeper than the first needs.
+const LodProfile kCoarse{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 10};
+const LodProfile kFine{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 10};
+
+// One random edit: mostly moves at levels 1..3 (plain and to a limit
+// position), sometimes a semi-sharp or sharp crease at level 1 or 2 or a
+// vertex sharpness. Returns false when the document refused it (a crease on
+// the boundary), which is fine.
+bool randomEdit(Document& doc, std::mt19937& rng) {
+  auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const int op = static_cast<int>(pick(10));
+  if (op < 7) {
+    const int level = 1 + static_cast<int>(pick(3));
+    const VertexId v(level, pick(doc.counts().vertices(level)));
+    const Vec3 d(uniform(-.05, .05), uniform(-.05, .05), uniform(-.05, .05));
+    if (op < 5) return doc.moveBy(std::span(&v, 1), d).isOk();
+    const SparseEvaluator& h = doc.hierarchy();
+    Vec3 target = d;
+    if (v.level() < h.numLevels()) {
+      const Index local = h.level(v.level()).findVertex(v.index());
+      if (local >= 0 && h.level(v.level()).isComplete(local)) target += h.limitPosition(v.level(), local);
+    }
+    return doc.moveToLimit(std::span(&v, 1), target).isOk();
+  }
+  const int level = 1 + static_cast<int>(pick(2));
+  if (op < 9) {
+    const float sharpness = pick(3) == 0 ? kSharpnessInfinite : (pick(2) ? 1.5f : 2.0f);
+    return doc.setEdgeSharpness(EdgeId(level, pick(doc.counts().edges(level))), sharpness).isOk();
+  }
+  return doc.setVertexSharpness(VertexId(level, pick(doc.counts().vertices(level))), pick(2) ? 1.0f : 0.0f).isOk();
+}
+
+void expectHistoryIndependent(Expected<Document> created, const std::string& name, uint32_t seed) {
+  SCOPED_TRACE(name);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  Document& a = *created;
+  // History A: edits one by one, each followed by an update of the coarse
+  // tessellation; halfway a finer profile is built (and then kept up to
+  // date too), and one edit is undone and redone.
+  auto coarse = Tessellation::build(a, kCoarse);
+  ASSERT_TRUE(coarse.isOk()) << coarse.status().message();
+  std::optional<Tessellation> fine;
+  std::mt19937 rng(seed);
+  constexpr int kEdits = 14;
+  auto updateAll = [&](const std::string& when) {
+    auto changes = coarse->update(a);
+    ASSERT_TRUE(changes.isOk()) << when << ": " << changes.status().message();
+    if (fine) {
+      auto fineChanges = fine->update(a);
+      ASSERT_TRUE(fineChanges.isOk()) << when << ": " << fineChanges.status().message();
+    }
+  };
+  for (int i = 0; i < kEdits; ++i) {
+    if (!randomEdit(a, rng)) continue;
+    updateAll("edit " + std::to_string(i));
+    if (::testing::Test::HasFatalFailure()) return;
+    if (i == kEdits / 2) {
+      auto built = Tessellation::build(a, kFine);
+      ASSERT_TRUE(built.isOk()) << built.status().message();
+      fine.emplace(std::move(*built));
+      const EditId undone = a.edits()[a.edits().size() / 2].id;
+      ASSERT_TRUE(a.undo(undone).isOk());
+      updateAll("undo");
+      ASSERT_TRUE(a.redo(undone).isOk());
+      updateAll("redo");
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  }
+  ASSERT_GE(a.edits().size(), 8u);
+
+  // Document B: the same edit list through the file format, tessellated
+  // once.
+  auto b = deserializeDocument(serializeDocument(a), name);
+  ASSERT_TRUE(b.isOk()) << b.status().message();
+  auto coarseB = Tessellation::build(*b, kCoarse);
+  ASSERT_TRUE(coarseB.isOk()) << coarseB.status().message();
+  expectSameRegions(*coarse, *coarseB, "updated A vs a fresh document");
+  if (::testing::Test::HasFatalFailure()) return;
+
+  // Document C: the edits replayed one by one into a fresh document with no
+  // tessellation in between, then the fine profile before the coarse one.
+  auto c = Document::create(a.baseTopology(), a.basePoints(), a.options());
+  ASSERT_TRUE(c.isOk()) << c.status().message();
+  for (const Edit& edit : a.edits()) ASSERT_TRUE(c->replay(edit).isOk());
+  auto fineC = Tessellation::build(*c, kFine);
+  ASSERT_TRUE(fineC.isOk()) << fineC.status().message();
+  auto coarseC = Tessellation::build(*c, kCoarse);
+  ASSERT_TRUE(coarseC.isOk()) << coarseC.status().message();
+  expectSameRegions(*fine, *fineC, "fine: updated A vs replayed C");
+  expectSameRegions(*coarse, *coarseC, "coarse: updated A vs replayed C after the fine profile");
+
+  // And A itself, tessellated afresh after all that growth.
+  auto again = Tessellation::build(a, kCoarse);
+  ASSERT_TRUE(again.isOk()) << again.status().message();
+  expectSameRegions(*again, *coarseB, "a fresh build on A vs a fresh document");
+}
+
+TEST(TessellationHistory, TheCreasedCubeShowsTheSameRegionsWhateverTheHistory) {
+  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
+  ASSERT_TRUE(mesh.isOk());
+  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *mesh).isOk());
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    expectHistoryIndependent(Document::create(*mesh, {.maxLevel = 5}), "cube seed " + std::to_string(seed), seed);
+    if (HasFatalFailure()) return;
+  }
+}
+
+TEST(TessellationHistory, SemiSharpCreasesShowTheSameRegionsWhateverTheHistory) {
+  const TestMesh mesh = testing::withRandomTags(testing::torus(8, 6), 0.15, 0.05, 3);
+  for (uint32_t seed : {4u, 5u, 6u}) {
+    expectHistoryIndependent(Document::create(mesh.topology, mesh.points, {.maxLevel = 5}),
+                             mesh.name + " seed " + std::to_string(seed), seed);
+    if (HasFatalFailure()) return;
+  }
+}
+
+TEST(TessellationHistory, ASmoothClosedMeshShowsTheSameRegionsWhateverTheHistory) {
+  const TestMesh mesh = testing::withJitter(testing::bipyramid(7), 0.05, 2);
+  for (uint32_t seed : {7u, 8u, 9u}) {
+    expectHistoryIndependent(Document::create(mesh.topology, mesh.points, {.maxLevel = 5}),
+                             mesh.name + " seed " + std::to_string(seed), seed);
+    if (HasFatalFailure()) return;
+  }
+}
+
+}  // namespace
+}  // namespace tessera

@@ -255,7 +255,18 @@ Status Document::retractLast() {
   --nextEditId_;
   cache_.reset();
   lastUpdate_ = sparse_->update(removed, edits_);
+  forgetDemandOf();
   return Status::ok();
+}
+
+// The removed edit's edit nodes go with it (sparse_evaluator.h): what the
+// document shows is what a document created without it shows.
+void Document::forgetDemandOf() {
+  const int rebuilt = sparse_->forgetRemovedDemand(edits_);
+  if (rebuilt >= 0) {
+    lastUpdate_.grownFromLevel =
+        lastUpdate_.grownFromLevel < 0 ? rebuilt : std::min(lastUpdate_.grownFromLevel, rebuilt);
+  }
 }
 
 Status Document::undo(EditId id) { return setActive(id, false); }
@@ -268,6 +279,7 @@ Status Document::remove(EditId id) {
   edits_.erase(edits_.begin() + (edit - edits_.data()));
   cache_.reset();
   lastUpdate_ = sparse_->update(removed, edits_);
+  forgetDemandOf();
   return Status::ok();
 }
 

@@ -115,6 +115,8 @@ class Document {
   // Grows the hierarchy for an edit about to be made; remembers the growth
   // for lastUpdate().
   void reserve(const Edit& edit);
+  // After a removal or retraction: drops the gone edit's edit nodes.
+  void forgetDemandOf();
 
   BaseTopology base_;
   std::vector<Vec3> basePoints_;

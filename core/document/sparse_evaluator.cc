@@ -368,6 +368,16 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
   return dirty;
 }
 
+int SparseEvaluator::forgetRemovedDemand(std::span<const Edit> edits) {
+  std::set<FaceId> before;
+  before.swap(demand_);
+  for (const Edit& edit : edits) addDemand(edit);
+  if (demand_ == before) return -1;
+  const int first = firstChangedSelection();
+  rebuildFrom(first, edits);
+  return first;
+}
+
 // What selectFaces() adds to editSelected for one more demanded face, in
 // place: N1 of its ancestor at every coarser level. A tessellation decides
 // again only around changed limits, so where faces just became edit nodes

@@ -80,6 +80,11 @@ class SparseEvaluator {
   // elements, their stencil neighbourhoods and their descendants are
   // recomputed.
   DirtySet update(const Edit& edit, std::span<const Edit> edits);
+  // After an edit left the list for good (removed or retracted): its
+  // demand goes too, so the edit nodes are those of a document created
+  // with `edits`. Levels rebuild from the first whose selection changed;
+  // returns that level, or -1 when nothing changed.
+  int forgetRemovedDemand(std::span<const Edit> edits);
 
   int numLevels() const { return static_cast<int>(levels_.size()); }
   int uniformLevel() const { return uniformLevel_; }

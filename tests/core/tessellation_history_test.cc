@@ -1,7 +1,7 @@
 // What a profile displays is a function of the document (base mesh, tags,
 // active edits) and the profile, never of how the hierarchy grew: a
 // document edited step by step with tessellations of two profiles kept up
-// to date, an undo and a redo, shows exactly -- bit for bit -- what a fresh
+// to date, an undo and a redo, a removal and a retraction, shows exactly -- bit for bit -- what a fresh
 // document given the same edit list shows (bit-identical replay of a
 // journal, tessellation.h).
 #include <gtest/gtest.h>
@@ -69,6 +69,7 @@ void expectHistoryIndependent(Expected<Document> created, const std::string& nam
   auto coarse = Tessellation::build(a, kCoarse);
   ASSERT_TRUE(coarse.isOk()) << coarse.status().message();
   std::optional<Tessellation> fine;
+  std::optional<Edit> removed;
   std::mt19937 rng(seed);
   constexpr int kEdits = 14;
   auto updateAll = [&](const std::string& when) {
@@ -94,8 +95,22 @@ void expectHistoryIndependent(Expected<Document> created, const std::string& nam
       updateAll("redo");
       if (::testing::Test::HasFatalFailure()) return;
     }
+    if (i == kEdits * 3 / 4) {
+      // An edit removed for good and one retracted (a server takes back an
+      // edit it applied, then refused): gone from the document, so gone
+      // from what it shows.
+      removed = a.edits()[a.edits().size() / 3];
+      ASSERT_TRUE(a.remove(removed->id).isOk());
+      updateAll("remove");
+      if (randomEdit(a, rng)) {
+        updateAll("edit to retract");
+        ASSERT_TRUE(a.retractLast().isOk());
+        updateAll("retract");
+      }
+      if (::testing::Test::HasFatalFailure()) return;
+    }
   }
-  ASSERT_GE(a.edits().size(), 8u);
+  ASSERT_GE(a.edits().size(), 7u);
 
   // Document B: the same edit list through the file format, tessellated
   // once.
@@ -110,7 +125,19 @@ void expectHistoryIndependent(Expected<Document> created, const std::string& nam
   // tessellation in between, then the fine profile before the coarse one.
   auto c = Document::create(a.baseTopology(), a.basePoints(), a.options());
   ASSERT_TRUE(c.isOk()) << c.status().message();
-  for (const Edit& edit : a.edits()) ASSERT_TRUE(c->replay(edit).isOk());
+  // (The removed edit goes in at its place and is removed at the end.)
+  bool removedIn = false;
+  for (const Edit& edit : a.edits()) {
+    if (removed && !removedIn && removed->id.value < edit.id.value) {
+      ASSERT_TRUE(c->replay(*removed).isOk());
+      removedIn = true;
+    }
+    ASSERT_TRUE(c->replay(edit).isOk()) << edit.id.toString();
+  }
+  if (removed) {
+    if (!removedIn) ASSERT_TRUE(c->replay(*removed).isOk());
+    ASSERT_TRUE(c->remove(removed->id).isOk());
+  }
   auto fineC = Tessellation::build(*c, kFine);
   ASSERT_TRUE(fineC.isOk()) << fineC.status().message();
   auto coarseC = Tessellation::build(*c, kCoarse);

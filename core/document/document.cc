@@ -1,6 +1,7 @@
 #include "core/document/document.h"
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -262,11 +263,12 @@ Status Document::retractLast() {
 // The removed edit's edit nodes go with it (sparse_evaluator.h): what the
 // document shows is what a document created without it shows.
 void Document::forgetDemandOf() {
-  const int rebuilt = sparse_->forgetRemovedDemand(edits_);
-  if (rebuilt >= 0) {
-    lastUpdate_.grownFromLevel =
-        lastUpdate_.grownFromLevel < 0 ? rebuilt : std::min(lastUpdate_.grownFromLevel, rebuilt);
-  }
+  const DirtySet forgotten = sparse_->forgetEditNodes(edits_);
+  if (forgotten.limits.empty()) return;
+  std::vector<VertexId> merged;
+  std::set_union(lastUpdate_.limits.begin(), lastUpdate_.limits.end(), forgotten.limits.begin(),
+                 forgotten.limits.end(), std::back_inserter(merged));
+  lastUpdate_.limits = std::move(merged);
 }
 
 Status Document::undo(EditId id) { return setActive(id, false); }

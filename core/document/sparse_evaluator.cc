@@ -64,7 +64,10 @@ Expected<SparseEvaluator> SparseEvaluator::create(const BaseTopology& base, std:
 
 void SparseEvaluator::addDemand(const Edit& edit) {
   forEachElement(edit, [&](auto id) {
-    if (id.level() > 0) demand_.insert(incidentFace(levels_[0].topo.mesh, counts_, id));
+    if (id.level() == 0) return;
+    const FaceId face = incidentFace(levels_[0].topo.mesh, counts_, id);
+    demand_.insert(face);
+    editDemand_.insert(face);
   });
 }
 
@@ -105,7 +108,7 @@ void SparseEvaluator::selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8
   };
   if (editSelected != nullptr) {
     editSelected->assign(numFaces, 0);
-    mark(demand_, *editSelected);
+    mark(editDemand_, *editSelected);
     growByOneRing(topo, *editSelected);
   }
   if (l < uniformLevel_) {
@@ -355,7 +358,8 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
     forEachElement(edit, [&](auto id) {
       if (id.level() == 0) return;
       const FaceId face = incidentFace(levels_[0].topo.mesh, counts_, id);
-      if (demand_.insert(face).second) markEditNodes(face, dirty);
+      demand_.insert(face);
+      if (editDemand_.insert(face).second) markEditNodes(face, dirty);
     });
     std::sort(dirty.limits.begin(), dirty.limits.end());
     dirty.limits.erase(std::unique(dirty.limits.begin(), dirty.limits.end()), dirty.limits.end());
@@ -368,14 +372,32 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
   return dirty;
 }
 
-int SparseEvaluator::forgetRemovedDemand(std::span<const Edit> edits) {
-  std::set<FaceId> before;
-  before.swap(demand_);
-  for (const Edit& edit : edits) addDemand(edit);
-  if (demand_ == before) return -1;
-  const int first = firstChangedSelection();
-  rebuildFrom(first, edits);
-  return first;
+DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
+  DirtySet dirty;
+  std::set<FaceId> now;
+  for (const Edit& edit : edits) {
+    forEachElement(edit, [&](auto id) {
+      if (id.level() > 0) now.insert(incidentFace(levels_[0].topo.mesh, counts_, id));
+    });
+  }
+  if (now == editDemand_) return dirty;
+  editDemand_ = std::move(now);
+  for (int k = 0; k < numLevels(); ++k) {
+    LevelState& state = levels_[k];
+    Buffer<uint8_t> selected, refined, editSelected;
+    selectFaces(k, selected, refined, &editSelected);
+    const Level& m = state.topo.mesh;
+    for (Index f = 0; f < static_cast<Index>(editSelected.size()); ++f) {
+      if (editSelected[f] == state.editSelected[f]) continue;
+      for (Index v : m.faceVertices[f]) {
+        if (state.topo.isComplete(v)) dirty.limits.push_back(VertexId(k, state.topo.vertexIds[v]));
+      }
+    }
+    state.editSelected = std::move(editSelected);
+  }
+  std::sort(dirty.limits.begin(), dirty.limits.end());
+  dirty.limits.erase(std::unique(dirty.limits.begin(), dirty.limits.end()), dirty.limits.end());
+  return dirty;
 }
 
 // What selectFaces() adds to editSelected for one more demanded face, in

@@ -80,11 +80,12 @@ class SparseEvaluator {
   // elements, their stencil neighbourhoods and their descendants are
   // recomputed.
   DirtySet update(const Edit& edit, std::span<const Edit> edits);
-  // After an edit left the list for good (removed or retracted): its
-  // demand goes too, so the edit nodes are those of a document created
-  // with `edits`. Levels rebuild from the first whose selection changed;
-  // returns that level, or -1 when nothing changed.
-  int forgetRemovedDemand(std::span<const Edit> edits);
+  // After an edit left the list for good (removed or retracted): its edit
+  // nodes go too, so they are those of a document created with `edits`.
+  // The structure it grew stays (a cache: limits and cuts do not depend on
+  // it). Returns the limits around the faces that stopped being edit nodes,
+  // for a tessellation to decide again there.
+  DirtySet forgetEditNodes(std::span<const Edit> edits);
 
   int numLevels() const { return static_cast<int>(levels_.size()); }
   int uniformLevel() const { return uniformLevel_; }
@@ -178,7 +179,8 @@ class SparseEvaluator {
   int uniformLevel_ = 0;
   std::vector<float> baseEdgeSharpness_, baseVertexSharpness_;
   std::vector<Vec3> basePoints_;
-  std::set<FaceId> demand_;       // faces edits address
+  std::set<FaceId> demand_;       // faces edits address or addressed: what the structure holds
+  std::set<FaceId> editDemand_;   // faces the current edits address: what makes edit nodes
   std::set<FaceId> extraDemand_;  // faces tessellations refine
   std::vector<LevelState> levels_;
 };

@@ -328,24 +328,6 @@ Status setExplicitQuantization(draco::Encoder& encoder, const QuantizationGrid& 
   return Status::ok();
 }
 
-// LEB128: 7 bits a byte, low first, at most 10 bytes for 64 bits.
-void putVarint(ByteWriter& w, uint64_t value) {
-  for (; value >= 0x80; value >>= 7) w.put<uint8_t>(static_cast<uint8_t>(value | 0x80));
-  w.put<uint8_t>(static_cast<uint8_t>(value));
-}
-
-Status getVarint64(ByteReader& r, uint64_t& value, const char* what) {
-  value = 0;
-  for (int i = 0; i < 10; ++i) {
-    uint8_t byte = 0;
-    TESSERA_RETURN_IF_ERROR(r.get(byte, what));
-    if (i == 9 && byte > 1) break;
-    value |= static_cast<uint64_t>(byte & 0x7f) << (7 * i);
-    if ((byte & 0x80) == 0) return Status::ok();
-  }
-  return parseError(r.source() + ": " + what + " is not a 64-bit varint");
-}
-
 void writeHeader(ByteWriter& w, const RegionHeader& header, IdCoding coding, uint32_t triangles, uint32_t payloadBytes) {
   w.bytes().append(kMagic, sizeof(kMagic));
   w.put<uint16_t>(kRegionFormatVersion);
@@ -367,16 +349,7 @@ void writeHeader(ByteWriter& w, const RegionHeader& header, IdCoding coding, uin
   w.put<uint8_t>(static_cast<uint8_t>(header.grid.normalBits));
   w.put<uint32_t>(triangles);
   w.put<uint32_t>(payloadBytes);
-  if (coding != IdCoding::kLattice) return;
-  // The frame, in varints: a dozen bytes for a small mesh rather than 81.
-  const RegionFrame& f = *header.frame;
-  const FaceId face = FaceId::fromPacked(f.face);
-  w.put<uint8_t>(static_cast<uint8_t>(face.level()));
-  putVarint(w, face.index());
-  for (uint64_t c : f.corners) putVarint(w, c);
-  for (uint64_t e : f.edges) putVarint(w, e);
-  w.put<uint8_t>(f.forward);
-  for (uint64_t n : f.baseCounts) putVarint(w, n);
+  if (coding == IdCoding::kLattice) writeFrame(w, *header.frame);
 }
 
 // The lattice depth of a frame under a profile: how far its deepest level
@@ -489,18 +462,10 @@ Status readHeader(ByteReader& r, RegionHeader& header, Counts& counts) {
 // Draco's varint (draco/core/varint_decoding.h): 7 bits a byte, low first,
 // at most 5 bytes for 32 bits.
 Status getVarint(ByteReader& r, uint32_t& value, const char* what) {
-  uint64_t result = 0;
-  for (int i = 0; i < 5; ++i) {
-    uint8_t byte = 0;
-    TESSERA_RETURN_IF_ERROR(r.get(byte, what));
-    result |= static_cast<uint64_t>(byte & 0x7f) << (7 * i);
-    if ((byte & 0x80) == 0) {
-      if (result > std::numeric_limits<uint32_t>::max()) break;
-      value = static_cast<uint32_t>(result);
-      return Status::ok();
-    }
-  }
-  return parseError(r.source() + ": " + what + " is not a 32-bit varint");
+  uint64_t wide = 0;
+  TESSERA_RETURN_IF_ERROR(r.getVarint(wide, 32, what));
+  value = static_cast<uint32_t>(wide);
+  return Status::ok();
 }
 
 // Reads the counts Draco will allocate for, from the start of its bitstream
@@ -713,21 +678,7 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   header.idsInline = (flags & kFlagLayoutIds) == 0;
   if (r.offset() != kRegionHeaderBytes) return internalError(source + ": header layout and kRegionHeaderBytes disagree");
   if ((flags & kFlagLatticeIds) != 0) {
-    RegionFrame f;
-    uint8_t level = 0;
-    uint64_t index = 0;
-    TESSERA_RETURN_IF_ERROR(r.get(level, "the frame's face level"));
-    TESSERA_RETURN_IF_ERROR(getVarint64(r, index, "the frame's face"));
-    if (level > kMaxIdLevel || index > FaceId::kIndexMask) {
-      return parseError(source + ": the frame's face f" + std::to_string(level) + ":" + std::to_string(index) +
-                        " is not a face id");
-    }
-    f.face = FaceId(level, index).packed();
-    for (uint64_t& c : f.corners) TESSERA_RETURN_IF_ERROR(getVarint64(r, c, "the frame's corners"));
-    for (uint64_t& e : f.edges) TESSERA_RETURN_IF_ERROR(getVarint64(r, e, "the frame's edges"));
-    TESSERA_RETURN_IF_ERROR(r.get(f.forward, "the frame's edge directions"));
-    for (uint64_t& n : f.baseCounts) TESSERA_RETURN_IF_ERROR(getVarint64(r, n, "the frame's base counts"));
-    header.frame = f;
+    TESSERA_ASSIGN_OR_RETURN(header.frame, readFrame(r));
   }
   const size_t payloadAt = r.offset();
   const uint64_t expected = static_cast<uint64_t>(counts.payloadBytes) + kRegionTrailerBytes;

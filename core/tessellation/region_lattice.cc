@@ -7,6 +7,34 @@
 
 namespace tessera {
 
+void writeFrame(ByteWriter& w, const RegionFrame& frame) {
+  const FaceId face = FaceId::fromPacked(frame.face);
+  w.put<uint8_t>(static_cast<uint8_t>(face.level()));
+  w.putVarint(face.index());
+  for (uint64_t c : frame.corners) w.putVarint(c);
+  for (uint64_t e : frame.edges) w.putVarint(e);
+  w.put<uint8_t>(frame.forward);
+  for (uint64_t n : frame.baseCounts) w.putVarint(n);
+}
+
+Expected<RegionFrame> readFrame(ByteReader& r) {
+  RegionFrame frame;
+  uint8_t level = 0;
+  uint64_t index = 0;
+  TESSERA_RETURN_IF_ERROR(r.get(level, "the frame's face level"));
+  TESSERA_RETURN_IF_ERROR(r.getVarint(index, 64, "the frame's face"));
+  if (level > kMaxIdLevel || index > FaceId::kIndexMask) {
+    return parseError(r.source() + ": the frame's face f" + std::to_string(level) + ":" + std::to_string(index) +
+                      " is not a face id");
+  }
+  frame.face = FaceId(level, index).packed();
+  for (uint64_t& c : frame.corners) TESSERA_RETURN_IF_ERROR(r.getVarint(c, 64, "the frame's corners"));
+  for (uint64_t& e : frame.edges) TESSERA_RETURN_IF_ERROR(r.getVarint(e, 64, "the frame's edges"));
+  TESSERA_RETURN_IF_ERROR(r.get(frame.forward, "the frame's edge directions"));
+  for (uint64_t& n : frame.baseCounts) TESSERA_RETURN_IF_ERROR(r.getVarint(n, 64, "the frame's base counts"));
+  return frame;
+}
+
 Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& counts, FaceId region) {
   const int r = region.level();
   if (r >= h.numLevels()) return notFound("region " + region.toString() + ": the hierarchy holds no level " + std::to_string(r));

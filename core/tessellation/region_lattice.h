@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/hierarchy/ids.h"
+#include "core/util/byte_io.h"
 #include "core/util/status.h"
 
 namespace tessera {
@@ -32,6 +33,14 @@ struct RegionFrame {
 
   friend bool operator==(const RegionFrame&, const RegionFrame&) = default;
 };
+
+// The frame as region_codec.h stores it: the root face's level (u8) and
+// index, corners x 3, edges x 3, directions (u8) and base counts x 3, the
+// numbers as LEB128 varints (a dozen bytes for a small mesh, 81 fixed).
+void writeFrame(ByteWriter& w, const RegionFrame& frame);
+// Errors (parse errors naming the field): truncated or overlong numbers, a
+// face level or index no face id has.
+Expected<RegionFrame> readFrame(ByteReader& r);
 
 // The frame of a region whose root face the hierarchy holds.
 Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& counts, FaceId region);

@@ -21,6 +21,11 @@ class ByteWriter {
     out_.append(bytes, sizeof(T));
   }
   void putBytes(const std::string& bytes) { out_ += bytes; }
+  // LEB128: 7 bits a byte, low first (Draco's varint too).
+  void putVarint(uint64_t value) {
+    for (; value >= 0x80; value >>= 7) put<uint8_t>(static_cast<uint8_t>(value | 0x80));
+    put<uint8_t>(static_cast<uint8_t>(value));
+  }
   std::string& bytes() { return out_; }
 
  private:
@@ -50,6 +55,20 @@ class ByteReader {
                         std::to_string(size_ - offset_) + " bytes");
     }
     return Status::ok();
+  }
+  // An LEB128 varint of a value below 2^bits (1..64), in at most
+  // ceil(bits / 7) bytes; anything longer or larger is refused.
+  Status getVarint(uint64_t& value, int bits, const char* what) {
+    value = 0;
+    for (int shift = 0; shift < bits; shift += 7) {
+      uint8_t byte = 0;
+      TESSERA_RETURN_IF_ERROR(get(byte, what));
+      const uint64_t payload = byte & 0x7f;
+      if (bits - shift < 7 && (payload >> (bits - shift)) != 0) break;  // bits beyond the value's width
+      value |= payload << shift;
+      if ((byte & 0x80) == 0) return Status::ok();
+    }
+    return parseError(source_ + ": " + what + " is not a " + std::to_string(bits) + "-bit varint");
   }
   size_t offset() const { return offset_; }
   size_t remaining() const { return size_ - offset_; }

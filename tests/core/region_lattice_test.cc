@@ -216,6 +216,12 @@ TEST(RegionLattice, RefusesFramesOfOtherRegionsAndMixedFlags) {
   status = decodeRegion(moved).status();
   EXPECT_EQ(status.code(), ErrorCode::kParseError);
   EXPECT_NE(status.message().find("the frame names region"), std::string::npos) << status.toString();
+  // A face index longer than any 64-bit varint.
+  std::string overlong = bytes->substr(0, kRegionHeaderBytes + 1) + std::string(10, '\xff') + '\x01' +
+                         bytes->substr(kRegionHeaderBytes + 2);
+  status = decodeRegion(overlong).status();
+  EXPECT_EQ(status.code(), ErrorCode::kParseError);
+  EXPECT_NE(status.message().find("the frame's face is not a 64-bit varint"), std::string::npos) << status.toString();
 }
 
 // Random byte changes behind a valid checksum, in the frame and the Draco

@@ -256,13 +256,13 @@ Status Document::retractLast() {
   --nextEditId_;
   cache_.reset();
   lastUpdate_ = sparse_->update(removed, edits_);
-  forgetDemandOf();
+  forgetRemovedEditNodes();
   return Status::ok();
 }
 
 // The removed edit's edit nodes go with it (sparse_evaluator.h): what the
 // document shows is what a document created without it shows.
-void Document::forgetDemandOf() {
+void Document::forgetRemovedEditNodes() {
   const DirtySet forgotten = sparse_->forgetEditNodes(edits_);
   if (forgotten.limits.empty()) return;
   std::vector<VertexId> merged;
@@ -281,7 +281,7 @@ Status Document::remove(EditId id) {
   edits_.erase(edits_.begin() + (edit - edits_.data()));
   cache_.reset();
   lastUpdate_ = sparse_->update(removed, edits_);
-  forgetDemandOf();
+  forgetRemovedEditNodes();
   return Status::ok();
 }
 

@@ -116,7 +116,7 @@ class Document {
   // for lastUpdate().
   void reserve(const Edit& edit);
   // After a removal or retraction: drops the gone edit's edit nodes.
-  void forgetDemandOf();
+  void forgetRemovedEditNodes();
 
   BaseTopology base_;
   std::vector<Vec3> basePoints_;

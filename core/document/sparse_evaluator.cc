@@ -62,13 +62,19 @@ Expected<SparseEvaluator> SparseEvaluator::create(const BaseTopology& base, std:
 
 // ---- Structure ---------------------------------------------------------
 
-void SparseEvaluator::addDemand(const Edit& edit) {
+std::vector<FaceId> SparseEvaluator::demandedFaces(const Edit& edit) const {
+  std::vector<FaceId> faces;
   forEachElement(edit, [&](auto id) {
-    if (id.level() == 0) return;
-    const FaceId face = incidentFace(levels_[0].topo.mesh, counts_, id);
+    if (id.level() > 0) faces.push_back(incidentFace(levels_[0].topo.mesh, counts_, id));
+  });
+  return faces;
+}
+
+void SparseEvaluator::addDemand(const Edit& edit) {
+  for (FaceId face : demandedFaces(edit)) {
     demand_.insert(face);
     editDemand_.insert(face);
-  });
+  }
 }
 
 int SparseEvaluator::deepestDemand() const {
@@ -348,19 +354,14 @@ HierarchyStats SparseEvaluator::stats() const {
 
 DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits) {
   DirtySet dirty;
-  bool covered = true;
-  forEachElement(edit, [&](auto id) {
-    if (id.level() > 0) covered = covered && demandCovered(incidentFace(levels_[0].topo.mesh, counts_, id));
-  });
-  if (covered) {
+  const std::vector<FaceId> faces = demandedFaces(edit);
+  if (std::all_of(faces.begin(), faces.end(), [&](FaceId face) { return demandCovered(face); })) {
     // Held already (for a tessellation or an earlier edit): the edit still
     // makes its edit nodes, as in a document created with it.
-    forEachElement(edit, [&](auto id) {
-      if (id.level() == 0) return;
-      const FaceId face = incidentFace(levels_[0].topo.mesh, counts_, id);
+    for (FaceId face : faces) {
       demand_.insert(face);
       if (editDemand_.insert(face).second) markEditNodes(face, dirty);
-    });
+    }
     std::sort(dirty.limits.begin(), dirty.limits.end());
     dirty.limits.erase(std::unique(dirty.limits.begin(), dirty.limits.end()), dirty.limits.end());
     return dirty;
@@ -376,9 +377,7 @@ DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
   DirtySet dirty;
   std::set<FaceId> now;
   for (const Edit& edit : edits) {
-    forEachElement(edit, [&](auto id) {
-      if (id.level() > 0) now.insert(incidentFace(levels_[0].topo.mesh, counts_, id));
-    });
+    for (FaceId face : demandedFaces(edit)) now.insert(face);
   }
   if (now == editDemand_) return dirty;
   editDemand_ = std::move(now);

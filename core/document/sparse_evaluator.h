@@ -142,6 +142,8 @@ class SparseEvaluator {
   SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
 
   // Structure (sparse_evaluator.cc).
+  // The faces an edit addresses below level 0 (incident to its elements).
+  std::vector<FaceId> demandedFaces(const Edit& edit) const;
   void addDemand(const Edit& edit);
   void markEditNodes(FaceId face, DirtySet& dirty);
   bool demandCovered(FaceId face) const;

@@ -31,9 +31,13 @@
 #include "core/loop/loop_refiner.h"
 #include "core/tessellation/region_codec.h"
 #include "support/procedural_meshes.h"
+#include "support/region_checks.h"
 
 namespace tessera {
 namespace {
+
+using testing::refreshRegionChecksum;
+using testing::trianglesOverIds;
 
 constexpr double kDegrees = 180.0 / 3.14159265358979323846;
 
@@ -111,22 +115,6 @@ RegionHeader headerFor(const Surface& s, uint64_t regionId) {
   return header;
 }
 
-using TriangleKey = std::array<uint64_t, 3>;
-
-// The triangle over ids, rotated to start at its smallest id: orientation is
-// kept, the starting corner (which Draco may change) is not.
-TriangleKey keyOf(const RegionMesh& m, const std::array<int, 3>& t) {
-  TriangleKey key{m.vertexIds[t[0]], m.vertexIds[t[1]], m.vertexIds[t[2]]};
-  std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-  return key;
-}
-
-std::multiset<TriangleKey> trianglesOf(const RegionMesh& m) {
-  std::multiset<TriangleKey> keys;
-  for (const auto& t : m.triangles) keys.insert(keyOf(m, t));
-  return keys;
-}
-
 double angleDegrees(const Vec3& a, const Vec3& b) {
   return std::atan2(cross(a, b).norm(), dot(a, b)) * kDegrees;
 }
@@ -168,7 +156,7 @@ TEST(RegionCodec, RoundTripKeepsHeaderIdsAndTriangles) {
     const auto [decodedHeader, decoded] = roundTrip(header, region, level);
     EXPECT_EQ(decodedHeader, header);
     EXPECT_EQ(decoded.triangles.size(), region.triangles.size());
-    EXPECT_EQ(trianglesOf(decoded), trianglesOf(region));
+    EXPECT_EQ(trianglesOverIds(decoded), trianglesOverIds(region));
     EXPECT_EQ(std::set<uint64_t>(decoded.vertexIds.begin(), decoded.vertexIds.end()),
               std::set<uint64_t>(region.vertexIds.begin(), region.vertexIds.end()));
     const auto [position, normal] = decodedErrors(region, decoded);
@@ -196,7 +184,7 @@ TEST(RegionCodec, ExtremeVertexIdsSurviveExactly) {
   const RegionHeader header = headerFor(s, 3);
   for (int level : {0, 10}) {
     const auto [decodedHeader, decoded] = roundTrip(header, region, level);
-    EXPECT_EQ(trianglesOf(decoded), trianglesOf(region));
+    EXPECT_EQ(trianglesOverIds(decoded), trianglesOverIds(region));
     EXPECT_EQ(std::multiset<uint64_t>(decoded.vertexIds.begin(), decoded.vertexIds.end()),
               std::multiset<uint64_t>(region.vertexIds.begin(), region.vertexIds.end()));
   }
@@ -214,7 +202,7 @@ TEST(RegionCodec, NonManifoldAndDisconnectedRegionsKeepTheirTriangles) {
   header.grid = *gridFor({-1, -1, 0}, {3, 3, 0});
   for (int level = 0; level <= 10; ++level) {
     const auto [decodedHeader, decoded] = roundTrip(header, m, level);
-    EXPECT_EQ(trianglesOf(decoded), trianglesOf(m)) << "level " << level;
+    EXPECT_EQ(trianglesOverIds(decoded), trianglesOverIds(m)) << "level " << level;
     const auto [position, normal] = decodedErrors(m, decoded);
     EXPECT_LE(position, header.grid.maxPositionError());
   }
@@ -479,12 +467,6 @@ std::string smallEncoding(int level = kDefaultRegionCompressionLevel) {
   return bytes.isOk() ? *bytes : std::string();
 }
 
-void fixChecksum(std::string& bytes) {
-  const uint32_t crc = static_cast<uint32_t>(
-      ::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size() - 4)));
-  std::memcpy(bytes.data() + bytes.size() - 4, &crc, 4);
-}
-
 // A display-only profile's regions carry no ids: the same triangles over
 // the same decoded positions and normals, fewer bytes; a flag the decoder
 // does not know, or a flag that disagrees with the payload, is refused.
@@ -524,13 +506,13 @@ TEST(RegionCodec, DisplayOnlyRegionsOmitIdsAndKeepTheGeometry) {
 
   std::string unknownFlag = *thin;
   unknownFlag[6] = 8;  // the flags follow the magic and the version
-  fixChecksum(unknownFlag);
+  refreshRegionChecksum(unknownFlag);
   auto refused = decodeRegion(unknownFlag);
   EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
   EXPECT_NE(refused.status().message().find("unknown flags 8"), std::string::npos) << refused.status().toString();
   std::string noFlag = *thin;
   noFlag[6] = 0;  // claims ids the payload does not hold
-  fixChecksum(noFlag);
+  refreshRegionChecksum(noFlag);
   refused = decodeRegion(noFlag);
   EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
   EXPECT_NE(refused.status().message().find("attributes"), std::string::npos) << refused.status().toString();
@@ -625,7 +607,7 @@ TEST(RegionCodec, LayoutIdsRefuseAnotherLayoutAndBadFlags) {
   // payload, and a layout later than the document.
   std::string both = *thin;
   both[6] = 3;
-  fixChecksum(both);
+  refreshRegionChecksum(both);
   status = decodeRegion(both).status();
   EXPECT_EQ(status.code(), ErrorCode::kParseError);
   EXPECT_NE(status.message().find("more than one way"), std::string::npos) << status.toString();
@@ -635,13 +617,13 @@ TEST(RegionCodec, LayoutIdsRefuseAnotherLayoutAndBadFlags) {
   ASSERT_TRUE(full.isOk());
   std::string claims = *full;
   claims[6] = 2;  // the layout's ids, yet the payload holds ids
-  fixChecksum(claims);
+  refreshRegionChecksum(claims);
   status = decodeRegion(claims).status();
   EXPECT_NE(status.message().find("attributes"), std::string::npos) << status.toString();
   std::string late = *thin;
   const uint64_t layout = 99;
   std::memcpy(late.data() + 24, &layout, 8);
-  fixChecksum(late);
+  refreshRegionChecksum(late);
   status = decodeRegion(late).status();
   EXPECT_EQ(status.code(), ErrorCode::kParseError);
   EXPECT_NE(status.message().find("layout version 99 is later"), std::string::npos) << status.toString();
@@ -677,7 +659,7 @@ TEST(RegionCodec, RejectsForeignBytesWrongMagicAndWrongVersion) {
 
   std::string future = bytes;
   future[4] = 3;
-  fixChecksum(future);
+  refreshRegionChecksum(future);
   decoded = decodeRegion(future);
   EXPECT_EQ(decoded.status().code(), ErrorCode::kUnsupported);
   EXPECT_NE(decoded.status().message().find("format version 3"), std::string::npos) << decoded.status().toString();
@@ -688,7 +670,7 @@ TEST(RegionCodec, RejectsOversizedAndInconsistentCounts) {
   const auto withTriangles = [&](uint32_t triangles) {
     std::string b = bytes;
     std::memcpy(b.data() + 91, &triangles, 4);
-    fixChecksum(b);
+    refreshRegionChecksum(b);
     return decodeRegion(b).status();
   };
   // More triangles than the payload could hold: refused before Draco runs.
@@ -760,7 +742,7 @@ TEST(RegionCodec, MutationsBehindAValidChecksumNeverCrash) {
         const size_t i = rng() % span;
         mutated[i] = static_cast<char>(rng() % 3 == 0 ? rng() : mutated[i] ^ (1 << (rng() % 8)));
       }
-      fixChecksum(mutated);
+      refreshRegionChecksum(mutated);
       const auto decoded = decodeRegion(mutated);
       if (!decoded.isOk()) {
         EXPECT_FALSE(decoded.status().message().empty());

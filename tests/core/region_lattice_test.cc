@@ -4,8 +4,6 @@
 // several meshes, for root faces at levels 0 and 1 and depths up to 4.
 #include <gtest/gtest.h>
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <cstring>
 
@@ -21,12 +19,15 @@
 #include "core/tessellation/region_lattice.h"
 #include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
+#include "support/region_checks.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
 namespace {
 
 using Point = std::array<int, 2>;
+using testing::refreshRegionChecksum;
+using testing::trianglesOverIds;
 
 // The corner points of child k of a face with corners `at` (refinement.h:
 // children 0..2 at the corners, 3 in the middle).
@@ -116,15 +117,29 @@ TEST(RegionLattice, RefusesBadDepthsAndFrames) {
   EXPECT_EQ(regionFrame(doc->hierarchy(), doc->counts(), FaceId(3, 0)).status().code(), ErrorCode::kNotFound);
 }
 
-// The triangles of a region over ids, each rotated to start at its smallest.
-std::multiset<std::array<uint64_t, 3>> trianglesOverIds(const RegionMesh& m) {
-  std::multiset<std::array<uint64_t, 3>> out;
-  for (const auto& t : m.triangles) {
-    std::array<uint64_t, 3> key{m.vertexIds[t[0]], m.vertexIds[t[1]], m.vertexIds[t[2]]};
-    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-    out.insert(key);
-  }
-  return out;
+// The first region of an icosahedron's tessellation under `profile`, with
+// a header that carries the region's own frame, and the document.
+struct IcosahedronRegion {
+  std::optional<Document> doc;
+  RegionHeader header;
+  RegionMesh mesh;
+};
+
+void firstIcosahedronRegion(const LodProfile& profile, IcosahedronRegion& out) {
+  const auto ico = testing::icosahedron();
+  auto doc = Document::create(ico.topology, ico.points, {.maxLevel = 4});
+  ASSERT_TRUE(doc.isOk());
+  out.doc.emplace(std::move(*doc));
+  auto t = Tessellation::build(*out.doc, profile);
+  ASSERT_TRUE(t.isOk());
+  auto grid = documentGrid(*out.doc);
+  ASSERT_TRUE(grid.isOk());
+  const auto& [id, region] = *t->regions().begin();
+  out.header = {.regionId = id, .documentVersion = 1, .layoutVersion = 1, .profile = profile, .grid = *grid};
+  auto frame = regionFrame(out.doc->hierarchy(), out.doc->counts(), FaceId::fromPacked(id));
+  ASSERT_TRUE(frame.isOk());
+  out.header.frame = *frame;
+  out.mesh = region;
 }
 
 // Every region of real tessellations (the creased cube after edits, an
@@ -178,41 +193,29 @@ TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
 // A frame that names another region, and flags that combine two ways of
 // carrying ids, are refused.
 TEST(RegionLattice, RefusesFramesOfOtherRegionsAndMixedFlags) {
-  const auto ico = testing::icosahedron();
-  auto doc = Document::create(ico.topology, ico.points, {.maxLevel = 4});
-  ASSERT_TRUE(doc.isOk());
-  const LodProfile profile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 10};
-  auto t = Tessellation::build(*doc, profile);
-  ASSERT_TRUE(t.isOk());
-  auto grid = documentGrid(*doc);
-  ASSERT_TRUE(grid.isOk());
-  const auto& [id, region] = *t->regions().begin();
-  RegionHeader header{.regionId = id, .documentVersion = 1, .layoutVersion = 1, .profile = profile, .grid = *grid};
-  auto other = regionFrame(doc->hierarchy(), doc->counts(), FaceId(0, 5));
+  IcosahedronRegion r;
+  firstIcosahedronRegion({.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 10}, r);
+  if (::testing::Test::HasFatalFailure()) return;
+  auto other = regionFrame(r.doc->hierarchy(), r.doc->counts(), FaceId(0, 5));
   ASSERT_TRUE(other.isOk());
-  header.frame = *other;
-  Status status = encodeRegion(header, region).status();
+  RegionHeader foreign = r.header;
+  foreign.frame = *other;
+  Status status = encodeRegion(foreign, r.mesh).status();
   EXPECT_EQ(status.code(), ErrorCode::kInvalidArgument);
   EXPECT_NE(status.message().find("the frame is that of region"), std::string::npos) << status.toString();
 
-  header.frame = *regionFrame(doc->hierarchy(), doc->counts(), FaceId::fromPacked(id));
-  auto bytes = encodeRegion(header, region);
+  auto bytes = encodeRegion(r.header, r.mesh);
   ASSERT_TRUE(bytes.isOk());
-  auto fixCrc = [](std::string& b) {
-    const uint32_t crc = static_cast<uint32_t>(
-        ::crc32(0L, reinterpret_cast<const Bytef*>(b.data()), static_cast<uInt>(b.size() - 4)));
-    std::memcpy(b.data() + b.size() - 4, &crc, 4);
-  };
   std::string mixed = *bytes;
   mixed[6] = 6;  // layout ids and lattice ids
-  fixCrc(mixed);
+  refreshRegionChecksum(mixed);
   status = decodeRegion(mixed).status();
   EXPECT_EQ(status.code(), ErrorCode::kParseError);
   EXPECT_NE(status.message().find("more than one way"), std::string::npos) << status.toString();
   std::string moved = *bytes;
-  ASSERT_EQ(FaceId::fromPacked(id), FaceId(0, 0));
+  ASSERT_EQ(FaceId::fromPacked(r.header.regionId), FaceId(0, 0));
   moved[kRegionHeaderBytes + 1] = 5;  // the frame's face index (a one-byte varint here)
-  fixCrc(moved);
+  refreshRegionChecksum(moved);
   status = decodeRegion(moved).status();
   EXPECT_EQ(status.code(), ErrorCode::kParseError);
   EXPECT_NE(status.message().find("the frame names region"), std::string::npos) << status.toString();
@@ -229,18 +232,10 @@ TEST(RegionLattice, RefusesFramesOfOtherRegionsAndMixedFlags) {
 // a region whose ids are lattice ids of its face, never a crash (run under
 // the sanitizers in the asan preset).
 TEST(RegionLattice, MutatedLatticeRegionsNeverCrash) {
-  const auto ico = testing::icosahedron();
-  auto doc = Document::create(ico.topology, ico.points, {.maxLevel = 4});
-  ASSERT_TRUE(doc.isOk());
-  const LodProfile profile{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 10};
-  auto t = Tessellation::build(*doc, profile);
-  ASSERT_TRUE(t.isOk());
-  auto grid = documentGrid(*doc);
-  ASSERT_TRUE(grid.isOk());
-  const auto& [id, region] = *t->regions().begin();
-  RegionHeader header{.regionId = id, .documentVersion = 1, .layoutVersion = 1, .profile = profile, .grid = *grid};
-  header.frame = *regionFrame(doc->hierarchy(), doc->counts(), FaceId::fromPacked(id));
-  auto bytes = encodeRegion(header, region);
+  IcosahedronRegion r;
+  firstIcosahedronRegion({.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 10}, r);
+  if (::testing::Test::HasFatalFailure()) return;
+  auto bytes = encodeRegion(r.header, r.mesh);
   ASSERT_TRUE(bytes.isOk());
   std::mt19937 rng(17);
   int decoded = 0;
@@ -248,9 +243,7 @@ TEST(RegionLattice, MutatedLatticeRegionsNeverCrash) {
     std::string b = *bytes;
     const size_t from = kRegionHeaderBytes, span = b.size() - 4 - from;
     for (int k = 0; k < 1 + static_cast<int>(rng() % 3); ++k) b[from + rng() % span] = static_cast<char>(rng());
-    const uint32_t crc = static_cast<uint32_t>(
-        ::crc32(0L, reinterpret_cast<const Bytef*>(b.data()), static_cast<uInt>(b.size() - 4)));
-    std::memcpy(b.data() + b.size() - 4, &crc, 4);
+    refreshRegionChecksum(b);
     auto result = decodeRegion(b);
     if (!result.isOk()) {
       EXPECT_EQ(result.status().code(), ErrorCode::kParseError) << result.status().toString();

@@ -1,9 +1,13 @@
-// Region comparisons shared by the tessellation suites.
+// Region comparisons shared by the tessellation and region codec suites.
 #pragma once
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
+#include <set>
 #include <string>
 
 #include "core/hierarchy/ids.h"
@@ -33,6 +37,28 @@ inline void expectSameRegions(const Tessellation& actual, const Tessellation& ex
           << where << " region " << id << " vertex " << vertex << " normal";
     }
   }
+}
+
+using TriangleKey = std::array<uint64_t, 3>;
+
+// A region's triangles over ids, each rotated to start at its smallest id:
+// orientation is kept, the starting corner (which Draco may change) is not.
+inline std::multiset<TriangleKey> trianglesOverIds(const RegionMesh& m) {
+  std::multiset<TriangleKey> keys;
+  for (const auto& t : m.triangles) {
+    TriangleKey key{m.vertexIds[t[0]], m.vertexIds[t[1]], m.vertexIds[t[2]]};
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    keys.insert(key);
+  }
+  return keys;
+}
+
+// Rewrites an encoded region's CRC-32 trailer after a test changed bytes
+// before it, so that the decoder looks past the checksum.
+inline void refreshRegionChecksum(std::string& bytes) {
+  const uint32_t crc = static_cast<uint32_t>(
+      ::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size() - 4)));
+  std::memcpy(bytes.data() + bytes.size() - 4, &crc, 4);
 }
 
 }  // namespace tessera::testing

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <map>
 #include <mutex>
+#include <set>
 #include <random>
 #include <thread>
 
@@ -46,8 +47,12 @@ uint64_t expectedHash(Document doc, uint64_t documentId) {
   wire::ServerMessage snapshot;
   snapshot.mutable_snapshot()->set_document_id(documentId);
   for (const auto& [id, mesh] : t->regions()) {
-    LodProfile profile = t->profile();
-    auto bytes = encodeRegion({.regionId = id, .documentVersion = 1, .profile = profile, .grid = *grid}, mesh);
+    RegionHeader header;
+    header.regionId = id;
+    header.documentVersion = 1;
+    header.profile = t->profile();
+    header.grid = *grid;
+    auto bytes = encodeRegion(header, mesh);
     if (!bytes.isOk()) return 0;
     wire::Region* r = snapshot.mutable_snapshot()->add_regions();
     r->set_region_id(id);
@@ -77,15 +82,22 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
   ASSERT_TRUE((*admin)->call(testing::grant(docId, wire::ROLE_EDITOR, token), 10)->has_ack());
   (*admin)->close();
 
-  // The local replica of the acknowledged history.
+  // Local replicas of the acknowledged history. The checker sees the
+  // surface only through quantized positions, and two in-flight edits that
+  // were both recovered may land in either order with surfaces that quantize
+  // alike (a coarse move tilts a fine vertex's frame by a hair). Every
+  // history the observation cannot tell apart is kept, and later rounds
+  // prune them; one must survive every round.
   auto mesh = importMesh(cubePath);
   ASSERT_TRUE(mesh.isOk());
-  auto replica = Document::create(*mesh, {.maxLevel = 4});
-  ASSERT_TRUE(replica.isOk());
+  auto created0 = Document::create(*mesh, {.maxLevel = 4});
+  ASSERT_TRUE(created0.isOk());
+  std::vector<Document> replicas{std::move(*created0)};
   uint64_t replicaVersion = 1;
 
   std::mt19937 rng(20261122);
   int totalAcked = 0, roundsWithInFlight = 0;
+  size_t maxHistories = 1;
   for (int round = 0; round < 20; ++round) {
     SCOPED_TRACE("round " + std::to_string(round));
     std::mutex mutex;
@@ -147,30 +159,40 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
     }
     ASSERT_LE(gaps.size(), inFlight.size()) << "versions the clients never sent";
     roundsWithInFlight += gaps.empty() ? 0 : 1;
-    // Try each assignment of in-flight moves to the gaps.
+    // Each history so far, continued by each assignment of in-flight moves
+    // to the gaps.
     std::vector<int> order(inFlight.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    bool matched = false;
-    do {
-      Document candidate = *replica;
-      bool ok = true;
-      size_t gap = 0;
-      for (uint64_t v = replicaVersion + 1; v <= recovered && ok; ++v) {
-        const Move& m = acked.count(v) ? acked[v] : inFlight[order[gap++]];
-        const VertexId id = VertexId::fromPacked(m.vertex);
-        ok = candidate.moveBy(std::span(&id, 1), m.displacement).isOk();
-      }
-      if (ok && expectedHash(candidate, docId) == view.surfaceHash()) {
-        *replica = std::move(candidate);
-        matched = true;
-      }
-    } while (!matched && std::next_permutation(order.begin(), order.end()));
-    ASSERT_TRUE(matched) << "the recovered surface is no replay of the acknowledged history (version " << recovered
-                         << ", " << acked.size() << " acked, " << inFlight.size() << " in flight)";
+    std::vector<Document> survivors;
+    for (const Document& replica : replicas) {
+      std::set<std::vector<int>> tried;  // orders that differ only past the gaps are one assignment
+      std::sort(order.begin(), order.end());
+      do {
+        if (!tried.insert(std::vector<int>(order.begin(), order.begin() + static_cast<long>(gaps.size()))).second) {
+          continue;
+        }
+        Document candidate = replica;
+        bool ok = true;
+        size_t gap = 0;
+        for (uint64_t v = replicaVersion + 1; v <= recovered && ok; ++v) {
+          const Move& m = acked.count(v) ? acked[v] : inFlight[order[gap++]];
+          const VertexId id = VertexId::fromPacked(m.vertex);
+          ok = candidate.moveBy(std::span(&id, 1), m.displacement).isOk();
+        }
+        if (ok && expectedHash(candidate, docId) == view.surfaceHash()) survivors.push_back(std::move(candidate));
+      } while (std::next_permutation(order.begin(), order.end()));
+    }
+    ASSERT_FALSE(survivors.empty()) << "the recovered surface is no replay of the acknowledged history (version "
+                                    << recovered << ", " << acked.size() << " acked, " << inFlight.size()
+                                    << " in flight, " << replicas.size() << " candidate histories)";
+    maxHistories = std::max(maxHistories, survivors.size());
+    replicas = std::move(survivors);
     replicaVersion = recovered;
   }
-  std::printf("20 kills: %d edits acknowledged, all recovered; %d rounds recovered an unacknowledged in-flight edit\n",
-              totalAcked, roundsWithInFlight);
+  std::printf(
+      "20 kills: %d edits acknowledged, all recovered; %d rounds recovered an unacknowledged in-flight edit; at most %zu "
+      "histories matched at once\n",
+      totalAcked, roundsWithInFlight, maxHistories);
   EXPECT_GT(totalAcked, 20);
   EXPECT_EQ(server->stop(), 0);
 }

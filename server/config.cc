@@ -33,6 +33,8 @@ const char* const kServerUsage =
     "                             share it; acks are not delayed), default 0\n"
     "  --delta-frames-per-second N  and at most N delta frames per second per document over\n"
     "                             all its subscribers (interval = subscribers / N), default 40000\n"
+    "  --deltas-after-durable     deltas also wait for their last command's journal commit\n"
+    "                             (default: sent when encoded; acks always wait)\n"
     "  --verbose                  debug logs\n";
 
 namespace {
@@ -105,6 +107,10 @@ Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args
   for (size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--verbose") {
       c.verbose = true;
+      continue;
+    }
+    if (args[i] == "--deltas-after-durable") {
+      c.deltasAfterDurable = true;
       continue;
     }
     auto it = options.find(args[i]);

@@ -51,6 +51,12 @@ struct ServerConfig {
   // ten get every burst at once. 0 turns either bound off.
   double deltaIntervalMs = 0;
   double deltaFramesPerSecond = 40000;
+  // A delta goes out as soon as its flush has encoded it; only acks (and
+  // recorders' commands) promise durability. With this set, a delta also
+  // waits until its last command is durable, so no viewer ever sees a
+  // state a crash could take back, at the cost of the fsync in every
+  // viewer's latency.
+  bool deltasAfterDurable = false;
   Limits limits;
   Timeouts timeouts;
   bool verbose = false;

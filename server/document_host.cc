@@ -440,7 +440,7 @@ void DocumentHost::flush() {
   // After a failed journal write the edits are lost: views still follow
   // the document, but nothing is sent.
   const Pending* last = pending_.empty() ? nullptr : &pending_.back();
-  Batch batch{version_, {}, {}};
+  Batch batch{version_, false, {}, {}};
   if (last) ++stats_.deltaFlushes;
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
@@ -498,6 +498,7 @@ void DocumentHost::flush() {
   flushedVersion_ = version_;
   lastFlush_ = Clock::now();
   if (!last) return;
+  if (!config_.deltasAfterDurable) send(batch);
   batches_.push_back(std::move(batch));
   release();  // its commit may already be durable
   maybeSnapshot();
@@ -549,14 +550,7 @@ void DocumentHost::release() {
   }
   while (!batches_.empty() && batches_.front().toVersion <= durableVersion_) {
     Batch& b = batches_.front();
-    for (auto& [key, view] : views_) {
-      auto frame = b.frames.find(key);
-      if (frame == b.frames.end() || !frame->second) continue;
-      for (auto& [session, weak] : view.subscribers) {
-        if (view.knownVersion[session] >= b.toVersion) continue;  // its snapshot holds this one
-        if (auto who = weak.lock()) who->send({frame->second, b.deltas[key]});
-      }
-    }
+    if (!b.sent) send(b);
     // A recorder gets each command after the delta that carries it.
     while (!pending_.empty() && pending_.front().version <= b.toVersion) {
       notifyRecorders(pending_.front());
@@ -564,6 +558,20 @@ void DocumentHost::release() {
     }
     batches_.pop_front();
   }
+}
+
+void DocumentHost::send(Batch& b) {
+  for (auto& [key, view] : views_) {
+    auto frame = b.frames.find(key);
+    if (frame == b.frames.end() || !frame->second) continue;
+    for (auto& [session, weak] : view.subscribers) {
+      if (view.knownVersion[session] >= b.toVersion) continue;  // its snapshot holds this one
+      if (auto who = weak.lock()) who->send({frame->second, b.deltas[key]});
+    }
+  }
+  b.sent = true;
+  b.frames.clear();  // the batch stays only to order the recorders' commands
+  b.deltas.clear();
 }
 
 void DocumentHost::notifyRecorders(const Pending& p) {

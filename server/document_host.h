@@ -7,9 +7,11 @@
 // earlier commits are in flight). The views follow in flushes: a flush,
 // posted behind the commands already queued and paced by flushInterval(),
 // updates every LOD profile's tessellation from the union of the edits'
-// changed limits, encodes the changed regions once per profile and queues
-// one delta spanning every version since the last flush, sent once its last
-// edit is durable. Under light load a flush follows each edit; under heavy
+// changed limits, encodes the changed regions once per profile and sends
+// one delta spanning every version since the last flush (or, with
+// --deltas-after-durable, queues it until its last edit is durable). Acks
+// and recorders' commands always wait for durability. Under light load a
+// flush follows each edit; under heavy
 // load one covers a burst, so the tessellation, encode and fan-out cost
 // follows the delta rate, not the edit rate.
 #pragma once
@@ -84,6 +86,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   };
   struct Batch {  // one flush: the delta of every view up to `toVersion`
     uint64_t toVersion;
+    bool sent = false;
     std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
     std::map<std::string, std::shared_ptr<const std::string>> frames;
   };
@@ -101,9 +104,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   // encodes the changed regions once and queues them as one batch.
   void flush();
   void committed(uint64_t version, Status status);
-  // Acks every durable edit, then sends every durable batch's deltas and,
-  // after them, their commands to the recorders.
+  // Acks every durable edit, then sends every durable batch's deltas not
+  // sent yet and, after them, their commands to the recorders.
   void release();
+  void send(Batch& batch);
   // Sends a durable command to the recorders (from release(), after its delta).
   void notifyRecorders(const Pending& p);
   // Takes an applied command back (an edit refused after applying it).

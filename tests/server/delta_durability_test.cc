@@ -1,0 +1,188 @@
+// When deltas leave relative to durability (server/config.h,
+// deltasAfterDurable): by default a delta goes out as soon as it is encoded,
+// before its edit's journal commit, while the author's Ack and the
+// recorders' AppliedCommand always wait for that commit; with
+// --deltas-after-durable the delta waits too. A store that holds every
+// commit until the test releases it makes the order observable.
+#include <gtest/gtest.h>
+
+#include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/io_context.hpp>
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+#include "core/document/document.h"
+#include "core/io/mesh_import.h"
+#include "integration/messages.h"
+#include "protocol/framing.h"
+#include "server/document_host.h"
+#include "support/test_meshes.h"
+
+namespace tessera::server {
+namespace {
+
+// Appends are held until release(); nothing else is used by a host.
+class HeldStore final : public Store {
+ public:
+  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
+  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
+  Status deleteDocument(DocumentId) override { return unused(); }
+  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
+  void append(DocumentId, uint64_t, std::string, std::string, AppendCallback done) override {
+    std::lock_guard lock(mutex_);
+    held_.push_back(std::move(done));
+  }
+  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
+  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
+  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
+  Status revokeToken(std::string_view) override { return unused(); }
+  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
+  StoreStats stats() const override { return {}; }
+  void close() override {}
+
+  size_t held() {
+    std::lock_guard lock(mutex_);
+    return held_.size();
+  }
+  void release() {
+    std::vector<AppendCallback> done;
+    {
+      std::lock_guard lock(mutex_);
+      done.swap(held_);
+    }
+    for (auto& d : done) d(Status::ok());
+  }
+
+ private:
+  static Status unused() { return internalError("not used by a document host"); }
+  std::mutex mutex_;
+  std::vector<AppendCallback> held_;
+};
+
+bool isDelta(const wire::ServerMessage& m) { return m.has_delta(); }
+bool isAck(const wire::ServerMessage& m) { return m.has_ack() && m.ack().client_seq() == 9; }
+bool isApplied(const wire::ServerMessage& m) { return m.has_applied_command(); }
+
+// Decodes what the host queues for it, in order.
+class Inbox final : public Subscriber {
+ public:
+  explicit Inbox(uint64_t session) : session_(session) {}
+  uint64_t sessionId() const override { return session_; }
+  void send(Outgoing message) override {
+    FrameDecoder decoder({.maxFrameBytes = 1u << 30});
+    wire::ServerMessage m;
+    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk()) m.mutable_error()->set_message("bad frame");
+    std::lock_guard lock(mutex_);
+    received_.push_back(std::move(m));
+    arrived_.notify_all();
+  }
+  // The index of the first message after `from` that `match` accepts, or -1
+  // after `seconds`.
+  int waitFor(const std::function<bool(const wire::ServerMessage&)>& match, double seconds, size_t from = 0) {
+    std::unique_lock lock(mutex_);
+    int found = -1;
+    arrived_.wait_for(lock, std::chrono::duration<double>(seconds), [&] {
+      for (size_t i = from; i < received_.size(); ++i) {
+        if (match(received_[i])) return found = static_cast<int>(i), true;
+      }
+      return false;
+    });
+    return found;
+  }
+  size_t count() {
+    std::lock_guard lock(mutex_);
+    return received_.size();
+  }
+  size_t deltas() {
+    std::lock_guard lock(mutex_);
+    return static_cast<size_t>(std::count_if(received_.begin(), received_.end(), isDelta));
+  }
+
+ private:
+  const uint64_t session_;
+  std::mutex mutex_;
+  std::condition_variable arrived_;
+  std::vector<wire::ServerMessage> received_;
+};
+
+class DeltaDurability : public ::testing::TestWithParam<bool> {
+ protected:
+  void SetUp() override {
+    config_.deltaFramesPerSecond = 0;  // no pacing: the flush follows the edit
+    config_.deltasAfterDurable = GetParam();
+    auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
+    ASSERT_TRUE(mesh.isOk());
+    auto doc = Document::create(*mesh, {.maxLevel = 4});
+    ASSERT_TRUE(doc.isOk());
+    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", std::move(*doc), 1, io_.get_executor(), store_,
+                                           config_, stats_);
+    thread_ = std::thread([this] { io_.run(); });
+    wire::LodProfile profile;
+    profile.set_base_level(1);
+    profile.set_max_level(3);
+    profile.set_angle_threshold_degrees(15);
+    host_->join(viewer_, "viewer", wire::ROLE_VIEWER);
+    host_->subscribe(viewer_, profile, 1, false);
+    host_->join(editor_, "editor", wire::ROLE_EDITOR);
+    host_->subscribe(editor_, profile, 1, false, /*withCommands=*/true);
+    ASSERT_GE(viewer_->waitFor([](const auto& m) { return m.has_snapshot(); }, 10), 0);
+    ASSERT_GE(editor_->waitFor([](const auto& m) { return m.has_snapshot(); }, 10), 0);
+  }
+  void TearDown() override {
+    store_.release();
+    guard_.reset();
+    io_.stop();
+    if (thread_.joinable()) thread_.join();
+  }
+
+  ServerConfig config_;
+  ServerStats stats_;
+  HeldStore store_;
+  boost::asio::io_context io_;
+  boost::asio::executor_work_guard<boost::asio::io_context::executor_type> guard_{io_.get_executor()};
+  std::thread thread_;
+  std::shared_ptr<DocumentHost> host_;
+  std::shared_ptr<Inbox> viewer_ = std::make_shared<Inbox>(1), editor_ = std::make_shared<Inbox>(2);
+};
+
+TEST_P(DeltaDurability, AcksAndRecordersWaitForTheCommitAndDeltasOnlyIfAsked) {
+  const bool afterDurable = GetParam();
+  wire::ClientMessage move = testing::moveVertex(1, VertexId(1, 3).packed(), 0.01, 0.02, 0.0, wire::MOVE_MODE_OFFSET);
+  move.set_client_seq(9);
+  const size_t before = viewer_->count();
+  host_->command(editor_, "editor", move);
+  for (int i = 0; i < 1000 && store_.held() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(store_.held(), 1u) << "the edit reached the journal";
+
+  // Held commit: no ack and no recorded command, whatever the mode.
+  const int early = viewer_->waitFor(isDelta, afterDurable ? 0.3 : 10, before);
+  if (afterDurable) {
+    EXPECT_EQ(early, -1) << "a delta went out before its edit was durable";
+  } else {
+    EXPECT_GE(early, 0) << "the delta waited for the commit";
+  }
+  EXPECT_EQ(editor_->waitFor(isAck, 0.05), -1) << "an ack before the commit";
+  EXPECT_EQ(editor_->waitFor(isApplied, 0.05), -1) << "a recorded command before the commit";
+
+  store_.release();
+  const int delta = viewer_->waitFor(isDelta, 10, before);
+  ASSERT_GE(delta, 0);
+  const int ack = editor_->waitFor(isAck, 10);
+  const int applied = editor_->waitFor(isApplied, 10);
+  const int editorDelta = editor_->waitFor(isDelta, 10);
+  ASSERT_GE(ack, 0);
+  ASSERT_GE(applied, 0);
+  ASSERT_GE(editorDelta, 0);
+  EXPECT_LT(editorDelta, applied) << "a recorder gets the command after the delta that carries it";
+  EXPECT_EQ(viewer_->deltas(), 1u) << "one delta, sent once";
+}
+
+INSTANTIATE_TEST_SUITE_P(Modes, DeltaDurability, ::testing::Bool(),
+                         [](const auto& info) { return info.param ? "AfterDurable" : "WhenEncoded"; });
+
+}  // namespace
+}  // namespace tessera::server

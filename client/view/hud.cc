@@ -46,7 +46,7 @@ void drawHud(const HudFacts& f, ViewToggles& t) {
   if (f.pickedVertex && f.pickedEdgeEnd) {
     ImGui::Text("%zu control vertices; picked the edge %s - %s", f.controlPoints,
                 vertexName(*f.pickedVertex).c_str(), vertexName(*f.pickedEdgeEnd).c_str());
-    ImGui::Text("E: infinitely sharp, Shift+E: smooth");
+    ImGui::Text("E: infinitely sharp, 1-4: semi-sharp, Shift+E: smooth");
   } else {
     ImGui::Text("%zu control vertices; picked %s", f.controlPoints,
                 f.pickedVertex ? vertexName(*f.pickedVertex).c_str() : "none");

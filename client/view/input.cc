@@ -57,6 +57,17 @@ void handleKey(App& app, int key, int mods) {
                                          shift ? 0.0f : std::numeric_limits<float>::infinity());
       }
       break;
+    case GLFW_KEY_1:
+    case GLFW_KEY_2:
+    case GLFW_KEY_3:
+    case GLFW_KEY_4:
+      // Semi-sharp (seed 003): sharp for that many levels below the edge's,
+      // then smooth, each level taking one off (Chaikin-averaged where the
+      // document asks for it).
+      if (app.picked && app.edgeEnd) {
+        app.connection->setEdgeSharpness(*app.picked, *app.edgeEnd, static_cast<float>(key - GLFW_KEY_0));
+      }
+      break;
     case GLFW_KEY_Z:
       if (ctrl) (shift ? app.redo : app.undo) = true;
       break;

@@ -29,8 +29,9 @@ struct App {
 };
 
 // A key press (GLFW_KEY_*, GLFW_MOD_* bits). E and Shift+E make the picked
-// edge infinitely sharp and smooth again; K toggles the picked vertex between
-// corner and smooth; Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z) undo and redo.
+// edge infinitely sharp and smooth again, 1 to 4 give it that semi-sharpness;
+// K toggles the picked vertex between corner and smooth; Ctrl+Z / Ctrl+Y
+// (Ctrl+Shift+Z) undo and redo.
 void handleKey(App& app, int key, int mods);
 
 // Drops the pick, and the selection others see.

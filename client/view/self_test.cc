@@ -32,8 +32,10 @@ struct Key {
   int key, mods;
   const char* name;
 };
-constexpr std::array<Key, 5> kKeys = {{{GLFW_KEY_E, 0, "E"},
+constexpr std::array<Key, 7> kKeys = {{{GLFW_KEY_E, 0, "E"},
+                                       {GLFW_KEY_2, 0, "2"},
                                        {GLFW_KEY_K, 0, "K"},
+                                       {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
                                        {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
                                        {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
                                        {GLFW_KEY_Y, GLFW_MOD_CONTROL, "redo"}}};

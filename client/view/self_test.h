@@ -31,7 +31,7 @@ class DragScript {
 
 // --edit-keys: click the visible control vertex nearest the centre,
 // shift+click the visible neighbour (levelNeighbours) nearest to it on screen, then
-// press E, K, Ctrl+Z, Ctrl+Z and Ctrl+Y, each once the edits before it have
+// press E, 2, K, Ctrl+Z three times and Ctrl+Y, each once the edits before it have
 // come back, noting the surface hash (DocumentView::surfaceHash) at the
 // start and after each key. Needs Connection::hashSurfaces(true).
 class KeyScript {

@@ -23,8 +23,8 @@ const char* const kViewHelp =
     "                         first snapshot, write OUT.png and exit\n"
     "  --drag DX,DY           headless: first drag the control vertex nearest the centre\n"
     "                         by DX,DY pixels (a self-test of picking and editing)\n"
-    "  --edit-keys            headless: first pick an edge and press E, K, Ctrl+Z, Ctrl+Z,\n"
-    "                         Ctrl+Y, printing the surface hash after each (a self-test)\n"
+    "  --edit-keys            headless: first pick an edge and press E, 2, K, Ctrl+Z three\n"
+    "                         times, Ctrl+Y, printing the surface hash after each (a self-test)\n"
     "  --timeout SECONDS      to connect and get the first snapshot (default 30)\n";
 
 namespace {

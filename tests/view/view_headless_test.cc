@@ -367,9 +367,10 @@ std::vector<std::pair<std::string, std::string>> surfaceHashes(const std::string
   return out;
 }
 
-// --edit-keys: the E, K, Ctrl+Z and Ctrl+Y keys go through the viewer's own
-// key handling. E on an edge picked by click and shift+click, and K, change
-// the surface; two undos restore it step by step; redo brings the edge back.
+// --edit-keys: the E, 2, K, Ctrl+Z and Ctrl+Y keys go through the viewer's own
+// key handling. E on an edge picked by click and shift+click, 2 (semi-sharp)
+// and K change the surface; three undos restore it step by step; redo brings
+// the sharp edge back.
 TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   const auto xvfbBinary = findXvfb();
   if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed (deploy/install-deps.sh installs it)";
@@ -411,17 +412,20 @@ TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   const std::string log = testing::fileBytes(dir + "/view.log");
   ASSERT_EQ(rc, 0) << log;
   EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;
-  EXPECT_NE(log.find("5 edits sent, 0 rejected"), std::string::npos) << log;
+  EXPECT_NE(log.find("7 edits sent, 0 rejected"), std::string::npos) << log;
   const auto h = surfaceHashes(log);
-  ASSERT_EQ(h.size(), 6u) << log;
-  const std::vector<std::string> names = {"start", "E", "K", "undo", "undo", "redo"};
+  ASSERT_EQ(h.size(), 8u) << log;
+  const std::vector<std::string> names = {"start", "E", "2", "K", "undo", "undo", "undo", "redo"};
   for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
   EXPECT_NE(h[1].second, h[0].second) << "E did not change the surface: " << log;
-  EXPECT_NE(h[2].second, h[1].second) << "K did not change the surface: " << log;
-  EXPECT_EQ(h[3].second, h[1].second) << "the first undo did not take back K alone: " << log;
-  EXPECT_EQ(h[4].second, h[0].second) << "the second undo did not restore the surface: " << log;
-  EXPECT_EQ(h[5].second, h[1].second) << "redo did not bring the sharp edge back: " << log;
-  EXPECT_NE(log.find("document version 6,"), std::string::npos) << "five keys, five versions: " << log;
+  EXPECT_NE(h[2].second, h[1].second) << "2 gave the same surface as E (+inf): " << log;
+  EXPECT_NE(h[2].second, h[0].second) << "2 gave the smooth surface: " << log;
+  EXPECT_NE(h[3].second, h[2].second) << "K did not change the surface: " << log;
+  EXPECT_EQ(h[4].second, h[2].second) << "the first undo did not take back K alone: " << log;
+  EXPECT_EQ(h[5].second, h[1].second) << "the second undo did not take back 2: " << log;
+  EXPECT_EQ(h[6].second, h[0].second) << "the third undo did not restore the surface: " << log;
+  EXPECT_EQ(h[7].second, h[1].second) << "redo did not bring the sharp edge back: " << log;
+  EXPECT_NE(log.find("document version 8,"), std::string::npos) << "seven keys, seven versions: " << log;
 }
 
 TEST(View, ExitsWithAnErrorWhenTheDocumentDoesNotExist) {

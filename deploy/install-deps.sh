@@ -15,8 +15,9 @@ packages=(
   libglfw3-dev libgl-dev libimgui-dev
   # tests and benchmarks: OpenSubdiv is the oracle, never a runtime dependency
   libgtest-dev libgmock-dev libbenchmark-dev libosd-dev
-  # test data and tools: real meshes (CGAL demo data), the Khronos glTF validator (npm)
-  libcgal-demo xvfb xauth
+  # test data and tools: real meshes (CGAL demo data), the Khronos glTF validator (npm),
+  # an X server for the viewer and X input events for it (xdotool)
+  libcgal-demo xvfb xauth xdotool
 )
 # The glTF validator runs on Node. A machine may already carry a newer Node with its own
 # npm (which conflicts with Debian's npm package): only ask Debian for it when absent.

@@ -25,119 +25,15 @@
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
+#include "view/x_display.h"
 
 namespace tessera {
 namespace {
 
-// The viewer's environment: the Xvfb display and Mesa's software renderer.
-// In an ASan build LeakSanitizer is off for the viewer process: llvmpipe
-// leaks from a module it loads and unloads, which LSan cannot name in a
-// suppression (the stacks end in "<unknown module>").
-std::vector<std::pair<std::string, std::string>> viewerEnvironment(const std::string& display) {
-  std::vector<std::pair<std::string, std::string>> env = {{"DISPLAY", display}, {"LIBGL_ALWAYS_SOFTWARE", "1"}};
-#ifdef __SANITIZE_ADDRESS__
-  env.emplace_back("ASAN_OPTIONS", "detect_leaks=0");
-#endif
-  return env;
-}
-
-using Clock = std::chrono::steady_clock;
-
-std::optional<std::string> findXvfb() {
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/bin:/bin";
-  size_t start = 0;
-  while (start <= dirs.size()) {
-    const size_t end = dirs.find(':', start);
-    const std::string candidate = dirs.substr(start, end - start) + "/Xvfb";
-    if (access(candidate.c_str(), X_OK) == 0) return candidate;
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return std::nullopt;
-}
-
-// Runs argv with extra environment, stdout and stderr to `log`; kills it
-// after `seconds`. Returns the exit code, or -1 on a timeout or a signal.
-int runBounded(const std::vector<std::string>& args,
-               const std::vector<std::pair<std::string, std::string>>& env, const std::string& log,
-               double seconds) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
-    FILE* out = std::freopen(log.c_str(), "a", stdout);
-    FILE* err = std::freopen(log.c_str(), "a", stderr);
-    (void)out, (void)err;
-    std::vector<char*> argv;
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
-  int status = 0;
-  while (Clock::now() < deadline) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(pid, SIGKILL);
-  waitpid(pid, &status, 0);
-  return -1;
-}
-
-// An Xvfb server on a free display number, stopped on destruction.
-class Xvfb {
- public:
-  ~Xvfb() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      int status = 0;
-      for (int i = 0; i < 100 && waitpid(pid_, &status, WNOHANG) != pid_; ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      if (waitpid(pid_, &status, WNOHANG) == 0) kill(pid_, SIGKILL), waitpid(pid_, &status, 0);
-    }
-  }
-
-  // Tries a few display numbers; each gets at most 10 s to open its socket.
-  bool start(const std::string& binary, const std::string& log) {
-    const int first = 200 + static_cast<int>(getpid() % 500);
-    for (int n = first; n < first + 10; ++n) {
-      const std::string lock = "/tmp/.X" + std::to_string(n) + "-lock";
-      const std::string socket = "/tmp/.X11-unix/X" + std::to_string(n);
-      if (std::filesystem::exists(lock) || std::filesystem::exists(socket)) continue;
-      const std::string display = ":" + std::to_string(n);
-      pid_ = fork();
-      if (pid_ == 0) {
-        FILE* out = std::freopen(log.c_str(), "a", stdout);
-        FILE* err = std::freopen(log.c_str(), "a", stderr);
-        (void)out, (void)err;
-        execl(binary.c_str(), binary.c_str(), display.c_str(), "-screen", "0", "800x600x24", "-nolisten",
-              "tcp", static_cast<char*>(nullptr));
-        _exit(127);
-      }
-      const auto deadline = Clock::now() + std::chrono::seconds(10);
-      while (Clock::now() < deadline) {
-        int status = 0;
-        if (waitpid(pid_, &status, WNOHANG) == pid_) {
-          pid_ = -1;
-          break;  // lost a race for this display: try the next
-        }
-        if (std::filesystem::exists(socket)) {
-          display_ = display;
-          return true;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-      }
-      if (pid_ > 0) kill(pid_, SIGKILL), waitpid(pid_, nullptr, 0), pid_ = -1;
-    }
-    return false;
-  }
-  const std::string& display() const { return display_; }
-
- private:
-  pid_t pid_ = -1;
-  std::string display_;
-};
+using testing::findProgram;
+using testing::runBounded;
+using testing::viewerEnvironment;
+using testing::Xvfb;
 
 struct Image {
   int width = 0, height = 0;
@@ -162,7 +58,7 @@ bool differ(std::array<int, 3> a, std::array<int, 3> b) {
 }
 
 TEST(View, HeadlessScreenshotsShowTheSurfaceAnotherClientsEditAndADrag) {
-  const auto xvfbBinary = findXvfb();
+  const auto xvfbBinary = findProgram("Xvfb");
   if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed (deploy/install-deps.sh installs it)";
   const std::string dir = testing::makeTempDir("tessera-view");
   auto server = testing::ServerProcess::start(dir + "/data");
@@ -372,7 +268,7 @@ std::vector<std::pair<std::string, std::string>> surfaceHashes(const std::string
 // and K change the surface; three undos restore it step by step; redo brings
 // the sharp edge back.
 TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
-  const auto xvfbBinary = findXvfb();
+  const auto xvfbBinary = findProgram("Xvfb");
   if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed (deploy/install-deps.sh installs it)";
   const std::string dir = testing::makeTempDir("tessera-view-keys");
   auto server = testing::ServerProcess::start(dir + "/data");

@@ -52,7 +52,7 @@ void logEvent(LogLevel level, std::string_view event, std::initializer_list<LogF
   const auto millis = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
   std::tm utc{};
   gmtime_r(&seconds, &utc);
-  char ts[40];
+  char ts[64];  // room for any int fields, so the compiler can prove no truncation
   std::snprintf(ts, sizeof ts, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
                 utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<int>(millis));
   std::string line = "{\"ts\":\"";

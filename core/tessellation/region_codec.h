@@ -154,7 +154,7 @@ struct RegionHeader {
   // With inline ids: the region's root face, so that the ids travel as
   // lattice points (region_lattice.h) when the profile's depth below the
   // face allows (at most kMaxLatticeDepth), as eight bytes otherwise.
-  std::optional<RegionFrame> frame;
+  std::optional<RegionFrame> frame = std::nullopt;
 
   friend bool operator==(const RegionHeader&, const RegionHeader&) = default;
 };

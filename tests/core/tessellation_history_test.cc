@@ -135,7 +135,9 @@ void expectHistoryIndependent(Expected<Document> created, const std::string& nam
     ASSERT_TRUE(c->replay(edit).isOk()) << edit.id.toString();
   }
   if (removed) {
-    if (!removedIn) ASSERT_TRUE(c->replay(*removed).isOk());
+    if (!removedIn) {
+      ASSERT_TRUE(c->replay(*removed).isOk());
+    }
     ASSERT_TRUE(c->remove(removed->id).isOk());
   }
   auto fineC = Tessellation::build(*c, kFine);
@@ -208,7 +210,9 @@ TEST(TessellationHistory, ManyMovesMatchASnapshotPlusJournalRecovery) {
   auto recovered = deserializeDocument(snapshot, "snapshot");
   ASSERT_TRUE(recovered.isOk());
   for (const Edit& edit : replica->edits()) {
-    if (edit.id.value > recovered->edits().back().id.value) ASSERT_TRUE(recovered->replay(edit).isOk());
+    if (edit.id.value > recovered->edits().back().id.value) {
+      ASSERT_TRUE(recovered->replay(edit).isOk());
+    }
   }
   auto whole = deserializeDocument(serializeDocument(*replica), "whole");
   ASSERT_TRUE(whole.isOk());
@@ -243,14 +247,18 @@ TEST(TessellationHistory, MovesResolveToTheSameOffsetsAfterAReload) {
     const auto& b = std::get<MoveEdit>(reloaded->edits().back().change).offsets[0].localOffset;
     ASSERT_TRUE(a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
         << "move " << i << " of " << v.toString() << ": " << a[0] - b[0] << " " << a[1] - b[1] << " " << a[2] - b[2];
-    if (view) ASSERT_TRUE(view->update(*reloaded).isOk());
+    if (view) {
+      ASSERT_TRUE(view->update(*reloaded).isOk());
+    }
     if (i % 7 == 6) snapshot = serializeDocument(*reloaded);
     if (i % 29 == 28) {
       // Recovery as the server does it: the newest snapshot, then the journal.
       auto back = deserializeDocument(snapshot, "snapshot");
       ASSERT_TRUE(back.isOk());
       for (const Edit& edit : reloaded->edits()) {
-        if (edit.id.value > back->edits().back().id.value) ASSERT_TRUE(back->replay(edit).isOk());
+        if (edit.id.value > back->edits().back().id.value) {
+          ASSERT_TRUE(back->replay(edit).isOk());
+        }
       }
       *reloaded = std::move(*back);
       // A subscriber's tessellation grows the hierarchy and follows the edits.

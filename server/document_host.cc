@@ -440,7 +440,7 @@ void DocumentHost::flush() {
   // After a failed journal write the edits are lost: views still follow
   // the document, but nothing is sent.
   const Pending* last = pending_.empty() ? nullptr : &pending_.back();
-  Batch batch{version_, false, {}, {}};
+  Batch batch{version_, {}, {}};
   if (last) ++stats_.deltaFlushes;
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
@@ -550,7 +550,7 @@ void DocumentHost::release() {
   }
   while (!batches_.empty() && batches_.front().toVersion <= durableVersion_) {
     Batch& b = batches_.front();
-    if (!b.sent) send(b);
+    send(b);  // unless it went at its flush
     // A recorder gets each command after the delta that carries it.
     while (!pending_.empty() && pending_.front().version <= b.toVersion) {
       notifyRecorders(pending_.front());
@@ -569,7 +569,6 @@ void DocumentHost::send(Batch& b) {
       if (auto who = weak.lock()) who->send({frame->second, b.deltas[key]});
     }
   }
-  b.sent = true;
   b.frames.clear();  // the batch stays only to order the recorders' commands
   b.deltas.clear();
 }

@@ -86,7 +86,6 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   };
   struct Batch {  // one flush: the delta of every view up to `toVersion`
     uint64_t toVersion;
-    bool sent = false;
     std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
     std::map<std::string, std::shared_ptr<const std::string>> frames;
   };
@@ -107,6 +106,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   // Acks every durable edit, then sends every durable batch's deltas not
   // sent yet and, after them, their commands to the recorders.
   void release();
+  // Sends the batch's frames to the subscribers whose snapshot does not hold
+  // them, then drops them: sending again is a no-op.
   void send(Batch& batch);
   // Sends a durable command to the recorders (from release(), after its delta).
   void notifyRecorders(const Pending& p);

@@ -10,13 +10,10 @@
 #include <random>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
-#include "core/io/tag_file.h"
 #include "core/render/dynamic_refinement.h"
 #include "core/render/surface_distance.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/tessellation.h"
-#include "core/util/file_io.h"
 #include "support/procedural_meshes.h"
 #include "support/test_meshes.h"
 
@@ -72,13 +69,8 @@ TEST(EdgeSplit, DecisionAndPointsAreTheSameFromEitherEndAndSide) {
 }
 
 Document cubeDocument() {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  EXPECT_TRUE(mesh.isOk());
-  auto text = readFile(testing::sourceTestDataPath("cube.tags"));
-  EXPECT_TRUE(text.isOk());
-  auto tags = parseTags(*text, "cube.tags");
-  EXPECT_TRUE(tags.isOk());
-  EXPECT_TRUE(applyTags(*tags, "cube.tags", *mesh).isOk());
+  auto mesh = testing::creasedCube();
+  EXPECT_TRUE(mesh.isOk()) << mesh.status().message();
   auto doc = Document::create(*mesh, {.maxLevel = 5});
   EXPECT_TRUE(doc.isOk()) << doc.status().message();
   return std::move(*doc);

@@ -12,8 +12,6 @@
 #include <set>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
-#include "core/io/tag_file.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/region_lattice.h"
@@ -146,9 +144,8 @@ void firstIcosahedronRegion(const LodProfile& profile, IcosahedronRegion& out) {
 // icosahedron at a profile deeper than five levels, whose regions lie at
 // level 1) round-trips its ids through lattice points, in fewer bytes.
 TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
-  auto cube = importMesh(testing::sourceTestDataPath("cube.obj"));
-  ASSERT_TRUE(cube.isOk());
-  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *cube).isOk());
+  auto cube = testing::creasedCube();
+  ASSERT_TRUE(cube.isOk()) << cube.status().message();
   auto cubeDoc = Document::create(*cube, {.maxLevel = 5});
   ASSERT_TRUE(cubeDoc.isOk());
   for (int i = 0; i < 6; ++i) {

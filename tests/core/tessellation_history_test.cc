@@ -13,7 +13,6 @@
 #include "core/document/document.h"
 #include "core/document/document_file.h"
 #include "core/io/mesh_import.h"
-#include "core/io/tag_file.h"
 #include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
 #include "support/region_checks.h"
@@ -154,9 +153,8 @@ void expectHistoryIndependent(Expected<Document> created, const std::string& nam
 }
 
 TEST(TessellationHistory, TheCreasedCubeShowsTheSameRegionsWhateverTheHistory) {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  ASSERT_TRUE(mesh.isOk());
-  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *mesh).isOk());
+  auto mesh = testing::creasedCube();
+  ASSERT_TRUE(mesh.isOk()) << mesh.status().message();
   for (uint32_t seed : {1u, 2u, 3u}) {
     expectHistoryIndependent(Document::create(*mesh, {.maxLevel = 5}), "cube seed " + std::to_string(seed), seed);
     if (HasFatalFailure()) return;
@@ -187,6 +185,30 @@ TEST(TessellationHistory, ASmoothClosedMeshShowsTheSameRegionsWhateverTheHistory
 namespace tessera {
 namespace {
 
+// One move as the durability test's editors make it: a cube control vertex
+// of level 0, 1 or 2 moved by up to 0.01 per axis.
+struct CubeMove {
+  VertexId vertex;
+  Vec3 displacement;
+};
+CubeMove randomCubeMove(std::mt19937& rng) {
+  const int level = static_cast<int>(rng() % 3);
+  const VertexId v(level, rng() % (level == 0 ? 8 : level == 1 ? 26 : 98));
+  const Vec3 d(((rng() % 21) - 10.0) * 1e-3, ((rng() % 21) - 10.0) * 1e-3, ((rng() % 21) - 10.0) * 1e-3);
+  return {v, d};
+}
+
+// Recovery as the server does it: the snapshot, then the journal after it
+// (the edits of `current` past the snapshot's last).
+Expected<Document> recover(const std::string& snapshot, const Document& current) {
+  TESSERA_ASSIGN_OR_RETURN(Document back, deserializeDocument(snapshot, "snapshot"));
+  const uint64_t last = back.edits().back().id.value;
+  for (const Edit& edit : current.edits()) {
+    if (edit.id.value > last) TESSERA_RETURN_IF_ERROR(back.replay(edit));
+  }
+  return back;
+}
+
 // What the durability test checks after a kill -9: a document edited by
 // hundreds of moves (a replica, edited incrementally), the same document
 // read from a snapshot taken halfway plus the journal after it (a server's
@@ -201,19 +223,12 @@ TEST(TessellationHistory, ManyMovesMatchASnapshotPlusJournalRecovery) {
   std::string snapshot;
   constexpr int kMoves = 600;
   for (int i = 0; i < kMoves; ++i) {
-    const int level = static_cast<int>(local() % 3);
-    const VertexId v(level, local() % (level == 0 ? 8 : level == 1 ? 26 : 98));
-    const Vec3 d(((local() % 21) - 10.0) * 1e-3, ((local() % 21) - 10.0) * 1e-3, ((local() % 21) - 10.0) * 1e-3);
-    ASSERT_TRUE(replica->moveBy(std::span(&v, 1), d).isOk());
+    const CubeMove m = randomCubeMove(local);
+    ASSERT_TRUE(replica->moveBy(std::span(&m.vertex, 1), m.displacement).isOk());
     if (i == kMoves / 2) snapshot = serializeDocument(*replica);
   }
-  auto recovered = deserializeDocument(snapshot, "snapshot");
-  ASSERT_TRUE(recovered.isOk());
-  for (const Edit& edit : replica->edits()) {
-    if (edit.id.value > recovered->edits().back().id.value) {
-      ASSERT_TRUE(recovered->replay(edit).isOk());
-    }
-  }
+  auto recovered = recover(snapshot, *replica);
+  ASSERT_TRUE(recovered.isOk()) << recovered.status().message();
   auto whole = deserializeDocument(serializeDocument(*replica), "whole");
   ASSERT_TRUE(whole.isOk());
   auto a = Tessellation::build(*replica, profile);
@@ -238,28 +253,21 @@ TEST(TessellationHistory, MovesResolveToTheSameOffsetsAfterAReload) {
   std::string snapshot;
   std::optional<Tessellation> view;
   for (int i = 0; i < 600; ++i) {
-    const int level = static_cast<int>(local() % 3);
-    const VertexId v(level, local() % (level == 0 ? 8 : level == 1 ? 26 : 98));
-    const Vec3 d(((local() % 21) - 10.0) * 1e-3, ((local() % 21) - 10.0) * 1e-3, ((local() % 21) - 10.0) * 1e-3);
-    ASSERT_TRUE(replica->moveBy(std::span(&v, 1), d).isOk());
-    ASSERT_TRUE(reloaded->moveBy(std::span(&v, 1), d).isOk());
+    const CubeMove m = randomCubeMove(local);
+    ASSERT_TRUE(replica->moveBy(std::span(&m.vertex, 1), m.displacement).isOk());
+    ASSERT_TRUE(reloaded->moveBy(std::span(&m.vertex, 1), m.displacement).isOk());
     const auto& a = std::get<MoveEdit>(replica->edits().back().change).offsets[0].localOffset;
     const auto& b = std::get<MoveEdit>(reloaded->edits().back().change).offsets[0].localOffset;
     ASSERT_TRUE(a[0] == b[0] && a[1] == b[1] && a[2] == b[2])
-        << "move " << i << " of " << v.toString() << ": " << a[0] - b[0] << " " << a[1] - b[1] << " " << a[2] - b[2];
+        << "move " << i << " of " << m.vertex.toString() << ": " << a[0] - b[0] << " " << a[1] - b[1] << " "
+        << a[2] - b[2];
     if (view) {
       ASSERT_TRUE(view->update(*reloaded).isOk());
     }
     if (i % 7 == 6) snapshot = serializeDocument(*reloaded);
     if (i % 29 == 28) {
-      // Recovery as the server does it: the newest snapshot, then the journal.
-      auto back = deserializeDocument(snapshot, "snapshot");
-      ASSERT_TRUE(back.isOk());
-      for (const Edit& edit : reloaded->edits()) {
-        if (edit.id.value > back->edits().back().id.value) {
-          ASSERT_TRUE(back->replay(edit).isOk());
-        }
-      }
+      auto back = recover(snapshot, *reloaded);
+      ASSERT_TRUE(back.isOk()) << back.status().message();
       *reloaded = std::move(*back);
       // A subscriber's tessellation grows the hierarchy and follows the edits.
       auto built = Tessellation::build(*reloaded, {.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15});

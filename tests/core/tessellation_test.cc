@@ -13,8 +13,6 @@
 
 #include "core/document/document.h"
 #include "core/document/document_evaluator.h"
-#include "core/io/mesh_import.h"
-#include "core/io/tag_file.h"
 #include "core/loop/limit.h"
 #include "core/render/surface_distance.h"
 #include "core/tessellation/tessellation.h"
@@ -321,9 +319,8 @@ TEST(Tessellation, RegionChangesAfterSeveralEditsEqualAFullDiff) { expectChanges
 // creases and corners, 1..6 at a time; every update's regions equal a
 // fresh build's.
 TEST(Tessellation, TheCreasedCubeUnderMixedEditsMatchesAFreshBuild) {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  ASSERT_TRUE(mesh.isOk());
-  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *mesh).isOk());
+  auto mesh = testing::creasedCube();
+  ASSERT_TRUE(mesh.isOk()) << mesh.status().message();
   auto doc = Document::create(*mesh, {.maxLevel = 5});
   ASSERT_TRUE(doc.isOk());
   const LodProfile profile{.baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10};
@@ -531,9 +528,8 @@ void expectManifoldCopies(const Tessellation& t, const std::string& where) {
 // triangle must still use the copy of the sector it lies in (the CLI's
 // adaptive export once was non-manifold there).
 TEST(Tessellation, CreaseCopiesFormOneFanPerSideAtADecayedCorner) {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  ASSERT_TRUE(mesh.isOk());
-  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *mesh).isOk());
+  auto mesh = testing::creasedCube();
+  ASSERT_TRUE(mesh.isOk()) << mesh.status().message();
   auto doc = Document::create(*mesh, {.maxLevel = 6});
   ASSERT_TRUE(doc.isOk());
   const VertexId v(4, 3);
@@ -547,9 +543,8 @@ TEST(Tessellation, CreaseCopiesFormOneFanPerSideAtADecayedCorner) {
 // The same over random edits (moves and creases) of the creased cube and a
 // tagged torus, fresh and updated edit by edit.
 TEST(Tessellation, CreaseCopiesFormOneFanPerSideAfterRandomEdits) {
-  auto cube = importMesh(testing::sourceTestDataPath("cube.obj"));
-  ASSERT_TRUE(cube.isOk());
-  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *cube).isOk());
+  auto cube = testing::creasedCube();
+  ASSERT_TRUE(cube.isOk()) << cube.status().message();
   const TestMesh torus = testing::withRandomTags(testing::torus(8, 6), 0.15, 0.05, 3);
   const std::vector<LodProfile> profiles = {
       {.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 20},

@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
+
 namespace tessera::testing {
 
 std::string cgalMeshPath(const std::string& name) {
@@ -18,6 +21,12 @@ std::string makeTempDir(const std::string& prefix) {
   std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
   if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
   return pattern;
+}
+
+Expected<BaseMesh> creasedCube() {
+  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, importMesh(sourceTestDataPath("cube.obj")));
+  TESSERA_RETURN_IF_ERROR(applyTagFile(sourceTestDataPath("cube.tags"), mesh));
+  return mesh;
 }
 
 }  // namespace tessera::testing

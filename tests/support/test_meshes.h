@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/mesh/base_mesh.h"
+#include "core/util/status.h"
 
 namespace tessera::testing {
 
@@ -13,5 +14,7 @@ std::string cgalMeshPath(const std::string& name);
 std::string sourceTestDataPath(const std::string& relative);
 // A fresh temporary directory for one test.
 std::string makeTempDir(const std::string& prefix);
+// tests/data/cube.obj with the creases and corners of cube.tags.
+Expected<BaseMesh> creasedCube();
 
 }  // namespace tessera::testing

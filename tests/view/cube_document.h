@@ -6,6 +6,7 @@
 #include <string>
 
 #include "client/lib/session.h"
+#include "client/view/view_options.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
@@ -23,6 +24,19 @@ inline Expected<uint64_t> createCube(const ServerProcess& server, bool tags, int
   if (!created.isOk()) return created.status();
   if (!created->has_ack()) return internalError("creating the cube: " + created->DebugString());
   return created->ack().document_id();
+}
+
+// A viewer connection's options for `document` on `server`, with the admin
+// token and the LOD profile baseLevel..maxLevel.
+inline view::ViewOptions viewOptionsFor(const ServerProcess& server, uint64_t document, uint32_t baseLevel,
+                                        uint32_t maxLevel) {
+  view::ViewOptions options;
+  options.port = server.port();
+  options.token = server.adminToken();
+  options.document = document;
+  options.baseLevel = baseLevel;
+  options.maxLevel = maxLevel;
+  return options;
 }
 
 }  // namespace tessera::testing

@@ -4,11 +4,8 @@
 // selections.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <functional>
 #include <limits>
 #include <optional>
-#include <thread>
 
 #include "client/view/connection.h"
 #include "core/document/document.h"
@@ -20,19 +17,13 @@
 #include "protocol/wire_ids.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
+#include "view/wait_for.h"
 
 namespace tessera::view {
 namespace {
 
-// Polls `done` for up to 30 s.
-bool waitFor(const std::function<bool()>& done) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return done();
-}
+using testing::viewOptionsFor;
+using testing::waitFor;
 
 // The positions of every published region, in region order.
 std::vector<double> positions(const RegionMap& regions) {
@@ -50,13 +41,8 @@ TEST(ViewConnection, FollowsItsOwnEditsThroughUndoAndRedoAndShowsSelections) {
   ASSERT_TRUE(created.isOk()) << created.status().message();
   const uint64_t doc = *created;
 
-  ViewOptions options;
-  options.port = server->port();
-  options.token = server->adminToken();
+  ViewOptions options = viewOptionsFor(*server, doc, 2, 3);
   options.name = "viewer-under-test";
-  options.document = doc;
-  options.baseLevel = 2;
-  options.maxLevel = 3;
   auto connection = Connection::open(options);
   ASSERT_TRUE(connection.isOk()) << connection.status().message();
   Connection& c = **connection;
@@ -132,11 +118,7 @@ TEST(ViewConnection, ReconnectsAndResubscribesAfterTheServerRestarts) {
   auto created = testing::createCube(*server, false, 4);
   ASSERT_TRUE(created.isOk()) << created.status().message();
   const uint64_t doc = *created;
-  ViewOptions options;
-  options.port = server->port();
-  options.token = server->adminToken();
-  options.document = doc;
-  options.baseLevel = options.maxLevel = 1;
+  const ViewOptions options = viewOptionsFor(*server, doc, 1, 1);
   auto connection = Connection::open(options);
   ASSERT_TRUE(connection.isOk()) << connection.status().message();
   Connection& c = **connection;
@@ -175,11 +157,7 @@ struct CubeFixture {
     auto created = testing::createCube(*server, true, 4);
     ASSERT_TRUE(created.isOk()) << created.status().message();
     doc = *created;
-    ViewOptions options;
-    options.port = server->port();
-    options.token = server->adminToken();
-    options.document = doc;
-    options.baseLevel = options.maxLevel = 2;
+    ViewOptions options = viewOptionsFor(*server, doc, 2, 2);
     options.hashSurfaces = true;
     auto opened = Connection::open(options);
     ASSERT_TRUE(opened.isOk()) << opened.status().message();

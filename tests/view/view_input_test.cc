@@ -8,7 +8,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <functional>
 #include <thread>
 
 #include "client/view/camera.h"
@@ -19,21 +18,14 @@
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
+#include "view/wait_for.h"
 #include "view/x_display.h"
 
 namespace tessera::view {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-bool waitFor(const std::function<bool()>& done, double seconds) {
-  const auto deadline = Clock::now() + std::chrono::duration<double>(seconds);
-  while (Clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return done();
-}
+using ::tessera::testing::viewOptionsFor;
+using ::tessera::testing::waitFor;
 
 // Runs xdotool on `display` (bounded by timeout(1)); returns its output.
 std::string xdotool(const std::string& binary, const std::string& display, const std::string& args) {
@@ -63,13 +55,8 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   // The observer sees what the viewer will see first, and frames it the same
   // way (OrbitCamera::frame on the regions' bounds, as view_main does).
   constexpr int kWidth = 800, kHeight = 600, kLevel = 1;
-  ViewOptions options;
-  options.port = server->port();
-  options.token = server->adminToken();
+  ViewOptions options = viewOptionsFor(*server, doc, 2, 2);
   options.name = "observer";
-  options.document = doc;
-  options.baseLevel = 2;
-  options.maxLevel = 2;
   options.hashSurfaces = true;
   auto observer = Connection::open(options);
   ASSERT_TRUE(observer.isOk()) << observer.status().message();

@@ -185,8 +185,10 @@ TEST(TessellationHistory, ASmoothClosedMeshShowsTheSameRegionsWhateverTheHistory
 namespace tessera {
 namespace {
 
-// One move as the durability test's editors make it: a cube control vertex
-// of level 0, 1 or 2 moved by up to 0.01 per axis.
+// One random move: a cube control vertex of level 0, 1 or 2 moved by up to
+// 0.01 per axis. (The durability test's editors mean to send these, but
+// compute the offset in unsigned arithmetic, so that a negative component
+// becomes about 1.8e16 and the server refuses the move.)
 struct CubeMove {
   VertexId vertex;
   Vec3 displacement;

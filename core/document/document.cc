@@ -1,7 +1,6 @@
 #include "core/document/document.h"
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -172,13 +171,16 @@ void Document::append(Edit edit) {
   cache_.reset();
   lastUpdate_ = sparse_->update(edits_.back(), edits_);
   lastUpdate_.grownFromLevel = std::exchange(pendingGrowth_, -1);
-  if (!pendingLimits_.empty()) {
-    std::vector<VertexId>& limits = lastUpdate_.limits;
-    limits.insert(limits.end(), pendingLimits_.begin(), pendingLimits_.end());
-    std::sort(limits.begin(), limits.end());
-    limits.erase(std::unique(limits.begin(), limits.end()), limits.end());
-    pendingLimits_.clear();
-  }
+  addChangedLimits(pendingLimits_);
+  pendingLimits_.clear();
+}
+
+void Document::addChangedLimits(std::span<const VertexId> limits) {
+  if (limits.empty()) return;
+  std::vector<VertexId>& all = lastUpdate_.limits;
+  all.insert(all.end(), limits.begin(), limits.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
 }
 
 // The hierarchy grows first, so that the moved vertices have their rings.
@@ -263,12 +265,7 @@ Status Document::retractLast() {
 // The removed edit's edit nodes go with it (sparse_evaluator.h): what the
 // document shows is what a document created without it shows.
 void Document::forgetRemovedEditNodes() {
-  const DirtySet forgotten = sparse_->forgetEditNodes(edits_);
-  if (forgotten.limits.empty()) return;
-  std::vector<VertexId> merged;
-  std::set_union(lastUpdate_.limits.begin(), lastUpdate_.limits.end(), forgotten.limits.begin(),
-                 forgotten.limits.end(), std::back_inserter(merged));
-  lastUpdate_.limits = std::move(merged);
+  addChangedLimits(sparse_->forgetEditNodes(edits_).limits);
 }
 
 Status Document::undo(EditId id) { return setActive(id, false); }

@@ -117,6 +117,8 @@ class Document {
   void reserve(const Edit& edit);
   // After a removal or retraction: drops the gone edit's edit nodes.
   void forgetRemovedEditNodes();
+  // Adds `limits` to lastUpdate()'s, which stay sorted and unique.
+  void addChangedLimits(std::span<const VertexId> limits);
 
   BaseTopology base_;
   std::vector<Vec3> basePoints_;

@@ -18,6 +18,8 @@ packages=(
   # test data and tools: real meshes (CGAL demo data), the Khronos glTF validator (npm),
   # an X server for the viewer and X input events for it (xdotool)
   libcgal-demo xvfb xauth xdotool
+  # coverage-guided fuzzing: libFuzzer with ASan and UBSan (tests/fuzz)
+  clang-14 libfuzzer-14-dev libclang-rt-14-dev
 )
 # The glTF validator runs on Node. A machine may already carry a newer Node with its own
 # npm (which conflicts with Debian's npm package): only ask Debian for it when absent.

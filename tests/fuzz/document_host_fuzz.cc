@@ -1,0 +1,162 @@
+// The whole command path of a server document host (server/document_host.h)
+// in-process: a sequence of client messages, decoded from the input as the
+// server decodes a connection's stream, against a creased-cube document.
+//
+// Input: byte 0 sets the run up (bit 0: the store refuses the third append,
+// so the journal-failure path runs; bit 1: --deltas-after-durable); the rest
+// is a stream of frames (protocol/framing.h), at most 24 ClientMessages.
+// Each message is routed as Connection::handle routes document commands
+// (subscribe, unsubscribe, select, export, the five edits) from one of two
+// sessions (the low bit of client_seq picks which), both joined, one as an
+// editor and one as a viewer, and the host's strand runs between messages
+// as a server's workers would (one io_context serves as both the worker
+// pool and the bulk lane, so bulk work runs in order with the rest). Asio's io_context is polled, never run, so
+// timers that are not due yet (the 100 ms presence broadcast) do not make an
+// input wait; their handlers are dropped with the io_context.
+//
+// Oracles besides the sanitizers: every frame the host queues decodes as a
+// ServerMessage, and no Reject carries an internal error unless the store
+// was told to fail.
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/post.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fuzz_support.h"
+#include "protocol/framing.h"
+#include "protocol/tessera.pb.h"
+#include "server/document_host.h"
+
+namespace tessera::fuzz {
+namespace {
+
+using server::Outgoing;
+
+// A store for one document host: appends complete on the io_context, as a
+// real store's callbacks arrive from its writer thread; the rest is unused.
+class PostingStore final : public Store {
+ public:
+  explicit PostingStore(int failAppend) : failAppend_(failAppend) {}
+  void attach(boost::asio::io_context& io) { io_ = &io; }
+  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
+  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
+  Status deleteDocument(DocumentId) override { return unused(); }
+  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
+  void append(DocumentId, uint64_t, std::string, std::string bytes, AppendCallback done) override {
+    require(!bytes.empty(), "the host journaled an empty entry");
+    const bool refuse = ++appends_ == failAppend_;
+    boost::asio::post(*io_, [done = std::move(done), refuse] {
+      done(refuse ? ioError("fuzz store: append refused") : Status::ok());
+    });
+  }
+  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
+  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
+  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
+  Status revokeToken(std::string_view) override { return unused(); }
+  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
+  Expected<bool> knowsToken(std::string_view) override { return unused(); }
+  StoreStats stats() const override { return {}; }
+  void close() override {}
+
+ private:
+  static Status unused() { return internalError("not used by a document host"); }
+  boost::asio::io_context* io_ = nullptr;
+  const int failAppend_;
+  int appends_ = 0;
+};
+
+// Checks every frame the host queues for a session.
+class Inbox final : public server::Subscriber {
+ public:
+  Inbox(uint64_t session, bool internalAllowed) : session_(session), internalAllowed_(internalAllowed) {}
+  uint64_t sessionId() const override { return session_; }
+  void send(Outgoing message) override {
+    require(message.frame != nullptr, "the host queued a null frame");
+    FrameDecoder decoder({.maxFrameBytes = 1u << 30});
+    wire::ServerMessage m;
+    checkError(decoder.feed(*message.frame), "a frame the host queued");
+    auto got = decoder.next(m);
+    require(got.isOk() && *got, "a frame the host queued does not decode");
+    require(!decoder.next(m).isOk() || decoder.bufferedBytes() == 0, "a queued frame holds more than one message");
+    if (m.has_reject() && !internalAllowed_) {
+      require(m.reject().reason() != wire::REJECT_REASON_INTERNAL, "an internal error: " + m.reject().message());
+    }
+  }
+
+ private:
+  const uint64_t session_;
+  const bool internalAllowed_;
+};
+
+server::ServerConfig makeConfig(bool deltasAfterDurable) {
+  server::ServerConfig config;
+  config.deltaFramesPerSecond = 0;  // no pacing: a flush follows each edit, so no timer holds it
+  config.deltaIntervalMs = 0;
+  config.deltasAfterDurable = deltasAfterDurable;
+  config.limits.maxTrianglesPerSubscriber = 20000;  // a level-3 cube has 768 triangles
+  config.limits.maxFrameBytes = 1u << 20;
+  return config;
+}
+
+void route(server::DocumentHost& host, const std::shared_ptr<Inbox>& who, wire::ClientMessage message) {
+  using C = wire::ClientMessage;
+  const uint64_t seq = message.client_seq();
+  switch (message.command_case()) {
+    case C::kSubscribe:
+      return host.subscribe(who, message.subscribe().profile(), seq, false, message.subscribe().with_commands());
+    case C::kUnsubscribe: return host.unsubscribe(who->sessionId());
+    case C::kSelect: return host.select(who, seq, message.select().selection());
+    case C::kExportDocument: return host.exportGlb(who, seq, message.export_document());
+    case C::kMoveVertex:
+    case C::kSetEdgeSharpness:
+    case C::kSetVertexType:
+    case C::kUndo:
+    case C::kRedo: return host.command(who, "session " + std::to_string(who->sessionId()), std::move(message));
+    default: return;  // the connection answers these itself
+  }
+}
+
+void pollAll(boost::asio::io_context& io) {
+  io.restart();
+  while (io.poll() > 0) io.restart();
+}
+
+}  // namespace
+}  // namespace tessera::fuzz
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  using namespace tessera;
+  using namespace tessera::fuzz;
+  if (size < 1) return 0;
+  const bool failStore = (data[0] & 1) != 0;
+  static const server::ServerConfig configs[2] = {makeConfig(false), makeConfig(true)};
+  const server::ServerConfig& config = configs[(data[0] >> 1) & 1];
+  server::ServerStats stats;
+  PostingStore store(failStore ? 3 : 0);
+  // Destroyed before the store and the stats: it destroys the handlers
+  // still waiting (timers), and with them the host, which refers to both.
+  boost::asio::io_context io;
+  store.attach(io);
+  {
+    auto host = std::make_shared<server::DocumentHost>(DocumentId{1}, "cube", cubeDocument(3), 1, io.get_executor(),
+                                                       io.get_executor(), store, config, stats);
+    std::shared_ptr<Inbox> sessions[2] = {std::make_shared<Inbox>(1, failStore), std::make_shared<Inbox>(2, failStore)};
+    host->join(sessions[0], "editor", wire::ROLE_EDITOR);
+    host->join(sessions[1], "viewer", wire::ROLE_VIEWER);
+    pollAll(io);
+
+    FrameDecoder decoder({.maxFrameBytes = 1u << 16});
+    (void)decoder.feed(std::string_view(reinterpret_cast<const char*>(data + 1), size - 1));
+    wire::ClientMessage message;
+    for (int n = 0; n < 24; ++n) {
+      auto got = decoder.next(message);
+      if (!got.isOk() || !*got) break;
+      route(*host, sessions[message.client_seq() & 1], std::move(message));
+      pollAll(io);
+    }
+    for (auto& s : sessions) host->leave(s->sessionId());
+    pollAll(io);
+  }
+  return 0;
+}

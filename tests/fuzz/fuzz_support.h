@@ -1,0 +1,54 @@
+// Shared by the libFuzzer targets of tests/fuzz: the oracles every target
+// applies besides the sanitizers, and the small documents they edit.
+//
+// Oracles: a target aborts (libFuzzer then saves the input) when a result
+// breaks a documented promise, e.g. an error with ErrorCode::kInternal (by
+// status.h's definition a broken invariant, a bug whatever the input) or an
+// error with an empty message (every error must name what failed).
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/document/document.h"
+#include "core/mesh/base_mesh.h"
+#include "core/util/status.h"
+
+namespace tessera::fuzz {
+
+[[noreturn]] inline void fail(const std::string& what) {
+  std::fprintf(stderr, "fuzz oracle: %s\n", what.c_str());
+  std::abort();
+}
+
+inline void require(bool condition, const std::string& what) {
+  if (!condition) fail(what);
+}
+
+// An error is fine for bad input, but it must say what failed and must not
+// be a broken invariant.
+inline void checkError(const Status& status, const char* where) {
+  if (status.isOk()) return;
+  if (status.message().empty()) fail(std::string(where) + ": an error with no message");
+  if (status.code() == ErrorCode::kInternal) fail(std::string(where) + ": internal error: " + status.message());
+}
+
+inline std::string bytesOf(const uint8_t* data, size_t size) {
+  return std::string(reinterpret_cast<const char*>(data), size);
+}
+
+// tests/data/cube.obj with cube.tags applied (two creases and a corner):
+// sharp rules and smooth rules in twelve triangles. Read once per process.
+const BaseMesh& creasedCube();
+
+// A creased-cube document with this max level, created once per process and
+// copied per input (creating one per input would dominate the run time).
+const Document& cubeDocument(int maxLevel);
+
+// A file path private to this process (libFuzzer's -fork and -jobs run
+// several), for code under test that reads files only.
+std::string scratchPath(const std::string& extension);
+
+}  // namespace tessera::fuzz

@@ -1,0 +1,234 @@
+// Writes the generated part of the seed corpora (corpus/<target>/gen_*):
+// real encodings made by the code under test from the creased cube, so the
+// fuzzer starts from valid frames, regions, documents and journals rather
+// than from bytes it would need millions of runs to discover. The mesh, tag
+// and script seeds are copies of tests/data and deploy/samples files.
+//
+//   build/fuzz/tests/fuzz/fuzz_make_corpus tests/fuzz/corpus
+//
+// The output is deterministic, so re-running it changes nothing unless an
+// encoder changed (then the corpus should follow, and be committed).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/document/document_file.h"
+#include "core/tessellation/document_grid.h"
+#include "core/tessellation/region_codec.h"
+#include "core/tessellation/tessellation.h"
+#include "fuzz_support.h"
+#include "protocol/framing.h"
+#include "protocol/tessera.pb.h"
+#include "server/journal_entry.h"
+
+namespace tessera::fuzz {
+namespace {
+
+std::filesystem::path root;
+
+void write(const std::string& target, const std::string& name, const std::string& bytes) {
+  const auto dir = root / target;
+  std::filesystem::create_directories(dir);
+  std::ofstream out(dir / ("gen_" + name), std::ios::binary | std::ios::trunc);
+  out << bytes;
+  if (!out) fail("cannot write " + (dir / name).string());
+}
+
+template <typename T>
+T value(Expected<T> e, const char* what) {
+  if (!e.isOk()) fail(std::string(what) + ": " + e.status().toString());
+  return std::move(*e);
+}
+
+void ok(const Status& s, const char* what) {
+  if (!s.isOk()) fail(std::string(what) + ": " + s.toString());
+}
+
+// The cube with one edit of each kind, the last one undone.
+Document editedCube() {
+  Document doc = cubeDocument(3);
+  const VertexId corner(1, 3), fine[] = {VertexId(2, 5), VertexId(2, 6)};
+  value(doc.moveToLimit(std::span(&corner, 1), Vec3(1.1, -0.1, -0.1)), "move");
+  value(doc.moveBy(fine, Vec3(0, 0, 0.04)), "offset");
+  value(doc.setEdgeSharpness(EdgeId(1, 4), 2.5f), "crease");
+  EditId last = value(doc.setVertexSharpness(VertexId(2, 1), 3.0f), "corner");
+  ok(doc.undo(last), "undo");
+  return doc;
+}
+
+void documents() {
+  write("document_file", "cube.tsd", serializeDocument(cubeDocument(3)));
+  write("document_file", "edited.tsd", serializeDocument(editedCube()));
+}
+
+std::string prefixed(const std::vector<std::string>& entries) {
+  std::string out;
+  for (const std::string& e : entries) {
+    if (e.size() > 255) fail("a journal entry longer than one length byte");
+    out += static_cast<char>(e.size());
+    out += e;
+  }
+  return out;
+}
+
+void journals() {
+  const Document doc = editedCube();
+  std::vector<std::string> entries;
+  for (const Edit& edit : doc.edits()) {
+    Edit made = edit;
+    made.active = true;  // journaled as made; the undo follows as its own entry
+    entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kEdit, made, {}}));
+  }
+  const EditId last = doc.edits().back().id;
+  entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kUndo, {}, last}));
+  entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kRedo, {}, last}));
+  write("journal_entry", "history", prefixed(entries));
+  for (size_t i = 0; i < 4; ++i) write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
+}
+
+void regions() {
+  Document doc = editedCube();
+  const QuantizationGrid grid = value(documentGrid(doc), "grid");
+  const LodProfile profile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15};
+  Tessellation t = value(Tessellation::build(doc, profile), "tessellation");
+  int n = 0;
+  for (const auto& [id, mesh] : t.regions()) {
+    if (n++ == 2) break;
+    RegionHeader header{id, 6, 5, profile, grid, true};
+    write("region_decoder", "ids_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+    header.frame = value(regionFrame(doc.hierarchy(), doc.counts(), FaceId::fromPacked(id)), "frame");
+    write("region_decoder", "lattice_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+    header.frame.reset();
+    header.idsInline = false;
+    write("region_decoder", "layout_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+    header.idsInline = true;
+    header.profile.vertexIds = false;
+    write("region_decoder", "noids_" + std::to_string(n), value(encodeRegion(header, mesh, 0), "encode"));
+  }
+}
+
+std::string frame(const google::protobuf::MessageLite& m) { return value(encodeFrame(m, 1u << 20), "frame"); }
+
+// Client messages for document 1, with client_seq `seq` (its low bit picks
+// the session in the document host target).
+std::vector<wire::ClientMessage> session(uint64_t seq) {
+  std::vector<wire::ClientMessage> out;
+  auto add = [&]() -> wire::ClientMessage& {
+    out.emplace_back().set_client_seq(seq);
+    seq += 2;
+    return out.back();
+  };
+  auto* sub = add().mutable_subscribe();
+  sub->set_document_id(1);
+  sub->mutable_profile()->set_base_level(1);
+  sub->mutable_profile()->set_max_level(3);
+  sub->mutable_profile()->set_angle_threshold_degrees(15);
+  sub->set_with_commands(true);
+  auto* move = add().mutable_move_vertex();
+  move->set_document_id(1);
+  move->add_vertex_ids(VertexId(1, 3).packed());
+  move->mutable_target()->set_x(1.1);
+  move->mutable_target()->set_y(-0.1);
+  move->mutable_target()->set_z(-0.1);
+  move->set_mode(wire::MOVE_MODE_DIRECT_MANIPULATION);
+  auto* offset = add().mutable_move_vertex();
+  offset->set_document_id(1);
+  offset->add_vertex_ids(VertexId(2, 5).packed());
+  offset->add_vertex_ids(VertexId(2, 6).packed());
+  offset->mutable_target()->set_z(0.04);
+  offset->set_mode(wire::MOVE_MODE_OFFSET);
+  auto* crease = add().mutable_set_edge_sharpness();
+  crease->set_document_id(1);
+  crease->set_edge_id(EdgeId(1, 4).packed());
+  crease->set_sharpness(2.5f);
+  auto* byEnds = add().mutable_set_edge_sharpness();
+  byEnds->set_document_id(1);
+  byEnds->set_edge_id(~uint64_t{0});
+  byEnds->add_end_vertex_ids(VertexId(0, 0).packed());
+  byEnds->add_end_vertex_ids(VertexId(0, 1).packed());
+  byEnds->set_sharpness(10.0f);
+  auto* corner = add().mutable_set_vertex_type();
+  corner->set_document_id(1);
+  corner->set_vertex_id(VertexId(2, 1).packed());
+  corner->set_type(wire::VERTEX_TYPE_CORNER);
+  auto* undo = add().mutable_undo();
+  undo->set_document_id(1);
+  undo->set_edit_id(2);
+  auto* redo = add().mutable_redo();
+  redo->set_document_id(1);
+  redo->set_edit_id(2);
+  auto* select = add().mutable_select();
+  select->set_document_id(1);
+  select->mutable_selection()->add_vertex_ids(VertexId(1, 3).packed());
+  select->mutable_selection()->add_edge_ids(EdgeId(1, 4).packed());
+  auto* exported = add().mutable_export_document();
+  exported->set_document_id(1);
+  exported->set_level(1);
+  exported->set_limit(true);
+  add().mutable_unsubscribe()->set_document_id(1);
+  return out;
+}
+
+void hostSessions() {
+  std::string editor(1, '\0'), both(1, '\2'), failing(1, '\1');
+  for (const auto& m : session(0)) editor += frame(m), failing += frame(m);
+  const auto a = session(0), b = session(1);
+  for (size_t i = 0; i < a.size(); ++i) both += frame(a[i]) + frame(b[i]);
+  write("document_host", "editor", editor);
+  write("document_host", "two_sessions", both);
+  write("document_host", "store_fails", failing);
+}
+
+void frames() {
+  wire::ClientMessage hello;
+  hello.set_client_seq(1);
+  hello.mutable_hello()->set_protocol_version(1);
+  hello.mutable_hello()->set_client_name("fuzz");
+  hello.mutable_hello()->set_token("0123456789abcdef");
+  std::string client = frame(hello);
+  for (const auto& m : session(2)) client += frame(m);
+  // Byte 0: chunk size and envelope type; byte 1: maxFrameBytes 16 << 12 = 64 KiB.
+  write("frame_decoder", "client_stream", std::string("\x07\x0c", 2) + client);
+  write("frame_decoder", "client_bytewise", std::string("\x00\x0c", 2) + client);
+  write("frame_decoder", "client_too_large", std::string("\x03\x01", 2) + client);
+
+  std::string server;
+  wire::ServerMessage ack;
+  ack.mutable_ack()->set_client_seq(4);
+  ack.mutable_ack()->set_document_id(1);
+  ack.mutable_ack()->set_version(2);
+  ack.mutable_ack()->set_edit_id(1);
+  server += frame(ack);
+  wire::ServerMessage reject;
+  reject.mutable_reject()->set_client_seq(5);
+  reject.mutable_reject()->set_reason(wire::REJECT_REASON_NOT_FOUND);
+  reject.mutable_reject()->set_message("vertex v9:1 does not exist");
+  server += frame(reject);
+  wire::ServerMessage snapshot;
+  snapshot.mutable_snapshot()->set_document_id(1);
+  snapshot.mutable_snapshot()->set_version(2);
+  auto* region = snapshot.mutable_snapshot()->add_regions();
+  region->set_region_id(FaceId(0, 1).packed());
+  region->set_draco("TSRG region bytes");
+  server += frame(snapshot);
+  write("frame_decoder", "server_stream", std::string("\x25\x0c", 2) + server);
+}
+
+}  // namespace
+}  // namespace tessera::fuzz
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: %s CORPUS_DIR\n", argv[0]);
+    return 2;
+  }
+  tessera::fuzz::root = argv[1];
+  tessera::fuzz::documents();
+  tessera::fuzz::journals();
+  tessera::fuzz::regions();
+  tessera::fuzz::hostSessions();
+  tessera::fuzz::frames();
+  return 0;
+}

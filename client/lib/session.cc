@@ -37,10 +37,16 @@ Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& option
   tcp::resolver resolver(s->io_);
   auto endpoints = resolver.resolve(options.host, std::to_string(options.port), ec);
   if (ec) return ioError("cannot resolve " + options.host + ": " + ec.message());
-  if (options.receiveBufferBytes > 0) {
+  if (options.receiveBufferBytes > 0 || !options.localAddress.empty()) {
     // Before connecting, so the TCP window is negotiated with it.
     s->socket_.open(endpoints.begin()->endpoint().protocol(), ec);
-    if (!ec) s->socket_.set_option(asio::socket_base::receive_buffer_size(options.receiveBufferBytes), ec);
+    if (!ec && options.receiveBufferBytes > 0) {
+      s->socket_.set_option(asio::socket_base::receive_buffer_size(options.receiveBufferBytes), ec);
+    }
+    if (!ec && !options.localAddress.empty()) {
+      const auto local = asio::ip::make_address(options.localAddress, ec);
+      if (!ec) s->socket_.bind(tcp::endpoint(local, 0), ec);
+    }
     if (!ec) s->socket_.connect(endpoints.begin()->endpoint(), ec);
   } else {
     asio::connect(s->socket_, endpoints, ec);
@@ -115,27 +121,27 @@ Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
     wire::ServerMessage message;
     TESSERA_ASSIGN_OR_RETURN(bool got, decoder_.next(message));
     if (got) return message;
-    boost::system::error_code result = asio::error::would_block;
-    size_t n = 0;
-    auto done = [&](const boost::system::error_code& ec, size_t bytes) {
-      result = ec;
-      n = bytes;
-    };
-    if (tls_) {
-      tls_->async_read_some(asio::buffer(buffer_), done);
-    } else {
-      socket_.async_read_some(asio::buffer(buffer_), done);
-    }
+    // One read stays in flight across calls: a timeout leaves it pending
+    // instead of cancelling it, because a cancelled read may already have
+    // completed with bytes, and dropping them corrupts the stream (issue 13 §1).
+    if (!read_.pending) startRead();
     io_.restart();
     io_.run_until(deadline);
-    if (result == asio::error::would_block) {
-      socket_.cancel();
-      io_.restart();
-      io_.run();  // let the cancelled read finish
-      return ioError(kReceiveTimeout + std::to_string(timeoutSeconds) + " s");
-    }
-    if (result) return ioError("connection closed: " + result.message());
-    TESSERA_RETURN_IF_ERROR(decoder_.feed(std::string_view(buffer_.data(), n)));
+    if (read_.pending) return ioError(kReceiveTimeout + std::to_string(timeoutSeconds) + " s");
+    if (read_.result) return ioError("connection closed: " + read_.result.message());
+    TESSERA_RETURN_IF_ERROR(decoder_.feed(std::string_view(buffer_.data(), read_.bytes)));
+  }
+}
+
+void Session::startRead() {
+  read_ = PendingRead{.pending = true};
+  auto done = [this](const boost::system::error_code& ec, size_t bytes) {
+    read_ = PendingRead{.pending = false, .result = ec, .bytes = bytes};
+  };
+  if (tls_) {
+    tls_->async_read_some(asio::buffer(buffer_), done);
+  } else {
+    socket_.async_read_some(asio::buffer(buffer_), done);
   }
 }
 

@@ -32,6 +32,7 @@ struct SessionOptions {
   double timeoutSeconds = 10;
   uint32_t maxFrameBytes = 64u << 20;
   int receiveBufferBytes = 0;  // SO_RCVBUF; 0 keeps the system's (tests shrink it to act slow)
+  std::string localAddress = {};  // bind to this source address first (tests: other loopback addresses)
   bool tls = false;            // TLS, verifying the server's certificate and host name
   std::string tlsCaFile = {};  // trusted certificates (PEM); empty: the system's
 };
@@ -64,6 +65,14 @@ class Session {
  private:
   Session(const SessionOptions& options);
   Expected<wire::ServerMessage> readMessage(double timeoutSeconds);
+  void startRead();
+
+  // The read in flight into buffer_, if any; it survives a receive timeout.
+  struct PendingRead {
+    bool pending = false;
+    boost::system::error_code result = {};
+    size_t bytes = 0;
+  };
 
   SessionOptions options_;
   boost::asio::io_context io_;
@@ -72,6 +81,7 @@ class Session {
   std::optional<boost::asio::ssl::stream<boost::asio::ip::tcp::socket&>> tls_;
   FrameDecoder decoder_;
   std::array<char, 64 * 1024> buffer_{};
+  PendingRead read_;
   std::deque<wire::ServerMessage> backlog_;
   uint64_t nextSeq_ = 1;
   uint64_t sessionId_ = 0;

@@ -107,10 +107,12 @@ Status FrameDecoder::headerComplete() {
                     " announces 0 bytes: an empty frame is invalid (every envelope carries a command)"));
     return status_;
   }
-  if (length > options_.maxFrameBytes) {
+  const bool first = current_.number == 1 && options_.firstFrameMaxBytes > 0;
+  const uint32_t limit = first ? std::min(options_.firstFrameMaxBytes, options_.maxFrameBytes) : options_.maxFrameBytes;
+  if (length > limit) {
     fail(FrameError::kTooLarge,
          parseError(where + " announces " + std::to_string(length) + " bytes, more than the limit of " +
-                    std::to_string(options_.maxFrameBytes) + " bytes"));
+                    std::to_string(limit) + " bytes" + (first ? " for the first frame (the Hello)" : "")));
     return status_;
   }
   payloadLength_ = length;

@@ -42,6 +42,10 @@ Expected<std::string> encodeFrame(const google::protobuf::MessageLite& message,
 
 struct FrameDecoderOptions {
   uint32_t maxFrameBytes = kDefaultMaxFrameBytes;  // payload bytes, prefix excluded
+  // A tighter limit for the stream's first frame (0: maxFrameBytes). A
+  // server's first frame is the Hello, and a peer that has not yet shown a
+  // token should not make it hold megabytes (issue 13 §3).
+  uint32_t firstFrameMaxBytes = 0;
 };
 
 // Why a decoder stopped; lets a server answer with the matching wire error code.

@@ -19,12 +19,23 @@ const char* const kServerUsage =
     "  --tls-cert PATH --tls-key PATH   serve TLS (PEM files)\n"
     "  --network-threads N        default: one per core\n"
     "  --worker-threads N         tessellation and encoding, default 1\n"
+    "  --bulk-threads N           imports, loads and large documents' heavy commands, default 1\n"
+    "  --bulk-triangles N         work estimated above N triangles is bulk, default 200000\n"
     "  --max-frame-bytes N        default 67108864\n"
     "  --max-mesh-bytes N         default 50331648\n"
     "  --max-level N              default 6\n"
     "  --max-triangles N          per subscriber, default 4000000\n"
     "  --commands-per-second X    per connection, default 200\n"
     "  --connections-per-address N  default 2000\n"
+    "  --hello-max-bytes N        the first frame (the Hello), default 16384\n"
+    "  --unauthenticated-per-address N  connections without a known token yet, default 64\n"
+    "  --unauthenticated-total N  and over all addresses, default 512\n"
+    "  --auth-failure-delay-ms X  an address's attempts after a failed token are spaced by X ms,\n"
+    "                             doubling per recent failure, default 250\n"
+    "  --auth-failure-max-delay-ms X  up to X ms, default 30000\n"
+    "  --profiles-per-document N  distinct LOD profiles held per document, default 8\n"
+    "  --subscriptions-per-session N  documents one session subscribes at once, default 16\n"
+    "  --selection-max-ids N      ids in one selection, default 1024\n"
     "  --queue-soft-bytes N --queue-hard-bytes N --queue-messages N\n"
     "  --send-buffer-bytes N      kernel send buffer per connection (0: system default)\n"
     "  --idle-timeout S --write-timeout S --handshake-timeout S\n"
@@ -87,6 +98,16 @@ Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args
       {"--tls-key", text(c.tlsPrivateKey)},
       {"--network-threads", number(c.networkThreads, 1)},
       {"--worker-threads", number(c.workerThreads, 1)},
+      {"--bulk-threads", number(c.bulkThreads, 1)},
+      {"--bulk-triangles", number(c.bulkTriangles, 0)},
+      {"--hello-max-bytes", number(c.limits.helloMaxBytes, 256)},
+      {"--unauthenticated-per-address", number(c.limits.unauthenticatedPerAddress, 1)},
+      {"--unauthenticated-total", number(c.limits.unauthenticatedTotal, 1)},
+      {"--auth-failure-delay-ms", number(c.limits.authFailureDelayMs, 0.0)},
+      {"--auth-failure-max-delay-ms", number(c.limits.authFailureMaxDelayMs, 0.0)},
+      {"--profiles-per-document", number(c.limits.profilesPerDocument, 1)},
+      {"--subscriptions-per-session", number(c.limits.subscriptionsPerSession, 1)},
+      {"--selection-max-ids", number(c.limits.selectionMaxIds, 0)},
       {"--max-frame-bytes", number(c.limits.maxFrameBytes, 1024)},
       {"--max-mesh-bytes", number(c.limits.maxBaseMeshBytes, 1)},
       {"--max-level", number(c.limits.maxLevel, 0)},

@@ -17,6 +17,21 @@ struct Limits {
   int64_t maxTrianglesPerSubscriber = 4'000'000;
   double commandsPerSecond = 200;             // per connection (token bucket, burst = 1 s)
   int connectionsPerAddress = 2000;
+  // Before a Hello with a known token (issue 13 §3): the Hello's frame, and
+  // the connections that have not authenticated (anonymous ones included).
+  uint32_t helloMaxBytes = 16u << 10;
+  int unauthenticatedPerAddress = 64;
+  int unauthenticatedTotal = 512;
+  // Failed authentications space an address's attempts: the delay doubles
+  // per recent failure from the first, up to the second (auth_throttle.h).
+  double authFailureDelayMs = 250;
+  double authFailureMaxDelayMs = 30'000;
+  // After authentication: distinct LOD profiles a document keeps at once
+  // (each is a tessellation updated on every edit), documents a session
+  // subscribes at once, ids in one selection.
+  int profilesPerDocument = 8;
+  int subscriptionsPerSession = 16;
+  int selectionMaxIds = 1024;
   uint64_t queueSoftBytes = 8u << 20;         // per client: coalesce queued deltas above this
   uint64_t queueHardBytes = 32u << 20;        // per client: drop them and resync with a snapshot
   uint32_t queueMaxMessages = 4096;
@@ -43,6 +58,13 @@ struct ServerConfig {
   // a thousand subscribers' writes do not hold up editors' reads and acks.
   int networkThreads = defaultNetworkThreads();
   int workerThreads = 1;
+  // Bulk work (issue 13 §2): importing and loading documents, and the
+  // commands of a document whose estimated work is above bulkTriangles
+  // (a profile's first tessellation, an export), run on these threads, at
+  // a lower CPU priority, so edits and deltas of small documents never wait
+  // behind them.
+  int bulkThreads = 1;
+  int64_t bulkTriangles = 200'000;
   uint64_t snapshotEvery = 200;      // journal entries between document snapshots
   // Deltas of one document at most every max(deltaIntervalMs, subscribers /
   // deltaFramesPerSecond): under load a delta covers the edits of the

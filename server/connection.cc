@@ -5,6 +5,7 @@
 #include <boost/asio/write.hpp>
 #include <filesystem>
 #include <fstream>
+#include <malloc.h>
 #include <unistd.h>
 
 #include "core/document/document_file.h"
@@ -80,10 +81,11 @@ Connection::Connection(asio::ip::tcp::socket socket, asio::ssl::context* tls, Se
       strand_(asio::make_strand(socket.get_executor())),
       idleTimer_(strand_),
       writeTimer_(strand_),
+      helloTimer_(strand_),
       context_(context),
       sessionId_(sessionId),
       address_(std::move(address)),
-      decoder_(FrameDecoderOptions{context.config.limits.maxFrameBytes}),
+      decoder_(FrameDecoderOptions{context.config.limits.maxFrameBytes, context.config.limits.helloMaxBytes}),
       outbox_(context.config.limits),
       bucket_(context.config.limits.commandsPerSecond),
       refilled_(std::chrono::steady_clock::now()) {
@@ -137,34 +139,36 @@ void Connection::readMore() {
           self->closeNow();
           return;
         }
-        self->armIdleTimer(self->helloDone_ ? self->context_.config.timeouts.idleSeconds
-                                            : self->context_.config.timeouts.handshakeSeconds);
-        Status fed = self->decoder_.feed(std::string_view(self->buffer_.data(), n));
-        while (!self->closing_) {
-          wire::ClientMessage message;
-          auto got = self->decoder_.next(message);
-          if (!got.isOk()) {
-            const FrameError kind = self->decoder_.error();
-            self->fatal(kind == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE : wire::ERROR_CODE_MALFORMED_FRAME,
-                        got.status().message());
-            return;
-          }
-          if (!*got) break;
-          self->handle(std::move(message));
-        }
-        if (!fed.isOk() && !self->closing_) {
-          self->fatal(self->decoder_.error() == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE
-                                                                       : wire::ERROR_CODE_MALFORMED_FRAME,
-                      fed.message());
-          return;
-        }
-        self->readMore();
+        // Bytes extend the idle deadline only after the Hello: the handshake
+        // deadline is absolute, so a peer trickling a byte at a time cannot
+        // hold an unauthenticated slot (issue 13 §3).
+        if (self->helloDone_) self->armIdleTimer(self->context_.config.timeouts.idleSeconds);
+        // A failed feed is sticky and reported by next() once the frames
+        // before it are handled.
+        (void)self->decoder_.feed(std::string_view(self->buffer_.data(), n));
+        self->drainFrames();
       });
   if (tls_) {
     tls_->async_read_some(asio::buffer(buffer_), std::move(onRead));
   } else {
     socket_.async_read_some(asio::buffer(buffer_), std::move(onRead));
   }
+}
+
+void Connection::drainFrames() {
+  while (!closing_ && !helloHeld_) {
+    wire::ClientMessage message;
+    auto got = decoder_.next(message);
+    if (!got.isOk()) {
+      const FrameError kind = decoder_.error();
+      fatal(kind == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE : wire::ERROR_CODE_MALFORMED_FRAME,
+            got.status().message());
+      return;
+    }
+    if (!*got) break;
+    handle(std::move(message));
+  }
+  if (!helloHeld_) readMore();
 }
 
 void Connection::send(Outgoing message) {
@@ -237,6 +241,9 @@ void Connection::writeNext() {
         host->second->subscribe(shared_from_this(), profile->second, 0, true);
       }
     }
+    for (uint64_t doc : outbox_.takePresenceResyncs()) {
+      if (auto host = open_.find(doc); host != open_.end()) host->second->resendPresence(sessionId_);
+    }
     return;
   }
   // The frames stay alive in `frames` (shared) until the write completes.
@@ -289,6 +296,7 @@ void Connection::closeNow() {
   boost::system::error_code ignored;
   idleTimer_.cancel();
   writeTimer_.cancel();
+  helloTimer_.cancel();
   socket().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
   socket().close(ignored);
   for (auto& [id, host] : open_) host->leave(sessionId_);
@@ -354,6 +362,11 @@ void Connection::handle(wire::ClientMessage message) {
   if (!host) return;
   switch (message.command_case()) {
     case C::kSubscribe:
+      if (!subscriptions_.count(doc) && subscriptions_.size() >= static_cast<size_t>(context_.config.limits.subscriptionsPerSession)) {
+        return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
+                      "this session already subscribes " + std::to_string(subscriptions_.size()) +
+                          " documents, the limit (--subscriptions-per-session)");
+      }
       subscriptions_[doc] = message.subscribe().profile();
       return host->subscribe(shared_from_this(), message.subscribe().profile(), seq, false,
                              message.subscribe().with_commands());
@@ -365,7 +378,7 @@ void Connection::handle(wire::ClientMessage message) {
       ack.mutable_ack()->set_document_id(doc);
       return reply(ack);
     }
-    case C::kSelect: return host->select(sessionId_, message.select().selection());
+    case C::kSelect: return host->select(shared_from_this(), seq, message.select().selection());
     case C::kExportDocument: return host->exportGlb(shared_from_this(), seq, message.export_document());
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
@@ -389,13 +402,44 @@ void Connection::handleHello(const wire::ClientMessage& message) {
     closing_ = true;
     return;
   }
-  helloDone_ = true;
+  if (message.hello().token().empty()) return authenticate(message);  // anonymous: nothing to guess
+  // A token is judged in its address's turn: after failures from that
+  // address, its attempts are spaced (auth_throttle.h). The wait is the
+  // server's, so the handshake deadline stops; reading stops too, so
+  // nothing after the Hello is handled before it.
+  const auto now = std::chrono::steady_clock::now();
+  const auto turn = context_.authThrottle.admit(address_, now);
+  if (turn <= now) return authenticate(message);
+  helloHeld_ = true;
+  idleTimer_.cancel();
+  helloTimer_.expires_at(turn);
+  helloTimer_.async_wait(boost::asio::bind_executor(strand_, [self = shared_from_this(), message](const boost::system::error_code& ec) {
+    if (ec || self->closed_) return;
+    self->helloHeld_ = false;
+    self->authenticate(message);
+    self->drainFrames();
+  }));
+}
+
+void Connection::authenticate(const wire::ClientMessage& message) {
   token_ = message.hello().token();
   name_ = message.hello().client_name().empty() ? "session " + std::to_string(sessionId_) : message.hello().client_name();
   if (!token_.empty()) {
+    auto known = context_.store.knowsToken(token_);
+    if (!known.isOk() || !*known) {
+      // Never the token itself in a log.
+      const int failures = context_.authThrottle.failed(address_, std::chrono::steady_clock::now());
+      logEvent(LogLevel::kWarn, "auth_failed",
+               {{"session", sessionId_}, {"address", address_}, {"name", name_}, {"recent_failures", static_cast<int64_t>(failures)},
+                {"error", known.isOk() ? std::string("unknown token") : known.status().message()}});
+      token_.clear();
+      return fatal(wire::ERROR_CODE_AUTH_FAILED, "the access token is not known to this server");
+    }
+    authenticated_ = true;
     auto role = context_.store.roleFor(token_, TokenScope::allDocuments());
     if (role.isOk()) globalRole_ = *role;
   }
+  helloDone_ = true;
   armIdleTimer(context_.config.timeouts.idleSeconds);
   logEvent(LogLevel::kInfo, "hello", {{"session", sessionId_}, {"name", name_}, {"token", !token_.empty()},
                                       {"role", globalRole_ ? roleName(*globalRole_) : "per-document"}});
@@ -457,11 +501,14 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
                   "create: the mesh has " + std::to_string(request.mesh().size()) + " bytes, above the limit of " +
                       std::to_string(context_.config.limits.maxBaseMeshBytes));
   }
-  // Importing is CPU work: off the network threads.
-  asio::post(context_.workers, [self = shared_from_this(), seq, request] {
+  // Importing is bulk work: off the network threads and off the workers
+  // that run documents' edits (issue 13 §2).
+  asio::post(context_.bulk, [self = shared_from_this(), seq, request] {
     auto doc = importDocument(request, self->context_.config.limits.maxLevel, self->sessionId_);
     Expected<DocumentId> id = doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
                                          : Expected<DocumentId>(doc.status());
+    doc = invalidArgument("released");
+    ::malloc_trim(0);  // an import of millions of triangles leaves its memory in the heap otherwise
     asio::post(self->strand_, [self, seq, id] {
       if (!id.isOk()) {
         const bool mesh = id.status().code() == ErrorCode::kInvalidMesh || id.status().code() == ErrorCode::kParseError;
@@ -483,7 +530,8 @@ void Connection::openDocument(uint64_t seq, uint64_t documentId) {
   if (!role) {
     return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "no access to document " + std::to_string(documentId));
   }
-  asio::post(context_.workers, [self = shared_from_this(), seq, documentId, role = *role] {
+  // Loading replays a journal and may be large: bulk work.
+  asio::post(context_.bulk, [self = shared_from_this(), seq, documentId, role = *role] {
     auto host = self->context_.documents.open(DocumentId{documentId});
     asio::post(self->strand_, [self, seq, documentId, role, host] {
       if (!host.isOk()) {

@@ -39,6 +39,9 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   // Refuses the connection (per-address limit) with a fatal Error.
   void refuse(wire::ErrorCode code, const std::string& message);
   const std::string& address() const { return address_; }
+  // Whether the Hello carried a token some grant names; until then the
+  // connection counts against the unauthenticated limits.
+  bool authenticated() const { return authenticated_.load(); }
   // Snapshot of the queue for stats: bytes, messages.
   std::pair<uint64_t, size_t> queueDepth() const { return {queueBytes_.load(), queueMessages_.load()}; }
 
@@ -47,6 +50,11 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   boost::asio::ip::tcp::socket& socket() { return tls_ ? tls_->next_layer() : socket_; }
   void handle(wire::ClientMessage message);
   void handleHello(const wire::ClientMessage& message);
+  // Answers a Hello whose turn has come (auth_throttle.h).
+  void authenticate(const wire::ClientMessage& hello);
+  // Handles the complete frames the decoder holds, then reads on, unless a
+  // held Hello or the closing stops it.
+  void drainFrames();
   void queue(Outgoing message);
   void reply(const wire::ServerMessage& message);
   void reject(uint64_t clientSeq, wire::RejectReason reason, const std::string& text);
@@ -72,7 +80,9 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   boost::asio::ip::tcp::socket socket_;  // plain connections
   std::optional<boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> tls_;
   boost::asio::strand<boost::asio::any_io_executor> strand_;
-  boost::asio::steady_timer idleTimer_, writeTimer_;
+  boost::asio::steady_timer idleTimer_, writeTimer_, helloTimer_;
+  bool helloHeld_ = false;  // a Hello waiting for its address's turn
+  std::atomic<bool> authenticated_{false};
   std::chrono::steady_clock::time_point writeStarted_;  // of the write in flight
   bool watchdogArmed_ = false;
   ServerContext& context_;

@@ -4,6 +4,7 @@
 #include <boost/asio/post.hpp>
 #include <cmath>
 #include <filesystem>
+#include <malloc.h>
 #include <unistd.h>
 
 #include "core/document/document_file.h"
@@ -61,8 +62,8 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
 }
 
 DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
-                           boost::asio::any_io_executor workers, Store& store, const ServerConfig& config,
-                           ServerStats& stats)
+                           boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
+                           const ServerConfig& config, ServerStats& stats)
     : id_(id),
       name_(std::move(name)),
       doc_(std::move(doc)),
@@ -70,75 +71,197 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       durableVersion_(version),
       lastSnapshot_(version),
       flushedVersion_(version),
-      strand_(boost::asio::make_strand(workers)),
-      presenceTimer_(strand_),
+      counts_(doc_.counts()),
+      bulk_(bulk),
+      queue_(workers, bulk),
+      presenceTimer_(workers),
       store_(store),
       config_(config),
       stats_(stats),
       ackedVersion_(version),
-      flushTimer_(strand_) {
+      flushTimer_(workers) {
   auto grid = documentGrid(doc_);
   if (grid.isOk()) grid_ = *grid;
 }
 
 void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
-  boost::asio::post(strand_, [self = shared_from_this(), who, name = std::move(name), role] {
-    self->participants_[who->sessionId()] = {who, name, role, {}};
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, name = std::move(name), role] {
+    const uint64_t session = who->sessionId();
+    self->participants_[session] = {who, name, role, {}};
+    self->presence_.changed.insert(session);
+    self->presence_.left.erase(session);
+    self->presence_.needFull.insert(session);
     self->presenceChanged();
   });
 }
 
 void DocumentHost::leave(uint64_t session) {
-  boost::asio::post(strand_, [self = shared_from_this(), session] {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
     self->participants_.erase(session);
     self->recorders_.erase(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
+    self->dropUnwatchedViews();
+    self->presence_.changed.erase(session);
+    self->presence_.needFull.erase(session);
+    self->presence_.left.insert(session);
     self->presenceChanged();
   });
 }
 
-void DocumentHost::select(uint64_t session, wire::Selection selection) {
-  boost::asio::post(strand_, [self = shared_from_this(), session, selection = std::move(selection)] {
-    auto it = self->participants_.find(session);
+void DocumentHost::select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeq, selection = std::move(selection)] {
+    auto it = self->participants_.find(who->sessionId());
     if (it == self->participants_.end()) return;
+    // Every participant receives every selection: only real, bounded ones.
+    Status valid = Status::ok();
+    const int count = selection.vertex_ids_size() + selection.edge_ids_size() + selection.face_ids_size();
+    if (count > self->config_.limits.selectionMaxIds) {
+      valid = invalidArgument("select: " + std::to_string(count) + " ids, above the limit of " +
+                              std::to_string(self->config_.limits.selectionMaxIds));
+    }
+    for (uint64_t id : selection.vertex_ids()) {
+      if (valid.isOk()) valid = self->counts_.check(VertexId::fromPacked(id));
+    }
+    for (uint64_t id : selection.edge_ids()) {
+      if (valid.isOk()) valid = self->counts_.check(EdgeId::fromPacked(id));
+    }
+    for (uint64_t id : selection.face_ids()) {
+      if (valid.isOk()) valid = self->counts_.check(FaceId::fromPacked(id));
+    }
+    if (!valid.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, valid.withContext("selection of document " + std::to_string(self->id_.value))),
+                         self->config_.limits.maxFrameBytes),
+                 nullptr});
+      return;
+    }
     it->second.selection = selection;
+    self->presence_.changed.insert(who->sessionId());
     self->presenceChanged();
   });
 }
 
-// Presence is the whole participant list, so a burst of joins would send
-// n lists to n clients; changes within 100 ms share one broadcast.
+void DocumentHost::resendPresence(uint64_t session) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
+    if (!self->participants_.count(session)) return;
+    self->presence_.needFull.insert(session);
+    self->presenceChanged();
+  });
+}
+
+// Changes within 100 ms share one broadcast, and a broadcast carries only
+// what changed (who joined, left or selected), so its size follows the
+// changes, not the participants times their selections; joiners and
+// participants whose queue dropped presence get the whole list instead.
 void DocumentHost::presenceChanged() {
   if (presencePending_) return;
   presencePending_ = true;
   presenceTimer_.expires_after(std::chrono::milliseconds(100));
-  presenceTimer_.async_wait(boost::asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code&) {
-    self->presencePending_ = false;
-    self->broadcastPresence();
-  }));
+  presenceTimer_.async_wait([self = shared_from_this()](const boost::system::error_code&) {
+    self->queue_.post(Lane::kInteractive, [self] {
+      self->presencePending_ = false;
+      self->broadcastPresence();
+    });
+  });
 }
 
 void DocumentHost::broadcastPresence() {
-  wire::ServerMessage m;
-  wire::Presence* p = m.mutable_presence();
-  p->set_document_id(id_.value);
+  PresenceChanges changes = std::exchange(presence_, {});
+  auto participantMessage = [&](bool full) {
+    wire::ServerMessage m;
+    wire::Presence* p = m.mutable_presence();
+    p->set_document_id(id_.value);
+    p->set_full(full);
+    for (const auto& [session, participant] : participants_) {
+      if (!full && !changes.changed.count(session)) continue;
+      wire::Participant* out = p->add_participants();
+      out->set_session_id(session);
+      out->set_name(participant.name);
+      out->set_role(participant.role);
+      *out->mutable_selection() = participant.selection;
+    }
+    if (!full) {
+      for (uint64_t session : changes.left) p->add_left_session_ids(session);
+    }
+    return frameOf(m, config_.limits.maxFrameBytes);
+  };
+  std::shared_ptr<const std::string> changeFrame, fullFrame;
+  if (!changes.changed.empty() || !changes.left.empty()) changeFrame = participantMessage(false);
+  if (!changes.needFull.empty()) fullFrame = participantMessage(true);
   for (const auto& [session, participant] : participants_) {
-    wire::Participant* out = p->add_participants();
-    out->set_session_id(session);
-    out->set_name(participant.name);
-    out->set_role(participant.role);
-    *out->mutable_selection() = participant.selection;
+    const bool full = changes.needFull.count(session) > 0;
+    const auto& frame = full ? fullFrame : changeFrame;
+    if (!frame) continue;
+    if (auto who = participant.who.lock()) {
+      who->send({.frame = frame, .delta = nullptr, .snapshotOf = 0, .presenceOf = id_.value, .presenceFull = full});
+    }
   }
-  auto frame = frameOf(m, config_.limits.maxFrameBytes);
-  if (!frame) return;
-  for (const auto& [session, participant] : participants_) {
-    if (auto who = participant.who.lock()) who->send({frame, nullptr});
+}
+
+void DocumentHost::dropUnwatchedViews() {
+  bool dropped = false;
+  for (auto it = views_.begin(); it != views_.end();) {
+    const bool watched = std::any_of(it->second.subscribers.begin(), it->second.subscribers.end(),
+                                     [](const auto& s) { return !s.second.expired(); });
+    if (watched) {
+      ++it;
+      continue;
+    }
+    logEvent(LogLevel::kDebug, "profile_dropped", {{"doc", id_.value}, {"profile", it->first}});
+    it = views_.erase(it);
+    dropped = true;
   }
+  if (dropped) trimMemory();
+}
+
+// A dropped view or finished bulk work freed memory inside the allocator's
+// arenas; give it back to the system on a bulk thread (it walks the heap).
+void DocumentHost::trimMemory() {
+  boost::asio::post(bulk_, [] { ::malloc_trim(0); });
+}
+
+Lane DocumentHost::laneFor(int64_t triangles) const {
+  return triangles > config_.bulkTriangles ? Lane::kBulk : Lane::kInteractive;
+}
+
+int64_t DocumentHost::uniformTriangles(uint32_t level) const {
+  if (level > static_cast<uint32_t>(counts_.maxLevel())) {
+    // Beyond the counts: four times per level, saturating.
+    int64_t t = static_cast<int64_t>(counts_.faces(counts_.maxLevel()));
+    for (uint32_t l = static_cast<uint32_t>(counts_.maxLevel()); l < level && t < (INT64_MAX >> 2); ++l) t *= 4;
+    return t;
+  }
+  return static_cast<int64_t>(counts_.faces(static_cast<int>(level)));
+}
+
+int64_t DocumentHost::minimumTriangles(const wire::LodProfile& profile) const {
+  return uniformTriangles(std::min<uint32_t>(profile.base_level(), 64));
+}
+
+int64_t DocumentHost::maximumTriangles(const wire::LodProfile& profile) const {
+  const int64_t budget = profile.triangle_budget() == 0
+                             ? config_.limits.maxTrianglesPerSubscriber
+                             : static_cast<int64_t>(std::min<uint64_t>(profile.triangle_budget(),
+                                                                        static_cast<uint64_t>(config_.limits.maxTrianglesPerSubscriber)));
+  return std::min(budget, uniformTriangles(std::min<uint32_t>(profile.max_level(), 64)));
 }
 
 void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested, uint64_t clientSeq,
                              bool resync, bool withCommands) {
-  boost::asio::post(strand_, [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
+  // Refused from the estimate before any work, on the caller's thread: a
+  // profile whose base level alone is over its budget (issue 13 §2).
+  const int64_t least = minimumTriangles(requested);
+  const int64_t budget = requested.triangle_budget() == 0
+                             ? config_.limits.maxTrianglesPerSubscriber
+                             : static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX));
+  if (least > budget || least > config_.limits.maxTrianglesPerSubscriber) {
+    auto reject = rejectFor(clientSeq, invalidArgument("LOD profile: base level " + std::to_string(requested.base_level()) +
+                                                        " alone has " + std::to_string(least) + " triangles, above the budget of " +
+                                                        std::to_string(std::min(budget, config_.limits.maxTrianglesPerSubscriber))));
+    reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
+    who->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
+  queue_.post(laneFor(maximumTriangles(requested)), [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
     const Limits& limits = self->config_.limits;
@@ -166,7 +289,17 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     for (auto& [other, view] : self->views_) {
       if (other != key) view.subscribers.erase(who->sessionId()), view.knownVersion.erase(who->sessionId());
     }
+    self->dropUnwatchedViews();
     auto it = self->views_.find(key);
+    if (it == self->views_.end() && self->views_.size() >= static_cast<size_t>(limits.profilesPerDocument)) {
+      // Every view is re-tessellated on every edit: their number is capped.
+      auto reject = rejectFor(clientSeq, invalidArgument("document " + std::to_string(self->id_.value) + " already serves " +
+                                                         std::to_string(self->views_.size()) +
+                                                         " LOD profiles, the limit (--profiles-per-document); subscribe with one of them"));
+      reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
+      who->send({frameOf(reject, limits.maxFrameBytes), nullptr});
+      return;
+    }
     if (it == self->views_.end()) {
       const auto start = Clock::now();
       auto tessellation = Tessellation::build(self->doc_, profile);
@@ -203,9 +336,10 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
 }
 
 void DocumentHost::unsubscribe(uint64_t session) {
-  boost::asio::post(strand_, [self = shared_from_this(), session] {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
     self->recorders_.erase(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
+    self->dropUnwatchedViews();
   });
 }
 
@@ -267,7 +401,7 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
 }
 
 void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) {
-  boost::asio::post(strand_, [self = shared_from_this(), author, authorName = std::move(authorName),
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), author, authorName = std::move(authorName),
                               message = std::move(message)] {
     const uint64_t seq = message.client_seq();
     if (self->failed_) {
@@ -398,7 +532,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   scheduleFlush();
   store_.append(id_, version_ - 1, authorName, encodeJournalEntry(entry),
                 [self = shared_from_this(), version = version_](Status status) {
-                  boost::asio::post(self->strand_, [self, version, status] { self->committed(version, status); });
+                  self->queue_.post(Lane::kInteractive, [self, version, status] { self->committed(version, status); });
                 });
 }
 
@@ -423,13 +557,13 @@ void DocumentHost::scheduleFlush() {
   flushScheduled_ = true;
   const auto due = lastFlush_ + flushInterval();
   if (Clock::now() >= due) {
-    boost::asio::post(strand_, [self = shared_from_this()] { self->flush(); });
+    queue_.post(Lane::kInteractive, [self = shared_from_this()] { self->flush(); });
     return;
   }
   flushTimer_.expires_at(due);
-  flushTimer_.async_wait(boost::asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec) {
-    if (ec != boost::asio::error::operation_aborted) self->flush();
-  }));
+  flushTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+    if (ec != boost::asio::error::operation_aborted) self->queue_.post(Lane::kInteractive, [self] { self->flush(); });
+  });
 }
 
 void DocumentHost::flush() {
@@ -619,7 +753,18 @@ void DocumentHost::maybeSnapshot() {
 }
 
 void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) {
-  boost::asio::post(strand_, [self = shared_from_this(), who, clientSeq, request] {
+  // Refused from the exact count before any work (issue 13 §2).
+  const int64_t triangles = uniformTriangles(request.level());
+  if (triangles > config_.limits.maxTrianglesPerSubscriber) {
+    auto reject = rejectFor(clientSeq, invalidArgument("export: level " + std::to_string(request.level()) + " has " +
+                                                        std::to_string(triangles) + " triangles, above the limit of " +
+                                                        std::to_string(config_.limits.maxTrianglesPerSubscriber) +
+                                                        " (--max-triangles)"));
+    reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
+    who->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
+  queue_.post(laneFor(triangles), [self = shared_from_this(), who, clientSeq, request, triangles] {
     const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
     auto surface = self->doc_.surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
                                       request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
@@ -654,6 +799,7 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
       return;
     }
     who->send({frame, nullptr});
+    if (self->laneFor(triangles) == Lane::kBulk) self->trimMemory();
   });
 }
 

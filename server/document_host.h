@@ -31,6 +31,7 @@
 #include "protocol/tessera.pb.h"
 #include "server/config.h"
 #include "server/journal_entry.h"
+#include "server/serial_queue.h"
 #include "server/server_stats.h"
 #include "server/store/store.h"
 #include "server/subscriber.h"
@@ -39,9 +40,11 @@ namespace tessera::server {
 
 class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
  public:
+  // Commands run on `workers`; the heavy ones of a large document (a
+  // profile's first tessellation, an export) on `bulk` (serial_queue.h).
   DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
-               boost::asio::any_io_executor workers, Store& store, const ServerConfig& config,
-               ServerStats& stats);
+               boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
+               const ServerConfig& config, ServerStats& stats);
 
   DocumentId id() const { return id_; }
 
@@ -49,7 +52,12 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   // subscriber; they never block the caller.
   void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role);
   void leave(uint64_t session);
-  void select(uint64_t session, wire::Selection selection);
+  // Checked: at most --selection-max-ids ids, each existing in the
+  // document; a refused selection gets a Reject for `clientSeq`.
+  void select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection);
+  // A participant whose presence changes were dropped (its queue was full)
+  // gets the whole list again.
+  void resendPresence(uint64_t session);
   // `withCommands`: also an AppliedCommand per command after the Ack's
   // version (docs/PROTOCOL.md, AppliedCommand); a later subscribe without it stops them.
   void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
@@ -57,6 +65,14 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void unsubscribe(uint64_t session);
   void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message);
   void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request);
+
+  // Triangles a profile needs at least (its base level, held whole) and may
+  // reach (its max level); triangles of a uniform surface at `level`. From
+  // the document's level counts alone, so a request over budget is refused
+  // in microseconds, before any work (issue 13 §2).
+  int64_t minimumTriangles(const wire::LodProfile& profile) const;
+  int64_t maximumTriangles(const wire::LodProfile& profile) const;
+  int64_t uniformTriangles(uint32_t level) const;
 
   // Document version (1 at creation, +1 per journaled command).
   static uint64_t versionOf(uint64_t journalEntries) { return journalEntries + 1; }
@@ -67,6 +83,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     std::string name;
     wire::Role role;
     wire::Selection selection;
+  };
+  // Whose presence others have not heard of yet, and who needs the whole list.
+  struct PresenceChanges {
+    std::set<uint64_t> changed, left, needFull;
   };
   struct View {  // one LOD profile's tessellation and its subscribers
     std::unique_ptr<Tessellation> tessellation;
@@ -116,6 +136,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
   void presenceChanged();
   void broadcastPresence();
+  // Drops the views no subscriber watches any more (their memory with them).
+  void dropUnwatchedViews();
+  Lane laneFor(int64_t triangles) const;
+  void trimMemory();
   // A region at version_; without inline ids (a delta after a move) it
   // carries its layout's version for receivers holding the ids.
   Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view, bool idsInline);
@@ -130,9 +154,12 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   uint64_t flushedVersion_;  // the version views' encoded regions and the last delta reach
   bool flushScheduled_ = false;
   bool failed_ = false;
-  boost::asio::strand<boost::asio::any_io_executor> strand_;
+  const LevelCounts counts_;  // the document's uniform level sizes, for estimates
+  boost::asio::any_io_executor bulk_;
+  SerialQueue queue_;  // the single writer; every member below is touched only in its tasks
   boost::asio::steady_timer presenceTimer_;
   bool presencePending_ = false;
+  PresenceChanges presence_;
   Store& store_;
   const ServerConfig& config_;
   ServerStats& stats_;

@@ -24,7 +24,7 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
     entries = entry.version;
   }
   auto host = std::make_shared<DocumentHost>(id, stored.name, std::move(doc), DocumentHost::versionOf(entries), workers_,
-                                             store_, config_, stats_);
+                                             bulk_, store_, config_, stats_);
   hosts_[id.value] = host;
   logEvent(LogLevel::kInfo, "document_loaded",
            {{"doc", id.value}, {"version", DocumentHost::versionOf(entries)}, {"replayed", static_cast<uint64_t>(stored.entries.size())}});

@@ -31,9 +31,16 @@ void Outbox::push(Outgoing message, uint32_t maxFrameBytes) {
     ++drops_;  // a snapshot is coming that already holds it
     return;
   }
+  if (message.presenceOf != 0 && !message.presenceFull && presenceResyncs_.count(message.presenceOf)) {
+    ++drops_;  // the whole list is coming
+    return;
+  }
   bytes_ += message.frame->size();
   queue_.push_back(std::move(message));
-  if (bytes_ > limits_.queueSoftBytes || queue_.size() > limits_.queueMaxMessages) mergeDeltas(maxFrameBytes);
+  if (bytes_ > limits_.queueSoftBytes || queue_.size() > limits_.queueMaxMessages) {
+    dropPresence();
+    mergeDeltas(maxFrameBytes);
+  }
   if (bytes_ > limits_.queueHardBytes || queue_.size() > limits_.queueMaxMessages) dropDeltas();
 }
 
@@ -57,6 +64,26 @@ void Outbox::finishWrite() {
 }
 
 std::set<uint64_t> Outbox::takeResyncs() { return std::exchange(resyncs_, {}); }
+
+std::set<uint64_t> Outbox::takePresenceResyncs() { return std::exchange(presenceResyncs_, {}); }
+
+// Presence a client has not been sent yet goes first when it falls behind:
+// one whole list replaces it once the queue has drained.
+void Outbox::dropPresence() {
+  std::deque<Outgoing> kept;
+  bytes_ = 0;
+  for (size_t i = 0; i < queue_.size(); ++i) {
+    Outgoing& m = queue_[i];
+    if (m.presenceOf != 0 && i >= inFlight_) {
+      presenceResyncs_.insert(m.presenceOf);
+      ++drops_;
+      continue;
+    }
+    bytes_ += m.frame->size();
+    kept.push_back(std::move(m));
+  }
+  queue_.swap(kept);
+}
 
 // Merges every queued delta of a document (except one being written) into
 // the position of the first: newest payload per region, removals that

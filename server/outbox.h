@@ -39,6 +39,11 @@ struct Outgoing {
   std::shared_ptr<const std::string> frame;   // length prefix + payload
   std::shared_ptr<const DeltaContent> delta;  // set for deltas
   uint64_t snapshotOf = 0;                    // set for snapshot parts: deltas never merge across them
+  // Set for presence: changes since the last broadcast, or the whole list.
+  // Both may be dropped from a client that falls behind, which then gets
+  // the whole list again (issue 13 §3).
+  uint64_t presenceOf = 0;
+  bool presenceFull = false;
 };
 
 class Outbox {
@@ -64,17 +69,20 @@ class Outbox {
   uint64_t drops() const { return drops_; }
   // Documents whose deltas were dropped: each needs a fresh snapshot.
   std::set<uint64_t> takeResyncs();
+  // Documents whose presence was dropped: each needs the whole list.
+  std::set<uint64_t> takePresenceResyncs();
 
  private:
   void mergeDeltas(uint32_t maxFrameBytes);
   void dropDeltas();
+  void dropPresence();
 
   const Limits& limits_;
   std::deque<Outgoing> queue_;
   uint64_t bytes_ = 0;
   size_t inFlight_ = 0;  // frames at the front being written
   uint64_t merges_ = 0, drops_ = 0;
-  std::set<uint64_t> resyncs_;
+  std::set<uint64_t> resyncs_, presenceResyncs_;
 };
 
 // The frame of a delta (also used after merging).

@@ -4,6 +4,8 @@
 #include <boost/asio/steady_timer.hpp>
 #include <fstream>
 #include <thread>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include "server/log.h"
 #include "server/store/sqlite_store.h"
@@ -17,11 +19,32 @@ Server::Server(const ServerConfig& config)
     : config_(config),
       strand_(asio::make_strand(io_)),
       workers_(static_cast<size_t>(config.workerThreads)),
+      bulkWork_(boost::asio::make_work_guard(bulkIo_)),
+      authThrottle_(AuthThrottleOptions{
+          .baseDelay = std::chrono::milliseconds(static_cast<int64_t>(config.limits.authFailureDelayMs)),
+          .maxDelay = std::chrono::milliseconds(static_cast<int64_t>(config.limits.authFailureMaxDelayMs))}),
       acceptor_(strand_),
-      signals_(strand_, SIGINT, SIGTERM) {}
+      signals_(strand_, SIGINT, SIGTERM) {
+  for (int i = 0; i < config.bulkThreads; ++i) {
+    bulkThreads_.emplace_back([this] {
+      // Nice 10 for this thread only (Linux threads have their own nice
+      // value): when bulk and interactive work compete for the cores, the
+      // scheduler favours edits and deltas.
+      ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
+      bulkIo_.run();
+    });
+  }
+}
 
 Server::~Server() {
+  stopBulk();
   workers_.join();
+}
+
+void Server::stopBulk() {
+  bulkWork_.reset();
+  for (auto& t : bulkThreads_) t.join();
+  bulkThreads_.clear();
 }
 
 Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
@@ -47,9 +70,10 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     server->tls_ = std::move(tls);
   }
   server->registry_ = std::make_unique<DocumentRegistry>(*server->store_, server->workers_.get_executor(),
-                                                         server->config_, server->stats_);
-  server->context_ = std::make_unique<ServerContext>(ServerContext{
-      server->config_, *server->store_, *server->registry_, server->stats_, server->workers_.get_executor()});
+                                                         server->bulkIo_.get_executor(), server->config_, server->stats_);
+  server->context_ = std::make_unique<ServerContext>(ServerContext{server->config_, *server->store_, *server->registry_,
+                                                                   server->stats_, server->workers_.get_executor(),
+                                                                   server->bulkIo_.get_executor(), server->authThrottle_});
   boost::system::error_code ec;
   const auto address = asio::ip::make_address(config.listenAddress, ec);
   if (ec) return invalidArgument("--listen: bad address '" + config.listenAddress + "'");
@@ -83,6 +107,7 @@ void Server::run() {
   for (int i = 1; i < config_.networkThreads; ++i) threads.emplace_back([this] { io_.run(); });
   io_.run();
   for (auto& t : threads) t.join();
+  stopBulk();
   workers_.join();
   logEvent(LogLevel::kInfo, "stopped", {});
 }
@@ -104,30 +129,53 @@ void Server::accept() {
     }
     const auto remote = socket.remote_endpoint(ignored);
     const std::string address = remote.address().to_string();
-    // Prune finished connections, count this address's live ones.
-    int sameAddress = 0;
-    for (auto it = connections_.begin(); it != connections_.end();) {
-      auto live = it->second.lock();
-      if (!live) {
-        it = connections_.erase(it);
-        continue;
-      }
-      sameAddress += live->address() == address ? 1 : 0;
-      ++it;
-    }
+    const auto over = overLimits(address);
     const uint64_t session = nextSession_++;
     auto connection = std::make_shared<Connection>(std::move(socket), tls_.get(), *context_, session, address);
     // The refusal is queued on the connection's strand before its start, so
     // with several network threads no Hello can be read and answered first.
-    if (sameAddress >= config_.limits.connectionsPerAddress) {
-      connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS,
-                         "more than " + std::to_string(config_.limits.connectionsPerAddress) + " connections from " + address);
+    if (over) {
+      logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}});
+      connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS, *over);
     } else {
       connections_[session] = connection;
     }
     connection->start();
     accept();
   });
+}
+
+// Prunes finished connections and counts the live ones: all of this
+// address's, and those not authenticated yet, from it and in total (issue
+// 13 §3: a peer must not hold many slots without showing a known token).
+std::optional<std::string> Server::overLimits(const std::string& address) {
+  int sameAddress = 0, unauthenticatedHere = 0, unauthenticated = 0;
+  for (auto it = connections_.begin(); it != connections_.end();) {
+    auto live = it->second.lock();
+    if (!live) {
+      it = connections_.erase(it);
+      continue;
+    }
+    const bool here = live->address() == address;
+    sameAddress += here ? 1 : 0;
+    if (!live->authenticated()) {
+      ++unauthenticated;
+      unauthenticatedHere += here ? 1 : 0;
+    }
+    ++it;
+  }
+  const Limits& l = config_.limits;
+  if (sameAddress >= l.connectionsPerAddress) {
+    return "more than " + std::to_string(l.connectionsPerAddress) + " connections from " + address;
+  }
+  if (unauthenticatedHere >= l.unauthenticatedPerAddress) {
+    return "more than " + std::to_string(l.unauthenticatedPerAddress) + " unauthenticated connections from " + address +
+           " (--unauthenticated-per-address)";
+  }
+  if (unauthenticated >= l.unauthenticatedTotal) {
+    return "more than " + std::to_string(l.unauthenticatedTotal) + " unauthenticated connections in all (--unauthenticated-total)";
+  }
+  return std::nullopt;
 }
 
 void Server::shutdown() {

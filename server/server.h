@@ -13,7 +13,13 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
 
+#include <boost/asio/executor_work_guard.hpp>
+
+#include "server/auth_throttle.h"
 #include "server/config.h"
 #include "server/connection.h"
 #include "server/server_context.h"
@@ -35,6 +41,10 @@ class Server {
   explicit Server(const ServerConfig& config);
   void accept();
   void shutdown();
+  void stopBulk();
+  // Whether a new connection from `address` stays within the connection
+  // limits; otherwise why not.
+  std::optional<std::string> overLimits(const std::string& address);
 
   ServerConfig config_;
   boost::asio::io_context io_;
@@ -42,6 +52,11 @@ class Server {
   // the number of network threads.
   boost::asio::strand<boost::asio::io_context::executor_type> strand_;
   boost::asio::thread_pool workers_;
+  // Bulk work (issue 13 §2) on threads of their own at a lower CPU priority.
+  boost::asio::io_context bulkIo_;
+  std::optional<boost::asio::executor_work_guard<boost::asio::io_context::executor_type>> bulkWork_;
+  std::vector<std::thread> bulkThreads_;
+  AuthThrottle authThrottle_;
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::signal_set signals_;
   std::unique_ptr<Store> store_;

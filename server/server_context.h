@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 
+#include "server/auth_throttle.h"
 #include "server/config.h"
 #include "server/document_host.h"
 #include "server/server_stats.h"
@@ -19,8 +20,9 @@ namespace tessera::server {
 // connection that opened them.
 class DocumentRegistry {
  public:
-  DocumentRegistry(Store& store, boost::asio::any_io_executor workers, const ServerConfig& config, ServerStats& stats)
-      : store_(store), workers_(workers), config_(config), stats_(stats) {}
+  DocumentRegistry(Store& store, boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk,
+                   const ServerConfig& config, ServerStats& stats)
+      : store_(store), workers_(workers), bulk_(bulk), config_(config), stats_(stats) {}
 
   // Loads (on the calling thread) or shares the host of a document.
   Expected<std::shared_ptr<DocumentHost>> open(DocumentId id);
@@ -29,7 +31,7 @@ class DocumentRegistry {
 
  private:
   Store& store_;
-  boost::asio::any_io_executor workers_;
+  boost::asio::any_io_executor workers_, bulk_;
   const ServerConfig& config_;
   ServerStats& stats_;
   std::mutex mutex_;
@@ -42,6 +44,9 @@ struct ServerContext {
   DocumentRegistry& documents;
   ServerStats& stats;
   boost::asio::any_io_executor workers;
+  // Imports and loads (issue 13 §2): off the workers that run documents' strands.
+  boost::asio::any_io_executor bulk;
+  AuthThrottle& authThrottle;
 };
 
 }  // namespace tessera::server

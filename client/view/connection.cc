@@ -402,18 +402,25 @@ void Connection::handle(const wire::ServerMessage& m) {
     return;
   }
   if (m.has_presence() && m.presence().document_id() == document_) {
-    std::vector<Collaborator> list;
+    // A full list replaces ours; otherwise only what changed (PROTOCOL 6.3).
+    std::lock_guard lock(mutex_);
+    if (m.presence().full()) collaborators_.clear();
+    auto erase = [&](uint64_t session) {
+      std::erase_if(collaborators_, [&](const Collaborator& c) { return c.sessionId == session; });
+    };
+    for (uint64_t left : m.presence().left_session_ids()) erase(left);
     for (const wire::Participant& p : m.presence().participants()) {
+      erase(p.session_id());
       Collaborator c{.sessionId = p.session_id(),
                      .name = p.name(),
                      .role = p.role(),
                      .selectedVertices = {},
                      .self = p.session_id() == session_->sessionId()};
       c.selectedVertices.assign(p.selection().vertex_ids().begin(), p.selection().vertex_ids().end());
-      list.push_back(std::move(c));
+      collaborators_.push_back(std::move(c));
     }
-    std::lock_guard lock(mutex_);
-    collaborators_ = std::move(list);
+    std::sort(collaborators_.begin(), collaborators_.end(),
+              [](const Collaborator& a, const Collaborator& b) { return a.sessionId < b.sessionId; });
     return;
   }
   if (m.has_error()) {

@@ -124,6 +124,15 @@ bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
 }  // namespace
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile) {
+  // The base level is held whole, so its face count is a lower bound on the
+  // triangles: refuse before growing the hierarchy to it (issue 13 §2).
+  if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&
+      static_cast<int64_t>(doc.counts().faces(profile.baseLevel)) > profile.triangleBudget) {
+    return invalidArgument("LOD profile " + profile.key() + " needs at least " +
+                           std::to_string(doc.counts().faces(profile.baseLevel)) + " triangles (its base level " +
+                           std::to_string(profile.baseLevel) + "), above its budget of " +
+                           std::to_string(profile.triangleBudget));
+  }
   // Growing the hierarchy for the limits' levels rebuilds levels (new local
   // indices), so the cut is made again over the grown hierarchy; its
   // decisions do not change, and the second round needs no growth.

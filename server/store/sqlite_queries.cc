@@ -187,4 +187,10 @@ Expected<std::optional<Role>> selectRole(SqliteConnection& db, std::string_view 
   return std::optional<Role>(static_cast<Role>(role));
 }
 
+Expected<bool> selectTokenKnown(SqliteConnection& db, std::string_view tokenHash) {
+  TESSERA_ASSIGN_OR_RETURN(SqliteStatement select, db.prepare("SELECT 1 FROM tokens WHERE token_hash = ?1 LIMIT 1"));
+  select.bindBlob(1, tokenHash);
+  return select.step();
+}
+
 }  // namespace tessera

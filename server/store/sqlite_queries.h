@@ -36,5 +36,7 @@ Expected<std::vector<DocumentSummary>> selectDocuments(SqliteConnection& db);
 Expected<StoredDocument> selectDocument(SqliteConnection& db, DocumentId id);
 // The highest role `tokenHash` holds for `scope`, or nothing.
 Expected<std::optional<Role>> selectRole(SqliteConnection& db, std::string_view tokenHash, TokenScope scope);
+// Whether any grant of any scope names the token.
+Expected<bool> selectTokenKnown(SqliteConnection& db, std::string_view tokenHash);
 
 }  // namespace tessera

@@ -226,6 +226,12 @@ Expected<Role> SqliteStore::roleFor(std::string_view token, TokenScope scope) {
   return *role;
 }
 
+Expected<bool> SqliteStore::knowsToken(std::string_view token) {
+  if (token.empty() || token.size() > kMaxTokenBytes) return false;
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  return readConsistent<bool>([&](SqliteConnection& db) { return selectTokenKnown(db, hash); });
+}
+
 StoreStats SqliteStore::stats() const {
   return writer_->stats();
 }

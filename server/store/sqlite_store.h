@@ -63,6 +63,7 @@ class SqliteStore final : public Store {
   Status addToken(TokenScope scope, std::string_view token, Role role) override;
   Status revokeToken(std::string_view token) override;
   Expected<Role> roleFor(std::string_view token, TokenScope scope) override;
+  Expected<bool> knowsToken(std::string_view token) override;
 
   StoreStats stats() const override;
   void close() override;

@@ -134,6 +134,9 @@ class Store {
   virtual Status addToken(TokenScope scope, std::string_view token, Role role) = 0;
   virtual Status revokeToken(std::string_view token) = 0;  // every grant of it
   virtual Expected<Role> roleFor(std::string_view token, TokenScope scope) = 0;
+  // Whether any grant, for one document or all of them, names the token: a
+  // Hello whose token is known nowhere is a failed authentication.
+  virtual Expected<bool> knowsToken(std::string_view token) = 0;
 
   virtual StoreStats stats() const = 0;
 

@@ -373,10 +373,21 @@ TEST(Tessellation, RefusesProfilesOverTheirTriangleBudget) {
   const TestMesh mesh = testing::icosahedron();
   auto doc = Document::create(mesh.topology, mesh.points, {.maxLevel = 4});
   ASSERT_TRUE(doc.isOk());
+  // Over budget by its base level alone (4 of 20 triangles: 5120): refused
+  // from the level counts, before the hierarchy grows to that level.
+  const int levelsBefore = doc->hierarchy().numLevels();
   auto t = Tessellation::build(*doc, {.baseLevel = 4, .maxLevel = 4, .triangleBudget = 1000});
   ASSERT_FALSE(t.isOk());
-  EXPECT_NE(t.status().message().find("5120 triangles, above its budget of 1000"), std::string::npos)
+  EXPECT_NE(t.status().message().find("needs at least 5120 triangles (its base level 4), above its budget of 1000"),
+            std::string::npos)
       << t.status().message();
+  EXPECT_EQ(doc->hierarchy().numLevels(), levelsBefore);
+  // Within budget at its base level, over it once refined everywhere (a tiny
+  // angle threshold): refused after the cut.
+  auto refined = Tessellation::build(*doc, {.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 1e-3, .triangleBudget = 1000});
+  ASSERT_FALSE(refined.isOk());
+  EXPECT_NE(refined.status().message().find("5120 triangles, above its budget of 1000"), std::string::npos)
+      << refined.status().message();
   auto bad = Tessellation::build(*doc, {.baseLevel = 3, .maxLevel = 2});
   ASSERT_FALSE(bad.isOk());
   EXPECT_NE(bad.status().message().find("max level 2 is below the base level 3"), std::string::npos);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -19,7 +20,9 @@ Expected<ServerProcess> ServerProcess::start(const std::string& dataDirectory, c
   p.adminToken_ = "admin-token-for-tests";
   std::ofstream(tokenFile) << p.adminToken_ << "\n";
   std::filesystem::remove(portFile);
-  std::vector<std::string> args = {TESSERA_SERVER_PATH, "--data", dataDirectory, "--port", "0", "--port-file", portFile,
+  // TESSERA_SERVER_BINARY runs another build (benchmarks compare before and after).
+  const char* binary = std::getenv("TESSERA_SERVER_BINARY");
+  std::vector<std::string> args = {binary != nullptr ? binary : TESSERA_SERVER_PATH, "--data", dataDirectory, "--port", "0", "--port-file", portFile,
                                    "--admin-token-file", tokenFile};
   args.insert(args.end(), extraArgs.begin(), extraArgs.end());
   const std::string log = dataDirectory + ".log";

@@ -22,6 +22,7 @@ class ServerProcess {
   ~ServerProcess();
 
   uint16_t port() const { return port_; }
+  pid_t pid() const { return pid_; }
   const std::string& adminToken() const { return adminToken_; }
   // SIGTERM, then wait up to 20 s: the exit code (or -signal).
   int stop();

@@ -123,6 +123,27 @@ TEST(ProtocolFrameLimits, AFrameExactlyAtTheLimitIsAccepted) {
   EXPECT_EQ(belowLimit.error(), FrameError::kTooLarge);
 }
 
+// The first frame (a server's Hello) has its own, tighter limit; later
+// frames get the full one.
+TEST(ProtocolFrameLimits, TheFirstFrameHasItsOwnLimit) {
+  const std::string frame = pingFrame();
+  const auto length = static_cast<uint32_t>(frame.size() - kFrameHeaderBytes);
+  FrameDecoder tight({.maxFrameBytes = 1u << 20, .firstFrameMaxBytes = length - 1});
+  Status status = tight.feed(frame);
+  ASSERT_FALSE(status.isOk());
+  EXPECT_EQ(tight.error(), FrameError::kTooLarge);
+  EXPECT_TRUE(contains(status, "more than the limit of " + std::to_string(length - 1) + " bytes for the first frame"))
+      << status.message();
+
+  FrameDecoder enough({.maxFrameBytes = 1u << 20, .firstFrameMaxBytes = length});
+  ASSERT_TRUE(enough.feed(frame).isOk());
+  // A second frame far above the first frame's limit is fine.
+  ASSERT_TRUE(enough.feed(prefix(64u << 10) + std::string(64u << 10, 'x')).isOk());
+  wire::ClientMessage message;
+  EXPECT_TRUE(enough.next(message).value());
+  EXPECT_EQ(enough.bufferedBytes(), 64u << 10);
+}
+
 // protobuf cannot parse more than INT_MAX bytes, so a larger limit is clamped.
 TEST(ProtocolFrameLimits, LimitsAboveTwoGibibytesAreClamped) {
   FrameDecoder decoder({.maxFrameBytes = 0xffffffffu});

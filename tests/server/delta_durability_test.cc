@@ -41,6 +41,7 @@ class HeldStore final : public Store {
   Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
   Status revokeToken(std::string_view) override { return unused(); }
   Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
+  Expected<bool> knowsToken(std::string_view) override { return unused(); }
   StoreStats stats() const override { return {}; }
   void close() override {}
 
@@ -118,7 +119,7 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
     ASSERT_TRUE(mesh.isOk());
     auto doc = Document::create(*mesh, {.maxLevel = 4});
     ASSERT_TRUE(doc.isOk());
-    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", std::move(*doc), 1, io_.get_executor(), store_,
+    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", std::move(*doc), 1, io_.get_executor(), io_.get_executor(), store_,
                                            config_, stats_);
     thread_ = std::thread([this] { io_.run(); });
     wire::LodProfile profile;

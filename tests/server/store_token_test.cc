@@ -35,6 +35,26 @@ TEST(StoreTokens, HashIsSha256) {
   EXPECT_EQ(*hash, std::string(reinterpret_cast<const char*>(expected), sizeof expected));
 }
 
+// A Hello's token is a failed authentication when no grant of any scope
+// names it (issue 13 §3).
+TEST(StoreTokens, KnowsTokensGrantedForAnyScopeOnly) {
+  TempDataDir dir;
+  auto store = openStoreOrFail(dir.path());
+  ASSERT_NE(store, nullptr);
+  auto one = store->createDocument("one", "base");
+  ASSERT_TRUE(one.isOk());
+  ASSERT_TRUE(store->addToken(TokenScope::document(*one), kViewerToken, Role::kViewer).isOk());
+  ASSERT_TRUE(store->addToken(TokenScope::allDocuments(), kAdminToken, Role::kAdmin).isOk());
+  EXPECT_TRUE(store->knowsToken(kViewerToken).value());
+  EXPECT_TRUE(store->knowsToken(kAdminToken).value());
+  EXPECT_FALSE(store->knowsToken(kWrongToken).value());
+  EXPECT_FALSE(store->knowsToken("").value());
+  EXPECT_FALSE(store->knowsToken(std::string(5000, 'x')).value());
+  // Revoked: no longer known.
+  ASSERT_TRUE(store->revokeToken(kViewerToken).isOk());
+  EXPECT_FALSE(store->knowsToken(kViewerToken).value());
+}
+
 TEST(StoreTokens, RolesResolvePerDocumentAndForAllDocuments) {
   TempDataDir dir;
   auto store = openStoreOrFail(dir.path());

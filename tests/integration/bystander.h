@@ -1,0 +1,103 @@
+// A bystander for abuse tests (issue 13 §3): an editor and a viewer of a
+// small document of their own, on another loopback address, measuring how
+// long each edit takes to come back as a delta. An abuse test runs it
+// before and during the abuse: every edit must still arrive, within a
+// bound far above its normal latency (a stall of seconds fails, scheduling
+// noise of a loaded 2-core machine does not).
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "client/lib/document_view.h"
+#include "client/lib/session.h"
+#include "core/hierarchy/ids.h"
+#include "integration/messages.h"
+#include "integration/server_process.h"
+#include "support/test_meshes.h"
+
+namespace tessera::testing {
+
+class Bystander {
+ public:
+  struct Latencies {
+    std::vector<double> ms;  // per edit, in order
+    double median() const { return at(0.5); }
+    double max() const { return ms.empty() ? 0 : *std::max_element(ms.begin(), ms.end()); }
+    double at(double q) const {
+      if (ms.empty()) return 0;
+      std::vector<double> s = ms;
+      std::sort(s.begin(), s.end());
+      return s[static_cast<size_t>(q * static_cast<double>(s.size() - 1))];
+    }
+  };
+
+  // Creates its document through `admin` and connects from `address`.
+  static Expected<std::unique_ptr<Bystander>> start(const ServerProcess& server, client::Session& admin,
+                                                     const std::string& address = "127.0.0.9") {
+    std::unique_ptr<Bystander> b(new Bystander);
+    auto created = admin.call(createDocument("bystander", fileBytes(sourceTestDataPath("cube.obj")), "", 4), 30);
+    if (!created.isOk()) return created.status();
+    if (!created->has_ack()) return invalidArgument("bystander document refused: " + created->DebugString());
+    b->doc_ = created->ack().document_id();
+    auto options = server.session("bystander", server.adminToken());
+    options.localAddress = address;
+    TESSERA_ASSIGN_OR_RETURN(b->editor_, client::Session::connect(options));
+    options.name = "bystander-viewer";
+    TESSERA_ASSIGN_OR_RETURN(b->viewer_, client::Session::connect(options));
+    b->view_ = std::make_unique<client::DocumentView>(b->doc_);
+    for (client::Session* s : {b->editor_.get(), b->viewer_.get()}) {
+      auto opened = s->call(openDocument(b->doc_), 20);
+      if (!opened.isOk() || !opened->has_ack()) return ioError("bystander cannot open its document");
+    }
+    auto subscribed = b->viewer_->call(subscribe(b->doc_, 1, 3), 30);
+    if (!subscribed.isOk() || !subscribed->has_ack()) return ioError("bystander cannot subscribe");
+    TESSERA_RETURN_IF_ERROR(b->readUntil([&] { return b->view_->ready(); }, 30));
+    return b;
+  }
+
+  uint64_t document() const { return doc_; }
+
+  // `edits` small moves, one at a time, each timed from its send until the
+  // viewer has applied its delta; `pause` between them.
+  Expected<Latencies> run(int edits, std::chrono::milliseconds pause = std::chrono::milliseconds(20)) {
+    Latencies out;
+    for (int i = 0; i < edits; ++i) {
+      const double dz = (step_++ % 2 == 0) ? 0.01 : -0.01;
+      const auto start = std::chrono::steady_clock::now();
+      auto acked = editor_->call(moveVertex(doc_, VertexId(1, 2).packed(), 0, 0, dz, wire::MOVE_MODE_OFFSET), 60);
+      if (!acked.isOk()) return acked.status();
+      if (!acked->has_ack()) return invalidArgument("bystander edit refused: " + acked->DebugString());
+      const uint64_t version = acked->ack().version();
+      TESSERA_RETURN_IF_ERROR(readUntil([&] { return view_->version() >= version; }, 60));
+      out.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      std::this_thread::sleep_for(pause);
+    }
+    return out;
+  }
+
+ private:
+  Bystander() = default;
+  template <typename Done>
+  Status readUntil(Done done, double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (!done()) {
+      const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+      if (left <= 0) return ioError("bystander: nothing within " + std::to_string(seconds) + " s");
+      auto m = viewer_->receive(left);
+      if (!m.isOk()) return m.status();
+      TESSERA_RETURN_IF_ERROR(view_->apply(*m));
+    }
+    return Status::ok();
+  }
+
+  uint64_t doc_ = 0;
+  int step_ = 0;
+  std::unique_ptr<client::Session> editor_, viewer_;
+  std::unique_ptr<client::DocumentView> view_;
+};
+
+}  // namespace tessera::testing

@@ -84,6 +84,14 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
   if (grid.isOk()) grid_ = *grid;
 }
 
+DocumentHost::~DocumentHost() {
+  // Free the large parts first (members would go only after this body), so
+  // the trim on a bulk thread finds them returned to the heap.
+  views_.clear();
+  { Document released = std::move(doc_); }
+  trimMemory();
+}
+
 void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), who, name = std::move(name), role] {
     const uint64_t session = who->sessionId();

@@ -45,6 +45,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
                boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
                const ServerConfig& config, ServerStats& stats);
+  // Trims the heap once the document's memory is freed (see trimMemory).
+  ~DocumentHost();
 
   DocumentId id() const { return id_; }
 

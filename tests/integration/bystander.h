@@ -10,6 +10,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "client/lib/document_view.h"
@@ -62,18 +63,27 @@ class Bystander {
   uint64_t document() const { return doc_; }
 
   // `edits` small moves, one at a time, each timed from its send until the
-  // viewer has applied its delta; `pause` between them.
+  // viewer has applied its delta (edit to delta: deltas leave when encoded,
+  // acks wait for the journal's fsync), then its ack is awaited; `pause`
+  // between them. Only this editor edits the document, so the edit's version
+  // is the view's next one.
   Expected<Latencies> run(int edits, std::chrono::milliseconds pause = std::chrono::milliseconds(20)) {
     Latencies out;
     for (int i = 0; i < edits; ++i) {
       const double dz = (step_++ % 2 == 0) ? 0.01 : -0.01;
+      const uint64_t version = view_->version() + 1;
       const auto start = std::chrono::steady_clock::now();
-      auto acked = editor_->call(moveVertex(doc_, VertexId(1, 2).packed(), 0, 0, dz, wire::MOVE_MODE_OFFSET), 60);
-      if (!acked.isOk()) return acked.status();
-      if (!acked->has_ack()) return invalidArgument("bystander edit refused: " + acked->DebugString());
-      const uint64_t version = acked->ack().version();
+      TESSERA_ASSIGN_OR_RETURN(uint64_t seq,
+                               editor_->send(moveVertex(doc_, VertexId(1, 2).packed(), 0, 0, dz, wire::MOVE_MODE_OFFSET)));
       TESSERA_RETURN_IF_ERROR(readUntil([&] { return view_->version() >= version; }, 60));
       out.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      for (;;) {
+        auto m = editor_->receive(60);
+        if (!m.isOk()) return m.status();
+        if (client::replyTo(*m) != seq) continue;
+        if (!m->has_ack()) return invalidArgument("bystander edit refused: " + m->DebugString());
+        break;
+      }
       std::this_thread::sleep_for(pause);
     }
     return out;

@@ -158,6 +158,7 @@ int run(int64_t triangles) {
   bulk.close();
   std::this_thread::sleep_for(std::chrono::seconds(2));
   report("(after) bulk client gone", (*bystander)->run(20).value(), 0, server->pid(), "-");
+  if (Status acked = (*bystander)->awaitAcks(); !acked.isOk()) std::fprintf(stderr, "bystander: %s\n", acked.message().c_str());
   server->stop();
   return 0;
 }

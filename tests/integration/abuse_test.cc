@@ -29,8 +29,10 @@ using Clock = std::chrono::steady_clock;
 // seconds the abuse caused before issue 13.
 constexpr double kBystanderMedianMs = 150, kBystanderMaxMs = 1500;
 
-void expectServed(const Expected<Bystander::Latencies>& l, const std::string& during) {
+void expectServed(Bystander& bystander, const Expected<Bystander::Latencies>& l, const std::string& during) {
   ASSERT_TRUE(l.isOk()) << during << ": " << l.status().message();
+  Status acked = bystander.awaitAcks();
+  EXPECT_TRUE(acked.isOk()) << during << ": " << acked.message();
   EXPECT_LT(l->median(), kBystanderMedianMs) << during;
   EXPECT_LT(l->max(), kBystanderMaxMs) << during;
 }
@@ -59,7 +61,7 @@ void start(Started& s, const std::string& name, const std::vector<std::string>& 
   auto bystander = Bystander::start(*s.server, *s.admin);
   ASSERT_TRUE(bystander.isOk()) << bystander.status().message();
   s.bystander = std::move(*bystander);
-  expectServed(s.bystander->run(10), "before the abuse");
+  expectServed(*s.bystander, s.bystander->run(10), "before the abuse");
 }
 
 Expected<std::unique_ptr<Session>> connectFrom(const ServerProcess& server, const std::string& address,
@@ -85,7 +87,7 @@ TEST(ServerAbuse, FailedTokensSlowDownPerAddressOnly) {
     }
     return std::make_pair(secondsSince(t0), errors);
   });
-  expectServed(s.bystander->run(20), "during the token guessing");
+  expectServed(*s.bystander, s.bystander->run(20), "during the token guessing");
   auto [seconds, errors] = abuse.get();
   for (const std::string& e : errors) EXPECT_NE(e.find("access token is not known"), std::string::npos) << e;
   // Attempts 2..6 wait 200, 400, 800, 800 and 800 ms.
@@ -192,7 +194,7 @@ TEST(ServerAbuse, UnauthenticatedPeersHoldNeitherMemoryNorSlots) {
   auto sixth = connectFrom(*s.server, "127.0.0.5", "");
   ASSERT_FALSE(sixth.isOk());
   EXPECT_NE(sixth.status().message().find("unauthenticated connections in all"), std::string::npos) << sixth.status().message();
-  expectServed(s.bystander->run(20), "with the unauthenticated slots full");
+  expectServed(*s.bystander, s.bystander->run(20), "with the unauthenticated slots full");
 
   const double trickled = trickle.get();
   EXPECT_LT(trickled, 3.0) << "a trickling peer held its slot for " << trickled << " s";
@@ -271,7 +273,7 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
   EXPECT_EQ(deep->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
   EXPECT_NE(deep->reject().message().find("export: level 7 has 196608 triangles, above the limit of 20000"), std::string::npos)
       << deep->reject().message();
-  expectServed(s.bystander->run(20), "after the profile churn");
+  expectServed(*s.bystander, s.bystander->run(20), "after the profile churn");
   EXPECT_EQ(s.server->stop(), 0);
 }
 
@@ -349,7 +351,7 @@ TEST(ServerAbuse, SelectionsAreCheckedAndPresenceSendsChanges) {
   EXPECT_GE(joins, 1);
   EXPECT_LE(joins, 10);
   EXPECT_LT(cycleBytes, selectionBytes) << "the cycles resent the selection";
-  expectServed(s.bystander->run(20), "after the presence churn");
+  expectServed(*s.bystander, s.bystander->run(20), "after the presence churn");
   EXPECT_EQ(s.server->stop(), 0);
 }
 

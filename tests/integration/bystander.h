@@ -62,31 +62,71 @@ class Bystander {
 
   uint64_t document() const { return doc_; }
 
-  // `edits` small moves, one at a time, each timed from its send until the
-  // viewer has applied its delta (edit to delta: deltas leave when encoded,
-  // acks wait for the journal's fsync), then its ack is awaited; `pause`
-  // between them. Only this editor edits the document, so the edit's version
-  // is the view's next one.
-  Expected<Latencies> run(int edits, std::chrono::milliseconds pause = std::chrono::milliseconds(20)) {
-    Latencies out;
-    for (int i = 0; i < edits; ++i) {
-      const double dz = (step_++ % 2 == 0) ? 0.01 : -0.01;
-      const uint64_t version = view_->version() + 1;
-      const auto start = std::chrono::steady_clock::now();
-      TESSERA_ASSIGN_OR_RETURN(uint64_t seq,
-                               editor_->send(moveVertex(doc_, VertexId(1, 2).packed(), 0, 0, dz, wire::MOVE_MODE_OFFSET)));
-      TESSERA_RETURN_IF_ERROR(readUntil([&] { return view_->version() >= version; }, 60));
-      out.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-      for (;;) {
-        auto m = editor_->receive(60);
-        if (!m.isOk()) return m.status();
-        if (client::replyTo(*m) != seq) continue;
-        if (!m->has_ack()) return invalidArgument("bystander edit refused: " + m->DebugString());
-        break;
+  // `edits` small moves sent every `interval` whatever happens meanwhile
+  // (an open loop: a stalled server shows as latency, not as fewer
+  // samples), each timed from its send until the viewer has applied a delta
+  // reaching its version (deltas leave when encoded; acks wait for the
+  // journal and are checked after). Only this editor edits the document, so
+  // the k-th edit's version is the view's version before the run plus k.
+  Expected<Latencies> run(int edits, std::chrono::milliseconds interval = std::chrono::milliseconds(20)) {
+    using Clock = std::chrono::steady_clock;
+    const uint64_t first = view_->version() + 1;
+    std::vector<Clock::time_point> sent(static_cast<size_t>(edits));
+    Status sending = Status::ok();
+    std::thread sender([&] {
+      auto next = Clock::now();
+      for (int i = 0; i < edits && sending.isOk(); ++i) {
+        std::this_thread::sleep_until(next);
+        next += interval;
+        const double dz = (step_++ % 2 == 0) ? 0.01 : -0.01;
+        sent[static_cast<size_t>(i)] = Clock::now();
+        auto seq = editor_->send(moveVertex(doc_, VertexId(1, 2).packed(), 0, 0, dz, wire::MOVE_MODE_OFFSET));
+        if (!seq.isOk()) sending = seq.status();
+        if (seq.isOk()) ++unacked_;
+        // Acks that have come, without waiting: the loop stays open.
+        while (sending.isOk() && unacked_ > 0) {
+          auto m = editor_->receive(0.0);
+          if (!m.isOk()) {
+            if (!client::isReceiveTimeout(m.status())) sending = m.status();
+            break;
+          }
+          if (client::replyTo(*m) == 0) continue;
+          if (!m->has_ack()) sending = invalidArgument("bystander edit refused: " + m->DebugString());
+          --unacked_;
+        }
       }
-      std::this_thread::sleep_for(pause);
+    });
+    // Applied-at times per version, read on this thread.
+    Latencies out;
+    std::vector<Clock::time_point> arrived;
+    Status reading = readUntil(
+        [&] {
+          while (arrived.size() < static_cast<size_t>(view_->version() + 1 - first) && arrived.size() < sent.size()) {
+            arrived.push_back(Clock::now());
+          }
+          return view_->version() >= first + static_cast<uint64_t>(edits) - 1;
+        },
+        120);
+    sender.join();
+    TESSERA_RETURN_IF_ERROR(sending);
+    TESSERA_RETURN_IF_ERROR(reading);
+    for (size_t i = 0; i < arrived.size(); ++i) {
+      out.ms.push_back(std::chrono::duration<double, std::milli>(arrived[i] - sent[i]).count());
     }
     return out;
+  }
+
+  // Waits for the acks of every edit sent so far: each acknowledged, none
+  // refused.
+  Status awaitAcks(double seconds = 60) {
+    while (unacked_ > 0) {
+      auto m = editor_->receive(seconds);
+      if (!m.isOk()) return m.status();
+      if (client::replyTo(*m) == 0) continue;
+      if (!m->has_ack()) return invalidArgument("bystander edit refused: " + m->DebugString());
+      --unacked_;
+    }
+    return Status::ok();
   }
 
  private:
@@ -106,6 +146,7 @@ class Bystander {
 
   uint64_t doc_ = 0;
   int step_ = 0;
+  int64_t unacked_ = 0;  // edits sent whose ack has not been read
   std::unique_ptr<client::Session> editor_, viewer_;
   std::unique_ptr<client::DocumentView> view_;
 };

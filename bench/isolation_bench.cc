@@ -71,21 +71,21 @@ double residentMiB(pid_t pid) {
   return 0;
 }
 
-// Runs the bystander until `bulk` is ready (at least `minimumEdits`).
+// Runs the bystander, one edit every 20 ms, until `bulk` is ready (and at
+// least `minimumEdits`), bounded by 300 s.
 template <typename T>
 testing::Bystander::Latencies during(testing::Bystander& bystander, std::future<T>& bulk, int minimumEdits) {
-  testing::Bystander::Latencies all;
   const auto deadline = Clock::now() + std::chrono::seconds(300);
-  while (Clock::now() < deadline &&
-         (static_cast<int>(all.ms.size()) < minimumEdits || bulk.wait_for(std::chrono::seconds(0)) != std::future_status::ready)) {
-    auto l = bystander.run(5, std::chrono::milliseconds(20));
-    if (!l.isOk()) {
-      std::fprintf(stderr, "bystander failed: %s\n", l.status().message().c_str());
-      break;
-    }
-    all.ms.insert(all.ms.end(), l->ms.begin(), l->ms.end());
+  int sent = 0;
+  auto l = bystander.runUntil([&] {
+    return Clock::now() > deadline ||
+           (++sent > minimumEdits && bulk.wait_for(std::chrono::seconds(0)) == std::future_status::ready);
+  });
+  if (!l.isOk()) {
+    std::fprintf(stderr, "bystander failed: %s\n", l.status().message().c_str());
+    return {};
   }
-  return all;
+  return *l;
 }
 
 void report(const char* phase, const testing::Bystander::Latencies& l, double seconds, pid_t server,

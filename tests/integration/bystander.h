@@ -7,6 +7,8 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -63,23 +65,36 @@ class Bystander {
   uint64_t document() const { return doc_; }
 
   // `edits` small moves sent every `interval` whatever happens meanwhile
-  // (an open loop: a stalled server shows as latency, not as fewer
-  // samples), each timed from its send until the viewer has applied a delta
-  // reaching its version (deltas leave when encoded; acks wait for the
-  // journal and are checked after). Only this editor edits the document, so
-  // the k-th edit's version is the view's version before the run plus k.
+  // (an open loop: a stalled server shows as latency of every edit sent
+  // during the stall, not as fewer samples), each timed from its send until
+  // the viewer has applied a delta reaching its version (deltas leave when
+  // encoded; acks wait for the journal and are read without waiting, then
+  // checked by awaitAcks). Only this editor edits the document, so the k-th
+  // edit's version is the view's version before the run plus k.
   Expected<Latencies> run(int edits, std::chrono::milliseconds interval = std::chrono::milliseconds(20)) {
+    int sentSoFar = 0;
+    return runUntil([&] { return ++sentSoFar > edits; }, interval);
+  }
+
+  // The same, sending until `stop()` (asked before each edit) says so.
+  template <typename Stop>
+  Expected<Latencies> runUntil(Stop stop, std::chrono::milliseconds interval = std::chrono::milliseconds(20)) {
     using Clock = std::chrono::steady_clock;
     const uint64_t first = view_->version() + 1;
-    std::vector<Clock::time_point> sent(static_cast<size_t>(edits));
+    std::vector<Clock::time_point> sent;  // guarded by mutex
+    std::mutex mutex;
+    std::atomic<bool> senderDone{false};
     Status sending = Status::ok();
     std::thread sender([&] {
       auto next = Clock::now();
-      for (int i = 0; i < edits && sending.isOk(); ++i) {
+      while (sending.isOk() && !stop()) {
         std::this_thread::sleep_until(next);
         next += interval;
         const double dz = (step_++ % 2 == 0) ? 0.01 : -0.01;
-        sent[static_cast<size_t>(i)] = Clock::now();
+        {
+          std::lock_guard lock(mutex);
+          sent.push_back(Clock::now());
+        }
         auto seq = editor_->send(moveVertex(doc_, VertexId(1, 2).packed(), 0, 0, dz, wire::MOVE_MODE_OFFSET));
         if (!seq.isOk()) sending = seq.status();
         if (seq.isOk()) ++unacked_;
@@ -95,21 +110,24 @@ class Bystander {
           --unacked_;
         }
       }
+      senderDone = true;
     });
     // Applied-at times per version, read on this thread.
-    Latencies out;
     std::vector<Clock::time_point> arrived;
     Status reading = readUntil(
         [&] {
+          const bool last = senderDone.load();
+          std::lock_guard lock(mutex);
           while (arrived.size() < static_cast<size_t>(view_->version() + 1 - first) && arrived.size() < sent.size()) {
             arrived.push_back(Clock::now());
           }
-          return view_->version() >= first + static_cast<uint64_t>(edits) - 1;
+          return last && arrived.size() == sent.size();
         },
-        120);
+        600);
     sender.join();
     TESSERA_RETURN_IF_ERROR(sending);
     TESSERA_RETURN_IF_ERROR(reading);
+    Latencies out;
     for (size_t i = 0; i < arrived.size(); ++i) {
       out.ms.push_back(std::chrono::duration<double, std::milli>(arrived[i] - sent[i]).count());
     }
@@ -131,14 +149,18 @@ class Bystander {
 
  private:
   Bystander() = default;
+  // Applies the viewer's messages until `done()`, polling so that `done`
+  // is asked at least every 50 ms even when nothing arrives.
   template <typename Done>
   Status readUntil(Done done, double seconds) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (!done()) {
-      const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-      if (left <= 0) return ioError("bystander: nothing within " + std::to_string(seconds) + " s");
-      auto m = viewer_->receive(left);
-      if (!m.isOk()) return m.status();
+      if (std::chrono::steady_clock::now() > deadline) return ioError("bystander: not done within " + std::to_string(seconds) + " s");
+      auto m = viewer_->receive(0.05);
+      if (!m.isOk()) {
+        if (client::isReceiveTimeout(m.status())) continue;
+        return m.status();
+      }
       TESSERA_RETURN_IF_ERROR(view_->apply(*m));
     }
     return Status::ok();

@@ -141,6 +141,7 @@ struct Tally {
   int cycles = 0, cyclesPlanned = 0;
   std::map<Kind, int> acknowledged, refused;
   std::map<std::string, int> refusalReasons;
+  int movesRefusedOtherwise = 0;  // for a reason other than the per-connection rate limit
   int inFlight = 0, inFlightRecovered = 0;
   int losses = 0;  // acknowledged versions missing after a restart, or 1 for a surface no replay explains
   size_t maxHistories = 1;
@@ -171,8 +172,9 @@ struct Acknowledged {
 };
 
 // One editor's cycle: commands until the server dies (or 2,000). Undos
-// and redos name this editor's own edits acknowledged in this cycle, so
-// every one the server acknowledges is valid in every candidate history.
+// and redos name this editor's own edits acknowledged in this cycle: so
+// every one the server acknowledges is valid in every candidate history,
+// and no edit changes after its cycle (settledStateKey relies on it).
 void editorStorm(const ServerProcess& server, const std::string& token, uint64_t docId, const StormOptions& options,
                  const LevelCounts& counts, uint32_t seed, int index, std::mutex& mutex,
                  std::map<uint64_t, Acknowledged>& acked, std::vector<StormCommand>& inFlight, Tally& tally) {
@@ -216,6 +218,8 @@ void editorStorm(const ServerProcess& server, const std::string& token, uint64_t
     } else {
       ++tally.refused[command.kind];
       ++tally.refusalReasons[reply->has_reject() ? wire::RejectReason_Name(reply->reject().reason()) : "other reply"];
+      const bool rateLimited = reply->has_reject() && reply->reject().reason() == wire::REJECT_REASON_RATE_LIMITED;
+      if (command.kind == Kind::kMove && !rateLimited) ++tally.movesRefusedOtherwise;
     }
   }
 }
@@ -249,10 +253,11 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
   // Local replicas of the acknowledged history. In-flight commands that
   // were recovered may land in any order, and the checker sees the surface
   // only through the subscriber's quantized regions and the float32 export.
-  // Every history those cannot tell apart is kept, once per historyKey
-  // (same-level moves of different vertices commute exactly and would
-  // otherwise double the set at every such cycle), and later cycles prune
-  // them; one must survive every cycle.
+  // Every history those cannot tell apart is kept, once per
+  // settledStateKey (same-level moves of different vertices commute exactly,
+  // and in-flight creases or undos may change nothing, which would otherwise
+  // double the set at every such cycle), and later cycles prune them; one
+  // must survive every cycle.
   auto mesh = importMesh(cubePath);
   ASSERT_TRUE(mesh.isOk());
   auto created0 = Document::create(*mesh, {.maxLevel = 4});
@@ -260,7 +265,6 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
   const LevelCounts counts = created0->counts();
   std::vector<Document> replicas{std::move(*created0)};
   uint64_t replicaVersion = 1;
-  std::set<uint64_t> acknowledgedIds;  // edit ids editors learned, so may undo later
 
   std::mt19937 rng(options.seed);
   auto outOfTime = [&] {
@@ -319,9 +323,6 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
     }
     ASSERT_LE(gaps.size(), inFlight.size()) << "versions the clients never sent";
     tally.inFlightRecovered += static_cast<int>(gaps.size());
-    for (const auto& [version, a] : acked) {
-      if (a.command.kind == Kind::kMove || a.command.kind == Kind::kCrease) acknowledgedIds.insert(a.editId);
-    }
     // Each history so far, continued by each assignment of in-flight
     // commands to the gaps. An acknowledged command must apply and make the
     // edit id its Ack named (an in-flight edit recovered or not shifts the
@@ -349,7 +350,7 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
             ok = inFlight[order[gap++]].applyTo(candidate).isOk();
           }
         }
-        if (!ok || !seen.insert(testing::historyKey(candidate, acknowledgedIds)).second) continue;
+        if (!ok || !seen.insert(testing::settledStateKey(candidate)).second) continue;
         if (exportedGlb(candidate, dir + "/candidate.glb") == serverGlb &&
             expectedHash(candidate, docId) == view.surfaceHash()) {
           survivors.push_back(std::move(candidate));
@@ -375,8 +376,10 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
   // document's grid (five times the cube's extent); the unsigned generator
   // this replaces had 86 % of its moves refused, and so recovered only moves
   // with non-negative components.
-  const int answeredMoves = tally.acknowledged[Kind::kMove] + tally.refused[Kind::kMove];
-  EXPECT_GE(tally.acknowledged[Kind::kMove] * 20, answeredMoves * 19) << "more than 5 % of the moves were refused";
+  // (The soak's longer storms may meet the server's 200 commands per second
+  // per connection; those refusals say nothing about the moves.)
+  const int judgedMoves = tally.acknowledged[Kind::kMove] + tally.movesRefusedOtherwise;
+  EXPECT_GE(tally.acknowledged[Kind::kMove] * 20, judgedMoves * 19) << "more than 5 % of the moves were refused";
   EXPECT_GE(tally.acknowledged[Kind::kMove], 5 * options.cycles);
   if (options.creasePercent > 0) {
     EXPECT_GT(tally.acknowledged[Kind::kCrease], 0);

@@ -7,9 +7,9 @@
 // into the wire message the server gets and applies to a local Document as
 // the server's DocumentHost applies it.
 //
-// historyKey() names a replayed Document by everything that decides what it
-// shows now and after any later command of the storm, so that candidate
-// histories the checker cannot tell apart are kept once each.
+// settledStateKey() names a replayed Document by everything that decides
+// what it shows now and after any later command of the storm, so that
+// candidate histories the checker cannot tell apart are kept once each.
 #pragma once
 
 #include <bit>
@@ -17,7 +17,6 @@
 #include <cstring>
 #include <map>
 #include <random>
-#include <set>
 #include <string>
 #include <tuple>
 #include <variant>
@@ -137,65 +136,67 @@ inline StormCommand randomCrease(std::mt19937& rng, const LevelCounts& counts, i
   return c;
 }
 
-// What a replayed document will show now and after any later storm command,
-// as exact bytes: for every vertex, edge and vertex tag, the sequence of
-// edits touching it in edit order, each as (id if acknowledged, else 0;
-// active; the stored local offset or sharpness, bit for bit); and the next
-// edit id.
+// What a replayed document will show now and after any later storm
+// command, as exact bytes:
+//   - for every vertex, its active offsets in edit order, bit for bit;
+//   - for every edge and vertex tag, the last active one (later edits win),
+//     or none;
+//   - the next edit id (the ids later Acks name count from it).
 //
-// Why this is enough: the evaluators sum a vertex's offsets in edit order
-// and let the last active tag of an element win (document_evaluator.h,
-// sparse_evaluator.cc), so the points and rules depend only on each
-// element's own sequence, not on how the sequences interleave; later moves
-// resolve from those points; later undos and redos name acknowledged ids
-// only (an editor never learns an unacknowledged edit's id, so that id
-// never matters). Two histories with one key are therefore
-// indistinguishable forever, and keeping one of them loses nothing. Same-
-// level moves of different vertices recovered in either order get one key;
-// two moves of one vertex, whose sums may round differently, do not (the
-// storm keeps editors off each other's vertices for that reason).
+// Why this is enough: the evaluators add a vertex's offsets one by one in
+// edit order and let the last active tag of an element win
+// (document_evaluator.h, sparse_evaluator.cc), so the points and rules
+// depend only on these; later moves resolve from those points. And the
+// storm settles every edit at the end of its cycle: an editor undoes and
+// redoes only its own edits acknowledged in the running cycle, so when a
+// cycle is checked no existing edit will ever change its active flag
+// again. Ids of existing edits, inactive edits and tags overridden by a
+// later active one therefore never matter again. Two histories with one key
+// are indistinguishable forever, and keeping one of them loses nothing.
+//
+// So one key covers same-level moves of different vertices recovered in
+// either order (they commute exactly), and in-flight creases, undos and
+// redos that changed nothing for good (a crease repeating the edge's value,
+// an undo of a crease a later one overrides), which no observation could
+// tell apart. Two moves of one vertex in either order, whose sums may round
+// differently, get two keys: the storm keeps editors off each other's
+// vertices for that reason.
 //
 // Merging candidates can only make the check stricter: the test passes a
 // cycle when some kept history matches, so dropping a history could at
 // worst fail a good run, never pass a lost edit.
-//
-// Comparing the evaluated points alone would also merge histories whose
-// points agree by rounding luck but whose later undos differ.
-inline std::string historyKey(const Document& doc, const std::set<uint64_t>& acknowledgedIds) {
-  std::map<std::tuple<int, uint64_t>, std::string> perElement;  // (kind, packed id) -> its edits
+inline std::string settledStateKey(const Document& doc) {
   auto put = [](std::string& out, const auto& value) {
     char bytes[sizeof(value)];
     std::memcpy(bytes, &value, sizeof(value));
     out.append(bytes, sizeof(value));
   };
+  std::map<uint64_t, std::string> offsets;                   // packed vertex -> its active offsets
+  std::map<std::tuple<int, uint64_t>, float> lastTag;        // (0 edge / 1 vertex, packed id) -> sharpness
   for (const Edit& edit : doc.edits()) {
-    std::string head;
-    put(head, acknowledgedIds.count(edit.id.value) ? edit.id.value : uint64_t{0});
-    put(head, static_cast<uint8_t>(edit.active));
+    if (!edit.active) continue;
     if (const auto* move = std::get_if<MoveEdit>(&edit.change)) {
       for (const VertexOffset& o : move->offsets) {
-        std::string& s = perElement[{0, o.vertex.packed()}];
-        s += head;
-        for (int k = 0; k < 3; ++k) put(s, std::bit_cast<uint64_t>(o.localOffset[k]));
+        for (int k = 0; k < 3; ++k) put(offsets[o.vertex.packed()], std::bit_cast<uint64_t>(o.localOffset[k]));
       }
     } else if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
-      std::string& s = perElement[{1, e->edge.packed()}];
-      s += head;
-      put(s, std::bit_cast<uint32_t>(e->sharpness));
+      lastTag[{0, e->edge.packed()}] = e->sharpness;
     } else {
       const auto& v = std::get<VertexSharpnessEdit>(edit.change);
-      std::string& s = perElement[{2, v.vertex.packed()}];
-      s += head;
-      put(s, std::bit_cast<uint32_t>(v.sharpness));
+      lastTag[{1, v.vertex.packed()}] = v.sharpness;
     }
   }
   std::string key;
   put(key, doc.nextEditId());
-  for (const auto& [element, edits] : perElement) {
+  for (const auto& [vertex, bits] : offsets) {
+    put(key, vertex);
+    put(key, bits.size());
+    key += bits;
+  }
+  for (const auto& [element, sharpness] : lastTag) {
     put(key, std::get<0>(element));
     put(key, std::get<1>(element));
-    put(key, edits.size());
-    key += edits;
+    put(key, std::bit_cast<uint32_t>(sharpness));
   }
   return key;
 }

@@ -8,7 +8,9 @@
 // In CI it runs 20 cycles. The soak (bench/kill_soak.sh) runs the same test
 // with more cycles and editors through these variables:
 //   TESSERA_SOAK_CYCLES          kill -9 cycles (default 20)
-//   TESSERA_SOAK_EDITORS         concurrent editors (default 2)
+//   TESSERA_SOAK_EDITORS         concurrent editors, 1 to 8 (default 2; the
+//                                check replays up to editors! orderings of
+//                                the commands in flight at each kill)
 //   TESSERA_SOAK_MIX             percent of moves,creases,undos; the rest are
 //                                redos (default 70,15,10)
 //   TESSERA_SOAK_STORM_MS        longest storm before the kill (default 180;
@@ -142,6 +144,7 @@ struct Tally {
   std::map<Kind, int> acknowledged, refused;
   std::map<std::string, int> refusalReasons;
   int movesRefusedOtherwise = 0;  // for a reason other than the per-connection rate limit
+  int editorCycles = 0, editorCyclesOpened = 0;  // editors started, and those that opened the document before the kill
   int inFlight = 0, inFlightRecovered = 0;
   int losses = 0;  // acknowledged versions missing after a restart, or 1 for a surface no replay explains
   size_t maxHistories = 1;
@@ -156,9 +159,10 @@ struct Tally {
     std::string reasons;
     for (const auto& [reason, count] : refusalReasons) reasons += " " + reason + "=" + std::to_string(count);
     std::printf(
-        "soak: %d/%d cycles; acknowledged %d (moves %d, creases %d, undos %d, redos %d); refused %d (moves %d)%s; "
-        "in flight at the kill %d, recovered %d; losses %d; candidate histories at most %zu; %.1f s\n",
-        cycles, cyclesPlanned, sum(acknowledged), acknowledged[Kind::kMove], acknowledged[Kind::kCrease],
+        "soak: %d/%d cycles; editors opened the document in %d of %d editor-cycles; acknowledged %d (moves %d, creases "
+        "%d, undos %d, redos %d); refused %d (moves %d)%s; in flight at the kill %d, recovered %d; losses %d; "
+        "candidate histories at most %zu; %.1f s\n",
+        cycles, cyclesPlanned, editorCyclesOpened, editorCycles, sum(acknowledged), acknowledged[Kind::kMove], acknowledged[Kind::kCrease],
         acknowledged[Kind::kUndo], acknowledged[Kind::kRedo], sum(refused), refused[Kind::kMove], reasons.c_str(),
         inFlight, inFlightRecovered, losses, maxHistories,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -179,7 +183,11 @@ void editorStorm(const ServerProcess& server, const std::string& token, uint64_t
                  const LevelCounts& counts, uint32_t seed, int index, std::mutex& mutex,
                  std::map<uint64_t, Acknowledged>& acked, std::vector<StormCommand>& inFlight, Tally& tally) {
   auto session = Session::connect(server.session("editor" + std::to_string(index), token));
-  if (!session.isOk() || !(*session)->call(testing::openDocument(docId), 10).isOk()) return;
+  if (!session.isOk() || !(*session)->call(testing::openDocument(docId), 10).isOk()) return;  // killed first
+  {
+    std::lock_guard lock(mutex);
+    ++tally.editorCyclesOpened;
+  }
   std::mt19937 local(seed);
   std::vector<uint64_t> active, undone;
   for (int i = 0; i < 2000; ++i) {
@@ -277,6 +285,7 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
     std::map<uint64_t, Acknowledged> acked;  // version -> command
     std::vector<StormCommand> inFlight;
     std::vector<std::thread> editors;
+    tally.editorCycles += options.editors;
     for (int e = 0; e < options.editors; ++e) {
       editors.emplace_back(editorStorm, std::cref(*server), std::cref(token), docId, std::cref(options), std::cref(counts),
                            static_cast<uint32_t>(rng()), e, std::ref(mutex), std::ref(acked), std::ref(inFlight),
@@ -362,9 +371,10 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
                                     << recovered << ", " << acked.size() << " acked, " << inFlight.size()
                                     << " in flight, " << replicas.size() << " candidate histories)";
     // A bound on the check's work: each history is replayed for every
-    // assignment of the next cycle's in-flight commands (up to 8! for 8
-    // editors). Soaks of 100 cycles kept at most 2; more than this many
-    // would mean the observation no longer tells histories apart.
+    // assignment of the next cycle's in-flight commands (up to 4! = 24 with
+    // 4 editors). Soaks of 100 to 300 cycles kept at most 2 (docs/STORE.md);
+    // more than this many would mean the observation no longer tells
+    // histories apart.
     ASSERT_LE(survivors.size(), kMaxHistories) << "too many histories match the recovered surface";
     tally.maxHistories = std::max(tally.maxHistories, survivors.size());
     replicas = std::move(survivors);

@@ -85,11 +85,11 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
 }
 
 DocumentHost::~DocumentHost() {
-  // Free the large parts first (members would go only after this body), so
-  // the trim on a bulk thread finds them returned to the heap.
-  views_.clear();
-  { Document released = std::move(doc_); }
-  trimMemory();
+  // Freeing a large document takes seconds: the document and its views go
+  // on a bulk thread, which then trims the heap, rather than on the worker
+  // that dropped the last reference (it may owe a small document an edit).
+  releaseOnBulk(std::make_shared<Released>(Released{std::move(doc_), std::move(views_)}));
+  logEvent(LogLevel::kInfo, "document_closed", {{"doc", id_.value}});
 }
 
 void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
@@ -206,7 +206,7 @@ void DocumentHost::broadcastPresence() {
 }
 
 void DocumentHost::dropUnwatchedViews() {
-  bool dropped = false;
+  auto dropped = std::make_shared<Released>();
   for (auto it = views_.begin(); it != views_.end();) {
     const bool watched = std::any_of(it->second.subscribers.begin(), it->second.subscribers.end(),
                                      [](const auto& s) { return !s.second.expired(); });
@@ -215,14 +215,21 @@ void DocumentHost::dropUnwatchedViews() {
       continue;
     }
     logEvent(LogLevel::kDebug, "profile_dropped", {{"doc", id_.value}, {"profile", it->first}});
-    it = views_.erase(it);
-    dropped = true;
+    dropped->views.insert(views_.extract(it++));
   }
-  if (dropped) trimMemory();
+  if (!dropped->views.empty()) releaseOnBulk(std::move(dropped));
 }
 
-// A dropped view or finished bulk work freed memory inside the allocator's
-// arenas; give it back to the system on a bulk thread (it walks the heap).
+// Memory a large view or document held is freed on a bulk thread (a
+// tessellation of millions of triangles takes seconds to free), then given
+// back to the system (malloc_trim walks the heap).
+void DocumentHost::releaseOnBulk(std::shared_ptr<Released> released) {
+  boost::asio::post(bulk_, [released = std::move(released)]() mutable {
+    released.reset();
+    ::malloc_trim(0);
+  });
+}
+
 void DocumentHost::trimMemory() {
   boost::asio::post(bulk_, [] { ::malloc_trim(0); });
 }

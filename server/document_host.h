@@ -23,6 +23,7 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/document/document.h"
@@ -142,6 +143,12 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void dropUnwatchedViews();
   Lane laneFor(int64_t triangles) const;
   void trimMemory();
+  // What is freed off the interactive workers: a closed document, dropped views.
+  struct Released {
+    std::optional<Document> doc;
+    std::map<std::string, View> views;
+  };
+  void releaseOnBulk(std::shared_ptr<Released> released);
   // A region at version_; without inline ids (a delta after a move) it
   // carries its layout's version for receivers holding the ids.
   Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view, bool idsInline);

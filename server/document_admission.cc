@@ -1,0 +1,70 @@
+// Admission and memory of a document's work (issue 13 §2): which lane a
+// task takes, the triangle estimates a request is judged by before any
+// work, and freeing views and documents off the interactive workers. Part
+// of DocumentHost.
+#include <boost/asio/post.hpp>
+#include <malloc.h>
+
+#include <algorithm>
+
+#include "server/document_host.h"
+#include "server/log.h"
+
+namespace tessera::server {
+
+void DocumentHost::dropUnwatchedViews() {
+  auto dropped = std::make_shared<Released>();
+  for (auto it = views_.begin(); it != views_.end();) {
+    const bool watched = std::any_of(it->second.subscribers.begin(), it->second.subscribers.end(),
+                                     [](const auto& s) { return !s.second.expired(); });
+    if (watched) {
+      ++it;
+      continue;
+    }
+    logEvent(LogLevel::kDebug, "profile_dropped", {{"doc", id_.value}, {"profile", it->first}});
+    dropped->views.insert(views_.extract(it++));
+  }
+  if (!dropped->views.empty()) releaseOnBulk(std::move(dropped));
+}
+
+// Memory a large view or document held is freed on a bulk thread (a
+// tessellation of millions of triangles takes seconds to free), then given
+// back to the system (malloc_trim walks the heap).
+void DocumentHost::releaseOnBulk(std::shared_ptr<Released> released) {
+  boost::asio::post(bulk_, [released = std::move(released)]() mutable {
+    released.reset();
+    ::malloc_trim(0);
+  });
+}
+
+void DocumentHost::trimMemory() {
+  boost::asio::post(bulk_, [] { ::malloc_trim(0); });
+}
+
+Lane DocumentHost::laneFor(int64_t triangles) const {
+  return triangles > config_.bulkTriangles ? Lane::kBulk : Lane::kInteractive;
+}
+
+int64_t DocumentHost::uniformTriangles(uint32_t level) const {
+  if (level > static_cast<uint32_t>(counts_.maxLevel())) {
+    // Beyond the counts: four times per level, saturating.
+    int64_t t = static_cast<int64_t>(counts_.faces(counts_.maxLevel()));
+    for (uint32_t l = static_cast<uint32_t>(counts_.maxLevel()); l < level && t < (INT64_MAX >> 2); ++l) t *= 4;
+    return t;
+  }
+  return static_cast<int64_t>(counts_.faces(static_cast<int>(level)));
+}
+
+int64_t DocumentHost::minimumTriangles(const wire::LodProfile& profile) const {
+  return uniformTriangles(std::min<uint32_t>(profile.base_level(), 64));
+}
+
+int64_t DocumentHost::maximumTriangles(const wire::LodProfile& profile) const {
+  const int64_t budget = profile.triangle_budget() == 0
+                             ? config_.limits.maxTrianglesPerSubscriber
+                             : static_cast<int64_t>(std::min<uint64_t>(profile.triangle_budget(),
+                                                                        static_cast<uint64_t>(config_.limits.maxTrianglesPerSubscriber)));
+  return std::min(budget, uniformTriangles(std::min<uint32_t>(profile.max_level(), 64)));
+}
+
+}  // namespace tessera::server

@@ -293,6 +293,7 @@ void Connection::armWriteWatchdog() {
 void Connection::closeNow() {
   if (closed_) return;
   closed_ = true;
+  live_ = false;
   boost::system::error_code ignored;
   idleTimer_.cancel();
   writeTimer_.cancel();

@@ -42,6 +42,9 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   // Whether the Hello carried a token some grant names; until then the
   // connection counts against the unauthenticated limits.
   bool authenticated() const { return authenticated_.load(); }
+  // False once closed: a closed connection holds no slot, even while its
+  // last handlers still keep the object alive.
+  bool live() const { return live_.load(); }
   // Snapshot of the queue for stats: bytes, messages.
   std::pair<uint64_t, size_t> queueDepth() const { return {queueBytes_.load(), queueMessages_.load()}; }
 
@@ -83,6 +86,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   boost::asio::steady_timer idleTimer_, writeTimer_, helloTimer_;
   bool helloHeld_ = false;  // a Hello waiting for its address's turn
   std::atomic<bool> authenticated_{false};
+  std::atomic<bool> live_{true};
   std::chrono::steady_clock::time_point writeStarted_;  // of the write in flight
   bool watchdogArmed_ = false;
   ServerContext& context_;

@@ -152,7 +152,7 @@ std::optional<std::string> Server::overLimits(const std::string& address) {
   int sameAddress = 0, unauthenticatedHere = 0, unauthenticated = 0;
   for (auto it = connections_.begin(); it != connections_.end();) {
     auto live = it->second.lock();
-    if (!live) {
+    if (!live || !live->live()) {
       it = connections_.erase(it);
       continue;
     }

@@ -37,6 +37,16 @@ wire::RejectReason reasonFor(ErrorCode code) {
   }
 }
 
+// A Reject with REJECT_REASON_LIMIT_EXCEEDED, framed: a request over a
+// budget or cap (PROTOCOL 9).
+std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message, uint32_t maxFrameBytes) {
+  wire::ServerMessage m;
+  m.mutable_reject()->set_client_seq(clientSeq);
+  m.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
+  m.mutable_reject()->set_message(message);
+  return frameOf(m, maxFrameBytes);
+}
+
 // Snapshot parts stay well under any client's frame limit.
 constexpr size_t kSnapshotPartBytes = 4u << 20;
 
@@ -100,11 +110,11 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
                              ? config_.limits.maxTrianglesPerSubscriber
                              : static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX));
   if (least > budget || least > config_.limits.maxTrianglesPerSubscriber) {
-    auto reject = rejectFor(clientSeq, invalidArgument("LOD profile: base level " + std::to_string(requested.base_level()) +
+    who->send({limitExceeded(clientSeq, "LOD profile: base level " + std::to_string(requested.base_level()) +
                                                         " alone has " + std::to_string(least) + " triangles, above the budget of " +
-                                                        std::to_string(std::min(budget, config_.limits.maxTrianglesPerSubscriber))));
-    reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
-    who->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
+                                                        std::to_string(std::min(budget, config_.limits.maxTrianglesPerSubscriber)),
+                            config_.limits.maxFrameBytes),
+               nullptr});
     return;
   }
   queue_.post(laneFor(maximumTriangles(requested)), [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
@@ -139,11 +149,11 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     auto it = self->views_.find(key);
     if (it == self->views_.end() && self->views_.size() >= static_cast<size_t>(limits.profilesPerDocument)) {
       // Every view is re-tessellated on every edit: their number is capped.
-      auto reject = rejectFor(clientSeq, invalidArgument("document " + std::to_string(self->id_.value) + " already serves " +
+      who->send({limitExceeded(clientSeq, "document " + std::to_string(self->id_.value) + " already serves " +
                                                          std::to_string(self->views_.size()) +
-                                                         " LOD profiles, the limit (--profiles-per-document); subscribe with one of them"));
-      reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
-      who->send({frameOf(reject, limits.maxFrameBytes), nullptr});
+                                                         " LOD profiles, the limit (--profiles-per-document); subscribe with one of them",
+                              limits.maxFrameBytes),
+                 nullptr});
       return;
     }
     if (it == self->views_.end()) {
@@ -151,9 +161,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       auto tessellation = Tessellation::build(self->doc_, profile);
       self->stats_.tessellateMicros += microsSince(start);
       if (!tessellation.isOk()) {
-        auto reject = rejectFor(clientSeq, tessellation.status());
-        reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
-        who->send({frameOf(reject, self->config_.limits.maxFrameBytes), nullptr});
+        who->send({limitExceeded(clientSeq, tessellation.status().message(), self->config_.limits.maxFrameBytes), nullptr});
         return;
       }
       View view;
@@ -358,14 +366,12 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
     Status back = retract(entry);
     ++stats_.rejects;
     if (!back.isOk()) logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
-    wire::ServerMessage reject;
-    reject.mutable_reject()->set_client_seq(clientSeq);
-    reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
-    reject.mutable_reject()->set_message(
+    author->send({limitExceeded(
+        clientSeq,
         "the edit would move the surface outside the document's bounds: the cube from (" +
         std::to_string(grid_.origin[0]) + ", " + std::to_string(grid_.origin[1]) + ", " + std::to_string(grid_.origin[2]) +
-        ") with side " + std::to_string(grid_.range));
-    author->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
+        ") with side " + std::to_string(grid_.range),
+        config_.limits.maxFrameBytes), nullptr});
     return;
   }
   ++stats_.edits;
@@ -602,12 +608,12 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
   // Refused from the exact count before any work (issue 13 §2).
   const int64_t triangles = uniformTriangles(request.level());
   if (triangles > config_.limits.maxTrianglesPerSubscriber) {
-    auto reject = rejectFor(clientSeq, invalidArgument("export: level " + std::to_string(request.level()) + " has " +
+    who->send({limitExceeded(clientSeq, "export: level " + std::to_string(request.level()) + " has " +
                                                         std::to_string(triangles) + " triangles, above the limit of " +
                                                         std::to_string(config_.limits.maxTrianglesPerSubscriber) +
-                                                        " (--max-triangles)"));
-    reject.mutable_reject()->set_reason(wire::REJECT_REASON_LIMIT_EXCEEDED);
-    who->send({frameOf(reject, config_.limits.maxFrameBytes), nullptr});
+                                                        " (--max-triangles)",
+                            config_.limits.maxFrameBytes),
+               nullptr});
     return;
   }
   queue_.post(laneFor(triangles), [self = shared_from_this(), who, clientSeq, request, triangles] {

@@ -11,8 +11,12 @@ packages=(
   libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev zlib1g-dev
   # protocol and server
   libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev libssl-dev openssl
-  # viewer
-  libglfw3-dev libgl-dev libimgui-dev
+  # command lines (one options library for every binary)
+  libcli11-dev
+  # operations: HTTP health and Prometheus metrics, sd_notify and the unit check
+  prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev systemd
+  # viewer, and its headless rendering without an X server (EGL surfaceless, OSMesa)
+  libglfw3-dev libgl-dev libimgui-dev libegl1-mesa-dev libgbm-dev libosmesa6-dev
   # tests and benchmarks: OpenSubdiv is the oracle, never a runtime dependency
   libgtest-dev libgmock-dev libbenchmark-dev libosd-dev
   # test data and tools: real meshes (CGAL demo data), the Khronos glTF validator (npm),

@@ -430,6 +430,7 @@ void Connection::authenticate(const wire::ClientMessage& message) {
     if (!known.isOk() || !*known) {
       // Never the token itself in a log.
       const int failures = context_.authThrottle.failed(address_, std::chrono::steady_clock::now());
+      ++context_.stats.authFailures;
       logEvent(LogLevel::kWarn, "auth_failed",
                {{"session", sessionId_}, {"address", address_}, {"name", name_}, {"recent_failures", static_cast<int64_t>(failures)},
                 {"error", known.isOk() ? std::string("unknown token") : known.status().message()}});

@@ -160,6 +160,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       const auto start = Clock::now();
       auto tessellation = Tessellation::build(self->doc_, profile);
       self->stats_.tessellateMicros += microsSince(start);
+      self->stats_.tessellateLatency.addMicros(microsSince(start));
       if (!tessellation.isOk()) {
         who->send({limitExceeded(clientSeq, tessellation.status().message(), self->config_.limits.maxFrameBytes), nullptr});
         return;
@@ -208,6 +209,7 @@ Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t regio
   }
   TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
   stats_.encodeMicros += microsSince(start);
+  stats_.encodeLatency.addMicros(microsSince(start));
   ++stats_.regionsEncoded;
   return std::make_shared<const std::string>(std::move(bytes));
 }
@@ -433,6 +435,7 @@ void DocumentHost::flush() {
     const auto start = Clock::now();
     auto changes = view.tessellation->update(doc_, changedLimits_);
     stats_.tessellateMicros += microsSince(start);
+    stats_.tessellateLatency.addMicros(microsSince(start));
     if (!changes.isOk()) {
       // Over its triangle budget now: its subscribers get an error and the
       // view goes; they may subscribe again with another profile.
@@ -525,6 +528,7 @@ void DocumentHost::release() {
     if (p.version <= ackedVersion_) continue;
     ackedVersion_ = p.version;
     stats_.commitMicros += microsSince(p.applied);
+    stats_.ackLatency.addMicros(microsSince(p.applied));
     if (auto author = p.author.lock()) {
       wire::ServerMessage ack;
       ack.mutable_ack()->set_client_seq(p.clientSeq);

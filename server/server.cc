@@ -136,6 +136,7 @@ void Server::accept() {
     // with several network threads no Hello can be read and answered first.
     if (over) {
       logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}});
+      ++stats_.connectionsRefused;
       connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS, *over);
     } else {
       connections_[session] = connection;

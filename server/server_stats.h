@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cstdint>
 
+#include "server/latency_histogram.h"
+
 namespace tessera::server {
 
 struct ServerStats {
@@ -27,6 +29,14 @@ struct ServerStats {
   std::atomic<int64_t> deltaRegions{0};           // region payloads queued in deltas
   std::atomic<int64_t> deltaRegionsLayoutIds{0};  // of those, moved regions sent without their layout's ids
   std::atomic<int64_t> deltaFlushes{0};    // deltas made per view; a flush covers every edit queued together
+  std::atomic<int64_t> connectionsRefused{0};  // over a connection limit, before any Hello
+  std::atomic<int64_t> authFailures{0};        // Hellos with a token the store does not know
+  // Latencies (histograms for /metrics): an edit from being applied to its
+  // durable ack (the journal commit), a view's tessellation build or
+  // update, and one region's encoding.
+  LatencyHistogram ackLatency;
+  LatencyHistogram tessellateLatency;
+  LatencyHistogram encodeLatency;
   const std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 
   double uptimeSeconds() const {

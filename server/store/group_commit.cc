@@ -122,6 +122,7 @@ void GroupCommitWriter::recordBatch(const std::vector<PendingWrite>& batch,
   if (committed) {
     ++stats_.batches;
     stats_.lastCommitLatency = latency;
+    stats_.commitLatency.add(latency);
   }
   stats_.averageBatchSize =
       stats_.batches == 0 ? 0.0

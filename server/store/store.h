@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/util/status.h"
+#include "server/latency_histogram.h"
 
 namespace tessera {
 
@@ -99,6 +100,7 @@ struct StoreStats {
   uint64_t writesCommitted = 0;                    // appends and other writes (create, snapshot, ...)
   double averageBatchSize = 0;                     // writesCommitted / batches
   std::chrono::microseconds lastCommitLatency{0};  // BEGIN to durable COMMIT, last batch
+  server::LatencyBuckets commitLatency;            // BEGIN to durable COMMIT, every batch
 };
 
 // Called exactly once per append: ok once the entry is durable, otherwise why

@@ -57,6 +57,11 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_mesh_format(wire::MESH_FORMAT_OBJ);
     m->set_tags("corner 0 inf\n");
     m->set_max_level(6);
+    m->set_triangulate(true);
+    m->set_crease_method(wire::CREASE_METHOD_CHAIKIN);
+    m->set_boundary(wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER);
+    m->set_file_name("meshes/bunny.obj");
+    m->set_tags_file_name("meshes/bunny.tags");
   }
   {
     auto* m = add().mutable_open_document();
@@ -133,6 +138,18 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_role(wire::ROLE_EDITOR);
     m->set_token("token-of-sixteen-bytes-at-least");
   }
+  {
+    auto* m = add().mutable_edit_batch();
+    m->set_document_id(42);
+    auto* move = m->add_commands()->mutable_move_vertex();
+    move->add_vertex_ids(packedId(2, 40));
+    move->mutable_target()->set_x(0.5);
+    move->set_mode(wire::MOVE_MODE_DIRECT_MANIPULATION);
+    auto* crease = m->add_commands()->mutable_set_edge_sharpness();
+    crease->set_edge_id(packedId(1, 5));
+    crease->set_sharpness(2.0f);
+    m->add_commands()->mutable_undo()->set_edit_id(3);
+  }
   // The second alternative of SetVertexType's oneof.
   {
     auto* m = add().mutable_set_vertex_type();
@@ -163,10 +180,26 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     m->set_edit_id(17);
   }
   {
+    auto* m = add().mutable_ack();  // of an EditBatch
+    m->set_client_seq(11);
+    m->set_document_id(42);
+    m->set_version(19);
+    m->set_edit_id(19);
+    m->add_edit_ids(18);
+    m->add_edit_ids(19);
+  }
+  {
     auto* m = add().mutable_reject();
     m->set_client_seq(10);
     m->set_reason(wire::REJECT_REASON_NOT_FOUND);
     m->set_message("document 42: edge e2:999999 does not exist (level 2 has 1920 edges)");
+  }
+  {
+    auto* m = add().mutable_reject();  // of an EditBatch
+    m->set_client_seq(12);
+    m->set_reason(wire::REJECT_REASON_NOT_FOUND);
+    m->set_message("edit batch, command 2 of 3: v9:1: level 9 is above the maximum level 6");
+    m->set_batch_index(2);
   }
   {
     auto* m = add().mutable_snapshot();
@@ -259,6 +292,19 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     m->set_server_time_unix_ms(1700000000456);
     m->mutable_undo()->set_document_id(42);
     m->mutable_undo()->set_edit_id(18);
+  }
+  {
+    auto* m = add().mutable_applied_command();
+    m->set_document_id(42);
+    m->set_version(21);
+    m->set_edit_id(20);
+    m->set_author_session_id(77);
+    m->set_author_name("alice");
+    m->set_server_time_unix_ms(1700000000789);
+    auto* batch = m->mutable_edit_batch();
+    batch->set_document_id(42);
+    batch->add_commands()->mutable_redo()->set_edit_id(18);
+    batch->add_commands()->mutable_set_vertex_type()->set_vertex_id(packedId(1, 7));
   }
   return out;
 }

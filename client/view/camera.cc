@@ -22,10 +22,27 @@ void OrbitCamera::zoom(float steps) {
   distance_ = std::clamp(distance_ * std::pow(0.9f, steps), radius_ * 0.01f, radius_ * 100);
 }
 
-void OrbitCamera::frame(V3 lo, V3 hi) {
+void OrbitCamera::frame(V3 lo, V3 hi, float aspect, float fill) {
   target_ = (lo + hi) * 0.5f;
   radius_ = std::max(length(hi - lo) * 0.5f, 1e-6f);
-  distance_ = radius_ / std::sin(kFovY / 2) * 1.05f;
+  // A corner at (x, y, z) in the camera's right/up/back axes around the
+  // target is at depth d - z from an eye at distance d; it projects inside
+  // `fill` of the half-frame when |x| <= fill * (d - z) * tan * aspect and
+  // |y| <= fill * (d - z) * tan. The least such d over all corners is exact
+  // (a bounding sphere would leave the box much smaller than the frame).
+  const Mat4 v = lookAt(
+      target_ + V3{std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_), std::cos(pitch_) * std::cos(yaw_)},
+      target_, {0, 1, 0});
+  const V3 right{v[0], v[4], v[8]}, up{v[1], v[5], v[9]}, back{v[2], v[6], v[10]};
+  const float t = std::tan(kFovY / 2) * fill;
+  float d = 0;
+  for (int c = 0; c < 8; ++c) {
+    const V3 corner{(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z};
+    const V3 p = corner - target_;
+    const float x = std::abs(dot(p, right)), y = std::abs(dot(p, up)), z = dot(p, back);
+    d = std::max(d, z + std::max(x / (t * std::max(aspect, 1e-3f)), y / t));
+  }
+  distance_ = std::max(d, radius_ * 0.05f);
 }
 
 V3 OrbitCamera::eye() const {

@@ -19,14 +19,18 @@ class OrbitCamera {
   void orbit(float dxPixels, float dyPixels);
   void pan(float dxPixels, float dyPixels, int viewportHeight);
   void zoom(float steps);  // > 0 moves closer
-  // Looks at the box from the current direction, far enough to see it all.
-  void frame(V3 lo, V3 hi);
+  // Fit to view: looks at the box's centre from the current direction, from
+  // the distance at which the box's eight corners fill `fill` of the frame
+  // in its tighter dimension (width or height, for this aspect ratio).
+  void frame(V3 lo, V3 hi, float aspect = 4.0f / 3.0f, float fill = 0.86f);
 
   V3 eye() const;
   V3 target() const { return target_; }
   float distance() const { return distance_; }
   Mat4 view() const;
   Mat4 projection(float aspect) const;
+  // Pixels covered by one world unit at view depth 1, for this viewport height.
+  float pixelsPerUnit(int height) const { return static_cast<float>(height) / (2 * std::tan(kFovY / 2)); }
 
   // The ray from the eye through a window pixel.
   Ray rayThrough(float px, float py, int width, int height) const;

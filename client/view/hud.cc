@@ -2,77 +2,144 @@
 
 #include <imgui.h>
 
+#include <cstdio>
+
+#include "client/view/gizmo.h"
 #include "core/hierarchy/ids.h"
 
 namespace tessera::view {
 
-std::string vertexName(uint64_t packed) {
-  return VertexId::fromPacked(packed).toString();
+namespace {
+
+// "812", "48.2k", "2.61M": counts read at a glance.
+std::string shortCount(double n) {
+  char text[32];
+  if (n < 1e4) {
+    std::snprintf(text, sizeof text, "%.0f", n);
+  } else if (n < 1e6) {
+    std::snprintf(text, sizeof text, "%.1fk", n / 1e3);
+  } else {
+    std::snprintf(text, sizeof text, "%.2fM", n / 1e6);
+  }
+  return text;
 }
 
-void drawHud(const HudFacts& f, ViewToggles& t) {
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.75f);
-  ImGui::Begin("tessera-view", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  ImGui::Text("%.1f fps   %lld triangles in %zu regions", f.fps, static_cast<long long>(f.triangles),
-              f.regions);
+void drawStatus(const HudFacts& f, const ViewToggles& t) {
+  ImGui::Text("%s triangles, %zu regions", shortCount(static_cast<double>(f.triangles)).c_str(), f.regions);
   if (t.refine > 0) {
-    ImGui::Text("refined: %lld triangles from %lld, %.2f ms + %.2f ms upload",
-                static_cast<long long>(f.triangles), static_cast<long long>(f.receivedTriangles), f.refineMs,
-                f.uploadMs);
+    ImGui::Text("refined from %s: %.1f + %.1f ms",
+                shortCount(static_cast<double>(f.receivedTriangles)).c_str(), f.refineMs, f.uploadMs);
   }
-  ImGui::Text("document version %llu%s", static_cast<unsigned long long>(f.stats.version),
-              f.stats.ready ? "" : " (waiting for a snapshot)");
-  ImGui::Text("received %.1f KiB/s  (%.1f KiB in all)", f.bytesPerSecond / 1024,
-              f.stats.bytesReceived / 1024.0);
+  ImGui::Text("%.1f KiB/s (%.0f KiB in all)", f.bytesPerSecond / 1024, f.stats.bytesReceived / 1024.0);
   if (f.stats.lastLatencyMs >= 0) {
-    ImGui::Text("edit to delta: %.1f ms (max %.1f ms, %llu edits)", f.stats.lastLatencyMs,
-                f.stats.maxLatencyMs, static_cast<unsigned long long>(f.stats.latencySamples));
-  } else {
-    ImGui::Text("edit to delta: no edit yet");
+    ImGui::Text("edit to delta %.1f ms (max %.1f, %llu)", f.stats.lastLatencyMs, f.stats.maxLatencyMs,
+                static_cast<unsigned long long>(f.stats.latencySamples));
   }
   if (!f.stats.connected) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "disconnected: reconnecting");
   if (f.stats.reconnects > 0)
     ImGui::Text("reconnected %llu times", static_cast<unsigned long long>(f.stats.reconnects));
   if (!f.stats.lastError.empty()) ImGui::TextWrapped("last error: %s", f.stats.lastError.c_str());
+}
 
-  ImGui::Separator();
-  ImGui::Checkbox("wireframe (W)", &t.wireframe);
+void drawToggles(const HudFacts& f, ViewToggles& t) {
+  ImGui::Checkbox("wire W", &t.wireframe);
   ImGui::SameLine();
-  ImGui::Checkbox("region colours (C)", &t.regionColours);
-  ImGui::Checkbox("control vertices (V)", &t.showControls);
-  ImGui::SliderInt("refine: splits per edge (R)", &t.refine, 0, 2);
-  ImGui::SliderInt("control level ([ ])", &t.controlLevel, 0, 10);
+  ImGui::Checkbox("regions C", &t.regionColours);
+  ImGui::SameLine();
+  ImGui::Checkbox("matcap M", &t.matcap);
+  ImGui::Checkbox("points V", &t.showControls);
+  ImGui::SameLine();
+  ImGui::Checkbox("axes G", &t.showGizmo);
+  ImGui::PushItemWidth(90);
+  ImGui::SliderInt("refine R", &t.refine, 0, 2);
+  ImGui::SliderInt("point level [ ]", &t.controlLevel, 0, 10);
+  ImGui::PopItemWidth();
+  if (!t.showControls) return;
   if (f.pickedVertex && f.pickedEdgeEnd) {
-    ImGui::Text("%zu control vertices; picked the edge %s - %s", f.controlPoints,
-                vertexName(*f.pickedVertex).c_str(), vertexName(*f.pickedEdgeEnd).c_str());
-    ImGui::Text("E: infinitely sharp, 1-4: semi-sharp, Shift+E: smooth");
+    ImGui::Text("%zu points; edge %s - %s", f.controlPoints, vertexName(*f.pickedVertex).c_str(),
+                vertexName(*f.pickedEdgeEnd).c_str());
+    ImGui::TextDisabled("E sharp, 1-4 semi-sharp, Shift+E smooth");
   } else {
-    ImGui::Text("%zu control vertices; picked %s", f.controlPoints,
+    ImGui::Text("%zu points; picked %s", f.controlPoints,
                 f.pickedVertex ? vertexName(*f.pickedVertex).c_str() : "none");
-    if (f.pickedVertex) ImGui::Text("shift+click a neighbour to pick an edge");
+    if (f.pickedVertex) ImGui::TextDisabled("shift+click a neighbour: an edge");
   }
+}
 
+void drawProfileAndPeople(const HudFacts& f, ViewToggles& t) {
   if (ImGui::CollapsingHeader("LOD profile")) {
+    ImGui::PushItemWidth(90);
     ImGui::SliderInt("base level", &t.baseLevel, 0, 8);
     ImGui::SliderInt("max level", &t.maxLevel, 0, 8);
     ImGui::SliderFloat("angle", &t.angle, 1, 90, "%.0f deg");
+    ImGui::PopItemWidth();
     if (t.baseLevel > t.maxLevel) t.baseLevel = t.maxLevel;
     if (ImGui::Button("subscribe")) t.profileChanged = true;
   }
+  const std::string people = "collaborators: " + std::to_string(f.collaborators.size()) + "###people";
+  if (ImGui::CollapsingHeader(people.c_str())) {
+    for (const Collaborator& c : f.collaborators) {
+      std::string selection;
+      for (size_t i = 0; i < c.selectedVertices.size() && i < 4; ++i)
+        selection += " " + vertexName(c.selectedVertices[i]);
+      if (c.selectedVertices.size() > 4) selection += " ...";
+      ImGui::BulletText("%s%s (session %llu)%s%s", c.name.c_str(), c.self ? " [you]" : "",
+                        static_cast<unsigned long long>(c.sessionId), selection.empty() ? "" : ":",
+                        selection.c_str());
+    }
+  }
+}
 
-  ImGui::Separator();
-  ImGui::Text("collaborators: %zu", f.collaborators.size());
-  for (const Collaborator& c : f.collaborators) {
-    std::string selection;
-    for (size_t i = 0; i < c.selectedVertices.size() && i < 4; ++i)
-      selection += " " + vertexName(c.selectedVertices[i]);
-    if (c.selectedVertices.size() > 4) selection += " ...";
-    ImGui::BulletText("%s%s (session %llu)%s%s", c.name.c_str(), c.self ? " [you]" : "",
-                      static_cast<unsigned long long>(c.sessionId), selection.empty() ? "" : ": selected",
-                      selection.c_str());
+}  // namespace
+
+std::string vertexName(uint64_t packed) {
+  return VertexId::fromPacked(packed).toString();
+}
+
+void drawHud(const HudFacts& f, ViewToggles& t, int width, int height) {
+  // The collapsed HUD is the window's title line, which carries the facts
+  // one wants at a glance; the full one adds the rest below it.
+  char title[160];
+  std::snprintf(title, sizeof title, "v%llu  %s tris  %.0f fps%s###tessera-view",
+                static_cast<unsigned long long>(f.stats.version),
+                shortCount(static_cast<double>(f.triangles)).c_str(), f.fps,
+                f.stats.ready ? "" : "  (waiting)");
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(kHudMaxWidth * static_cast<float>(width),
+                                                           kHudMaxHeight * static_cast<float>(height)));
+  ImGui::SetNextWindowBgAlpha(0.6f);
+  ImGui::SetNextWindowCollapsed(t.hudCollapsed, ImGuiCond_Always);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
+  const bool open = ImGui::Begin(title, nullptr, flags);
+  // A click on the title's arrow collapses or expands it too.
+  t.hudCollapsed = ImGui::IsWindowCollapsed();
+  if (open) {
+    drawStatus(f, t);
+    ImGui::Separator();
+    drawToggles(f, t);
+    drawProfileAndPeople(f, t);
+    ImGui::TextDisabled("H collapse  F fit  Q quit");
   }
   ImGui::End();
+}
+
+void drawGizmo(const Mat4& view, int width, int height) {
+  static constexpr ImU32 kColours[3] = {IM_COL32(232, 72, 72, 255), IM_COL32(96, 204, 80, 255),
+                                        IM_COL32(80, 136, 240, 255)};
+  static constexpr const char* kNames[3] = {"X", "Y", "Z"};
+  const GizmoPlacement at = gizmoPlacement(width, height);
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImVec2 centre(at.cx, at.cy);
+  draw->AddCircleFilled(centre, at.radius + 8, IM_COL32(0, 0, 0, 60));
+  for (const GizmoAxis& a : gizmoAxes(view)) {
+    const ImVec2 tip(at.cx + a.dx * at.radius, at.cy + a.dy * at.radius);
+    draw->AddLine(centre, tip, kColours[a.axis], 2.5f);
+    draw->AddCircleFilled(tip, 6.5f, kColours[a.axis]);
+    const ImVec2 glyph = ImGui::CalcTextSize(kNames[a.axis]);
+    draw->AddText(ImVec2(tip.x - glyph.x / 2, tip.y - glyph.y / 2), IM_COL32(16, 16, 16, 255),
+                  kNames[a.axis]);
+  }
 }
 
 }  // namespace tessera::view

@@ -1,6 +1,9 @@
-// The Dear ImGui HUD of tessera-view: frame rate, triangles, edit-to-delta
-// latency, received bytes per second, document version, collaborators and
-// their selections, plus the display toggles and the LOD profile.
+// The Dear ImGui overlays of tessera-view: the HUD (frame rate, triangles,
+// document version, edit-to-delta latency, the display toggles, the LOD
+// profile, collaborators) and the axes gizmo. The HUD sits in the top-left
+// corner, at most 36% of the frame wide and 42% high (its content scrolls
+// beyond that), so it never covers the middle of the frame, where
+// fit-to-view puts the model's centre; it collapses to its title line.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +12,7 @@
 #include <vector>
 
 #include "client/view/connection.h"
+#include "client/view/view_math.h"
 
 namespace tessera::view {
 
@@ -16,7 +20,10 @@ namespace tessera::view {
 struct ViewToggles {
   bool wireframe = false;
   bool regionColours = false;
-  bool showControls = true;
+  bool showControls = false;  // control vertices; off by default (--control-points, V)
+  bool matcap = false;        // M
+  bool showGizmo = true;      // G
+  bool hudCollapsed = false;  // H
   int controlLevel = 0;
   int refine = 0;  // client-side refinement: splits per edge, 0..2
   // LOD profile; `profileChanged` is set when the user applies a new one.
@@ -39,8 +46,16 @@ struct HudFacts {
   std::vector<Collaborator> collaborators;
 };
 
-// Builds the HUD window; call between ImGui::NewFrame and ImGui::Render.
-void drawHud(const HudFacts& facts, ViewToggles& toggles);
+// The HUD's largest size as fractions of the frame.
+inline constexpr float kHudMaxWidth = 0.36f, kHudMaxHeight = 0.42f;
+
+// Builds the HUD window for a frame of this size; call between
+// ImGui::NewFrame and ImGui::Render. Follows toggles.hudCollapsed and
+// writes back a collapse made with the mouse.
+void drawHud(const HudFacts& facts, ViewToggles& toggles, int width, int height);
+
+// The axes gizmo (gizmo.h) in the bottom-left corner, behind any ImGui window.
+void drawGizmo(const Mat4& view, int width, int height);
 
 // "v2:17" for a packed vertex id.
 std::string vertexName(uint64_t packed);

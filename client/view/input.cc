@@ -30,6 +30,15 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_V:
       app.toggles.showControls = !app.toggles.showControls;
       break;
+    case GLFW_KEY_M:
+      app.toggles.matcap = !app.toggles.matcap;
+      break;
+    case GLFW_KEY_G:
+      app.toggles.showGizmo = !app.toggles.showGizmo;
+      break;
+    case GLFW_KEY_H:
+      app.toggles.hudCollapsed = !app.toggles.hudCollapsed;
+      break;
     case GLFW_KEY_F:
       app.frameRequested = true;
       break;

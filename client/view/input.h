@@ -28,7 +28,9 @@ struct App {
   bool undo = false, redo = false;  // done by the frame loop
 };
 
-// A key press (GLFW_KEY_*, GLFW_MOD_* bits). E and Shift+E make the picked
+// A key press (GLFW_KEY_*, GLFW_MOD_* bits). W, C, V, M, G and H toggle the
+// wireframe, region colours, control vertices, matcap, axes gizmo and the
+// HUD's collapse; F fits the model to the view. E and Shift+E make the picked
 // edge infinitely sharp and smooth again, 1 to 4 give it that semi-sharpness;
 // K toggles the picked vertex between corner and smooth; Ctrl+Z / Ctrl+Y
 // (Ctrl+Shift+Z) undo and redo.

@@ -1,5 +1,7 @@
 #include "client/view/renderer.h"
 
+#include "client/view/shaders.h"
+
 #include <cmath>
 #include <string>
 
@@ -7,60 +9,7 @@ namespace tessera::view {
 
 namespace {
 
-constexpr const char* kMeshVertex = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-layout(location = 1) in vec3 aNormal;
-uniform mat4 uView;
-uniform mat4 uProjection;
-out vec3 vNormal;
-out vec3 vPosition;
-void main() {
-  vec4 p = uView * vec4(aPosition, 1.0);
-  vPosition = p.xyz;
-  vNormal = mat3(uView) * aNormal;  // the view matrix is a rotation and a translation
-  gl_Position = uProjection * p;
-}
-)";
-
-// A headlight: diffuse plus a little specular, lit from the eye.
-constexpr const char* kMeshFragment = R"(#version 330 core
-in vec3 vNormal;
-in vec3 vPosition;
-uniform vec3 uColour;
-uniform int uFlat;
-out vec4 fragColour;
-void main() {
-  if (uFlat != 0) { fragColour = vec4(uColour, 1.0); return; }
-  vec3 n = normalize(vNormal);
-  if (!gl_FrontFacing) n = -n;
-  vec3 toEye = normalize(-vPosition);
-  float diffuse = max(dot(n, toEye), 0.0);
-  float specular = pow(max(dot(reflect(-toEye, n), toEye), 0.0), 40.0);
-  fragColour = vec4(uColour * (0.18 + 0.82 * diffuse) + vec3(0.25 * specular), 1.0);
-}
-)";
-
-constexpr const char* kPointVertex = R"(#version 330 core
-layout(location = 0) in vec3 aPosition;
-uniform mat4 uView;
-uniform mat4 uProjection;
-uniform float uSize;
-void main() {
-  gl_Position = uProjection * uView * vec4(aPosition, 1.0);
-  gl_PointSize = uSize;
-}
-)";
-
-constexpr const char* kPointFragment = R"(#version 330 core
-uniform vec3 uColour;
-out vec4 fragColour;
-void main() {
-  vec2 d = gl_PointCoord - vec2(0.5);
-  float r = dot(d, d);
-  if (r > 0.25) discard;
-  fragColour = vec4(r > 0.14 ? vec3(0.05) : uColour, 1.0);
-}
-)";
+using namespace shaders;
 
 Expected<GLuint> compile(GLenum type, const char* source) {
   GLuint shader = glCreateShader(type);
@@ -250,6 +199,10 @@ void Renderer::drawSurface(const DrawOptions& o) {
   setMatrices(meshProgram_, o);
   const GLint colour = glGetUniformLocation(meshProgram_, "uColour");
   const GLint flat = glGetUniformLocation(meshProgram_, "uFlat");
+  glUniform1i(glGetUniformLocation(meshProgram_, "uMatcap"), o.matcap ? 1 : 0);
+  // World +Y in view space, for the hemisphere light.
+  const std::array<float, 3> up{o.view[4], o.view[5], o.view[6]};
+  glUniform3fv(glGetUniformLocation(meshProgram_, "uUp"), 1, up.data());
   // Push the filled surface back a little so the wireframe lies on top.
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 1.0f);
@@ -282,7 +235,9 @@ void Renderer::drawPoints(const std::vector<V3>& points, const PointStyle& style
   glUseProgram(pointProgram_);
   setMatrices(pointProgram_, o);
   glUniform3fv(glGetUniformLocation(pointProgram_, "uColour"), 1, style.colour.data());
-  glUniform1f(glGetUniformLocation(pointProgram_, "uSize"), style.size);
+  glUniform1f(glGetUniformLocation(pointProgram_, "uDiameter"), o.pointDiameter * style.scale);
+  glUniform1f(glGetUniformLocation(pointProgram_, "uPixelsPerUnit"), o.pixelsPerUnit);
+  glUniform2f(glGetUniformLocation(pointProgram_, "uPixelRange"), style.minPixels, style.maxPixels);
   glBindVertexArray(pointVao_);
   glBindBuffer(GL_ARRAY_BUFFER, pointVbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(V3)), points.data(),

@@ -1,7 +1,8 @@
 // Renderer: the GPU side of tessera-view. One vertex buffer and one index
 // buffer per region, re-uploaded only when the region's mesh pointer changes;
-// smooth shading with the limit normals under a headlight, an optional
-// wireframe overlay and per-region colours; control vertices as round points.
+// smooth shading with the limit normals under key, fill and sky light or a
+// matcap (shaders.h), an optional wireframe overlay and per-region colours;
+// control vertices as round points sized in world units.
 // Needs a current OpenGL 3.3 core context for its whole life.
 #pragma once
 
@@ -24,11 +25,17 @@ struct DrawOptions {
   Mat4 view{}, projection{};
   bool wireframe = false;
   bool regionColours = false;
+  bool matcap = false;
+  // Control vertices: their world diameter (controlPointDiameter) and the
+  // pixels one world unit covers at depth 1 (viewport height / (2 tan(fovy / 2))).
+  float pointDiameter = 0.01f;
+  float pixelsPerUnit = 600;
 };
 
 struct PointStyle {
   std::array<float, 3> colour{1.0f, 0.85f, 0.1f};
-  float size = 8;
+  float scale = 1;  // times DrawOptions::pointDiameter
+  float minPixels = 3, maxPixels = 14;
 };
 
 class Renderer {

@@ -3,6 +3,7 @@
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <string>
 #include <vector>
 
 #include "client/view/gl.h"
@@ -13,9 +14,9 @@ Status writeScreenshot(const std::string& path, int width, int height) {
   if (width <= 0 || height <= 0) return invalidArgument(path + ": empty framebuffer");
   std::vector<unsigned char> pixels(static_cast<size_t>(width) * height * 3);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadBuffer(GL_BACK);
   glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, pixels.data());
-  if (glGetError() != GL_NO_ERROR) return internalError(path + ": glReadPixels failed");
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR)
+    return internalError(path + ": glReadPixels failed (GL error " + std::to_string(error) + ")");
   // OpenGL's rows run bottom to top; PNG's top to bottom.
   std::vector<unsigned char> flipped(pixels.size());
   const size_t row = static_cast<size_t>(width) * 3;

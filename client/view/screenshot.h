@@ -1,4 +1,4 @@
-// Reads the current framebuffer back and writes it as an RGB PNG
+// Reads the current read framebuffer back and writes it as an RGB PNG
 // (stb_image_write from Debian's libstb).
 #pragma once
 
@@ -8,7 +8,8 @@
 
 namespace tessera::view {
 
-// Reads the back buffer of the current context (call before swapping).
+// Reads the colour buffer selected by glReadBuffer of the bound
+// GL_READ_FRAMEBUFFER (OffscreenTarget::writePng binds its resolved one).
 Status writeScreenshot(const std::string& path, int width, int height);
 
 }  // namespace tessera::view

@@ -1,33 +1,22 @@
 #include "client/view/view_options.h"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <charconv>
 #include <fstream>
+#include <memory>
+
+#include "tessera/version.h"
 
 namespace tessera::view {
 
-const char* const kViewHelp =
-    "usage: tessera-view --connect HOST:PORT (--token T | --token-file F) --document D [options]\n"
-    "\n"
-    "  --name NAME            shown to collaborators (default tessera-view)\n"
-    "  --base-level N         LOD profile: minimum level (default 1)\n"
-    "  --max-level N          LOD profile: maximum level (default 3)\n"
-    "  --angle DEGREES        LOD profile: refine where normals differ more (default 15)\n"
-    "  --level N              level whose control vertices are shown and dragged (default 0)\n"
-    "  --size WxH             window size (default 800x600)\n"
-    "  --wireframe            start with the wireframe overlay on\n"
-    "  --region-colours       start with one colour per region\n"
-    "  --no-hud               hide the HUD\n"
-    "  --refine N             refine the received surface on the client, splitting each\n"
-    "                         edge up to N times (0, 1 or 2; default 0; key R cycles)\n"
-    "  --screenshot OUT.png   headless: render --frames N frames (default 30) after the\n"
-    "                         first snapshot, write OUT.png and exit\n"
-    "  --drag DX,DY           headless: first drag the control vertex nearest the centre\n"
-    "                         by DX,DY pixels (a self-test of picking and editing)\n"
-    "  --edit-keys            headless: first pick an edge and press E, 2, K, Ctrl+Z three\n"
-    "                         times, Ctrl+Y, printing the surface hash after each (a self-test)\n"
-    "  --timeout SECONDS      to connect and get the first snapshot (default 30)\n";
-
 namespace {
+
+// Options whose text is split after parsing (HOST:PORT, WxH, DX,DY, a file).
+struct RawOptions {
+  std::string connect, size, drag, tokenFile;
+};
 
 template <typename T>
 Status parseNumber(const std::string& option, const std::string& text, T lo, T hi, T* out) {
@@ -41,90 +30,170 @@ Status parseNumber(const std::string& option, const std::string& text, T lo, T h
   return Status::ok();
 }
 
+// "A<sep>B" as two numbers in [lo, hi]; `what` names the option and the form.
+Status parsePair(const std::string& option, const std::string& form, const std::string& text, char sep,
+                 int lo, int hi, int* a, int* b) {
+  const size_t at = text.find(sep);
+  if (at == std::string::npos) return invalidArgument(option + " expects " + form + ", got '" + text + "'");
+  TESSERA_RETURN_IF_ERROR(parseNumber<int>(option, text.substr(0, at), lo, hi, a));
+  return parseNumber<int>(option, text.substr(at + 1), lo, hi, b);
+}
+
+// A range check whose bounds the option's description gives in words.
+template <typename T>
+CLI::Validator within(T lo, T hi) {
+  return CLI::Range(lo, hi).description("");
+}
+
+std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, bool& noGizmo) {
+  auto app = std::make_unique<CLI::App>(
+      "tessera-view: shows and edits one document of a tessera-server (docs/VIEWER.md)", "tessera-view");
+  app->set_version_flag("--version", std::string("tessera-view ") + kVersion);
+  app->get_formatter()->column_width(26);
+
+  const std::string connection = "Connection", display = "Display", headless = "Headless";
+  app->add_option("--connect", raw.connect, "the server (required)")
+      ->type_name("HOST:PORT")
+      ->group(connection);
+  app->add_option("--token", o.token, "access token: the viewer role watches, the editor role edits")
+      ->type_name("T")
+      ->group(connection);
+  app->add_option("--token-file", raw.tokenFile, "read the token from the first line of FILE")
+      ->type_name("FILE")
+      ->group(connection);
+  app->add_option("--document", o.document, "document id (required)")
+      ->type_name("D")
+      ->check(within(uint64_t{1}, UINT64_MAX))
+      ->group(connection);
+  app->add_option("--name", o.name, "shown to collaborators (default tessera-view)")
+      ->type_name("NAME")
+      ->group(connection);
+  app->add_option("--base-level", o.baseLevel, "LOD profile: minimum level, 0 to 20 (default 1)")
+      ->type_name("N")
+      ->check(within(0u, 20u))
+      ->group(connection);
+  app->add_option("--max-level", o.maxLevel, "LOD profile: maximum level, 0 to 20 (default 3)")
+      ->type_name("N")
+      ->check(within(0u, 20u))
+      ->group(connection);
+  app->add_option("--angle", o.angle, "LOD profile: refine where normals differ more (default 15)")
+      ->type_name("DEGREES")
+      ->check(within(0.0, 180.0))
+      ->group(connection);
+  app->add_option("--timeout", o.timeoutSeconds, "to connect and get the first snapshot (default 30)")
+      ->type_name("SECONDS")
+      ->check(within(0.1, 3600.0))
+      ->group(connection);
+
+  app->add_option("--size", raw.size, "window or screenshot size (default 800x600)")
+      ->type_name("WxH")
+      ->group(display);
+  app->add_option("--msaa", o.msaa, "multisample anti-aliasing: samples per pixel, 0 for none (default 4)")
+      ->type_name("N")
+      ->check(within(0, 16))
+      ->group(display);
+  app->add_flag("--matcap", o.matcap, "matcap shading instead of key, fill and sky light (key M)")
+      ->group(display);
+  app->add_flag("--wireframe", o.wireframe, "wireframe overlay (key W)")->group(display);
+  app->add_flag("--region-colours,--region-colors", o.regionColours, "one colour per region (key C)")
+      ->group(display);
+  app->add_flag("--control-points", o.controlPoints, "show the control vertices (key V; off by default)")
+      ->group(display);
+  app->add_option("--level", o.controlLevel, "level whose control vertices are shown and dragged (default 0)")
+      ->type_name("N")
+      ->check(within(0, 20))
+      ->group(display);
+  app->add_flag("--no-hud", noHud, "no HUD")->group(display);
+  app->add_flag("--hud-collapsed", o.hudCollapsed, "start with the HUD collapsed to its title line (key H)")
+      ->group(display);
+  app->add_flag("--no-gizmo", noGizmo, "no axes gizmo (key G)")->group(display);
+  app->add_option("--refine", o.refine,
+                  "client-side refinement: split each edge up to N times, 0 to 2 (default 0; key R cycles)")
+      ->type_name("N")
+      ->check(within(0, 2))
+      ->group(display);
+
+  app->add_option("--screenshot", o.screenshot,
+                  "render without any display (EGL), --frames frames after the first snapshot, write "
+                  "this PNG and exit")
+      ->type_name("OUT.png")
+      ->group(headless);
+  app->add_option("--frames", o.frames, "frames to render before the screenshot (default 30)")
+      ->type_name("N")
+      ->check(within(1, 100000))
+      ->group(headless);
+  app->add_option("--drag", raw.drag,
+                  "self-test: first drag the control vertex nearest the centre by DX,DY pixels "
+                  "(write a negative DX as --drag=-80,80)")
+      ->type_name("DX,DY")
+      ->group(headless);
+  app->add_flag("--edit-keys", o.editKeys,
+                "self-test: first pick an edge and press E, 2, K, Ctrl+Z three times and Ctrl+Y, "
+                "printing the surface hash after each")
+      ->group(headless);
+  return app;
+}
+
+// CLI11 says "--frames: Value x not in range ..."; ours add no prefix.
+Status usageError(const CLI::Error& e) {
+  return invalidArgument(e.what());
+}
+
 }  // namespace
+
+std::string viewHelp() {
+  ViewOptions o;
+  RawOptions raw;
+  bool noHud = false, noGizmo = false;
+  return makeApp(o, raw, noHud, noGizmo)->help();
+}
 
 Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
   ViewOptions o;
-  bool haveConnect = false;
-  for (size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "--help" || a == "-h") {
-      o.help = true;
-      return o;
-    }
-    if (a == "--wireframe") {
-      o.wireframe = true;
-      continue;
-    }
-    if (a == "--region-colours" || a == "--region-colors") {
-      o.regionColours = true;
-      continue;
-    }
-    if (a == "--no-hud") {
-      o.hud = false;
-      continue;
-    }
-    if (a == "--edit-keys") {
-      o.editKeys = o.hashSurfaces = true;
-      continue;
-    }
-    if (i + 1 >= args.size()) return invalidArgument(a + ": unknown option or missing value");
-    const std::string& v = args[++i];
-    if (a == "--connect") {
-      const size_t colon = v.rfind(':');
-      if (colon == std::string::npos || colon == 0)
-        return invalidArgument("--connect expects HOST:PORT, got '" + v + "'");
-      o.host = v.substr(0, colon);
-      TESSERA_RETURN_IF_ERROR(
-          parseNumber<uint16_t>("--connect port", v.substr(colon + 1), 1, 65535, &o.port));
-      haveConnect = true;
-    } else if (a == "--token") {
-      o.token = v;
-    } else if (a == "--token-file") {
-      std::ifstream in(v);
-      std::getline(in, o.token);
-      if (o.token.empty()) return invalidArgument("--token-file " + v + ": no token in the file");
-    } else if (a == "--name") {
-      o.name = v;
-    } else if (a == "--document") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<uint64_t>(a, v, 1, UINT64_MAX, &o.document));
-    } else if (a == "--base-level") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<uint32_t>(a, v, 0, 20, &o.baseLevel));
-    } else if (a == "--max-level") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<uint32_t>(a, v, 0, 20, &o.maxLevel));
-    } else if (a == "--angle") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<double>(a, v, 0.0, 180.0, &o.angle));
-    } else if (a == "--level") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>(a, v, 0, 20, &o.controlLevel));
-    } else if (a == "--refine") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>(a, v, 0, 2, &o.refine));
-    } else if (a == "--size") {
-      const size_t x = v.find('x');
-      if (x == std::string::npos) return invalidArgument("--size expects WxH, got '" + v + "'");
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>("--size width", v.substr(0, x), 64, 8192, &o.width));
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>("--size height", v.substr(x + 1), 64, 8192, &o.height));
-    } else if (a == "--screenshot") {
-      o.screenshot = v;
-    } else if (a == "--frames") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>(a, v, 1, 100000, &o.frames));
-    } else if (a == "--drag") {
-      const size_t comma = v.find(',');
-      if (comma == std::string::npos) return invalidArgument("--drag expects DX,DY, got '" + v + "'");
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>("--drag dx", v.substr(0, comma), -8192, 8192, &o.dragX));
-      TESSERA_RETURN_IF_ERROR(parseNumber<int>("--drag dy", v.substr(comma + 1), -8192, 8192, &o.dragY));
-      o.drag = true;
-    } else if (a == "--timeout") {
-      TESSERA_RETURN_IF_ERROR(parseNumber<double>(a, v, 0.1, 3600.0, &o.timeoutSeconds));
-    } else {
-      return invalidArgument("unknown option '" + a + "'");
-    }
+  RawOptions raw;
+  bool noHud = false, noGizmo = false;
+  auto app = makeApp(o, raw, noHud, noGizmo);
+  try {
+    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    app->parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    o.help = true;
+    return o;
+  } catch (const CLI::CallForVersion&) {
+    o.version = true;
+    return o;
+  } catch (const CLI::ParseError& e) {
+    return usageError(e);
   }
-  if (!haveConnect) return invalidArgument("--connect HOST:PORT is required");
+  o.hud = !noHud;
+  o.gizmo = !noGizmo;
+  if (raw.connect.empty()) return invalidArgument("--connect HOST:PORT is required");
+  const size_t colon = raw.connect.rfind(':');
+  if (colon == std::string::npos || colon == 0)
+    return invalidArgument("--connect expects HOST:PORT, got '" + raw.connect + "'");
+  o.host = raw.connect.substr(0, colon);
+  TESSERA_RETURN_IF_ERROR(
+      parseNumber<uint16_t>("--connect port", raw.connect.substr(colon + 1), 1, 65535, &o.port));
+  if (!raw.tokenFile.empty()) {
+    std::ifstream in(raw.tokenFile);
+    if (!in) return invalidArgument("--token-file " + raw.tokenFile + ": cannot open the file");
+    std::getline(in, o.token);
+    if (o.token.empty()) return invalidArgument("--token-file " + raw.tokenFile + ": no token in the file");
+  }
+  if (!raw.size.empty())
+    TESSERA_RETURN_IF_ERROR(parsePair("--size", "WxH", raw.size, 'x', 64, 8192, &o.width, &o.height));
+  if (!raw.drag.empty()) {
+    TESSERA_RETURN_IF_ERROR(parsePair("--drag", "DX,DY", raw.drag, ',', -8192, 8192, &o.dragX, &o.dragY));
+    o.drag = true;
+  }
+  if (o.editKeys) o.hashSurfaces = true;
   if (o.document == 0) return invalidArgument("--document D is required");
   if (o.drag && o.screenshot.empty()) return invalidArgument("--drag needs --screenshot");
   if (o.editKeys && o.screenshot.empty()) return invalidArgument("--edit-keys needs --screenshot");
   if (o.editKeys && o.drag) return invalidArgument("--edit-keys and --drag are separate self-tests");
   if (o.baseLevel > o.maxLevel) return invalidArgument("--base-level must not exceed --max-level");
+  // The self-tests pick control vertices, which needs them shown.
+  if (o.drag || o.editKeys) o.controlPoints = true;
   return o;
 }
 

@@ -1,4 +1,4 @@
-// The command line of tessera-view (docs/VIEWER.md).
+// The command line of tessera-view (docs/VIEWER.md), parsed with CLI11.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +25,12 @@ struct ViewOptions {
   bool wireframe = false;
   bool regionColours = false;
   bool hud = true;
+  bool hudCollapsed = false;   // one line instead of the full HUD (key H)
+  bool controlPoints = false;  // draw the control vertices (key V)
+  bool gizmo = true;           // the axes in the bottom-left corner (key G)
+  bool matcap = false;         // matcap shading instead of the three lights (key M)
+  // Multisample anti-aliasing: samples per pixel, 0 for none (capped by the driver).
+  int msaa = 4;
   // Client-side refinement (seed 002): at most this many splits per edge, 0 for none.
   int refine = 0;
   // Headless: render `frames` frames once the document is in, write the PNG, exit.
@@ -42,11 +48,14 @@ struct ViewOptions {
   bool hashSurfaces = false;
   double timeoutSeconds = 30;  // to connect and receive the first snapshot
   bool help = false;
+  bool version = false;
 };
 
-extern const char* const kViewHelp;
+// The --help text.
+std::string viewHelp();
 
-// Errors name the option and the reason.
+// Errors name the option and the reason. --help and --version set `help`
+// and `version` and skip the checks of the other options.
 Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args);
 
 }  // namespace tessera::view

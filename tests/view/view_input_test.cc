@@ -78,7 +78,8 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   const pid_t viewer = testing::spawn({TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
                                        "--token", server->adminToken(), "--document", std::to_string(doc),
                                        "--name", "mouse-and-keys", "--base-level", "2", "--max-level", "2",
-                                       "--level", std::to_string(kLevel), "--size", "800x600", "--no-hud"},
+                                       "--level", std::to_string(kLevel), "--size", "800x600", "--no-hud",
+                                       "--control-points"},
                                       testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
   const std::string& display = xvfb.display();
   const std::string window =

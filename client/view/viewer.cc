@@ -1,0 +1,155 @@
+#include "client/view/viewer.h"
+
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+
+#include "client/view/hud.h"
+
+namespace tessera::view {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::vector<V3> visible(const std::vector<ControlPoint>& points, V3 eye) {
+  std::vector<V3> out;
+  for (const ControlPoint& p : points)
+    if (dot(p.normal, eye - p.position) >= 0) out.push_back(p.position);
+  return out;
+}
+
+}  // namespace
+
+Viewer::Viewer(const ViewOptions& options, Connection& connection)
+    : options_(options), connection_(connection) {
+  app_.connection = &connection;
+  app_.toggles.wireframe = options.wireframe;
+  app_.toggles.regionColours = options.regionColours;
+  app_.toggles.showControls = options.controlPoints;
+  app_.toggles.matcap = options.matcap;
+  app_.toggles.showGizmo = options.gizmo;
+  app_.toggles.hudCollapsed = options.hudCollapsed;
+  app_.toggles.controlLevel = options.controlLevel;
+  app_.toggles.refine = options.refine;
+  app_.toggles.baseLevel = static_cast<int>(options.baseLevel);
+  app_.toggles.maxLevel = static_cast<int>(options.maxLevel);
+  app_.toggles.angle = static_cast<float>(options.angle);
+  lastFrame_ = lastSample_ = Clock::now();
+}
+
+Expected<std::unique_ptr<Viewer>> Viewer::create(const ViewOptions& options, Connection& connection) {
+  std::unique_ptr<Viewer> v(new Viewer(options, connection));
+  TESSERA_ASSIGN_OR_RETURN(v->renderer_, Renderer::create());
+  return v;
+}
+
+ConnectionStats Viewer::update(int width, int height) {
+  const auto now = Clock::now();
+  const double dt = std::chrono::duration<double>(now - lastFrame_).count();
+  lastFrame_ = now;
+  if (dt > 0) fps_ = fps_ == 0 ? 1 / dt : 0.9 * fps_ + 0.1 / dt;
+  stats_ = connection_.stats();
+  if (const double since = std::chrono::duration<double>(now - lastSample_).count(); since >= 1) {
+    bytesPerSecond_ = static_cast<double>(stats_.bytesReceived - bytesAtSample_) / since;
+    bytesAtSample_ = stats_.bytesReceived;
+    lastSample_ = now;
+  }
+  if (stats_.regionUpdates != seenUpdates_) {
+    seenUpdates_ = stats_.regionUpdates;
+    regions_ = connection_.regions();
+    pointsLevel_ = -1;
+    synced_ = false;
+  }
+  if (app_.toggles.refine > 0) {
+    refineTiming_ = refineAndStream(regions_, app_.toggles.refine, *renderer_);
+    synced_ = false;
+  } else if (!synced_) {
+    renderer_->sync(regions_);
+    synced_ = true;
+  }
+  V3 lo, hi;
+  const bool haveBounds = bounds(regions_, &lo, &hi);
+  if (pointsLevel_ != app_.toggles.controlLevel) {
+    points_ = controlPoints(regions_, app_.toggles.controlLevel);
+    pointsLevel_ = app_.toggles.controlLevel;
+    if (haveBounds) pointDiameter_ = controlPointDiameter(lo, hi, points_.size());
+  }
+  // Fit to view on the first snapshot and on F.
+  if ((!framed_ || app_.frameRequested) && haveBounds) {
+    app_.camera.frame(lo, hi, static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+    framed_ = true;
+    app_.frameRequested = false;
+  }
+  if (app_.toggles.profileChanged) {
+    app_.toggles.profileChanged = false;
+    connection_.changeProfile(static_cast<uint32_t>(app_.toggles.baseLevel),
+                              static_cast<uint32_t>(app_.toggles.maxLevel), app_.toggles.angle);
+  }
+  if (app_.undo) connection_.undo(), app_.undo = false;
+  if (app_.redo) connection_.redo(), app_.redo = false;
+  return stats_;
+}
+
+// Collaborators' selections in cyan, this viewer's pick in red. Two
+// selected vertices are an edge, drawn as a dotted line between them.
+void Viewer::drawSelections(const DrawOptions& draw) {
+  auto mark = [&](const std::vector<uint64_t>& ids, std::array<float, 3> colour) {
+    std::vector<V3> ends;
+    for (uint64_t id : ids) {
+      auto it = std::lower_bound(points_.begin(), points_.end(), id,
+                                 [](const ControlPoint& p, uint64_t v) { return p.id < v; });
+      if (it != points_.end() && it->id == id) ends.push_back(it->position);
+    }
+    renderer_->drawPoints(ends, PointStyle{colour, 1.8f, 6, 18}, draw);
+    if (ends.size() == 2)
+      renderer_->drawPoints(segmentPoints(ends[0], ends[1], 24), PointStyle{colour, 0.6f, 2, 6}, draw);
+  };
+  for (const Collaborator& c : connection_.collaborators())
+    if (!c.self) mark(c.selectedVertices, {0.2f, 0.9f, 1.0f});
+  std::vector<uint64_t> own;
+  if (app_.picked) own.push_back(*app_.picked);
+  if (app_.edgeEnd) own.push_back(*app_.edgeEnd);
+  mark(own, {1.0f, 0.2f, 0.2f});
+}
+
+void Viewer::draw(int width, int height) {
+  glViewport(0, 0, width, height);
+  glClearColor(0.16f, 0.18f, 0.22f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  DrawOptions draw;
+  draw.view = app_.camera.view();
+  draw.projection =
+      app_.camera.projection(static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+  draw.wireframe = app_.toggles.wireframe;
+  draw.regionColours = app_.toggles.regionColours;
+  draw.matcap = app_.toggles.matcap;
+  draw.pointDiameter = pointDiameter_;
+  draw.pixelsPerUnit = app_.camera.pixelsPerUnit(height);
+  renderer_->drawSurface(draw);
+  if (app_.toggles.showControls) {
+    renderer_->drawPoints(visible(points_, app_.camera.eye()), PointStyle{}, draw);
+    drawSelections(draw);
+  }
+  if (app_.toggles.showGizmo) drawGizmo(draw.view, width, height);
+  if (options_.hud) {
+    HudFacts facts{.fps = fps_,
+                   .triangles = renderer_->triangles(),
+                   .receivedTriangles = refineTiming_.receivedTriangles,
+                   .refineMs = refineTiming_.refineMs,
+                   .uploadMs = refineTiming_.uploadMs,
+                   .regions = renderer_->regionCount(),
+                   .bytesPerSecond = bytesPerSecond_,
+                   .controlPoints = points_.size(),
+                   .pickedVertex = app_.picked,
+                   .pickedEdgeEnd = app_.edgeEnd,
+                   .stats = stats_,
+                   .collaborators = connection_.collaborators()};
+    drawHud(facts, app_.toggles, width, height);
+  }
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+}  // namespace tessera::view

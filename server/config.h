@@ -82,10 +82,16 @@ struct ServerConfig {
   Limits limits;
   Timeouts timeouts;
   bool verbose = false;
+  // Operations (issue 14 §2): JSON log lines go to this file (reopened on
+  // SIGHUP, for logrotate) instead of stderr; the HTTP endpoint for
+  // /healthz and /metrics is off unless a port is given (0 picks one).
+  std::string logFile;
+  std::string httpListenAddress = "127.0.0.1";
+  int httpPort = -1;
+  std::string httpPortFile;
 };
 
-// Parses `tessera-server` arguments; errors name the option and the value.
-Expected<ServerConfig> parseServerArguments(const std::vector<std::string>& args);
-extern const char* const kServerUsage;
+// The checks that span several options, after each option's own.
+Status checkServerConfig(const ServerConfig& config);
 
 }  // namespace tessera::server

@@ -11,6 +11,7 @@
 #include "core/document/document_file.h"
 #include "core/io/mesh_import.h"
 #include "core/io/tag_file.h"
+#include "protocol/edit_batch.h"
 #include "protocol/handshake.h"
 #include "server/log.h"
 
@@ -42,35 +43,36 @@ const char* extensionOf(wire::MeshFormat format) {
   }
 }
 
-// Imports a base mesh sent as bytes: the readers take files, so the bytes
-// go through a private temporary file.
-Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, uint64_t session) {
+// Imports a base mesh sent as bytes, in memory (importMeshFromBytes never
+// touches the filesystem), with the import options of `tessera doc new`.
+// Errors name the file as the client named it (file_name), else the
+// document: "cube.obj:12: ...", never a server path.
+Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel) {
   const char* extension = extensionOf(request.mesh_format());
   if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
-  const std::string path = (std::filesystem::temp_directory_path() /
-                            ("tessera-import-" + std::to_string(::getpid()) + "-" + std::to_string(session) + extension))
-                               .string();
-  {
-    std::ofstream out(path, std::ios::binary);
-    out.write(request.mesh().data(), static_cast<std::streamsize>(request.mesh().size()));
-    if (!out) return ioError("create: cannot stage the mesh");
-  }
-  auto mesh = importMesh(path);
-  std::error_code ignored;
-  std::filesystem::remove(path, ignored);
-  const std::string source = "mesh '" + request.name() + "'";
-  if (!mesh.isOk()) return Status(mesh.status().code(), source + ": " + mesh.status().message());
+  const std::string meshName = request.file_name().empty() ? "mesh '" + request.name() + "'" : request.file_name();
+  ImportOptions import;
+  import.triangulate = request.triangulate();
+  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, importMeshFromBytes(request.mesh(), extension, meshName, import));
   if (!request.tags().empty()) {
-    TESSERA_ASSIGN_OR_RETURN(auto tags, parseTags(request.tags(), "tags of '" + request.name() + "'"));
-    TESSERA_RETURN_IF_ERROR(applyTags(tags, "tags of '" + request.name() + "'", *mesh));
+    const std::string tagsName =
+        request.tags_file_name().empty() ? "tags of '" + request.name() + "'" : request.tags_file_name();
+    TESSERA_ASSIGN_OR_RETURN(auto tags, parseTags(request.tags(), tagsName));
+    TESSERA_RETURN_IF_ERROR(applyTags(tags, tagsName, mesh));
   }
   DocumentOptions options;
+  if (request.crease_method() == wire::CREASE_METHOD_CHAIKIN) options.loop.creaseMethod = CreaseMethod::kChaikin;
+  if (request.boundary() == wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER) {
+    options.loop.boundary = BoundaryInterpolation::kEdgeAndCorner;
+  }
   options.maxLevel = request.max_level() == 0 ? std::min(5, maxLevel) : static_cast<int>(request.max_level());
   if (options.maxLevel > maxLevel) {
     return invalidArgument("create: max level " + std::to_string(request.max_level()) + " exceeds the server's " +
                            std::to_string(maxLevel));
   }
-  return Document::create(*mesh, options);
+  auto doc = Document::create(mesh, options);
+  if (!doc.isOk()) return doc.status().withContext(meshName);
+  return doc;
 }
 
 }  // namespace
@@ -305,13 +307,14 @@ void Connection::closeNow() {
   logEvent(LogLevel::kInfo, "disconnected", {{"session", sessionId_}});
 }
 
-bool Connection::allowedByRate(uint64_t clientSeq) {
+bool Connection::allowedByRate(uint64_t clientSeq, double cost) {
   const double rate = context_.config.limits.commandsPerSecond;
   const auto now = std::chrono::steady_clock::now();
   bucket_ = std::min(rate, bucket_ + rate * std::chrono::duration<double>(now - refilled_).count());
   refilled_ = now;
-  if (bucket_ >= 1.0) {
-    bucket_ -= 1.0;
+  cost = std::max(1.0, std::min(cost, rate));
+  if (bucket_ >= cost) {
+    bucket_ -= cost;
     return true;
   }
   reject(clientSeq, wire::REJECT_REASON_RATE_LIMITED,
@@ -347,7 +350,8 @@ void Connection::handle(wire::ClientMessage message) {
   if (token_.empty()) {
     return reject(seq, wire::REJECT_REASON_NOT_AUTHENTICATED, "authenticate with a token in Hello first");
   }
-  if (!allowedByRate(seq)) return;
+  const double cost = message.has_edit_batch() ? message.edit_batch().commands_size() : 1.0;
+  if (!allowedByRate(seq, cost)) return;
   switch (message.command_case()) {
     case C::kListDocuments: return listDocuments(seq);
     case C::kStats: return stats(seq);
@@ -381,6 +385,14 @@ void Connection::handle(wire::ClientMessage message) {
     }
     case C::kSelect: return host->select(shared_from_this(), seq, message.select().selection());
     case C::kExportDocument: return host->exportGlb(shared_from_this(), seq, message.export_document());
+    case C::kEditBatch:
+      if (message.edit_batch().commands_size() > kMaxEditBatchCommands) {
+        return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
+                      "edit batch: " + std::to_string(message.edit_batch().commands_size()) +
+                          " commands, above the limit of " + std::to_string(kMaxEditBatchCommands) +
+                          " per batch (nothing was applied)");
+      }
+      [[fallthrough]];
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
     case C::kSetVertexType:
@@ -466,6 +478,7 @@ uint64_t Connection::documentOf(const wire::ClientMessage& m) const {
     case C::kSetVertexType: return m.set_vertex_type().document_id();
     case C::kUndo: return m.undo().document_id();
     case C::kRedo: return m.redo().document_id();
+    case C::kEditBatch: return m.edit_batch().document_id();
     default: return 0;
   }
 }
@@ -506,7 +519,7 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
   // Importing is bulk work: off the network threads and off the workers
   // that run documents' edits (issue 13 §2).
   asio::post(context_.bulk, [self = shared_from_this(), seq, request] {
-    auto doc = importDocument(request, self->context_.config.limits.maxLevel, self->sessionId_);
+    auto doc = importDocument(request, self->context_.config.limits.maxLevel);
     Expected<DocumentId> id = doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
                                          : Expected<DocumentId>(doc.status());
     doc = invalidArgument("released");

@@ -68,7 +68,9 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   void armWriteWatchdog();
 
   // Command handlers.
-  bool allowedByRate(uint64_t clientSeq);
+  // `cost`: the commands the message holds (an EditBatch holds several; it
+  // costs at most a second's worth, so any allowed batch can pass).
+  bool allowedByRate(uint64_t clientSeq, double cost = 1.0);
   std::optional<Role> roleFor(DocumentId id);
   std::shared_ptr<DocumentHost> openHost(uint64_t documentId, uint64_t clientSeq);
   void listDocuments(uint64_t clientSeq);

@@ -47,6 +47,18 @@ std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::
   return frameOf(m, maxFrameBytes);
 }
 
+// The document an edit command names (0: none).
+uint64_t documentNamed(const wire::ClientMessage& m) {
+  switch (m.command_case()) {
+    case wire::ClientMessage::kMoveVertex: return m.move_vertex().document_id();
+    case wire::ClientMessage::kSetEdgeSharpness: return m.set_edge_sharpness().document_id();
+    case wire::ClientMessage::kSetVertexType: return m.set_vertex_type().document_id();
+    case wire::ClientMessage::kUndo: return m.undo().document_id();
+    case wire::ClientMessage::kRedo: return m.redo().document_id();
+    default: return 0;
+  }
+}
+
 // Snapshot parts stay well under any client's frame limit.
 constexpr size_t kSnapshotPartBytes = 4u << 20;
 
@@ -266,19 +278,34 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
                     nullptr});
       return;
     }
-    JournalEntry entry;
-    uint64_t editId = 0;
-    Status applied = self->apply(message, editId, entry);
-    if (!applied.isOk()) {
+    Applied applied;
+    uint32_t failedIndex = 0;
+    Status status;
+    if (message.has_edit_batch()) {
+      status = self->applyBatch(message.edit_batch(), applied, failedIndex);
+    } else {
+      uint64_t editId = 0;
+      status = self->apply(message, editId, applied.entry);
+      applied.editIds.push_back(editId);
+      if (status.isOk()) applied.limits = self->doc_.lastUpdate().limits;
+    }
+    if (!status.isOk()) {
       ++self->stats_.rejects;
-      auto reject = rejectFor(seq, applied);
-      if (message.command_case() == wire::ClientMessage::kUndo || message.command_case() == wire::ClientMessage::kRedo) {
-        if (applied.code() == ErrorCode::kInvalidArgument) reject.mutable_reject()->set_reason(wire::REJECT_REASON_INVALID_STATE);
+      auto reject = rejectFor(seq, status);
+      const auto kind = message.has_edit_batch() && failedIndex > 0
+                            ? message.edit_batch().commands(static_cast<int>(failedIndex - 1)).command_case()
+                            : wire::EditCommand::COMMAND_NOT_SET;
+      const bool undoOrRedo = message.command_case() == wire::ClientMessage::kUndo ||
+                              message.command_case() == wire::ClientMessage::kRedo ||
+                              kind == wire::EditCommand::kUndo || kind == wire::EditCommand::kRedo;
+      if (undoOrRedo && status.code() == ErrorCode::kInvalidArgument) {
+        reject.mutable_reject()->set_reason(wire::REJECT_REASON_INVALID_STATE);
       }
+      reject.mutable_reject()->set_batch_index(failedIndex);
       author->send({frameOf(reject, self->config_.limits.maxFrameBytes), nullptr});
       return;
     }
-    self->afterApply(author, seq, editId, entry, authorName, message);
+    self->afterApply(author, seq, applied, authorName, message);
   });
 }
 
@@ -341,6 +368,47 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
   }
 }
 
+Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, uint32_t& failedIndex) {
+  const int count = batch.commands_size();
+  if (count == 0) return invalidArgument("edit batch: no commands");
+  applied.entry.kind = JournalEntry::Kind::kBatch;
+  for (int i = 0; i < count; ++i) {
+    const wire::EditCommand& command = batch.commands(i);
+    wire::ClientMessage one;
+    switch (command.command_case()) {
+      case wire::EditCommand::kMoveVertex: *one.mutable_move_vertex() = command.move_vertex(); break;
+      case wire::EditCommand::kSetEdgeSharpness: *one.mutable_set_edge_sharpness() = command.set_edge_sharpness(); break;
+      case wire::EditCommand::kSetVertexType: *one.mutable_set_vertex_type() = command.set_vertex_type(); break;
+      case wire::EditCommand::kUndo: *one.mutable_undo() = command.undo(); break;
+      case wire::EditCommand::kRedo: *one.mutable_redo() = command.redo(); break;
+      default: break;
+    }
+    const uint64_t named = documentNamed(one);
+    JournalEntry part;
+    uint64_t editId = 0;
+    Status status = command.command_case() == wire::EditCommand::COMMAND_NOT_SET ? invalidArgument("no command")
+                    : named != 0 && named != id_.value
+                        ? invalidArgument("names document " + std::to_string(named) + ", the batch is for " +
+                                          std::to_string(id_.value))
+                        : apply(one, editId, part);
+    if (!status.isOk()) {
+      // All or nothing: what the batch applied goes back, newest first.
+      Status back = retract(applied.entry);
+      if (!back.isOk()) logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
+      failedIndex = static_cast<uint32_t>(i + 1);
+      return Status(status.code(), "edit batch, command " + std::to_string(i + 1) + " of " + std::to_string(count) +
+                                       ": " + status.message() + " (nothing of the batch was applied)");
+    }
+    const auto& limits = doc_.lastUpdate().limits;
+    applied.limits.insert(applied.limits.end(), limits.begin(), limits.end());
+    applied.editIds.push_back(editId);
+    applied.entry.batch.push_back(std::move(part));
+  }
+  std::sort(applied.limits.begin(), applied.limits.end());
+  applied.limits.erase(std::unique(applied.limits.begin(), applied.limits.end()), applied.limits.end());
+  return Status::ok();
+}
+
 // The views never saw the command (they update at the next flush), so only
 // the document goes back; its limits are restored bit for bit.
 Status DocumentHost::retract(const JournalEntry& entry) {
@@ -348,20 +416,25 @@ Status DocumentHost::retract(const JournalEntry& entry) {
     case JournalEntry::Kind::kEdit: return doc_.retractLast();
     case JournalEntry::Kind::kUndo: return doc_.redo(entry.target);
     case JournalEntry::Kind::kRedo: return doc_.undo(entry.target);
+    case JournalEntry::Kind::kBatch:
+      for (auto part = entry.batch.rbegin(); part != entry.batch.rend(); ++part) TESSERA_RETURN_IF_ERROR(retract(*part));
+      return Status::ok();
   }
   return Status::ok();
 }
 
-void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
-                              const JournalEntry& entry, const std::string& authorName,
-                              const wire::ClientMessage& command) {
+void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const Applied& applied,
+                              const std::string& authorName, const wire::ClientMessage& command) {
+  const JournalEntry& entry = applied.entry;
   // An edit that moves the surface out of the document's quantization grid
   // is taken back and refused before anything is sent: every displayed
   // vertex is a hierarchy limit, and the changed ones are listed.
   bool outside = false;
   const SparseEvaluator& h = doc_.hierarchy();
-  for (VertexId id : doc_.lastUpdate().limits) {
+  for (VertexId id : applied.limits) {
+    if (id.level() >= h.numLevels()) continue;  // a batch's later undo dropped the level: its limit is gone
     const Index v = h.level(id.level()).findVertex(id.index());
+    if (v == kInvalidIndex) continue;
     outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
   }
   if (outside) {
@@ -378,9 +451,10 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   }
   ++stats_.edits;
   ++version_;
-  pending_.push_back({version_, author, author->sessionId(), clientSeq, editId, Clock::now(), command, authorName});
-  const auto& limits = doc_.lastUpdate().limits;
-  changedLimits_.insert(changedLimits_.end(), limits.begin(), limits.end());
+  pending_.push_back({version_, author, author->sessionId(), clientSeq, applied.editIds.back(),
+                      command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(), command,
+                      authorName});
+  changedLimits_.insert(changedLimits_.end(), applied.limits.begin(), applied.limits.end());
   // The flush and the commit may finish in either order: each calls
   // release(), which sends a batch once its last edit is durable.
   scheduleFlush();
@@ -535,6 +609,7 @@ void DocumentHost::release() {
       ack.mutable_ack()->set_document_id(id_.value);
       ack.mutable_ack()->set_version(p.version);
       ack.mutable_ack()->set_edit_id(p.editId);
+      for (uint64_t id : p.batchEditIds) ack.mutable_ack()->add_edit_ids(id);
       author->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
     }
   }
@@ -582,6 +657,7 @@ void DocumentHost::notifyRecorders(const Pending& p) {
     case wire::ClientMessage::kSetVertexType: *a->mutable_set_vertex_type() = p.command.set_vertex_type(); break;
     case wire::ClientMessage::kUndo: *a->mutable_undo() = p.command.undo(); break;
     case wire::ClientMessage::kRedo: *a->mutable_redo() = p.command.redo(); break;
+    case wire::ClientMessage::kEditBatch: *a->mutable_edit_batch() = p.command.edit_batch(); break;
     default: break;
   }
   auto frame = frameOf(m, config_.limits.maxFrameBytes);

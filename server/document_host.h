@@ -103,6 +103,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     uint64_t version;
     std::weak_ptr<Subscriber> author;
     uint64_t authorSession, clientSeq, editId;
+    std::vector<uint64_t> batchEditIds;  // an EditBatch's, for its Ack
     std::chrono::steady_clock::time_point applied;
     wire::ClientMessage command;  // as the author sent it, for recorders
     std::string authorName;
@@ -117,9 +118,18 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     uint64_t fromVersion;  // its subscribe's Ack version: later commands only
   };
 
+  // What one applied command (or batch) changed, for afterApply().
+  struct Applied {
+    JournalEntry entry;
+    std::vector<uint64_t> editIds;  // per command: the edit made, undone or redone
+    std::vector<VertexId> limits;   // every limit the command(s) changed
+  };
   Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
-  void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, uint64_t editId,
-                  const JournalEntry& entry, const std::string& authorName, const wire::ClientMessage& command);
+  // An EditBatch: every command in order, or none (those applied are taken
+  // back in reverse). `failedIndex`: the refused command, from 1.
+  Status applyBatch(const wire::EditBatch& batch, Applied& applied, uint32_t& failedIndex);
+  void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const Applied& applied,
+                  const std::string& authorName, const wire::ClientMessage& command);
   void scheduleFlush();
   std::chrono::steady_clock::duration flushInterval() const;
   // Updates every view from the limits changed since the last flush,

@@ -1,10 +1,13 @@
 // What the server journals per document version: the edit made (exactly,
-// offsets and all, so replay is bit for bit), or an undo or redo. Replaying
-// the journal in version order onto the document's base rebuilds it.
+// offsets and all, so replay is bit for bit), an undo or redo, or a batch of
+// them (an EditBatch: one version, one entry, so it is durable whole or not
+// at all). Replaying the journal in version order onto the document's base
+// rebuilds it.
 #pragma once
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/document/document.h"
 #include "core/document/edit.h"
@@ -13,10 +16,11 @@
 namespace tessera::server {
 
 struct JournalEntry {
-  enum class Kind : uint8_t { kEdit = 1, kUndo = 2, kRedo = 3 };
+  enum class Kind : uint8_t { kEdit = 1, kUndo = 2, kRedo = 3, kBatch = 4 };
   Kind kind = Kind::kEdit;
-  Edit edit;      // kEdit
-  EditId target;  // kUndo, kRedo
+  Edit edit;                       // kEdit
+  EditId target;                   // kUndo, kRedo
+  std::vector<JournalEntry> batch;  // kBatch: edits, undos and redos (never a batch), in order
 };
 
 std::string encodeJournalEntry(const JournalEntry& entry);

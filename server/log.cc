@@ -1,10 +1,15 @@
 #include "server/log.h"
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
+#include <fcntl.h>
 #include <mutex>
+#include <unistd.h>
 
 namespace tessera::server {
 
@@ -12,6 +17,19 @@ namespace {
 
 std::atomic<int> minimumLevel{static_cast<int>(LogLevel::kInfo)};
 std::mutex outputMutex;
+std::FILE* output = nullptr;  // guarded by outputMutex; null: stderr
+std::string outputPath;       // guarded by outputMutex
+
+Expected<std::FILE*> openAppending(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0640);
+  if (fd < 0) return ioError(path + ": cannot open the log file: " + std::strerror(errno));
+  std::FILE* file = ::fdopen(fd, "a");
+  if (file == nullptr) {
+    ::close(fd);
+    return ioError(path + ": cannot open the log file: " + std::strerror(errno));
+  }
+  return file;
+}
 
 const char* levelName(LogLevel level) {
   switch (level) {
@@ -45,6 +63,26 @@ void appendEscaped(std::string& out, std::string_view text) {
 
 void setLogLevel(LogLevel level) { minimumLevel = static_cast<int>(level); }
 
+Status setLogFile(const std::string& path) {
+  TESSERA_ASSIGN_OR_RETURN(std::FILE* file, openAppending(path));
+  std::lock_guard lock(outputMutex);
+  if (output != nullptr) std::fclose(output);
+  output = file;
+  outputPath = path;
+  return Status::ok();
+}
+
+Status reopenLogFile() {
+  std::string path;
+  {
+    std::lock_guard lock(outputMutex);
+    if (output == nullptr) return Status::ok();  // stderr: nothing to reopen
+    path = outputPath;
+  }
+  // On failure the old file stays in use, so no line is lost.
+  return setLogFile(path);
+}
+
 void logEvent(LogLevel level, std::string_view event, std::initializer_list<LogField> fields) {
   if (static_cast<int>(level) < minimumLevel) return;
   const auto now = std::chrono::system_clock::now();
@@ -76,6 +114,10 @@ void logEvent(LogLevel level, std::string_view event, std::initializer_list<LogF
           } else if constexpr (std::is_same_v<T, bool>) {
             line += v ? "true" : "false";
           } else if constexpr (std::is_same_v<T, double>) {
+            if (!std::isfinite(v)) {  // JSON has no inf or NaN
+              line += "null";
+              return;
+            }
             char buf[32];
             std::snprintf(buf, sizeof buf, "%.6g", v);
             line += buf;
@@ -87,8 +129,9 @@ void logEvent(LogLevel level, std::string_view event, std::initializer_list<LogF
   }
   line += "}\n";
   std::lock_guard lock(outputMutex);
-  std::fwrite(line.data(), 1, line.size(), stderr);
-  std::fflush(stderr);
+  std::FILE* target = output != nullptr ? output : stderr;
+  std::fwrite(line.data(), 1, line.size(), target);
+  std::fflush(target);
 }
 
 }  // namespace tessera::server

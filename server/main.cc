@@ -1,30 +1,44 @@
-// tessera-server: see server.h and docs/PROTOCOL.md.
+// tessera-server: serves documents (server.h, docs/PROTOCOL.md), or runs an
+// operator subcommand (operator_commands.h, docs/OPERATIONS.md). Every line
+// it logs, start-up errors included, is one JSON object.
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "server/config.h"
+#include "server/command_line.h"
 #include "server/log.h"
+#include "server/operator_commands.h"
 #include "server/server.h"
 
 int main(int argc, char** argv) {
   using namespace tessera::server;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  for (const std::string& a : args) {
-    if (a == "--help" || a == "-h") {
-      std::fputs(kServerUsage, stdout);
-      return 0;
+  const ParsedCommandLine parsed = parseServerCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+  if (parsed.stop) {
+    if (!parsed.error.empty()) {
+      logEvent(LogLevel::kError, "usage", {{"error", parsed.error}, {"help", "tessera-server --help"}});
+    }
+    std::fputs(parsed.output.c_str(), stdout);
+    return parsed.exitCode;
+  }
+  const ServerCommandLine& command = parsed.command;
+  const ServerConfig& config = command.config;
+  if (config.verbose) setLogLevel(LogLevel::kDebug);
+  if (!config.logFile.empty()) {
+    if (auto opened = setLogFile(config.logFile); !opened.isOk()) {
+      logEvent(LogLevel::kError, "startup_failed", {{"error", opened.message()}});
+      return 1;
     }
   }
-  auto config = parseServerArguments(args);
-  if (!config.isOk()) {
-    std::fprintf(stderr, "tessera-server: %s\n\n%s", config.status().message().c_str(), kServerUsage);
-    return 2;
+  switch (command.action) {
+    case ServerAction::kTokenNew: return runTokenNew(command);
+    case ServerAction::kBackup: return runBackup(command);
+    case ServerAction::kRestore: return runRestore(command);
+    case ServerAction::kHealth: return runHealth(command);
+    case ServerAction::kServe: break;
   }
-  if (config->verbose) setLogLevel(LogLevel::kDebug);
-  auto server = Server::create(*config);
+  auto server = Server::create(config);
   if (!server.isOk()) {
-    std::fprintf(stderr, "tessera-server: %s\n", server.status().toString().c_str());
+    logEvent(LogLevel::kError, "startup_failed", {{"error", server.status().toString()}});
     return 1;
   }
   (*server)->run();

@@ -16,6 +16,7 @@ std::shared_ptr<const std::string> encodeDeltaFrame(const DeltaContent& delta, u
   d->set_to_version(delta.toVersion);
   d->set_author_session_id(delta.authorSession);
   d->set_edit_id(delta.editId);
+  d->set_surface_hash(delta.surfaceHash);
   for (const RegionPayload& payload : delta.regions) {
     wire::Region* r = d->add_regions();
     r->set_region_id(payload.id);
@@ -129,6 +130,7 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
     into.toVersion = d.toVersion;
     into.authorSession = d.authorSession;
     into.editId = d.editId;
+    into.surfaceHash = d.surfaceHash;  // the state at the new toVersion
     for (const RegionPayload& payload : d.regions) {
       const auto same = [&](const RegionPayload& e) { return e.id == payload.id; };
       if (payload.selfContained) {

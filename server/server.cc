@@ -5,6 +5,7 @@
 #include <fstream>
 #include <thread>
 #include <sys/resource.h>
+#include <systemd/sd-daemon.h>
 #include <unistd.h>
 
 #include "server/log.h"
@@ -24,7 +25,9 @@ Server::Server(const ServerConfig& config)
           .baseDelay = std::chrono::milliseconds(static_cast<int64_t>(config.limits.authFailureDelayMs)),
           .maxDelay = std::chrono::milliseconds(static_cast<int64_t>(config.limits.authFailureMaxDelayMs))}),
       acceptor_(strand_),
-      signals_(strand_, SIGINT, SIGTERM) {
+      signals_(strand_, SIGINT, SIGTERM),
+      hangup_(strand_, SIGHUP),
+      watchdog_(strand_) {
   for (int i = 0; i < config.bulkThreads; ++i) {
     bulkThreads_.emplace_back([this] {
       // Nice 10 for this thread only (Linux threads have their own nice
@@ -91,7 +94,53 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     std::ofstream(temporary) << server->port_ << "\n";
     std::rename(temporary.c_str(), config.portFile.c_str());
   }
+  if (config.httpPort >= 0) {
+    Server* raw = server.get();
+    TESSERA_ASSIGN_OR_RETURN(
+        server->http_,
+        HttpEndpoint::start(config.httpListenAddress, config.httpPort,
+                            HttpSources{&raw->stats_, [raw] { return raw->store_->stats(); },
+                                        [raw] { return raw->unhealthy(); }}));
+    if (!config.httpPortFile.empty()) {
+      const std::string temporary = config.httpPortFile + ".tmp";
+      std::ofstream(temporary) << server->http_->port() << "\n";
+      std::rename(temporary.c_str(), config.httpPortFile.c_str());
+    }
+  }
   return server;
+}
+
+std::optional<std::string> Server::unhealthy() {
+  if (!serving_) return std::string("not serving (starting or stopping)");
+  // A read by primary key: proves the store file is still readable.
+  auto probe = store_->knowsToken("healthz probe");
+  if (!probe.isOk()) return "store: " + probe.status().message();
+  return std::nullopt;
+}
+
+void Server::awaitHangup() {
+  hangup_.async_wait([this](const boost::system::error_code& ec, int) {
+    if (ec) return;
+    const Status reopened = reopenLogFile();
+    if (reopened.isOk()) {
+      logEvent(LogLevel::kInfo, "log_reopened", {});
+    } else {
+      logEvent(LogLevel::kError, "log_reopen_failed", {{"error", reopened.message()}});
+    }
+    awaitHangup();
+  });
+}
+
+void Server::pingWatchdog() {
+  uint64_t micros = 0;
+  if (sd_watchdog_enabled(0, &micros) <= 0 || micros == 0) return;
+  // Pinged from the accept strand: a wedged loop stops the pings and
+  // systemd restarts the server.
+  sd_notify(0, "WATCHDOG=1");
+  watchdog_.expires_after(std::chrono::microseconds(micros / 2));
+  watchdog_.async_wait([this](const boost::system::error_code& ec) {
+    if (!ec && !stopping_) pingWatchdog();
+  });
 }
 
 void Server::run() {
@@ -102,7 +151,12 @@ void Server::run() {
     logEvent(LogLevel::kInfo, "signal", {{"signal", static_cast<int64_t>(signal)}});
     shutdown();
   });
+  awaitHangup();
   accept();
+  serving_ = true;
+  // Type=notify units start their dependants only now (a no-op elsewhere).
+  sd_notify(0, "READY=1\nSTATUS=serving");
+  asio::post(strand_, [this] { pingWatchdog(); });
   std::vector<std::thread> threads;
   for (int i = 1; i < config_.networkThreads; ++i) threads.emplace_back([this] { io_.run(); });
   io_.run();
@@ -182,9 +236,13 @@ std::optional<std::string> Server::overLimits(const std::string& address) {
 void Server::shutdown() {
   if (stopping_) return;
   stopping_ = true;
+  serving_ = false;
+  sd_notify(0, "STOPPING=1");
   boost::system::error_code ignored;
   acceptor_.close(ignored);
   signals_.cancel(ignored);
+  hangup_.cancel(ignored);
+  watchdog_.cancel();
   // Durable writes first; their acks pass through the document strands, so
   // the goodbye waits a moment for them, then the clients get their queues
   // flushed before the loop stops.

@@ -18,10 +18,13 @@
 #include <vector>
 
 #include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <atomic>
 
 #include "server/auth_throttle.h"
 #include "server/config.h"
 #include "server/connection.h"
+#include "server/http_endpoint.h"
 #include "server/server_context.h"
 #include "server/store/store.h"
 
@@ -33,6 +36,8 @@ class Server {
   ~Server();
 
   uint16_t port() const { return port_; }
+  // The HTTP endpoint's port, 0 when it is off.
+  uint16_t httpPort() const { return http_ ? http_->port() : 0; }
   // Serves until a signal or stop(); returns once everything is closed.
   void run();
   void stop();
@@ -42,6 +47,9 @@ class Server {
   void accept();
   void shutdown();
   void stopBulk();
+  void awaitHangup();   // SIGHUP: reopen the log file (logrotate)
+  void pingWatchdog();  // systemd's WatchdogSec, when the unit sets it
+  std::optional<std::string> unhealthy();
   // Whether a new connection from `address` stays within the connection
   // limits; otherwise why not.
   std::optional<std::string> overLimits(const std::string& address);
@@ -59,6 +67,8 @@ class Server {
   AuthThrottle authThrottle_;
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::signal_set signals_;
+  boost::asio::signal_set hangup_;
+  boost::asio::steady_timer watchdog_;
   std::unique_ptr<Store> store_;
   std::unique_ptr<boost::asio::ssl::context> tls_;
   ServerStats stats_;
@@ -67,6 +77,8 @@ class Server {
   uint16_t port_ = 0;
   uint64_t nextSession_ = 1;
   bool stopping_ = false;
+  std::atomic<bool> serving_{false};  // for /healthz, read from the HTTP threads
+  std::unique_ptr<HttpEndpoint> http_;  // declared last: stopped before what it reads
   std::map<uint64_t, std::weak_ptr<Connection>> connections_;
 };
 

@@ -108,6 +108,31 @@ SqliteConnection::~SqliteConnection() {
   sqlite3_close(db_);
 }
 
+Status SqliteConnection::backupInto(const std::string& destination) {
+  sqlite3* target = nullptr;
+  int result = sqlite3_open_v2(destination.c_str(), &target, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
+  if (result != SQLITE_OK) {
+    std::string message = target != nullptr ? sqlite3_errmsg(target) : sqlite3_errstr(result);
+    sqlite3_close(target);
+    return ioError(destination + ": cannot create the backup file: " + message);
+  }
+  sqlite3_backup* backup = sqlite3_backup_init(target, "main", db_, "main");
+  if (backup == nullptr) {
+    std::string message = sqlite3_errmsg(target);
+    sqlite3_close(target);
+    return ioError(destination + ": cannot start the backup of " + path_ + ": " + message);
+  }
+  // All pages in one step: the copy is one read transaction on the source,
+  // so it is consistent even while a server commits (WAL readers never
+  // block writers, and the copy never restarts).
+  result = sqlite3_backup_step(backup, -1);
+  sqlite3_backup_finish(backup);
+  const int closed = sqlite3_close(target);
+  if (result != SQLITE_DONE) return error(result, "backing up into " + destination);
+  if (closed != SQLITE_OK) return ioError(destination + ": cannot close the backup file: " + sqlite3_errstr(closed));
+  return Status::ok();
+}
+
 Status SqliteConnection::exec(const std::string& sql) {
   const int result = sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, nullptr);
   if (result != SQLITE_OK) return error(result, shortSql(sql.c_str()));

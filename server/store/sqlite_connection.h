@@ -82,6 +82,10 @@ class SqliteConnection {
   int64_t changes() const;  // rows changed by the last statement
   bool inTransaction() const;
   Status setBusyTimeout(int milliseconds);
+  // Copies the whole database, as of one instant, into a new file at
+  // `destination` with SQLite's online backup API: other connections (a
+  // running server's included) keep reading and writing meanwhile.
+  Status backupInto(const std::string& destination);
 
   // A Status for SQLite result `code`: "<path>: <SQLite's message> (<what>)",
   // with a code that says whether the file, the disk or Tessera is at fault.

@@ -91,10 +91,14 @@ bool Document::isBoundaryEdge(EdgeId edge) const {
   return baseBoundaryEdges_[index] != 0;
 }
 
+// The order of the checks is the protocol's (PROTOCOL 7.2, "Which error
+// wins"): the list's shape, then every id's existence in the order given
+// (notFound), then how the ids relate (invalidArgument), so the reason does
+// not depend on where in the list a missing id stands.
 Status Document::checkVertices(std::span<const VertexId> vertices) const {
   if (vertices.empty()) return invalidArgument("a move names no vertex");
+  for (VertexId v : vertices) TESSERA_RETURN_IF_ERROR(counts_.check(v));
   for (VertexId v : vertices) {
-    TESSERA_RETURN_IF_ERROR(counts_.check(v));
     if (v.level() != vertices[0].level()) {
       return invalidArgument("vertices moved together must share a level: " + vertices[0].toString() + " and " +
                              v.toString());

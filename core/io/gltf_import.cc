@@ -2,6 +2,7 @@
 // not define TINYGLTF_IMPLEMENTATION). See gltf_import.h for the choices made.
 #include "core/io/gltf_import.h"
 
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -9,6 +10,8 @@
 #include <tuple>
 
 #include <tiny_gltf.h>
+
+#include "core/io/gltf_draco.h"
 
 namespace tessera {
 namespace {
@@ -22,6 +25,23 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
 std::string trimmed(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
   return s;
+}
+
+// Filesystem callbacks that read nothing: an import from bytes must not
+// touch the filesystem, so a .gltf naming external buffers fails, naming them.
+tinygltf::FsCallbacks noFiles() {
+  tinygltf::FsCallbacks callbacks{};
+  callbacks.FileExists = [](const std::string&, void*) { return false; };
+  callbacks.ExpandFilePath = [](const std::string& path, void*) { return path; };
+  callbacks.ReadWholeFile = [](std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+    if (err) *err += "external file '" + path + "' cannot be read here: send a .glb (or data: URIs)\n";
+    return false;
+  };
+  callbacks.WriteWholeFile = [](std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "writing is not supported\n";
+    return false;
+  };
+  return callbacks;
 }
 
 // Bounds-checked view of an accessor's elements.
@@ -142,13 +162,15 @@ Status parseExtrasTags(const tinygltf::Value& extras, const std::string& meshNam
   return Status::ok();
 }
 
-Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
-                     MeshVertices& vertices, std::map<std::tuple<float, float, float>, int>& weld,
-                     PolygonSoup& soup) {
-  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-  if (mode != TINYGLTF_MODE_TRIANGLES) {
-    return unsupported(where + ": mode " + std::to_string(mode) + " is not supported, only TRIANGLES (4)");
-  }
+// A primitive's positions and triangle corners, from accessors or decoded
+// from KHR_draco_mesh_compression.
+struct PrimitiveData {
+  std::vector<std::array<float, 3>> positions;
+  std::vector<uint32_t> indices;
+};
+
+Status readAccessors(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                     PrimitiveData& out) {
   auto pos = prim.attributes.find("POSITION");
   if (pos == prim.attributes.end()) return parseError(where + ": has no POSITION attribute");
   AccessorView positions;
@@ -156,10 +178,70 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& pr
   if (positions.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
     return unsupported(where + ": POSITION must be FLOAT (quantized positions are not supported)");
   }
-  const size_t first = vertices.soupIndex.size();
+  out.positions.resize(positions.count);
   for (size_t i = 0; i < positions.count; ++i) {
-    float xyz[3];
-    std::memcpy(xyz, positions.data + i * positions.stride, sizeof xyz);
+    std::memcpy(out.positions[i].data(), positions.data + i * positions.stride, 3 * sizeof(float));
+  }
+  if (prim.indices >= 0) {
+    AccessorView view;
+    TESSERA_RETURN_IF_ERROR(viewAccessor(model, prim.indices, TINYGLTF_TYPE_SCALAR, where, view));
+    out.indices.resize(view.count);
+    for (size_t i = 0; i < view.count; ++i) {
+      Status status = readIndex(view, i, out.indices[i]);
+      if (!status.isOk()) return status.withContext(where + ": accessor " + std::to_string(prim.indices));
+    }
+  } else {
+    out.indices.resize(positions.count);
+    for (size_t i = 0; i < out.indices.size(); ++i) out.indices[i] = static_cast<uint32_t>(i);
+  }
+  return Status::ok();
+}
+
+Status readDraco(const tinygltf::Model& model, const tinygltf::Value& extension, const std::string& where,
+                 PrimitiveData& out) {
+  const std::string name = where + ": " + io_detail::kDracoExtension;
+  if (!extension.IsObject() || !extension.Has("bufferView") || !extension.Get("bufferView").IsNumber() ||
+      !extension.Has("attributes") || !extension.Get("attributes").IsObject()) {
+    return parseError(name + ": needs a bufferView and attributes");
+  }
+  const tinygltf::Value& attributes = extension.Get("attributes");
+  if (!attributes.Has("POSITION") || !attributes.Get("POSITION").IsNumber()) {
+    return parseError(name + ": attributes has no POSITION id");
+  }
+  const int viewIndex = extension.Get("bufferView").GetNumberAsInt();
+  if (viewIndex < 0 || viewIndex >= static_cast<int>(model.bufferViews.size())) {
+    return parseError(name + ": bufferView " + std::to_string(viewIndex) + " does not exist");
+  }
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(viewIndex)];
+  if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()) ||
+      static_cast<uint64_t>(view.byteOffset) + view.byteLength > model.buffers[view.buffer].data.size()) {
+    return parseError(name + ": bufferView " + std::to_string(viewIndex) + " runs past its buffer (truncated file?)");
+  }
+  TESSERA_ASSIGN_OR_RETURN(io_detail::DracoPrimitive decoded,
+                           io_detail::decodeDracoPrimitive(model.buffers[view.buffer].data.data() + view.byteOffset,
+                                                           view.byteLength,
+                                                           attributes.Get("POSITION").GetNumberAsInt(), name));
+  out.positions = std::move(decoded.positions);
+  out.indices = std::move(decoded.indices);
+  return Status::ok();
+}
+
+Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                     MeshVertices& vertices, std::map<std::tuple<float, float, float>, int>& weld,
+                     PolygonSoup& soup) {
+  const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES) {
+    return unsupported(where + ": mode " + std::to_string(mode) + " is not supported, only TRIANGLES (4)");
+  }
+  PrimitiveData data;
+  auto draco = prim.extensions.find(io_detail::kDracoExtension);
+  if (draco != prim.extensions.end()) {
+    TESSERA_RETURN_IF_ERROR(readDraco(model, draco->second, where, data));
+  } else {
+    TESSERA_RETURN_IF_ERROR(readAccessors(model, prim, where, data));
+  }
+  const size_t first = vertices.soupIndex.size();
+  for (const auto& xyz : data.positions) {
     // Exact float equality (so -0 == +0); NaN never equals itself, so a NaN
     // vertex stays separate and validation names it.
     const auto key = std::make_tuple(xyz[0] + 0.0f, xyz[1] + 0.0f, xyz[2] + 0.0f);
@@ -174,29 +256,17 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& pr
     if (weldable) weld.emplace(key, index);
     vertices.soupIndex.push_back(index);
   }
-  std::vector<uint32_t> indices;
-  if (prim.indices >= 0) {
-    AccessorView view;
-    TESSERA_RETURN_IF_ERROR(viewAccessor(model, prim.indices, TINYGLTF_TYPE_SCALAR, where, view));
-    indices.resize(view.count);
-    for (size_t i = 0; i < view.count; ++i) {
-      Status status = readIndex(view, i, indices[i]);
-      if (!status.isOk()) return status.withContext(where + ": accessor " + std::to_string(prim.indices));
-    }
-  } else {
-    indices.resize(positions.count);
-    for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<uint32_t>(i);
+  if (data.indices.size() % 3 != 0) {
+    return parseError(where + ": " + std::to_string(data.indices.size()) + " indices, not a multiple of 3");
   }
-  if (indices.size() % 3 != 0) {
-    return parseError(where + ": " + std::to_string(indices.size()) + " indices, not a multiple of 3");
-  }
-  for (size_t t = 0; t < indices.size(); t += 3) {
+  for (size_t t = 0; t < data.indices.size(); t += 3) {
     std::vector<int> face(3);
     for (int k = 0; k < 3; ++k) {
-      const uint32_t local = indices[t + k];
-      if (local >= positions.count) {
+      const uint32_t local = data.indices[t + k];
+      if (local >= data.positions.size()) {
         return invalidMesh(where + ": triangle " + std::to_string(t / 3) + ": vertex index " + std::to_string(local) +
-                           " is out of range (the primitive has " + std::to_string(positions.count) + " vertices)");
+                           " is out of range (the primitive has " + std::to_string(data.positions.size()) +
+                           " vertices)");
       }
       face[k] = vertices.soupIndex[first + local];
     }
@@ -207,19 +277,21 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& pr
 
 }  // namespace
 
-Expected<GltfContent> readGltf(const std::string& path, const std::string& data) {
+Expected<GltfContent> readGltf(const std::string& path, const std::string& original, const std::string* baseDir) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
+  if (baseDir == nullptr) loader.SetFsCallbacks(noFiles());
   tinygltf::Model model;
   std::string err, warn;
-  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  TESSERA_ASSIGN_OR_RETURN(const std::string data, io_detail::dropDracoIndices(original, path));
+  const std::string dir = baseDir == nullptr ? std::string() : *baseDir;
   const bool binary = data.size() >= 4 && data.compare(0, 4, "glTF") == 0;
   bool ok = false;
   try {
     ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(data.data()),
-                                              static_cast<unsigned int>(data.size()), baseDir)
+                                              static_cast<unsigned int>(data.size()), dir)
                 : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), static_cast<unsigned int>(data.size()),
-                                             baseDir);
+                                             dir);
   } catch (const std::exception& e) {
     return parseError(path + ": malformed glTF: " + e.what());
   }

@@ -28,8 +28,11 @@ struct GltfContent {
   TagLocator locate;             // names a tag's place in the file
 };
 
-// `data` is the whole file; `path` names it in errors and locates external
-// buffers (.bin next to a .gltf).
-Expected<GltfContent> readGltf(const std::string& path, const std::string& data);
+// `data` is the whole file; `path` names it in errors. External buffers (a
+// .bin next to a .gltf) are read from `baseDir`; with nullptr nothing is
+// read from the filesystem and a file naming external buffers is refused.
+// Primitives compressed with KHR_draco_mesh_compression are decoded with
+// Draco (gltf_draco.h).
+Expected<GltfContent> readGltf(const std::string& path, const std::string& data, const std::string* baseDir);
 
 }  // namespace tessera

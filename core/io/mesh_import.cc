@@ -15,6 +15,7 @@
 #include "core/util/file_io.h"
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -60,7 +61,10 @@ class QuietOpenMesh {
   std::vector<bool> wasEnabled_;
 };
 
-Status readWithOpenMesh(const std::string& path, const std::string& ext, const std::string* text,
+// Reads `text` from memory (never a file: the same path serves files and
+// bytes sent to the server). `binary`: a binary STL (OpenMesh's stream
+// reader cannot tell by itself).
+Status readWithOpenMesh(const std::string& name, const std::string& ext, const std::string& text, bool binary,
                         PolygonSoup& soup) {
   // IOManager and its reader modules are process-wide singletons with state
   // (the OBJ reader keeps materials and a path): one read at a time.
@@ -69,25 +73,37 @@ Status readWithOpenMesh(const std::string& path, const std::string& ext, const s
   QuietOpenMesh quiet;
   SoupImporter importer(soup);
   OpenMesh::IO::Options options;
+  if (binary) options += OpenMesh::IO::Options::Binary;
   bool ok = false;
   try {
-    if (text != nullptr) {
-      std::istringstream in(*text);
-      ok = OpenMesh::IO::IOManager().read(in, ext, importer, options);
-    } else {
-      ok = OpenMesh::IO::IOManager().read(path, importer, options);
-    }
+    std::istringstream in(text, std::ios::in | std::ios::binary);
+    ok = OpenMesh::IO::IOManager().read(in, ext, importer, options);
   } catch (const std::exception& e) {
-    return parseError(path + ": malformed " + ext.substr(1) + " data (" + e.what() + ")");
+    return parseError(name + ": malformed " + ext.substr(1) + " data (" + e.what() + ")");
   }
-  if (!ok) return parseError(path + ": malformed or truncated " + ext.substr(1) + " data");
+  if (!ok) return parseError(name + ": malformed or truncated " + ext.substr(1) + " data");
   return Status::ok();
 }
 
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
+std::string lowerCase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+  return text;
+}
+
+bool isBinaryStl(const std::string& text) {
+  // The size a binary STL's facet count implies (format_prescan.cc decides alike).
+  uint32_t declared = 0;
+  if (text.size() < 84) return false;
+  std::memcpy(&declared, text.data() + 80, 4);
+  return text.size() == 84 + 50 * static_cast<uint64_t>(declared);
+}
+
+Status checkExtension(const std::string& name, const std::string& ext) {
+  const auto& supported = supportedImportExtensions();
+  if (std::find(supported.begin(), supported.end(), ext) != supported.end()) return Status::ok();
+  std::string list;
+  for (const std::string& e : supported) list += (list.empty() ? "" : ", ") + e;
+  return unsupported(name + ": unsupported file extension '" + ext + "' (supported: " + list + ")");
 }
 
 Status checkCounts(const PolygonSoup& soup, const PrescanCounts& counts, bool checkVertices, const std::string& src) {
@@ -102,6 +118,42 @@ Status checkCounts(const PolygonSoup& soup, const PrescanCounts& counts, bool ch
   return Status::ok();
 }
 
+
+Expected<BaseMesh> importText(const std::string& text, const std::string& ext, const std::string& name,
+                              const ImportOptions& options, const std::string* gltfBaseDir) {
+  const BuildOptions build{options.triangulate};
+  if (ext == ".gltf" || ext == ".glb") {
+    TESSERA_ASSIGN_OR_RETURN(GltfContent content, readGltf(name, text, gltfBaseDir));
+    TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, buildBaseMesh(content.soup, build, name));
+    TESSERA_RETURN_IF_ERROR(applyTags(content.tags, content.locate, mesh));
+    return mesh;
+  }
+
+  PolygonSoup soup;
+  PrescanCounts counts;
+  if (ext == ".obj") {
+    if (text.find('\0') != std::string::npos) return parseError(name + ": binary data, not a text OBJ file");
+    TESSERA_RETURN_IF_ERROR(prescanObj(text, name, counts));
+    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(name, ext, text, false, soup));
+    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, true, name));
+  } else if (ext == ".off") {
+    if (text.find('\0') != std::string::npos) return parseError(name + ": binary data, not a text OFF file");
+    std::string normalised;
+    TESSERA_RETURN_IF_ERROR(prescanOff(text, name, counts, normalised));
+    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(name, ext, normalised, false, soup));
+    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, true, name));
+  } else if (ext == ".ply") {
+    TESSERA_RETURN_IF_ERROR(prescanPly(text, name, counts));
+    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(name, ext, text, false, soup));
+    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, true, name));
+  } else {  // .stl: vertices are merged by the reader, so only faces are counted
+    TESSERA_RETURN_IF_ERROR(prescanStl(text, name, counts));
+    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(name, ext, text, isBinaryStl(text), soup));
+    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, false, name));
+  }
+  return buildBaseMesh(soup, build, name);
+}
+
 }  // namespace
 
 const std::vector<std::string>& supportedImportExtensions() {
@@ -110,46 +162,20 @@ const std::vector<std::string>& supportedImportExtensions() {
 }
 
 Expected<BaseMesh> importMesh(const std::string& path, const ImportOptions& options) {
-  const std::string ext = lowerExtension(path);
-  const auto& supported = supportedImportExtensions();
-  if (std::find(supported.begin(), supported.end(), ext) == supported.end()) {
-    std::string list;
-    for (const std::string& e : supported) list += (list.empty() ? "" : ", ") + e;
-    return unsupported(path + ": unsupported file extension '" + ext + "' (supported: " + list + ")");
-  }
+  const std::string ext = lowerCase(std::filesystem::path(path).extension().string());
+  TESSERA_RETURN_IF_ERROR(checkExtension(path, ext));
   TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
-  const BuildOptions build{options.triangulate};
+  // A .gltf may name buffers in files beside it.
+  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  return importText(text, ext, path, options, &baseDir);
+}
 
-  if (ext == ".gltf" || ext == ".glb") {
-    TESSERA_ASSIGN_OR_RETURN(GltfContent content, readGltf(path, text));
-    TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, buildBaseMesh(content.soup, build, path));
-    TESSERA_RETURN_IF_ERROR(applyTags(content.tags, content.locate, mesh));
-    return mesh;
-  }
-
-  PolygonSoup soup;
-  PrescanCounts counts;
-  if (ext == ".obj") {
-    if (text.find('\0') != std::string::npos) return parseError(path + ": binary data, not a text OBJ file");
-    TESSERA_RETURN_IF_ERROR(prescanObj(text, path, counts));
-    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(path, ext, nullptr, soup));
-    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, true, path));
-  } else if (ext == ".off") {
-    if (text.find('\0') != std::string::npos) return parseError(path + ": binary data, not a text OFF file");
-    std::string normalised;
-    TESSERA_RETURN_IF_ERROR(prescanOff(text, path, counts, normalised));
-    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(path, ext, &normalised, soup));
-    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, true, path));
-  } else if (ext == ".ply") {
-    TESSERA_RETURN_IF_ERROR(prescanPly(text, path, counts));
-    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(path, ext, nullptr, soup));
-    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, true, path));
-  } else {  // .stl: vertices are merged by the reader, so only faces are counted
-    TESSERA_RETURN_IF_ERROR(prescanStl(text, path, counts));
-    TESSERA_RETURN_IF_ERROR(readWithOpenMesh(path, ext, nullptr, soup));
-    TESSERA_RETURN_IF_ERROR(checkCounts(soup, counts, false, path));
-  }
-  return buildBaseMesh(soup, build, path);
+Expected<BaseMesh> importMeshFromBytes(std::string_view bytes, const std::string& extension,
+                                       const std::string& displayName, const ImportOptions& options) {
+  std::string ext = lowerCase(extension);
+  if (!ext.empty() && ext[0] != '.') ext.insert(0, ".");
+  TESSERA_RETURN_IF_ERROR(checkExtension(displayName, ext));
+  return importText(std::string(bytes), ext, displayName, options, nullptr);
 }
 
 }  // namespace tessera

@@ -27,8 +27,11 @@ struct LodProfile {
   // Ok when the numbers make sense; errors name the field and the value.
   Status check() const;
   // "base2-max5-angle10-budget4000000-fid0" ("...-noids" without vertex
-  // ids): a stable key for caches.
+  // ids): a stable key for caches (the angle in the fewest digits that
+  // read back exactly).
   std::string key() const;
+  // For people: "base level 2, max level 5, angle 10°, budget 4000000 triangles".
+  std::string describe() const;
 };
 
 }  // namespace tessera

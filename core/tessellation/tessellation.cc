@@ -128,7 +128,7 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
   // triangles: refuse before growing the hierarchy to it (issue 13 §2).
   if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&
       static_cast<int64_t>(doc.counts().faces(profile.baseLevel)) > profile.triangleBudget) {
-    return invalidArgument("LOD profile " + profile.key() + " needs at least " +
+    return invalidArgument("LOD profile (" + profile.describe() + ")" + " needs at least " +
                            std::to_string(doc.counts().faces(profile.baseLevel)) + " triangles (its base level " +
                            std::to_string(profile.baseLevel) + "), above its budget of " +
                            std::to_string(profile.triangleBudget));
@@ -153,7 +153,7 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
       return tessellation;
     }
     if (round > kMaxDocumentLevel) {
-      return internalError("LOD profile " + profile.key() + ": the hierarchy does not hold the limits' rings after " +
+      return internalError("LOD profile (" + profile.describe() + ")" + ": the hierarchy does not hold the limits' rings after " +
                            std::to_string(round) + " growths");
     }
     doc.refineHierarchy(growth);
@@ -163,7 +163,7 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
 Status Tessellation::checkBudget() const {
   const int64_t triangles = numTriangles();
   if (triangles > profile().triangleBudget) {
-    return invalidArgument("LOD profile " + profile().key() + " needs " + std::to_string(triangles) +
+    return invalidArgument("LOD profile (" + profile().describe() + ")" + " needs " + std::to_string(triangles) +
                            " triangles, above its budget of " + std::to_string(profile().triangleBudget));
   }
   return Status::ok();

@@ -31,7 +31,9 @@ bool isReceiveTimeout(const Status& status) { return status.message().rfind(kRec
 Session::Session(const SessionOptions& options)
     : options_(options), socket_(io_), decoder_(FrameDecoderOptions{options.maxFrameBytes}) {}
 
-Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options) {
+Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options) { return connect(options, nullptr); }
+
+Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options, wire::ErrorCode* refusal) {
   std::unique_ptr<Session> s(new Session(options));
   boost::system::error_code ec;
   tcp::resolver resolver(s->io_);
@@ -74,6 +76,7 @@ Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& option
   TESSERA_ASSIGN_OR_RETURN(uint64_t seq, s->send(makeHello(hello)));
   (void)seq;
   TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage first, s->readMessage(options.timeoutSeconds));
+  if (first.has_error() && refusal != nullptr) *refusal = first.error().code();
   TESSERA_RETURN_IF_ERROR(checkHelloAck(first));
   s->sessionId_ = first.hello_ack().session_id();
   s->role_ = first.hello_ack().role();

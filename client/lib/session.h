@@ -40,6 +40,10 @@ struct SessionOptions {
 class Session {
  public:
   static Expected<std::unique_ptr<Session>> connect(const SessionOptions& options);
+  // The same; when the server refuses the handshake with an Error (an unknown
+  // token: ERROR_CODE_AUTH_FAILED, ...), its code is stored in `*refusal`
+  // (left alone otherwise), so a caller can explain it without parsing text.
+  static Expected<std::unique_ptr<Session>> connect(const SessionOptions& options, wire::ErrorCode* refusal);
   // connect(), retried with exponential backoff (delay doubling from
   // `firstDelaySeconds`, at most 5 s apart) until it succeeds or `attempts`
   // are spent; the last error is returned.

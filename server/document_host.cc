@@ -10,6 +10,7 @@
 #include "core/io/mesh_export.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/region_lattice.h"
+#include "core/tessellation/surface_hash.h"
 #include "core/util/file_io.h"
 #include "protocol/framing.h"
 #include "protocol/wire_ids.h"
@@ -180,7 +181,10 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       View view;
       view.tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
       view.wireProfile = requested;
-      for (const auto& [region, mesh] : view.tessellation->regions()) view.layout[region] = self->version_;
+      for (const auto& [region, mesh] : view.tessellation->regions()) {
+        view.layout[region] = self->version_;
+        self->rehash(view, region);
+      }
       it = self->views_.emplace(key, std::move(view)).first;
     }
     View& view = it->second;
@@ -226,6 +230,18 @@ Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t regio
   return std::make_shared<const std::string>(std::move(bytes));
 }
 
+void DocumentHost::rehash(View& view, uint64_t region, bool removed) const {
+  auto [it, fresh] = view.regionHashes.try_emplace(region, 0);
+  view.surfaceHash -= it->second;
+  if (removed) {
+    view.regionHashes.erase(it);
+    return;
+  }
+  it->second = regionSurfaceHashOnGrid(view.tessellation->regions().at(region), grid_,
+                                       view.tessellation->profile().vertexIds);
+  view.surfaceHash += it->second;
+}
+
 void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync) {
   // Encoded once per region and version; later subscribers share the bytes.
   std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;
@@ -256,6 +272,7 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
     *s->mutable_profile() = view.wireProfile;
     s->set_remaining_parts(static_cast<uint32_t>(parts.size() - p - 1));
     s->set_resync(resync);
+    s->set_surface_hash(view.surfaceHash);
     for (size_t i : parts[p]) {
       wire::Region* r = s->add_regions();
       r->set_region_id(regions[i].first);
@@ -449,7 +466,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
         config_.limits.maxFrameBytes), nullptr});
     return;
   }
-  ++stats_.edits;
+  stats_.edits += applied.editIds.size();  // a batch's commands count one by one; its version once
   ++version_;
   pending_.push_back({version_, author, author->sessionId(), clientSeq, applied.editIds.back(),
                       command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(), command,
@@ -532,6 +549,9 @@ void DocumentHost::flush() {
     // A region that only moved keeps its layout: its delta leaves the ids
     // out (a third of its bytes) and a later snapshot encodes them afresh.
     const bool withIds = view.tessellation->profile().vertexIds;
+    for (uint64_t region : changes->changed) rehash(view, region);
+    for (uint64_t region : changes->removed) rehash(view, region, /*removed=*/true);
+    delta->surfaceHash = view.surfaceHash;
     for (uint64_t region : changes->changed) {
       const bool relaid = std::binary_search(changes->relaid.begin(), changes->relaid.end(), region);
       if (relaid) view.layout[region] = version_;

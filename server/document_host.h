@@ -98,6 +98,11 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;       // session -> subscriber
     std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
     wire::LodProfile wireProfile;
+    // The surface hash (PROTOCOL 6.5) of each region as receivers decode it,
+    // and their sum, sent in snapshots and deltas; kept per region so an
+    // edit costs only the regions it changed.
+    std::map<uint64_t, uint64_t> regionHashes;
+    uint64_t surfaceHash = 0;
   };
   struct Pending {  // applied, waiting for its commit (its ack) and for its delta (recorders)
     uint64_t version;
@@ -162,6 +167,9 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   // A region at version_; without inline ids (a delta after a move) it
   // carries its layout's version for receivers holding the ids.
   Expected<std::shared_ptr<const std::string>> encode(uint64_t region, const View& view, bool idsInline);
+  // Updates the view's surface hash for a region that is new or changed,
+  // or, with `removed`, gone.
+  void rehash(View& view, uint64_t region, bool removed = false) const;
   void maybeSnapshot();
 
   const DocumentId id_;

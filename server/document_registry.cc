@@ -31,6 +31,20 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   return host;
 }
 
+int64_t DocumentRegistry::openCount() {
+  std::lock_guard lock(mutex_);
+  int64_t live = 0;
+  for (auto it = hosts_.begin(); it != hosts_.end();) {
+    if (it->second.expired()) {
+      it = hosts_.erase(it);
+    } else {
+      ++live;
+      ++it;
+    }
+  }
+  return live;
+}
+
 void DocumentRegistry::forget(DocumentId id) {
   std::lock_guard lock(mutex_);
   hosts_.erase(id.value);

@@ -51,7 +51,7 @@ struct HttpEndpoint::Impl {
     });
     http.Get("/metrics", [this](const httplib::Request&, httplib::Response& response) {
       edits.sample(std::chrono::steady_clock::now(), sources.stats->edits.load());
-      response.set_content(renderMetrics(*sources.stats, sources.storeStats(), edits.perSecond()),
+      response.set_content(renderMetrics({*sources.stats, sources.storeStats(), sources.documentsOpen(), edits.perSecond()}),
                            "text/plain; version=0.0.4; charset=utf-8");
     });
     http.set_error_handler([](const httplib::Request& request, httplib::Response& response) {

@@ -63,7 +63,10 @@ MetricFamily histogram(std::string name, std::string help, const LatencyBuckets&
 
 }  // namespace
 
-std::string renderMetrics(const ServerStats& s, const StoreStats& store, double editsPerSecond) {
+std::string renderMetrics(const MetricsSample& sample) {
+  const ServerStats& s = sample.stats;
+  const StoreStats& store = sample.store;
+  const double editsPerSecond = sample.editsPerSecond;
   ClientMetric info;
   info.label = {{"version", kVersion}};
   info.gauge.value = 1;
@@ -75,7 +78,7 @@ std::string renderMetrics(const ServerStats& s, const StoreStats& store, double 
       counter("tessera_connections_refused_total", "Connections refused by a connection limit.",
               s.connectionsRefused.load()),
       counter("tessera_auth_failures_total", "Hellos with a token the store does not know.", s.authFailures.load()),
-      gauge("tessera_documents_open", "Documents held in memory.", static_cast<double>(s.documentsOpen.load())),
+      gauge("tessera_documents_open", "Documents held in memory.", static_cast<double>(sample.documentsOpen)),
       counter("tessera_edits_total", "Edits applied (moves, sharpness, vertex types, undo, redo).", s.edits.load()),
       gauge("tessera_edits_per_second", "Edits per second over the last 10 s.", editsPerSecond),
       counter("tessera_refusals_total", "Commands refused with a Reject (limits, bad arguments, permissions).",

@@ -31,6 +31,12 @@ class RateWindow {
 };
 
 // The whole /metrics body.
-std::string renderMetrics(const ServerStats& stats, const StoreStats& store, double editsPerSecond);
+struct MetricsSample {
+  const ServerStats& stats;
+  StoreStats store;
+  int64_t documentsOpen = 0;
+  double editsPerSecond = 0;
+};
+std::string renderMetrics(const MetricsSample& sample);
 
 }  // namespace tessera::server

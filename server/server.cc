@@ -100,6 +100,7 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
         server->http_,
         HttpEndpoint::start(config.httpListenAddress, config.httpPort,
                             HttpSources{&raw->stats_, [raw] { return raw->store_->stats(); },
+                                        [raw] { return raw->registry_->openCount(); },
                                         [raw] { return raw->unhealthy(); }}));
     if (!config.httpPortFile.empty()) {
       const std::string temporary = config.httpPortFile + ".tmp";

@@ -28,6 +28,8 @@ class DocumentRegistry {
   Expected<std::shared_ptr<DocumentHost>> open(DocumentId id);
   // Forgets a deleted document's host.
   void forget(DocumentId id);
+  // Documents whose host is alive (held by a session or still loading).
+  int64_t openCount();
 
  private:
   Store& store_;

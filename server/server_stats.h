@@ -13,7 +13,6 @@ namespace tessera::server {
 struct ServerStats {
   std::atomic<int64_t> connections{0};
   std::atomic<int64_t> connectionsTotal{0};
-  std::atomic<int64_t> documentsOpen{0};
   std::atomic<int64_t> edits{0};
   std::atomic<int64_t> rejects{0};
   std::atomic<int64_t> bytesSent{0};

@@ -1,15 +1,17 @@
-// The `tessera` subcommands. Each returns the process exit code and prints
-// errors as "tessera <command>: <message>" on stderr.
+// The `tessera` subcommands, registered on the CLI11 application. Each one
+// sets `action` when it is the subcommand chosen; the action returns the
+// process exit code and prints errors as "tessera <command>: <message>".
 #pragma once
 
-#include <string>
-#include <vector>
+#include <CLI/CLI.hpp>
+
+#include "client/cli/command_line.h"
 
 namespace tessera::cli {
 
-int runInfo(const std::vector<std::string>& args);
-int runRefine(const std::vector<std::string>& args);
-int runDoc(const std::vector<std::string>& args);
-int runRemote(const std::vector<std::string>& args);
+void addInfoCommand(CLI::App& app, Action& action);
+void addRefineCommand(CLI::App& app, Action& action);
+void addDocCommand(CLI::App& app, Action& action);     // doc new | edit | info | export
+void addRemoteCommand(CLI::App& app, Action& action);  // remote list | create | grant | edit | export | stats
 
 }  // namespace tessera::cli

@@ -1,12 +1,12 @@
 // tessera doc: hierarchical documents -- create, edit by script, inspect, export.
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 
-#include "client/cli/arguments.h"
 #include "client/cli/commands.h"
+#include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
 #include "core/document/edit_script.h"
@@ -16,82 +16,57 @@ namespace tessera::cli {
 
 namespace {
 
-constexpr const char* kHelp =
-    "usage: tessera doc <new|edit|info|export> ...\n"
-    "\n"
-    "  doc new IN [--tags FILE] [--triangulate] [--max-level N] [--crease-method M]\n"
-    "          [--boundary B] -o DOC          create a document from a base mesh\n"
-    "  doc edit DOC --script FILE               apply an edit script (all or nothing)\n"
-    "  doc info DOC                             base mesh, options and the edit history\n"
-    "  doc export DOC --level N [--limit] [--draco] -o OUT\n"
-    "                                           write the surface at level N (.obj .ply .glb)\n"
-    "  doc export DOC --adaptive [--base-level N] [--max-level N] [--angle DEG] [--draco] -o OUT\n"
-    "                                           write the adaptive, crack-free limit tessellation\n"
-    "                                           (defaults: base level 2, max level 5, 10 degrees)\n"
-    "\n"
+constexpr const char* kScriptHelp =
     "Edit scripts: one command per line ('#' comments), ids as 'doc info' prints them:\n"
     "  move v2:40 [v2:41 ...] to X Y Z     put v2:40's limit at X Y Z; others move alike\n"
     "  offset v3:7 [...] by DX DY DZ       displace control points\n"
     "  crease e1:5 S                       edge sharpness at that level (S or inf)\n"
     "  corner v4:900 S                     vertex sharpness (0 smooth, > 0 corner or cusp)\n"
-    "  undo N | redo N | remove N          by edit id\n"
-    "";
+    "  undo N | redo N | remove N          by edit id";
 
-int fail(const char* command, const Status& status) {
-  std::fprintf(stderr, "tessera doc %s: %s\n", command, status.toString().c_str());
-  return 1;
-}
+struct NewArgs {
+  MeshInputArgs mesh;
+  DocumentArgs document;
+  std::string output;
+};
 
-int usage(const std::string& message) {
-  std::fprintf(stderr, "tessera doc: %s\n\n%s", message.c_str(), kHelp);
-  return 2;
-}
+struct ExportArgs {
+  std::string document, output;
+  int level = -1;
+  bool limit = false, draco = false, adaptive = false;
+  int baseLevel = 2, maxLevel = 5;
+  double angle = 10;
+};
 
-int runNew(const Arguments& args) {
-  if (args.positional.size() != 1) return usage("doc new expects one input mesh");
-  const std::string* out = args.option("--output");
-  if (!out) return usage("doc new needs -o DOC");
-  DocumentOptions options;
-  if (const std::string* level = args.option("--max-level")) {
-    auto parsed = parseLevel("--max-level", *level);
-    if (!parsed.isOk()) return usage(parsed.status().message());
-    options.maxLevel = *parsed;
+int runNew(const NewArgs& args) {
+  if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
+    return usage("doc new", same.message());
   }
-  if (const std::string* m = args.option("--crease-method")) {
-    if (*m != "uniform" && *m != "chaikin") return usage("--crease-method expects uniform or chaikin");
-    options.loop.creaseMethod = *m == "uniform" ? CreaseMethod::kUniform : CreaseMethod::kChaikin;
-  }
-  if (const std::string* b = args.option("--boundary")) {
-    if (*b != "edge-only" && *b != "edge-and-corner") return usage("--boundary expects edge-only or edge-and-corner");
-    options.loop.boundary = *b == "edge-only" ? BoundaryInterpolation::kEdgeOnly : BoundaryInterpolation::kEdgeAndCorner;
-  }
-  auto mesh = loadMesh(args.positional[0], args.option("--tags"), args.has("--triangulate"));
-  if (!mesh.isOk()) return fail("new", mesh.status());
+  const DocumentOptions options = documentOptions(args.document);
+  auto mesh = loadMesh(args.mesh);
+  if (!mesh.isOk()) return fail("doc new", mesh.status());
   auto doc = Document::create(*mesh, options);
-  if (!doc.isOk()) return fail("new", doc.status().withContext(args.positional[0]));
-  Status saved = saveDocument(*doc, *out);
-  if (!saved.isOk()) return fail("new", saved);
-  std::printf("wrote %s: %d vertices, %zu faces, max level %d\n", out->c_str(), doc->baseTopology().numVertices,
-              doc->baseTopology().triangles.size(), options.maxLevel);
+  if (!doc.isOk()) return fail("doc new", doc.status().withContext(args.mesh.input));
+  Status saved = saveDocument(*doc, args.output);
+  if (!saved.isOk()) return fail("doc new", saved);
+  std::printf("wrote %s: %s vertices, %s faces, max level %d\n", args.output.c_str(),
+              formatCount(doc->baseTopology().numVertices).c_str(),
+              formatCount(doc->baseTopology().triangles.size()).c_str(), options.maxLevel);
   return 0;
 }
 
-int runEdit(const Arguments& args) {
-  if (args.positional.size() != 1) return usage("doc edit expects one document");
-  const std::string* script = args.option("--script");
-  if (!script) return usage("doc edit needs --script FILE");
-  auto doc = loadDocument(args.positional[0]);
-  if (!doc.isOk()) return fail("edit", doc.status());
-  std::ifstream in(*script);
-  if (!in) return fail("edit", notFound(*script + ": cannot open the script"));
+int runEdit(const std::string& path, const std::string& script) {
+  auto doc = loadDocument(path);
+  if (!doc.isOk()) return fail("doc edit", doc.status());
+  std::ifstream in(script);
+  if (!in) return fail("doc edit", notFound(script + ": cannot open the script"));
   std::stringstream text;
   text << in.rdbuf();
-  auto result = applyEditScript(text.str(), *script, *doc);
-  if (!result.isOk()) return fail("edit", result.status());
-  Status saved = saveDocument(*doc, args.positional[0]);
-  if (!saved.isOk()) return fail("edit", saved);
-  std::printf("applied %d commands; %zu edits in %s\n", result->commands, doc->edits().size(),
-              args.positional[0].c_str());
+  auto result = applyEditScript(text.str(), script, *doc);
+  if (!result.isOk()) return fail("doc edit", result.status());
+  Status saved = saveDocument(*doc, path);
+  if (!saved.isOk()) return fail("doc edit", saved);
+  std::printf("applied %d commands; %zu edits in %s\n", result->commands, doc->edits().size(), path.c_str());
   return 0;
 }
 
@@ -101,19 +76,17 @@ const char* kindName(const Edit& e) {
   return "corner";
 }
 
-int runInfo(const Arguments& args) {
-  if (args.positional.size() != 1) return usage("doc info expects one document");
-  auto doc = loadDocument(args.positional[0]);
-  if (!doc.isOk()) return fail("info", doc.status());
+int runInfo(const std::string& path) {
+  auto doc = loadDocument(path);
+  if (!doc.isOk()) return fail("doc info", doc.status());
   const auto& o = doc->options();
-  std::printf("document        %s\n", args.positional[0].c_str());
-  std::printf("base            %d vertices, %llu edges, %zu faces\n", doc->baseTopology().numVertices,
-              static_cast<unsigned long long>(doc->counts().edges(0)), doc->baseTopology().triangles.size());
+  std::printf("document        %s\n", path.c_str());
+  std::printf("base            %s vertices, %s edges, %s faces\n", formatCount(doc->baseTopology().numVertices).c_str(),
+              formatCount(doc->counts().edges(0)).c_str(), formatCount(doc->baseTopology().triangles.size()).c_str());
   std::printf("scheme          loop, %s creases, %s boundary\n",
               o.loop.creaseMethod == CreaseMethod::kUniform ? "uniform" : "chaikin",
               o.loop.boundary == BoundaryInterpolation::kEdgeOnly ? "edge-only" : "edge-and-corner");
-  std::printf("max level       %d (%llu faces there)\n", o.maxLevel,
-              static_cast<unsigned long long>(doc->counts().faces(o.maxLevel)));
+  std::printf("max level       %d (%s faces there)\n", o.maxLevel, formatCount(doc->counts().faces(o.maxLevel)).c_str());
   int active = 0;
   std::map<int, int> perLevel;
   for (const Edit& e : doc->edits()) {
@@ -128,98 +101,114 @@ int runInfo(const Arguments& args) {
     if (const auto* m = std::get_if<MoveEdit>(&e.change)) {
       for (const auto& off : m->offsets) std::printf("%s ", off.vertex.toString().c_str());
     } else if (const auto* c = std::get_if<EdgeSharpnessEdit>(&e.change)) {
-      std::printf("%s %g", c->edge.toString().c_str(), c->sharpness);
+      std::printf("%s %s", c->edge.toString().c_str(), formatSharpness(c->sharpness).c_str());
     } else {
       const auto& v = std::get<VertexSharpnessEdit>(e.change);
-      std::printf("%s %g", v.vertex.toString().c_str(), v.sharpness);
+      std::printf("%s %s", v.vertex.toString().c_str(), formatSharpness(v.sharpness).c_str());
     }
     std::printf("\n");
   }
   return 0;
 }
 
-Expected<LodProfile> profileFrom(const Arguments& args) {
-  LodProfile profile{.baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10};
-  if (const std::string* text = args.option("--base-level")) {
-    TESSERA_ASSIGN_OR_RETURN(profile.baseLevel, parseLevel("--base-level", *text));
-  }
-  if (const std::string* text = args.option("--max-level")) {
-    TESSERA_ASSIGN_OR_RETURN(profile.maxLevel, parseLevel("--max-level", *text));
-  }
-  if (const std::string* text = args.option("--angle")) {
-    char* end = nullptr;
-    profile.angleThresholdDegrees = std::strtod(text->c_str(), &end);
-    if (text->empty() || *end != '\0') return invalidArgument("--angle expects degrees, got '" + *text + "'");
-  }
-  TESSERA_RETURN_IF_ERROR(profile.check());
-  return profile;
-}
-
-int runAdaptiveExport(const Arguments& args) {
-  const std::string* out = args.option("--output");
-  if (!out) return usage("doc export needs -o OUT");
-  if (args.option("--level") || args.has("--limit")) return usage("--adaptive replaces --level and --limit");
-  auto profile = profileFrom(args);
-  if (!profile.isOk()) return usage(profile.status().message());
-  auto doc = loadDocument(args.positional[0]);
-  if (!doc.isOk()) return fail("export", doc.status());
-  auto tessellation = Tessellation::build(*doc, *profile);
-  if (!tessellation.isOk()) return fail("export", tessellation.status().withContext(args.positional[0]));
+int runAdaptiveExport(const ExportArgs& args) {
+  const LodProfile profile{.baseLevel = args.baseLevel, .maxLevel = args.maxLevel, .angleThresholdDegrees = args.angle};
+  if (Status valid = profile.check(); !valid.isOk()) return usage("doc export", valid.message());
+  auto doc = loadDocument(args.document);
+  if (!doc.isOk()) return fail("doc export", doc.status());
+  auto tessellation = Tessellation::build(*doc, profile);
+  if (!tessellation.isOk()) return fail("doc export", tessellation.status().withContext(args.document));
   const SurfaceMesh surface = tessellation->surface();
   ExportOptions exportOptions;
-  exportOptions.draco = args.has("--draco");
-  Status written = exportMesh(surface, *out, exportOptions);
-  if (!written.isOk()) return fail("export", written);
-  std::printf("wrote %s: %zu vertices, %zu triangles in %zu regions (adaptive, %s)\n", out->c_str(),
-              surface.positions.size(), surface.triangles.size(), tessellation->regions().size(),
-              profile->key().c_str());
+  exportOptions.draco = args.draco;
+  Status written = exportMesh(surface, args.output, exportOptions);
+  if (!written.isOk()) return fail("doc export", written);
+  std::printf("wrote %s: %s vertices, %s triangles in %s regions (adaptive: %s)\n", args.output.c_str(),
+              formatCount(surface.positions.size()).c_str(), formatCount(surface.triangles.size()).c_str(),
+              formatCount(tessellation->regions().size()).c_str(), profile.describe().c_str());
   return 0;
 }
 
-int runExport(const Arguments& args) {
-  if (args.positional.size() != 1) return usage("doc export expects one document");
-  if (args.has("--adaptive")) return runAdaptiveExport(args);
-  const std::string* out = args.option("--output");
-  const std::string* levelText = args.option("--level");
-  if (!out || !levelText) return usage("doc export needs --level N and -o OUT");
-  auto level = parseLevel("--level", *levelText);
-  if (!level.isOk()) return usage(level.status().message());
-  auto doc = loadDocument(args.positional[0]);
-  if (!doc.isOk()) return fail("export", doc.status());
-  auto surface = doc->surface(*level, args.has("--limit") ? SurfaceKind::kLimit : SurfaceKind::kControl);
-  if (!surface.isOk()) return fail("export", surface.status().withContext(args.positional[0]));
+int runExport(const ExportArgs& args) {
+  if (Status same = checkOutputIsNotInput(args.document, args.output); !same.isOk()) {
+    return usage("doc export", same.message());
+  }
+  if (args.adaptive) return runAdaptiveExport(args);
+  if (args.level < 0) return usage("doc export", "--level N is required (or --adaptive)");
+  auto doc = loadDocument(args.document);
+  if (!doc.isOk()) return fail("doc export", doc.status());
+  auto surface = doc->surface(args.level, args.limit ? SurfaceKind::kLimit : SurfaceKind::kControl);
+  if (!surface.isOk()) return fail("doc export", surface.status().withContext(args.document));
   ExportOptions exportOptions;
-  exportOptions.draco = args.has("--draco");
-  Status written = exportMesh(*surface, *out, exportOptions);
-  if (!written.isOk()) return fail("export", written);
-  std::printf("wrote %s: %zu vertices, %zu triangles (level %d)\n", out->c_str(), surface->positions.size(),
-              surface->triangles.size(), *level);
+  exportOptions.draco = args.draco;
+  Status written = exportMesh(*surface, args.output, exportOptions);
+  if (!written.isOk()) return fail("doc export", written);
+  std::printf("wrote %s: %s vertices, %s triangles (level %d)\n", args.output.c_str(),
+              formatCount(surface->positions.size()).c_str(), formatCount(surface->triangles.size()).c_str(),
+              args.level);
   return 0;
+}
+
+void addNew(CLI::App& doc, Action& action) {
+  CLI::App* sub = doc.add_subcommand("new", "create a document from a base mesh");
+  auto args = std::make_shared<NewArgs>();
+  addMeshInputOptions(*sub, args->mesh);
+  addDocumentOptions(*sub, args->document);
+  sub->add_option("-o,--output", args->output, "the document file to write")->required()->type_name("DOC");
+  onChosen(*sub, action, [args] { return runNew(*args); });
+}
+
+void addEdit(CLI::App& doc, Action& action) {
+  CLI::App* sub = doc.add_subcommand("edit", "apply an edit script to a document (all or nothing)");
+  sub->footer(kScriptHelp);
+  auto document = std::make_shared<std::string>();
+  auto script = std::make_shared<std::string>();
+  sub->add_option("DOC", *document, "the document file, rewritten in place")->required();
+  sub->add_option("--script", *script, "the edit script")->required()->type_name("FILE");
+  onChosen(*sub, action, [document, script] { return runEdit(*document, *script); });
+}
+
+void addInfo(CLI::App& doc, Action& action) {
+  CLI::App* sub = doc.add_subcommand("info", "base mesh, options and the edit history of a document");
+  auto document = std::make_shared<std::string>();
+  sub->add_option("DOC", *document, "the document file")->required();
+  onChosen(*sub, action, [document] { return runInfo(*document); });
+}
+
+void addExport(CLI::App& doc, Action& action) {
+  CLI::App* sub = doc.add_subcommand("export", "write the surface at a level, or the adaptive tessellation");
+  sub->footer(
+      "With --level N: the control points (or, with --limit, the limit surface) at level N.\n"
+      "With --adaptive: the crack-free adaptive limit tessellation of the LOD profile\n"
+      "--base-level, --max-level, --angle (defaults 2, 5, 10 degrees).");
+  auto args = std::make_shared<ExportArgs>();
+  sub->add_option("DOC", args->document, "the document file")->required();
+  sub->add_option("-o,--output", args->output, ".obj, .ply or .glb (chosen by extension)")->required()->type_name("OUT");
+  CLI::Option* level = sub->add_option("--level", args->level, "uniform level to write")->check(wholeNumber());
+  CLI::Option* limit = sub->add_flag("--limit", args->limit, "limit positions and normals instead of control points");
+  sub->add_flag("--draco", args->draco, "GLB only: compress with KHR_draco_mesh_compression");
+  CLI::Option* adaptive =
+      sub->add_flag("--adaptive", args->adaptive, "the adaptive, crack-free limit tessellation instead of a level");
+  adaptive->excludes(level)->excludes(limit);
+  const char* group = "Adaptive (with --adaptive)";
+  sub->add_option("--base-level", args->baseLevel, "every face at least this fine (default 2)")
+      ->check(wholeNumber())->needs(adaptive)->group(group);
+  sub->add_option("--max-level", args->maxLevel, "never finer than this (default 5)")
+      ->check(wholeNumber())->needs(adaptive)->group(group);
+  sub->add_option("--angle", args->angle, "refine where limit normals differ more (degrees, default 10)")
+      ->needs(adaptive)->type_name("DEG")->group(group);
+  onChosen(*sub, action, [args] { return runExport(*args); });
 }
 
 }  // namespace
 
-int runDoc(const std::vector<std::string>& rawArgs) {
-  if (rawArgs.empty() || rawArgs[0] == "--help" || rawArgs[0] == "-h") {
-    std::fputs(kHelp, rawArgs.empty() ? stderr : stdout);
-    return rawArgs.empty() ? 2 : 0;
-  }
-  const std::string sub = rawArgs[0];
-  const std::vector<std::string> rest(rawArgs.begin() + 1, rawArgs.end());
-  ArgumentSpec spec{{"--limit", "--draco", "--triangulate", "--adaptive"},
-                    {"--tags", "--output", "--script", "--level", "--max-level", "--crease-method", "--boundary",
-                     "--base-level", "--angle"}};
-  auto args = parseArguments(rest, spec);
-  if (!args.isOk()) return usage(args.status().message());
-  if (args->has("--help")) {
-    std::fputs(kHelp, stdout);
-    return 0;
-  }
-  if (sub == "new") return runNew(*args);
-  if (sub == "edit") return runEdit(*args);
-  if (sub == "info") return runInfo(*args);
-  if (sub == "export") return runExport(*args);
-  return usage("unknown doc command '" + sub + "'");
+void addDocCommand(CLI::App& app, Action& action) {
+  CLI::App* doc = app.add_subcommand("doc", "hierarchical documents with edits at any level");
+  doc->require_subcommand(1);
+  addNew(*doc, action);
+  addEdit(*doc, action);
+  addInfo(*doc, action);
+  addExport(*doc, action);
 }
 
 }  // namespace tessera::cli

@@ -1,25 +1,16 @@
 // tessera info: what a base mesh is made of, before anyone refines it.
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <vector>
 
-#include "client/cli/arguments.h"
 #include "client/cli/commands.h"
+#include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
 
 namespace tessera::cli {
 
 namespace {
-
-constexpr const char* kHelp =
-    "usage: tessera info IN [--tags FILE] [--triangulate]\n"
-    "\n"
-    "Prints vertex, face and edge counts, the valence histogram, boundary\n"
-    "loops, connected components, genus, feature-tag counts and the bounding box.\n"
-    "\n"
-    "  IN             .obj .off .ply .stl .gltf .glb\n"
-    "  --tags FILE    feature tags: 'crease I J S' and 'corner I S' lines (docs/FORMATS.md)\n"
-    "  --triangulate  fan polygons with more than three corners\n";
 
 int countBoundaryLoops(const TriMesh& mesh) {
   std::vector<char> seen(mesh.n_halfedges(), 0);
@@ -55,29 +46,9 @@ int countComponents(const TriMesh& mesh) {
   return count;
 }
 
-}  // namespace
-
-int runInfo(const std::vector<std::string>& rawArgs) {
-  ArgumentSpec spec{{"--triangulate"}, {"--tags"}};
-  auto args = parseArguments(rawArgs, spec);
-  if (!args.isOk()) {
-    std::fprintf(stderr, "tessera info: %s\n\n%s", args.status().message().c_str(), kHelp);
-    return 2;
-  }
-  if (args->has("--help")) {
-    std::fputs(kHelp, stdout);
-    return 0;
-  }
-  if (args->positional.size() != 1) {
-    std::fprintf(stderr, "tessera info: expected one input mesh\n\n%s", kHelp);
-    return 2;
-  }
-  const std::string& input = args->positional[0];
-  auto mesh = loadMesh(input, args->option("--tags"), args->has("--triangulate"));
-  if (!mesh.isOk()) {
-    std::fprintf(stderr, "tessera info: %s\n", mesh.status().toString().c_str());
-    return 1;
-  }
+int runInfo(const MeshInputArgs& args) {
+  auto mesh = loadMesh(args);
+  if (!mesh.isOk()) return fail("info", mesh.status());
   const TriMesh& m = mesh->mesh();
   std::map<int, int> valences;
   for (auto v : m.vertices()) ++valences[static_cast<int>(m.valence(v))];
@@ -89,10 +60,10 @@ int runInfo(const std::vector<std::string>& rawArgs) {
   const auto tags = mesh->tagCounts();
   const auto box = mesh->boundingBox();
 
-  std::printf("file            %s\n", input.c_str());
-  std::printf("vertices        %d\n", mesh->numVertices());
-  std::printf("faces           %d\n", mesh->numFaces());
-  std::printf("edges           %d\n", mesh->numEdges());
+  std::printf("file            %s\n", args.input.c_str());
+  std::printf("vertices        %s\n", formatCount(mesh->numVertices()).c_str());
+  std::printf("faces           %s\n", formatCount(mesh->numFaces()).c_str());
+  std::printf("edges           %s\n", formatCount(mesh->numEdges()).c_str());
   std::printf("valence         ");
   for (const auto& [valence, count] : valences) std::printf("%d:%d ", valence, count);
   std::printf("\n");
@@ -106,6 +77,18 @@ int runInfo(const std::vector<std::string>& rawArgs) {
   std::printf("bbox max        %.9g %.9g %.9g\n", box.max[0], box.max[1], box.max[2]);
   std::printf("bbox diagonal   %.9g\n", box.diagonal());
   return 0;
+}
+
+}  // namespace
+
+void addInfoCommand(CLI::App& app, Action& action) {
+  CLI::App* info = app.add_subcommand("info", "describe a base mesh");
+  info->footer(
+      "Prints vertex, face and edge counts, the valence histogram, boundary loops,\n"
+      "connected components, genus, feature-tag counts and the bounding box.");
+  auto args = std::make_shared<MeshInputArgs>();
+  addMeshInputOptions(*info, *args);
+  onChosen(*info, action, [args] { return runInfo(*args); });
 }
 
 }  // namespace tessera::cli

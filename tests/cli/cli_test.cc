@@ -9,46 +9,23 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli/cli_run.h"
 #include "core/io/mesh_import.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
 namespace {
 
-struct CliRun {
-  int exitCode = -1;
-  bool signalled = false;
-  std::string out, err;
-};
-
-std::string readAll(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-CliRun runCli(const std::string& args) {
-  static const std::string dir = testing::makeTempDir("tessera-cli");
-  const std::string out = dir + "/stdout", err = dir + "/stderr";
-  const std::string command = std::string(TESSERA_CLI_PATH) + " " + args + " >" + out + " 2>" + err;
-  int status = std::system(command.c_str());
-  CliRun run;
-  run.signalled = WIFSIGNALED(status) || (WIFEXITED(status) && WEXITSTATUS(status) > 128);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = readAll(out);
-  run.err = readAll(err);
-  return run;
-}
-
 std::string cube() { return testing::sourceTestDataPath("cube.obj"); }
 std::string cubeTags() { return testing::sourceTestDataPath("cube.tags"); }
 
 TEST(Cli, HelpForEveryCommand) {
-  for (const char* args : {"--help", "info --help", "refine --help"}) {
+  for (const char* args : {"--help", "info --help", "refine --help", "doc --help", "doc new --help", "remote --help",
+                           "remote edit --help", "-h"}) {
     CliRun r = runCli(args);
     EXPECT_EQ(r.exitCode, 0) << args;
-    EXPECT_NE(r.out.find("usage: tessera"), std::string::npos) << args;
+    EXPECT_NE(r.out.find("Usage: tessera"), std::string::npos) << args;
+    EXPECT_TRUE(r.err.empty()) << args << ": " << r.err;
   }
   CliRun none = runCli("");
   EXPECT_EQ(none.exitCode, 2);
@@ -119,17 +96,28 @@ TEST(Cli, ErrorsExitCleanlyWithMessages) {
   const std::string badTags = dir + "/bad.tags";
   std::ofstream(badTags) << "crease 0 1 inf\ncrease 0 6 2\n";
   std::vector<Case> cases = {
-      {"refine " + cube() + " --level 2", 2, "-o OUT is required"},
-      {"refine " + cube() + " -o " + dir + "/x.obj", 2, "--level is required"},
-      {"refine " + cube() + " --level two -o " + dir + "/x.obj", 2, "--level expects a whole number"},
-      {"refine " + cube() + " --level 1 --bogus -o " + dir + "/x.obj", 2, "unknown option --bogus"},
-      {"refine " + cube() + " --level 1 --crease-method cubic -o " + dir + "/x.obj", 2, "uniform or chaikin"},
+      {"refine " + cube() + " --level 2", 2, "tessera refine: --output is required"},
+      {"refine " + cube() + " -o " + dir + "/x.obj", 2, "tessera refine: --level is required"},
+      {"refine " + cube() + " --level two -o " + dir + "/x.obj", 2, "--level: expects a whole number from 0 to 1000, got 'two'"},
+      {"refine " + cube() + " --level=-1 -o " + dir + "/x.obj", 2, "--level: expects a whole number"},
+      {"refine " + cube() + " --level 1 --bogus -o " + dir + "/x.obj", 2, "not expected: --bogus"},
+      {"refine " + cube() + " --level 1 --crease-method cubic -o " + dir + "/x.obj", 2,
+       "--crease-method: expects uniform or chaikin, got 'cubic'"},
+      {"refine " + cube() + " --level 1 --boundary none -o " + dir + "/x.obj", 2,
+       "--boundary: expects edge-only or edge-and-corner, got 'none'"},
       {"refine " + dir + "/missing.obj --level 1 -o " + dir + "/x.obj", 1, "missing.obj"},
       {"refine " + cube() + " --level 1 -o " + dir + "/x.stl", 1, "x.stl"},
       {"refine " + cube() + " --level 1 --draco -o " + dir + "/x.obj", 1, "x.obj"},
       {"refine " + cube() + " --level 40 -o " + dir + "/x.obj", 1, "would exceed"},
       {"refine " + cube() + " --tags " + badTags + " --level 1 -o " + dir + "/x.obj", 1, "bad.tags:2"},
-      {"info " + cube() + " " + cube(), 2, "expected one input mesh"},
+      {"info " + cube() + " " + cube(), 2, "not expected: " + cube()},
+      {"info", 2, "tessera info: IN is required"},
+      {"doc frobnicate x", 2, "unknown command 'frobnicate'"},
+      {"doc", 2, "tessera doc: A subcommand is required"},
+      {"doc export x.tsd --adaptive --level 2 -o " + dir + "/a.glb", 2, "--level excludes --adaptive"},
+      {"doc export x.tsd --base-level 2 -o " + dir + "/a.glb", 2, "--base-level requires --adaptive"},
+      {"remote --port 70000 list", 2, "--port: Value 70000 not in range"},
+      {"remote grant 1 superuser TOKEN", 2, "ROLE: expects viewer, editor or admin, got 'superuser'"},
   };
   for (const auto& c : cases) {
     CliRun r = runCli(c.args);
@@ -160,6 +148,10 @@ TEST(CliDoc, NewEditInfoExport) {
   ASSERT_EQ(info.exitCode, 0) << info.err;
   EXPECT_NE(info.out.find("edits           4 (3 active, 1 undone)"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("edit2    move   v3:200 v3:201"), std::string::npos) << info.out;
+  // Infinite sharpness reads as what it is (it is stored as the sentinel 10).
+  EXPECT_NE(info.out.find("edit3    crease e2:30 inf\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("edit4    corner (undone) v2:5 inf\n"), std::string::npos) << info.out;
+  EXPECT_EQ(info.out.find(" 10\n"), std::string::npos) << info.out;
   for (const char* ext : {".obj", ".glb"}) {
     CliRun exported = runCli("doc export " + doc + " --level 3 --limit -o " + dir + "/out" + ext);
     ASSERT_EQ(exported.exitCode, 0) << exported.err;
@@ -198,6 +190,7 @@ TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
   CliRun badProfile = runCli("doc export " + doc + " --adaptive --base-level 4 --max-level 2 -o " + dir + "/a.glb");
   EXPECT_EQ(badProfile.exitCode, 2);
   EXPECT_NE(badProfile.err.find("max level 2 is below the base level 4"), std::string::npos) << badProfile.err;
+  EXPECT_EQ(readAll(doc), before);
   CliRun badAngle = runCli("doc export " + doc + " --adaptive --angle nan -o " + dir + "/a.glb");
   EXPECT_EQ(badAngle.exitCode, 2);
   EXPECT_NE(badAngle.err.find("angle threshold"), std::string::npos) << badAngle.err;
@@ -213,7 +206,9 @@ TEST(CliDoc, ExportsTheAdaptiveTessellation) {
   ASSERT_EQ(runCli("doc edit " + doc + " --script " + dir + "/edit.txt").exitCode, 0);
   CliRun r = runCli("doc export " + doc + " --adaptive --base-level 1 --max-level 4 --angle 20 -o " + dir + "/a.ply");
   ASSERT_EQ(r.exitCode, 0) << r.err;
-  EXPECT_NE(r.out.find("(adaptive, base1-max4"), std::string::npos) << r.out;
+  // The profile for people: no "angle20.000000" cache key.
+  EXPECT_NE(r.out.find("(adaptive: base level 1, max level 4, angle 20\u00b0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(".000000"), std::string::npos) << r.out;
   CliRun info = runCli("info " + dir + "/a.ply");
   ASSERT_EQ(info.exitCode, 0) << info.err;
   const size_t at = r.out.find(" triangles in ");

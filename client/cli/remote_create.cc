@@ -1,0 +1,80 @@
+// tessera remote create: a base mesh becomes a document on the server, with
+// the import options of `tessera doc new`. The server imports the bytes in
+// memory and names the user's file in its errors (CreateDocument.file_name).
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "client/cli/mesh_loading.h"
+#include "client/cli/remote_commands.h"
+#include "core/util/file_io.h"
+
+namespace tessera::cli {
+
+namespace {
+
+struct CreateArgs {
+  MeshInputArgs mesh;
+  DocumentArgs document;
+  std::string documentName;
+};
+
+Expected<wire::MeshFormat> formatOf(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::map<std::string, wire::MeshFormat> formats = {{".obj", wire::MESH_FORMAT_OBJ}, {".off", wire::MESH_FORMAT_OFF},
+                                                           {".ply", wire::MESH_FORMAT_PLY}, {".stl", wire::MESH_FORMAT_STL},
+                                                           {".glb", wire::MESH_FORMAT_GLB}};
+  auto format = formats.find(ext);
+  if (format != formats.end()) return format->second;
+  if (ext == ".gltf") return invalidArgument(path + ": send glTF as a .glb (a .gltf may name files beside it)");
+  return invalidArgument(path + ": not .obj, .off, .ply, .stl or .glb");
+}
+
+int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
+  auto format = formatOf(args.mesh.input);
+  if (!format.isOk()) return usage("remote create", format.status().message());
+  auto bytes = readFile(args.mesh.input);
+  if (!bytes.isOk()) return fail("remote create", bytes.status());
+  wire::ClientMessage m;
+  auto* c = m.mutable_create_document();
+  c->set_name(args.documentName.empty() ? std::filesystem::path(args.mesh.input).filename().string()
+                                        : args.documentName);
+  c->set_mesh(std::move(*bytes));
+  c->set_mesh_format(*format);
+  c->set_file_name(args.mesh.input);
+  c->set_triangulate(args.mesh.triangulate);
+  if (!args.mesh.tags.empty()) {
+    auto text = readFile(args.mesh.tags);
+    if (!text.isOk()) return fail("remote create", text.status());
+    c->set_tags(std::move(*text));
+    c->set_tags_file_name(args.mesh.tags);
+  }
+  if (args.document.maxLevel >= 0) c->set_max_level(static_cast<uint32_t>(args.document.maxLevel));
+  const LoopOptions loop = loopOptions(args.document.scheme);
+  c->set_crease_method(loop.creaseMethod == CreaseMethod::kChaikin ? wire::CREASE_METHOD_CHAIKIN
+                                                                   : wire::CREASE_METHOD_UNIFORM);
+  c->set_boundary(loop.boundary == BoundaryInterpolation::kEdgeAndCorner ? wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER
+                                                                         : wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
+  auto session = connectTo(connection);
+  if (!session.isOk()) return connectFailed("create", session.status());
+  auto reply = (*session)->call(m, 120);
+  if (int rc = outcome("create", reply)) return rc;
+  std::printf("%llu\n", static_cast<unsigned long long>(reply->ack().document_id()));
+  return 0;
+}
+
+}  // namespace
+
+void addRemoteCreate(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action) {
+  CLI::App* create = remote.add_subcommand("create", "import a base mesh as a new document (admin); prints its id");
+  auto args = std::make_shared<CreateArgs>();
+  addMeshInputOptions(*create, args->mesh);
+  addDocumentOptions(*create, args->document);
+  create->add_option("--doc-name", args->documentName, "the document's name (default: the file's name)")
+      ->type_name("NAME");
+  onChosen(*create, action, [connection, args] { return runCreate(*connection, *args); });
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,110 @@
+// tessera remote edit: an edit script sent as ONE EditBatch, which the
+// server applies whole, as one version, or not at all (docs/PROTOCOL.md,
+// EditBatch) -- like `tessera doc edit` on a local file. A refused command
+// is reported with its script line; the document is then untouched.
+#include <cstdio>
+
+#include "client/cli/remote_commands.h"
+#include "core/document/edit_script.h"
+#include "core/util/file_io.h"
+#include "protocol/edit_batch.h"
+
+namespace tessera::cli {
+
+namespace {
+
+struct EditArgs {
+  std::string document, script;
+};
+
+void toWire(const ScriptCommand& c, wire::EditCommand& m) {
+  using Kind = ScriptCommand::Kind;
+  switch (c.kind) {
+    case Kind::kMove:
+    case Kind::kOffset: {
+      auto* move = m.mutable_move_vertex();
+      for (VertexId v : c.vertices) move->add_vertex_ids(v.packed());
+      move->mutable_target()->set_x(c.value[0]);
+      move->mutable_target()->set_y(c.value[1]);
+      move->mutable_target()->set_z(c.value[2]);
+      move->set_mode(c.kind == Kind::kMove ? wire::MOVE_MODE_DIRECT_MANIPULATION : wire::MOVE_MODE_OFFSET);
+      break;
+    }
+    case Kind::kCrease:
+      m.mutable_set_edge_sharpness()->set_edge_id(c.edge.packed());
+      m.mutable_set_edge_sharpness()->set_sharpness(c.sharpness);
+      break;
+    case Kind::kCorner:
+      m.mutable_set_vertex_type()->set_vertex_id(c.vertices[0].packed());
+      m.mutable_set_vertex_type()->set_sharpness(c.sharpness);
+      break;
+    case Kind::kUndo: m.mutable_undo()->set_edit_id(c.edit.value); break;
+    case Kind::kRedo: m.mutable_redo()->set_edit_id(c.edit.value); break;
+    case Kind::kRemove: break;  // refused before anything is sent
+  }
+}
+
+int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
+  auto doc = parseDocumentId(args.document);
+  if (!doc.isOk()) return usage("remote edit", doc.status().message());
+  // Everything that can be checked here is, before connecting.
+  auto text = readFile(args.script);
+  if (!text.isOk()) return fail("remote edit", text.status());
+  auto commands = parseEditScript(*text, args.script);
+  if (!commands.isOk()) return fail("remote edit", commands.status().message());
+  if (commands->empty()) {
+    std::printf("%s: no commands; nothing sent\n", args.script.c_str());
+    return 0;
+  }
+  if (commands->size() > static_cast<size_t>(kMaxEditBatchCommands)) {
+    return fail("remote edit", args.script + ": " + std::to_string(commands->size()) +
+                                   " commands, above the server's limit of " +
+                                   std::to_string(kMaxEditBatchCommands) +
+                                   " per atomic batch; split the script (each part then applies on its own)");
+  }
+  wire::ClientMessage batch;
+  batch.mutable_edit_batch()->set_document_id(*doc);
+  for (const ScriptCommand& c : *commands) {
+    if (c.kind == ScriptCommand::Kind::kRemove) {
+      return fail("remote edit", args.script + ":" + std::to_string(c.line) +
+                                     ": remove is local only (use undo); nothing was sent");
+    }
+    toWire(c, *batch.mutable_edit_batch()->add_commands());
+  }
+
+  auto session = connectTo(connection);
+  if (!session.isOk()) return connectFailed("edit", session.status());
+  wire::ClientMessage open;
+  open.mutable_open_document()->set_document_id(*doc);
+  if (int rc = outcome("edit", (*session)->call(open, 30))) return rc;
+  auto reply = (*session)->call(batch, 120);
+  if (reply.isOk() && reply->has_reject() && reply->reject().batch_index() > 0 &&
+      reply->reject().batch_index() <= commands->size()) {
+    const ScriptCommand& refused = (*commands)[reply->reject().batch_index() - 1];
+    return fail("remote edit", args.script + ":" + std::to_string(refused.line) + ": " +
+                                   wire::RejectReason_Name(reply->reject().reason()) + ": " +
+                                   reply->reject().message());
+  }
+  if (int rc = outcome("edit", reply)) return rc;
+  const wire::Ack& ack = reply->ack();
+  for (size_t i = 0; i < commands->size() && i < static_cast<size_t>(ack.edit_ids_size()); ++i) {
+    std::printf("%s:%d: edit %llu\n", args.script.c_str(), (*commands)[i].line,
+                static_cast<unsigned long long>(ack.edit_ids(static_cast<int>(i))));
+  }
+  std::printf("applied %zu commands to document %llu as version %llu\n", commands->size(),
+              static_cast<unsigned long long>(*doc), static_cast<unsigned long long>(ack.version()));
+  return 0;
+}
+
+}  // namespace
+
+void addRemoteEdit(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action) {
+  CLI::App* edit = remote.add_subcommand("edit", "apply an edit script to a document, all or nothing, as one version");
+  auto args = std::make_shared<EditArgs>();
+  edit->add_option("DOC", args->document, "the document id")->required();
+  edit->add_option("--script", args->script, "the edit script (the format of 'tessera doc edit')")
+      ->required()->type_name("FILE");
+  onChosen(*edit, action, [connection, args] { return runEdit(*connection, *args); });
+}
+
+}  // namespace tessera::cli

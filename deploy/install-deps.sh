@@ -1,20 +1,30 @@
 #!/usr/bin/env bash
-# Installs every Debian package Tessera needs to build, test and benchmark.
+# Installs every Debian package Tessera needs to build, test and benchmark
+# (with --build: only what building tessera-server and tessera needs).
 # Idempotent: packages already present are skipped, and apt is not touched at all
 # when nothing is missing. Debian packages only; nothing is downloaded from elsewhere.
 set -euo pipefail
 
-packages=(
+# What building the server and the CLI needs (the container image's build
+# stage installs only these: `install-deps.sh --build`).
+build_packages=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git
+  build-essential cmake pkg-config
   # core: base mesh, mesh I/O, glTF, compression
   libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev zlib1g-dev
   # protocol and server
-  libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev libssl-dev openssl
+  libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev libssl-dev
   # command lines (one options library for every binary)
   libcli11-dev
-  # operations: HTTP health and Prometheus metrics, sd_notify and the unit check
-  prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev systemd
+  # operations: HTTP health and Prometheus metrics, sd_notify
+  prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev
+)
+# Everything else for the whole tree, its tests and benchmarks.
+packages=(
+  "${build_packages[@]}"
+  ninja-build git openssl
+  # the unit check (systemd-analyze verify)
+  systemd
   # viewer, and its headless rendering without an X server (EGL surfaceless, OSMesa)
   libglfw3-dev libgl-dev libimgui-dev libegl1-mesa-dev libgbm-dev libosmesa6-dev
   # tests and benchmarks: OpenSubdiv is the oracle, never a runtime dependency
@@ -25,9 +35,11 @@ packages=(
   # coverage-guided fuzzing: libFuzzer with ASan and UBSan (tests/fuzz)
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
 )
-# The glTF validator runs on Node. A machine may already carry a newer Node with its own
-# npm (which conflicts with Debian's npm package): only ask Debian for it when absent.
-if ! command -v npm >/dev/null 2>&1; then
+if [[ ${1:-} == --build ]]; then
+  packages=("${build_packages[@]}")
+elif ! command -v npm >/dev/null 2>&1; then
+  # The glTF validator runs on Node. A machine may already carry a newer Node with its own
+  # npm (which conflicts with Debian's npm package): only ask Debian for it when absent.
   packages+=(nodejs npm)
 fi
 

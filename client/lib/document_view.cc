@@ -1,8 +1,10 @@
 #include "client/lib/document_view.h"
 
+#include <cstdio>
 #include <cstring>
 
 #include "core/tessellation/region_merge.h"
+#include "core/tessellation/surface_hash.h"
 
 namespace tessera::client {
 
@@ -21,7 +23,9 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
       layouts_.swap(stagingLayouts_);
       staging_.clear();
       stagingLayouts_.clear();
+      regionHashes_.clear();
       version_ = s.version();
+      announced_ = s.surface_hash();
       ready_ = true;
     }
     return Status::ok();
@@ -46,9 +50,11 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
     }
     regions_[r.region_id()] = std::move(decoded.second);
     layouts_[r.region_id()] = decoded.first.layoutVersion;
+    regionHashes_.erase(r.region_id());
   }
-  for (uint64_t id : d.removed_region_ids()) regions_.erase(id), layouts_.erase(id);
+  for (uint64_t id : d.removed_region_ids()) regions_.erase(id), layouts_.erase(id), regionHashes_.erase(id);
   version_ = d.to_version();
+  announced_ = d.surface_hash();
   return Status::ok();
 }
 
@@ -71,19 +77,24 @@ int64_t DocumentView::numTriangles() const {
 SurfaceMesh DocumentView::surface() const { return mergeRegions(regions_); }
 
 uint64_t DocumentView::surfaceHash() const {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
-  auto mix = [&](const void* data, size_t size) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
-  };
+  uint64_t sum = 0;
   for (const auto& [id, mesh] : regions_) {
-    mix(&id, sizeof id);
-    mix(mesh.vertexIds.data(), mesh.vertexIds.size() * sizeof(uint64_t));
-    mix(mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
-    mix(mesh.normals.data(), mesh.normals.size() * sizeof(Vec3));
-    mix(mesh.triangles.data(), mesh.triangles.size() * sizeof(mesh.triangles[0]));
+    auto [it, fresh] = regionHashes_.try_emplace(id, 0);
+    if (fresh) it->second = regionSurfaceHash(mesh);
+    sum += it->second;
   }
-  return h;
+  return sum;
+}
+
+Status DocumentView::verifySurface() const {
+  if (announced_ == 0) return Status::ok();
+  const uint64_t held = surfaceHash();
+  if (held == announced_) return Status::ok();
+  char text[96];
+  std::snprintf(text, sizeof text, "surface hash %016llx, the server's %016llx", static_cast<unsigned long long>(held),
+                static_cast<unsigned long long>(announced_));
+  return internalError("document " + std::to_string(documentId_) + " at version " + std::to_string(version_) +
+                       ": the assembled regions differ from the server's: " + text);
 }
 
 }  // namespace tessera::client

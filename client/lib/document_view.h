@@ -31,9 +31,17 @@ class DocumentView {
   int64_t numTriangles() const;
   // Everything decoded, merged by vertex id and normal (for export and tests).
   SurfaceMesh surface() const;
-  // A hash of the decoded regions (ids, positions, normals, triangles, in
-  // region order): equal for equal document states and profiles.
+  // The surface hash of docs/PROTOCOL.md 6.5 (core/tessellation/
+  // surface_hash.h) of the regions held: equal for equal document states
+  // and profiles, and comparable with the server's. Each region is hashed
+  // once, when first asked after it arrived.
   uint64_t surfaceHash() const;
+  // The server's surface hash for the version held (Snapshot or Delta
+  // surface_hash), 0 if it sent none.
+  uint64_t announcedSurfaceHash() const { return announced_; }
+  // Ok when the server sent no hash or it equals surfaceHash(); otherwise
+  // an error naming both: the view's assembly differs from the server's.
+  Status verifySurface() const;
   uint64_t gaps() const { return gaps_; }
   uint64_t bytesReceived() const { return bytes_; }
 
@@ -49,6 +57,8 @@ class DocumentView {
   std::map<uint64_t, uint64_t> layouts_;  // region -> layout version of the held copy
   std::map<uint64_t, RegionMesh> staging_;  // snapshot parts still arriving
   std::map<uint64_t, uint64_t> stagingLayouts_;
+  mutable std::map<uint64_t, uint64_t> regionHashes_;  // region -> its hash, dropped when it changes
+  uint64_t announced_ = 0;
   uint64_t gaps_ = 0, bytes_ = 0;
 };
 

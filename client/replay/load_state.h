@@ -19,6 +19,13 @@ namespace tessera::replay {
 
 using Clock = std::chrono::steady_clock;
 
+// One latency sample, with when its edit was sent (seconds since the start
+// of editing), for the per-second series.
+struct TimedSample {
+  double sentSeconds = 0;
+  double ms = 0;
+};
+
 // Counters every connection thread adds to; the rest is merged at the end.
 struct Shared {
   std::atomic<bool> stopEditing{false};
@@ -35,15 +42,35 @@ struct Shared {
   std::atomic<int64_t> lastPresenceNs{0};       // the latest Presence any viewer received
   // Viewers joining at once: connecting, subscribing and reading the snapshot.
   std::counting_semaphore<1024> joining{32};
+  // The run cannot go on (a missing document, a refused token): every
+  // connection leaves at once, without waiting for the drain.
+  std::atomic<bool> stopped{false};
   std::mutex mu;  // guards what follows
   std::unordered_map<uint64_t, Clock::time_point> sendTimeOfVersion;
-  std::vector<double> ackLatencyMs;
+  std::vector<TimedSample> ackSamples;
+  std::vector<double> rejectedAt;          // send times of rejected edits (seconds since the start)
+  std::vector<int64_t> sentPerSecond;      // merged from every editor at its end
+  std::vector<Clock::time_point> errorTimes;
   std::vector<std::string> errorMessages;  // the first 20
+  std::string stopReason;                  // the first reason given to stop()
+  Clock::time_point stoppedAt{};
 
   void error(const std::string& message) {
     ++errors;
     std::lock_guard lock(mu);
+    errorTimes.push_back(Clock::now());
     if (errorMessages.size() < 20) errorMessages.push_back(message);
+  }
+  // Stops the run with `reason` (the first one is kept); also an error.
+  void stop(const std::string& reason) {
+    error(reason);
+    std::lock_guard lock(mu);
+    if (stopped.exchange(true)) return;
+    stopReason = reason;
+    stoppedAt = Clock::now();
+  }
+  double secondsSinceStart(Clock::time_point t) const {
+    return std::chrono::duration<double>(t - Clock::time_point(Clock::duration(startNs.load()))).count();
   }
 };
 

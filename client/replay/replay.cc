@@ -63,6 +63,9 @@ Expected<SurfaceState> readSurface(const client::SessionOptions& options, uint64
   client::DocumentView view(document);
   TESSERA_RETURN_IF_ERROR(openAndSubscribe(*session, document, profile, &view, o.timeoutSeconds));
   session->close();
+  // The server's own hash of the snapshot (PROTOCOL 6.5): a state this
+  // client assembled differently is an error, not a number to compare.
+  TESSERA_RETURN_IF_ERROR(view.verifySurface());
   return SurfaceState{view.version(), view.surfaceHash(), view.numTriangles()};
 }
 

@@ -121,7 +121,7 @@ class Pool {
   void tick() {
     const auto now = Clock::now();
     if (shared_.stopViewing && !stopSeen_) stopSeen_ = now;
-    const bool over = now > hardDeadline_ ||
+    const bool over = now > hardDeadline_ || shared_.stopped ||
                       (stopSeen_ && now - *stopSeen_ > std::chrono::duration<double>(o_.drainSeconds));
     const bool pingDue = now - lastPing_ > std::chrono::seconds(30);
     if (pingDue) lastPing_ = now;

@@ -20,8 +20,8 @@ struct ViewerPoolOptions {
 };
 
 // Runs `results.size()` viewers until the run ends (shared.stopViewing, then
-// every viewer at the last acked version or `drainSeconds` later) or
-// `hardDeadline`. Blocks the calling thread; errors go to `shared`.
+// every viewer at the last acked version or `drainSeconds` later), the
+// run's stop (shared.stopped) or `hardDeadline`. Blocks the calling thread; errors go to `shared`.
 void runViewerPool(const LoadOptions& options, const ViewerPoolOptions& pool, Clock::time_point hardDeadline,
                    Shared& shared, std::span<ViewerResult> results);
 

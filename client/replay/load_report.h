@@ -1,0 +1,38 @@
+// The report of a load run (docs/REPLAY.md §3.1): what runLoad measured,
+// turned into the versioned JSON report and the summary for people.
+#pragma once
+
+#include <optional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "client/replay/load.h"
+#include "client/replay/load_state.h"
+#include "client/replay/proc_sample.h"
+#include "client/replay/server_window.h"
+
+namespace tessera::replay {
+
+// What one run leaves besides `Shared`'s counters.
+struct LoadRunData {
+  Clock::time_point begin{};
+  bool started = false;          // editing started (not stopped while connecting)
+  Clock::time_point start{}, editsDone{};
+  double connectMs = 0, settleMs = 0;
+  int decodingViewers = 0, threadedViewers = 0, poolThreads = 0;
+  std::vector<ViewerResult> viewers;
+  ProcSample cpuBefore, cpuAfter;
+  int64_t rssPeak = 0;
+  std::optional<ServerStatsSample> statsStart, statsEnd;
+  std::string statsError;  // why there is no window
+};
+
+// Reads `shared` after every connection thread has ended.
+nlohmann::json buildLoadReport(const LoadOptions& options, Shared& shared, const LoadRunData& run);
+
+// The "latency_ms" entry of some samples (milliseconds): count, mean, stddev,
+// min, p50, p90, p95, p99, p99_9, max, to the microsecond.
+nlohmann::json latencyJson(const std::vector<double>& samples);
+
+}  // namespace tessera::replay

@@ -312,8 +312,11 @@ bool Connection::allowedByRate(uint64_t clientSeq, double cost) {
   const auto now = std::chrono::steady_clock::now();
   bucket_ = std::min(rate, bucket_ + rate * std::chrono::duration<double>(now - refilled_).count());
   refilled_ = now;
+  // A batch may take the bucket below zero (at most a second's worth): the
+  // commands after it wait for the refill, and a batch is never refused
+  // only for being larger than what is left.
   cost = std::max(1.0, std::min(cost, rate));
-  if (bucket_ >= cost) {
+  if (bucket_ >= 1.0) {
     bucket_ -= cost;
     return true;
   }
@@ -349,6 +352,12 @@ void Connection::handle(wire::ClientMessage message) {
   }
   if (token_.empty()) {
     return reject(seq, wire::REJECT_REASON_NOT_AUTHENTICATED, "authenticate with a token in Hello first");
+  }
+  if (message.has_edit_batch() && message.edit_batch().commands_size() > kMaxEditBatchCommands) {
+    return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
+                  "edit batch: " + std::to_string(message.edit_batch().commands_size()) +
+                      " commands, above the limit of " + std::to_string(kMaxEditBatchCommands) +
+                      " per batch (nothing was applied)");
   }
   const double cost = message.has_edit_batch() ? message.edit_batch().commands_size() : 1.0;
   if (!allowedByRate(seq, cost)) return;
@@ -386,13 +395,6 @@ void Connection::handle(wire::ClientMessage message) {
     case C::kSelect: return host->select(shared_from_this(), seq, message.select().selection());
     case C::kExportDocument: return host->exportGlb(shared_from_this(), seq, message.export_document());
     case C::kEditBatch:
-      if (message.edit_batch().commands_size() > kMaxEditBatchCommands) {
-        return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
-                      "edit batch: " + std::to_string(message.edit_batch().commands_size()) +
-                          " commands, above the limit of " + std::to_string(kMaxEditBatchCommands) +
-                          " per batch (nothing was applied)");
-      }
-      [[fallthrough]];
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
     case C::kSetVertexType:

@@ -319,6 +319,9 @@ Expected<json> runLoad(const LoadOptions& o) {
   run.decodingViewers = o.decodeViewers < 0 ? std::min(o.viewers, 20) : std::min(o.decodeViewers, o.viewers);
   run.viewers.resize(static_cast<size_t>(o.viewers));
   if (Status access = checkAccess(o); !access.isOk()) {
+    // No server to reach (or no answer in time) is a plain failure; a
+    // server's refusal stops the run with its reason.
+    if (access.code() == ErrorCode::kIoError) return access.withContext("load");
     shared.stop(access.message());
   } else {
     runConnections(o, shared, run);

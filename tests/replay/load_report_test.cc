@@ -202,6 +202,15 @@ void expectStopped(const ReplayServer& s, const std::string& args, const std::st
   EXPECT_NE(out.find(reason), std::string::npos) << out;
 }
 
+TEST(LoadStop, NoServerIsAFailureNotAStop) {
+  // Port 1: nothing listens there.
+  auto [out, code] = run(kReplay + " load --port 1 --token t --document 1 --seconds 60 --quiet", true);
+  EXPECT_EQ(code, 1) << out;
+  EXPECT_NE(out.find("tessera-replay: load: the editors' and viewers' token: cannot connect to 127.0.0.1:1"),
+            std::string::npos)
+      << out;
+}
+
 TEST(LoadStop, MissingDocumentStopsAtOnceWithTheReason) {
   ReplayServer s;
   testing::startServer(s, "tessera-load-missing");

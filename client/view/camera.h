@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <span>
 
 #include "client/view/view_math.h"
 
@@ -19,9 +20,12 @@ class OrbitCamera {
   void orbit(float dxPixels, float dyPixels);
   void pan(float dxPixels, float dyPixels, int viewportHeight);
   void zoom(float steps);  // > 0 moves closer
-  // Fit to view: looks at the box's centre from the current direction, from
-  // the distance at which the box's eight corners fill `fill` of the frame
+  // Fit to view from the current direction: the points' projection is
+  // centred in the frame and, from the distance chosen, fills `fill` of it
   // in its tighter dimension (width or height, for this aspect ratio).
+  // Nothing changes for no points.
+  void fit(std::span<const V3> points, float aspect, float fill = 0.86f);
+  // fit() to the eight corners of a box.
   void frame(V3 lo, V3 hi, float aspect = 4.0f / 3.0f, float fill = 0.86f);
 
   V3 eye() const;
@@ -40,7 +44,10 @@ class OrbitCamera {
  private:
   V3 target_;
   float yaw_ = 0.6f, pitch_ = 0.45f, distance_ = 4.0f, radius_ = 1.0f;
-  static constexpr float kFovY = 0.8f;  // radians
+  // 30 degrees, as CAD viewers use: a fit-to-view close enough to fill the
+  // frame with a wider angle would show strong perspective (a cube's top
+  // seen almost edge-on).
+  static constexpr float kFovY = 0.52f;  // radians
 };
 
 }  // namespace tessera::view

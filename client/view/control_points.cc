@@ -112,7 +112,7 @@ bool bounds(const RegionMap& regions, V3* lo, V3* hi) {
 float controlPointDiameter(V3 lo, V3 hi, size_t count) {
   const float diagonal = length(hi - lo);
   const float spacing = diagonal / std::sqrt(static_cast<float>(std::max<size_t>(count, 1)));
-  return std::clamp(spacing / 3, diagonal * 0.0015f, diagonal * 0.01f);
+  return std::clamp(spacing / 3, diagonal * 0.0015f, diagonal * 0.015f);
 }
 
 }  // namespace tessera::view

@@ -54,7 +54,7 @@ bool bounds(const RegionMap& regions, V3* lo, V3* hi);
 // The world-space diameter of a control vertex's dot: `count` points spread
 // over a model with this bounding box lie about diagonal / sqrt(count)
 // apart, and a dot a third of that leaves the surface between them visible.
-// Kept between 0.15% and 1% of the diagonal, so that eight points on a cube
+// Kept between 0.15% and 1.5% of the diagonal, so that eight points on a cube
 // are not balls and a million are not dust. The renderer turns it into
 // pixels with the perspective (points nearer the eye are larger).
 float controlPointDiameter(V3 lo, V3 hi, size_t count);

@@ -25,15 +25,13 @@ std::string shortCount(double n) {
 }
 
 void drawStatus(const HudFacts& f, const ViewToggles& t) {
-  ImGui::Text("%s triangles, %zu regions", shortCount(static_cast<double>(f.triangles)).c_str(), f.regions);
+  ImGui::Text("%zu regions, %.1f KiB/s", f.regions, f.bytesPerSecond / 1024);
   if (t.refine > 0) {
     ImGui::Text("refined from %s: %.1f + %.1f ms",
                 shortCount(static_cast<double>(f.receivedTriangles)).c_str(), f.refineMs, f.uploadMs);
   }
-  ImGui::Text("%.1f KiB/s (%.0f KiB in all)", f.bytesPerSecond / 1024, f.stats.bytesReceived / 1024.0);
   if (f.stats.lastLatencyMs >= 0) {
-    ImGui::Text("edit to delta %.1f ms (max %.1f, %llu)", f.stats.lastLatencyMs, f.stats.maxLatencyMs,
-                static_cast<unsigned long long>(f.stats.latencySamples));
+    ImGui::Text("edit to delta %.1f ms (max %.1f)", f.stats.lastLatencyMs, f.stats.maxLatencyMs);
   }
   if (!f.stats.connected) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "disconnected: reconnecting");
   if (f.stats.reconnects > 0)
@@ -45,19 +43,12 @@ void drawToggles(const HudFacts& f, ViewToggles& t) {
   ImGui::Checkbox("wire W", &t.wireframe);
   ImGui::SameLine();
   ImGui::Checkbox("regions C", &t.regionColours);
-  ImGui::SameLine();
   ImGui::Checkbox("matcap M", &t.matcap);
-  ImGui::Checkbox("points V", &t.showControls);
   ImGui::SameLine();
-  ImGui::Checkbox("axes G", &t.showGizmo);
-  ImGui::PushItemWidth(90);
-  ImGui::SliderInt("refine R", &t.refine, 0, 2);
-  ImGui::SliderInt("point level [ ]", &t.controlLevel, 0, 10);
-  ImGui::PopItemWidth();
+  ImGui::Checkbox("points V", &t.showControls);
   if (!t.showControls) return;
   if (f.pickedVertex && f.pickedEdgeEnd) {
-    ImGui::Text("%zu points; edge %s - %s", f.controlPoints, vertexName(*f.pickedVertex).c_str(),
-                vertexName(*f.pickedEdgeEnd).c_str());
+    ImGui::Text("edge %s - %s", vertexName(*f.pickedVertex).c_str(), vertexName(*f.pickedEdgeEnd).c_str());
     ImGui::TextDisabled("E sharp, 1-4 semi-sharp, Shift+E smooth");
   } else {
     ImGui::Text("%zu points; picked %s", f.controlPoints,
@@ -66,27 +57,32 @@ void drawToggles(const HudFacts& f, ViewToggles& t) {
   }
 }
 
-void drawProfileAndPeople(const HudFacts& f, ViewToggles& t) {
-  if (ImGui::CollapsingHeader("LOD profile")) {
-    ImGui::PushItemWidth(90);
-    ImGui::SliderInt("base level", &t.baseLevel, 0, 8);
-    ImGui::SliderInt("max level", &t.maxLevel, 0, 8);
-    ImGui::SliderFloat("angle", &t.angle, 1, 90, "%.0f deg");
-    ImGui::PopItemWidth();
-    if (t.baseLevel > t.maxLevel) t.baseLevel = t.maxLevel;
-    if (ImGui::Button("subscribe")) t.profileChanged = true;
-  }
-  const std::string people = "collaborators: " + std::to_string(f.collaborators.size()) + "###people";
-  if (ImGui::CollapsingHeader(people.c_str())) {
-    for (const Collaborator& c : f.collaborators) {
-      std::string selection;
-      for (size_t i = 0; i < c.selectedVertices.size() && i < 4; ++i)
-        selection += " " + vertexName(c.selectedVertices[i]);
-      if (c.selectedVertices.size() > 4) selection += " ...";
-      ImGui::BulletText("%s%s (session %llu)%s%s", c.name.c_str(), c.self ? " [you]" : "",
-                        static_cast<unsigned long long>(c.sessionId), selection.empty() ? "" : ":",
-                        selection.c_str());
-    }
+// What is changed less often, folded away until asked for.
+void drawMore(const HudFacts& f, ViewToggles& t) {
+  if (!ImGui::CollapsingHeader("more")) return;
+  ImGui::Checkbox("axes G", &t.showGizmo);
+  ImGui::PushItemWidth(90);
+  ImGui::SliderInt("refine R", &t.refine, 0, 2);
+  ImGui::SliderInt("point level [ ]", &t.controlLevel, 0, 10);
+  ImGui::Separator();
+  ImGui::TextDisabled("LOD profile");
+  ImGui::SliderInt("base level", &t.baseLevel, 0, 8);
+  ImGui::SliderInt("max level", &t.maxLevel, 0, 8);
+  ImGui::SliderFloat("angle", &t.angle, 1, 90, "%.0f deg");
+  ImGui::PopItemWidth();
+  if (t.baseLevel > t.maxLevel) t.baseLevel = t.maxLevel;
+  if (ImGui::Button("subscribe")) t.profileChanged = true;
+  ImGui::Text("%.0f KiB received, %llu edits timed", f.stats.bytesReceived / 1024.0,
+              static_cast<unsigned long long>(f.stats.latencySamples));
+  ImGui::Text("collaborators: %zu", f.collaborators.size());
+  for (const Collaborator& c : f.collaborators) {
+    std::string selection;
+    for (size_t i = 0; i < c.selectedVertices.size() && i < 4; ++i)
+      selection += " " + vertexName(c.selectedVertices[i]);
+    if (c.selectedVertices.size() > 4) selection += " ...";
+    ImGui::BulletText("%s%s (session %llu)%s%s", c.name.c_str(), c.self ? " [you]" : "",
+                      static_cast<unsigned long long>(c.sessionId), selection.empty() ? "" : ":",
+                      selection.c_str());
   }
 }
 
@@ -116,10 +112,9 @@ void drawHud(const HudFacts& f, ViewToggles& t, int width, int height) {
   t.hudCollapsed = ImGui::IsWindowCollapsed();
   if (open) {
     drawStatus(f, t);
-    ImGui::Separator();
     drawToggles(f, t);
-    drawProfileAndPeople(f, t);
-    ImGui::TextDisabled("H collapse  F fit  Q quit");
+    drawMore(f, t);
+    ImGui::TextDisabled("H fold  F fit  Q quit");
   }
   ImGui::End();
 }

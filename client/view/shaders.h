@@ -48,8 +48,8 @@ vec3 lit(vec3 n, vec3 toEye) {
   float fill = max(dot(n, kFill), 0.0);
   vec3 halfway = normalize(kKey + toEye);
   float specular = key > 0.0 ? pow(max(dot(n, halfway), 0.0), 48.0) : 0.0;
-  vec3 light = ambient + key * vec3(0.80, 0.76, 0.70) + fill * vec3(0.24, 0.27, 0.32);
-  return uColour * light + vec3(0.22 * specular);
+  vec3 light = ambient + key * vec3(0.70, 0.67, 0.62) + fill * vec3(0.24, 0.27, 0.32);
+  return uColour * light + vec3(0.16 * specular);
 }
 
 vec3 matcap(vec3 n) {

@@ -76,9 +76,14 @@ ConnectionStats Viewer::update(int width, int height) {
     pointsLevel_ = app_.toggles.controlLevel;
     if (haveBounds) pointDiameter_ = controlPointDiameter(lo, hi, points_.size());
   }
-  // Fit to view on the first snapshot and on F.
+  // Fit to view on the first snapshot and on F: to the surface's vertices,
+  // whose projection can be much smaller than their bounding box's.
   if ((!framed_ || app_.frameRequested) && haveBounds) {
-    app_.camera.frame(lo, hi, static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
+    std::vector<V3> surface;
+    for (const auto& [id, mesh] : regions_)
+      for (const Vec3& p : mesh->positions)
+        surface.push_back({static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+    app_.camera.fit(surface, static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
     framed_ = true;
     app_.frameRequested = false;
   }

@@ -42,7 +42,8 @@ std::string xdotool(const std::string& binary, const std::string& display, const
 TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   const auto xvfbBinary = testing::findProgram("Xvfb");
   const auto xdotoolBinary = testing::findProgram("xdotool");
-  if (!xvfbBinary || !xdotoolBinary) GTEST_SKIP() << "Xvfb or xdotool is missing (deploy/install-deps.sh installs both)";
+  if (!xvfbBinary || !xdotoolBinary)
+    GTEST_SKIP() << "Xvfb or xdotool is missing (deploy/install-deps.sh installs both)";
   const std::string dir = ::tessera::testing::makeTempDir("tessera-view-input");
   auto server = ::tessera::testing::ServerProcess::start(dir + "/data");
   ASSERT_TRUE(server.isOk()) << server.status().message();
@@ -75,18 +76,19 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   const int x = static_cast<int>(std::lround((*at)[0])), y = static_cast<int>(std::lround((*at)[1]));
   const uint64_t target = points[*hit].id;
 
-  const pid_t viewer = testing::spawn({TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
-                                       "--token", server->adminToken(), "--document", std::to_string(doc),
-                                       "--name", "mouse-and-keys", "--base-level", "2", "--max-level", "2",
-                                       "--level", std::to_string(kLevel), "--size", "800x600", "--no-hud",
-                                       "--control-points"},
-                                      testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
+  const pid_t viewer =
+      testing::spawn({TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
+                      "--token", server->adminToken(), "--document", std::to_string(doc), "--name",
+                      "mouse-and-keys", "--base-level", "2", "--max-level", "2", "--level",
+                      std::to_string(kLevel), "--size", "800x600", "--no-hud", "--control-points"},
+                     testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
   const std::string& display = xvfb.display();
   const std::string window =
-      xdotool(*xdotoolBinary, display, "search --sync --onlyvisible --name 'tessera-view: document " +
-                                           std::to_string(doc) + "'");
+      xdotool(*xdotoolBinary, display,
+              "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
   const std::string id = window.substr(0, window.find('\n'));
-  ASSERT_FALSE(id.empty()) << "no viewer window: " << window << ::tessera::testing::fileBytes(dir + "/view.log");
+  ASSERT_FALSE(id.empty()) << "no viewer window: " << window
+                           << ::tessera::testing::fileBytes(dir + "/view.log");
   xdotool(*xdotoolBinary, display, "windowfocus --sync " + id);
 
   // A click on the vertex picks it once the viewer has its snapshot: until
@@ -104,19 +106,21 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
                 " sleep 0.1 mousedown 1 sleep 0.2 mouseup 1");
     picked = waitFor(selectedByViewer, 0.5);
   }
-  ASSERT_TRUE(picked) << "a click at (" << x << ", " << y << ") did not pick " << VertexId::fromPacked(target).toString()
-                      << ": " << ::tessera::testing::fileBytes(dir + "/view.log");
+  ASSERT_TRUE(picked) << "a click at (" << x << ", " << y << ") did not pick "
+                      << VertexId::fromPacked(target).toString() << ": "
+                      << ::tessera::testing::fileBytes(dir + "/view.log");
 
   // A drag: press on the vertex, move in steps, release.
-  std::string drag = "mousemove --window " + id + " " + std::to_string(x) + " " + std::to_string(y) + " mousedown 1";
+  std::string drag =
+      "mousemove --window " + id + " " + std::to_string(x) + " " + std::to_string(y) + " mousedown 1";
   for (int step = 1; step <= 8; ++step) {
     drag += " sleep 0.05 mousemove --window " + id + " " + std::to_string(x + 6 * step) + " " +
             std::to_string(y - 6 * step);
   }
   drag += " sleep 0.1 mouseup 1";
   xdotool(*xdotoolBinary, display, drag);
-  ASSERT_TRUE(waitFor([&] { return (*observer)->stats().version > 1 && (*observer)->stats().surfaceHash != startHash; },
-                      30))
+  ASSERT_TRUE(waitFor(
+      [&] { return (*observer)->stats().version > 1 && (*observer)->stats().surfaceHash != startHash; }, 30))
       << "the drag made no edit: " << ::tessera::testing::fileBytes(dir + "/view.log");
   // Edits stop once the drag is over.
   uint64_t dragged = 0;
@@ -138,8 +142,8 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   EXPECT_GT((*observer)->stats().version, dragged);
 
   xdotool(*xdotoolBinary, display, "key q");
-  EXPECT_EQ(testing::waitBounded(viewer, 20), 0) << "Q did not quit the viewer: "
-                                                 << ::tessera::testing::fileBytes(dir + "/view.log");
+  EXPECT_EQ(testing::waitBounded(viewer, 20), 0)
+      << "Q did not quit the viewer: " << ::tessera::testing::fileBytes(dir + "/view.log");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "client/view/camera.h"
 #include "client/view/control_points.h"
+#include "client/view/gizmo.h"
 #include "client/view/undo_history.h"
 #include "client/view/view_options.h"
 #include "core/hierarchy/ids.h"
@@ -75,6 +76,116 @@ TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   ASSERT_TRUE(keys.isOk()) << keys.status().message();
   EXPECT_TRUE(keys->editKeys && keys->hashSurfaces);
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys"}).isOk());
+}
+
+// Issue 14 §3 and §5: CLI11's --opt=value, --version, the new display options.
+TEST(ViewOptions, TakesOptEqualsValueVersionAndTheDisplayOptions) {
+  auto o = parseViewOptions({"--connect=h:9", "--document=4", "--msaa=0", "--matcap", "--hud-collapsed",
+                             "--control-points", "--no-gizmo", "--size=320x200", "--region-colors"});
+  ASSERT_TRUE(o.isOk()) << o.status().message();
+  EXPECT_EQ(o->port, 9);
+  EXPECT_EQ(o->document, 4u);
+  EXPECT_EQ(o->msaa, 0);
+  EXPECT_TRUE(o->matcap && o->hudCollapsed && o->controlPoints && o->regionColours && o->hud);
+  EXPECT_FALSE(o->gizmo);
+  EXPECT_EQ(o->width, 320);
+  // Defaults: 4x MSAA, the lights, the HUD open, the gizmo, no control points.
+  auto d = parseViewOptions({"--connect", "h:1", "--document", "1"});
+  ASSERT_TRUE(d.isOk());
+  EXPECT_EQ(d->msaa, 4);
+  EXPECT_TRUE(!d->matcap && !d->hudCollapsed && !d->controlPoints && d->gizmo && d->hud);
+  // The self-tests pick control vertices, so they show them.
+  auto drag =
+      parseViewOptions({"--connect", "h:1", "--document", "1", "--screenshot", "a.png", "--drag=-80,80"});
+  ASSERT_TRUE(drag.isOk()) << drag.status().message();
+  EXPECT_EQ(drag->dragX, -80);
+  EXPECT_TRUE(drag->controlPoints);
+  auto version = parseViewOptions({"--version"});
+  ASSERT_TRUE(version.isOk());
+  EXPECT_TRUE(version->version);
+  EXPECT_NE(viewHelp().find("--control-points"), std::string::npos);
+  auto msaa = parseViewOptions({"--connect", "h:1", "--document", "1", "--msaa", "32"});
+  ASSERT_FALSE(msaa.isOk());
+  EXPECT_NE(msaa.status().message().find("--msaa"), std::string::npos) << msaa.status().message();
+  auto size = parseViewOptions({"--connect", "h:1", "--document", "1", "--size", "big"});
+  ASSERT_FALSE(size.isOk());
+  EXPECT_NE(size.status().message().find("--size"), std::string::npos);
+  auto file = parseViewOptions({"--connect", "h:1", "--document", "1", "--token-file", "/nonexistent/t"});
+  ASSERT_FALSE(file.isOk());
+  EXPECT_NE(file.status().message().find("--token-file"), std::string::npos);
+}
+
+// Fit to view: every point of the model projects inside the frame, the
+// projection is centred and fills `fill` of the tighter dimension, for
+// wide and tall frames and from any direction.
+TEST(ViewCamera, FitToViewPutsEveryPointInsideTheFrameAndFillsIt) {
+  // A long thin L: its bounding box is much larger than its projection.
+  std::vector<V3> model;
+  for (int i = 0; i <= 40; ++i) model.push_back({static_cast<float>(i) * 0.25f, 0, 0});
+  for (int i = 0; i <= 10; ++i) model.push_back({0, static_cast<float>(i) * 0.2f, 3});
+  for (auto [width, height] : {std::pair{800, 600}, std::pair{480, 720}}) {
+    for (float turn : {0.0f, 150.0f, -300.0f}) {
+      OrbitCamera camera;
+      camera.orbit(turn, turn / 5);
+      const float aspect = static_cast<float>(width) / static_cast<float>(height);
+      camera.fit(model, aspect, 0.86f);
+      float x0 = 1e9f, x1 = -1e9f, y0 = 1e9f, y1 = -1e9f;
+      for (const V3& p : model) {
+        auto s = camera.project(p, width, height);
+        ASSERT_TRUE(s.has_value());
+        x0 = std::min(x0, (*s)[0]), x1 = std::max(x1, (*s)[0]);
+        y0 = std::min(y0, (*s)[1]), y1 = std::max(y1, (*s)[1]);
+      }
+      EXPECT_GE(x0, 0);
+      EXPECT_GE(y0, 0);
+      EXPECT_LE(x1, width);
+      EXPECT_LE(y1, height);
+      const float fill =
+          std::max((x1 - x0) / static_cast<float>(width), (y1 - y0) / static_cast<float>(height));
+      EXPECT_GT(fill, 0.80f) << width << "x" << height << " turn " << turn;
+      EXPECT_LE(fill, 0.87f);
+      // Centred up to perspective.
+      EXPECT_NEAR((x0 + x1) / 2, width / 2.0f, width * 0.06f);
+      EXPECT_NEAR((y0 + y1) / 2, height / 2.0f, height * 0.06f);
+    }
+  }
+}
+
+TEST(ViewGizmo, AxesPointWhereTheCameraSeesThemAndTheNearestIsDrawnLast) {
+  // Looking down -Z from +Z: X to the right, Y up (screen y down), Z at the viewer.
+  const Mat4 front = lookAt({0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  const auto axes = gizmoAxes(front);
+  EXPECT_EQ(axes[2].axis, 2);  // Z, towards the viewer, last
+  for (const GizmoAxis& a : axes) {
+    if (a.axis == 0) {
+      EXPECT_NEAR(a.dx, 1, 1e-5f);
+      EXPECT_NEAR(a.dy, 0, 1e-5f);
+    }
+    if (a.axis == 1) {
+      EXPECT_NEAR(a.dx, 0, 1e-5f);
+      EXPECT_NEAR(a.dy, -1, 1e-5f);
+    }
+    if (a.axis == 2) EXPECT_NEAR(a.depth, 1, 1e-5f);
+  }
+  // From the right (+X), X points at the viewer and Z to the left.
+  const auto side = gizmoAxes(lookAt({5, 0, 0}, {0, 0, 0}, {0, 1, 0}));
+  EXPECT_EQ(side[2].axis, 0);
+  for (const GizmoAxis& a : side)
+    if (a.axis == 2) EXPECT_NEAR(a.dx, -1, 1e-5f);
+  // Its place: the bottom-left corner.
+  const GizmoPlacement at = gizmoPlacement(800, 600);
+  EXPECT_LT(at.cx + at.radius, 800 / 5.0f);
+  EXPECT_GT(at.cy - at.radius, 600 * 0.75f);
+}
+
+TEST(ViewControlPoints, DotsAreSizedToTheModelAndTheirNumber) {
+  const float cube = controlPointDiameter({0, 0, 0}, {2, 2, 2}, 8);
+  EXPECT_FLOAT_EQ(controlPointDiameter({0, 0, 0}, {20, 20, 20}, 8), 10 * cube);  // scales with the model
+  EXPECT_LE(cube, 0.015f * std::sqrt(12.0f) + 1e-6f);                            // never balls
+  const float cow = controlPointDiameter({0, 0, 0}, {2, 2, 2}, 2904);
+  EXPECT_LT(cow, cube);  // more points, smaller dots
+  EXPECT_NEAR(cow, std::sqrt(12.0f) / std::sqrt(2904.0f) / 3, 1e-6f);
+  EXPECT_GE(controlPointDiameter({0, 0, 0}, {2, 2, 2}, 100000000), 0.0015f * std::sqrt(12.0f) - 1e-6f);
 }
 
 TEST(ViewCamera, ProjectingAPointOnAPixelsRayLandsOnThatPixel) {

@@ -1,7 +1,8 @@
 // tessera-view on a real mesh on a busy machine (issue 13 §1): fandisk from
 // Debian's libcgal-demo with its sharp feature lines tagged as creases,
-// rendered headless 20 times in a row while two other processes keep both
-// cores busy. Before the client's read path kept its bytes, a snapshot
+// rendered headless 20 times in a row, with no display (EGL surfaceless;
+// no Xvfb since issue 14 §5), while two other processes keep both cores
+// busy. Before the client's read path kept its bytes, a snapshot
 // this size failed in 25 of 26 such runs ("no snapshot: timed out", or a
 // frame announcing a garbage length) because the viewer polls with a 5 ms
 // timeout and a timed-out read dropped what it had read.
@@ -21,54 +22,11 @@
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
+#include "view/feature_tags.h"
 #include "view/x_display.h"
 
 namespace tessera {
 namespace {
-
-struct Vec {
-  double x, y, z;
-  Vec operator-(const Vec& o) const { return {x - o.x, y - o.y, z - o.z}; }
-};
-Vec cross(const Vec& a, const Vec& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double dot(const Vec& a, const Vec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double norm(const Vec& a) { return std::sqrt(dot(a, a)); }
-
-// "crease I J inf" for every interior edge of a triangle OFF mesh whose two
-// faces meet at more than `degrees` (fandisk's feature lines), read
-// independently of Tessera's importers.
-std::string featureTags(const std::string& offPath, double degrees, int& count) {
-  std::ifstream in(offPath);
-  std::string magic;
-  size_t nv = 0, nf = 0, ne = 0;
-  in >> magic >> nv >> nf >> ne;
-  std::vector<Vec> p(nv);
-  for (auto& v : p) in >> v.x >> v.y >> v.z;
-  std::vector<std::array<int, 3>> faces(nf);
-  std::map<std::pair<int, int>, std::vector<int>> edgeFaces;
-  for (size_t f = 0; f < nf; ++f) {
-    int k = 0;
-    in >> k >> faces[f][0] >> faces[f][1] >> faces[f][2];
-    for (int e = 0; e < 3; ++e) {
-      const int a = faces[f][e], b = faces[f][(e + 1) % 3];
-      edgeFaces[{std::min(a, b), std::max(a, b)}].push_back(static_cast<int>(f));
-    }
-  }
-  auto normal = [&](int f) {
-    const Vec n = cross(p[faces[f][1]] - p[faces[f][0]], p[faces[f][2]] - p[faces[f][0]]);
-    const double l = norm(n);
-    return Vec{n.x / l, n.y / l, n.z / l};
-  };
-  std::ostringstream tags;
-  count = 0;
-  const double limit = std::cos(degrees * M_PI / 180.0);
-  for (const auto& [edge, fs] : edgeFaces) {
-    if (fs.size() != 2 || dot(normal(fs[0]), normal(fs[1])) > limit) continue;
-    tags << "crease " << edge.first << " " << edge.second << " inf\n";
-    ++count;
-  }
-  return tags.str();
-}
 
 // A process that spins until killed: the "other process loading the cores".
 pid_t spinner() {
@@ -81,12 +39,10 @@ pid_t spinner() {
 }
 
 TEST(ViewRealMesh, FandiskWithItsCreasesRendersTwentyTimesOnABusyMachine) {
-  const auto xvfbBinary = testing::findProgram("Xvfb");
-  if (!xvfbBinary) GTEST_SKIP() << "Xvfb is not installed (deploy/install-deps.sh installs it)";
   const std::string dir = testing::makeTempDir("tessera-view-fandisk");
   const std::string off = testing::cgalMeshPath("fandisk.off");
   int creases = 0;
-  const std::string tags = featureTags(off, 40, creases);
+  const std::string tags = testing::featureTags(off, 40, creases);
   ASSERT_GT(creases, 500) << "fandisk's feature lines were not found";
 
   auto server = testing::ServerProcess::start(dir + "/data");
@@ -96,21 +52,20 @@ TEST(ViewRealMesh, FandiskWithItsCreasesRendersTwentyTimesOnABusyMachine) {
   wire::ClientMessage create = testing::createDocument("fandisk", testing::fileBytes(off), tags, 4);
   create.mutable_create_document()->set_mesh_format(wire::MESH_FORMAT_OFF);
   auto created = (*admin)->call(create, 120);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  ASSERT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
   const uint64_t doc = created->ack().document_id();
 
-  testing::Xvfb xvfb;
-  ASSERT_TRUE(xvfb.start(*xvfbBinary, dir + "/xvfb.log")) << "Xvfb did not start; see " << dir << "/xvfb.log";
-  const auto env = testing::viewerEnvironment(xvfb.display());
+  const auto env = testing::headlessEnvironment();
   const pid_t load[2] = {spinner(), spinner()};
   int passed = 0;
   for (int run = 0; run < 20; ++run) {
     const std::string png = dir + "/fandisk-" + std::to_string(run) + ".png";
-    const int code = testing::runBounded({TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
-                                          "--token", server->adminToken(), "--document", std::to_string(doc),
-                                          "--base-level", "1", "--max-level", "2", "--screenshot", png, "--frames", "3",
-                                          "--no-hud", "--timeout", "60"},
-                                         env, dir + "/view.log", 120);
+    const int code = testing::runBounded(
+        {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()), "--token",
+         server->adminToken(), "--document", std::to_string(doc), "--base-level", "1", "--max-level", "2",
+         "--screenshot", png, "--frames", "3", "--no-hud", "--timeout", "60"},
+        env, dir + "/view.log", 120);
     EXPECT_EQ(code, 0) << "run " << run << " failed; see " << dir << "/view.log";
     if (code != 0) continue;
     int w = 0, h = 0, channels = 0;
@@ -119,7 +74,9 @@ TEST(ViewRealMesh, FandiskWithItsCreasesRendersTwentyTimesOnABusyMachine) {
     // The model covers a real part of the frame (the corner is background).
     size_t covered = 0;
     for (int i = 0; i < w * h; ++i) {
-      covered += std::abs(rgb[3 * i] - rgb[0]) + std::abs(rgb[3 * i + 1] - rgb[1]) + std::abs(rgb[3 * i + 2] - rgb[2]) > 24;
+      covered += std::abs(rgb[3 * i] - rgb[0]) + std::abs(rgb[3 * i + 1] - rgb[1]) +
+                     std::abs(rgb[3 * i + 2] - rgb[2]) >
+                 24;
     }
     stbi_image_free(rgb);
     EXPECT_GT(static_cast<double>(covered) / (w * h), 0.05) << png;

@@ -28,6 +28,14 @@ std::optional<std::string> findProgram(const std::string& name) {
   return std::nullopt;
 }
 
+Environment headlessEnvironment() {
+  Environment env = {{"DISPLAY", ""}, {"WAYLAND_DISPLAY", ""}};
+#ifdef __SANITIZE_ADDRESS__
+  env.emplace_back("ASAN_OPTIONS", "detect_leaks=0");
+#endif
+  return env;
+}
+
 Environment viewerEnvironment(const std::string& display) {
   Environment env = {{"DISPLAY", display}, {"LIBGL_ALWAYS_SOFTWARE", "1"}};
 #ifdef __SANITIZE_ADDRESS__
@@ -39,7 +47,7 @@ Environment viewerEnvironment(const std::string& display) {
 pid_t spawn(const std::vector<std::string>& args, const Environment& env, const std::string& log) {
   const pid_t pid = fork();
   if (pid == 0) {
-    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
+    for (const auto& [k, v] : env) v.empty() ? unsetenv(k.c_str()) : setenv(k.c_str(), v.c_str(), 1);
     FILE* out = std::freopen(log.c_str(), "a", stdout);
     FILE* err = std::freopen(log.c_str(), "a", stderr);
     (void)out, (void)err;

@@ -1,5 +1,6 @@
-// An X display for the viewer tests: a private Xvfb server, the viewer's
-// environment on it (Mesa's llvmpipe), and child processes bounded in time.
+// An X display for the viewer tests that need a window: a private Xvfb
+// server, the viewer's environment on it (Mesa's llvmpipe), the environment
+// with no display for --screenshot, and child processes bounded in time.
 #pragma once
 
 #include <sys/types.h>
@@ -16,12 +17,18 @@ using Environment = std::vector<std::pair<std::string, std::string>>;
 // The program's path on PATH, if it is installed.
 std::optional<std::string> findProgram(const std::string& name);
 
+// No display at all: DISPLAY and WAYLAND_DISPLAY unset, for --screenshot,
+// which renders with EGL on Mesa's surfaceless platform. In an ASan build
+// LeakSanitizer is off for the viewer process, as below.
+Environment headlessEnvironment();
+
 // DISPLAY and Mesa's software renderer. In an ASan build LeakSanitizer is off
 // for the viewer process: llvmpipe leaks from a module it loads and unloads,
 // which LSan cannot name in a suppression (the stacks end in "<unknown module>").
 Environment viewerEnvironment(const std::string& display);
 
-// Starts argv with extra environment, stdout and stderr appended to `log`.
+// Starts argv with extra environment (an empty value unsets the variable),
+// stdout and stderr appended to `log`.
 pid_t spawn(const std::vector<std::string>& args, const Environment& env, const std::string& log);
 
 // Waits up to `seconds` for `pid`, then kills it. Returns its exit code, or

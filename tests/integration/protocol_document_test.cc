@@ -135,6 +135,30 @@ uint64_t hashFromTheText(const std::map<uint64_t, RegionMesh>& regions) {
   return sum;
 }
 
+// Checks every decoded id of `view` against the birth level that 3.2's
+// counts give its index (the cube: 8, 18, 12); returns the ids per level.
+std::map<int, size_t> expectBirthLevels(const DocumentView& view, int maxLevel) {
+  std::vector<uint64_t> vertices{8};
+  uint64_t e = 18, f = 12;
+  for (int l = 1; l <= maxLevel; ++l) {
+    vertices.push_back(vertices.back() + e);
+    e = 2 * e + 3 * f;
+    f = 4 * f;
+  }
+  std::map<int, size_t> perLevel;
+  for (const auto& [id, mesh] : view.regions()) {
+    for (uint64_t packed : mesh.vertexIds) {
+      const int level = static_cast<int>(packed >> 58);
+      const uint64_t index = packed & ((uint64_t{1} << 58) - 1);
+      int birth = 0;
+      while (birth < maxLevel && vertices[birth] <= index) ++birth;
+      EXPECT_EQ(level, birth) << "index " << index;
+      ++perLevel[level];
+    }
+  }
+  return perLevel;
+}
+
 // Reads until the view is ready at `version` or later; keeps the last
 // snapshot's and delta's announced hashes.
 void readUntil(Session& s, DocumentView& view, uint64_t version) {
@@ -166,6 +190,9 @@ TEST(ProtocolDocument, SurfaceHashIsRecomputedFromTheText) {
   }
   readUntil(**viewer, withIds, 1);
   readUntil(**watcher, displayOnly, 1);
+  // Ids as lattice points (depth 3 below level-2 regions) at their birth level.
+  const auto perLevel = expectBirthLevels(withIds, 5);
+  EXPECT_GT(perLevel.size(), 3u) << "ids of more than three levels";
 
   const uint64_t before = hashFromTheText(withIds.regions());
   EXPECT_NE(before, 0u);
@@ -197,6 +224,49 @@ TEST(ProtocolDocument, SurfaceHashIsRecomputedFromTheText) {
   readUntil(**late, joined, 2);
   EXPECT_EQ(hashFromTheText(joined.regions()), after);
   EXPECT_EQ(joined.announcedSurfaceHash(), after);
+}
+
+// ---------------------------------------------------------------------------
+// The level of a decoded id (6.2): the vertex's birth level, whether the ids
+// travel as lattice points (flag 4) or as 8 bytes (flag 0, lattice depth
+// above 7, here with --max-level 12).
+
+TEST(ProtocolDocument, DecodedIdsArriveAtTheirBirthLevel) {
+  const std::string dir = testing::makeTempDir("tessera-protocol-birth");
+  auto process = ServerProcess::start(dir + "/data", {"--max-level", "12"});
+  ASSERT_TRUE(process.isOk()) << process.status().message();
+  auto admin = Session::connect(process->session("admin", process->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                                                        "", 10),
+                                30);
+  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  const uint64_t doc = created->ack().document_id();
+  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10)->has_ack());
+  // A coarse profile reaching level 10: its leaf regions at level 2 lie 8
+  // levels above the profile's deepest, too deep for lattice points.
+  ASSERT_TRUE((*admin)->call(testing::subscribe(doc, 0, 10, 40), 60)->has_ack());
+  DocumentView view(doc);
+  std::map<uint16_t, int> flags;  // header flags (offset 6) -> regions
+  for (int i = 0; i < 400 && !view.ready(); ++i) {
+    auto m = (*admin)->receive(20);
+    ASSERT_TRUE(m.isOk()) << m.status().message();
+    if (m->has_snapshot()) {
+      for (const auto& r : m->snapshot().regions()) {
+        ASSERT_GE(r.draco().size(), 8u);
+        ++flags[static_cast<uint16_t>(static_cast<uint8_t>(r.draco()[6]) | (static_cast<uint8_t>(r.draco()[7]) << 8))];
+      }
+    }
+    ASSERT_TRUE(view.apply(*m).isOk());
+  }
+  ASSERT_TRUE(view.ready());
+  EXPECT_GT(flags[0], 0) << "no region with 8-byte ids";
+  const auto perLevel = expectBirthLevels(view, 10);
+  // Vertices of one leaf level, yet their ids name three levels.
+  EXPECT_GT(perLevel.count(0) + perLevel.count(1) + perLevel.count(2), 2u);
+  std::printf("[ measured ] %d regions with 8-byte ids, %d with lattice ids; ids at levels 0/1/2: %zu/%zu/%zu\n",
+              flags[0], flags[4], perLevel.count(0) ? perLevel.at(0) : 0, perLevel.count(1) ? perLevel.at(1) : 0,
+              perLevel.count(2) ? perLevel.at(2) : 0);
 }
 
 // ---------------------------------------------------------------------------

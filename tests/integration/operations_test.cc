@@ -4,7 +4,9 @@
 // data directory and compared with the original.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -15,6 +17,10 @@
 #include <regex>
 #include <sstream>
 #include <thread>
+
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
 
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
@@ -393,6 +399,50 @@ TEST(Operations, OnlineBackupRestoresTheDocumentsAsTheyWere) {
   EXPECT_EQ(exportGlb(**admin, kept.doc), glbAtBackup) << "the restored document's surface differs";
   // The busy document opens and serves from whatever version it was at.
   EXPECT_FALSE(exportGlb(**admin, busy.doc).empty());
+}
+
+// The systemd notify protocol (Type=notify, WatchdogSec=): a datagram socket
+// stands in for systemd, named by NOTIFY_SOCKET in the server's environment.
+TEST(Operations, NotifiesSystemdReadyWatchdogAndStopping) {
+  const std::string dir = testing::makeTempDir("tessera-ops-notify");
+  const std::string socketPath = dir + "/notify.sock";
+  const int fd = ::socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(fd, 0);
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  ASSERT_LT(socketPath.size(), sizeof(address.sun_path));
+  std::strcpy(address.sun_path, socketPath.c_str());
+  ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)), 0);
+  timeval timeout{.tv_sec = 0, .tv_usec = 200'000};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+
+  ::setenv("NOTIFY_SOCKET", socketPath.c_str(), 1);
+  ::setenv("WATCHDOG_USEC", "200000", 1);  // pings every 100 ms
+  auto server = ServerProcess::start(dir + "/data");
+  ::unsetenv("NOTIFY_SOCKET");
+  ::unsetenv("WATCHDOG_USEC");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+
+  std::vector<std::string> messages;
+  auto collect = [&](double seconds) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    char buffer[512];
+    while (std::chrono::steady_clock::now() < until) {
+      const ssize_t n = ::recv(fd, buffer, sizeof buffer, 0);
+      if (n > 0) messages.emplace_back(buffer, static_cast<size_t>(n));
+    }
+  };
+  collect(1.5);
+  ASSERT_FALSE(messages.empty()) << "nothing on NOTIFY_SOCKET";
+  EXPECT_EQ(messages.front().rfind("READY=1", 0), 0u) << messages.front();
+  const auto pings = std::count(messages.begin(), messages.end(), std::string("WATCHDOG=1"));
+  EXPECT_GE(pings, 3) << "watchdog pings in 1.5 s with WATCHDOG_USEC=200000";
+  messages.clear();
+  std::thread stopper([&] { EXPECT_EQ(server->stop(), 0); });
+  collect(1.5);
+  stopper.join();
+  EXPECT_NE(std::find(messages.begin(), messages.end(), std::string("STOPPING=1")), messages.end());
+  ::close(fd);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "client/view/gizmo.h"
@@ -101,8 +102,12 @@ void drawHud(const HudFacts& f, ViewToggles& t, int width, int height) {
                 shortCount(static_cast<double>(f.triangles)).c_str(), f.fps,
                 f.stats.ready ? "" : "  (waiting)");
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(0, 0), ImVec2(kHudMaxWidth * static_cast<float>(width),
-                                                           kHudMaxHeight * static_cast<float>(height)));
+  // At least as wide as the title, which a collapsed window does not grow to.
+  const float titleWidth = ImGui::CalcTextSize(title, nullptr, true).x + 2 * ImGui::GetFontSize() +
+                           2 * ImGui::GetStyle().FramePadding.x;
+  const float maxWidth = kHudMaxWidth * static_cast<float>(width);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(titleWidth, maxWidth), 0),
+                                      ImVec2(maxWidth, kHudMaxHeight * static_cast<float>(height)));
   ImGui::SetNextWindowBgAlpha(0.6f);
   ImGui::SetNextWindowCollapsed(t.hudCollapsed, ImGuiCond_Always);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove |

@@ -54,7 +54,7 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   ASSERT_TRUE(xvfb.start(*xvfbBinary, dir + "/xvfb.log")) << "Xvfb did not start; see " << dir << "/xvfb.log";
 
   // The observer sees what the viewer will see first, and frames it the same
-  // way (OrbitCamera::frame on the regions' bounds, as view_main does).
+  // way (OrbitCamera::fit to every region vertex, as Viewer::update does).
   constexpr int kWidth = 800, kHeight = 600, kLevel = 1;
   ViewOptions options = viewOptionsFor(*server, doc, 2, 2);
   options.name = "observer";
@@ -65,10 +65,13 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   const uint64_t startHash = (*observer)->stats().surfaceHash;
   const RegionMap regions = (*observer)->regions();
   const std::vector<ControlPoint> points = controlPoints(regions, kLevel);
-  V3 lo, hi;
-  ASSERT_TRUE(bounds(regions, &lo, &hi));
+  std::vector<V3> surface;
+  for (const auto& [id, mesh] : regions)
+    for (const Vec3& p : mesh->positions)
+      surface.push_back({static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+  ASSERT_FALSE(surface.empty());
   OrbitCamera camera;
-  camera.frame(lo, hi);
+  camera.fit(surface, static_cast<float>(kWidth) / kHeight);
   const auto hit = pickPoint(points, camera, kWidth, kHeight, kWidth / 2.0f, kHeight / 2.0f, 1e9f);
   ASSERT_TRUE(hit.has_value());
   const auto at = camera.project(points[*hit].position, kWidth, kHeight);

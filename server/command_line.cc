@@ -119,6 +119,9 @@ ParsedCommandLine parseServerCommandLine(const std::vector<std::string>& args) {
   app.set_config("--config", "", "read options from this file: one 'name = value' per line, names as the long options");
   app.allow_config_extras(CLI::config_extras_mode::error);
   app.fallthrough();  // serving options may follow a subcommand: health --config F
+  // As with most servers' flags, a repeated option takes its last value, so
+  // a wrapper can append an override to a fixed command line.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   addNetworkOptions(app, command.config);
   addLimitOptions(app, command.config);
   addTimingOptions(app, command.config);

@@ -34,10 +34,4 @@ const Document& cubeDocument(int maxLevel) {
   return *doc;
 }
 
-std::string scratchPath(const std::string& extension) {
-  return (std::filesystem::temp_directory_path() /
-          ("tessera-fuzz-" + std::to_string(::getpid()) + extension))
-      .string();
-}
-
 }  // namespace tessera::fuzz

@@ -47,8 +47,4 @@ const BaseMesh& creasedCube();
 // copied per input (creating one per input would dominate the run time).
 const Document& cubeDocument(int maxLevel);
 
-// A file path private to this process (libFuzzer's -fork and -jobs run
-// several), for code under test that reads files only.
-std::string scratchPath(const std::string& extension);
-
 }  // namespace tessera::fuzz

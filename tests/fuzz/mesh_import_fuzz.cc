@@ -3,14 +3,15 @@
 // Compiled once per format; TESSERA_FUZZ_EXTENSION (".obj", ".off", ".ply",
 // ".stl", ".gltf", ".glb") picks the reader, as the file name does.
 //
-// importMesh reads files only, so the input is written to a file private to
-// the process first. The input's length parity picks ImportOptions::
+// The in-memory entry point (importMeshFromBytes) is what the server runs on
+// a CreateDocument's bytes and what importMesh(path) runs after reading the
+// file, so no file is written per input. The input's length parity picks ImportOptions::
 // triangulate (deterministic per input, so crashes reproduce). A mesh that
 // imports is small enough here to become a document: it is refined to level
 // 2 and its limit surface evaluated, so that the Loop rules meet whatever
 // topology and tags the importers let through.
-#include <fstream>
 #include <string>
+#include <string_view>
 
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
@@ -19,16 +20,12 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tessera;
   using namespace tessera::fuzz;
-  static const std::string path = scratchPath(TESSERA_FUZZ_EXTENSION);
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-    if (!out) fail("cannot write " + path);
-  }
-  auto mesh = importMesh(path, {.triangulate = size % 2 == 1});
+  static const std::string name = std::string("fuzz-input") + TESSERA_FUZZ_EXTENSION;
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  auto mesh = importMeshFromBytes(bytes, TESSERA_FUZZ_EXTENSION, name, {.triangulate = size % 2 == 1});
   if (!mesh.isOk()) {
-    checkError(mesh.status(), "importMesh");
-    require(mesh.status().message().find(path) != std::string::npos, "an import error does not name the file");
+    checkError(mesh.status(), "importMeshFromBytes");
+    require(mesh.status().message().find(name) != std::string::npos, "an import error does not name the input");
     return 0;
   }
   if (mesh->numFaces() > 256) return 0;  // larger meshes only slow the run down

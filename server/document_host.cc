@@ -665,6 +665,7 @@ void DocumentHost::notifyRecorders(const Pending& p) {
   a->set_document_id(id_.value);
   a->set_version(p.version);
   a->set_edit_id(p.editId);
+  for (uint64_t id : p.batchEditIds) a->add_edit_ids(id);
   a->set_author_session_id(p.authorSession);
   a->set_author_name(p.authorName);
   const auto appliedAt = std::chrono::system_clock::now() -

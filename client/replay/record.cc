@@ -113,6 +113,38 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
   return c;
 }
 
+Expected<std::vector<ScriptCommand>> ScriptRecorder::lines(const wire::AppliedCommand& a) {
+  if (a.command_case() != wire::AppliedCommand::kEditBatch) {
+    TESSERA_ASSIGN_OR_RETURN(ScriptCommand c, add(a));
+    return std::vector<ScriptCommand>{c};
+  }
+  const auto& commands = a.edit_batch().commands();
+  if (a.edit_ids_size() != commands.size()) {
+    return invalidArgument("version " + std::to_string(a.version()) + ": an EditBatch of " +
+                           std::to_string(commands.size()) + " commands with " + std::to_string(a.edit_ids_size()) +
+                           " edit ids");
+  }
+  std::vector<ScriptCommand> out;
+  for (int i = 0; i < commands.size(); ++i) {
+    wire::AppliedCommand one = a;
+    one.clear_edit_batch();
+    one.clear_edit_ids();
+    one.set_edit_id(a.edit_ids(i));
+    const wire::EditCommand& c = commands[i];
+    switch (c.command_case()) {
+      case wire::EditCommand::kMoveVertex: *one.mutable_move_vertex() = c.move_vertex(); break;
+      case wire::EditCommand::kSetEdgeSharpness: *one.mutable_set_edge_sharpness() = c.set_edge_sharpness(); break;
+      case wire::EditCommand::kSetVertexType: *one.mutable_set_vertex_type() = c.set_vertex_type(); break;
+      case wire::EditCommand::kUndo: *one.mutable_undo() = c.undo(); break;
+      case wire::EditCommand::kRedo: *one.mutable_redo() = c.redo(); break;
+      default: break;  // add() names the empty command
+    }
+    TESSERA_ASSIGN_OR_RETURN(ScriptCommand line, add(one));
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
 Expected<RecordResult> runRecord(const RecordOptions& o) {
   if (o.document == 0) return invalidArgument("record: no document given");
   if (!(o.seconds > 0) && o.untilVersion == 0)
@@ -187,14 +219,16 @@ Expected<RecordResult> runRecord(const RecordOptions& o) {
       break;
     }
     if (*applied == nullptr) continue;
-    auto line = recorder.add(**applied);
-    if (!line.isOk()) {
-      result.stopped = line.status();
+    auto lines = recorder.lines(**applied);
+    if (!lines.isOk()) {
+      result.stopped = lines.status();
       break;
     }
-    ++result.commands;
+    result.commands += lines->size();
     result.lastVersion = (*applied)->version();
-    if (o.out) *o.out << commandLine(*line) << "\n" << std::flush;
+    for (const ScriptCommand& line : *lines) {
+      if (o.out) *o.out << commandLine(line) << "\n" << std::flush;
+    }
   }
   if (view.ready() && view.version() == result.lastVersion) {
     result.surface = SurfaceState{view.version(), view.surfaceHash(), view.numTriangles()};

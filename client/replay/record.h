@@ -32,6 +32,10 @@ class ScriptRecorder {
   // the recording uses a relative id (-1: the actor's latest), otherwise the
   // absolute edit id. Errors: no command in it, more than 1000 actors.
   Expected<ScriptCommand> add(const wire::AppliedCommand& c);
+  // The script lines of `c`: one, or one per command of an EditBatch (a
+  // script has no batches; replayed one by one they reach the same state,
+  // as each command of a batch sees the ones before it).
+  Expected<std::vector<ScriptCommand>> lines(const wire::AppliedCommand& c);
   size_t actors() const { return actorOf_.size(); }
 
  private:

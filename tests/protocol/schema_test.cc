@@ -218,6 +218,7 @@ AppliedCommand.set_vertex_type = 9 SetVertexType oneof command
 AppliedCommand.undo = 10 Undo oneof command
 AppliedCommand.redo = 11 Redo oneof command
 AppliedCommand.edit_batch = 12 EditBatch oneof command
+AppliedCommand.edit_ids = 13 repeated uint64
 Role.ROLE_UNSPECIFIED = 0
 Role.ROLE_VIEWER = 1
 Role.ROLE_EDITOR = 2

@@ -103,6 +103,38 @@ TEST(RecordScript, ActorsTimesAndUndoTargets) {
   EXPECT_EQ(parsed->header.generator, "test");
 }
 
+// A batch (tessera remote edit) becomes one line per command, each with its
+// own edit id, so a later undo inside or after it finds its target.
+TEST(RecordScript, ABatchBecomesOneLinePerCommand) {
+  replay::ScriptRecorder r(1000);
+  ASSERT_TRUE(r.add(move(2, 1, 7, "alice", 1100)).isOk());
+  wire::AppliedCommand batch = applied(3, 12, 7, "alice", 1200);
+  auto* commands = batch.mutable_edit_batch()->mutable_commands();
+  auto* m = commands->Add()->mutable_move_vertex();
+  m->add_vertex_ids(6);
+  m->mutable_target()->set_x(0.5);
+  m->set_mode(wire::MOVE_MODE_OFFSET);
+  commands->Add()->mutable_set_edge_sharpness()->set_edge_id(40);
+  commands->Add()->mutable_undo()->set_edit_id(10);  // the batch's own first edit
+  for (uint64_t id : {10, 11, 10}) batch.add_edit_ids(id);
+  auto lines = r.lines(batch);
+  ASSERT_TRUE(lines.isOk()) << lines.status().message();
+  ASSERT_EQ(lines->size(), 3u);
+  EXPECT_EQ((*lines)[0].kind, ScriptCommand::Kind::kMove);
+  EXPECT_EQ((*lines)[0].vertices, std::vector<uint64_t>{6});
+  EXPECT_EQ((*lines)[1].kind, ScriptCommand::Kind::kCrease);
+  EXPECT_EQ((*lines)[1].edge, 40u);
+  EXPECT_EQ((*lines)[2].kind, ScriptCommand::Kind::kUndo);
+  EXPECT_EQ((*lines)[2].edit, -2) << "edit 10 is alice's second-latest (1, 10, 11)";
+  for (const auto& line : *lines) EXPECT_EQ(line.actor, "alice");
+
+  batch.clear_edit_ids();
+  batch.add_edit_ids(10);
+  auto mismatched = r.lines(batch);
+  ASSERT_FALSE(mismatched.isOk());
+  EXPECT_NE(mismatched.status().message().find("version 3"), std::string::npos) << mismatched.status().message();
+}
+
 TEST(RecordScript, LongNamesStayDistinctWithinTheActorLimit) {
   replay::ScriptRecorder r(0);
   const std::string name(128, 'x');

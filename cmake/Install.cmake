@@ -4,7 +4,12 @@
 # (tessera-server and its files), cli (tessera), viewer, replay; the
 # container image installs the first two. The unit names the binary and the
 # configuration by absolute path, so its installed copy is rewritten for the
-# prefix.
+# prefix chosen at configure time: /usr unless -DCMAKE_INSTALL_PREFIX says
+# otherwise (a server's unit and /etc configuration belong with /usr, and
+# GNUInstallDirs maps that prefix's configuration to /etc).
+if(CMAKE_INSTALL_PREFIX_INITIALIZED_TO_DEFAULT)
+  set(CMAKE_INSTALL_PREFIX /usr CACHE PATH "Install prefix" FORCE)
+endif()
 include(GNUInstallDirs)
 
 foreach(pair "tessera-server:server" "tessera:cli" "tessera-view:viewer" "tessera-replay:replay")
@@ -16,8 +21,9 @@ foreach(pair "tessera-server:server" "tessera:cli" "tessera-view:viewer" "tesser
   endif()
 endforeach()
 
-set(TESSERA_UNIT_DIR ${CMAKE_INSTALL_PREFIX}/lib/systemd/system CACHE PATH "Where the systemd unit is installed")
-set(TESSERA_SYSUSERS_DIR ${CMAKE_INSTALL_PREFIX}/lib/sysusers.d CACHE PATH "Where the sysusers.d entry is installed")
+# Relative to the prefix unless set to an absolute path.
+set(TESSERA_UNIT_DIR lib/systemd/system CACHE STRING "Where the systemd unit is installed")
+set(TESSERA_SYSUSERS_DIR lib/sysusers.d CACHE STRING "Where the sysusers.d entry is installed")
 
 file(READ ${PROJECT_SOURCE_DIR}/deploy/tessera-server.service unit)
 string(REPLACE "/usr/bin/tessera-server" "${CMAKE_INSTALL_FULL_BINDIR}/tessera-server" unit "${unit}")

@@ -22,7 +22,7 @@ server=build/release/server/tessera-server
 mkdir -p "$data"
 token_file="$data/admin.token"
 if [ ! -s "$token_file" ]; then
-  (umask 077; head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n' > "$token_file")
+  (umask 077; "$server" token new --role admin --data "$data/store" 2>>"$data/server.log" > "$token_file")
 fi
 rm -f "$data/port"
 "$server" --data "$data/store" --port "$port" --admin-token-file "$token_file" --port-file "$data/port" \
@@ -48,8 +48,8 @@ if [ -n "${DISPLAY:-}" ] && [ "${TESSERA_DEMO_ONLY:-0}" != 1 ]; then
 fi
 if [ "$fresh" = 1 ]; then "${remote[@]}" edit "$doc" --script deploy/samples/session.txt; fi
 if [ -z "${DISPLAY:-}" ] || [ "${TESSERA_DEMO_ONLY:-0}" = 1 ]; then
-  LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1024x768x24" \
-    "${view[@]}" --screenshot tessera-demo.png --frames 20 && echo "rendered tessera-demo.png"
+  # Headless: EGL on Mesa's surfaceless platform, no X server needed.
+  "${view[@]}" --screenshot tessera-demo.png --frames 20 && echo "rendered tessera-demo.png"
 fi
 "${remote[@]}" list
 "${remote[@]}" export "$doc" --level 3 --limit -o tessera-demo.glb

@@ -12,6 +12,15 @@
 
 namespace tessera::server {
 
+void DocumentHost::leaveOtherViews(uint64_t session, const std::string& key) {
+  // One profile per subscriber and document: the new one replaces the old,
+  // only once the new one exists (a refused profile keeps the old one).
+  for (auto& [other, view] : views_) {
+    if (other != key) view.subscribers.erase(session), view.knownVersion.erase(session);
+  }
+  dropUnwatchedViews();
+}
+
 void DocumentHost::dropUnwatchedViews() {
   auto dropped = std::make_shared<Released>();
   for (auto it = views_.begin(); it != views_.end();) {

@@ -1,5 +1,6 @@
 #include "server/document_host.h"
 
+#include <algorithm>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/post.hpp>
 #include <cmath>
@@ -154,13 +155,18 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       return;
     }
     const std::string key = profile.key();
-    // One profile per subscriber and document: a new one replaces the old.
-    for (auto& [other, view] : self->views_) {
-      if (other != key) view.subscribers.erase(who->sessionId()), view.knownVersion.erase(who->sessionId());
-    }
-    self->dropUnwatchedViews();
     auto it = self->views_.find(key);
-    if (it == self->views_.end() && self->views_.size() >= static_cast<size_t>(limits.profilesPerDocument)) {
+    // The views left if this subscriber moves to `key`: those someone else
+    // still watches. Counted before anything changes, so that a refused
+    // profile leaves the subscriber on the one it had.
+    size_t kept = 0;
+    for (const auto& [other, view] : self->views_) {
+      kept += std::any_of(view.subscribers.begin(), view.subscribers.end(),
+                          [&](const auto& s) { return s.first != who->sessionId() && !s.second.expired(); })
+                  ? 1
+                  : 0;
+    }
+    if (it == self->views_.end() && kept >= static_cast<size_t>(limits.profilesPerDocument)) {
       // Every view is re-tessellated on every edit: their number is capped.
       who->send({limitExceeded(clientSeq, "document " + std::to_string(self->id_.value) + " already serves " +
                                                          std::to_string(self->views_.size()) +
@@ -185,7 +191,11 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
         view.layout[region] = self->version_;
         self->rehash(view, region);
       }
+      self->leaveOtherViews(who->sessionId(), key);
       it = self->views_.emplace(key, std::move(view)).first;
+    } else {
+      self->leaveOtherViews(who->sessionId(), key);
+      it = self->views_.find(key);  // still there: watched by others, or by this subscriber
     }
     View& view = it->second;
     if (!resync) {

@@ -156,6 +156,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void broadcastPresence();
   // Drops the views no subscriber watches any more (their memory with them).
   void dropUnwatchedViews();
+  // Takes `session` off every view but `key`'s, then drops unwatched ones.
+  void leaveOtherViews(uint64_t session, const std::string& key);
   Lane laneFor(int64_t triangles) const;
   void trimMemory();
   // What is freed off the interactive workers: a closed document, dropped views.

@@ -236,12 +236,22 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
     auto r = (*a)->call(profile(doc, 1, 3, 5 + i), 30);
     ASSERT_TRUE(r.isOk() && r->has_ack()) << "profile " << i << ": " << (r.isOk() ? r->DebugString() : r.status().message());
   }
-  // Two distinct profiles held: a third is refused while they are watched.
+  // Two distinct profiles held: a third is refused while they are watched,
+  // and the refused session keeps the profile it had (c shares b's).
   ASSERT_TRUE((*b)->call(profile(doc, 1, 3, 40), 30)->has_ack());
+  ASSERT_TRUE((*c)->call(profile(doc, 1, 3, 40), 30)->has_ack());
   auto third = (*c)->call(profile(doc, 1, 3, 50), 30);
   ASSERT_TRUE(third.isOk() && third->has_reject()) << (third.isOk() ? third->DebugString() : third.status().message());
   EXPECT_EQ(third->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
   EXPECT_NE(third->reject().message().find("--profiles-per-document"), std::string::npos) << third->reject().message();
+  ASSERT_TRUE((*a)->call(testing::moveVertex(doc, VertexId(1, 3).packed(), 0.01, 0.0, 0.02, wire::MOVE_MODE_OFFSET), 30)
+                  ->has_ack());
+  bool delta = false;
+  for (auto until = Clock::now() + std::chrono::seconds(10); !delta && Clock::now() < until;) {
+    auto m = (*c)->receive(1);
+    delta = m.isOk() && m->has_delta() && m->delta().document_id() == doc;
+  }
+  EXPECT_TRUE(delta) << "the refused subscriber lost the profile it had";
   // b leaves: its profile goes with it, and c's is served.
   (*b)->close();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));

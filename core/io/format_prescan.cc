@@ -218,6 +218,14 @@ Status prescanOffImpl(const std::string& text, const std::string& src, PrescanCo
       }
       TESSERA_RETURN_IF_ERROR(checkNumeric(tokens, n + 1, where, element));  // optional colour
       if (++counts.faces == declaredFaces) stage = Stage::kDone;
+      // The count and indices only: OpenMesh reads a face's colour into an
+      // int, and an out-of-range one (a 40-digit number) left its stream
+      // failed with a huge count for the next face, which it then filled
+      // with vertex handles until memory ran out (found by fuzz_import_off).
+      // Tessera keeps no face colours.
+      for (int k = 0; k <= n; ++k) out << (k > 0 ? " " : "") << tokens[k];
+      out << "\n";
+      continue;
     }
     out << line << "\n";
   }

@@ -50,6 +50,18 @@ void Server::stopBulk() {
   bulkThreads_.clear();
 }
 
+namespace {
+
+// Written under a temporary name and renamed, so a reader polling the file
+// never sees it half written.
+void writePortFile(const std::string& path, uint16_t port) {
+  const std::string temporary = path + ".tmp";
+  std::ofstream(temporary) << port << "\n";
+  std::rename(temporary.c_str(), path.c_str());
+}
+
+}  // namespace
+
 Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   std::unique_ptr<Server> server(new Server(config));
   TESSERA_ASSIGN_OR_RETURN(auto store, SqliteStore::open(config.dataDirectory));
@@ -90,9 +102,7 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   }
   server->port_ = server->acceptor_.local_endpoint().port();
   if (!config.portFile.empty()) {
-    const std::string temporary = config.portFile + ".tmp";
-    std::ofstream(temporary) << server->port_ << "\n";
-    std::rename(temporary.c_str(), config.portFile.c_str());
+    writePortFile(config.portFile, server->port_);
   }
   if (config.httpPort >= 0) {
     Server* raw = server.get();
@@ -103,9 +113,7 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
                                         [raw] { return raw->registry_->openCount(); },
                                         [raw] { return raw->unhealthy(); }}));
     if (!config.httpPortFile.empty()) {
-      const std::string temporary = config.httpPortFile + ".tmp";
-      std::ofstream(temporary) << server->http_->port() << "\n";
-      std::rename(temporary.c_str(), config.httpPortFile.c_str());
+      writePortFile(config.httpPortFile, server->http_->port());
     }
   }
   return server;

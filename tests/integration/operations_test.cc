@@ -174,13 +174,8 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   for (const char* h : {"tessera_edit_ack_seconds", "tessera_store_commit_seconds", "tessera_tessellate_seconds",
                         "tessera_region_encode_seconds"}) {
     // Buckets are cumulative, end at +Inf with the count, and the sum is a time.
-    double previous = 0;
     int buckets = 0;
-    for (const auto& [name, value] : m) {
-      if (name.rfind(std::string(h) + "_bucket{", 0) != 0) continue;
-      ++buckets;
-      (void)previous;
-    }
+    for (const auto& entry : m) buckets += entry.first.rfind(std::string(h) + "_bucket{", 0) == 0 ? 1 : 0;
     EXPECT_EQ(buckets, 18) << h;
     std::vector<double> cumulative;
     for (const char* le : {"5e-05", "0.0001", "0.00025", "0.0005", "0.001", "0.0025", "0.005", "0.01", "0.025",

@@ -16,6 +16,8 @@ build_packages=(
   libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev libssl-dev
   # command lines (one options library for every binary)
   libcli11-dev
+  # exact limit masks: eigenvectors of local subdivision matrices (header-only)
+  libeigen3-dev
   # operations: HTTP health and Prometheus metrics, sd_notify
   prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev
 )

@@ -1,0 +1,143 @@
+#include "core/schemes/catmark_limit.h"
+
+#include <cmath>
+#include <vector>
+
+#include "core/schemes/catmark_masks.h"
+
+namespace tessera::schemes {
+
+namespace {
+
+// Smooth tangent weights per valence, computed once per evaluation: ring
+// neighbour k and face k of valence n at offsets[n] + k.
+class TangentTables {
+ public:
+  explicit TangentTables(int maxValence) : offsets_(maxValence + 2, 0) {
+    for (int n = 0; n <= maxValence; ++n) offsets_[n + 1] = offsets_[n] + n;
+    edge_.resize(offsets_.back());
+    face_.resize(offsets_.back());
+    for (int n = 3; n <= maxValence; ++n) {
+      for (int k = 0; k < n; ++k) {
+        edge_[offsets_[n] + k] = catmark::smoothTangentNeighbourWeight(n, k);
+        face_[offsets_[n] + k] = catmark::smoothTangentFaceWeight(n, k);
+      }
+    }
+  }
+  const double* edge(int n) const { return edge_.data() + offsets_[n]; }
+  const double* face(int n) const { return face_.data() + offsets_[n]; }
+
+ private:
+  std::vector<int> offsets_;
+  std::vector<double> edge_, face_;
+};
+
+// Opposite corner of v in quad f, v being at corner c.
+inline Index opposite(const PolyLevel& level, Index f, int c) { return level.faceVertices[4 * f + ((c + 2) & 3)]; }
+
+CatmarkLimitFrame cornerFrame(const PolyLevel& level, Index v, std::span<const Vec3> p) {
+  auto ring = level.ringVerticesOf(v);
+  return {p[v], p[ring[0]] - p[v], p[ring[1]] - p[v]};
+}
+
+CatmarkLimitFrame smoothFrame(const PolyLevel& level, Index v, std::span<const Vec3> p, const TangentTables& tables) {
+  const int n = level.valence(v);
+  if (n == 2) return cornerFrame(level, v, p);
+  const Index o = level.ringOffsets[v];
+  const double fw = catmark::smoothLimitFaceWeight(n), ew = catmark::smoothLimitNeighbourWeight(n);
+  CatmarkLimitFrame frame;
+  Vec3 faces(0, 0, 0), edges(0, 0, 0);
+  // Tangent weights of neighbour k and face k; the second tangent uses
+  // those of k-1 (a rotation by one).
+  const double* te = tables.edge(n);
+  const double* tf = tables.face(n);
+  for (int k = 0; k < n; ++k) {
+    const Vec3& q = p[level.ringVertices[o + k]];
+    const Vec3& r = p[opposite(level, level.ringFaces[o + k], level.ringFaceLocal[o + k])];
+    faces += r;
+    edges += q;
+    const int km = k ? k - 1 : n - 1;
+    frame.tangent1 += tf[k] * r + te[k] * q;
+    frame.tangent2 += tf[km] * r + te[km] * q;
+  }
+  frame.position = fw * faces + ew * edges + catmark::smoothLimitVertexWeight(n) * p[v];
+  return frame;
+}
+
+CatmarkLimitFrame creaseFrame(const PolyLevel& level, Index v, std::span<const Vec3> p) {
+  const int n = level.valence(v);
+  const Index o = level.ringOffsets[v];
+  int ends[2] = {-1, -1};
+  for (int k = 0, found = 0; k < n && found < 2; ++k) {
+    if (isSharp(level.edgeSharpness[level.ringEdges[o + k]])) ends[found++] = k;
+  }
+  const Vec3& a = p[level.ringVertices[o + ends[0]]];
+  const Vec3& b = p[level.ringVertices[o + ends[1]]];
+  CatmarkLimitFrame frame;
+  frame.position = catmark::kCreaseLimitNeighbourWeight * (a + b) + catmark::kCreaseLimitVertexWeight * p[v];
+  frame.tangent1 = 0.5 * (a - b);
+  const int interior = ends[1] - ends[0] - 1;
+  const catmark::CreaseTangentWeights w = catmark::creaseTangentWeights(interior);
+  Vec3 t2 = w.vertex * p[v] + w.creaseNeighbour * (a + b);
+  for (int i = 1; i <= interior; ++i) t2 += w.interiorNeighbour(i) * p[level.ringVertices[o + ends[0] + i]];
+  if (interior > 0) {
+    for (int i = 0; i <= interior; ++i) {
+      const Index k = o + ends[0] + i;
+      t2 += w.face(i) * p[opposite(level, level.ringFaces[k], level.ringFaceLocal[k])];
+    }
+  }
+  frame.tangent2 = t2;
+  return frame;
+}
+
+Vec3 faceNormals(const PolyLevel& level, Index v, std::span<const Vec3> p) {
+  Vec3 sum(0, 0, 0);
+  for (Index f : level.ringFacesOf(v)) {
+    if (f == kNoIndex) continue;
+    const Index* q = level.faceVertices.data() + 4 * f;
+    sum += (p[q[2]] - p[q[0]]) % (p[q[3]] - p[q[1]]);
+  }
+  return sum;
+}
+
+CatmarkLimitFrame frameWith(const PolyLevel& level, Index v, std::span<const Vec3> points, const TangentTables& tables) {
+  switch (level.vertexRules[v]) {
+    case VertexRule::kSmooth:
+    case VertexRule::kDart:
+      return smoothFrame(level, v, points, tables);
+    case VertexRule::kCrease:
+      return creaseFrame(level, v, points);
+    case VertexRule::kCorner:
+      return cornerFrame(level, v, points);
+  }
+  return cornerFrame(level, v, points);
+}
+
+}  // namespace
+
+CatmarkLimitFrame catmarkLimitFrame(const PolyLevel& level, Index v, std::span<const Vec3> points) {
+  return frameWith(level, v, points, TangentTables(level.valence(v)));
+}
+
+Status computeCatmarkLimit(const PolyLevel& level, std::span<const Vec3> points, std::span<Vec3> positions,
+                           std::span<Vec3> normals) {
+  if (!level.allQuads()) {
+    return invalidArgument("the Catmull-Clark limit needs a level of quads: this one has other polygons (refine once)");
+  }
+  if (level.ringOffsets.empty()) return internalError("the Catmull-Clark limit needs the level's full topology");
+  const bool wantNormals = !normals.empty();
+  const TangentTables tables(level.maxValence);
+  for (Index v = 0; v < level.numVertices; ++v) {
+    const CatmarkLimitFrame frame = frameWith(level, v, points, tables);
+    positions[v] = frame.position;
+    if (!wantNormals) continue;
+    Vec3 n = frame.tangent1 % frame.tangent2;
+    const double scale = std::sqrt(frame.tangent1.sqrnorm() * frame.tangent2.sqrnorm());
+    if (!(n.norm() > 1e-12 * scale)) n = faceNormals(level, v, points);
+    const double len = n.norm();
+    normals[v] = len > 0.0 ? (1.0 / len) * n : Vec3(0, 0, 0);
+  }
+  return Status::ok();
+}
+
+}  // namespace tessera::schemes

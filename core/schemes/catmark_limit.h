@@ -1,0 +1,33 @@
+// Limit positions and normals of Catmull-Clark at every vertex of an all-quad
+// level, with the masks of OpenSubdiv's PrimvarRefiner::Limit() (Sdc's
+// catmarkScheme.h): smooth and dart vertices by the eigenvector masks, crease
+// vertices by the B-spline along the crease and Biermann et al.'s tangent
+// across it, corners at their control point with the plane of their first
+// two edges. Semi-sharp features count as sharp, as in Limit().
+#pragma once
+
+#include <span>
+
+#include "core/schemes/poly_level.h"
+#include "core/util/status.h"
+#include "core/util/vec3.h"
+
+namespace tessera::schemes {
+
+struct CatmarkLimitFrame {
+  Vec3 position;
+  Vec3 tangent1;
+  Vec3 tangent2;
+};
+
+// One vertex of an all-quad level with full topology.
+CatmarkLimitFrame catmarkLimitFrame(const PolyLevel& level, Index v, std::span<const Vec3> points);
+
+// Every vertex; `normals` may be empty. A level with a face that is not a
+// quad is refused (refine it once first): the masks read each face's
+// opposite corner. Where the tangents are parallel (a degenerate control
+// net), the normal is the area-weighted normal of the adjacent faces.
+Status computeCatmarkLimit(const PolyLevel& level, std::span<const Vec3> points, std::span<Vec3> positions,
+                           std::span<Vec3> normals);
+
+}  // namespace tessera::schemes

@@ -1,0 +1,51 @@
+// Builds the base PolyLevel (level 0) of a polygon mesh with its feature tags
+// and the boundary rules of OpenSubdiv's Far factory: boundary edges become
+// infinitely sharp, and with kEdgeAndCorner a boundary vertex with a single
+// face becomes an infinitely sharp corner.
+#pragma once
+
+#include <vector>
+
+#include "core/loop/loop_options.h"
+#include "core/mesh/base_mesh.h"
+#include "core/mesh/polygon_soup.h"
+#include "core/schemes/poly_level.h"
+#include "core/util/status.h"
+
+namespace tessera::schemes {
+
+// OpenSubdiv's Sdc options that the crease rules of every scheme share; the
+// Loop options are exactly these.
+using CreaseOptions = LoopOptions;
+
+struct PolyTopology {
+  int numVertices = 0;
+  // Face f uses indices[faceOffsets[f] .. faceOffsets[f+1]), counter-clockwise.
+  std::vector<int> faceOffsets{0};
+  std::vector<int> indices;
+  struct Crease {
+    int v0, v1;
+    float sharpness;
+  };
+  std::vector<Crease> creases;
+  std::vector<float> vertexSharpness;  // empty, or one per vertex
+
+  int numFaces() const { return static_cast<int>(faceOffsets.size()) - 1; }
+  void addFace(std::span<const int> face) {
+    indices.insert(indices.end(), face.begin(), face.end());
+    faceOffsets.push_back(static_cast<int>(indices.size()));
+  }
+
+  // Triangles and tags of a validated base mesh.
+  static PolyTopology fromBaseMesh(const BaseMesh& mesh);
+  // Faces of a soup as they are (no tags); buildPolyLevel validates them.
+  static PolyTopology fromSoup(const PolygonSoup& soup);
+};
+
+// Errors (never asserts), each naming the face, edge or vertex: faces with
+// fewer than 3 corners or a repeated corner, out-of-range indices, non-
+// manifold edges and vertices, inconsistent orientation, unused vertices,
+// and tags on missing edges or vertices.
+Expected<PolyLevel> buildPolyLevel(const PolyTopology& topology, const CreaseOptions& options);
+
+}  // namespace tessera::schemes

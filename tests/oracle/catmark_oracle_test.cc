@@ -1,0 +1,163 @@
+// Catmull-Clark (and bilinear) against OpenSubdiv 3.5: Far::TopologyRefiner
+// with SCHEME_CATMARK, PrimvarRefinerReal<double> for refined points and
+// Limit(). Refined points at levels 1..3 within 1e-12 of the bounding-box
+// diagonal, limit positions within 1e-9 of it and limit normals within
+// 1e-6 rad, on quads, triangles and any polygons, closed and open, with
+// random semi-sharp and infinitely sharp tags from fixed seeds, under both
+// crease methods and both boundary rules.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "core/io/mesh_import.h"
+#include "core/schemes/catmark_limit.h"
+#include "core/schemes/polygon_reader.h"
+#include "core/schemes/quad_refiner.h"
+#include "oracle/osd_catmark_reference.h"
+#include "support/polygon_meshes.h"
+#include "support/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+using schemes::CreaseOptions;
+using schemes::QuadRefiner;
+using schemes::QuadScheme;
+using testing::PolyTestMesh;
+
+constexpr double kPointTolerance = 1e-12;     // times the bounding-box diagonal
+constexpr double kPositionTolerance = 1e-9;   // times the bounding-box diagonal
+constexpr double kNormalTolerance = 1e-6;     // radians
+
+double diagonal(const std::vector<Vec3>& points) {
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  }
+  return (hi - lo).norm();
+}
+
+double angleBetween(const Vec3& a, const Vec3& b) {
+  return std::atan2((a % b).norm(), a | b);
+}
+
+struct Totals {
+  long long points = 0, limits = 0, normals = 0, degenerateNormals = 0;
+};
+
+// Compares every level's points (and limits where the level is all quads).
+void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOptions& options, int levels,
+                     Totals& totals) {
+  SCOPED_TRACE(mesh.name + (options.creaseMethod == CreaseMethod::kChaikin ? " chaikin" : " uniform") +
+               (options.boundary == BoundaryInterpolation::kEdgeOnly ? " edge-only" : " edge-and-corner"));
+  auto refiner = QuadRefiner::create(mesh.topology, scheme, options, {.levels = levels});
+  ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
+  const auto ours = refiner->refinePointsPerLevel(mesh.points);
+  const bool limit = scheme == QuadScheme::kCatmullClark;
+  const int firstLimitLevel = refiner->level(0).allQuads() ? 0 : 1;
+  const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, limit, firstLimitLevel);
+  const double diag = diagonal(mesh.points);
+  for (int l = 0; l <= levels; ++l) {
+    const int n = refiner->level(l).numVertices;
+    ASSERT_EQ(static_cast<int>(ours[l].size()), n);
+    for (int v = 0; v < n; ++v) {
+      ASSERT_LE((ours[l][v] - osd[l].points[v]).norm(), kPointTolerance * diag) << "level " << l << " vertex " << v;
+    }
+    totals.points += n;
+    if (!limit || l < firstLimitLevel) continue;
+    std::vector<Vec3> positions(n), normals(n);
+    ASSERT_TRUE(schemes::computeCatmarkLimit(refiner->level(l), ours[l], positions, normals).isOk());
+    for (int v = 0; v < n; ++v) {
+      ASSERT_LE((positions[v] - osd[l].limitPositions[v]).norm(), kPositionTolerance * diag)
+          << "limit at level " << l << " vertex " << v;
+      const Vec3 osdNormal = osd[l].limitTangent1[v] % osd[l].limitTangent2[v];
+      const double scale = osd[l].limitTangent1[v].norm() * osd[l].limitTangent2[v].norm();
+      if (!(osdNormal.norm() > 1e-12 * scale)) {
+        ++totals.degenerateNormals;  // parallel tangents: Limit() gives no normal
+        continue;
+      }
+      ASSERT_LE(angleBetween(normals[v], osdNormal), kNormalTolerance) << "normal at level " << l << " vertex " << v;
+      ++totals.normals;
+    }
+    totals.limits += n;
+  }
+}
+
+std::vector<PolyTestMesh> shapes() {
+  using namespace testing;
+  return {quadCube(),
+          withPolyJitter(quadGrid(5, 4), 0.05, 7),
+          withPolyJitter(quadTorus(7, 5), 0.05, 3),
+          withPolyJitter(mixedPrism(5, false), 0.05, 11),
+          withPolyJitter(mixedPrism(7, true), 0.05, 12)};
+}
+
+std::vector<CreaseOptions> allOptions() {
+  std::vector<CreaseOptions> all;
+  for (auto method : {CreaseMethod::kUniform, CreaseMethod::kChaikin}) {
+    for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner}) {
+      all.push_back({method, boundary});
+    }
+  }
+  return all;
+}
+
+TEST(CatmarkOracle, ProceduralShapesWithoutTags) {
+  Totals totals;
+  for (const auto& mesh : shapes()) {
+    for (const auto& options : allOptions()) checkAgainstOsd(mesh, QuadScheme::kCatmullClark, options, 3, totals);
+  }
+  EXPECT_GT(totals.normals, 0);
+  std::printf("points %lld, limits %lld, normals %lld (parallel OpenSubdiv tangents skipped: %lld)\n", totals.points,
+              totals.limits, totals.normals, totals.degenerateNormals);
+}
+
+TEST(CatmarkOracle, RandomTagsFromFixedSeeds) {
+  Totals totals;
+  for (const auto& mesh : shapes()) {
+    for (uint32_t seed : {1u, 2u, 3u}) {
+      const PolyTestMesh tagged = testing::withRandomPolyTags(mesh, 0.3, 0.1, seed);
+      for (const auto& options : allOptions()) checkAgainstOsd(tagged, QuadScheme::kCatmullClark, options, 3, totals);
+    }
+  }
+  EXPECT_GT(totals.normals, 0);
+  std::printf("points %lld, limits %lld, normals %lld (parallel OpenSubdiv tangents skipped: %lld)\n", totals.points,
+              totals.limits, totals.normals, totals.degenerateNormals);
+}
+
+TEST(CatmarkOracle, RealPolygonMeshDoubleTorus) {
+  const std::string path = testing::cgalMeshPath("double-torus-example.off");
+  auto mesh = schemes::importPolygonMesh(path, "");
+  ASSERT_TRUE(mesh.isOk()) << mesh.status().toString();
+  PolyTestMesh real{"double-torus-example", mesh->topology, mesh->points};
+  int pentagonsOrMore = 0;
+  for (int f = 0; f < real.topology.numFaces(); ++f) {
+    pentagonsOrMore += real.topology.faceOffsets[f + 1] - real.topology.faceOffsets[f] >= 5 ? 1 : 0;
+  }
+  EXPECT_GT(pentagonsOrMore, 0);
+  Totals totals;
+  checkAgainstOsd(real, QuadScheme::kCatmullClark, {}, 3, totals);
+  checkAgainstOsd(testing::withRandomPolyTags(real, 0.2, 0.05, 5), QuadScheme::kCatmullClark,
+                  {CreaseMethod::kChaikin, BoundaryInterpolation::kEdgeOnly}, 3, totals);
+  EXPECT_GT(totals.normals, 0);
+}
+
+TEST(CatmarkOracle, RealTriangleMeshFandiskWithRandomTags) {
+  auto base = importMesh(testing::cgalMeshPath("fandisk.off"));
+  ASSERT_TRUE(base.isOk()) << base.status().toString();
+  PolyTestMesh real{"fandisk", schemes::PolyTopology::fromBaseMesh(*base), base->positions()};
+  Totals totals;
+  checkAgainstOsd(testing::withRandomPolyTags(real, 0.05, 0.01, 9), QuadScheme::kCatmullClark, {}, 2, totals);
+  EXPECT_GT(totals.normals, 0);
+}
+
+TEST(BilinearOracle, MatchesOpenSubdivOnPolygons) {
+  Totals totals;
+  for (const auto& mesh : shapes()) checkAgainstOsd(mesh, QuadScheme::kBilinear, {}, 3, totals);
+  EXPECT_GT(totals.points, 0);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,6 +1,11 @@
-// Mesh import: OBJ, OFF, PLY, STL through OpenMesh IO, and glTF/GLB through
-// tinygltf. The reader chosen follows the file extension; every error names
-// the file. Readers produce a PolygonSoup that buildBaseMesh() validates.
+// Mesh import: OBJ, OFF, PLY and STL through Tessera's own readers
+// (text_mesh_readers.h: full double precision, strict, with line numbers),
+// glTF/GLB through tinygltf (Draco-compressed primitives through Draco). The
+// reader chosen follows the file extension; every error names the file.
+// Readers produce a PolygonSoup; then, in order: --drop-unused renumbers it,
+// buildBaseMesh() triangulates and validates it, --crease-angle creases the
+// edges it names, and glTF extras tags are applied (a tag file given beside
+// the mesh is applied by the caller, after, with the same renumbering).
 #pragma once
 
 #include <string>
@@ -9,17 +14,40 @@
 
 #include "core/mesh/base_mesh.h"
 #include "core/mesh/polygon_soup.h"
+#include "core/mesh/unused_vertices.h"
 #include "core/util/status.h"
 
 namespace tessera {
 
 struct ImportOptions {
-  bool triangulate = false;  // fan polygons instead of rejecting them
+  bool triangulate = false;  // triangulate polygons (polygon_triangulation.h) instead of refusing them
+  bool dropUnused = false;   // drop vertices no face uses instead of refusing the file
+  // Degrees, 0 to 180; negative: off. Edges whose dihedral angle exceeds it
+  // become infinitely sharp (crease_angle.h).
+  double creaseAngle = -1;
 };
+
+// What the import did beyond reading, for the caller to report and to apply
+// a tag file with.
+struct ImportReport {
+  VertexRenumbering renumbering;  // the file's vertex numbers -> the mesh's
+  int edgesCreasedByAngle = 0;
+};
+
+struct ImportedMesh {
+  BaseMesh mesh;
+  ImportReport report;
+};
+
+// One line for people: "dropped 1 unused vertex (--drop-unused); creased 12
+// edges sharper than 30 degrees (--crease-angle)"; empty when there is
+// nothing to say.
+std::string describeImport(const ImportReport& report, const ImportOptions& options);
 
 // Reads, validates and returns the base mesh. glTF input may carry feature
 // tags in `extras` (see docs/FORMATS.md); they are applied to the mesh.
 Expected<BaseMesh> importMesh(const std::string& path, const ImportOptions& options = {});
+Expected<ImportedMesh> importMeshWithReport(const std::string& path, const ImportOptions& options = {});
 
 // The same import from bytes in memory, for meshes that arrive over the
 // network (CreateDocument) and for fuzzing. `extension` chooses the reader
@@ -28,6 +56,8 @@ Expected<BaseMesh> importMesh(const std::string& path, const ImportOptions& opti
 // are external files is refused (a GLB, or data: URIs, carry their own).
 Expected<BaseMesh> importMeshFromBytes(std::string_view bytes, const std::string& extension,
                                        const std::string& displayName, const ImportOptions& options = {});
+Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, const std::string& extension,
+                                                     const std::string& displayName, const ImportOptions& options = {});
 
 // Extensions importMesh() accepts, lower case with the dot: ".obj", ...
 const std::vector<std::string>& supportedImportExtensions();

@@ -108,23 +108,35 @@ Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::
   return tags;
 }
 
-Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh) {
+Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh,
+                 const VertexRenumbering& renumbering) {
   const TriMesh& m = mesh.mesh();
   const int n = mesh.numVertices();
+  const int fileVertices = renumbering.isIdentity() ? n : renumbering.fileVertexCount();
+  // The file's vertex v in the mesh; checks first that it exists.
+  const auto meshVertex = [&](int v, const std::string& where, int& out) -> Status {
+    if (v < 0 || v >= fileVertices) {
+      return notFound(where + "vertex " + std::to_string(v) + " does not exist (the " +
+                      (renumbering.isIdentity() ? "mesh" : "file") + " has " + std::to_string(fileVertices) +
+                      " vertices)");
+    }
+    out = renumbering.isIdentity() ? v : renumbering.newIndex[v];
+    if (out < 0) {
+      return notFound(where + "vertex " + std::to_string(v) + " was dropped: no face uses it (--drop-unused)");
+    }
+    return Status::ok();
+  };
   // Validate everything first so that an error leaves the mesh unchanged.
+  std::vector<FeatureTag> mapped = tags;
   std::map<std::pair<int, int>, size_t> seen;  // (v0, v1) or (v, -1) -> tag
   for (size_t i = 0; i < tags.size(); ++i) {
     const FeatureTag& tag = tags[i];
     const std::string where = locate(tag) + ": " + describe(tag) + ": ";
     const bool crease = tag.kind == FeatureTag::Kind::kCrease;
-    for (int v : crease ? std::vector<int>{tag.v0, tag.v1} : std::vector<int>{tag.v0}) {
-      if (v < 0 || v >= n) {
-        return notFound(where + "vertex " + std::to_string(v) + " does not exist (the mesh has " +
-                        std::to_string(n) + " vertices)");
-      }
-    }
+    TESSERA_RETURN_IF_ERROR(meshVertex(tag.v0, where, mapped[i].v0));
+    if (crease) TESSERA_RETURN_IF_ERROR(meshVertex(tag.v1, where, mapped[i].v1));
     if (!(tag.sharpness >= 0.0f)) return invalidArgument(where + "sharpness must be a number >= 0");
-    if (crease && !m.find_halfedge(m.vertex_handle(tag.v0), m.vertex_handle(tag.v1)).is_valid()) {
+    if (crease && !m.find_halfedge(m.vertex_handle(mapped[i].v0), m.vertex_handle(mapped[i].v1)).is_valid()) {
       return notFound(where + "vertices " + std::to_string(tag.v0) + " and " + std::to_string(tag.v1) +
                       " share no edge");
     }
@@ -135,7 +147,7 @@ Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, 
                              " is already tagged at " + locate(tags[it->second]));
     }
   }
-  for (const FeatureTag& tag : tags) {
+  for (const FeatureTag& tag : mapped) {
     const Status status = tag.kind == FeatureTag::Kind::kCrease
                               ? mesh.setCreaseByVertices(tag.v0, tag.v1, tag.sharpness)
                               : mesh.setCornerByVertex(tag.v0, tag.sharpness);
@@ -144,11 +156,13 @@ Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, 
   return Status::ok();
 }
 
-Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh) {
-  return applyTags(tags, [&](const FeatureTag& tag) { return sourceName + ":" + std::to_string(tag.line); }, mesh);
+Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh,
+                 const VertexRenumbering& renumbering) {
+  return applyTags(
+      tags, [&](const FeatureTag& tag) { return sourceName + ":" + std::to_string(tag.line); }, mesh, renumbering);
 }
 
-Status applyTagFile(const std::string& path, BaseMesh& mesh) {
+Status applyTagFile(const std::string& path, BaseMesh& mesh, const VertexRenumbering& renumbering) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return notFound(path + ": cannot open tag file");
   std::ostringstream text;
@@ -156,7 +170,7 @@ Status applyTagFile(const std::string& path, BaseMesh& mesh) {
   if (in.bad()) return ioError(path + ": read error");
   auto tags = parseTags(text.str(), path);
   if (!tags) return tags.status();
-  return applyTags(*tags, path, mesh);
+  return applyTags(*tags, path, mesh, renumbering);
 }
 
 }  // namespace tessera

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/mesh/base_mesh.h"
+#include "core/mesh/unused_vertices.h"
 #include "core/util/status.h"
 
 namespace tessera {
@@ -29,19 +30,25 @@ struct FeatureTag {
 Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::string& sourceName);
 
 // Applies tags to the mesh; a tag naming a missing edge or vertex is an error
-// with its line number, and leaves the mesh unchanged.
-Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh);
+// with its line number, and leaves the mesh unchanged. Tags name vertices by
+// the file's numbers: after --drop-unused, `renumbering` maps them to the
+// mesh's (a tag naming a dropped vertex is an error naming it), and messages
+// keep the file's numbers.
+Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh,
+                 const VertexRenumbering& renumbering = VertexRenumbering{});
 
 // Same, for tags from another source (glTF extras): `locate` names a tag in
 // error messages, e.g. "model.glb: extras.tessera.creases[2]".
 using TagLocator = std::function<std::string(const FeatureTag&)>;
-Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh);
+Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh,
+                 const VertexRenumbering& renumbering = VertexRenumbering{});
 
 // Parses a sharpness token: a finite number >= 0 or `inf` (any case).
 // Returns false for anything else (negative, NaN, junk).
 bool parseSharpness(const std::string& token, float& sharpness);
 
 // Reads, parses and applies the file.
-Status applyTagFile(const std::string& path, BaseMesh& mesh);
+Status applyTagFile(const std::string& path, BaseMesh& mesh,
+                    const VertexRenumbering& renumbering = VertexRenumbering{});
 
 }  // namespace tessera

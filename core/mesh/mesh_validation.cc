@@ -11,11 +11,14 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <span>
 #include <sstream>
 #include <unordered_map>
 #include <vector>
 
 #include <OpenMesh/Core/System/omstream.hh>
+
+#include "core/mesh/polygon_triangulation.h"
 
 namespace tessera {
 namespace {
@@ -28,8 +31,8 @@ constexpr double kRelativeAreaEpsilon = 1e-12;
 
 struct Triangle {
   std::array<int, 3> v;
-  int sourceFace;  // index of the polygon in the soup
-  bool fanned;     // produced by triangulating a polygon
+  int sourceFace;      // index of the polygon in the soup
+  bool fromPolygon;    // one of the triangles of a triangulated polygon
 };
 
 std::string joinIndices(const int* begin, const int* end) {
@@ -48,8 +51,8 @@ std::string faceName(const PolygonSoup& soup, int f) {
 }
 
 std::string triangleName(const PolygonSoup& soup, const Triangle& t) {
-  if (!t.fanned) return faceName(soup, t.sourceFace);
-  return faceName(soup, t.sourceFace) + ", fan triangle (" + joinIndices(t.v.data(), t.v.data() + 3) + ")";
+  if (!t.fromPolygon) return faceName(soup, t.sourceFace);
+  return faceName(soup, t.sourceFace) + ", its triangle (" + joinIndices(t.v.data(), t.v.data() + 3) + ")";
 }
 
 uint64_t edgeKey(int a, int b) {
@@ -67,6 +70,7 @@ std::string formatPoint(const Vec3& p) {
 Status collectTriangles(const PolygonSoup& soup, const BuildOptions& options, const std::string& src,
                         std::vector<Triangle>& triangles) {
   const int numPoints = static_cast<int>(soup.points.size());
+  std::vector<std::array<int, 3>> pieces;
   for (int f = 0; f < soup.numFaces(); ++f) {
     const int begin = soup.faceOffsets[f];
     const int n = soup.faceOffsets[f + 1] - begin;
@@ -91,12 +95,12 @@ Status collectTriangles(const PolygonSoup& soup, const BuildOptions& options, co
     }
     if (n > 3 && !options.triangulate) {
       return unsupported(src + ": " + faceName(soup, f) + ": has " + std::to_string(n) +
-                         " vertices; only triangles are accepted (use --triangulate to fan polygons)");
+                         " vertices; only triangles are accepted (use --triangulate to triangulate polygons)");
     }
-    // Fan from the first corner: (0,1,2), (0,2,3), ... keeps the orientation.
-    for (int k = 1; k + 1 < n; ++k) {
-      triangles.push_back({{idx[0], idx[k], idx[k + 1]}, f, n > 3});
-    }
+    pieces.clear();
+    const Status split = triangulatePolygon(soup.points, std::span<const int>(idx, n), pieces);
+    if (!split.isOk()) return Status(split.code(), src + ": " + faceName(soup, f) + ": " + split.message());
+    for (const std::array<int, 3>& t : pieces) triangles.push_back({t, f, n > 3});
   }
   return Status::ok();
 }
@@ -198,7 +202,7 @@ Status checkVertices(const PolygonSoup& soup, const std::vector<Triangle>& trian
   for (int v = 0; v < n; ++v) {
     if (start[v + 1] == 0) {
       return invalidMesh(src + ": vertex " + std::to_string(v) + " " + formatPoint(soup.points[v]) +
-                         ": not used by any face (isolated vertices are not accepted)");
+                         ": not used by any face (isolated vertices are not accepted; --drop-unused drops them)");
     }
     start[v + 1] += start[v];
   }

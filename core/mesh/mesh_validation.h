@@ -2,9 +2,11 @@
 //
 // Rejects, with a message naming the source, the element and the reason:
 // empty meshes, NaN/Inf coordinates, out-of-range indices, non-triangle faces
-// (unless triangulate is set, which fans polygons), degenerate faces (repeated
-// index or zero area), duplicate faces, non-manifold edges and vertices, and
-// inconsistently oriented neighbours.
+// (unless triangulate is set: polygon_triangulation.h, which also refuses
+// polygons that cannot be triangulated), degenerate faces (repeated index or
+// zero area), duplicate faces, non-manifold edges and vertices, inconsistently
+// oriented neighbours, and vertices no face uses (see unused_vertices.h for
+// dropping them first).
 #pragma once
 
 #include <string>
@@ -16,7 +18,7 @@
 namespace tessera {
 
 struct BuildOptions {
-  bool triangulate = false;  // fan polygons with more than 3 corners
+  bool triangulate = false;  // triangulate polygons with more than 3 corners
 };
 
 // `sourceName` (usually the file path) prefixes every error message.

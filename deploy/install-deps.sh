@@ -18,6 +18,8 @@ build_packages=(
   libcli11-dev
   # exact limit masks: eigenvectors of local subdivision matrices (header-only)
   libeigen3-dev
+  # polygon triangulation on import: constrained Delaunay (header-only; GMP at run time)
+  libcgal-dev
   # operations: HTTP health and Prometheus metrics, sd_notify
   prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev
 )

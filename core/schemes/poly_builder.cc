@@ -77,6 +77,11 @@ Status buildEdges(const PolyTopology& t, PolyLevel& level, std::vector<Index>& e
   edgesAt.assign(edgesAtOffset[nV], kNoIndex);
   edgesAtCount.assign(nV, 0);
   level.faceEdges.resize(level.faceVertices.size());
+  // A closed mesh has corners / 2 edges, an open one at most corners: no regrowth.
+  const size_t maxEdges = level.faceVertices.size();
+  level.edgeVertices.reserve(maxEdges);
+  level.edgeFaces.reserve(maxEdges);
+  level.edgeFaceLocal.reserve(maxEdges);
   for (Index f = 0; f < nF; ++f) {
     const Index o = level.faceOffsets[f];
     const int n = level.faceSize(f);

@@ -1,0 +1,127 @@
+// Catmull-Clark uniform refinement (topology + positions) and limit
+// evaluation of a real mesh, Tessera against OpenSubdiv Far in the same run.
+//
+//   build/release/bench/tessera_bench_scheme [--mesh PATH] [benchmark flags]
+//
+// The mesh is read as polygons (OBJ/OFF) or triangles (other formats); fandisk
+// (12,946 triangles, from libcgal-demo) by default. Both start from the same
+// faces and double-precision points; OpenSubdiv uses TopologyRefinerFactory +
+// RefineUniform + PrimvarRefiner::Interpolate (and ::Limit), SCHEME_CATMARK.
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include <benchmark/benchmark.h>
+#include <opensubdiv/far/primvarRefiner.h>
+
+#include "bench/ratio_reporter.h"
+#include "core/schemes/catmark_limit.h"
+#include "core/schemes/polygon_reader.h"
+#include "core/schemes/quad_refiner.h"
+#include "oracle/osd_adapter.h"
+#include "oracle/osd_catmark_reference.h"
+
+namespace {
+
+using namespace tessera;
+using namespace tessera::schemes;
+namespace Far = OpenSubdiv::Far;
+using oracle::OsdPoint;
+
+struct Input {
+  PolygonMesh mesh;
+  std::vector<OsdPoint> osdPoints;
+  std::unique_ptr<oracle::OsdPolyInput> osd;
+};
+
+Input& input() {
+  static Input in;
+  return in;
+}
+
+std::unique_ptr<Far::TopologyRefiner> osdRefiner(int level, bool fullTopology) {
+  return oracle::createOsdQuadRefiner(*input().osd, QuadScheme::kCatmullClark, CreaseOptions{}, level, fullTopology);
+}
+
+// Refine: the finest level gets faces only (OpenSubdiv's default).
+void refineTessera(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto refiner = QuadRefiner::create(input().mesh.topology, QuadScheme::kCatmullClark, CreaseOptions{},
+                                       {.levels = level, .fullTopologyInLastLevel = false});
+    auto points = refiner->refinePoints(input().mesh.points);
+    benchmark::DoNotOptimize(points.data());
+  }
+}
+
+void refineOpenSubdiv(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto refiner = osdRefiner(level, false);
+    auto points = oracle::interpolateOsd(*refiner, input().osdPoints, level);
+    benchmark::DoNotOptimize(points.data());
+  }
+}
+
+void limitTessera(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  auto refiner = QuadRefiner::create(input().mesh.topology, QuadScheme::kCatmullClark, CreaseOptions{}, {.levels = level});
+  auto points = refiner->refinePoints(input().mesh.points);
+  std::vector<Vec3> positions(points.size()), normals(points.size());
+  for (auto _ : state) {
+    auto status = computeCatmarkLimit(refiner->finestLevel(), points, positions, normals);
+    benchmark::DoNotOptimize(positions.data());
+    if (!status.isOk()) state.SkipWithError(status.toString().c_str());
+  }
+}
+
+void limitOpenSubdiv(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  auto refiner = osdRefiner(level, true);
+  auto points = oracle::interpolateOsd(*refiner, input().osdPoints, level);
+  Far::PrimvarRefiner primvar(*refiner);
+  std::vector<OsdPoint> positions(points.size()), t1(points.size()), t2(points.size());
+  for (auto _ : state) {
+    OsdPoint *p = positions.data(), *a = t1.data(), *b = t2.data();
+    primvar.Limit(points.data(), p, a, b);
+    benchmark::DoNotOptimize(positions.data());
+  }
+}
+
+BENCHMARK(refineTessera)->Name("CatmarkRefine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv)->Name("CatmarkRefine/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(limitTessera)->Name("CatmarkLimit/Tessera")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(limitOpenSubdiv)->Name("CatmarkLimit/OpenSubdiv")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string path = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
+  for (int i = 1; i + 1 < argc; ++i) {
+    if (std::strcmp(argv[i], "--mesh") == 0) {
+      path = argv[i + 1];
+      for (int j = i; j + 2 <= argc; ++j) argv[j] = argv[j + 2];
+      argc -= 2;
+      break;
+    }
+  }
+  auto mesh = importPolygonMesh(path, "");
+  if (!mesh.isOk()) {
+    std::fprintf(stderr, "tessera_bench_scheme: %s\n", mesh.status().toString().c_str());
+    return 1;
+  }
+  Input& in = input();
+  in.mesh = std::move(mesh).value();
+  std::printf("mesh %s: %d vertices, %d faces\n", path.c_str(), in.mesh.topology.numVertices,
+              in.mesh.topology.numFaces());
+  for (const auto& p : in.mesh.points) in.osdPoints.push_back(OsdPoint::from(p));
+  in.osd = std::make_unique<oracle::OsdPolyInput>(in.mesh.topology);
+
+  benchmark::Initialize(&argc, argv);
+  tessera::bench::RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  reporter.printRatios();
+  benchmark::Shutdown();
+  return 0;
+}

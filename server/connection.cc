@@ -47,18 +47,29 @@ const char* extensionOf(wire::MeshFormat format) {
 // touches the filesystem), with the import options of `tessera doc new`.
 // Errors name the file as the client named it (file_name), else the
 // document: "cube.obj:12: ...", never a server path.
-Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel) {
+Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, ImportReport& report) {
   const char* extension = extensionOf(request.mesh_format());
   if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
   const std::string meshName = request.file_name().empty() ? "mesh '" + request.name() + "'" : request.file_name();
   ImportOptions import;
   import.triangulate = request.triangulate();
-  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, importMeshFromBytes(request.mesh(), extension, meshName, import));
+  import.dropUnused = request.drop_unused();
+  if (request.crease_by_angle()) {
+    if (!(request.crease_angle() >= 0 && request.crease_angle() <= 180)) {
+      return invalidArgument("create: crease_angle " + std::to_string(request.crease_angle()) +
+                             " is outside 0 to 180 degrees");
+    }
+    import.creaseAngle = request.crease_angle();
+  }
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshFromBytesWithReport(request.mesh(), extension, meshName, import));
+  BaseMesh& mesh = imported.mesh;
+  report = imported.report;
   if (!request.tags().empty()) {
     const std::string tagsName =
         request.tags_file_name().empty() ? "tags of '" + request.name() + "'" : request.tags_file_name();
     TESSERA_ASSIGN_OR_RETURN(auto tags, parseTags(request.tags(), tagsName));
-    TESSERA_RETURN_IF_ERROR(applyTags(tags, tagsName, mesh));
+    // Tags name the file's vertices, renumbered like the mesh (drop_unused).
+    TESSERA_RETURN_IF_ERROR(applyTags(tags, tagsName, mesh, report.renumbering));
   }
   DocumentOptions options;
   if (request.crease_method() == wire::CREASE_METHOD_CHAIKIN) options.loop.creaseMethod = CreaseMethod::kChaikin;
@@ -521,12 +532,15 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
   // Importing is bulk work: off the network threads and off the workers
   // that run documents' edits (issue 13 §2).
   asio::post(context_.bulk, [self = shared_from_this(), seq, request] {
-    auto doc = importDocument(request, self->context_.config.limits.maxLevel);
+    ImportReport report;
+    auto doc = importDocument(request, self->context_.config.limits.maxLevel, report);
     Expected<DocumentId> id = doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
                                          : Expected<DocumentId>(doc.status());
     doc = invalidArgument("released");
     ::malloc_trim(0);  // an import of millions of triangles leaves its memory in the heap otherwise
-    asio::post(self->strand_, [self, seq, id] {
+    const uint32_t dropped = static_cast<uint32_t>(report.renumbering.dropped);
+    const uint32_t creased = static_cast<uint32_t>(report.edgesCreasedByAngle);
+    asio::post(self->strand_, [self, seq, id, dropped, creased] {
       if (!id.isOk()) {
         const bool mesh = id.status().code() == ErrorCode::kInvalidMesh || id.status().code() == ErrorCode::kParseError;
         return self->reject(seq, mesh ? wire::REJECT_REASON_INVALID_MESH : wire::REJECT_REASON_INVALID_ARGUMENT,
@@ -537,6 +551,8 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
       ack.mutable_ack()->set_client_seq(seq);
       ack.mutable_ack()->set_document_id(id->value);
       ack.mutable_ack()->set_version(1);
+      ack.mutable_ack()->set_dropped_vertices(dropped);
+      ack.mutable_ack()->set_creased_edges(creased);
       self->reply(ack);
     });
   });

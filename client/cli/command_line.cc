@@ -1,6 +1,7 @@
 #include "client/cli/command_line.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 
@@ -17,6 +18,21 @@ CLI::Validator wholeNumber() {
         if (text.empty() || text.size() > 4 || text.find_first_not_of("0123456789") != std::string::npos ||
             std::stoi(text) > 1000) {
           return "expects a whole number from 0 to 1000, got '" + text + "'";
+        }
+        return "";
+      },
+      "");
+}
+
+CLI::Validator degrees() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        const char* end = text.data() + text.size();
+        auto [ptr, ec] = std::from_chars(text.data(), end, value);
+        // from_chars reads "nan" and "inf" too: the range test refuses them.
+        if (text.empty() || ec != std::errc() || ptr != end || !(value >= 0 && value <= 180)) {
+          return "expects degrees from 0 to 180, got '" + text + "'";
         }
         return "";
       },

@@ -25,6 +25,9 @@ void onChosen(CLI::App& app, Action& action, Action run);
 // A whole number 0..1000 ("--level: expects a whole number from 0 to 1000, got 'two'").
 CLI::Validator wholeNumber();
 
+// An angle in degrees, 0 to 180 ("--crease-angle: expects degrees from 0 to 180, got '200'").
+CLI::Validator degrees();
+
 // Accepts exactly these words: "expects uniform or chaikin, got 'x'".
 CLI::Validator oneOf(const std::vector<std::string>& words);
 

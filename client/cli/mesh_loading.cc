@@ -1,5 +1,7 @@
 #include "client/cli/mesh_loading.h"
 
+#include <cstdio>
+
 #include "client/cli/command_line.h"
 #include "core/io/mesh_import.h"
 #include "core/io/tag_file.h"
@@ -11,7 +13,17 @@ void addMeshInputOptions(CLI::App& app, MeshInputArgs& args) {
       ->required();
   app.add_option("--tags", args.tags, "feature tags: 'crease I J S' and 'corner I S' lines (docs/FORMATS.md)")
       ->type_name("FILE");
-  app.add_flag("--triangulate", args.triangulate, "fan polygons with more than three corners into triangles");
+  app.add_flag("--triangulate", args.triangulate,
+               "triangulate polygons with more than three corners (concave and non-planar ones too)");
+  app.add_flag("--drop-unused", args.dropUnused,
+               "drop vertices no face uses instead of refusing the mesh (--tags keeps the file's numbers)");
+  app.add_option("--crease-angle", args.creaseAngle,
+                 "make edges whose dihedral angle exceeds DEG degrees infinitely sharp (0 to 180)")
+      ->check(degrees())
+      ->type_name("DEG");
+  // The command as people type it ("doc new"), for notes on stderr.
+  const CLI::App* parent = app.get_parent();
+  args.command = (parent != nullptr && parent->get_parent() != nullptr ? parent->get_name() + " " : "") + app.get_name();
 }
 
 void addSchemeOptions(CLI::App& app, SchemeArgs& args) {
@@ -44,12 +56,22 @@ DocumentOptions documentOptions(const DocumentArgs& args, int maxLevelDefault) {
   return options;
 }
 
-Expected<BaseMesh> loadMesh(const MeshInputArgs& args) {
+ImportOptions importOptions(const MeshInputArgs& args) {
   ImportOptions options;
   options.triangulate = args.triangulate;
-  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, importMesh(args.input, options));
-  if (!args.tags.empty()) TESSERA_RETURN_IF_ERROR(applyTagFile(args.tags, mesh));
-  return mesh;
+  options.dropUnused = args.dropUnused;
+  options.creaseAngle = args.creaseAngle;
+  return options;
+}
+
+Expected<BaseMesh> loadMesh(const MeshInputArgs& args) {
+  const ImportOptions options = importOptions(args);
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshWithReport(args.input, options));
+  // Tags name the file's vertices: renumbered like the mesh.
+  if (!args.tags.empty()) TESSERA_RETURN_IF_ERROR(applyTagFile(args.tags, imported.mesh, imported.report.renumbering));
+  const std::string note = describeImport(imported.report, options);
+  if (!note.empty()) std::fprintf(stderr, "tessera %s: %s: %s\n", args.command.c_str(), args.input.c_str(), note.c_str());
+  return std::move(imported.mesh);
 }
 
 }  // namespace tessera::cli

@@ -1,6 +1,7 @@
 // The options that name a base mesh and how it becomes a document, shared by
 // `info`, `refine`, `doc new` and `remote create` so that they read alike:
-//   IN [--tags FILE] [--triangulate]                 (every mesh input)
+//   IN [--tags FILE] [--triangulate] [--drop-unused] [--crease-angle DEG]
+//                                                    (every mesh input)
 //   [--max-level N] [--crease-method M] [--boundary B]   (documents)
 #pragma once
 
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "core/document/document.h"
+#include "core/io/mesh_import.h"
 #include "core/mesh/base_mesh.h"
 #include "core/util/status.h"
 
@@ -17,6 +19,9 @@ struct MeshInputArgs {
   std::string input;
   std::string tags;  // empty: none
   bool triangulate = false;
+  bool dropUnused = false;
+  double creaseAngle = -1;  // degrees; negative: not given
+  std::string command;      // "refine", "doc new": names the command in notes
 };
 
 struct SchemeArgs {
@@ -29,7 +34,7 @@ struct DocumentArgs {
   int maxLevel = -1;  // -1: not given
 };
 
-// IN (required), --tags FILE, --triangulate.
+// IN (required), --tags FILE, --triangulate, --drop-unused, --crease-angle DEG.
 void addMeshInputOptions(CLI::App& app, MeshInputArgs& args);
 // --crease-method M, --boundary B.
 void addSchemeOptions(CLI::App& app, SchemeArgs& args);
@@ -40,7 +45,12 @@ LoopOptions loopOptions(const SchemeArgs& args);
 // `maxLevelDefault` when --max-level is not given.
 DocumentOptions documentOptions(const DocumentArgs& args, int maxLevelDefault = DocumentOptions{}.maxLevel);
 
+ImportOptions importOptions(const MeshInputArgs& args);
+
 // Reads, validates and tags the mesh; errors name the file (and its line).
+// What the import changed (vertices dropped, edges creased by angle) is
+// said on stderr: "tessera refine: bunny.ply: dropped 1 unused vertex
+// (--drop-unused)".
 Expected<BaseMesh> loadMesh(const MeshInputArgs& args);
 
 }  // namespace tessera::cli

@@ -9,7 +9,8 @@
 
 namespace tessera::cli {
 
-// remote create MESH [--tags FILE] [--triangulate] [--max-level N] [--crease-method M]
+// remote create MESH [--tags FILE] [--triangulate] [--drop-unused] [--crease-angle DEG]
+//                    [--max-level N] [--crease-method M]
 //                    [--boundary B] [--doc-name NAME]
 void addRemoteCreate(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
 // remote edit DOC --script FILE: one EditBatch, all or nothing.

@@ -1,5 +1,6 @@
 // tessera remote create: a base mesh becomes a document on the server, with
-// the import options of `tessera doc new`. The server imports the bytes in
+// the import options of `tessera doc new` (--triangulate, --drop-unused,
+// --crease-angle: the server imports, and its Ack says what it changed). The server imports the bytes in
 // memory and names the user's file in its errors (CreateDocument.file_name).
 #include <algorithm>
 #include <cstdio>
@@ -45,6 +46,11 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
   c->set_mesh_format(*format);
   c->set_file_name(args.mesh.input);
   c->set_triangulate(args.mesh.triangulate);
+  c->set_drop_unused(args.mesh.dropUnused);
+  if (args.mesh.creaseAngle >= 0) {
+    c->set_crease_by_angle(true);
+    c->set_crease_angle(args.mesh.creaseAngle);
+  }
   if (!args.mesh.tags.empty()) {
     auto text = readFile(args.mesh.tags);
     if (!text.isOk()) return fail("remote create", text.status());
@@ -61,6 +67,12 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
   if (!session.isOk()) return connectFailed("create", session.status());
   auto reply = (*session)->call(m, 120);
   if (int rc = outcome("create", reply)) return rc;
+  // What the server's import did, said as `tessera doc new` says it.
+  ImportReport report;
+  report.renumbering.dropped = static_cast<int>(reply->ack().dropped_vertices());
+  report.edgesCreasedByAngle = static_cast<int>(reply->ack().creased_edges());
+  const std::string note = describeImport(report, importOptions(args.mesh));
+  if (!note.empty()) std::fprintf(stderr, "tessera remote create: %s: %s\n", args.mesh.input.c_str(), note.c_str());
   std::printf("%llu\n", static_cast<unsigned long long>(reply->ack().document_id()));
   return 0;
 }

@@ -1,5 +1,6 @@
 // tessera refine: uniform Loop refinement with sharp features, written as
-// control points or as the limit surface with limit normals.
+// control points or as the limit surface with limit normals; --scheme picks
+// another of the classic schemes (core/schemes/scheme.h).
 #include <cstdio>
 #include <memory>
 
@@ -8,6 +9,7 @@
 #include "client/cli/mesh_loading.h"
 #include "core/io/mesh_export.h"
 #include "core/loop/loop_refiner.h"
+#include "core/schemes/scheme.h"
 
 namespace tessera::cli {
 
@@ -20,15 +22,69 @@ struct RefineArgs {
   bool limit = false;
   bool draco = false;
   std::string output;
+  std::string schemeName = "loop";
+  // Import options given on the command line that the polygon reader of
+  // the polygon schemes does not apply.
+  std::vector<std::string> polygonUnsupported;
 };
 
 // Progress only where a person would wait for it.
 constexpr long long kProgressFaces = 1'000'000;
 
+Status writeSurface(const RefineArgs& args, const SurfaceMesh& surface) {
+  ExportOptions exportOptions;
+  exportOptions.draco = args.draco;
+  TESSERA_RETURN_IF_ERROR(exportMesh(surface, args.output, exportOptions));
+  std::printf("wrote %s: %s vertices, %s triangles (level %d%s)\n", args.output.c_str(),
+              formatCount(surface.positions.size()).c_str(), formatCount(surface.triangles.size()).c_str(), args.level,
+              args.limit ? ", limit surface" : "");
+  return Status::ok();
+}
+
+// Every scheme but Loop: polygons or triangles in, one refine call.
+int runOtherScheme(const RefineArgs& args) {
+  using namespace schemes;
+  const Scheme scheme = parseScheme(args.schemeName).value();  // checked by the option
+  const std::string name = schemeName(scheme);
+  if (!schemeHasCreases(scheme)) {
+    if (!args.mesh.tags.empty()) return usage("refine", "--tags: the " + name + " scheme has no sharp features");
+    if (!args.scheme.creaseMethod.empty() || !args.scheme.boundary.empty()) {
+      return usage("refine", std::string(args.scheme.creaseMethod.empty() ? "--boundary" : "--crease-method") +
+                                 ": the " + name + " scheme has no crease rules");
+    }
+  }
+  if (const std::string why = limitUnavailableReason(scheme); args.limit && !why.empty()) {
+    return usage("refine", "--limit: " + why);
+  }
+  SchemeRequest request;
+  request.scheme = scheme;
+  request.levels = args.level;
+  request.limit = args.limit;
+  request.crease = loopOptions(args.scheme);
+  Expected<SurfaceMesh> surface = invalidArgument("no input");
+  if (schemeTakesPolygons(scheme)) {
+    if (!args.polygonUnsupported.empty()) {
+      return usage("refine", args.polygonUnsupported.front() + ": not available with --scheme " + name +
+                                 ", which reads the file's polygons as they are");
+    }
+    auto mesh = importPolygonMesh(args.mesh.input, args.mesh.tags);
+    if (!mesh.isOk()) return fail("refine", mesh.status());
+    surface = refinePolygons(*mesh, request);
+  } else {
+    auto mesh = loadMesh(args.mesh);
+    if (!mesh.isOk()) return fail("refine", mesh.status());
+    surface = refineTriangles(BaseTopology::fromBaseMesh(*mesh), mesh->positions(), request);
+  }
+  if (!surface.isOk()) return fail("refine", surface.status().withContext(args.mesh.input));
+  if (Status written = writeSurface(args, *surface); !written.isOk()) return fail("refine", written);
+  return 0;
+}
+
 int runRefine(const RefineArgs& args) {
   if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
     return usage("refine", same.message());
   }
+  if (args.schemeName != "loop") return runOtherScheme(args);
   auto mesh = loadMesh(args.mesh);
   if (!mesh.isOk()) return fail("refine", mesh.status());
 
@@ -60,24 +116,22 @@ int runRefine(const RefineArgs& args) {
     surface = refiner->controlSurface(points);
   }
 
-  ExportOptions exportOptions;
-  exportOptions.draco = args.draco;
   if (showProgress) std::fprintf(stderr, "tessera refine: writing %s\n", args.output.c_str());
-  Status written = exportMesh(surface, args.output, exportOptions);
-  if (!written.isOk()) return fail("refine", written);
-  std::printf("wrote %s: %s vertices, %s triangles (level %d%s)\n", args.output.c_str(),
-              formatCount(surface.positions.size()).c_str(), formatCount(surface.triangles.size()).c_str(), args.level,
-              args.limit ? ", limit surface" : "");
+  if (Status written = writeSurface(args, surface); !written.isOk()) return fail("refine", written);
   return 0;
 }
 
 }  // namespace
 
 void addRefineCommand(CLI::App& app, Action& action) {
-  CLI::App* refine = app.add_subcommand("refine", "Loop-refine a base mesh with its sharp features and write it");
+  CLI::App* refine = app.add_subcommand("refine", "Refine a base mesh (Loop or another scheme) and write it");
   refine->footer(
       "Refines IN N times with Loop's scheme and its sharp features (creases,\n"
-      "corners, darts, cusps; OpenSubdiv 3.5 semantics) and writes OUT.");
+      "corners, darts, cusps; OpenSubdiv 3.5 semantics) and writes OUT.\n"
+      "--scheme catmull-clark (OpenSubdiv's creases too) and bilinear refine the\n"
+      "polygons of an OBJ or OFF file as they are; doo-sabin too; butterfly and\n"
+      "sqrt3 (closed meshes) refine triangles. --limit: loop, catmull-clark,\n"
+      "sqrt3 (positions only).");
   auto args = std::make_shared<RefineArgs>();
   addMeshInputOptions(*refine, args->mesh);
   refine->add_option("--level", args->level, "refinement level, 0 or more")->required()->check(wholeNumber());
@@ -87,7 +141,16 @@ void addRefineCommand(CLI::App& app, Action& action) {
   refine->add_flag("--limit", args->limit, "write limit positions and limit normals instead of control points");
   refine->add_flag("--draco", args->draco, "GLB only: compress with KHR_draco_mesh_compression");
   addSchemeOptions(*refine, args->scheme);
-  onChosen(*refine, action, [args] { return runRefine(*args); });
+  refine->add_option("--scheme", args->schemeName, "loop (default), catmull-clark, bilinear, butterfly, sqrt3 or doo-sabin")
+      ->check(oneOf(schemes::schemeNames()))
+      ->type_name("S");
+  onChosen(*refine, action, [args, refine] {
+    for (const char* name : {"--triangulate", "--drop-unused", "--crease-angle"}) {
+      const CLI::Option* option = refine->get_option_no_throw(name);
+      if (option != nullptr && option->count() > 0) args->polygonUnsupported.push_back(name);
+    }
+    return runRefine(*args);
+  });
 }
 
 }  // namespace tessera::cli

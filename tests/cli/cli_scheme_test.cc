@@ -1,0 +1,93 @@
+// `tessera refine --scheme`: the real binary on polygon and triangle input,
+// the counts each scheme must produce, and the refusals (exit 2, naming the
+// option) where a scheme has no creases or no limit.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "cli/cli_run.h"
+#include "support/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+std::string writeQuadCube(const std::string& dir) {
+  const std::string path = dir + "/quad-cube.obj";
+  std::ofstream(path) << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  return path;
+}
+
+TEST(CliScheme, CatmullClarkRefinesQuadsAsQuads) {
+  const std::string dir = testing::makeTempDir("cli-scheme");
+  const std::string cube = writeQuadCube(dir);
+  // Level 1: 8 + 6 + 12 vertices, 24 quads written as 48 triangles.
+  CliRun run = runCli("refine " + cube + " --scheme catmull-clark --level 1 -o " + dir + "/cc1.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("26 vertices, 48 triangles (level 1)"), std::string::npos) << run.out;
+  // The corner (1, 1, 1) moves to 5/9 of itself (the shortest round-trip decimal).
+  EXPECT_NE(readAll(dir + "/cc1.obj").find("v 0.5555555555555556 0.5555555555555556 0.5555555555555556"),
+            std::string::npos);
+  run = runCli("refine " + cube + " --scheme=catmull-clark --level 2 --limit -o " + dir + "/cc2.ply");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("98 vertices, 192 triangles (level 2, limit surface)"), std::string::npos) << run.out;
+}
+
+TEST(CliScheme, EveryOtherSchemeWritesItsCounts) {
+  const std::string dir = testing::makeTempDir("cli-scheme");
+  const std::string cube = writeQuadCube(dir);
+  // Bilinear: as Catmull-Clark's topology. Doo-Sabin: one face per face,
+  // edge and vertex (6 quads, 12 quads, 8 triangles: 6*2 + 12*2 + 8 = 44).
+  CliRun run = runCli("refine " + cube + " --scheme bilinear --level 1 -o " + dir + "/b.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("26 vertices, 48 triangles"), std::string::npos) << run.out;
+  run = runCli("refine " + cube + " --scheme doo-sabin --level 1 -o " + dir + "/d.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("24 vertices, 44 triangles"), std::string::npos) << run.out;
+  // Triangle schemes on the triangulated cube (12 triangles, 18 edges).
+  const std::string triangles = testing::sourceTestDataPath("cube.obj");
+  run = runCli("refine " + triangles + " --scheme butterfly --level 1 -o " + dir + "/bf.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("26 vertices, 48 triangles"), std::string::npos) << run.out;
+  run = runCli("refine " + triangles + " --scheme sqrt3 --level 2 --limit -o " + dir + "/s3.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  // Each step: a vertex per face, three triangles per triangle.
+  EXPECT_NE(run.out.find("56 vertices, 108 triangles (level 2, limit surface)"), std::string::npos) << run.out;
+}
+
+TEST(CliScheme, RefusalsNameTheOption) {
+  const std::string dir = testing::makeTempDir("cli-scheme");
+  const std::string cube = writeQuadCube(dir);
+  const std::string triangles = testing::sourceTestDataPath("cube.obj");
+  struct Case {
+    std::string args, expected;
+  };
+  const Case cases[] = {
+      {"refine " + cube + " --scheme kobbelt --level 1 -o " + dir + "/x.obj", "--scheme"},
+      {"refine " + triangles + " --scheme butterfly --limit --level 1 -o " + dir + "/x.obj", "--limit"},
+      {"refine " + cube + " --scheme doo-sabin --tags " + testing::sourceTestDataPath("cube.tags") +
+           " --level 1 -o " + dir + "/x.obj",
+       "--tags"},
+      {"refine " + cube + " --scheme bilinear --crease-method chaikin --level 1 -o " + dir + "/x.obj",
+       "--crease-method"},
+      {"refine " + cube + " --scheme catmull-clark --triangulate --level 1 -o " + dir + "/x.obj", "--triangulate"},
+  };
+  for (const Case& c : cases) {
+    const CliRun run = runCli(c.args);
+    EXPECT_EQ(run.exitCode, 2) << c.args << "\n" << run.err;
+    EXPECT_NE(run.err.find(c.expected), std::string::npos) << run.err;
+  }
+  // Not usage errors: a polygon level has no Catmull-Clark limit masks;
+  // sqrt3 refuses a boundary. Both exit 1 with the file named.
+  std::ofstream(dir + "/open.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  CliRun run = runCli("refine " + dir + "/open.obj --scheme sqrt3 --level 1 -o " + dir + "/x.obj");
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("boundary"), std::string::npos) << run.err;
+  std::ofstream(dir + "/tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  run = runCli("refine " + dir + "/tri.obj --scheme catmull-clark --level 0 --limit -o " + dir + "/x.obj");
+  EXPECT_EQ(run.exitCode, 1) << run.err;
+  EXPECT_NE(run.err.find("tri.obj"), std::string::npos) << run.err;
+}
+
+}  // namespace
+}  // namespace tessera

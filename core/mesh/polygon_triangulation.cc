@@ -61,6 +61,24 @@ std::string findCrossing(const std::vector<Point2>& outline, std::span<const int
   return "its outline is not simple";
 }
 
+// The corners in an orthonormal frame (u, v) of the plane normal to
+// `normal`, with u x v along it: counter-clockwise in (u, v) is the
+// polygon's own orientation about `normal`.
+std::vector<Point2> project(std::span<const Vec3> points, std::span<const int> corners, const Vec3& normal) {
+  const Vec3 w = normal / normal.norm();
+  const Vec3 helper = std::abs(w[0]) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  const Vec3 u = (helper % w).normalized();
+  const Vec3 v = w % u;
+  const Vec3& origin = points[corners[0]];
+  std::vector<Point2> outline;
+  outline.reserve(corners.size());
+  for (int c : corners) {
+    const Vec3 d = points[c] - origin;
+    outline.emplace_back(d | u, d | v);
+  }
+  return outline;
+}
+
 // Marks the faces outside the outline: those reachable from the infinite
 // face without crossing a constrained (outline) edge.
 void markOutside(Cdt& cdt) {
@@ -100,21 +118,23 @@ Status triangulatePolygon(std::span<const Vec3> points, std::span<const int> cor
   double longest = 0;
   for (size_t k = 0; k < n; ++k) longest = std::max(longest, (points[corners[(k + 1) % n]] - points[corners[k]]).sqrnorm());
   if (!(normal.norm() > kRelativeAreaEpsilon * longest)) {
-    return invalidMesh("cannot be triangulated: degenerate, no area (its corners are collinear)");
+    // No area overall: collinear corners, or lobes of opposite orientation
+    // that cancel (a bow tie). The largest corner triangle tells which, and
+    // gives a plane in which to find the crossing.
+    const Vec3& origin = points[corners[0]];
+    Vec3 widest(0, 0, 0);
+    for (size_t k = 1; k + 1 < n; ++k) {
+      const Vec3 c = (points[corners[k]] - origin) % (points[corners[k + 1]] - origin);
+      if (c.norm() > widest.norm()) widest = c;
+    }
+    if (!(widest.norm() > kRelativeAreaEpsilon * longest)) {
+      return invalidMesh("cannot be triangulated: degenerate, no area (its corners are collinear)");
+    }
+    return invalidMesh("cannot be triangulated: self-intersecting, " +
+                       findCrossing(project(points, corners, widest), corners) +
+                       " (its parts turn opposite ways and their areas cancel)");
   }
-  // An orthonormal frame (u, v, normal): counter-clockwise in (u, v) is the
-  // polygon's own orientation.
-  const Vec3 w = normal / normal.norm();
-  const Vec3 helper = std::abs(w[0]) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  const Vec3 u = (helper % w).normalized();
-  const Vec3 v = w % u;
-  const Vec3& origin = points[corners[0]];
-  std::vector<Point2> outline;
-  outline.reserve(n);
-  for (int c : corners) {
-    const Vec3 d = points[c] - origin;
-    outline.emplace_back(d | u, d | v);
-  }
+  const std::vector<Point2> outline = project(points, corners, normal);
   if (!CGAL::is_simple_2(outline.begin(), outline.end(), Kernel())) {
     return invalidMesh("cannot be triangulated: self-intersecting, " + findCrossing(outline, corners) +
                        " (seen along its mean normal)");

@@ -40,10 +40,27 @@ CatmarkLimitFrame cornerFrame(const PolyLevel& level, Index v, std::span<const V
   return {p[v], p[ring[0]] - p[v], p[ring[1]] - p[v]};
 }
 
+// The regular case, valence 4, written out: the bicubic B-spline's limit
+// (4/9, 1/9, 1/36) and tangents (edges 4, 0, -4, 0; faces 1, -1, -1, 1),
+// as catmarkScheme.h specialises it.
+CatmarkLimitFrame regularFrame(const PolyLevel& level, Index v, Index o, std::span<const Vec3> p) {
+  const Index* rv = level.ringVertices.data() + o;
+  const Index* rf = level.ringFaces.data() + o;
+  const LocalIndex* rl = level.ringFaceLocal.data() + o;
+  const Vec3 &e0 = p[rv[0]], &e1 = p[rv[1]], &e2 = p[rv[2]], &e3 = p[rv[3]];
+  const Vec3& f0 = p[opposite(level, rf[0], rl[0])];
+  const Vec3& f1 = p[opposite(level, rf[1], rl[1])];
+  const Vec3& f2 = p[opposite(level, rf[2], rl[2])];
+  const Vec3& f3 = p[opposite(level, rf[3], rl[3])];
+  return {(1.0 / 36.0) * ((f0 + f1) + (f2 + f3)) + (1.0 / 9.0) * ((e0 + e1) + (e2 + e3)) + (4.0 / 9.0) * p[v],
+          4.0 * (e0 - e2) + ((f0 - f1) + (f3 - f2)), 4.0 * (e1 - e3) + ((f0 + f1) - (f2 + f3))};
+}
+
 CatmarkLimitFrame smoothFrame(const PolyLevel& level, Index v, std::span<const Vec3> p, const TangentTables& tables) {
   const int n = level.valence(v);
   if (n == 2) return cornerFrame(level, v, p);
   const Index o = level.ringOffsets[v];
+  if (n == 4) return regularFrame(level, v, o, p);
   const double fw = catmark::smoothLimitFaceWeight(n), ew = catmark::smoothLimitNeighbourWeight(n);
   CatmarkLimitFrame frame;
   Vec3 faces(0, 0, 0), edges(0, 0, 0);

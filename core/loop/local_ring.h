@@ -1,0 +1,53 @@
+// One vertex and its ring of neighbours, refined on their own.
+//
+// Loop's rules are local: the next level's centre and ring points depend
+// only on this level's centre, ring and ring-edge sharpness (the vertex rule
+// and the edge rule, seed 000 §2.4). So the limit at a vertex can be found
+// from its ring alone by repeating one step, without refining the mesh. The
+// step here applies the same rules, with the same sharpness decay and the
+// same blending of fractional sharpness, as interpolate.cc and
+// sharpness_inheritance.cc (Sdc semantics, which the oracle suite checks);
+// tests/core/local_ring_test.cc checks it against refineLevel +
+// interpolateLevel.
+//
+// Used where a semi-sharp feature has not decayed by the finest level: the
+// ring is refined until every sharpness is 0 or infinite, after which the
+// rules no longer change and the stationary masks apply (limit_masks.h).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "core/loop/level.h"
+#include "core/loop/loop_options.h"
+#include "core/util/vec3.h"
+
+namespace tessera {
+
+struct LocalRing {
+  int valence = 0;
+  bool boundary = false;  // ring edges 0 and valence-1 are boundary edges
+  VertexRule rule = VertexRule::kSmooth;
+  float vertexSharpness = 0.0f;
+  std::vector<float> edgeSharpness;  // ring edge k: centre to neighbour k
+  // Chaikin decay of ring edge k at its far end reads the sharpness of the
+  // far vertex's ring (Sdc CREASE_CHAIKIN); unused for uniform decay.
+  std::vector<std::vector<float>> farRingSharpness;
+  std::vector<Vec3> points;  // [0] the centre, [1 + k] neighbour k
+  // The same stencils applied to the scalar 1 at the centre and 0 elsewhere:
+  // how much of the original centre each point holds (direct manipulation).
+  std::vector<double> centreWeight;
+
+  // Every sharpness is 0 or infinite: the rules are the same at every
+  // further level.
+  bool isStationary() const;
+};
+
+// The ring of v at this level, its points and sharpness.
+LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method);
+
+// One Loop step: the centre's child and the children of its ring edges,
+// which form the centre's ring at the next level, in the same ring order.
+LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method);
+
+}  // namespace tessera

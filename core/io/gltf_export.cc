@@ -10,6 +10,7 @@
 
 #include "core/io/draco_encode.h"
 #include "core/io/export_common.h"
+#include "core/io/mesh_writers.h"
 
 namespace tessera::io_detail {
 namespace {
@@ -65,17 +66,6 @@ void setBounds(tinygltf::Model& model, int accessor, const std::array<float, 3>&
   model.accessors[accessor].maxValues.assign(hi.begin(), hi.end());
 }
 
-template <typename Index>
-int appendIndices(tinygltf::Model& model, const std::vector<std::array<int, 3>>& triangles) {
-  std::vector<Index> indices;
-  indices.reserve(triangles.size() * 3);
-  for (const auto& t : triangles) {
-    for (int v : t) indices.push_back(static_cast<Index>(v));
-  }
-  return appendBufferView(model, indices.data(), indices.size() * sizeof(Index),
-                          TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-}
-
 tinygltf::Model makeModelSkeleton() {
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -90,47 +80,6 @@ tinygltf::Model makeModelSkeleton() {
   model.scenes.push_back(scene);
   model.defaultScene = 0;
   return model;
-}
-
-tinygltf::Primitive fillPlain(tinygltf::Model& model, const SurfaceMesh& surface) {
-  const std::size_t n = surface.positions.size();
-  std::vector<std::array<float, 3>> positions(n);
-  std::array<float, 3> lo;
-  std::array<float, 3> hi;
-  lo.fill(std::numeric_limits<float>::max());
-  hi.fill(std::numeric_limits<float>::lowest());
-  for (std::size_t i = 0; i < n; ++i) {
-    positions[i] = toFloat3(surface.positions[i]);
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], positions[i][k]);
-      hi[k] = std::max(hi[k], positions[i][k]);
-    }
-  }
-
-  tinygltf::Primitive primitive;
-  primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  const int positionView =
-      appendBufferView(model, positions.data(), n * sizeof(positions[0]), TINYGLTF_TARGET_ARRAY_BUFFER);
-  const int positionAccessor =
-      addAccessor(model, positionView, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-  setBounds(model, positionAccessor, lo, hi);
-  primitive.attributes["POSITION"] = positionAccessor;
-
-  if (!surface.normals.empty()) {
-    std::vector<std::array<float, 3>> normals(n);
-    for (std::size_t i = 0; i < n; ++i) normals[i] = unitFloat3(surface.normals[i]);
-    const int normalView =
-        appendBufferView(model, normals.data(), n * sizeof(normals[0]), TINYGLTF_TARGET_ARRAY_BUFFER);
-    primitive.attributes["NORMAL"] =
-        addAccessor(model, normalView, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, n);
-  }
-
-  const int indexType = indexComponentType(n);
-  const int indexView = indexType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
-                            ? appendIndices<std::uint16_t>(model, surface.triangles)
-                            : appendIndices<std::uint32_t>(model, surface.triangles);
-  primitive.indices = addAccessor(model, indexView, indexType, TINYGLTF_TYPE_SCALAR, surface.triangles.size() * 3);
-  return primitive;
 }
 
 // KHR_draco_mesh_compression: the primitive keeps its attributes and indices
@@ -172,13 +121,16 @@ Expected<tinygltf::Primitive> fillDraco(tinygltf::Model& model, const SurfaceMes
 }  // namespace
 
 Status writeGlb(const SurfaceMesh& surface, const std::string& path, const ExportOptions& options) {
-  tinygltf::Model model = makeModelSkeleton();
-  if (options.draco) {
-    TESSERA_ASSIGN_OR_RETURN(tinygltf::Primitive primitive, fillDraco(model, surface, options));
-    model.meshes[0].primitives.push_back(std::move(primitive));
-  } else {
-    model.meshes[0].primitives.push_back(fillPlain(model, surface));
+  if (!options.draco) {
+    // The plain form is streamed (mesh_writers.h): tinygltf would hold the
+    // buffer three times over.
+    TESSERA_ASSIGN_OR_RETURN(FileWriter out, FileWriter::open(path));
+    writePlainGlb(surface, out);
+    return out.close();
   }
+  tinygltf::Model model = makeModelSkeleton();
+  TESSERA_ASSIGN_OR_RETURN(tinygltf::Primitive primitive, fillDraco(model, surface, options));
+  model.meshes[0].primitives.push_back(std::move(primitive));
   // The buffer's byteLength should match the BIN chunk, which GLB pads to 4.
   std::vector<unsigned char>& bytes = model.buffers[0].data;
   bytes.resize((bytes.size() + 3) & ~std::size_t{3}, 0);

@@ -14,11 +14,12 @@
 #include "core/io/draco_encode.h"
 #include "core/io/export_common.h"
 #include "core/io/gltf_export.h"
+#include "core/io/mesh_writers.h"
 
 namespace tessera {
 namespace {
 
-enum class ExportFormat { kObj, kPly, kGlb };
+enum class ExportFormat { kObj, kOff, kPly, kStl, kGlb };
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -29,7 +30,9 @@ std::string lowerExtension(const std::string& path) {
 Expected<ExportFormat> formatFor(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext == ".obj") return ExportFormat::kObj;
+  if (ext == ".off") return ExportFormat::kOff;
   if (ext == ".ply") return ExportFormat::kPly;
+  if (ext == ".stl") return ExportFormat::kStl;
   if (ext == ".glb") return ExportFormat::kGlb;
   std::string supported;
   for (const std::string& s : supportedExportExtensions()) supported += (supported.empty() ? "" : ", ") + s;
@@ -41,82 +44,6 @@ std::string formatVec(const Vec3& v) {
   char buffer[128];
   const int n = std::snprintf(buffer, sizeof buffer, "(%g, %g, %g)", v[0], v[1], v[2]);
   return std::string(buffer, static_cast<std::size_t>(std::max(n, 0)));
-}
-
-// ---- OBJ -------------------------------------------------------------------
-
-// std::to_chars without a precision prints the shortest text that parses back
-// to the same double, so OBJ output round-trips exactly.
-void appendNumber(std::string& out, double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
-}
-
-void appendLine(std::string& out, const char* tag, const Vec3& v) {
-  out += tag;
-  for (int k = 0; k < 3; ++k) {
-    out += ' ';
-    appendNumber(out, v[k]);
-  }
-  out += '\n';
-}
-
-std::string encodeObj(const SurfaceMesh& surface) {
-  std::string out = "# Tessera surface export\n";
-  out.reserve(surface.positions.size() * 120 + surface.triangles.size() * 40);
-  for (const Vec3& p : surface.positions) appendLine(out, "v", p);
-  for (const Vec3& n : surface.normals) appendLine(out, "vn", n);
-  const bool withNormals = !surface.normals.empty();
-  char buffer[24];
-  for (const auto& t : surface.triangles) {
-    out += 'f';
-    for (int v : t) {
-      // OBJ indices are 1-based; `a//a` names position a and normal a.
-      const auto end = std::to_chars(buffer, buffer + sizeof buffer, v + 1).ptr;
-      out += ' ';
-      out.append(buffer, end);
-      if (withNormals) {
-        out += "//";
-        out.append(buffer, end);
-      }
-    }
-    out += '\n';
-  }
-  return out;
-}
-
-// ---- PLY -------------------------------------------------------------------
-
-// Binary PLY is little-endian by declaration, whatever the host.
-template <typename T>
-void appendLittleEndian(std::string& out, T value) {
-  static_assert(sizeof(T) == 4);
-  const auto bits = std::bit_cast<std::uint32_t>(value);
-  for (int shift = 0; shift < 32; shift += 8) out += static_cast<char>((bits >> shift) & 0xffu);
-}
-
-std::string encodePly(const SurfaceMesh& surface) {
-  const bool withNormals = !surface.normals.empty();
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment Tessera surface export\n";
-  out += "element vertex " + std::to_string(surface.positions.size()) + "\n";
-  out += "property float x\nproperty float y\nproperty float z\n";
-  if (withNormals) out += "property float nx\nproperty float ny\nproperty float nz\n";
-  out += "element face " + std::to_string(surface.triangles.size()) + "\n";
-  out += "property list uchar int vertex_indices\nend_header\n";
-
-  out.reserve(out.size() + surface.positions.size() * (withNormals ? 24 : 12) + surface.triangles.size() * 13);
-  for (std::size_t i = 0; i < surface.positions.size(); ++i) {
-    for (float c : io_detail::toFloat3(surface.positions[i])) appendLittleEndian(out, c);
-    if (withNormals) {
-      for (float c : io_detail::toFloat3(surface.normals[i])) appendLittleEndian(out, c);
-    }
-  }
-  for (const auto& t : surface.triangles) {
-    out += static_cast<char>(3);
-    for (int v : t) appendLittleEndian(out, static_cast<std::int32_t>(v));
-  }
-  return out;
 }
 
 }  // namespace
@@ -141,7 +68,7 @@ Status writeFileBytes(const std::string& path, const char* data, std::size_t siz
 }  // namespace io_detail
 
 const std::vector<std::string>& supportedExportExtensions() {
-  static const std::vector<std::string> kExtensions = {".obj", ".ply", ".glb"};
+  static const std::vector<std::string> kExtensions = {".obj", ".off", ".ply", ".stl", ".glb"};
   return kExtensions;
 }
 
@@ -188,21 +115,20 @@ Status exportMesh(const SurfaceMesh& surface, const std::string& path, const Exp
   }
   if (const Status status = validateSurfaceMesh(surface); !status.isOk()) return status.withContext(path);
 
-  switch (format) {
-    case ExportFormat::kObj: {
-      const std::string text = encodeObj(surface);
-      return io_detail::writeFileBytes(path, text.data(), text.size());
-    }
-    case ExportFormat::kPly: {
-      const std::string bytes = encodePly(surface);
-      return io_detail::writeFileBytes(path, bytes.data(), bytes.size());
-    }
-    case ExportFormat::kGlb: {
-      const Status status = io_detail::writeGlb(surface, path, options);
-      // writeGlb's I/O errors already name the path.
-      return status.isOk() || status.code() == ErrorCode::kIoError ? status : status.withContext(path);
-    }
+  if (format == ExportFormat::kGlb && options.draco) {
+    const Status status = io_detail::writeGlb(surface, path, options);
+    // writeGlb's I/O errors already name the path.
+    return status.isOk() || status.code() == ErrorCode::kIoError ? status : status.withContext(path);
   }
+  TESSERA_ASSIGN_OR_RETURN(io_detail::FileWriter out, io_detail::FileWriter::open(path));
+  switch (format) {
+    case ExportFormat::kObj: io_detail::writeObj(surface, out); break;
+    case ExportFormat::kOff: io_detail::writeOff(surface, out); break;
+    case ExportFormat::kPly: io_detail::writePly(surface, out); break;
+    case ExportFormat::kStl: io_detail::writeStl(surface, out); break;
+    case ExportFormat::kGlb: io_detail::writePlainGlb(surface, out); break;
+  }
+  return out.close();
   return internalError(path + ": unhandled export format");
 }
 

@@ -1,13 +1,19 @@
-// Export of a refined or limit surface to OBJ, PLY or glTF 2.0 GLB (tinygltf),
+// Export of a refined or limit surface to OBJ, OFF, PLY, STL or glTF 2.0 GLB,
 // optionally Draco-compressed via KHR_draco_mesh_compression (GLB only).
+// Every format is streamed to its file (mesh_writers.h): memory stays that
+// of the surface, whatever the file's size.
 // The format follows the extension of the output path, case-insensitively:
 //   .obj  text; `v`, `vn` when normals are present, faces `f a//a b//b c//c`.
 //         Coordinates are printed as the shortest decimal that reads back to
-//         the same double, so OBJ is the lossless format.
+//         the same double, so OBJ (and OFF) are the lossless formats.
+//   .off  text OFF; positions as in OBJ, faces `3 a b c` (0-based). OFF has
+//         no normals.
 //   .ply  binary little-endian PLY 1.0, float32 x y z (and nx ny nz), faces as
 //         `list uchar int`. Binary rather than ASCII: about a third of the
 //         size, no float printing or parsing, and float32 is what every PLY
 //         reader (OpenMesh, MeshLab, Blender) accepts.
+//   .stl  binary STL: float32 corners and each facet's own unit normal
+//         (STL has no vertex normals or indices).
 //   .glb  glTF 2.0 binary, float32 POSITION (with min/max) and unit NORMAL,
 //         16-bit indices when every index fits, 32-bit otherwise. With
 //         `draco`, the primitive is stored only in Draco form, so

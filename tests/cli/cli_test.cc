@@ -106,7 +106,7 @@ TEST(Cli, ErrorsExitCleanlyWithMessages) {
       {"refine " + cube() + " --level 1 --boundary none -o " + dir + "/x.obj", 2,
        "--boundary: expects edge-only or edge-and-corner, got 'none'"},
       {"refine " + dir + "/missing.obj --level 1 -o " + dir + "/x.obj", 1, "missing.obj"},
-      {"refine " + cube() + " --level 1 -o " + dir + "/x.stl", 1, "x.stl"},
+      {"refine " + cube() + " --level 1 -o " + dir + "/x.3ds", 1, "x.3ds"},
       {"refine " + cube() + " --level 1 --draco -o " + dir + "/x.obj", 1, "x.obj"},
       {"refine " + cube() + " --level 40 -o " + dir + "/x.obj", 1, "would exceed"},
       {"refine " + cube() + " --tags " + badTags + " --level 1 -o " + dir + "/x.obj", 1, "bad.tags:2"},

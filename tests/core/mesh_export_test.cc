@@ -263,11 +263,11 @@ void expectError(const Status& status, ErrorCode code, const std::vector<std::st
 
 TEST_F(ExportTest, RejectsUnknownExtensionListingSupportedOnes) {
   const SurfaceMesh surface = testing::makeTorusSurface(8, 6);
-  expectError(exportMesh(surface, path("mesh.stl")), ErrorCode::kUnsupported,
-              {"mesh.stl", ".stl", ".obj", ".ply", ".glb"});
+  expectError(exportMesh(surface, path("mesh.3ds")), ErrorCode::kUnsupported,
+              {"mesh.3ds", ".3ds", ".obj", ".off", ".ply", ".stl", ".glb"});
   expectError(exportMesh(surface, path("mesh")), ErrorCode::kUnsupported, {"no extension", ".glb"});
   expectError(exportMesh(surface, path("mesh.gltf")), ErrorCode::kUnsupported, {".gltf"});
-  EXPECT_FALSE(fs::exists(path("mesh.stl")));
+  EXPECT_FALSE(fs::exists(path("mesh.3ds")));
 }
 
 TEST_F(ExportTest, RejectsDracoForNonGlb) {

@@ -213,7 +213,7 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   reserveVertices(vertices);
   TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(vertices[0]));
   const auto points = sparse_->points(level);
-  const Vec3 solved = solveControlPoint(sparse_->level(level).mesh, v, points, target);
+  const Vec3 solved = solveControlPoint(sparse_->level(level).mesh, v, points, target, options_.loop.creaseMethod);
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v]));
   return add(Edit{{}, true, std::move(move)});
 }

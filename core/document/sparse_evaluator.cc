@@ -171,14 +171,14 @@ void SparseEvaluator::markLeaves(int l, bool freshLevel) {
   if (!freshLevel && !state.limitPosition.empty()) return;
   state.limitPosition.resize(m.numVertices);
   state.limitNormal.resize(m.numVertices);
-  const LimitEvaluator limits(m);
+  const LimitEvaluator limits(m, options_.creaseMethod);
   for (Index v = 0; v < m.numVertices; ++v) {
     if (state.topo.isComplete(v)) refreshLimit(l, v, limits);
   }
 }
 
 LimitFrame SparseEvaluator::limitFrameOf(int l, Index v) const {
-  return limitFrame(levels_[l].topo.mesh, v, levels_[l].points);
+  return limitFrame(levels_[l].topo.mesh, v, levels_[l].points, options_.creaseMethod);
 }
 
 void SparseEvaluator::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
@@ -419,7 +419,7 @@ void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
       }
     }
     if (!marked) continue;
-    const LimitEvaluator limits(m);
+    const LimitEvaluator limits(m, options_.creaseMethod);
     for (Index v : m.faceVertices[a]) {
       if (!state.topo.isComplete(v)) continue;
       refreshLimit(k, v, limits);

@@ -215,7 +215,7 @@ void SparseEvaluator::refreshLimitsNear(int l, const std::vector<Index>& changed
                                         const std::vector<Index>& candidates, DirtySet& dirty) {
   const LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
-  const LimitEvaluator limits(m);
+  const LimitEvaluator limits(m, options_.creaseMethod);
   Marked changedSet(levels_[l].vertexMarks);
   for (Index v : changed) changedSet.add(v);
   for (Index w : candidates) {

@@ -1,28 +1,29 @@
 #include "core/loop/direct_manipulation.h"
 
+#include "core/loop/exact_limit.h"
 #include "core/loop/limit.h"
 #include "core/loop/masks.h"
 
 namespace tessera {
 
-double selfLimitWeight(const Level& level, Index v) {
-  switch (level.vertexRules[v]) {
-    case VertexRule::kSmooth:
-    case VertexRule::kDart: {
-      const int n = level.valence(v);
-      return 1.0 - n * loop::smoothLimitEdgeWeight(n);
-    }
-    case VertexRule::kCrease:
-      return loop::kCreaseLimitVertexWeight;
-    case VertexRule::kCorner:
-      return 1.0;
+double selfLimitWeight(const Level& level, Index v, CreaseMethod method) {
+  if (level.vertexRules[v] == VertexRule::kSmooth) {
+    const int n = level.valence(v);
+    return 1.0 - n * loop::smoothLimitEdgeWeight(n);
   }
-  return 1.0;
+  // The points do not change the weight: the masks depend on the rules only.
+  std::vector<Vec3> zeros(level.numVertices);
+  return exactVertexLimit(level, v, zeros, method).selfWeight;
 }
 
-Vec3 solveControlPoint(const Level& level, Index v, std::span<const Vec3> points, const Vec3& target) {
-  const Vec3 current = limitFrame(level, v, points).position;
-  return points[v] + (1.0 / selfLimitWeight(level, v)) * (target - current);
+Vec3 solveControlPoint(const Level& level, Index v, std::span<const Vec3> points, const Vec3& target,
+                       CreaseMethod method) {
+  if (level.vertexRules[v] == VertexRule::kSmooth) {
+    const Vec3 current = limitFrame(level, v, points, method).position;
+    return points[v] + (1.0 / selfLimitWeight(level, v, method)) * (target - current);
+  }
+  const VertexLimit limit = exactVertexLimit(level, v, points, method);
+  return points[v] + (1.0 / limit.selfWeight) * (target - limit.position);
 }
 
 }  // namespace tessera

@@ -9,15 +9,19 @@
 #include <span>
 
 #include "core/loop/level.h"
+#include "core/loop/loop_options.h"
 #include "core/util/vec3.h"
 
 namespace tessera {
 
-// Weight of the vertex itself in its limit mask at this level: 1 - n w(n)
-// for smooth and dart vertices, 2/3 on a crease, 1 at a corner. Always > 0.
-double selfLimitWeight(const Level& level, Index v);
+// Weight of the vertex itself in its exact limit mask at this level (limit.h):
+// 1 - n w(n) for a smooth vertex, 2/3 on an infinitely sharp crease, 1 at a
+// corner, the dart's eigenvector weight at a dart, and through the decay
+// of a semi-sharp feature otherwise. Always > 0.
+double selfLimitWeight(const Level& level, Index v, CreaseMethod method);
 
 // The control point for v whose limit position is `target`.
-Vec3 solveControlPoint(const Level& level, Index v, std::span<const Vec3> points, const Vec3& target);
+Vec3 solveControlPoint(const Level& level, Index v, std::span<const Vec3> points, const Vec3& target,
+                       CreaseMethod method);
 
 }  // namespace tessera

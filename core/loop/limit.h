@@ -1,12 +1,16 @@
-// Limit positions and normals of every vertex of a level, by Loop's limit
-// masks: smooth and dart vertices use the eigenvector masks, crease vertices
-// the (1/6, 2/3, 1/6) B-spline mask, corners stay put. Normals are
-// tangent1 x tangent2 with OpenSubdiv's tangent masks (sdc/loopScheme.h):
-// at an interior crease they describe the surface in the counter-clockwise
-// span from the first to the second crease edge of the ring.
+// Limit positions and normals of every vertex of a level: the true limit of
+// the Loop surface. Smooth vertices use the closed-form eigenvector masks
+// (Loop '87); every other rule -- darts, creases, corners, cusps, and
+// semi-sharp features that have not decayed at this level -- goes through
+// the eigenstructure of its ring's subdivision matrix, after refining the
+// ring until its rules stop changing (exact_limit.h, issue 15 §1). Normals
+// are tangent1 x tangent2; a crease or corner has one per sector between
+// sharp edges.
 //
-// As in OpenSubdiv's PrimvarRefiner::Limit, a vertex's rule at this level
-// decides its mask, so semi-sharp features still present count as sharp.
+// OpenSubdiv's PrimvarRefiner::Limit() instead applies the masks of the
+// rules at the level (semi-sharp counts as infinitely sharp) and Hoppe et
+// al.'s crease masks; the two agree at smooth vertices and at crease sectors
+// of up to three faces (tests/oracle/limit_vs_osd_test.cc lists the rest).
 #pragma once
 
 #include <memory>
@@ -15,6 +19,7 @@
 #include <span>
 
 #include "core/loop/level.h"
+#include "core/loop/loop_options.h"
 #include "core/util/vec3.h"
 
 namespace tessera {
@@ -32,7 +37,8 @@ struct LimitFrame {
   }
 };
 
-LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points);
+LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points,
+                      CreaseMethod method = CreaseMethod::kUniform);
 
 namespace detail {
 class SmoothTables;
@@ -42,12 +48,13 @@ class SmoothTables;
 // per-valence tables built once (the incremental hierarchy's use).
 class LimitEvaluator {
  public:
-  explicit LimitEvaluator(const Level& level);
+  explicit LimitEvaluator(const Level& level, CreaseMethod method = CreaseMethod::kUniform);
   ~LimitEvaluator();
   LimitFrame frame(Index v, std::span<const Vec3> points) const;
 
  private:
   const Level& level_;
+  CreaseMethod method_;
   std::unique_ptr<const detail::SmoothTables> tables_;
 };
 
@@ -65,7 +72,8 @@ struct LimitSector {
 // one-sided in its limit normal; these give the other sides their own, so a
 // mesh can split vertices along creases and shade each side correctly.
 // Smooth, dart and cusp vertices, and boundary creases, have none.
-std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::span<const Vec3> points);
+std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::span<const Vec3> points,
+                                           CreaseMethod method = CreaseMethod::kUniform);
 
 // The side of v that ring face `ringFace` (its position in v's ring) lies
 // on, numbered as a mesh splits the vertex: 0 for the sector limitFrame()
@@ -76,6 +84,6 @@ int limitSideOfRingFace(const Level& level, Index v, int ringFace);
 
 // Fills positions (and normals, if non-empty) for all vertices of the level.
 void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
-                  std::span<Vec3> normals);
+                  std::span<Vec3> normals, CreaseMethod method = CreaseMethod::kUniform);
 
 }  // namespace tessera

@@ -71,7 +71,7 @@ TEST(DirectManipulation, LimitLandsOnTheTargetAndOnlyTheOneRingMoves) {
   for (Index v = 0; v < level.numVertices; v += 37) {
     const Vec3 target = before[v] + Vec3(0.05, -0.02, 0.03) * (1.0 + (rng() % 5));
     auto edited = points;
-    edited[v] = solveControlPoint(level, v, points, target);
+    edited[v] = solveControlPoint(level, v, points, target, CreaseMethod::kUniform);
     std::vector<Vec3> after(points.size());
     computeLimit(level, edited, after, normals);
     EXPECT_NEAR((after[v] - target).norm(), 0.0, 1e-12) << "vertex " << v;

@@ -64,7 +64,8 @@ void expectMatchesDense(const Document& doc, const std::string& where) {
       }
       worstPoint = std::max(worstPoint, err);
       if (!level.isComplete(v)) continue;
-      const LimitFrame ref = limitFrame(dense->levels[l], static_cast<Index>(id), dense->points[l]);
+      const LimitFrame ref =
+          limitFrame(dense->levels[l], static_cast<Index>(id), dense->points[l], doc.options().loop.creaseMethod);
       worstLimit = std::max(worstLimit, (sparse.limitPosition(l, v) - ref.position).norm());
       worstNormal = std::max(worstNormal, (sparse.limitNormal(l, v) - ref.normal()).norm());
     }

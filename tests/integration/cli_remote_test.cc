@@ -246,6 +246,36 @@ TEST(CliRemote, CreateTakesImportOptionsAndNamesTheUsersFile) {
   EXPECT_EQ(fromDraco.exitCode, 0) << fromDraco.err;
 }
 
+// The server imports with --drop-unused and --crease-angle (issue 15 §2):
+// tags keep the file's numbers, and the Ack says what the import changed.
+TEST(CliRemote, CreateDropsUnusedVerticesAndCreasesByAngle) {
+  RemoteCli f("tessera-cli-create-options");
+  const std::string mesh = f.write("unused.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 7 7 7\nv 0 1 0\nv 0 0 1\n"
+                                   "f 1 4 2\nf 1 2 5\nf 2 4 5\nf 1 5 4\n");
+  CliRun refused = f.run("create " + mesh);
+  EXPECT_EQ(refused.exitCode, 1);
+  EXPECT_NE(refused.err.find("unused.obj: vertex 2 (7, 7, 7): not used by any face"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--drop-unused"), std::string::npos) << refused.err;
+  const std::string onDropped = f.write("dropped.tags", "corner 2 inf\n");
+  CliRun badTag = f.run("create " + mesh + " --drop-unused --tags " + onDropped);
+  EXPECT_EQ(badTag.exitCode, 1);
+  EXPECT_NE(badTag.err.find("dropped.tags:1: corner 2: vertex 2 was dropped"), std::string::npos) << badTag.err;
+  CliRun made = f.run("create " + mesh + " --drop-unused --tags " + f.write("ok.tags", "crease 3 4 inf\n"));
+  ASSERT_EQ(made.exitCode, 0) << made.err;
+  EXPECT_NE(made.err.find("tessera remote create: " + mesh + ": dropped 1 unused vertex (--drop-unused)"),
+            std::string::npos)
+      << made.err;
+  const std::string quads = testing::sourceTestDataPath("good/cube_quads.obj");
+  CliRun creased = f.run("create " + quads + " --triangulate --crease-angle 30");
+  ASSERT_EQ(creased.exitCode, 0) << creased.err;
+  EXPECT_NE(creased.err.find("creased 12 edges sharper than 30 degrees (--crease-angle)"), std::string::npos)
+      << creased.err;
+  CliRun badAngle = f.run("create " + quads + " --triangulate --crease-angle 181");
+  EXPECT_EQ(badAngle.exitCode, 2);
+  EXPECT_NE(badAngle.err.find("--crease-angle"), std::string::npos) << badAngle.err;
+}
+
 // Stats for people: no exponents, units on bytes, rates and milliseconds.
 TEST(CliRemote, StatsArePrintedForPeople) {
   RemoteCli f("tessera-cli-stats");

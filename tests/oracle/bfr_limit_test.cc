@@ -257,7 +257,7 @@ TEST(BfrLimit, RandomTagSets) {
 // Under Chaikin decay Bfr 3.5 departs from Far: at smooth vertices near
 // Chaikin creases, Far's uniform refinement followed by Limit() (exact there,
 // and what LoopOracle.ChaikinCreasingMatchesOpenSubdiv checks Tessera
-// Tessera against) and Bfr's surface differ by 1.6e-4 of the diagonal, while
+// against) and Bfr's surface differ by 1.6e-4 of the diagonal, while
 // Tessera and Far agree to float-weight precision. So Far, not Bfr, is the
 // oracle for Chaikin creasing; this test pins the disagreement down.
 TEST(BfrLimit, ChaikinReferenceIsFarNotBfr) {

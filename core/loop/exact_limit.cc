@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <unordered_map>
 
 #include "core/loop/limit_masks.h"
 #include "core/loop/local_ring.h"
@@ -100,29 +101,93 @@ std::vector<int> sharpRingEdges(const Level& level, Index v) {
   return sharp;
 }
 
-VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
-  const int n = level.valence(v);
-  LocalRing ring = gatherLocalRing(level, v, points, method);
-  for (int step = 0; !ring.isStationary(); ++step) {
-    assert(step < kMaxDecaySteps);
-    if (step >= kMaxDecaySteps) break;
-    ring = refineLocalRing(ring, method);
+namespace {
+
+bool stationaryAtLevel(const Level& level, Index v) {
+  if (isSemiSharp(level.vertexSharpness[v])) return false;
+  for (Index e : level.ringEdgesOf(v)) {
+    if (isSemiSharp(level.edgeSharpness[e])) return false;
   }
-  StationaryRing stationary{n, ring.boundary, ring.rule, std::vector<bool>(n)};
-  for (int k = 0; k < n; ++k) stationary.sharpEdges[k] = isSharp(ring.edgeSharpness[k]);
-  const std::shared_ptr<const StationaryMasks> masks = stationaryMasks(stationary);
-  const std::span<const Vec3> p(ring.points);
+  return true;
+}
+
+// The masks of a ring whose rules no longer change, through a per-thread
+// map keyed by a packed word (valence, boundary, rule, sharp edges) in front
+// of the process-wide cache, so the common case takes no lock and no
+// allocation. Masks are never evicted, so the raw pointers stay valid.
+const StationaryMasks& masksFor(int n, bool boundary, VertexRule rule, const std::vector<bool>& sharp) {
+  constexpr int kPackedValence = 52;
+  if (n <= kPackedValence) {
+    uint64_t key = static_cast<uint64_t>(n) | (boundary ? 1ull << 6 : 0) | (static_cast<uint64_t>(rule) << 7);
+    for (int k = 0; k < n; ++k) key |= sharp[k] ? 1ull << (12 + k) : 0;
+    thread_local std::unordered_map<uint64_t, const StationaryMasks*> local;
+    auto it = local.find(key);
+    if (it != local.end()) return *it->second;
+    const StationaryMasks* masks = stationaryMasks({n, boundary, rule, sharp}).get();
+    local.emplace(key, masks);
+    return *masks;
+  }
+  return *stationaryMasks({n, boundary, rule, sharp});
+}
+
+}  // namespace
+
+VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                             bool withOtherSides) {
+  const int n = level.valence(v);
+  thread_local std::vector<bool> sharpEdges;
+  thread_local std::vector<Vec3> ringPoints;
+  thread_local std::vector<double> centreWeight;
+  sharpEdges.assign(n, false);
+  bool boundary = level.isBoundaryVertex(v);
+  VertexRule finalRule = level.vertexRules[v];
+  if (stationaryAtLevel(level, v)) {
+    // The common case: the ring's points as they are.
+    auto ringE = level.ringEdgesOf(v);
+    auto ringV = level.ringVerticesOf(v);
+    ringPoints.resize(n + 1);
+    ringPoints[0] = points[v];
+    centreWeight.assign(n + 1, 0.0);
+    centreWeight[0] = 1.0;
+    for (int k = 0; k < n; ++k) {
+      ringPoints[1 + k] = points[ringV[k]];
+      sharpEdges[k] = isSharp(level.edgeSharpness[ringE[k]]);
+    }
+  } else {
+    // Semi-sharp features left: refine the ring alone until they decay.
+    LocalRing ring = gatherLocalRing(level, v, points, method);
+    for (int step = 0; !ring.isStationary(); ++step) {
+      assert(step < kMaxDecaySteps);
+      if (step >= kMaxDecaySteps) break;
+      ring = refineLocalRing(ring, method);
+    }
+    for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(ring.edgeSharpness[k]);
+    ringPoints = ring.points;
+    centreWeight = ring.centreWeight;
+    boundary = ring.boundary;
+    finalRule = ring.rule;
+  }
+  const StationaryMasks& stationary = masksFor(n, boundary, finalRule, sharpEdges);
+  const StationaryMasks* masks = &stationary;
+  const std::span<const Vec3> p(ringPoints);
 
   VertexLimit out;
   out.position = apply(masks->position, p);
   out.selfWeight = 0.0;
-  for (size_t i = 0; i < masks->position.size(); ++i) out.selfWeight += masks->position[i] * ring.centreWeight[i];
+  for (size_t i = 0; i < masks->position.size(); ++i) out.selfWeight += masks->position[i] * centreWeight[i];
 
   // The sectors of this level (limit.h's numbering), each with the normal
   // of the stationary sector it lies in: sharpness never grows, so each of
   // this level's sectors lies inside one.
   const VertexRule rule = level.vertexRules[v];
-  const std::vector<int> sharp = sharpRingEdges(level, v);
+  thread_local std::vector<int> sharp;
+  sharp.clear();
+  {
+    auto ringE = level.ringEdgesOf(v);
+    for (int k = 0; k < n; ++k) {
+      if (isSharp(level.edgeSharpness[ringE[k]])) sharp.push_back(k);
+    }
+  }
   const int m = static_cast<int>(sharp.size());
   const bool sided = !isSmoothLike(rule) && m >= 2;
   const int primary = !sided ? 0 : ((rule == VertexRule::kCrease || sharp[0] == 0) ? 0 : m - 1);
@@ -138,12 +203,12 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
     along = 1.5 * (points[ringV[sharp[0]]] - points[ringV[sharp[1]]]);
   }
   completeFrame(normal, along, out.frame);
-  if (!sided) return out;
-  const bool boundary = level.isBoundaryVertex(v);
+  if (!sided || !withOtherSides) return out;
+  const bool levelBoundary = level.isBoundaryVertex(v);
   for (int i = 0; i < m; ++i) {
     if (i == primary) continue;
     const bool wraps = i + 1 == m;
-    if (wraps && boundary) continue;
+    if (wraps && levelBoundary) continue;
     const int from = sharp[i];
     const int to = wraps ? sharp[0] + n : sharp[i + 1];
     out.others.push_back({from, to - from, sectorNormal(sectorOfFace(*masks, from, n), p, n)});

@@ -34,6 +34,9 @@ struct VertexLimit {
 // Ring positions of the sharp (semi-sharp or infinitely sharp) edges of v.
 std::vector<int> sharpRingEdges(const Level& level, Index v);
 
-VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method);
+// `withOtherSides` false leaves VertexLimit::others empty (limitFrame() does
+// not need them).
+VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                             bool withOtherSides = true);
 
 }  // namespace tessera

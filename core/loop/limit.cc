@@ -77,7 +77,7 @@ LimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points, 
   // A smooth vertex's ring has no sharp edge, so its closed-form masks are
   // exact; every other rule goes through its ring's eigenstructure.
   if (level.vertexRules[v] == VertexRule::kSmooth) return smoothFrame(level, v, points, tables);
-  return exactVertexLimit(level, v, points, method).frame;
+  return exactVertexLimit(level, v, points, method, false).frame;
 }
 
 }  // namespace

@@ -98,7 +98,7 @@ LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> poi
   ring.centreWeight.push_back(1.0);
   auto ringV = level.ringVerticesOf(v);
   auto ringE = level.ringEdgesOf(v);
-  ring.farRingSharpness.resize(ring.valence);
+  ring.farRingSharpness.resize(method == CreaseMethod::kChaikin ? ring.valence : 0);
   for (int k = 0; k < ring.valence; ++k) {
     ring.points.push_back(points[ringV[k]]);
     ring.centreWeight.push_back(0.0);
@@ -117,7 +117,8 @@ LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method) {
   for (int k = 0; k < n; ++k) {
     const float s = ring.edgeSharpness[k];
     halves[k] = halfAtEnd(s, ring.edgeSharpness, method);
-    farHalves[k] = halfAtEnd(s, ring.farRingSharpness[k], method);
+    // Uniform decay reads no ring: both halves decay alike.
+    farHalves[k] = method == CreaseMethod::kChaikin ? halfAtEnd(s, ring.farRingSharpness[k], method) : halves[k];
   }
   const float childVertexSharpness = decrementSharpness(ring.vertexSharpness);
   // SharpnessInheritance::vertexChildRule: sharpness never grows, so a
@@ -140,6 +141,7 @@ LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method) {
   child.edgeSharpness = halves;
   // The child of ring edge k is a new edge vertex: its ring holds the two
   // halves of edge k and smooth edges inside the faces (4 or 6 in all).
+  if (method != CreaseMethod::kChaikin) return child;
   child.farRingSharpness.resize(n);
   for (int k = 0; k < n; ++k) {
     const bool boundaryEdge = ring.boundary && (k == 0 || k == n - 1);

@@ -31,7 +31,7 @@ struct LocalRing {
   float vertexSharpness = 0.0f;
   std::vector<float> edgeSharpness;  // ring edge k: centre to neighbour k
   // Chaikin decay of ring edge k at its far end reads the sharpness of the
-  // far vertex's ring (Sdc CREASE_CHAIKIN); unused for uniform decay.
+  // far vertex's ring (Sdc CREASE_CHAIKIN); empty for uniform decay.
   std::vector<std::vector<float>> farRingSharpness;
   std::vector<Vec3> points;  // [0] the centre, [1 + k] neighbour k
   // The same stencils applied to the scalar 1 at the centre and 0 elsewhere:

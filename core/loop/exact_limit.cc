@@ -155,15 +155,19 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
     }
   } else {
     // Semi-sharp features left: refine the ring alone until they decay.
-    LocalRing ring = gatherLocalRing(level, v, points, method);
-    for (int step = 0; !ring.isStationary(); ++step) {
+    thread_local LocalRing rings[2];
+    int at = 0;
+    gatherLocalRing(level, v, points, method, rings[0]);
+    for (int step = 0; !rings[at].isStationary(); ++step) {
       assert(step < kMaxDecaySteps);
       if (step >= kMaxDecaySteps) break;
-      ring = refineLocalRing(ring, method);
+      refineLocalRing(rings[at], method, rings[1 - at]);
+      at = 1 - at;
     }
+    const LocalRing& ring = rings[at];
     for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(ring.edgeSharpness[k]);
-    ringPoints = ring.points;
-    centreWeight = ring.centreWeight;
+    ringPoints.assign(ring.points.begin(), ring.points.end());
+    centreWeight.assign(ring.centreWeight.begin(), ring.centreWeight.end());
     boundary = ring.boundary;
     finalRule = ring.rule;
   }

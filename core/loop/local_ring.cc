@@ -50,10 +50,10 @@ T centreForRule(VertexRule rule, std::span<const float> ringSharpness, std::span
 // weight), given the sharpness the step decided (LoopStencils::vertexChild
 // and edgeChild, read for a lone ring).
 template <typename T>
-std::vector<T> stepPoints(const LocalRing& ring, std::span<const T> p, const std::vector<float>& halves,
-                          const std::vector<float>& farHalves, VertexRule childRule, double blend) {
+void stepPoints(const LocalRing& ring, std::span<const T> p, const std::vector<float>& halves,
+                const std::vector<float>& farHalves, VertexRule childRule, double blend, std::vector<T>& out) {
   const int n = ring.valence;
-  std::vector<T> out(p.size());
+  out.resize(p.size());
   out[0] = centreForRule(ring.rule, std::span<const float>(ring.edgeSharpness), p);
   if (!isSmoothLike(ring.rule) && childRule != ring.rule) {
     out[0] = blend * out[0] + (1.0 - blend) * centreForRule(childRule, std::span<const float>(halves), p);
@@ -73,7 +73,6 @@ std::vector<T> stepPoints(const LocalRing& ring, std::span<const T> p, const std
     if (isSharp(s)) point = static_cast<double>(s) * mid + (1.0 - static_cast<double>(s)) * point;
     out[1 + k] = point;
   }
-  return out;
 }
 
 }  // namespace
@@ -88,14 +87,20 @@ bool LocalRing::isStationary() const {
 
 LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
   LocalRing ring;
+  gatherLocalRing(level, v, points, method, ring);
+  return ring;
+}
+
+void gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                     LocalRing& ring) {
   ring.valence = level.valence(v);
   ring.boundary = level.isBoundaryVertex(v);
   ring.rule = level.vertexRules[v];
   ring.vertexSharpness = level.vertexSharpness[v];
   ring.edgeSharpness.resize(ring.valence);
   level.ringSharpness(v, ring.edgeSharpness.data());
-  ring.points.push_back(points[v]);
-  ring.centreWeight.push_back(1.0);
+  ring.points.assign(1, points[v]);
+  ring.centreWeight.assign(1, 1.0);
   auto ringV = level.ringVerticesOf(v);
   auto ringE = level.ringEdgesOf(v);
   ring.farRingSharpness.resize(method == CreaseMethod::kChaikin ? ring.valence : 0);
@@ -108,12 +113,19 @@ LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> poi
       level.ringSharpness(ringV[k], far.data());
     }
   }
-  return ring;
 }
 
 LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method) {
+  LocalRing child;
+  refineLocalRing(ring, method, child);
+  return child;
+}
+
+void refineLocalRing(const LocalRing& ring, CreaseMethod method, LocalRing& child) {
   const int n = ring.valence;
-  std::vector<float> halves(n), farHalves(n);
+  thread_local std::vector<float> halves, farHalves;
+  halves.resize(n);
+  farHalves.resize(n);
   for (int k = 0; k < n; ++k) {
     const float s = ring.edgeSharpness[k];
     halves[k] = halfAtEnd(s, ring.edgeSharpness, method);
@@ -131,24 +143,25 @@ LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method) {
     blend = fractionalWeightAtVertex(ring.vertexSharpness, childVertexSharpness, ring.edgeSharpness, halves);
   }
 
-  LocalRing child;
   child.valence = n;
   child.boundary = ring.boundary;
   child.rule = childRule;
   child.vertexSharpness = childVertexSharpness;
-  child.points = stepPoints<Vec3>(ring, ring.points, halves, farHalves, childRule, blend);
-  child.centreWeight = stepPoints<double>(ring, ring.centreWeight, halves, farHalves, childRule, blend);
+  stepPoints<Vec3>(ring, ring.points, halves, farHalves, childRule, blend, child.points);
+  stepPoints<double>(ring, ring.centreWeight, halves, farHalves, childRule, blend, child.centreWeight);
   child.edgeSharpness = halves;
   // The child of ring edge k is a new edge vertex: its ring holds the two
   // halves of edge k and smooth edges inside the faces (4 or 6 in all).
-  if (method != CreaseMethod::kChaikin) return child;
+  if (method != CreaseMethod::kChaikin) {
+    child.farRingSharpness.clear();
+    return;
+  }
   child.farRingSharpness.resize(n);
   for (int k = 0; k < n; ++k) {
     const bool boundaryEdge = ring.boundary && (k == 0 || k == n - 1);
     child.farRingSharpness[k] = {halves[k], farHalves[k], 0.0f, 0.0f};
     if (!boundaryEdge) child.farRingSharpness[k].insert(child.farRingSharpness[k].end(), {0.0f, 0.0f});
   }
-  return child;
 }
 
 }  // namespace tessera

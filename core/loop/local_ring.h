@@ -45,9 +45,14 @@ struct LocalRing {
 
 // The ring of v at this level, its points and sharpness.
 LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method);
+// The same into `out`, reusing its storage.
+void gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                     LocalRing& out);
 
 // One Loop step: the centre's child and the children of its ring edges,
 // which form the centre's ring at the next level, in the same ring order.
 LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method);
+// The same into `child` (not `ring`), reusing its storage.
+void refineLocalRing(const LocalRing& ring, CreaseMethod method, LocalRing& child);
 
 }  // namespace tessera

@@ -303,7 +303,7 @@ Expected<std::shared_ptr<const Evaluation>> Document::evaluate(int level) const 
 Expected<SurfaceMesh> Document::surface(int level, SurfaceKind kind) const {
   TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(level));
   if (kind == SurfaceKind::kControl) return controlSurfaceOf(eval->levels[level], eval->points[level]);
-  return limitSurfaceOf(eval->levels[level], eval->points[level]);
+  return limitSurfaceOf(eval->levels[level], eval->points[level], options_.loop.creaseMethod);
 }
 
 }  // namespace tessera

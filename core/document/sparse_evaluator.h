@@ -104,6 +104,8 @@ class SparseEvaluator {
   const Vec3& limitPosition(int l, Index vertex) const { return levels_[l].limitPosition[vertex]; }
   const Vec3& limitNormal(int l, Index vertex) const { return levels_[l].limitNormal[vertex]; }
   LimitFrame limitFrameOf(int l, Index vertex) const;
+  // The crease decay the limits follow (limit.h needs it for semi-sharp features).
+  CreaseMethod creaseMethod() const { return options_.creaseMethod; }
   // Whether an active edit at level l reaches the limit of this vertex (as
   // a level-l vertex): a move or a vertex sharpness of the vertex or of a
   // ring neighbour (its limit mask reads their points; a vertex tag is

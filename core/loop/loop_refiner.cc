@@ -71,7 +71,7 @@ SurfaceMesh LoopRefiner::controlSurface(std::span<const Vec3> finestPoints) cons
 }
 
 Expected<SurfaceMesh> LoopRefiner::limitSurface(std::span<const Vec3> finestPoints) const {
-  return limitSurfaceOf(finestLevel(), finestPoints);
+  return limitSurfaceOf(finestLevel(), finestPoints, options_.creaseMethod);
 }
 
 }  // namespace tessera

@@ -21,20 +21,20 @@ SurfaceMesh controlSurfaceOf(const Level& level, std::span<const Vec3> points) {
   return surface;
 }
 
-Expected<SurfaceMesh> limitSurfaceOf(const Level& level, std::span<const Vec3> points) {
+Expected<SurfaceMesh> limitSurfaceOf(const Level& level, std::span<const Vec3> points, CreaseMethod method) {
   if (!level.fullTopology) return invalidArgument("limit evaluation needs the level's full topology");
   SurfaceMesh surface;
   surface.positions.resize(level.numVertices);
   surface.normals.resize(level.numVertices);
   surface.triangles = trianglesOf(level);
-  computeLimit(level, points, surface.positions, surface.normals);
+  computeLimit(level, points, surface.positions, surface.normals, method);
   // Each further side of a crease or corner gets a copy of the vertex with
   // its own limit normal; the faces of that side are pointed at the copy.
   for (Index v = 0; v < level.numVertices; ++v) {
     if (isSmoothLike(level.vertexRules[v])) continue;
     auto ringF = level.ringFacesOf(v);
     const int n = level.valence(v);
-    for (const LimitSector& sector : otherLimitSectors(level, v, points)) {
+    for (const LimitSector& sector : otherLimitSectors(level, v, points, method)) {
       const int copy = static_cast<int>(surface.positions.size());
       surface.positions.push_back(surface.positions[v]);
       surface.normals.push_back(sector.normal);

@@ -9,12 +9,13 @@
 
 #include "core/io/mesh_export.h"
 #include "core/loop/level.h"
+#include "core/loop/loop_options.h"
 #include "core/util/status.h"
 
 namespace tessera {
 
 SurfaceMesh controlSurfaceOf(const Level& level, std::span<const Vec3> points);
 // Needs the level's full topology (rings).
-Expected<SurfaceMesh> limitSurfaceOf(const Level& level, std::span<const Vec3> points);
+Expected<SurfaceMesh> limitSurfaceOf(const Level& level, std::span<const Vec3> points, CreaseMethod method);
 
 }  // namespace tessera

@@ -18,7 +18,7 @@ Vec3 sideNormal(const SparseEvaluator& h, int l, Index v, Index f) {
   auto faces = m.ringFacesOf(v);
   const int n = static_cast<int>(faces.size());
   const int k = static_cast<int>(std::find(faces.begin(), faces.end(), f) - faces.begin());
-  for (const LimitSector& sector : otherLimitSectors(m, v, h.points(l))) {
+  for (const LimitSector& sector : otherLimitSectors(m, v, h.points(l), h.creaseMethod())) {
     if ((k - sector.firstFace + n) % n < sector.faceCount) return sector.normal;
   }
   return h.limitNormal(l, v);

@@ -74,7 +74,7 @@ std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts
 // The limit normal of side `side` > 0 of a crease or corner vertex
 // (limitSideOfRingFace's numbering; side 0's is its limit normal).
 Vec3 sideNormal(const SparseEvaluator& h, VertexRef v, int side) {
-  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level))[side - 1].normal;
+  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod())[side - 1].normal;
 }
 
 // The side of a displayed vertex (`at`: its limit's level and index) that

@@ -145,6 +145,12 @@ Status parseHeader(std::string_view text, const std::string& src, PlyHeader& hea
 Status findRoles(const PlyHeader& header, const std::string& src, PlyRoles& roles) {
   bool haveVertex = false, haveFace = false;
   for (const PlyElement& element : header.elements) {
+    // Roles are property indices within "the" vertex or face element: a
+    // second one would have its values read under the first one's roles (a
+    // float of a second 'face' taken as an index; found by fuzz_import_ply).
+    if ((element.name == "vertex" && haveVertex) || (element.name == "face" && haveFace)) {
+      return parseError(src + ": header: element '" + element.name + "' is declared twice");
+    }
     for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
       const PlyProperty& property = element.properties[p];
       if (element.name == "vertex" && !property.isList()) {
@@ -191,6 +197,12 @@ class SoupBuilder {
       if (p == roles_.y) xyz_[1] = v;
       if (p == roles_.z) xyz_[2] = v;
     } else if (element_->name == "face" && p == roles_.faceList) {
+      // The header admits integer lists only; kept as a guard, since a NaN
+      // would pass the range test below and its cast is undefined.
+      if (!std::isfinite(v) || v != std::floor(v)) {
+        return invalidMesh(src_ + ": face " + std::to_string(index_) + ": vertex index " + std::to_string(v) +
+                           " is not an integer");
+      }
       if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
         return invalidMesh(src_ + ": face " + std::to_string(index_) + ": vertex index " + std::to_string(v) +
                            " is out of range");

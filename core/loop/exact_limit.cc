@@ -5,7 +5,9 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "core/loop/decay_matrix.h"
 #include "core/loop/limit_masks.h"
+#include "core/loop/limit_stencil.h"
 #include "core/loop/local_ring.h"
 #include "core/mesh/sharpness.h"
 
@@ -13,9 +15,6 @@ namespace tessera {
 
 namespace {
 
-// Sharpness below 10 decays by at least 1 per level (Chaikin's average never
-// exceeds the largest), so 10 steps reach the stationary rules.
-constexpr int kMaxDecaySteps = 12;
 
 Vec3 apply(const std::vector<double>& mask, std::span<const Vec3> ring) {
   Vec3 sum(0, 0, 0);
@@ -85,7 +84,9 @@ void completeFrame(const Vec3& normal, const Vec3& along, LimitFrame& frame) {
 // The stationary sector holding ring face k.
 const SectorMasks& sectorOfFace(const StationaryMasks& masks, int k, int n) {
   for (const SectorMasks& s : masks.sectors) {
-    if ((k - s.firstEdge + n) % n < s.faceCount) return s;
+    int offset = k - s.firstEdge;  // both in [0, n): no division needed
+    if (offset < 0) offset += n;
+    if (offset < s.faceCount) return s;
   }
   return masks.sectors.front();
 }
@@ -130,37 +131,73 @@ const StationaryMasks& masksFor(int n, bool boundary, VertexRule rule, const std
   return *stationaryMasks({n, boundary, rule, sharp});
 }
 
-}  // namespace
+// What every use of a vertex's exact limit starts from: the masks, the
+// ring points they weigh (the level's ring, or the stationary ring its
+// semi-sharp features decay into), how much of the centre each point holds,
+// and this level's sharp ring edges with the primary sector among them.
+// The spans point into per-thread storage, valid until the next call.
+struct RingLimit {
+  int valence = 0;
+  const StationaryMasks* masks = nullptr;
+  // The masks weigh the level's own ring (not a decayed one).
+  bool weighsLevelRing = false;
+  std::span<const Vec3> points;
+  std::span<const double> centreWeight;
+  std::span<const int> sharp;
+  bool sided = false;
+  int primary = 0;
+  const SectorMasks* primarySector = nullptr;
+};
 
-VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                             bool withOtherSides) {
+RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
   const int n = level.valence(v);
   thread_local std::vector<bool> sharpEdges;
   thread_local std::vector<Vec3> ringPoints;
   thread_local std::vector<double> centreWeight;
   sharpEdges.assign(n, false);
-  bool boundary = level.isBoundaryVertex(v);
-  VertexRule finalRule = level.vertexRules[v];
-  if (stationaryAtLevel(level, v)) {
-    // The common case: the ring's points as they are.
-    auto ringE = level.ringEdgesOf(v);
+  // The masks, and the ring points they weigh: the level's own ring, or
+  // the stationary ring its semi-sharp features decay into.
+  const StationaryMasks* masks = nullptr;
+  bool weighsLevelRing = true;
+  auto gatherLevelRing = [&] {
     auto ringV = level.ringVerticesOf(v);
     ringPoints.resize(n + 1);
     ringPoints[0] = points[v];
+    for (int k = 0; k < n; ++k) ringPoints[1 + k] = points[ringV[k]];
     centreWeight.assign(n + 1, 0.0);
     centreWeight[0] = 1.0;
-    for (int k = 0; k < n; ++k) {
-      ringPoints[1 + k] = points[ringV[k]];
-      sharpEdges[k] = isSharp(level.edgeSharpness[ringE[k]]);
+  };
+  if (stationaryAtLevel(level, v)) {
+    // The common case: the ring's points as they are.
+    gatherLevelRing();
+    auto ringE = level.ringEdgesOf(v);
+    for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(level.edgeSharpness[ringE[k]]);
+    masks = &masksFor(n, level.isBoundaryVertex(v), level.vertexRules[v], sharpEdges);
+  } else if (const DecayMatrix* decay = cachedDecayMatrix(level, v, points, method)) {
+    // Semi-sharp features left: the ring's steps until they decay, as one
+    // cached matrix (decay_matrix.h).
+    gatherLevelRing();
+    if (decay->composedSuffices) {
+      // The stationary masks composed with the decay weigh the level's ring.
+      masks = &decay->composed;
+    } else {
+      weighsLevelRing = false;
+      thread_local std::vector<Vec3> levelRing;
+      levelRing.assign(ringPoints.begin(), ringPoints.end());
+      decay->apply(levelRing, ringPoints);
+      for (int i = 0; i <= n; ++i) centreWeight[i] = decay->weights[static_cast<size_t>(i) * (n + 1)];
+      for (int k = 0; k < n; ++k) sharpEdges[k] = decay->sharpEdges[k];
+      masks = &masksFor(n, decay->boundary, decay->rule, sharpEdges);
     }
   } else {
-    // Semi-sharp features left: refine the ring alone until they decay.
+    // The cache is full: refine the ring here until its features decay.
+    weighsLevelRing = false;
     thread_local LocalRing rings[2];
-    int at = 0;
     gatherLocalRing(level, v, points, method, rings[0]);
+    int at = 0;
     for (int step = 0; !rings[at].isStationary(); ++step) {
-      assert(step < kMaxDecaySteps);
-      if (step >= kMaxDecaySteps) break;
+      assert(step < kMaxLoneRingDecaySteps);
+      if (step >= kMaxLoneRingDecaySteps) break;
       refineLocalRing(rings[at], method, rings[1 - at]);
       at = 1 - at;
     }
@@ -168,18 +205,14 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
     for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(ring.edgeSharpness[k]);
     ringPoints.assign(ring.points.begin(), ring.points.end());
     centreWeight.assign(ring.centreWeight.begin(), ring.centreWeight.end());
-    boundary = ring.boundary;
-    finalRule = ring.rule;
+    masks = &masksFor(n, ring.boundary, ring.rule, sharpEdges);
   }
-  const StationaryMasks& stationary = masksFor(n, boundary, finalRule, sharpEdges);
-  const StationaryMasks* masks = &stationary;
-  const std::span<const Vec3> p(ringPoints);
-
-  VertexLimit out;
-  out.position = apply(masks->position, p);
-  out.selfWeight = 0.0;
-  for (size_t i = 0; i < masks->position.size(); ++i) out.selfWeight += masks->position[i] * centreWeight[i];
-
+  RingLimit out;
+  out.valence = n;
+  out.masks = masks;
+  out.weighsLevelRing = weighsLevelRing;
+  out.points = ringPoints;
+  out.centreWeight = centreWeight;
   // The sectors of this level (limit.h's numbering), each with the normal
   // of the stationary sector it lies in: sharpness never grows, so each of
   // this level's sectors lies inside one.
@@ -192,32 +225,94 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
       if (isSharp(level.edgeSharpness[ringE[k]])) sharp.push_back(k);
     }
   }
+  out.sharp = sharp;
   const int m = static_cast<int>(sharp.size());
-  const bool sided = !isSmoothLike(rule) && m >= 2;
-  const int primary = !sided ? 0 : ((rule == VertexRule::kCrease || sharp[0] == 0) ? 0 : m - 1);
-  const int primaryFirstFace = sided ? sharp[primary] : 0;
-  const SectorMasks& primarySector = sectorOfFace(*masks, primaryFirstFace, n);
-  const Vec3 normal = sectorNormal(primarySector, p, n);
+  out.sided = !isSmoothLike(rule) && m >= 2;
+  out.primary = !out.sided ? 0 : ((rule == VertexRule::kCrease || sharp[0] == 0) ? 0 : m - 1);
+  out.primarySector = &sectorOfFace(*masks, out.sided ? sharp[out.primary] : 0, n);
+  return out;
+}
+
+}  // namespace
+
+VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                             bool withOtherSides) {
+  const RingLimit ring = ringLimit(level, v, points, method);
+  const StationaryMasks& masks = *ring.masks;
+  const std::span<const Vec3> p = ring.points;
+  const std::span<const int> sharp = ring.sharp;
+  const int n = ring.valence;
+  const int m = static_cast<int>(sharp.size());
+
+  VertexLimit out;
+  out.position = apply(masks.position, p);
+  out.selfWeight = 0.0;
+  for (size_t i = 0; i < masks.position.size(); ++i) out.selfWeight += masks.position[i] * ring.centreWeight[i];
+
+  const Vec3 normal = sectorNormal(*ring.primarySector, p, n);
   out.frame.position = out.position;
-  Vec3 along = apply(primarySector.tangent1, p);
-  if (rule == VertexRule::kCrease) {
+  Vec3 along = apply(ring.primarySector->tangent1, p);
+  if (level.vertexRules[v] == VertexRule::kCrease) {
     // Along the crease, first to second sharp edge, at OpenSubdiv's scale:
     // exactly the crease curve's tangent while it is infinitely sharp.
     auto ringV = level.ringVerticesOf(v);
     along = 1.5 * (points[ringV[sharp[0]]] - points[ringV[sharp[1]]]);
   }
   completeFrame(normal, along, out.frame);
-  if (!sided || !withOtherSides) return out;
+  if (!ring.sided || !withOtherSides) return out;
   const bool levelBoundary = level.isBoundaryVertex(v);
   for (int i = 0; i < m; ++i) {
-    if (i == primary) continue;
+    if (i == ring.primary) continue;
     const bool wraps = i + 1 == m;
     if (wraps && levelBoundary) continue;
     const int from = sharp[i];
     const int to = wraps ? sharp[0] + n : sharp[i + 1];
-    out.others.push_back({from, to - from, sectorNormal(sectorOfFace(*masks, from, n), p, n)});
+    out.others.push_back({from, to - from, sectorNormal(sectorOfFace(masks, from, n), p, n)});
   }
   return out;
+}
+
+namespace {
+
+bool isLinear(SectorMasks::Kind kind) {
+  return kind == SectorMasks::Kind::kTangentPlane || kind == SectorMasks::Kind::kDominantAndCrease;
+}
+
+// The stencil of a key not cached yet, from the general path; empty where
+// the normal is not a cross product of two masks over the level's ring.
+LimitStencil stencilOf(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
+  const RingLimit ring = ringLimit(level, v, points, method);
+  if (!ring.weighsLevelRing || !isLinear(ring.primarySector->kind)) return {};
+  return {ring.masks->position, ring.primarySector->tangent1, ring.primarySector->tangent2};
+}
+
+}  // namespace
+
+void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                                 Vec3& position, Vec3& normal) {
+  LimitStencilKey key;
+  if (method == CreaseMethod::kUniform && limitStencilKey(level, v, key)) {
+    const LimitStencil* stencil = findLimitStencil(key);
+    if (stencil == nullptr) stencil = insertLimitStencil(key, stencilOf(level, v, points, method));
+    if (stencil != nullptr && !stencil->position.empty()) {
+      // The same sums, in the same order, as apply() and sectorNormal().
+      auto ringV = level.ringVerticesOf(v);
+      const Vec3& centre = points[v];
+      Vec3 p = stencil->position[0] * centre, t1 = stencil->tangent1[0] * centre, t2 = stencil->tangent2[0] * centre;
+      for (size_t k = 0; k < ringV.size(); ++k) {
+        const Vec3& q = points[ringV[k]];
+        p += stencil->position[1 + k] * q;
+        t1 += stencil->tangent1[1 + k] * q;
+        t2 += stencil->tangent2[1 + k] * q;
+      }
+      position = p;
+      normal = unit(t1 % t2);
+      return;
+    }
+  }
+  const RingLimit ring = ringLimit(level, v, points, method);
+  position = apply(ring.masks->position, ring.points);
+  normal = sectorNormal(*ring.primarySector, ring.points, ring.valence);
 }
 
 }  // namespace tessera

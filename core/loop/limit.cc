@@ -123,7 +123,14 @@ void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Ve
   const SmoothTables tables(level.maxValence);
   const bool wantNormals = !normals.empty();
   for (Index v = 0; v < level.numVertices; ++v) {
-    const LimitFrame frame = frameWith(level, v, points, tables, method);
+    if (level.vertexRules[v] != VertexRule::kSmooth) {
+      // No frame to build: the sector's normal is what is written.
+      Vec3 normal;
+      exactLimitPositionAndNormal(level, v, points, method, positions[v], normal);
+      if (wantNormals) normals[v] = normal;
+      continue;
+    }
+    const LimitFrame frame = smoothFrame(level, v, points, tables);
     positions[v] = frame.position;
     if (wantNormals) normals[v] = frame.normal();
   }

@@ -4,7 +4,10 @@
 // region change sets equal to a full diff.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 #include <set>
@@ -13,7 +16,9 @@
 
 #include "core/document/document.h"
 #include "core/document/document_evaluator.h"
+#include "core/loop/exact_limit.h"
 #include "core/loop/limit.h"
+#include "core/mesh/sharpness.h"
 #include "core/render/surface_distance.h"
 #include "core/tessellation/tessellation.h"
 #include "support/procedural_meshes.h"
@@ -158,6 +163,51 @@ TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
         if (HasFailure()) return;
       }
     }
+  }
+}
+
+// Issue 15 §1: the normals a viewer shades with are the exact limit
+// normals (exactVertexLimit, checked against Bfr in bfr_limit_test.cc), not
+// the masks of the level's rules. Darts, crease sectors of any size,
+// corners and semi-sharp features are displayed; each displayed normal
+// must be one of its vertex's exact sector normals at the finest level.
+TEST(Tessellation, NormalsAreTheExactLimitNormals) {
+  for (const LoopOptions& options : {LoopOptions{}, LoopOptions{.creaseMethod = CreaseMethod::kChaikin}}) {
+    const TestMesh mesh = testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.05, 9), 0.25, 0.1, 61);
+    auto doc = Document::create(mesh.topology, mesh.points, {.loop = options, .maxLevel = 3});
+    ASSERT_TRUE(doc.isOk());
+    randomEdits(*doc, 6, 62, 2.5f);
+    auto t = Tessellation::build(*doc, LodProfile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 12,
+                                                  .triangleBudget = 10'000'000});
+    ASSERT_TRUE(t.isOk()) << t.status().message();
+    const int finest = doc->options().maxLevel;
+    auto dense = evaluateDocument(doc->baseTopology(), doc->basePoints(), options, doc->edits(), finest);
+    ASSERT_TRUE(dense.isOk());
+    const Level& level = dense->levels[finest];
+    int displayed = 0, nonSmooth = 0, semiSharp = 0;
+    double worst = 0.0;
+    for (const auto& [id, region] : t->regions()) {
+      for (size_t i = 0; i < region.positions.size(); ++i) {
+        const auto v = static_cast<Index>(VertexId::fromPacked(region.vertexIds[i]).index());
+        const VertexLimit exact = exactVertexLimit(level, v, dense->points[finest], options.creaseMethod);
+        double best = std::atan2((region.normals[i] % exact.frame.normal()).norm(), dot(region.normals[i], exact.frame.normal()));
+        for (const LimitSector& side : exact.others) {
+          best = std::min(best, std::atan2((region.normals[i] % side.normal).norm(), dot(region.normals[i], side.normal)));
+        }
+        worst = std::max(worst, best);
+        ++displayed;
+        nonSmooth += level.vertexRules[v] != VertexRule::kSmooth ? 1 : 0;
+        bool decaying = isSemiSharp(level.vertexSharpness[v]);
+        for (Index e : level.ringEdgesOf(v)) decaying = decaying || isSemiSharp(level.edgeSharpness[e]);
+        semiSharp += decaying ? 1 : 0;
+      }
+    }
+    EXPECT_LE(worst, 1e-9) << "a displayed normal is none of its vertex's exact limit normals";
+    EXPECT_GT(nonSmooth, 50) << "the tags must put creases, darts and corners on screen";
+    EXPECT_GT(semiSharp, 5) << "semi-sharp features must still be decaying at the finest level";
+    std::printf("[ measured ] %s decay: %d displayed vertices, %d not smooth, %d with features still decaying, worst %.2e rad\n",
+                options.creaseMethod == CreaseMethod::kChaikin ? "Chaikin" : "uniform", displayed, nonSmooth, semiSharp,
+                worst);
   }
 }
 

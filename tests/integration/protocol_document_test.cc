@@ -383,7 +383,9 @@ Topology refine(const Topology& p) {
 
 // The split copies of a limit export: every index from `vertices` on has the
 // bit-identical position of an earlier vertex; maps each to it.
-std::vector<std::array<uint64_t, 3>> withoutCopies(const Glb& glb, uint64_t vertices, size_t& copies) {
+// `otherNormal` counts the copies whose normal is not their vertex's.
+std::vector<std::array<uint64_t, 3>> withoutCopies(const Glb& glb, uint64_t vertices, size_t& copies,
+                                                   size_t& otherNormal) {
   std::map<std::array<uint32_t, 3>, uint64_t> at;
   auto bits = [](const std::array<float, 3>& p) {
     return std::array<uint32_t, 3>{std::bit_cast<uint32_t>(p[0]), std::bit_cast<uint32_t>(p[1]), std::bit_cast<uint32_t>(p[2])};
@@ -393,7 +395,7 @@ std::vector<std::array<uint64_t, 3>> withoutCopies(const Glb& glb, uint64_t vert
   }
   std::vector<uint64_t> original(glb.positions.size());
   uint64_t previous = 0;
-  copies = 0;
+  copies = otherNormal = 0;
   for (uint64_t i = 0; i < glb.positions.size(); ++i) {
     if (i < vertices) {
       original[i] = i;
@@ -405,7 +407,9 @@ std::vector<std::array<uint64_t, 3>> withoutCopies(const Glb& glb, uint64_t vert
     original[i] = it->second;
     EXPECT_GE(it->second, previous) << "copies are not in the order of their vertices";
     previous = it->second;
-    EXPECT_NE(glb.normals[i], glb.normals[it->second]) << "a copy with its vertex's normal";
+    // A side of a semi-sharp feature that decays has the same normal as
+    // the vertex: the limit surface is smooth there (docs/LIMITS.md).
+    if (glb.normals[i] != glb.normals[it->second]) ++otherNormal;
     ++copies;
   }
   std::vector<std::array<uint64_t, 3>> out;
@@ -439,12 +443,16 @@ TEST(ProtocolDocument, ExportVertexOrderFollowsTheNumbering) {
     EXPECT_EQ(control.triangles, levels[l].faces) << "level " << l << ": triangles of the control export";
 
     limit[l] = exportGlb(*s.admin, s.doc, l, true);
-    size_t copies = 0;
-    const auto mapped = withoutCopies(limit[l], levels[l].vertices, copies);
+    size_t copies = 0, otherNormal = 0;
+    const auto mapped = withoutCopies(limit[l], levels[l].vertices, copies, otherNormal);
     EXPECT_EQ(mapped, levels[l].faces) << "level " << l << ": triangles of the limit export";
     EXPECT_GT(copies, 0u) << "the creased cube has crease and corner vertices";
-    std::printf("[ measured ] level %u: %llu vertices, %zu split copies, %zu triangles\n", l,
-                static_cast<unsigned long long>(levels[l].vertices), copies, limit[l].triangles.size());
+    // The infinitely sharp top rim and corner keep a crease in the limit:
+    // their further sides have normals of their own.
+    EXPECT_GT(otherNormal, 0u) << "no copy has a normal of its own side";
+    std::printf("[ measured ] level %u: %llu vertices, %zu split copies (%zu with another normal), %zu triangles\n",
+                l, static_cast<unsigned long long>(levels[l].vertices), copies, otherNormal,
+                limit[l].triangles.size());
   }
   // Vertices keep their index: vertex k of level 1 has the same limit at
   // level 2, the same point evaluated from another level. Exact only where

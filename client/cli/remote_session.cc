@@ -64,8 +64,14 @@ int connectFailed(const std::string& command, const Status& status) {
 int outcome(const std::string& command, const Expected<wire::ServerMessage>& reply) {
   if (!reply.isOk()) return fail("remote " + command, reply.status().message());
   if (reply->has_reject()) {
+    // A wrong token is refused at the handshake; a session that reaches a
+    // command unauthenticated connected without one.
+    const bool noToken = reply->reject().reason() == wire::REJECT_REASON_NOT_AUTHENTICATED;
     return fail("remote " + command,
-                wire::RejectReason_Name(reply->reject().reason()) + ": " + reply->reject().message());
+                wire::RejectReason_Name(reply->reject().reason()) + ": " + reply->reject().message() +
+                    (noToken ? " (no token was given: give --token or --token-file; the server's admin makes one "
+                               "with tessera-server token new)"
+                             : ""));
   }
   if (reply->has_error()) {
     return fail("remote " + command,

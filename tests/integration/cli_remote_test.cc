@@ -77,6 +77,11 @@ TEST(CliRemote, WrongTokenAndNoServerAreErrors) {
     EXPECT_NE(r.err.find("authentication failed"), std::string::npos) << command << ": " << r.err;
     EXPECT_NE(r.err.find("does not know this token"), std::string::npos) << r.err;
   }
+  // No token at all: the hint names the options.
+  CliRun none = runCli("remote --port " + std::to_string(f.server->port()) + " list");
+  EXPECT_EQ(none.exitCode, 1);
+  EXPECT_TRUE(none.out.empty()) << none.out;
+  EXPECT_NE(none.err.find("no token was given: give --token or --token-file"), std::string::npos) << none.err;
   // The same token file form, and the token in the option after the command.
   CliRun after = runCli("remote list --port " + std::to_string(f.server->port()) + " --token WRONG-TOKEN-0123456789");
   EXPECT_EQ(after.exitCode, 1);

@@ -5,13 +5,14 @@
 # 127.0.0.1, makes a token inside the container and creates and lists a
 # document over the protocol with the tessera CLI.
 #
-# Skipped (exit 77, saying why) without a docker command, without a
-# reachable engine, and unless TESSERA_DOCKER_TEST=1: building the image
-# compiles the whole project (547 s on one core on 2026-11-26), too long for CI.
+# Skipped (exit 77, saying why) without a docker command or without a
+# reachable engine (issue 14 §1: built wherever Docker is available), and
+# when TESSERA_DOCKER_TEST=0: building the image compiles the whole project
+# (547 s on one core on 2026-11-26), which a quick local run may not want.
 # Where no registry is reachable, the Debian base images are made first
 # from Debian's archive (deploy/build-base-images.sh, as root).
 #
-# Usage: [TESSERA_DOCKER_TEST=1] docker_build_test.sh SOURCE_DIR
+# Usage: [TESSERA_DOCKER_TEST=0] docker_build_test.sh SOURCE_DIR
 #   TESSERA_DOCKER_BUILD_ARGS   more `docker build` options, e.g. "--cpuset-cpus 1" (classic builder)
 #   TESSERA_DOCKER_BUILD_TIMEOUT  seconds the build may take (default 2400)
 #   TESSERA_DOCKER_KEEP_IMAGE=1 keep the image (tessera-server-test:PID) for a look afterwards
@@ -28,8 +29,8 @@ fi
 if ! info=$(timeout 30 docker info 2>&1); then
   skip "no Docker engine reachable (docker info: $(grep -m1 -iE "error|cannot" <<<"$info" || head -1 <<<"$info")); deploy/Dockerfile is checked by Deploy.Dockerfile instead"
 fi
-if [[ ${TESSERA_DOCKER_TEST:-} != 1 ]]; then
-  skip "a Docker engine is reachable, but building the image compiles the whole project (about 10 minutes on one core); set TESSERA_DOCKER_TEST=1 to run this test (docs/OPERATIONS.md, Container image)"
+if [[ ${TESSERA_DOCKER_TEST:-} == 0 ]]; then
+  skip "a Docker engine is reachable, but TESSERA_DOCKER_TEST=0 asks not to build the image (about 10 minutes on one core; docs/OPERATIONS.md, Container image)"
 fi
 
 say() { echo "docker-test: $*"; }

@@ -62,7 +62,8 @@ std::vector<double> composeMask(const std::vector<double>& mask, const std::vect
 
 void composeMasks(DecayMatrix& decay) {
   const int size = decay.valence + 1;
-  const StationaryMasks& stationary = *stationaryMasks({decay.valence, decay.boundary, decay.rule, decay.sharpEdges});
+  const auto held = stationaryMasks({decay.valence, decay.boundary, decay.rule, decay.sharpEdges});
+  const StationaryMasks& stationary = *held;
   decay.composed.position = composeMask(stationary.position, decay.weights, size);
   decay.composed.sectors = stationary.sectors;
   decay.composedSuffices = true;

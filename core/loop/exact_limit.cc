@@ -115,20 +115,24 @@ bool stationaryAtLevel(const Level& level, Index v) {
 // The masks of a ring whose rules no longer change, through a per-thread
 // map keyed by a packed word (valence, boundary, rule, sharp edges) in front
 // of the process-wide cache, so the common case takes no lock and no
-// allocation. Masks are never evicted, so the raw pointers stay valid.
+// allocation. Cached masks are never evicted, so the raw pointers stay
+// valid; masks the full cache did not keep are held here until the next
+// call on this thread, which outlives every use in this file.
 const StationaryMasks& masksFor(int n, bool boundary, VertexRule rule, const std::vector<bool>& sharp) {
   constexpr int kPackedValence = 52;
+  thread_local std::shared_ptr<const StationaryMasks> held;
+  uint64_t key = 0;
+  thread_local std::unordered_map<uint64_t, const StationaryMasks*> local;
   if (n <= kPackedValence) {
-    uint64_t key = static_cast<uint64_t>(n) | (boundary ? 1ull << 6 : 0) | (static_cast<uint64_t>(rule) << 7);
+    key = static_cast<uint64_t>(n) | (boundary ? 1ull << 6 : 0) | (static_cast<uint64_t>(rule) << 7);
     for (int k = 0; k < n; ++k) key |= sharp[k] ? 1ull << (12 + k) : 0;
-    thread_local std::unordered_map<uint64_t, const StationaryMasks*> local;
     auto it = local.find(key);
     if (it != local.end()) return *it->second;
-    const StationaryMasks* masks = stationaryMasks({n, boundary, rule, sharp}).get();
-    local.emplace(key, masks);
-    return *masks;
   }
-  return *stationaryMasks({n, boundary, rule, sharp});
+  bool cached = false;
+  held = stationaryMasks({n, boundary, rule, sharp}, &cached);
+  if (cached && n <= kPackedValence) local.emplace(key, held.get());
+  return *held;
 }
 
 // What every use of a vertex's exact limit starts from: the masks, the

@@ -325,10 +325,11 @@ StationaryMasks computeStationaryMasks(const StationaryRing& ring) {
   return masks;
 }
 
-std::shared_ptr<const StationaryMasks> stationaryMasks(const StationaryRing& ring) {
+std::shared_ptr<const StationaryMasks> stationaryMasks(const StationaryRing& ring, bool* cached) {
   static std::shared_mutex mutex;
   static std::map<Key, std::shared_ptr<const StationaryMasks>> cache;
   const Key key = keyOf(ring);
+  if (cached != nullptr) *cached = true;
   {
     std::shared_lock lock(mutex);
     auto it = cache.find(key);
@@ -336,6 +337,12 @@ std::shared_ptr<const StationaryMasks> stationaryMasks(const StationaryRing& rin
   }
   auto masks = std::make_shared<const StationaryMasks>(computeStationaryMasks(ring));
   std::unique_lock lock(mutex);
+  if (cache.size() >= kStationaryMasksCacheEntries && !cache.contains(key)) {
+    // Full: documents keep sending new configurations. Answer without
+    // keeping it, so memory stays bounded (issue 13: no growth without bound).
+    if (cached != nullptr) *cached = false;
+    return masks;
+  }
   return cache.emplace(key, std::move(masks)).first->second;
 }
 

@@ -21,6 +21,7 @@
 // tangent plane; SectorMasks::Kind says what normal is used instead.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -73,8 +74,12 @@ struct StationaryMasks {
 
 // The masks of a ring, computed on first use and cached for the process
 // (thread-safe). Smooth rings of any valence are valid input, though limit.cc
-// evaluates those in closed form.
-std::shared_ptr<const StationaryMasks> stationaryMasks(const StationaryRing& ring);
+// evaluates those in closed form. The cache keeps at most
+// kStationaryMasksCacheEntries configurations; past that the masks are
+// computed and returned without being kept, and `cached` (if given) says
+// false: a caller that keeps a raw pointer must keep only cached ones.
+inline constexpr size_t kStationaryMasksCacheEntries = 16384;
+std::shared_ptr<const StationaryMasks> stationaryMasks(const StationaryRing& ring, bool* cached = nullptr);
 
 // Uncached, for tests: the same computation.
 StationaryMasks computeStationaryMasks(const StationaryRing& ring);

@@ -11,6 +11,7 @@
 //    a k-face sector's interior; 3/8 + cos(2 pi j/n)/4 of a cusp's ring).
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -221,6 +222,47 @@ TEST(LimitMasks, SmoothMasksAreTheClosedForm) {
     for (int k = 0; k < n; ++k) EXPECT_NEAR(m.position[1 + k], w, 1e-13) << n;
     EXPECT_NEAR(m.sectors[0].lambda1, c, 1e-12);
   }
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// The process-wide cache stops growing at kStationaryMasksCacheEntries:
+// past it, new configurations are answered (the same masks) but not kept,
+// and what it holds stays. Corners of valence 15 with every set of two or
+// more sharp edges give more than enough distinct configurations.
+TEST(LimitMasks, TheProcessCacheIsBounded) {
+  const int n = 15;
+  auto corner = [&](uint32_t bits) {
+    StationaryRing ring{n, false, VertexRule::kCorner, std::vector<bool>(n)};
+    for (int k = 0; k < n; ++k) ring.sharpEdges[k] = ((bits >> k) & 1u) != 0;
+    return ring;
+  };
+  bool cached = false;
+  const StationaryRing first = corner(0b11);
+  ASSERT_NE(stationaryMasks(first, &cached), nullptr);
+  const bool firstKept = cached;
+  size_t asked = 0;
+  uint32_t refusedBits = 0;
+  for (uint32_t bits = 4; bits < (1u << n) && asked <= kStationaryMasksCacheEntries; ++bits) {
+    if (std::popcount(bits) < 2) continue;
+    ++asked;
+    auto masks = stationaryMasks(corner(bits), &cached);
+    ASSERT_NE(masks, nullptr);
+    if (!cached) {
+      refusedBits = bits;
+      EXPECT_EQ(masks->position, computeStationaryMasks(corner(bits)).position) << "an answer not kept is still right";
+      break;
+    }
+  }
+  EXPECT_NE(refusedBits, 0u) << "the cache took " << asked << " new configurations without refusing one";
+  stationaryMasks(first, &cached);
+  EXPECT_EQ(cached, firstKept) << "what the cache held before it filled is still there";
+  stationaryMasks(corner(refusedBits), &cached);
+  EXPECT_FALSE(cached) << "a configuration refused once is not kept later";
 }
 
 }  // namespace

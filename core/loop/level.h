@@ -78,7 +78,8 @@ struct Level {
     return fv[0] == v ? 0 : (fv[1] == v ? 1 : 2);
   }
 
-  // Sharpness of the ring edges of v, in ring order, into `out` (size >= valence).
+  // Sharpness of the ring edges of v, in ring order, into `out` (size >= valence);
+  // an absent edge (kInvalidIndex, at an incomplete vertex of a sparse level) is smooth.
   void ringSharpness(Index v, float* out) const;
   int computeMaxValence() const;
   // Rules from the current sharpness (after tags change at this level).

@@ -39,5 +39,21 @@ TEST(PlyReader, TheFuzzersInputIsRefusedByName) {
       << mesh.status().message();
 }
 
+// fuzz_import_ply's slow input (session 9): a binary PLY whose header
+// declares 555,555,555 instances of an element without properties before
+// the real vertex and face elements. Each instance takes no bytes, so
+// nothing bounded the loop over them: it ran 139 s of CPU before the fix.
+// Now such an element is skipped and the file is read as what it holds.
+TEST(PlyReader, AnElementWithoutPropertiesIsSkippedAtOnce) {
+  const std::string bytes = readBytes(testing::sourceTestDataPath("bad/fuzz_ply_empty_element_555555555.ply"));
+  ASSERT_FALSE(bytes.empty());
+  auto mesh = importMeshFromBytes(bytes, ".ply", "empty.ply");
+  if (!mesh.isOk()) {
+    EXPECT_NE(mesh.status().message().find("empty.ply"), std::string::npos) << mesh.status().message();
+    EXPECT_EQ(mesh.status().message().find("veRtex"), std::string::npos)
+        << "the empty element is not what is wrong: " << mesh.status().message();
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -1,6 +1,5 @@
 #include "core/loop/decay_matrix.h"
 
-#include <cassert>
 #include <cstring>
 #include <string>
 #include <unordered_map>
@@ -70,8 +69,7 @@ void composeMasks(DecayMatrix& decay) {
   for (SectorMasks& sector : decay.composed.sectors) {
     sector.tangent1 = composeMask(sector.tangent1, decay.weights, size);
     if (!sector.tangent2.empty()) sector.tangent2 = composeMask(sector.tangent2, decay.weights, size);
-    decay.composedSuffices = decay.composedSuffices && (sector.kind == SectorMasks::Kind::kTangentPlane ||
-                                                        sector.kind == SectorMasks::Kind::kDominantAndCrease);
+    decay.composedSuffices = decay.composedSuffices && sector.normalIsCrossProduct();
   }
 }
 
@@ -103,14 +101,8 @@ DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method) {
     for (int j = 0; j < size; ++j) {
       rings[0].points[j] = Vec3(j == c ? 1.0 : 0.0, j == c + 1 ? 1.0 : 0.0, j == c + 2 ? 1.0 : 0.0);
     }
-    int at = 0, steps = 0;
-    while (!rings[at].isStationary() && steps < kMaxLoneRingDecaySteps) {
-      refineLocalRing(rings[at], method, rings[1 - at]);
-      at = 1 - at;
-      ++steps;
-    }
-    assert(rings[at].isStationary());
-    const LocalRing& last = rings[at];
+    const int steps = refineUntilStationary(rings, method);
+    const LocalRing& last = rings[steps % 2];
     for (int i = 0; i < size; ++i) {
       for (int d = 0; d < 3 && c + d < size; ++d) out.weights[static_cast<size_t>(i) * size + c + d] = last.points[i][d];
     }

@@ -58,10 +58,6 @@ const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<cons
 // Uncached: the ring's semi-sharp features refined away on unit points.
 DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method);
 
-// Sharpness below 10 decays by at least 1 per level (Chaikin's average never
-// exceeds the largest), so 10 steps reach the stationary rules.
-inline constexpr int kMaxLoneRingDecaySteps = 12;
-
 // The number of configurations one thread keeps.
 inline constexpr size_t kDecayMatrixCacheEntries = 8192;
 

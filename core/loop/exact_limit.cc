@@ -1,7 +1,6 @@
 #include "core/loop/exact_limit.h"
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 #include <unordered_map>
 
@@ -14,7 +13,6 @@
 namespace tessera {
 
 namespace {
-
 
 Vec3 apply(const std::vector<double>& mask, std::span<const Vec3> ring) {
   Vec3 sum(0, 0, 0);
@@ -198,14 +196,7 @@ RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, C
     weighsLevelRing = false;
     thread_local LocalRing rings[2];
     gatherLocalRing(level, v, points, method, rings[0]);
-    int at = 0;
-    for (int step = 0; !rings[at].isStationary(); ++step) {
-      assert(step < kMaxLoneRingDecaySteps);
-      if (step >= kMaxLoneRingDecaySteps) break;
-      refineLocalRing(rings[at], method, rings[1 - at]);
-      at = 1 - at;
-    }
-    const LocalRing& ring = rings[at];
+    const LocalRing& ring = rings[refineUntilStationary(rings, method) % 2];
     for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(ring.edgeSharpness[k]);
     ringPoints.assign(ring.points.begin(), ring.points.end());
     centreWeight.assign(ring.centreWeight.begin(), ring.centreWeight.end());
@@ -276,47 +267,38 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
   return out;
 }
 
-namespace {
-
-bool isLinear(SectorMasks::Kind kind) {
-  return kind == SectorMasks::Kind::kTangentPlane || kind == SectorMasks::Kind::kDominantAndCrease;
-}
-
-// The stencil of a key not cached yet, from the general path; empty where
-// the normal is not a cross product of two masks over the level's ring.
-LimitStencil stencilOf(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
-  const RingLimit ring = ringLimit(level, v, points, method);
-  if (!ring.weighsLevelRing || !isLinear(ring.primarySector->kind)) return {};
-  return {ring.masks->position, ring.primarySector->tangent1, ring.primarySector->tangent2};
-}
-
-}  // namespace
-
 void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
                                  Vec3& position, Vec3& normal) {
   LimitStencilKey key;
-  if (method == CreaseMethod::kUniform && limitStencilKey(level, v, key)) {
-    const LimitStencil* stencil = findLimitStencil(key);
-    if (stencil == nullptr) stencil = insertLimitStencil(key, stencilOf(level, v, points, method));
-    if (stencil != nullptr && !stencil->position.empty()) {
-      // The same sums, in the same order, as apply() and sectorNormal().
-      auto ringV = level.ringVerticesOf(v);
-      const Vec3& centre = points[v];
-      Vec3 p = stencil->position[0] * centre, t1 = stencil->tangent1[0] * centre, t2 = stencil->tangent2[0] * centre;
-      for (size_t k = 0; k < ringV.size(); ++k) {
-        const Vec3& q = points[ringV[k]];
-        p += stencil->position[1 + k] * q;
-        t1 += stencil->tangent1[1 + k] * q;
-        t2 += stencil->tangent2[1 + k] * q;
-      }
-      position = p;
-      normal = unit(t1 % t2);
-      return;
+  const bool keyed = method == CreaseMethod::kUniform && limitStencilKey(level, v, key);
+  const LimitStencil* stencil = keyed ? findLimitStencil(key) : nullptr;
+  if (stencil != nullptr && !stencil->position.empty()) {
+    // The same sums, in the same order, as apply() and sectorNormal().
+    auto ringV = level.ringVerticesOf(v);
+    const Vec3& centre = points[v];
+    Vec3 p = stencil->position[0] * centre, t1 = stencil->tangent1[0] * centre, t2 = stencil->tangent2[0] * centre;
+    for (size_t k = 0; k < ringV.size(); ++k) {
+      const Vec3& q = points[ringV[k]];
+      p += stencil->position[1 + k] * q;
+      t1 += stencil->tangent1[1 + k] * q;
+      t2 += stencil->tangent2[1 + k] * q;
     }
+    position = p;
+    normal = unit(t1 % t2);
+    return;
   }
   const RingLimit ring = ringLimit(level, v, points, method);
   position = apply(ring.masks->position, ring.points);
   normal = sectorNormal(*ring.primarySector, ring.points, ring.valence);
+  // Done unless the configuration is keyable and new (an empty stencil
+  // marks one known to need this path).
+  if (!keyed || stencil != nullptr) return;
+  // A new configuration: keep its masks over the level's ring, or an empty
+  // stencil where the normal is not a cross product of two of them.
+  const bool linear = ring.weighsLevelRing && ring.primarySector->normalIsCrossProduct();
+  insertLimitStencil(key, linear ? LimitStencil{ring.masks->position, ring.primarySector->tangent1,
+                                                ring.primarySector->tangent2}
+                                 : LimitStencil{});
 }
 
 }  // namespace tessera

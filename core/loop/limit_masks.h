@@ -65,6 +65,10 @@ struct SectorMasks {
   // tangent2 points to the side the faces' counter-clockwise order faces.
   std::vector<double> tangent1, tangent2;
   double lambda1 = 0.0, lambda2 = 0.0;  // the eigenvalues of the two tangents
+
+  // The normal is tangent1 x tangent2, linear in the ring in each factor;
+  // the other kinds orient it by the ring's faces.
+  bool normalIsCrossProduct() const { return kind == Kind::kTangentPlane || kind == Kind::kDominantAndCrease; }
 };
 
 struct StationaryMasks {

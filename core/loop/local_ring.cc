@@ -77,6 +77,16 @@ void stepPoints(const LocalRing& ring, std::span<const T> p, const std::vector<f
 
 }  // namespace
 
+int refineUntilStationary(LocalRing (&rings)[2], CreaseMethod method) {
+  int steps = 0;
+  for (; !rings[steps % 2].isStationary(); ++steps) {
+    assert(steps < kMaxLoneRingDecaySteps);
+    if (steps >= kMaxLoneRingDecaySteps) break;
+    refineLocalRing(rings[steps % 2], method, rings[1 - steps % 2]);
+  }
+  return steps;
+}
+
 bool LocalRing::isStationary() const {
   if (isSemiSharp(vertexSharpness)) return false;
   for (float s : edgeSharpness) {

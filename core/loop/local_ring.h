@@ -55,4 +55,12 @@ LocalRing refineLocalRing(const LocalRing& ring, CreaseMethod method);
 // The same into `child` (not `ring`), reusing its storage.
 void refineLocalRing(const LocalRing& ring, CreaseMethod method, LocalRing& child);
 
+// Sharpness below 10 decays by at least 1 per level (Chaikin's average never
+// exceeds the largest), so 10 steps reach the stationary rules.
+inline constexpr int kMaxLoneRingDecaySteps = 12;
+
+// Refines rings[0] until it is stationary, alternating between the two
+// rings; returns the number of steps, so the result is rings[steps % 2].
+int refineUntilStationary(LocalRing (&rings)[2], CreaseMethod method);
+
 }  // namespace tessera

@@ -112,8 +112,8 @@ void regions() {
 std::string frame(const google::protobuf::MessageLite& m) { return value(encodeFrame(m, 1u << 20), "frame"); }
 
 // Client messages for document 1, with client_seq `seq` (its low bit picks
-// the session in the document host target).
-std::vector<wire::ClientMessage> session(uint64_t seq) {
+// the session in the document host target), subscribing up to `maxLevel`.
+std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
   std::vector<wire::ClientMessage> out;
   auto add = [&]() -> wire::ClientMessage& {
     out.emplace_back().set_client_seq(seq);
@@ -123,7 +123,7 @@ std::vector<wire::ClientMessage> session(uint64_t seq) {
   auto* sub = add().mutable_subscribe();
   sub->set_document_id(1);
   sub->mutable_profile()->set_base_level(1);
-  sub->mutable_profile()->set_max_level(3);
+  sub->mutable_profile()->set_max_level(maxLevel);
   sub->mutable_profile()->set_angle_threshold_degrees(15);
   sub->set_with_commands(true);
   auto* move = add().mutable_move_vertex();
@@ -173,8 +173,8 @@ std::vector<wire::ClientMessage> session(uint64_t seq) {
 
 void hostSessions() {
   std::string editor(1, '\0'), both(1, '\2'), failing(1, '\1');
-  for (const auto& m : session(0)) editor += frame(m), failing += frame(m);
-  const auto a = session(0), b = session(1);
+  for (const auto& m : session(0, kHostDocumentLevel)) editor += frame(m), failing += frame(m);
+  const auto a = session(0, kHostDocumentLevel), b = session(1, kHostDocumentLevel);
   for (size_t i = 0; i < a.size(); ++i) both += frame(a[i]) + frame(b[i]);
   write("document_host", "editor", editor);
   write("document_host", "two_sessions", both);
@@ -188,7 +188,7 @@ void frames() {
   hello.mutable_hello()->set_client_name("fuzz");
   hello.mutable_hello()->set_token("0123456789abcdef");
   std::string client = frame(hello);
-  for (const auto& m : session(2)) client += frame(m);
+  for (const auto& m : session(2, 3)) client += frame(m);
   // Byte 0: chunk size and envelope type; byte 1: maxFrameBytes 16 << 12 = 64 KiB.
   write("frame_decoder", "client_stream", std::string("\x07\x0c", 2) + client);
   write("frame_decoder", "client_bytewise", std::string("\x00\x0c", 2) + client);

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "core/document/interpolation_conflicts.h"
 #include "core/hierarchy/incidence.h"
 #include "core/loop/direct_manipulation.h"
 #include "core/loop/local_frame.h"
@@ -129,6 +130,16 @@ Status Document::checkEdit(const Edit& edit) const {
     }
     return Status::ok();
   }
+  if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
+    TESSERA_RETURN_IF_ERROR(counts_.check(t->vertex));
+    if (t->vertex.level() >= options_.maxLevel) {
+      return invalidArgument(t->vertex.toString() + ": an interpolating vertex shapes the next level (its ghost ring), "
+                             "so it must lie above the document's deepest level " + std::to_string(options_.maxLevel));
+    }
+    if (!t->interpolating) return Status::ok();
+    TESSERA_RETURN_IF_ERROR(checkTension(t->tension, t->vertex.toString()));
+    return checkFinite(t->tangent, t->vertex.toString() + " tangent");
+  }
   const auto& v = std::get<VertexSharpnessEdit>(edit.change);
   TESSERA_RETURN_IF_ERROR(counts_.check(v.vertex));
   return checkSharpness(v.sharpness, v.vertex.toString());
@@ -150,6 +161,7 @@ void Document::reserve(const Edit& edit) {
 
 Expected<EditId> Document::add(Edit edit) {
   TESSERA_RETURN_IF_ERROR(checkEdit(edit));
+  TESSERA_RETURN_IF_ERROR(checkInterpolationConflicts(edit, edits_, sparse_->level(0).mesh, counts_));
   edit.id = EditId{nextEditId_};
   edit.active = true;
   append(std::move(edit));
@@ -213,7 +225,11 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   reserveVertices(vertices);
   TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(vertices[0]));
   const auto points = sparse_->points(level);
-  const Vec3 solved = solveControlPoint(sparse_->level(level).mesh, v, points, target, options_.loop.creaseMethod);
+  // An interpolating vertex's limit is its control point (ghost_ring.h).
+  const bool interpolates = interpolationOf(vertices[0]).has_value() &&
+                            ghostRuleOf(sparse_->level(level).mesh, v) != GhostRule::kNone;
+  const Vec3 solved =
+      interpolates ? target : solveControlPoint(sparse_->level(level).mesh, v, points, target, options_.loop.creaseMethod);
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v]));
   return add(Edit{{}, true, std::move(move)});
 }
@@ -234,6 +250,37 @@ Expected<EditId> Document::setVertexSharpness(VertexId vertex, float sharpness) 
   return add(Edit{{}, true, VertexSharpnessEdit{vertex, sharpness}});
 }
 
+Status Document::checkGhostRule(const InterpolationEdit& tag) {
+  if (!tag.interpolating) return Status::ok();
+  // The rule that decides the ghost ring is the vertex's at its level now.
+  reserve(Edit{{}, true, tag});
+  TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(tag.vertex));
+  std::string why;
+  const GhostRule rule = ghostRuleOf(sparse_->level(tag.vertex.level()).mesh, v, &why);
+  if (rule == GhostRule::kNone) return invalidArgument(tag.vertex.toString() + " cannot interpolate: " + why);
+  if (rule == GhostRule::kInterior && tag.tangent.norm() > 0) {
+    return invalidArgument(tag.vertex.toString() + ": a tangent applies only to boundary and crease vertices");
+  }
+  return Status::ok();
+}
+
+Expected<EditId> Document::setInterpolation(VertexId vertex, bool interpolating, double tension, const Vec3& tangent) {
+  Edit edit{{}, true, InterpolationEdit{vertex, interpolating, tension, tangent}};
+  TESSERA_RETURN_IF_ERROR(checkEdit(edit));
+  TESSERA_RETURN_IF_ERROR(checkGhostRule(std::get<InterpolationEdit>(edit.change)));
+  return add(std::move(edit));
+}
+
+std::optional<InterpolationTag> Document::interpolationOf(VertexId vertex) const {
+  std::optional<InterpolationTag> tag;
+  for (const Edit& edit : edits_) {
+    const auto* t = std::get_if<InterpolationEdit>(&edit.change);
+    if (t == nullptr || !edit.active || t->vertex != vertex) continue;
+    tag = t->interpolating ? std::optional<InterpolationTag>(InterpolationTag{t->tension, t->tangent}) : std::nullopt;
+  }
+  return tag;
+}
+
 Expected<EdgeId> Document::edgeBetween(VertexId a, VertexId b) const {
   return tessera::edgeBetween(sparse_->level(0).mesh, counts_, a, b);
 }
@@ -248,6 +295,13 @@ Status Document::setActive(EditId id, bool active) {
   if (edit == nullptr) return notFound(id.toString() + ": no such edit");
   if (edit->active == active) {
     return invalidArgument(id.toString() + (active ? " is not undone" : " is already undone"));
+  }
+  if (active) {
+    TESSERA_RETURN_IF_ERROR(
+        checkInterpolationConflicts(*edit, edits_, sparse_->level(0).mesh, counts_).withContext("redo " + id.toString()));
+    if (const auto* tag = std::get_if<InterpolationEdit>(&edit->change)) {
+      TESSERA_RETURN_IF_ERROR(checkGhostRule(*tag).withContext("redo " + id.toString()));
+    }
   }
   edit->active = active;
   cache_.reset();

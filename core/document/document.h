@@ -23,6 +23,7 @@
 #include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/ids.h"
 #include "core/io/mesh_export.h"
+#include "core/loop/ghost_ring.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
@@ -61,6 +62,15 @@ class Document {
   Expected<EditId> moveBy(std::span<const VertexId> vertices, const Vec3& displacement);
   Expected<EditId> setEdgeSharpness(EdgeId edge, float sharpness);
   Expected<EditId> setVertexSharpness(VertexId vertex, float sharpness);
+  // Seed 004 §4: the surface passes through this vertex's control point
+  // (core/loop/ghost_ring.h), with this tension; `tangent` (boundary and
+  // crease vertices only) sets the tangent line. Refused where no ghost ring
+  // applies (ghostRuleOf says why), at the deepest level, and where finer
+  // edits conflict (interpolation_conflicts.h). interpolating = false ends it.
+  Expected<EditId> setInterpolation(VertexId vertex, bool interpolating, double tension = 1.0,
+                                    const Vec3& tangent = Vec3(0, 0, 0));
+  // The vertex's tension if it interpolates now (the latest active edit).
+  std::optional<InterpolationTag> interpolationOf(VertexId vertex) const;
   // The edge joining two vertices of one level, in either order: how a
   // client that knows only vertex ids names an edge (hierarchy/incidence.h).
   // Errors name both ids.
@@ -105,6 +115,9 @@ class Document {
   bool isBoundaryEdge(EdgeId edge) const;
   Status checkVertices(std::span<const VertexId> vertices) const;
   Status checkEdit(const Edit& edit) const;
+  // Whether the vertex's rule at its level admits a ghost ring (grows the
+  // hierarchy there first).
+  Status checkGhostRule(const InterpolationEdit& tag);
   Expected<EditId> add(Edit edit);
   void append(Edit edit);
   void reserveVertices(std::span<const VertexId> vertices);

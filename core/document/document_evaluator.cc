@@ -1,5 +1,6 @@
 #include "core/document/document_evaluator.h"
 
+#include "core/loop/ghost_ring.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/local_frame.h"
 #include "core/loop/refinement.h"
@@ -11,6 +12,7 @@ int Edit::level() const {
     int operator()(const MoveEdit& m) const { return m.offsets.empty() ? 0 : m.offsets.front().vertex.level(); }
     int operator()(const EdgeSharpnessEdit& e) const { return e.edge.level(); }
     int operator()(const VertexSharpnessEdit& v) const { return v.vertex.level(); }
+    int operator()(const InterpolationEdit& t) const { return t.vertex.level(); }
   };
   return std::visit(Visitor{}, change);
 }
@@ -46,6 +48,26 @@ void applyOffsets(std::span<const Edit> edits, int level, const Level& topology,
   }
 }
 
+// The interpolating vertices of level l (later edits of a vertex win) write
+// their ghost rings over the plain predictions of level l+1 (ghost_ring.h).
+void applyGhostRings(std::span<const Edit> edits, int level, const Level& topology, std::span<const Vec3> points,
+                     const LoopOptions& options, std::vector<Vec3>& childPoints) {
+  std::vector<std::pair<Index, InterpolationTag>> tags;
+  for (const Edit& edit : edits) {
+    const auto* t = std::get_if<InterpolationEdit>(&edit.change);
+    if (t == nullptr || !edit.active || edit.level() != level) continue;
+    const Index v = static_cast<Index>(t->vertex.index());
+    std::erase_if(tags, [&](const auto& entry) { return entry.first == v; });
+    if (t->interpolating) tags.emplace_back(v, InterpolationTag{t->tension, t->tangent});
+  }
+  for (const auto& [v, tag] : tags) {
+    const auto ring = ghostRing(topology, v, points, options, tag);
+    if (!ring) continue;
+    childPoints[v] = ring->centre;  // uniform numbering: vertex v -> child v, edge e -> V + e
+    for (const auto& [e, point] : ring->edges) childPoints[topology.numVertices + e] = point;
+  }
+}
+
 }  // namespace
 
 Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const Vec3> basePoints,
@@ -64,6 +86,7 @@ Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const 
     // a tag set at level l changes how level l refines, so it applies after.
     std::vector<Vec3> predicted(eval.levels[l].numVertices);
     interpolateLevel(eval.levels[l - 1], options, eval.points[l - 1], predicted);
+    applyGhostRings(edits, l - 1, eval.levels[l - 1], eval.points[l - 1], options, predicted);
     applySharpnessEdits(edits, l, eval.levels[l]);
     eval.points.push_back(predicted);
     applyOffsets(edits, l, eval.levels[l], predicted, eval.points[l]);

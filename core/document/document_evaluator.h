@@ -5,7 +5,9 @@
 //
 // Level l is built as:
 //   topology and sharpness refined from level l-1 (level 0: the base mesh);
-//   predicted points interpolated from level l-1 (level 0: the base points);
+//   predicted points interpolated from level l-1 (level 0: the base points),
+//   with the ghost rings of level l-1's interpolating vertices written over
+//   them (core/loop/ghost_ring.h);
 //   sharpness edits of level l applied and vertex rules recomputed (they
 //   govern how level l refines and its limit, not how it was predicted);
 //   each vertex offset of level l added in the vertex's local frame

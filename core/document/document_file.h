@@ -11,7 +11,9 @@
 
 namespace tessera {
 
-inline constexpr uint32_t kDocumentFormatVersion = 1;
+// 1: moves and sharpness tags. 2: also interpolation tags (seed 004 §4, edit
+// kind 4). Every version up to this one reads.
+inline constexpr uint32_t kDocumentFormatVersion = 2;
 
 std::string serializeDocument(const Document& document);
 // `source` names the data in error messages (usually the file path).

@@ -46,10 +46,21 @@ struct VertexSharpnessEdit {
   float sharpness = 0.0f;
 };
 
+// Seed 004 §4: the vertex becomes locally interpolating -- the surface passes
+// through its control point -- with this tension (core/loop/ghost_ring.h), or
+// stops being so. Later edits of the same vertex win, as for sharpness. It
+// shapes the next level (the ghost ring), so it needs a level below its own.
+struct InterpolationEdit {
+  VertexId vertex;
+  bool interpolating = true;
+  double tension = 1.0;
+  Vec3 tangent{0, 0, 0};  // boundary and crease vertices: the tangent line; zero: the default
+};
+
 struct Edit {
   EditId id;
   bool active = true;  // false once undone
-  std::variant<MoveEdit, EdgeSharpnessEdit, VertexSharpnessEdit> change;
+  std::variant<MoveEdit, EdgeSharpnessEdit, VertexSharpnessEdit, InterpolationEdit> change;
 
   int level() const;
 };

@@ -4,7 +4,9 @@ namespace tessera {
 
 namespace {
 
-enum class EditKind : uint8_t { kMove = 1, kEdgeSharpness = 2, kVertexSharpness = 3 };
+// Kind 4 (interpolation) is new in document format 2 and journal entries
+// written since; older readers refuse it as an unknown kind.
+enum class EditKind : uint8_t { kMove = 1, kEdgeSharpness = 2, kVertexSharpness = 3, kInterpolation = 4 };
 
 }  // namespace
 
@@ -22,6 +24,12 @@ void writeEdit(const Edit& edit, ByteWriter& w) {
     w.put<uint8_t>(static_cast<uint8_t>(EditKind::kEdgeSharpness));
     w.put<uint64_t>(e->edge.packed());
     w.put<float>(e->sharpness);
+  } else if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
+    w.put<uint8_t>(static_cast<uint8_t>(EditKind::kInterpolation));
+    w.put<uint64_t>(t->vertex.packed());
+    w.put<uint8_t>(t->interpolating ? 1 : 0);
+    w.put<double>(t->tension);
+    for (int k = 0; k < 3; ++k) w.put<double>(t->tangent[k]);
   } else {
     const auto& v = std::get<VertexSharpnessEdit>(edit.change);
     w.put<uint8_t>(static_cast<uint8_t>(EditKind::kVertexSharpness));
@@ -68,6 +76,21 @@ Expected<Edit> readEdit(ByteReader& r) {
       v.vertex = VertexId::fromPacked(packed);
       TESSERA_RETURN_IF_ERROR(r.get(v.sharpness, "a sharpness"));
       edit.change = v;
+      return edit;
+    }
+    case EditKind::kInterpolation: {
+      InterpolationEdit t;
+      uint8_t on = 0;
+      TESSERA_RETURN_IF_ERROR(r.get(packed, "a vertex id"));
+      t.vertex = VertexId::fromPacked(packed);
+      TESSERA_RETURN_IF_ERROR(r.get(on, "an interpolation state"));
+      if (on > 1) {
+        return parseError(r.source() + ": " + edit.id.toString() + ": bad interpolation state " + std::to_string(on));
+      }
+      t.interpolating = on == 1;
+      TESSERA_RETURN_IF_ERROR(r.get(t.tension, "a tension"));
+      for (int k = 0; k < 3; ++k) TESSERA_RETURN_IF_ERROR(r.get(t.tangent[k], "a tangent"));
+      edit.change = t;
       return edit;
     }
   }

@@ -33,6 +33,11 @@ void forEachElement(const Edit& edit, Visit&& visit) {
     for (const VertexOffset& o : move->offsets) visit(o.vertex);
   } else if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
     visit(e->edge);
+  } else if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
+    // Its ghost ring lives one level down: the hierarchy must hold V0's
+    // child with its ring there, and the edit nodes reach that level (as a
+    // move of the ring there would).
+    visit(VertexId(t->vertex.level() + 1, t->vertex.index()));
   } else {
     visit(std::get<VertexSharpnessEdit>(edit.change).vertex);
   }
@@ -208,6 +213,7 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
     LoopStencils stencils(parent.topo.mesh, options_);
     for (Index v = 0; v < topo.numVertexChildren; ++v) state.predicted[v] = stencils.vertexChild(topo.origin[v], parent.points);
     for (Index v = topo.numVertexChildren; v < n; ++v) state.predicted[v] = stencils.edgeChild(topo.origin[v], parent.points);
+    for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
   }
   state.points = state.predicted;
   state.offsets.clear();
@@ -222,13 +228,20 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
   for (const auto& [v, offset] : state.offsets) edited.push_back(v);
   for (const auto& [v, s] : state.vertexTags) edited.push_back(v);
   for (const auto& [e, s] : state.edgeTags) edited.insert(edited.end(), {topo.mesh.edgeVertices[e][0], topo.mesh.edgeVertices[e][1]});
+  if (l > 0) {
+    for (const auto& [v, tag] : levels_[l - 1].interpolationTags) {
+      for (Index c : ghostRingChildren(l - 1, v)) edited.push_back(c);
+    }
+  }
   if (!edited.empty()) refreshReached(l, verticesAround(l, edited));
 }
 
 void SparseEvaluator::refreshReached(int l, const std::vector<Index>& vertices) {
   LevelState& state = levels_[l];
   const SparseLevel& topo = state.topo;
-  auto moved = [&](Index u) { return u >= 0 && (state.offsets.count(u) != 0 || state.vertexTags.count(u) != 0); };
+  auto moved = [&](Index u) {
+    return u >= 0 && (state.offsets.count(u) != 0 || state.vertexTags.count(u) != 0 || isGhosted(l, u));
+  };
   for (Index v : vertices) {
     bool reached = false;
     if (topo.isComplete(v)) {
@@ -245,9 +258,17 @@ void SparseEvaluator::resolveTags(int l, std::span<const Edit> edits) {
   LevelState& state = levels_[l];
   state.edgeTags.clear();
   state.vertexTags.clear();
+  state.interpolationTags.clear();
   for (const Edit& edit : edits) {
     if (!edit.active || edit.level() != l) continue;
-    if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+    if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
+      const Index v = state.topo.findVertex(t->vertex.index());
+      if (t->interpolating) {
+        state.interpolationTags[v] = {t->tension, t->tangent};
+      } else {
+        state.interpolationTags.erase(v);
+      }
+    } else if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
       state.edgeTags[state.topo.findEdge(e->edge.index())] = canonicalSharpness(e->sharpness);
     } else if (const auto* v = std::get_if<VertexSharpnessEdit>(&edit.change)) {
       state.vertexTags[state.topo.findVertex(v->vertex.index())] = canonicalSharpness(v->sharpness);
@@ -304,6 +325,45 @@ void SparseEvaluator::applyOffset(int l, Index v) {
   auto it = state.offsets.find(v);
   state.points[v] = it == state.offsets.end() ? state.predicted[v]
                                               : state.predicted[v] + frameOf(l, v).toWorld(it->second);
+}
+
+void SparseEvaluator::applyGhostRing(int l, Index v0) {
+  const LevelState& parent = levels_[l - 1];
+  const SparseLevel& p = parent.topo;
+  LevelState& state = levels_[l];
+  const auto tag = parent.interpolationTags.find(v0);
+  if (tag == parent.interpolationTags.end() || !p.isComplete(v0)) return;
+  const auto ring = ghostRing(p.mesh, v0, parent.points, options_, tag->second);
+  if (!ring) return;
+  if (const Index c = p.childOfVertex[v0]; c >= 0) state.predicted[c] = ring->centre;
+  for (const auto& [e, point] : ring->edges) {
+    if (const Index c = p.childOfEdge[e]; c >= 0) state.predicted[c] = point;
+  }
+}
+
+bool SparseEvaluator::isGhosted(int l, Index v) const {
+  if (l == 0) return false;
+  const LevelState& parent = levels_[l - 1];
+  if (parent.interpolationTags.empty()) return false;
+  const SparseLevel& topo = levels_[l].topo;
+  auto applies = [&](Index u) {
+    return parent.interpolationTags.count(u) != 0 && parent.topo.isComplete(u) &&
+           ghostRuleOf(parent.topo.mesh, u) != GhostRule::kNone;
+  };
+  if (v < topo.numVertexChildren) return applies(topo.origin[v]);
+  const auto& ends = parent.topo.mesh.edgeVertices[topo.origin[v]];
+  return applies(ends[0]) || applies(ends[1]);
+}
+
+std::vector<Index> SparseEvaluator::ghostRingChildren(int l, Index v) const {
+  std::vector<Index> children;
+  if (l + 1 >= numLevels() || v < 0) return children;
+  const SparseLevel& p = levels_[l].topo;
+  if (const Index c = p.childOfVertex[v]; c >= 0) children.push_back(c);
+  for (Index e : p.mesh.ringEdgesOf(v)) {
+    if (e >= 0 && p.childOfEdge[e] >= 0) children.push_back(p.childOfEdge[e]);
+  }
+  return children;
 }
 
 LocalFrame SparseEvaluator::frameOf(int l, Index v) const {

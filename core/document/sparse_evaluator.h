@@ -29,6 +29,7 @@
 #include "core/document/edit.h"
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_level.h"
+#include "core/loop/ghost_ring.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/limit.h"
 #include "core/loop/local_frame.h"
@@ -136,6 +137,9 @@ class SparseEvaluator {
     std::vector<Vec3> limitPosition, limitNormal;  // valid where displayed
     std::unordered_map<Index, Vec3> offsets;       // summed local offsets of active moves
     std::unordered_map<Index, float> edgeTags, vertexTags;
+    // Interpolating vertices of this level: they shape the next level's
+    // points (their ghost rings, core/loop/ghost_ring.h).
+    std::unordered_map<Index, InterpolationTag> interpolationTags;
     Buffer<uint8_t> reached;  // per vertex: isReachedByEdit
     // Scratch for the incremental update: all zero between updates.
     std::vector<uint8_t> vertexMarks, faceMarks;
@@ -166,6 +170,15 @@ class SparseEvaluator {
   float inheritedVertexSharpness(int l, Index vertex) const;
   void recomputeRule(int l, Index vertex);
   void applyOffset(int l, Index vertex);
+  // The ghost ring of interpolating vertex v of level l-1 written over the
+  // predictions of level l (present children only).
+  void applyGhostRing(int l, Index parentVertex);
+  // A level-l vertex whose prediction a ghost ring of level l-1 set: V0's
+  // child or the vertex on one of V0's edges.
+  bool isGhosted(int l, Index vertex) const;
+  // The present children at level l+1 of interpolating vertex v of level l
+  // and of its edges.
+  std::vector<Index> ghostRingChildren(int l, Index vertex) const;
   // Re-derives isReachedByEdit for these vertices from the level's offsets
   // and tags (the vertices around the edited ones).
   void refreshReached(int l, const std::vector<Index>& vertices);

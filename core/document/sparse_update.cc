@@ -103,6 +103,22 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
     m.edgeSharpness[e] = it != state.edgeTags.end() ? it->second : inheritedEdgeSharpness(l, e);
     sources = {m.edgeVertices[e][0], m.edgeVertices[e][1]};
     for (Index v : sources) recomputeRule(l, v);
+  } else if (const auto* interp = std::get_if<InterpolationEdit>(&edit.change)) {
+    // Nothing changes at level l: the next level's ghost ring does, which
+    // propagate() recomputes from the faces around the vertex.
+    const Index v = state.topo.findVertex(interp->vertex.index());
+    state.interpolationTags.erase(v);
+    for (const Edit& other : edits) {
+      const auto* t = std::get_if<InterpolationEdit>(&other.change);
+      if (t == nullptr || !other.active || t->vertex != interp->vertex) continue;
+      if (t->interpolating) {
+        state.interpolationTags[v] = {t->tension, t->tangent};
+      } else {
+        state.interpolationTags.erase(v);
+      }
+    }
+    if (l + 1 < numLevels()) refreshReached(l + 1, verticesAround(l + 1, ghostRingChildren(l, v)));
+    sources = {v};
   } else {
     const auto& vtag = std::get<VertexSharpnessEdit>(edit.change);
     const Index v = state.topo.findVertex(vtag.vertex.index());
@@ -143,6 +159,15 @@ void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dir
     Marked faces(levels_[k].faceMarks);
     for (Index v : changed) {
       for (Index f : m.ringFacesOf(v)) {
+        if (f >= 0) faces.add(f);
+      }
+    }
+    // A ghost ring's points all read the mean of its plain edge points, so
+    // a change anywhere around an interpolating vertex recomputes it whole.
+    for (const auto& [v0, tag] : levels_[k].interpolationTags) {
+      const auto around = m.ringFacesOf(v0);
+      if (std::none_of(around.begin(), around.end(), [&](Index f) { return f >= 0 && faces.has(f); })) continue;
+      for (Index f : around) {
         if (f >= 0) faces.add(f);
       }
     }
@@ -205,6 +230,9 @@ std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Ind
   for (Index v : vertices.items()) {
     state.predicted[v] = v < c.numVertexChildren ? stencils.vertexChild(c.origin[v], parent.points)
                                                  : stencils.edgeChild(c.origin[v], parent.points);
+  }
+  for (const auto& [v0, tag] : parent.interpolationTags) {
+    if (const Index child = p.childOfVertex[v0]; child >= 0 && vertices.has(child)) applyGhostRing(l + 1, v0);
   }
   // Frames read the predicted ring: only once every prediction is settled.
   for (Index v : vertices.items()) applyOffset(l + 1, v);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include <zlib.h>
@@ -22,7 +24,12 @@ Document editedDocument() {
   auto b = doc->moveBy(std::vector<VertexId>{VertexId(3, 7), VertexId(3, 300)}, Vec3(1e-3, 2e-3, -0.1 / 3.0));
   auto c = doc->setEdgeSharpness(EdgeId(1, 5), 1.5f);
   auto d = doc->setVertexSharpness(VertexId(4, 900), kSharpnessInfinite);
+  // Format 2: an interpolating vertex with a tension, and one ended.
+  auto e = doc->setInterpolation(VertexId(1, 30), true, 2.5);
+  auto f = doc->setInterpolation(VertexId(2, 200), true, 0.75);
+  auto g = doc->setInterpolation(VertexId(2, 200), false);
   if (!a.isOk() || !b.isOk() || !c.isOk() || !d.isOk()) throw std::runtime_error("edit failed");
+  if (!e.isOk() || !f.isOk() || !g.isOk()) throw std::runtime_error("interpolation failed: " + e.status().toString() + f.status().toString());
   if (!doc->undo(*c).isOk()) throw std::runtime_error("undo failed");
   return std::move(doc).value();
 }
@@ -65,7 +72,7 @@ TEST(DocumentFile, RejectsForeignTruncatedAndCorruptedFiles) {
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x40;
   std::string newer = bytes;
-  newer[8] = 2;
+  newer[8] = 3;
   std::vector<Case> cases = {
       {"", "not a Tessera document"},
       {"solid cube\nendsolid\n", "not a Tessera document"},
@@ -73,7 +80,7 @@ TEST(DocumentFile, RejectsForeignTruncatedAndCorruptedFiles) {
       {bytes.substr(0, bytes.size() - 1), "truncated or padded"},
       {bytes + "x", "truncated or padded"},
       {flipped, "corrupted (payload checksum mismatch)"},
-      {newer, "format version 2 is not supported"},
+      {newer, "format version 3 is not supported"},
   };
   for (const auto& c : cases) {
     auto doc = deserializeDocument(c.data, "doc.tsd");
@@ -82,6 +89,23 @@ TEST(DocumentFile, RejectsForeignTruncatedAndCorruptedFiles) {
     EXPECT_NE(doc.status().message().find(c.message), std::string::npos) << doc.status().message();
   }
   EXPECT_EQ(loadDocument("/nonexistent/doc.tsd").status().code(), ErrorCode::kNotFound);
+}
+
+// A file written in format 1 (before interpolating vertices; the creased
+// cube with four edits, the last undone, written by fuzz_make_corpus at 7d758c3)
+// still loads, and saves as format 2 with the same payload: only the
+// version in the header changes.
+TEST(DocumentFile, FormatOneFilesStillLoad) {
+  auto loaded = loadDocument(testing::sourceTestDataPath("documents/creased_cube_format1.tsd"));
+  ASSERT_TRUE(loaded.isOk()) << loaded.status().toString();
+  ASSERT_EQ(loaded->edits().size(), 4u);  // a move, an offset, a crease and a corner (undone)
+  EXPECT_FALSE(loaded->edits()[3].active);
+  std::ifstream in(testing::sourceTestDataPath("documents/creased_cube_format1.tsd"), std::ios::binary);
+  std::string v1((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(v1[8], 1);
+  std::string expected = v1;
+  expected[8] = 2;
+  EXPECT_EQ(serializeDocument(*loaded), expected);
 }
 
 // Mutations with a valid checksum reach the payload parser and the document

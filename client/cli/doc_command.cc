@@ -73,6 +73,7 @@ int runEdit(const std::string& path, const std::string& script) {
 const char* kindName(const Edit& e) {
   if (std::holds_alternative<MoveEdit>(e.change)) return "move";
   if (std::holds_alternative<EdgeSharpnessEdit>(e.change)) return "crease";
+  if (std::holds_alternative<InterpolationEdit>(e.change)) return "interp";
   return "corner";
 }
 
@@ -102,6 +103,12 @@ int runInfo(const std::string& path) {
       for (const auto& off : m->offsets) std::printf("%s ", off.vertex.toString().c_str());
     } else if (const auto* c = std::get_if<EdgeSharpnessEdit>(&e.change)) {
       std::printf("%s %s", c->edge.toString().c_str(), formatSharpness(c->sharpness).c_str());
+    } else if (const auto* t = std::get_if<InterpolationEdit>(&e.change)) {
+      if (t->interpolating) {
+        std::printf("%s tension %g", t->vertex.toString().c_str(), t->tension);
+      } else {
+        std::printf("%s off", t->vertex.toString().c_str());
+      }
     } else {
       const auto& v = std::get<VertexSharpnessEdit>(e.change);
       std::printf("%s %s", v.vertex.toString().c_str(), formatSharpness(v.sharpness).c_str());

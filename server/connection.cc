@@ -409,6 +409,7 @@ void Connection::handle(wire::ClientMessage message) {
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
     case C::kSetVertexType:
+    case C::kSetInterpolation:
     case C::kUndo:
     case C::kRedo: {
       const auto role = roleFor(DocumentId{doc});
@@ -489,6 +490,7 @@ uint64_t Connection::documentOf(const wire::ClientMessage& m) const {
     case C::kMoveVertex: return m.move_vertex().document_id();
     case C::kSetEdgeSharpness: return m.set_edge_sharpness().document_id();
     case C::kSetVertexType: return m.set_vertex_type().document_id();
+    case C::kSetInterpolation: return m.set_interpolation().document_id();
     case C::kUndo: return m.undo().document_id();
     case C::kRedo: return m.redo().document_id();
     case C::kEditBatch: return m.edit_batch().document_id();

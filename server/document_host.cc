@@ -55,6 +55,7 @@ uint64_t documentNamed(const wire::ClientMessage& m) {
     case wire::ClientMessage::kMoveVertex: return m.move_vertex().document_id();
     case wire::ClientMessage::kSetEdgeSharpness: return m.set_edge_sharpness().document_id();
     case wire::ClientMessage::kSetVertexType: return m.set_vertex_type().document_id();
+    case wire::ClientMessage::kSetInterpolation: return m.set_interpolation().document_id();
     case wire::ClientMessage::kUndo: return m.undo().document_id();
     case wire::ClientMessage::kRedo: return m.redo().document_id();
     default: return 0;
@@ -380,6 +381,12 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
       }
       return addedEdit(doc_.setVertexSharpness(VertexId::fromPacked(m.vertex_id()), sharpness));
     }
+    case wire::ClientMessage::kSetInterpolation: {
+      const auto& m = message.set_interpolation();
+      const double tension = m.tension() == 0.0 ? 1.0 : m.tension();
+      const Vec3 tangent(m.tangent().x(), m.tangent().y(), m.tangent().z());
+      return addedEdit(doc_.setInterpolation(VertexId::fromPacked(m.vertex_id()), m.interpolating(), tension, tangent));
+    }
     case wire::ClientMessage::kUndo:
     case wire::ClientMessage::kRedo: {
       const bool undo = message.command_case() == wire::ClientMessage::kUndo;
@@ -408,6 +415,7 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
       case wire::EditCommand::kSetVertexType: *one.mutable_set_vertex_type() = command.set_vertex_type(); break;
       case wire::EditCommand::kUndo: *one.mutable_undo() = command.undo(); break;
       case wire::EditCommand::kRedo: *one.mutable_redo() = command.redo(); break;
+      case wire::EditCommand::kSetInterpolation: *one.mutable_set_interpolation() = command.set_interpolation(); break;
       default: break;
     }
     const uint64_t named = documentNamed(one);
@@ -441,7 +449,7 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
 Status DocumentHost::retract(const JournalEntry& entry) {
   switch (entry.kind) {
     case JournalEntry::Kind::kEdit: return doc_.retractLast();
-    case JournalEntry::Kind::kUndo: return doc_.redo(entry.target);
+    case JournalEntry::Kind::kUndo: return doc_.reinstate(entry.target);
     case JournalEntry::Kind::kRedo: return doc_.undo(entry.target);
     case JournalEntry::Kind::kBatch:
       for (auto part = entry.batch.rbegin(); part != entry.batch.rend(); ++part) TESSERA_RETURN_IF_ERROR(retract(*part));
@@ -689,6 +697,7 @@ void DocumentHost::notifyRecorders(const Pending& p) {
     case wire::ClientMessage::kUndo: *a->mutable_undo() = p.command.undo(); break;
     case wire::ClientMessage::kRedo: *a->mutable_redo() = p.command.redo(); break;
     case wire::ClientMessage::kEditBatch: *a->mutable_edit_batch() = p.command.edit_batch(); break;
+    case wire::ClientMessage::kSetInterpolation: *a->mutable_set_interpolation() = p.command.set_interpolation(); break;
     default: break;
   }
   auto frame = frameOf(m, config_.limits.maxFrameBytes);

@@ -38,6 +38,16 @@ void toWire(const ScriptCommand& c, wire::EditCommand& m) {
       m.mutable_set_vertex_type()->set_vertex_id(c.vertices[0].packed());
       m.mutable_set_vertex_type()->set_sharpness(c.sharpness);
       break;
+    case Kind::kInterpolate: {
+      auto* tag = m.mutable_set_interpolation();
+      tag->set_vertex_id(c.vertices[0].packed());
+      tag->set_interpolating(c.interpolating);
+      tag->set_tension(c.tension);
+      tag->mutable_tangent()->set_x(c.value[0]);
+      tag->mutable_tangent()->set_y(c.value[1]);
+      tag->mutable_tangent()->set_z(c.value[2]);
+      break;
+    }
     case Kind::kUndo: m.mutable_undo()->set_edit_id(c.edit.value); break;
     case Kind::kRedo: m.mutable_redo()->set_edit_id(c.edit.value); break;
     case Kind::kRemove: break;  // refused before anything is sent

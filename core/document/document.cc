@@ -200,10 +200,15 @@ void Document::addChangedLimits(std::span<const VertexId> limits) {
 }
 
 // The hierarchy grows first, so that the moved vertices have their rings.
-void Document::reserveVertices(std::span<const VertexId> vertices) {
+// A move an interpolating vertex forbids is refused before that: growth for
+// an edit marks edit nodes, which must come from edits the document holds.
+Status Document::reserveVertices(std::span<const VertexId> vertices) {
   MoveEdit probe;
   for (VertexId id : vertices) probe.offsets.push_back({id, Vec3(0, 0, 0)});
-  reserve(Edit{{}, true, std::move(probe)});
+  Edit edit{{}, true, std::move(probe)};
+  TESSERA_RETURN_IF_ERROR(checkInterpolationConflicts(edit, edits_, sparse_->level(0).mesh, counts_));
+  reserve(edit);
+  return Status::ok();
 }
 
 // Needs reserveVertices(vertices) first.
@@ -222,7 +227,7 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
   TESSERA_RETURN_IF_ERROR(checkFinite(target, "target position"));
   const int level = vertices[0].level();
-  reserveVertices(vertices);
+  TESSERA_RETURN_IF_ERROR(reserveVertices(vertices));
   TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(vertices[0]));
   const auto points = sparse_->points(level);
   // An interpolating vertex's limit is its control point (ghost_ring.h).
@@ -237,7 +242,7 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
 Expected<EditId> Document::moveBy(std::span<const VertexId> vertices, const Vec3& displacement) {
   TESSERA_RETURN_IF_ERROR(checkVertices(vertices));
   TESSERA_RETURN_IF_ERROR(checkFinite(displacement, "displacement"));
-  reserveVertices(vertices);
+  TESSERA_RETURN_IF_ERROR(reserveVertices(vertices));
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, displacement));
   return add(Edit{{}, true, std::move(move)});
 }
@@ -253,7 +258,13 @@ Expected<EditId> Document::setVertexSharpness(VertexId vertex, float sharpness) 
 Status Document::checkGhostRule(const InterpolationEdit& tag) {
   if (!tag.interpolating) return Status::ok();
   // The rule that decides the ghost ring is the vertex's at its level now.
-  reserve(Edit{{}, true, tag});
+  // The hierarchy grows to hold its ring as a tessellation's request would:
+  // a refused tag must leave no edit node behind (what the document shows
+  // may depend only on the edits it holds).
+  if (tag.vertex.level() > 0) {
+    const FaceId around = incidentFace(sparse_->level(0).mesh, counts_, tag.vertex);
+    sparse_->reserveFaces(std::span(&around, 1), edits_);
+  }
   TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(tag.vertex));
   std::string why;
   const GhostRule rule = ghostRuleOf(sparse_->level(tag.vertex.level()).mesh, v, &why);
@@ -262,6 +273,23 @@ Status Document::checkGhostRule(const InterpolationEdit& tag) {
     return invalidArgument(tag.vertex.toString() + ": a tangent applies only to boundary and crease vertices");
   }
   return Status::ok();
+}
+
+// Taking back an interpolation edit hands the vertex to the one before it,
+// which may make it interpolate again: that must still be allowed.
+Status Document::checkUncovered(const Edit& leaving) {
+  const auto* tag = std::get_if<InterpolationEdit>(&leaving.change);
+  if (tag == nullptr || !leaving.active) return Status::ok();
+  std::vector<Edit> after;
+  for (const Edit& e : edits_) {
+    if (&e != &leaving) after.push_back(e);
+  }
+  const Edit* deciding = decidingInterpolationEdit(after, tag->vertex);
+  if (deciding == nullptr || !std::get<InterpolationEdit>(deciding->change).interpolating) return Status::ok();
+  const std::string back = "it would make " + tag->vertex.toString() + " interpolate again (" +
+                           deciding->id.toString() + ")";
+  TESSERA_RETURN_IF_ERROR(checkInterpolationConflicts(*deciding, after, sparse_->level(0).mesh, counts_).withContext(back));
+  return checkGhostRule(std::get<InterpolationEdit>(deciding->change)).withContext(back);
 }
 
 Expected<EditId> Document::setInterpolation(VertexId vertex, bool interpolating, double tension, const Vec3& tangent) {
@@ -290,19 +318,20 @@ Edit* Document::find(EditId id) {
   return it == edits_.end() ? nullptr : &*it;
 }
 
-Status Document::setActive(EditId id, bool active) {
+Status Document::setActive(EditId id, bool active, bool checked) {
   Edit* edit = find(id);
   if (edit == nullptr) return notFound(id.toString() + ": no such edit");
   if (edit->active == active) {
     return invalidArgument(id.toString() + (active ? " is not undone" : " is already undone"));
   }
-  if (active) {
+  if (active && checked) {
     TESSERA_RETURN_IF_ERROR(
         checkInterpolationConflicts(*edit, edits_, sparse_->level(0).mesh, counts_).withContext("redo " + id.toString()));
     if (const auto* tag = std::get_if<InterpolationEdit>(&edit->change)) {
       TESSERA_RETURN_IF_ERROR(checkGhostRule(*tag).withContext("redo " + id.toString()));
     }
   }
+  if (!active) TESSERA_RETURN_IF_ERROR(checkUncovered(*edit).withContext("undo " + id.toString()));
   edit->active = active;
   cache_.reset();
   lastUpdate_ = sparse_->update(*edit, edits_);
@@ -328,10 +357,12 @@ void Document::forgetRemovedEditNodes() {
 
 Status Document::undo(EditId id) { return setActive(id, false); }
 Status Document::redo(EditId id) { return setActive(id, true); }
+Status Document::reinstate(EditId id) { return setActive(id, true, false); }
 
 Status Document::remove(EditId id) {
   Edit* edit = find(id);
   if (edit == nullptr) return notFound(id.toString() + ": no such edit");
+  TESSERA_RETURN_IF_ERROR(checkUncovered(*edit).withContext("remove " + id.toString()));
   const Edit removed = *edit;
   edits_.erase(edits_.begin() + (edit - edits_.data()));
   cache_.reset();

@@ -86,6 +86,9 @@ class Document {
 
   Status undo(EditId id);    // the edit stops applying; error if unknown or already undone
   Status redo(EditId id);    // it applies again; error if unknown or not undone
+  // Takes back an undo (a server retracting a refused command): like redo,
+  // without redo's conflict checks, since the state before the undo held.
+  Status reinstate(EditId id);
   Status remove(EditId id);  // gone for good; error if unknown
 
   // Control points or limit surface (limit positions and normals, creases
@@ -118,11 +121,12 @@ class Document {
   // Whether the vertex's rule at its level admits a ghost ring (grows the
   // hierarchy there first).
   Status checkGhostRule(const InterpolationEdit& tag);
+  Status checkUncovered(const Edit& leaving);
   Expected<EditId> add(Edit edit);
   void append(Edit edit);
-  void reserveVertices(std::span<const VertexId> vertices);
+  Status reserveVertices(std::span<const VertexId> vertices);
   Edit* find(EditId id);
-  Status setActive(EditId id, bool active);
+  Status setActive(EditId id, bool active, bool checked = true);
   Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world);
   Status rebuildHierarchy();
   // Grows the hierarchy for an edit about to be made; remembers the growth

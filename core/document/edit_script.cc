@@ -73,13 +73,37 @@ Expected<ScriptCommand> parseLine(const std::vector<std::string>& t) {
     c.vertices.push_back(vertex);
     return c;
   }
+  if (cmd == "interpolate") {
+    if (t.size() < 2) return parseError("expected 'interpolate ID [TENSION] [tangent X Y Z]' or 'interpolate ID off'");
+    c.kind = Kind::kInterpolate;
+    c.value = Vec3(0, 0, 0);
+    TESSERA_ASSIGN_OR_RETURN(VertexId vertex, parseVertexId(t[1]));
+    c.vertices.push_back(vertex);
+    size_t k = 2;
+    if (k < t.size() && t[k] == "off") {
+      if (t.size() != 3) return parseError("nothing may follow 'off'");
+      c.interpolating = false;
+      return c;
+    }
+    if (k < t.size() && t[k] != "tangent") {
+      if (!parseDouble(t[k], c.tension)) return parseError("bad tension '" + t[k] + "'");
+      ++k;
+    }
+    if (k < t.size()) {
+      if (t[k] != "tangent" || t.size() != k + 4) return parseError("expected 'tangent X Y Z' after the tension");
+      for (int i = 0; i < 3; ++i) {
+        if (!parseDouble(t[k + 1 + i], c.value[i])) return parseError("bad number '" + t[k + 1 + i] + "'");
+      }
+    }
+    return c;
+  }
   if (cmd == "undo" || cmd == "redo" || cmd == "remove") {
     if (t.size() != 2) return parseError("expected '" + cmd + " EDIT'");
     c.kind = cmd == "undo" ? Kind::kUndo : cmd == "redo" ? Kind::kRedo : Kind::kRemove;
     TESSERA_ASSIGN_OR_RETURN(c.edit, parseEditId(t[1]));
     return c;
   }
-  return parseError("unknown command '" + cmd + "' (move, offset, crease, corner, undo, redo, remove)");
+  return parseError("unknown command '" + cmd + "' (move, offset, crease, corner, interpolate, undo, redo, remove)");
 }
 
 }  // namespace
@@ -112,6 +136,7 @@ Status applyScriptCommand(const ScriptCommand& c, Document& doc) {
     case Kind::kOffset: return doc.moveBy(c.vertices, c.value).status();
     case Kind::kCrease: return doc.setEdgeSharpness(c.edge, c.sharpness).status();
     case Kind::kCorner: return doc.setVertexSharpness(c.vertices[0], c.sharpness).status();
+    case Kind::kInterpolate: return doc.setInterpolation(c.vertices[0], c.interpolating, c.tension, c.value).status();
     case Kind::kUndo: return doc.undo(c.edit);
     case Kind::kRedo: return doc.redo(c.edit);
     case Kind::kRemove: return doc.remove(c.edit);

@@ -7,6 +7,12 @@
 //   offset v3:7 [v3:8 ...] by DX DY DZ  plain displacement of control points
 //   crease e1:5 S                       edge sharpness at that level (S or inf)
 //   corner v4:900 S                     vertex sharpness: 0 smooth, > 0 corner/cusp
+//   interpolate v1:30 [T] [tangent X Y Z]
+//                                       the surface passes through the vertex's
+//                                       control point (seed 004 §4), tension T
+//                                       (default 1); a tangent line for boundary
+//                                       and crease vertices
+//   interpolate v1:30 off               back to plain Loop
 //   undo N | redo N | remove N          by edit id (N or editN)
 //
 // A script applies entirely or not at all: the first bad line is reported as
@@ -30,12 +36,14 @@ struct ScriptResult {
 // One parsed line: what to do, independent of where it is done (a local
 // document, or a server through the client library).
 struct ScriptCommand {
-  enum class Kind { kMove, kOffset, kCrease, kCorner, kUndo, kRedo, kRemove };
+  enum class Kind { kMove, kOffset, kCrease, kCorner, kInterpolate, kUndo, kRedo, kRemove };
   Kind kind;
-  std::vector<VertexId> vertices;  // kMove, kOffset, kCorner
+  std::vector<VertexId> vertices;  // kMove, kOffset, kCorner, kInterpolate
   EdgeId edge;                     // kCrease
-  Vec3 value;                      // kMove target, kOffset displacement
+  Vec3 value;                      // kMove target, kOffset displacement, kInterpolate tangent
   float sharpness = 0.0f;          // kCrease, kCorner
+  bool interpolating = true;       // kInterpolate
+  double tension = 1.0;            // kInterpolate
   EditId edit;                     // kUndo, kRedo, kRemove
   int line = 0;
 };

@@ -74,8 +74,22 @@ Status checkInterpolationConflicts(const Edit& candidate, std::span<const Edit> 
   if (const auto* t = std::get_if<InterpolationEdit>(&candidate.change)) {
     if (!t->interpolating) return Status::ok();
     for (const Edit& other : edits) {
-      if (!other.active || &other == &candidate) continue;
+      if (!other.active || &other == &candidate || std::holds_alternative<InterpolationEdit>(other.change)) continue;
       TESSERA_RETURN_IF_ERROR(conflictWith(other, t->vertex, base, counts, false).withContext(other.id.toString()));
+    }
+    // Two ghost rings may not share a point: each edge point around V0 must
+    // keep V0 the centroid of its ring, which one point cannot do for two
+    // centres. So no other interpolating vertex next to this one at its
+    // level, nor at or next to its descendants below, nor the other way round.
+    for (VertexId other : interpolatingVertices(edits, &candidate)) {
+      if (other == t->vertex) continue;
+      const bool overlap = other.level() == t->vertex.level() ? edgeBetween(base, counts, other, t->vertex).isOk()
+                           : other.level() > t->vertex.level() ? inGhostRing(other, t->vertex, base, counts)
+                                                               : inGhostRing(t->vertex, other, base, counts);
+      if (overlap) {
+        return invalidArgument(t->vertex.toString() + " cannot interpolate next to interpolating vertex " +
+                               other.toString() + ": their ghost rings would share points");
+      }
     }
     return Status::ok();
   }
@@ -83,6 +97,15 @@ Status checkInterpolationConflicts(const Edit& candidate, std::span<const Edit> 
     TESSERA_RETURN_IF_ERROR(conflictWith(candidate, v0, base, counts, true));
   }
   return Status::ok();
+}
+
+const Edit* decidingInterpolationEdit(std::span<const Edit> edits, VertexId vertex) {
+  const Edit* deciding = nullptr;
+  for (const Edit& edit : edits) {
+    const auto* t = std::get_if<InterpolationEdit>(&edit.change);
+    if (t != nullptr && edit.active && t->vertex == vertex) deciding = &edit;
+  }
+  return deciding;
 }
 
 }  // namespace tessera

@@ -8,7 +8,9 @@
 // offset there moves the centroid), and no sharpness on V0, its descendants
 // or their edges at level l or finer (a dart or a semi-sharp rule breaks
 // eq. 5). At level l itself V0 and its ring move freely: the ghost ring
-// follows them. Sharpness set coarser than l that changes V0's rule
+// follows them. Two interpolating vertices may not be neighbours at one
+// level, or one in the other's finer ghost ring: their rings would share
+// points. Sharpness set coarser than l that changes V0's rule
 // suspends the interpolation (ghostRuleOf) instead; Document::
 // setInterpolation refuses to start one on such a vertex.
 #pragma once
@@ -26,5 +28,9 @@ namespace tessera {
 // or redone) conflicts with the active edits in `edits`, or they with it.
 Status checkInterpolationConflicts(const Edit& candidate, std::span<const Edit> edits, const Level& base,
                                    const LevelCounts& counts);
+
+// The interpolation edit that decides `vertex` after `edits` (the latest
+// active one), or null.
+const Edit* decidingInterpolationEdit(std::span<const Edit> edits, VertexId vertex);
 
 }  // namespace tessera

@@ -9,8 +9,8 @@ namespace tessera {
 
 Status checkTension(double tension, const std::string& what) {
   if (!(tension >= kMinTension && tension <= kMaxTension)) {  // also NaN
-    return invalidArgument(what + ": tension must be in [" + std::to_string(kMinTension) + ", " +
-                           std::to_string(kMaxTension) + "] (it scales the ghost ring by 1/tension), got " +
+    // The bounds as written in ghost_ring.h (to_string would print 0.001000).
+    return invalidArgument(what + ": tension must be in [0.001, 1000] (it scales the ghost ring by 1/tension), got " +
                            std::to_string(tension));
   }
   return Status::ok();

@@ -159,6 +159,52 @@ TEST(CliDoc, NewEditInfoExport) {
   }
 }
 
+// The i-th "v x y z" line of an OBJ file.
+Vec3 objVertex(const std::string& path, size_t index) {
+  std::istringstream in(readAll(path));
+  std::string line;
+  size_t seen = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) != 0) continue;
+    if (seen++ == index) {
+      std::istringstream xyz(line.substr(2));
+      Vec3 p;
+      xyz >> p[0] >> p[1] >> p[2];
+      return p;
+    }
+  }
+  ADD_FAILURE() << path << " has no vertex " << index;
+  return Vec3(0, 0, 0);
+}
+
+// Seed 004 §4 from the command line: after `interpolate`, the limit surface
+// (exported at level 4, vertex order following the numbering) passes through
+// the vertex's level-1 control point (the level-1 control export).
+TEST(CliDoc, InterpolateMakesTheLimitPassThroughTheControlPoint) {
+  const std::string dir = testing::makeTempDir("tessera-doc-interp");
+  const std::string doc = dir + "/cube.tsd";
+  ASSERT_EQ(runCli("doc new " + cube() + " --max-level 4 -o " + doc).exitCode, 0);
+  std::ofstream(dir + "/plain.txt") << "offset v1:3 by 0.1 0.2 -0.1\n";
+  ASSERT_EQ(runCli("doc edit " + doc + " --script " + dir + "/plain.txt").exitCode, 0);
+  ASSERT_EQ(runCli("doc export " + doc + " --level 1 -o " + dir + "/control.obj").exitCode, 0);
+  ASSERT_EQ(runCli("doc export " + doc + " --level 4 --limit -o " + dir + "/before.obj").exitCode, 0);
+  const Vec3 control = objVertex(dir + "/control.obj", 3);
+  const double before = (objVertex(dir + "/before.obj", 3) - control).norm();
+  EXPECT_GT(before, 1e-3) << "plain Loop does not interpolate";
+  std::ofstream(dir + "/tag.txt") << "interpolate v1:3 2.5\n";
+  CliRun tagged = runCli("doc edit " + doc + " --script " + dir + "/tag.txt");
+  ASSERT_EQ(tagged.exitCode, 0) << tagged.err;
+  ASSERT_EQ(runCli("doc export " + doc + " --level 4 --limit -o " + dir + "/after.obj").exitCode, 0);
+  // OBJ numbers are written as shortest round-trip text: exact doubles.
+  EXPECT_LE((objVertex(dir + "/after.obj", 3) - control).norm(), 1e-12);
+  CliRun info = runCli("doc info " + doc);
+  EXPECT_NE(info.out.find("edit2    interp v1:3 tension 2.5\n"), std::string::npos) << info.out;
+  std::ofstream(dir + "/off.txt") << "interpolate v1:3 off\n";
+  ASSERT_EQ(runCli("doc edit " + doc + " --script " + dir + "/off.txt").exitCode, 0);
+  ASSERT_EQ(runCli("doc export " + doc + " --level 4 --limit -o " + dir + "/off.obj").exitCode, 0);
+  EXPECT_EQ(readAll(dir + "/off.obj"), readAll(dir + "/before.obj"));
+}
+
 TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
   const std::string dir = testing::makeTempDir("tessera-doc-bad");
   const std::string doc = dir + "/cube.tsd";
@@ -175,6 +221,11 @@ TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
       {"undo 7\n", "bad.txt:1: edit7: no such edit"},
       {"twist v1:1\n", "bad.txt:1: unknown command 'twist'"},
       {"move v1:1 v1:1000000 to 0 0 0\n", "bad.txt:1: v1:1000000: level 1 has"},
+      {"interpolate v1:3 0\n", "bad.txt:1: v1:3: tension must be in [0.001, 1000]"},
+      {"interpolate v6:3\n", "bad.txt:1: v6:3: an interpolating vertex shapes the next level"},
+      {"interpolate v1:3 off 2\n", "bad.txt:1: nothing may follow 'off'"},
+      {"interpolate v1:3 1 tangent 1 0\n", "bad.txt:1: expected 'tangent X Y Z' after the tension"},
+      {"interpolate v1:3 1 tangent 1 0 0\n", "bad.txt:1: v1:3: a tangent applies only to boundary and crease"},
   };
   for (const auto& c : cases) {
     std::ofstream(dir + "/bad.txt") << c.script;

@@ -333,6 +333,26 @@ TEST(InterpolatingVertex, WhatCannotInterpolateIsRefusedByName) {
   Status redo = e.redo(*early);
   ASSERT_FALSE(redo.isOk());
   EXPECT_NE(redo.message().find("conflicts with interpolating vertex v0:0"), std::string::npos) << redo.message();
+
+  // Two ghost rings may not share points: no interpolating neighbour at the
+  // same level, nor one at or next to its descendant below.
+  for (VertexId near : {VertexId(0, static_cast<uint64_t>(ring[1])), onEdge, VertexId(2, 0)}) {
+    auto both = d.setInterpolation(near, true);
+    ASSERT_FALSE(both.isOk()) << near.toString();
+    EXPECT_NE(both.status().message().find("next to interpolating vertex v0:0"), std::string::npos)
+        << both.status().message();
+  }
+  // Undoing an "off" would make it interpolate again: refused while a finer
+  // move sits in its ghost ring.
+  Document u = doc;
+  ASSERT_TRUE(u.setInterpolation(v0, true).isOk());
+  auto off = u.setInterpolation(v0, false);
+  ASSERT_TRUE(off.isOk());
+  ASSERT_TRUE(u.moveBy(std::span(&onEdge, 1), Vec3(0, 0.1, 0)).isOk());
+  Status undoOff = u.undo(*off);
+  ASSERT_FALSE(undoOff.isOk());
+  EXPECT_NE(undoOff.message().find("it would make v0:0 interpolate again"), std::string::npos) << undoOff.message();
+  EXPECT_FALSE(u.remove(*off).isOk());
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 // journal, tessellation.h).
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <random>
 #include <string>
 #include <vector>
@@ -31,12 +33,18 @@ const LodProfile kFine{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 1
 
 // One random edit: mostly moves at levels 1..3 (plain and to a limit
 // position), sometimes a semi-sharp or sharp crease at level 1 or 2 or a
-// vertex sharpness. Returns false when the document refused it (a crease on
+// vertex sharpness, or an interpolating vertex. Returns false when the document refused it (a crease on
 // the boundary), which is fine.
 bool randomEdit(Document& doc, std::mt19937& rng) {
   auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
-  const int op = static_cast<int>(pick(10));
+  const int op = static_cast<int>(pick(12));
+  if (op >= 10) {
+    // Seed 004 §4: an interpolating vertex (refused where it cannot be).
+    const int level = 1 + static_cast<int>(pick(2));
+    const VertexId v(level, pick(doc.counts().vertices(level)));
+    return doc.setInterpolation(v, pick(4) != 0, std::array<double, 3>{0.5, 1.0, 3.0}[pick(3)]).isOk();
+  }
   if (op < 7) {
     const int level = 1 + static_cast<int>(pick(3));
     const VertexId v(level, pick(doc.counts().vertices(level)));
@@ -277,6 +285,48 @@ TEST(TessellationHistory, MovesResolveToTheSameOffsetsAfterAReload) {
       view = std::move(*built);
     }
   }
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// Seed 004 §4 on the creased cube as the service runs it (profile 1..4, a
+// level-1 vertex lifted, made interpolating, undone and redone): the
+// tessellation kept up to date shows what a fresh one shows.
+TEST(TessellationHistory, AnInterpolatingVertexShowsTheSameRegionsWhateverTheHistory) {
+  auto mesh = testing::creasedCube();
+  ASSERT_TRUE(mesh.isOk());
+  auto doc = Document::create(*mesh, {.maxLevel = 4});
+  ASSERT_TRUE(doc.isOk());
+  const LodProfile profile{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 15};
+  auto shown = Tessellation::build(*doc, profile);
+  ASSERT_TRUE(shown.isOk());
+  int tagged = 0;
+  for (uint64_t index = 8; index < doc->counts().vertices(1); ++index) {
+    const VertexId v(1, index);
+    if (!doc->moveBy(std::span(&v, 1), Vec3(0.15, -0.1, 0.2)).isOk()) continue;
+    ASSERT_TRUE(shown->update(*doc).isOk());
+    auto tag = doc->setInterpolation(v, true, 2.0);
+    if (!tag.isOk()) continue;
+    ++tagged;
+    ASSERT_TRUE(shown->update(*doc).isOk());
+    auto fresh = Tessellation::build(*doc, profile);
+    expectSameRegions(*shown, *fresh, "tagged " + v.toString());
+    ASSERT_TRUE(doc->undo(*tag).isOk());
+    ASSERT_TRUE(shown->update(*doc).isOk());
+    ASSERT_TRUE(doc->redo(*tag).isOk());
+    ASSERT_TRUE(shown->update(*doc).isOk());
+    fresh = Tessellation::build(*doc, profile);
+    expectSameRegions(*shown, *fresh, "undone and redone " + v.toString());
+    auto reloaded = deserializeDocument(serializeDocument(*doc), "cube");
+    ASSERT_TRUE(reloaded.isOk());
+    expectSameRegions(*shown, *Tessellation::build(*reloaded, profile), "reloaded " + v.toString());
+    if (HasFailure()) return;
+  }
+  EXPECT_GT(tagged, 3);
 }
 
 }  // namespace

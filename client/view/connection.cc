@@ -189,6 +189,16 @@ void Connection::setVertexType(uint64_t packedVertex, wire::VertexType type) {
   enqueueEdit(std::move(m), 0);
 }
 
+void Connection::setInterpolation(uint64_t packedVertex, bool interpolating, double tension) {
+  wire::ClientMessage m;
+  auto* t = m.mutable_set_interpolation();
+  t->set_document_id(document_);
+  t->set_vertex_id(packedVertex);
+  t->set_interpolating(interpolating);
+  t->set_tension(tension);
+  enqueueEdit(std::move(m), 0);
+}
+
 void Connection::setEdgeSharpness(uint64_t packedA, uint64_t packedB, float sharpness) {
   wire::ClientMessage m;
   auto* e = m.mutable_set_edge_sharpness();

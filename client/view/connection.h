@@ -81,6 +81,7 @@ class Connection {
   // Queued for the network thread. An edit without a step is a step of its own.
   void moveVertex(uint64_t packedVertex, const Vec3& target, UndoHistory::StepId step = 0);
   void setVertexType(uint64_t packedVertex, wire::VertexType type);
+  void setInterpolation(uint64_t packedVertex, bool interpolating, double tension);
   // The edge joining two vertices of one level, named by its ends: the
   // server finds it (SetEdgeSharpness.end_vertex_ids).
   void setEdgeSharpness(uint64_t packedA, uint64_t packedB, float sharpness);

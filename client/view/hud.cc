@@ -55,6 +55,12 @@ void drawToggles(const HudFacts& f, ViewToggles& t) {
     ImGui::Text("%zu points; picked %s", f.controlPoints,
                 f.pickedVertex ? vertexName(*f.pickedVertex).c_str() : "none");
     if (f.pickedVertex) ImGui::TextDisabled("shift+click a neighbour: an edge");
+    if (f.pickedVertex && f.pickedTension) {
+      ImGui::Text("interpolating, tension %.3g", *f.pickedTension);
+      ImGui::TextDisabled("I plain, = tighter, - looser");
+    } else if (f.pickedVertex) {
+      ImGui::TextDisabled("I: make it interpolating");
+    }
   }
 }
 

@@ -42,6 +42,7 @@ struct HudFacts {
   size_t controlPoints = 0;
   std::optional<uint64_t> pickedVertex;
   std::optional<uint64_t> pickedEdgeEnd;  // with pickedVertex: the picked edge's other end
+  std::optional<double> pickedTension;    // the picked vertex interpolates, with this tension
   ConnectionStats stats;
   std::vector<Collaborator> collaborators;
 };

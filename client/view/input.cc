@@ -1,5 +1,6 @@
 #include "client/view/input.h"
 
+#include <algorithm>
 #include <limits>
 
 #define GLFW_INCLUDE_NONE
@@ -58,6 +59,28 @@ void handleKey(App& app, int key, int mods) {
         } else {
           app.corners.erase(*app.picked);
         }
+      }
+      break;
+    case GLFW_KEY_I:
+      if (app.picked) {
+        auto it = app.interpolating.find(*app.picked);
+        if (it == app.interpolating.end()) {
+          app.interpolating[*app.picked] = 1.0;
+          app.connection->setInterpolation(*app.picked, true, 1.0);
+        } else {
+          app.interpolating.erase(it);
+          app.connection->setInterpolation(*app.picked, false, 1.0);
+        }
+      }
+      break;
+    case GLFW_KEY_EQUAL:
+    case GLFW_KEY_MINUS:
+      // The tension scales the ghost ring by 1/tension (core/loop/ghost_ring.h):
+      // doubling it pulls the surface tighter around the vertex.
+      if (app.picked && app.interpolating.count(*app.picked) != 0) {
+        double& tension = app.interpolating[*app.picked];
+        tension = std::clamp(key == GLFW_KEY_EQUAL ? tension * 2 : tension / 2, 1e-3, 1e3);
+        app.connection->setInterpolation(*app.picked, true, tension);
       }
       break;
     case GLFW_KEY_E:

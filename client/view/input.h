@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <map>
 #include <set>
 #include <vector>
 
@@ -24,6 +25,7 @@ struct App {
   std::optional<uint64_t> picked;   // packed id at toggles.controlLevel
   std::optional<uint64_t> edgeEnd;  // with `picked`: the other end of the picked edge
   std::set<uint64_t> corners;       // vertices this viewer made corners
+  std::map<uint64_t, double> interpolating;  // vertices this viewer made interpolating, and their tension
   bool frameRequested = false, quit = false;
   bool undo = false, redo = false;  // done by the frame loop
 };
@@ -32,8 +34,9 @@ struct App {
 // wireframe, region colours, control vertices, matcap, axes gizmo and the
 // HUD's collapse; F fits the model to the view. E and Shift+E make the picked
 // edge infinitely sharp and smooth again, 1 to 4 give it that semi-sharpness;
-// K toggles the picked vertex between corner and smooth; Ctrl+Z / Ctrl+Y
-// (Ctrl+Shift+Z) undo and redo.
+// K toggles the picked vertex between corner and smooth; I toggles it
+// between interpolating (seed 004 §4, tension 1) and plain, and = and -
+// double and halve its tension; Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z) undo and redo.
 void handleKey(App& app, int key, int mods);
 
 // Drops the pick, and the selection others see.

@@ -149,12 +149,19 @@ void Viewer::draw(int width, int height) {
                    .controlPoints = points_.size(),
                    .pickedVertex = app_.picked,
                    .pickedEdgeEnd = app_.edgeEnd,
+                   .pickedTension = tensionOfPicked(),
                    .stats = stats_,
                    .collaborators = connection_.collaborators()};
     drawHud(facts, app_.toggles, width, height);
   }
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+std::optional<double> Viewer::tensionOfPicked() const {
+  if (!app_.picked) return std::nullopt;
+  auto it = app_.interpolating.find(*app_.picked);
+  return it == app_.interpolating.end() ? std::nullopt : std::optional<double>(it->second);
 }
 
 }  // namespace tessera::view

@@ -38,6 +38,7 @@ class Viewer {
  private:
   Viewer(const ViewOptions& options, Connection& connection);
   void drawSelections(const DrawOptions& draw);
+  std::optional<double> tensionOfPicked() const;
 
   const ViewOptions options_;
   Connection& connection_;

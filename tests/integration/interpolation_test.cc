@@ -5,6 +5,8 @@
 // tag surviving a restart (journal replay).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "core/document/document.h"
@@ -148,6 +150,8 @@ TEST(ServerInterpolation, TheStreamedSurfacePassesThroughTheTaggedVertex) {
   // The stream quantizes positions (13 bits over the cube's ~2.6 units:
   // 3.2e-4 per step); the surface now passes through the control point.
   EXPECT_LE(taggedDistance, 1e-3) << "plain " << plainDistance;
+  std::printf("streamed limit of %s from its control point: %.3g plain, %.3g interpolating (%d and %d vertices)\n",
+              v.toString().c_str(), plainDistance, taggedDistance, plainCount, taggedCount);
   ASSERT_FALSE(applied.empty());
   EXPECT_TRUE(applied.back().has_set_interpolation());
   EXPECT_EQ(applied.back().set_interpolation().vertex_id(), v.packed());

@@ -109,6 +109,14 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_type(wire::VERTEX_TYPE_CORNER);
   }
   {
+    auto* m = add().mutable_set_interpolation();
+    m->set_document_id(42);
+    m->set_vertex_id(packedId(1, 9));
+    m->set_interpolating(true);
+    m->set_tension(2.5);
+    m->mutable_tangent()->set_x(1.0);
+  }
+  {
     auto* m = add().mutable_undo();
     m->set_document_id(42);
     m->set_edit_id(17);
@@ -149,6 +157,7 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     crease->set_edge_id(packedId(1, 5));
     crease->set_sharpness(2.0f);
     m->add_commands()->mutable_undo()->set_edit_id(3);
+    m->add_commands()->mutable_set_interpolation()->set_vertex_id(packedId(1, 9));
   }
   // The second alternative of SetVertexType's oneof.
   {
@@ -305,6 +314,20 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     batch->set_document_id(42);
     batch->add_commands()->mutable_redo()->set_edit_id(18);
     batch->add_commands()->mutable_set_vertex_type()->set_vertex_id(packedId(1, 7));
+  }
+  {
+    auto* m = add().mutable_applied_command();
+    m->set_document_id(42);
+    m->set_version(22);
+    m->set_edit_id(21);
+    m->set_author_session_id(78);
+    m->set_author_name("bob");
+    m->set_server_time_unix_ms(1700000000999);
+    auto* tag = m->mutable_set_interpolation();
+    tag->set_document_id(42);
+    tag->set_vertex_id(packedId(2, 40));
+    tag->set_interpolating(true);
+    tag->set_tension(0.5);
   }
   return out;
 }

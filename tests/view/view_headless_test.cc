@@ -252,10 +252,12 @@ std::vector<std::pair<std::string, std::string>> surfaceHashes(const std::string
   return out;
 }
 
-// --edit-keys: the E, 2, K, Ctrl+Z and Ctrl+Y keys go through the viewer's own
-// key handling. E on an edge picked by click and shift+click, 2 (semi-sharp)
-// and K change the surface; three undos restore it step by step; redo brings
-// the sharp edge back.
+// --edit-keys: the I, =, E, 2, K, Ctrl+Z and Ctrl+Y keys go through the
+// viewer's own key handling. I makes the vertex picked by click interpolating
+// (seed 004 §4) and = doubles its tension, each changing the surface; I again
+// brings plain Loop back exactly. E on the edge picked by click and
+// shift+click, 2 (semi-sharp) and K change the surface; three undos restore
+// it step by step; redo brings the sharp edge back.
 TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   const std::string dir = testing::makeTempDir("tessera-view-keys");
   auto server = testing::ServerProcess::start(dir + "/data");
@@ -292,9 +294,17 @@ TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   const std::string log = testing::fileBytes(dir + "/view.log");
   ASSERT_EQ(rc, 0) << log;
   EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;
-  EXPECT_NE(log.find("7 edits sent, 0 rejected"), std::string::npos) << log;
-  const auto h = surfaceHashes(log);
-  ASSERT_EQ(h.size(), 8u) << log;
+  EXPECT_NE(log.find("10 edits sent, 0 rejected"), std::string::npos) << log;
+  auto all = surfaceHashes(log);
+  ASSERT_EQ(all.size(), 11u) << log;
+  const std::vector<std::string> first = {"start", "I", "tighter", "I-off"};
+  for (size_t i = 0; i < first.size(); ++i) EXPECT_EQ(all[i].first, first[i]) << log;
+  EXPECT_NE(all[1].second, all[0].second) << "I did not change the surface: " << log;
+  EXPECT_NE(all[2].second, all[1].second) << "= did not change the surface: " << log;
+  EXPECT_EQ(all[3].second, all[0].second) << "I again did not bring plain Loop back: " << log;
+  // From here on, the sharpness keys as before ("start" is plain Loop again).
+  std::vector<std::pair<std::string, std::string>> h = {all[0]};
+  h.insert(h.end(), all.begin() + 4, all.end());
   const std::vector<std::string> names = {"start", "E", "2", "K", "undo", "undo", "undo", "redo"};
   for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
   EXPECT_NE(h[1].second, h[0].second) << "E did not change the surface: " << log;
@@ -305,7 +315,7 @@ TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   EXPECT_EQ(h[5].second, h[1].second) << "the second undo did not take back 2: " << log;
   EXPECT_EQ(h[6].second, h[0].second) << "the third undo did not restore the surface: " << log;
   EXPECT_EQ(h[7].second, h[1].second) << "redo did not bring the sharp edge back: " << log;
-  EXPECT_NE(log.find("document version 8,"), std::string::npos) << "seven keys, seven versions: " << log;
+  EXPECT_NE(log.find("document version 11,"), std::string::npos) << "ten keys, ten versions: " << log;
 }
 
 TEST(View, ExitsWithAnErrorWhenTheDocumentDoesNotExist) {

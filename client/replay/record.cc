@@ -96,6 +96,14 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
       }
       break;
     }
+    case wire::AppliedCommand::kSetInterpolation: {
+      const wire::SetInterpolation& m = a.set_interpolation();
+      c.kind = ScriptCommand::Kind::kInterpolate;
+      c.vertices.push_back(m.vertex_id());
+      c.interpolating = m.interpolating();
+      c.tension = m.tension() == 0.0 ? 1.0 : m.tension();
+      break;
+    }
     case wire::AppliedCommand::kUndo:
     case wire::AppliedCommand::kRedo: {
       const bool undo = a.command_case() == wire::AppliedCommand::kUndo;
@@ -137,6 +145,7 @@ Expected<std::vector<ScriptCommand>> ScriptRecorder::lines(const wire::AppliedCo
       case wire::EditCommand::kSetVertexType: *one.mutable_set_vertex_type() = c.set_vertex_type(); break;
       case wire::EditCommand::kUndo: *one.mutable_undo() = c.undo(); break;
       case wire::EditCommand::kRedo: *one.mutable_redo() = c.redo(); break;
+      case wire::EditCommand::kSetInterpolation: *one.mutable_set_interpolation() = c.set_interpolation(); break;
       default: break;  // add() names the empty command
     }
     TESSERA_ASSIGN_OR_RETURN(ScriptCommand line, add(one));

@@ -58,7 +58,7 @@ std::string parseCommand(const json& j, ScriptCommand& c) {
   }
   c.actor = j["actor"].get<std::string>();
   if (c.actor.size() > 100) return "\"actor\" is longer than 100 bytes";
-  if (!j.contains("cmd") || !j["cmd"].is_string()) return "\"cmd\" must be one of move, crease, corner, undo, redo";
+  if (!j.contains("cmd") || !j["cmd"].is_string()) return "\"cmd\" must be one of move, crease, corner, interpolate, undo, redo";
   const std::string cmd = j["cmd"].get<std::string>();
   if (cmd == "move") {
     c.kind = ScriptCommand::Kind::kMove;
@@ -95,6 +95,17 @@ std::string parseCommand(const json& j, ScriptCommand& c) {
     if (auto e = getVertex(j, "vertex", packed); !e.empty()) return e;
     c.vertices.push_back(packed);
     if (auto e = getSharpness(j, c.sharpness); !e.empty()) return e;
+  } else if (cmd == "interpolate") {
+    c.kind = ScriptCommand::Kind::kInterpolate;
+    if (auto e = requireKeys(j, {"t", "actor", "cmd", "vertex", "on", "tension"}); !e.empty()) return e;
+    uint64_t packed = 0;
+    if (auto e = getVertex(j, "vertex", packed); !e.empty()) return e;
+    c.vertices.push_back(packed);
+    if (!j.contains("on") || !j["on"].is_boolean()) return "\"on\" must be true or false";
+    c.interpolating = j["on"].get<bool>();
+    if (!j.contains("tension") || !j["tension"].is_number()) return "\"tension\" must be a number";
+    c.tension = j["tension"].get<double>();
+    if (!std::isfinite(c.tension)) return "\"tension\" must be finite";
   } else if (cmd == "undo" || cmd == "redo") {
     c.kind = cmd == "undo" ? ScriptCommand::Kind::kUndo : ScriptCommand::Kind::kRedo;
     if (auto e = requireKeys(j, {"t", "actor", "cmd", "edit"}); !e.empty()) return e;
@@ -103,7 +114,7 @@ std::string parseCommand(const json& j, ScriptCommand& c) {
     }
     c.edit = j["edit"].get<int64_t>();
   } else {
-    return "unknown cmd \"" + cmd + "\" (expected move, crease, corner, undo, redo)";
+    return "unknown cmd \"" + cmd + "\" (expected move, crease, corner, interpolate, undo, redo)";
   }
   return "";
 }
@@ -208,6 +219,12 @@ std::string commandLine(const ScriptCommand& c) {
       j["vertex"] = VertexId::fromPacked(c.vertices.at(0)).toString();
       j["sharpness"] = sharp(c.sharpness);
       break;
+    case ScriptCommand::Kind::kInterpolate:
+      j["cmd"] = "interpolate";
+      j["vertex"] = VertexId::fromPacked(c.vertices.at(0)).toString();
+      j["on"] = c.interpolating;
+      j["tension"] = c.tension;
+      break;
     case ScriptCommand::Kind::kUndo:
     case ScriptCommand::Kind::kRedo:
       j["cmd"] = c.kind == ScriptCommand::Kind::kUndo ? "undo" : "redo";
@@ -239,6 +256,12 @@ wire::ClientMessage toWire(const ScriptCommand& c, uint64_t doc, uint64_t editId
       m.mutable_set_vertex_type()->set_document_id(doc);
       m.mutable_set_vertex_type()->set_vertex_id(c.vertices.at(0));
       m.mutable_set_vertex_type()->set_sharpness(c.sharpness);
+      break;
+    case ScriptCommand::Kind::kInterpolate:
+      m.mutable_set_interpolation()->set_document_id(doc);
+      m.mutable_set_interpolation()->set_vertex_id(c.vertices.at(0));
+      m.mutable_set_interpolation()->set_interpolating(c.interpolating);
+      m.mutable_set_interpolation()->set_tension(c.tension);
       break;
     case ScriptCommand::Kind::kUndo:
       m.mutable_undo()->set_document_id(doc);

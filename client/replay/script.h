@@ -29,15 +29,17 @@ struct ScriptHeader {
 };
 
 struct ScriptCommand {
-  enum class Kind { kMove, kCrease, kCorner, kUndo, kRedo };
+  enum class Kind { kMove, kCrease, kCorner, kInterpolate, kUndo, kRedo };
   int64_t timeMs = 0;
   std::string actor;
   Kind kind = Kind::kMove;
-  std::vector<uint64_t> vertices;  // packed; kMove (one or more), kCorner (one)
+  std::vector<uint64_t> vertices;  // packed; kMove (one or more), kCorner and kInterpolate (one)
   bool offset = false;             // kMove: "mode":"offset" (else "direct")
   std::array<double, 3> to{};      // kMove target or displacement
   uint64_t edge = 0;               // kCrease, packed
   float sharpness = 0;             // kCrease, kCorner
+  bool interpolating = true;       // kInterpolate: "on"
+  double tension = 1.0;            // kInterpolate (seed 004 §4)
   // kUndo/kRedo: > 0 an edit id of the document; < 0 counts back through
   // the edits this actor made in this replay (-1: its latest).
   int64_t edit = 0;

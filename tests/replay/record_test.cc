@@ -77,7 +77,12 @@ TEST(RecordScript, ActorsTimesAndUndoTargets) {
   smooth.mutable_set_vertex_type()->set_vertex_id(3);
   smooth.mutable_set_vertex_type()->set_type(wire::VERTEX_TYPE_SMOOTH);
   add(smooth);
-  ASSERT_EQ(lines.size(), 8u);
+  wire::AppliedCommand tag = applied(10, 6, 9, "bob", 1800);
+  tag.mutable_set_interpolation()->set_vertex_id(VertexId(1, 9).packed());
+  tag.mutable_set_interpolation()->set_interpolating(true);
+  tag.mutable_set_interpolation()->set_tension(2.5);
+  add(tag);
+  ASSERT_EQ(lines.size(), 9u);
   EXPECT_EQ(lines[0].actor, "alice");
   EXPECT_EQ(lines[1].actor, "alice#2");
   EXPECT_EQ(lines[2].actor, "alice");
@@ -101,6 +106,14 @@ TEST(RecordScript, ActorsTimesAndUndoTargets) {
   auto parsed = replay::parseScript(text, "recorded");
   ASSERT_TRUE(parsed.isOk()) << parsed.status().message();
   EXPECT_EQ(parsed->header.generator, "test");
+  // An interpolation line reads back as it was recorded.
+  EXPECT_NE(text.find(R"({"t":800,"actor":"bob","cmd":"interpolate","vertex":"v1:9","on":true,"tension":2.5})"),
+            std::string::npos) << text;
+  const ScriptCommand& back = parsed->commands.back();
+  EXPECT_EQ(back.kind, ScriptCommand::Kind::kInterpolate);
+  EXPECT_EQ(back.vertices.at(0), VertexId(1, 9).packed());
+  EXPECT_TRUE(back.interpolating);
+  EXPECT_EQ(back.tension, 2.5);
 }
 
 // A batch (tessera remote edit) becomes one line per command, each with its

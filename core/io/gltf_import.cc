@@ -3,6 +3,7 @@
 #include "core/io/gltf_import.h"
 
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -103,8 +104,13 @@ struct MeshVertices {
   std::vector<int> soupIndex;
 };
 
+// Without converting: a double outside int64's range (a JSON index of 37
+// digits) makes that conversion undefined (UBSan, found by fuzz_import_gltf).
 bool isIntegral(const tinygltf::Value& v) {
-  return v.IsInt() || (v.IsReal() && v.GetNumberAsDouble() == static_cast<double>(static_cast<int64_t>(v.GetNumberAsDouble())));
+  if (v.IsInt()) return true;
+  if (!v.IsReal()) return false;
+  const double d = v.GetNumberAsDouble();
+  return std::isfinite(d) && d == std::trunc(d);
 }
 
 Status parseExtrasTags(const tinygltf::Value& extras, const std::string& meshName, const MeshVertices& vertices,

@@ -203,6 +203,11 @@ TEST(MeshImportErrors, Gltf) {
                     {"meshes[0].extras.tessera.creases[1]", "vertex index"});
   expectImportError("bad/gltf_tag_negative.gltf", ErrorCode::kInvalidArgument,
                     {"meshes[0].extras.tessera.creases[0]", "sharpness"});
+  // fuzz_import_gltf (session 10): a 37-digit crease index was converted to
+  // int64 before its range was checked, undefined behaviour (UBSan). The
+  // same input is in the fuzz seeds, which CI replays under UBSan.
+  expectImportError("bad/fuzz_gltf_huge_crease_index.gltf", ErrorCode::kNotFound,
+                    {"meshes[0].extras.tessera.creases[1]", "vertex index must be an integer in [0, 12)"});
 }
 
 TEST(MeshImportErrors, RandomBytesWithEveryExtension) {

@@ -1,5 +1,5 @@
 // tessera: the command-line tool (CLI11). Subcommands: info, refine, doc,
-// remote. Usage errors print the message naming the option and exit 2;
+// remote, morph. Usage errors print the message naming the option and exit 2;
 // --help and --version exit 0; a command's own failure exits 1.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -59,6 +59,7 @@ int main(int argc, char** argv) {
   tessera::cli::addRefineCommand(app, action);
   tessera::cli::addDocCommand(app, action);
   tessera::cli::addRemoteCommand(app, action);
+  tessera::cli::addMorphCommand(app, action);
   app.footer("Run 'tessera <command> --help' for the options of a command.");  // after: not inherited
 
   if (argc < 2) {

@@ -46,7 +46,8 @@ void ok(const Status& s, const char* what) {
   if (!s.isOk()) fail(std::string(what) + ": " + s.toString());
 }
 
-// The cube with one edit of each kind, the last one undone.
+// The cube with one edit of each kind, the last sharpness undone, then an
+// interpolating vertex (edit kind 4).
 Document editedCube() {
   Document doc = cubeDocument(3);
   const VertexId corner(1, 3), fine[] = {VertexId(2, 5), VertexId(2, 6)};
@@ -55,6 +56,7 @@ Document editedCube() {
   value(doc.setEdgeSharpness(EdgeId(1, 4), 2.5f), "crease");
   EditId last = value(doc.setVertexSharpness(VertexId(2, 1), 3.0f), "corner");
   ok(doc.undo(last), "undo");
+  value(doc.setInterpolation(VertexId(1, 8), true, 2.5), "interpolate");
   return doc;
 }
 
@@ -85,7 +87,7 @@ void journals() {
   entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kUndo, {}, last}));
   entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kRedo, {}, last}));
   write("journal_entry", "history", prefixed(entries));
-  for (size_t i = 0; i < 4; ++i) write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
+  for (size_t i = 0; i < 5; ++i) write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
 }
 
 void regions() {

@@ -6,6 +6,7 @@
 #   bash tests/fuzz/run_long.sh                    # every target
 #   RUNS=10000000 SECONDS_PER_TARGET=600 bash tests/fuzz/run_long.sh frame_decoder tag_file
 #   FORK=2 bash tests/fuzz/run_long.sh ...         # libFuzzer -fork=2 (two cores)
+#   FUZZ_ARGS=-entropic=0 bash tests/fuzz/run_long.sh document_host   # more libFuzzer flags
 #
 # A target stops at RUNS executions or SECONDS_PER_TARGET seconds, whichever
 # comes first (with FORK, only the time bound holds: -runs is per worker).
@@ -41,12 +42,18 @@ for t in $TARGETS; do
   log=$OUT/$t.log
   args=(-rss_limit_mb=2048 -timeout="$TIMEOUT" -print_final_stats=1 -max_total_time="$SECONDS_PER_TARGET"
         -artifact_prefix="$OUT/artifacts/$t-")
+  # Extra libFuzzer flags, e.g. -entropic=0: the entropic power schedule's
+  # bookkeeping is 40 % or more of the time of targets with many features
+  # (document_host, edit_script; docs/FUZZING.md).
+  # shellcheck disable=SC2206
+  [[ -n ${FUZZ_ARGS:-} ]] && args+=($FUZZ_ARGS)
   if [[ $FORK -gt 0 ]]; then
     args+=(-fork="$FORK" -ignore_crashes=0)
   else
     args+=(-runs="$RUNS")
   fi
   start=$(date +%s)
+  stamp=$(mktemp)
   "$exe" "${args[@]}" "$OUT/$t" "tests/fuzz/corpus/$t" >"$log" 2>&1
   rc=$?
   secs=$(( $(date +%s) - start ))
@@ -58,8 +65,13 @@ for t in $TARGETS; do
   ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
   rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log" | tail -1)
   files=$(find "$OUT/$t" -type f | wc -l)
+  # Inputs libFuzzer saved this run without failing it (slow-unit-*, with
+  # -report_slow_units) are findings too: a slow input is a denial of service.
+  saved=$(find "$OUT/artifacts" -name "$t-*" -newer "$stamp" | wc -l)
+  rm -f "$stamp"
   if [[ $rc -eq 0 ]] && ! grep -q 'ERROR: \(AddressSanitizer\|UndefinedBehaviorSanitizer\|libFuzzer\)\|runtime error:' "$log"; then
     result=ok
+    [[ $saved -eq 0 ]] || result="ok, but $saved input(s) saved in $OUT/artifacts (slow units?)"
   else
     result="FAILED (exit $rc, see $log)"
     status=1

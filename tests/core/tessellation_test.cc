@@ -166,6 +166,37 @@ TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
   }
 }
 
+// Seed 004 §4: interpolating vertices at levels 0..2 among random moves
+// (those next to them refused): the tessellation stays watertight and
+// oriented, and every displayed vertex is its true limit at the finest level.
+TEST(Tessellation, IsWatertightAndExactWithInterpolatingVertices) {
+  const std::vector<TestMesh> meshes = {testing::withJitter(testing::icosahedron(), 0.1, 2),
+                                        testing::withJitter(testing::torus(8, 6), 0.05, 4),
+                                        testing::withJitter(testing::openGrid(5, 4), 0.05, 6)};
+  uint32_t seed = 40;
+  for (const TestMesh& mesh : meshes) {
+    auto doc = Document::create(mesh.topology, mesh.points, {.maxLevel = 4});
+    ASSERT_TRUE(doc.isOk());
+    std::mt19937 rng(seed++);
+    auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
+    int tagged = 0;
+    for (int i = 0; i < 24; ++i) {
+      const int level = static_cast<int>(pick(3));
+      const VertexId v(level, pick(doc->counts().vertices(level)));
+      if (i % 3 == 0) {
+        tagged += doc->setInterpolation(v, true, std::array<double, 3>{0.5, 1.0, 4.0}[pick(3)]).isOk() ? 1 : 0;
+      } else {
+        (void)doc->moveBy(std::span(&v, 1), Vec3(0.03 * (pick(7) - 3.0), 0.02, -0.04));
+      }
+    }
+    EXPECT_GE(tagged, 3) << mesh.name;
+    auto t = Tessellation::build(*doc, kProfile);
+    ASSERT_TRUE(t.isOk()) << t.status().message();
+    expectSoundTessellation(*doc, *t, mesh.name + " with interpolating vertices");
+    if (HasFailure()) return;
+  }
+}
+
 // Issue 15 §1: the normals a viewer shades with are the exact limit
 // normals (exactVertexLimit, checked against Bfr in bfr_limit_test.cc), not
 // the masks of the level's rules. Darts, crease sectors of any size,

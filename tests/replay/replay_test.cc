@@ -62,7 +62,7 @@ TEST(ReplayScript, BadLinesNameFileLineAndReason) {
             "s.jsonl:2: \"t\" must be a non-negative integer (milliseconds)");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"\",\"cmd\":\"undo\",\"edit\":1}\n"), "s.jsonl:2: \"actor\" must be a non-empty string");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"jump\"}\n"),
-            "s.jsonl:2: unknown cmd \"jump\" (expected move, crease, corner, undo, redo)");
+            "s.jsonl:2: unknown cmd \"jump\" (expected move, crease, corner, interpolate, undo, redo)");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"offset\",\"to\":[0,0]}\n"),
             "s.jsonl:2: \"to\" must be [x, y, z]");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"fly\",\"to\":[0,0,0]}\n"),

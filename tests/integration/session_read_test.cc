@@ -8,6 +8,8 @@
 // snapshot ("frame N announces ... bytes", or a region that did not decode).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <atomic>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/read.hpp>
@@ -110,6 +112,10 @@ void trickleServer(tcp::acceptor& acceptor, const std::string& frame, int copies
       asio::write(socket, asio::buffer(frame.data() + at, std::min(chunk, frame.size() - at)), ec);
       if (ec) return;
       if (i % 8 == 7) std::this_thread::sleep_for(std::chrono::microseconds(200));
+      // A pause longer than the client's 1 ms poll now and then, so that
+      // polls time out in the middle of a frame however fast or loaded the
+      // machine is (on a loaded one, 200 us pauses alone gave fewer than 100).
+      if (i % 64 == 63) std::this_thread::sleep_for(std::chrono::milliseconds(3));
     }
   }
   // Stay open until the client has read everything and closed.
@@ -153,6 +159,7 @@ TEST(SessionRead, AShortPollingTimeoutNeverLosesBytesUnderLoad) {
   }
   EXPECT_EQ(received, kCopies) << "only " << received << " snapshots within the deadline";
   // The point of the test is polls that time out while data arrives.
+  std::printf("%llu polls timed out during the transfer\n", static_cast<unsigned long long>(timeouts));
   EXPECT_GT(timeouts, 100u);
   (*session)->close();
   server.join();

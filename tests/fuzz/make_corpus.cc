@@ -155,6 +155,13 @@ std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
   corner->set_document_id(1);
   corner->set_vertex_id(VertexId(2, 1).packed());
   corner->set_type(wire::VERTEX_TYPE_CORNER);
+  if (maxLevel < 3) {  // the host's documents: an interpolating vertex (the frame seeds stay as they were)
+    auto* tag = add().mutable_set_interpolation();
+    tag->set_document_id(1);
+    tag->set_vertex_id(VertexId(1, 8).packed());
+    tag->set_interpolating(true);
+    tag->set_tension(2.0);
+  }
   auto* undo = add().mutable_undo();
   undo->set_document_id(1);
   undo->set_edit_id(2);

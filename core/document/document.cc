@@ -300,13 +300,10 @@ Expected<EditId> Document::setInterpolation(VertexId vertex, bool interpolating,
 }
 
 std::optional<InterpolationTag> Document::interpolationOf(VertexId vertex) const {
-  std::optional<InterpolationTag> tag;
-  for (const Edit& edit : edits_) {
-    const auto* t = std::get_if<InterpolationEdit>(&edit.change);
-    if (t == nullptr || !edit.active || t->vertex != vertex) continue;
-    tag = t->interpolating ? std::optional<InterpolationTag>(InterpolationTag{t->tension, t->tangent}) : std::nullopt;
-  }
-  return tag;
+  const Edit* deciding = decidingInterpolationEdit(edits_, vertex);
+  if (deciding == nullptr) return std::nullopt;
+  const auto& t = std::get<InterpolationEdit>(deciding->change);
+  return t.interpolating ? std::optional<InterpolationTag>(InterpolationTag{t.tension, t.tangent}) : std::nullopt;
 }
 
 Expected<EdgeId> Document::edgeBetween(VertexId a, VertexId b) const {

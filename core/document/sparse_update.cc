@@ -5,6 +5,7 @@
 // limits are refreshed where a displayed vertex or a ring neighbour changed.
 #include <algorithm>
 
+#include "core/document/interpolation_conflicts.h"
 #include "core/document/sparse_evaluator.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/sharpness_inheritance.h"
@@ -108,14 +109,9 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
     // propagate() recomputes from the faces around the vertex.
     const Index v = state.topo.findVertex(interp->vertex.index());
     state.interpolationTags.erase(v);
-    for (const Edit& other : edits) {
-      const auto* t = std::get_if<InterpolationEdit>(&other.change);
-      if (t == nullptr || !other.active || t->vertex != interp->vertex) continue;
-      if (t->interpolating) {
-        state.interpolationTags[v] = {t->tension, t->tangent};
-      } else {
-        state.interpolationTags.erase(v);
-      }
+    if (const Edit* deciding = decidingInterpolationEdit(edits, interp->vertex)) {
+      const auto& t = std::get<InterpolationEdit>(deciding->change);
+      if (t.interpolating) state.interpolationTags[v] = {t.tension, t.tangent};
     }
     if (l + 1 < numLevels()) refreshReached(l + 1, verticesAround(l + 1, ghostRingChildren(l, v)));
     sources = {v};

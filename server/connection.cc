@@ -14,6 +14,7 @@
 #include "protocol/edit_batch.h"
 #include "protocol/handshake.h"
 #include "server/log.h"
+#include "server/mesh_format.h"
 
 namespace tessera::server {
 
@@ -32,23 +33,12 @@ wire::Role wireRole(Role role) {
   return wire::ROLE_UNSPECIFIED;
 }
 
-const char* extensionOf(wire::MeshFormat format) {
-  switch (format) {
-    case wire::MESH_FORMAT_OBJ: return ".obj";
-    case wire::MESH_FORMAT_OFF: return ".off";
-    case wire::MESH_FORMAT_PLY: return ".ply";
-    case wire::MESH_FORMAT_STL: return ".stl";
-    case wire::MESH_FORMAT_GLB: return ".glb";
-    default: return nullptr;
-  }
-}
-
 // Imports a base mesh sent as bytes, in memory (importMeshFromBytes never
 // touches the filesystem), with the import options of `tessera doc new`.
 // Errors name the file as the client named it (file_name), else the
 // document: "cube.obj:12: ...", never a server path.
 Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, ImportReport& report) {
-  const char* extension = extensionOf(request.mesh_format());
+  const char* extension = meshExtensionOf(request.mesh_format());
   if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
   const std::string meshName = request.file_name().empty() ? "mesh '" + request.name() + "'" : request.file_name();
   ImportOptions import;
@@ -405,11 +395,13 @@ void Connection::handle(wire::ClientMessage message) {
     }
     case C::kSelect: return host->select(shared_from_this(), seq, message.select().selection());
     case C::kExportDocument: return host->exportGlb(shared_from_this(), seq, message.export_document());
+    case C::kGetMorphControl: return host->morphControl(shared_from_this(), seq, message.get_morph_control());
     case C::kEditBatch:
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
     case C::kSetVertexType:
     case C::kSetInterpolation:
+    case C::kAddMorphKey:
     case C::kUndo:
     case C::kRedo: {
       const auto role = roleFor(DocumentId{doc});
@@ -494,6 +486,8 @@ uint64_t Connection::documentOf(const wire::ClientMessage& m) const {
     case C::kUndo: return m.undo().document_id();
     case C::kRedo: return m.redo().document_id();
     case C::kEditBatch: return m.edit_batch().document_id();
+    case C::kAddMorphKey: return m.add_morph_key().document_id();
+    case C::kGetMorphControl: return m.get_morph_control().document_id();
     default: return 0;
   }
 }

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "core/document/document_file.h"
+#include "core/morph/keyed_document_file.h"
 #include "core/io/mesh_export.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/region_lattice.h"
@@ -58,6 +58,20 @@ uint64_t documentNamed(const wire::ClientMessage& m) {
     case wire::ClientMessage::kSetInterpolation: return m.set_interpolation().document_id();
     case wire::ClientMessage::kUndo: return m.undo().document_id();
     case wire::ClientMessage::kRedo: return m.redo().document_id();
+    case wire::ClientMessage::kAddMorphKey: return m.add_morph_key().document_id();
+    default: return 0;
+  }
+}
+
+// The morph key an edit command names (0 unless it is a morph document's key 1).
+uint32_t keyNamed(const wire::ClientMessage& m) {
+  switch (m.command_case()) {
+    case wire::ClientMessage::kMoveVertex: return m.move_vertex().key();
+    case wire::ClientMessage::kSetEdgeSharpness: return m.set_edge_sharpness().key();
+    case wire::ClientMessage::kSetVertexType: return m.set_vertex_type().key();
+    case wire::ClientMessage::kSetInterpolation: return m.set_interpolation().key();
+    case wire::ClientMessage::kUndo: return m.undo().key();
+    case wire::ClientMessage::kRedo: return m.redo().key();
     default: return 0;
   }
 }
@@ -85,7 +99,7 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
   return m;
 }
 
-DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
+DocumentHost::DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
                            boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
                            const ServerConfig& config, ServerStats& stats)
     : id_(id),
@@ -95,7 +109,7 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       durableVersion_(version),
       lastSnapshot_(version),
       flushedVersion_(version),
-      counts_(doc_.counts()),
+      counts_(doc_.key0().counts()),
       bulk_(bulk),
       queue_(workers, bulk),
       presenceTimer_(workers),
@@ -104,7 +118,7 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, Document doc, uint64
       stats_(stats),
       ackedVersion_(version),
       flushTimer_(workers) {
-  auto grid = documentGrid(doc_);
+  auto grid = documentGrid(doc_.key0());
   if (grid.isOk()) grid_ = *grid;
 }
 
@@ -147,15 +161,29 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     profile.fidelity = requested.fidelity() > 0;
     profile.vertexIds = !requested.omit_vertex_ids();
     Status valid = profile.check();
-    if (valid.isOk() && profile.maxLevel > self->doc_.options().maxLevel) {
+    if (valid.isOk() && profile.maxLevel > self->doc_.key0().options().maxLevel) {
       valid = invalidArgument("LOD profile: max level " + std::to_string(profile.maxLevel) + " exceeds the document's " +
-                              std::to_string(self->doc_.options().maxLevel));
+                              std::to_string(self->doc_.key0().options().maxLevel));
+    }
+    // A morph view's time, rounded so that viewers playing the same frames
+    // share one view (PROTOCOL.md "Morph documents").
+    std::optional<double> morphT;
+    if (valid.isOk() && requested.has_morph_t()) {
+      const double t = requested.morph_t();
+      if (!self->doc_.isMorph()) {
+        valid = invalidArgument("LOD profile: morph_t is set but document " + std::to_string(self->id_.value) +
+                                " has one key (AddMorphKey adds the second)");
+      } else if (!(t >= 0.0 && t <= 1.0)) {
+        valid = invalidArgument("LOD profile: morph_t " + std::to_string(t) + " is not in [0, 1]");
+      } else {
+        morphT = std::round(t * kMorphTimeSteps) / kMorphTimeSteps;
+      }
     }
     if (!valid.isOk()) {
       who->send({frameOf(rejectFor(clientSeq, valid), self->config_.limits.maxFrameBytes), nullptr});
       return;
     }
-    const std::string key = profile.key();
+    const std::string key = profile.key() + (morphT ? "-t" + std::to_string(std::lround(*morphT * kMorphTimeSteps)) : "");
     auto it = self->views_.find(key);
     // The views left if this subscriber moves to `key`: those someone else
     // still watches. Counted before anything changes, so that a refused
@@ -178,15 +206,27 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     }
     if (it == self->views_.end()) {
       const auto start = Clock::now();
-      auto tessellation = Tessellation::build(self->doc_, profile);
+      Expected<View> built = morphT ? self->buildMorphView(*morphT, profile) : Expected<View>(View{});
+      if (built.isOk() && !morphT) {
+        auto tessellation = Tessellation::build(self->doc_.growableKey0(), profile);
+        if (tessellation.isOk()) {
+          built->tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
+        } else {
+          built = tessellation.status();
+        }
+      }
       self->stats_.tessellateMicros += microsSince(start);
       self->stats_.tessellateLatency.addMicros(microsSince(start));
-      if (!tessellation.isOk()) {
-        who->send({limitExceeded(clientSeq, tessellation.status().message(), self->config_.limits.maxFrameBytes), nullptr});
+      if (!built.isOk()) {
+        // Over the budget, or a morph whose keys do not match (the error says where).
+        const Status& why = built.status();
+        who->send({why.code() == ErrorCode::kInvalidArgument
+                       ? frameOf(rejectFor(clientSeq, why), self->config_.limits.maxFrameBytes)
+                       : limitExceeded(clientSeq, why.message(), self->config_.limits.maxFrameBytes),
+                   nullptr});
         return;
       }
-      View view;
-      view.tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
+      View view = std::move(*built);
       view.wireProfile = requested;
       for (const auto& [region, mesh] : view.tessellation->regions()) {
         view.layout[region] = self->version_;
@@ -231,7 +271,8 @@ Expected<std::shared_ptr<const std::string>> DocumentHost::encode(uint64_t regio
   if (header.profile.vertexIds && idsInline) {
     // Ids as points of the region's lattice: a third of the bytes they
     // took as eight-byte labels (region_lattice.h).
-    auto frame = regionFrame(doc_.hierarchy(), doc_.counts(), FaceId::fromPacked(region));
+    const Document& source = sourceOf(view);
+    auto frame = regionFrame(source.hierarchy(), source.counts(), FaceId::fromPacked(region));
     if (frame.isOk()) header.frame = *frame;
   }
   TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
@@ -297,7 +338,10 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
 }
 
 void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) {
-  queue_.post(Lane::kInteractive, [self = shared_from_this(), author, authorName = std::move(authorName),
+  // A second key's mesh is imported on the bulk lane when it is large.
+  const Lane lane = message.has_add_morph_key() && message.add_morph_key().mesh().size() > (1u << 20) ? Lane::kBulk
+                                                                                                        : Lane::kInteractive;
+  queue_.post(lane, [self = shared_from_this(), author, authorName = std::move(authorName),
                               message = std::move(message)] {
     const uint64_t seq = message.client_seq();
     if (self->failed_) {
@@ -315,7 +359,13 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
       uint64_t editId = 0;
       status = self->apply(message, editId, applied.entry);
       applied.editIds.push_back(editId);
-      if (status.isOk()) applied.limits = self->doc_.lastUpdate().limits;
+      if (status.isOk() && applied.entry.kind == JournalEntry::Kind::kAddKey) {
+        // The new key's every base limit, for the grid check in afterApply.
+        const int n = self->doc_.key(1).baseTopology().numVertices;
+        for (int v = 0; v < n; ++v) applied.key1Limits.push_back(VertexId(0, static_cast<uint64_t>(v)));
+      } else if (status.isOk()) {
+        self->collectLimits(applied.entry.key, applied);
+      }
     }
     if (!status.isOk()) {
       ++self->stats_.rejects;
@@ -338,11 +388,15 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
 }
 
 Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry) {
+  if (message.has_add_morph_key()) return addMorphKey(message.add_morph_key(), entry);
+  entry.key = keyNamed(message);
+  TESSERA_ASSIGN_OR_RETURN(Document * edited, doc_.editKey(entry.key));
+  Document& doc = *edited;
   auto addedEdit = [&](Expected<EditId> id) -> Status {
     TESSERA_RETURN_IF_ERROR(id.status());
     editId = id->value;
     entry.kind = JournalEntry::Kind::kEdit;
-    entry.edit = doc_.edits().back();
+    entry.edit = doc.edits().back();
     return Status::ok();
   };
   switch (message.command_case()) {
@@ -351,9 +405,9 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
       std::vector<VertexId> vertices;
       for (uint64_t packed : m.vertex_ids()) vertices.push_back(VertexId::fromPacked(packed));
       const Vec3 target(m.target().x(), m.target().y(), m.target().z());
-      if (m.mode() == wire::MOVE_MODE_OFFSET) return addedEdit(doc_.moveBy(vertices, target));
+      if (m.mode() == wire::MOVE_MODE_OFFSET) return addedEdit(doc.moveBy(vertices, target));
       if (m.mode() != wire::MOVE_MODE_DIRECT_MANIPULATION) return invalidArgument("move: mode is not set");
-      return addedEdit(doc_.moveToLimit(vertices, target));
+      return addedEdit(doc.moveToLimit(vertices, target));
     }
     case wire::ClientMessage::kSetEdgeSharpness: {
       const auto& m = message.set_edge_sharpness();
@@ -364,10 +418,10 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
               "edge sharpness: end_vertex_ids needs exactly two ids and edge_id all ones, got " +
               std::to_string(m.end_vertex_ids_size()) + " ids and edge_id " + std::to_string(m.edge_id()));
         }
-        TESSERA_ASSIGN_OR_RETURN(edge, doc_.edgeBetween(VertexId::fromPacked(m.end_vertex_ids(0)),
+        TESSERA_ASSIGN_OR_RETURN(edge, doc.edgeBetween(VertexId::fromPacked(m.end_vertex_ids(0)),
                                                         VertexId::fromPacked(m.end_vertex_ids(1))));
       }
-      return addedEdit(doc_.setEdgeSharpness(edge, m.sharpness()));
+      return addedEdit(doc.setEdgeSharpness(edge, m.sharpness()));
     }
     case wire::ClientMessage::kSetVertexType: {
       const auto& m = message.set_vertex_type();
@@ -379,19 +433,19 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
       } else if (m.type() != wire::VERTEX_TYPE_SMOOTH) {
         return invalidArgument("vertex type: no type or sharpness given");
       }
-      return addedEdit(doc_.setVertexSharpness(VertexId::fromPacked(m.vertex_id()), sharpness));
+      return addedEdit(doc.setVertexSharpness(VertexId::fromPacked(m.vertex_id()), sharpness));
     }
     case wire::ClientMessage::kSetInterpolation: {
       const auto& m = message.set_interpolation();
       const double tension = m.tension() == 0.0 ? 1.0 : m.tension();
       const Vec3 tangent(m.tangent().x(), m.tangent().y(), m.tangent().z());
-      return addedEdit(doc_.setInterpolation(VertexId::fromPacked(m.vertex_id()), m.interpolating(), tension, tangent));
+      return addedEdit(doc.setInterpolation(VertexId::fromPacked(m.vertex_id()), m.interpolating(), tension, tangent));
     }
     case wire::ClientMessage::kUndo:
     case wire::ClientMessage::kRedo: {
       const bool undo = message.command_case() == wire::ClientMessage::kUndo;
       const EditId target{undo ? message.undo().edit_id() : message.redo().edit_id()};
-      TESSERA_RETURN_IF_ERROR(undo ? doc_.undo(target) : doc_.redo(target));
+      TESSERA_RETURN_IF_ERROR(undo ? doc.undo(target) : doc.redo(target));
       editId = target.value;
       entry.kind = undo ? JournalEntry::Kind::kUndo : JournalEntry::Kind::kRedo;
       entry.target = target;
@@ -434,23 +488,39 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
       return Status(status.code(), "edit batch, command " + std::to_string(i + 1) + " of " + std::to_string(count) +
                                        ": " + status.message() + " (nothing of the batch was applied)");
     }
-    const auto& limits = doc_.lastUpdate().limits;
-    applied.limits.insert(applied.limits.end(), limits.begin(), limits.end());
+    collectLimits(part.key, applied);
     applied.editIds.push_back(editId);
     applied.entry.batch.push_back(std::move(part));
   }
-  std::sort(applied.limits.begin(), applied.limits.end());
-  applied.limits.erase(std::unique(applied.limits.begin(), applied.limits.end()), applied.limits.end());
+  for (auto* limits : {&applied.limits, &applied.key1Limits}) {
+    std::sort(limits->begin(), limits->end());
+    limits->erase(std::unique(limits->begin(), limits->end()), limits->end());
+  }
   return Status::ok();
+}
+
+void DocumentHost::collectLimits(uint32_t key, Applied& applied) const {
+  const auto& limits = doc_.key(key).lastUpdate().limits;
+  auto& into = key == 0 ? applied.limits : applied.key1Limits;
+  into.insert(into.end(), limits.begin(), limits.end());
 }
 
 // The views never saw the command (they update at the next flush), so only
 // the document goes back; its limits are restored bit for bit.
 Status DocumentHost::retract(const JournalEntry& entry) {
+  if (entry.kind == JournalEntry::Kind::kAddKey) {
+    doc_.removeLastKey();
+    return Status::ok();
+  }
+  Document* doc = nullptr;
+  if (entry.kind != JournalEntry::Kind::kBatch) {
+    TESSERA_ASSIGN_OR_RETURN(doc, doc_.editKey(entry.key));
+  }
   switch (entry.kind) {
-    case JournalEntry::Kind::kEdit: return doc_.retractLast();
-    case JournalEntry::Kind::kUndo: return doc_.reinstate(entry.target);
-    case JournalEntry::Kind::kRedo: return doc_.undo(entry.target);
+    case JournalEntry::Kind::kAddKey: return Status::ok();
+    case JournalEntry::Kind::kEdit: return doc->retractLast();
+    case JournalEntry::Kind::kUndo: return doc->reinstate(entry.target);
+    case JournalEntry::Kind::kRedo: return doc->undo(entry.target);
     case JournalEntry::Kind::kBatch:
       for (auto part = entry.batch.rbegin(); part != entry.batch.rend(); ++part) TESSERA_RETURN_IF_ERROR(retract(*part));
       return Status::ok();
@@ -465,12 +535,14 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   // is taken back and refused before anything is sent: every displayed
   // vertex is a hierarchy limit, and the changed ones are listed.
   bool outside = false;
-  const SparseEvaluator& h = doc_.hierarchy();
-  for (VertexId id : applied.limits) {
-    if (id.level() >= h.numLevels()) continue;  // a batch's later undo dropped the level: its limit is gone
-    const Index v = h.level(id.level()).findVertex(id.index());
-    if (v == kInvalidIndex) continue;
-    outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
+  for (uint32_t key = 0; key < doc_.numKeys(); ++key) {
+    const SparseEvaluator& h = doc_.key(key).hierarchy();
+    for (VertexId id : key == 0 ? applied.limits : applied.key1Limits) {
+      if (id.level() >= h.numLevels()) continue;  // a batch's later undo dropped the level: its limit is gone
+      const Index v = h.level(id.level()).findVertex(id.index());
+      if (v == kInvalidIndex) continue;
+      outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
+    }
   }
   if (outside) {
     Status back = retract(entry);
@@ -490,6 +562,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
                       command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(), command,
                       authorName});
   changedLimits_.insert(changedLimits_.end(), applied.limits.begin(), applied.limits.end());
+  keysChanged_ = keysChanged_ || doc_.isMorph();
   // The flush and the commit may finish in either order: each calls
   // release(), which sends a batch once its last edit is durable.
   scheduleFlush();
@@ -542,7 +615,8 @@ void DocumentHost::flush() {
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
     const auto start = Clock::now();
-    auto changes = view.tessellation->update(doc_, changedLimits_);
+    auto changes = view.morphT ? (keysChanged_ ? rebuildMorphView(view) : Expected<Tessellation::Changes>(Tessellation::Changes{}))
+                               : view.tessellation->update(doc_.growableKey0(), changedLimits_);
     stats_.tessellateMicros += microsSince(start);
     stats_.tessellateLatency.addMicros(microsSince(start));
     if (!changes.isOk()) {
@@ -596,6 +670,7 @@ void DocumentHost::flush() {
     ++it;
   }
   changedLimits_.clear();
+  keysChanged_ = false;
   flushedVersion_ = version_;
   lastFlush_ = Clock::now();
   if (!last) return;
@@ -716,7 +791,7 @@ void DocumentHost::notifyRecorders(const Pending& p) {
 void DocumentHost::maybeSnapshot() {
   // Only at rest: a snapshot must never hold an edit the journal lacks.
   if (!pending_.empty() || version_ != durableVersion_ || version_ - lastSnapshot_ < config_.snapshotEvery) return;
-  Status saved = store_.putSnapshot(id_, version_ - 1, serializeDocument(doc_));
+  Status saved = store_.putSnapshot(id_, version_ - 1, serializeKeyedDocument(doc_));
   if (!saved.isOk()) {
     logEvent(LogLevel::kWarn, "snapshot_failed", {{"doc", id_.value}, {"error", saved.message()}});
     return;
@@ -738,7 +813,7 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
   }
   queue_.post(laneFor(triangles), [self = shared_from_this(), who, clientSeq, request, triangles] {
     const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
-    auto surface = self->doc_.surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
+    auto surface = self->doc_.key0().surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
                                       request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
     if (!surface.isOk()) {
       who->send({frameOf(rejectFor(clientSeq, surface.status()), maxFrame), nullptr});

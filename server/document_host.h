@@ -14,6 +14,12 @@
 // flush follows each edit; under heavy
 // load one covers a burst, so the tessellation, encode and fan-out cost
 // follows the delta rate, not the edit rate.
+//
+// A morph document (issue 16 §4) holds a second key: edits name their key,
+// and a view may follow the document at a time t (LodProfile.morph_t),
+// tessellated from KeyedDocument::at(t) and rebuilt whole when either key
+// changes (a morph moves every region); its changed regions are still
+// encoded once and shared by every subscriber at that t (document_morph.cc).
 #pragma once
 
 #include <boost/asio/any_io_executor.hpp>
@@ -27,6 +33,7 @@
 #include <string>
 
 #include "core/document/document.h"
+#include "core/morph/keyed_document.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/tessellation.h"
 #include "protocol/tessera.pb.h"
@@ -39,11 +46,15 @@
 
 namespace tessera::server {
 
+// Morph views are at multiples of 1/kMorphTimeSteps (LodProfile.morph_t is
+// rounded), so viewers playing the same frames share them.
+inline constexpr double kMorphTimeSteps = 10000;
+
 class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
  public:
   // Commands run on `workers`; the heavy ones of a large document (a
   // profile's first tessellation, an export) on `bulk` (serial_queue.h).
-  DocumentHost(DocumentId id, std::string name, Document doc, uint64_t version,
+  DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
                boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
                const ServerConfig& config, ServerStats& stats);
   // Trims the heap once the document's memory is freed (see trimMemory).
@@ -68,6 +79,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void unsubscribe(uint64_t session);
   void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message);
   void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request);
+  // The coarse morph stream: the control points at t (MorphControl).
+  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request);
 
   // Triangles a profile needs at least (its base level, held whole) and may
   // reach (its max level); triangles of a uniform surface at `level`. From
@@ -103,6 +116,10 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     // edit costs only the regions it changed.
     std::map<uint64_t, uint64_t> regionHashes;
     uint64_t surfaceHash = 0;
+    // A morph view: its time and the document at that time, which the
+    // tessellation follows (else it follows key 0).
+    std::optional<double> morphT;
+    std::unique_ptr<Document> source;
   };
   struct Pending {  // applied, waiting for its commit (its ack) and for its delta (recorders)
     uint64_t version;
@@ -127,8 +144,19 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   struct Applied {
     JournalEntry entry;
     std::vector<uint64_t> editIds;  // per command: the edit made, undone or redone
-    std::vector<VertexId> limits;   // every limit the command(s) changed
+    std::vector<VertexId> limits;   // every limit of key 0 the command(s) changed
+    std::vector<VertexId> key1Limits;  // and of key 1 (a morph document's)
   };
+  // Adds what the last command changed on `key` to `applied`.
+  void collectLimits(uint32_t key, Applied& applied) const;
+  // AddMorphKey: imports the mesh, checks it against key 0, adds key 1.
+  Status addMorphKey(const wire::AddMorphKey& request, JournalEntry& entry);
+  // The document a view's tessellation follows.
+  const Document& sourceOf(const View& view) const { return view.source ? *view.source : doc_.key0(); }
+  // A morph view's tessellation at `t`, and the document it follows.
+  Expected<View> buildMorphView(double t, const LodProfile& profile);
+  // Rebuilds a morph view after a key changed; the regions that differ.
+  Expected<Tessellation::Changes> rebuildMorphView(View& view);
   Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
   // An EditBatch: every command in order, or none (those applied are taken
   // back in reverse). `failedIndex`: the refused command, from 1.
@@ -162,7 +190,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void trimMemory();
   // What is freed off the interactive workers: a closed document, dropped views.
   struct Released {
-    std::optional<Document> doc;
+    std::optional<KeyedDocument> doc;
     std::map<std::string, View> views;
   };
   void releaseOnBulk(std::shared_ptr<Released> released);
@@ -176,7 +204,8 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
 
   const DocumentId id_;
   const std::string name_;
-  Document doc_;
+  KeyedDocument doc_;
+  bool keysChanged_ = false;  // a morph document changed since the last flush: its morph views rebuild
   uint64_t version_;         // applied
   uint64_t durableVersion_;  // committed to the journal
   uint64_t lastSnapshot_;

@@ -1,4 +1,4 @@
-#include "core/document/document_file.h"
+#include "core/morph/keyed_document_file.h"
 #include "server/journal_entry.h"
 #include "server/log.h"
 #include "server/server_context.h"
@@ -14,8 +14,8 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, store_.loadDocument(id));
   const std::string source = toString(id);
   const bool fromSnapshot = stored.snapshot.has_value();
-  TESSERA_ASSIGN_OR_RETURN(Document doc,
-                           deserializeDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source));
+  TESSERA_ASSIGN_OR_RETURN(KeyedDocument doc,
+                           deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source));
   uint64_t entries = fromSnapshot ? stored.snapshot->version : 0;
   for (const auto& entry : stored.entries) {
     const std::string where = source + " journal entry " + std::to_string(entry.version);

@@ -2,7 +2,8 @@
 // offsets and all, so replay is bit for bit), an undo or redo, or a batch of
 // them (an EditBatch: one version, one entry, so it is durable whole or not
 // at all). Replaying the journal in version order onto the document's base
-// rebuilds it.
+// rebuilds it. A morph document's second key is an entry too (kAddKey),
+// and an edit, undo or redo names the key it is on (issue 16 §4).
 #pragma once
 
 #include <string>
@@ -11,20 +12,24 @@
 
 #include "core/document/document.h"
 #include "core/document/edit.h"
+#include "core/morph/keyed_document.h"
 #include "core/util/status.h"
 
 namespace tessera::server {
 
 struct JournalEntry {
-  enum class Kind : uint8_t { kEdit = 1, kUndo = 2, kRedo = 3, kBatch = 4 };
+  enum class Kind : uint8_t { kEdit = 1, kUndo = 2, kRedo = 3, kBatch = 4, kAddKey = 5 };
   Kind kind = Kind::kEdit;
   Edit edit;                       // kEdit
   EditId target;                   // kUndo, kRedo
   std::vector<JournalEntry> batch;  // kBatch: edits, undos and redos (never a batch), in order
+  uint32_t key = 0;                // kEdit, kUndo, kRedo: the morph key they are on
+  std::vector<Vec3> keyPoints;     // kAddKey: the second key's base points, exactly
+  MorphImages images;              // kAddKey: a 2D morph's images (PNG), or none
 };
 
 std::string encodeJournalEntry(const JournalEntry& entry);
 Expected<JournalEntry> decodeJournalEntry(std::string_view bytes, const std::string& source);
-Status applyJournalEntry(Document& doc, const JournalEntry& entry);
+Status applyJournalEntry(KeyedDocument& doc, const JournalEntry& entry);
 
 }  // namespace tessera::server

@@ -22,6 +22,7 @@ uint64_t replyTo(const wire::ServerMessage& m) {
     case wire::ServerMessage::kExportResult: return m.export_result().client_seq();
     case wire::ServerMessage::kPong: return m.pong().client_seq();
     case wire::ServerMessage::kStatsReply: return m.stats_reply().client_seq();
+    case wire::ServerMessage::kMorphControl: return m.morph_control().client_seq();
     default: return 0;
   }
 }

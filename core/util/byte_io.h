@@ -70,6 +70,16 @@ class ByteReader {
     }
     return parseError(source_ + ": " + what + " is not a " + std::to_string(bits) + "-bit varint");
   }
+  // Takes `size` bytes as they are (a blob inside the data).
+  Status getBytes(std::string& out, size_t size, const char* what) {
+    if (size_ - offset_ < size) {
+      return parseError(source_ + ": " + what + " of " + std::to_string(size) + " bytes exceeds the remaining " +
+                        std::to_string(size_ - offset_));
+    }
+    out.assign(data_ + offset_, size);
+    offset_ += size;
+    return Status::ok();
+  }
   size_t offset() const { return offset_; }
   size_t remaining() const { return size_ - offset_; }
   const std::string& source() const { return source_; }

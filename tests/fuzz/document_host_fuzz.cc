@@ -141,7 +141,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   boost::asio::io_context io;
   store.attach(io);
   {
-    auto host = std::make_shared<server::DocumentHost>(DocumentId{1}, "cube", cubeDocument(kHostDocumentLevel), 1, io.get_executor(),
+    auto host = std::make_shared<server::DocumentHost>(DocumentId{1}, "cube", KeyedDocument(cubeDocument(kHostDocumentLevel)), 1, io.get_executor(),
                                                        io.get_executor(), store, config, stats);
     std::shared_ptr<Inbox> sessions[2] = {std::make_shared<Inbox>(1, failStore), std::make_shared<Inbox>(2, failStore)};
     host->join(sessions[0], "editor", wire::ROLE_EDITOR);

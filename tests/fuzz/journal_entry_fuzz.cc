@@ -6,7 +6,8 @@
 // 16 entries). Every entry is decoded; one that decodes must re-encode to
 // bytes that decode to the same encoding, and is then applied, in order, to
 // a creased-cube document as recovery would (errors are fine: a damaged
-// journal is refused, not crashed on).
+// journal is refused, not crashed on); entries may add a morph key and edit
+// it.
 #include <string>
 
 #include "fuzz_support.h"
@@ -15,7 +16,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tessera;
   using namespace tessera::fuzz;
-  Document doc = cubeDocument(3);
+  KeyedDocument doc(cubeDocument(3));
   size_t at = 0;
   for (int entries = 0; entries < 16 && at < size; ++entries) {
     const size_t length = std::min<size_t>(data[at], size - at - 1);

@@ -117,6 +117,21 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->mutable_tangent()->set_x(1.0);
   }
   {
+    auto* m = add().mutable_add_morph_key();
+    m->set_document_id(42);
+    m->set_mesh("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    m->set_mesh_format(wire::MESH_FORMAT_OBJ);
+    m->set_file_name("key1.obj");
+    m->set_image_from(std::string("\x89PNG\r\n\x1a\n", 8));
+    m->set_image_to(std::string("\x89PNG\r\n\x1a\n", 8));
+  }
+  {
+    auto* m = add().mutable_get_morph_control();
+    m->set_document_id(42);
+    m->set_t(0.25);
+    m->set_with_topology(true);
+  }
+  {
     auto* m = add().mutable_undo();
     m->set_document_id(42);
     m->set_edit_id(17);
@@ -261,6 +276,22 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     m->set_document_id(42);
     m->set_version(18);
     m->set_glb(std::string("glTF\x02\x00\x00\x00", 8));
+  }
+  {
+    auto* m = add().mutable_morph_control();
+    m->set_client_seq(15);
+    m->set_document_id(42);
+    m->set_version(18);
+    m->set_t(0.25);
+    for (float x : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 0.0f, 1.0f, 0.0f}) m->add_points(x);
+    for (uint32_t v : {0u, 1u, 2u}) m->add_triangles(v);
+    m->add_crease_vertices(0);
+    m->add_crease_vertices(1);
+    m->add_crease_sharpness(10.0f);
+    for (float x : {0.0f, 0.0f, 10.0f}) m->add_vertex_sharpness(x);
+    m->set_crease_method(wire::CREASE_METHOD_UNIFORM);
+    m->set_boundary(wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
+    m->set_max_level(5);
   }
   {
     auto* m = add().mutable_pong();

@@ -6,6 +6,7 @@
 #include "core/document/document.h"
 #include "core/document/document_file.h"
 #include "core/io/mesh_import.h"
+#include "core/morph/keyed_document_file.h"
 #include "server/journal_entry.h"
 #include "support/test_meshes.h"
 
@@ -46,9 +47,9 @@ TEST(JournalEntry, ABatchReplaysAsItsParts) {
   ASSERT_EQ(decoded->batch.size(), 3u);
   EXPECT_EQ(encodeJournalEntry(*decoded), bytes);
 
-  Document replayed = cube();
+  KeyedDocument replayed(cube());
   ASSERT_TRUE(applyJournalEntry(replayed, *decoded).isOk());
-  EXPECT_EQ(serializeDocument(replayed), serializeDocument(live));
+  EXPECT_EQ(serializeDocument(replayed.key0()), serializeDocument(live));
 }
 
 TEST(JournalEntry, DamagedBatchesAreRefused) {
@@ -70,6 +71,71 @@ TEST(JournalEntry, DamagedBatchesAreRefused) {
   auto nested = decodeJournalEntry(encodeJournalEntry(outer), "entry 4");
   ASSERT_FALSE(nested.isOk());
   EXPECT_NE(nested.status().message().find("a batch inside a batch"), std::string::npos);
+}
+
+// Issue 16 §4: a morph document's second key and the edits on it are
+// journal entries too, and replay rebuilds both keys bit for bit.
+TEST(JournalEntry, AMorphKeyAndItsEditsReplayExactly) {
+  KeyedDocument live(cube());
+  std::vector<Vec3> points = live.key0().basePoints();
+  for (Vec3& p : points) p = 1.5 * p + Vec3(0.25, 0, 0);
+  JournalEntry add{.kind = JournalEntry::Kind::kAddKey};
+  add.keyPoints = points;
+  add.images = {std::string("\x89PNG\r\n\x1a\nfrom", 12), std::string("\x89PNG\r\n\x1a\nto", 10)};
+  ASSERT_TRUE(applyJournalEntry(live, add).isOk());
+  ASSERT_TRUE(live.isMorph());
+  // Edits on key 1, as the server journals them: key 1 named in the entry.
+  Document& second = **live.editKey(1);
+  JournalEntry onKey1{.kind = JournalEntry::Kind::kBatch};
+  onKey1.batch = threeChanges(second);
+  for (JournalEntry& part : onKey1.batch) part.key = 1;
+
+  KeyedDocument replayed(cube());
+  for (const JournalEntry* entry : {&add, &onKey1}) {
+    const std::string bytes = encodeJournalEntry(*entry);
+    auto decoded = decodeJournalEntry(bytes, "entry");
+    ASSERT_TRUE(decoded.isOk()) << decoded.status().toString();
+    EXPECT_EQ(encodeJournalEntry(*decoded), bytes);
+    ASSERT_TRUE(applyJournalEntry(replayed, *decoded).isOk());
+  }
+  ASSERT_TRUE(replayed.isMorph());
+  EXPECT_EQ(serializeKeyedDocument(replayed), serializeKeyedDocument(live));
+  EXPECT_EQ(replayed.images().to, live.images().to);
+  // Key 0 never saw the edits on key 1.
+  EXPECT_TRUE(replayed.key0().edits().empty());
+  EXPECT_EQ(replayed.key(1).edits().size(), 2u);
+}
+
+TEST(JournalEntry, DamagedMorphEntriesAreRefused) {
+  JournalEntry edit{.kind = JournalEntry::Kind::kUndo, .target = EditId{3}};
+  edit.key = 1;
+  const std::string bytes = encodeJournalEntry(edit);
+  for (size_t cut = 1; cut < bytes.size(); ++cut) {
+    EXPECT_FALSE(decodeJournalEntry(bytes.substr(0, cut), "entry 5").isOk()) << cut;
+  }
+  // Key 2 (a morph document has keys 0 and 1) and a batch on a key.
+  std::string key2 = bytes;
+  key2[1] = 2;
+  auto bad = decodeJournalEntry(key2, "entry 6");
+  ASSERT_FALSE(bad.isOk());
+  EXPECT_NE(bad.status().message().find("entry 6: an entry on morph key 2"), std::string::npos) << bad.status().message();
+  std::string batchOnKey = bytes;
+  batchOnKey[5] = 4;
+  auto batch = decodeJournalEntry(batchOnKey, "entry 7");
+  ASSERT_FALSE(batch.isOk());
+  EXPECT_NE(batch.status().message().find("a journal entry of kind 4 on a morph key"), std::string::npos);
+  // An edit on key 1 of a document with one key.
+  KeyedDocument single(cube());
+  Status missing = applyJournalEntry(single, edit);
+  ASSERT_FALSE(missing.isOk());
+  EXPECT_NE(missing.message().find("key 1 does not exist: the document has 1 key"), std::string::npos) << missing.message();
+  // A second key of another vertex count.
+  JournalEntry add{.kind = JournalEntry::Kind::kAddKey};
+  add.keyPoints.assign(3, Vec3(0, 0, 0));
+  Status count = applyJournalEntry(single, add);
+  ASSERT_FALSE(count.isOk());
+  EXPECT_NE(count.message().find("the second key has 3 points, key 0 has 8"), std::string::npos) << count.message();
+  EXPECT_FALSE(single.isMorph());
 }
 
 }  // namespace

@@ -120,6 +120,7 @@ void addRemoteCommand(CLI::App& app, Action& action) {
   onChosen(*grant, action, [connection, grantArgs] { return runGrant(*connection, *grantArgs); });
 
   addRemoteEdit(*remote, connection, action);
+  addRemoteMorphKey(*remote, connection, action);
 
   CLI::App* exporter = remote->add_subcommand("export", "write a document's surface at a level as GLB");
   auto exportArgs = std::make_shared<ExportArgs>();

@@ -15,5 +15,7 @@ namespace tessera::cli {
 void addRemoteCreate(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
 // remote edit DOC --script FILE: one EditBatch, all or nothing.
 void addRemoteEdit(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
+// remote morph-key DOC MESH [--images A.png B.png]: the second key (AddMorphKey).
+void addRemoteMorphKey(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
 
 }  // namespace tessera::cli

@@ -21,20 +21,8 @@ struct CreateArgs {
   std::string documentName;
 };
 
-Expected<wire::MeshFormat> formatOf(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  const std::map<std::string, wire::MeshFormat> formats = {{".obj", wire::MESH_FORMAT_OBJ}, {".off", wire::MESH_FORMAT_OFF},
-                                                           {".ply", wire::MESH_FORMAT_PLY}, {".stl", wire::MESH_FORMAT_STL},
-                                                           {".glb", wire::MESH_FORMAT_GLB}};
-  auto format = formats.find(ext);
-  if (format != formats.end()) return format->second;
-  if (ext == ".gltf") return invalidArgument(path + ": send glTF as a .glb (a .gltf may name files beside it)");
-  return invalidArgument(path + ": not .obj, .off, .ply, .stl or .glb");
-}
-
 int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
-  auto format = formatOf(args.mesh.input);
+  auto format = meshFormatOf(args.mesh.input);
   if (!format.isOk()) return usage("remote create", format.status().message());
   auto bytes = readFile(args.mesh.input);
   if (!bytes.isOk()) return fail("remote create", bytes.status());

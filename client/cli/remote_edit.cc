@@ -15,9 +15,10 @@ namespace {
 
 struct EditArgs {
   std::string document, script;
+  uint32_t key = 0;  // a morph document's key every command goes to
 };
 
-void toWire(const ScriptCommand& c, wire::EditCommand& m) {
+void toWire(const ScriptCommand& c, uint32_t key, wire::EditCommand& m) {
   using Kind = ScriptCommand::Kind;
   switch (c.kind) {
     case Kind::kMove:
@@ -52,6 +53,12 @@ void toWire(const ScriptCommand& c, wire::EditCommand& m) {
     case Kind::kRedo: m.mutable_redo()->set_edit_id(c.edit.value); break;
     case Kind::kRemove: break;  // refused before anything is sent
   }
+  if (m.has_move_vertex()) m.mutable_move_vertex()->set_key(key);
+  if (m.has_set_edge_sharpness()) m.mutable_set_edge_sharpness()->set_key(key);
+  if (m.has_set_vertex_type()) m.mutable_set_vertex_type()->set_key(key);
+  if (m.has_set_interpolation()) m.mutable_set_interpolation()->set_key(key);
+  if (m.has_undo()) m.mutable_undo()->set_key(key);
+  if (m.has_redo()) m.mutable_redo()->set_key(key);
 }
 
 int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
@@ -79,7 +86,7 @@ int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
       return fail("remote edit", args.script + ":" + std::to_string(c.line) +
                                      ": remove is local only (use undo); nothing was sent");
     }
-    toWire(c, *batch.mutable_edit_batch()->add_commands());
+    toWire(c, args.key, *batch.mutable_edit_batch()->add_commands());
   }
 
   auto session = connectTo(connection);
@@ -114,6 +121,9 @@ void addRemoteEdit(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection,
   edit->add_option("DOC", args->document, "the document id")->required();
   edit->add_option("--script", args->script, "the edit script (the format of 'tessera doc edit')")
       ->required()->type_name("FILE");
+  edit->add_option("--key", args->key, "a morph document's key the script edits: 0 (default) or 1")
+      ->type_name("K")
+      ->check(CLI::Range(0, 1));
   onChosen(*edit, action, [connection, args] { return runEdit(*connection, *args); });
 }
 

@@ -1,6 +1,9 @@
 #include "client/cli/remote_session.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace tessera::cli {
@@ -87,6 +90,18 @@ Expected<uint64_t> parseDocumentId(const std::string& text) {
     return invalidArgument("DOC expects a document id (a whole number > 0), got '" + text + "'");
   }
   return value;
+}
+
+Expected<wire::MeshFormat> meshFormatOf(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::map<std::string, wire::MeshFormat> formats = {{".obj", wire::MESH_FORMAT_OBJ}, {".off", wire::MESH_FORMAT_OFF},
+                                                           {".ply", wire::MESH_FORMAT_PLY}, {".stl", wire::MESH_FORMAT_STL},
+                                                           {".glb", wire::MESH_FORMAT_GLB}};
+  auto format = formats.find(ext);
+  if (format != formats.end()) return format->second;
+  if (ext == ".gltf") return invalidArgument(path + ": send glTF as a .glb (a .gltf may name files beside it)");
+  return invalidArgument(path + ": not .obj, .off, .ply, .stl or .glb");
 }
 
 }  // namespace tessera::cli

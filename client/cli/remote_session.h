@@ -41,4 +41,8 @@ int outcome(const std::string& command, const Expected<wire::ServerMessage>& rep
 // A document id as the user typed it: a whole number > 0.
 Expected<uint64_t> parseDocumentId(const std::string& text);
 
+// The wire format of a mesh file, from its extension (.obj, .off, .ply,
+// .stl, .glb); an error naming the file otherwise.
+Expected<wire::MeshFormat> meshFormatOf(const std::string& path);
+
 }  // namespace tessera::cli

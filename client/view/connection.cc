@@ -54,8 +54,23 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   profile.set_base_level(options.baseLevel);
   profile.set_max_level(options.maxLevel);
   profile.set_angle_threshold_degrees(options.angle);
+  if (options.morphT) profile.set_morph_t(*options.morphT);
   TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, establish(s, options.document, profile));
+  // Whether the document is a morph: only a morph document answers with
+  // its control points (and its images, which come once, here).
+  wire::ClientMessage probe;
+  probe.mutable_get_morph_control()->set_document_id(options.document);
+  probe.mutable_get_morph_control()->set_with_topology(true);
+  auto control = session->call(probe, s.timeoutSeconds);
   std::unique_ptr<Connection> c(new Connection(std::move(session), options.document));
+  if (control.isOk() && control->has_morph_control()) {
+    c->morph_ = true;
+    c->imageFrom_ = control->morph_control().image_from();
+    c->imageTo_ = control->morph_control().image_to();
+  }
+  c->morphT_ = options.morphT;
+  c->wanted_ = profile;
+  c->wanted_.clear_morph_t();
   c->sessionOptions_ = s;
   c->profile_ = profile;
   c->hashSurfaces_ = options.hashSurfaces;
@@ -144,7 +159,7 @@ void Connection::enqueueEdit(wire::ClientMessage message, UndoHistory::StepId st
   if (own) history_.close(step);
   ++stats_.editsPending;
   outbox_.push_back(
-      {std::move(message), {.at = {}, .edit = true, .undo = false, .redo = false, .step = step}});
+      {std::move(message), {.at = {}, .edit = true, .undo = false, .redo = false, .step = step, .key = editKey_}});
 }
 
 void Connection::forget(const Sent& sent) {
@@ -178,6 +193,7 @@ void Connection::moveVertex(uint64_t packedVertex, const Vec3& target, UndoHisto
   move->mutable_target()->set_y(target[1]);
   move->mutable_target()->set_z(target[2]);
   move->set_mode(wire::MOVE_MODE_DIRECT_MANIPULATION);
+  onEditKey(m);
   enqueueEdit(std::move(m), step);
 }
 
@@ -186,6 +202,7 @@ void Connection::setVertexType(uint64_t packedVertex, wire::VertexType type) {
   m.mutable_set_vertex_type()->set_document_id(document_);
   m.mutable_set_vertex_type()->set_vertex_id(packedVertex);
   m.mutable_set_vertex_type()->set_type(type);
+  onEditKey(m);
   enqueueEdit(std::move(m), 0);
 }
 
@@ -196,6 +213,7 @@ void Connection::setInterpolation(uint64_t packedVertex, bool interpolating, dou
   t->set_vertex_id(packedVertex);
   t->set_interpolating(interpolating);
   t->set_tension(tension);
+  onEditKey(m);
   enqueueEdit(std::move(m), 0);
 }
 
@@ -207,6 +225,7 @@ void Connection::setEdgeSharpness(uint64_t packedA, uint64_t packedB, float shar
   e->add_end_vertex_ids(packedA);
   e->add_end_vertex_ids(packedB);
   e->set_sharpness(sharpness);
+  onEditKey(m);
   enqueueEdit(std::move(m), 0);
 }
 
@@ -235,14 +254,18 @@ bool Connection::step(bool undo) {
     }
     ids = std::move(*planned);
   }
-  for (uint64_t id : ids) {
+  for (uint64_t keyed : ids) {
+    const uint64_t id = keyed & ~kKeyOneBit;
+    const uint32_t key = (keyed & kKeyOneBit) != 0 ? 1 : 0;
     wire::ClientMessage m;
     if (undo) {
       m.mutable_undo()->set_document_id(document_);
       m.mutable_undo()->set_edit_id(id);
+      m.mutable_undo()->set_key(key);
     } else {
       m.mutable_redo()->set_document_id(document_);
       m.mutable_redo()->set_edit_id(id);
+      m.mutable_redo()->set_key(key);
     }
     enqueue(std::move(m), {.at = {}, .edit = true, .undo = undo, .redo = !undo});
   }
@@ -257,7 +280,31 @@ void Connection::changeProfile(uint32_t baseLevel, uint32_t maxLevel, double ang
   p.set_base_level(baseLevel);
   p.set_max_level(maxLevel);
   p.set_angle_threshold_degrees(angle);
+  {
+    std::lock_guard lock(mutex_);
+    wanted_ = p;
+    if (morphT_) p.set_morph_t(*morphT_);
+  }
   enqueue(subscribeMessage(document_, p), {});
+}
+
+void Connection::showMorphTime(double t) {
+  wire::LodProfile p;
+  {
+    std::lock_guard lock(mutex_);
+    morphT_ = t;
+    p = wanted_;
+  }
+  p.set_morph_t(t);
+  enqueue(subscribeMessage(document_, p), {});
+}
+
+void Connection::onEditKey(wire::ClientMessage& m) const {
+  const uint32_t key = editKey_;
+  if (m.has_move_vertex()) m.mutable_move_vertex()->set_key(key);
+  if (m.has_set_vertex_type()) m.mutable_set_vertex_type()->set_key(key);
+  if (m.has_set_interpolation()) m.mutable_set_interpolation()->set_key(key);
+  if (m.has_set_edge_sharpness()) m.mutable_set_edge_sharpness()->set_key(key);
 }
 
 void Connection::run() {
@@ -407,7 +454,7 @@ void Connection::handle(const wire::ServerMessage& m) {
     }
     if (sent.step != 0 && m.ack().edit_id() != 0) {
       std::lock_guard lock(mutex_);
-      history_.acked(sent.step, m.ack().edit_id());
+      history_.acked(sent.step, m.ack().edit_id() | (sent.key == 1 ? kKeyOneBit : 0));
     }
     return;
   }

@@ -94,12 +94,25 @@ class Connection {
   // Unsubscribe and subscribe again with another profile.
   void changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle);
 
+  // A morph document (issue 16 §4; found out at open, by asking for its
+  // control points): its images (empty for a 3D morph) and the time shown.
+  bool isMorph() const { return morph_; }
+  const std::string& imageFrom() const { return imageFrom_; }
+  const std::string& imageTo() const { return imageTo_; }
+  // Subscribes again at time t (LodProfile.morph_t): a snapshot of the
+  // surface at t follows.
+  void showMorphTime(double t);
+  // The key this viewer's edits, undos and redos go to (0 or 1).
+  void setEditKey(uint32_t key) { editKey_ = key; }
+  uint32_t editKey() const { return editKey_; }
+
  private:
   struct Sent {
     std::chrono::steady_clock::time_point at;
     bool edit = false;  // an edit, undo or redo: its Ack names a version
     bool undo = false, redo = false;
     UndoHistory::StepId step = 0;  // edits only
+    uint32_t key = 0;              // edits only: the morph key it was sent to
   };
   struct Outgoing {
     wire::ClientMessage message;
@@ -121,6 +134,18 @@ class Connection {
   void lost(const std::string& why);
   // Tries again with backoff until it succeeds (true) or the destructor stops it.
   bool reconnect();
+
+  // Edits of key 1 enter the undo history with this bit set (edit ids stay
+  // far below it), so that their undo names the key they were made on.
+  static constexpr uint64_t kKeyOneBit = uint64_t{1} << 63;
+  // Sets the edit's `key` field (MoveVertex.key and the like).
+  void onEditKey(wire::ClientMessage& m) const;
+
+  bool morph_ = false;  // set at open, read-only after
+  std::string imageFrom_, imageTo_;
+  std::atomic<uint32_t> editKey_{0};
+  std::optional<double> morphT_;  // guarded by mutex_: the time subscribed at, if any
+  wire::LodProfile wanted_;       // guarded by mutex_: the profile chosen, without morph_t
 
   std::unique_ptr<client::Session> session_;  // network thread only
   client::SessionOptions sessionOptions_;

@@ -40,6 +40,18 @@ void drawStatus(const HudFacts& f, const ViewToggles& t) {
   if (!f.stats.lastError.empty()) ImGui::TextWrapped("last error: %s", f.stats.lastError.c_str());
 }
 
+// A morph document's time: the slider shows (and sets) t; edits go to the
+// key nearer the time shown.
+void drawMorph(const HudFacts& f, ViewToggles& t) {
+  if (!t.morph) return;
+  ImGui::PushItemWidth(140);
+  if (ImGui::SliderFloat("t", &t.morphT, 0.0f, 1.0f, "%.3f")) t.morphShown = true;
+  ImGui::PopItemWidth();
+  ImGui::SameLine();
+  if (ImGui::SmallButton(t.playing ? "pause" : "play")) t.playing = !t.playing, t.morphShown = true;
+  ImGui::TextDisabled("%s; edits go to key %u", t.morphShown ? "morph at t" : "key 0 live", f.editKey);
+}
+
 void drawToggles(const HudFacts& f, ViewToggles& t) {
   ImGui::Checkbox("wire W", &t.wireframe);
   ImGui::SameLine();
@@ -123,6 +135,7 @@ void drawHud(const HudFacts& f, ViewToggles& t, int width, int height) {
   t.hudCollapsed = ImGui::IsWindowCollapsed();
   if (open) {
     drawStatus(f, t);
+    drawMorph(f, t);
     drawToggles(f, t);
     drawMore(f, t);
     ImGui::TextDisabled("H fold  F fit  Q quit");

@@ -30,6 +30,12 @@ struct ViewToggles {
   int baseLevel = 1, maxLevel = 3;
   float angle = 15;
   bool profileChanged = false;
+  // A morph document (issue 16 §4): the time shown (from the slider, the ,
+  // and . keys, or playing), and whether it plays (P).
+  bool morph = false;  // the document has two keys
+  float morphT = 0;
+  bool morphShown = false;  // a time is shown (else key 0 live)
+  bool playing = false;
 };
 
 struct HudFacts {
@@ -45,6 +51,7 @@ struct HudFacts {
   std::optional<double> pickedTension;    // the picked vertex interpolates, with this tension
   ConnectionStats stats;
   std::vector<Collaborator> collaborators;
+  uint32_t editKey = 0;  // the morph key this viewer's edits go to
 };
 
 // The HUD's largest size as fractions of the frame.

@@ -43,6 +43,18 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_F:
       app.frameRequested = true;
       break;
+    case GLFW_KEY_P:
+      if (app.toggles.morph) app.toggles.playing = !app.toggles.playing, app.toggles.morphShown = true;
+      break;
+    case GLFW_KEY_COMMA:
+    case GLFW_KEY_PERIOD:
+      if (app.toggles.morph) {
+        const float step = key == GLFW_KEY_PERIOD ? 0.05f : -0.05f;
+        app.toggles.morphT = std::clamp(app.toggles.morphT + step, 0.0f, 1.0f);
+        app.toggles.morphShown = true;
+        app.toggles.playing = false;
+      }
+      break;
     case GLFW_KEY_LEFT_BRACKET:
       if (app.toggles.controlLevel > 0) --app.toggles.controlLevel, dropPick(app);
       break;

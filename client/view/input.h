@@ -37,6 +37,8 @@ struct App {
 // K toggles the picked vertex between corner and smooth; I toggles it
 // between interpolating (seed 004 §4, tension 1) and plain, and = and -
 // double and halve its tension; Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z) undo and redo.
+// On a morph document, P plays and pauses it, and , and . step its time by
+// 0.05.
 void handleKey(App& app, int key, int mods);
 
 // Drops the pick, and the selection others see.

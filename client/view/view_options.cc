@@ -80,6 +80,15 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
       ->type_name("DEGREES")
       ->check(within(0.0, 180.0))
       ->group(connection);
+  app->add_option("--morph-t", o.morphT,
+                  "a morph document: show it at time T in [0, 1] (0 key 0, 1 key 1; keys , . and P)")
+      ->type_name("T")
+      ->check(within(0.0, 1.0))
+      ->group(connection);
+  app->add_option("--morph-rate", o.morphRate, "a morph document: P plays it at this many t per second (default 0.25)")
+      ->type_name("RATE")
+      ->check(within(0.001, 100.0))
+      ->group(connection);
   app->add_option("--timeout", o.timeoutSeconds, "to connect and get the first snapshot (default 30)")
       ->type_name("SECONDS")
       ->check(within(0.1, 3600.0))

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ struct ViewOptions {
   uint32_t baseLevel = 1;
   uint32_t maxLevel = 3;
   double angle = 15;
+  // A morph document (issue 16 §4): show it at this time (LodProfile.morph_t)
+  // instead of key 0 live; P plays it at `morphRate` (t per second).
+  std::optional<double> morphT;
+  double morphRate = 0.25;
   // The level whose control vertices are shown and dragged.
   int controlLevel = 0;
   int width = 800, height = 600;

@@ -4,6 +4,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "client/view/hud.h"
 
@@ -36,6 +37,12 @@ Viewer::Viewer(const ViewOptions& options, Connection& connection)
   app_.toggles.baseLevel = static_cast<int>(options.baseLevel);
   app_.toggles.maxLevel = static_cast<int>(options.maxLevel);
   app_.toggles.angle = static_cast<float>(options.angle);
+  app_.toggles.morph = connection.isMorph();
+  if (options.morphT) {
+    app_.toggles.morphT = static_cast<float>(*options.morphT);
+    app_.toggles.morphShown = true;
+    requestedT_ = *options.morphT;  // subscribed at it already
+  }
   lastFrame_ = lastSample_ = Clock::now();
 }
 
@@ -92,9 +99,30 @@ ConnectionStats Viewer::update(int width, int height) {
     connection_.changeProfile(static_cast<uint32_t>(app_.toggles.baseLevel),
                               static_cast<uint32_t>(app_.toggles.maxLevel), app_.toggles.angle);
   }
+  followMorph(dt);
   if (app_.undo) connection_.undo(), app_.undo = false;
   if (app_.redo) connection_.redo(), app_.redo = false;
   return stats_;
+}
+
+void Viewer::followMorph(double dt) {
+  ViewToggles& t = app_.toggles;
+  if (!t.morph || !t.morphShown) return;
+  if (t.playing) {
+    t.morphT += playDirection_ * static_cast<float>(options_.morphRate * dt);
+    if (t.morphT >= 1) t.morphT = 1, playDirection_ = -1;
+    if (t.morphT <= 0) t.morphT = 0, playDirection_ = 1;
+  }
+  // Frames at hundredths of t, so viewers playing together share them (the
+  // server encodes each once); one frame in flight at a time.
+  const double wanted = std::round(static_cast<double>(t.morphT) * 100) / 100;
+  if (wanted != requestedT_ && stats_.snapshots >= answeredAt_) {
+    connection_.showMorphTime(wanted);
+    requestedT_ = wanted;
+    answeredAt_ = stats_.snapshots + 1;
+  }
+  // Edits go to the key nearer the time shown.
+  connection_.setEditKey(wanted > 0.5 ? 1 : 0);
 }
 
 // Collaborators' selections in cyan, this viewer's pick in red. Two
@@ -151,7 +179,8 @@ void Viewer::draw(int width, int height) {
                    .pickedEdgeEnd = app_.edgeEnd,
                    .pickedTension = tensionOfPicked(),
                    .stats = stats_,
-                   .collaborators = connection_.collaborators()};
+                   .collaborators = connection_.collaborators(),
+                   .editKey = connection_.editKey()};
     drawHud(facts, app_.toggles, width, height);
   }
   ImGui::Render();

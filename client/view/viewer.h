@@ -39,6 +39,9 @@ class Viewer {
   Viewer(const ViewOptions& options, Connection& connection);
   void drawSelections(const DrawOptions& draw);
   std::optional<double> tensionOfPicked() const;
+  // A morph document: advances a playing morph and asks for the frame at
+  // the time shown once the previous one has arrived.
+  void followMorph(double dt);
 
   const ViewOptions options_;
   Connection& connection_;
@@ -55,6 +58,11 @@ class Viewer {
   double fps_ = 0, bytesPerSecond_ = 0;
   uint64_t bytesAtSample_ = 0;
   std::chrono::steady_clock::time_point lastFrame_, lastSample_;
+  // The time last asked for, the snapshot count that answers it, and the
+  // direction a playing morph runs in (it bounces between the keys).
+  double requestedT_ = -1;
+  uint64_t answeredAt_ = 0;
+  float playDirection_ = 1;
 };
 
 }  // namespace tessera::view

@@ -18,7 +18,9 @@
 // (a load over many connections against the real binary). Bounded: every
 // viewer stops after its frames or 300 s.
 //
-//   build/release/bench/tessera_bench_morph_stream [MESH.off] [VIEWERS] [FRAMES]
+//   build/release/bench/tessera_bench_morph_stream [MESH.off] [VIEWERS] [FRAMES] [KEY1_MESH]
+// (KEY1_MESH: key 1 from this mesh, e.g. deploy/samples/morph/mesh_b.obj
+// over mesh_a.obj, instead of the bent mesh).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -133,6 +135,18 @@ PlayResult play(const testing::ServerProcess& server, const std::string& token, 
   return r;
 }
 
+// A counter from the server's StatsReply.
+double serverStat(Session& s, const std::string& name) {
+  wire::ClientMessage m;
+  m.mutable_stats();
+  auto reply = s.call(m, 30);
+  if (!reply.isOk() || !reply->has_stats_reply()) return -1;
+  for (const wire::Stat& stat : reply->stats_reply().stats()) {
+    if (stat.name() == name) return stat.value();
+  }
+  return -1;
+}
+
 void report(const char* mode, std::vector<PlayResult>& results, double wall) {
   std::vector<double> fps;
   uint64_t bytes = 0;
@@ -149,13 +163,21 @@ void report(const char* mode, std::vector<PlayResult>& results, double wall) {
               frames / wall, wall);
 }
 
-int run(const std::string& meshPath, int viewers, int frames) {
+int run(const std::string& meshPath, int viewers, int frames, const std::string& key1Path) {
   auto mesh = importMesh(meshPath);
   if (!mesh.isOk()) {
     std::fprintf(stderr, "%s\n", mesh.status().message().c_str());
     return 2;
   }
-  const std::vector<Vec3> points0 = mesh->positions(), points1 = bent(points0);
+  std::vector<Vec3> points0 = mesh->positions(), points1 = bent(points0);
+  if (!key1Path.empty()) {
+    auto key1 = importMesh(key1Path);
+    if (!key1.isOk()) {
+      std::fprintf(stderr, "%s\n", key1.status().message().c_str());
+      return 2;
+    }
+    points1 = key1->positions();
+  }
   const std::string dir = testing::makeTempDir("tessera-bench-morph");
   // Enough connections and profiles for every viewer at its own t.
   auto server = testing::ServerProcess::start(
@@ -196,11 +218,12 @@ int run(const std::string& meshPath, int viewers, int frames) {
     }
   }
   (*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "morph-viewer-token-0123456789"), 30);
-  std::printf("document: %s, %d base triangles, key 1 bent, %d level-2 edits on the two keys; profile base %u max %u "
+  std::printf("document: %s, %d base triangles, key 1 %s, %d level-2 edits on the two keys; profile base %u max %u "
               "angle %g; %d viewers x %d frames\n",
-              meshPath.c_str(), mesh->numFaces(), edits, kBase, kMax, kAngle, viewers, frames);
+              meshPath.c_str(), mesh->numFaces(), key1Path.empty() ? "bent" : key1Path.c_str(), edits, kBase, kMax, kAngle, viewers, frames);
 
   for (bool coarse : {false, true}) {
+    const double encodedBefore = serverStat(**admin, "regions_encoded");
     std::vector<PlayResult> results(viewers);
     std::vector<std::thread> threads;
     const auto start = Clock::now();
@@ -211,6 +234,7 @@ int run(const std::string& meshPath, int viewers, int frames) {
     }
     for (auto& t : threads) t.join();
     report(coarse ? "(b) control points at t" : "(a) regions at t", results, seconds(Clock::now() - start));
+    std::printf("%-24s %10.0f regions encoded by the server\n", "", serverStat(**admin, "regions_encoded") - encodedBefore);
   }
 
   // The visual difference of (b) against (a).
@@ -240,6 +264,9 @@ int run(const std::string& meshPath, int viewers, int frames) {
     topology.vertexSharpness.assign(c.vertex_sharpness().begin(), c.vertex_sharpness().end());
     std::vector<Vec3> points;
     for (int i = 0; i + 2 < c.points_size(); i += 3) points.push_back(Vec3(c.points(i), c.points(i + 1), c.points(i + 2)));
+    // What a viewer of (b) computes per frame: the limit surface at the
+    // profile's max level from the control mesh.
+    const auto refineStart = Clock::now();
     auto coarse = Document::create(std::move(topology), std::move(points), {.maxLevel = kDocumentLevel});
     if (!coarse.isOk()) {
       std::fprintf(stderr, "coarse document: %s\n", coarse.status().message().c_str());
@@ -247,6 +274,7 @@ int run(const std::string& meshPath, int viewers, int frames) {
     }
     auto limit = coarse->surface(static_cast<int>(kMax), SurfaceKind::kLimit);
     if (!limit.isOk()) return 2;
+    const double refineMs = 1e3 * seconds(Clock::now() - refineStart);
     Vec3 lo = limit->positions[0], hi = limit->positions[0];
     for (const Vec3& p : limit->positions) {
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
@@ -263,8 +291,10 @@ int run(const std::string& meshPath, int viewers, int frames) {
         ++count;
       }
     }
-    std::printf("t = %.2f: (b) against (a) over %lld displayed vertices: max %.3e, RMS %.3e of the diagonal %.4g\n", t,
-                static_cast<long long>(count), worst / diagonal, std::sqrt(squares / count) / diagonal, diagonal);
+    std::printf("t = %.2f: (b) against (a) over %lld displayed vertices: max %.3e, RMS %.3e of the diagonal %.4g; "
+                "(b) refined to level %u on the client in %.0f ms (%zu triangles)\n",
+                t, static_cast<long long>(count), worst / diagonal, std::sqrt(squares / count) / diagonal, diagonal, kMax,
+                refineMs, limit->triangles.size());
   }
   server->stop();
   return 0;
@@ -277,5 +307,5 @@ int main(int argc, char** argv) {
   const std::string mesh = argc > 1 ? argv[1] : tessera::testing::cgalMeshPath("fandisk.off");
   const int viewers = argc > 2 ? std::atoi(argv[2]) : 100;
   const int frames = argc > 3 ? std::atoi(argv[3]) : 24;
-  return tessera::run(mesh, std::max(1, viewers), std::max(2, frames));
+  return tessera::run(mesh, std::max(1, viewers), std::max(2, frames), argc > 4 ? argv[4] : "");
 }

@@ -666,6 +666,7 @@ void Connection::stats(uint64_t seq) {
   add("resyncs", static_cast<double>(s.resyncs.load()));
   add("tessellate_ms_per_edit", edits > 0 ? s.tessellateMicros.load() / 1000.0 / edits : 0.0);
   add("encode_ms_per_region", s.encodeMicros.load() / 1000.0 / regions);
+  add("regions_encoded", static_cast<double>(s.regionsEncoded.load()));
   add("deltas", static_cast<double>(s.deltaFlushes.load()));
   add("delta_regions", static_cast<double>(s.deltaRegions.load()));
   add("delta_regions_layout_ids", static_cast<double>(s.deltaRegionsLayoutIds.load()));

@@ -33,7 +33,7 @@ void OrbitCamera::fit(std::span<const V3> points, float aspect, float fill) {
   const V3 centre = (lo + hi) * 0.5f;
   const Mat4 v = lookAt(
       centre + V3{std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_), std::cos(pitch_) * std::cos(yaw_)},
-      centre, {0, 1, 0});
+      centre, {0, upSign_, 0});
   const V3 right{v[0], v[4], v[8]}, up{v[1], v[5], v[9]}, back{v[2], v[6], v[10]};
   // The eye sits at centre + right * ex + up * ey + back * d, looking along
   // -back. A point at (x, y, z) in those axes around `centre` is at depth
@@ -89,7 +89,7 @@ V3 OrbitCamera::eye() const {
 }
 
 Mat4 OrbitCamera::view() const {
-  return lookAt(eye(), target_, {0, 1, 0});
+  return lookAt(eye(), target_, {0, upSign_, 0});
 }
 
 Mat4 OrbitCamera::projection(float aspect) const {

@@ -25,6 +25,10 @@ class OrbitCamera {
   // in its tighter dimension (width or height, for this aspect ratio).
   // Nothing changes for no points.
   void fit(std::span<const V3> points, float aspect, float fill = 0.86f);
+  // Looks at the XY plane from -Z with world -Y up: an image in pixel
+  // coordinates (x right, y down, a 2D morph document's) reads as it does
+  // on a screen. Orbiting from there keeps -Y up.
+  void lookAtImagePlane() { yaw_ = 3.14159265f, pitch_ = 0, upSign_ = -1; }
   // fit() to the eight corners of a box.
   void frame(V3 lo, V3 hi, float aspect = 4.0f / 3.0f, float fill = 0.86f);
 
@@ -44,6 +48,7 @@ class OrbitCamera {
  private:
   V3 target_;
   float yaw_ = 0.6f, pitch_ = 0.45f, distance_ = 4.0f, radius_ = 1.0f;
+  float upSign_ = 1;  // world +Y up, or -Y (lookAtImagePlane)
   // 30 degrees, as CAD viewers use: a fit-to-view close enough to fill the
   // frame with a wider angle would show strong perspective (a cube's top
   // seen almost edge-on).

@@ -68,6 +68,22 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     c->imageFrom_ = control->morph_control().image_from();
     c->imageTo_ = control->morph_control().image_to();
   }
+  if (!c->imageFrom_.empty()) {
+    // A 2D morph is shown uniformly at the max level, so that every frame
+    // has the same vertices as the key views (their ids find their
+    // texture coordinates); two more sessions follow the keys.
+    profile.set_base_level(options.maxLevel);
+    TESSERA_RETURN_IF_ERROR(expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
+                                      "subscribe to document " + std::to_string(options.document)));
+    for (int k = 0; k < 2; ++k) {
+      wire::LodProfile atKey = profile;
+      atKey.set_morph_t(k);
+      client::SessionOptions keyOptions = s;
+      keyOptions.name = s.name + " (key " + std::to_string(k) + ")";
+      TESSERA_ASSIGN_OR_RETURN(c->keySessions_[k], establish(keyOptions, options.document, atKey));
+      c->keyViews_[k] = std::make_unique<client::DocumentView>(options.document);
+    }
+  }
   c->morphT_ = options.morphT;
   c->wanted_ = profile;
   c->wanted_.clear_morph_t();
@@ -345,6 +361,7 @@ void Connection::run() {
       for (const Outgoing& o : out) stats_.editsSent += o.sent.edit ? 1 : 0;
       countPending();
     }
+    pollKeySessions();
     // Short waits keep queued edits from waiting long for the next send.
     auto message = session_->receive(0.005);
     if (!message.isOk()) {
@@ -357,6 +374,52 @@ void Connection::run() {
     std::lock_guard lock(mutex_);
     countPending();
   }
+}
+
+void Connection::pollKeySessions() {
+  bool changed = false;
+  for (int k = 0; k < 2; ++k) {
+    if (!keySessions_[k]) continue;
+    for (int i = 0; i < 16; ++i) {
+      auto m = keySessions_[k]->receive(0.001);
+      if (!m.isOk()) {
+        if (m.status().message().rfind("no message from the server", 0) == 0) break;
+        // The textures stop following the keys; the surface is unaffected.
+        keySessions_[k].reset();
+        std::lock_guard lock(mutex_);
+        stats_.lastError = "key " + std::to_string(k) + " texture session: " + m.status().message();
+        break;
+      }
+      if (!m->has_snapshot() && !m->has_delta()) continue;
+      if (!keyViews_[k]->apply(*m).isOk()) {
+        // A gap: a fresh snapshot at the same time.
+        wire::LodProfile atKey = profile_;
+        atKey.set_base_level(atKey.max_level());
+        atKey.set_morph_t(k);
+        (void)keySessions_[k]->send(subscribeMessage(document_, atKey));
+        continue;
+      }
+      changed = true;
+    }
+  }
+  if (!changed || !keyViews_[0]->ready() || !keyViews_[1]->ready()) return;
+  auto map = std::make_shared<KeyPositionMap>();
+  for (int k = 0; k < 2; ++k) {
+    for (const auto& [id, region] : keyViews_[k]->regions()) {
+      for (size_t i = 0; i < region.positions.size() && i < region.vertexIds.size(); ++i) {
+        auto& uv = (*map)[region.vertexIds[i]];
+        uv[2 * k] = static_cast<float>(region.positions[i][0]);
+        uv[2 * k + 1] = static_cast<float>(region.positions[i][1]);
+      }
+    }
+  }
+  std::lock_guard lock(mutex_);
+  keyPositions_ = std::move(map);
+}
+
+std::shared_ptr<const KeyPositionMap> Connection::keyPositions() const {
+  std::lock_guard lock(mutex_);
+  return keyPositions_;
 }
 
 void Connection::recordLatency(Clock::duration d) {

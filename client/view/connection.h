@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <unordered_map>
 #include <vector>
 
 #include "client/lib/document_view.h"
@@ -38,6 +39,10 @@ struct Collaborator {
   std::vector<uint64_t> selectedVertices;
   bool self = false;
 };
+
+// A 2D morph document's texture coordinates (issue 16 §4): per displayed
+// vertex id, its position (pixels) under key 0 (x, y) and key 1 (x, y).
+using KeyPositionMap = std::unordered_map<uint64_t, std::array<float, 4>>;
 
 struct ConnectionStats {
   bool connected = true;
@@ -99,6 +104,11 @@ class Connection {
   bool isMorph() const { return morph_; }
   const std::string& imageFrom() const { return imageFrom_; }
   const std::string& imageTo() const { return imageTo_; }
+  // With images: where each displayed vertex is under either key, from two
+  // more subscriptions (t = 0 and t = 1, the uniform profile every view of
+  // the document uses) that follow the keys' edits; null until both have
+  // their snapshot. A new pointer whenever it changes.
+  std::shared_ptr<const KeyPositionMap> keyPositions() const;
   // Subscribes again at time t (LodProfile.morph_t): a snapshot of the
   // surface at t follows.
   void showMorphTime(double t);
@@ -140,6 +150,14 @@ class Connection {
   static constexpr uint64_t kKeyOneBit = uint64_t{1} << 63;
   // Sets the edit's `key` field (MoveVertex.key and the like).
   void onEditKey(wire::ClientMessage& m) const;
+
+  // A 2D morph's sessions at t = 0 and t = 1 (network thread only), and
+  // what they show.
+  std::unique_ptr<client::Session> keySessions_[2];
+  std::unique_ptr<client::DocumentView> keyViews_[2];
+  std::shared_ptr<const KeyPositionMap> keyPositions_;  // guarded by mutex_
+  // Reads what the key sessions received; republishes keyPositions_.
+  void pollKeySessions();
 
   bool morph_ = false;  // set at open, read-only after
   std::string imageFrom_, imageTo_;

@@ -108,11 +108,13 @@ Renderer::~Renderer() {
   glDeleteVertexArrays(1, &pointVao_);
   glDeleteProgram(meshProgram_);
   glDeleteProgram(pointProgram_);
+  glDeleteTextures(2, textures_);
 }
 
 void Renderer::release(GpuRegion& r) {
   glDeleteBuffers(1, &r.vbo);
   glDeleteBuffers(1, &r.ibo);
+  glDeleteBuffers(1, &r.uvbo);
   glDeleteVertexArrays(1, &r.vao);
   r = {};
 }
@@ -135,6 +137,7 @@ Renderer::GpuRegion& Renderer::slot(uint64_t id) {
     glGenVertexArrays(1, &r.vao);
     glGenBuffers(1, &r.vbo);
     glGenBuffers(1, &r.ibo);
+    glGenBuffers(1, &r.uvbo);
     r.colour = regionColour(id);
   }
   return r;
@@ -154,6 +157,10 @@ void Renderer::upload(GpuRegion& r, std::span<const Vec3> positions, std::span<c
   for (const auto& t : triangles)
     for (int k = 0; k < 3; ++k) indices.push_back(static_cast<uint32_t>(t[k]));
   glBindVertexArray(r.vao);
+  // Texture coordinates belong to the received mesh (uploadKeyUv): until
+  // they are uploaded for this one, the attribute is off (it reads 0).
+  glDisableVertexAttribArray(2);
+  r.uvFrom = nullptr;
   glBindBuffer(GL_ARRAY_BUFFER, r.vbo);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(float)), vertices.data(),
                usage);
@@ -171,14 +178,64 @@ void Renderer::upload(GpuRegion& r, std::span<const Vec3> positions, std::span<c
   ++uploads_;
 }
 
-void Renderer::sync(const RegionMap& regions) {
+void Renderer::sync(const RegionMap& regions, const std::shared_ptr<const KeyPositionMap>& keyPositions) {
   evict(regions);
   for (const auto& [id, mesh] : regions) {
     GpuRegion& r = slot(id);
-    if (r.mesh == mesh) continue;
-    r.mesh = mesh;
-    upload(r, mesh->positions, mesh->normals, mesh->triangles, GL_STATIC_DRAW);
+    if (r.mesh != mesh) {
+      r.mesh = mesh;
+      r.uvFrom = nullptr;
+      upload(r, mesh->positions, mesh->normals, mesh->triangles, GL_STATIC_DRAW);
+    }
+    if (keyPositions && r.uvFrom != keyPositions.get()) uploadKeyUv(r, *keyPositions);
   }
+}
+
+void Renderer::uploadKeyUv(GpuRegion& r, const KeyPositionMap& keyPositions) {
+  const RegionMesh& mesh = *r.mesh;
+  std::vector<float> uv;
+  uv.reserve(mesh.positions.size() * 4);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    std::array<float, 4> at{static_cast<float>(mesh.positions[v][0]), static_cast<float>(mesh.positions[v][1]),
+                            static_cast<float>(mesh.positions[v][0]), static_cast<float>(mesh.positions[v][1])};
+    if (v < mesh.vertexIds.size()) {
+      auto it = keyPositions.find(mesh.vertexIds[v]);
+      if (it != keyPositions.end()) at = it->second;
+    }
+    // Pixel centres: pixel (i, j) covers [i, i + 1) x [j, j + 1), so a mesh
+    // in pixel coordinates maps x to x / width. Rows run top to bottom in
+    // the texture as in the image.
+    uv.push_back(at[0] / imageSize_[0][0]);
+    uv.push_back(at[1] / imageSize_[0][1]);
+    uv.push_back(at[2] / imageSize_[1][0]);
+    uv.push_back(at[3] / imageSize_[1][1]);
+  }
+  glBindVertexArray(r.vao);
+  glBindBuffer(GL_ARRAY_BUFFER, r.uvbo);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(uv.size() * sizeof(float)), uv.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
+  glBindVertexArray(0);
+  r.uvFrom = &keyPositions;
+}
+
+void Renderer::setMorphImages(const Image& from, const Image& to) {
+  if (textures_[0] == 0) glGenTextures(2, textures_);
+  const Image* images[2] = {&from, &to};
+  for (int k = 0; k < 2; ++k) {
+    glBindTexture(GL_TEXTURE_2D, textures_[k]);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, images[k]->width, images[k]->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 images[k]->rgba.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    imageSize_[k][0] = static_cast<float>(images[k]->width);
+    imageSize_[k][1] = static_cast<float>(images[k]->height);
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  for (auto& [id, r] : regions_) r.uvFrom = nullptr;  // sizes changed
 }
 
 void Renderer::stream(const RegionMap& regions, const std::vector<RefinedMesh>& refined) {
@@ -207,6 +264,18 @@ void Renderer::drawSurface(const DrawOptions& o) {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 1.0f);
   glUniform1i(flat, 0);
+  const bool textured = textures_[0] != 0 && !o.regionColours;
+  glUniform1i(glGetUniformLocation(meshProgram_, "uTextured"), textured ? 1 : 0);
+  if (textured) {
+    for (int k = 0; k < 2; ++k) {
+      glActiveTexture(GL_TEXTURE0 + k);
+      glBindTexture(GL_TEXTURE_2D, textures_[k]);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(glGetUniformLocation(meshProgram_, "uFrom"), 0);
+    glUniform1i(glGetUniformLocation(meshProgram_, "uTo"), 1);
+    glUniform1f(glGetUniformLocation(meshProgram_, "uT"), o.morphT);
+  }
   for (const auto& [id, r] : regions_) {
     const std::array<float, 3> c = o.regionColours ? r.colour : std::array<float, 3>{0.72f, 0.74f, 0.78f};
     glUniform3fv(colour, 1, c.data());
@@ -214,6 +283,7 @@ void Renderer::drawSurface(const DrawOptions& o) {
     glDrawElements(GL_TRIANGLES, r.indices, GL_UNSIGNED_INT, nullptr);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
+  glUniform1i(glGetUniformLocation(meshProgram_, "uTextured"), 0);
   if (o.wireframe) {
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glUniform1i(flat, 1);

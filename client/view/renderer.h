@@ -17,6 +17,7 @@
 #include "client/view/control_points.h"
 #include "client/view/gl.h"
 #include "client/view/view_math.h"
+#include "core/io/png_image.h"
 #include "core/render/dynamic_refinement.h"
 
 namespace tessera::view {
@@ -30,6 +31,9 @@ struct DrawOptions {
   // pixels one world unit covers at depth 1 (viewport height / (2 tan(fovy / 2))).
   float pointDiameter = 0.01f;
   float pixelsPerUnit = 600;
+  // A 2D morph with images (setMorphImages): the time shown, for the
+  // cross-dissolve; textured unless the region colours are on.
+  float morphT = 0;
 };
 
 struct PointStyle {
@@ -45,8 +49,13 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Uploads new and changed regions and frees removed ones.
-  void sync(const RegionMap& regions);
+  // Uploads new and changed regions and frees removed ones; with key
+  // positions (a 2D morph's, connection.h), also their texture coordinates,
+  // again for every region when the map is another.
+  void sync(const RegionMap& regions, const std::shared_ptr<const KeyPositionMap>& keyPositions = nullptr);
+  // A 2D morph document's images (RGBA, rows top to bottom): the surface is
+  // drawn with them from then on.
+  void setMorphImages(const Image& from, const Image& to);
   // Client-side refinement: draws refined[i] for the i-th region of
   // `regions` (in map order), uploaded every frame as a stream (seed 002
   // keeps nothing between frames); a later sync() uploads the received
@@ -63,7 +72,8 @@ class Renderer {
  private:
   struct GpuRegion {
     std::shared_ptr<const RegionMesh> mesh;  // what was uploaded
-    GLuint vao = 0, vbo = 0, ibo = 0;
+    GLuint vao = 0, vbo = 0, ibo = 0, uvbo = 0;
+    const KeyPositionMap* uvFrom = nullptr;  // the key positions its texture coordinates came from
     GLsizei indices = 0;
     std::array<float, 3> colour{};
   };
@@ -76,7 +86,14 @@ class Renderer {
   void upload(GpuRegion& r, std::span<const Vec3> positions, std::span<const Vec3> normals,
               std::span<const std::array<int, 3>> triangles, GLenum usage);
 
+  // Texture coordinates of the region's vertices: by vertex id, each key's
+  // position over its image's size; a vertex no key view has (another
+  // profile) uses its own position for both.
+  void uploadKeyUv(GpuRegion& r, const KeyPositionMap& keyPositions);
+
   GLuint meshProgram_ = 0, pointProgram_ = 0;
+  GLuint textures_[2] = {0, 0};
+  float imageSize_[2][2] = {{1, 1}, {1, 1}};
   GLuint pointVao_ = 0, pointVbo_ = 0;
   std::map<uint64_t, GpuRegion> regions_;
   int64_t triangles_ = 0;

@@ -6,11 +6,14 @@ namespace tessera::view::shaders {
 inline constexpr const char* kMeshVertex = R"(#version 330 core
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec4 aKeyUv;  // a 2D morph's: texture coordinates in key 0's and key 1's image
 uniform mat4 uView;
 uniform mat4 uProjection;
 out vec3 vNormal;
 out vec3 vPosition;
+out vec4 vKeyUv;
 void main() {
+  vKeyUv = aKeyUv;
   vec4 p = uView * vec4(aPosition, 1.0);
   vPosition = p.xyz;
   vNormal = mat3(uView) * aNormal;  // the view matrix is a rotation and a translation
@@ -29,6 +32,9 @@ void main() {
 // The matcap (uMatcap) instead takes the colour from the view-space normal
 // alone, as a studio-lit clay sphere would show it: a procedural matcap, no
 // image needed. Two-sided: back faces use the flipped normal.
+// A 2D morph document (uTextured) shows its images instead, unlit: each
+// point takes key 0's image where it was under key 0 and key 1's where it
+// was under key 1, cross-dissolved by t (seed 004 §5).
 inline constexpr const char* kMeshFragment = R"(#version 330 core
 in vec3 vNormal;
 in vec3 vPosition;
@@ -36,6 +42,11 @@ uniform vec3 uColour;
 uniform vec3 uUp;
 uniform int uFlat;
 uniform int uMatcap;
+uniform int uTextured;
+uniform sampler2D uFrom;
+uniform sampler2D uTo;
+uniform float uT;
+in vec4 vKeyUv;
 out vec4 fragColour;
 
 const vec3 kKey = normalize(vec3(-0.45, 0.75, 0.55));
@@ -64,6 +75,10 @@ vec3 matcap(vec3 n) {
 
 void main() {
   if (uFlat != 0) { fragColour = vec4(uColour, 1.0); return; }
+  if (uTextured != 0) {
+    fragColour = vec4(mix(texture(uFrom, vKeyUv.xy).rgb, texture(uTo, vKeyUv.zw).rgb, uT), 1.0);
+    return;
+  }
   vec3 n = normalize(vNormal);
   if (!gl_FrontFacing) n = -n;
   vec3 toEye = normalize(-vPosition);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "client/view/hud.h"
+#include "core/io/png_image.h"
 
 namespace tessera::view {
 
@@ -49,6 +50,13 @@ Viewer::Viewer(const ViewOptions& options, Connection& connection)
 Expected<std::unique_ptr<Viewer>> Viewer::create(const ViewOptions& options, Connection& connection) {
   std::unique_ptr<Viewer> v(new Viewer(options, connection));
   TESSERA_ASSIGN_OR_RETURN(v->renderer_, Renderer::create());
+  if (!connection.imageFrom().empty()) {
+    // A 2D morph document: its images on the surface, seen as images are.
+    TESSERA_ASSIGN_OR_RETURN(Image from, decodePng(connection.imageFrom(), "the morph's first image"));
+    TESSERA_ASSIGN_OR_RETURN(Image to, decodePng(connection.imageTo(), "the morph's second image"));
+    v->renderer_->setMorphImages(from, to);
+    v->app_.camera.lookAtImagePlane();
+  }
   return v;
 }
 
@@ -63,6 +71,10 @@ ConnectionStats Viewer::update(int width, int height) {
     bytesAtSample_ = stats_.bytesReceived;
     lastSample_ = now;
   }
+  if (auto positions = connection_.keyPositions(); positions != keyPositions_) {
+    keyPositions_ = std::move(positions);
+    synced_ = false;
+  }
   if (stats_.regionUpdates != seenUpdates_) {
     seenUpdates_ = stats_.regionUpdates;
     regions_ = connection_.regions();
@@ -73,7 +85,7 @@ ConnectionStats Viewer::update(int width, int height) {
     refineTiming_ = refineAndStream(regions_, app_.toggles.refine, *renderer_);
     synced_ = false;
   } else if (!synced_) {
-    renderer_->sync(regions_);
+    renderer_->sync(regions_, keyPositions_);
     synced_ = true;
   }
   V3 lo, hi;
@@ -116,6 +128,7 @@ void Viewer::followMorph(double dt) {
   // Frames at hundredths of t, so viewers playing together share them (the
   // server encodes each once); one frame in flight at a time.
   const double wanted = std::round(static_cast<double>(t.morphT) * 100) / 100;
+  if (stats_.snapshots >= answeredAt_ && requestedT_ >= 0) shownT_ = requestedT_;
   if (wanted != requestedT_ && stats_.snapshots >= answeredAt_) {
     connection_.showMorphTime(wanted);
     requestedT_ = wanted;
@@ -160,6 +173,7 @@ void Viewer::draw(int width, int height) {
   draw.matcap = app_.toggles.matcap;
   draw.pointDiameter = pointDiameter_;
   draw.pixelsPerUnit = app_.camera.pixelsPerUnit(height);
+  draw.morphT = static_cast<float>(shownT_);
   renderer_->drawSurface(draw);
   if (app_.toggles.showControls) {
     renderer_->drawPoints(visible(points_, app_.camera.eye()), PointStyle{}, draw);

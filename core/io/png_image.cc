@@ -33,6 +33,26 @@ Expected<Image> readPng(const std::string& path) {
   return image;
 }
 
+Expected<Image> decodePng(const std::string& bytes, const std::string& source) {
+  if (bytes.size() > static_cast<size_t>(INT32_MAX)) return invalidArgument(source + ": too large");
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(data, size, &w, &h, &channels)) {
+    return parseError(source + ": not a readable image (" + std::string(stbi_failure_reason()) + ")");
+  }
+  if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide) {
+    return invalidArgument(source + ": " + std::to_string(w) + " x " + std::to_string(h) + " pixels; at most " +
+                           std::to_string(kMaxSide) + " a side");
+  }
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 4),
+                                                   stbi_image_free);
+  if (!pixels) return parseError(source + ": cannot decode (" + std::string(stbi_failure_reason()) + ")");
+  Image image{w, h, {}};
+  image.rgba.assign(pixels.get(), pixels.get() + static_cast<size_t>(w) * h * 4);
+  return image;
+}
+
 Status writePng(const std::string& path, const Image& image) {
   if (image.width <= 0 || image.height <= 0 || image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4) {
     return invalidArgument(path + ": not a whole image");

@@ -21,6 +21,8 @@ struct Image {
 
 // Errors name the file: missing, not a PNG, or larger than 16384 pixels a side.
 Expected<Image> readPng(const std::string& path);
+// The same from bytes in memory (a morph document's images); `source` names them.
+Expected<Image> decodePng(const std::string& bytes, const std::string& source);
 Status writePng(const std::string& path, const Image& image);
 
 }  // namespace tessera

@@ -1,5 +1,6 @@
-// The document file reader (core/document/document_file.h): what
-// `tessera doc` and the server's snapshots read back from disk.
+// The document file reader (core/document/document_file.h) behind the
+// morph container (core/morph/keyed_document_file.h): what `tessera doc`
+// and the server's snapshots read back from disk.
 //
 // Each input is read as is, then with its header's payload size and its
 // CRC-32 trailer made to match the bytes (when it starts with the magic), so
@@ -11,7 +12,7 @@
 #include <cstring>
 #include <string>
 
-#include "core/document/document_file.h"
+#include "core/morph/keyed_document_file.h"
 #include "fuzz_support.h"
 
 namespace tessera::fuzz {
@@ -22,15 +23,15 @@ constexpr size_t kHeaderBytes = kMagicBytes + 4 + 4 + 8;  // magic, version, res
 constexpr size_t kTrailerBytes = 4;
 
 void readOne(const std::string& bytes) {
-  auto doc = deserializeDocument(bytes, "fuzz.tsd");
+  auto doc = deserializeKeyedDocument(bytes, "fuzz.tsd");
   if (!doc.isOk()) {
-    checkError(doc.status(), "deserializeDocument");
+    checkError(doc.status(), "deserializeKeyedDocument");
     return;
   }
-  const std::string written = serializeDocument(*doc);
-  auto again = deserializeDocument(written, "rewritten.tsd");
+  const std::string written = serializeKeyedDocument(*doc);
+  auto again = deserializeKeyedDocument(written, "rewritten.tsd");
   if (!again.isOk()) fail("a document that read does not read back after saving: " + again.status().toString());
-  require(serializeDocument(*again) == written, "saving a document twice gives different bytes");
+  require(serializeKeyedDocument(*again) == written, "saving a document twice gives different bytes");
 }
 
 }  // namespace

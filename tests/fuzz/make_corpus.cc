@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/document/document_file.h"
+#include "core/morph/keyed_document_file.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/tessellation.h"
@@ -60,9 +61,23 @@ Document editedCube() {
   return doc;
 }
 
+// Key 1 of the morph seeds: the cube's points moved (same triangles).
+std::vector<Vec3> secondKeyPoints(const Document& doc) {
+  std::vector<Vec3> points = doc.basePoints();
+  for (Vec3& p : points) p = Vec3(1.25 * p[0], p[1] + 0.1 * p[0], 0.8 * p[2]);
+  return points;
+}
+
 void documents() {
   write("document_file", "cube.tsd", serializeDocument(cubeDocument(3)));
   write("document_file", "edited.tsd", serializeDocument(editedCube()));
+  // A morph document (two keys, keyed_document_file.h), as snapshots hold it.
+  KeyedDocument morph(editedCube());
+  ok(morph.addKey(secondKeyPoints(morph.key0()), {std::string("\x89PNG\r\n\x1a\n", 8), std::string("\x89PNG\r\n\x1a\n", 8)}),
+     "add key");
+  const VertexId moved[] = {VertexId(1, 3)};
+  value((*morph.editKey(1))->moveBy(moved, Vec3(0.05, 0, 0)), "key 1 offset");
+  write("document_file", "morph.tsd", serializeKeyedDocument(morph));
 }
 
 std::string prefixed(const std::vector<std::string>& entries) {
@@ -87,6 +102,18 @@ void journals() {
   entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kUndo, {}, last}));
   entries.push_back(server::encodeJournalEntry({server::JournalEntry::Kind::kRedo, {}, last}));
   write("journal_entry", "history", prefixed(entries));
+  // A second morph key, then an edit and its undo on it.
+  {
+    server::JournalEntry add{.kind = server::JournalEntry::Kind::kAddKey};
+    add.keyPoints = secondKeyPoints(cubeDocument(3));
+    server::JournalEntry onKey1{.kind = server::JournalEntry::Kind::kEdit, .edit = doc.edits().front()};
+    onKey1.edit.active = true;
+    onKey1.key = 1;
+    server::JournalEntry undo{.kind = server::JournalEntry::Kind::kUndo, .target = onKey1.edit.id};
+    undo.key = 1;
+    write("journal_entry", "morph",
+          prefixed({server::encodeJournalEntry(add), server::encodeJournalEntry(onKey1), server::encodeJournalEntry(undo)}));
+  }
   for (size_t i = 0; i < 5; ++i) write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
 }
 

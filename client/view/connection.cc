@@ -67,6 +67,8 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     c->morph_ = true;
     c->imageFrom_ = control->morph_control().image_from();
     c->imageTo_ = control->morph_control().image_to();
+    auto base = coarseMorphBase(control->morph_control());
+    if (base.isOk()) c->coarseBase_ = std::move(*base);
   }
   if (!c->imageFrom_.empty()) {
     // A 2D morph is shown uniformly at the max level, so that every frame
@@ -315,6 +317,31 @@ void Connection::showMorphTime(double t) {
   enqueue(subscribeMessage(document_, p), {});
 }
 
+void Connection::playMorphTime(double t) {
+  wire::ClientMessage m;
+  m.mutable_get_morph_control()->set_document_id(document_);
+  m.mutable_get_morph_control()->set_t(t);
+  enqueue(std::move(m), {});
+}
+
+void Connection::showCoarse(const wire::MorphControl& frame) {
+  if (!coarseBase_) return;
+  auto mesh = refineCoarseMorph(*coarseBase_, frame, static_cast<int>(profile_.max_level()));
+  std::lock_guard lock(mutex_);
+  if (!mesh.isOk()) {
+    stats_.lastError = mesh.status().message();
+    return;
+  }
+  // One region with an id no server region has (a face id's level bits
+  // are at most 63 >> 58 = 63; this is all ones).
+  published_.clear();
+  published_[~uint64_t{0}] = std::make_shared<const RegionMesh>(std::move(*mesh));
+  coarseShown_ = true;
+  stats_.coarseShown = true;
+  ++stats_.coarseFrames;
+  ++stats_.regionUpdates;
+}
+
 void Connection::onEditKey(wire::ClientMessage& m) const {
   const uint32_t key = editKey_;
   if (m.has_move_vertex()) m.mutable_move_vertex()->set_key(key);
@@ -431,6 +458,7 @@ void Connection::recordLatency(Clock::duration d) {
 }
 
 void Connection::publishAll() {
+  coarseShown_ = false;
   RegionMap all;
   for (const auto& [id, mesh] : view_.regions()) all[id] = std::make_shared<const RegionMesh>(mesh);
   std::lock_guard lock(mutex_);
@@ -454,7 +482,8 @@ void Connection::handle(const wire::ServerMessage& m) {
       publishAll();
       std::lock_guard lock(mutex_);
       ++stats_.snapshots;
-    } else if (m.has_delta() && wasReady && view_.ready() && m.delta().document_id() == document_) {
+      stats_.coarseShown = false;
+    } else if (m.has_delta() && wasReady && view_.ready() && m.delta().document_id() == document_ && !coarseShown_) {
       const wire::Delta& d = m.delta();
       std::map<uint64_t, std::shared_ptr<const RegionMesh>> changed;
       for (const wire::Region& r : d.regions()) {
@@ -487,6 +516,7 @@ void Connection::handle(const wire::ServerMessage& m) {
     stats_.gaps = view_.gaps();
     return;
   }
+  if (m.has_morph_control() && m.morph_control().document_id() == document_) return showCoarse(m.morph_control());
   if (m.has_ack() || m.has_reject()) {
     const uint64_t seq = client::replyTo(m);
     auto it = inFlight_.find(seq);

@@ -23,6 +23,7 @@
 
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
+#include "client/view/coarse_morph.h"
 #include "client/view/undo_history.h"
 #include "client/view/view_options.h"
 
@@ -52,6 +53,8 @@ struct ConnectionStats {
   uint64_t bytesReceived = 0;  // region bytes
   uint64_t gaps = 0;
   uint64_t snapshots = 0, deltas = 0;
+  uint64_t coarseFrames = 0;  // morph frames refined here from control points (coarse_morph.h)
+  bool coarseShown = false;   // the surface shown is one of them
   uint64_t regionUpdates = 0;  // bumps whenever the published regions change
   double lastLatencyMs = -1;   // edit to delta; -1 before the first
   double maxLatencyMs = 0;
@@ -112,6 +115,11 @@ class Connection {
   // Subscribes again at time t (LodProfile.morph_t): a snapshot of the
   // surface at t follows.
   void showMorphTime(double t);
+  // The coarse stream (coarse_morph.h): asks for the control points at t;
+  // the surface refined from them replaces the regions shown until the
+  // next snapshot. False when the document sent no usable topology.
+  bool canStreamCoarse() const { return coarseBase_.has_value(); }
+  void playMorphTime(double t);
   // The key this viewer's edits, undos and redos go to (0 or 1).
   void setEditKey(uint32_t key) { editKey_ = key; }
   uint32_t editKey() const { return editKey_; }
@@ -158,6 +166,10 @@ class Connection {
   std::shared_ptr<const KeyPositionMap> keyPositions_;  // guarded by mutex_
   // Reads what the key sessions received; republishes keyPositions_.
   void pollKeySessions();
+
+  std::optional<CoarseMorphBase> coarseBase_;  // set at open, read-only after
+  bool coarseShown_ = false;  // network thread only: the regions shown are a coarse frame
+  void showCoarse(const wire::MorphControl& frame);
 
   bool morph_ = false;  // set at open, read-only after
   std::string imageFrom_, imageTo_;

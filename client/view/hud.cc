@@ -49,7 +49,11 @@ void drawMorph(const HudFacts& f, ViewToggles& t) {
   ImGui::PopItemWidth();
   ImGui::SameLine();
   if (ImGui::SmallButton(t.playing ? "pause" : "play")) t.playing = !t.playing, t.morphShown = true;
-  ImGui::TextDisabled("%s; edits go to key %u", t.morphShown ? "morph at t" : "key 0 live", f.editKey);
+  ImGui::TextDisabled("%s; edits: key %u",
+                      !t.morphShown        ? "key 0 live"
+                      : f.stats.coarseShown ? "coarse, refined here"
+                                            : "exact at t",
+                      f.editKey);
 }
 
 void drawToggles(const HudFacts& f, ViewToggles& t) {

@@ -89,6 +89,10 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
       ->type_name("RATE")
       ->check(within(0.001, 100.0))
       ->group(connection);
+  app->add_flag("--morph-coarse", o.morphCoarse,
+                "a morph document: show every time from its control points refined here, paused too "
+                "(by default only playing does; paused shows the server's exact surface)")
+      ->group(connection);
   app->add_option("--timeout", o.timeoutSeconds, "to connect and get the first snapshot (default 30)")
       ->type_name("SECONDS")
       ->check(within(0.1, 3600.0))

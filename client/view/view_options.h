@@ -24,6 +24,9 @@ struct ViewOptions {
   // instead of key 0 live; P plays it at `morphRate` (t per second).
   std::optional<double> morphT;
   double morphRate = 0.25;
+  // Show every time through the coarse stream (control points refined here),
+  // paused too; by default only playing uses it.
+  bool morphCoarse = false;
   // The level whose control vertices are shown and dragged.
   int controlLevel = 0;
   int width = 800, height = 600;

@@ -42,7 +42,7 @@ Viewer::Viewer(const ViewOptions& options, Connection& connection)
   if (options.morphT) {
     app_.toggles.morphT = static_cast<float>(*options.morphT);
     app_.toggles.morphShown = true;
-    requestedT_ = *options.morphT;  // subscribed at it already
+    requestedT_ = shownT_ = *options.morphT;  // subscribed at it already
   }
   lastFrame_ = lastSample_ = Clock::now();
 }
@@ -126,13 +126,24 @@ void Viewer::followMorph(double dt) {
     if (t.morphT <= 0) t.morphT = 0, playDirection_ = 1;
   }
   // Frames at hundredths of t, so viewers playing together share them (the
-  // server encodes each once); one frame in flight at a time.
+  // server encodes each once); one frame in flight at a time. Playing goes
+  // through the coarse stream (docs/PERFORMANCE.md "Streaming a morph":
+  // about 55 times fewer bytes than the regions of every frame); paused,
+  // the exact surface at t, with the keys' finer edits and pickable ids.
+  const bool inFlight = stats_.snapshots < answeredAt_ || stats_.coarseFrames < coarseAnsweredAt_;
+  if (!inFlight && requestedT_ >= 0) shownT_ = requestedT_;
   const double wanted = std::round(static_cast<double>(t.morphT) * 100) / 100;
-  if (stats_.snapshots >= answeredAt_ && requestedT_ >= 0) shownT_ = requestedT_;
-  if (wanted != requestedT_ && stats_.snapshots >= answeredAt_) {
-    connection_.showMorphTime(wanted);
+  const bool coarse = (t.playing || options_.morphCoarse) && connection_.canStreamCoarse();
+  if (!inFlight && (wanted != requestedT_ || requestedExact_ == coarse)) {
+    if (coarse) {
+      connection_.playMorphTime(wanted);
+      coarseAnsweredAt_ = stats_.coarseFrames + 1;
+    } else {
+      connection_.showMorphTime(wanted);
+      answeredAt_ = stats_.snapshots + 1;
+    }
     requestedT_ = wanted;
-    answeredAt_ = stats_.snapshots + 1;
+    requestedExact_ = !coarse;
   }
   // Edits go to the key nearer the time shown.
   connection_.setEditKey(wanted > 0.5 ? 1 : 0);

@@ -63,7 +63,8 @@ class Viewer {
   // The time last asked for, the snapshot count that answers it, and the
   // direction a playing morph runs in (it bounces between the keys).
   double requestedT_ = -1;
-  uint64_t answeredAt_ = 0;
+  bool requestedExact_ = true;  // the last request was a subscription at t, not control points
+  uint64_t answeredAt_ = 0, coarseAnsweredAt_ = 0;
   float playDirection_ = 1;
 };
 

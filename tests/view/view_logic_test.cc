@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "client/view/camera.h"
+#include "client/view/coarse_morph.h"
 #include "client/view/control_points.h"
 #include "client/view/gizmo.h"
 #include "client/view/undo_history.h"
@@ -327,6 +328,55 @@ TEST(ViewControlPoints, PickingTakesTheNearestFrontFacingPointAndDragStaysInItsP
     EXPECT_NEAR(length(t - points[i].position), 0, 1e-3f);
   }
   EXPECT_FALSE(pickPoint(points, camera, 800, 600, -500, -500, 10).has_value());
+}
+
+}  // namespace
+}  // namespace tessera::view
+
+namespace tessera::view {
+namespace {
+
+// The coarse morph stream's surface (coarse_morph.h): vertices named as the
+// server's regions name them (the control vertex at its birth level), crease
+// copies by their original's id; malformed replies refused by name.
+TEST(ViewCoarseMorph, VerticesCarryTheirBirthLevelIdsAndBadRepliesAreRefused) {
+  wire::MorphControl c;
+  const float cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for (const auto& p : cube)
+    for (float x : p) c.add_points(x);
+  const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                            {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  for (const auto& f : faces)
+    for (int v : f) c.add_triangles(static_cast<uint32_t>(v));
+  for (auto [a, b] : {std::pair{4, 5}, {5, 6}, {6, 7}, {7, 4}}) {
+    c.add_crease_vertices(a), c.add_crease_vertices(b), c.add_crease_sharpness(10);
+  }
+  c.set_max_level(3);
+  auto base = coarseMorphBase(c);
+  ASSERT_TRUE(base.isOk()) << base.status().message();
+  auto mesh = refineCoarseMorph(*base, c, 2);
+  ASSERT_TRUE(mesh.isOk()) << mesh.status().message();
+  // Level 2 of the cube: 8 base vertices, 18 born at level 1, 72 at level 2.
+  const size_t n = 8 + 18 + 72;
+  ASSERT_GT(mesh->positions.size(), n);  // and the crease copies after them
+  for (size_t v = 0; v < n; ++v) {
+    const VertexId id = VertexId::fromPacked(mesh->vertexIds[v]);
+    EXPECT_EQ(id.index(), v);
+    EXPECT_EQ(id.level(), v < 8 ? 0 : v < 26 ? 1 : 2) << v;
+  }
+  for (size_t v = n; v < mesh->positions.size(); ++v) {
+    const uint64_t index = VertexId::fromPacked(mesh->vertexIds[v]).index();
+    ASSERT_LT(index, n) << v;
+    EXPECT_EQ(mesh->positions[v], mesh->positions[index]) << v;
+  }
+  wire::MorphControl bad = c;
+  bad.set_triangles(5, 9);
+  EXPECT_NE(coarseMorphBase(bad).status().message().find("triangle 1 names vertex 9 of 8"), std::string::npos);
+  wire::MorphControl fewer = c;
+  fewer.mutable_points()->RemoveLast();
+  fewer.mutable_points()->RemoveLast();
+  fewer.mutable_points()->RemoveLast();
+  EXPECT_NE(refineCoarseMorph(*base, fewer, 2).status().message().find("7 points for 8 base vertices"), std::string::npos);
 }
 
 }  // namespace

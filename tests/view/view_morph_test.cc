@@ -77,19 +77,21 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   auto added = (*admin)->call(add, 30);
   ASSERT_TRUE(added.isOk() && added->has_ack()) << added->DebugString();
 
-  auto render = [&](const std::string& t) -> Image {
-    const std::string png = dir + "/t" + t + ".png";
-    const int rc = testing::runBounded(
-        {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()), "--token", server->adminToken(),
-         "--document", std::to_string(doc), "--morph-t", t, "--max-level", "3", "--no-hud", "--no-gizmo", "--screenshot",
-         png, "--frames", "3", "--timeout", "60"},
-        testing::headlessEnvironment(), dir + "/view.log", 120);
+  auto render = [&](const std::string& t, std::vector<std::string> extra = {}) -> Image {
+    const std::string png = dir + "/t" + t + (extra.empty() ? "" : "-coarse") + ".png";
+    std::vector<std::string> args = {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
+                                     "--token", server->adminToken(), "--document", std::to_string(doc), "--morph-t", t,
+                                     "--max-level", "3", "--no-hud", "--no-gizmo", "--screenshot", png, "--frames", "10",
+                                     "--timeout", "60"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const int rc = testing::runBounded(args, testing::headlessEnvironment(), dir + "/view.log", 120);
     EXPECT_EQ(rc, 0) << testing::fileBytes(dir + "/view.log");
     auto image = testing::readPng(png);
     EXPECT_TRUE(image.has_value()) << png;
     return image.value_or(Image{});
   };
   const Image at0 = render("0"), half = render("0.5"), at1 = render("1");
+  const Image coarseHalf = render("0.5", {"--morph-coarse"});
   ASSERT_GT(at0.width, 0);
   ASSERT_GT(at1.width, 0);
   ASSERT_GT(half.width, 0);
@@ -119,8 +121,13 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   }
   EXPECT_GT(gap(shownHalf, shown0), gap(shown0, shown1) / 4);
   EXPECT_GT(gap(shownHalf, shown1), gap(shown0, shown1) / 4);
-  // The dot at the interpolating vertex is on the surface at every time.
-  for (const Image* image : {&at0, &half, &at1}) {
+  // The coarse stream (control points refined in the viewer) shows the
+  // same picture here: the sample's keys have no finer edits to leave out.
+  const auto shownCoarse = meanShapeColour(coarseHalf, kBackground, true);
+  EXPECT_LT(gap(shownCoarse, shownHalf), 6) << shownCoarse[0] << " " << shownCoarse[1] << " " << shownCoarse[2];
+  EXPECT_LT(testing::difference(coarseHalf, half, 24).pixels, static_cast<size_t>(half.width) * half.height / 50);
+  // The dot is on the surface at every time.
+  for (const Image* image : {&at0, &half, &at1, &coarseHalf}) {
     int green = 0;
     for (int y = 0; y < image->height; ++y)
       for (int x = 0; x < image->width; ++x) green += isGreenDot(image->at(x, y)) ? 1 : 0;

@@ -179,6 +179,17 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   notPng.mutable_add_morph_key()->set_image_to("GIF89a");
   expectRejected(**admin, notPng, "image_from is not a PNG");
 
+  // Key 1 far outside the document's grid (the cube around key 0): its
+  // surface could not be encoded, so the key is refused and not kept.
+  std::vector<Vec3> far = points1;
+  for (Vec3& p : far) p = 100.0 * p;
+  auto outside = (*admin)->call(addKey(doc, objWith(far)), 30);
+  ASSERT_TRUE(outside.isOk() && outside->has_reject()) << outside->DebugString();
+  EXPECT_EQ(outside->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
+  EXPECT_NE(outside->reject().message().find("outside the document's bounds"), std::string::npos)
+      << outside->reject().message();
+  expectRejected(**admin, subscribeAt(doc, 0.5), "has one key");
+
   auto added = (*admin)->call(addKey(doc, objWith(points1)), 30);
   ASSERT_TRUE(added.isOk() && added->has_ack()) << added->DebugString();
   EXPECT_EQ(added->ack().version(), 2u);

@@ -14,6 +14,7 @@
 #include "core/tessellation/surface_hash.h"
 #include "core/util/file_io.h"
 #include "protocol/framing.h"
+#include "protocol/utf8_text.h"
 #include "protocol/wire_ids.h"
 #include "server/journal_entry.h"
 #include "server/log.h"
@@ -82,6 +83,17 @@ constexpr size_t kSnapshotPartBytes = 4u << 20;
 }  // namespace
 
 std::shared_ptr<const std::string> frameOf(const wire::ServerMessage& message, uint32_t maxFrameBytes) {
+  // The server's own text may quote a client's bytes (a mesh line an
+  // importer refused): made valid UTF-8 so that the client can parse it.
+  const std::string* text = message.has_reject()  ? &message.reject().message()
+                            : message.has_error() ? &message.error().message()
+                                                  : nullptr;
+  if (text != nullptr && !isValidUtf8(*text)) {
+    wire::ServerMessage copy = message;
+    if (copy.has_reject()) copy.mutable_reject()->set_message(toValidUtf8(*text));
+    if (copy.has_error()) copy.mutable_error()->set_message(toValidUtf8(*text));
+    return frameOf(copy, maxFrameBytes);
+  }
   auto frame = encodeFrame(message, maxFrameBytes);
   if (!frame.isOk()) {
     logEvent(LogLevel::kError, "frame_encode_failed", {{"error", frame.status().message()}});

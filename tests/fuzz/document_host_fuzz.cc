@@ -7,7 +7,8 @@
 // so the journal-failure path runs; bit 1: --deltas-after-durable); the rest
 // is a stream of frames (protocol/framing.h), at most 24 ClientMessages.
 // Each message is routed as Connection::handle routes document commands
-// (subscribe, unsubscribe, select, export, the six edits) from one of two
+// (subscribe, unsubscribe, select, export, the six edits, a second morph
+// key and the morph's control points) from one of two
 // sessions (the low bit of client_seq picks which), both joined, one as an
 // editor and one as a viewer, and the host's strand runs between messages
 // as a server's workers would (one io_context serves as both the worker
@@ -113,8 +114,10 @@ void route(server::DocumentHost& host, const std::shared_ptr<Inbox>& who, wire::
     case C::kSetEdgeSharpness:
     case C::kSetVertexType:
     case C::kSetInterpolation:
+    case C::kAddMorphKey:
     case C::kUndo:
     case C::kRedo: return host.command(who, "session " + std::to_string(who->sessionId()), std::move(message));
+    case C::kGetMorphControl: return host.morphControl(who, seq, message.get_morph_control());
     default: return;  // the connection answers these itself
   }
 }

@@ -188,6 +188,36 @@ std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
     tag->set_vertex_id(VertexId(1, 8).packed());
     tag->set_interpolating(true);
     tag->set_tension(2.0);
+    // A morph document: key 1, a subscription at t = 0.5, an edit of key 1
+    // and the coarse stream (issue 16 §4).
+    const Document cube = cubeDocument(maxLevel);
+    std::string obj;
+    for (const Vec3& p : secondKeyPoints(cube)) {
+      obj += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
+    }
+    for (const auto& t : cube.baseTopology().triangles) {
+      obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+    }
+    auto* key = add().mutable_add_morph_key();
+    key->set_document_id(1);
+    key->set_mesh(obj);
+    key->set_mesh_format(wire::MESH_FORMAT_OBJ);
+    auto* at = add().mutable_subscribe();
+    at->set_document_id(1);
+    at->mutable_profile()->set_base_level(1);
+    at->mutable_profile()->set_max_level(2);
+    at->mutable_profile()->set_angle_threshold_degrees(20);
+    at->mutable_profile()->set_morph_t(0.5);
+    auto* onKey = add().mutable_move_vertex();
+    onKey->set_document_id(1);
+    onKey->add_vertex_ids(VertexId(1, 3).packed());
+    onKey->mutable_target()->set_z(0.05);
+    onKey->set_mode(wire::MOVE_MODE_OFFSET);
+    onKey->set_key(1);
+    auto* control = add().mutable_get_morph_control();
+    control->set_document_id(1);
+    control->set_t(0.25);
+    control->set_with_topology(true);
   }
   auto* undo = add().mutable_undo();
   undo->set_document_id(1);

@@ -367,3 +367,42 @@ TEST(ServerAbuse, SelectionsAreCheckedAndPresenceSendsChanges) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// A mesh file whose bad line holds bytes that are not UTF-8: the importer's
+// error quotes them, and the Reject carrying it must still parse (proto3
+// strings are UTF-8), with the bytes written as \xNN. Before the fix the
+// client could not parse the reply and lost its stream. Both ways a mesh
+// reaches the importer: CreateDocument and AddMorphKey.
+TEST(ServerAbuse, MeshErrorsQuotingBinaryBytesReachTheClient) {
+  Started s;
+  start(s, "tessera-abuse-utf8", {});
+  if (::testing::Test::HasFatalFailure()) return;
+  const std::string bad = std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nbogus\xFF\xFE line\n");
+  auto refused = s.admin->call(testing::createDocument("binary", bad, "", 3), 30);
+  ASSERT_TRUE(refused.isOk()) << "the reply did not parse: " << refused.status().message();
+  ASSERT_TRUE(refused->has_reject()) << refused->DebugString();
+  EXPECT_NE(refused->reject().message().find("\\xFF\\xFE"), std::string::npos) << refused->reject().message();
+
+  auto created = s.admin->call(testing::createDocument("tri", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", 3), 30);
+  ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
+  const uint64_t doc = created->ack().document_id();
+  ASSERT_TRUE(s.admin->call(testing::openDocument(doc), 10).isOk());
+  wire::ClientMessage add;
+  add.mutable_add_morph_key()->set_document_id(doc);
+  add.mutable_add_morph_key()->set_mesh(bad);
+  add.mutable_add_morph_key()->set_mesh_format(wire::MESH_FORMAT_OBJ);
+  auto keyRefused = s.admin->call(add, 30);
+  ASSERT_TRUE(keyRefused.isOk()) << "the reply did not parse: " << keyRefused.status().message();
+  ASSERT_TRUE(keyRefused->has_reject()) << keyRefused->DebugString();
+  EXPECT_NE(keyRefused->reject().message().find("\\xFF\\xFE"), std::string::npos) << keyRefused->reject().message();
+  // The session goes on, and so does the bystander.
+  auto pong = s.admin->call(testing::ping(), 10);
+  ASSERT_TRUE(pong.isOk() && pong->has_pong());
+  expectServed(*s.bystander, s.bystander->run(10), "after the binary meshes");
+}
+
+}  // namespace
+}  // namespace tessera

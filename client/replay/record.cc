@@ -69,6 +69,19 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
   lastMs_ = std::max(lastMs_, t);
   c.timeMs = lastMs_;
   c.actor = actorFor(a.author_session_id(), a.author_name());
+  // Scripts have no morph keys (issue 16 §4): an edit of key 1 would replay
+  // onto key 0, so it is refused rather than recorded wrongly.
+  const uint32_t key = a.has_move_vertex()          ? a.move_vertex().key()
+                       : a.has_set_edge_sharpness() ? a.set_edge_sharpness().key()
+                       : a.has_set_vertex_type()    ? a.set_vertex_type().key()
+                       : a.has_set_interpolation()  ? a.set_interpolation().key()
+                       : a.has_undo()               ? a.undo().key()
+                       : a.has_redo()               ? a.redo().key()
+                                                    : 0;
+  if (key != 0) {
+    return invalidArgument(where + "an edit of morph key " + std::to_string(key) +
+                           ": replay scripts edit key 0 only, so a morph document's second key cannot be recorded");
+  }
   switch (a.command_case()) {
     case wire::AppliedCommand::kMoveVertex: {
       const wire::MoveVertex& m = a.move_vertex();
@@ -115,7 +128,8 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
       return c;
     }
     default:
-      return invalidArgument(where + "an AppliedCommand without a command");
+      return invalidArgument(where + "an AppliedCommand without a command (a morph document's AddMorphKey, "
+                                     "which scripts cannot hold, or a command this build does not know)");
   }
   edits_[c.actor].push_back(a.edit_id());
   return c;

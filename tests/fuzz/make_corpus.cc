@@ -104,12 +104,15 @@ void journals() {
   write("journal_entry", "history", prefixed(entries));
   // A second morph key, then an edit and its undo on it.
   {
-    server::JournalEntry add{.kind = server::JournalEntry::Kind::kAddKey};
+    server::JournalEntry add, onKey1, undo;
+    add.kind = server::JournalEntry::Kind::kAddKey;
     add.keyPoints = secondKeyPoints(cubeDocument(3));
-    server::JournalEntry onKey1{.kind = server::JournalEntry::Kind::kEdit, .edit = doc.edits().front()};
+    onKey1.kind = server::JournalEntry::Kind::kEdit;
+    onKey1.edit = doc.edits().front();
     onKey1.edit.active = true;
     onKey1.key = 1;
-    server::JournalEntry undo{.kind = server::JournalEntry::Kind::kUndo, .target = onKey1.edit.id};
+    undo.kind = server::JournalEntry::Kind::kUndo;
+    undo.target = onKey1.edit.id;
     undo.key = 1;
     write("journal_entry", "morph",
           prefixed({server::encodeJournalEntry(add), server::encodeJournalEntry(onKey1), server::encodeJournalEntry(undo)}));

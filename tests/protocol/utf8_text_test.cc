@@ -10,7 +10,7 @@ namespace tessera {
 namespace {
 
 TEST(Utf8Text, ValidTextPassesAndInvalidBytesAreEscaped) {
-  for (const std::string valid : {std::string(""), std::string("plain ascii"), std::string("15\xC2\xB0 (degrees)"),
+  for (const std::string& valid : {std::string(""), std::string("plain ascii"), std::string("15\xC2\xB0 (degrees)"),
                                   std::string("\xE2\x82\xAC euro"), std::string("\xF0\x9F\x99\x82 emoji"),
                                   std::string("\xEF\xBF\xBF"), std::string("\xF4\x8F\xBF\xBF")}) {
     EXPECT_TRUE(isValidUtf8(valid)) << valid;

@@ -148,6 +148,22 @@ TEST(RecordScript, ABatchBecomesOneLinePerCommand) {
   EXPECT_NE(mismatched.status().message().find("version 3"), std::string::npos) << mismatched.status().message();
 }
 
+// Scripts have no morph keys: an edit of a morph document's key 1 would
+// replay onto key 0, so the recorder refuses it by name (issue 16 §4).
+TEST(RecordScript, EditsOfASecondMorphKeyAreRefusedByName) {
+  replay::ScriptRecorder r(1000);
+  wire::AppliedCommand onKey1 = move(4, 2, 7, "alice", 1100);
+  onKey1.mutable_move_vertex()->set_key(1);
+  auto refused = r.add(onKey1);
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_NE(refused.status().message().find("version 4: an edit of morph key 1"), std::string::npos)
+      << refused.status().message();
+  wire::AppliedCommand undoKey1 = undo(5, 2, 7, "alice", 1200);
+  undoKey1.mutable_undo()->set_key(1);
+  EXPECT_FALSE(r.add(undoKey1).isOk());
+  EXPECT_TRUE(r.add(move(6, 3, 7, "alice", 1300)).isOk()) << "key 0 records as before";
+}
+
 TEST(RecordScript, LongNamesStayDistinctWithinTheActorLimit) {
   replay::ScriptRecorder r(0);
   const std::string name(128, 'x');

@@ -21,24 +21,42 @@ Document cube() {
   return std::move(*doc);
 }
 
+// Entries built field by field (designated initializers would leave the
+// other members to -Wmissing-field-initializers).
+JournalEntry entryOf(JournalEntry::Kind kind) {
+  JournalEntry e;
+  e.kind = kind;
+  return e;
+}
+JournalEntry editEntry(const Edit& edit) {
+  JournalEntry e = entryOf(JournalEntry::Kind::kEdit);
+  e.edit = edit;
+  return e;
+}
+JournalEntry targetEntry(JournalEntry::Kind kind, EditId target) {
+  JournalEntry e = entryOf(kind);
+  e.target = target;
+  return e;
+}
+
 // Makes three changes on `doc` and returns them as journal entries.
 std::vector<JournalEntry> threeChanges(Document& doc) {
   std::vector<JournalEntry> parts;
   const VertexId moved[] = {VertexId(1, 3)};
   auto first = doc.moveBy(moved, Vec3(0, 0, 0.1));
   EXPECT_TRUE(first.isOk());
-  parts.push_back({.kind = JournalEntry::Kind::kEdit, .edit = doc.edits().back()});
+  parts.push_back(editEntry(doc.edits().back()));
   auto second = doc.setEdgeSharpness(EdgeId(1, 4), 2.0f);
   EXPECT_TRUE(second.isOk());
-  parts.push_back({.kind = JournalEntry::Kind::kEdit, .edit = doc.edits().back()});
+  parts.push_back(editEntry(doc.edits().back()));
   EXPECT_TRUE(doc.undo(*first).isOk());
-  parts.push_back({.kind = JournalEntry::Kind::kUndo, .target = *first});
+  parts.push_back(targetEntry(JournalEntry::Kind::kUndo, *first));
   return parts;
 }
 
 TEST(JournalEntry, ABatchReplaysAsItsParts) {
   Document live = cube();
-  JournalEntry batch{.kind = JournalEntry::Kind::kBatch};
+  JournalEntry batch = entryOf(JournalEntry::Kind::kBatch);
   batch.batch = threeChanges(live);
   const std::string bytes = encodeJournalEntry(batch);
   auto decoded = decodeJournalEntry(bytes, "entry 2");
@@ -54,7 +72,7 @@ TEST(JournalEntry, ABatchReplaysAsItsParts) {
 
 TEST(JournalEntry, DamagedBatchesAreRefused) {
   Document live = cube();
-  JournalEntry batch{.kind = JournalEntry::Kind::kBatch};
+  JournalEntry batch = entryOf(JournalEntry::Kind::kBatch);
   batch.batch = threeChanges(live);
   const std::string bytes = encodeJournalEntry(batch);
   // Truncated anywhere inside: an error, never a shorter batch.
@@ -66,7 +84,7 @@ TEST(JournalEntry, DamagedBatchesAreRefused) {
   auto none = decodeJournalEntry(empty, "entry 3");
   ASSERT_FALSE(none.isOk());
   EXPECT_NE(none.status().message().find("entry 3: a batch of 0 entries"), std::string::npos);
-  JournalEntry outer{.kind = JournalEntry::Kind::kBatch};
+  JournalEntry outer = entryOf(JournalEntry::Kind::kBatch);
   outer.batch.push_back(batch);
   auto nested = decodeJournalEntry(encodeJournalEntry(outer), "entry 4");
   ASSERT_FALSE(nested.isOk());
@@ -79,14 +97,14 @@ TEST(JournalEntry, AMorphKeyAndItsEditsReplayExactly) {
   KeyedDocument live(cube());
   std::vector<Vec3> points = live.key0().basePoints();
   for (Vec3& p : points) p = 1.5 * p + Vec3(0.25, 0, 0);
-  JournalEntry add{.kind = JournalEntry::Kind::kAddKey};
+  JournalEntry add = entryOf(JournalEntry::Kind::kAddKey);
   add.keyPoints = points;
   add.images = {std::string("\x89PNG\r\n\x1a\nfrom", 12), std::string("\x89PNG\r\n\x1a\nto", 10)};
   ASSERT_TRUE(applyJournalEntry(live, add).isOk());
   ASSERT_TRUE(live.isMorph());
   // Edits on key 1, as the server journals them: key 1 named in the entry.
   Document& second = **live.editKey(1);
-  JournalEntry onKey1{.kind = JournalEntry::Kind::kBatch};
+  JournalEntry onKey1 = entryOf(JournalEntry::Kind::kBatch);
   onKey1.batch = threeChanges(second);
   for (JournalEntry& part : onKey1.batch) part.key = 1;
 
@@ -107,7 +125,7 @@ TEST(JournalEntry, AMorphKeyAndItsEditsReplayExactly) {
 }
 
 TEST(JournalEntry, DamagedMorphEntriesAreRefused) {
-  JournalEntry edit{.kind = JournalEntry::Kind::kUndo, .target = EditId{3}};
+  JournalEntry edit = targetEntry(JournalEntry::Kind::kUndo, EditId{3});
   edit.key = 1;
   const std::string bytes = encodeJournalEntry(edit);
   for (size_t cut = 1; cut < bytes.size(); ++cut) {
@@ -130,7 +148,7 @@ TEST(JournalEntry, DamagedMorphEntriesAreRefused) {
   ASSERT_FALSE(missing.isOk());
   EXPECT_NE(missing.message().find("key 1 does not exist: the document has 1 key"), std::string::npos) << missing.message();
   // A second key of another vertex count.
-  JournalEntry add{.kind = JournalEntry::Kind::kAddKey};
+  JournalEntry add = entryOf(JournalEntry::Kind::kAddKey);
   add.keyPoints.assign(3, Vec3(0, 0, 0));
   Status count = applyJournalEntry(single, add);
   ASSERT_FALSE(count.isOk());

@@ -12,7 +12,7 @@ namespace tessera::server {
 
 struct Limits {
   uint32_t maxFrameBytes = 64u << 20;         // a frame's payload (CreateDocument carries a mesh)
-  uint64_t maxBaseMeshBytes = 48u << 20;      // CreateDocument.mesh
+  uint64_t maxBaseMeshBytes = 48u << 20;      // CreateDocument.mesh, AddMorphKey.mesh
   int maxLevel = 6;                           // of any document
   int64_t maxTrianglesPerSubscriber = 4'000'000;
   double commandsPerSecond = 200;             // per connection (token bucket, burst = 1 s)

@@ -408,6 +408,12 @@ void Connection::handle(wire::ClientMessage message) {
       if (!role || *role < Role::kEditor) {
         return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "editing document " + std::to_string(doc) + " needs the editor role");
       }
+      // A second key's mesh is a base mesh: the same limit as CreateDocument's.
+      if (message.has_add_morph_key() && message.add_morph_key().mesh().size() > context_.config.limits.maxBaseMeshBytes) {
+        return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
+                      "add morph key: the mesh has " + std::to_string(message.add_morph_key().mesh().size()) +
+                          " bytes, above the limit of " + std::to_string(context_.config.limits.maxBaseMeshBytes));
+      }
       return host->command(shared_from_this(), name_, std::move(message));
     }
     default: return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "unknown command");

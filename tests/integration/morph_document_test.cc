@@ -149,7 +149,7 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   const std::string dir = testing::makeTempDir("tessera-morph");
   // A snapshot every 3 versions: the restart below loads a morph snapshot
   // and replays the journal after it.
-  auto server = ServerProcess::start(dir + "/data", {"--snapshot-every", "3"});
+  auto server = ServerProcess::start(dir + "/data", {"--snapshot-every", "3", "--max-mesh-bytes", "4096"});
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
@@ -178,6 +178,14 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   notPng.mutable_add_morph_key()->set_image_from("GIF89a");
   notPng.mutable_add_morph_key()->set_image_to("GIF89a");
   expectRejected(**admin, notPng, "image_from is not a PNG");
+
+  // A mesh over --max-mesh-bytes, as for CreateDocument.
+  std::string padded = objWith(points1);
+  padded += "# " + std::string(5000, 'x') + "\n";
+  auto tooLarge = (*admin)->call(addKey(doc, padded), 30);
+  ASSERT_TRUE(tooLarge.isOk() && tooLarge->has_reject()) << tooLarge->DebugString();
+  EXPECT_EQ(tooLarge->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
+  EXPECT_NE(tooLarge->reject().message().find("above the limit of 4096"), std::string::npos) << tooLarge->reject().message();
 
   // Key 1 far outside the document's grid (the cube around key 0): its
   // surface could not be encoded, so the key is refused and not kept.
@@ -293,7 +301,7 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   viewerSession->reset();
   admin->reset();
   EXPECT_EQ(server->stop(), 0);
-  auto restarted = ServerProcess::start(dir + "/data", {"--snapshot-every", "3"});
+  auto restarted = ServerProcess::start(dir + "/data", {"--snapshot-every", "3", "--max-mesh-bytes", "4096"});
   ASSERT_TRUE(restarted.isOk()) << restarted.status().message();
   for (auto [t, expected] : {std::pair{0.5, halfAfterUndo}, {1.0, hash1}, {0.0, key0Hash}}) {
     auto again = Session::connect(restarted->session("viewer", "viewer-token-0123456789"));

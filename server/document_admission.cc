@@ -21,16 +21,49 @@ void DocumentHost::leaveOtherViews(uint64_t session, const std::string& key) {
   dropUnwatchedViews();
 }
 
+namespace {
+
+bool watched(const auto& view) {
+  return std::any_of(view.subscribers.begin(), view.subscribers.end(),
+                     [](const auto& s) { return !s.second.expired(); });
+}
+
+}  // namespace
+
 void DocumentHost::dropUnwatchedViews() {
+  // The unwatched morph views, most recently used first: kept while their
+  // triangles fit the budget of one subscriber (--max-triangles).
+  std::vector<std::pair<uint64_t, std::string>> morphs;
+  for (const auto& [key, view] : views_) {
+    if (view.morphT && !watched(view)) morphs.emplace_back(view.lastUsed, key);
+  }
+  std::sort(morphs.rbegin(), morphs.rend());
+  std::set<std::string> kept;
+  int64_t triangles = 0;
+  for (const auto& [used, key] : morphs) {
+    triangles += views_.at(key).tessellation->numTriangles();
+    if (triangles > config_.limits.maxTrianglesPerSubscriber) break;
+    kept.insert(key);
+  }
   auto dropped = std::make_shared<Released>();
   for (auto it = views_.begin(); it != views_.end();) {
-    const bool watched = std::any_of(it->second.subscribers.begin(), it->second.subscribers.end(),
-                                     [](const auto& s) { return !s.second.expired(); });
-    if (watched) {
+    if (watched(it->second) || kept.count(it->first)) {
       ++it;
       continue;
     }
     logEvent(LogLevel::kDebug, "profile_dropped", {{"doc", id_.value}, {"profile", it->first}});
+    dropped->views.insert(views_.extract(it++));
+  }
+  if (!dropped->views.empty()) releaseOnBulk(std::move(dropped));
+}
+
+void DocumentHost::dropRetainedMorphViews() {
+  auto dropped = std::make_shared<Released>();
+  for (auto it = views_.begin(); it != views_.end();) {
+    if (!it->second.morphT || watched(it->second)) {
+      ++it;
+      continue;
+    }
     dropped->views.insert(views_.extract(it++));
   }
   if (!dropped->views.empty()) releaseOnBulk(std::move(dropped));

@@ -346,6 +346,7 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
   }
   view.subscribers[who->sessionId()] = who;
   view.knownVersion[who->sessionId()] = version_;
+  view.lastUsed = ++useClock_;
   if (resync) ++stats_.resyncs;
 }
 
@@ -621,6 +622,8 @@ void DocumentHost::flush() {
   changedLimits_.erase(std::unique(changedLimits_.begin(), changedLimits_.end()), changedLimits_.end());
   // After a failed journal write the edits are lost: views still follow
   // the document, but nothing is sent.
+  // Kept morph views nobody watches are stale now: dropped, not rebuilt.
+  if (keysChanged_) dropRetainedMorphViews();
   const Pending* last = pending_.empty() ? nullptr : &pending_.back();
   Batch batch{version_, {}, {}};
   if (last) ++stats_.deltaFlushes;

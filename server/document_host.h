@@ -120,6 +120,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
     // tessellation follows (else it follows key 0).
     std::optional<double> morphT;
     std::unique_ptr<Document> source;
+    uint64_t lastUsed = 0;  // useClock_ when a subscriber last joined it
   };
   struct Pending {  // applied, waiting for its commit (its ack) and for its delta (recorders)
     uint64_t version;
@@ -182,8 +183,13 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
   void presenceChanged();
   void broadcastPresence();
-  // Drops the views no subscriber watches any more (their memory with them).
+  // Drops the views no subscriber watches any more (their memory with
+  // them), except the most recently used morph views up to
+  // kRetainedMorphTriangles: viewers playing a morph come back to the same
+  // times, and a kept view is not built and encoded again (issue 16 §4).
   void dropUnwatchedViews();
+  // Drops every unwatched morph view (a key changed: they are stale).
+  void dropRetainedMorphViews();
   // Takes `session` off every view but `key`'s, then drops unwatched ones.
   void leaveOtherViews(uint64_t session, const std::string& key);
   Lane laneFor(int64_t triangles) const;
@@ -224,6 +230,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   QuantizationGrid grid_;
   std::map<uint64_t, Participant> participants_;
   std::map<std::string, View> views_;  // by LodProfile::key()
+  uint64_t useClock_ = 0;
   std::deque<Pending> pending_;
   std::deque<Batch> batches_;
   uint64_t ackedVersion_;  // the newest edit whose ack was sent

@@ -316,3 +316,72 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+double regionsEncoded(Session& s) {
+  wire::ClientMessage m;
+  m.mutable_stats();
+  auto reply = s.call(m, 10);
+  EXPECT_TRUE(reply.isOk() && reply->has_stats_reply());
+  for (const wire::Stat& stat : reply->stats_reply().stats())
+    if (stat.name() == "regions_encoded") return stat.value();
+  ADD_FAILURE() << "no regions_encoded in the stats";
+  return -1;
+}
+
+// A viewer playing a morph comes back to the times it showed: a view at a
+// time nobody watches is kept (within --max-triangles) and its regions are
+// not built and encoded again; a change of a key drops the kept views.
+TEST(MorphDocument, ViewsAtATimeAreKeptForViewersComingBack) {
+  const BaseMesh mesh = cubeMesh();
+  std::vector<Vec3> points1;
+  for (const Vec3& p : mesh.positions()) points1.push_back(keyOnePoint(p));
+  const std::string dir = testing::makeTempDir("tessera-morph-keep");
+  auto server = ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
+                                30);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+  expectAck(**admin, testing::openDocument(doc));
+  expectAck(**admin, addKey(doc, objWith(points1)));
+
+  auto viewer = Session::connect(server->session("viewer", server->adminToken()));
+  ASSERT_TRUE(viewer.isOk());
+  expectAck(**viewer, testing::openDocument(doc));
+  auto show = [&](double t) {
+    expectAck(**viewer, subscribeAt(doc, t));
+    DocumentView view(doc);
+    readUntil(**viewer, view, view.version() == 0 ? 2 : view.version());
+    return view.surfaceHash();
+  };
+  const double before = regionsEncoded(**admin);
+  const uint64_t quarter = show(0.25);
+  const double afterFirst = regionsEncoded(**admin);
+  EXPECT_GT(afterFirst, before);
+  show(0.75);
+  const double afterSecond = regionsEncoded(**admin);
+  EXPECT_GT(afterSecond, afterFirst);
+  // Back at 0.25: the kept view, nothing encoded, the same surface.
+  EXPECT_EQ(show(0.25), quarter);
+  EXPECT_EQ(regionsEncoded(**admin), afterSecond);
+
+  // An edit of key 1: the view at 0.25 is watched and rebuilt; the kept one
+  // at 0.75 is dropped, so coming back to it builds it again.
+  wire::ClientMessage onKey1 = testing::moveVertex(doc, VertexId(0, 3).packed(), 0, 0.1, 0, wire::MOVE_MODE_OFFSET);
+  onKey1.mutable_move_vertex()->set_key(1);
+  expectAck(**admin, onKey1);
+  DocumentView followed(doc);
+  const double beforeBack = regionsEncoded(**admin);
+  expectAck(**viewer, subscribeAt(doc, 0.75));
+  readUntil(**viewer, followed, 3);
+  EXPECT_GT(regionsEncoded(**admin), beforeBack);
+}
+
+}  // namespace
+}  // namespace tessera

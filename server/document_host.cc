@@ -788,6 +788,7 @@ void DocumentHost::notifyRecorders(const Pending& p) {
     case wire::ClientMessage::kRedo: *a->mutable_redo() = p.command.redo(); break;
     case wire::ClientMessage::kEditBatch: *a->mutable_edit_batch() = p.command.edit_batch(); break;
     case wire::ClientMessage::kSetInterpolation: *a->mutable_set_interpolation() = p.command.set_interpolation(); break;
+    case wire::ClientMessage::kAddMorphKey: *a->mutable_add_morph_key() = p.command.add_morph_key(); break;
     default: break;
   }
   auto frame = frameOf(m, config_.limits.maxFrameBytes);

@@ -127,9 +127,11 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
       c.edit = it != own.end() ? -static_cast<int64_t>(own.end() - it) : static_cast<int64_t>(target);
       return c;
     }
+    case wire::AppliedCommand::kAddMorphKey:
+      return invalidArgument(where + "a second morph key (AddMorphKey): replay scripts hold edits of one key, "
+                                     "so a morph document cannot be recorded");
     default:
-      return invalidArgument(where + "an AppliedCommand without a command (a morph document's AddMorphKey, "
-                                     "which scripts cannot hold, or a command this build does not know)");
+      return invalidArgument(where + "an AppliedCommand without a command (one this build does not know)");
   }
   edits_[c.actor].push_back(a.edit_id());
   return c;

@@ -8,6 +8,7 @@
 // (journal replay and a snapshot) keeps both keys.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <sstream>
 
 #include "client/lib/document_view.h"
@@ -349,7 +350,25 @@ TEST(MorphDocument, ViewsAtATimeAreKeptForViewersComingBack) {
   ASSERT_TRUE(created.isOk() && created->has_ack());
   const uint64_t doc = created->ack().document_id();
   expectAck(**admin, testing::openDocument(doc));
-  expectAck(**admin, addKey(doc, objWith(points1)));
+  // A recorder (with_commands) hears of the second key, mesh as sent.
+  auto recorder = Session::connect(server->session("recorder", server->adminToken()));
+  ASSERT_TRUE(recorder.isOk());
+  expectAck(**recorder, testing::openDocument(doc));
+  wire::ClientMessage recording = testing::subscribe(doc, kBase, kMax, kAngle);
+  recording.mutable_subscribe()->set_with_commands(true);
+  expectAck(**recorder, recording);
+  const std::string obj1 = objWith(points1);
+  expectAck(**admin, addKey(doc, obj1));
+  std::optional<wire::AppliedCommand> relayed;
+  for (int i = 0; i < 50 && !relayed; ++i) {
+    auto m = (*recorder)->receive(10);
+    ASSERT_TRUE(m.isOk()) << m.status().message();
+    if (m->has_applied_command()) relayed = m->applied_command();
+  }
+  ASSERT_TRUE(relayed.has_value());
+  EXPECT_EQ(relayed->version(), 2u);
+  ASSERT_TRUE(relayed->has_add_morph_key());
+  EXPECT_EQ(relayed->add_morph_key().mesh(), obj1);
 
   auto viewer = Session::connect(server->session("viewer", server->adminToken()));
   ASSERT_TRUE(viewer.isOk());

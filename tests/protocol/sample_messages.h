@@ -360,6 +360,18 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     tag->set_interpolating(true);
     tag->set_tension(0.5);
   }
+  {
+    auto* m = add().mutable_applied_command();
+    m->set_document_id(42);
+    m->set_version(23);
+    m->set_author_session_id(77);
+    m->set_author_name("alice");
+    m->set_server_time_unix_ms(1700000001111);
+    auto* key = m->mutable_add_morph_key();
+    key->set_document_id(42);
+    key->set_mesh("v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n");
+    key->set_mesh_format(wire::MESH_FORMAT_OBJ);
+  }
   return out;
 }
 

@@ -264,6 +264,7 @@ AppliedCommand.undo = 10 Undo oneof command
 AppliedCommand.redo = 11 Redo oneof command
 AppliedCommand.edit_batch = 12 EditBatch oneof command
 AppliedCommand.set_interpolation = 14 SetInterpolation oneof command
+AppliedCommand.add_morph_key = 15 AddMorphKey oneof command
 AppliedCommand.edit_ids = 13 repeated uint64
 Role.ROLE_UNSPECIFIED = 0
 Role.ROLE_VIEWER = 1

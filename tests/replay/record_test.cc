@@ -162,6 +162,12 @@ TEST(RecordScript, EditsOfASecondMorphKeyAreRefusedByName) {
   undoKey1.mutable_undo()->set_key(1);
   EXPECT_FALSE(r.add(undoKey1).isOk());
   EXPECT_TRUE(r.add(move(6, 3, 7, "alice", 1300)).isOk()) << "key 0 records as before";
+  wire::AppliedCommand key = applied(7, 0, 7, "alice", 1400);
+  key.mutable_add_morph_key()->set_document_id(1);
+  auto keyRefused = r.add(key);
+  ASSERT_FALSE(keyRefused.isOk());
+  EXPECT_NE(keyRefused.status().message().find("version 7: a second morph key (AddMorphKey)"), std::string::npos)
+      << keyRefused.status().message();
 }
 
 TEST(RecordScript, LongNamesStayDistinctWithinTheActorLimit) {

@@ -37,6 +37,7 @@
 #include "core/io/mesh_writers.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
+#include "integration/server_stat.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -135,18 +136,6 @@ PlayResult play(const testing::ServerProcess& server, const std::string& token, 
   return r;
 }
 
-// A counter from the server's StatsReply.
-double serverStat(Session& s, const std::string& name) {
-  wire::ClientMessage m;
-  m.mutable_stats();
-  auto reply = s.call(m, 30);
-  if (!reply.isOk() || !reply->has_stats_reply()) return -1;
-  for (const wire::Stat& stat : reply->stats_reply().stats()) {
-    if (stat.name() == name) return stat.value();
-  }
-  return -1;
-}
-
 void report(const char* mode, std::vector<PlayResult>& results, double wall) {
   std::vector<double> fps;
   uint64_t bytes = 0;
@@ -223,7 +212,7 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
               meshPath.c_str(), mesh->numFaces(), key1Path.empty() ? "bent" : key1Path.c_str(), edits, kBase, kMax, kAngle, viewers, frames);
 
   for (bool coarse : {false, true}) {
-    const double encodedBefore = serverStat(**admin, "regions_encoded");
+    const double encodedBefore = testing::serverStat(**admin, "regions_encoded");
     std::vector<PlayResult> results(viewers);
     std::vector<std::thread> threads;
     const auto start = Clock::now();
@@ -234,7 +223,7 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
     }
     for (auto& t : threads) t.join();
     report(coarse ? "(b) control points at t" : "(a) regions at t", results, seconds(Clock::now() - start));
-    std::printf("%-24s %10.0f regions encoded by the server\n", "", serverStat(**admin, "regions_encoded") - encodedBefore);
+    std::printf("%-24s %10.0f regions encoded by the server\n", "", testing::serverStat(**admin, "regions_encoded") - encodedBefore);
   }
 
   // The visual difference of (b) against (a).

@@ -21,6 +21,7 @@
 #include "core/tessellation/tessellation.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
+#include "integration/server_stat.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -321,16 +322,7 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
 namespace tessera {
 namespace {
 
-double regionsEncoded(Session& s) {
-  wire::ClientMessage m;
-  m.mutable_stats();
-  auto reply = s.call(m, 10);
-  EXPECT_TRUE(reply.isOk() && reply->has_stats_reply());
-  for (const wire::Stat& stat : reply->stats_reply().stats())
-    if (stat.name() == "regions_encoded") return stat.value();
-  ADD_FAILURE() << "no regions_encoded in the stats";
-  return -1;
-}
+double regionsEncoded(Session& s) { return testing::serverStat(s, "regions_encoded"); }
 
 // A viewer playing a morph comes back to the times it showed: a view at a
 // time nobody watches is kept (within --max-triangles) and its regions are

@@ -12,6 +12,7 @@
 #include "core/hierarchy/ids.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
+#include "integration/server_stat.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -20,17 +21,6 @@ namespace {
 using client::DocumentView;
 using client::Session;
 using testing::ServerProcess;
-
-double statOf(Session& s, const std::string& name) {
-  wire::ClientMessage m;
-  m.mutable_stats();
-  auto reply = s.call(m, 10);
-  if (!reply.isOk() || !reply->has_stats_reply()) return -1;
-  for (const auto& stat : reply->stats_reply().stats()) {
-    if (stat.name() == name) return stat.value();
-  }
-  return -1;
-}
 
 struct Outcome {
   double queueMax = -1, merges = -1, resyncs = -1;
@@ -80,8 +70,8 @@ void runWithASlowViewer(uint64_t softBytes, uint64_t hardBytes, Outcome& outcome
     }
   }
   EXPECT_EQ(fastView.gaps(), 0u);
-  outcome.queueMax = statOf(**admin, "queue_bytes_max");
-  outcome.merges = statOf(**admin, "delta_merges");
+  outcome.queueMax = testing::serverStat(**admin, "queue_bytes_max");
+  outcome.merges = testing::serverStat(**admin, "delta_merges");
 
   // Reading again, the slow viewer converges: merged deltas and, if they
   // were dropped, a resync snapshot.
@@ -93,7 +83,7 @@ void runWithASlowViewer(uint64_t softBytes, uint64_t hardBytes, Outcome& outcome
   EXPECT_EQ(slowView.version(), version);
   EXPECT_EQ(slowView.surfaceHash(), fastView.surfaceHash());
   outcome.slowGaps = slowView.gaps();
-  outcome.resyncs = statOf(**admin, "resyncs");
+  outcome.resyncs = testing::serverStat(**admin, "resyncs");
   std::printf("slow viewer, queue limits %llu/%llu bytes: largest queue %.0f bytes, %.0f delta merges, %.0f resyncs\n",
               static_cast<unsigned long long>(softBytes), static_cast<unsigned long long>(hardBytes), outcome.queueMax,
               outcome.merges, outcome.resyncs);
@@ -141,11 +131,11 @@ TEST(ServerBackpressure, AViewerThatStopsReadingIsClosedAfterTheWriteTimeout) {
   // A level-5 snapshot (12,288 triangles) is far more than both buffers hold.
   ASSERT_TRUE((*stalled)->send(testing::subscribe(doc, 5, 5)).isOk());
   const auto start = std::chrono::steady_clock::now();
-  double connections = statOf(**admin, "connections");
+  double connections = testing::serverStat(**admin, "connections");
   EXPECT_EQ(connections, 2);
   while (connections == 2 && std::chrono::steady_clock::now() - start < std::chrono::seconds(10)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    connections = statOf(**admin, "connections");
+    connections = testing::serverStat(**admin, "connections");
   }
   const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(connections, 1) << "the stalled viewer is still connected after " << waited << " s";

@@ -27,18 +27,6 @@ namespace {
 using ::tessera::testing::viewOptionsFor;
 using ::tessera::testing::waitFor;
 
-// Runs xdotool on `display` (bounded by timeout(1)); returns its output.
-std::string xdotool(const std::string& binary, const std::string& display, const std::string& args) {
-  const std::string command = "DISPLAY=" + display + " timeout 10 " + binary + " " + args + " 2>&1";
-  std::string out;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[256];
-    while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  return out;
-}
-
 TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   const auto xvfbBinary = testing::findProgram("Xvfb");
   const auto xdotoolBinary = testing::findProgram("xdotool");
@@ -87,12 +75,12 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
                      testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
   const std::string& display = xvfb.display();
   const std::string window =
-      xdotool(*xdotoolBinary, display,
+      ::tessera::testing::xdotool(*xdotoolBinary, display,
               "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
   const std::string id = window.substr(0, window.find('\n'));
   ASSERT_FALSE(id.empty()) << "no viewer window: " << window
                            << ::tessera::testing::fileBytes(dir + "/view.log");
-  xdotool(*xdotoolBinary, display, "windowfocus --sync " + id);
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "windowfocus --sync " + id);
 
   // A click on the vertex picks it once the viewer has its snapshot: until
   // then a click lands on nothing and changes nothing, so it is repeated.
@@ -104,7 +92,7 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   };
   bool picked = false;
   for (int attempt = 0; attempt < 20 && !picked; ++attempt) {
-    xdotool(*xdotoolBinary, display,
+    ::tessera::testing::xdotool(*xdotoolBinary, display,
             "mousemove --window " + id + " " + std::to_string(x) + " " + std::to_string(y) +
                 " sleep 0.1 mousedown 1 sleep 0.2 mouseup 1");
     picked = waitFor(selectedByViewer, 0.5);
@@ -121,7 +109,7 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
             std::to_string(y - 6 * step);
   }
   drag += " sleep 0.1 mouseup 1";
-  xdotool(*xdotoolBinary, display, drag);
+  ::tessera::testing::xdotool(*xdotoolBinary, display, drag);
   ASSERT_TRUE(waitFor(
       [&] { return (*observer)->stats().version > 1 && (*observer)->stats().surfaceHash != startHash; }, 30))
       << "the drag made no edit: " << ::tessera::testing::fileBytes(dir + "/view.log");
@@ -138,13 +126,13 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
 
   // Ctrl+Z takes the whole drag back with one undo per edit step: the
   // surface returns to its start.
-  xdotool(*xdotoolBinary, display, "key --clearmodifiers ctrl+z");
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "key --clearmodifiers ctrl+z");
   EXPECT_TRUE(waitFor([&] { return (*observer)->stats().surfaceHash == startHash; }, 30))
       << "Ctrl+Z did not restore the surface (version " << (*observer)->stats().version << ", drag ended at "
       << dragged << "): " << ::tessera::testing::fileBytes(dir + "/view.log");
   EXPECT_GT((*observer)->stats().version, dragged);
 
-  xdotool(*xdotoolBinary, display, "key q");
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "key q");
   EXPECT_EQ(testing::waitBounded(viewer, 20), 0)
       << "Q did not quit the viewer: " << ::tessera::testing::fileBytes(dir + "/view.log");
 }

@@ -16,6 +16,7 @@
 #include "client/lib/session.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
+#include "integration/server_stat.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
 #include "view/wait_for.h"
@@ -26,26 +27,7 @@ namespace {
 
 using ::tessera::testing::waitFor;
 
-std::string xdotool(const std::string& binary, const std::string& display, const std::string& args) {
-  const std::string command = "DISPLAY=" + display + " timeout 10 " + binary + " " + args + " 2>&1";
-  std::string out;
-  if (FILE* pipe = popen(command.c_str(), "r")) {
-    char buffer[256];
-    while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    pclose(pipe);
-  }
-  return out;
-}
-
-double regionsEncoded(client::Session& s) {
-  wire::ClientMessage m;
-  m.mutable_stats();
-  auto reply = s.call(m, 10);
-  if (!reply.isOk() || !reply->has_stats_reply()) return -1;
-  for (const wire::Stat& stat : reply->stats_reply().stats())
-    if (stat.name() == "regions_encoded") return stat.value();
-  return -1;
-}
+double regionsEncoded(client::Session& s) { return ::tessera::testing::serverStat(s, "regions_encoded"); }
 
 // The value once it has not changed for half a second.
 double settled(client::Session& s) {
@@ -100,32 +82,32 @@ TEST(ViewMorphKeys, StepPlayAndPauseAskTheServerForWhatTheyShow) {
        "640x480"},
       ::tessera::testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
   const std::string& display = xvfb.display();
-  const std::string window = xdotool(*xdotoolBinary, display,
+  const std::string window = ::tessera::testing::xdotool(*xdotoolBinary, display,
                                      "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
   const std::string id = window.substr(0, window.find('\n'));
   ASSERT_FALSE(id.empty()) << "no viewer window: " << window << ::tessera::testing::fileBytes(dir + "/view.log");
-  xdotool(*xdotoolBinary, display, "windowfocus --sync " + id);
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "windowfocus --sync " + id);
   // Key 0 live first: its view is built once the viewer subscribes.
   ASSERT_TRUE(waitFor([&] { return regionsEncoded(**admin) > beforeViewer; }, 30))
       << ::tessera::testing::fileBytes(dir + "/view.log");
   const double live = settled(**admin);
 
   // `.`: t = 0.05, the exact surface there.
-  xdotool(*xdotoolBinary, display, "key period");
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "key period");
   ASSERT_TRUE(waitFor([&] { return regionsEncoded(**admin) > live; }, 30))
       << "'.' asked for no surface at t = 0.05: " << ::tessera::testing::fileBytes(dir + "/view.log");
   const double stepped = settled(**admin);
 
   // `P`: playing, through the control points: the server encodes nothing.
-  xdotool(*xdotoolBinary, display, "key p");
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "key p");
   std::this_thread::sleep_for(std::chrono::milliseconds(1200));
   EXPECT_EQ(regionsEncoded(**admin), stepped) << "playing asked for regions, not control points";
   // `P` again: paused at about t = 0.65, a time not shown yet: encoded.
-  xdotool(*xdotoolBinary, display, "key p");
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "key p");
   EXPECT_TRUE(waitFor([&] { return regionsEncoded(**admin) > stepped; }, 30))
       << "pausing asked for no surface: " << ::tessera::testing::fileBytes(dir + "/view.log");
 
-  xdotool(*xdotoolBinary, display, "key q");
+  ::tessera::testing::xdotool(*xdotoolBinary, display, "key q");
   EXPECT_EQ(::tessera::testing::waitBounded(viewer, 20), 0)
       << "Q did not quit the viewer: " << ::tessera::testing::fileBytes(dir + "/view.log");
 }

@@ -121,4 +121,15 @@ bool Xvfb::start(const std::string& binary, const std::string& log) {
   return false;
 }
 
+std::string xdotool(const std::string& binary, const std::string& display, const std::string& args) {
+  const std::string command = "DISPLAY=" + display + " timeout 10 " + binary + " " + args + " 2>&1";
+  std::string out;
+  if (FILE* pipe = popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (fgets(buffer, sizeof buffer, pipe)) out += buffer;
+    pclose(pipe);
+  }
+  return out;
+}
+
 }  // namespace tessera::testing

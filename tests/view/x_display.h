@@ -39,6 +39,10 @@ int waitBounded(pid_t pid, double seconds);
 int runBounded(const std::vector<std::string>& args, const Environment& env, const std::string& log,
                double seconds);
 
+// Runs xdotool `binary` with `args` on `display`, bounded by timeout(1)
+// (10 s); returns what it printed.
+std::string xdotool(const std::string& binary, const std::string& display, const std::string& args);
+
 // An Xvfb server (800x600x24) on a free display number, stopped on destruction.
 class Xvfb {
  public:

@@ -52,22 +52,24 @@ Expected<const Morph*> KeyedDocument::morph() const {
   return morph_.get();
 }
 
-Expected<Document> KeyedDocument::at(double t) const {
+Expected<const Morph*> KeyedDocument::morphAt(double t) const {
   if (!(t >= 0.0 && t <= 1.0)) return invalidArgument("morph time " + std::to_string(t) + " is not in [0, 1]");
-  TESSERA_ASSIGN_OR_RETURN(const Morph* m, morph());
+  return morph();
+}
+
+Expected<Document> KeyedDocument::at(double t) const {
+  TESSERA_ASSIGN_OR_RETURN(const Morph* m, morphAt(t));
   return m->at(t);
 }
 
 Expected<Vec3> KeyedDocument::pointAt(uint32_t v, double t) const {
-  if (!(t >= 0.0 && t <= 1.0)) return invalidArgument("morph time " + std::to_string(t) + " is not in [0, 1]");
-  TESSERA_ASSIGN_OR_RETURN(const Morph* m, morph());
+  TESSERA_ASSIGN_OR_RETURN(const Morph* m, morphAt(t));
   if (v >= keys_[0].basePoints().size()) return notFound("base vertex " + std::to_string(v) + " does not exist");
   return m->pointAt(v, t);
 }
 
 Expected<std::vector<Vec3>> KeyedDocument::pointsAt(double t) const {
-  if (!(t >= 0.0 && t <= 1.0)) return invalidArgument("morph time " + std::to_string(t) + " is not in [0, 1]");
-  TESSERA_ASSIGN_OR_RETURN(const Morph* m, morph());
+  TESSERA_ASSIGN_OR_RETURN(const Morph* m, morphAt(t));
   std::vector<Vec3> points(keys_[0].basePoints().size());
   for (size_t v = 0; v < points.size(); ++v) points[v] = m->pointAt(static_cast<uint32_t>(v), t);
   return points;

@@ -77,6 +77,8 @@ class KeyedDocument {
 
  private:
   Expected<const Morph*> morph() const;
+  // The same, for a time t that must be in [0, 1] (the error says so).
+  Expected<const Morph*> morphAt(double t) const;
 
   std::vector<Document> keys_;
   MorphImages images_;

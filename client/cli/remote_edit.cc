@@ -8,6 +8,7 @@
 #include "core/document/edit_script.h"
 #include "core/util/file_io.h"
 #include "protocol/edit_batch.h"
+#include "protocol/morph_key.h"
 
 namespace tessera::cli {
 
@@ -53,12 +54,7 @@ void toWire(const ScriptCommand& c, uint32_t key, wire::EditCommand& m) {
     case Kind::kRedo: m.mutable_redo()->set_edit_id(c.edit.value); break;
     case Kind::kRemove: break;  // refused before anything is sent
   }
-  if (m.has_move_vertex()) m.mutable_move_vertex()->set_key(key);
-  if (m.has_set_edge_sharpness()) m.mutable_set_edge_sharpness()->set_key(key);
-  if (m.has_set_vertex_type()) m.mutable_set_vertex_type()->set_key(key);
-  if (m.has_set_interpolation()) m.mutable_set_interpolation()->set_key(key);
-  if (m.has_undo()) m.mutable_undo()->set_key(key);
-  if (m.has_redo()) m.mutable_redo()->set_key(key);
+  setMorphKey(m, key);
 }
 
 int runEdit(const ConnectionArgs& connection, const EditArgs& args) {

@@ -8,6 +8,7 @@
 
 #include "client/lib/command_feed.h"
 #include "client/lib/document_view.h"
+#include "protocol/morph_key.h"
 
 namespace tessera::replay {
 
@@ -71,13 +72,7 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
   c.actor = actorFor(a.author_session_id(), a.author_name());
   // Scripts have no morph keys (issue 16 §4): an edit of key 1 would replay
   // onto key 0, so it is refused rather than recorded wrongly.
-  const uint32_t key = a.has_move_vertex()          ? a.move_vertex().key()
-                       : a.has_set_edge_sharpness() ? a.set_edge_sharpness().key()
-                       : a.has_set_vertex_type()    ? a.set_vertex_type().key()
-                       : a.has_set_interpolation()  ? a.set_interpolation().key()
-                       : a.has_undo()               ? a.undo().key()
-                       : a.has_redo()               ? a.redo().key()
-                                                    : 0;
+  const uint32_t key = morphKeyOf(a);
   if (key != 0) {
     return invalidArgument(where + "an edit of morph key " + std::to_string(key) +
                            ": replay scripts edit key 0 only, so a morph document's second key cannot be recorded");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "protocol/morph_key.h"
 #include "protocol/wire_ids.h"
 
 namespace tessera::view {
@@ -211,7 +212,7 @@ void Connection::moveVertex(uint64_t packedVertex, const Vec3& target, UndoHisto
   move->mutable_target()->set_y(target[1]);
   move->mutable_target()->set_z(target[2]);
   move->set_mode(wire::MOVE_MODE_DIRECT_MANIPULATION);
-  onEditKey(m);
+  setMorphKey(m, editKey_);
   enqueueEdit(std::move(m), step);
 }
 
@@ -220,7 +221,7 @@ void Connection::setVertexType(uint64_t packedVertex, wire::VertexType type) {
   m.mutable_set_vertex_type()->set_document_id(document_);
   m.mutable_set_vertex_type()->set_vertex_id(packedVertex);
   m.mutable_set_vertex_type()->set_type(type);
-  onEditKey(m);
+  setMorphKey(m, editKey_);
   enqueueEdit(std::move(m), 0);
 }
 
@@ -231,7 +232,7 @@ void Connection::setInterpolation(uint64_t packedVertex, bool interpolating, dou
   t->set_vertex_id(packedVertex);
   t->set_interpolating(interpolating);
   t->set_tension(tension);
-  onEditKey(m);
+  setMorphKey(m, editKey_);
   enqueueEdit(std::move(m), 0);
 }
 
@@ -243,7 +244,7 @@ void Connection::setEdgeSharpness(uint64_t packedA, uint64_t packedB, float shar
   e->add_end_vertex_ids(packedA);
   e->add_end_vertex_ids(packedB);
   e->set_sharpness(sharpness);
-  onEditKey(m);
+  setMorphKey(m, editKey_);
   enqueueEdit(std::move(m), 0);
 }
 
@@ -340,14 +341,6 @@ void Connection::showCoarse(const wire::MorphControl& frame) {
   stats_.coarseShown = true;
   ++stats_.coarseFrames;
   ++stats_.regionUpdates;
-}
-
-void Connection::onEditKey(wire::ClientMessage& m) const {
-  const uint32_t key = editKey_;
-  if (m.has_move_vertex()) m.mutable_move_vertex()->set_key(key);
-  if (m.has_set_vertex_type()) m.mutable_set_vertex_type()->set_key(key);
-  if (m.has_set_interpolation()) m.mutable_set_interpolation()->set_key(key);
-  if (m.has_set_edge_sharpness()) m.mutable_set_edge_sharpness()->set_key(key);
 }
 
 void Connection::run() {

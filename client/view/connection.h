@@ -156,8 +156,6 @@ class Connection {
   // Edits of key 1 enter the undo history with this bit set (edit ids stay
   // far below it), so that their undo names the key they were made on.
   static constexpr uint64_t kKeyOneBit = uint64_t{1} << 63;
-  // Sets the edit's `key` field (MoveVertex.key and the like).
-  void onEditKey(wire::ClientMessage& m) const;
 
   // A 2D morph's sessions at t = 0 and t = 1 (network thread only), and
   // what they show.

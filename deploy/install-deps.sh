@@ -22,6 +22,8 @@ build_packages=(
   libcgal-dev
   # operations: HTTP health and Prometheus metrics, sd_notify
   prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev
+  # cluster mode (issue 17): the NATS C client (JetStream, key-value buckets)
+  libnats-dev
 )
 # Everything else for the whole tree, its tests and benchmarks.
 packages=(
@@ -38,6 +40,8 @@ packages=(
   libcgal-demo xvfb xauth xdotool
   # coverage-guided fuzzing: libFuzzer with ASan and UBSan (tests/fuzz)
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
+  # the cluster tests and deploy/cluster-loopback.sh start real NATS servers
+  nats-server
 )
 if [[ ${1:-} == --build ]]; then
   packages=("${build_packages[@]}")

@@ -34,6 +34,18 @@ void addNetworkOptions(CLI::App& app, ServerConfig& c) {
       ->check(atLeast<int64_t>(0))->capture_default_str()->group(g);
 }
 
+void addClusterOptions(CLI::App& app, ServerConfig& c) {
+  const char* g = "Cluster (docs/CLUSTER.md)";
+  app.add_option("--cluster", c.cluster,
+                 "run as a node of a cluster on these NATS JetStream servers (nats://host:port,...) "
+                 "instead of on --data's SQLite store")
+      ->group(g);
+  app.add_option("--node-name", c.nodeName, "this node's name in the cluster (default: the host name)")->group(g);
+  app.add_option("--cluster-replicas", c.clusterReplicas,
+                 "JetStream replicas of the journal, snapshots and catalogue (3 in a 3-server NATS cluster)")
+      ->check(CLI::Range(1, 5))->capture_default_str()->group(g);
+}
+
 void addLimitOptions(CLI::App& app, ServerConfig& c) {
   const char* g = "Limits";
   Limits& l = c.limits;
@@ -123,6 +135,7 @@ ParsedCommandLine parseServerCommandLine(const std::vector<std::string>& args) {
   // a wrapper can append an override to a fixed command line.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   addNetworkOptions(app, command.config);
+  addClusterOptions(app, command.config);
   addLimitOptions(app, command.config);
   addTimingOptions(app, command.config);
   addOperationsOptions(app, command.config);

@@ -51,6 +51,11 @@ struct ServerConfig {
   std::string listenAddress = "127.0.0.1";
   uint16_t port = 7878;              // 0: any free port
   std::string dataDirectory = "tessera-data";
+  // Cluster mode (issue 17, docs/CLUSTER.md): the NATS servers, comma
+  // separated; empty runs on the SQLite store of dataDirectory.
+  std::string cluster;
+  std::string nodeName;     // this node in logs, stats and leases (default: the host name)
+  int clusterReplicas = 3;  // JetStream replicas of the journal, blobs and buckets
   std::string portFile;              // write the bound port here (tests, scripts)
   std::string adminTokenFile;        // a token read at start-up and granted admin on everything
   std::string tlsCertificate, tlsPrivateKey;  // both set: TLS on the listening port

@@ -451,13 +451,21 @@ void Connection::authenticate(const wire::ClientMessage& message) {
   name_ = message.hello().client_name().empty() ? "session " + std::to_string(sessionId_) : message.hello().client_name();
   if (!token_.empty()) {
     auto known = context_.store.knowsToken(token_);
-    if (!known.isOk() || !*known) {
+    if (!known.isOk()) {
+      // The store could not answer (a cluster without quorum, a damaged
+      // file): not the client's fault, so no throttling, and it is told why.
+      logEvent(LogLevel::kError, "auth_unavailable",
+               {{"session", sessionId_}, {"address", address_}, {"error", known.status().message()}});
+      token_.clear();
+      return fatal(wire::ERROR_CODE_INTERNAL, "cannot check the access token now: " + known.status().message());
+    }
+    if (!*known) {
       // Never the token itself in a log.
       const int failures = context_.authThrottle.failed(address_, std::chrono::steady_clock::now());
       ++context_.stats.authFailures;
       logEvent(LogLevel::kWarn, "auth_failed",
                {{"session", sessionId_}, {"address", address_}, {"name", name_}, {"recent_failures", static_cast<int64_t>(failures)},
-                {"error", known.isOk() ? std::string("unknown token") : known.status().message()}});
+                {"error", "unknown token"}});
       token_.clear();
       return fatal(wire::ERROR_CODE_AUTH_FAILED, "the access token is not known to this server");
     }

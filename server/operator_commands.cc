@@ -8,6 +8,7 @@
 #include <sys/random.h>
 
 #include "server/log.h"
+#include "server/server.h"
 #include "server/store/store_admin.h"
 
 namespace tessera::server {
@@ -50,11 +51,21 @@ int runTokenNew(const ServerCommandLine& command) {
   if (!token.isOk()) return failed("token_new_failed", token.status());
   const TokenScope scope =
       command.documentId == 0 ? TokenScope::allDocuments() : TokenScope::document(DocumentId{command.documentId});
-  const Status stored = grantTokenInStore(command.config.dataDirectory, scope, *token, *role);
+  Status stored;
+  if (command.config.cluster.empty()) {
+    stored = grantTokenInStore(command.config.dataDirectory, scope, *token, *role);
+  } else {
+    // A cluster's tokens live in NATS, shared by every node: no node needs
+    // to be stopped or told.
+    auto store = openStore(command.config);
+    stored = store.isOk() ? (*store)->addToken(scope, *token, *role) : store.status();
+  }
   if (!stored.isOk()) return failed("token_new_failed", stored);
   // The token itself goes to stdout only (never to the log).
   logEvent(LogLevel::kInfo, "token_created",
-           {{"role", command.role}, {"scope", scope.toString()}, {"data", command.config.dataDirectory}});
+           {{"role", command.role},
+            {"scope", scope.toString()},
+            {"store", command.config.cluster.empty() ? command.config.dataDirectory : command.config.cluster}});
   std::printf("%s\n", token->c_str());
   return 0;
 }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "server/log.h"
+#include "server/cluster/nats_store.h"
 #include "server/store/sqlite_store.h"
 
 namespace tessera::server {
@@ -62,10 +63,29 @@ void writePortFile(const std::string& path, uint16_t port) {
 
 }  // namespace
 
+Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config) {
+  if (config.cluster.empty()) {
+    TESSERA_ASSIGN_OR_RETURN(auto store, SqliteStore::open(config.dataDirectory));
+    return std::unique_ptr<Store>(std::move(store));
+  }
+  cluster::NatsStoreOptions options;
+  TESSERA_ASSIGN_OR_RETURN(options.link.urls, cluster::parseNatsUrls(config.cluster));
+  options.link.clientName = "tessera-server " + nodeNameOf(config);
+  options.replicas = config.clusterReplicas;
+  TESSERA_ASSIGN_OR_RETURN(auto store, cluster::NatsStore::open(options));
+  return std::unique_ptr<Store>(std::move(store));
+}
+
+std::string nodeNameOf(const ServerConfig& config) {
+  if (!config.nodeName.empty()) return config.nodeName;
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0 || host[0] == '\0') return "tessera";
+  return host;
+}
+
 Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   std::unique_ptr<Server> server(new Server(config));
-  TESSERA_ASSIGN_OR_RETURN(auto store, SqliteStore::open(config.dataDirectory));
-  server->store_ = std::move(store);
+  TESSERA_ASSIGN_OR_RETURN(server->store_, openStore(config));
   if (!config.adminTokenFile.empty()) {
     std::ifstream in(config.adminTokenFile);
     std::string token;

@@ -30,6 +30,12 @@
 
 namespace tessera::server {
 
+// The store `config` names: the SQLite one of --data, or, with --cluster,
+// the NATS JetStream one shared by every node of the cluster.
+Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config);
+// --node-name, or the host name.
+std::string nodeNameOf(const ServerConfig& config);
+
 class Server {
  public:
   static Expected<std::unique_ptr<Server>> create(const ServerConfig& config);

@@ -1,5 +1,7 @@
 #include "server/store/sqlite_queries.h"
 
+#include "server/store/store_checks.h"
+
 #include <string>
 
 namespace tessera {
@@ -12,10 +14,6 @@ int64_t sqlId(DocumentId id) {
 // Tokens for every document use scope 0, a value no document id takes.
 int64_t sqlScope(TokenScope scope) {
   return scope.isAllDocuments() ? 0 : sqlId(scope.documentId());
-}
-
-Status documentNotFound(DocumentId id) {
-  return notFound(toString(id) + " does not exist");
 }
 
 // The document's latest journal version (0 before the first edit), or
@@ -60,8 +58,7 @@ Status insertJournalEntry(SqliteConnection& db, DocumentId id, uint64_t version,
                           std::string_view bytes) {
   TESSERA_ASSIGN_OR_RETURN(uint64_t latest, latestVersion(db, id));
   if (version != latest + 1) {
-    return invalidArgument(toString(id) + ": journal entry version " + std::to_string(version) +
-                           " refused: the next version is " + std::to_string(latest + 1));
+    return versionNotNext(id, version, latest);
   }
   TESSERA_ASSIGN_OR_RETURN(
       SqliteStatement insert,
@@ -76,8 +73,7 @@ Status insertJournalEntry(SqliteConnection& db, DocumentId id, uint64_t version,
 Status insertSnapshot(SqliteConnection& db, DocumentId id, uint64_t version, std::string_view bytes) {
   TESSERA_ASSIGN_OR_RETURN(uint64_t latest, latestVersion(db, id));
   if (version > latest) {
-    return invalidArgument(toString(id) + ": snapshot at version " + std::to_string(version) +
-                           " refused: the journal ends at version " + std::to_string(latest));
+    return snapshotPastEnd(id, version, latest);
   }
   TESSERA_ASSIGN_OR_RETURN(
       SqliteStatement insert,

@@ -8,36 +8,11 @@
 
 #include "server/store/sqlite_queries.h"
 #include "server/store/sqlite_schema.h"
+#include "server/store/store_checks.h"
 #include "server/store/token_hash.h"
 
 namespace tessera {
 namespace {
-
-constexpr uint64_t kMaxSqlInteger = static_cast<uint64_t>(std::numeric_limits<int64_t>::max());
-
-// Ids come from SQLite's positive 64-bit rowids; anything else names nothing.
-Status checkDocumentId(DocumentId id) {
-  if (id.value == 0 || id.value > kMaxSqlInteger) return notFound(toString(id) + " does not exist");
-  return Status::ok();
-}
-
-Status checkVersion(DocumentId id, uint64_t version, const char* what) {
-  if (version == 0 || version > kMaxSqlInteger) {
-    return invalidArgument(toString(id) + ": " + what + " version " + std::to_string(version) +
-                           " is out of range (versions start at 1)");
-  }
-  return Status::ok();
-}
-
-// Messages about tokens give sizes and scopes, never the token's text.
-Status checkTokenToGrant(std::string_view token) {
-  if (token.size() < kMinTokenBytes || token.size() > kMaxTokenBytes) {
-    return invalidArgument("access token of " + std::to_string(token.size()) +
-                           " bytes refused: tokens need " + std::to_string(kMinTokenBytes) + " to " +
-                           std::to_string(kMaxTokenBytes) + " bytes");
-  }
-  return Status::ok();
-}
 
 Status openConnection(const std::string& path, const SqliteStoreOptions& options,
                       std::unique_ptr<SqliteConnection>& connection) {
@@ -132,11 +107,7 @@ Expected<T> SqliteStore::readConsistent(const std::function<Expected<T>(SqliteCo
 }
 
 Expected<DocumentId> SqliteStore::createDocument(std::string_view name, std::string_view baseBytes) {
-  if (name.empty() || name.size() > kMaxDocumentNameBytes) {
-    return invalidArgument("document name of " + std::to_string(name.size()) +
-                           " bytes refused: names need 1 to " + std::to_string(kMaxDocumentNameBytes) +
-                           " bytes");
-  }
+  TESSERA_RETURN_IF_ERROR(checkDocumentName(name));
   DocumentId id;
   TESSERA_RETURN_IF_ERROR(writeAndWait([&](SqliteConnection& db) -> Status {
     TESSERA_ASSIGN_OR_RETURN(id, insertDocument(db, name, baseBytes));
@@ -165,10 +136,7 @@ void SqliteStore::append(DocumentId id, uint64_t version, std::string author, st
   // runs on the writer thread while the store is open.
   Status valid = checkDocumentId(id);
   if (valid.isOk()) valid = checkVersion(id, version, "journal entry");
-  if (valid.isOk() && author.size() > kMaxAuthorBytes) {
-    valid = invalidArgument(toString(id) + ": author name of " + std::to_string(author.size()) +
-                            " bytes refused (at most " + std::to_string(kMaxAuthorBytes) + ")");
-  }
+  if (valid.isOk()) valid = checkAuthor(id, author);
   PendingWrite write;
   write.apply = [id, version, valid = std::move(valid), author = std::move(author),
                  bytes = std::move(bytes)](SqliteConnection& db) -> Status {
@@ -201,9 +169,7 @@ Status SqliteStore::putSnapshot(DocumentId id, uint64_t version, std::string_vie
 Status SqliteStore::addToken(TokenScope scope, std::string_view token, Role role) {
   if (!scope.isAllDocuments()) TESSERA_RETURN_IF_ERROR(checkDocumentId(scope.documentId()));
   TESSERA_RETURN_IF_ERROR(checkTokenToGrant(token));
-  if (role != Role::kViewer && role != Role::kEditor && role != Role::kAdmin) {
-    return invalidArgument("unknown role " + std::to_string(static_cast<int>(role)) + " for an access token");
-  }
+  TESSERA_RETURN_IF_ERROR(checkRole(role));
   TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
   return writeAndWait([&](SqliteConnection& db) { return insertToken(db, scope, hash, role); });
 }

@@ -24,15 +24,9 @@
 #include "server/store/group_commit.h"
 #include "server/store/sqlite_connection.h"
 #include "server/store/store.h"
+#include "server/store/store_checks.h"
 
 namespace tessera {
-
-inline constexpr size_t kMaxDocumentNameBytes = 1024;
-inline constexpr size_t kMaxAuthorBytes = 1024;
-// Tokens are bearer secrets compared by hash: short ones could be guessed
-// offline from a stolen database file, so they are refused when granted.
-inline constexpr size_t kMinTokenBytes = 16;
-inline constexpr size_t kMaxTokenBytes = 4096;
 
 struct SqliteStoreOptions {
   int busyTimeoutMs = 5000;      // waits for another connection's lock (e.g. an admin's sqlite3 shell)

@@ -1,0 +1,136 @@
+#include "server/cluster/nats_blobs.h"
+
+#include <cstdlib>
+
+namespace tessera::cluster {
+
+namespace {
+
+constexpr std::string_view kManifestMagic = "TB1";
+
+uint64_t fnv1a(std::string_view bytes) {
+  uint64_t hash = 0xcbf29ce484222325ull;
+  for (char c : bytes) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 0x100000001b3ull;
+  }
+  return hash;
+}
+
+void put64(std::string& out, uint64_t v) {
+  for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
+}
+
+uint64_t get64(std::string_view in, size_t at) {
+  uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(static_cast<unsigned char>(in[at + i])) << (8 * i);
+  return v;
+}
+
+Status publish(NatsLink& link, const std::string& subject, std::string_view bytes) {
+  jsPubAck* ack = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const natsStatus s = js_Publish(&ack, link.jetStream(), subject.c_str(), bytes.data(),
+                                  static_cast<int>(bytes.size()), nullptr, &code);
+  PubAckPtr owned(ack);
+  if (s != NATS_OK) return link.error(s, "writing " + subject, code);
+  return Status::ok();
+}
+
+}  // namespace
+
+Status putBlob(NatsLink& link, const std::string& stream, const std::string& prefix, std::string_view bytes) {
+  (void)stream;  // the subject alone routes the message; kept for symmetry with getBlob
+  uint64_t chunks = 0;
+  for (size_t at = 0; at < bytes.size() || chunks == 0; at += kBlobChunkBytes) {
+    TESSERA_RETURN_IF_ERROR(
+        publish(link, prefix + "." + std::to_string(chunks), bytes.substr(at, kBlobChunkBytes)));
+    ++chunks;
+    if (bytes.empty()) break;
+  }
+  std::string manifest(kManifestMagic);
+  put64(manifest, bytes.size());
+  put64(manifest, chunks);
+  put64(manifest, fnv1a(bytes));
+  return publish(link, prefix, manifest);
+}
+
+Expected<std::string> getBlob(NatsLink& link, const std::string& stream, const std::string& prefix,
+                              std::string_view where) {
+  TESSERA_ASSIGN_OR_RETURN(LastMessage manifest, lastMessage(link, stream, prefix));
+  const std::string& m = manifest.payload;
+  if (m.size() != kManifestMagic.size() + 24 || m.compare(0, kManifestMagic.size(), kManifestMagic) != 0) {
+    return parseError(std::string(where) + ": its manifest on " + prefix + " is damaged (" +
+                      std::to_string(m.size()) + " bytes)");
+  }
+  const uint64_t size = get64(m, 3), chunks = get64(m, 11), checksum = get64(m, 19);
+  if (chunks == 0 || chunks > size / kBlobChunkBytes + 1) {
+    return parseError(std::string(where) + ": its manifest names " + std::to_string(chunks) + " chunks for " +
+                      std::to_string(size) + " bytes");
+  }
+  std::string bytes;
+  bytes.reserve(size);
+  for (uint64_t i = 0; i < chunks; ++i) {
+    auto chunk = lastMessage(link, stream, prefix + "." + std::to_string(i));
+    if (!chunk.isOk()) {
+      return parseError(std::string(where) + ": chunk " + std::to_string(i) + " of " + std::to_string(chunks) +
+                        " is missing (" + chunk.status().message() + ")");
+    }
+    bytes += chunk->payload;
+  }
+  if (bytes.size() != size || fnv1a(bytes) != checksum) {
+    return parseError(std::string(where) + ": its chunks hold " + std::to_string(bytes.size()) +
+                      " bytes that do not match the manifest (" + std::to_string(size) + " bytes and its checksum)");
+  }
+  return bytes;
+}
+
+Expected<LastMessage> lastMessage(NatsLink& link, const std::string& stream, const std::string& subject) {
+  natsMsg* raw = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const natsStatus s = js_GetLastMsg(&raw, link.jetStream(), stream.c_str(), subject.c_str(), nullptr, &code);
+  NatsMsgPtr msg(raw);
+  if (s == NATS_NOT_FOUND) return notFound("no message on " + subject);
+  if (s != NATS_OK) return link.error(s, "reading " + subject, code);
+  LastMessage last;
+  last.payload.assign(natsMsg_GetData(msg.get()), static_cast<size_t>(natsMsg_GetDataLength(msg.get())));
+  last.sequence = natsMsg_GetSequence(msg.get());
+  return last;
+}
+
+Expected<LastMessage> nextMessage(NatsLink& link, const std::string& stream, const std::string& subject,
+                                  uint64_t from) {
+  jsDirectGetMsgOptions options;
+  jsDirectGetMsgOptions_Init(&options);
+  options.Sequence = from;
+  options.NextBySubject = subject.c_str();
+  natsMsg* raw = nullptr;
+  const natsStatus s = js_DirectGetMsg(&raw, link.jetStream(), stream.c_str(), nullptr, &options);
+  NatsMsgPtr msg(raw);
+  if (s == NATS_NOT_FOUND) return notFound("no message on " + subject + " from stream sequence " + std::to_string(from));
+  if (s != NATS_OK) return link.error(s, "reading " + subject + " from stream sequence " + std::to_string(from));
+  LastMessage next;
+  next.payload.assign(natsMsg_GetData(msg.get()), static_cast<size_t>(natsMsg_GetDataLength(msg.get())));
+  next.sequence = natsMsg_GetSequence(msg.get());
+  if (next.sequence == 0) {
+    // Direct gets carry the sequence in a header.
+    const char* header = nullptr;
+    if (natsMsgHeader_Get(msg.get(), "Nats-Sequence", &header) == NATS_OK && header != nullptr) {
+      next.sequence = std::strtoull(header, nullptr, 10);
+    }
+  }
+  if (next.sequence < from) return link.error(NATS_ERR, "reading " + subject + ": a direct get without its sequence");
+  return next;
+}
+
+Status purgeSubject(NatsLink& link, const std::string& stream, const std::string& subject) {
+  jsOptions options;
+  jsOptions_Init(&options);
+  options.Stream.Purge.Subject = subject.c_str();
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const natsStatus s = js_PurgeStream(link.jetStream(), stream.c_str(), &options, &code);
+  if (s != NATS_OK) return link.error(s, "purging " + subject, code);
+  return Status::ok();
+}
+
+}  // namespace tessera::cluster

@@ -1,0 +1,157 @@
+#include "server/cluster/nats_link.h"
+
+#include <string>
+
+namespace tessera::cluster {
+
+namespace {
+
+// Frees natsOptions on every return path.
+struct OptionsDeleter { void operator()(natsOptions* o) const { natsOptions_Destroy(o); } };
+
+bool isNatsUrl(std::string_view url) {
+  constexpr std::string_view kScheme = "nats://";
+  if (url.substr(0, kScheme.size()) != kScheme) return false;
+  const std::string_view rest = url.substr(kScheme.size());
+  const size_t colon = rest.rfind(':');
+  if (colon == std::string_view::npos || colon == 0 || colon + 1 == rest.size()) return false;
+  for (char c : rest.substr(colon + 1)) {
+    if (c < '0' || c > '9') return false;
+  }
+  return rest.size() - colon - 1 <= 5;
+}
+
+}  // namespace
+
+Expected<std::vector<std::string>> parseNatsUrls(std::string_view list) {
+  std::vector<std::string> urls;
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t comma = list.find(',', start);
+    const std::string_view url = list.substr(start, comma == std::string_view::npos ? list.npos : comma - start);
+    if (!isNatsUrl(url)) {
+      return invalidArgument("--cluster: '" + std::string(url) +
+                             "' is not a NATS URL (expected nats://host:port, several separated by commas)");
+    }
+    urls.emplace_back(url);
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return urls;
+}
+
+Expected<std::unique_ptr<NatsLink>> NatsLink::connect(const NatsLinkOptions& options) {
+  std::string servers;
+  for (const auto& url : options.urls) servers += (servers.empty() ? "" : ",") + url;
+  auto fail = [&](natsStatus s, const char* what) {
+    return ioError("NATS (" + servers + "): " + what + ": " + natsStatus_GetText(s));
+  };
+  if (options.urls.empty()) return invalidArgument("NATS: no server URL given");
+  natsOptions* raw = nullptr;
+  natsStatus s = natsOptions_Create(&raw);
+  if (s != NATS_OK) return fail(s, "creating options");
+  std::unique_ptr<natsOptions, OptionsDeleter> opts(raw);
+  std::vector<const char*> urls;
+  for (const auto& url : options.urls) urls.push_back(url.c_str());
+  s = natsOptions_SetServers(opts.get(), urls.data(), static_cast<int>(urls.size()));
+  if (s == NATS_OK) s = natsOptions_SetTimeout(opts.get(), options.timeout.count());
+  if (s == NATS_OK && !options.clientName.empty()) s = natsOptions_SetName(opts.get(), options.clientName.c_str());
+  // Once connected, a lost server is replaced by another of the cluster for
+  // as long as the process lives: reconnecting is NATS's job, and commands
+  // meanwhile fail with a clear error instead of hanging.
+  if (s == NATS_OK) s = natsOptions_SetMaxReconnect(opts.get(), -1);
+  if (s == NATS_OK) s = natsOptions_SetReconnectWait(opts.get(), 250);
+  if (s != NATS_OK) return fail(s, "setting options");
+  natsConnection* connection = nullptr;
+  s = natsConnection_Connect(&connection, opts.get());
+  if (s != NATS_OK) return fail(s, "connecting");
+  jsOptions jsOpts;
+  jsOptions_Init(&jsOpts);
+  jsOpts.Wait = options.timeout.count();
+  jsCtx* js = nullptr;
+  s = natsConnection_JetStream(&js, connection, &jsOpts);
+  if (s != NATS_OK) {
+    natsConnection_Destroy(connection);
+    return fail(s, "opening JetStream");
+  }
+  return std::unique_ptr<NatsLink>(new NatsLink(connection, js, servers, options.timeout));
+}
+
+NatsLink::~NatsLink() {
+  jsCtx_Destroy(jetStream_);
+  natsConnection_Close(connection_);
+  natsConnection_Destroy(connection_);
+}
+
+Status NatsLink::error(natsStatus status, std::string_view what, jsErrCode code) const {
+  std::string message = "NATS (" + servers_ + "): " + std::string(what) + ": " + natsStatus_GetText(status);
+  if (code != 0) message += " (JetStream error " + std::to_string(static_cast<int>(code)) + ")";
+  if (status == NATS_NO_RESPONDERS || status == NATS_TIMEOUT) {
+    // What an operator needs to know first (docs/CLUSTER.md, "Quorum").
+    message += "; JetStream did not answer: is a majority of the NATS servers up?";
+  }
+  // nats_GetLastError has the server's own words (e.g. "insufficient
+  // resources" when quorum is lost), which are worth more than the status.
+  natsStatus last = NATS_OK;
+  const char* detail = nats_GetLastError(&last);
+  if (detail != nullptr && *detail != '\0') message += std::string(" [") + detail + "]";
+  return ioError(message);
+}
+
+Status NatsLink::ensureStream(const StreamSpec& spec) {
+  jsStreamInfo* info = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  natsStatus s = js_GetStreamInfo(&info, jetStream_, spec.name.c_str(), nullptr, &code);
+  if (s == NATS_OK) {
+    jsStreamInfo_Destroy(info);
+    return Status::ok();
+  }
+  if (s != NATS_NOT_FOUND) return error(s, "looking up stream " + spec.name, code);
+  jsStreamConfig config;
+  jsStreamConfig_Init(&config);
+  config.Name = spec.name.c_str();
+  std::vector<const char*> subjects;
+  for (const auto& subject : spec.subjects) subjects.push_back(subject.c_str());
+  config.Subjects = subjects.data();
+  config.SubjectsLen = static_cast<int>(subjects.size());
+  config.Storage = js_FileStorage;
+  config.Replicas = spec.replicas;
+  config.MaxMsgsPerSubject = spec.maxMsgsPerSubject;
+  config.MaxMsgSize = spec.maxMessageBytes;
+  config.AllowDirect = spec.allowDirect;
+  s = js_AddStream(&info, jetStream_, &config, nullptr, &code);
+  if (s != NATS_OK) {
+    // Another node may have created it between the lookup and the add.
+    jsStreamInfo* again = nullptr;
+    if (js_GetStreamInfo(&again, jetStream_, spec.name.c_str(), nullptr, nullptr) == NATS_OK) {
+      jsStreamInfo_Destroy(again);
+      return Status::ok();
+    }
+    return error(s, "creating stream " + spec.name, code);
+  }
+  jsStreamInfo_Destroy(info);
+  return Status::ok();
+}
+
+Expected<KvStorePtr> NatsLink::ensureBucket(const BucketSpec& spec) {
+  kvStore* kv = nullptr;
+  natsStatus s = js_KeyValue(&kv, jetStream_, spec.name.c_str());
+  if (s == NATS_OK) return KvStorePtr(kv);
+  if (s != NATS_NOT_FOUND) return error(s, "opening key-value bucket " + spec.name);
+  kvConfig config;
+  kvConfig_Init(&config);
+  config.Bucket = spec.name.c_str();
+  config.History = 1;
+  config.Replicas = spec.replicas;
+  config.StorageType = js_FileStorage;
+  config.TTL = spec.ttl.count();  // milliseconds in nats.c's kvConfig
+  config.MaxValueSize = spec.maxValueBytes;
+  s = js_CreateKeyValue(&kv, jetStream_, &config);
+  if (s != NATS_OK) {
+    if (js_KeyValue(&kv, jetStream_, spec.name.c_str()) == NATS_OK) return KvStorePtr(kv);
+    return error(s, "creating key-value bucket " + spec.name);
+  }
+  return KvStorePtr(kv);
+}
+
+}  // namespace tessera::cluster

@@ -1,0 +1,98 @@
+// NatsLink: one connection to a NATS cluster and its JetStream context, with
+// NATS and JetStream errors turned into Status values that name the cluster
+// and the operation. The cluster mode's store, leases and fan-out all talk to
+// NATS through one link (docs/CLUSTER.md).
+//
+// NATS handles were made for C; the small owners below free them, so that no
+// early return leaks one.
+#pragma once
+
+#include <nats/nats.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/util/status.h"
+
+namespace tessera::cluster {
+
+struct NatsLinkOptions {
+  std::vector<std::string> urls;  // nats://host:port, tried in turn
+  std::string clientName;         // shows in the NATS server's connection list
+  std::chrono::milliseconds timeout{2000};  // connect, and each JetStream request
+};
+
+// "nats://a:4222,nats://b:4222" -> {"nats://a:4222", "nats://b:4222"};
+// refuses an empty list or a URL that is not nats://host:port.
+Expected<std::vector<std::string>> parseNatsUrls(std::string_view list);
+
+struct MsgDeleter { void operator()(natsMsg* m) const { natsMsg_Destroy(m); } };
+struct KvEntryDeleter { void operator()(kvEntry* e) const { kvEntry_Destroy(e); } };
+struct PubAckDeleter { void operator()(jsPubAck* a) const { jsPubAck_Destroy(a); } };
+struct SubscriptionDeleter { void operator()(natsSubscription* s) const { natsSubscription_Destroy(s); } };
+struct MetaDataDeleter { void operator()(jsMsgMetaData* m) const { jsMsgMetaData_Destroy(m); } };
+struct KvStoreDeleter { void operator()(kvStore* kv) const { kvStore_Destroy(kv); } };
+struct KvWatcherDeleter { void operator()(kvWatcher* w) const { kvWatcher_Destroy(w); } };
+using NatsMsgPtr = std::unique_ptr<natsMsg, MsgDeleter>;
+using KvEntryPtr = std::unique_ptr<kvEntry, KvEntryDeleter>;
+using PubAckPtr = std::unique_ptr<jsPubAck, PubAckDeleter>;
+using SubscriptionPtr = std::unique_ptr<natsSubscription, SubscriptionDeleter>;
+using MetaDataPtr = std::unique_ptr<jsMsgMetaData, MetaDataDeleter>;
+using KvStorePtr = std::unique_ptr<kvStore, KvStoreDeleter>;
+using KvWatcherPtr = std::unique_ptr<kvWatcher, KvWatcherDeleter>;
+
+// How a JetStream stream or key-value bucket is made. Replicas > 1 needs a
+// JetStream cluster of at least that many servers.
+struct StreamSpec {
+  std::string name;
+  std::vector<std::string> subjects;
+  int replicas = 1;
+  int64_t maxMsgsPerSubject = -1;  // -1: unlimited
+  int32_t maxMessageBytes = -1;
+  // Lets every replica answer direct gets (reads that need no consumer and
+  // no stream leader, so they keep working while a leader is re-elected).
+  bool allowDirect = true;
+};
+struct BucketSpec {
+  std::string name;
+  int replicas = 1;
+  std::chrono::milliseconds ttl{0};  // 0: values never expire
+  int32_t maxValueBytes = -1;
+};
+
+class NatsLink {
+ public:
+  static Expected<std::unique_ptr<NatsLink>> connect(const NatsLinkOptions& options);
+  ~NatsLink();
+  NatsLink(const NatsLink&) = delete;
+  NatsLink& operator=(const NatsLink&) = delete;
+
+  natsConnection* connection() const { return connection_; }
+  jsCtx* jetStream() const { return jetStream_; }
+  const std::string& servers() const { return servers_; }  // for messages
+  std::chrono::milliseconds timeout() const { return timeout_; }
+
+  // Creates the stream or bucket, or opens it as it is when it exists (the
+  // first node of a cluster creates them, the others find them).
+  Status ensureStream(const StreamSpec& spec);
+  Expected<KvStorePtr> ensureBucket(const BucketSpec& spec);
+
+  // A Status for a failed NATS call: "NATS (<servers>): <what>: <text>",
+  // with JetStream's error code when there is one. Every failure is a
+  // kIoError: the cluster, not the caller, is at fault.
+  Status error(natsStatus status, std::string_view what, jsErrCode code = static_cast<jsErrCode>(0)) const;
+
+ private:
+  NatsLink(natsConnection* connection, jsCtx* jetStream, std::string servers, std::chrono::milliseconds timeout)
+      : connection_(connection), jetStream_(jetStream), servers_(std::move(servers)), timeout_(timeout) {}
+
+  natsConnection* connection_;
+  jsCtx* jetStream_;
+  std::string servers_;
+  std::chrono::milliseconds timeout_;
+};
+
+}  // namespace tessera::cluster

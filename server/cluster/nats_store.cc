@@ -1,0 +1,575 @@
+#include "server/cluster/nats_store.h"
+
+#include <algorithm>
+#include <future>
+#include <string>
+
+#include "server/cluster/journal_message.h"
+#include "server/cluster/nats_blobs.h"
+#include "server/store/store_checks.h"
+#include "server/store/token_hash.h"
+
+namespace tessera::cluster {
+
+namespace {
+
+const std::string kJournalStream = "TESSERA_JOURNAL";
+const std::string kBlobStream = "TESSERA_BLOBS";
+constexpr size_t kRecentSequences = 4096;  // versions whose sequence a snapshot may need
+
+std::string journalSubject(DocumentId id) { return "tessera.journal." + std::to_string(id.value); }
+std::string blobPrefix(DocumentId id) { return "tessera.blob." + std::to_string(id.value); }
+std::string catalogKey(DocumentId id) { return "doc." + std::to_string(id.value); }
+
+std::string hex(std::string_view bytes) {
+  static const char* digits = "0123456789abcdef";
+  std::string out;
+  for (unsigned char c : bytes) {
+    out.push_back(digits[c >> 4]);
+    out.push_back(digits[c & 15]);
+  }
+  return out;
+}
+
+std::string tokenKey(const std::string& hashHex, TokenScope scope) {
+  return hashHex + (scope.isAllDocuments() ? ".all" : ".doc" + std::to_string(scope.documentId().value));
+}
+
+// <hash>.known exists while any grant of the token does: knowsToken, asked
+// at every Hello, is then one direct read instead of a listing.
+std::string knownKey(const std::string& hashHex) {
+  return hashHex + ".known";
+}
+
+// The snapshots list on tessera.blob.<id>.snaps: newest first.
+struct SnapshotRef {
+  uint64_t version = 0, sequence = 0;
+};
+std::string encodeSnapshotRefs(const std::vector<SnapshotRef>& refs) {
+  std::string out;
+  for (const auto& r : refs) out += std::to_string(r.version) + " " + std::to_string(r.sequence) + "\n";
+  return out;
+}
+std::vector<SnapshotRef> decodeSnapshotRefs(const std::string& text) {
+  std::vector<SnapshotRef> refs;
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t end = text.find('\n', at);
+    const std::string line = text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    SnapshotRef r;
+    if (std::sscanf(line.c_str(), "%lu %lu", &r.version, &r.sequence) == 2) refs.push_back(r);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return refs;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<NatsStore>> NatsStore::open(const NatsStoreOptions& options) {
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<NatsLink> link, NatsLink::connect(options.link));
+  TESSERA_RETURN_IF_ERROR(link->ensureStream(
+      StreamSpec{.name = kJournalStream, .subjects = {"tessera.journal.*"}, .replicas = options.replicas}));
+  TESSERA_RETURN_IF_ERROR(link->ensureStream(StreamSpec{.name = kBlobStream,
+                                                        .subjects = {"tessera.blob.>"},
+                                                        .replicas = options.replicas,
+                                                        .maxMsgsPerSubject = 1}));
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr catalog,
+                           link->ensureBucket(BucketSpec{.name = "TESSERA_CATALOG", .replicas = options.replicas}));
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr tokens,
+                           link->ensureBucket(BucketSpec{.name = "TESSERA_TOKENS", .replicas = options.replicas}));
+  return std::unique_ptr<NatsStore>(new NatsStore(std::move(link), std::move(catalog), std::move(tokens)));
+}
+
+NatsStore::NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens)
+    : link_(std::move(link)), catalog_(std::move(catalog)), tokens_(std::move(tokens)) {
+  writer_ = std::thread([this] { run(); });
+}
+
+NatsStore::~NatsStore() {
+  close();
+}
+
+void NatsStore::close() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (closing_) return;
+    closing_ = true;
+  }
+  wake_.notify_all();
+  if (writer_.joinable()) writer_.join();
+  std::lock_guard<std::mutex> lock(mutex_);
+  closed_ = true;
+}
+
+Status NatsStore::checkOpen() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (closing_) return ioError("NATS (" + link_->servers() + "): the store is closed");
+  return Status::ok();
+}
+
+// ---- documents -------------------------------------------------------------
+
+Expected<std::string> NatsStore::documentName(DocumentId id) {
+  TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
+  kvEntry* raw = nullptr;
+  const natsStatus s = kvStore_Get(&raw, catalog_.get(), catalogKey(id).c_str());
+  KvEntryPtr entry(raw);
+  if (s == NATS_NOT_FOUND) return documentNotFound(id);
+  if (s != NATS_OK) return link_->error(s, "reading the catalogue entry of " + toString(id));
+  return std::string(static_cast<const char*>(kvEntry_Value(entry.get())),
+                     static_cast<size_t>(kvEntry_ValueLen(entry.get())));
+}
+
+Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::string_view baseBytes) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  TESSERA_RETURN_IF_ERROR(checkDocumentName(name));
+  // Ids come from a compare-and-set counter, so two nodes creating at once
+  // never get the same id, and ids are never reused.
+  DocumentId id;
+  for (int attempt = 0;; ++attempt) {
+    kvEntry* raw = nullptr;
+    natsStatus s = kvStore_Get(&raw, catalog_.get(), "next-id");
+    KvEntryPtr entry(raw);
+    uint64_t next = 1, revision = 0;
+    if (s == NATS_OK) {
+      next = std::stoull(std::string(kvEntry_ValueString(entry.get())));
+      revision = kvEntry_Revision(entry.get());
+    } else if (s != NATS_NOT_FOUND) {
+      return link_->error(s, "reading the next document id");
+    }
+    const std::string after = std::to_string(next + 1);
+    uint64_t newRevision = 0;
+    s = revision == 0 ? kvStore_CreateString(&newRevision, catalog_.get(), "next-id", after.c_str())
+                      : kvStore_UpdateString(&newRevision, catalog_.get(), "next-id", after.c_str(), revision);
+    if (s == NATS_OK) {
+      id = DocumentId{next};
+      break;
+    }
+    if (attempt >= 100) return link_->error(s, "taking a document id (100 attempts lost to other nodes)");
+  }
+  // The base and the genesis message first, the catalogue entry last: a
+  // document is listed only once it is whole.
+  TESSERA_RETURN_IF_ERROR(putBlob(*link_, kBlobStream, blobPrefix(id) + ".base", baseBytes));
+  const std::string genesis = encodeJournalMessage(0, "", "");
+  jsPubAck* ackRaw = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  natsStatus s = js_Publish(&ackRaw, link_->jetStream(), journalSubject(id).c_str(), genesis.data(),
+                            static_cast<int>(genesis.size()), nullptr, &code);
+  PubAckPtr ack(ackRaw);
+  if (s != NATS_OK) return link_->error(s, "starting the journal of " + toString(id), code);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tails_[id.value] = Tail{0, ack->Sequence, {}};
+  }
+  uint64_t revision = 0;
+  s = kvStore_Put(&revision, catalog_.get(), catalogKey(id).c_str(), name.data(), static_cast<int>(name.size()));
+  if (s != NATS_OK) return link_->error(s, "listing " + toString(id) + " in the catalogue");
+  return id;
+}
+
+Expected<std::vector<DocumentSummary>> NatsStore::listDocuments() {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  kvKeysList keys{};
+  const natsStatus s = kvStore_Keys(&keys, catalog_.get(), nullptr);
+  std::vector<uint64_t> ids;
+  if (s == NATS_OK) {
+    for (int i = 0; i < keys.Count; ++i) {
+      const std::string key = keys.Keys[i];
+      if (key.rfind("doc.", 0) == 0) ids.push_back(std::stoull(key.substr(4)));
+    }
+    kvKeysList_Destroy(&keys);
+  } else if (s != NATS_NOT_FOUND) {  // an empty bucket is "not found"
+    return link_->error(s, "listing the catalogue");
+  }
+  std::sort(ids.begin(), ids.end());
+  std::vector<DocumentSummary> documents;
+  for (uint64_t value : ids) {
+    const DocumentId id{value};
+    auto name = documentName(id);
+    if (!name.isOk()) {
+      if (name.status().code() == ErrorCode::kNotFound) continue;  // deleted meanwhile
+      return name.status();
+    }
+    TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
+    documents.push_back(DocumentSummary{id, std::move(*name), tail.version});
+  }
+  return documents;
+}
+
+Status NatsStore::deleteDocument(DocumentId id) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  TESSERA_ASSIGN_OR_RETURN(std::string name, documentName(id));
+  (void)name;
+  // Out of the catalogue first: from then on the document does not exist
+  // for any node, even if the purges below are cut short.
+  natsStatus s = kvStore_Delete(catalog_.get(), catalogKey(id).c_str());
+  if (s != NATS_OK) return link_->error(s, "removing " + toString(id) + " from the catalogue");
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tails_.erase(id.value);
+  }
+  TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kJournalStream, journalSubject(id)));
+  TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, blobPrefix(id) + ".>"));
+  kvKeysList keys{};
+  s = kvStore_Keys(&keys, tokens_.get(), nullptr);
+  if (s == NATS_NOT_FOUND) return Status::ok();
+  if (s != NATS_OK) return link_->error(s, "listing the tokens of " + toString(id));
+  // The document's grants go; a token left with no grant at all is
+  // forgotten, as the SQLite store forgets it.
+  const std::string suffix = ".doc" + std::to_string(id.value);
+  std::map<std::string, int> grantsLeft;  // hash -> grants other than this document's
+  std::vector<std::string> revoked;
+  for (int i = 0; i < keys.Count; ++i) {
+    const std::string key = keys.Keys[i];
+    const size_t dot = key.find('.');
+    if (dot == std::string::npos) continue;
+    const std::string hash = key.substr(0, dot);
+    if (key == knownKey(hash)) continue;
+    if (key.substr(dot) == suffix) {
+      revoked.push_back(key);
+      grantsLeft.emplace(hash, 0);
+    } else {
+      ++grantsLeft[hash];
+    }
+  }
+  kvKeysList_Destroy(&keys);
+  for (const std::string& key : revoked) {
+    s = kvStore_Delete(tokens_.get(), key.c_str());
+    if (s != NATS_OK) return link_->error(s, "revoking a token of " + toString(id));
+  }
+  for (const auto& [hash, left] : grantsLeft) {
+    if (left > 0) continue;
+    s = kvStore_Delete(tokens_.get(), knownKey(hash).c_str());
+    if (s != NATS_OK) return link_->error(s, "revoking a token of " + toString(id));
+  }
+  return Status::ok();
+}
+
+Expected<NatsStore::Tail> NatsStore::tailOf(DocumentId id) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = tails_.find(id.value);
+    if (it != tails_.end()) return it->second;
+  }
+  auto last = lastMessage(*link_, kJournalStream, journalSubject(id));
+  if (!last.isOk()) {
+    if (last.status().code() == ErrorCode::kNotFound) return documentNotFound(id);
+    return last.status();
+  }
+  TESSERA_ASSIGN_OR_RETURN(JournalMessage message,
+                           decodeJournalMessage(last->payload, toString(id) + ", stream sequence " +
+                                                                    std::to_string(last->sequence)));
+  Tail tail{message.version, last->sequence, {}};
+  std::lock_guard<std::mutex> lock(mutex_);
+  return tails_.emplace(id.value, tail).first->second;
+}
+
+Expected<std::vector<JournalEntry>> NatsStore::readJournal(DocumentId id, uint64_t afterSequence,
+                                                           uint64_t afterVersion, uint64_t lastSequence) {
+  // Direct gets, one per entry: no consumer to create, and any replica
+  // answers, so a takeover reads the journal while the stream's leader is
+  // still being elected. A replica may lag the tail read from the leader by
+  // a few messages: those are asked for again, briefly.
+  std::vector<JournalEntry> entries;
+  const std::string subject = journalSubject(id);
+  uint64_t from = afterSequence + 1, expected = afterVersion + 1;
+  int lagging = 0;
+  while (from <= lastSequence) {
+    auto next = nextMessage(*link_, kJournalStream, subject, from);
+    if (!next.isOk()) {
+      if (next.status().code() == ErrorCode::kNotFound && ++lagging <= 50) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        continue;
+      }
+      if (next.status().code() == ErrorCode::kNotFound) {
+        return ioError(toString(id) + ": the journal's replicas do not reach stream sequence " +
+                       std::to_string(lastSequence) + " (" + next.status().message() + ")");
+      }
+      return next.status();
+    }
+    const std::string where = toString(id) + ", stream sequence " + std::to_string(next->sequence);
+    TESSERA_ASSIGN_OR_RETURN(JournalMessage message, decodeJournalMessage(next->payload, where));
+    if (message.version > afterVersion) {
+      if (message.version != expected) {
+        return parseError(where + ": journal entry version " + std::to_string(message.version) + " where " +
+                          std::to_string(expected) + " was next");
+      }
+      entries.push_back(JournalEntry{message.version, std::move(message.author), std::move(message.bytes)});
+      ++expected;
+    }
+    from = next->sequence + 1;
+  }
+  return entries;
+}
+
+Expected<StoredDocument> NatsStore::loadDocument(DocumentId id) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  StoredDocument document;
+  document.id = id;
+  TESSERA_ASSIGN_OR_RETURN(document.name, documentName(id));
+  TESSERA_ASSIGN_OR_RETURN(document.baseBytes,
+                           getBlob(*link_, kBlobStream, blobPrefix(id) + ".base", toString(id) + "'s base"));
+  // Read afresh: the journal may have grown on another node since this one
+  // last saw it (a takeover is exactly that case).
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tails_.erase(id.value);
+  }
+  TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
+  uint64_t fromSequence = 0, fromVersion = 0;
+  auto refs = lastMessage(*link_, kBlobStream, blobPrefix(id) + ".snaps");
+  if (refs.isOk()) {
+    // The newest snapshot that reads whole; an older one if it does not.
+    for (const SnapshotRef& ref : decodeSnapshotRefs(refs->payload)) {
+      auto bytes = getBlob(*link_, kBlobStream, blobPrefix(id) + ".snap." + std::to_string(ref.version),
+                           toString(id) + "'s snapshot at version " + std::to_string(ref.version));
+      if (!bytes.isOk()) continue;
+      document.snapshot = Snapshot{ref.version, std::move(*bytes)};
+      fromSequence = ref.sequence;
+      fromVersion = ref.version;
+      break;
+    }
+  } else if (refs.status().code() != ErrorCode::kNotFound) {
+    return refs.status();
+  }
+  TESSERA_ASSIGN_OR_RETURN(document.entries, readJournal(id, fromSequence, fromVersion, tail.sequence));
+  if (document.latestVersion() != tail.version) {
+    return parseError(toString(id) + ": its journal ends at version " + std::to_string(document.latestVersion()) +
+                      " but its last message is version " + std::to_string(tail.version));
+  }
+  return document;
+}
+
+// ---- journal ---------------------------------------------------------------
+
+void NatsStore::append(DocumentId id, uint64_t version, std::string author, std::string bytes,
+                       AppendCallback done) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!closing_) {
+      queue_.push_back(PendingAppend{id, version, std::move(author), std::move(bytes), std::move(done)});
+      wake_.notify_one();
+      return;
+    }
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_.entriesRejected;
+  }
+  done(ioError("NATS (" + link_->servers() + "): the store is closed"));
+}
+
+Status NatsStore::appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) {
+  if (std::this_thread::get_id() == writer_.get_id()) {
+    return internalError("NATS (" + link_->servers() + "): a synchronous store call from a store callback would wait for itself");
+  }
+  auto promise = std::make_shared<std::promise<Status>>();
+  std::future<Status> result = promise->get_future();
+  append(id, version, std::move(author), std::move(bytes),
+         [promise](Status status) { promise->set_value(std::move(status)); });
+  return result.get();
+}
+
+void NatsStore::run() {
+  while (true) {
+    PendingAppend next;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return closing_ || !queue_.empty(); });
+      if (queue_.empty()) return;  // closing, and every queued append is done
+      next = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    Status status = publishEntry(next);
+    const auto latency = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (status.isOk()) {
+        ++stats_.entriesCommitted;
+        ++stats_.writesCommitted;
+        ++stats_.batches;
+        stats_.lastCommitLatency = latency;
+        stats_.commitLatency.add(latency);
+        stats_.averageBatchSize = 1;
+      } else {
+        ++stats_.entriesRejected;
+      }
+    }
+    next.done(std::move(status));
+  }
+}
+
+Status NatsStore::publishEntry(const PendingAppend& append) {
+  const DocumentId id = append.id;
+  TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
+  TESSERA_RETURN_IF_ERROR(checkVersion(id, append.version, "journal entry"));
+  TESSERA_RETURN_IF_ERROR(checkAuthor(id, append.author));
+  TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
+  if (append.version != tail.version + 1) return versionNotNext(id, append.version, tail.version);
+  const std::string payload = encodeJournalMessage(append.version, append.author, append.bytes);
+  jsPubOptions options;
+  jsPubOptions_Init(&options);
+  options.ExpectLastSubjectSeq = tail.sequence;  // > 0: the genesis message is there
+  jsPubAck* raw = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const natsStatus s = js_Publish(&raw, link_->jetStream(), journalSubject(id).c_str(), payload.data(),
+                                  static_cast<int>(payload.size()), &options, &code);
+  PubAckPtr ack(raw);
+  if (s != NATS_OK) {
+    // Whatever happened, what this store believes of the journal's end may
+    // be wrong now: read it again next time.
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      tails_.erase(id.value);
+    }
+    if (code == JSStreamWrongLastSequenceErr) {
+      return ioError(toString(id) + ": journal entry version " + std::to_string(append.version) +
+                     " refused: another writer appended to the document's journal after stream sequence " +
+                     std::to_string(tail.sequence) + " (this node no longer owns it)");
+    }
+    // A timeout leaves the outcome unknown: the entry may be stored.
+    return link_->error(s, toString(id) + ": journal entry version " + std::to_string(append.version) +
+                               " not acknowledged", code);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  Tail& t = tails_[id.value];
+  t.version = append.version;
+  t.sequence = ack->Sequence;
+  t.recent.emplace_back(append.version, ack->Sequence);
+  if (t.recent.size() > kRecentSequences) t.recent.pop_front();
+  return Status::ok();
+}
+
+Status NatsStore::putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
+  TESSERA_RETURN_IF_ERROR(checkVersion(id, version, "snapshot"));
+  TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
+  if (version > tail.version) return snapshotPastEnd(id, version, tail.version);
+  // The stream sequence of entry `version` lets a load read the journal from
+  // there; 0 (not known here) makes it read from the start and skip.
+  uint64_t sequence = 0;
+  if (version == tail.version) sequence = tail.sequence;
+  for (const auto& [v, seq] : tail.recent) {
+    if (v == version) sequence = seq;
+  }
+  const std::string prefix = blobPrefix(id) + ".snap." + std::to_string(version);
+  TESSERA_RETURN_IF_ERROR(putBlob(*link_, kBlobStream, prefix, bytes));
+  std::vector<SnapshotRef> refs;
+  auto old = lastMessage(*link_, kBlobStream, blobPrefix(id) + ".snaps");
+  if (old.isOk()) refs = decodeSnapshotRefs(old->payload);
+  refs.erase(std::remove_if(refs.begin(), refs.end(), [&](const SnapshotRef& r) { return r.version == version; }),
+             refs.end());
+  refs.insert(refs.begin(), SnapshotRef{version, sequence});
+  std::sort(refs.begin(), refs.end(), [](const SnapshotRef& a, const SnapshotRef& b) { return a.version > b.version; });
+  std::vector<SnapshotRef> dropped;
+  while (refs.size() > 2) {  // the newest two, as the SQLite store keeps
+    dropped.push_back(refs.back());
+    refs.pop_back();
+  }
+  const std::string list = encodeSnapshotRefs(refs);
+  jsPubAck* raw = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const std::string subject = blobPrefix(id) + ".snaps";
+  natsStatus s = js_Publish(&raw, link_->jetStream(), subject.c_str(), list.data(), static_cast<int>(list.size()),
+                            nullptr, &code);
+  PubAckPtr ack(raw);
+  if (s != NATS_OK) return link_->error(s, "listing the snapshot of " + toString(id), code);
+  for (const SnapshotRef& r : dropped) {
+    const std::string gone = blobPrefix(id) + ".snap." + std::to_string(r.version);
+    TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, gone));
+    TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, gone + ".*"));
+  }
+  return Status::ok();
+}
+
+// ---- tokens ----------------------------------------------------------------
+
+Status NatsStore::addToken(TokenScope scope, std::string_view token, Role role) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  if (!scope.isAllDocuments()) {
+    TESSERA_ASSIGN_OR_RETURN(std::string name, documentName(scope.documentId()));
+    (void)name;
+  }
+  TESSERA_RETURN_IF_ERROR(checkTokenToGrant(token));
+  TESSERA_RETURN_IF_ERROR(checkRole(role));
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  uint64_t revision = 0;
+  natsStatus s = kvStore_PutString(&revision, tokens_.get(), tokenKey(hex(hash), scope).c_str(), roleName(role));
+  if (s == NATS_OK) s = kvStore_PutString(&revision, tokens_.get(), knownKey(hex(hash)).c_str(), "1");
+  if (s != NATS_OK) return link_->error(s, "granting an access token for " + scope.toString());
+  return Status::ok();
+}
+
+Status NatsStore::revokeToken(std::string_view token) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  const std::string prefix = hex(hash) + ".";
+  kvKeysList keys{};
+  natsStatus s = kvStore_Keys(&keys, tokens_.get(), nullptr);
+  if (s == NATS_NOT_FOUND) return notFound("no such access token");
+  if (s != NATS_OK) return link_->error(s, "listing access tokens");
+  int removed = 0;
+  Status result;
+  for (int i = 0; i < keys.Count; ++i) {
+    const std::string key = keys.Keys[i];
+    if (key.substr(0, prefix.size()) != prefix || key == knownKey(hex(hash))) continue;
+    s = kvStore_Delete(tokens_.get(), key.c_str());
+    if (s == NATS_OK) {
+      ++removed;
+    } else if (result.isOk()) {
+      result = link_->error(s, "revoking an access token");
+    }
+  }
+  kvKeysList_Destroy(&keys);
+  TESSERA_RETURN_IF_ERROR(result);
+  s = kvStore_Delete(tokens_.get(), knownKey(hex(hash)).c_str());
+  if (s != NATS_OK) return link_->error(s, "revoking an access token");
+  // Never name the token: the caller knows which one it passed.
+  if (removed == 0) return notFound("no such access token");
+  return Status::ok();
+}
+
+Expected<Role> NatsStore::roleFor(std::string_view token, TokenScope scope) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  const Status refused = notFound("access token not valid for " + scope.toString());
+  if (token.empty()) return notFound("no access token given");
+  if (token.size() > kMaxTokenBytes) return refused;
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  const std::string h = hex(hash);
+  std::optional<Role> best;
+  std::vector<std::string> keys = {tokenKey(h, TokenScope::allDocuments())};
+  if (!scope.isAllDocuments()) keys.push_back(tokenKey(h, scope));
+  for (const std::string& key : keys) {
+    kvEntry* raw = nullptr;
+    const natsStatus s = kvStore_Get(&raw, tokens_.get(), key.c_str());
+    KvEntryPtr entry(raw);
+    if (s == NATS_NOT_FOUND) continue;
+    if (s != NATS_OK) return link_->error(s, "checking an access token for " + scope.toString());
+    auto role = parseRole(kvEntry_ValueString(entry.get()));
+    if (role.isOk() && (!best || *role > *best)) best = *role;
+  }
+  if (!best) return refused;
+  return *best;
+}
+
+Expected<bool> NatsStore::knowsToken(std::string_view token) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  if (token.empty() || token.size() > kMaxTokenBytes) return false;
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  kvEntry* raw = nullptr;
+  const natsStatus s = kvStore_Get(&raw, tokens_.get(), knownKey(hex(hash)).c_str());
+  KvEntryPtr entry(raw);
+  if (s == NATS_NOT_FOUND) return false;
+  if (s != NATS_OK) return link_->error(s, "looking up an access token");
+  return true;
+}
+
+StoreStats NatsStore::stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stats_;
+}
+
+}  // namespace tessera::cluster

@@ -1,0 +1,112 @@
+// NatsStore: the Store of the cluster mode, on NATS JetStream (issue 17).
+// Every node of a cluster opens one on the same NATS cluster and sees the
+// same documents, journal and tokens (docs/CLUSTER.md, "What is stored where"):
+//
+//   stream TESSERA_JOURNAL   tessera.journal.<id>: one message per journal
+//                            entry (journal_message.h), replicas R
+//   stream TESSERA_BLOBS     tessera.blob.<id>.base and .snap.<version>:
+//                            chunked blobs (nats_blobs.h); .snaps lists the
+//                            newest two snapshots; one message per subject
+//   bucket TESSERA_CATALOG   next-id, doc.<id> -> name
+//   bucket TESSERA_TOKENS    <sha256 hex>.all / <sha256 hex>.doc<id> -> role
+//
+// Durability: an append is acknowledged once JetStream acknowledged its
+// message, i.e. once a quorum of the stream's replicas stored it.
+//
+// One writer per document: every append carries
+// Nats-Expected-Last-Subject-Sequence, the stream sequence of the document's
+// last message as this store knows it. If another node appended meanwhile
+// (it took the document over), JetStream refuses the append, and the store
+// refuses it with a kIoError that says another writer appended; the host
+// then stops serving the document (issue 17 §2). No version can be written
+// twice, whatever the nodes believe.
+//
+// Appends are published in the order they were called, each after the
+// previous one's acknowledgement, by one writer thread whose callbacks run
+// on it (the Store contract).
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "server/cluster/nats_link.h"
+#include "server/store/store.h"
+
+namespace tessera::cluster {
+
+struct NatsStoreOptions {
+  NatsLinkOptions link;
+  int replicas = 1;  // of every stream and bucket; 3 in a 3-node NATS cluster
+};
+
+class NatsStore final : public Store {
+ public:
+  // Connects and creates the streams and buckets when they do not exist.
+  static Expected<std::unique_ptr<NatsStore>> open(const NatsStoreOptions& options);
+  ~NatsStore() override;
+
+  Expected<DocumentId> createDocument(std::string_view name, std::string_view baseBytes) override;
+  Expected<std::vector<DocumentSummary>> listDocuments() override;
+  Status deleteDocument(DocumentId id) override;
+  Expected<StoredDocument> loadDocument(DocumentId id) override;
+
+  void append(DocumentId id, uint64_t version, std::string author, std::string bytes,
+              AppendCallback done) override;
+  Status appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) override;
+
+  Status putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) override;
+
+  Status addToken(TokenScope scope, std::string_view token, Role role) override;
+  Status revokeToken(std::string_view token) override;
+  Expected<Role> roleFor(std::string_view token, TokenScope scope) override;
+  Expected<bool> knowsToken(std::string_view token) override;
+
+  StoreStats stats() const override;
+  void close() override;
+
+  NatsLink& link() { return *link_; }
+
+ private:
+  // The last journal message of a document as this store knows it.
+  struct Tail {
+    uint64_t version = 0;
+    uint64_t sequence = 0;  // its stream sequence, for the expected-sequence check
+    std::deque<std::pair<uint64_t, uint64_t>> recent;  // (version, sequence), for snapshots
+  };
+  struct PendingAppend {
+    DocumentId id;
+    uint64_t version;
+    std::string author, bytes;
+    AppendCallback done;
+  };
+
+  NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens);
+  void run();  // the writer thread
+  Status publishEntry(const PendingAppend& append);
+  // The tail of a document, read from JetStream when not known; kNotFound
+  // for a document that does not exist.
+  Expected<Tail> tailOf(DocumentId id);
+  Expected<std::string> documentName(DocumentId id);
+  Expected<std::vector<JournalEntry>> readJournal(DocumentId id, uint64_t afterSequence, uint64_t afterVersion,
+                                                  uint64_t lastSequence);
+  Status checkOpen() const;
+
+  std::unique_ptr<NatsLink> link_;
+  KvStorePtr catalog_, tokens_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<PendingAppend> queue_;
+  std::map<uint64_t, Tail> tails_;  // guarded by mutex_
+  bool closing_ = false, closed_ = false;
+  StoreStats stats_;
+  std::thread writer_;
+};
+
+}  // namespace tessera::cluster

@@ -1,0 +1,161 @@
+#include "cluster/nats_cluster.h"
+
+#include <netinet/in.h>
+#include <nats/nats.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+namespace tessera::testing {
+
+namespace {
+
+// A port the kernel has just handed out and taken back: free, with a small
+// race that a test run on loopback does not meet in practice.
+int freePort() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof address;
+  int port = 0;
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0) {
+    port = ntohs(address.sin_port);
+  }
+  ::close(fd);
+  return port;
+}
+
+}  // namespace
+
+Expected<NatsCluster> NatsCluster::start(int servers) {
+  NatsCluster cluster;
+  char pattern[] = "/tmp/tessera-nats-XXXXXX";
+  if (::mkdtemp(pattern) == nullptr) return ioError("mkdtemp failed");
+  cluster.directory_ = pattern;
+  cluster.servers_.resize(static_cast<size_t>(servers));
+  for (auto& s : cluster.servers_) {
+    s.clientPort = freePort();
+    s.routePort = freePort();
+  }
+  for (int i = 0; i < servers; ++i) {
+    Server& s = cluster.servers_[static_cast<size_t>(i)];
+    const std::string name = "n" + std::to_string(i + 1);
+    s.config = cluster.directory_ + "/" + name + ".conf";
+    std::ofstream conf(s.config);
+    conf << "server_name: " << name << "\n"
+         << "listen: 127.0.0.1:" << s.clientPort << "\n"
+         // Snapshots and bases travel in chunks of 512 KiB (nats_blobs.h).
+         << "max_payload: 8MB\n"
+         << "jetstream { store_dir: \"" << cluster.directory_ << "/" << name << "\", max_mem: 64MB, max_file: 2GB }\n";
+    if (servers > 1) {
+      conf << "cluster { name: tessera-test, listen: 127.0.0.1:" << s.routePort << ", routes: [";
+      const char* separator = "";
+      for (int j = 0; j < servers; ++j) {
+        if (j == i) continue;
+        conf << separator << "nats://127.0.0.1:" << cluster.servers_[static_cast<size_t>(j)].routePort;
+        separator = ", ";
+      }
+      conf << "] }\n";
+    }
+  }
+  for (int i = 0; i < servers; ++i) TESSERA_RETURN_IF_ERROR(cluster.launch(i));
+  for (int i = 0; i < servers; ++i) TESSERA_RETURN_IF_ERROR(cluster.waitForJetStream(i));
+  return cluster;
+}
+
+Status NatsCluster::launch(int server) {
+  Server& s = servers_[static_cast<size_t>(server)];
+  const std::string log = s.config + ".log";
+  s.pid = ::fork();
+  if (s.pid < 0) return ioError("fork failed");
+  if (s.pid == 0) {
+    FILE* out = std::freopen(log.c_str(), "a", stderr);
+    (void)out;
+    ::execlp("nats-server", "nats-server", "-c", s.config.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return Status::ok();
+}
+
+Status NatsCluster::waitForJetStream(int server, std::chrono::seconds limit) const {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  std::string last = "not tried";
+  while (std::chrono::steady_clock::now() < deadline) {
+    natsConnection* nc = nullptr;
+    const std::string u = url(server);
+    if (natsConnection_ConnectTo(&nc, u.c_str()) == NATS_OK) {
+      jsCtx* js = nullptr;
+      jsAccountInfo* info = nullptr;
+      jsErrCode code = static_cast<jsErrCode>(0);
+      natsStatus s = natsConnection_JetStream(&js, nc, nullptr);
+      if (s == NATS_OK) s = js_GetAccountInfo(&info, js, nullptr, &code);
+      if (info != nullptr) jsAccountInfo_Destroy(info);
+      jsCtx_Destroy(js);
+      natsConnection_Destroy(nc);
+      if (s == NATS_OK) return Status::ok();
+      last = natsStatus_GetText(s);
+    } else {
+      last = "cannot connect";
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return ioError("nats-server " + std::to_string(server + 1) + " (" + url(server) +
+                 "): JetStream not ready within the limit: " + last + "; see " +
+                 servers_[static_cast<size_t>(server)].config + ".log");
+}
+
+NatsCluster::NatsCluster(NatsCluster&& other) noexcept
+    : directory_(std::move(other.directory_)), servers_(std::move(other.servers_)) {
+  other.servers_.clear();
+  other.directory_.clear();
+}
+
+NatsCluster::~NatsCluster() {
+  for (int i = 0; i < size(); ++i) kill9(i);
+  if (!directory_.empty() && std::getenv("TESSERA_KEEP_NATS") == nullptr) {
+    std::error_code ignored;
+    std::filesystem::remove_all(directory_, ignored);
+  }
+}
+
+std::string NatsCluster::url(int server) const {
+  return "nats://127.0.0.1:" + std::to_string(servers_[static_cast<size_t>(server)].clientPort);
+}
+
+std::string NatsCluster::urls() const {
+  std::string all;
+  for (int i = 0; i < size(); ++i) all += (i ? "," : "") + url(i);
+  return all;
+}
+
+void NatsCluster::kill9(int server) {
+  Server& s = servers_[static_cast<size_t>(server)];
+  if (s.pid <= 0) return;
+  ::kill(s.pid, SIGKILL);
+  int status = 0;
+  ::waitpid(s.pid, &status, 0);
+  s.pid = -1;
+}
+
+Status NatsCluster::restart(int server) {
+  kill9(server);
+  return launch(server);
+}
+
+void NatsCluster::pause(int server) {
+  if (servers_[static_cast<size_t>(server)].pid > 0) ::kill(servers_[static_cast<size_t>(server)].pid, SIGSTOP);
+}
+
+void NatsCluster::resume(int server) {
+  if (servers_[static_cast<size_t>(server)].pid > 0) ::kill(servers_[static_cast<size_t>(server)].pid, SIGCONT);
+}
+
+}  // namespace tessera::testing

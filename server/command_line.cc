@@ -44,6 +44,9 @@ void addClusterOptions(CLI::App& app, ServerConfig& c) {
   app.add_option("--cluster-replicas", c.clusterReplicas,
                  "JetStream replicas of the journal, snapshots and catalogue (3 in a 3-server NATS cluster)")
       ->check(CLI::Range(1, 5))->capture_default_str()->group(g);
+  app.add_option("--lease-ms", c.leaseMs,
+                 "a document owner's lease: a dead owner's documents move to another node after this")
+      ->check(CLI::Range(int64_t{300}, int64_t{600'000}))->capture_default_str()->group(g);
 }
 
 void addLimitOptions(CLI::App& app, ServerConfig& c) {

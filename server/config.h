@@ -56,6 +56,9 @@ struct ServerConfig {
   std::string cluster;
   std::string nodeName;     // this node in logs, stats and leases (default: the host name)
   int clusterReplicas = 3;  // JetStream replicas of the journal, blobs and buckets
+  // A document's owner renews its lease every third of this; a dead owner's
+  // documents are taken over once it runs out (docs/CLUSTER.md, "Failover").
+  int64_t leaseMs = 3000;
   std::string portFile;              // write the bound port here (tests, scripts)
   std::string adminTokenFile;        // a token read at start-up and granted admin on everything
   std::string tlsCertificate, tlsPrivateKey;  // both set: TLS on the listening port

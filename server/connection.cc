@@ -506,7 +506,7 @@ uint64_t Connection::documentOf(const wire::ClientMessage& m) const {
   }
 }
 
-std::shared_ptr<DocumentHost> Connection::openHost(uint64_t documentId, uint64_t clientSeq) {
+std::shared_ptr<DocumentEndpoint> Connection::openHost(uint64_t documentId, uint64_t clientSeq) {
   auto it = open_.find(documentId);
   if (it == open_.end()) {
     reject(clientSeq, wire::REJECT_REASON_NOT_OPEN, "document " + std::to_string(documentId) + " is not open here");
@@ -575,7 +575,7 @@ void Connection::openDocument(uint64_t seq, uint64_t documentId) {
   }
   // Loading replays a journal and may be large: bulk work.
   asio::post(context_.bulk, [self = shared_from_this(), seq, documentId, role = *role] {
-    auto host = self->context_.documents.open(DocumentId{documentId});
+    auto host = self->context_.opener.openEndpoint(DocumentId{documentId});
     asio::post(self->strand_, [self, seq, documentId, role, host] {
       if (!host.isOk()) {
         return self->reject(seq, host.status().code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND
@@ -615,7 +615,7 @@ void Connection::deleteDocument(uint64_t seq, uint64_t documentId) {
     return reject(seq, deleted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND : wire::REJECT_REASON_INTERNAL,
                   deleted.message());
   }
-  context_.documents.forget(DocumentId{documentId});
+  context_.opener.forget(DocumentId{documentId});
   open_.erase(documentId);
   roles_.erase(documentId);
   logEvent(LogLevel::kInfo, "document_deleted", {{"doc", documentId}, {"session", sessionId_}});

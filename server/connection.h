@@ -72,7 +72,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   // costs at most a second's worth, so any allowed batch can pass).
   bool allowedByRate(uint64_t clientSeq, double cost = 1.0);
   std::optional<Role> roleFor(DocumentId id);
-  std::shared_ptr<DocumentHost> openHost(uint64_t documentId, uint64_t clientSeq);
+  std::shared_ptr<DocumentEndpoint> openHost(uint64_t documentId, uint64_t clientSeq);
   void listDocuments(uint64_t clientSeq);
   void createDocument(uint64_t clientSeq, const wire::CreateDocument& request);
   void openDocument(uint64_t clientSeq, uint64_t documentId);
@@ -105,7 +105,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   std::string token_;  // never logged
   std::string name_;
   std::optional<Role> globalRole_;
-  std::map<uint64_t, std::shared_ptr<DocumentHost>> open_;
+  std::map<uint64_t, std::shared_ptr<DocumentEndpoint>> open_;
   std::map<uint64_t, Role> roles_;
   std::map<uint64_t, wire::LodProfile> subscriptions_;
   double bucket_ = 0;

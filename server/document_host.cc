@@ -529,6 +529,7 @@ void DocumentHost::flush() {
 void DocumentHost::committed(uint64_t version, Status status) {
   if (!status.isOk()) {
     failed_ = true;
+    journalFailed_ = true;
     logEvent(LogLevel::kError, "journal_failed", {{"doc", id_.value}, {"version", version}, {"error", status.message()}});
     wire::ServerMessage error;
     error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);

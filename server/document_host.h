@@ -25,6 +25,7 @@
 #include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
+#include <atomic>
 #include <deque>
 #include <map>
 #include <set>
@@ -38,6 +39,7 @@
 #include "core/tessellation/tessellation.h"
 #include "protocol/tessera.pb.h"
 #include "server/config.h"
+#include "server/document_endpoint.h"
 #include "server/journal_entry.h"
 #include "server/serial_queue.h"
 #include "server/server_stats.h"
@@ -50,7 +52,7 @@ namespace tessera::server {
 // rounded), so viewers playing the same frames share them.
 inline constexpr double kMorphTimeSteps = 10000;
 
-class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
+class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_this<DocumentHost> {
  public:
   // Commands run on `workers`; the heavy ones of a large document (a
   // profile's first tessellation, an export) on `bulk` (serial_queue.h).
@@ -58,29 +60,29 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
                boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
                const ServerConfig& config, ServerStats& stats);
   // Trims the heap once the document's memory is freed (see trimMemory).
-  ~DocumentHost();
+  ~DocumentHost() override;
 
   DocumentId id() const { return id_; }
 
   // All of these post onto the host's strand and answer through the
   // subscriber; they never block the caller.
-  void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role);
-  void leave(uint64_t session);
+  void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) override;
+  void leave(uint64_t session) override;
   // Checked: at most --selection-max-ids ids, each existing in the
   // document; a refused selection gets a Reject for `clientSeq`.
-  void select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection);
+  void select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) override;
   // A participant whose presence changes were dropped (its queue was full)
   // gets the whole list again.
-  void resendPresence(uint64_t session);
+  void resendPresence(uint64_t session) override;
   // `withCommands`: also an AppliedCommand per command after the Ack's
   // version (docs/PROTOCOL.md, AppliedCommand); a later subscribe without it stops them.
   void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
-                 bool withCommands = false);
-  void unsubscribe(uint64_t session);
-  void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message);
-  void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request);
+                 bool withCommands = false) override;
+  void unsubscribe(uint64_t session) override;
+  void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) override;
+  void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) override;
   // The coarse morph stream: the control points at t (MorphControl).
-  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request);
+  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) override;
 
   // Triangles a profile needs at least (its base level, held whole) and may
   // reach (its max level); triangles of a uniform surface at `level`. From
@@ -89,6 +91,11 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   int64_t minimumTriangles(const wire::LodProfile& profile) const;
   int64_t maximumTriangles(const wire::LodProfile& profile) const;
   int64_t uniformTriangles(uint32_t level) const;
+
+  // Whether a journal write failed: the host applies nothing more. In a
+  // cluster this means another node wrote to the journal (it owns the
+  // document now) or NATS lost quorum; the node then moves the sessions.
+  bool journalFailed() const { return journalFailed_.load(); }
 
   // Document version (1 at creation, +1 per journaled command).
   static uint64_t versionOf(uint64_t journalEntries) { return journalEntries + 1; }
@@ -218,6 +225,7 @@ class DocumentHost : public std::enable_shared_from_this<DocumentHost> {
   uint64_t flushedVersion_;  // the version views' encoded regions and the last delta reach
   bool flushScheduled_ = false;
   bool failed_ = false;
+  std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
   boost::asio::any_io_executor bulk_;
   SerialQueue queue_;  // the single writer; every member below is touched only in its tasks

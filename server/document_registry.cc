@@ -31,6 +31,11 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   return host;
 }
 
+Expected<std::shared_ptr<DocumentEndpoint>> DocumentRegistry::openEndpoint(DocumentId id) {
+  TESSERA_ASSIGN_OR_RETURN(std::shared_ptr<DocumentHost> host, open(id));
+  return std::shared_ptr<DocumentEndpoint>(std::move(host));
+}
+
 int64_t DocumentRegistry::openCount() {
   std::lock_guard lock(mutex_);
   int64_t live = 0;

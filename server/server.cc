@@ -10,6 +10,7 @@
 
 #include "server/log.h"
 #include "server/cluster/nats_store.h"
+#include "server/cluster_node.h"
 #include "server/store/sqlite_store.h"
 
 namespace tessera::server {
@@ -106,7 +107,17 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   }
   server->registry_ = std::make_unique<DocumentRegistry>(*server->store_, server->workers_.get_executor(),
                                                          server->bulkIo_.get_executor(), server->config_, server->stats_);
-  server->context_ = std::make_unique<ServerContext>(ServerContext{server->config_, *server->store_, *server->registry_,
+  DocumentOpener* opener = server->registry_.get();
+  if (!config.cluster.empty()) {
+    server->config_.nodeName = nodeNameOf(config);
+    auto* nats = dynamic_cast<cluster::NatsStore*>(server->store_.get());
+    TESSERA_ASSIGN_OR_RETURN(server->cluster_,
+                             ClusterNode::start(nats->link(), *server->registry_, server->config_, server->stats_,
+                                                server->workers_.get_executor()));
+    opener = server->cluster_.get();
+    server->nextSession_ = server->cluster_->firstSessionId() + 1;
+  }
+  server->context_ = std::make_unique<ServerContext>(ServerContext{server->config_, *server->store_, *server->registry_, *opener,
                                                                    server->stats_, server->workers_.get_executor(),
                                                                    server->bulkIo_.get_executor(), server->authThrottle_});
   boost::system::error_code ec;
@@ -173,8 +184,13 @@ void Server::pingWatchdog() {
 }
 
 void Server::run() {
-  logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
-                                          {"data", config_.dataDirectory}, {"tls", tls_ != nullptr}});
+  if (cluster_) {
+    logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
+                                            {"cluster", config_.cluster}, {"node", cluster_->name()}, {"tls", tls_ != nullptr}});
+  } else {
+    logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
+                                            {"data", config_.dataDirectory}, {"tls", tls_ != nullptr}});
+  }
   signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
     if (ec) return;
     logEvent(LogLevel::kInfo, "signal", {{"signal", static_cast<int64_t>(signal)}});

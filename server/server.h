@@ -30,6 +30,8 @@
 
 namespace tessera::server {
 
+class ClusterNode;
+
 // The store `config` names: the SQLite one of --data, or, with --cluster,
 // the NATS JetStream one shared by every node of the cluster.
 Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config);
@@ -79,6 +81,7 @@ class Server {
   std::unique_ptr<boost::asio::ssl::context> tls_;
   ServerStats stats_;
   std::unique_ptr<DocumentRegistry> registry_;
+  std::unique_ptr<ClusterNode> cluster_;  // cluster mode only; after registry_, before context_
   std::unique_ptr<ServerContext> context_;
   uint16_t port_ = 0;
   uint64_t nextSession_ = 1;

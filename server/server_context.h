@@ -10,6 +10,7 @@
 
 #include "server/auth_throttle.h"
 #include "server/config.h"
+#include "server/document_endpoint.h"
 #include "server/document_host.h"
 #include "server/server_stats.h"
 #include "server/store/store.h"
@@ -18,7 +19,7 @@ namespace tessera::server {
 
 // Open documents, loaded from the store on first use and shared by every
 // connection that opened them.
-class DocumentRegistry {
+class DocumentRegistry : public DocumentOpener {
  public:
   DocumentRegistry(Store& store, boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk,
                    const ServerConfig& config, ServerStats& stats)
@@ -26,8 +27,10 @@ class DocumentRegistry {
 
   // Loads (on the calling thread) or shares the host of a document.
   Expected<std::shared_ptr<DocumentHost>> open(DocumentId id);
+  // A single node's endpoints are its hosts.
+  Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(DocumentId id) override;
   // Forgets a deleted document's host.
-  void forget(DocumentId id);
+  void forget(DocumentId id) override;
   // Documents whose host is alive (held by a session or still loading).
   int64_t openCount();
 
@@ -44,6 +47,9 @@ struct ServerContext {
   const ServerConfig& config;
   Store& store;
   DocumentRegistry& documents;
+  // Where connections open documents: `documents` itself on a single node,
+  // the cluster node's router in a cluster.
+  DocumentOpener& opener;
   ServerStats& stats;
   boost::asio::any_io_executor workers;
   // Imports and loads (issue 13 §2): off the workers that run documents' strands.

@@ -144,7 +144,9 @@ Expected<KvStorePtr> NatsLink::ensureBucket(const BucketSpec& spec) {
   config.History = 1;
   config.Replicas = spec.replicas;
   config.StorageType = js_FileStorage;
-  config.TTL = spec.ttl.count();  // milliseconds in nats.c's kvConfig
+  // Nanoseconds (the stream's max age), whatever nats.c's documentation of
+  // kvConfig suggests: 1000 there is refused as "max age needs to be >= 100ms".
+  config.TTL = std::chrono::duration_cast<std::chrono::nanoseconds>(spec.ttl).count();
   config.MaxValueSize = spec.maxValueBytes;
   s = js_CreateKeyValue(&kv, jetStream_, &config);
   if (s != NATS_OK) {

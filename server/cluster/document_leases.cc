@@ -1,0 +1,91 @@
+#include "server/cluster/document_leases.h"
+
+namespace tessera::cluster {
+
+namespace {
+
+std::string leaseKey(DocumentId id) { return "doc." + std::to_string(id.value); }
+
+}  // namespace
+
+Expected<std::unique_ptr<DocumentLeases>> DocumentLeases::open(NatsLink& link, std::string node,
+                                                               std::chrono::milliseconds leaseTime, int replicas) {
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr bucket,
+                           link.ensureBucket(BucketSpec{.name = "TESSERA_LEASES", .replicas = replicas, .ttl = leaseTime}));
+  return std::unique_ptr<DocumentLeases>(new DocumentLeases(link, std::move(bucket), std::move(node), leaseTime));
+}
+
+Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
+  if (holds(id)) return true;
+  uint64_t revision = 0;
+  natsStatus s = kvStore_CreateString(&revision, bucket_.get(), leaseKey(id).c_str(), node_.c_str());
+  if (s == NATS_OK) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_[id.value] = revision;
+    return true;
+  }
+  // Taken (or the create lost a race): who holds it?
+  TESSERA_ASSIGN_OR_RETURN(std::optional<std::string> holder, ownerOf(id));
+  if (!holder) return link_.error(s, "taking the lease of " + toString(id));
+  if (*holder == node_) {
+    // Ours from before a restart under the same name: it expires on its own;
+    // meanwhile nobody writes, which is safe.
+    if (owner) *owner = *holder;
+    return false;
+  }
+  if (owner) *owner = *holder;
+  return false;
+}
+
+Status DocumentLeases::renew(DocumentId id) {
+  uint64_t revision = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = held_.find(id.value);
+    if (it == held_.end()) return notFound(toString(id) + ": no lease held by " + node_);
+    revision = it->second;
+  }
+  uint64_t next = 0;
+  const natsStatus s = kvStore_UpdateString(&next, bucket_.get(), leaseKey(id).c_str(), node_.c_str(), revision);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (s == NATS_OK) {
+    held_[id.value] = next;
+    return Status::ok();
+  }
+  return link_.error(s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(revision) + ")");
+}
+
+void DocumentLeases::release(DocumentId id) {
+  uint64_t revision = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = held_.find(id.value);
+    if (it == held_.end()) return;
+    revision = it->second;
+    held_.erase(it);
+  }
+  // Only our own lease: an update on our revision fails if another node
+  // took the key meanwhile, and then the key is not ours to delete.
+  uint64_t next = 0;
+  if (kvStore_UpdateString(&next, bucket_.get(), leaseKey(id).c_str(), "", revision) == NATS_OK) {
+    (void)kvStore_Delete(bucket_.get(), leaseKey(id).c_str());
+  }
+}
+
+Expected<std::optional<std::string>> DocumentLeases::ownerOf(DocumentId id) {
+  kvEntry* raw = nullptr;
+  const natsStatus s = kvStore_Get(&raw, bucket_.get(), leaseKey(id).c_str());
+  KvEntryPtr entry(raw);
+  if (s == NATS_NOT_FOUND) return std::optional<std::string>();
+  if (s != NATS_OK) return link_.error(s, "reading the lease of " + toString(id));
+  std::string holder(static_cast<const char*>(kvEntry_Value(entry.get())), static_cast<size_t>(kvEntry_ValueLen(entry.get())));
+  if (holder.empty()) return std::optional<std::string>();  // being released
+  return std::optional<std::string>(std::move(holder));
+}
+
+bool DocumentLeases::holds(DocumentId id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return held_.count(id.value) > 0;
+}
+
+}  // namespace tessera::cluster

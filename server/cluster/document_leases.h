@@ -1,0 +1,59 @@
+// Ownership leases: which node applies a document's commands (issue 17 §2).
+//
+// One key per document, doc.<id> -> node name, in the key-value bucket
+// TESSERA_LEASES whose values expire after the lease time (the bucket's
+// max age). A node takes a free lease with a create (refused when the key
+// exists), renews it with a compare-and-set update on the revision it
+// holds, and gives it up with a delete. A node that stops renewing (dead,
+// paused, cut off) loses it when it expires; another node then takes it.
+//
+// Leases decide who should write; they do not protect the journal on their
+// own. A paused owner may wake up still believing it owns the document:
+// the journal's expected-sequence check (nats_store.h) refuses its append.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "server/cluster/nats_link.h"
+#include "server/store/store.h"
+
+namespace tessera::cluster {
+
+class DocumentLeases {
+ public:
+  static Expected<std::unique_ptr<DocumentLeases>> open(NatsLink& link, std::string node,
+                                                        std::chrono::milliseconds leaseTime, int replicas);
+
+  // This node's lease of `id`: true when taken or already held; false with
+  // `owner` set when another node holds it.
+  Expected<bool> acquire(DocumentId id, std::string* owner = nullptr);
+  // Renews a held lease; an error (kNotFound: taken by another node or
+  // expired) means this node no longer owns the document.
+  Status renew(DocumentId id);
+  // Gives the lease up (the document closed here); another node may take it at once.
+  void release(DocumentId id);
+  // Who holds the lease now, if anyone.
+  Expected<std::optional<std::string>> ownerOf(DocumentId id);
+  bool holds(DocumentId id) const;
+
+  const std::string& node() const { return node_; }
+  std::chrono::milliseconds leaseTime() const { return leaseTime_; }
+
+ private:
+  DocumentLeases(NatsLink& link, KvStorePtr bucket, std::string node, std::chrono::milliseconds leaseTime)
+      : link_(link), bucket_(std::move(bucket)), node_(std::move(node)), leaseTime_(leaseTime) {}
+
+  NatsLink& link_;
+  KvStorePtr bucket_;
+  const std::string node_;
+  const std::chrono::milliseconds leaseTime_;
+  mutable std::mutex mutex_;
+  std::map<uint64_t, uint64_t> held_;  // document -> revision of our key
+};
+
+}  // namespace tessera::cluster

@@ -1,0 +1,269 @@
+#include "server/cluster_document.h"
+
+#include "server/cluster_node.h"
+#include "server/log.h"
+
+namespace tessera::server {
+
+ClusterDocument::~ClusterDocument() {
+  if (host_) {
+    host_.reset();
+    node_.registry().forget(id_);
+    node_.leases().release(id_);
+    logEvent(LogLevel::kInfo, "lease_released", {{"doc", id_.value}, {"node", node_.name()}});
+  }
+}
+
+Status ClusterDocument::resolve() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return resolveLocked();
+}
+
+Status ClusterDocument::resolveLocked() {
+  std::string owner;
+  TESSERA_ASSIGN_OR_RETURN(bool mine, node_.leases().acquire(id_, &owner));
+  if (!mine) {
+    owner_ = owner;
+    return Status::ok();
+  }
+  // Read afresh from the store: the registry may still hold a host from
+  // before this node last lost the document.
+  node_.registry().forget(id_);
+  auto host = node_.registry().open(id_);
+  if (!host.isOk()) {
+    node_.leases().release(id_);
+    return host.status();
+  }
+  host_ = std::move(*host);
+  owner_ = node_.name();
+  logEvent(LogLevel::kInfo, "lease_taken", {{"doc", id_.value}, {"node", node_.name()}});
+  return Status::ok();
+}
+
+void ClusterDocument::forward(uint64_t session, cluster::Forward::Kind kind,
+                              const std::function<void(cluster::Forward&)>& fill) {
+  if (owner_.empty()) return;  // no owner known: rehome() will join the session when one is
+  cluster::Forward request;
+  request.set_via_node(node_.name());
+  request.set_session_id(session);
+  request.set_document_id(id_.value);
+  request.set_kind(kind);
+  if (fill) fill(request);
+  node_.forward(owner_, request);
+}
+
+void ClusterDocument::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const uint64_t session = who->sessionId();
+  sessions_[session] = LocalSession{who, name, role, std::nullopt, false};
+  node_.addLocalSession(session, who);
+  if (host_) return host_->join(std::move(who), std::move(name), role);
+  forward(session, cluster::Forward::KIND_JOIN, [&](cluster::Forward& f) {
+    f.set_name(name);
+    f.set_role(role);
+  });
+}
+
+void ClusterDocument::leave(uint64_t session) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  sessions_.erase(session);
+  if (host_) return host_->leave(session);
+  forward(session, cluster::Forward::KIND_LEAVE, nullptr);
+}
+
+void ClusterDocument::select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return host_->select(std::move(who), clientSeq, std::move(selection));
+  forward(who->sessionId(), cluster::Forward::KIND_SELECT, [&](cluster::Forward& f) {
+    f.mutable_message()->set_client_seq(clientSeq);
+    *f.mutable_message()->mutable_select()->mutable_selection() = std::move(selection);
+  });
+}
+
+void ClusterDocument::resendPresence(uint64_t session) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return host_->resendPresence(session);
+  forward(session, cluster::Forward::KIND_RESEND_PRESENCE, nullptr);
+}
+
+void ClusterDocument::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
+                                bool resync, bool withCommands) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = sessions_.find(who->sessionId()); it != sessions_.end()) {
+    it->second.profile = profile;
+    it->second.withCommands = withCommands;
+  }
+  if (host_) return host_->subscribe(std::move(who), profile, clientSeq, resync, withCommands);
+  forward(who->sessionId(), cluster::Forward::KIND_SUBSCRIBE, [&](cluster::Forward& f) {
+    f.mutable_message()->set_client_seq(clientSeq);
+    *f.mutable_message()->mutable_subscribe()->mutable_profile() = profile;
+    f.mutable_message()->mutable_subscribe()->set_with_commands(withCommands);
+    f.set_resync(resync);
+  });
+}
+
+void ClusterDocument::unsubscribe(uint64_t session) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = sessions_.find(session); it != sessions_.end()) it->second.profile.reset();
+  if (host_) return host_->unsubscribe(session);
+  forward(session, cluster::Forward::KIND_UNSUBSCRIBE, nullptr);
+}
+
+void ClusterDocument::command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return host_->command(std::move(author), std::move(authorName), std::move(message));
+  if (owner_.empty()) {
+    // Between owners: refused now rather than lost later.
+    wire::ServerMessage reject = rejectFor(message.client_seq(),
+                                           ioError(toString(id_) + " has no owner node right now (a takeover is under "
+                                                                   "way): the edit was not applied; send it again"));
+    author->send({frameOf(reject, node_.maxFrameBytes()), nullptr});
+    return;
+  }
+  forward(author->sessionId(), cluster::Forward::KIND_COMMAND, [&](cluster::Forward& f) {
+    f.set_name(authorName);
+    *f.mutable_message() = std::move(message);
+  });
+}
+
+void ClusterDocument::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return host_->exportGlb(std::move(who), clientSeq, std::move(request));
+  forward(who->sessionId(), cluster::Forward::KIND_EXPORT, [&](cluster::Forward& f) {
+    f.mutable_message()->set_client_seq(clientSeq);
+    *f.mutable_message()->mutable_export_document() = std::move(request);
+  });
+}
+
+void ClusterDocument::morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return host_->morphControl(std::move(who), clientSeq, std::move(request));
+  forward(who->sessionId(), cluster::Forward::KIND_MORPH_CONTROL, [&](cluster::Forward& f) {
+    f.mutable_message()->set_client_seq(clientSeq);
+    *f.mutable_message()->mutable_get_morph_control() = std::move(request);
+  });
+}
+
+bool ClusterDocument::serveRemote(const cluster::Forward& request) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (!host_) return false;
+  const uint64_t session = request.session_id();
+  const wire::ClientMessage& m = request.message();
+  using F = cluster::Forward;
+  auto who = node_.remoteSubscriber(request.via_node(), session);
+  switch (request.kind()) {
+    case F::KIND_JOIN:
+      if (remoteSessions_.insert(session).second && remoteSessions_.size() == 1) {
+        lock.unlock();  // pin() takes the node's lock, which the monitor holds before ours
+        node_.pin(shared_from_this());
+        lock.lock();
+        if (!host_) return false;
+      }
+      host_->join(who, request.name(), request.role());
+      break;
+    case F::KIND_LEAVE:
+      host_->leave(session);
+      if (remoteSessions_.erase(session) && remoteSessions_.empty()) {
+        lock.unlock();
+        node_.unpin(id_);  // may destroy this document when no local session holds it
+        return true;
+      }
+      break;
+    case F::KIND_SELECT: host_->select(who, m.client_seq(), m.select().selection()); break;
+    case F::KIND_RESEND_PRESENCE: host_->resendPresence(session); break;
+    case F::KIND_SUBSCRIBE:
+      host_->subscribe(who, m.subscribe().profile(), m.client_seq(), request.resync(), m.subscribe().with_commands());
+      break;
+    case F::KIND_UNSUBSCRIBE: host_->unsubscribe(session); break;
+    case F::KIND_COMMAND: host_->command(who, request.name(), m); break;
+    case F::KIND_EXPORT: host_->exportGlb(who, m.client_seq(), m.export_document()); break;
+    case F::KIND_MORPH_CONTROL: host_->morphControl(who, m.client_seq(), m.get_morph_control()); break;
+    default: break;  // refused by the node before it came here
+  }
+  return true;
+}
+
+bool ClusterDocument::ownedHere() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return host_ != nullptr;
+}
+
+std::string ClusterDocument::owner() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return owner_;
+}
+
+bool ClusterDocument::needsRehome() {
+  if (notOwner_.load()) return true;
+  std::lock_guard<std::mutex> lock(mutex_);
+  return host_ && host_->journalFailed();
+}
+
+bool ClusterDocument::hasRemoteSessions() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return !remoteSessions_.empty();
+}
+
+void ClusterDocument::dropHostLocked() {
+  if (!host_) return;
+  for (const auto& [session, s] : sessions_) host_->leave(session);
+  for (uint64_t session : remoteSessions_) host_->leave(session);
+  host_.reset();
+  node_.registry().forget(id_);
+  node_.leases().release(id_);
+}
+
+void ClusterDocument::rehome(const std::string& why) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  notOwner_ = false;
+  const std::string from = owner_;
+  const bool hadRemote = !remoteSessions_.empty();
+  if (host_) {
+    dropHostLocked();
+    // Other nodes' sessions go with the host; their nodes see the lease
+    // change and move them.
+    remoteSessions_.clear();
+  } else {
+    for (const auto& [session, s] : sessions_) forward(session, cluster::Forward::KIND_LEAVE, nullptr);
+  }
+  owner_.clear();
+  const Status resolved = resolveLocked();
+  logEvent(resolved.isOk() ? LogLevel::kInfo : LogLevel::kWarn, "document_moved",
+           {{"doc", id_.value}, {"node", node_.name()}, {"from", from}, {"to", owner_}, {"reason", why},
+            {"sessions", static_cast<uint64_t>(sessions_.size())},
+            {"error", resolved.isOk() ? std::string() : resolved.message()}});
+  // Told before the resync: an edit sent to the old owner and not
+  // acknowledged may be lost (docs/CLUSTER.md, "What a client sees").
+  wire::ServerMessage notice;
+  notice.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+  notice.mutable_error()->set_message(toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to node " +
+                                      (owner_.empty() ? "(none yet)" : owner_) + " (" + why +
+                                      "): an edit without its Ack may be lost; a resync snapshot follows");
+  auto frame = frameOf(notice, node_.maxFrameBytes());
+  for (auto& [session, s] : sessions_) {
+    auto who = s.who.lock();
+    if (!who) continue;
+    who->send({frame, nullptr});
+    if (owner_.empty()) continue;  // joined when an owner is found (the monitor tries again)
+    if (host_) {
+      host_->join(who, s.name, s.role);
+      if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);
+    } else {
+      forward(session, cluster::Forward::KIND_JOIN, [&](cluster::Forward& f) {
+        f.set_name(s.name);
+        f.set_role(s.role);
+      });
+      if (s.profile) {
+        forward(session, cluster::Forward::KIND_SUBSCRIBE, [&](cluster::Forward& f) {
+          *f.mutable_message()->mutable_subscribe()->mutable_profile() = *s.profile;
+          f.mutable_message()->mutable_subscribe()->set_with_commands(s.withCommands);
+          f.set_resync(true);
+        });
+      }
+    }
+  }
+  lock.unlock();
+  if (hadRemote) node_.unpin(id_);
+}
+
+}  // namespace tessera::server

@@ -1,0 +1,89 @@
+// One open document on a node of a cluster (issue 17 §2-§4): the endpoint
+// its local connections talk to, whoever owns the document.
+//
+// When this node holds the document's lease, the calls go straight to the
+// local DocumentHost (which journals to JetStream and acknowledges only
+// durable edits), and sessions of other nodes join that host as
+// RemoteSubscribers. Otherwise every call is forwarded to the owner as a
+// cluster::Forward, and the owner's frames come back through the node.
+//
+// When the owner changes (its lease expired, this node lost its own, or an
+// append was refused because another node wrote), rehome() moves every
+// local session to the new owner: each is told that the document moved and
+// that an edit without its Ack may be lost, and each subscription gets a
+// resync snapshot from the new owner, so no viewer sees a gap it is not
+// told of.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "protocol/cluster.pb.h"
+#include "server/document_endpoint.h"
+#include "server/document_host.h"
+
+namespace tessera::server {
+
+class ClusterNode;
+
+class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_this<ClusterDocument> {
+ public:
+  ClusterDocument(DocumentId id, ClusterNode& node) : id_(id), node_(node) {}
+  ~ClusterDocument() override;
+
+  // Takes the lease and loads the document, or finds its owner.
+  Status resolve();
+
+  void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) override;
+  void leave(uint64_t session) override;
+  void select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) override;
+  void resendPresence(uint64_t session) override;
+  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
+                 bool withCommands = false) override;
+  void unsubscribe(uint64_t session) override;
+  void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) override;
+  void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) override;
+  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) override;
+
+  // The owner's side: a request of another node's session. False when this
+  // node does not own the document (the sender is told NotOwner).
+  bool serveRemote(const cluster::Forward& request);
+
+  // For the node's lease monitor.
+  DocumentId id() const { return id_; }
+  bool ownedHere();
+  std::string owner();     // the owner node, "" when unknown
+  bool needsRehome();      // the local host's journal refused a write, or a NotOwner came back
+  void markNotOwner() { notOwner_ = true; }
+  // Moves every local session to the document's current owner.
+  void rehome(const std::string& why);
+  bool hasRemoteSessions();
+
+ private:
+  struct LocalSession {
+    std::weak_ptr<Subscriber> who;
+    std::string name;
+    wire::Role role = wire::ROLE_VIEWER;
+    std::optional<wire::LodProfile> profile;
+    bool withCommands = false;
+  };
+  // Under mutex_: a Forward of `kind` for `session` to the owner.
+  void forward(uint64_t session, cluster::Forward::Kind kind, const std::function<void(cluster::Forward&)>& fill);
+  Status resolveLocked();
+  void dropHostLocked();
+
+  const DocumentId id_;
+  ClusterNode& node_;
+  std::mutex mutex_;
+  std::shared_ptr<DocumentHost> host_;  // set while this node owns the document
+  std::string owner_;                   // otherwise: the owner's node name
+  std::map<uint64_t, LocalSession> sessions_;
+  std::set<uint64_t> remoteSessions_;   // other nodes' sessions joined to host_
+  std::atomic<bool> notOwner_{false};
+};
+
+}  // namespace tessera::server

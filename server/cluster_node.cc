@@ -1,0 +1,271 @@
+#include "server/cluster_node.h"
+
+#include "server/cluster_document.h"
+#include "server/log.h"
+
+namespace tessera::server {
+
+namespace {
+
+// Node numbers come from a compare-and-set counter in the catalogue bucket,
+// so two nodes never share one, even under the same name after a restart.
+Expected<uint64_t> takeNodeNumber(cluster::NatsLink& link) {
+  TESSERA_ASSIGN_OR_RETURN(cluster::KvStorePtr bucket,
+                           link.ensureBucket(cluster::BucketSpec{.name = "TESSERA_NODES", .replicas = 1}));
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    kvEntry* raw = nullptr;
+    natsStatus s = kvStore_Get(&raw, bucket.get(), "next-number");
+    cluster::KvEntryPtr entry(raw);
+    uint64_t next = 1, revision = 0;
+    if (s == NATS_OK) {
+      next = std::stoull(std::string(kvEntry_ValueString(entry.get())));
+      revision = kvEntry_Revision(entry.get());
+    } else if (s != NATS_NOT_FOUND) {
+      return link.error(s, "reading the next node number");
+    }
+    const std::string after = std::to_string(next + 1);
+    uint64_t ignored = 0;
+    s = revision == 0 ? kvStore_CreateString(&ignored, bucket.get(), "next-number", after.c_str())
+                      : kvStore_UpdateString(&ignored, bucket.get(), "next-number", after.c_str(), revision);
+    // 2^13 numbers: session ids stay below 2^53, exact in JavaScript too.
+    if (s == NATS_OK) return next % 8191 + 1;
+  }
+  return ioError("NATS (" + link.servers() + "): taking a node number lost 100 races");
+}
+
+}  // namespace
+
+ClusterNode::ClusterNode(cluster::NatsLink& link, DocumentRegistry& registry, const ServerConfig& config,
+                         ServerStats& stats, boost::asio::any_io_executor workers, std::string name)
+    : link_(link),
+      registry_(registry),
+      config_(config),
+      stats_(stats),
+      name_(std::move(name)),
+      relay_(link.connection(), workers) {}
+
+Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& link, DocumentRegistry& registry,
+                                                          const ServerConfig& config, ServerStats& stats,
+                                                          boost::asio::any_io_executor workers) {
+  std::string name = config.nodeName;
+  for (char c : name) {
+    // A node name is a NATS subject token and a key-value key part.
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')) {
+      return invalidArgument("--node-name '" + name + "': use letters, digits, '-' and '_' only");
+    }
+  }
+  std::unique_ptr<ClusterNode> node(new ClusterNode(link, registry, config, stats, workers, std::move(name)));
+  TESSERA_ASSIGN_OR_RETURN(node->number_, takeNodeNumber(link));
+  TESSERA_ASSIGN_OR_RETURN(node->leases_, cluster::DocumentLeases::open(link, node->name_,
+                                                                        std::chrono::milliseconds(config.leaseMs),
+                                                                        config.clusterReplicas));
+  natsStatus s = natsConnection_Subscribe(&node->forwardSubscription_, link.connection(),
+                                          nodeSubject(node->name_, "forward").c_str(), &ClusterNode::onForward, node.get());
+  if (s == NATS_OK) {
+    s = natsConnection_Subscribe(&node->framesSubscription_, link.connection(),
+                                 nodeSubject(node->name_, "frames").c_str(), &ClusterNode::onNodeMessage, node.get());
+  }
+  if (s == NATS_OK) s = natsConnection_Flush(link.connection());
+  if (s != NATS_OK) return link.error(s, "subscribing to node " + node->name_ + "'s subjects");
+  node->monitor_ = std::thread([raw = node.get()] { raw->monitor(); });
+  logEvent(LogLevel::kInfo, "cluster_node_started",
+           {{"node", node->name_}, {"number", node->number_}, {"nats", link.servers()},
+            {"lease_ms", static_cast<int64_t>(config.leaseMs)}});
+  return node;
+}
+
+ClusterNode::~ClusterNode() {
+  {
+    std::lock_guard<std::mutex> lock(monitorMutex_);
+    stopping_ = true;
+  }
+  monitorWake_.notify_all();
+  if (monitor_.joinable()) monitor_.join();
+  // No callback runs after these return.
+  if (forwardSubscription_) {
+    natsSubscription_Unsubscribe(forwardSubscription_);
+    natsSubscription_Destroy(forwardSubscription_);
+  }
+  if (framesSubscription_) {
+    natsSubscription_Unsubscribe(framesSubscription_);
+    natsSubscription_Destroy(framesSubscription_);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  pinned_.clear();
+}
+
+Expected<std::shared_ptr<DocumentEndpoint>> ClusterNode::openEndpoint(DocumentId id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = documents_.find(id.value); it != documents_.end()) {
+    if (auto doc = it->second.lock()) return std::shared_ptr<DocumentEndpoint>(doc);
+  }
+  auto doc = std::make_shared<ClusterDocument>(id, *this);
+  TESSERA_RETURN_IF_ERROR(doc->resolve());
+  documents_[id.value] = doc;
+  return std::shared_ptr<DocumentEndpoint>(doc);
+}
+
+void ClusterNode::forget(DocumentId id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  documents_.erase(id.value);
+  pinned_.erase(id.value);
+  registry_.forget(id);
+}
+
+std::vector<uint64_t> ClusterNode::ownedDocuments() {
+  std::vector<uint64_t> owned;
+  for (const auto& doc : liveDocuments()) {
+    if (doc->ownedHere()) owned.push_back(doc->id().value);
+  }
+  return owned;
+}
+
+std::vector<std::shared_ptr<ClusterDocument>> ClusterNode::liveDocuments() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::shared_ptr<ClusterDocument>> live;
+  for (auto it = documents_.begin(); it != documents_.end();) {
+    if (auto doc = it->second.lock()) {
+      live.push_back(std::move(doc));
+      ++it;
+    } else {
+      it = documents_.erase(it);
+    }
+  }
+  return live;
+}
+
+void ClusterNode::forward(const std::string& owner, const cluster::Forward& request) {
+  const std::string bytes = request.SerializeAsString();
+  const natsStatus s = natsConnection_Publish(link_.connection(), nodeSubject(owner, "forward").c_str(), bytes.data(),
+                                              static_cast<int>(bytes.size()));
+  if (s != NATS_OK) {
+    logEvent(LogLevel::kWarn, "cluster_forward_failed",
+             {{"to", owner}, {"doc", request.document_id()}, {"error", natsStatus_GetText(s)}});
+  }
+}
+
+void ClusterNode::addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  localSessions_[session] = std::move(who);
+}
+
+std::shared_ptr<RemoteSubscriber> ClusterNode::remoteSubscriber(const std::string& node, uint64_t session) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto& slot = remoteSubscribers_[session];
+  if (!slot || slot->node() != node) slot = std::make_shared<RemoteSubscriber>(relay_, node, session);
+  return slot;
+}
+
+void ClusterNode::pin(const std::shared_ptr<ClusterDocument>& document) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  pinned_[document->id().value] = document;
+}
+
+void ClusterNode::unpin(DocumentId id) {
+  std::shared_ptr<ClusterDocument> released;  // destroyed outside the lock
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = pinned_.find(id.value); it != pinned_.end()) {
+    released = std::move(it->second);
+    pinned_.erase(it);
+  }
+}
+
+void ClusterNode::onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self) {
+  static_cast<ClusterNode*>(self)->handleForward(natsMsg_GetData(msg), natsMsg_GetDataLength(msg), natsMsg_GetSubject(msg));
+  natsMsg_Destroy(msg);
+}
+
+void ClusterNode::onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self) {
+  static_cast<ClusterNode*>(self)->handleNodeMessage(natsMsg_GetData(msg), natsMsg_GetDataLength(msg),
+                                                     natsMsg_GetSubject(msg));
+  natsMsg_Destroy(msg);
+}
+
+void ClusterNode::dropMessage(const char* subject, int length, const std::string& why) {
+  ++dropped_;
+  logEvent(LogLevel::kWarn, "cluster_message_dropped",
+           {{"node", name_}, {"subject", subject}, {"bytes", static_cast<int64_t>(length)}, {"reason", why}});
+}
+
+void ClusterNode::handleForward(const char* data, int length, const char* subject) {
+  cluster::Forward request;
+  if (length <= 0 || !request.ParseFromArray(data, length)) return dropMessage(subject, length, "not a cluster Forward");
+  if (request.kind() == cluster::Forward::KIND_UNSPECIFIED || !cluster::Forward::Kind_IsValid(request.kind()) ||
+      request.via_node().empty() || request.session_id() == 0 || request.document_id() == 0) {
+    return dropMessage(subject, length, "a Forward without its kind, node, session or document");
+  }
+  std::shared_ptr<ClusterDocument> doc;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto it = documents_.find(request.document_id()); it != documents_.end()) doc = it->second.lock();
+  }
+  if (doc && doc->serveRemote(request)) return;
+  if (request.kind() == cluster::Forward::KIND_LEAVE) return;  // nothing to leave here
+  cluster::NodeMessage reply;
+  reply.mutable_not_owner()->set_document_id(request.document_id());
+  auto owner = leases_->ownerOf(DocumentId{request.document_id()});
+  if (owner.isOk() && owner->has_value()) reply.mutable_not_owner()->set_owner(**owner);
+  relay_.publish(request.via_node(), reply);
+}
+
+void ClusterNode::handleNodeMessage(const char* data, int length, const char* subject) {
+  cluster::NodeMessage message;
+  if (length <= 0 || !message.ParseFromArray(data, length)) return dropMessage(subject, length, "not a cluster NodeMessage");
+  if (message.has_not_owner()) {
+    std::shared_ptr<ClusterDocument> doc;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (auto it = documents_.find(message.not_owner().document_id()); it != documents_.end()) doc = it->second.lock();
+    }
+    if (doc) {
+      doc->markNotOwner();
+      monitorWake_.notify_all();
+    }
+    return;
+  }
+  if (!message.has_frames()) return dropMessage(subject, length, "an empty cluster NodeMessage");
+  auto outgoing = framesToOutgoing(message.frames(), config_.limits.maxFrameBytes);
+  if (!outgoing.isOk()) return dropMessage(subject, length, outgoing.status().message());
+  std::vector<std::shared_ptr<Subscriber>> targets;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (uint64_t session : message.frames().session_ids()) {
+      auto it = localSessions_.find(session);
+      if (it == localSessions_.end()) continue;
+      if (auto who = it->second.lock()) targets.push_back(std::move(who));
+    }
+  }
+  for (auto& who : targets) who->send(*outgoing);
+}
+
+void ClusterNode::monitor() {
+  const auto period = std::chrono::milliseconds(std::max<int64_t>(config_.leaseMs / 3, 50));
+  while (true) {
+    {
+      std::unique_lock<std::mutex> lock(monitorMutex_);
+      monitorWake_.wait_for(lock, period, [this] { return stopping_; });
+      if (stopping_) return;
+    }
+    for (const auto& doc : liveDocuments()) {
+      if (doc->needsRehome()) {
+        doc->rehome(doc->ownedHere() ? "its journal refused a write: another node wrote to it" : "the owner did not know it");
+        continue;
+      }
+      if (doc->ownedHere()) {
+        const Status renewed = leases_->renew(doc->id());
+        if (!renewed.isOk()) doc->rehome("this node's lease was lost: " + renewed.message());
+        continue;
+      }
+      auto owner = leases_->ownerOf(doc->id());
+      if (!owner.isOk()) continue;  // NATS unavailable: keep what is known
+      const std::string now = owner->value_or("");
+      if (now != doc->owner()) doc->rehome(now.empty() ? "the owner's lease expired" : "the lease moved to " + now);
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = localSessions_.begin(); it != localSessions_.end();) {
+      it = it->second.expired() ? localSessions_.erase(it) : std::next(it);
+    }
+  }
+}
+
+}  // namespace tessera::server

@@ -1,0 +1,101 @@
+// A tessera-server node of a cluster (issue 17, docs/CLUSTER.md): the
+// document router of its connections, and its part in the cluster's traffic
+// on plain NATS subjects:
+//
+//   tessera.node.<name>.forward   requests of other nodes' sessions for the
+//                                 documents this node owns (cluster::Forward)
+//   tessera.node.<name>.frames    what owners send to this node's sessions
+//                                 (cluster::NodeMessage), fanned out here
+//
+// A monitor thread renews the leases of the documents this node owns
+// (every third of the lease time) and watches the owners of the others;
+// when an owner changes, the document's local sessions are moved
+// (ClusterDocument::rehome). A message on these subjects that does not
+// decode is logged and dropped; it never reaches a document.
+#pragma once
+
+#include <boost/asio/any_io_executor.hpp>
+#include <atomic>
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/cluster/document_leases.h"
+#include "server/cluster/nats_link.h"
+#include "server/cluster_relay.h"
+#include "server/document_endpoint.h"
+#include "server/server_context.h"
+
+namespace tessera::server {
+
+class ClusterDocument;
+
+class ClusterNode : public DocumentOpener {
+ public:
+  // Subscribes to the node's subjects and starts the lease monitor.
+  static Expected<std::unique_ptr<ClusterNode>> start(cluster::NatsLink& link, DocumentRegistry& registry,
+                                                      const ServerConfig& config, ServerStats& stats,
+                                                      boost::asio::any_io_executor workers);
+  ~ClusterNode() override;
+
+  Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(DocumentId id) override;
+  void forget(DocumentId id) override;
+
+  const std::string& name() const { return name_; }
+  // Session ids of this node start here: the node's number (unique in the
+  // cluster, from a counter in NATS) in the high bits, so a session id names
+  // one session in the whole cluster (owners key participants by it).
+  uint64_t firstSessionId() const { return number_ << 40; }
+  std::vector<uint64_t> ownedDocuments();
+  uint64_t messagesDropped() const { return dropped_.load(); }
+  uint32_t maxFrameBytes() const { return config_.limits.maxFrameBytes; }
+
+  // For ClusterDocument.
+  cluster::DocumentLeases& leases() { return *leases_; }
+  DocumentRegistry& registry() { return registry_; }
+  void forward(const std::string& owner, const cluster::Forward& request);
+  void addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who);
+  std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);
+  void pin(const std::shared_ptr<ClusterDocument>& document);    // kept open for other nodes' sessions
+  void unpin(DocumentId id);
+
+ private:
+  ClusterNode(cluster::NatsLink& link, DocumentRegistry& registry, const ServerConfig& config, ServerStats& stats,
+              boost::asio::any_io_executor workers, std::string name);
+  static void onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
+  static void onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
+  void handleForward(const char* data, int length, const char* subject);
+  void handleNodeMessage(const char* data, int length, const char* subject);
+  void dropMessage(const char* subject, int length, const std::string& why);
+  void monitor();
+  std::vector<std::shared_ptr<ClusterDocument>> liveDocuments();
+
+  cluster::NatsLink& link_;
+  DocumentRegistry& registry_;
+  const ServerConfig& config_;
+  ServerStats& stats_;
+  const std::string name_;
+  uint64_t number_ = 0;
+  std::unique_ptr<cluster::DocumentLeases> leases_;
+  FrameRelay relay_;
+  natsSubscription* forwardSubscription_ = nullptr;
+  natsSubscription* framesSubscription_ = nullptr;
+
+  std::mutex mutex_;
+  std::map<uint64_t, std::weak_ptr<ClusterDocument>> documents_;
+  std::map<uint64_t, std::shared_ptr<ClusterDocument>> pinned_;
+  std::map<uint64_t, std::weak_ptr<Subscriber>> localSessions_;
+  std::map<uint64_t, std::shared_ptr<RemoteSubscriber>> remoteSubscribers_;
+  std::atomic<uint64_t> dropped_{0};
+
+  std::mutex monitorMutex_;
+  std::condition_variable monitorWake_;
+  bool stopping_ = false;
+  std::thread monitor_;
+};
+
+}  // namespace tessera::server

@@ -1,0 +1,109 @@
+// Real tessera-server nodes on a real 3-server NATS JetStream cluster (issue
+// 17): any node serves any client, the owner's journal in JetStream is the
+// truth, and every viewer on every node converges to the surface that
+// journal replays to.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <thread>
+
+#include "cluster/cluster_run.h"
+#include "core/hierarchy/ids.h"
+#include "integration/messages.h"
+#include "integration/server_stat.h"
+
+namespace tessera {
+namespace {
+
+using client::DocumentView;
+using client::Session;
+using testing::ClusterRun;
+using testing::kClusterAngle;
+using testing::kClusterBase;
+using testing::kClusterMax;
+
+struct Viewer {
+  std::unique_ptr<Session> session;
+  std::unique_ptr<DocumentView> view;
+};
+
+Viewer openViewer(ClusterRun& run, int node, uint64_t doc) {
+  Viewer v;
+  auto s = Session::connect(run.session(node, "viewer@" + run.nodeName(node), testing::kViewerToken));
+  EXPECT_TRUE(s.isOk()) << s.status().message();
+  if (!s.isOk()) return v;
+  v.session = std::move(*s);
+  auto opened = v.session->call(testing::openDocument(doc), 30);
+  EXPECT_TRUE(opened.isOk() && opened->has_ack()) << (opened.isOk() ? opened->DebugString() : opened.status().message());
+  auto subscribed = v.session->call(testing::subscribe(doc, kClusterBase, kClusterMax, kClusterAngle), 30);
+  EXPECT_TRUE(subscribed.isOk() && subscribed->has_ack())
+      << (subscribed.isOk() ? subscribed->DebugString() : subscribed.status().message());
+  v.view = std::make_unique<DocumentView>(doc);
+  return v;
+}
+
+// An offset move of a level-1 vertex by a few thousandths: inside the
+// document's grid whatever the order of a storm's moves.
+wire::ClientMessage smallMove(uint64_t doc, std::mt19937& rng) {
+  std::uniform_int_distribution<uint32_t> vertex(0, 25);
+  std::uniform_real_distribution<double> offset(-0.004, 0.004);
+  return testing::moveVertex(doc, VertexId(1, vertex(rng)).packed(), offset(rng), offset(rng), offset(rng),
+                             wire::MOVE_MODE_OFFSET);
+}
+
+TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
+  auto run = ClusterRun::start(3);
+  ASSERT_TRUE(run.isOk()) << run.status().message();
+  ClusterRun& c = **run;
+  auto doc = c.createCube();
+  ASSERT_TRUE(doc.isOk()) << doc.status().message();
+
+  // The first to open the document takes its lease: node 0's viewer.
+  std::vector<Viewer> viewers;
+  for (int node = 0; node < 3; ++node) viewers.push_back(openViewer(c, node, *doc));
+  for (auto& v : viewers) ASSERT_TRUE(testing::followUntil(*v.session, *v.view, 1, 20));
+  const uint64_t before = viewers[0].view->surfaceHash();
+  for (auto& v : viewers) EXPECT_EQ(v.view->surfaceHash(), before);
+
+  // Editors on the two nodes that do not own the document: every command is
+  // forwarded to node 0 and answered through their own node.
+  std::vector<std::unique_ptr<Session>> editors;
+  for (int node : {1, 2}) {
+    auto s = Session::connect(c.session(node, "editor@" + c.nodeName(node), testing::kEditorToken));
+    ASSERT_TRUE(s.isOk()) << s.status().message();
+    auto opened = (*s)->call(testing::openDocument(*doc), 30);
+    ASSERT_TRUE(opened.isOk() && opened->has_ack());
+    editors.push_back(std::move(*s));
+  }
+  std::mt19937 rng(17);
+  std::map<uint64_t, std::string> ackedBy;  // version -> editor
+  constexpr int kEditsEach = 20;
+  for (int i = 0; i < kEditsEach; ++i) {
+    for (size_t e = 0; e < editors.size(); ++e) {
+      auto ack = editors[e]->call(smallMove(*doc, rng), 30);
+      ASSERT_TRUE(ack.isOk() && ack->has_ack()) << (ack.isOk() ? ack->DebugString() : ack.status().message());
+      EXPECT_TRUE(ackedBy.emplace(ack->ack().version(), "editor@" + c.nodeName(static_cast<int>(e) + 1)).second)
+          << "version " << ack->ack().version() << " acknowledged twice";
+    }
+  }
+  const uint64_t last = 1 + 2 * kEditsEach;
+  EXPECT_EQ(ackedBy.rbegin()->first, last);
+
+  // The journal in JetStream holds every acknowledged edit, by its author,
+  // and replays to the surface every viewer shows.
+  auto journal = testing::journalState(c.nats, *doc);
+  ASSERT_TRUE(journal.isOk()) << journal.status().message();
+  ASSERT_EQ(journal->version, last);
+  for (const auto& [version, author] : ackedBy) EXPECT_EQ(journal->entries[version - 2].author, author) << version;
+  for (auto& v : viewers) {
+    ASSERT_TRUE(testing::followUntil(*v.session, *v.view, last, 30));
+    EXPECT_EQ(v.view->version(), last);
+    EXPECT_EQ(v.view->surfaceHash(), journal->surfaceHash);
+    EXPECT_TRUE(v.view->verifySurface().isOk());
+  }
+  EXPECT_NE(journal->surfaceHash, before);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -8,6 +8,7 @@ namespace tessera::server {
 ClusterDocument::~ClusterDocument() {
   if (host_) {
     host_.reset();
+    --node_.stats().documentsOwned;
     node_.registry().forget(id_);
     node_.leases().release(id_);
     logEvent(LogLevel::kInfo, "lease_released", {{"doc", id_.value}, {"node", node_.name()}});
@@ -35,6 +36,7 @@ Status ClusterDocument::resolveLocked() {
     return host.status();
   }
   host_ = std::move(*host);
+  ++node_.stats().documentsOwned;
   owner_ = node_.name();
   logEvent(LogLevel::kInfo, "lease_taken", {{"doc", id_.value}, {"node", node_.name()}});
   return Status::ok();
@@ -209,6 +211,7 @@ void ClusterDocument::dropHostLocked() {
   for (const auto& [session, s] : sessions_) host_->leave(session);
   for (uint64_t session : remoteSessions_) host_->leave(session);
   host_.reset();
+  --node_.stats().documentsOwned;
   node_.registry().forget(id_);
   node_.leases().release(id_);
 }
@@ -228,6 +231,7 @@ void ClusterDocument::rehome(const std::string& why) {
   }
   owner_.clear();
   const Status resolved = resolveLocked();
+  ++node_.stats().documentsMoved;
   logEvent(resolved.isOk() ? LogLevel::kInfo : LogLevel::kWarn, "document_moved",
            {{"doc", id_.value}, {"node", node_.name()}, {"from", from}, {"to", owner_}, {"reason", why},
             {"sessions", static_cast<uint64_t>(sessions_.size())},
@@ -236,9 +240,11 @@ void ClusterDocument::rehome(const std::string& why) {
   // acknowledged may be lost (docs/CLUSTER.md, "What a client sees").
   wire::ServerMessage notice;
   notice.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-  notice.mutable_error()->set_message(toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to node " +
-                                      (owner_.empty() ? "(none yet)" : owner_) + " (" + why +
-                                      "): an edit without its Ack may be lost; a resync snapshot follows");
+  const std::string to = owner_.empty() ? "none yet (" + resolved.message() + ")" : "node " + owner_;
+  notice.mutable_error()->set_message(toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to " + to +
+                                      " (" + why + "): an edit without its Ack may be lost; " +
+                                      (owner_.empty() ? "edits are refused until a node can load it"
+                                                      : "a resync snapshot follows"));
   auto frame = frameOf(notice, node_.maxFrameBytes());
   for (auto& [session, s] : sessions_) {
     auto who = s.who.lock();

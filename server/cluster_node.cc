@@ -67,6 +67,7 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& lin
   }
   if (s == NATS_OK) s = natsConnection_Flush(link.connection());
   if (s != NATS_OK) return link.error(s, "subscribing to node " + node->name_ + "'s subjects");
+  stats.clusterNode = static_cast<int64_t>(node->number_);
   node->monitor_ = std::thread([raw = node.get()] { raw->monitor(); });
   logEvent(LogLevel::kInfo, "cluster_node_started",
            {{"node", node->name_}, {"number", node->number_}, {"nats", link.servers()},
@@ -97,7 +98,12 @@ ClusterNode::~ClusterNode() {
 Expected<std::shared_ptr<DocumentEndpoint>> ClusterNode::openEndpoint(DocumentId id) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (auto it = documents_.find(id.value); it != documents_.end()) {
-    if (auto doc = it->second.lock()) return std::shared_ptr<DocumentEndpoint>(doc);
+    if (auto doc = it->second.lock()) {
+      // Between owners (a takeover failed, e.g. on a damaged journal): try
+      // again, so a new client hears why instead of waiting.
+      if (doc->owner().empty()) TESSERA_RETURN_IF_ERROR(doc->resolve());
+      return std::shared_ptr<DocumentEndpoint>(doc);
+    }
   }
   auto doc = std::make_shared<ClusterDocument>(id, *this);
   TESSERA_RETURN_IF_ERROR(doc->resolve());
@@ -183,6 +189,7 @@ void ClusterNode::onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg
 
 void ClusterNode::dropMessage(const char* subject, int length, const std::string& why) {
   ++dropped_;
+  ++stats_.clusterMessagesDropped;
   logEvent(LogLevel::kWarn, "cluster_message_dropped",
            {{"node", name_}, {"subject", subject}, {"bytes", static_cast<int64_t>(length)}, {"reason", why}});
 }

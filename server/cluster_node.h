@@ -57,6 +57,7 @@ class ClusterNode : public DocumentOpener {
   // For ClusterDocument.
   cluster::DocumentLeases& leases() { return *leases_; }
   DocumentRegistry& registry() { return registry_; }
+  ServerStats& stats() { return stats_; }
   void forward(const std::string& owner, const cluster::Forward& request);
   void addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who);
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);

@@ -689,6 +689,12 @@ void Connection::stats(uint64_t seq) {
   add("store_batches", static_cast<double>(store.batches));
   add("store_average_batch", store.averageBatchSize);
   add("store_last_commit_ms", static_cast<double>(store.lastCommitLatency.count()) / 1000.0);
+  if (!context_.config.cluster.empty()) {
+    add("cluster_node", static_cast<double>(s.clusterNode.load()));
+    add("documents_owned", static_cast<double>(s.documentsOwned.load()));
+    add("documents_moved", static_cast<double>(s.documentsMoved.load()));
+    add("cluster_messages_dropped", static_cast<double>(s.clusterMessagesDropped.load()));
+  }
   reply(m);
 }
 

@@ -30,6 +30,13 @@ struct ServerStats {
   std::atomic<int64_t> deltaFlushes{0};    // deltas made per view; a flush covers every edit queued together
   std::atomic<int64_t> connectionsRefused{0};  // over a connection limit, before any Hello
   std::atomic<int64_t> authFailures{0};        // Hellos with a token the store does not know
+  // Cluster mode (issue 17): this node's number, the documents whose lease
+  // it holds, the documents it moved to another owner (or took over), and
+  // the cluster messages it dropped as malformed.
+  std::atomic<int64_t> clusterNode{0};
+  std::atomic<int64_t> documentsOwned{0};
+  std::atomic<int64_t> documentsMoved{0};
+  std::atomic<int64_t> clusterMessagesDropped{0};
   // Latencies (histograms for /metrics): an edit from being applied to its
   // durable ack (the journal commit), a view's tessellation build or
   // update, and one region's encoding.

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <random>
+#include <set>
 #include <thread>
 
 #include "cluster/cluster_run.h"
@@ -103,6 +104,19 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
     EXPECT_TRUE(v.view->verifySurface().isOk());
   }
   EXPECT_NE(journal->surfaceHash, before);
+
+  // The stats say which node owns the document and that each node is a
+  // distinct cluster node.
+  std::set<double> numbers;
+  for (int node = 0; node < 3; ++node) {
+    auto admin = Session::connect(c.session(node, "admin", c.nodes[static_cast<size_t>(node)]->adminToken()));
+    ASSERT_TRUE(admin.isOk());
+    EXPECT_EQ(testing::serverStat(**admin, "documents_owned"), node == 0 ? 1 : 0) << c.nodeName(node);
+    EXPECT_EQ(testing::serverStat(**admin, "cluster_messages_dropped"), 0) << c.nodeName(node);
+    numbers.insert(testing::serverStat(**admin, "cluster_node"));
+  }
+  EXPECT_EQ(numbers.size(), 3u);
+  EXPECT_EQ(numbers.count(0), 0u);
 }
 
 }  // namespace

@@ -155,7 +155,7 @@ bool ClusterDocument::serveRemote(const cluster::Forward& request) {
   auto who = node_.remoteSubscriber(request.via_node(), session);
   switch (request.kind()) {
     case F::KIND_JOIN:
-      if (remoteSessions_.insert(session).second && remoteSessions_.size() == 1) {
+      if (remoteSessions_.emplace(session, request.via_node()).second && remoteSessions_.size() == 1) {
         lock.unlock();  // pin() takes the node's lock, which the monitor holds before ours
         node_.pin(shared_from_this());
         lock.lock();
@@ -206,10 +206,27 @@ bool ClusterDocument::hasRemoteSessions() {
   return !remoteSessions_.empty();
 }
 
+void ClusterDocument::dropRemoteSessions(const std::string& node, uint64_t incarnation) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  bool dropped = false;
+  for (auto it = remoteSessions_.begin(); it != remoteSessions_.end();) {
+    if (it->second == node && sessionIncarnation(it->first) == incarnation) {
+      if (host_) host_->leave(it->first);
+      it = remoteSessions_.erase(it);
+      dropped = true;
+    } else {
+      ++it;
+    }
+  }
+  const bool empty = remoteSessions_.empty();
+  lock.unlock();
+  if (dropped && empty) node_.unpin(id_);
+}
+
 void ClusterDocument::dropHostLocked() {
   if (!host_) return;
   for (const auto& [session, s] : sessions_) host_->leave(session);
-  for (uint64_t session : remoteSessions_) host_->leave(session);
+  for (const auto& [session, node] : remoteSessions_) host_->leave(session);
   host_.reset();
   --node_.stats().documentsOwned;
   node_.registry().forget(id_);

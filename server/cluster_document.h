@@ -19,7 +19,6 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
 
 #include "protocol/cluster.pb.h"
@@ -62,6 +61,9 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // Moves every local session to the document's current owner.
   void rehome(const std::string& why);
   bool hasRemoteSessions();
+  // The owner's side: a node died (or restarted as a new incarnation):
+  // its sessions leave the document, as if each had closed it.
+  void dropRemoteSessions(const std::string& node, uint64_t incarnation);
 
  private:
   struct LocalSession {
@@ -82,7 +84,7 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   std::shared_ptr<DocumentHost> host_;  // set while this node owns the document
   std::string owner_;                   // otherwise: the owner's node name
   std::map<uint64_t, LocalSession> sessions_;
-  std::set<uint64_t> remoteSessions_;   // other nodes' sessions joined to host_
+  std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node
   std::atomic<bool> notOwner_{false};
 };
 

@@ -1,5 +1,7 @@
 #include "server/cluster_node.h"
 
+#include <set>
+
 #include "server/cluster_document.h"
 #include "server/log.h"
 
@@ -59,7 +61,15 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& lin
   TESSERA_ASSIGN_OR_RETURN(node->leases_, cluster::DocumentLeases::open(link, node->name_,
                                                                         std::chrono::milliseconds(config.leaseMs),
                                                                         config.clusterReplicas));
-  natsStatus s = natsConnection_Subscribe(&node->forwardSubscription_, link.connection(),
+  TESSERA_ASSIGN_OR_RETURN(node->alive_, link.ensureBucket(cluster::BucketSpec{
+                                             .name = "TESSERA_ALIVE",
+                                             .replicas = config.clusterReplicas,
+                                             .ttl = std::chrono::milliseconds(config.leaseMs)}));
+  uint64_t revision = 0;
+  natsStatus s = kvStore_PutString(&revision, node->alive_.get(), node->name_.c_str(),
+                                   std::to_string(node->number_).c_str());
+  if (s != NATS_OK) return link.error(s, "announcing node " + node->name_);
+  s = natsConnection_Subscribe(&node->forwardSubscription_, link.connection(),
                                           nodeSubject(node->name_, "forward").c_str(), &ClusterNode::onForward, node.get());
   if (s == NATS_OK) {
     s = natsConnection_Subscribe(&node->framesSubscription_, link.connection(),
@@ -245,6 +255,30 @@ void ClusterNode::handleNodeMessage(const char* data, int length, const char* su
   for (auto& who : targets) who->send(*outgoing);
 }
 
+void ClusterNode::heartbeat() {
+  uint64_t revision = 0;
+  (void)kvStore_PutString(&revision, alive_.get(), name_.c_str(), std::to_string(number_).c_str());
+  std::set<std::pair<std::string, uint64_t>> nodes;  // (name, incarnation) of other nodes' sessions here
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [session, who] : remoteSubscribers_) nodes.emplace(who->node(), sessionIncarnation(session));
+  }
+  for (const auto& [node, incarnation] : nodes) {
+    kvEntry* raw = nullptr;
+    const natsStatus s = kvStore_Get(&raw, alive_.get(), node.c_str());
+    cluster::KvEntryPtr entry(raw);
+    if (s != NATS_OK && s != NATS_NOT_FOUND) continue;  // NATS unavailable: decide nothing
+    if (s == NATS_OK && std::to_string(incarnation) == kvEntry_ValueString(entry.get())) continue;
+    logEvent(LogLevel::kInfo, "cluster_node_gone", {{"node", name_}, {"gone", node}, {"incarnation", incarnation}});
+    for (const auto& doc : liveDocuments()) doc->dropRemoteSessions(node, incarnation);
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto it = remoteSubscribers_.begin(); it != remoteSubscribers_.end();) {
+      const bool gone = it->second->node() == node && sessionIncarnation(it->first) == incarnation;
+      it = gone ? remoteSubscribers_.erase(it) : std::next(it);
+    }
+  }
+}
+
 void ClusterNode::monitor() {
   const auto period = std::chrono::milliseconds(std::max<int64_t>(config_.leaseMs / 3, 50));
   while (true) {
@@ -253,6 +287,7 @@ void ClusterNode::monitor() {
       monitorWake_.wait_for(lock, period, [this] { return stopping_; });
       if (stopping_) return;
     }
+    heartbeat();
     for (const auto& doc : liveDocuments()) {
       if (doc->needsRehome()) {
         doc->rehome(doc->ownedHere() ? "its journal refused a write: another node wrote to it" : "the owner did not know it");

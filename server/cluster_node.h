@@ -34,6 +34,9 @@ namespace tessera::server {
 
 class ClusterDocument;
 
+// The number of the node that made `session` (ClusterNode::firstSessionId).
+inline uint64_t sessionIncarnation(uint64_t session) { return session >> 40; }
+
 class ClusterNode : public DocumentOpener {
  public:
   // Subscribes to the node's subjects and starts the lease monitor.
@@ -73,6 +76,11 @@ class ClusterNode : public DocumentOpener {
   void handleNodeMessage(const char* data, int length, const char* subject);
   void dropMessage(const char* subject, int length, const std::string& why);
   void monitor();
+  // Renews this node's key in TESSERA_ALIVE (name -> number, expiring after
+  // the lease time) and drops other nodes' sessions whose node is gone or
+  // came back as another incarnation: a dead node's viewers do not stay
+  // on as participants.
+  void heartbeat();
   std::vector<std::shared_ptr<ClusterDocument>> liveDocuments();
 
   cluster::NatsLink& link_;
@@ -82,6 +90,7 @@ class ClusterNode : public DocumentOpener {
   const std::string name_;
   uint64_t number_ = 0;
   std::unique_ptr<cluster::DocumentLeases> leases_;
+  cluster::KvStorePtr alive_;
   FrameRelay relay_;
   natsSubscription* forwardSubscription_ = nullptr;
   natsSubscription* framesSubscription_ = nullptr;

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <random>
+#include <functional>
 #include <set>
 #include <thread>
 
@@ -117,6 +118,39 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
   }
   EXPECT_EQ(numbers.size(), 3u);
   EXPECT_EQ(numbers.count(0), 0u);
+
+  // Presence across nodes: a selection made on node 1 reaches node 2's
+  // viewer through the owner; when node 1 dies, node 2's viewer hears that
+  // its sessions left (the owner drops a dead node's sessions).
+  const uint64_t selector = viewers[1].session->sessionId();
+  wire::ClientMessage select;
+  select.mutable_select()->set_document_id(*doc);
+  select.mutable_select()->mutable_selection()->add_vertex_ids(VertexId(0, 3).packed());
+  ASSERT_TRUE(viewers[1].session->send(select).isOk());  // a selection is answered only if refused
+  auto waitForPresence = [&](Session& s, const std::function<bool(const wire::Presence&)>& wanted) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (std::chrono::steady_clock::now() < deadline) {
+      auto m = s.receive(0.5);
+      if (m.isOk() && m->has_presence() && wanted(m->presence())) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(waitForPresence(*viewers[2].session, [&](const wire::Presence& p) {
+    for (const auto& who : p.participants()) {
+      if (who.session_id() == selector && who.selection().vertex_ids_size() == 1 &&
+          who.selection().vertex_ids(0) == VertexId(0, 3).packed()) {
+        return true;
+      }
+    }
+    return false;
+  })) << "node 2's viewer never saw node 1's selection";
+  c.nodes[1]->kill9();
+  EXPECT_TRUE(waitForPresence(*viewers[2].session, [&](const wire::Presence& p) {
+    for (uint64_t left : p.left_session_ids()) {
+      if (left == selector) return true;
+    }
+    return false;
+  })) << "node 1 died but its viewer stayed a participant";
 }
 
 }  // namespace

@@ -195,8 +195,7 @@ std::string ClusterDocument::owner() {
   return owner_;
 }
 
-bool ClusterDocument::needsRehome() {
-  if (notOwner_.load()) return true;
+bool ClusterDocument::journalFailed() {
   std::lock_guard<std::mutex> lock(mutex_);
   return host_ && host_->journalFailed();
 }

@@ -56,7 +56,8 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   DocumentId id() const { return id_; }
   bool ownedHere();
   std::string owner();     // the owner node, "" when unknown
-  bool needsRehome();      // the local host's journal refused a write, or a NotOwner came back
+  bool journalFailed();    // the local host's journal refused a write: it applies nothing more
+  bool notOwnerReported() const { return notOwner_.load(); }  // a NotOwner came back for a Forward
   void markNotOwner() { notOwner_ = true; }
   // Moves every local session to the document's current owner.
   void rehome(const std::string& why);

@@ -289,13 +289,21 @@ void ClusterNode::monitor() {
     }
     heartbeat();
     for (const auto& doc : liveDocuments()) {
-      if (doc->needsRehome()) {
-        doc->rehome(doc->ownedHere() ? "its journal refused a write: another node wrote to it" : "the owner did not know it");
-        continue;
-      }
       if (doc->ownedHere()) {
         const Status renewed = leases_->renew(doc->id());
-        if (!renewed.isOk()) doc->rehome("this node's lease was lost: " + renewed.message());
+        if (renewed.code() == ErrorCode::kNotFound) {
+          doc->rehome("this node's lease was lost: " + renewed.message());
+        } else if (renewed.isOk() && doc->journalFailed()) {
+          // Another node wrote to the journal, or NATS was down and is back:
+          // JetStream decides what the document holds, so load it again.
+          // While NATS stays down the host keeps serving what it has
+          // (reads go on, writes are refused by the journal).
+          doc->rehome("its journal refused a write; reloading the document from JetStream");
+        }
+        continue;
+      }
+      if (doc->notOwnerReported()) {
+        doc->rehome("the owner did not know it");
         continue;
       }
       auto owner = leases_->ownerOf(doc->id());

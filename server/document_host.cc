@@ -330,7 +330,8 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
                               message = std::move(message)] {
     const uint64_t seq = message.client_seq();
     if (self->failed_) {
-      author->send({frameOf(rejectFor(seq, internalError("the document's journal failed; reopen it")),
+      author->send({frameOf(rejectFor(seq, internalError("the document's journal failed (" +
+                                                         self->journalFailure_.message() + "); reopen it")),
                             self->config_.limits.maxFrameBytes),
                     nullptr});
       return;
@@ -530,10 +531,12 @@ void DocumentHost::committed(uint64_t version, Status status) {
   if (!status.isOk()) {
     failed_ = true;
     journalFailed_ = true;
+    journalFailure_ = status;
     logEvent(LogLevel::kError, "journal_failed", {{"doc", id_.value}, {"version", version}, {"error", status.message()}});
     wire::ServerMessage error;
     error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-    error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": journal write failed");
+    error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": journal write failed: " +
+                                       status.message());
     auto frame = frameOf(error, config_.limits.maxFrameBytes);
     for (auto& [session, p] : participants_) {
       if (auto who = p.who.lock()) who->send({frame, nullptr});
@@ -542,7 +545,10 @@ void DocumentHost::committed(uint64_t version, Status status) {
     for (const Pending& p : pending_) {
       if (p.version <= ackedVersion_) continue;  // durable, acked
       if (auto author = p.author.lock()) {
-        author->send({frameOf(rejectFor(p.clientSeq, internalError("the journal write failed; the edit is lost")),
+        // Not acknowledged: lost, or (a store that timed out, e.g. NATS
+        // without quorum) possibly durable; the document, once reloaded, says.
+        author->send({frameOf(rejectFor(p.clientSeq, internalError("the journal write failed (" + status.message() +
+                                                                   "): the edit was not acknowledged and may be lost")),
                               config_.limits.maxFrameBytes),
                       nullptr});
       }

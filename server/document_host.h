@@ -226,6 +226,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   bool flushScheduled_ = false;
   bool failed_ = false;
   std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
+  Status journalFailure_;                   // why, for later commands' Rejects
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
   boost::asio::any_io_executor bulk_;
   SerialQueue queue_;  // the single writer; every member below is touched only in its tasks

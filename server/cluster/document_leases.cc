@@ -52,7 +52,17 @@ Status DocumentLeases::renew(DocumentId id) {
     held_[id.value] = next;
     return Status::ok();
   }
-  return link_.error(s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(revision) + ")");
+  const Status failed =
+      link_.error(s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(revision) + ")");
+  if (s == NATS_TIMEOUT || s == NATS_NO_RESPONDERS || s == NATS_CONNECTION_CLOSED || s == NATS_NOT_YET_CONNECTED ||
+      s == NATS_CONNECTION_DISCONNECTED) {
+    // NATS did not answer: nobody else can take the lease either (that
+    // needs the same quorum), so the document stays here, read-only in
+    // effect (its appends fail the same way).
+    return failed;
+  }
+  held_.erase(id.value);
+  return notFound(failed.message());
 }
 
 void DocumentLeases::release(DocumentId id) {

@@ -32,8 +32,9 @@ class DocumentLeases {
   // This node's lease of `id`: true when taken or already held; false with
   // `owner` set when another node holds it.
   Expected<bool> acquire(DocumentId id, std::string* owner = nullptr);
-  // Renews a held lease; an error (kNotFound: taken by another node or
-  // expired) means this node no longer owns the document.
+  // Renews a held lease. kNotFound: taken by another node or expired, this
+  // node no longer owns the document. kIoError: NATS did not answer (no
+  // quorum, disconnected): ownership is unknown but nobody can take it.
   Status renew(DocumentId id);
   // Gives the lease up (the document closed here); another node may take it at once.
   void release(DocumentId id);

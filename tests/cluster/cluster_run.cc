@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <thread>
 
 #include "core/morph/keyed_document_file.h"
 #include "core/tessellation/document_grid.h"
@@ -15,10 +16,11 @@
 
 namespace tessera::testing {
 
-Expected<std::unique_ptr<ClusterRun>> ClusterRun::start(int nodes, int leaseMs) {
+Expected<std::unique_ptr<ClusterRun>> ClusterRun::start(int nodes, int leaseMs, std::vector<std::string> extraArgs) {
   TESSERA_ASSIGN_OR_RETURN(NatsCluster nats, NatsCluster::start(3));
   std::unique_ptr<ClusterRun> run(new ClusterRun(makeTempDir("tessera-cluster"), std::move(nats)));
   run->leaseMs_ = leaseMs;
+  run->extraArgs_ = std::move(extraArgs);
   run->nodes.resize(static_cast<size_t>(nodes));
   for (int i = 0; i < nodes; ++i) TESSERA_RETURN_IF_ERROR(run->startNode(i));
   return run;
@@ -33,11 +35,11 @@ ClusterRun::~ClusterRun() {
 }
 
 Status ClusterRun::startNode(int index) {
-  TESSERA_ASSIGN_OR_RETURN(
-      ServerProcess process,
-      ServerProcess::start(directory + "/" + nodeName(index),
-                           {"--cluster", nats.urls(), "--node-name", nodeName(index), "--cluster-replicas", "3",
-                            "--lease-ms", std::to_string(leaseMs_), "--snapshot-every", "1000000"}));
+  std::vector<std::string> args = {"--cluster",        nats.urls(), "--node-name",   nodeName(index),
+                                   "--cluster-replicas", "3",      "--lease-ms",    std::to_string(leaseMs_),
+                                   "--snapshot-every",   "1000000"};
+  args.insert(args.end(), extraArgs_.begin(), extraArgs_.end());
+  TESSERA_ASSIGN_OR_RETURN(ServerProcess process, ServerProcess::start(directory + "/" + nodeName(index), args));
   nodes[static_cast<size_t>(index)] = std::make_unique<ServerProcess>(std::move(process));
   return Status::ok();
 }
@@ -65,8 +67,14 @@ Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId
   cluster::NatsStoreOptions options;
   TESSERA_ASSIGN_OR_RETURN(options.link.urls, cluster::parseNatsUrls(nats.urls()));
   options.replicas = 3;
-  TESSERA_ASSIGN_OR_RETURN(auto store, cluster::NatsStore::open(options));
-  TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, store->loadDocument(DocumentId{documentId}));
+  // A server just restarted may still be catching up: retried for a while.
+  Expected<StoredDocument> loaded = ioError("not tried");
+  for (int attempt = 0; attempt < 20 && !loaded.isOk(); ++attempt) {
+    auto store = cluster::NatsStore::open(options);
+    loaded = store.isOk() ? (*store)->loadDocument(DocumentId{documentId}) : Expected<StoredDocument>(store.status());
+    if (!loaded.isOk()) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
+  TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, std::move(loaded));
   // From the base, never from a snapshot: the snapshots are the server's
   // own output, the journal is what it acknowledged.
   TESSERA_ASSIGN_OR_RETURN(KeyedDocument doc, deserializeKeyedDocument(stored.baseBytes, "the test's replay"));

@@ -29,7 +29,8 @@ struct ClusterRun {
   std::vector<std::unique_ptr<ServerProcess>> nodes;  // null once killed
 
   // `nodes` tessera-servers named node0.. on a fresh 3-server NATS cluster.
-  static Expected<std::unique_ptr<ClusterRun>> start(int nodes, int leaseMs = 1500);
+  static Expected<std::unique_ptr<ClusterRun>> start(int nodes, int leaseMs = 1500,
+                                                     std::vector<std::string> extraArgs = {});
   ~ClusterRun();  // kills what runs; removes the logs unless TESSERA_KEEP_NATS is set
   Status startNode(int index);  // again, after a kill
   std::string nodeName(int index) const { return "node" + std::to_string(index); }
@@ -41,6 +42,7 @@ struct ClusterRun {
  private:
   ClusterRun(std::string dir, NatsCluster n) : directory(std::move(dir)), nats(std::move(n)) {}
   int leaseMs_ = 1500;
+  std::vector<std::string> extraArgs_;  // for every node (benchmarks raise limits)
 };
 
 // The surface hash (PROTOCOL 6.5) of the document as the journal in

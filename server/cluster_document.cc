@@ -247,6 +247,7 @@ void ClusterDocument::rehome(const std::string& why) {
   }
   owner_.clear();
   const Status resolved = resolveLocked();
+  if (from.empty() && !resolved.isOk()) return;  // still no owner: nothing moved, nothing to log
   ++node_.stats().documentsMoved;
   logEvent(resolved.isOk() ? LogLevel::kInfo : LogLevel::kWarn, "document_moved",
            {{"doc", id_.value}, {"node", node_.name()}, {"from", from}, {"to", owner_}, {"reason", why},
@@ -262,10 +263,12 @@ void ClusterDocument::rehome(const std::string& why) {
                                       (owner_.empty() ? "edits are refused until a node can load it"
                                                       : "a resync snapshot follows"));
   auto frame = frameOf(notice, node_.maxFrameBytes());
+  // A retry that fails again (no owner before, none now) tells nobody anew.
+  const bool tell = !from.empty() || resolved.isOk();
   for (auto& [session, s] : sessions_) {
     auto who = s.who.lock();
     if (!who) continue;
-    who->send({frame, nullptr});
+    if (tell) who->send({frame, nullptr});
     if (owner_.empty()) continue;  // joined when an owner is found (the monitor tries again)
     if (host_) {
       host_->join(who, s.name, s.role);

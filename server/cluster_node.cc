@@ -306,6 +306,12 @@ void ClusterNode::monitor() {
         doc->rehome("the owner did not know it");
         continue;
       }
+      if (doc->owner().empty()) {
+        // No node could load it last time (NATS without quorum, a damaged
+        // journal): try again; its sessions hear only of a success.
+        doc->rehome("no node could load it before");
+        continue;
+      }
       auto owner = leases_->ownerOf(doc->id());
       if (!owner.isOk()) continue;  // NATS unavailable: keep what is known
       const std::string now = owner->value_or("");

@@ -79,6 +79,6 @@ done
 doc=$("$cli" remote create tests/data/cube.obj --tags tests/data/cube.tags --port "$base" --token-file "$token_file")
 "$cli" remote list --port $((base + 2)) --token-file "$token_file"
 echo "cluster up: NATS $cluster; nodes on 127.0.0.1 ports $base-$((base + 2)); document $doc; admin token in $token_file"
-echo "view it through any node: build/release/client/view/tessera-view --port $((base + 1)) --token-file $token_file --document $doc"
+echo "view it through any node: build/release/client/view/tessera-view --connect 127.0.0.1:$((base + 1)) --token-file $token_file --document $doc"
 if [ -n "${TESSERA_CLUSTER_ONCE:-}" ]; then exit 0; fi
 wait

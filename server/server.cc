@@ -73,8 +73,16 @@ Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config) {
   TESSERA_ASSIGN_OR_RETURN(options.link.urls, cluster::parseNatsUrls(config.cluster));
   options.link.clientName = "tessera-server " + nodeNameOf(config);
   options.replicas = config.clusterReplicas;
-  TESSERA_ASSIGN_OR_RETURN(auto store, cluster::NatsStore::open(options));
-  return std::unique_ptr<Store>(std::move(store));
+  // A NATS cluster that has just started answers JetStream requests only
+  // once it elected its leaders: nodes started with it wait (up to 60 s).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (true) {
+    auto store = cluster::NatsStore::open(options);
+    if (store.isOk()) return std::unique_ptr<Store>(std::move(*store));
+    if (store.status().code() != ErrorCode::kIoError || std::chrono::steady_clock::now() > deadline) return store.status();
+    logEvent(LogLevel::kWarn, "cluster_waiting", {{"error", store.status().message()}});
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
 }
 
 std::string nodeNameOf(const ServerConfig& config) {
@@ -111,9 +119,20 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   if (!config.cluster.empty()) {
     server->config_.nodeName = nodeNameOf(config);
     auto* nats = dynamic_cast<cluster::NatsStore*>(server->store_.get());
-    TESSERA_ASSIGN_OR_RETURN(server->cluster_,
-                             ClusterNode::start(nats->link(), *server->registry_, server->config_, server->stats_,
-                                                server->workers_.get_executor()));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (true) {
+      auto node = ClusterNode::start(nats->link(), *server->registry_, server->config_, server->stats_,
+                                     server->workers_.get_executor());
+      if (node.isOk()) {
+        server->cluster_ = std::move(*node);
+        break;
+      }
+      if (node.status().code() != ErrorCode::kIoError || std::chrono::steady_clock::now() > deadline) {
+        return node.status();
+      }
+      logEvent(LogLevel::kWarn, "cluster_waiting", {{"error", node.status().message()}});
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    }
     opener = server->cluster_.get();
     server->nextSession_ = server->cluster_->firstSessionId() + 1;
   }

@@ -35,6 +35,15 @@ Status ClusterDocument::resolveLocked() {
     node_.leases().release(id_);
     return host.status();
   }
+  // Fenced: from here on, an old owner that loaded the journal before
+  // cannot append, so the loaded journal is the whole truth of what was
+  // applied (and answerOutcomes can say "not applied").
+  const Status fenced = node_.store().fenceJournal(id_);
+  if (!fenced.isOk()) {
+    node_.registry().forget(id_);
+    node_.leases().release(id_);
+    return fenced;
+  }
   host_ = std::move(*host);
   ++node_.stats().documentsOwned;
   owner_ = node_.name();
@@ -122,6 +131,9 @@ void ClusterDocument::command(std::shared_ptr<Subscriber> author, std::string au
     author->send({frameOf(reject, node_.maxFrameBytes()), nullptr});
     return;
   }
+  // Until its Ack or Reject comes back: if the owner dies first, the new
+  // owner is asked what became of it (rehome).
+  node_.noteOutstanding(author->sessionId(), message.client_seq(), id_);
   forward(author->sessionId(), cluster::Forward::KIND_COMMAND, [&](cluster::Forward& f) {
     f.set_name(authorName);
     *f.mutable_message() = std::move(message);
@@ -180,6 +192,9 @@ bool ClusterDocument::serveRemote(const cluster::Forward& request) {
     case F::KIND_COMMAND: host_->command(who, request.name(), m); break;
     case F::KIND_EXPORT: host_->exportGlb(who, m.client_seq(), m.export_document()); break;
     case F::KIND_MORPH_CONTROL: host_->morphControl(who, m.client_seq(), m.get_morph_control()); break;
+    case F::KIND_OUTCOMES:
+      host_->answerOutcomes(who, std::vector<uint64_t>(request.client_seqs().begin(), request.client_seqs().end()));
+      break;
     default: break;  // refused by the node before it came here
   }
   return true;
@@ -270,9 +285,12 @@ void ClusterDocument::rehome(const std::string& why) {
     if (!who) continue;
     if (tell) who->send({frame, nullptr});
     if (owner_.empty()) continue;  // joined when an owner is found (the monitor tries again)
+    // Commands this session sent to the old owner and got no answer for.
+    std::vector<uint64_t> unanswered = from.empty() ? std::vector<uint64_t>() : node_.takeOutstanding(session, id_);
     if (host_) {
       host_->join(who, s.name, s.role);
       if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);
+      if (!unanswered.empty()) host_->answerOutcomes(who, std::move(unanswered));
     } else {
       forward(session, cluster::Forward::KIND_JOIN, [&](cluster::Forward& f) {
         f.set_name(s.name);
@@ -283,6 +301,12 @@ void ClusterDocument::rehome(const std::string& why) {
           *f.mutable_message()->mutable_subscribe()->mutable_profile() = *s.profile;
           f.mutable_message()->mutable_subscribe()->set_with_commands(s.withCommands);
           f.set_resync(true);
+        });
+      }
+      if (!unanswered.empty()) {
+        for (uint64_t seq : unanswered) node_.noteOutstanding(session, seq, id_);  // until the new owner answers
+        forward(session, cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
+          for (uint64_t seq : unanswered) f.add_client_seqs(seq);
         });
       }
     }

@@ -3,6 +3,7 @@
 #include <set>
 
 #include "server/cluster_document.h"
+#include "protocol/framing.h"
 #include "server/log.h"
 
 namespace tessera::server {
@@ -37,18 +38,19 @@ Expected<uint64_t> takeNodeNumber(cluster::NatsLink& link) {
 
 }  // namespace
 
-ClusterNode::ClusterNode(cluster::NatsLink& link, DocumentRegistry& registry, const ServerConfig& config,
+ClusterNode::ClusterNode(cluster::NatsLink& link, Store& store, DocumentRegistry& registry, const ServerConfig& config,
                          ServerStats& stats, boost::asio::any_io_executor workers, std::string name)
     : link_(link),
+      store_(store),
       registry_(registry),
       config_(config),
       stats_(stats),
       name_(std::move(name)),
       relay_(link.connection(), workers) {}
 
-Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& link, DocumentRegistry& registry,
-                                                          const ServerConfig& config, ServerStats& stats,
-                                                          boost::asio::any_io_executor workers) {
+Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& link, Store& store,
+                                                          DocumentRegistry& registry, const ServerConfig& config,
+                                                          ServerStats& stats, boost::asio::any_io_executor workers) {
   std::string name = config.nodeName;
   for (char c : name) {
     // A node name is a NATS subject token and a key-value key part.
@@ -56,7 +58,7 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& lin
       return invalidArgument("--node-name '" + name + "': use letters, digits, '-' and '_' only");
     }
   }
-  std::unique_ptr<ClusterNode> node(new ClusterNode(link, registry, config, stats, workers, std::move(name)));
+  std::unique_ptr<ClusterNode> node(new ClusterNode(link, store, registry, config, stats, workers, std::move(name)));
   TESSERA_ASSIGN_OR_RETURN(node->number_, takeNodeNumber(link));
   TESSERA_ASSIGN_OR_RETURN(node->leases_, cluster::DocumentLeases::open(link, node->name_,
                                                                         std::chrono::milliseconds(config.leaseMs),
@@ -160,6 +162,28 @@ void ClusterNode::forward(const std::string& owner, const cluster::Forward& requ
   }
 }
 
+void ClusterNode::noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  outstanding_[session][clientSeq] = document.value;
+}
+
+std::vector<uint64_t> ClusterNode::takeOutstanding(uint64_t session, DocumentId document) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<uint64_t> seqs;
+  auto it = outstanding_.find(session);
+  if (it == outstanding_.end()) return seqs;
+  for (auto c = it->second.begin(); c != it->second.end();) {
+    if (c->second == document.value) {
+      seqs.push_back(c->first);
+      c = it->second.erase(c);
+    } else {
+      ++c;
+    }
+  }
+  if (it->second.empty()) outstanding_.erase(it);
+  return seqs;
+}
+
 void ClusterNode::addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who) {
   std::lock_guard<std::mutex> lock(mutex_);
   localSessions_[session] = std::move(who);
@@ -243,10 +267,26 @@ void ClusterNode::handleNodeMessage(const char* data, int length, const char* su
   if (!message.has_frames()) return dropMessage(subject, length, "an empty cluster NodeMessage");
   auto outgoing = framesToOutgoing(message.frames(), config_.limits.maxFrameBytes);
   if (!outgoing.isOk()) return dropMessage(subject, length, outgoing.status().message());
+  // An Ack or Reject answers a forwarded command: it is no longer outstanding.
+  uint64_t answered = 0;
+  const cluster::Frames& f = message.frames();
+  if (!f.is_delta() && f.snapshot_of() == 0 && f.presence_of() == 0) {
+    wire::ServerMessage reply;
+    if (reply.ParseFromArray(f.frame().data() + kFrameHeaderBytes, static_cast<int>(f.frame().size() - kFrameHeaderBytes))) {
+      if (reply.has_ack()) answered = reply.ack().client_seq();
+      if (reply.has_reject()) answered = reply.reject().client_seq();
+    }
+  }
   std::vector<std::shared_ptr<Subscriber>> targets;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (uint64_t session : message.frames().session_ids()) {
+      if (answered != 0) {
+        if (auto it = outstanding_.find(session); it != outstanding_.end()) {
+          it->second.erase(answered);
+          if (it->second.empty()) outstanding_.erase(it);
+        }
+      }
       auto it = localSessions_.find(session);
       if (it == localSessions_.end()) continue;
       if (auto who = it->second.lock()) targets.push_back(std::move(who));
@@ -319,7 +359,12 @@ void ClusterNode::monitor() {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = localSessions_.begin(); it != localSessions_.end();) {
-      it = it->second.expired() ? localSessions_.erase(it) : std::next(it);
+      if (it->second.expired()) {
+        outstanding_.erase(it->first);
+        it = localSessions_.erase(it);
+      } else {
+        ++it;
+      }
     }
   }
 }

@@ -40,9 +40,9 @@ inline uint64_t sessionIncarnation(uint64_t session) { return session >> 40; }
 class ClusterNode : public DocumentOpener {
  public:
   // Subscribes to the node's subjects and starts the lease monitor.
-  static Expected<std::unique_ptr<ClusterNode>> start(cluster::NatsLink& link, DocumentRegistry& registry,
-                                                      const ServerConfig& config, ServerStats& stats,
-                                                      boost::asio::any_io_executor workers);
+  static Expected<std::unique_ptr<ClusterNode>> start(cluster::NatsLink& link, Store& store,
+                                                      DocumentRegistry& registry, const ServerConfig& config,
+                                                      ServerStats& stats, boost::asio::any_io_executor workers);
   ~ClusterNode() override;
 
   Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(DocumentId id) override;
@@ -63,13 +63,18 @@ class ClusterNode : public DocumentOpener {
   ServerStats& stats() { return stats_; }
   void forward(const std::string& owner, const cluster::Forward& request);
   void addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who);
+  Store& store() { return store_; }
+  // Commands forwarded to an owner and not answered yet (by an Ack or a
+  // Reject with their client_seq), per local session.
+  void noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document);
+  std::vector<uint64_t> takeOutstanding(uint64_t session, DocumentId document);
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);
   void pin(const std::shared_ptr<ClusterDocument>& document);    // kept open for other nodes' sessions
   void unpin(DocumentId id);
 
  private:
-  ClusterNode(cluster::NatsLink& link, DocumentRegistry& registry, const ServerConfig& config, ServerStats& stats,
-              boost::asio::any_io_executor workers, std::string name);
+  ClusterNode(cluster::NatsLink& link, Store& store, DocumentRegistry& registry, const ServerConfig& config,
+              ServerStats& stats, boost::asio::any_io_executor workers, std::string name);
   static void onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
   static void onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
   void handleForward(const char* data, int length, const char* subject);
@@ -84,6 +89,7 @@ class ClusterNode : public DocumentOpener {
   std::vector<std::shared_ptr<ClusterDocument>> liveDocuments();
 
   cluster::NatsLink& link_;
+  Store& store_;
   DocumentRegistry& registry_;
   const ServerConfig& config_;
   ServerStats& stats_;
@@ -100,6 +106,7 @@ class ClusterNode : public DocumentOpener {
   std::map<uint64_t, std::shared_ptr<ClusterDocument>> pinned_;
   std::map<uint64_t, std::weak_ptr<Subscriber>> localSessions_;
   std::map<uint64_t, std::shared_ptr<RemoteSubscriber>> remoteSubscribers_;
+  std::map<uint64_t, std::map<uint64_t, uint64_t>> outstanding_;  // session -> client_seq -> document
   std::atomic<uint64_t> dropped_{0};
 
   std::mutex monitorMutex_;

@@ -83,6 +83,43 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
   return m;
 }
 
+void DocumentHost::setLoadedOutcomes(std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> outcomes,
+                                     uint64_t fromVersion) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), outcomes = std::move(outcomes), fromVersion]() mutable {
+    self->loadedOutcomes_ = std::move(outcomes);
+    self->outcomesFrom_ = fromVersion;
+  });
+}
+
+void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeqs = std::move(clientSeqs)] {
+    for (uint64_t seq : clientSeqs) {
+      wire::ServerMessage m;
+      auto it = self->loadedOutcomes_.find({who->sessionId(), seq});
+      if (it != self->loadedOutcomes_.end()) {
+        // Applied and durable before the move: the Ack it never got.
+        wire::Ack* ack = m.mutable_ack();
+        ack->set_client_seq(seq);
+        ack->set_document_id(self->id_.value);
+        ack->set_version(it->second.version);
+        if (!it->second.editIds.empty()) ack->set_edit_id(it->second.editIds.back());
+        if (it->second.editIds.size() > 1) {
+          for (uint64_t e : it->second.editIds) ack->add_edit_ids(e);
+        }
+      } else {
+        // The journal was loaded and fenced when this node took the
+        // document: nothing written after can come from the old owner.
+        m = rejectFor(seq, Status(ErrorCode::kNotFound,
+                                  "command " + std::to_string(seq) + " was not applied: document " +
+                                      std::to_string(self->id_.value) + " moved to another node before its journal "
+                                      "held it (no entry since version " +
+                                      std::to_string(self->outcomesFrom_) + " comes from it); send it again"));
+      }
+      who->send({frameOf(m, self->config_.limits.maxFrameBytes), nullptr});
+    }
+  });
+}
+
 DocumentHost::DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
                            boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
                            const ServerConfig& config, ServerStats& stats)
@@ -411,10 +448,10 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   // The flush and the commit may finish in either order: each calls
   // release(), which sends a batch once its last edit is durable.
   scheduleFlush();
-  store_.append(id_, version_ - 1, authorName, encodeJournalEntry(entry),
-                [self = shared_from_this(), version = version_](Status status) {
-                  self->queue_.post(Lane::kInteractive, [self, version, status] { self->committed(version, status); });
-                });
+  store_.appendFrom(id_, version_ - 1, authorName, author->sessionId(), clientSeq, encodeJournalEntry(entry),
+                    [self = shared_from_this(), version = version_](Status status) {
+                      self->queue_.post(Lane::kInteractive, [self, version, status] { self->committed(version, status); });
+                    });
 }
 
 // A flush waits until the pacing interval after the last one has passed:

@@ -84,6 +84,20 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // The coarse morph stream: the control points at t (MorphControl).
   void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) override;
 
+  // In a cluster, the journal entries loaded with the document that name
+  // the client command they came from (session, client_seq) -> its Ack.
+  struct CommandOutcome {
+    uint64_t version = 0;
+    std::vector<uint64_t> editIds;
+  };
+  // `fromVersion`: the version the load started from (its snapshot's), the
+  // outcomes cover the entries after it.
+  void setLoadedOutcomes(std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> outcomes, uint64_t fromVersion);
+  // A session whose document moved here asks what became of commands it
+  // sent to the old owner and got no answer for: an Ack for each the
+  // journal holds (as loaded), a Reject for each it does not.
+  void answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs);
+
   // Triangles a profile needs at least (its base level, held whole) and may
   // reach (its max level); triangles of a uniform surface at `level`. From
   // the document's level counts alone, so a request over budget is refused
@@ -247,6 +261,8 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   std::chrono::steady_clock::time_point lastFlush_{};
   std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
   std::map<uint64_t, Recorder> recorders_;  // by session
+  std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> loadedOutcomes_;  // setLoadedOutcomes
+  uint64_t outcomesFrom_ = 0;                                               // they cover entries after this version
 };
 
 // Builds the frame of a server message (length prefix + payload).

@@ -121,8 +121,8 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     auto* nats = dynamic_cast<cluster::NatsStore*>(server->store_.get());
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (true) {
-      auto node = ClusterNode::start(nats->link(), *server->registry_, server->config_, server->stats_,
-                                     server->workers_.get_executor());
+      auto node = ClusterNode::start(nats->link(), *server->store_, *server->registry_, server->config_,
+                                     server->stats_, server->workers_.get_executor());
       if (node.isOk()) {
         server->cluster_ = std::move(*node);
         break;

@@ -151,7 +151,7 @@ Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::strin
   // The base and the genesis message first, the catalogue entry last: a
   // document is listed only once it is whole.
   TESSERA_RETURN_IF_ERROR(putBlob(*link_, kBlobStream, blobPrefix(id) + ".base", baseBytes));
-  const std::string genesis = encodeJournalMessage(0, "", "");
+  const std::string genesis = encodeJournalMessage(JournalMessage{.fence = true});
   jsPubAck* ackRaw = nullptr;
   jsErrCode code = static_cast<jsErrCode>(0);
   natsStatus s = js_Publish(&ackRaw, link_->jetStream(), journalSubject(id).c_str(), genesis.data(),
@@ -290,12 +290,13 @@ Expected<std::vector<JournalEntry>> NatsStore::readJournal(DocumentId id, uint64
     }
     const std::string where = toString(id) + ", stream sequence " + std::to_string(next->sequence);
     TESSERA_ASSIGN_OR_RETURN(JournalMessage message, decodeJournalMessage(next->payload, where));
-    if (message.version > afterVersion) {
+    if (!message.fence && message.version > afterVersion) {
       if (message.version != expected) {
         return parseError(where + ": journal entry version " + std::to_string(message.version) + " where " +
                           std::to_string(expected) + " was next");
       }
-      entries.push_back(JournalEntry{message.version, std::move(message.author), std::move(message.bytes)});
+      entries.push_back(JournalEntry{message.version, std::move(message.author), std::move(message.bytes),
+                                     message.authorSession, message.clientSeq});
       ++expected;
     }
     from = next->sequence + 1;
@@ -345,10 +346,16 @@ Expected<StoredDocument> NatsStore::loadDocument(DocumentId id) {
 
 void NatsStore::append(DocumentId id, uint64_t version, std::string author, std::string bytes,
                        AppendCallback done) {
+  appendFrom(id, version, std::move(author), 0, 0, std::move(bytes), std::move(done));
+}
+
+void NatsStore::appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
+                           uint64_t clientSeq, std::string bytes, AppendCallback done) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!closing_) {
-      queue_.push_back(PendingAppend{id, version, std::move(author), std::move(bytes), std::move(done)});
+      queue_.push_back(PendingAppend{id, version, std::move(author), std::move(bytes), std::move(done), authorSession,
+                                     clientSeq});
       wake_.notify_one();
       return;
     }
@@ -408,7 +415,11 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
   TESSERA_RETURN_IF_ERROR(checkAuthor(id, append.author));
   TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
   if (append.version != tail.version + 1) return versionNotNext(id, append.version, tail.version);
-  const std::string payload = encodeJournalMessage(append.version, append.author, append.bytes);
+  const std::string payload = encodeJournalMessage(JournalMessage{.version = append.version,
+                                                                  .author = append.author,
+                                                                  .authorSession = append.authorSession,
+                                                                  .clientSeq = append.clientSeq,
+                                                                  .bytes = append.bytes});
   jsPubOptions options;
   jsPubOptions_Init(&options);
   options.ExpectLastSubjectSeq = tail.sequence;  // > 0: the genesis message is there
@@ -439,6 +450,33 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
   t.sequence = ack->Sequence;
   t.recent.emplace_back(append.version, ack->Sequence);
   if (t.recent.size() > kRecentSequences) t.recent.pop_front();
+  return Status::ok();
+}
+
+Status NatsStore::fenceJournal(DocumentId id) {
+  TESSERA_RETURN_IF_ERROR(checkOpen());
+  TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
+  // Checked like an append: if anyone wrote since this store read the
+  // journal's end, the fence is refused and the caller loads again.
+  const std::string payload = encodeJournalMessage(JournalMessage{.fence = true, .version = tail.version});
+  jsPubOptions options;
+  jsPubOptions_Init(&options);
+  options.ExpectLastSubjectSeq = tail.sequence;
+  jsPubAck* raw = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const natsStatus s = js_Publish(&raw, link_->jetStream(), journalSubject(id).c_str(), payload.data(),
+                                  static_cast<int>(payload.size()), &options, &code);
+  PubAckPtr ack(raw);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (s != NATS_OK) {
+    tails_.erase(id.value);
+    if (code == JSStreamWrongLastSequenceErr) {
+      return ioError(toString(id) + ": another writer appended to the journal after stream sequence " +
+                     std::to_string(tail.sequence) + " while this node loaded it");
+    }
+    return link_->error(s, "fencing the journal of " + toString(id), code);
+  }
+  tails_[id.value].sequence = ack->Sequence;
   return Status::ok();
 }
 

@@ -59,6 +59,9 @@ class NatsStore final : public Store {
   void append(DocumentId id, uint64_t version, std::string author, std::string bytes,
               AppendCallback done) override;
   Status appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) override;
+  void appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession, uint64_t clientSeq,
+                  std::string bytes, AppendCallback done) override;
+  Status fenceJournal(DocumentId id) override;
 
   Status putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) override;
 
@@ -84,6 +87,7 @@ class NatsStore final : public Store {
     uint64_t version;
     std::string author, bytes;
     AppendCallback done;
+    uint64_t authorSession = 0, clientSeq = 0;
   };
 
   NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens);

@@ -74,6 +74,9 @@ struct JournalEntry {
   uint64_t version = 0;  // contiguous from 1 per document
   std::string author;
   std::string bytes;  // one serialized command, opaque to the store
+  // Which client command made it (its session and client_seq), where the
+  // store keeps that (the cluster's: appendFrom); 0 otherwise.
+  uint64_t authorSession = 0, clientSeq = 0;
 };
 
 struct Snapshot {
@@ -124,6 +127,24 @@ class Store {
   virtual void append(DocumentId id, uint64_t version, std::string author, std::string bytes,
                       AppendCallback done) = 0;
   virtual Status appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) = 0;
+  // append(), also recording which client command made the entry, for
+  // stores that keep it: in a cluster, a client whose document moved to
+  // another node learns from it whether a command left unanswered was
+  // applied (docs/CLUSTER.md). This default forgets the origin.
+  virtual void appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
+                          uint64_t clientSeq, std::string bytes, AppendCallback done) {
+    (void)authorSession;
+    (void)clientSeq;
+    append(id, version, std::move(author), std::move(bytes), std::move(done));
+  }
+  // Makes every later append by a writer that loaded the document before
+  // this call fail (a cluster's new owner calls it after loading, so a
+  // paused old owner cannot append after the load). A no-op where one
+  // process is the only writer by construction (SQLite's directory lock).
+  virtual Status fenceJournal(DocumentId id) {
+    (void)id;
+    return Status::ok();
+  }
 
   // Snapshots: `version` must be in 1..latest. The newest two per document
   // are kept; loadDocument starts from the newest.

@@ -9,6 +9,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <future>
+#include <span>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -17,7 +19,13 @@
 
 #include "cluster/cluster_run.h"
 #include "core/hierarchy/ids.h"
+#include "core/document/document.h"
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
 #include "integration/messages.h"
+#include "server/cluster/nats_store.h"
+#include "server/journal_entry.h"
+#include "support/test_meshes.h"
 
 namespace tessera {
 namespace {
@@ -62,7 +70,9 @@ void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, 
   ASSERT_TRUE(opened.isOk() && opened->has_ack());
   std::mt19937 rng(static_cast<uint32_t>(seed));
   while (!stop.load()) {
-    auto reply = (*session)->call(smallMove(doc, rng), 4);
+    // Every command is answered: by its owner, or, when the owner died
+    // before answering, by the next owner from the journal (Ack or Reject).
+    auto reply = (*session)->call(smallMove(doc, rng), 15);
     if (!reply.isOk()) {
       std::lock_guard<std::mutex> lock(log.mutex);
       ++log.unknown[author];
@@ -179,8 +189,13 @@ TEST(ClusterFailover, OwnerKilledDuringAStormThenANatsServerKilled) {
     EXPECT_EQ(v.view->version(), journal->version);
     EXPECT_EQ(v.view->surfaceHash(), journal->surfaceHash);
   }
-  std::printf("storm: %zu acknowledged, %d + %d without an answer, journal at version %llu\n", log.acked.size(),
-              log.unknown["editor@node1"], log.unknown["editor@node2"], static_cast<unsigned long long>(journal->version));
+  std::printf("storm: %zu acknowledged, %d + %d refused, %d + %d without an answer, journal at version %llu\n",
+              log.acked.size(), log.refused["editor@node1"], log.refused["editor@node2"], log.unknown["editor@node1"],
+              log.unknown["editor@node2"], static_cast<unsigned long long>(journal->version));
+  // Nothing unknown: each editor can tell for each of its commands whether
+  // it is in the document.
+  EXPECT_EQ(log.unknown["editor@node1"] + log.unknown["editor@node2"], 0);
+  EXPECT_EQ(journal->entries.size(), log.acked.size()) << "the journal holds an edit nobody was told of";
 }
 
 // Split brain: the owner is paused (SIGSTOP) past its lease while an edit
@@ -263,6 +278,72 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
     ASSERT_TRUE(testing::followUntil(*v->session, *v->view, journal->version, 30));
     EXPECT_EQ(v->view->surfaceHash(), journal->surfaceHash);
   }
+}
+
+// The owner journaled a command (JetStream acknowledged it) and died before
+// its Ack left: the next owner finds the command in the journal, by its
+// author's session and client_seq, and sends the Ack its author never got.
+// Here the test plays the dying owner: node 0 is paused with the command
+// in its inbox, the test appends the entry node 0 would have appended,
+// then kills node 0.
+TEST(ClusterFailover, ACommandJournaledJustBeforeItsOwnerDiedIsAcknowledgedByTheNext) {
+  auto run = ClusterRun::start(2);
+  ASSERT_TRUE(run.isOk()) << run.status().message();
+  ClusterRun& c = **run;
+  auto doc = c.createCube();
+  ASSERT_TRUE(doc.isOk()) << doc.status().message();
+  ViewerOf onOwner = viewerOn(c, 0, *doc);  // node 0 owns the document
+  ViewerOf onOther = viewerOn(c, 1, *doc);
+  auto editor = Session::connect(c.session(1, "editor@node1", testing::kEditorToken));
+  ASSERT_TRUE(editor.isOk());
+  ASSERT_TRUE((*editor)->call(testing::openDocument(*doc), 30)->has_ack());
+
+  ::kill(c.nodes[0]->pid(), SIGSTOP);
+  const VertexId vertex(1, 5);
+  auto seq = (*editor)->send(testing::moveVertex(*doc, vertex.packed(), 0, 0, 0.02, wire::MOVE_MODE_OFFSET));
+  ASSERT_TRUE(seq.isOk());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // node 1 forwarded it to the paused node 0
+
+  // What node 0 would have journaled: the same move as edit 1 of the cube.
+  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
+  ASSERT_TRUE(mesh.isOk());
+  ASSERT_TRUE(applyTagFile(testing::sourceTestDataPath("cube.tags"), *mesh).isOk());
+  auto local = Document::create(*mesh, {.maxLevel = testing::kClusterMaxLevel});
+  ASSERT_TRUE(local.isOk());
+  ASSERT_TRUE(local->moveBy(std::span(&vertex, 1), Vec3(0, 0, 0.02)).isOk());
+  server::JournalEntry entry;
+  entry.kind = server::JournalEntry::Kind::kEdit;
+  entry.edit = local->edits().back();
+  cluster::NatsStoreOptions options;
+  options.link.urls = *cluster::parseNatsUrls(c.nats.urls());
+  options.replicas = 3;
+  auto store = cluster::NatsStore::open(options);
+  ASSERT_TRUE(store.isOk()) << store.status().message();
+  auto promise = std::make_shared<std::promise<Status>>();
+  (*store)->appendFrom(DocumentId{*doc}, 1, "editor@node1", (*editor)->sessionId(), *seq,
+                       server::encodeJournalEntry(entry), [promise](Status s) { promise->set_value(s); });
+  const Status appended = promise->get_future().get();
+  ASSERT_TRUE(appended.isOk()) << appended.message();
+  c.nodes[0]->kill9();
+
+  // Node 1 takes the document over and answers the command from the journal.
+  std::optional<wire::ServerMessage> answer;
+  for (int i = 0; i < 60 && !answer; ++i) {
+    auto m = (*editor)->receive(0.5);
+    if (m.isOk() && ((m->has_ack() && m->ack().client_seq() == *seq) ||
+                     (m->has_reject() && m->reject().client_seq() == *seq))) {
+      answer = *m;
+    }
+  }
+  ASSERT_TRUE(answer.has_value()) << "the command never got an answer";
+  ASSERT_TRUE(answer->has_ack()) << answer->DebugString();
+  EXPECT_EQ(answer->ack().version(), 2u);
+  EXPECT_EQ(answer->ack().edit_id(), entry.edit.id.value);
+  auto journal = testing::journalState(c.nats, *doc);
+  ASSERT_TRUE(journal.isOk()) << journal.status().message();
+  EXPECT_EQ(journal->version, 2u);  // applied once: node 0 never appended it too
+  ASSERT_TRUE(testing::followUntil(*onOther.session, *onOther.view, 2, 30));
+  EXPECT_EQ(onOther.view->surfaceHash(), journal->surfaceHash);
 }
 
 }  // namespace

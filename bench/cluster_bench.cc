@@ -51,13 +51,6 @@ double percentile(std::vector<double> v, double q) {
   return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1))];
 }
 
-wire::ClientMessage smallMove(uint64_t doc, std::mt19937& rng) {
-  std::uniform_int_distribution<uint32_t> vertex(0, 25);
-  std::uniform_real_distribution<double> offset(-0.002, 0.002);
-  return testing::moveVertex(doc, VertexId(1, vertex(rng)).packed(), offset(rng), offset(rng), offset(rng),
-                             wire::MOVE_MODE_OFFSET);
-}
-
 // When each version was sent (by whichever editor), for edit-to-delta.
 class SendTimes {
  public:
@@ -130,7 +123,7 @@ std::vector<double> editAtRate(Session& editor, uint64_t doc, double rate, doubl
   for (int i = 0; Clock::now() - start < std::chrono::duration<double>(seconds); ++i) {
     std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(period * i));
     const auto sent = Clock::now();
-    auto reply = editor.call(smallMove(doc, rng), 10);
+    auto reply = editor.call(testing::smallMove(doc, rng, 0.002), 10);
     if (!reply.isOk() || !reply->has_ack()) continue;
     times.record(reply->ack().version(), sent);
     acks.push_back(std::chrono::duration<double, std::milli>(Clock::now() - sent).count());
@@ -221,7 +214,7 @@ int failover(int kills) {
     std::thread edits([&] {
       std::mt19937 rng(static_cast<uint32_t>(round));
       while (editing.load()) {
-        (void)editor->send(smallMove(*doc, rng));
+        (void)editor->send(testing::smallMove(*doc, rng, 0.002));
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
       }
     });

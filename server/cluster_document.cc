@@ -215,6 +215,18 @@ bool ClusterDocument::journalFailed() {
   return host_ && host_->journalFailed();
 }
 
+void ClusterDocument::askOutcomes() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return;  // local sessions talk to the host directly: nothing was in flight over NATS
+  for (const auto& [session, s] : sessions_) {
+    const std::vector<uint64_t> seqs = node_.peekOutstanding(session, id_);
+    if (seqs.empty()) continue;
+    forward(session, cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
+      for (uint64_t seq : seqs) f.add_client_seqs(seq);
+    });
+  }
+}
+
 bool ClusterDocument::hasRemoteSessions() {
   std::lock_guard<std::mutex> lock(mutex_);
   return !remoteSessions_.empty();
@@ -286,7 +298,9 @@ void ClusterDocument::rehome(const std::string& why) {
     if (tell) who->send({frame, nullptr});
     if (owner_.empty()) continue;  // joined when an owner is found (the monitor tries again)
     // Commands this session sent to the old owner and got no answer for.
-    std::vector<uint64_t> unanswered = from.empty() ? std::vector<uint64_t>() : node_.takeOutstanding(session, id_);
+    // (Also after a move that found no owner at first: they are still
+    // outstanding then, kept for the owner found later.)
+    std::vector<uint64_t> unanswered = node_.takeOutstanding(session, id_);
     if (host_) {
       host_->join(who, s.name, s.role);
       if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);

@@ -62,6 +62,10 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // Moves every local session to the document's current owner.
   void rehome(const std::string& why);
   bool hasRemoteSessions();
+  // After this node's NATS connection came back: asks the owner what became
+  // of the local sessions' commands still unanswered (their answers may
+  // have been lost meanwhile).
+  void askOutcomes();
   // The owner's side: a node died (or restarted as a new incarnation):
   // its sessions leave the document, as if each had closed it.
   void dropRemoteSessions(const std::string& node, uint64_t incarnation);

@@ -80,6 +80,12 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& lin
   if (s == NATS_OK) s = natsConnection_Flush(link.connection());
   if (s != NATS_OK) return link.error(s, "subscribing to node " + node->name_ + "'s subjects");
   stats.clusterNode = static_cast<int64_t>(node->number_);
+  // Plain NATS messages to this node are lost while it is disconnected:
+  // Acks among them. The monitor then asks the owners again.
+  link.onReconnected([raw = node.get()] {
+    raw->reconnected_ = true;
+    raw->monitorWake_.notify_all();
+  });
   node->monitor_ = std::thread([raw = node.get()] { raw->monitor(); });
   logEvent(LogLevel::kInfo, "cluster_node_started",
            {{"node", node->name_}, {"number", node->number_}, {"nats", link.servers()},
@@ -88,6 +94,7 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& lin
 }
 
 ClusterNode::~ClusterNode() {
+  link_.onReconnected(nullptr);
   {
     std::lock_guard<std::mutex> lock(monitorMutex_);
     stopping_ = true;
@@ -165,6 +172,17 @@ void ClusterNode::forward(const std::string& owner, const cluster::Forward& requ
 void ClusterNode::noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) {
   std::lock_guard<std::mutex> lock(mutex_);
   outstanding_[session][clientSeq] = document.value;
+}
+
+std::vector<uint64_t> ClusterNode::peekOutstanding(uint64_t session, DocumentId document) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<uint64_t> seqs;
+  if (auto it = outstanding_.find(session); it != outstanding_.end()) {
+    for (const auto& [seq, doc] : it->second) {
+      if (doc == document.value) seqs.push_back(seq);
+    }
+  }
+  return seqs;
 }
 
 std::vector<uint64_t> ClusterNode::takeOutstanding(uint64_t session, DocumentId document) {
@@ -324,8 +342,12 @@ void ClusterNode::monitor() {
   while (true) {
     {
       std::unique_lock<std::mutex> lock(monitorMutex_);
-      monitorWake_.wait_for(lock, period, [this] { return stopping_; });
+      monitorWake_.wait_for(lock, period, [this] { return stopping_ || reconnected_.load(); });
       if (stopping_) return;
+    }
+    if (reconnected_.exchange(false)) {
+      logEvent(LogLevel::kInfo, "cluster_reconnected", {{"node", name_}});
+      for (const auto& doc : liveDocuments()) doc->askOutcomes();
     }
     heartbeat();
     for (const auto& doc : liveDocuments()) {

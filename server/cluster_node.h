@@ -68,6 +68,7 @@ class ClusterNode : public DocumentOpener {
   // Reject with their client_seq), per local session.
   void noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document);
   std::vector<uint64_t> takeOutstanding(uint64_t session, DocumentId document);
+  std::vector<uint64_t> peekOutstanding(uint64_t session, DocumentId document);
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);
   void pin(const std::shared_ptr<ClusterDocument>& document);    // kept open for other nodes' sessions
   void unpin(DocumentId id);
@@ -108,6 +109,7 @@ class ClusterNode : public DocumentOpener {
   std::map<uint64_t, std::shared_ptr<RemoteSubscriber>> remoteSubscribers_;
   std::map<uint64_t, std::map<uint64_t, uint64_t>> outstanding_;  // session -> client_seq -> document
   std::atomic<uint64_t> dropped_{0};
+  std::atomic<bool> reconnected_{false};  // frames may have been lost: ask owners about outstanding commands
 
   std::mutex monitorMutex_;
   std::condition_variable monitorWake_;

@@ -94,26 +94,38 @@ void DocumentHost::setLoadedOutcomes(std::map<std::pair<uint64_t, uint64_t>, Com
 void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeqs = std::move(clientSeqs)] {
     for (uint64_t seq : clientSeqs) {
+      const std::pair<uint64_t, uint64_t> key{who->sessionId(), seq};
+      // Applied here and not durable yet: its Ack follows as usual.
+      bool waiting = false;
+      for (const Pending& p : self->pending_) waiting |= p.version > self->ackedVersion_ && p.authorSession == key.first &&
+                                                        p.clientSeq == key.second;
+      if (waiting) continue;
       wire::ServerMessage m;
-      auto it = self->loadedOutcomes_.find({who->sessionId(), seq});
-      if (it != self->loadedOutcomes_.end()) {
+      const CommandOutcome* found = nullptr;
+      if (auto a = self->loadedOutcomes_.find(key); a != self->loadedOutcomes_.end()) {
+        found = &a->second;
+      } else if (auto b = self->recentOutcomes_.find(key); b != self->recentOutcomes_.end()) {
+        found = &b->second;
+      }
+      if (found != nullptr) {
         // Applied and durable before the move: the Ack it never got.
         wire::Ack* ack = m.mutable_ack();
         ack->set_client_seq(seq);
         ack->set_document_id(self->id_.value);
-        ack->set_version(it->second.version);
-        if (!it->second.editIds.empty()) ack->set_edit_id(it->second.editIds.back());
-        if (it->second.editIds.size() > 1) {
-          for (uint64_t e : it->second.editIds) ack->add_edit_ids(e);
+        ack->set_version(found->version);
+        if (!found->editIds.empty()) ack->set_edit_id(found->editIds.back());
+        if (found->editIds.size() > 1) {
+          for (uint64_t e : found->editIds) ack->add_edit_ids(e);
         }
       } else {
-        // The journal was loaded and fenced when this node took the
-        // document: nothing written after can come from the old owner.
+        // Neither in the journal as loaded (fenced when this node took the
+        // document: nothing written after can come from an old owner) nor
+        // applied here since.
         m = rejectFor(seq, Status(ErrorCode::kNotFound,
                                   "command " + std::to_string(seq) + " was not applied: document " +
-                                      std::to_string(self->id_.value) + " moved to another node before its journal "
-                                      "held it (no entry since version " +
-                                      std::to_string(self->outcomesFrom_) + " comes from it); send it again"));
+                                      std::to_string(self->id_.value) + "'s journal holds no entry from it (since "
+                                      "version " + std::to_string(self->outcomesFrom_) +
+                                      "); it was lost with its owner node or on the way to it; send it again"));
       }
       who->send({frameOf(m, self->config_.limits.maxFrameBytes), nullptr});
     }
@@ -614,6 +626,16 @@ void DocumentHost::release() {
       ack.mutable_ack()->set_edit_id(p.editId);
       for (uint64_t id : p.batchEditIds) ack.mutable_ack()->add_edit_ids(id);
       author->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
+    }
+    // Kept a while: in a cluster the Ack travels over NATS and may be lost
+    // in a reconnect; the author's node then asks again (answerOutcomes).
+    CommandOutcome& o = recentOutcomes_[{p.authorSession, p.clientSeq}];
+    o.version = p.version;
+    o.editIds = p.batchEditIds.empty() ? std::vector<uint64_t>{p.editId} : p.batchEditIds;
+    recentOrder_.push_back({p.authorSession, p.clientSeq});
+    if (recentOrder_.size() > kRecentOutcomes) {
+      recentOutcomes_.erase(recentOrder_.front());
+      recentOrder_.pop_front();
     }
   }
   while (!batches_.empty() && batches_.front().toVersion <= durableVersion_) {

@@ -93,9 +93,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // `fromVersion`: the version the load started from (its snapshot's), the
   // outcomes cover the entries after it.
   void setLoadedOutcomes(std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> outcomes, uint64_t fromVersion);
-  // A session whose document moved here asks what became of commands it
-  // sent to the old owner and got no answer for: an Ack for each the
-  // journal holds (as loaded), a Reject for each it does not.
+  // A session asks what became of commands it got no answer for (its
+  // document moved here, or its node lost frames in a NATS reconnect): an
+  // Ack for each in the journal as loaded or acknowledged here lately, a
+  // Reject for each that is not; none yet for one still waiting for its
+  // commit (its Ack follows).
   void answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs);
 
   // Triangles a profile needs at least (its base level, held whole) and may
@@ -263,6 +265,9 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   std::map<uint64_t, Recorder> recorders_;  // by session
   std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> loadedOutcomes_;  // setLoadedOutcomes
   uint64_t outcomesFrom_ = 0;                                               // they cover entries after this version
+  static constexpr size_t kRecentOutcomes = 4096;
+  std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> recentOutcomes_;  // the last commands acknowledged here
+  std::deque<std::pair<uint64_t, uint64_t>> recentOrder_;                   // their keys, oldest first
 };
 
 // Builds the frame of a server message (length prefix + payload).

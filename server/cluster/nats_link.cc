@@ -61,26 +61,41 @@ Expected<std::unique_ptr<NatsLink>> NatsLink::connect(const NatsLinkOptions& opt
   // meanwhile fail with a clear error instead of hanging.
   if (s == NATS_OK) s = natsOptions_SetMaxReconnect(opts.get(), -1);
   if (s == NATS_OK) s = natsOptions_SetReconnectWait(opts.get(), 250);
+  // The link exists before the connection, so the callback has its target.
+  std::unique_ptr<NatsLink> link(new NatsLink(servers, options.timeout));
+  if (s == NATS_OK) s = natsOptions_SetReconnectedCB(opts.get(), &NatsLink::reconnected, link.get());
   if (s != NATS_OK) return fail(s, "setting options");
-  natsConnection* connection = nullptr;
-  s = natsConnection_Connect(&connection, opts.get());
+  s = natsConnection_Connect(&link->connection_, opts.get());
   if (s != NATS_OK) return fail(s, "connecting");
   jsOptions jsOpts;
   jsOptions_Init(&jsOpts);
   jsOpts.Wait = options.timeout.count();
-  jsCtx* js = nullptr;
-  s = natsConnection_JetStream(&js, connection, &jsOpts);
-  if (s != NATS_OK) {
-    natsConnection_Destroy(connection);
-    return fail(s, "opening JetStream");
+  s = natsConnection_JetStream(&link->jetStream_, link->connection_, &jsOpts);
+  if (s != NATS_OK) return fail(s, "opening JetStream");
+  return link;
+}
+
+void NatsLink::onReconnected(std::function<void()> handler) {
+  std::lock_guard<std::mutex> lock(handlerMutex_);
+  reconnectedHandler_ = std::move(handler);
+}
+
+void NatsLink::reconnected(natsConnection*, void* self) {
+  auto* link = static_cast<NatsLink*>(self);
+  std::function<void()> handler;
+  {
+    std::lock_guard<std::mutex> lock(link->handlerMutex_);
+    handler = link->reconnectedHandler_;
   }
-  return std::unique_ptr<NatsLink>(new NatsLink(connection, js, servers, options.timeout));
+  if (handler) handler();
 }
 
 NatsLink::~NatsLink() {
-  jsCtx_Destroy(jetStream_);
-  natsConnection_Close(connection_);
-  natsConnection_Destroy(connection_);
+  if (jetStream_ != nullptr) jsCtx_Destroy(jetStream_);
+  if (connection_ != nullptr) {
+    natsConnection_Close(connection_);
+    natsConnection_Destroy(connection_);
+  }
 }
 
 Status NatsLink::error(natsStatus status, std::string_view what, jsErrCode code) const {

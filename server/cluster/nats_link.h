@@ -10,6 +10,8 @@
 #include <nats/nats.h>
 
 #include <chrono>
+#include <functional>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -78,6 +80,9 @@ class NatsLink {
   // Creates the stream or bucket, or opens it as it is when it exists (the
   // first node of a cluster creates them, the others find them).
   Status ensureStream(const StreamSpec& spec);
+  // Called (on a NATS thread) each time the connection is back after a
+  // loss: plain NATS messages published to this node meanwhile are gone.
+  void onReconnected(std::function<void()> handler);
   Expected<KvStorePtr> ensureBucket(const BucketSpec& spec);
 
   // A Status for a failed NATS call: "NATS (<servers>): <what>: <text>",
@@ -86,11 +91,14 @@ class NatsLink {
   Status error(natsStatus status, std::string_view what, jsErrCode code = static_cast<jsErrCode>(0)) const;
 
  private:
-  NatsLink(natsConnection* connection, jsCtx* jetStream, std::string servers, std::chrono::milliseconds timeout)
-      : connection_(connection), jetStream_(jetStream), servers_(std::move(servers)), timeout_(timeout) {}
+  NatsLink(std::string servers, std::chrono::milliseconds timeout) : servers_(std::move(servers)), timeout_(timeout) {}
 
-  natsConnection* connection_;
-  jsCtx* jetStream_;
+  static void reconnected(natsConnection*, void* self);
+
+  natsConnection* connection_ = nullptr;
+  jsCtx* jetStream_ = nullptr;
+  std::mutex handlerMutex_;
+  std::function<void()> reconnectedHandler_;
   std::string servers_;
   std::chrono::milliseconds timeout_;
 };

@@ -140,7 +140,10 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   ASSERT_TRUE(reopen.isOk());
   auto damaged = (*reopen)->call(testing::openDocument(*doc), 30);
   ASSERT_TRUE(damaged.isOk() && damaged->has_reject()) << (damaged.isOk() ? damaged->DebugString() : "");
-  EXPECT_NE(damaged->reject().message().find("document 1, stream sequence 3: not a Tessera journal message"),
+  // (Its stream sequence depends on how many fences takeovers wrote.)
+  EXPECT_NE(damaged->reject().message().find("document 1, stream sequence "), std::string::npos)
+      << damaged->reject().message();
+  EXPECT_NE(damaged->reject().message().find(": not a Tessera journal message (21 bytes without the TJ2 header)"),
             std::string::npos)
       << damaged->reject().message();
   natsConnection_Destroy(nc);

@@ -54,13 +54,6 @@ struct StormLog {
   }
 };
 
-wire::ClientMessage smallMove(uint64_t doc, std::mt19937& rng) {
-  std::uniform_int_distribution<uint32_t> vertex(0, 25);
-  std::uniform_real_distribution<double> offset(-0.004, 0.004);
-  return testing::moveVertex(doc, VertexId(1, vertex(rng)).packed(), offset(rng), offset(rng), offset(rng),
-                             wire::MOVE_MODE_OFFSET);
-}
-
 // One editor on `node`, sending moves one at a time until `stop`.
 void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, std::atomic<bool>& stop) {
   const std::string author = "editor@" + run.nodeName(node);
@@ -72,7 +65,7 @@ void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, 
   while (!stop.load()) {
     // Every command is answered: by its owner, or, when the owner died
     // before answering, by the next owner from the journal (Ack or Reject).
-    auto reply = (*session)->call(smallMove(doc, rng), 15);
+    auto reply = (*session)->call(testing::smallMove(doc, rng), 15);
     if (!reply.isOk()) {
       std::lock_guard<std::mutex> lock(log.mutex);
       ++log.unknown[author];
@@ -82,7 +75,7 @@ void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, 
       log.ack(reply->ack().version(), author);
     } else {
       std::lock_guard<std::mutex> lock(log.mutex);
-      ++log.refused[author];
+      if (log.refused[author]++ < 2) std::printf("%s refused: %s\n", author.c_str(), reply->ShortDebugString().c_str());
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   }
@@ -110,26 +103,6 @@ void expectJournalHoldsExactlyTheAcknowledged(const testing::JournalState& journ
   }
 }
 
-struct ViewerOf {
-  std::unique_ptr<Session> session;
-  std::unique_ptr<DocumentView> view;
-};
-
-ViewerOf viewerOn(ClusterRun& run, int node, uint64_t doc) {
-  ViewerOf v;
-  auto s = Session::connect(run.session(node, "viewer@" + run.nodeName(node), testing::kViewerToken));
-  EXPECT_TRUE(s.isOk()) << s.status().message();
-  if (!s.isOk()) return v;
-  v.session = std::move(*s);
-  auto opened = v.session->call(testing::openDocument(doc), 30);
-  EXPECT_TRUE(opened.isOk() && opened->has_ack());
-  auto subscribed = v.session->call(
-      testing::subscribe(doc, testing::kClusterBase, testing::kClusterMax, testing::kClusterAngle), 30);
-  EXPECT_TRUE(subscribed.isOk() && subscribed->has_ack());
-  v.view = std::make_unique<DocumentView>(doc);
-  return v;
-}
-
 void waitForAcks(StormLog& log, size_t count, std::chrono::seconds limit) {
   const auto deadline = Clock::now() + limit;
   while (log.ackedCount() < count && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -141,10 +114,11 @@ TEST(ClusterFailover, OwnerKilledDuringAStormThenANatsServerKilled) {
   ClusterRun& c = **run;
   auto doc = c.createCube();
   ASSERT_TRUE(doc.isOk()) << doc.status().message();
-  ViewerOf onOwner = viewerOn(c, 0, *doc);  // node 0 opens first: it owns the document
-  std::vector<ViewerOf> viewers;
-  viewers.push_back(viewerOn(c, 1, *doc));
-  viewers.push_back(viewerOn(c, 2, *doc));
+  testing::ClusterViewer onOwner = testing::viewerOn(c, 0, *doc);  // node 0 opens first: it owns the document
+  std::vector<testing::ClusterViewer> viewers;
+  viewers.push_back(testing::viewerOn(c, 1, *doc));
+  viewers.push_back(testing::viewerOn(c, 2, *doc));
+  for (const auto* v : {&onOwner, &viewers[0], &viewers[1]}) ASSERT_TRUE(v->session) << v->error;
 
   StormLog log;
   std::atomic<bool> stop{false};
@@ -210,8 +184,9 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
   ClusterRun& c = **run;
   auto doc = c.createCube();
   ASSERT_TRUE(doc.isOk()) << doc.status().message();
-  ViewerOf onOld = viewerOn(c, 0, *doc);  // node 0 owns the document
-  ViewerOf onNew = viewerOn(c, 1, *doc);
+  testing::ClusterViewer onOld = testing::viewerOn(c, 0, *doc);  // node 0 owns the document
+  testing::ClusterViewer onNew = testing::viewerOn(c, 1, *doc);
+  for (const auto* v : {&onOld, &onNew}) ASSERT_TRUE(v->session) << v->error;
   auto stale = Session::connect(c.session(0, "editor@node0", testing::kEditorToken));
   auto other = Session::connect(c.session(1, "editor@node1", testing::kEditorToken));
   ASSERT_TRUE(stale.isOk() && other.isOk());
@@ -219,19 +194,19 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
   std::mt19937 rng(5);
   StormLog log;
   for (int i = 0; i < 5; ++i) {
-    auto r = (*stale)->call(smallMove(*doc, rng), 10);
+    auto r = (*stale)->call(testing::smallMove(*doc, rng), 10);
     ASSERT_TRUE(r.isOk() && r->has_ack());
     log.ack(r->ack().version(), "editor@node0");
   }
 
   ::kill(c.nodes[0]->pid(), SIGSTOP);
-  auto pending = (*stale)->send(smallMove(*doc, rng));  // waits in node 0's socket
+  auto pending = (*stale)->send(testing::smallMove(*doc, rng));  // waits in node 0's socket
   ASSERT_TRUE(pending.isOk());
   // Node 1 sees the lease run out and takes the document over.
   int ackedByNew = 0;
   const auto deadline = Clock::now() + std::chrono::seconds(20);
   while (ackedByNew < 10 && Clock::now() < deadline) {
-    auto r = (*other)->call(smallMove(*doc, rng), 3);
+    auto r = (*other)->call(testing::smallMove(*doc, rng), 3);
     if (r.isOk() && r->has_ack()) {
       log.ack(r->ack().version(), "editor@node1");
       ++ackedByNew;
@@ -260,7 +235,7 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
   // Moved to node 1, node 0's editor edits again.
   std::optional<uint64_t> againVersion;
   for (int i = 0; i < 20 && !againVersion; ++i) {
-    auto r = (*stale)->call(smallMove(*doc, rng), 3);
+    auto r = (*stale)->call(testing::smallMove(*doc, rng), 3);
     if (r.isOk() && r->has_ack()) againVersion = r->ack().version();
   }
   ASSERT_TRUE(againVersion.has_value()) << "node 0's editor was not handed over";
@@ -274,7 +249,7 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
   }
   expectJournalHoldsExactlyTheAcknowledged(*journal, log);
   EXPECT_EQ(journal->version, 1 + log.acked.size()) << "the journal holds an edit nobody was told of";
-  for (ViewerOf* v : {&onOld, &onNew}) {
+  for (testing::ClusterViewer* v : {&onOld, &onNew}) {
     ASSERT_TRUE(testing::followUntil(*v->session, *v->view, journal->version, 30));
     EXPECT_EQ(v->view->surfaceHash(), journal->surfaceHash);
   }
@@ -292,8 +267,9 @@ TEST(ClusterFailover, ACommandJournaledJustBeforeItsOwnerDiedIsAcknowledgedByThe
   ClusterRun& c = **run;
   auto doc = c.createCube();
   ASSERT_TRUE(doc.isOk()) << doc.status().message();
-  ViewerOf onOwner = viewerOn(c, 0, *doc);  // node 0 owns the document
-  ViewerOf onOther = viewerOn(c, 1, *doc);
+  testing::ClusterViewer onOwner = testing::viewerOn(c, 0, *doc);  // node 0 owns the document
+  testing::ClusterViewer onOther = testing::viewerOn(c, 1, *doc);
+  for (const auto* v : {&onOwner, &onOther}) ASSERT_TRUE(v->session) << v->error;
   auto editor = Session::connect(c.session(1, "editor@node1", testing::kEditorToken));
   ASSERT_TRUE(editor.isOk());
   ASSERT_TRUE((*editor)->call(testing::openDocument(*doc), 30)->has_ack());

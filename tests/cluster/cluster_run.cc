@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "core/hierarchy/ids.h"
 #include "core/morph/keyed_document_file.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/surface_hash.h"
@@ -98,6 +99,33 @@ Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId
   TESSERA_ASSIGN_OR_RETURN(Tessellation tessellation, Tessellation::build(key0, profile));
   for (const auto& [id, region] : tessellation.regions()) state.surfaceHash += regionSurfaceHashOnGrid(region, grid, true);
   return state;
+}
+
+ClusterViewer viewerOn(ClusterRun& run, int node, uint64_t documentId) {
+  ClusterViewer v;
+  auto s = client::Session::connect(run.session(node, "viewer@" + run.nodeName(node), kViewerToken));
+  if (!s.isOk()) {
+    v.error = "connect: " + s.status().message();
+    return v;
+  }
+  for (const wire::ClientMessage& m :
+       {openDocument(documentId), subscribe(documentId, kClusterBase, kClusterMax, kClusterAngle)}) {
+    auto reply = (*s)->call(m, 30);
+    if (!reply.isOk() || !reply->has_ack()) {
+      v.error = reply.isOk() ? reply->DebugString() : reply.status().message();
+      return v;
+    }
+  }
+  v.session = std::move(*s);
+  v.view = std::make_unique<client::DocumentView>(documentId);
+  return v;
+}
+
+wire::ClientMessage smallMove(uint64_t documentId, std::mt19937& rng, double reach) {
+  std::uniform_int_distribution<uint32_t> vertex(0, 25);  // the cube has 26 level-1 vertices
+  std::uniform_real_distribution<double> offset(-reach, reach);
+  return moveVertex(documentId, VertexId(1, vertex(rng)).packed(), offset(rng), offset(rng), offset(rng),
+                    wire::MOVE_MODE_OFFSET);
 }
 
 bool followUntil(client::Session& session, client::DocumentView& view, uint64_t version, double seconds) {

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,20 @@ struct JournalState {
   std::vector<JournalEntry> entries;
 };
 Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId);
+
+// A viewer of the document at the tests' profile on one node: opened and
+// subscribed; its view is filled by followUntil. No session (and `error`
+// set) when the node refused.
+struct ClusterViewer {
+  std::unique_ptr<client::Session> session;
+  std::unique_ptr<client::DocumentView> view;
+  std::string error;
+};
+ClusterViewer viewerOn(ClusterRun& run, int node, uint64_t documentId);
+
+// An offset move of a level-1 vertex of the cube by at most `reach` per
+// axis: inside the document's grid whatever the order of a storm's moves.
+wire::ClientMessage smallMove(uint64_t documentId, std::mt19937& rng, double reach = 0.004);
 
 // Reads `session` until `view` holds `version` (or a later one), resubscribing
 // after a gap; false on timeout. Error frames (a document moved) are skipped.

@@ -4,9 +4,9 @@
 // journal replays to.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <map>
 #include <random>
-#include <functional>
 #include <set>
 #include <thread>
 
@@ -25,35 +25,6 @@ using testing::kClusterAngle;
 using testing::kClusterBase;
 using testing::kClusterMax;
 
-struct Viewer {
-  std::unique_ptr<Session> session;
-  std::unique_ptr<DocumentView> view;
-};
-
-Viewer openViewer(ClusterRun& run, int node, uint64_t doc) {
-  Viewer v;
-  auto s = Session::connect(run.session(node, "viewer@" + run.nodeName(node), testing::kViewerToken));
-  EXPECT_TRUE(s.isOk()) << s.status().message();
-  if (!s.isOk()) return v;
-  v.session = std::move(*s);
-  auto opened = v.session->call(testing::openDocument(doc), 30);
-  EXPECT_TRUE(opened.isOk() && opened->has_ack()) << (opened.isOk() ? opened->DebugString() : opened.status().message());
-  auto subscribed = v.session->call(testing::subscribe(doc, kClusterBase, kClusterMax, kClusterAngle), 30);
-  EXPECT_TRUE(subscribed.isOk() && subscribed->has_ack())
-      << (subscribed.isOk() ? subscribed->DebugString() : subscribed.status().message());
-  v.view = std::make_unique<DocumentView>(doc);
-  return v;
-}
-
-// An offset move of a level-1 vertex by a few thousandths: inside the
-// document's grid whatever the order of a storm's moves.
-wire::ClientMessage smallMove(uint64_t doc, std::mt19937& rng) {
-  std::uniform_int_distribution<uint32_t> vertex(0, 25);
-  std::uniform_real_distribution<double> offset(-0.004, 0.004);
-  return testing::moveVertex(doc, VertexId(1, vertex(rng)).packed(), offset(rng), offset(rng), offset(rng),
-                             wire::MOVE_MODE_OFFSET);
-}
-
 TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
   auto run = ClusterRun::start(3);
   ASSERT_TRUE(run.isOk()) << run.status().message();
@@ -62,8 +33,11 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
   ASSERT_TRUE(doc.isOk()) << doc.status().message();
 
   // The first to open the document takes its lease: node 0's viewer.
-  std::vector<Viewer> viewers;
-  for (int node = 0; node < 3; ++node) viewers.push_back(openViewer(c, node, *doc));
+  std::vector<testing::ClusterViewer> viewers;
+  for (int node = 0; node < 3; ++node) {
+    viewers.push_back(testing::viewerOn(c, node, *doc));
+    ASSERT_TRUE(viewers.back().session) << viewers.back().error;
+  }
   for (auto& v : viewers) ASSERT_TRUE(testing::followUntil(*v.session, *v.view, 1, 20));
   const uint64_t before = viewers[0].view->surfaceHash();
   for (auto& v : viewers) EXPECT_EQ(v.view->surfaceHash(), before);
@@ -83,7 +57,7 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
   constexpr int kEditsEach = 20;
   for (int i = 0; i < kEditsEach; ++i) {
     for (size_t e = 0; e < editors.size(); ++e) {
-      auto ack = editors[e]->call(smallMove(*doc, rng), 30);
+      auto ack = editors[e]->call(testing::smallMove(*doc, rng), 30);
       ASSERT_TRUE(ack.isOk() && ack->has_ack()) << (ack.isOk() ? ack->DebugString() : ack.status().message());
       EXPECT_TRUE(ackedBy.emplace(ack->ack().version(), "editor@" + c.nodeName(static_cast<int>(e) + 1)).second)
           << "version " << ack->ack().version() << " acknowledged twice";

@@ -292,7 +292,10 @@ void ClusterDocument::rehome(const std::string& why) {
   auto frame = frameOf(notice, node_.maxFrameBytes());
   // A retry that fails again (no owner before, none now) tells nobody anew.
   const bool tell = !from.empty() || resolved.isOk();
-  for (auto& [session, s] : sessions_) {
+  for (auto& entry : sessions_) {
+    // Named, not a structured binding: the lambdas below capture them.
+    const uint64_t session = entry.first;
+    const LocalSession& s = entry.second;
     auto who = s.who.lock();
     if (!who) continue;
     if (tell) who->send({frame, nullptr});

@@ -149,6 +149,32 @@ Status NatsLink::ensureStream(const StreamSpec& spec) {
 }
 
 Expected<KvStorePtr> NatsLink::ensureBucket(const BucketSpec& spec) {
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr created, createOrOpenBucket(spec));
+  // nats.c creates buckets whose reads any replica may answer (direct
+  // gets). A follower may not have applied the latest write yet, so a
+  // token granted a moment ago, or a document just created, could read as
+  // missing. The catalogue, tokens and leases need to read their own
+  // writes: reads go to the bucket stream's leader instead.
+  const std::string stream = "KV_" + spec.name;
+  jsStreamInfo* info = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  natsStatus s = js_GetStreamInfo(&info, jetStream_, stream.c_str(), nullptr, &code);
+  if (s != NATS_OK) return error(s, "looking up stream " + stream, code);
+  const bool direct = info->Config->AllowDirect;
+  if (direct) {
+    info->Config->AllowDirect = false;
+    jsStreamInfo* updated = nullptr;
+    s = js_UpdateStream(&updated, jetStream_, info->Config, nullptr, &code);
+    if (updated != nullptr) jsStreamInfo_Destroy(updated);
+  }
+  jsStreamInfo_Destroy(info);
+  if (!direct) return created;
+  if (s != NATS_OK) return error(s, "making the reads of bucket " + spec.name + " go to its leader", code);
+  created.reset();  // reopened: the handle reads the stream's settings when opened
+  return createOrOpenBucket(spec);
+}
+
+Expected<KvStorePtr> NatsLink::createOrOpenBucket(const BucketSpec& spec) {
   kvStore* kv = nullptr;
   natsStatus s = js_KeyValue(&kv, jetStream_, spec.name.c_str());
   if (s == NATS_OK) return KvStorePtr(kv);

@@ -78,7 +78,8 @@ class NatsLink {
   std::chrono::milliseconds timeout() const { return timeout_; }
 
   // Creates the stream or bucket, or opens it as it is when it exists (the
-  // first node of a cluster creates them, the others find them).
+  // first node of a cluster creates them, the others find them). A bucket's
+  // reads go to its stream's leader, so they see every acknowledged write.
   Status ensureStream(const StreamSpec& spec);
   // Called (on a NATS thread) each time the connection is back after a
   // loss: plain NATS messages published to this node meanwhile are gone.
@@ -94,6 +95,7 @@ class NatsLink {
   NatsLink(std::string servers, std::chrono::milliseconds timeout) : servers_(std::move(servers)), timeout_(timeout) {}
 
   static void reconnected(natsConnection*, void* self);
+  Expected<KvStorePtr> createOrOpenBucket(const BucketSpec& spec);
 
   natsConnection* connection_ = nullptr;
   jsCtx* jetStream_ = nullptr;

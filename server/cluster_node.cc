@@ -4,6 +4,7 @@
 
 #include "server/cluster_document.h"
 #include "protocol/framing.h"
+#include "server/cluster/message_chunks.h"
 #include "server/log.h"
 
 namespace tessera::server {
@@ -46,7 +47,7 @@ ClusterNode::ClusterNode(cluster::NatsLink& link, Store& store, DocumentRegistry
       config_(config),
       stats_(stats),
       name_(std::move(name)),
-      relay_(link.connection(), workers) {}
+      relay_(link, name_, workers) {}
 
 Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& link, Store& store,
                                                           DocumentRegistry& registry, const ServerConfig& config,
@@ -160,12 +161,10 @@ std::vector<std::shared_ptr<ClusterDocument>> ClusterNode::liveDocuments() {
 }
 
 void ClusterNode::forward(const std::string& owner, const cluster::Forward& request) {
-  const std::string bytes = request.SerializeAsString();
-  const natsStatus s = natsConnection_Publish(link_.connection(), nodeSubject(owner, "forward").c_str(), bytes.data(),
-                                              static_cast<int>(bytes.size()));
-  if (s != NATS_OK) {
+  const Status sent = cluster::publishMessage(link_, nodeSubject(owner, "forward"), name_, request.SerializeAsString());
+  if (!sent.isOk()) {
     logEvent(LogLevel::kWarn, "cluster_forward_failed",
-             {{"to", owner}, {"doc", request.document_id()}, {"error", natsStatus_GetText(s)}});
+             {{"to", owner}, {"doc", request.document_id()}, {"error", sent.message()}});
   }
 }
 
@@ -229,13 +228,28 @@ void ClusterNode::unpin(DocumentId id) {
 }
 
 void ClusterNode::onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self) {
-  static_cast<ClusterNode*>(self)->handleForward(natsMsg_GetData(msg), natsMsg_GetDataLength(msg), natsMsg_GetSubject(msg));
+  auto* node = static_cast<ClusterNode*>(self);
+  const char* subject = natsMsg_GetSubject(msg);
+  const int length = natsMsg_GetDataLength(msg);
+  auto whole = node->forwardChunks_.add(std::string_view(natsMsg_GetData(msg), static_cast<size_t>(std::max(length, 0))));
+  if (!whole.isOk()) {
+    node->dropMessage(subject, length, whole.status().message());
+  } else if (whole->has_value()) {
+    node->handleForward((*whole)->data(), static_cast<int>((*whole)->size()), subject);
+  }
   natsMsg_Destroy(msg);
 }
 
 void ClusterNode::onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self) {
-  static_cast<ClusterNode*>(self)->handleNodeMessage(natsMsg_GetData(msg), natsMsg_GetDataLength(msg),
-                                                     natsMsg_GetSubject(msg));
+  auto* node = static_cast<ClusterNode*>(self);
+  const char* subject = natsMsg_GetSubject(msg);
+  const int length = natsMsg_GetDataLength(msg);
+  auto whole = node->frameChunks_.add(std::string_view(natsMsg_GetData(msg), static_cast<size_t>(std::max(length, 0))));
+  if (!whole.isOk()) {
+    node->dropMessage(subject, length, whole.status().message());
+  } else if (whole->has_value()) {
+    node->handleNodeMessage((*whole)->data(), static_cast<int>((*whole)->size()), subject);
+  }
   natsMsg_Destroy(msg);
 }
 

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "server/cluster/document_leases.h"
+#include "server/cluster/message_chunks.h"
 #include "server/cluster/nats_link.h"
 #include "server/cluster_relay.h"
 #include "server/document_endpoint.h"
@@ -99,6 +100,7 @@ class ClusterNode : public DocumentOpener {
   std::unique_ptr<cluster::DocumentLeases> leases_;
   cluster::KvStorePtr alive_;
   FrameRelay relay_;
+  cluster::ChunkAssembler forwardChunks_, frameChunks_;  // messages larger than NATS's max_payload
   natsSubscription* forwardSubscription_ = nullptr;
   natsSubscription* framesSubscription_ = nullptr;
 

@@ -3,6 +3,7 @@
 #include <boost/asio/post.hpp>
 
 #include "protocol/framing.h"
+#include "server/cluster/message_chunks.h"
 #include "protocol/tessera.pb.h"
 #include "server/log.h"
 
@@ -53,13 +54,12 @@ void FrameRelay::flush() {
       *m.mutable_frames() = std::move(p.message);
       m.mutable_frames()->set_frame(*p.frame);
       const std::string bytes = m.SerializeAsString();
-      const natsStatus s =
-          natsConnection_Publish(connection_, subject.c_str(), bytes.data(), static_cast<int>(bytes.size()));
-      if (s != NATS_OK) {
+      const Status sent = cluster::publishMessage(link_, subject, sender_, bytes);
+      if (!sent.isOk()) {
         // The node's sessions miss this frame; the version continuity of
         // their deltas makes them ask for a resync (PROTOCOL.md 6.4).
         logEvent(LogLevel::kWarn, "cluster_publish_failed",
-                 {{"to", node}, {"bytes", static_cast<uint64_t>(bytes.size())}, {"error", natsStatus_GetText(s)}});
+                 {{"to", node}, {"bytes", static_cast<uint64_t>(bytes.size())}, {"error", sent.message()}});
         continue;
       }
       std::lock_guard<std::mutex> lock(mutex_);
@@ -69,9 +69,7 @@ void FrameRelay::flush() {
 }
 
 void FrameRelay::publish(const std::string& node, const cluster::NodeMessage& message) {
-  const std::string bytes = message.SerializeAsString();
-  const std::string subject = nodeSubject(node, "frames");
-  (void)natsConnection_Publish(connection_, subject.c_str(), bytes.data(), static_cast<int>(bytes.size()));
+  (void)cluster::publishMessage(link_, nodeSubject(node, "frames"), sender_, message.SerializeAsString());
 }
 
 uint64_t FrameRelay::framesPublished() const {

@@ -21,15 +21,17 @@
 
 #include "core/util/status.h"
 #include "protocol/cluster.pb.h"
+#include "server/cluster/nats_link.h"
 #include "server/subscriber.h"
 
 namespace tessera::server {
 
 class FrameRelay {
  public:
-  // Publishes on `connection` from tasks posted to `executor`.
-  FrameRelay(natsConnection* connection, boost::asio::any_io_executor executor)
-      : connection_(connection), executor_(executor) {}
+  // Publishes on `link` as node `sender` (in chunks when a frame is larger
+  // than NATS takes in one message) from tasks posted to `executor`.
+  FrameRelay(cluster::NatsLink& link, std::string sender, boost::asio::any_io_executor executor)
+      : link_(link), sender_(std::move(sender)), executor_(executor) {}
 
   // Queues `message` for `session` of `node`; a publish follows soon.
   void send(const std::string& node, uint64_t session, const Outgoing& message);
@@ -45,7 +47,8 @@ class FrameRelay {
   };
   void flush();
 
-  natsConnection* connection_;
+  cluster::NatsLink& link_;
+  const std::string sender_;
   boost::asio::any_io_executor executor_;
   mutable std::mutex mutex_;
   std::map<std::string, std::vector<Pending>> pending_;  // by node, in send order

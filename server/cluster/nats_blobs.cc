@@ -1,5 +1,6 @@
 #include "server/cluster/nats_blobs.h"
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace tessera::cluster {
@@ -41,10 +42,13 @@ Status publish(NatsLink& link, const std::string& subject, std::string_view byte
 
 Status putBlob(NatsLink& link, const std::string& stream, const std::string& prefix, std::string_view bytes) {
   (void)stream;  // the subject alone routes the message; kept for symmetry with getBlob
+  // Within the NATS servers' max_payload, whatever it is set to.
+  const int64_t maxPayload = natsConnection_GetMaxPayload(link.connection());
+  const size_t chunkBytes =
+      maxPayload > 8192 ? std::min<size_t>(kBlobChunkBytes, static_cast<size_t>(maxPayload) - 4096) : kBlobChunkBytes;
   uint64_t chunks = 0;
-  for (size_t at = 0; at < bytes.size() || chunks == 0; at += kBlobChunkBytes) {
-    TESSERA_RETURN_IF_ERROR(
-        publish(link, prefix + "." + std::to_string(chunks), bytes.substr(at, kBlobChunkBytes)));
+  for (size_t at = 0; at < bytes.size() || chunks == 0; at += chunkBytes) {
+    TESSERA_RETURN_IF_ERROR(publish(link, prefix + "." + std::to_string(chunks), bytes.substr(at, chunkBytes)));
     ++chunks;
     if (bytes.empty()) break;
   }
@@ -64,7 +68,7 @@ Expected<std::string> getBlob(NatsLink& link, const std::string& stream, const s
                       std::to_string(m.size()) + " bytes)");
   }
   const uint64_t size = get64(m, 3), chunks = get64(m, 11), checksum = get64(m, 19);
-  if (chunks == 0 || chunks > size / kBlobChunkBytes + 1) {
+  if (chunks == 0 || chunks > size + 1) {
     return parseError(std::string(where) + ": its manifest names " + std::to_string(chunks) + " chunks for " +
                       std::to_string(size) + " bytes");
   }

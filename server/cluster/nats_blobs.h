@@ -16,7 +16,8 @@
 
 namespace tessera::cluster {
 
-// Under the default NATS max_payload of 1 MiB, with room for headers.
+// At most; less when the NATS servers' max_payload is smaller (1 MiB by
+// default), with room for headers.
 inline constexpr size_t kBlobChunkBytes = 512 * 1024;
 
 Status putBlob(NatsLink& link, const std::string& stream, const std::string& prefix, std::string_view bytes);

@@ -74,17 +74,25 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   badDelta.mutable_frames()->add_session_ids(1);
   badDelta.mutable_frames()->set_frame(frame + payload);
   badDelta.mutable_frames()->set_is_delta(true);
+  // Whole messages start with 0x00, chunks with 0x01 (message_chunks.h):
+  // a chunk out of order, and one whose header is cut short, too.
+  const std::string whole(1, '\0');
+  std::string lateChunk("\x01\x03" "bad", 5);
+  lateChunk += std::string("\x07\0\0\0\0\0\0\0", 8) + std::string("\x01\0\0\0", 4) + std::string("\x02\0\0\0", 4) + "data";
   for (int node = 0; node < 2; ++node) {
     const std::string forward = "tessera.node." + c.nodeName(node) + ".forward";
     const std::string frames = "tessera.node." + c.nodeName(node) + ".frames";
     publish(nc, forward, "\xff\xfe garbage \x01");
-    publish(nc, forward, delta.SerializeAsString());
-    publish(nc, forward, noKind.SerializeAsString());
-    publish(nc, forward, unknownDocument.SerializeAsString());
-    publish(nc, frames, "\x0a\xff\xff\xff\xff\x0f");
-    publish(nc, frames, badFrame.SerializeAsString());
-    publish(nc, frames, badDelta.SerializeAsString());
-    publish(nc, frames, cluster::NodeMessage().SerializeAsString());
+    publish(nc, forward, whole + "\xff\xfe garbage \x01");
+    publish(nc, forward, whole + delta.SerializeAsString());
+    publish(nc, forward, whole + noKind.SerializeAsString());
+    publish(nc, forward, whole + unknownDocument.SerializeAsString());
+    publish(nc, forward, lateChunk);
+    publish(nc, frames, std::string("\x01\x05", 2));
+    publish(nc, frames, whole + "\x0a\xff\xff\xff\xff\x0f");
+    publish(nc, frames, whole + badFrame.SerializeAsString());
+    publish(nc, frames, whole + badDelta.SerializeAsString());
+    publish(nc, frames, whole + cluster::NodeMessage().SerializeAsString());
   }
   ASSERT_EQ(natsConnection_Flush(nc), NATS_OK);
 
@@ -98,7 +106,10 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   for (int node = 0; node < 2; ++node) {
     const std::string log = logOf(c, node);
     EXPECT_NE(log.find("\"cluster_message_dropped\""), std::string::npos) << c.nodeName(node);
+    EXPECT_NE(log.find("not a cluster message (first byte 255)"), std::string::npos) << c.nodeName(node);
     EXPECT_NE(log.find("not a cluster Forward"), std::string::npos) << c.nodeName(node);
+    EXPECT_NE(log.find("cluster chunk 1 of 2 from bad out of order"), std::string::npos) << c.nodeName(node);
+    EXPECT_NE(log.find("a cluster chunk without its header"), std::string::npos) << c.nodeName(node);
     EXPECT_NE(log.find("a Forward without its kind"), std::string::npos) << c.nodeName(node);
     EXPECT_NE(log.find("a cluster frame announces 9 bytes but carries 5"), std::string::npos) << c.nodeName(node);
     EXPECT_NE(log.find("region flags"), std::string::npos) << c.nodeName(node);

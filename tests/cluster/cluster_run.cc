@@ -17,8 +17,9 @@
 
 namespace tessera::testing {
 
-Expected<std::unique_ptr<ClusterRun>> ClusterRun::start(int nodes, int leaseMs, std::vector<std::string> extraArgs) {
-  TESSERA_ASSIGN_OR_RETURN(NatsCluster nats, NatsCluster::start(3));
+Expected<std::unique_ptr<ClusterRun>> ClusterRun::start(int nodes, int leaseMs, std::vector<std::string> extraArgs,
+                                                        const std::string& natsMaxPayload) {
+  TESSERA_ASSIGN_OR_RETURN(NatsCluster nats, NatsCluster::start(3, natsMaxPayload));
   std::unique_ptr<ClusterRun> run(new ClusterRun(makeTempDir("tessera-cluster"), std::move(nats)));
   run->leaseMs_ = leaseMs;
   run->extraArgs_ = std::move(extraArgs);

@@ -31,7 +31,8 @@ struct ClusterRun {
 
   // `nodes` tessera-servers named node0.. on a fresh 3-server NATS cluster.
   static Expected<std::unique_ptr<ClusterRun>> start(int nodes, int leaseMs = 1500,
-                                                     std::vector<std::string> extraArgs = {});
+                                                     std::vector<std::string> extraArgs = {},
+                                                     const std::string& natsMaxPayload = "8MB");
   ~ClusterRun();  // kills what runs; removes the logs unless TESSERA_KEEP_NATS is set
   Status startNode(int index);  // again, after a kill
   std::string nodeName(int index) const { return "node" + std::to_string(index); }

@@ -35,7 +35,7 @@ int freePort() {
 
 }  // namespace
 
-Expected<NatsCluster> NatsCluster::start(int servers) {
+Expected<NatsCluster> NatsCluster::start(int servers, const std::string& maxPayload) {
   NatsCluster cluster;
   char pattern[] = "/tmp/tessera-nats-XXXXXX";
   if (::mkdtemp(pattern) == nullptr) return ioError("mkdtemp failed");
@@ -52,8 +52,7 @@ Expected<NatsCluster> NatsCluster::start(int servers) {
     std::ofstream conf(s.config);
     conf << "server_name: " << name << "\n"
          << "listen: 127.0.0.1:" << s.clientPort << "\n"
-         // Snapshots and bases travel in chunks of 512 KiB (nats_blobs.h).
-         << "max_payload: 8MB\n"
+         << "max_payload: " << maxPayload << "\n"
          << "jetstream { store_dir: \"" << cluster.directory_ << "/" << name << "\", max_mem: 64MB, max_file: 2GB }\n";
     if (servers > 1) {
       conf << "cluster { name: tessera-test, listen: 127.0.0.1:" << s.routePort << ", routes: [";

@@ -18,7 +18,8 @@ class NatsCluster {
  public:
   // Starts `servers` nats-servers (1, or 3 for a JetStream cluster) and waits
   // until JetStream answers through every one of them.
-  static Expected<NatsCluster> start(int servers);
+  // `maxPayload`: the servers' max_payload (the NATS default is 1MB).
+  static Expected<NatsCluster> start(int servers, const std::string& maxPayload = "8MB");
   NatsCluster(NatsCluster&& other) noexcept;
   NatsCluster& operator=(NatsCluster&&) = delete;
   ~NatsCluster();

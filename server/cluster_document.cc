@@ -1,6 +1,8 @@
 #include "server/cluster_document.h"
 
 #include "server/cluster_node.h"
+
+#include <set>
 #include "server/log.h"
 
 namespace tessera::server {
@@ -45,6 +47,11 @@ Status ClusterDocument::resolveLocked() {
     return fenced;
   }
   host_ = std::move(*host);
+  // Commands whose journal write's outcome is unknown (NATS timed out)
+  // come here, however late, to be answered by whoever owns it next.
+  host_->onUndecided([weak = weak_from_this()](DocumentHost::Undecided undecided) {
+    if (auto self = weak.lock()) self->undecidedArrived(std::move(undecided));
+  });
   ++node_.stats().documentsOwned;
   owner_ = node_.name();
   logEvent(LogLevel::kInfo, "lease_taken", {{"doc", id_.value}, {"node", node_.name()}});
@@ -215,6 +222,34 @@ bool ClusterDocument::journalFailed() {
   return host_ && host_->journalFailed();
 }
 
+void ClusterDocument::undecidedArrived(DocumentHost::Undecided undecided) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto& entry : undecided) undecided_.push_back(std::move(entry));
+  askUndecidedLocked();
+}
+
+void ClusterDocument::askUndecidedLocked() {
+  // Kept while the host here is the one that failed (the monitor reloads
+  // it) or no owner is known (a reload may fail while NATS recovers).
+  if (!(host_ && !host_->journalFailed()) && (host_ || owner_.empty())) return;
+  std::map<std::shared_ptr<Subscriber>, std::vector<uint64_t>> toAsk;
+  for (const auto& [weak, seq] : undecided_) {
+    auto who = weak.lock();
+    // Other nodes' sessions: their nodes ask (they still wait for an answer).
+    if (who && !dynamic_cast<RemoteSubscriber*>(who.get())) toAsk[who].push_back(seq);
+  }
+  undecided_.clear();
+  for (auto& [who, seqs] : toAsk) {
+    if (host_) {
+      host_->answerOutcomes(who, seqs);
+    } else {
+      forward(who->sessionId(), cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
+        for (uint64_t seq : seqs) f.add_client_seqs(seq);
+      });
+    }
+  }
+}
+
 void ClusterDocument::askOutcomes() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (host_) return;  // local sessions talk to the host directly: nothing was in flight over NATS
@@ -264,7 +299,11 @@ void ClusterDocument::rehome(const std::string& why) {
   notOwner_ = false;
   const std::string from = owner_;
   const bool hadRemote = !remoteSessions_.empty();
+  // The failed host's commands whose journal write may or may not be
+  // stored: answered below from the journal, once loaded again.
+  std::set<std::string> remoteNodes;  // their sessions rejoin whoever owns it now
   if (host_) {
+    for (const auto& [session, node] : remoteSessions_) remoteNodes.insert(node);
     dropHostLocked();
     // Other nodes' sessions go with the host; their nodes see the lease
     // change and move them.
@@ -328,7 +367,15 @@ void ClusterDocument::rehome(const std::string& why) {
       }
     }
   }
+  // Undecided commands of this node's own sessions: the owner, here or
+  // elsewhere, answers from the journal. Other nodes' sessions are moved
+  // by their nodes (told below), which ask about their unanswered commands.
+  askUndecidedLocked();
   lock.unlock();
+  // Other nodes' sessions were on the dropped host; even if this node took
+  // the document again, their nodes must rejoin them (and ask about their
+  // unanswered commands): a NotOwner makes them move.
+  for (const std::string& node : remoteNodes) node_.tellNotOwner(node, id_, owner_);
   if (hadRemote) node_.unpin(id_);
 }
 

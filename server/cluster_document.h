@@ -81,6 +81,11 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // Under mutex_: a Forward of `kind` for `session` to the owner.
   void forward(uint64_t session, cluster::Forward::Kind kind, const std::function<void(cluster::Forward&)>& fill);
   Status resolveLocked();
+  // Undecided commands (the host's journal write timed out) of this node's
+  // sessions: kept, and asked of the current owner once there is one that
+  // has not failed.
+  void undecidedArrived(DocumentHost::Undecided undecided);
+  void askUndecidedLocked();
   void dropHostLocked();
 
   const DocumentId id_;
@@ -91,6 +96,9 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   std::map<uint64_t, LocalSession> sessions_;
   std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node
   std::atomic<bool> notOwner_{false};
+  // Commands of this node's sessions whose journal write's outcome was
+  // unknown when the host failed: answered by the next owner found.
+  std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>> undecided_;
 };
 
 }  // namespace tessera::server

@@ -213,6 +213,13 @@ std::shared_ptr<RemoteSubscriber> ClusterNode::remoteSubscriber(const std::strin
   return slot;
 }
 
+void ClusterNode::tellNotOwner(const std::string& node, DocumentId document, const std::string& owner) {
+  cluster::NodeMessage message;
+  message.mutable_not_owner()->set_document_id(document.value);
+  message.mutable_not_owner()->set_owner(owner);
+  relay_.publish(node, message);
+}
+
 void ClusterNode::pin(const std::shared_ptr<ClusterDocument>& document) {
   std::lock_guard<std::mutex> lock(mutex_);
   pinned_[document->id().value] = document;

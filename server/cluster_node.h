@@ -72,6 +72,9 @@ class ClusterNode : public DocumentOpener {
   std::vector<uint64_t> peekOutstanding(uint64_t session, DocumentId document);
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);
   void pin(const std::shared_ptr<ClusterDocument>& document);    // kept open for other nodes' sessions
+  // Tells `node` this node no longer serves its sessions of `document` as
+  // before (they must rejoin `owner`).
+  void tellNotOwner(const std::string& node, DocumentId document, const std::string& owner);
   void unpin(DocumentId id);
 
  private:

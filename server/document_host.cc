@@ -83,6 +83,21 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
   return m;
 }
 
+DocumentHost::Undecided DocumentHost::takeUndecided() {
+  std::lock_guard<std::mutex> lock(undecidedMutex_);
+  return std::exchange(undecided_, {});
+}
+
+void DocumentHost::onUndecided(std::function<void(Undecided)> handler) {
+  Undecided held;
+  {
+    std::lock_guard<std::mutex> lock(undecidedMutex_);
+    undecidedHandler_ = handler;
+    held = std::exchange(undecided_, {});
+  }
+  if (handler && !held.empty()) handler(std::move(held));
+}
+
 void DocumentHost::setLoadedOutcomes(std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> outcomes,
                                      uint64_t fromVersion) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), outcomes = std::move(outcomes), fromVersion]() mutable {
@@ -590,9 +605,18 @@ void DocumentHost::committed(uint64_t version, Status status) {
     for (auto& [session, p] : participants_) {
       if (auto who = p.who.lock()) who->send({frame, nullptr});
     }
-    // Every edit still waiting for its commit is lost: tell its author.
+    // Every edit still waiting for its commit is lost, or, when the store
+    // cannot know (outcomeUnknown: a replicated journal timed out), may be
+    // stored: those are kept for whoever reloads the document, which can
+    // tell from the journal (takeUndecided); the others are refused now.
+    const bool unknown = outcomeUnknown(status);
+    std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>> undecided;
     for (const Pending& p : pending_) {
       if (p.version <= ackedVersion_) continue;  // durable, acked
+      if (unknown) {
+        undecided.push_back({p.author, p.clientSeq});
+        continue;
+      }
       if (auto author = p.author.lock()) {
         // Not acknowledged: lost, or (a store that timed out, e.g. NATS
         // without quorum) possibly durable; the document, once reloaded, says.
@@ -604,6 +628,15 @@ void DocumentHost::committed(uint64_t version, Status status) {
     }
     pending_.clear();
     batches_.clear();
+    if (!undecided.empty()) {
+      std::function<void(Undecided)> handler;
+      {
+        std::lock_guard<std::mutex> lock(undecidedMutex_);
+        handler = undecidedHandler_;
+        if (!handler) undecided_.insert(undecided_.end(), undecided.begin(), undecided.end());
+      }
+      if (handler) handler(std::move(undecided));
+    }
     return;
   }
   durableVersion_ = std::max(durableVersion_, version);

@@ -27,9 +27,11 @@
 #include <boost/asio/strand.hpp>
 #include <atomic>
 #include <deque>
+#include <functional>
 #include <map>
 #include <set>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -107,6 +109,14 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   int64_t minimumTriangles(const wire::LodProfile& profile) const;
   int64_t maximumTriangles(const wire::LodProfile& profile) const;
   int64_t uniformTriangles(uint32_t level) const;
+
+  // Commands whose journal write's outcome is unknown (the store timed
+  // out) at the failure: not answered by this host. Whoever reloads the
+  // document answers them from the journal (answerOutcomes).
+  using Undecided = std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>>;
+  Undecided takeUndecided();
+  // Or, once set, they go to `handler` as they appear (on the host's strand).
+  void onUndecided(std::function<void(Undecided)> handler);
 
   // Whether a journal write failed: the host applies nothing more. In a
   // cluster this means another node wrote to the journal (it owns the
@@ -243,6 +253,9 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   bool failed_ = false;
   std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
   Status journalFailure_;                   // why, for later commands' Rejects
+  std::mutex undecidedMutex_;               // undecided_ is taken off the strand
+  Undecided undecided_;
+  std::function<void(Undecided)> undecidedHandler_;
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
   boost::asio::any_io_executor bulk_;
   SerialQueue queue_;  // the single writer; every member below is touched only in its tasks

@@ -24,7 +24,10 @@ namespace tessera::cluster {
 struct NatsLinkOptions {
   std::vector<std::string> urls;  // nats://host:port, tried in turn
   std::string clientName;         // shows in the NATS server's connection list
-  std::chrono::milliseconds timeout{2000};  // connect, and each JetStream request
+  // Connect, and each JetStream request. Above the few seconds JetStream
+  // takes to elect a new stream leader when a NATS server dies, so a write
+  // in flight then waits for it instead of failing with an unknown outcome.
+  std::chrono::milliseconds timeout{6000};
 };
 
 // "nats://a:4222,nats://b:4222" -> {"nats://a:4222", "nats://b:4222"};

@@ -441,8 +441,9 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
                      std::to_string(tail.sequence) + " (this node no longer owns it)");
     }
     // A timeout leaves the outcome unknown: the entry may be stored.
-    return link_->error(s, toString(id) + ": journal entry version " + std::to_string(append.version) +
-                               " not acknowledged", code);
+    const Status failed = link_->error(s, toString(id) + ": journal entry version " + std::to_string(append.version) +
+                                              " not acknowledged", code);
+    return ioError(std::string(kOutcomeUnknown) + failed.message());
   }
   std::lock_guard<std::mutex> lock(mutex_);
   Tail& t = tails_[id.value];

@@ -106,6 +106,14 @@ struct StoreStats {
   server::LatencyBuckets commitLatency;            // BEGIN to durable COMMIT, every batch
 };
 
+// The start of the message of a failed write whose outcome the store cannot
+// know (a replicated store's request timed out: the write may be stored),
+// so that callers can tell it from a refusal.
+inline constexpr std::string_view kOutcomeUnknown = "outcome unknown: ";
+inline bool outcomeUnknown(const Status& status) {
+  return !status.isOk() && std::string_view(status.message()).substr(0, kOutcomeUnknown.size()) == kOutcomeUnknown;
+}
+
 // Called exactly once per append: ok once the entry is durable, otherwise why
 // it was refused. Runs on the store's writer thread: keep it short, never
 // block in it and never call a synchronous store method from it.

@@ -239,7 +239,10 @@ void ClusterDocument::askUndecidedLocked() {
     if (who && !dynamic_cast<RemoteSubscriber*>(who.get())) toAsk[who].push_back(seq);
   }
   undecided_.clear();
-  for (auto& [who, seqs] : toAsk) {
+  for (auto& entry : toAsk) {
+    // Named, not a structured binding: the lambda below captures them.
+    const std::shared_ptr<Subscriber>& who = entry.first;
+    const std::vector<uint64_t>& seqs = entry.second;
     if (host_) {
       host_->answerOutcomes(who, seqs);
     } else {

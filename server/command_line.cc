@@ -121,6 +121,16 @@ void addOperationsOptions(CLI::App& app, ServerConfig& c) {
       ->check(CLI::Range(0, 65535))->group(g);
   app.add_option("--http-listen", c.httpListenAddress, "address of the HTTP endpoint")->capture_default_str()->group(g);
   app.add_option("--http-port-file", c.httpPortFile, "write the HTTP endpoint's bound port to this file")->group(g);
+  const char* w = "Browser viewer (docs/WEB_VIEWER.md)";
+  app.add_option("--ws-port", c.wsPort,
+                 "serve the web viewer and the protocol over WebSocket (/ws) on this port of --listen "
+                 "(off by default; 0 picks one; TLS when --tls-cert is set)")
+      ->check(CLI::Range(0, 65535))->group(w);
+  app.add_option("--ws-port-file", c.wsPortFile, "write the web port's bound port to this file")->group(w);
+  app.add_option("--web-root", c.webRoot, "the built web viewer's files (default: this build's)")->group(w);
+  app.add_option("--ws-allowed-origin", c.wsAllowedOrigins,
+                 "a page origin (https://host:port) that may open WebSockets besides the viewer's own; repeatable; * for any")
+      ->group(w);
   app.add_flag("--verbose", c.verbose, "debug logs")->group(g);
 }
 

@@ -20,6 +20,9 @@ Status checkServerConfig(const ServerConfig& c) {
   if (!c.httpPortFile.empty() && c.httpPort < 0) {
     return invalidArgument("--http-port-file needs --http-port (the HTTP endpoint is off without it)");
   }
+  if ((!c.wsPortFile.empty() || !c.webRoot.empty() || !c.wsAllowedOrigins.empty()) && c.wsPort < 0) {
+    return invalidArgument("--ws-port-file, --web-root and --ws-allowed-origin need --ws-port (the web port is off without it)");
+  }
   return Status::ok();
 }
 

@@ -97,6 +97,13 @@ struct ServerConfig {
   std::string httpListenAddress = "127.0.0.1";
   int httpPort = -1;
   std::string httpPortFile;
+  // The browser viewer (issue 18, docs/WEB_VIEWER.md): the protocol over
+  // WebSocket on /ws and the viewer's files, on this port of listenAddress
+  // (off unless given; 0 picks one). TLS, when on, covers it too.
+  int wsPort = -1;
+  std::string wsPortFile;
+  std::string webRoot;  // the built client/web files; empty: the build's own
+  std::vector<std::string> wsAllowedOrigins;  // besides the page's own; "*" any
 };
 
 // The checks that span several options, after each option's own.

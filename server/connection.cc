@@ -78,10 +78,10 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
 
 }  // namespace
 
-Connection::Connection(asio::ip::tcp::socket socket, asio::ssl::context* tls, ServerContext& context,
+Connection::Connection(std::unique_ptr<Transport> transport, ConnectionStrand strand, ServerContext& context,
                        uint64_t sessionId, std::string address)
-    : socket_(socket.get_executor()),
-      strand_(asio::make_strand(socket.get_executor())),
+    : transport_(std::move(transport)),
+      strand_(std::move(strand)),
       idleTimer_(strand_),
       writeTimer_(strand_),
       helloTimer_(strand_),
@@ -92,11 +92,7 @@ Connection::Connection(asio::ip::tcp::socket socket, asio::ssl::context* tls, Se
       outbox_(context.config.limits),
       bucket_(context.config.limits.commandsPerSecond),
       refilled_(std::chrono::steady_clock::now()) {
-  if (tls != nullptr) {
-    tls_.emplace(std::move(socket), *tls);
-  } else {
-    socket_ = std::move(socket);
-  }
+  transportReady_ = !transport_->needsHandshake();
   ++context_.stats.connections;
   ++context_.stats.connectionsTotal;
 }
@@ -105,21 +101,21 @@ Connection::~Connection() { --context_.stats.connections; }
 
 void Connection::start() {
   asio::post(strand_, [self = shared_from_this()] {
-    logEvent(LogLevel::kInfo, "connected", {{"session", self->sessionId_}, {"address", self->address_}});
+    logEvent(LogLevel::kInfo, "connected",
+             {{"session", self->sessionId_}, {"address", self->address_}, {"transport", self->transport_->kind()}});
     self->armIdleTimer(self->context_.config.timeouts.handshakeSeconds);
-    if (!self->tls_) return self->readMore();
-    self->tls_->async_handshake(asio::ssl::stream_base::server,
-                                asio::bind_executor(self->strand_, [self](const boost::system::error_code& ec) {
-                                  if (self->closed_) return;
-                                  if (ec) {
-                                    logEvent(LogLevel::kInfo, "tls_handshake_failed",
-                                             {{"session", self->sessionId_}, {"error", ec.message()}});
-                                    return self->closeNow();
-                                  }
-                                  self->tlsReady_ = true;
-                                  self->readMore();
-                                  self->writeNext();
-                                }));
+    if (self->transportReady_) return self->readMore();
+    self->transport_->start([self](const boost::system::error_code& ec) {
+      if (self->closed_) return;
+      if (ec) {
+        logEvent(LogLevel::kInfo, "transport_handshake_failed",
+                 {{"session", self->sessionId_}, {"transport", self->transport_->kind()}, {"error", ec.message()}});
+        return self->closeNow();
+      }
+      self->transportReady_ = true;
+      self->readMore();
+      self->writeNext();
+    });
   });
 }
 
@@ -133,29 +129,37 @@ void Connection::armIdleTimer(double seconds) {
 
 void Connection::readMore() {
   if (closed_ || closing_) return;
-  auto onRead = asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t n) {
-        if (self->closed_) return;
-        if (ec) {
-          if (ec != asio::error::eof && ec != asio::error::operation_aborted) {
-            logEvent(LogLevel::kDebug, "read_failed", {{"session", self->sessionId_}, {"error", ec.message()}});
-          }
-          self->closeNow();
-          return;
-        }
-        // Bytes extend the idle deadline only after the Hello: the handshake
-        // deadline is absolute, so a peer trickling a byte at a time cannot
-        // hold an unauthenticated slot (issue 13 §3).
-        if (self->helloDone_) self->armIdleTimer(self->context_.config.timeouts.idleSeconds);
-        // A failed feed is sticky and reported by next() once the frames
-        // before it are handled.
-        (void)self->decoder_.feed(std::string_view(self->buffer_.data(), n));
-        self->drainFrames();
-      });
-  if (tls_) {
-    tls_->async_read_some(asio::buffer(buffer_), std::move(onRead));
-  } else {
-    socket_.async_read_some(asio::buffer(buffer_), std::move(onRead));
-  }
+  transport_->read([self = shared_from_this()](const boost::system::error_code& ec, std::string_view bytes, Status framing) {
+    if (self->closed_) return;
+    if (ec) {
+      if (ec != asio::error::eof && ec != asio::error::operation_aborted) {
+        logEvent(LogLevel::kDebug, "read_failed", {{"session", self->sessionId_}, {"error", ec.message()}});
+      }
+      self->closeNow();
+      return;
+    }
+    // A WebSocket message that is not exactly one frame is refused whole.
+    // A prefix the decoder refuses (too large, zero) is the more precise
+    // error, so the decoder sees the bytes first; none of the message's
+    // frames is handled.
+    if (!framing.isOk()) {
+      (void)self->decoder_.feed(bytes);
+      if (self->decoder_.failed()) {
+        return self->fatal(self->decoder_.error() == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE
+                                                                           : wire::ERROR_CODE_MALFORMED_FRAME,
+                           self->decoder_.status().message());
+      }
+      return self->fatal(wire::ERROR_CODE_MALFORMED_FRAME, framing.message());
+    }
+    // Bytes extend the idle deadline only after the Hello: the handshake
+    // deadline is absolute, so a peer trickling a byte at a time cannot
+    // hold an unauthenticated slot (issue 13 §3).
+    if (self->helloDone_) self->armIdleTimer(self->context_.config.timeouts.idleSeconds);
+    // A failed feed is sticky and reported by next() once the frames
+    // before it are handled.
+    (void)self->decoder_.feed(bytes);
+    self->drainFrames();
+  });
 }
 
 void Connection::drainFrames() {
@@ -217,7 +221,7 @@ void Connection::fatal(wire::ErrorCode code, const std::string& message) {
   reply(m);
   closing_ = true;
   if (!outbox_.writing() && outbox_.empty()) closeNow();
-  if (tls_ && !tlsReady_) closeNow();
+  if (!transportReady_) closeNow();
 }
 
 void Connection::refuse(wire::ErrorCode code, const std::string& message) {
@@ -230,8 +234,8 @@ void Connection::shutdown() {
 
 void Connection::writeNext() {
   if (closed_ || outbox_.writing()) return;
-  if (tls_ && !tlsReady_) {
-    if (closing_) closeNow();  // refused before the handshake: nothing to say over TLS yet
+  if (!transportReady_) {
+    if (closing_) closeNow();  // refused before the transport's handshake: nothing can be said yet
     return;
   }
   if (outbox_.empty()) {
@@ -249,27 +253,20 @@ void Connection::writeNext() {
     }
     return;
   }
-  // The frames stay alive in `frames` (shared) until the write completes.
-  auto frames = std::make_shared<std::vector<std::shared_ptr<const std::string>>>(outbox_.startWrite(64, 1u << 20));
-  auto buffers = std::make_shared<std::vector<asio::const_buffer>>();
-  for (const auto& f : *frames) buffers->push_back(asio::buffer(*f));
+  auto frames = outbox_.startWrite(64, 1u << 20);
+  const size_t count = frames.size();
   writeStarted_ = std::chrono::steady_clock::now();
   armWriteWatchdog();
-  auto onWritten = asio::bind_executor(strand_, [self = shared_from_this(), frames, buffers](const boost::system::error_code& ec, size_t n) {
-                      if (self->closed_) return;
-                      if (ec) return self->closeNow();
-                      self->context_.stats.bytesSent += static_cast<int64_t>(n);
-                      self->context_.stats.framesSent += static_cast<int64_t>(frames->size());
-                      self->outbox_.finishWrite();
-                      self->queueBytes_ = self->outbox_.bytes();
-                      self->queueMessages_ = self->outbox_.size();
-                      self->writeNext();
-                    });
-  if (tls_) {
-    asio::async_write(*tls_, *buffers, std::move(onWritten));
-  } else {
-    asio::async_write(socket_, *buffers, std::move(onWritten));
-  }
+  transport_->write(std::move(frames), [self = shared_from_this(), count](const boost::system::error_code& ec, size_t n) {
+    if (self->closed_) return;
+    if (ec) return self->closeNow();
+    self->context_.stats.bytesSent += static_cast<int64_t>(n);
+    self->context_.stats.framesSent += static_cast<int64_t>(count);
+    self->outbox_.finishWrite();
+    self->queueBytes_ = self->outbox_.bytes();
+    self->queueMessages_ = self->outbox_.size();
+    self->writeNext();
+  });
 }
 
 // One timer per connection, not one per write: with a thousand subscribers
@@ -297,12 +294,10 @@ void Connection::closeNow() {
   if (closed_) return;
   closed_ = true;
   live_ = false;
-  boost::system::error_code ignored;
   idleTimer_.cancel();
   writeTimer_.cancel();
   helloTimer_.cancel();
-  socket().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket().close(ignored);
+  transport_->close();
   for (auto& [id, host] : open_) host->leave(sessionId_);
   open_.clear();
   logEvent(LogLevel::kInfo, "disconnected", {{"session", sessionId_}});

@@ -5,9 +5,6 @@
 // slow client only ever fills its own outbox.
 #pragma once
 
-#include <array>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/ssl.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <boost/asio/strand.hpp>
@@ -21,13 +18,15 @@
 #include "server/outbox.h"
 #include "server/server_context.h"
 #include "server/subscriber.h"
+#include "server/transport.h"
 
 namespace tessera::server {
 
 class Connection : public Subscriber, public std::enable_shared_from_this<Connection> {
  public:
-  // With `tls` set, the connection first runs a TLS handshake on the socket.
-  Connection(boost::asio::ip::tcp::socket socket, boost::asio::ssl::context* tls, ServerContext& context,
+  // The transport's handshake (TLS, WebSocket) runs first, inside the
+  // handshake deadline. `strand` is the one the transport was made with.
+  Connection(std::unique_ptr<Transport> transport, ConnectionStrand strand, ServerContext& context,
              uint64_t sessionId, std::string address);
   ~Connection() override;
 
@@ -50,7 +49,6 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
 
  private:
   void readMore();
-  boost::asio::ip::tcp::socket& socket() { return tls_ ? tls_->next_layer() : socket_; }
   void handle(wire::ClientMessage message);
   void handleHello(const wire::ClientMessage& message);
   // Answers a Hello whose turn has come (auth_throttle.h).
@@ -82,9 +80,8 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   void grantToken(uint64_t clientSeq, const wire::GrantToken& request);
   uint64_t documentOf(const wire::ClientMessage& message) const;
 
-  boost::asio::ip::tcp::socket socket_;  // plain connections
-  std::optional<boost::asio::ssl::stream<boost::asio::ip::tcp::socket>> tls_;
-  boost::asio::strand<boost::asio::any_io_executor> strand_;
+  std::unique_ptr<Transport> transport_;
+  ConnectionStrand strand_;
   boost::asio::steady_timer idleTimer_, writeTimer_, helloTimer_;
   bool helloHeld_ = false;  // a Hello waiting for its address's turn
   std::atomic<bool> authenticated_{false};
@@ -95,13 +92,12 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   const uint64_t sessionId_;
   const std::string address_;
   FrameDecoder decoder_;
-  std::array<char, 64 * 1024> buffer_{};
   Outbox outbox_;
   std::atomic<uint64_t> queueBytes_{0};
   std::atomic<size_t> queueMessages_{0};
 
   bool helloDone_ = false, closing_ = false, closed_ = false;
-  bool tlsReady_ = false;  // no write may start while a TLS handshake runs
+  bool transportReady_ = false;  // no write may start while the transport's handshake runs
   std::string token_;  // never logged
   std::string name_;
   std::optional<Role> globalRole_;

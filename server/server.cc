@@ -154,6 +154,7 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   if (!config.portFile.empty()) {
     writePortFile(config.portFile, server->port_);
   }
+  if (config.wsPort >= 0) TESSERA_RETURN_IF_ERROR(server->startWebPort());
   if (config.httpPort >= 0) {
     Server* raw = server.get();
     TESSERA_ASSIGN_OR_RETURN(
@@ -167,6 +168,38 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     }
   }
   return server;
+}
+
+Status Server::startWebPort() {
+  const std::string root = config_.webRoot.empty() ? std::string(TESSERA_WEB_ROOT) : config_.webRoot;
+  TESSERA_ASSIGN_OR_RETURN(StaticFiles files, StaticFiles::load(root));
+  WebPortOptions options{config_.listenAddress, config_.wsPort, tls_.get(), config_.wsAllowedOrigins, config_.limits,
+                         config_.timeouts};
+  TESSERA_ASSIGN_OR_RETURN(web_, WebPort::start(io_, std::move(options), std::move(files),
+                                                [this](std::shared_ptr<PendingUpgrade> upgrade) {
+                                                  asio::post(strand_, [this, upgrade] { admit(upgrade); });
+                                                }));
+  if (!config_.wsPortFile.empty()) writePortFile(config_.wsPortFile, web_->port());
+  return Status::ok();
+}
+
+// A WebSocket upgrade (issue 18 §1) becomes a connection like one of the
+// protocol port, within the same limits; a refusal is an HTTP 503 before
+// the upgrade, since the peer speaks no frames yet.
+void Server::admit(std::shared_ptr<PendingUpgrade> upgrade) {
+  if (stopping_) return upgrade->refuse("the server is stopping");
+  const std::string address = upgrade->address();
+  if (const auto over = overLimits(address)) {
+    logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}});
+    ++stats_.connectionsRefused;
+    return upgrade->refuse(*over);
+  }
+  const uint64_t session = nextSession_++;
+  ConnectionStrand strand = asio::make_strand(upgrade->executor());
+  auto transport = upgrade->accept(strand);
+  auto connection = std::make_shared<Connection>(std::move(transport), std::move(strand), *context_, session, address);
+  connections_[session] = connection;
+  connection->start();
 }
 
 std::optional<std::string> Server::unhealthy() {
@@ -249,7 +282,9 @@ void Server::accept() {
     const std::string address = remote.address().to_string();
     const auto over = overLimits(address);
     const uint64_t session = nextSession_++;
-    auto connection = std::make_shared<Connection>(std::move(socket), tls_.get(), *context_, session, address);
+    ConnectionStrand strand = asio::make_strand(socket.get_executor());
+    auto transport = makeStreamTransport(std::move(socket), tls_.get(), strand);
+    auto connection = std::make_shared<Connection>(std::move(transport), std::move(strand), *context_, session, address);
     // The refusal is queued on the connection's strand before its start, so
     // with several network threads no Hello can be read and answered first.
     if (over) {
@@ -304,6 +339,7 @@ void Server::shutdown() {
   sd_notify(0, "STOPPING=1");
   boost::system::error_code ignored;
   acceptor_.close(ignored);
+  if (web_) web_->stop();
   signals_.cancel(ignored);
   hangup_.cancel(ignored);
   watchdog_.cancel();

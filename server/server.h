@@ -25,6 +25,7 @@
 #include "server/config.h"
 #include "server/connection.h"
 #include "server/http_endpoint.h"
+#include "server/web_port.h"
 #include "server/server_context.h"
 #include "server/store/store.h"
 
@@ -46,6 +47,8 @@ class Server {
   uint16_t port() const { return port_; }
   // The HTTP endpoint's port, 0 when it is off.
   uint16_t httpPort() const { return http_ ? http_->port() : 0; }
+  // The web port's (--ws-port), 0 when it is off.
+  uint16_t webPort() const { return web_ ? web_->port() : 0; }
   // Serves until a signal or stop(); returns once everything is closed.
   void run();
   void stop();
@@ -53,6 +56,9 @@ class Server {
  private:
   explicit Server(const ServerConfig& config);
   void accept();
+  // Adds a connection on `transport` unless the limits refuse it (on strand_).
+  void admit(std::shared_ptr<PendingUpgrade> upgrade);
+  Status startWebPort();
   void shutdown();
   void stopBulk();
   void awaitHangup();   // SIGHUP: reopen the log file (logrotate)
@@ -87,6 +93,7 @@ class Server {
   uint64_t nextSession_ = 1;
   bool stopping_ = false;
   std::atomic<bool> serving_{false};  // for /healthz, read from the HTTP threads
+  std::unique_ptr<WebPort> web_;
   std::unique_ptr<HttpEndpoint> http_;  // declared last: stopped before what it reads
   std::map<uint64_t, std::weak_ptr<Connection>> connections_;
 };

@@ -143,7 +143,7 @@ void Connection::readMore() {
     // error, so the decoder sees the bytes first; none of the message's
     // frames is handled.
     if (!framing.isOk()) {
-      (void)self->decoder_.feed(bytes);
+      if (!bytes.empty()) (void)self->decoder_.feed(bytes);
       if (self->decoder_.failed()) {
         return self->fatal(self->decoder_.error() == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE
                                                                            : wire::ERROR_CODE_MALFORMED_FRAME,

@@ -151,9 +151,6 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     return ioError("cannot listen on " + config.listenAddress + ":" + std::to_string(config.port) + ": " + ec.message());
   }
   server->port_ = server->acceptor_.local_endpoint().port();
-  if (!config.portFile.empty()) {
-    writePortFile(config.portFile, server->port_);
-  }
   if (config.wsPort >= 0) TESSERA_RETURN_IF_ERROR(server->startWebPort());
   if (config.httpPort >= 0) {
     Server* raw = server.get();
@@ -166,6 +163,11 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     if (!config.httpPortFile.empty()) {
       writePortFile(config.httpPortFile, server->http_->port());
     }
+  }
+  // Last: scripts and tests take the port file as the sign that every
+  // port (the web and HTTP ones too) is bound.
+  if (!config.portFile.empty()) {
+    writePortFile(config.portFile, server->port_);
   }
   return server;
 }

@@ -31,7 +31,7 @@ class Transport {
   using Done = std::function<void(const boost::system::error_code&)>;
   // Bytes read; for a WebSocket, a Status that is not ok when the peer
   // broke the one-frame-per-message rule (the Connection answers it as a
-  // malformed frame).
+  // malformed frame), and no bytes for a text message.
   using Read = std::function<void(const boost::system::error_code&, std::string_view bytes, Status framing)>;
   using Written = std::function<void(const boost::system::error_code&, size_t bytes)>;
 

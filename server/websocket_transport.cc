@@ -56,8 +56,10 @@ class WebSocketTransport final : public Transport {
       // Read on the socket's executor; the message state is read here,
       // before another read can change it.
       Status framing = ec ? Status::ok() : framing_.feed(std::string_view(buffer_.data(), n), ws_.is_message_done(), ws_.got_binary());
-      asio::dispatch(strand_, [this, done, ec, n, framing = std::move(framing)] {
-        done(ec, ec ? std::string_view() : std::string_view(buffer_.data(), n), framing);
+      // A text message's bytes are not frames at all: none are passed on.
+      const size_t passed = ec || !ws_.got_binary() ? 0 : n;
+      asio::dispatch(strand_, [this, done, ec, passed, framing = std::move(framing)] {
+        done(ec, std::string_view(buffer_.data(), passed), framing);
       });
     });
   }

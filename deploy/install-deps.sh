@@ -42,6 +42,8 @@ packages=(
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
   # the cluster tests and deploy/cluster-loopback.sh start real NATS servers
   nats-server
+  # the browser viewer's tests drive Debian's Chromium headless (issue 18 §3)
+  chromium
 )
 if [[ ${1:-} == --build ]]; then
   packages=("${build_packages[@]}")
@@ -58,15 +60,30 @@ for p in "${packages[@]}"; do
   fi
 done
 
-if ((${#missing[@]} == 0)); then
-  exit 0
+if ((${#missing[@]} > 0)); then
+  echo "install-deps: installing ${missing[*]}" >&2
+  if [[ $(id -u) -ne 0 ]]; then
+    echo "install-deps: missing packages and not root; run as root or install them: ${missing[*]}" >&2
+    exit 1
+  fi
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-echo "install-deps: installing ${missing[*]}" >&2
-if [[ $(id -u) -ne 0 ]]; then
-  echo "install-deps: missing packages and not root; run as root or install them: ${missing[*]}" >&2
-  exit 1
+# The web viewer's npm packages (three, draco3d, protobufjs, esbuild,
+# puppeteer-core), pinned by client/web/package-lock.json, into
+# client/web/node_modules: the only download outside Debian's packages.
+# Skipped when that lock file is already installed, so builds and tests run
+# offline afterwards. puppeteer-core never downloads a browser (the tests
+# use Debian's chromium).
+if [[ ${1:-} != --build ]]; then
+  web=$(cd "$(dirname "$0")/../client/web" && pwd)
+  lock_hash=$(sha256sum "$web/package-lock.json" | cut -d' ' -f1)
+  stamp=$web/node_modules/.tessera-lock-sha256
+  if [[ ! -f $stamp || $(cat "$stamp") != "$lock_hash" ]]; then
+    echo "install-deps: npm ci in client/web" >&2
+    (cd "$web" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+    echo "$lock_hash" >"$stamp"
+  fi
 fi
-export DEBIAN_FRONTEND=noninteractive
-apt-get update -qq
-apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,62 @@
+// Builds the page into one directory of exactly four files, the ones
+// tessera-server --ws-port serves: index.html, viewer.css, viewer.js (every
+// module and library in one minified bundle, protocol/tessera.proto inside
+// as text) and draco_decoder.wasm (copied from the draco3d package, never
+// kept in the repository). Offline once `npm ci` has run.
+//
+//   node client/web/build.mjs --out DIR
+//
+// Prints one line: each file's size, raw and gzip-compressed (node's zlib),
+// and the JavaScript + WebAssembly one page load transfers compressed.
+import { build } from 'esbuild';
+import { copyFileSync, mkdirSync, readFileSync, statSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { gzipSync } from 'node:zlib';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const require = createRequire(import.meta.url);
+const OUTPUTS = ['index.html', 'viewer.css', 'viewer.js', 'draco_decoder.wasm'];
+
+function outDirectory(argv) {
+  const at = argv.indexOf('--out');
+  const value = at >= 0 ? argv[at + 1] : argv.find((a) => a.startsWith('--out='))?.slice(6);
+  if (!value) {
+    console.error('usage: node client/web/build.mjs --out DIR');
+    process.exit(2);
+  }
+  return resolve(value);
+}
+
+const out = outDirectory(process.argv.slice(2));
+mkdirSync(out, { recursive: true });
+
+await build({
+  entryPoints: [join(here, 'src/main.js')],
+  outfile: join(out, 'viewer.js'),
+  bundle: true,
+  minify: true,
+  format: 'iife',
+  platform: 'browser',
+  target: 'es2020',
+  loader: { '.proto': 'text' },
+  // draco3d's wrapper reads its .wasm with node:fs only under Node; the
+  // page hands it the bytes instead, so the branch never runs in a browser.
+  external: ['node:fs'],
+  legalComments: 'none',
+  logLevel: 'warning',
+});
+copyFileSync(join(here, 'index.html'), join(out, 'index.html'));
+copyFileSync(join(here, 'viewer.css'), join(out, 'viewer.css'));
+copyFileSync(require.resolve('draco3d/draco_decoder.wasm'), join(out, 'draco_decoder.wasm'));
+
+const sizes = OUTPUTS.map((name) => {
+  const bytes = readFileSync(join(out, name));
+  return { name, raw: statSync(join(out, name)).size, gzip: gzipSync(bytes, { level: 9 }).length };
+});
+const kb = (n) => `${(n / 1024).toFixed(1)} KiB`;
+const code = sizes.filter((s) => s.name.endsWith('.js') || s.name.endsWith('.wasm'));
+console.log(`${out}: ` + sizes.map((s) => `${s.name} ${kb(s.raw)} (gzip ${kb(s.gzip)})`).join(', ') +
+  `; JavaScript + WebAssembly per page load: ${kb(code.reduce((a, s) => a + s.raw, 0))} raw, ` +
+  `${kb(code.reduce((a, s) => a + s.gzip, 0))} gzip`);

@@ -1,0 +1,241 @@
+// One document over one connection: what client/view/connection.cc does
+// for tessera-view, without the transport. On every (re)connection it opens
+// the document and subscribes with the chosen LOD profile; it feeds
+// snapshots and deltas into a DocumentView, subscribes again after a gap,
+// checks the surface hash against the server's, keeps the collaborators
+// from Presence, sends this viewer's edits (paced, each in an undo step)
+// and measures edit-to-delta latency.
+import { DocumentView } from './document_view.js';
+import { UndoHistory } from './undo_history.js';
+import { LatencyTracker } from './latency.js';
+import { Collaborators } from './presence.js';
+import { Pacer } from './pacer.js';
+import { toBig, toLong, hex64 } from './uint64.js';
+import { shallower } from './lod_profiles.js';
+
+// SetEdgeSharpness.edge_id when end_vertex_ids name the edge (7.2).
+const EDGE_NAMED_BY_ENDS = (1n << 64n) - 1n;
+
+export class DocumentSession {
+  // options: {connection, decode, documentId, profile, onView(change),
+  // onPresence(), onStatus(text), onError(text), onHash(result)}.
+  constructor(options) {
+    this.o = options;
+    this.connection = options.connection;
+    this.documentId = BigInt(options.documentId);
+    this.profile = options.profile;
+    this.view = new DocumentView(this.documentId, options.decode);
+    this.history = new UndoHistory();
+    this.latency = new LatencyTracker();
+    this.collaborators = new Collaborators();
+    this.pacer = new Pacer();
+    this.role = 0; // the role on this document, from our own Presence entry
+    this.sessionId = 0n;
+    this.opened = false;
+    this.editsSent = 0;
+    this.editsRejected = 0;
+    this.hashChecks = 0;
+    this.hashMismatches = 0;
+    this.lastHash = null; // {ours, server, matches}
+  }
+
+  // Called by the page once the connection has its HelloAck.
+  async connected(helloAck) {
+    this.sessionId = toBig(helloAck.session_id);
+    this.role = helloAck.role;
+    this.pacer.clear(); // commands for the lost connection's session
+    this.view = new DocumentView(this.documentId, this.o.decode);
+    this.latency.reset();
+    this.collaborators.clear();
+    this.opened = false;
+    try {
+      await this.connection.call({ open_document: { document_id: toLong(this.documentId) } });
+      this.opened = true;
+      this.o.onStatus?.('subscribing');
+      await this.subscribeOrShallower(this.profile);
+    } catch (error) {
+      this.o.onError?.(`document ${this.documentId}: ${error.message}`);
+    }
+  }
+
+  // A document's max_level is not known over the wire (12 of PROTOCOL.md),
+  // so a profile it refuses as invalid or too large is tried again one
+  // level shallower until one is accepted.
+  async subscribeOrShallower(profile) {
+    for (let p = profile; ;) {
+      try {
+        const version = await this.subscribe(p);
+        this.o.onProfile?.(p);
+        return version;
+      } catch (error) {
+        const next = error.reason === 1 || error.reason === 7 ? shallower(p) : null; // INVALID_ARGUMENT, LIMIT_EXCEEDED
+        if (!next) throw error;
+        this.o.onError?.(`LOD ${p.name ?? ''} refused (${error.message}); trying max level ${next.maxLevel}`);
+        p = next;
+      }
+    }
+  }
+
+  // Subscribing again with another profile replaces the old one (6.1).
+  async subscribe(profile) {
+    this.profile = profile;
+    const reply = await this.connection.call({
+      subscribe: { document_id: toLong(this.documentId), profile: profileFields(profile) },
+    });
+    return toBig(reply.message.ack.version);
+  }
+
+  resubscribe(reason) {
+    this.o.onError?.(`${reason}; subscribing again`);
+    this.subscribe(this.profile).catch((error) => this.o.onError?.(`subscribe: ${error.message}`));
+  }
+
+  // Server messages that are not replies.
+  message(body, message) {
+    if (body === 'snapshot' || body === 'delta') return this.update(body, message);
+    if (body === 'presence' && toBig(message.presence.document_id) === this.documentId) {
+      this.collaborators.apply(message.presence);
+      const self = this.collaborators.bySession.get(this.sessionId);
+      if (self) this.role = self.role;
+      this.o.onPresence?.();
+    }
+  }
+
+  update(body, message) {
+    let change;
+    try {
+      change = this.view.apply(body, message);
+    } catch (error) {
+      // A region that does not decode: the view cannot be trusted.
+      this.view.gap(error.message);
+      change = { kind: 'gap', reason: error.message };
+    }
+    if (change.kind === 'gap') return this.resubscribe(change.reason);
+    if (change.kind === 'delta') {
+      const d = change.delta;
+      this.latency.delta(toBig(d.from_version), toBig(d.to_version), toBig(d.author_session_id) === this.sessionId);
+    }
+    if (change.kind === 'snapshot' || change.kind === 'delta') {
+      this.checkHash();
+      this.o.onView?.(change);
+    }
+  }
+
+  checkHash() {
+    const ours = this.view.surfaceHash();
+    const server = this.view.announcedHash;
+    const matches = server === 0n || server === ours;
+    ++this.hashChecks;
+    if (!matches) {
+      ++this.hashMismatches;
+      this.o.onError?.(`version ${this.view.version}: surface hash ${hex64(ours)}, the server's ${hex64(server)}: ` +
+        'the assembled regions differ from the server\'s');
+    }
+    this.lastHash = { ours, server, matches };
+    this.o.onHash?.(this.lastHash);
+  }
+
+  canEdit() {
+    return this.opened && this.role >= 2; // ROLE_EDITOR or ROLE_ADMIN
+  }
+
+  // Sends an edit (paced), counting it in `step` (a new step of its own
+  // when none is given).
+  edit(command, step = null) {
+    const own = step === null;
+    if (own) step = this.history.open();
+    this.history.sent(step);
+    if (own) this.history.close(step);
+    const job = () => {
+      ++this.editsSent;
+      this.connection.call(command).then(
+        (reply) => {
+          const ack = reply.message.ack;
+          if (ack && toBig(ack.edit_id) !== 0n) this.history.acked(step, toBig(ack.edit_id));
+          else this.history.dropped(step);
+          if (ack) this.latency.acked(toBig(ack.version), reply.sentAt, this.view.version);
+        },
+        (error) => {
+          ++this.editsRejected;
+          this.history.dropped(step);
+          this.o.onError?.(error.message);
+        });
+    };
+    job.drop = () => this.history.dropped(step);
+    this.pacer.run(job);
+  }
+
+  moveVertex(vertexId, target, step) {
+    this.edit({
+      move_vertex: {
+        document_id: toLong(this.documentId),
+        vertex_ids: [toLong(vertexId)],
+        target: { x: target[0], y: target[1], z: target[2] },
+        mode: 1, // MOVE_MODE_DIRECT_MANIPULATION
+      },
+    }, step);
+  }
+
+  setEdgeSharpness(endA, endB, sharpness) {
+    this.edit({
+      set_edge_sharpness: {
+        document_id: toLong(this.documentId),
+        edge_id: toLong(EDGE_NAMED_BY_ENDS),
+        end_vertex_ids: [toLong(endA), toLong(endB)],
+        sharpness,
+      },
+    });
+  }
+
+  // type: 1 smooth, 3 corner (VertexType).
+  setVertexType(vertexId, type) {
+    this.edit({ set_vertex_type: { document_id: toLong(this.documentId), vertex_id: toLong(vertexId), type } });
+  }
+
+  // Others see it in Presence; a valid Select has no reply (7.2).
+  select(vertexIds) {
+    if (!this.opened) return;
+    try {
+      this.connection.send({
+        select: { document_id: toLong(this.documentId), selection: { vertex_ids: vertexIds.map((id) => toLong(id)) } },
+      });
+    } catch (error) {
+      this.o.onError?.(`select: ${error.message}`);
+    }
+  }
+
+  // Undo (or redo) this viewer's newest step: one Undo per edit, newest
+  // first (redo: oldest first). False with the reason shown when nothing can.
+  step(undo) {
+    let ids;
+    try {
+      ids = undo ? this.history.undo() : this.history.redo();
+    } catch (error) {
+      this.o.onError?.(error.message);
+      return false;
+    }
+    for (const id of ids) {
+      const command = undo
+        ? { undo: { document_id: toLong(this.documentId), edit_id: toLong(id) } }
+        : { redo: { document_id: toLong(this.documentId), edit_id: toLong(id) } };
+      this.pacer.run(() => {
+        const sentAt = performance.now();
+        this.connection.call(command).then(
+          (reply) => this.latency.acked(toBig(reply.message.ack.version), sentAt, this.view.version),
+          (error) => this.o.onError?.(error.message));
+      });
+    }
+    return true;
+  }
+}
+
+// A profile of lod_profiles.js as LodProfile fields.
+export function profileFields(p) {
+  return {
+    base_level: p.baseLevel,
+    max_level: p.maxLevel,
+    angle_threshold_degrees: p.angle,
+    triangle_budget: toLong(p.budget ?? 0),
+    omit_vertex_ids: Boolean(p.omitVertexIds),
+  };
+}

@@ -1,0 +1,133 @@
+// The heads-up display: a compact panel in the top-left corner, at most a
+// third of the page wide and under half its height (it scrolls beyond), so
+// that it never covers the middle of the frame where fit-to-view puts the
+// model. Its first line carries what one wants at a glance (version,
+// triangles, frame rate); then latency, bytes per second, the surface hash
+// check, the LOD profile and the display toggles, the pick, the
+// collaborators, and a status and an error line. H folds it to its first
+// line. It only reads facts handed to it; it owns no state of the document.
+import { LOD_PRESETS } from './lod_profiles.js';
+import { idName } from './ids.js';
+import { hex64 } from './uint64.js';
+import { sessionColour } from './presence.js';
+
+const ROLE_NAMES = ['no role', 'viewer', 'editor', 'admin'];
+
+function shortCount(n) {
+  if (n < 1e4) return String(Math.round(n));
+  if (n < 1e6) return `${(n / 1e3).toFixed(1)}k`;
+  return `${(n / 1e6).toFixed(2)}M`;
+}
+
+function bytesRate(b) {
+  if (b < 1024) return `${b.toFixed(0)} B/s`;
+  if (b < 1024 * 1024) return `${(b / 1024).toFixed(1)} KiB/s`;
+  return `${(b / 1024 / 1024).toFixed(2)} MiB/s`;
+}
+
+function element(tag, className, text) {
+  const e = document.createElement(tag);
+  if (className) e.className = className;
+  if (text !== undefined) e.textContent = text;
+  return e;
+}
+
+export class Hud {
+  // handlers: {onPreset(name), onWireframe(on), onRegionColours(on), onLevel(delta)}
+  constructor(root, handlers) {
+    this.root = root;
+    this.h = handlers;
+    root.classList.add('hud');
+    root.innerHTML = `
+      <div class="hud-title"><span class="hud-brand">Tessera</span><span data-f="glance"></span>
+        <button class="hud-fold" title="fold (H)" aria-label="fold the panel">▾</button></div>
+      <div class="hud-body">
+        <div class="hud-row" data-f="doc"></div>
+        <div class="hud-row"><span data-f="latency"></span><span data-f="rate"></span></div>
+        <div class="hud-row" data-f="hash"></div>
+        <div class="hud-row hud-controls">
+          <label>LOD <select data-f="preset"></select></label>
+          <span class="hud-level">level <button data-f="down" aria-label="coarser edit level">−</button><b data-f="level"></b><button data-f="up" aria-label="finer edit level">+</button></span>
+        </div>
+        <div class="hud-row hud-controls">
+          <label><input type="checkbox" data-f="wire"> wire <kbd>W</kbd></label>
+          <label><input type="checkbox" data-f="colours"> regions <kbd>R</kbd></label>
+        </div>
+        <div class="hud-row" data-f="pick"></div>
+        <ul class="hud-people" data-f="people"></ul>
+        <div class="hud-row hud-status" data-f="status"></div>
+        <div class="hud-row hud-error" data-f="error"></div>
+        <details class="hud-keys"><summary>keys</summary>
+          drag a dot: move it · <kbd>Ctrl</kbd>+<kbd>Z</kbd>/<kbd>Y</kbd> undo/redo ·
+          <kbd>C</kbd> crease the edge of the last two picks · <kbd>V</kbd> corner/smooth ·
+          <kbd>[</kbd> <kbd>]</kbd> edit level · <kbd>P</kbd> dots · <kbd>F</kbd> fit · <kbd>Esc</kbd> unpick · <kbd>H</kbd> fold
+        </details>
+      </div>`;
+    this.f = {};
+    for (const e of root.querySelectorAll('[data-f]')) this.f[e.dataset.f] = e;
+    for (const p of LOD_PRESETS) {
+      const option = element('option', '', `${p.name} (${p.baseLevel}–${p.maxLevel}, ${p.angle}°)`);
+      option.value = p.name;
+      this.f.preset.append(option);
+    }
+    this.f.preset.addEventListener('change', () => this.h.onPreset(this.f.preset.value));
+    this.f.wire.addEventListener('change', () => this.h.onWireframe(this.f.wire.checked));
+    this.f.colours.addEventListener('change', () => this.h.onRegionColours(this.f.colours.checked));
+    this.f.down.addEventListener('click', () => this.h.onLevel(-1));
+    this.f.up.addEventListener('click', () => this.h.onLevel(1));
+    root.querySelector('.hud-fold').addEventListener('click', () => this.toggle());
+  }
+
+  toggle() {
+    this.root.classList.toggle('folded');
+  }
+
+  // facts: {fps, triangles, regions, version, documentName, documentId,
+  // role, latencyMs, bytesPerSecond, hash: {ours, server, matches} | null,
+  // preset, wireframe, regionColours, level, pick, points, pointsDrawn, people: [{sessionId,
+  // name, role, selection, self}], status, error}
+  update(facts) {
+    const f = this.f;
+    f.glance.textContent = `v${facts.version}  ${shortCount(facts.triangles)} tris  ${facts.fps >= 0.5 ? `${facts.fps.toFixed(0)} fps` : 'idle'}`;
+    f.doc.textContent = facts.documentId
+      ? `doc ${facts.documentId}${facts.documentName ? ` “${facts.documentName}”` : ''} · ${facts.regions} regions · ${ROLE_NAMES[facts.role] ?? 'role ' + facts.role}`
+      : 'no document';
+    f.latency.textContent = facts.latencyMs === null ? 'edit→delta –' : `edit→delta ${facts.latencyMs.toFixed(1)} ms`;
+    f.rate.textContent = bytesRate(facts.bytesPerSecond);
+    if (!facts.hash) {
+      f.hash.textContent = 'surface hash –';
+      f.hash.className = 'hud-row';
+    } else if (facts.hash.server === 0n) {
+      f.hash.textContent = `hash ${hex64(facts.hash.ours)} (server sent none)`;
+      f.hash.className = 'hud-row';
+    } else {
+      f.hash.textContent = `${facts.hash.matches ? '✓ hash matches' : '✗ hash differs'} ${hex64(facts.hash.ours).slice(0, 10)}…`;
+      f.hash.className = `hud-row ${facts.hash.matches ? 'hud-good' : 'hud-bad'}`;
+    }
+    if (f.preset.value !== facts.preset && document.activeElement !== f.preset) f.preset.value = facts.preset;
+    f.wire.checked = facts.wireframe;
+    f.colours.checked = facts.regionColours;
+    f.level.textContent = String(facts.level);
+    f.pick.textContent = `${facts.pick} · ${shortCount(facts.points)} ${facts.pointsDrawn || facts.points === 0 ? 'dots' : 'vertices, no dots'}`;
+    this.people(facts.people);
+    f.status.textContent = facts.status;
+    f.error.textContent = facts.error;
+    f.error.hidden = !facts.error;
+  }
+
+  people(list) {
+    const ul = this.f.people;
+    const key = JSON.stringify(list.map((p) => [String(p.sessionId), p.name, p.role, p.selection.map(String)]));
+    if (ul.dataset.key === key) return;
+    ul.dataset.key = key;
+    ul.replaceChildren(...list.map((p) => {
+      const li = element('li');
+      const swatch = element('span', 'hud-swatch');
+      swatch.style.background = p.self ? '#ff4433' : `#${sessionColour(p.sessionId).getHexString()}`;
+      const selection = p.selection.slice(0, 3).map((id) => idName(id)).join(' ') + (p.selection.length > 3 ? ' …' : '');
+      li.append(swatch, element('span', '', `${p.name}${p.self ? ' (you)' : ''}`),
+        element('span', 'hud-dim', ` ${ROLE_NAMES[p.role] ?? ''}${selection ? ' · ' + selection : ''}`));
+      return li;
+    }));
+  }
+}

@@ -1,0 +1,100 @@
+// Who else has the document open, and what they selected (docs/PROTOCOL.md
+// 6.3), and the marks that show it: each other participant's selected
+// vertices as points of their own colour at the vertices' limit positions.
+// A full Presence replaces the list; a change-form one replaces the entries
+// it names and removes those in left_session_ids.
+import * as THREE from 'three';
+import { toBig } from './uint64.js';
+
+export class Collaborators {
+  constructor() {
+    this.bySession = new Map(); // session id (BigInt) -> {sessionId, name, role, selection: BigInt[]}
+  }
+
+  apply(presence) {
+    if (presence.full) this.bySession.clear();
+    for (const left of presence.left_session_ids) this.bySession.delete(toBig(left));
+    for (const p of presence.participants) {
+      const sessionId = toBig(p.session_id);
+      this.bySession.set(sessionId, {
+        sessionId,
+        name: p.name,
+        role: p.role,
+        selection: (p.selection?.vertex_ids ?? []).map(toBig),
+      });
+    }
+  }
+
+  clear() {
+    this.bySession.clear();
+  }
+
+  // In session order, as the server orders them.
+  list() {
+    return [...this.bySession.values()].sort((a, b) => (a.sessionId < b.sessionId ? -1 : a.sessionId > b.sessionId ? 1 : 0));
+  }
+}
+
+// A colour per session, the same on every viewer: hues spread by the golden
+// angle so that neighbouring session ids differ.
+export function sessionColour(sessionId) {
+  const hue = (Number(BigInt(sessionId) % 360n) * 137.508) % 360;
+  return new THREE.Color().setHSL(hue / 360, 0.85, 0.6);
+}
+
+// Screen-sized round points drawn over the surface (no depth test: a
+// selection behind the model still shows, as a collaborator's cursor would).
+export class PresenceLayer {
+  // onChange: the view must draw again.
+  constructor(scene, onChange) {
+    this.onChange = onChange;
+    this.geometry = new THREE.BufferGeometry();
+    this.material = new THREE.PointsMaterial({
+      size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false, transparent: true,
+      map: roundSprite(),
+      alphaTest: 0.5,
+    });
+    this.points = new THREE.Points(this.geometry, this.material);
+    this.points.renderOrder = 10;
+    this.points.frustumCulled = false;
+    scene.add(this.points);
+  }
+
+  // others: [{sessionId, selection}] of the other participants, and this
+  // viewer's own picks; positionOf(id) -> [x, y, z] or null.
+  update(others, own, positionOf) {
+    const positions = [], colours = [];
+    const add = (id, colour) => {
+      const p = positionOf(id);
+      if (!p) return;
+      positions.push(p[0], p[1], p[2]);
+      colours.push(colour.r, colour.g, colour.b);
+    };
+    for (const c of others) for (const id of c.selection) add(id, sessionColour(c.sessionId));
+    const mine = new THREE.Color(1, 0.25, 0.2);
+    for (const id of own) add(id, mine);
+    this.geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+    this.geometry.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
+    this.geometry.computeBoundingSphere();
+    this.onChange();
+  }
+}
+
+// A disc with a dark rim, drawn once into a small canvas.
+function roundSprite() {
+  const size = 64;
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = size;
+  const g = canvas.getContext('2d');
+  g.beginPath();
+  g.arc(size / 2, size / 2, size / 2 - 2, 0, 2 * Math.PI);
+  g.fillStyle = '#202428';
+  g.fill();
+  g.beginPath();
+  g.arc(size / 2, size / 2, size / 2 - 10, 0, 2 * Math.PI);
+  g.fillStyle = '#ffffff';
+  g.fill();
+  const texture = new THREE.CanvasTexture(canvas);
+  texture.colorSpace = THREE.SRGBColorSpace;
+  return texture;
+}

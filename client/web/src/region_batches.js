@@ -1,0 +1,107 @@
+// The regions on screen, packed into a few large meshes. A document of many
+// base faces arrives as as many regions (fandisk: 12,946 of about four
+// triangles each), and a draw call per region costs more than the triangles
+// themselves. So regions are kept in batches of up to BATCH_VERTICES
+// vertices, each one BufferGeometry; a region that a delta replaces or
+// removes marks its batch, and marked batches are rebuilt (copied together
+// again) once before the next frame. Each vertex also carries its region's
+// colour, for the region-colour toggle.
+import * as THREE from 'three';
+
+const BATCH_VERTICES = 65536;
+
+// A region's own colour, the same in every viewer: hues spread by the golden
+// ratio over the region id.
+export function regionColour(regionId) {
+  const hue = Number(BigInt.asUintN(32, BigInt(regionId) * 2654435761n)) / 2 ** 32;
+  return new THREE.Color().setHSL(hue, 0.5, 0.6);
+}
+
+export class RegionBatches {
+  // onBatch(batch) / onDrop(batch): the scene adds or removes its meshes.
+  constructor(onBatch, onDrop) {
+    this.onBatch = onBatch;
+    this.onDrop = onDrop;
+    this.batches = [];
+    this.where = new Map(); // region id -> batch
+    this.triangles = 0;
+  }
+
+  set(regionId, region) {
+    this.remove(regionId);
+    const vertices = region.positions.length / 3;
+    let batch = this.batches.find((b) => b.vertices + vertices <= BATCH_VERTICES);
+    if (!batch) {
+      batch = { regions: new Map(), vertices: 0, dirty: true, geometry: null };
+      this.batches.push(batch);
+    }
+    batch.regions.set(regionId, region);
+    batch.vertices += vertices;
+    batch.dirty = true;
+    this.where.set(regionId, batch);
+    this.triangles += region.indices.length / 3;
+  }
+
+  remove(regionId) {
+    const batch = this.where.get(regionId);
+    if (!batch) return;
+    const region = batch.regions.get(regionId);
+    batch.regions.delete(regionId);
+    batch.vertices -= region.positions.length / 3;
+    batch.dirty = true;
+    this.where.delete(regionId);
+    this.triangles -= region.indices.length / 3;
+  }
+
+  has(regionId) {
+    return this.where.has(regionId);
+  }
+
+  ids() {
+    return [...this.where.keys()];
+  }
+
+  // Rebuilds the marked batches; drops the empty ones.
+  flush() {
+    for (const batch of this.batches.filter((b) => b.dirty)) {
+      batch.dirty = false;
+      if (batch.geometry) {
+        this.onDrop(batch);
+        batch.geometry.dispose();
+        batch.geometry = null;
+      }
+      if (batch.regions.size === 0) continue;
+      batch.geometry = build(batch);
+      this.onBatch(batch);
+    }
+    this.batches = this.batches.filter((b) => b.regions.size > 0);
+  }
+}
+
+function build(batch) {
+  const positions = new Float32Array(batch.vertices * 3);
+  const normals = new Float32Array(batch.vertices * 3);
+  const colours = new Float32Array(batch.vertices * 3);
+  let triangles = 0;
+  for (const r of batch.regions.values()) triangles += r.indices.length / 3;
+  const indices = batch.vertices <= 65536 ? new Uint16Array(triangles * 3) : new Uint32Array(triangles * 3);
+  let v = 0, i = 0;
+  for (const [id, r] of batch.regions) {
+    positions.set(r.positions, v * 3);
+    normals.set(r.normals, v * 3);
+    const c = regionColour(id);
+    const n = r.positions.length / 3;
+    for (let k = 0; k < n; ++k) colours.set([c.r, c.g, c.b], (v + k) * 3);
+    for (let k = 0; k < r.indices.length; ++k) indices[i + k] = r.indices[k] + v;
+    v += n;
+    i += r.indices.length;
+  }
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setAttribute('normal', new THREE.BufferAttribute(normals, 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+  geometry.setIndex(new THREE.BufferAttribute(indices, 1));
+  geometry.computeBoundingSphere();
+  geometry.computeBoundingBox();
+  return geometry;
+}

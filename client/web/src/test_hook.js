@@ -1,0 +1,71 @@
+// window.tesseraViewer: what the headless-browser tests read and do
+// (client/web/README.md "Test hook"). Plain JSON values only: ids as text
+// ("v2:123") and decimal strings, hashes as "0x" + 16 hex digits.
+import { idName, packId, parseIdName } from './ids.js';
+import { hex64 } from './uint64.js';
+
+const ROLE_NAMES = ['ROLE_UNSPECIFIED', 'ROLE_VIEWER', 'ROLE_EDITOR', 'ROLE_ADMIN'];
+
+// app: {connection(), session(), view (SceneView), picker, vertices, editor,
+// lastError(), ready()}
+export function installTestHook(app) {
+  const hook = {
+    state() {
+      const connection = app.connection();
+      const session = app.session();
+      const view = session?.view;
+      const hash = session?.lastHash;
+      return {
+        connected: Boolean(connection?.ready),
+        ready: app.ready(),
+        role: ROLE_NAMES[session ? session.role : connection?.helloAck?.role ?? 0] ?? String(session?.role),
+        documentId: session ? String(session.documentId) : '',
+        version: view ? Number(view.version) : 0,
+        surfaceHash: hash ? hex64(hash.ours) : hex64(0n),
+        serverSurfaceHash: hash ? hex64(hash.server) : hex64(0n),
+        hashMatches: Boolean(hash?.matches),
+        triangles: view ? view.triangles() : 0,
+        regions: view ? view.regions.size : 0,
+        bytesReceived: connection ? connection.bytesReceived : 0,
+        lastEditToDeltaMs: session?.latency.last ?? null,
+        collaborators: session ? session.collaborators.list().map((c) => ({
+          sessionId: String(c.sessionId),
+          name: c.name,
+          role: ROLE_NAMES[c.role] ?? String(c.role),
+          selection: c.selection.map((id) => idName(id)),
+          self: c.sessionId === session.sessionId,
+        })) : [],
+        error: app.lastError(),
+        frames: connection ? connection.frames : 0,
+        editsSent: session?.editsSent ?? 0,
+        editsRejected: session?.editsRejected ?? 0,
+        editLevel: app.editor.level,
+        picked: app.editor.picks.map((id) => idName(id)),
+      };
+    },
+
+    // CSS pixels of the page where the vertex is drawn, or null when it is
+    // not displayed or behind the camera. Any level of the vertex's id.
+    screenPointOfVertex(idString) {
+      const id = parseIdName(idString);
+      const vertex = id === null ? null : app.vertices.lookup(id);
+      if (!vertex) return null;
+      return app.picker.toScreen(vertex.position);
+    },
+
+    // A visible control vertex of the edit level near the middle of the
+    // canvas: the one a click there would pick.
+    someVertexNearCentre() {
+      const found = app.picker.nearCentre(app.editor.level);
+      if (!found) return null;
+      const id = packId(app.editor.level, found.vertex.index);
+      return { id: idName(id), packed: String(id), x: found.screen.x, y: found.screen.y };
+    },
+
+    renderedFrames() {
+      return app.view.frames;
+    },
+  };
+  window.tesseraViewer = hook;
+  return hook;
+}

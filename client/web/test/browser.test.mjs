@@ -1,0 +1,227 @@
+// The page itself in headless Chromium against a real tessera-server, served
+// by the server's own --ws-port from a fresh build. What a person would check:
+// the cube shows, anti-aliased, with the HUD in its corner; the hash
+// matches the server's; a drag edits and undo takes it back; collaborators'
+// picks show both ways; the keys and the LOD selector work; the start
+// panel asks for a token and lists documents. Skipped without a server
+// build that has --ws-port, or without /usr/bin/chromium.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { startServer, serverHasWebSocket } from './support/server.mjs';
+import { connect, createCube, grant, openSession, until } from './support/client.mjs';
+import { chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
+import { decodePng } from './support/png.mjs';
+
+const skip = !serverHasWebSocket() ? 'no build/release/server/tessera-server with --ws-port'
+  : !chromiumAvailable() ? 'no Chromium' : false;
+const EDITOR = 'browser-test-editor-token', VIEWER = 'browser-test-viewer-token';
+let web, server, admin, browser, documentId, base;
+
+before(async () => {
+  if (skip) return;
+  web = mkdtempSync(join(tmpdir(), 'tessera-web-build-'));
+  const built = spawnSync(process.execPath, [new URL('../build.mjs', import.meta.url).pathname, '--out', web], { encoding: 'utf8' });
+  assert.equal(built.status, 0, built.stderr);
+  console.log(built.stdout.trim());
+  const portFile = `${web}.ws-port`;
+  server = await startServer({ extraArgs: ['--ws-port', '0', '--ws-port-file', portFile, '--web-root', web] });
+  base = `http://127.0.0.1:${await server.waitForFile(portFile, 'its web port')}`;
+  admin = await connect(server.port, server.token, 'admin');
+  documentId = await createCube(admin);
+  await grant(admin, EDITOR, 2, documentId);
+  await grant(admin, VIEWER, 1, documentId);
+  browser = await launchBrowser();
+});
+
+after(async () => {
+  await browser?.close();
+  admin?.stop();
+  await server?.stop();
+  if (web) rmSync(web, { recursive: true, force: true });
+  if (web) rmSync(`${web}.ws-port`, { force: true });
+});
+
+const docUrl = (token, extra = '') => `${base}/?doc=${documentId}${extra}#token=${token}`;
+const ready = (page) => page.waitForSelector('body[data-state=ready]', { timeout: 30000 });
+
+async function screenshot(page) {
+  return decodePng(await page.screenshot({ type: 'png' }));
+}
+
+// Pixels of a rectangle that differ from the background at the frame's
+// corner by more than a few levels.
+function differing(png, x0, y0, x1, y1, reference = png.pixel(png.width - 2, png.height - 2)) {
+  let n = 0;
+  for (let y = y0; y < y1; ++y) {
+    for (let x = x0; x < x1; ++x) {
+      const p = png.pixel(x, y);
+      if (Math.abs(p[0] - reference[0]) + Math.abs(p[1] - reference[1]) + Math.abs(p[2] - reference[2]) > 24) ++n;
+    }
+  }
+  return n / ((x1 - x0) * (y1 - y0));
+}
+
+test('the cube shows, anti-aliased, hashed like the server, with the HUD in its corner', { skip }, async () => {
+  const page = await openPage(browser, docUrl(VIEWER));
+  await ready(page);
+  const s = await state(page);
+  assert.equal(s.connected, true);
+  assert.equal(s.ready, true);
+  assert.equal(s.role, 'ROLE_VIEWER');
+  assert.equal(s.documentId, String(documentId));
+  assert.match(s.surfaceHash, /^0x[0-9a-f]{16}$/);
+  assert.notEqual(s.serverSurfaceHash, '0x0000000000000000');
+  assert.equal(s.surfaceHash, s.serverSurfaceHash);
+  assert.equal(s.hashMatches, true);
+  assert.ok(s.triangles > 100 && s.regions > 0 && s.bytesReceived > 1000 && s.frames > 2, JSON.stringify(s));
+  assert.equal(s.error, '');
+  const antialias = await page.evaluate(() => document.querySelector('#stage canvas').getContext('webgl2').getContextAttributes().antialias);
+  assert.equal(antialias, true);
+  const frames = await page.evaluate(() => window.tesseraViewer.renderedFrames());
+  assert.ok(frames >= 1);
+  await page.keyboard.press('w');
+  await page.waitForFunction((n) => window.tesseraViewer.renderedFrames() > n, { timeout: 5000 }, frames);
+  await page.keyboard.press('w');
+
+  const hud = await page.$eval('#hud', (e) => e.getBoundingClientRect().toJSON());
+  assert.ok(hud.left < 40 && hud.top < 40 && hud.right < 1000 * 0.4 && hud.bottom < 680 * 0.5, JSON.stringify(hud));
+  const png = await screenshot(page);
+  const covered = differing(png, 450, 290, 550, 390);
+  console.log(`centre covered by the surface: ${(100 * covered).toFixed(0)}%; HUD ${Math.round(hud.width)}x${Math.round(hud.height)} px`);
+  assert.ok(covered > 0.95, 'the model fills the middle of the frame');
+  assert.ok(differing(png, 900, 20, 990, 90, png.pixel(945, 55)) < 0.02, 'the top-right corner is background');
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('a drag edits the document as one undo step; undo and redo come back to the hashes', { skip }, async () => {
+  const page = await openPage(browser, docUrl(EDITOR, '&name=dragger'));
+  await ready(page);
+  const s0 = await state(page);
+  assert.equal(s0.role, 'ROLE_EDITOR');
+  const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
+  assert.match(v.id, /^v\d+:\d+$/);
+  assert.equal(BigInt(v.packed) >> 58n, BigInt(v.id.slice(1).split(':')[0]));
+  await page.mouse.move(v.x, v.y);
+  await page.mouse.down();
+  for (let i = 1; i <= 8; ++i) {
+    await page.mouse.move(v.x + 3 * i, v.y - 6 * i);
+    await new Promise((r) => setTimeout(r, 45));
+  }
+  await page.mouse.up();
+  await page.waitForFunction((n) => {
+    const s = window.tesseraViewer.state();
+    return s.editsSent > 1 && s.lastEditToDeltaMs !== null && s.version >= n + s.editsSent && s.hashMatches;
+  }, { timeout: 20000 }, s0.version);
+  const s1 = await state(page);
+  console.log(`drag: ${s1.editsSent} edits, ${s1.editsRejected} rejected, edit-to-delta ${s1.lastEditToDeltaMs.toFixed(1)} ms, v${s0.version} -> v${s1.version}`);
+  assert.equal(s1.editsRejected, 0);
+  assert.deepEqual(s1.picked, [v.id]);
+  assert.notEqual(s1.surfaceHash, s0.surfaceHash);
+  const moved = await page.evaluate((id) => window.tesseraViewer.screenPointOfVertex(id), v.id);
+  assert.ok(Math.hypot(moved.x - (v.x + 24), moved.y - (v.y - 48)) < 3, `the vertex followed the pointer: ${JSON.stringify(moved)}`);
+
+  await page.keyboard.down('Control');
+  await page.keyboard.press('z');
+  await page.keyboard.up('Control');
+  await page.waitForFunction((h) => window.tesseraViewer.state().surfaceHash === h, { timeout: 20000 }, s0.surfaceHash);
+  await page.keyboard.down('Control');
+  await page.keyboard.press('y');
+  await page.keyboard.up('Control');
+  await page.waitForFunction((h) => window.tesseraViewer.state().surfaceHash === h, { timeout: 20000 }, s1.surfaceHash);
+  const s2 = await state(page);
+  assert.equal(s2.hashMatches, true);
+  assert.equal(s2.version, s1.version + 2 * s1.editsSent, 'one Undo and one Redo per edit of the step');
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('picks travel both ways through presence', { skip }, async () => {
+  const page = await openPage(browser, docUrl(VIEWER, '&name=watcher'));
+  await ready(page);
+  const bob = await openSession(server.port, EDITOR, documentId, { baseLevel: 1, maxLevel: 3, angle: 15 }, 'bob');
+  bob.session.select([(1n << 58n) | 3n]);
+  await page.waitForFunction(() => window.tesseraViewer.state().collaborators.some((c) => c.name === 'bob' && c.selection[0] === 'v1:3'),
+    { timeout: 10000 });
+  const people = (await state(page)).collaborators.map((c) => `${c.name}${c.self ? '*' : ''}:${c.role}`);
+  assert.ok(people.includes('bob:ROLE_EDITOR') && people.includes('watcher*:ROLE_VIEWER'), people.join());
+  const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
+  await page.mouse.click(v.x, v.y);
+  await until(() => bob.session.collaborators.list().some((c) => c.name === 'watcher' && c.selection.length === 1 &&
+    `v${c.selection[0] >> 58n}:${c.selection[0] & ((1n << 58n) - 1n)}` === v.id), 'the watcher\'s pick at bob');
+  assert.equal((await state(page)).editsSent, 0, 'a viewer picks but does not edit');
+  bob.connection.stop();
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('C creases the edge of the last two picks, V makes a corner, W and R redraw, the LOD selector resubscribes', { skip }, async () => {
+  const page = await openPage(browser, docUrl(EDITOR, '&name=keys'));
+  await ready(page);
+  const click = async (id) => {
+    const p = await page.evaluate((i) => window.tesseraViewer.screenPointOfVertex(i), id);
+    await page.mouse.click(p.x, p.y);
+  };
+  const s0 = await state(page);
+  // Base edge (5, 6) of the cube (the top rim's edge from (1, 0, 1) to
+  // (1, 1, 1)) is e6 in the scan of 3.2 (triangles (0 2 1), (0 3 2),
+  // (4 5 6): e0..e6), so its midpoint is v1:(8 + 6) and its half at vertex 6
+  // joins v1:6 and v1:14 at level 1.
+  await click('v1:6');
+  await click('v1:14');
+  await page.waitForFunction(() => window.tesseraViewer.state().picked.length === 2);
+  assert.deepEqual((await state(page)).picked, ['v1:6', 'v1:14']);
+  await page.keyboard.press('c');
+  await page.waitForFunction((n) => { const s = window.tesseraViewer.state(); return s.version > n || s.error !== ''; }, { timeout: 15000 }, s0.version);
+  const afterC = await state(page);
+  assert.equal(afterC.error, '');
+  assert.equal(afterC.version, s0.version + 1);
+  await page.keyboard.press('v');
+  await page.waitForFunction((n) => window.tesseraViewer.state().version > n, { timeout: 15000 }, afterC.version);
+  assert.equal((await state(page)).hashMatches, true);
+
+  const plain = await screenshot(page);
+  await page.keyboard.press('w');
+  await new Promise((r) => setTimeout(r, 400));
+  const wired = await screenshot(page);
+  let changed = 0;
+  for (let y = 250; y < 430; y += 2) for (let x = 400; x < 600; x += 2) if (plain.pixel(x, y).join() !== wired.pixel(x, y).join()) ++changed;
+  assert.ok(changed > 200, `the wireframe shows (${changed} pixels changed)`);
+  await page.keyboard.press('w');
+  await page.keyboard.press('r');
+
+  const before = await state(page);
+  await page.select('select[data-f=preset]', 'fine');
+  await page.waitForFunction((t) => { const s = window.tesseraViewer.state(); return s.triangles !== t && s.hashMatches; }, { timeout: 30000 }, before.triangles);
+  const fine = await state(page);
+  console.log(`LOD balanced -> fine: ${before.triangles} -> ${fine.triangles} triangles`);
+  assert.ok(fine.triangles > before.triangles);
+  assert.equal(fine.surfaceHash, fine.serverSurfaceHash);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+test('without a token the page asks for one; a refused one is shown and not retried; without ?doc it lists', { skip }, async () => {
+  const page = await openPage(browser, `${base}/`);
+  await page.waitForSelector('body[data-state=token] input[name=token]', { timeout: 15000 });
+  await page.type('input[name=token]', 'a-token-nobody-granted-here');
+  await page.keyboard.press('Enter');
+  await page.waitForSelector('body[data-state=error]', { timeout: 20000 });
+  assert.match(await page.$eval('.start-problem', (e) => e.textContent), /ERROR_CODE_AUTH_FAILED/);
+  assert.match((await state(page)).error, /AUTH_FAILED/);
+  assert.ok(!page.url().includes('?token'), 'the token never goes into the query');
+  await page.close();
+
+  const list = await openPage(browser, `${base}/#token=${VIEWER}`);
+  await list.waitForSelector('.start-documents button', { timeout: 15000 });
+  await list.click('.start-documents button');
+  await ready(list);
+  assert.equal(new URL(list.url()).searchParams.get('doc'), String(documentId));
+  assert.equal(new URL(list.url()).hash, `#token=${VIEWER}`);
+  assert.equal((await state(list)).hashMatches, true);
+  await list.close();
+});

@@ -1,0 +1,29 @@
+// The page's address: the token from the fragment only, the document from
+// the query, the WebSocket URL from the page's own scheme and host.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { readPageParams, webSocketUrl, addressWithDocument } from '../src/page_params.js';
+
+const at = (href) => new URL(href);
+
+test('doc from the query, token from the fragment', () => {
+  const p = readPageParams(at('http://127.0.0.1:8080/?doc=42#token=abc%2Bdef'));
+  assert.equal(p.documentId, 42n);
+  assert.equal(p.token, 'abc+def');
+});
+
+test('a token in the query is not taken; a missing or bad doc is null', () => {
+  const p = readPageParams(at('http://h/?doc=x&token=leaked'));
+  assert.equal(p.token, '');
+  assert.equal(p.documentId, null);
+  assert.equal(readPageParams(at('http://h/?doc=0')).documentId, null);
+});
+
+test('ws beside http, wss beside https, path /ws', () => {
+  assert.equal(webSocketUrl(at('http://127.0.0.1:9000/?doc=1')), 'ws://127.0.0.1:9000/ws');
+  assert.equal(webSocketUrl(at('https://example.test/index.html')), 'wss://example.test/ws');
+});
+
+test('choosing a document keeps the fragment', () => {
+  assert.equal(addressWithDocument(at('http://h:1/?name=al#token=t'), 7n), '/?name=al&doc=7#token=t');
+});

@@ -1,0 +1,42 @@
+// Debian's Chromium driven by puppeteer-core (which downloads no browser),
+// headless, with WebGL through SwiftShader, and a fresh profile per launch.
+import { existsSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import puppeteer from 'puppeteer-core';
+
+export const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
+
+export function chromiumAvailable() {
+  return existsSync(CHROMIUM);
+}
+
+export async function launchBrowser() {
+  const profile = mkdtempSync(join(tmpdir(), 'tessera-chromium-'));
+  const browser = await puppeteer.launch({
+    executablePath: CHROMIUM,
+    headless: true,
+    args: ['--no-sandbox', '--disable-gpu', '--use-angle=swiftshader', '--enable-unsafe-swiftshader',
+      '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
+      `--user-data-dir=${profile}`],
+  });
+  const close = browser.close.bind(browser);
+  browser.close = async () => {
+    await close();
+    rmSync(profile, { recursive: true, force: true });
+  };
+  return browser;
+}
+
+// A page that records its errors: uncaught exceptions and console errors.
+export async function openPage(browser, url, size = { width: 1000, height: 680 }) {
+  const page = await browser.newPage();
+  page.problems = [];
+  page.on('pageerror', (e) => page.problems.push(`pageerror: ${e.message}`));
+  page.on('console', (m) => { if (m.type() === 'error') page.problems.push(`console: ${m.text()}`); });
+  await page.setViewport(size);
+  await page.goto(url);
+  return page;
+}
+
+export const state = (page) => page.evaluate(() => window.tesseraViewer.state());

@@ -1,0 +1,73 @@
+// The viewer's own Connection and DocumentSession in Node, over the TCP
+// transport, plus the admin steps a test needs (create a document, grant a
+// token) and waiting for a condition.
+import { readFileSync } from 'node:fs';
+import { createWire } from '../../src/wire.js';
+import { Connection } from '../../src/connection.js';
+import { DocumentSession } from '../../src/document_session.js';
+import { decodeRegion } from '../../src/region_decoder.js';
+import { toLong, toBig } from '../../src/uint64.js';
+import { dracoDecoder } from './draco_node.mjs';
+import { tcpSocketFactory } from './tcp_socket.mjs';
+
+export const wire = createWire(readFileSync(new URL('../../../../protocol/tessera.proto', import.meta.url), 'utf8'));
+const repo = (path) => new URL(`../../../../${path}`, import.meta.url);
+
+export async function until(condition, what, timeoutMs = 15000) {
+  const start = Date.now();
+  while (!condition()) {
+    if (Date.now() - start > timeoutMs) throw new Error(`timed out waiting for ${what}`);
+    await new Promise((r) => setTimeout(r, 10));
+  }
+}
+
+// A connection that has its HelloAck.
+export async function connect(port, token, name = 'test') {
+  let ack = null, error = null;
+  const connection = new Connection({
+    url: `tcp:${port}`, token, name, wire, createSocket: tcpSocketFactory(port),
+    onReady: (a) => { ack = a; },
+    onError: (text) => { error = text; },
+  });
+  connection.start();
+  await until(() => ack || error, 'the HelloAck');
+  if (!ack) throw new Error(error);
+  return connection;
+}
+
+// The sample cube with its creases (deploy/samples), as a new document.
+export async function createCube(admin, maxLevel = 5) {
+  const reply = await admin.call({
+    create_document: {
+      name: 'web viewer test cube', mesh: readFileSync(repo('deploy/samples/cube.obj')), mesh_format: 1,
+      tags: readFileSync(repo('deploy/samples/cube.tags'), 'utf8'), max_level: maxLevel, file_name: 'cube.obj',
+    },
+  });
+  return toBig(reply.message.ack.document_id);
+}
+
+export async function grant(admin, token, role, documentId = 0n) {
+  await admin.call({ grant_token: { document_id: toLong(documentId), role, token } });
+}
+
+// A DocumentSession like the page's, with the events it saw recorded.
+export async function openSession(port, token, documentId, profile, name = 'viewer') {
+  const draco = await dracoDecoder();
+  const events = { views: [], errors: [], presence: 0 };
+  let session = null;
+  const connection = new Connection({
+    url: `tcp:${port}`, token, name, wire, createSocket: tcpSocketFactory(port),
+    onReady: (ack) => session.connected(ack),
+    onMessage: (body, m) => session.message(body, m),
+    onError: (text) => events.errors.push(text),
+  });
+  session = new DocumentSession({
+    connection, documentId, profile, decode: (bytes) => decodeRegion(draco, bytes),
+    onView: (change) => events.views.push(change),
+    onError: (text) => events.errors.push(text),
+    onPresence: () => ++events.presence,
+  });
+  connection.start();
+  await until(() => session.view.ready || events.errors.length > 0, 'the first snapshot');
+  return { session, connection, events };
+}

@@ -7,15 +7,20 @@
 #   bash deploy/run.sh              # serves until Ctrl-C
 #   TESSERA_DEMO_ONLY=1 bash deploy/run.sh   # run the session, then stop
 #
-# Settings: TESSERA_DATA (default tessera-data), TESSERA_PORT (default 7878).
+# The browser viewer is served on TESSERA_WEB_PORT (docs/WEB_VIEWER.md); the
+# script prints the address that opens the sample document.
+#
+# Settings: TESSERA_DATA (default tessera-data), TESSERA_PORT (default 7878),
+# TESSERA_WEB_PORT (default 7879).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data="${TESSERA_DATA:-tessera-data}"
 port="${TESSERA_PORT:-7878}"
+web_port="${TESSERA_WEB_PORT:-7879}"
 
 bash deploy/install-deps.sh
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$(nproc)" --target tessera tessera-server tessera-view
+cmake --build --preset release -j "$(nproc)" --target tessera tessera-server tessera-view tessera_web
 
 cli=build/release/client/cli/tessera
 server=build/release/server/tessera-server
@@ -26,7 +31,7 @@ if [ ! -s "$token_file" ]; then
 fi
 rm -f "$data/port"
 "$server" --data "$data/store" --port "$port" --admin-token-file "$token_file" --port-file "$data/port" \
-  2>>"$data/server.log" &
+  --ws-port "$web_port" 2>>"$data/server.log" &
 server_pid=$!
 trap 'kill -TERM $server_pid 2>/dev/null; wait $server_pid 2>/dev/null' EXIT
 for _ in $(seq 100); do [ -s "$data/port" ] && break; sleep 0.1; done
@@ -55,6 +60,8 @@ fi
 "${remote[@]}" export "$doc" --level 3 --limit -o tessera-demo.glb
 "${remote[@]}" stats | head -8
 echo "tessera-server: 127.0.0.1:$port, store in $data/store, admin token in $token_file, log in $data/server.log"
+# The token rides in the fragment, which the browser never sends to the server.
+echo "browser viewer: http://127.0.0.1:$web_port/?doc=$doc#token=$(head -1 "$token_file")  (this address holds the admin token)"
 if [ "${TESSERA_DEMO_ONLY:-0}" = 1 ]; then exit 0; fi
 echo "serving; Ctrl-C stops it"
 wait $server_pid

@@ -79,9 +79,14 @@ async function main() {
   });
   editor.clampLevel();
 
+  // When each version was first drawn (Unix ms, Date.now()): the
+  // benchmark times edit-to-pixels against the editor's clock with it
+  // (bench/web_viewer_bench.mjs). The last 4,096 versions.
+  const shownAt = new Map();
+  let shownVersion = -1n;
   installTestHook({
     connection: () => connection, session: () => session, view, picker, vertices, editor,
-    lastError: () => lastError, ready: () => ready,
+    lastError: () => lastError, ready: () => ready, shownAt: () => shownAt,
   });
 
   function openDocument(documentId, helloAck) {
@@ -166,6 +171,11 @@ async function main() {
   const frame = (now) => {
     const drew = view.renderIfNeeded();
     if (drew) ++fpsFrames;
+    if (drew && session?.view.ready && session.view.version !== shownVersion) {
+      shownVersion = session.view.version;
+      shownAt.set(String(shownVersion), Date.now());
+      if (shownAt.size > 4096) shownAt.delete(shownAt.keys().next().value);
+    }
     if (now - fpsAt >= 500) {
       fps = (fpsFrames * 1000) / (now - fpsAt);
       fpsFrames = 0;

@@ -16,6 +16,14 @@ import { RegionBatches } from './region_batches.js';
 const SURFACE_COLOUR = 0xa7b0bd;
 const WIRE_COLOUR = 0x161c24;
 
+// Whether WebGL runs on the CPU (SwiftShader, llvmpipe): no GPU to spend.
+function softwareRenderer(renderer) {
+  const gl = renderer.getContext();
+  const info = gl.getExtension('WEBGL_debug_renderer_info');
+  const name = info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : gl.getParameter(gl.RENDERER);
+  return /swiftshader|llvmpipe|software/i.test(String(name));
+}
+
 export class SceneView {
   constructor(container) {
     this.container = container;
@@ -74,10 +82,17 @@ export class SceneView {
     cameraLight(0xfff1de, 2.0, -0.7, 1.6, 0.7); // key
     cameraLight(0xcfe0ff, 0.55, 1.5, -0.1, 0.5); // fill
     cameraLight(0xffffff, 1.6, 0.3, 0.9, -1.7); // rim
-    const pmrem = new THREE.PMREMGenerator(this.renderer);
-    this.scene.environment = pmrem.fromScene(new RoomEnvironment(), 0.04).texture;
-    this.scene.environmentIntensity = 0.25;
-    pmrem.dispose();
+    // The soft environment light is prefiltered once (PMREM): milliseconds
+    // on a GPU, but 5.3 s of main-thread time under a software renderer
+    // (SwiftShader, measured in headless Chromium), which would hold the
+    // first picture back that long. Without a GPU the four lights above
+    // carry the shading alone.
+    if (!softwareRenderer(this.renderer)) {
+      const pmrem = new THREE.PMREMGenerator(this.renderer);
+      this.scene.environment = pmrem.fromScene(new RoomEnvironment(), 0.04).texture;
+      this.scene.environmentIntensity = 0.25;
+      pmrem.dispose();
+    }
   }
 
   resize() {

@@ -65,6 +65,12 @@ export function installTestHook(app) {
     renderedFrames() {
       return app.view.frames;
     },
+
+    // [version, Unix ms of the first frame drawn at it] for the versions
+    // drawn lately (a version merged into a later delta is never drawn).
+    versionsShown() {
+      return [...app.shownAt().entries()].map(([v, at]) => [Number(v), at]);
+    },
   };
   window.tesseraViewer = hook;
   return hook;

@@ -32,6 +32,16 @@ function element(tag, className, text) {
   return e;
 }
 
+// The panel is refreshed four times a second; writing a text or class it
+// already shows would still make the browser lay out and repaint it, which
+// with twenty idle tabs under a software renderer cost most of a core.
+function setText(element, text) {
+  if (element.textContent !== text) element.textContent = text;
+}
+function setClass(element, name) {
+  if (element.className !== name) element.className = name;
+}
+
 export class Hud {
   // handlers: {onPreset(name), onWireframe(on), onRegionColours(on), onLevel(delta)}
   constructor(root, handlers) {
@@ -88,31 +98,31 @@ export class Hud {
   // name, role, selection, self}], status, error}
   update(facts) {
     const f = this.f;
-    f.glance.textContent = `v${facts.version}  ${shortCount(facts.triangles)} tris  ${facts.fps >= 0.5 ? `${facts.fps.toFixed(0)} fps` : 'idle'}`;
-    f.doc.textContent = facts.documentId
+    setText(f.glance, `v${facts.version}  ${shortCount(facts.triangles)} tris  ${facts.fps >= 0.5 ? `${facts.fps.toFixed(0)} fps` : 'idle'}`);
+    setText(f.doc, facts.documentId
       ? `doc ${facts.documentId}${facts.documentName ? ` “${facts.documentName}”` : ''} · ${facts.regions} regions · ${ROLE_NAMES[facts.role] ?? 'role ' + facts.role}`
-      : 'no document';
-    f.latency.textContent = facts.latencyMs === null ? 'edit→delta –' : `edit→delta ${facts.latencyMs.toFixed(1)} ms`;
-    f.rate.textContent = bytesRate(facts.bytesPerSecond);
+      : 'no document');
+    setText(f.latency, facts.latencyMs === null ? 'edit→delta –' : `edit→delta ${facts.latencyMs.toFixed(1)} ms`);
+    setText(f.rate, bytesRate(facts.bytesPerSecond));
     if (!facts.hash) {
-      f.hash.textContent = 'surface hash –';
-      f.hash.className = 'hud-row';
+      setText(f.hash, 'surface hash –');
+      setClass(f.hash, 'hud-row');
     } else if (facts.hash.server === 0n) {
-      f.hash.textContent = `hash ${hex64(facts.hash.ours)} (server sent none)`;
-      f.hash.className = 'hud-row';
+      setText(f.hash, `hash ${hex64(facts.hash.ours)} (server sent none)`);
+      setClass(f.hash, 'hud-row');
     } else {
-      f.hash.textContent = `${facts.hash.matches ? '✓ hash matches' : '✗ hash differs'} ${hex64(facts.hash.ours).slice(0, 10)}…`;
-      f.hash.className = `hud-row ${facts.hash.matches ? 'hud-good' : 'hud-bad'}`;
+      setText(f.hash, `${facts.hash.matches ? '✓ hash matches' : '✗ hash differs'} ${hex64(facts.hash.ours).slice(0, 10)}…`);
+      setClass(f.hash, `hud-row ${facts.hash.matches ? 'hud-good' : 'hud-bad'}`);
     }
     if (f.preset.value !== facts.preset && document.activeElement !== f.preset) f.preset.value = facts.preset;
-    f.wire.checked = facts.wireframe;
-    f.colours.checked = facts.regionColours;
-    f.level.textContent = String(facts.level);
-    f.pick.textContent = `${facts.pick} · ${shortCount(facts.points)} ${facts.pointsDrawn || facts.points === 0 ? 'dots' : 'vertices, no dots'}`;
+    if (f.wire.checked !== facts.wireframe) f.wire.checked = facts.wireframe;
+    if (f.colours.checked !== facts.regionColours) f.colours.checked = facts.regionColours;
+    setText(f.level, String(facts.level));
+    setText(f.pick, `${facts.pick} · ${shortCount(facts.points)} ${facts.pointsDrawn || facts.points === 0 ? 'dots' : 'vertices, no dots'}`);
     this.people(facts.people);
-    f.status.textContent = facts.status;
-    f.error.textContent = facts.error;
-    f.error.hidden = !facts.error;
+    setText(f.status, facts.status);
+    setText(f.error, facts.error);
+    if (f.error.hidden !== !facts.error) f.error.hidden = !facts.error;
   }
 
   people(list) {

@@ -51,9 +51,7 @@ async function main() {
   let readyAfterRender = false, ready = false;
   const showError = (text) => { lastError = text; };
 
-  let hudAt = 0; // the HUD's last refresh; 0 asks for one at the next frame
   const refreshMarkers = () => {
-    hudAt = 0;
     controlPoints.setVertices(vertices.atLevel(editor.level));
     const others = session ? session.collaborators.list().filter((c) => c.sessionId !== session.sessionId) : [];
     presence.update(others, editor.picks, (id) => vertices.lookup(id)?.position ?? null);
@@ -163,51 +161,65 @@ async function main() {
     connection.start();
   }
 
-  // The render loop: a frame at each animation frame that has something new
-  // to show (scene.js), the HUD refreshed four times a second (the DOM costs
-  // more than a frame of a small model). The frame rate counts the frames
-  // drawn in each half second: 0 while nothing changes ("idle").
+  // The render loop: an animation frame is asked for only when something
+  // changed (view.invalidate(), the camera's controls), and a drawn frame
+  // asks for the next while the camera still moves (damping). An idle page
+  // asks for none: a page that asks at every frame keeps the browser's
+  // compositor busy, which under a software renderer cost most of a core
+  // for twenty idle tabs. The HUD is refreshed four times a second on a
+  // timer (the DOM costs more than a frame of a small model); the frame
+  // rate counts the frames drawn in each half second, 0 when idle.
   let fps = 0, fpsFrames = 0, fpsAt = performance.now(), bytesAt = 0, bytesSampleAt = fpsAt, bytesPerSecond = 0;
-  const frame = (now) => {
+  let frameAsked = false;
+  const askFrame = () => {
+    if (frameAsked) return;
+    frameAsked = true;
+    requestAnimationFrame(frame);
+  };
+  const frame = () => {
+    frameAsked = false;
     const drew = view.renderIfNeeded();
-    if (drew) ++fpsFrames;
-    if (drew && session?.view.ready && session.view.version !== shownVersion) {
+    if (!drew) return;
+    ++fpsFrames;
+    askFrame();
+    if (session?.view.ready && session.view.version !== shownVersion) {
       shownVersion = session.view.version;
       shownAt.set(String(shownVersion), Date.now());
       if (shownAt.size > 4096) shownAt.delete(shownAt.keys().next().value);
     }
+    if (readyAfterRender) {
+      readyAfterRender = false;
+      ready = true;
+      setPageState('ready');
+    }
+  };
+  view.onInvalidate = askFrame;
+  askFrame();
+  const hudTick = () => {
+    const now = performance.now();
     if (now - fpsAt >= 500) {
       fps = (fpsFrames * 1000) / (now - fpsAt);
       fpsFrames = 0;
       fpsAt = now;
-    }
-    if (readyAfterRender && drew) {
-      readyAfterRender = false;
-      ready = true;
-      setPageState('ready');
     }
     if (now - bytesSampleAt >= 1000 && connection) {
       bytesPerSecond = ((connection.bytesReceived - bytesAt) * 1000) / (now - bytesSampleAt);
       bytesAt = connection.bytesReceived;
       bytesSampleAt = now;
     }
-    if (now - hudAt >= HUD_INTERVAL_MS) {
-      hudAt = now;
-      hud.update({
-        fps, triangles: view.triangles, regions: session?.view.regions.size ?? 0,
-        version: session?.view.version ?? 0n, documentId: session?.documentId ?? null, documentName,
-        role: session?.role ?? connection?.helloAck?.role ?? 0, latencyMs: session?.latency.last ?? null,
-        bytesPerSecond, hash: session?.lastHash ?? null, preset: profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
-        wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
-        pick: editor.describe(), points: controlPoints.count ?? 0, pointsDrawn: controlPoints.drawn,
-        people: session ? session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === session.sessionId })) : [],
-        status: connection?.ready && session?.view.ready ? 'live' : status,
-        error: lastError,
-      });
-    }
-    requestAnimationFrame(frame);
+    hud.update({
+      fps, triangles: view.triangles, regions: session?.view.regions.size ?? 0,
+      version: session?.view.version ?? 0n, documentId: session?.documentId ?? null, documentName,
+      role: session?.role ?? connection?.helloAck?.role ?? 0, latencyMs: session?.latency.last ?? null,
+      bytesPerSecond, hash: session?.lastHash ?? null, preset: profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
+      wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
+      pick: editor.describe(), points: controlPoints.count ?? 0, pointsDrawn: controlPoints.drawn,
+      people: session ? session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === session.sessionId })) : [],
+      status: connection?.ready && session?.view.ready ? 'live' : status,
+      error: lastError,
+    });
   };
-  requestAnimationFrame(frame);
+  setInterval(hudTick, HUD_INTERVAL_MS);
 
   try {
     draco = (await loadDracoFrom('draco_decoder.wasm')).draco;

@@ -41,6 +41,10 @@ export class SceneView {
     this.scene.add(this.camera);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.enableDamping = true;
+    // The page's frame request; set by main.js. User input on the controls
+    // asks for frames too; while damping, each drawn frame asks for the next.
+    this.onInvalidate = () => {};
+    this.controls.addEventListener('change', () => this.invalidate());
     this.controls.dampingFactor = 0.12;
     this.controls.screenSpacePanning = true;
     this.addLights();
@@ -105,9 +109,11 @@ export class SceneView {
     this.invalidate();
   }
 
-  // Something on screen changed: draw at the next animation frame.
+  // Something on screen changed: draw at the next animation frame (the
+  // page asks for one through onInvalidate).
   invalidate() {
     this.dirty = true;
+    this.onInvalidate();
   }
 
   get triangles() {

@@ -7,6 +7,7 @@
 
 #include "client/lib/session.h"
 #include "integration/messages.h"
+#include "integration/certificates.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
 
@@ -16,13 +17,7 @@ namespace {
 using client::Session;
 using testing::ServerProcess;
 
-// A self-signed certificate for 127.0.0.1 made with Debian's openssl tool.
-bool makeCertificate(const std::string& dir, const std::string& name) {
-  const std::string command = "openssl req -x509 -newkey rsa:2048 -nodes -days 1 -subj /CN=127.0.0.1 "
-                              "-addext subjectAltName=IP:127.0.0.1 -keyout " + dir + "/" + name + ".key -out " + dir +
-                              "/" + name + ".pem >/dev/null 2>&1";
-  return std::system(command.c_str()) == 0;
-}
+using testing::makeCertificate;
 
 TEST(ServerTls, ServesVerifiedTlsClientsOnly) {
   const std::string dir = testing::makeTempDir("tessera-server-tls");

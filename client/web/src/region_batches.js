@@ -1,14 +1,17 @@
-// The regions on screen, packed into a few large meshes. A document of many
-// base faces arrives as as many regions (fandisk: 12,946 of about four
-// triangles each), and a draw call per region costs more than the triangles
-// themselves. So regions are kept in batches of up to BATCH_VERTICES
-// vertices, each one BufferGeometry; a region that a delta replaces or
-// removes marks its batch, and marked batches are rebuilt (copied together
-// again) once before the next frame. Each vertex also carries its region's
-// colour, for the region-colour toggle.
+// The regions on screen, as GPU buffers (one BufferGeometry each). While a
+// document shows at most SEPARATE_REGIONS regions, each region has a buffer
+// of its own, so a delta replaces exactly the buffers of the regions it
+// changed (issue 18 §2). A document of many small regions (fandisk: 12,946
+// of about four triangles each) would cost a draw call per region, more
+// than the triangles themselves; there regions share buffers of up to
+// BATCH_VERTICES vertices, and a region that a delta replaces or removes
+// marks its shared buffer, rebuilt (copied together again) once before the
+// next frame. Each vertex also carries its region's colour, for the
+// region-colour toggle.
 import * as THREE from 'three';
 
 const BATCH_VERTICES = 65536;
+const SEPARATE_REGIONS = 2048;
 
 // A region's own colour, the same in every viewer: hues spread by the golden
 // ratio over the region id.
@@ -25,14 +28,21 @@ export class RegionBatches {
     this.batches = [];
     this.where = new Map(); // region id -> batch
     this.triangles = 0;
+    this.separate = true;
+  }
+
+  // How many regions the document shows (a snapshot's count): decides
+  // between a buffer per region and shared buffers for what is set next.
+  expectRegions(count) {
+    this.separate = count <= SEPARATE_REGIONS;
   }
 
   set(regionId, region) {
     this.remove(regionId);
     const vertices = region.positions.length / 3;
-    let batch = this.batches.find((b) => b.vertices + vertices <= BATCH_VERTICES);
+    let batch = this.separate ? null : this.batches.find((b) => b.shared && b.vertices + vertices <= BATCH_VERTICES);
     if (!batch) {
-      batch = { regions: new Map(), vertices: 0, dirty: true, geometry: null };
+      batch = { regions: new Map(), vertices: 0, dirty: true, geometry: null, shared: !this.separate };
       this.batches.push(batch);
     }
     batch.regions.set(regionId, region);

@@ -135,6 +135,7 @@ export class SceneView {
   // A change of document_view.js: the whole set, or the regions a delta
   // changed and removed. Geometry is rebuilt before the next frame.
   apply(change, regions) {
+    this.batches.expectRegions(regions.size);
     if (change.kind === 'snapshot') {
       for (const id of this.batches.ids()) if (!regions.has(id)) this.batches.remove(id);
       for (const [id, region] of regions) this.batches.set(id, region);

@@ -37,3 +37,10 @@ install(FILES ${PROJECT_SOURCE_DIR}/deploy/tessera-server.conf DESTINATION ${CMA
         COMPONENT server)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/OPERATIONS.md ${PROJECT_SOURCE_DIR}/docs/PROTOCOL.md
         DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT server)
+
+# The browser viewer's files (docs/WEB_VIEWER.md): tessera-server finds them
+# at PREFIX/share/tessera/web, beside its own PREFIX/bin, when its build tree
+# is gone.
+if(TESSERA_BUILD_WEB)
+  install(DIRECTORY ${TESSERA_WEB_DIR}/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tessera/web COMPONENT server)
+endif()

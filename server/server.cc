@@ -1,5 +1,7 @@
 #include "server/server.h"
 
+#include <filesystem>
+
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <fstream>
@@ -172,8 +174,24 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   return server;
 }
 
+namespace {
+
+// The web viewer's files when --web-root is not given: the build's own
+// web/ while that build tree exists, else where `cmake --install` puts them
+// beside the binary (PREFIX/bin/tessera-server, PREFIX/share/tessera/web).
+std::string defaultWebRoot() {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(fs::path(TESSERA_WEB_ROOT) / "index.html", ec)) return TESSERA_WEB_ROOT;
+  const fs::path binary = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return TESSERA_WEB_ROOT;
+  return (binary.parent_path().parent_path() / "share" / "tessera" / "web").string();
+}
+
+}  // namespace
+
 Status Server::startWebPort() {
-  const std::string root = config_.webRoot.empty() ? std::string(TESSERA_WEB_ROOT) : config_.webRoot;
+  const std::string root = config_.webRoot.empty() ? defaultWebRoot() : config_.webRoot;
   TESSERA_ASSIGN_OR_RETURN(StaticFiles files, StaticFiles::load(root));
   WebPortOptions options{config_.listenAddress, config_.wsPort, tls_.get(), config_.wsAllowedOrigins, config_.limits,
                          config_.timeouts};

@@ -189,9 +189,11 @@ test('a drag in the page edits the document, and undo restores the surface hash'
     await sleep(40);
   }
   await page.mouse.up();
+  // Undo waits until every edit of the step is answered (acks follow the
+  // journal's fsync, which a loaded machine can delay).
   const dragged = await until('the drag\'s edits acknowledged', async () => {
     const s = await state(page);
-    return s.version > start.version && s.editsSent > 0 && s.hashMatches ? s : null;
+    return s.version > start.version && s.editsSent > 0 && s.awaitingAnswers === 0 && s.hashMatches ? s : null;
   });
   // The C++ client sees the edited surface.
   await until('the C++ client to see the drag', () => cppSurface().version >= dragged.version);

@@ -39,6 +39,7 @@ export function installTestHook(app) {
         frames: connection ? connection.frames : 0,
         editsSent: session?.editsSent ?? 0,
         editsRejected: session?.editsRejected ?? 0,
+        awaitingAnswers: session?.history.awaitingAnswers() ?? 0,
         editLevel: app.editor.level,
         picked: app.editor.picks.map((id) => idName(id)),
       };

@@ -50,6 +50,11 @@ export class UndoHistory {
     s.pending = Math.max(0, s.pending - 1);
   }
 
+  // Edits sent and not answered yet, in every step (undo waits for them).
+  awaitingAnswers() {
+    return this.done.reduce((n, s) => n + s.pending, 0);
+  }
+
   dropped(step) {
     const s = this.find(step);
     if (s) s.pending = Math.max(0, s.pending - 1);

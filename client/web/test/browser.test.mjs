@@ -115,7 +115,7 @@ test('a drag edits the document as one undo step; undo and redo come back to the
   await page.mouse.up();
   await page.waitForFunction((n) => {
     const s = window.tesseraViewer.state();
-    return s.editsSent > 1 && s.lastEditToDeltaMs !== null && s.version >= n + s.editsSent && s.hashMatches;
+    return s.editsSent > 1 && s.lastEditToDeltaMs !== null && s.version >= n + s.editsSent && s.awaitingAnswers === 0 && s.hashMatches;
   }, { timeout: 20000 }, s0.version);
   const s1 = await state(page);
   console.log(`drag: ${s1.editsSent} edits, ${s1.editsRejected} rejected, edit-to-delta ${s1.lastEditToDeltaMs.toFixed(1)} ms, v${s0.version} -> v${s1.version}`);

@@ -10,9 +10,11 @@ test('a drag is one step: undo newest first, redo oldest first', () => {
   assert.throws(() => h.undo(), /still being made/);
   h.close(drag);
   assert.throws(() => h.undo(), /3 edits of the last step await/);
+  assert.equal(h.awaitingAnswers(), 3);
   h.acked(drag, 10);
   h.acked(drag, 11);
   h.dropped(drag); // rejected: not part of the step
+  assert.equal(h.awaitingAnswers(), 0);
   assert.deepEqual(h.undo(), [11n, 10n]);
   assert.throws(() => h.undo(), /nothing/);
   assert.deepEqual(h.redo(), [10n, 11n]);

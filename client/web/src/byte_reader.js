@@ -24,47 +24,20 @@ export class ByteReader {
     return this.bytes[this.offset++];
   }
 
-  u16(what) {
-    this.need(2, what);
-    const x = this.view.getUint16(this.offset, true);
-    this.offset += 2;
+  // `bytes` little-endian bytes through the DataView getter `get`.
+  fixed(bytes, get, what) {
+    this.need(bytes, what);
+    const x = this.view[get](this.offset, true);
+    this.offset += bytes;
     return x;
   }
 
-  u32(what) {
-    this.need(4, what);
-    const x = this.view.getUint32(this.offset, true);
-    this.offset += 4;
-    return x;
-  }
-
-  i32(what) {
-    this.need(4, what);
-    const x = this.view.getInt32(this.offset, true);
-    this.offset += 4;
-    return x;
-  }
-
-  u64(what) {
-    this.need(8, what);
-    const x = this.view.getBigUint64(this.offset, true);
-    this.offset += 8;
-    return x;
-  }
-
-  i64(what) {
-    this.need(8, what);
-    const x = this.view.getBigInt64(this.offset, true);
-    this.offset += 8;
-    return x;
-  }
-
-  f64(what) {
-    this.need(8, what);
-    const x = this.view.getFloat64(this.offset, true);
-    this.offset += 8;
-    return x;
-  }
+  u16(what) { return this.fixed(2, 'getUint16', what); }
+  u32(what) { return this.fixed(4, 'getUint32', what); }
+  i32(what) { return this.fixed(4, 'getInt32', what); }
+  u64(what) { return this.fixed(8, 'getBigUint64', what); }
+  i64(what) { return this.fixed(8, 'getBigInt64', what); }
+  f64(what) { return this.fixed(8, 'getFloat64', what); }
 
   // An LEB128 varint of at most 64 bits, as a safe integer: the frame's
   // numbers are indices and counts, which the viewer keeps below 2^53.

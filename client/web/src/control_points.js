@@ -3,31 +3,13 @@
 // that the user sees what a press will pick. Beyond MAX_DOTS the dots are
 // left out (they would hide the surface); the hover ring still shows.
 import * as THREE from 'three';
+import { canvasSprite, rimmedDisc } from './sprites.js';
 
 const MAX_DOTS = 4000;
 
-function sprite(draw) {
-  const size = 64;
-  const canvas = document.createElement('canvas');
-  canvas.width = canvas.height = size;
-  draw(canvas.getContext('2d'), size);
-  const texture = new THREE.CanvasTexture(canvas);
-  texture.colorSpace = THREE.SRGBColorSpace;
-  return texture;
-}
+const dot = () => rimmedDisc({ rim: '#1b2027', fill: '#f4f1e8', rimInset: 4, discInset: 16 });
 
-const dot = () => sprite((g, s) => {
-  g.beginPath();
-  g.arc(s / 2, s / 2, s / 2 - 4, 0, 2 * Math.PI);
-  g.fillStyle = '#1b2027';
-  g.fill();
-  g.beginPath();
-  g.arc(s / 2, s / 2, s / 2 - 16, 0, 2 * Math.PI);
-  g.fillStyle = '#f4f1e8';
-  g.fill();
-});
-
-const ring = () => sprite((g, s) => {
+const ring = () => canvasSprite((g, s) => {
   g.beginPath();
   g.arc(s / 2, s / 2, s / 2 - 8, 0, 2 * Math.PI);
   g.lineWidth = 7;

@@ -4,6 +4,7 @@
 // A full Presence replaces the list; a change-form one replaces the entries
 // it names and removes those in left_session_ids.
 import * as THREE from 'three';
+import { rimmedDisc } from './sprites.js';
 import { toBig } from './uint64.js';
 
 export class Collaborators {
@@ -51,7 +52,7 @@ export class PresenceLayer {
     this.geometry = new THREE.BufferGeometry();
     this.material = new THREE.PointsMaterial({
       size: 11, sizeAttenuation: false, vertexColors: true, depthTest: false, transparent: true,
-      map: roundSprite(),
+      map: rimmedDisc({ rim: '#202428', fill: '#ffffff', rimInset: 2, discInset: 10 }),
       alphaTest: 0.5,
     });
     this.points = new THREE.Points(this.geometry, this.material);
@@ -80,21 +81,3 @@ export class PresenceLayer {
   }
 }
 
-// A disc with a dark rim, drawn once into a small canvas.
-function roundSprite() {
-  const size = 64;
-  const canvas = document.createElement('canvas');
-  canvas.width = canvas.height = size;
-  const g = canvas.getContext('2d');
-  g.beginPath();
-  g.arc(size / 2, size / 2, size / 2 - 2, 0, 2 * Math.PI);
-  g.fillStyle = '#202428';
-  g.fill();
-  g.beginPath();
-  g.arc(size / 2, size / 2, size / 2 - 10, 0, 2 * Math.PI);
-  g.fillStyle = '#ffffff';
-  g.fill();
-  const texture = new THREE.CanvasTexture(canvas);
-  texture.colorSpace = THREE.SRGBColorSpace;
-  return texture;
-}

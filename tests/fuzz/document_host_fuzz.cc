@@ -1,7 +1,7 @@
 // The whole command path of a server document host (server/document_host.h)
 // in-process: a sequence of client messages, decoded from the input as the
 // server decodes a connection's stream, against a creased-cube document of
-// max level kHostDocumentLevel (fuzz_support.h says why it is 2).
+// max level kFuzzDocumentLevel (fuzz_support.h says why it is 2).
 //
 // Input: byte 0 sets the run up (bit 0: the store refuses the third append,
 // so the journal-failure path runs; bit 1: --deltas-after-durable); the rest
@@ -144,7 +144,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   boost::asio::io_context io;
   store.attach(io);
   {
-    auto host = std::make_shared<server::DocumentHost>(DocumentId{1}, "cube", KeyedDocument(cubeDocument(kHostDocumentLevel)), 1, io.get_executor(),
+    auto host = std::make_shared<server::DocumentHost>(DocumentId{1}, "cube", KeyedDocument(cubeDocument(kFuzzDocumentLevel)), 1, io.get_executor(),
                                                        io.get_executor(), store, config, stats);
     std::shared_ptr<Inbox> sessions[2] = {std::make_shared<Inbox>(1, failStore), std::make_shared<Inbox>(2, failStore)};
     host->join(sessions[0], "editor", wire::ROLE_EDITOR);

@@ -1,5 +1,5 @@
 // The edit script parser (core/document/edit_script.h), and applying what it
-// parses to a creased-cube document of max level 3: what
+// parses to a creased-cube document of max level kFuzzDocumentLevel: what
 // `tessera doc edit --script` and `tessera remote edit` do with a user's
 // file. A script applies entirely or not at all, so a refused script must
 // leave the document's edits as they were.
@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     checkError(commands.status(), "parseEditScript");
     return 0;
   }
-  Document doc = cubeDocument(3);
+  Document doc = cubeDocument(kFuzzDocumentLevel);
   auto applied = applyEditScript(text, "fuzz.script", doc);
   if (!applied.isOk()) {
     checkError(applied.status(), "applyEditScript");

@@ -5,9 +5,9 @@
 // Input: a journal, as entries each prefixed by one length byte (at most
 // 16 entries). Every entry is decoded; one that decodes must re-encode to
 // bytes that decode to the same encoding, and is then applied, in order, to
-// a creased-cube document as recovery would (errors are fine: a damaged
-// journal is refused, not crashed on); entries may add a morph key and edit
-// it.
+// a creased-cube document of max level kFuzzDocumentLevel as recovery would
+// (errors are fine: a damaged journal is refused, not crashed on); entries
+// may add a morph key and edit it.
 #include <string>
 
 #include "fuzz_support.h"
@@ -16,7 +16,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tessera;
   using namespace tessera::fuzz;
-  KeyedDocument doc(cubeDocument(3));
+  KeyedDocument doc(cubeDocument(kFuzzDocumentLevel));
   size_t at = 0;
   for (int entries = 0; entries < 16 && at < size; ++entries) {
     const size_t length = std::min<size_t>(data[at], size - at - 1);

@@ -242,8 +242,8 @@ std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
 
 void hostSessions() {
   std::string editor(1, '\0'), both(1, '\2'), failing(1, '\1');
-  for (const auto& m : session(0, kHostDocumentLevel)) editor += frame(m), failing += frame(m);
-  const auto a = session(0, kHostDocumentLevel), b = session(1, kHostDocumentLevel);
+  for (const auto& m : session(0, kFuzzDocumentLevel)) editor += frame(m), failing += frame(m);
+  const auto a = session(0, kFuzzDocumentLevel), b = session(1, kFuzzDocumentLevel);
   for (size_t i = 0; i < a.size(); ++i) both += frame(a[i]) + frame(b[i]);
   write("document_host", "editor", editor);
   write("document_host", "two_sessions", both);

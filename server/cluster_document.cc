@@ -246,11 +246,19 @@ void ClusterDocument::askUndecidedLocked() {
     if (host_) {
       host_->answerOutcomes(who, seqs);
     } else {
-      forward(who->sessionId(), cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
-        for (uint64_t seq : seqs) f.add_client_seqs(seq);
-      });
+      askOwnerLocked(who->sessionId(), seqs);
     }
   }
+}
+
+void ClusterDocument::askOwnerLocked(uint64_t session, const std::vector<uint64_t>& seqs) {
+  // Outstanding until the owner answers: if the question or its answer is
+  // lost (the owner moves, NATS drops it), the next move or reconnection
+  // asks again (rehome, askOutcomes).
+  for (uint64_t seq : seqs) node_.noteOutstanding(session, seq, id_);
+  forward(session, cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
+    for (uint64_t seq : seqs) f.add_client_seqs(seq);
+  });
 }
 
 void ClusterDocument::askOutcomes() {
@@ -258,10 +266,7 @@ void ClusterDocument::askOutcomes() {
   if (host_) return;  // local sessions talk to the host directly: nothing was in flight over NATS
   for (const auto& [session, s] : sessions_) {
     const std::vector<uint64_t> seqs = node_.peekOutstanding(session, id_);
-    if (seqs.empty()) continue;
-    forward(session, cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
-      for (uint64_t seq : seqs) f.add_client_seqs(seq);
-    });
+    if (!seqs.empty()) askOwnerLocked(session, seqs);
   }
 }
 
@@ -362,12 +367,7 @@ void ClusterDocument::rehome(const std::string& why) {
           f.set_resync(true);
         });
       }
-      if (!unanswered.empty()) {
-        for (uint64_t seq : unanswered) node_.noteOutstanding(session, seq, id_);  // until the new owner answers
-        forward(session, cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
-          for (uint64_t seq : unanswered) f.add_client_seqs(seq);
-        });
-      }
+      if (!unanswered.empty()) askOwnerLocked(session, unanswered);
     }
   }
   // Undecided commands of this node's own sessions: the owner, here or

@@ -86,6 +86,8 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // has not failed.
   void undecidedArrived(DocumentHost::Undecided undecided);
   void askUndecidedLocked();
+  // Under mutex_: asks the owner elsewhere what became of `seqs`.
+  void askOwnerLocked(uint64_t session, const std::vector<uint64_t>& seqs);
   void dropHostLocked();
 
   const DocumentId id_;

@@ -468,8 +468,8 @@ Status NatsStore::fenceJournal(DocumentId id) {
   const natsStatus s = js_Publish(&raw, link_->jetStream(), journalSubject(id).c_str(), payload.data(),
                                   static_cast<int>(payload.size()), &options, &code);
   PubAckPtr ack(raw);
-  std::lock_guard<std::mutex> lock(mutex_);
   if (s != NATS_OK) {
+    std::lock_guard<std::mutex> lock(mutex_);
     tails_.erase(id.value);
     if (code == JSStreamWrongLastSequenceErr) {
       return ioError(toString(id) + ": another writer appended to the journal after stream sequence " +
@@ -477,8 +477,45 @@ Status NatsStore::fenceJournal(DocumentId id) {
     }
     return link_->error(s, "fencing the journal of " + toString(id), code);
   }
+  const Status alone = checkNothingBeforeFence(id, tail.sequence, ack->Sequence);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!alone.isOk()) {
+    tails_.erase(id.value);
+    return alone;
+  }
   tails_[id.value].sequence = ack->Sequence;
   return Status::ok();
+}
+
+Status NatsStore::checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, uint64_t fence) {
+  // A write that timed out while the stream had no quorum stays in its
+  // leader's Raft log, and may be committed when the quorum is back, after
+  // this store read the journal's end. The expected-last-subject-sequence
+  // check then passes (nats-server checks it when it proposes the fence,
+  // against what it has applied), so the fence alone does not prove the
+  // load whole. Raft commits in log order: once the fence is acknowledged,
+  // such an entry is stored before it, and any replica that has the fence
+  // has it too. So the first message after the loaded tail must be the
+  // fence itself; anything else means the load missed an entry (seen in
+  // tests/cluster/cluster_quorum_test.cc as a journal with one version
+  // twice), and the caller loads again.
+  const std::string subject = journalSubject(id);
+  for (int lagging = 0;; ++lagging) {
+    auto first = nextMessage(*link_, kJournalStream, subject, loadedTail + 1);
+    if (first.isOk()) {
+      if (first->sequence == fence) return Status::ok();
+      return ioError(toString(id) + ": stream sequence " + std::to_string(first->sequence) +
+                     " was stored after this node read the journal's end (" + std::to_string(loadedTail) +
+                     ") and before its fence (" + std::to_string(fence) +
+                     "): a write that had timed out landed late; load the document again");
+    }
+    // A replica that lags may have neither message yet: ask again, briefly.
+    if (first.status().code() != ErrorCode::kNotFound || lagging >= 50) {
+      return ioError(toString(id) + ": cannot confirm that nothing precedes the journal's fence at stream sequence " +
+                     std::to_string(fence) + " (" + first.status().message() + "); load the document again");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 Status NatsStore::putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) {

@@ -96,6 +96,9 @@ class NatsStore final : public Store {
   // The tail of a document, read from JetStream when not known; kNotFound
   // for a document that does not exist.
   Expected<Tail> tailOf(DocumentId id);
+  // After a fence at `fence`: no message of the journal lies between the
+  // tail the load read and the fence (nats_store.cc says why it could).
+  Status checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, uint64_t fence);
   Expected<std::string> documentName(DocumentId id);
   Expected<std::vector<JournalEntry>> readJournal(DocumentId id, uint64_t afterSequence, uint64_t afterVersion,
                                                   uint64_t lastSequence);

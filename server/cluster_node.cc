@@ -236,28 +236,31 @@ void ClusterNode::unpin(DocumentId id) {
 
 void ClusterNode::onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self) {
   auto* node = static_cast<ClusterNode*>(self);
-  const char* subject = natsMsg_GetSubject(msg);
-  const int length = natsMsg_GetDataLength(msg);
-  auto whole = node->forwardChunks_.add(std::string_view(natsMsg_GetData(msg), static_cast<size_t>(std::max(length, 0))));
-  if (!whole.isOk()) {
-    node->dropMessage(subject, length, whole.status().message());
-  } else if (whole->has_value()) {
-    node->handleForward((*whole)->data(), static_cast<int>((*whole)->size()), subject);
-  }
-  natsMsg_Destroy(msg);
+  node->receive(msg, node->forwardChunks_, &ClusterNode::handleForward);
 }
 
 void ClusterNode::onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self) {
   auto* node = static_cast<ClusterNode*>(self);
+  node->receive(msg, node->frameChunks_, &ClusterNode::handleNodeMessage);
+}
+
+void ClusterNode::receive(natsMsg* msg, cluster::ChunkAssembler& chunks,
+                          void (ClusterNode::*handle)(const char*, int, const char*)) {
   const char* subject = natsMsg_GetSubject(msg);
   const int length = natsMsg_GetDataLength(msg);
-  auto whole = node->frameChunks_.add(std::string_view(natsMsg_GetData(msg), static_cast<size_t>(std::max(length, 0))));
+  auto whole = chunks.add(std::string_view(natsMsg_GetData(msg), static_cast<size_t>(std::max(length, 0))));
   if (!whole.isOk()) {
-    node->dropMessage(subject, length, whole.status().message());
+    dropMessage(subject, length, whole.status().message());
   } else if (whole->has_value()) {
-    node->handleNodeMessage((*whole)->data(), static_cast<int>((*whole)->size()), subject);
+    (this->*handle)((*whole)->data(), static_cast<int>((*whole)->size()), subject);
   }
   natsMsg_Destroy(msg);
+}
+
+std::shared_ptr<ClusterDocument> ClusterNode::liveDocument(uint64_t id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto it = documents_.find(id); it != documents_.end()) return it->second.lock();
+  return nullptr;
 }
 
 void ClusterNode::dropMessage(const char* subject, int length, const std::string& why) {
@@ -274,11 +277,7 @@ void ClusterNode::handleForward(const char* data, int length, const char* subjec
       request.via_node().empty() || request.session_id() == 0 || request.document_id() == 0) {
     return dropMessage(subject, length, "a Forward without its kind, node, session or document");
   }
-  std::shared_ptr<ClusterDocument> doc;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (auto it = documents_.find(request.document_id()); it != documents_.end()) doc = it->second.lock();
-  }
+  auto doc = liveDocument(request.document_id());
   if (doc && doc->serveRemote(request)) return;
   if (request.kind() == cluster::Forward::KIND_LEAVE) return;  // nothing to leave here
   cluster::NodeMessage reply;
@@ -292,12 +291,7 @@ void ClusterNode::handleNodeMessage(const char* data, int length, const char* su
   cluster::NodeMessage message;
   if (length <= 0 || !message.ParseFromArray(data, length)) return dropMessage(subject, length, "not a cluster NodeMessage");
   if (message.has_not_owner()) {
-    std::shared_ptr<ClusterDocument> doc;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (auto it = documents_.find(message.not_owner().document_id()); it != documents_.end()) doc = it->second.lock();
-    }
-    if (doc) {
+    if (auto doc = liveDocument(message.not_owner().document_id())) {
       doc->markNotOwner();
       monitorWake_.notify_all();
     }

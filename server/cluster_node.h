@@ -82,6 +82,10 @@ class ClusterNode : public DocumentOpener {
               ServerStats& stats, boost::asio::any_io_executor workers, std::string name);
   static void onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
   static void onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
+  // Both subscriptions: reassembles chunked messages, then hands each whole
+  // one to `handle` (or drops it, logged, when its chunks are bad).
+  void receive(natsMsg* msg, cluster::ChunkAssembler& chunks, void (ClusterNode::*handle)(const char*, int, const char*));
+  std::shared_ptr<ClusterDocument> liveDocument(uint64_t id);  // null when not open here
   void handleForward(const char* data, int length, const char* subject);
   void handleNodeMessage(const char* data, int length, const char* subject);
   void dropMessage(const char* subject, int length, const std::string& why);

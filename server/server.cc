@@ -209,16 +209,33 @@ Status Server::startWebPort() {
 void Server::admit(std::shared_ptr<PendingUpgrade> upgrade) {
   if (stopping_) return upgrade->refuse("the server is stopping");
   const std::string address = upgrade->address();
-  if (const auto over = overLimits(address)) {
-    logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}});
-    ++stats_.connectionsRefused;
-    return upgrade->refuse(*over);
-  }
-  const uint64_t session = nextSession_++;
+  // Refused before the upgrade, as an HTTP 503 the browser can show.
+  if (const auto over = admission(address)) return upgrade->refuse(*over);
   ConnectionStrand strand = asio::make_strand(upgrade->executor());
   auto transport = upgrade->accept(strand);
+  startConnection(std::move(transport), std::move(strand), address, std::nullopt);
+}
+
+std::optional<std::string> Server::admission(const std::string& address) {
+  auto over = overLimits(address);
+  if (over) {
+    logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}});
+    ++stats_.connectionsRefused;
+  }
+  return over;
+}
+
+void Server::startConnection(std::unique_ptr<Transport> transport, ConnectionStrand strand, const std::string& address,
+                             const std::optional<std::string>& refusal) {
+  const uint64_t session = nextSession_++;
   auto connection = std::make_shared<Connection>(std::move(transport), std::move(strand), *context_, session, address);
-  connections_[session] = connection;
+  // The refusal is queued on the connection's strand before its start, so
+  // with several network threads no Hello can be read and answered first.
+  if (refusal) {
+    connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS, *refusal);
+  } else {
+    connections_[session] = connection;
+  }
   connection->start();
 }
 
@@ -300,21 +317,11 @@ void Server::accept() {
     }
     const auto remote = socket.remote_endpoint(ignored);
     const std::string address = remote.address().to_string();
-    const auto over = overLimits(address);
-    const uint64_t session = nextSession_++;
+    const auto over = admission(address);
     ConnectionStrand strand = asio::make_strand(socket.get_executor());
     auto transport = makeStreamTransport(std::move(socket), tls_.get(), strand);
-    auto connection = std::make_shared<Connection>(std::move(transport), std::move(strand), *context_, session, address);
-    // The refusal is queued on the connection's strand before its start, so
-    // with several network threads no Hello can be read and answered first.
-    if (over) {
-      logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}});
-      ++stats_.connectionsRefused;
-      connection->refuse(wire::ERROR_CODE_TOO_MANY_CONNECTIONS, *over);
-    } else {
-      connections_[session] = connection;
-    }
-    connection->start();
+    // Refused in the protocol (an Error frame), which a client library reads.
+    startConnection(std::move(transport), std::move(strand), address, over);
     accept();
   });
 }

@@ -67,6 +67,12 @@ class Server {
   // Whether a new connection from `address` stays within the connection
   // limits; otherwise why not.
   std::optional<std::string> overLimits(const std::string& address);
+  // overLimits, with a refusal logged and counted.
+  std::optional<std::string> admission(const std::string& address);
+  // A Connection on `transport`: refused at once with `refusal`, or
+  // registered and served.
+  void startConnection(std::unique_ptr<Transport> transport, ConnectionStrand strand, const std::string& address,
+                       const std::optional<std::string>& refusal);
 
   ServerConfig config_;
   boost::asio::io_context io_;

@@ -198,7 +198,9 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
   void serveFile(const http::request<http::empty_body>& request, const StaticFile& file) {
     const auto encodings = request[http::field::accept_encoding];
     const bool gzip = !file.gzipped.empty() && lower(std::string_view(encodings.data(), encodings.size())).find("gzip") != std::string::npos;
-    auto response = std::make_shared<http::response<http::string_body>>(http::status::ok, request.version());
+    // The body points into the port's files, which outlive the response
+    // (it holds port_): no copy per request.
+    auto response = std::make_shared<http::response<http::span_body<const char>>>(http::status::ok, request.version());
     headers(*response);
     response->set(http::field::content_type, file.contentType);
     response->set(http::field::cache_control, "no-cache");
@@ -208,7 +210,7 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
     if (request.method() == http::verb::head) {
       response->content_length(body.size());
     } else {
-      response->body() = body;
+      response->body() = http::span_body<const char>::value_type(body.data(), body.size());
       response->prepare_payload();
     }
     response->keep_alive(request.keep_alive() && requests_ < kRequestsPerConnection);
@@ -226,7 +228,8 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
     send(response);
   }
 
-  static void headers(http::response<http::string_body>& response) {
+  template <class Body>
+  static void headers(http::response<Body>& response) {
     response.set(http::field::server, std::string("tessera-server ") + kVersion);
     response.set("X-Content-Type-Options", "nosniff");
     response.set("Referrer-Policy", "no-referrer");
@@ -237,7 +240,8 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
                  "img-src 'self' data:; style-src 'self'; frame-ancestors 'none'");
   }
 
-  void send(std::shared_ptr<http::response<http::string_body>> response) {
+  template <class Body>
+  void send(std::shared_ptr<http::response<Body>> response) {
     beast::get_lowest_layer(stream_).expires_after(secondsOf(port_->options.timeouts.writeSeconds));
     auto self = this->shared_from_this();
     http::async_write(stream_, *response, [self, response](const beast::error_code& ec, size_t) {

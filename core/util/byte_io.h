@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "core/util/status.h"
@@ -20,7 +21,7 @@ class ByteWriter {
     std::memcpy(bytes, &value, sizeof(T));  // hosts are little-endian (x86-64, arm64)
     out_.append(bytes, sizeof(T));
   }
-  void putBytes(const std::string& bytes) { out_ += bytes; }
+  void putBytes(std::string_view bytes) { out_.append(bytes); }
   // LEB128: 7 bits a byte, low first (Draco's varint too).
   void putVarint(uint64_t value) {
     for (; value >= 0x80; value >>= 7) put<uint8_t>(static_cast<uint8_t>(value | 0x80));

@@ -1,57 +1,47 @@
 #include "server/cluster/journal_message.h"
 
+#include "core/util/byte_io.h"
+
 namespace tessera::cluster {
 
 namespace {
 
 constexpr std::string_view kMagic = "TJ2";
 
-void putLittleEndian(std::string& out, uint64_t value, int bytes) {
-  for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((value >> (8 * i)) & 0xff));
-}
-
-uint64_t getLittleEndian(std::string_view in, size_t at, int bytes) {
-  uint64_t value = 0;
-  for (int i = 0; i < bytes; ++i) value |= static_cast<uint64_t>(static_cast<unsigned char>(in[at + i])) << (8 * i);
-  return value;
-}
-
 }  // namespace
 
 std::string encodeJournalMessage(const JournalMessage& m) {
-  std::string out;
-  out.reserve(kMagic.size() + 29 + m.author.size() + m.bytes.size());
-  out += kMagic;
-  out.push_back(m.fence ? 1 : 0);
-  putLittleEndian(out, m.version, 8);
-  putLittleEndian(out, m.author.size(), 4);
-  out += m.author;
-  putLittleEndian(out, m.authorSession, 8);
-  putLittleEndian(out, m.clientSeq, 8);
-  out += m.bytes;
-  return out;
+  ByteWriter out;
+  out.bytes().reserve(kMagic.size() + 29 + m.author.size() + m.bytes.size());
+  out.putBytes(kMagic);
+  out.put<uint8_t>(m.fence ? 1 : 0);
+  out.put<uint64_t>(m.version);
+  out.put<uint32_t>(static_cast<uint32_t>(m.author.size()));
+  out.putBytes(m.author);
+  out.put<uint64_t>(m.authorSession);
+  out.put<uint64_t>(m.clientSeq);
+  out.putBytes(m.bytes);
+  return std::move(out.bytes());
 }
 
 Expected<JournalMessage> decodeJournalMessage(std::string_view payload, std::string_view where) {
-  const size_t header = kMagic.size() + 13;
-  if (payload.size() < header || payload.substr(0, kMagic.size()) != kMagic) {
+  if (payload.substr(0, kMagic.size()) != kMagic) {
     return parseError(std::string(where) + ": not a Tessera journal message (" + std::to_string(payload.size()) +
                       " bytes without the TJ2 header)");
   }
+  ByteReader in(payload.data() + kMagic.size(), payload.size() - kMagic.size(), std::string(where));
   JournalMessage message;
-  const unsigned kind = static_cast<unsigned char>(payload[kMagic.size()]);
+  uint8_t kind = 0;
+  uint32_t authorBytes = 0;
+  TESSERA_RETURN_IF_ERROR(in.get(kind, "the message kind"));
   if (kind > 1) return parseError(std::string(where) + ": unknown journal message kind " + std::to_string(kind));
   message.fence = kind == 1;
-  message.version = getLittleEndian(payload, kMagic.size() + 1, 8);
-  const uint64_t authorBytes = getLittleEndian(payload, kMagic.size() + 9, 4);
-  if (authorBytes > payload.size() - header || payload.size() - header - authorBytes < 16) {
-    return parseError(std::string(where) + ": its author length " + std::to_string(authorBytes) + " passes the end of its " +
-                      std::to_string(payload.size()) + " bytes");
-  }
-  message.author = std::string(payload.substr(header, authorBytes));
-  message.authorSession = getLittleEndian(payload, header + authorBytes, 8);
-  message.clientSeq = getLittleEndian(payload, header + authorBytes + 8, 8);
-  message.bytes = std::string(payload.substr(header + authorBytes + 16));
+  TESSERA_RETURN_IF_ERROR(in.get(message.version, "the version"));
+  TESSERA_RETURN_IF_ERROR(in.getCount(authorBytes, 1, "the author length"));
+  TESSERA_RETURN_IF_ERROR(in.getBytes(message.author, authorBytes, "the author"));
+  TESSERA_RETURN_IF_ERROR(in.get(message.authorSession, "the author's session"));
+  TESSERA_RETURN_IF_ERROR(in.get(message.clientSeq, "the client sequence number"));
+  TESSERA_RETURN_IF_ERROR(in.getBytes(message.bytes, in.remaining(), "the entry"));
   return message;
 }
 

@@ -3,22 +3,14 @@
 #include <algorithm>
 #include <atomic>
 
+#include "core/util/byte_io.h"
+
 namespace tessera::cluster {
 
 namespace {
 
 constexpr size_t kChunkOverhead = 1 + 1 + 255 + 8 + 4 + 4;
 std::atomic<uint64_t> nextMessageId{1};
-
-void put(std::string& out, uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-
-uint64_t get(std::string_view in, size_t at, int bytes) {
-  uint64_t v = 0;
-  for (int i = 0; i < bytes; ++i) v |= static_cast<uint64_t>(static_cast<unsigned char>(in[at + i])) << (8 * i);
-  return v;
-}
 
 }  // namespace
 
@@ -42,14 +34,15 @@ Status publishMessage(NatsLink& link, const std::string& subject, const std::str
   const uint64_t id = nextMessageId++;
   const uint32_t parts = static_cast<uint32_t>((message.size() + chunk - 1) / chunk);
   for (uint32_t part = 0; part < parts; ++part) {
-    std::string bytes(1, '\1');
-    bytes.push_back(static_cast<char>(sender.size()));
-    bytes += sender;
-    put(bytes, id, 8);
-    put(bytes, part, 4);
-    put(bytes, parts, 4);
-    bytes += message.substr(static_cast<size_t>(part) * chunk, chunk);
-    TESSERA_RETURN_IF_ERROR(send(bytes));
+    ByteWriter bytes;
+    bytes.put<uint8_t>(1);
+    bytes.put<uint8_t>(static_cast<uint8_t>(sender.size()));
+    bytes.putBytes(sender);
+    bytes.put<uint64_t>(id);
+    bytes.put<uint32_t>(part);
+    bytes.put<uint32_t>(parts);
+    bytes.putBytes(message.substr(static_cast<size_t>(part) * chunk, chunk));
+    TESSERA_RETURN_IF_ERROR(send(bytes.bytes()));
   }
   return Status::ok();
 }
@@ -58,15 +51,18 @@ Expected<std::optional<std::string>> ChunkAssembler::add(std::string_view payloa
   if (payload.empty()) return invalidArgument("an empty cluster message");
   if (payload[0] == '\0') return std::optional<std::string>(std::string(payload.substr(1)));
   if (payload[0] != '\1') return invalidArgument("not a cluster message (first byte " + std::to_string(static_cast<unsigned char>(payload[0])) + ")");
-  if (payload.size() < 2) return invalidArgument("a cluster chunk without its header");
-  const size_t senderBytes = static_cast<unsigned char>(payload[1]);
-  const size_t header = 2 + senderBytes + 16;
-  if (payload.size() < header) return invalidArgument("a cluster chunk without its header");
-  const std::string sender(payload.substr(2, senderBytes));
-  const uint64_t id = get(payload, 2 + senderBytes, 8);
-  const uint32_t part = static_cast<uint32_t>(get(payload, 2 + senderBytes + 8, 4));
-  const uint32_t parts = static_cast<uint32_t>(get(payload, 2 + senderBytes + 12, 4));
-  const std::string_view data = payload.substr(header);
+  ByteReader in(payload.data() + 1, payload.size() - 1, "its bytes");
+  uint8_t senderBytes = 0;
+  std::string sender;
+  uint64_t id = 0;
+  uint32_t part = 0, parts = 0;
+  Status header = in.get(senderBytes, "the sender's length");
+  if (header.isOk()) header = in.getBytes(sender, senderBytes, "the sender");
+  if (header.isOk()) header = in.get(id, "the message id");
+  if (header.isOk()) header = in.get(part, "the part");
+  if (header.isOk()) header = in.get(parts, "the part count");
+  if (!header.isOk()) return invalidArgument("a cluster chunk without its header (" + header.message() + ")");
+  const std::string_view data = payload.substr(1 + in.offset());
   std::lock_guard<std::mutex> lock(mutex_);
   Partial& p = partial_[sender];
   if (part == 0) {

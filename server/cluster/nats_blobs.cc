@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include "core/util/byte_io.h"
+
 namespace tessera::cluster {
 
 namespace {
@@ -16,16 +18,6 @@ uint64_t fnv1a(std::string_view bytes) {
     hash *= 0x100000001b3ull;
   }
   return hash;
-}
-
-void put64(std::string& out, uint64_t v) {
-  for (int i = 0; i < 8; ++i) out.push_back(static_cast<char>((v >> (8 * i)) & 0xff));
-}
-
-uint64_t get64(std::string_view in, size_t at) {
-  uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) v |= static_cast<uint64_t>(static_cast<unsigned char>(in[at + i])) << (8 * i);
-  return v;
 }
 
 Status publish(NatsLink& link, const std::string& subject, std::string_view bytes) {
@@ -52,11 +44,12 @@ Status putBlob(NatsLink& link, const std::string& stream, const std::string& pre
     ++chunks;
     if (bytes.empty()) break;
   }
-  std::string manifest(kManifestMagic);
-  put64(manifest, bytes.size());
-  put64(manifest, chunks);
-  put64(manifest, fnv1a(bytes));
-  return publish(link, prefix, manifest);
+  ByteWriter manifest;
+  manifest.putBytes(kManifestMagic);
+  manifest.put<uint64_t>(bytes.size());
+  manifest.put<uint64_t>(chunks);
+  manifest.put<uint64_t>(fnv1a(bytes));
+  return publish(link, prefix, manifest.bytes());
 }
 
 Expected<std::string> getBlob(NatsLink& link, const std::string& stream, const std::string& prefix,
@@ -67,7 +60,11 @@ Expected<std::string> getBlob(NatsLink& link, const std::string& stream, const s
     return parseError(std::string(where) + ": its manifest on " + prefix + " is damaged (" +
                       std::to_string(m.size()) + " bytes)");
   }
-  const uint64_t size = get64(m, 3), chunks = get64(m, 11), checksum = get64(m, 19);
+  ByteReader in(m.data() + kManifestMagic.size(), m.size() - kManifestMagic.size(), std::string(where));
+  uint64_t size = 0, chunks = 0, checksum = 0;
+  TESSERA_RETURN_IF_ERROR(in.get(size, "the manifest's size"));
+  TESSERA_RETURN_IF_ERROR(in.get(chunks, "the manifest's chunk count"));
+  TESSERA_RETURN_IF_ERROR(in.get(checksum, "the manifest's checksum"));
   if (chunks == 0 || chunks > size + 1) {
     return parseError(std::string(where) + ": its manifest names " + std::to_string(chunks) + " chunks for " +
                       std::to_string(size) + " bytes");

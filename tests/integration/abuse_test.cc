@@ -11,7 +11,7 @@
 
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
-#include "integration/bystander.h"
+#include "integration/bystanded_server.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
@@ -22,47 +22,15 @@ namespace {
 namespace asio = boost::asio;
 using client::Session;
 using testing::Bystander;
+using testing::BystandedServer;
+using testing::expectServed;
+using testing::startBystanded;
 using testing::ServerProcess;
 using Clock = std::chrono::steady_clock;
-
-// Far above a bystander's normal few milliseconds, far below the stalls of
-// seconds the abuse caused before issue 13.
-constexpr double kBystanderMedianMs = 150, kBystanderMaxMs = 1500;
-
-void expectServed(Bystander& bystander, const Expected<Bystander::Latencies>& l, const std::string& during) {
-  ASSERT_TRUE(l.isOk()) << during << ": " << l.status().message();
-  Status acked = bystander.awaitAcks();
-  EXPECT_TRUE(acked.isOk()) << during << ": " << acked.message();
-  EXPECT_LT(l->median(), kBystanderMedianMs) << during;
-  EXPECT_LT(l->max(), kBystanderMaxMs) << during;
-}
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::string serverLog(const std::string& dataDirectory) { return testing::fileBytes(dataDirectory + ".log"); }
-
-struct Started {
-  std::string data;
-  std::optional<ServerProcess> server;
-  std::unique_ptr<Session> admin;
-  std::unique_ptr<Bystander> bystander;
-};
-
-void start(Started& s, const std::string& name, const std::vector<std::string>& args) {
-  s.data = testing::makeTempDir(name) + "/data";
-  auto server = ServerProcess::start(s.data, args);
-  ASSERT_TRUE(server.isOk()) << server.status().message();
-  s.server.emplace(std::move(*server));
-  auto options = s.server->session("admin", s.server->adminToken());
-  options.localAddress = "127.0.0.8";
-  auto admin = Session::connect(options);
-  ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  s.admin = std::move(*admin);
-  auto bystander = Bystander::start(*s.server, *s.admin);
-  ASSERT_TRUE(bystander.isOk()) << bystander.status().message();
-  s.bystander = std::move(*bystander);
-  expectServed(*s.bystander, s.bystander->run(10), "before the abuse");
-}
 
 Expected<std::unique_ptr<Session>> connectFrom(const ServerProcess& server, const std::string& address,
                                                const std::string& token) {
@@ -75,8 +43,8 @@ Expected<std::unique_ptr<Session>> connectFrom(const ServerProcess& server, cons
 // token from another address is served at once; the log names the address
 // and never the token.
 TEST(ServerAbuse, FailedTokensSlowDownPerAddressOnly) {
-  Started s;
-  start(s, "tessera-abuse-auth", {"--auth-failure-delay-ms", "200", "--auth-failure-max-delay-ms", "800"});
+  BystandedServer s;
+  startBystanded(s, "tessera-abuse-auth", {"--auth-failure-delay-ms", "200", "--auth-failure-max-delay-ms", "800"});
   if (::testing::Test::HasFatalFailure()) return;
   auto abuse = std::async(std::launch::async, [&] {
     const auto t0 = Clock::now();
@@ -125,8 +93,8 @@ TEST(ServerAbuse, FailedTokensSlowDownPerAddressOnly) {
 // Raw TCP peers that never authenticate: a small Hello limit, a deadline
 // bytes do not extend, and their own connection limits.
 TEST(ServerAbuse, UnauthenticatedPeersHoldNeitherMemoryNorSlots) {
-  Started s;
-  start(s, "tessera-abuse-preauth", {"--handshake-timeout", "1.5", "--unauthenticated-per-address", "3",
+  BystandedServer s;
+  startBystanded(s, "tessera-abuse-preauth", {"--handshake-timeout", "1.5", "--unauthenticated-per-address", "3",
                                      "--unauthenticated-total", "5", "--hello-max-bytes", "4096"});
   if (::testing::Test::HasFatalFailure()) return;
   asio::io_context io;
@@ -212,8 +180,8 @@ wire::ClientMessage profile(uint64_t doc, uint32_t base, uint32_t max, double an
 // last subscriber; subscriptions are capped per session; over-budget
 // profiles and exports are refused from an estimate.
 TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
-  Started s;
-  start(s, "tessera-abuse-profiles", {"--profiles-per-document", "2", "--subscriptions-per-session", "1",
+  BystandedServer s;
+  startBystanded(s, "tessera-abuse-profiles", {"--profiles-per-document", "2", "--subscriptions-per-session", "1",
                                       "--max-triangles", "20000"});
   if (::testing::Test::HasFatalFailure()) return;
   const std::string cube = testing::fileBytes(testing::sourceTestDataPath("cube.obj"));
@@ -290,8 +258,8 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
 // Selections are checked, and presence carries changes only: a large
 // selection is sent once, not again with every later join and leave.
 TEST(ServerAbuse, SelectionsAreCheckedAndPresenceSendsChanges) {
-  Started s;
-  start(s, "tessera-abuse-presence", {"--selection-max-ids", "600"});
+  BystandedServer s;
+  startBystanded(s, "tessera-abuse-presence", {"--selection-max-ids", "600"});
   if (::testing::Test::HasFatalFailure()) return;
   const std::string cube = testing::fileBytes(testing::sourceTestDataPath("cube.obj"));
   auto created = s.admin->call(testing::createDocument("shared", cube, "", 5), 30);
@@ -377,8 +345,8 @@ namespace {
 // client could not parse the reply and lost its stream. Both ways a mesh
 // reaches the importer: CreateDocument and AddMorphKey.
 TEST(ServerAbuse, MeshErrorsQuotingBinaryBytesReachTheClient) {
-  Started s;
-  start(s, "tessera-abuse-utf8", {});
+  BystandedServer s;
+  startBystanded(s, "tessera-abuse-utf8", {});
   if (::testing::Test::HasFatalFailure()) return;
   const std::string bad = std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nbogus\xFF\xFE line\n");
   auto refused = s.admin->call(testing::createDocument("binary", bad, "", 3), 30);

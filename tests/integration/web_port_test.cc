@@ -11,7 +11,7 @@
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
-#include "integration/bystander.h"
+#include "integration/bystanded_server.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "integration/web_client.h"
@@ -27,44 +27,22 @@ using testing::httpStatus;
 using testing::ServerProcess;
 using testing::WebSocketClient;
 
-constexpr double kBystanderMedianMs = 150, kBystanderMaxMs = 1500;
-
-struct WebServer {
-  std::string data;
-  std::optional<ServerProcess> server;
+struct WebServer : testing::BystandedServer {
   uint16_t webPort = 0;
-  std::unique_ptr<Session> admin;
-  std::unique_ptr<Bystander> bystander;
 };
 
 void start(WebServer& w, const std::string& name, std::vector<std::string> args = {}) {
-  w.data = testing::makeTempDir(name) + "/data";
-  const std::string portFile = w.data + ".wsport";
+  const std::string portFile = testing::makeTempDir(name + "-port") + "/wsport";
   args.insert(args.end(), {"--ws-port", "0", "--ws-port-file", portFile, "--web-root", TESSERA_WEB_DIR});
-  auto server = ServerProcess::start(w.data, args);
-  ASSERT_TRUE(server.isOk()) << server.status().message();
-  w.server.emplace(std::move(*server));
+  testing::startBystanded(w, name, args);
   std::ifstream in(portFile);
   int port = 0;
   ASSERT_TRUE(in >> port && port > 0) << "no web port in " << portFile;
   w.webPort = static_cast<uint16_t>(port);
-  auto options = w.server->session("admin", w.server->adminToken());
-  options.localAddress = "127.0.0.8";
-  auto admin = Session::connect(options);
-  ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  w.admin = std::move(*admin);
-  auto bystander = Bystander::start(*w.server, *w.admin);
-  ASSERT_TRUE(bystander.isOk()) << bystander.status().message();
-  w.bystander = std::move(*bystander);
 }
 
 void expectServed(Bystander& bystander, const std::string& during) {
-  auto l = bystander.run(10);
-  ASSERT_TRUE(l.isOk()) << during << ": " << l.status().message();
-  Status acked = bystander.awaitAcks();
-  EXPECT_TRUE(acked.isOk()) << during << ": " << acked.message();
-  EXPECT_LT(l->median(), kBystanderMedianMs) << during;
-  EXPECT_LT(l->max(), kBystanderMaxMs) << during;
+  testing::expectServed(bystander, bystander.run(10), during);
 }
 
 std::string get(const std::string& target, const std::string& extraHeaders = "") {

@@ -275,6 +275,13 @@ bool ClusterDocument::hasRemoteSessions() {
   return !remoteSessions_.empty();
 }
 
+std::vector<uint64_t> ClusterDocument::remoteSessionIds() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<uint64_t> ids;
+  for (const auto& entry : remoteSessions_) ids.push_back(entry.first);
+  return ids;
+}
+
 void ClusterDocument::dropRemoteSessions(const std::string& node, uint64_t incarnation) {
   std::unique_lock<std::mutex> lock(mutex_);
   bool dropped = false;

@@ -62,6 +62,7 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // Moves every local session to the document's current owner.
   void rehome(const std::string& why);
   bool hasRemoteSessions();
+  std::vector<uint64_t> remoteSessionIds();  // other nodes' sessions joined here
   // After this node's NATS connection came back: asks the owner what became
   // of the local sessions' commands still unanswered (their answers may
   // have been lost meanwhile).

@@ -210,6 +210,7 @@ std::shared_ptr<RemoteSubscriber> ClusterNode::remoteSubscriber(const std::strin
   std::lock_guard<std::mutex> lock(mutex_);
   auto& slot = remoteSubscribers_[session];
   if (!slot || slot->node() != node) slot = std::make_shared<RemoteSubscriber>(relay_, node, session);
+  stats_.remoteSessions = static_cast<int64_t>(remoteSubscribers_.size());
   return slot;
 }
 
@@ -343,13 +344,32 @@ void ClusterNode::heartbeat() {
     if (s != NATS_OK && s != NATS_NOT_FOUND) continue;  // NATS unavailable: decide nothing
     if (s == NATS_OK && std::to_string(incarnation) == kvEntry_ValueString(entry.get())) continue;
     logEvent(LogLevel::kInfo, "cluster_node_gone", {{"node", name_}, {"gone", node}, {"incarnation", incarnation}});
+    // Their subscribers go with the next prunes (pruneRemoteSubscribers).
     for (const auto& doc : liveDocuments()) doc->dropRemoteSessions(node, incarnation);
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (auto it = remoteSubscribers_.begin(); it != remoteSubscribers_.end();) {
-      const bool gone = it->second->node() == node && sessionIncarnation(it->first) == incarnation;
-      it = gone ? remoteSubscribers_.erase(it) : std::next(it);
+  }
+}
+
+void ClusterNode::pruneRemoteSubscribers() {
+  std::set<uint64_t> joined;
+  for (const auto& doc : liveDocuments()) {
+    for (uint64_t session : doc->remoteSessionIds()) joined.insert(session);
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  // Two passes apart: a session that is joining right now has its
+  // subscriber (remoteSubscriber) a moment before a document records it.
+  std::set<uint64_t> unjoined;
+  for (auto it = remoteSubscribers_.begin(); it != remoteSubscribers_.end();) {
+    if (joined.count(it->first) != 0) {
+      ++it;
+    } else if (unjoinedBefore_.count(it->first) != 0) {
+      it = remoteSubscribers_.erase(it);
+    } else {
+      unjoined.insert(it->first);
+      ++it;
     }
   }
+  unjoinedBefore_ = std::move(unjoined);
+  stats_.remoteSessions = static_cast<int64_t>(remoteSubscribers_.size());
 }
 
 void ClusterNode::monitor() {
@@ -365,6 +385,7 @@ void ClusterNode::monitor() {
       for (const auto& doc : liveDocuments()) doc->askOutcomes();
     }
     heartbeat();
+    pruneRemoteSubscribers();
     for (const auto& doc : liveDocuments()) {
       if (doc->ownedHere()) {
         const Status renewed = leases_->renew(doc->id());

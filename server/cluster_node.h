@@ -20,6 +20,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -89,6 +90,9 @@ class ClusterNode : public DocumentOpener {
   void handleForward(const char* data, int length, const char* subject);
   void handleNodeMessage(const char* data, int length, const char* subject);
   void dropMessage(const char* subject, int length, const std::string& why);
+  // Other nodes' sessions that no longer take part in any document here
+  // (they left, or their node is gone): their subscribers are dropped.
+  void pruneRemoteSubscribers();
   void monitor();
   // Renews this node's key in TESSERA_ALIVE (name -> number, expiring after
   // the lease time) and drops other nodes' sessions whose node is gone or
@@ -116,6 +120,7 @@ class ClusterNode : public DocumentOpener {
   std::map<uint64_t, std::shared_ptr<ClusterDocument>> pinned_;
   std::map<uint64_t, std::weak_ptr<Subscriber>> localSessions_;
   std::map<uint64_t, std::shared_ptr<RemoteSubscriber>> remoteSubscribers_;
+  std::set<uint64_t> unjoinedBefore_;  // remote sessions no document held at the last prune
   std::map<uint64_t, std::map<uint64_t, uint64_t>> outstanding_;  // session -> client_seq -> document
   std::atomic<uint64_t> dropped_{0};
   std::atomic<bool> reconnected_{false};  // frames may have been lost: ask owners about outstanding commands

@@ -689,6 +689,7 @@ void Connection::stats(uint64_t seq) {
     add("documents_owned", static_cast<double>(s.documentsOwned.load()));
     add("documents_moved", static_cast<double>(s.documentsMoved.load()));
     add("cluster_messages_dropped", static_cast<double>(s.clusterMessagesDropped.load()));
+    add("remote_sessions", static_cast<double>(s.remoteSessions.load()));
   }
   reply(m);
 }

@@ -37,6 +37,7 @@ struct ServerStats {
   std::atomic<int64_t> documentsOwned{0};
   std::atomic<int64_t> documentsMoved{0};
   std::atomic<int64_t> clusterMessagesDropped{0};
+  std::atomic<int64_t> remoteSessions{0};  // other nodes' sessions served by this node's documents
   // Latencies (histograms for /metrics): an edit from being applied to its
   // durable ack (the journal commit), a view's tessellation build or
   // update, and one region's encoding.

@@ -126,6 +126,25 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
     }
     return false;
   })) << "node 1 died but its viewer stayed a participant";
+
+  // The owner forgets other nodes' sessions once they are gone: node 1's
+  // two with their node, node 2's two when they close the document.
+  auto admin = Session::connect(c.session(0, "admin", c.nodes[0]->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  EXPECT_GE(testing::serverStat(**admin, "remote_sessions"), 2);
+  for (Session* s : {viewers[2].session.get(), editors[1].get()}) {
+    wire::ClientMessage close;
+    close.mutable_close_document()->set_document_id(*doc);
+    auto closed = s->call(close, 30);
+    ASSERT_TRUE(closed.isOk() && closed->has_ack()) << (closed.isOk() ? closed->DebugString() : closed.status().message());
+  }
+  double remote = -1;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < deadline && remote != 0) {
+    remote = testing::serverStat(**admin, "remote_sessions");
+    if (remote != 0) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  EXPECT_EQ(remote, 0) << "the owner still holds other nodes' sessions that left";
 }
 
 // With NATS servers that take at most 8 KB per message, a snapshot of a

@@ -314,19 +314,7 @@ void ClusterDocument::rehome(const std::string& why) {
   notOwner_ = false;
   const std::string from = owner_;
   const bool hadRemote = !remoteSessions_.empty();
-  // The failed host's commands whose journal write may or may not be
-  // stored: answered below from the journal, once loaded again.
-  std::set<std::string> remoteNodes;  // their sessions rejoin whoever owns it now
-  if (host_) {
-    for (const auto& [session, node] : remoteSessions_) remoteNodes.insert(node);
-    dropHostLocked();
-    // Other nodes' sessions go with the host; their nodes see the lease
-    // change and move them.
-    remoteSessions_.clear();
-  } else {
-    for (const auto& [session, s] : sessions_) forward(session, cluster::Forward::KIND_LEAVE, nullptr);
-  }
-  owner_.clear();
+  const std::set<std::string> remoteNodes = leaveOwnerLocked();
   const Status resolved = resolveLocked();
   if (from.empty() && !resolved.isOk()) return;  // still no owner: nothing moved, nothing to log
   ++node_.stats().documentsMoved;
@@ -335,47 +323,15 @@ void ClusterDocument::rehome(const std::string& why) {
             {"sessions", static_cast<uint64_t>(sessions_.size())},
             {"error", resolved.isOk() ? std::string() : resolved.message()}});
   // Told before the resync: an edit sent to the old owner and not
-  // acknowledged may be lost (docs/CLUSTER.md, "What a client sees").
-  wire::ServerMessage notice;
-  notice.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-  const std::string to = owner_.empty() ? "none yet (" + resolved.message() + ")" : "node " + owner_;
-  notice.mutable_error()->set_message(toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to " + to +
-                                      " (" + why + "): an edit without its Ack may be lost; " +
-                                      (owner_.empty() ? "edits are refused until a node can load it"
-                                                      : "a resync snapshot follows"));
-  auto frame = frameOf(notice, node_.maxFrameBytes());
-  // A retry that fails again (no owner before, none now) tells nobody anew.
+  // acknowledged may be lost (docs/CLUSTER.md, "What a client sees"). A
+  // retry that fails again (no owner before, none now) tells nobody anew.
   const bool tell = !from.empty() || resolved.isOk();
-  for (auto& entry : sessions_) {
-    // Named, not a structured binding: the lambdas below capture them.
-    const uint64_t session = entry.first;
-    const LocalSession& s = entry.second;
+  const Outgoing notice{movedNotice(from, why, resolved), nullptr};
+  for (const auto& [session, s] : sessions_) {
     auto who = s.who.lock();
     if (!who) continue;
-    if (tell) who->send({frame, nullptr});
-    if (owner_.empty()) continue;  // joined when an owner is found (the monitor tries again)
-    // Commands this session sent to the old owner and got no answer for.
-    // (Also after a move that found no owner at first: they are still
-    // outstanding then, kept for the owner found later.)
-    std::vector<uint64_t> unanswered = node_.takeOutstanding(session, id_);
-    if (host_) {
-      host_->join(who, s.name, s.role);
-      if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);
-      if (!unanswered.empty()) host_->answerOutcomes(who, std::move(unanswered));
-    } else {
-      forward(session, cluster::Forward::KIND_JOIN, [&](cluster::Forward& f) {
-        f.set_name(s.name);
-        f.set_role(s.role);
-      });
-      if (s.profile) {
-        forward(session, cluster::Forward::KIND_SUBSCRIBE, [&](cluster::Forward& f) {
-          *f.mutable_message()->mutable_subscribe()->mutable_profile() = *s.profile;
-          f.mutable_message()->mutable_subscribe()->set_with_commands(s.withCommands);
-          f.set_resync(true);
-        });
-      }
-      if (!unanswered.empty()) askOwnerLocked(session, unanswered);
-    }
+    if (tell) who->send(notice);
+    if (!owner_.empty()) rejoinLocked(session, who, s);  // otherwise when an owner is found (the monitor tries again)
   }
   // Undecided commands of this node's own sessions: the owner, here or
   // elsewhere, answers from the journal. Other nodes' sessions are moved
@@ -387,6 +343,60 @@ void ClusterDocument::rehome(const std::string& why) {
   // unanswered commands): a NotOwner makes them move.
   for (const std::string& node : remoteNodes) node_.tellNotOwner(node, id_, owner_);
   if (hadRemote) node_.unpin(id_);
+}
+
+std::set<std::string> ClusterDocument::leaveOwnerLocked() {
+  std::set<std::string> remoteNodes;
+  if (host_) {
+    // The failed host's commands whose journal write may or may not be
+    // stored are undecided_: answered once the journal is loaded again.
+    for (const auto& entry : remoteSessions_) remoteNodes.insert(entry.second);
+    dropHostLocked();
+    // Other nodes' sessions go with the host; their nodes see the lease
+    // change and move them.
+    remoteSessions_.clear();
+  } else {
+    for (const auto& entry : sessions_) forward(entry.first, cluster::Forward::KIND_LEAVE, nullptr);
+  }
+  owner_.clear();
+  return remoteNodes;
+}
+
+std::shared_ptr<const std::string> ClusterDocument::movedNotice(const std::string& from, const std::string& why,
+                                                                const Status& resolved) {
+  wire::ServerMessage notice;
+  notice.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+  const std::string to = owner_.empty() ? "none yet (" + resolved.message() + ")" : "node " + owner_;
+  notice.mutable_error()->set_message(toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to " + to +
+                                      " (" + why + "): an edit without its Ack may be lost; " +
+                                      (owner_.empty() ? "edits are refused until a node can load it"
+                                                      : "a resync snapshot follows"));
+  return frameOf(notice, node_.maxFrameBytes());
+}
+
+void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<Subscriber>& who, const LocalSession& s) {
+  // Commands this session sent to the old owner and got no answer for.
+  // (Also after a move that found no owner at first: they are still
+  // outstanding then, kept for the owner found later.)
+  std::vector<uint64_t> unanswered = node_.takeOutstanding(session, id_);
+  if (host_) {
+    host_->join(who, s.name, s.role);
+    if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);
+    if (!unanswered.empty()) host_->answerOutcomes(who, std::move(unanswered));
+    return;
+  }
+  forward(session, cluster::Forward::KIND_JOIN, [&](cluster::Forward& f) {
+    f.set_name(s.name);
+    f.set_role(s.role);
+  });
+  if (s.profile) {
+    forward(session, cluster::Forward::KIND_SUBSCRIBE, [&](cluster::Forward& f) {
+      *f.mutable_message()->mutable_subscribe()->mutable_profile() = *s.profile;
+      f.mutable_message()->mutable_subscribe()->set_with_commands(s.withCommands);
+      f.set_resync(true);
+    });
+  }
+  if (!unanswered.empty()) askOwnerLocked(session, unanswered);
 }
 
 }  // namespace tessera::server

@@ -19,6 +19,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "protocol/cluster.pb.h"
@@ -90,6 +91,13 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // Under mutex_: asks the owner elsewhere what became of `seqs`.
   void askOwnerLocked(uint64_t session, const std::vector<uint64_t>& seqs);
   void dropHostLocked();
+  // rehome's steps, under mutex_: leaving the old owner (returns the nodes
+  // whose sessions were on the dropped host), the notice every local
+  // session gets (a frame), and one session's move to the new owner.
+  std::set<std::string> leaveOwnerLocked();
+  std::shared_ptr<const std::string> movedNotice(const std::string& from, const std::string& why,
+                                                 const Status& resolved);
+  void rejoinLocked(uint64_t session, const std::shared_ptr<Subscriber>& who, const LocalSession& s);
 
   const DocumentId id_;
   ClusterNode& node_;

@@ -93,7 +93,7 @@ async function main() {
       decode: (bytes) => decodeRegion(draco, bytes),
       onView: (change) => {
         view.apply(change, session.view.regions);
-        vertices.invalidate(session.view.regions);
+        vertices.apply(change, session.view.regions);
         editor.refreshHover();
         refreshMarkers();
         if (change.kind === 'snapshot') readyAfterRender = true;

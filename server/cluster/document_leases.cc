@@ -28,10 +28,16 @@ Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
   TESSERA_ASSIGN_OR_RETURN(std::optional<std::string> holder, ownerOf(id));
   if (!holder) return link_.error(s, "taking the lease of " + toString(id));
   if (*holder == node_) {
-    // Ours from before a restart under the same name: it expires on its own;
-    // meanwhile nobody writes, which is safe.
-    if (owner) *owner = *holder;
-    return false;
+    // Under this node's name but not held here: a lease from before a
+    // restart under the same name, or one that expired while NATS had no
+    // quorum and that a replica still shows. Nobody writes meanwhile, which
+    // is safe. It is no owner to forward to: the requests would come back
+    // here to a document with no host, or, arriving late, to the host this
+    // node loads next, and a late Leave would take a local session off it
+    // (seen in tests/cluster/cluster_quorum_test.cc: the viewer got no more
+    // deltas). So: no owner yet, and the caller tries again.
+    return ioError(toString(id) + ": its lease is still held under this node's name (" + node_ +
+                   ") from before; it expires within the lease time");
   }
   if (owner) *owner = *holder;
   return false;

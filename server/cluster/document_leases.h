@@ -30,7 +30,10 @@ class DocumentLeases {
                                                         std::chrono::milliseconds leaseTime, int replicas);
 
   // This node's lease of `id`: true when taken or already held; false with
-  // `owner` set when another node holds it.
+  // `owner` set when another node holds it. kIoError when NATS does not
+  // answer, or when the lease is held under this node's own name but not
+  // by this process (from before a restart, or expired while NATS had no
+  // quorum): never an owner to forward to.
   Expected<bool> acquire(DocumentId id, std::string* owner = nullptr);
   // Renews a held lease. kNotFound: taken by another node or expired, this
   // node no longer owns the document. kIoError: NATS did not answer (no

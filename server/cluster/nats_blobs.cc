@@ -1,7 +1,9 @@
 #include "server/cluster/nats_blobs.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 
 #include "core/util/byte_io.h"
 
@@ -122,6 +124,15 @@ Expected<LastMessage> nextMessage(NatsLink& link, const std::string& stream, con
   }
   if (next.sequence < from) return link.error(NATS_ERR, "reading " + subject + ": a direct get without its sequence");
   return next;
+}
+
+Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& stream, const std::string& subject,
+                                            uint64_t from) {
+  for (int lagging = 0;; ++lagging) {
+    auto next = nextMessage(link, stream, subject, from);
+    if (next.isOk() || next.status().code() != ErrorCode::kNotFound || lagging >= 50) return next;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 Status purgeSubject(NatsLink& link, const std::string& stream, const std::string& subject) {

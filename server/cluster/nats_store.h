@@ -80,6 +80,10 @@ class NatsStore final : public Store {
   struct Tail {
     uint64_t version = 0;
     uint64_t sequence = 0;  // its stream sequence, for the expected-sequence check
+    // The last message is a fence: its version is the one its writer had
+    // loaded, a lower bound (journal_message.h); loadDocument sets the
+    // version from the entries it reads.
+    bool fence = false;
     std::deque<std::pair<uint64_t, uint64_t>> recent;  // (version, sequence), for snapshots
   };
   struct PendingAppend {

@@ -8,6 +8,8 @@
 #include <thread>
 
 #include "cluster/nats_cluster.h"
+#include "server/cluster/journal_message.h"
+#include "server/cluster/nats_link.h"
 #include "server/cluster/nats_store.h"
 #include "server/store/store_checks.h"
 #include "server/store_test_support.h"
@@ -212,6 +214,54 @@ TEST(NatsStore, TwoWritersNeverBothAppendAVersion) {
   // Reported, not asserted: how often the two collided.
   std::printf("two writers: %zu versions acknowledged, %d appends refused as conflicts\n", acknowledged.size(),
               conflicts.load());
+}
+
+// A journal write that timed out without quorum can land just before the
+// fence of the owner that loaded the journal without it (docs/CLUSTER.md,
+// "Limits and known gaps"): the journal then ends in a fence that says
+// less than the entries before it. Such a journal is loaded whole, and the
+// next fence and append carry on from its last entry. (The message is
+// published here as that owner published it; making nats-server commit a
+// late write on cue would need control of its Raft election.)
+TEST(NatsStore, AJournalEndingInAFenceThatSaysLessIsLoadedWhole) {
+  auto nats = NatsCluster::start(1);
+  ASSERT_TRUE(nats.isOk()) << nats.status().toString();
+  auto writer = openOrFail(*nats, 1);
+  ASSERT_NE(writer, nullptr);
+  auto id = writer->createDocument("late write", "base");
+  ASSERT_TRUE(id.isOk()) << id.status().toString();
+  for (uint64_t v = 1; v <= 2; ++v) ASSERT_TRUE(writer->appendSync(*id, v, "alice", entryBytes(v, 1)).isOk()) << v;
+  {
+    cluster::NatsLinkOptions options;
+    options.urls = *cluster::parseNatsUrls(nats->urls());
+    auto link = cluster::NatsLink::connect(options);
+    ASSERT_TRUE(link.isOk()) << link.status().toString();
+    // The fence of an owner that had loaded version 1.
+    const std::string fence = cluster::encodeJournalMessage({.fence = true, .version = 1});
+    const std::string subject = "tessera.journal." + std::to_string(id->value);
+    jsPubAck* ack = nullptr;
+    ASSERT_EQ(js_Publish(&ack, (*link)->jetStream(), subject.c_str(), fence.data(), static_cast<int>(fence.size()),
+                         nullptr, nullptr),
+              NATS_OK);
+    jsPubAck_Destroy(ack);
+  }
+
+  auto owner = openOrFail(*nats, 1);
+  ASSERT_NE(owner, nullptr);
+  auto loaded = owner->loadDocument(*id);
+  ASSERT_TRUE(loaded.isOk()) << loaded.status().toString();
+  ASSERT_EQ(loaded->latestVersion(), 2u);
+  EXPECT_EQ(loaded->entries.back().bytes, entryBytes(2, 1));
+  ASSERT_TRUE(owner->fenceJournal(*id).isOk());
+  Status appended = owner->appendSync(*id, 3, "bob", entryBytes(3, 2));
+  ASSERT_TRUE(appended.isOk()) << appended.toString();
+
+  auto reader = openOrFail(*nats, 1);
+  ASSERT_NE(reader, nullptr);
+  auto again = reader->loadDocument(*id);
+  ASSERT_TRUE(again.isOk()) << again.status().toString();
+  ASSERT_EQ(again->entries.size(), 3u);
+  for (uint64_t v = 1; v <= 3; ++v) EXPECT_EQ(again->entries[v - 1].version, v);
 }
 
 }  // namespace

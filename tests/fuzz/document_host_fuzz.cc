@@ -29,6 +29,7 @@
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
 #include "server/document_host.h"
+#include "server/log.h"
 
 namespace tessera::fuzz {
 namespace {
@@ -134,6 +135,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tessera;
   using namespace tessera::fuzz;
   if (size < 1) return 0;
+  // The host's info lines (a document opened and closed per input) would
+  // fill a long run's log; warnings and errors stay.
+  static const bool quiet = (server::setLogLevel(server::LogLevel::kWarn), true);
+  (void)quiet;
   const bool failStore = (data[0] & 1) != 0;
   static const server::ServerConfig configs[2] = {makeConfig(false), makeConfig(true)};
   const server::ServerConfig& config = configs[(data[0] >> 1) & 1];

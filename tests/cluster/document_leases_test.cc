@@ -1,0 +1,89 @@
+// Document leases (server/cluster/document_leases.h) against a real
+// nats-server: one owner at a time, and a lease held under a node's own
+// name by a process before it (a restart under the same name, or a lease
+// that expired while NATS had no quorum and that a replica still shows) is
+// never an owner that node forwards to.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "cluster/nats_cluster.h"
+#include "server/cluster/document_leases.h"
+#include "server/cluster/nats_link.h"
+
+namespace tessera {
+namespace {
+
+using cluster::DocumentLeases;
+using cluster::NatsLink;
+using testing::NatsCluster;
+using namespace std::chrono_literals;
+
+std::unique_ptr<NatsLink> linkTo(const NatsCluster& nats) {
+  cluster::NatsLinkOptions options;
+  auto urls = cluster::parseNatsUrls(nats.urls());
+  if (!urls.isOk()) {
+    ADD_FAILURE() << urls.status().toString();
+    return nullptr;
+  }
+  options.urls = *urls;
+  auto link = NatsLink::connect(options);
+  if (!link.isOk()) {
+    ADD_FAILURE() << link.status().toString();
+    return nullptr;
+  }
+  return std::move(link).value();
+}
+
+std::unique_ptr<DocumentLeases> leasesOf(NatsLink& link, const std::string& node) {
+  auto leases = DocumentLeases::open(link, node, 1000ms, 1);
+  if (!leases.isOk()) {
+    ADD_FAILURE() << leases.status().toString();
+    return nullptr;
+  }
+  return std::move(leases).value();
+}
+
+TEST(DocumentLeases, OneOwnerAtATimeAndNeverItselfUnderALeaseFromBefore) {
+  auto nats = NatsCluster::start(1);
+  ASSERT_TRUE(nats.isOk()) << nats.status().toString();
+  auto linkA = linkTo(*nats), linkB = linkTo(*nats), linkRestarted = linkTo(*nats);
+  ASSERT_TRUE(linkA && linkB && linkRestarted);
+  auto a = leasesOf(*linkA, "node0"), b = leasesOf(*linkB, "node1");
+  ASSERT_TRUE(a && b);
+  const DocumentId doc{1};
+
+  auto taken = a->acquire(doc);
+  ASSERT_TRUE(taken.isOk()) << taken.status().toString();
+  EXPECT_TRUE(*taken);
+  std::string owner;
+  auto other = b->acquire(doc, &owner);
+  ASSERT_TRUE(other.isOk()) << other.status().toString();
+  EXPECT_FALSE(*other);
+  EXPECT_EQ(owner, "node0");
+
+  // node0 again, as a new process (its first one stopped renewing): the
+  // lease under its name is not its own, and not an owner to forward to.
+  auto restarted = leasesOf(*linkRestarted, "node0");
+  ASSERT_TRUE(restarted);
+  owner.clear();
+  auto again = restarted->acquire(doc, &owner);
+  ASSERT_FALSE(again.isOk()) << "acquire answered " << *again << " with owner '" << owner << "'";
+  EXPECT_EQ(again.status().code(), ErrorCode::kIoError);
+  EXPECT_NE(again.status().message().find("held under this node's name (node0)"), std::string::npos)
+      << again.status().message();
+  EXPECT_TRUE(owner.empty()) << owner;
+
+  // Once the old lease expires (nobody renews it), the new process takes it.
+  bool mine = false;
+  for (int i = 0; i < 50 && !mine; ++i) {
+    std::this_thread::sleep_for(100ms);
+    auto retried = restarted->acquire(doc);
+    mine = retried.isOk() && *retried;
+  }
+  EXPECT_TRUE(mine) << "the lease under node0's name did not expire within 5 s";
+}
+
+}  // namespace
+}  // namespace tessera

@@ -27,9 +27,9 @@ namespace tessera::cluster {
 struct JournalMessage {
   bool fence = false;
   uint64_t version = 0;
-  std::string author;
+  std::string author{};
   uint64_t authorSession = 0, clientSeq = 0;
-  std::string bytes;
+  std::string bytes{};
 };
 
 std::string encodeJournalMessage(const JournalMessage& message);

@@ -160,7 +160,7 @@ Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::strin
   if (s != NATS_OK) return link_->error(s, "starting the journal of " + toString(id), code);
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    tails_[id.value] = Tail{0, ack->Sequence, {}};
+    tails_[id.value] = Tail{0, ack->Sequence, true, {}};  // the genesis message is a fence
   }
   uint64_t revision = 0;
   s = kvStore_Put(&revision, catalog_.get(), catalogKey(id).c_str(), name.data(), static_cast<int>(name.size()));

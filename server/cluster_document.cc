@@ -19,6 +19,7 @@ ClusterDocument::~ClusterDocument() {
 
 Status ClusterDocument::resolve() {
   std::lock_guard<std::mutex> lock(mutex_);
+  if (host_ || !owner_.empty()) return Status::ok();  // resolved already (another opener, or the monitor)
   return resolveLocked();
 }
 

@@ -35,7 +35,8 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   ClusterDocument(DocumentId id, ClusterNode& node) : id_(id), node_(node) {}
   ~ClusterDocument() override;
 
-  // Takes the lease and loads the document, or finds its owner.
+  // Takes the lease and loads the document, or finds its owner, unless an
+  // owner is known already.
   Status resolve();
 
   void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) override;

@@ -116,18 +116,24 @@ ClusterNode::~ClusterNode() {
 }
 
 Expected<std::shared_ptr<DocumentEndpoint>> ClusterNode::openEndpoint(DocumentId id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (auto it = documents_.find(id.value); it != documents_.end()) {
-    if (auto doc = it->second.lock()) {
-      // Between owners (a takeover failed, e.g. on a damaged journal): try
-      // again, so a new client hears why instead of waiting.
-      if (doc->owner().empty()) TESSERA_RETURN_IF_ERROR(doc->resolve());
-      return std::shared_ptr<DocumentEndpoint>(doc);
+  std::shared_ptr<ClusterDocument> doc;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto it = documents_.find(id.value); it != documents_.end()) doc = it->second.lock();
+    if (!doc) {
+      // Registered at once, so that concurrent opens share it; one whose
+      // load fails is dropped with its last opener (a weak entry).
+      doc = std::make_shared<ClusterDocument>(id, *this);
+      documents_[id.value] = doc;
     }
   }
-  auto doc = std::make_shared<ClusterDocument>(id, *this);
+  // Outside this node's lock: a document calls into the node under its own
+  // lock (sessions, outstanding commands), so the node never waits for a
+  // document while holding its lock; and a load from JetStream (seconds
+  // when NATS is in trouble) stalls no other document's frames. A document
+  // between owners (a takeover failed, e.g. on a damaged journal) is tried
+  // again, so a new client hears why instead of waiting.
   TESSERA_RETURN_IF_ERROR(doc->resolve());
-  documents_[id.value] = doc;
   return std::shared_ptr<DocumentEndpoint>(doc);
 }
 

@@ -191,6 +191,9 @@ Expected<std::vector<DocumentSummary>> NatsStore::listDocuments() {
       if (name.status().code() == ErrorCode::kNotFound) continue;  // deleted meanwhile
       return name.status();
     }
+    // From the last message alone: when that is a fence a late write
+    // landed before (Tail::fence), a lower bound until the next owner
+    // loads the document and fences it with the whole journal's version.
     TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
     documents.push_back(DocumentSummary{id, std::move(*name), tail.version});
   }

@@ -225,27 +225,22 @@ bool ClusterDocument::journalFailed() {
 
 void ClusterDocument::undecidedArrived(DocumentHost::Undecided undecided) {
   std::lock_guard<std::mutex> lock(mutex_);
-  for (auto& entry : undecided) undecided_.push_back(std::move(entry));
-  askUndecidedLocked();
+  for (const auto& [weak, seq] : undecided) {
+    auto who = weak.lock();
+    // Other nodes' sessions: their nodes still wait for an answer, and ask.
+    if (who && !dynamic_cast<RemoteSubscriber*>(who.get())) node_.noteOutstanding(who->sessionId(), seq, id_);
+  }
+  answerBookLocked();
 }
 
-void ClusterDocument::askUndecidedLocked() {
+void ClusterDocument::answerBookLocked() {
   // Kept while the host here is the one that failed (the monitor reloads
-  // it) or no owner is known (a reload may fail while NATS recovers).
-  if (!(host_ && !host_->journalFailed()) && (host_ || owner_.empty())) return;
-  std::map<std::shared_ptr<Subscriber>, std::vector<uint64_t>> toAsk;
-  for (const auto& [weak, seq] : undecided_) {
-    auto who = weak.lock();
-    // Other nodes' sessions: their nodes ask (they still wait for an answer).
-    if (who && !dynamic_cast<RemoteSubscriber*>(who.get())) toAsk[who].push_back(seq);
-  }
-  undecided_.clear();
-  for (auto& entry : toAsk) {
-    // Named, not a structured binding: the lambda below captures them.
-    const std::shared_ptr<Subscriber>& who = entry.first;
-    const std::vector<uint64_t>& seqs = entry.second;
+  // it) or no owner is known (a reload may fail while NATS recovers): the
+  // next rehome answers them.
+  if (host_ ? host_->journalFailed() : owner_.empty()) return;
+  for (auto& [who, seqs] : node_.outstandingOf(id_, /*take=*/host_ != nullptr)) {
     if (host_) {
-      host_->answerOutcomes(who, seqs);
+      host_->answerOutcomes(who, std::move(seqs));
     } else {
       askOwnerLocked(who->sessionId(), seqs);
     }
@@ -253,10 +248,9 @@ void ClusterDocument::askUndecidedLocked() {
 }
 
 void ClusterDocument::askOwnerLocked(uint64_t session, const std::vector<uint64_t>& seqs) {
-  // Outstanding until the owner answers: if the question or its answer is
-  // lost (the owner moves, NATS drops it), the next move or reconnection
-  // asks again (rehome, askOutcomes).
-  for (uint64_t seq : seqs) node_.noteOutstanding(session, seq, id_);
+  // They stay in the node's book until the owner answers: if the question
+  // or its answer is lost (the owner moves, NATS drops it), the next move
+  // or reconnection asks again (rehome, askOutcomes).
   forward(session, cluster::Forward::KIND_OUTCOMES, [&](cluster::Forward& f) {
     for (uint64_t seq : seqs) f.add_client_seqs(seq);
   });
@@ -264,11 +258,7 @@ void ClusterDocument::askOwnerLocked(uint64_t session, const std::vector<uint64_
 
 void ClusterDocument::askOutcomes() {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (host_) return;  // local sessions talk to the host directly: nothing was in flight over NATS
-  for (const auto& [session, s] : sessions_) {
-    const std::vector<uint64_t> seqs = node_.peekOutstanding(session, id_);
-    if (!seqs.empty()) askOwnerLocked(session, seqs);
-  }
+  answerBookLocked();
 }
 
 bool ClusterDocument::hasRemoteSessions() {
@@ -334,10 +324,11 @@ void ClusterDocument::rehome(const std::string& why) {
     if (tell) who->send(notice);
     if (!owner_.empty()) rejoinLocked(session, who, s);  // otherwise when an owner is found (the monitor tries again)
   }
-  // Undecided commands of this node's own sessions: the owner, here or
+  // The unanswered commands of this node's sessions (forwarded to the old
+  // owner, or undecided by the failed host here): the owner, here or
   // elsewhere, answers from the journal. Other nodes' sessions are moved
-  // by their nodes (told below), which ask about their unanswered commands.
-  askUndecidedLocked();
+  // by their nodes (told below), which ask about their own.
+  answerBookLocked();
   lock.unlock();
   // Other nodes' sessions were on the dropped host; even if this node took
   // the document again, their nodes must rejoin them (and ask about their
@@ -350,7 +341,8 @@ std::set<std::string> ClusterDocument::leaveOwnerLocked() {
   std::set<std::string> remoteNodes;
   if (host_) {
     // The failed host's commands whose journal write may or may not be
-    // stored are undecided_: answered once the journal is loaded again.
+    // stored are in the node's book (undecidedArrived): answered once the
+    // journal is loaded again.
     for (const auto& entry : remoteSessions_) remoteNodes.insert(entry.second);
     dropHostLocked();
     // Other nodes' sessions go with the host; their nodes see the lease
@@ -376,14 +368,10 @@ std::shared_ptr<const std::string> ClusterDocument::movedNotice(const std::strin
 }
 
 void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<Subscriber>& who, const LocalSession& s) {
-  // Commands this session sent to the old owner and got no answer for.
-  // (Also after a move that found no owner at first: they are still
-  // outstanding then, kept for the owner found later.)
-  std::vector<uint64_t> unanswered = node_.takeOutstanding(session, id_);
+  // Its unanswered commands are asked after every session moved (rehome).
   if (host_) {
     host_->join(who, s.name, s.role);
     if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);
-    if (!unanswered.empty()) host_->answerOutcomes(who, std::move(unanswered));
     return;
   }
   forward(session, cluster::Forward::KIND_JOIN, [&](cluster::Forward& f) {
@@ -397,7 +385,6 @@ void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<Subsc
       f.set_resync(true);
     });
   }
-  if (!unanswered.empty()) askOwnerLocked(session, unanswered);
 }
 
 }  // namespace tessera::server

@@ -67,7 +67,7 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   std::vector<uint64_t> remoteSessionIds();  // other nodes' sessions joined here
   // After this node's NATS connection came back: asks the owner what became
   // of the local sessions' commands still unanswered (their answers may
-  // have been lost meanwhile).
+  // have been lost meanwhile); answerBookLocked.
   void askOutcomes();
   // The owner's side: a node died (or restarted as a new incarnation):
   // its sessions leave the document, as if each had closed it.
@@ -85,10 +85,12 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   void forward(uint64_t session, cluster::Forward::Kind kind, const std::function<void(cluster::Forward&)>& fill);
   Status resolveLocked();
   // Undecided commands (the host's journal write timed out) of this node's
-  // sessions: kept, and asked of the current owner once there is one that
-  // has not failed.
+  // sessions: into the node's book of unanswered commands.
   void undecidedArrived(DocumentHost::Undecided undecided);
-  void askUndecidedLocked();
+  // Under mutex_: the book's commands of this document are answered by the
+  // host here or asked of the owner elsewhere, once there is an owner that
+  // has not failed; otherwise they stay for the next rehome.
+  void answerBookLocked();
   // Under mutex_: asks the owner elsewhere what became of `seqs`.
   void askOwnerLocked(uint64_t session, const std::vector<uint64_t>& seqs);
   void dropHostLocked();
@@ -108,9 +110,6 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   std::map<uint64_t, LocalSession> sessions_;
   std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node
   std::atomic<bool> notOwner_{false};
-  // Commands of this node's sessions whose journal write's outcome was
-  // unknown when the host failed: answered by the next owner found.
-  std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>> undecided_;
 };
 
 }  // namespace tessera::server

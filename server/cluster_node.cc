@@ -179,32 +179,28 @@ void ClusterNode::noteOutstanding(uint64_t session, uint64_t clientSeq, Document
   outstanding_[session][clientSeq] = document.value;
 }
 
-std::vector<uint64_t> ClusterNode::peekOutstanding(uint64_t session, DocumentId document) {
+std::vector<ClusterNode::Outstanding> ClusterNode::outstandingOf(DocumentId document, bool take) {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::vector<uint64_t> seqs;
-  if (auto it = outstanding_.find(session); it != outstanding_.end()) {
-    for (const auto& [seq, doc] : it->second) {
-      if (doc == document.value) seqs.push_back(seq);
-    }
-  }
-  return seqs;
-}
-
-std::vector<uint64_t> ClusterNode::takeOutstanding(uint64_t session, DocumentId document) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  std::vector<uint64_t> seqs;
-  auto it = outstanding_.find(session);
-  if (it == outstanding_.end()) return seqs;
-  for (auto c = it->second.begin(); c != it->second.end();) {
-    if (c->second == document.value) {
-      seqs.push_back(c->first);
-      c = it->second.erase(c);
-    } else {
+  std::vector<Outstanding> found;
+  for (auto it = outstanding_.begin(); it != outstanding_.end();) {
+    const auto local = localSessions_.find(it->first);
+    auto who = local != localSessions_.end() ? local->second.lock() : nullptr;
+    Outstanding entry{who, {}};
+    for (auto c = it->second.begin(); c != it->second.end();) {
+      if (who && c->second == document.value) {
+        entry.clientSeqs.push_back(c->first);
+        if (take) {
+          c = it->second.erase(c);
+          continue;
+        }
+      }
       ++c;
     }
+    if (!entry.clientSeqs.empty()) found.push_back(std::move(entry));
+    // A closed session's entries go with the monitor's sweep of localSessions_.
+    it = it->second.empty() ? outstanding_.erase(it) : std::next(it);
   }
-  if (it->second.empty()) outstanding_.erase(it);
-  return seqs;
+  return found;
 }
 
 void ClusterNode::addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who) {

@@ -66,11 +66,19 @@ class ClusterNode : public DocumentOpener {
   void forward(const std::string& owner, const cluster::Forward& request);
   void addLocalSession(uint64_t session, std::weak_ptr<Subscriber> who);
   Store& store() { return store_; }
-  // Commands forwarded to an owner and not answered yet (by an Ack or a
-  // Reject with their client_seq), per local session.
+  // The one book of this node's sessions' commands that have no answer
+  // yet: forwarded to an owner elsewhere (until an Ack or a Reject with
+  // their client_seq comes back), or undecided by a host here whose
+  // journal write timed out. Whoever owns the document next answers them
+  // (ClusterDocument::answerBookLocked).
   void noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document);
-  std::vector<uint64_t> takeOutstanding(uint64_t session, DocumentId document);
-  std::vector<uint64_t> peekOutstanding(uint64_t session, DocumentId document);
+  struct Outstanding {
+    std::shared_ptr<Subscriber> who;
+    std::vector<uint64_t> clientSeqs;
+  };
+  // Those of `document`, per local session still connected; taken off the
+  // book when `take` (answered here, where no answer passes the book).
+  std::vector<Outstanding> outstandingOf(DocumentId document, bool take);
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);
   void pin(const std::shared_ptr<ClusterDocument>& document);    // kept open for other nodes' sessions
   // Tells `node` this node no longer serves its sessions of `document` as

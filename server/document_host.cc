@@ -83,19 +83,9 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
   return m;
 }
 
-DocumentHost::Undecided DocumentHost::takeUndecided() {
-  std::lock_guard<std::mutex> lock(undecidedMutex_);
-  return std::exchange(undecided_, {});
-}
-
 void DocumentHost::onUndecided(std::function<void(Undecided)> handler) {
-  Undecided held;
-  {
-    std::lock_guard<std::mutex> lock(undecidedMutex_);
-    undecidedHandler_ = handler;
-    held = std::exchange(undecided_, {});
-  }
-  if (handler && !held.empty()) handler(std::move(held));
+  std::lock_guard<std::mutex> lock(undecidedMutex_);
+  undecidedHandler_ = std::move(handler);
 }
 
 void DocumentHost::setLoadedOutcomes(std::map<std::pair<uint64_t, uint64_t>, CommandOutcome> outcomes,
@@ -607,10 +597,15 @@ void DocumentHost::committed(uint64_t version, Status status) {
     }
     // Every edit still waiting for its commit is lost, or, when the store
     // cannot know (outcomeUnknown: a replicated journal timed out), may be
-    // stored: those are kept for whoever reloads the document, which can
-    // tell from the journal (takeUndecided); the others are refused now.
-    const bool unknown = outcomeUnknown(status);
-    std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>> undecided;
+    // stored: those go to whoever reloads the document, which can tell
+    // from the journal (onUndecided); the others are refused now.
+    std::function<void(Undecided)> handler;
+    {
+      std::lock_guard<std::mutex> lock(undecidedMutex_);
+      handler = undecidedHandler_;
+    }
+    const bool unknown = outcomeUnknown(status) && handler;
+    Undecided undecided;
     for (const Pending& p : pending_) {
       if (p.version <= ackedVersion_) continue;  // durable, acked
       if (unknown) {
@@ -628,15 +623,7 @@ void DocumentHost::committed(uint64_t version, Status status) {
     }
     pending_.clear();
     batches_.clear();
-    if (!undecided.empty()) {
-      std::function<void(Undecided)> handler;
-      {
-        std::lock_guard<std::mutex> lock(undecidedMutex_);
-        handler = undecidedHandler_;
-        if (!handler) undecided_.insert(undecided_.end(), undecided.begin(), undecided.end());
-      }
-      if (handler) handler(std::move(undecided));
-    }
+    if (!undecided.empty()) handler(std::move(undecided));
     return;
   }
   durableVersion_ = std::max(durableVersion_, version);

@@ -111,11 +111,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   int64_t uniformTriangles(uint32_t level) const;
 
   // Commands whose journal write's outcome is unknown (the store timed
-  // out) at the failure: not answered by this host. Whoever reloads the
-  // document answers them from the journal (answerOutcomes).
+  // out) at the failure go to `handler` (on the host's strand), unanswered
+  // by this host: whoever reloads the document answers them from the
+  // journal (answerOutcomes). Without a handler (one server: its store
+  // always knows), they are refused as possibly lost, like the others.
   using Undecided = std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>>;
-  Undecided takeUndecided();
-  // Or, once set, they go to `handler` as they appear (on the host's strand).
   void onUndecided(std::function<void(Undecided)> handler);
 
   // Whether a journal write failed: the host applies nothing more. In a
@@ -253,8 +253,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   bool failed_ = false;
   std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
   Status journalFailure_;                   // why, for later commands' Rejects
-  std::mutex undecidedMutex_;               // undecided_ is taken off the strand
-  Undecided undecided_;
+  std::mutex undecidedMutex_;  // the handler is set off the strand
   std::function<void(Undecided)> undecidedHandler_;
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
   boost::asio::any_io_executor bulk_;

@@ -261,6 +261,14 @@ void ClusterDocument::askOutcomes() {
   answerBookLocked();
 }
 
+void ClusterDocument::askOverdue(std::chrono::steady_clock::time_point before) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_ || owner_.empty()) return;  // here, or between owners: the next rehome answers them
+  // The owner answers each from its journal, or not at all while it is
+  // still waiting for the command's journal write (its Ack follows).
+  for (auto& [who, seqs] : node_.outstandingOf(id_, /*take=*/false, before)) askOwnerLocked(who->sessionId(), seqs);
+}
+
 bool ClusterDocument::hasRemoteSessions() {
   std::lock_guard<std::mutex> lock(mutex_);
   return !remoteSessions_.empty();
@@ -286,8 +294,14 @@ void ClusterDocument::dropRemoteSessions(const std::string& node, uint64_t incar
     }
   }
   const bool empty = remoteSessions_.empty();
+  const std::string owner = owner_;
   lock.unlock();
-  if (dropped && empty) node_.unpin(id_);
+  if (!dropped) return;
+  // Told, in case it is not dead after all (its heartbeat came late): it
+  // then moves its sessions here again, with a resync, instead of its
+  // viewers waiting for deltas that no longer come.
+  node_.tellNotOwner(node, id_, owner);
+  if (empty) node_.unpin(id_);
 }
 
 void ClusterDocument::dropHostLocked() {

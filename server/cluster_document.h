@@ -15,6 +15,7 @@
 // told of.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -69,6 +70,10 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   // of the local sessions' commands still unanswered (their answers may
   // have been lost meanwhile); answerBookLocked.
   void askOutcomes();
+  // Owned elsewhere: asks the owner again about the local sessions'
+  // commands forwarded or last asked about before `before`, still
+  // unanswered (the answer, or the command, may have been lost in NATS).
+  void askOverdue(std::chrono::steady_clock::time_point before);
   // The owner's side: a node died (or restarted as a new incarnation):
   // its sessions leave the document, as if each had closed it.
   void dropRemoteSessions(const std::string& node, uint64_t incarnation);

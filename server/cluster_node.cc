@@ -67,7 +67,11 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(cluster::NatsLink& lin
   TESSERA_ASSIGN_OR_RETURN(node->alive_, link.ensureBucket(cluster::BucketSpec{
                                              .name = "TESSERA_ALIVE",
                                              .replicas = config.clusterReplicas,
-                                             .ttl = std::chrono::milliseconds(config.leaseMs)}));
+                                             // Three lease times: a node whose
+                                             // monitor was held up (a load, a busy
+                                             // machine) is not taken for dead; a dead
+                                             // node's sessions only go a little later.
+                                             .ttl = 3 * std::chrono::milliseconds(config.leaseMs)}));
   uint64_t revision = 0;
   natsStatus s = kvStore_PutString(&revision, node->alive_.get(), node->name_.c_str(),
                                    std::to_string(node->number_).c_str());
@@ -176,10 +180,12 @@ void ClusterNode::forward(const std::string& owner, const cluster::Forward& requ
 
 void ClusterNode::noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) {
   std::lock_guard<std::mutex> lock(mutex_);
-  outstanding_[session][clientSeq] = document.value;
+  outstanding_[session][clientSeq] = BookEntry{document.value, std::chrono::steady_clock::now()};
 }
 
-std::vector<ClusterNode::Outstanding> ClusterNode::outstandingOf(DocumentId document, bool take) {
+std::vector<ClusterNode::Outstanding> ClusterNode::outstandingOf(
+    DocumentId document, bool take, std::optional<std::chrono::steady_clock::time_point> askedBefore) {
+  const auto now = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<Outstanding> found;
   for (auto it = outstanding_.begin(); it != outstanding_.end();) {
@@ -187,12 +193,14 @@ std::vector<ClusterNode::Outstanding> ClusterNode::outstandingOf(DocumentId docu
     auto who = local != localSessions_.end() ? local->second.lock() : nullptr;
     Outstanding entry{who, {}};
     for (auto c = it->second.begin(); c != it->second.end();) {
-      if (who && c->second == document.value) {
+      BookEntry& e = c->second;
+      if (who && e.document == document.value && (!askedBefore || e.asked < *askedBefore)) {
         entry.clientSeqs.push_back(c->first);
         if (take) {
           c = it->second.erase(c);
           continue;
         }
+        e.asked = now;
       }
       ++c;
     }
@@ -415,7 +423,14 @@ void ClusterNode::monitor() {
       auto owner = leases_->ownerOf(doc->id());
       if (!owner.isOk()) continue;  // NATS unavailable: keep what is known
       const std::string now = owner->value_or("");
-      if (now != doc->owner()) doc->rehome(now.empty() ? "the owner's lease expired" : "the lease moved to " + now);
+      if (now != doc->owner()) {
+        doc->rehome(now.empty() ? "the owner's lease expired" : "the lease moved to " + now);
+      } else {
+        // An answer lost in NATS (a server that died with it in flight, on
+        // the owner's side, where this node sees no reconnection) is asked
+        // for again once it is overdue.
+        doc->askOverdue(std::chrono::steady_clock::now() - 2 * std::chrono::milliseconds(config_.leaseMs));
+      }
     }
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto it = localSessions_.begin(); it != localSessions_.end();) {

@@ -16,10 +16,12 @@
 
 #include <boost/asio/any_io_executor.hpp>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -77,8 +79,11 @@ class ClusterNode : public DocumentOpener {
     std::vector<uint64_t> clientSeqs;
   };
   // Those of `document`, per local session still connected; taken off the
-  // book when `take` (answered here, where no answer passes the book).
-  std::vector<Outstanding> outstandingOf(DocumentId document, bool take);
+  // book when `take` (answered here, where no answer passes the book),
+  // otherwise marked as asked about now. Only those last asked about
+  // before `askedBefore` when it is given.
+  std::vector<Outstanding> outstandingOf(DocumentId document, bool take,
+                                         std::optional<std::chrono::steady_clock::time_point> askedBefore = {});
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session);
   void pin(const std::shared_ptr<ClusterDocument>& document);    // kept open for other nodes' sessions
   // Tells `node` this node no longer serves its sessions of `document` as
@@ -129,7 +134,11 @@ class ClusterNode : public DocumentOpener {
   std::map<uint64_t, std::weak_ptr<Subscriber>> localSessions_;
   std::map<uint64_t, std::shared_ptr<RemoteSubscriber>> remoteSubscribers_;
   std::set<uint64_t> unjoinedBefore_;  // remote sessions no document held at the last prune
-  std::map<uint64_t, std::map<uint64_t, uint64_t>> outstanding_;  // session -> client_seq -> document
+  struct BookEntry {
+    uint64_t document = 0;
+    std::chrono::steady_clock::time_point asked;  // when forwarded or last asked about
+  };
+  std::map<uint64_t, std::map<uint64_t, BookEntry>> outstanding_;  // session -> client_seq -> entry
   std::atomic<uint64_t> dropped_{0};
   std::atomic<bool> reconnected_{false};  // frames may have been lost: ask owners about outstanding commands
 

@@ -327,5 +327,48 @@ TEST(ClusterFailover, ACommandJournaledJustBeforeItsOwnerDiedIsAcknowledgedByThe
   EXPECT_EQ(onOther.view->surfaceHash(), journal->surfaceHash);
 }
 
+// Not dead, only slow: a node that does not renew its TESSERA_ALIVE key in
+// time (paused here past the key's lifetime, as a busy machine can delay
+// its monitor) has its sessions removed by the owner as if it had died.
+// Once it runs again, the owner's NotOwner makes it move them back, so its
+// viewer converges instead of waiting for deltas that no longer come.
+TEST(ClusterFailover, ANodeTakenForDeadGetsItsViewerBackWhenItRunsAgain) {
+  constexpr int kLeaseMs = 1500;
+  auto run = ClusterRun::start(2, kLeaseMs);
+  ASSERT_TRUE(run.isOk()) << run.status().message();
+  ClusterRun& c = **run;
+  auto doc = c.createCube();
+  ASSERT_TRUE(doc.isOk()) << doc.status().message();
+  testing::ClusterViewer onOwner = testing::viewerOn(c, 0, *doc);  // node 0 opens first: it owns the document
+  testing::ClusterViewer onSlow = testing::viewerOn(c, 1, *doc);
+  for (const auto* v : {&onOwner, &onSlow}) ASSERT_TRUE(v->session) << v->error;
+  auto editor = Session::connect(c.session(0, "editor@node0", testing::kEditorToken));
+  ASSERT_TRUE(editor.isOk());
+  ASSERT_TRUE((*editor)->call(testing::openDocument(*doc), 30)->has_ack());
+  std::mt19937 rng(11);
+  auto edit = [&] {
+    auto r = (*editor)->call(testing::smallMove(*doc, rng), 10);
+    return r.isOk() && r->has_ack();
+  };
+  ASSERT_TRUE(edit());
+
+  // Past the alive key's lifetime (three lease times) and the owner's next
+  // check of it; node 1 holds no lease, so nothing else moves.
+  ::kill(c.nodes[1]->pid(), SIGSTOP);
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(edit());
+    std::this_thread::sleep_for(std::chrono::milliseconds(kLeaseMs));
+  }
+  ::kill(c.nodes[1]->pid(), SIGCONT);
+  ASSERT_TRUE(edit());
+
+  auto journal = testing::journalState(c.nats, *doc);
+  ASSERT_TRUE(journal.isOk()) << journal.status().message();
+  for (testing::ClusterViewer* v : {&onOwner, &onSlow}) {
+    ASSERT_TRUE(testing::followUntil(*v->session, *v->view, journal->version, 30));
+    EXPECT_EQ(v->view->surfaceHash(), journal->surfaceHash);
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -20,7 +20,9 @@ ClusterDocument::~ClusterDocument() {
 Status ClusterDocument::resolve() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (host_ || !owner_.empty()) return Status::ok();  // resolved already (another opener, or the monitor)
-  return resolveLocked();
+  const Status resolved = resolveLocked();
+  whyUnowned_ = resolved.isOk() ? std::string() : resolved.message();
+  return resolved;
 }
 
 Status ClusterDocument::resolveLocked() {
@@ -133,9 +135,11 @@ void ClusterDocument::command(std::shared_ptr<Subscriber> author, std::string au
   if (host_) return host_->command(std::move(author), std::move(authorName), std::move(message));
   if (owner_.empty()) {
     // Between owners: refused now rather than lost later.
-    wire::ServerMessage reject = rejectFor(message.client_seq(),
-                                           ioError(toString(id_) + " has no owner node right now (a takeover is under "
-                                                                   "way): the edit was not applied; send it again"));
+    // Why, when a load failed (e.g. NATS without quorum), not only that.
+    const std::string why = whyUnowned_.empty() ? "a takeover is under way" : "no node could load it: " + whyUnowned_;
+    wire::ServerMessage reject = rejectFor(
+        message.client_seq(),
+        ioError(toString(id_) + " has no owner node right now (" + why + "): the edit was not applied; send it again"));
     author->send({frameOf(reject, node_.maxFrameBytes()), nullptr});
     return;
   }
@@ -321,6 +325,7 @@ void ClusterDocument::rehome(const std::string& why) {
   const bool hadRemote = !remoteSessions_.empty();
   const std::set<std::string> remoteNodes = leaveOwnerLocked();
   const Status resolved = resolveLocked();
+  whyUnowned_ = resolved.isOk() ? std::string() : resolved.message();
   if (from.empty() && !resolved.isOk()) return;  // still no owner: nothing moved, nothing to log
   ++node_.stats().documentsMoved;
   logEvent(resolved.isOk() ? LogLevel::kInfo : LogLevel::kWarn, "document_moved",

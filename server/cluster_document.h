@@ -112,6 +112,7 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   std::mutex mutex_;
   std::shared_ptr<DocumentHost> host_;  // set while this node owns the document
   std::string owner_;                   // otherwise: the owner's node name
+  std::string whyUnowned_;              // no owner: why the last attempt to find or load one failed
   std::map<uint64_t, LocalSession> sessions_;
   std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node
   std::atomic<bool> notOwner_{false};

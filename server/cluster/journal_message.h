@@ -11,9 +11,10 @@
 // repeats the last one its writer loaded, so it is a lower bound: a write
 // that had timed out may land just before it); the genesis message written
 // at creation is one (version 0), and so is the message a new owner writes
-// after loading the document. A fence gives the subject a new last sequence, so every append
-// checked with Nats-Expected-Last-Subject-Sequence by a writer that has
-// not seen it fails (nats.c sends that check only for a sequence above 0).
+// after loading the document. A fence gives the subject a new last
+// sequence, so every append checked with Nats-Expected-Last-Subject-Sequence
+// by a writer that has not seen it fails (nats.c sends that check only for
+// a sequence above 0).
 #pragma once
 
 #include <cstdint>

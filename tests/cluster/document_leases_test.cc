@@ -10,7 +10,6 @@
 
 #include "cluster/nats_cluster.h"
 #include "server/cluster/document_leases.h"
-#include "server/cluster/nats_link.h"
 
 namespace tessera {
 namespace {
@@ -21,14 +20,7 @@ using testing::NatsCluster;
 using namespace std::chrono_literals;
 
 std::unique_ptr<NatsLink> linkTo(const NatsCluster& nats) {
-  cluster::NatsLinkOptions options;
-  auto urls = cluster::parseNatsUrls(nats.urls());
-  if (!urls.isOk()) {
-    ADD_FAILURE() << urls.status().toString();
-    return nullptr;
-  }
-  options.urls = *urls;
-  auto link = NatsLink::connect(options);
+  auto link = nats.connect();
   if (!link.isOk()) {
     ADD_FAILURE() << link.status().toString();
     return nullptr;

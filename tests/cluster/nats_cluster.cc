@@ -125,6 +125,12 @@ NatsCluster::~NatsCluster() {
   }
 }
 
+Expected<std::unique_ptr<cluster::NatsLink>> NatsCluster::connect() const {
+  cluster::NatsLinkOptions options;
+  TESSERA_ASSIGN_OR_RETURN(options.urls, cluster::parseNatsUrls(urls()));
+  return cluster::NatsLink::connect(options);
+}
+
 std::string NatsCluster::url(int server) const {
   return "nats://127.0.0.1:" + std::to_string(servers_[static_cast<size_t>(server)].clientPort);
 }

@@ -7,10 +7,12 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/util/status.h"
+#include "server/cluster/nats_link.h"
 
 namespace tessera::testing {
 
@@ -29,6 +31,8 @@ class NatsCluster {
   std::string urls() const;
   std::string url(int server) const;
   const std::string& directory() const { return directory_; }
+  // A client connection to every server, as a node makes one.
+  Expected<std::unique_ptr<cluster::NatsLink>> connect() const;
 
   void kill9(int server);
   Status restart(int server);  // after kill9, on the same data and ports

@@ -9,7 +9,6 @@
 
 #include "cluster/nats_cluster.h"
 #include "server/cluster/journal_message.h"
-#include "server/cluster/nats_link.h"
 #include "server/cluster/nats_store.h"
 #include "server/store/store_checks.h"
 #include "server/store_test_support.h"
@@ -232,9 +231,7 @@ TEST(NatsStore, AJournalEndingInAFenceThatSaysLessIsLoadedWhole) {
   ASSERT_TRUE(id.isOk()) << id.status().toString();
   for (uint64_t v = 1; v <= 2; ++v) ASSERT_TRUE(writer->appendSync(*id, v, "alice", entryBytes(v, 1)).isOk()) << v;
   {
-    cluster::NatsLinkOptions options;
-    options.urls = *cluster::parseNatsUrls(nats->urls());
-    auto link = cluster::NatsLink::connect(options);
+    auto link = nats->connect();
     ASSERT_TRUE(link.isOk()) << link.status().toString();
     // The fence of an owner that had loaded version 1.
     const std::string fence = cluster::encodeJournalMessage({.fence = true, .version = 1});

@@ -45,9 +45,9 @@ const BaseMesh& creasedCube();
 
 // The max level of the documents the host, journal and edit script targets
 // edit. Level 2 (192 triangles) runs the same code as level 3 (every rule is
-// level-generic) at several times the rate: the host target 1,927 against 85
-// executions per second with close coverage (17,290 against 17,536 edges
-// after 40 s from the seeds), which is what makes millions of runs possible.
+// level-generic) at a higher rate: the host target 177 against 85
+// executions per second with close coverage (17,061 to 17,127 against 17,536
+// edges after 40 s from the seeds; docs/FUZZING.md, session 10).
 inline constexpr int kFuzzDocumentLevel = 2;
 
 // A creased-cube document with this max level, created once per process and

@@ -112,6 +112,14 @@ void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<u
       } else if (auto b = self->recentOutcomes_.find(key); b != self->recentOutcomes_.end()) {
         found = &b->second;
       }
+      if (found == nullptr && self->journalFailed_) {
+        // A failed write (committed()) took its commands out of pending_,
+        // and when the store could not know its outcome the entry may be
+        // stored: "not applied" could make the client send the edit twice.
+        // The asker asks again after the reload (a move, askOverdue), and
+        // the reloaded journal answers.
+        continue;
+      }
       if (found != nullptr) {
         // Applied and durable before the move: the Ack it never got.
         wire::Ack* ack = m.mutable_ack();

@@ -57,9 +57,10 @@ for t in $TARGETS; do
   "$exe" "${args[@]}" "$OUT/$t" "tests/fuzz/corpus/$t" >"$log" 2>&1
   rc=$?
   secs=$(( $(date +%s) - start ))
-  # Single process: final stats; fork mode: the last status line's exec count.
+  # Single process: final stats; fork mode: the last status line's exec count
+  # (the fork-mode parent prints final stats too, but of its own 0 executions).
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-  [[ -n $execs ]] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
+  [[ -n $execs && $execs != 0 ]] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
   rate=$(( secs > 0 ? ${execs:-0} / secs : 0 ))
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
   ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)

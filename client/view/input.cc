@@ -153,6 +153,10 @@ void MouseTool::update(const MouseInput& in, App& app, const std::vector<Control
   } else if (in.right && !wasRight_ && !in.captured) {
     mode_ = Mode::kPan;
   }
+  // Motion counts from the press: a frame that sees the pointer arrive and
+  // the button go down together (a starved viewer, or a click right after
+  // a jump) must not turn the jump into a drag edit or an orbit.
+  if ((in.left && !wasLeft_) || (in.right && !wasRight_)) lastX_ = in.px, lastY_ = in.py;
   const float dx = in.px - lastX_, dy = in.py - lastY_;
   if (mode_ == Mode::kOrbit && in.left) app.camera.orbit(dx, dy);
   if (mode_ == Mode::kPan && (in.left || in.right)) app.camera.pan(dx, dy, height);

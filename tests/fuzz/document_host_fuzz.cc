@@ -30,6 +30,7 @@
 #include "protocol/tessera.pb.h"
 #include "server/document_host.h"
 #include "server/log.h"
+#include "tests/support/host_only_store.h"
 
 namespace tessera::fuzz {
 namespace {
@@ -38,14 +39,10 @@ using server::Outgoing;
 
 // A store for one document host: appends complete on the io_context, as a
 // real store's callbacks arrive from its writer thread; the rest is unused.
-class PostingStore final : public Store {
+class PostingStore final : public testing::HostOnlyStore {
  public:
   explicit PostingStore(int failAppend) : failAppend_(failAppend) {}
   void attach(boost::asio::io_context& io) { io_ = &io; }
-  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
-  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
-  Status deleteDocument(DocumentId) override { return unused(); }
-  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
   void append(DocumentId, uint64_t, std::string, std::string bytes, AppendCallback done) override {
     require(!bytes.empty(), "the host journaled an empty entry");
     const bool refuse = ++appends_ == failAppend_;
@@ -53,17 +50,8 @@ class PostingStore final : public Store {
       done(refuse ? ioError("fuzz store: append refused") : Status::ok());
     });
   }
-  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
-  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
-  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
-  Status revokeToken(std::string_view) override { return unused(); }
-  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
-  Expected<bool> knowsToken(std::string_view) override { return unused(); }
-  StoreStats stats() const override { return {}; }
-  void close() override {}
 
  private:
-  static Status unused() { return internalError("not used by a document host"); }
   boost::asio::io_context* io_ = nullptr;
   const int failAppend_;
   int appends_ = 0;

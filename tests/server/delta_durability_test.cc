@@ -21,48 +21,10 @@
 #include "protocol/framing.h"
 #include "server/document_host.h"
 #include "support/test_meshes.h"
+#include "support/host_only_store.h"
 
 namespace tessera::server {
 namespace {
-
-// Appends are held until release(); nothing else is used by a host.
-class HeldStore final : public Store {
- public:
-  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
-  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
-  Status deleteDocument(DocumentId) override { return unused(); }
-  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
-  void append(DocumentId, uint64_t, std::string, std::string, AppendCallback done) override {
-    std::lock_guard lock(mutex_);
-    held_.push_back(std::move(done));
-  }
-  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
-  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
-  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
-  Status revokeToken(std::string_view) override { return unused(); }
-  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
-  Expected<bool> knowsToken(std::string_view) override { return unused(); }
-  StoreStats stats() const override { return {}; }
-  void close() override {}
-
-  size_t held() {
-    std::lock_guard lock(mutex_);
-    return held_.size();
-  }
-  void release() {
-    std::vector<AppendCallback> done;
-    {
-      std::lock_guard lock(mutex_);
-      done.swap(held_);
-    }
-    for (auto& d : done) d(Status::ok());
-  }
-
- private:
-  static Status unused() { return internalError("not used by a document host"); }
-  std::mutex mutex_;
-  std::vector<AppendCallback> held_;
-};
 
 bool isDelta(const wire::ServerMessage& m) { return m.has_delta(); }
 bool isAck(const wire::ServerMessage& m) { return m.has_ack() && m.ack().client_seq() == 9; }
@@ -134,7 +96,7 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
     ASSERT_GE(editor_->waitFor([](const auto& m) { return m.has_snapshot(); }, 10), 0);
   }
   void TearDown() override {
-    store_.release();
+    store_.completeAll(Status::ok());
     guard_.reset();
     io_.stop();
     if (thread_.joinable()) thread_.join();
@@ -142,7 +104,7 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
 
   ServerConfig config_;
   ServerStats stats_;
-  HeldStore store_;
+  testing::HeldStore store_;
   boost::asio::io_context io_;
   boost::asio::executor_work_guard<boost::asio::io_context::executor_type> guard_{io_.get_executor()};
   std::thread thread_;
@@ -169,7 +131,7 @@ TEST_P(DeltaDurability, AcksAndRecordersWaitForTheCommitAndDeltasOnlyIfAsked) {
   EXPECT_EQ(editor_->waitFor(isAck, 0.05), -1) << "an ack before the commit";
   EXPECT_EQ(editor_->waitFor(isApplied, 0.05), -1) << "a recorded command before the commit";
 
-  store_.release();
+  store_.completeAll(Status::ok());
   const int delta = viewer_->waitFor(isDelta, 10, before);
   ASSERT_GE(delta, 0);
   const int ack = editor_->waitFor(isAck, 10);

@@ -19,40 +19,10 @@
 #include "protocol/framing.h"
 #include "server/document_host.h"
 #include "support/test_meshes.h"
+#include "support/host_only_store.h"
 
 namespace tessera::server {
 namespace {
-
-// Appends are held until the test completes them with a status.
-class HeldStore final : public Store {
- public:
-  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
-  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
-  Status deleteDocument(DocumentId) override { return unused(); }
-  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
-  void append(DocumentId, uint64_t, std::string, std::string, AppendCallback done) override {
-    held_.push_back(std::move(done));
-  }
-  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
-  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
-  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
-  Status revokeToken(std::string_view) override { return unused(); }
-  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
-  Expected<bool> knowsToken(std::string_view) override { return unused(); }
-  StoreStats stats() const override { return {}; }
-  void close() override {}
-
-  size_t held() const { return held_.size(); }
-  void completeAll(const Status& status) {
-    std::vector<AppendCallback> done;
-    done.swap(held_);
-    for (auto& d : done) d(status);
-  }
-
- private:
-  static Status unused() { return internalError("not used by a document host"); }
-  std::vector<AppendCallback> held_;
-};
 
 class Inbox final : public Subscriber {
  public:
@@ -112,7 +82,7 @@ class OutcomeQuestions : public ::testing::Test {
 
   ServerConfig config_;
   ServerStats stats_;
-  HeldStore store_;
+  testing::HeldStore store_;
   boost::asio::io_context io_;
   std::shared_ptr<DocumentHost> host_;
   std::shared_ptr<Inbox> editor_ = std::make_shared<Inbox>(2);

@@ -1,0 +1,61 @@
+// The part of a Store a document host uses is append (and putSnapshot, which
+// succeeds here); every other method answers an internal error, so a test
+// or fuzz target that gives a host its own store writes only how appends
+// complete (held, posted, failed). HeldStore is the one the server tests share.
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "server/store/store.h"
+
+namespace tessera::testing {
+
+class HostOnlyStore : public Store {
+ public:
+  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
+  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
+  Status deleteDocument(DocumentId) override { return unused(); }
+  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
+  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
+  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
+  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
+  Status revokeToken(std::string_view) override { return unused(); }
+  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
+  Expected<bool> knowsToken(std::string_view) override { return unused(); }
+  StoreStats stats() const override { return {}; }
+  void close() override {}
+
+ private:
+  static Status unused() { return internalError("not used by a document host"); }
+};
+
+// Holds every append until the test completes them all with one status
+// (thread-safe: a host may append from its workers).
+class HeldStore final : public HostOnlyStore {
+ public:
+  void append(DocumentId, uint64_t, std::string, std::string, AppendCallback done) override {
+    std::lock_guard lock(mutex_);
+    held_.push_back(std::move(done));
+  }
+  size_t held() {
+    std::lock_guard lock(mutex_);
+    return held_.size();
+  }
+  void completeAll(const Status& status) {
+    std::vector<AppendCallback> done;
+    {
+      std::lock_guard lock(mutex_);
+      done.swap(held_);
+    }
+    for (auto& d : done) d(status);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<AppendCallback> held_;
+};
+
+}  // namespace tessera::testing

@@ -22,6 +22,7 @@ Status ClusterDocument::resolve() {
   if (host_ || !owner_.empty()) return Status::ok();  // resolved already (another opener, or the monitor)
   const Status resolved = resolveLocked();
   whyUnowned_ = resolved.isOk() ? std::string() : resolved.message();
+  if (resolved.isOk()) whyLost_.clear();
   return resolved;
 }
 
@@ -136,7 +137,8 @@ void ClusterDocument::command(std::shared_ptr<Subscriber> author, std::string au
   if (owner_.empty()) {
     // Between owners: refused now rather than lost later.
     // Why, when a load failed (e.g. NATS without quorum), not only that.
-    const std::string why = whyUnowned_.empty() ? "a takeover is under way" : "no node could load it: " + whyUnowned_;
+    std::string why = whyUnowned_.empty() ? "a takeover is under way" : "no node could load it: " + whyUnowned_;
+    if (!whyLost_.empty()) why = "its last owner gave it up: " + whyLost_ + "; " + why;
     wire::ServerMessage reject = rejectFor(
         message.client_seq(),
         ioError(toString(id_) + " has no owner node right now (" + why + "): the edit was not applied; send it again"));
@@ -326,6 +328,13 @@ void ClusterDocument::rehome(const std::string& why) {
   const std::set<std::string> remoteNodes = leaveOwnerLocked();
   const Status resolved = resolveLocked();
   whyUnowned_ = resolved.isOk() ? std::string() : resolved.message();
+  // Kept over the retries that follow: the first cause (e.g. a lease that
+  // expired while NATS had no quorum) is what the refused edits must name.
+  if (resolved.isOk()) {
+    whyLost_.clear();
+  } else if (!from.empty()) {
+    whyLost_ = why;
+  }
   if (from.empty() && !resolved.isOk()) return;  // still no owner: nothing moved, nothing to log
   ++node_.stats().documentsMoved;
   logEvent(resolved.isOk() ? LogLevel::kInfo : LogLevel::kWarn, "document_moved",

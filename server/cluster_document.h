@@ -113,6 +113,7 @@ class ClusterDocument : public DocumentEndpoint, public std::enable_shared_from_
   std::shared_ptr<DocumentHost> host_;  // set while this node owns the document
   std::string owner_;                   // otherwise: the owner's node name
   std::string whyUnowned_;              // no owner: why the last attempt to find or load one failed
+  std::string whyLost_;                 // no owner: why the last one was given up (rehome), if it was
   std::map<uint64_t, LocalSession> sessions_;
   std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node
   std::atomic<bool> notOwner_{false};

@@ -18,10 +18,11 @@ Expected<std::unique_ptr<DocumentLeases>> DocumentLeases::open(NatsLink& link, s
 Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
   if (holds(id)) return true;
   uint64_t revision = 0;
+  const auto sent = Clock::now();
   natsStatus s = kvStore_CreateString(&revision, bucket_.get(), leaseKey(id).c_str(), node_.c_str());
   if (s == NATS_OK) {
     std::lock_guard<std::mutex> lock(mutex_);
-    held_[id.value] = revision;
+    held_[id.value] = Held{.revision = revision, .renewed = sent};
     return true;
   }
   // Taken (or the create lost a race): who holds it?
@@ -44,31 +45,45 @@ Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
 }
 
 Status DocumentLeases::renew(DocumentId id) {
-  uint64_t revision = 0;
+  Held held;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = held_.find(id.value);
     if (it == held_.end()) return notFound(toString(id) + ": no lease held by " + node_);
-    revision = it->second;
+    held = it->second;
   }
   uint64_t next = 0;
-  const natsStatus s = kvStore_UpdateString(&next, bucket_.get(), leaseKey(id).c_str(), node_.c_str(), revision);
+  const auto sent = Clock::now();
+  const natsStatus s = kvStore_UpdateString(&next, bucket_.get(), leaseKey(id).c_str(), node_.c_str(), held.revision);
+  const bool undecided = s != NATS_OK && NatsLink::undecided(s);
   std::lock_guard<std::mutex> lock(mutex_);
   if (s == NATS_OK) {
-    held_[id.value] = next;
+    held_[id.value] = Held{.revision = next, .renewed = sent};
     return Status::ok();
   }
   const Status failed =
-      link_.error(s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(revision) + ")");
-  if (s == NATS_TIMEOUT || s == NATS_NO_RESPONDERS || s == NATS_CONNECTION_CLOSED || s == NATS_NOT_YET_CONNECTED ||
-      s == NATS_CONNECTION_DISCONNECTED) {
-    // NATS did not answer: nobody else can take the lease either (that
+      link_.error(s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(held.revision) + ")");
+  if (undecided) {
+    // NATS did not decide: nobody else can take the lease either (that
     // needs the same quorum), so the document stays here, read-only in
     // effect (its appends fail the same way).
+    if (auto it = held_.find(id.value); it != held_.end()) it->second.undecidedSince = true;
     return failed;
   }
   held_.erase(id.value);
-  return notFound(failed.message());
+  std::string message = failed.message();
+  const auto since = std::chrono::duration_cast<std::chrono::milliseconds>(sent - held.renewed);
+  if (since > leaseTime_) {
+    // The key expired (JetStream's max age), typically while NATS had no
+    // quorum: a stream leader that lost its majority still expires keys
+    // and then refuses the renewal with "wrong last sequence: 0".
+    message += "; the lease had expired: last renewed " + std::to_string(since.count()) +
+               " ms before, beyond the lease time of " + std::to_string(leaseTime_.count()) + " ms";
+    if (held.undecidedSince) {
+      message += ", and NATS decided none of the renewals since: is a majority of the NATS servers up?";
+    }
+  }
+  return notFound(message);
 }
 
 void DocumentLeases::release(DocumentId id) {
@@ -77,7 +92,7 @@ void DocumentLeases::release(DocumentId id) {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = held_.find(id.value);
     if (it == held_.end()) return;
-    revision = it->second;
+    revision = it->second.revision;
     held_.erase(it);
   }
   // Only our own lease: an update on our revision fails if another node

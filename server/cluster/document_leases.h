@@ -56,8 +56,16 @@ class DocumentLeases {
   KvStorePtr bucket_;
   const std::string node_;
   const std::chrono::milliseconds leaseTime_;
+  using Clock = std::chrono::steady_clock;
+  struct Held {
+    uint64_t revision = 0;  // of our key, for the compare-and-set renewal
+    Clock::time_point renewed;  // when the last renewal that succeeded was sent
+    // A renewal since then got no decision from NATS: if the lease is then
+    // found expired, that is why (a cluster without quorum), and it is said.
+    bool undecidedSince = false;
+  };
   mutable std::mutex mutex_;
-  std::map<uint64_t, uint64_t> held_;  // document -> revision of our key
+  std::map<uint64_t, Held> held_;  // by document
 };
 
 }  // namespace tessera::cluster

@@ -98,12 +98,45 @@ NatsLink::~NatsLink() {
   }
 }
 
+namespace {
+
+// JetStream's answer when the meta group or a stream has no leader, which
+// is what a cluster without a majority of its servers says once it has
+// noticed (JSClusterNotAvailErr). Some calls of the C client report only
+// the text, with no code, so both are looked at.
+bool jetStreamUnavailable(jsErrCode code) {
+  if (code == JSClusterNotAvailErr) return true;
+  natsStatus last = NATS_OK;
+  const char* detail = nats_GetLastError(&last);
+  return detail != nullptr && std::string_view(detail).find("JetStream system temporarily unavailable") !=
+                                  std::string_view::npos;
+}
+
+}  // namespace
+
+bool NatsLink::undecided(natsStatus status, jsErrCode code) {
+  switch (status) {
+    case NATS_TIMEOUT:
+    case NATS_NO_RESPONDERS:
+    case NATS_CONNECTION_CLOSED:
+    case NATS_NOT_YET_CONNECTED:
+    case NATS_CONNECTION_DISCONNECTED:
+      return true;
+    case NATS_OK:
+      return false;
+    default:
+      return jetStreamUnavailable(code);
+  }
+}
+
 Status NatsLink::error(natsStatus status, std::string_view what, jsErrCode code) const {
   std::string message = "NATS (" + servers_ + "): " + std::string(what) + ": " + natsStatus_GetText(status);
   if (code != 0) message += " (JetStream error " + std::to_string(static_cast<int>(code)) + ")";
+  // What an operator needs to know first (docs/CLUSTER.md, "Quorum").
   if (status == NATS_NO_RESPONDERS || status == NATS_TIMEOUT) {
-    // What an operator needs to know first (docs/CLUSTER.md, "Quorum").
     message += "; JetStream did not answer: is a majority of the NATS servers up?";
+  } else if (status != NATS_OK && jetStreamUnavailable(code)) {
+    message += "; JetStream is unavailable: is a majority of the NATS servers up?";
   }
   // nats_GetLastError has the server's own words (e.g. "insufficient
   // resources" when quorum is lost), which are worth more than the status.

@@ -93,6 +93,13 @@ class NatsLink {
   // with JetStream's error code when there is one. Every failure is a
   // kIoError: the cluster, not the caller, is at fault.
   Status error(natsStatus status, std::string_view what, jsErrCode code = static_cast<jsErrCode>(0)) const;
+  // Whether a failed call got no decision from JetStream (no answer, no
+  // responder, no connection, or "JetStream system temporarily unavailable":
+  // no quorum or no leader) rather than a refusal. What the caller asked for
+  // may or may not have happened; with a refusal it did not. Call it on the
+  // thread that made the call, before any other NATS call (it reads NATS's
+  // per-thread last error).
+  static bool undecided(natsStatus status, jsErrCode code = static_cast<jsErrCode>(0));
 
  private:
   NatsLink(std::string servers, std::chrono::milliseconds timeout) : servers_(std::move(servers)), timeout_(timeout) {}

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <string>
 
 #include "cluster/cluster_run.h"
 #include "core/hierarchy/ids.h"
@@ -48,12 +49,15 @@ TEST(ClusterQuorum, WritesAreRefusedByNameAndResumeWhenNatsIsBack) {
   auto pending = (*editor)->send(move(0.01));
   ASSERT_TRUE(pending.isOk());
   bool told = false;
+  std::string received;  // what came instead, for the failure message
   for (int i = 0; i < 60 && !told; ++i) {
     auto m = (*editor)->receive(0.5);
-    told = m.isOk() && m->has_error() && m->error().message().find("majority of the NATS servers") != std::string::npos;
+    if (!m.isOk()) continue;
+    told = m->has_error() && m->error().message().find("majority of the NATS servers") != std::string::npos;
+    if (!told) received += m->ShortDebugString() + "\n";
   }
   const double took = std::chrono::duration<double>(Clock::now() - start).count();
-  ASSERT_TRUE(told) << "no error naming the lost quorum";
+  ASSERT_TRUE(told) << "no error naming the lost quorum; received instead:\n" << received;
   std::printf("told of the lost quorum after %.2f s\n", took);
   EXPECT_LT(took, 15.0);
   auto refused = (*editor)->call(move(0.01), 30);

@@ -142,6 +142,20 @@ Expected<std::unique_ptr<cluster::NatsLink>> NatsCluster::connect() const {
   return cluster::NatsLink::connect(options);
 }
 
+Expected<int> NatsCluster::leaderOf(const std::string& stream) const {
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<cluster::NatsLink> link, connect());
+  jsStreamInfo* info = nullptr;
+  jsErrCode code = static_cast<jsErrCode>(0);
+  const natsStatus s = js_GetStreamInfo(&info, link->jetStream(), stream.c_str(), nullptr, &code);
+  if (s != NATS_OK) return link->error(s, "stream info of " + stream, code);
+  const std::string leader = info->Cluster != nullptr && info->Cluster->Leader != nullptr ? info->Cluster->Leader : "";
+  jsStreamInfo_Destroy(info);
+  for (int i = 0; i < size(); ++i) {
+    if (leader == "n" + std::to_string(i + 1)) return i;
+  }
+  return ioError("stream " + stream + " has no leader among the test's servers ('" + leader + "')");
+}
+
 std::string NatsCluster::url(int server) const {
   return "nats://127.0.0.1:" + std::to_string(servers_[static_cast<size_t>(server)].clientPort);
 }

@@ -34,6 +34,9 @@ class NatsCluster {
   // A client connection to every server, as a node makes one.
   Expected<std::unique_ptr<cluster::NatsLink>> connect() const;
 
+  // Which server (0-based) leads `stream` now, by its server_name n1, n2...
+  Expected<int> leaderOf(const std::string& stream) const;
+
   void kill9(int server);
   Status restart(int server);  // after kill9, on the same data and ports
   void pause(int server);      // SIGSTOP

@@ -11,7 +11,7 @@ std::string leaseKey(DocumentId id) { return "doc." + std::to_string(id.value); 
 Expected<std::unique_ptr<DocumentLeases>> DocumentLeases::open(NatsLink& link, std::string node,
                                                                std::chrono::milliseconds leaseTime, int replicas) {
   TESSERA_ASSIGN_OR_RETURN(KvStorePtr bucket,
-                           link.ensureBucket(BucketSpec{.name = "TESSERA_LEASES", .replicas = replicas, .ttl = leaseTime}));
+                           link.ensureBucket(BucketSpec{.name = kBucket, .replicas = replicas, .ttl = leaseTime}));
   return std::unique_ptr<DocumentLeases>(new DocumentLeases(link, std::move(bucket), std::move(node), leaseTime));
 }
 

@@ -45,6 +45,8 @@ class DocumentLeases {
   Expected<std::optional<std::string>> ownerOf(DocumentId id);
   bool holds(DocumentId id) const;
 
+  static constexpr const char* kBucket = "TESSERA_LEASES";
+
   const std::string& node() const { return node_; }
   std::chrono::milliseconds leaseTime() const { return leaseTime_; }
 

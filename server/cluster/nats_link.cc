@@ -188,7 +188,7 @@ Expected<KvStorePtr> NatsLink::ensureBucket(const BucketSpec& spec) {
   // token granted a moment ago, or a document just created, could read as
   // missing. The catalogue, tokens and leases need to read their own
   // writes: reads go to the bucket stream's leader instead.
-  const std::string stream = "KV_" + spec.name;
+  const std::string stream = bucketStream(spec.name);
   jsStreamInfo* info = nullptr;
   jsErrCode code = static_cast<jsErrCode>(0);
   natsStatus s = js_GetStreamInfo(&info, jetStream_, stream.c_str(), nullptr, &code);

@@ -88,6 +88,8 @@ class NatsLink {
   // loss: plain NATS messages published to this node meanwhile are gone.
   void onReconnected(std::function<void()> handler);
   Expected<KvStorePtr> ensureBucket(const BucketSpec& spec);
+  // The stream JetStream keeps a key-value bucket in ("KV_<bucket>").
+  static std::string bucketStream(std::string_view bucket) { return "KV_" + std::string(bucket); }
 
   // A Status for a failed NATS call: "NATS (<servers>): <what>: <text>",
   // with JetStream's error code when there is one. Every failure is a

@@ -13,6 +13,7 @@
 #include "cluster/cluster_run.h"
 #include "core/hierarchy/ids.h"
 #include "integration/messages.h"
+#include "server/cluster/document_leases.h"
 
 namespace tessera {
 namespace {
@@ -151,7 +152,7 @@ TEST_F(ClusterQuorum, WritesAreRefusedByNameAndResumeWhenNatsIsBack) {
 // edits refused meanwhile must still name the quorum (CI once saw a notice
 // without it: docs/CLUSTER.md, "When NATS loses quorum").
 TEST_F(ClusterQuorum, ALeaseThatExpiredWithoutAMajorityIsGivenUpNamingIt) {
-  auto leader = run->nats.leaderOf("KV_TESSERA_LEASES");
+  auto leader = run->nats.leaderOf(cluster::NatsLink::bucketStream(cluster::DocumentLeases::kBucket));
   ASSERT_TRUE(leader.isOk()) << leader.status().message();
   for (int server = 0; server < 3; ++server) {
     if (server != *leader) kill9(server);

@@ -96,7 +96,7 @@ TEST(DocumentLeases, ALeaseLostWhileNatsHasNoMajorityNamesTheMajority) {
   const DocumentId doc{1};
   auto taken = leases.acquire(doc);
   ASSERT_TRUE(taken.isOk() && *taken) << (taken.isOk() ? "taken by another node" : taken.status().toString());
-  auto leader = nats->leaderOf("KV_TESSERA_LEASES");
+  auto leader = nats->leaderOf(NatsLink::bucketStream(DocumentLeases::kBucket));
   ASSERT_TRUE(leader.isOk()) << leader.status().toString();
   for (int server = 0; server < 3; ++server) {
     if (server != *leader) nats->kill9(server);

@@ -43,6 +43,9 @@ std::vector<int> freePorts(int count) {
   return ports;
 }
 
+// Each server's server_name, which is also how JetStream names a leader.
+std::string serverName(int server) { return "n" + std::to_string(server + 1); }
+
 }  // namespace
 
 Expected<NatsCluster> NatsCluster::start(int servers, const std::string& maxPayload) {
@@ -58,7 +61,7 @@ Expected<NatsCluster> NatsCluster::start(int servers, const std::string& maxPayl
   }
   for (int i = 0; i < servers; ++i) {
     Server& s = cluster.servers_[static_cast<size_t>(i)];
-    const std::string name = "n" + std::to_string(i + 1);
+    const std::string name = serverName(i);
     s.config = cluster.directory_ + "/" + name + ".conf";
     std::ofstream conf(s.config);
     conf << "server_name: " << name << "\n"
@@ -151,7 +154,7 @@ Expected<int> NatsCluster::leaderOf(const std::string& stream) const {
   const std::string leader = info->Cluster != nullptr && info->Cluster->Leader != nullptr ? info->Cluster->Leader : "";
   jsStreamInfo_Destroy(info);
   for (int i = 0; i < size(); ++i) {
-    if (leader == "n" + std::to_string(i + 1)) return i;
+    if (leader == serverName(i)) return i;
   }
   return ioError("stream " + stream + " has no leader among the test's servers ('" + leader + "')");
 }

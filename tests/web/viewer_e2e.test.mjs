@@ -25,7 +25,7 @@ const REPLAY = join(BUILD, 'client/replay/tessera-replay');
 const WEB = process.env.TESSERA_WEB_DIR ?? join(BUILD, 'web');
 const ADMIN = 'e2e-admin-token-0123456789';
 const EDITOR = 'e2e-editor-token-0123456789';
-// The page's default LOD profile ("balanced", client/web/src/lod_profiles.js).
+// The page's default LOD profile ("balanced", client/web/src/session/lod_profiles.js).
 const PROFILE = '1,3,15';
 
 let dir, server, ports, browser, documentId;

@@ -2,24 +2,24 @@
 // and shows it, and wires the parts together: Connection -> DocumentSession
 // -> SceneView (+ VertexIndex, markers) -> Hud; Editor turns input into
 // commands; the test hook exposes the state.
-import protoText from './proto_text.js';
-import { createWire } from './wire.js';
-import { Connection } from './connection.js';
-import { DocumentSession } from './document_session.js';
-import { decodeRegion } from './region_decoder.js';
-import { loadDracoFrom } from './draco.js';
-import { SceneView } from './scene.js';
-import { VertexIndex } from './vertex_index.js';
-import { Picker } from './picking.js';
-import { ControlPointsLayer } from './control_points.js';
-import { PresenceLayer } from './presence.js';
-import { Editor } from './editing.js';
-import { Hud } from './hud.js';
-import { StartPanel } from './start_panel.js';
-import { presetNamed, DEFAULT_PRESET } from './lod_profiles.js';
-import { readPageParams, webSocketUrl, addressWithDocument } from './page_params.js';
+import protoText from './codec/proto_text.js';
+import { createWire } from './codec/wire.js';
+import { Connection } from './session/connection.js';
+import { DocumentSession } from './session/document_session.js';
+import { decodeRegion } from './codec/region_decoder.js';
+import { loadDracoFrom } from './codec/draco.js';
+import { SceneView } from './scene/scene.js';
+import { VertexIndex } from './scene/vertex_index.js';
+import { Picker } from './scene/picking.js';
+import { ControlPointsLayer } from './scene/control_points.js';
+import { PresenceLayer } from './scene/presence_layer.js';
+import { Editor } from './ui/editing.js';
+import { Hud } from './ui/hud.js';
+import { StartPanel } from './ui/start_panel.js';
+import { presetNamed, DEFAULT_PRESET } from './session/lod_profiles.js';
+import { readPageParams, webSocketUrl, addressWithDocument } from './ui/page_params.js';
 import { installTestHook } from './test_hook.js';
-import { toBig } from './uint64.js';
+import { toBig } from './codec/uint64.js';
 
 const HUD_INTERVAL_MS = 250;
 

@@ -1,8 +1,8 @@
 // window.tesseraViewer: what the headless-browser tests read and do
 // (client/web/README.md "Test hook"). Plain JSON values only: ids as text
 // ("v2:123") and decimal strings, hashes as "0x" + 16 hex digits.
-import { idName, packId, parseIdName } from './ids.js';
-import { hex64 } from './uint64.js';
+import { idName, packId, parseIdName } from './codec/ids.js';
+import { hex64 } from './codec/uint64.js';
 
 const ROLE_NAMES = ['ROLE_UNSPECIFIED', 'ROLE_VIEWER', 'ROLE_EDITOR', 'ROLE_ADMIN'];
 

@@ -4,8 +4,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import Long from 'long';
-import { DocumentView } from '../src/document_view.js';
-import { LatencyTracker } from '../src/latency.js';
+import { DocumentView } from '../src/session/document_view.js';
+import { LatencyTracker } from '../src/session/latency.js';
 
 const L = (n) => Long.fromValue(n, true);
 // A payload here is [flags, layoutVersion, ...indices]; decoding gives a

@@ -2,7 +2,7 @@
 // the query, the WebSocket URL from the page's own scheme and host.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { readPageParams, webSocketUrl, addressWithDocument } from '../src/page_params.js';
+import { readPageParams, webSocketUrl, addressWithDocument } from '../src/ui/page_params.js';
 
 const at = (href) => new URL(href);
 

@@ -11,8 +11,8 @@ globalThis.Function = function () {
   throw new Error('eval: Function(source) was called');
 };
 globalThis.Function.prototype = realFunction.prototype;
-const { createWire } = await import('../src/wire.js');
-const { toBig, toLong } = await import('../src/uint64.js');
+const { createWire } = await import('../src/codec/wire.js');
+const { toBig, toLong } = await import('../src/codec/uint64.js');
 const wire = createWire(readFileSync(new URL('../../../protocol/tessera.proto', import.meta.url), 'utf8'));
 const hex = (bytes) => [...bytes].map((b) => b.toString(16).padStart(2, '0')).join(' ');
 

@@ -7,7 +7,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { startServer, serverAvailable } from './support/server.mjs';
 import { connect, createCube, grant, openSession, until, wire } from './support/client.mjs';
-import { Connection } from '../src/connection.js';
+import { Connection } from '../src/session/connection.js';
 import { tcpSocketFactory } from './support/tcp_socket.mjs';
 
 const skip = serverAvailable() ? false : 'build/release/server/tessera-server is not built';

@@ -3,7 +3,7 @@
 // shared buffers for documents of many small regions.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { RegionBatches } from '../src/region_batches.js';
+import { RegionBatches } from '../src/scene/region_batches.js';
 
 function region(seed) {
   // One triangle; positions differ per seed so that buffers can be told apart.

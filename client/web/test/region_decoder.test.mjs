@@ -3,10 +3,10 @@
 // viewer's decoder under flags 0, 4 and 2, and corrupted ones refused.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { crc32 } from '../src/crc32.js';
-import { decodeRegion, adoptLayoutIds } from '../src/region_decoder.js';
-import { RegionLattice } from '../src/region_lattice.js';
-import { idName, packId } from '../src/ids.js';
+import { crc32 } from '../src/codec/crc32.js';
+import { decodeRegion, adoptLayoutIds } from '../src/codec/region_decoder.js';
+import { RegionLattice } from '../src/codec/region_lattice.js';
+import { idName, packId } from '../src/codec/ids.js';
 import { dracoDecoder, dracoEncoder } from './support/draco_node.mjs';
 import { encodeTestRegion } from './support/region_encoder.mjs';
 

@@ -4,8 +4,8 @@
 // (core/tessellation/region_lattice.cc) on every point of deeper lattices.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { LevelCounts, idName, packId } from '../src/ids.js';
-import { RegionLattice } from '../src/region_lattice.js';
+import { LevelCounts, idName, packId } from '../src/codec/ids.js';
+import { RegionLattice } from '../src/codec/region_lattice.js';
 
 test('the cube has 8/18/12, then 26/72/48, then 98/288/192', () => {
   const c = new LevelCounts(8, 18, 12, 2);

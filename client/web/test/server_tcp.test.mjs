@@ -7,8 +7,8 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { startServer, serverAvailable } from './support/server.mjs';
 import { connect, createCube, grant, openSession, until } from './support/client.mjs';
-import { hex64 } from '../src/uint64.js';
-import { idLevel, idName } from '../src/ids.js';
+import { hex64 } from '../src/codec/uint64.js';
+import { idLevel, idName } from '../src/codec/ids.js';
 
 const skip = serverAvailable() ? false : 'build/release/server/tessera-server is not built';
 let server, admin, documentId;
@@ -149,7 +149,7 @@ test('a selection shows in the other participant\'s presence; a crease and a cor
 });
 
 test('a refused token stops the retrying and says why', { skip }, async () => {
-  const { Connection } = await import('../src/connection.js');
+  const { Connection } = await import('../src/session/connection.js');
   const { wire } = await import('./support/client.mjs');
   const { tcpSocketFactory } = await import('./support/tcp_socket.mjs');
   const errors = [];

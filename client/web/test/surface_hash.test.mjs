@@ -2,9 +2,9 @@
 // reference BigInt form and the fast form over a decoded-region layout.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { canonicalTriangleBytes, fnv1a64, regionHash, sumHashes } from '../src/surface_hash.js';
-import { packId } from '../src/ids.js';
-import { hex64 } from '../src/uint64.js';
+import { canonicalTriangleBytes, fnv1a64, regionHash, sumHashes } from '../src/codec/surface_hash.js';
+import { packId } from '../src/codec/ids.js';
+import { hex64 } from '../src/codec/uint64.js';
 
 const v1_26 = packId(1, 26), v3_1234 = packId(3, 1234), v0_7 = packId(0, 7);
 const triangle = [

@@ -1,7 +1,7 @@
 // The undo rule of docs/VIEWER.md, as client/view/undo_history.h has it.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { UndoHistory } from '../src/undo_history.js';
+import { UndoHistory } from '../src/session/undo_history.js';
 
 test('a drag is one step: undo newest first, redo oldest first', () => {
   const h = new UndoHistory();
@@ -38,7 +38,7 @@ test('a click without a move is no step, and a new step drops the redo list', ()
 });
 
 test('the pacer keeps the rate, and jobs it clears away leave their step', async () => {
-  const { Pacer } = await import('../src/pacer.js');
+  const { Pacer } = await import('../src/session/pacer.js');
   let now = 0;
   const pacer = new Pacer(10, 2, () => now);
   const ran = [];

@@ -3,7 +3,7 @@
 // every id of every region in the view, at the position the region gives.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { VertexIndex } from '../src/vertex_index.js';
+import { VertexIndex } from '../src/scene/vertex_index.js';
 
 const TWO_32 = 4294967296;
 

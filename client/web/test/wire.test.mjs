@@ -3,8 +3,8 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
-import { createWire, FrameSplitter } from '../src/wire.js';
-import { toBig, toLong } from '../src/uint64.js';
+import { createWire, FrameSplitter } from '../src/codec/wire.js';
+import { toBig, toLong } from '../src/codec/uint64.js';
 
 const wire = createWire(readFileSync(new URL('../../../protocol/tessera.proto', import.meta.url), 'utf8'));
 const hex = (bytes) => [...bytes].map((b) => b.toString(16).padStart(2, '0')).join(' ');

@@ -2,11 +2,11 @@
 // transport, plus the admin steps a test needs (create a document, grant a
 // token) and waiting for a condition.
 import { readFileSync } from 'node:fs';
-import { createWire } from '../../src/wire.js';
-import { Connection } from '../../src/connection.js';
-import { DocumentSession } from '../../src/document_session.js';
-import { decodeRegion } from '../../src/region_decoder.js';
-import { toLong, toBig } from '../../src/uint64.js';
+import { createWire } from '../../src/codec/wire.js';
+import { Connection } from '../../src/session/connection.js';
+import { DocumentSession } from '../../src/session/document_session.js';
+import { decodeRegion } from '../../src/codec/region_decoder.js';
+import { toLong, toBig } from '../../src/codec/uint64.js';
 import { dracoDecoder } from './draco_node.mjs';
 import { tcpSocketFactory } from './tcp_socket.mjs';
 

@@ -2,7 +2,7 @@
 // the same decoder the page runs, fed the same .wasm bytes.
 import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { loadDraco } from '../../src/draco.js';
+import { loadDraco } from '../../src/codec/draco.js';
 
 const require = createRequire(import.meta.url);
 

@@ -2,7 +2,7 @@
 // (core/tessellation/region_codec.cc): header, optional frame, a Draco mesh
 // from the draco3d encoder on the header's grid, CRC-32. Enough to round-trip
 // the viewer's decoder without a server.
-import { crc32 } from '../../src/crc32.js';
+import { crc32 } from '../../src/codec/crc32.js';
 
 function varint(out, n) {
   let x = BigInt(n);

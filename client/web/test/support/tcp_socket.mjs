@@ -4,7 +4,7 @@
 // own connection and document code against a real tessera-server before,
 // or beside, its WebSocket port.
 import net from 'node:net';
-import { FrameSplitter } from '../../src/wire.js';
+import { FrameSplitter } from '../../src/codec/wire.js';
 
 export function tcpSocketFactory(port, host = '127.0.0.1') {
   return () => {

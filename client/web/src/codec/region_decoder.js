@@ -34,7 +34,7 @@ function findAttribute(decoder, mesh, type, name, components, where) {
 
 // Decodes `bytes` (a Uint8Array) with the draco3d module. Throws an Error
 // naming the region and the reason. A payload without its layout's ids
-// (flag 2) decodes with ids null; document_view.js adopts the held ones.
+// (flag 2) decodes with ids null; session/document_view.js adopts the held ones.
 export function decodeRegion(draco, bytes) {
   const header = parseRegion(bytes);
   const where = `region ${header.regionId} (document version ${header.documentVersion})`;

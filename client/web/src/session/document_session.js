@@ -10,7 +10,7 @@ import { UndoHistory } from './undo_history.js';
 import { LatencyTracker } from './latency.js';
 import { Collaborators } from './presence.js';
 import { Pacer } from './pacer.js';
-import { toBig, toLong, hex64 } from './uint64.js';
+import { toBig, toLong, hex64 } from '../codec/uint64.js';
 import { shallower } from './lod_profiles.js';
 
 // SetEdgeSharpness.edge_id when end_vertex_ids name the edge (7.2).

@@ -1,5 +1,5 @@
 // Point-sprite textures drawn once into a small canvas: the control-vertex
-// dots (control_points.js) and collaborators' picks (presence.js).
+// dots (control_points.js) and collaborators' picks (presence_layer.js).
 import * as THREE from 'three';
 
 const SIZE = 64;

@@ -1,40 +1,8 @@
-// Who else has the document open, and what they selected (docs/PROTOCOL.md
-// 6.3), and the marks that show it: each other participant's selected
-// vertices as points of their own colour at the vertices' limit positions.
-// A full Presence replaces the list; a change-form one replaces the entries
-// it names and removes those in left_session_ids.
+// The marks that show who else selected what (session/presence.js keeps the
+// list): each other participant's selected vertices as points of their own
+// colour at the vertices' limit positions, and this viewer's own picks.
 import * as THREE from 'three';
 import { rimmedDisc } from './sprites.js';
-import { toBig } from './uint64.js';
-
-export class Collaborators {
-  constructor() {
-    this.bySession = new Map(); // session id (BigInt) -> {sessionId, name, role, selection: BigInt[]}
-  }
-
-  apply(presence) {
-    if (presence.full) this.bySession.clear();
-    for (const left of presence.left_session_ids) this.bySession.delete(toBig(left));
-    for (const p of presence.participants) {
-      const sessionId = toBig(p.session_id);
-      this.bySession.set(sessionId, {
-        sessionId,
-        name: p.name,
-        role: p.role,
-        selection: (p.selection?.vertex_ids ?? []).map(toBig),
-      });
-    }
-  }
-
-  clear() {
-    this.bySession.clear();
-  }
-
-  // In session order, as the server orders them.
-  list() {
-    return [...this.bySession.values()].sort((a, b) => (a.sessionId < b.sessionId ? -1 : a.sessionId > b.sessionId ? 1 : 0));
-  }
-}
 
 // A colour per session, the same on every viewer: hues spread by the golden
 // angle so that neighbouring session ids differ.

@@ -132,7 +132,7 @@ export class SceneView {
     this.root.remove(batch.mesh, batch.wire);
   }
 
-  // A change of document_view.js: the whole set, or the regions a delta
+  // A change of session/document_view.js: the whole set, or the regions a delta
   // changed and removed. Geometry is rebuilt before the next frame.
   apply(change, regions) {
     this.batches.expectRegions(regions.size);

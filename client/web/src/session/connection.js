@@ -7,8 +7,8 @@
 //
 // The socket is made by `createSocket(url)` so that the tests can put the
 // TCP transport behind the same interface.
-import { PROTOCOL_VERSION } from './wire.js';
-import { toBig, toLong } from './uint64.js';
+import { PROTOCOL_VERSION } from '../codec/wire.js';
+import { toBig, toLong } from '../codec/uint64.js';
 
 const PING_MS = 30000;
 const FIRST_RETRY_MS = 500, LAST_RETRY_MS = 10000;

@@ -1,6 +1,6 @@
 // The LOD profiles the page offers (docs/PROTOCOL.md 7.1 LodProfile): a few
 // presets from coarse to fine. A document whose max_level is below a
-// preset's refuses it; the page then steps the max level down (main.js).
+// preset's refuses it; the page then steps the max level down (document_session.js).
 // "balanced" is tessera-view's default profile (base 1, max 3, 15 degrees).
 export const LOD_PRESETS = [
   { name: 'coarse', baseLevel: 0, maxLevel: 2, angle: 20, budget: 250000 },

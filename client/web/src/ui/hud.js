@@ -6,10 +6,10 @@
 // check, the LOD profile and the display toggles, the pick, the
 // collaborators, and a status and an error line. H folds it to its first
 // line. It only reads facts handed to it; it owns no state of the document.
-import { LOD_PRESETS } from './lod_profiles.js';
-import { idName } from './ids.js';
-import { hex64 } from './uint64.js';
-import { sessionColour } from './presence.js';
+import { LOD_PRESETS } from '../session/lod_profiles.js';
+import { idName } from '../codec/ids.js';
+import { hex64 } from '../codec/uint64.js';
+import { sessionColour } from '../scene/presence_layer.js';
 
 const ROLE_NAMES = ['no role', 'viewer', 'editor', 'admin'];
 

@@ -11,7 +11,7 @@
 //   - V the last picked vertex: corner, or smooth again (SetVertexType);
 //   - W wireframe, R region colours, F fit, [ ] edit level, P control
 //     points, H fold the HUD, Esc drop the picks.
-import { packId, idName } from './ids.js';
+import { packId, idName } from '../codec/ids.js';
 
 const SEND_INTERVAL_MS = 33; // ~30 edits a second while dragging
 const CORNER = 3, SMOOTH = 1; // VertexType

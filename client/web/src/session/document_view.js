@@ -11,12 +11,12 @@
 //   - Any other delta, or a flag-2 region whose layout the view does not
 //     hold, is a gap: the view stops until the next snapshot, and apply()
 //     says so, so that the caller subscribes again.
-import { adoptLayoutIds } from './region_decoder.js';
-import { regionHash, sumHashes } from './surface_hash.js';
-import { toBig } from './uint64.js';
+import { adoptLayoutIds } from '../codec/region_decoder.js';
+import { regionHash, sumHashes } from '../codec/surface_hash.js';
+import { toBig } from '../codec/uint64.js';
 
 export class DocumentView {
-  // decode(bytes) -> decoded region (region_decoder.js, bound to Draco).
+  // decode(bytes) -> decoded region (codec/region_decoder.js, bound to Draco).
   constructor(documentId, decode) {
     this.documentId = BigInt(documentId);
     this.decode = decode;

@@ -20,10 +20,11 @@ import { presetNamed, DEFAULT_PRESET } from './session/lod_profiles.js';
 import { readPageParams, webSocketUrl, addressWithDocument } from './ui/page_params.js';
 import { installTestHook } from './test_hook.js';
 import { toBig } from './codec/uint64.js';
+import { PageState } from './page_state.js';
 
 const HUD_INTERVAL_MS = 250;
 
-function setPageState(state) {
+function setBodyState(state) {
   document.body.dataset.state = state;
 }
 
@@ -34,7 +35,7 @@ function setTokenInAddress(token) {
 }
 
 async function main() {
-  setPageState('loading');
+  setBodyState('loading');
   window.addEventListener('hashchange', () => window.location.reload());
   const params = readPageParams(window.location);
   const wire = createWire(protoText);
@@ -45,22 +46,19 @@ async function main() {
   const presence = new PresenceLayer(view.scene, () => view.invalidate());
   const start = new StartPanel(document.getElementById('start'));
 
-  let connection = null, session = null, draco = null;
-  let profile = { ...presetNamed(params.lod ?? DEFAULT_PRESET) };
-  let status = 'starting', lastError = '', documentName = '';
-  let readyAfterRender = false, ready = false;
-  const showError = (text) => { lastError = text; };
+  const page = new PageState({ ...presetNamed(params.lod ?? DEFAULT_PRESET) }, performance.now());
+  const showError = (text) => { page.lastError = text; };
 
   const refreshMarkers = () => {
     controlPoints.setVertices(vertices.atLevel(editor.level));
-    const others = session ? session.collaborators.list().filter((c) => c.sessionId !== session.sessionId) : [];
+    const others = page.session ? page.session.collaborators.list().filter((c) => c.sessionId !== page.session.sessionId) : [];
     presence.update(others, editor.picks, (id) => vertices.lookup(id)?.position ?? null);
   };
 
   const hud = new Hud(document.getElementById('hud'), {
     onPreset: (name) => {
-      profile = { ...presetNamed(name) };
-      session?.subscribeOrShallower(profile).catch((e) => showError(`subscribe: ${e.message}`));
+      page.profile = { ...presetNamed(name) };
+      page.session?.subscribeOrShallower(page.profile).catch((e) => showError(`subscribe: ${e.message}`));
     },
     onWireframe: (on) => view.setWireframe(on),
     onRegionColours: (on) => view.setRegionColours(on),
@@ -69,59 +67,51 @@ async function main() {
 
   const editor = new Editor({
     element: view.renderer.domElement, view, picker, vertices, controlPoints,
-    session: () => session,
-    maxLevel: () => profile.maxLevel,
+    session: () => page.session,
+    maxLevel: () => page.profile.maxLevel,
     onChange: refreshMarkers,
     onError: showError,
     toggleHud: () => hud.toggle(),
   });
   editor.clampLevel();
 
-  // When each version was first drawn (Unix ms, Date.now()): the
-  // benchmark times edit-to-pixels against the editor's clock with it
-  // (bench/web_viewer_bench.mjs). The last 4,096 versions.
-  const shownAt = new Map();
-  let shownVersion = -1n;
-  installTestHook({
-    connection: () => connection, session: () => session, view, picker, vertices, editor,
-    lastError: () => lastError, ready: () => ready, shownAt: () => shownAt,
-  });
+  installTestHook({ page, view, picker, vertices, editor });
 
   function openDocument(documentId, helloAck) {
-    session = new DocumentSession({
-      connection, documentId, profile,
-      decode: (bytes) => decodeRegion(draco, bytes),
+    page.session = new DocumentSession({
+      connection: page.connection, documentId, profile: page.profile,
+      decode: (bytes) => decodeRegion(page.draco, bytes),
       onView: (change) => {
-        view.apply(change, session.view.regions);
-        vertices.apply(change, session.view.regions);
+        view.apply(change, page.session.view.regions);
+        vertices.apply(change, page.session.view.regions);
         editor.refreshHover();
         refreshMarkers();
-        if (change.kind === 'snapshot') readyAfterRender = true;
+        if (change.kind === 'snapshot') page.readyAfterRender = true;
       },
       onPresence: refreshMarkers,
-      onProfile: (p) => { profile = p; editor.clampLevel(); },
-      onStatus: (s) => { status = s; },
+      onProfile: (p) => { page.profile = p; editor.clampLevel(); },
+      onStatus: (s) => { page.status = s; },
       onError: showError,
     });
     start.hide();
-    session.connected(helloAck);
+    page.session.connected(helloAck);
   }
 
   async function chooseDocument(helloAck) {
     try {
-      const reply = await connection.call({ list_documents: {} });
+      const reply = await page.connection.call({ list_documents: {} });
       const documents = reply.message.document_list.documents.map((d) => ({
         id: toBig(d.document_id), name: d.name, version: toBig(d.version),
       }));
       if (params.documentId !== null) {
-        documentName = documents.find((d) => d.id === params.documentId)?.name ?? '';
+        page.documentName = documents.find((d) => d.id === params.documentId)?.name ?? '';
         return;
       }
-      setPageState('choosing');
+      setBodyState('choosing');
       start.listDocuments(documents, (id) => {
         window.history.replaceState(null, '', addressWithDocument(window.location, id));
         params.documentId = id;
-        documentName = documents.find((d) => d.id === id)?.name ?? '';
+        page.documentName = documents.find((d) => d.id === id)?.name ?? '';
         openDocument(id, helloAck);
       });
     } catch (error) {
@@ -131,34 +121,34 @@ async function main() {
 
   function begin(token) {
     start.message('Connecting…');
-    connection = new Connection({
+    page.connection = new Connection({
       url: webSocketUrl(window.location), token, name: params.name, wire,
       createSocket: (url) => new WebSocket(url),
       onReady: (helloAck) => {
-        lastError = '';
+        page.lastError = '';
         if (params.documentId !== null) {
-          if (session) session.connected(helloAck); else openDocument(params.documentId, helloAck);
+          if (page.session) page.session.connected(helloAck); else openDocument(params.documentId, helloAck);
         }
         chooseDocument(helloAck);
       },
-      onMessage: (body, message) => session?.message(body, message),
-      onStatus: (s) => { status = s; },
+      onMessage: (body, message) => page.session?.message(body, message),
+      onStatus: (s) => { page.status = s; },
       onError: (text, fatal) => {
         showError(text);
-        if (connection?.permanentError) {
-          setPageState('error');
+        if (page.connection?.permanentError) {
+          setBodyState('error');
           start.askToken((t) => { setTokenInAddress(t); window.location.reload(); }, text);
         } else if (fatal) {
-          status = 'the server closed the connection';
+          page.status = 'the server closed the connection';
         }
       },
       onClosed: () => {
-        ready = false;
-        if (document.body.dataset.state === 'ready') setPageState('connecting');
+        page.ready = false;
+        if (document.body.dataset.state === 'ready') setBodyState('connecting');
       },
     });
-    setPageState('connecting');
-    connection.start();
+    setBodyState('connecting');
+    page.connection.start();
   }
 
   // The render loop: an animation frame is asked for only when something
@@ -169,70 +159,68 @@ async function main() {
   // for twenty idle tabs. The HUD is refreshed four times a second on a
   // timer (the DOM costs more than a frame of a small model); the frame
   // rate counts the frames drawn in each half second, 0 when idle.
-  let fps = 0, fpsFrames = 0, fpsAt = performance.now(), bytesAt = 0, bytesSampleAt = fpsAt, bytesPerSecond = 0;
-  let frameAsked = false;
   const askFrame = () => {
-    if (frameAsked) return;
-    frameAsked = true;
+    if (page.frameAsked) return;
+    page.frameAsked = true;
     requestAnimationFrame(frame);
   };
   const frame = () => {
-    frameAsked = false;
+    page.frameAsked = false;
     const drew = view.renderIfNeeded();
     if (!drew) return;
-    ++fpsFrames;
+    ++page.fpsFrames;
     askFrame();
-    if (session?.view.ready && session.view.version !== shownVersion) {
-      shownVersion = session.view.version;
-      shownAt.set(String(shownVersion), Date.now());
-      if (shownAt.size > 4096) shownAt.delete(shownAt.keys().next().value);
+    if (page.session?.view.ready && page.session.view.version !== page.shownVersion) {
+      page.shownVersion = page.session.view.version;
+      page.shownAt.set(String(page.shownVersion), Date.now());
+      if (page.shownAt.size > 4096) page.shownAt.delete(page.shownAt.keys().next().value);
     }
-    if (readyAfterRender) {
-      readyAfterRender = false;
-      ready = true;
-      setPageState('ready');
+    if (page.readyAfterRender) {
+      page.readyAfterRender = false;
+      page.ready = true;
+      setBodyState('ready');
     }
   };
   view.onInvalidate = askFrame;
   askFrame();
   const hudTick = () => {
     const now = performance.now();
-    if (now - fpsAt >= 500) {
-      fps = (fpsFrames * 1000) / (now - fpsAt);
-      fpsFrames = 0;
-      fpsAt = now;
+    if (now - page.fpsAt >= 500) {
+      page.fps = (page.fpsFrames * 1000) / (now - page.fpsAt);
+      page.fpsFrames = 0;
+      page.fpsAt = now;
     }
-    if (now - bytesSampleAt >= 1000 && connection) {
-      bytesPerSecond = ((connection.bytesReceived - bytesAt) * 1000) / (now - bytesSampleAt);
-      bytesAt = connection.bytesReceived;
-      bytesSampleAt = now;
+    if (now - page.bytesSampleAt >= 1000 && page.connection) {
+      page.bytesPerSecond = ((page.connection.bytesReceived - page.bytesAt) * 1000) / (now - page.bytesSampleAt);
+      page.bytesAt = page.connection.bytesReceived;
+      page.bytesSampleAt = now;
     }
     hud.update({
-      fps, triangles: view.triangles, regions: session?.view.regions.size ?? 0,
-      version: session?.view.version ?? 0n, documentId: session?.documentId ?? null, documentName,
-      role: session?.role ?? connection?.helloAck?.role ?? 0, latencyMs: session?.latency.last ?? null,
-      bytesPerSecond, hash: session?.lastHash ?? null, preset: profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
+      fps: page.fps, triangles: view.triangles, regions: page.session?.view.regions.size ?? 0,
+      version: page.session?.view.version ?? 0n, documentId: page.session?.documentId ?? null, documentName: page.documentName,
+      role: page.session?.role ?? page.connection?.helloAck?.role ?? 0, latencyMs: page.session?.latency.last ?? null,
+      bytesPerSecond: page.bytesPerSecond, hash: page.session?.lastHash ?? null, preset: page.profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
       wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
       pick: editor.describe(), points: controlPoints.count ?? 0, pointsDrawn: controlPoints.drawn,
-      people: session ? session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === session.sessionId })) : [],
-      status: connection?.ready && session?.view.ready ? 'live' : status,
-      error: lastError,
+      people: page.session ? page.session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === page.session.sessionId })) : [],
+      status: page.connection?.ready && page.session?.view.ready ? 'live' : page.status,
+      error: page.lastError,
     });
   };
   setInterval(hudTick, HUD_INTERVAL_MS);
 
   try {
-    draco = (await loadDracoFrom('draco_decoder.wasm')).draco;
+    page.draco = (await loadDracoFrom('draco_decoder.wasm')).draco;
   } catch (error) {
     showError(error.message);
-    setPageState('error');
+    setBodyState('error');
     start.message(`The Draco decoder did not load: ${error.message}`);
     return;
   }
   if (params.token) {
     begin(params.token);
   } else {
-    setPageState('token');
+    setBodyState('token');
     start.askToken((token) => {
       setTokenInAddress(token);
       begin(token);

@@ -6,18 +6,17 @@ import { hex64 } from './codec/uint64.js';
 
 const ROLE_NAMES = ['ROLE_UNSPECIFIED', 'ROLE_VIEWER', 'ROLE_EDITOR', 'ROLE_ADMIN'];
 
-// app: {connection(), session(), view (SceneView), picker, vertices, editor,
-// lastError(), ready()}
+// app: {page (PageState), view (SceneView), picker, vertices, editor}
 export function installTestHook(app) {
+  const { page } = app;
   const hook = {
     state() {
-      const connection = app.connection();
-      const session = app.session();
+      const { connection, session } = page;
       const view = session?.view;
       const hash = session?.lastHash;
       return {
         connected: Boolean(connection?.ready),
-        ready: app.ready(),
+        ready: page.ready,
         role: ROLE_NAMES[session ? session.role : connection?.helloAck?.role ?? 0] ?? String(session?.role),
         documentId: session ? String(session.documentId) : '',
         version: view ? Number(view.version) : 0,
@@ -35,7 +34,7 @@ export function installTestHook(app) {
           selection: c.selection.map((id) => idName(id)),
           self: c.sessionId === session.sessionId,
         })) : [],
-        error: app.lastError(),
+        error: page.lastError,
         frames: connection ? connection.frames : 0,
         editsSent: session?.editsSent ?? 0,
         editsRejected: session?.editsRejected ?? 0,
@@ -70,7 +69,7 @@ export function installTestHook(app) {
     // [version, Unix ms of the first frame drawn at it] for the versions
     // drawn lately (a version merged into a later delta is never drawn).
     versionsShown() {
-      return [...app.shownAt().entries()].map(([v, at]) => [Number(v), at]);
+      return [...page.shownAt.entries()].map(([v, at]) => [Number(v), at]);
     },
   };
   window.tesseraViewer = hook;

@@ -1,0 +1,41 @@
+// The page's state, in one place: what main.js wires together and changes,
+// and what the HUD and the test hook read. Plain fields; main.js is the only
+// writer.
+export class PageState {
+  // profile: the LOD profile to subscribe with first; now: performance.now().
+  constructor(profile, now) {
+    // The link and the document.
+    this.connection = null; // Connection, once a token is known
+    this.session = null; // DocumentSession, once a document is chosen
+    this.draco = null; // the Draco decoder module, once loaded
+    this.profile = profile; // the LOD profile asked for (or stepped down to)
+    this.documentName = '';
+
+    // What the panel says.
+    this.status = 'starting';
+    this.lastError = '';
+
+    // Readiness: the first snapshot is applied (readyAfterRender) and then
+    // drawn (ready, and <body data-state=ready>).
+    this.readyAfterRender = false;
+    this.ready = false;
+
+    // When each version was first drawn (Unix ms, Date.now()): the
+    // benchmark times edit-to-pixels against the editor's clock with it
+    // (bench/web_viewer_bench.mjs). The last 4,096 versions.
+    this.shownAt = new Map();
+    this.shownVersion = -1n;
+
+    // The render loop: whether an animation frame is asked for.
+    this.frameAsked = false;
+
+    // The panel's rates: frames drawn per second, sampled every half
+    // second, and bytes received per second, sampled every second.
+    this.fps = 0;
+    this.fpsFrames = 0;
+    this.fpsAt = now;
+    this.bytesAt = 0;
+    this.bytesSampleAt = now;
+    this.bytesPerSecond = 0;
+  }
+}

@@ -4,7 +4,13 @@
 // as text) and draco_decoder.wasm (copied from the draco3d package, never
 // kept in the repository). Offline once `npm ci` has run.
 //
-//   node client/web/build.mjs --out DIR
+//   node client/web/build.mjs --out DIR [--test-hook]
+//
+// --test-hook builds the page for the headless-browser tests and the
+// benchmark: with window.tesseraViewer (src/test_hook.js, README.md "Test
+// hook"). Without it the hook's code is not in viewer.js at all: main.js
+// calls it under `if (TESSERA_TEST_HOOK)`, which esbuild's define turns
+// into `if (false)` and drops with the module it alone imports.
 //
 // Prints one line: each file's size, raw and gzip-compressed (node's zlib),
 // and the JavaScript + WebAssembly one page load transfers compressed.
@@ -23,13 +29,15 @@ function outDirectory(argv) {
   const at = argv.indexOf('--out');
   const value = at >= 0 ? argv[at + 1] : argv.find((a) => a.startsWith('--out='))?.slice(6);
   if (!value) {
-    console.error('usage: node client/web/build.mjs --out DIR');
+    console.error('usage: node client/web/build.mjs --out DIR [--test-hook]');
     process.exit(2);
   }
   return resolve(value);
 }
 
-const out = outDirectory(process.argv.slice(2));
+const argv = process.argv.slice(2);
+const out = outDirectory(argv);
+const testHook = argv.includes('--test-hook');
 mkdirSync(out, { recursive: true });
 
 await build({
@@ -41,6 +49,7 @@ await build({
   platform: 'browser',
   target: 'es2020',
   loader: { '.proto': 'text' },
+  define: { TESSERA_TEST_HOOK: String(testHook) },
   // draco3d's wrapper reads its .wasm with node:fs only under Node; the
   // page hands it the bytes instead, so the branch never runs in a browser.
   external: ['node:fs'],
@@ -57,6 +66,6 @@ const sizes = OUTPUTS.map((name) => {
 });
 const kb = (n) => `${(n / 1024).toFixed(1)} KiB`;
 const code = sizes.filter((s) => s.name.endsWith('.js') || s.name.endsWith('.wasm'));
-console.log(`${out}: ` + sizes.map((s) => `${s.name} ${kb(s.raw)} (gzip ${kb(s.gzip)})`).join(', ') +
+console.log(`${out}${testHook ? ' (with the test hook)' : ''}: ` + sizes.map((s) => `${s.name} ${kb(s.raw)} (gzip ${kb(s.gzip)})`).join(', ') +
   `; JavaScript + WebAssembly per page load: ${kb(code.reduce((a, s) => a + s.raw, 0))} raw, ` +
   `${kb(code.reduce((a, s) => a + s.gzip, 0))} gzip`);

@@ -22,6 +22,7 @@ const { decodePng } = await import(join(SOURCE, 'client/web/test/support/png.mjs
 const SERVER = join(BUILD, 'server/tessera-server');
 const CLI = join(BUILD, 'client/cli/tessera');
 const REPLAY = join(BUILD, 'client/replay/tessera-replay');
+// The page with its test hook (client/web/CMakeLists.txt, TESSERA_WEB_TEST_HOOK).
 const WEB = process.env.TESSERA_WEB_DIR ?? join(BUILD, 'web');
 const ADMIN = 'e2e-admin-token-0123456789';
 const EDITOR = 'e2e-editor-token-0123456789';
@@ -121,6 +122,9 @@ const pageUrl = (token, doc = documentId) => `http://127.0.0.1:${server.web}/?do
 const ready = (page) => page.waitForSelector('body[data-state=ready]', { timeout: 60000 });
 
 before(async () => {
+  // The page must be a test build: the checks below read window.tesseraViewer.
+  assert.ok(readFileSync(join(WEB, 'viewer.js'), 'utf8').includes('tesseraViewer'),
+    `${WEB}/viewer.js has no test hook: configure with -DTESSERA_WEB_TEST_HOOK=ON (build.mjs --test-hook)`);
   dir = mkdtempSync(join(tmpdir(), 'tessera-web-e2e-'));
   writeFileSync(join(dir, 'admin.token'), `${ADMIN}\n`);
   server = await startServer();

@@ -1,7 +1,7 @@
 // The page: reads ?doc= and #token=, connects to /ws, opens the document
 // and shows it, and wires the parts together: Connection -> DocumentSession
 // -> SceneView (+ VertexIndex, markers) -> Hud; Editor turns input into
-// commands; the test hook exposes the state.
+// commands; in a test build, the test hook exposes the state.
 import protoText from './codec/proto_text.js';
 import { createWire } from './codec/wire.js';
 import { Connection } from './session/connection.js';
@@ -75,7 +75,10 @@ async function main() {
   });
   editor.clampLevel();
 
-  installTestHook({ page, view, picker, vertices, editor });
+  // TESSERA_TEST_HOOK is replaced by build.mjs: true only in a test build
+  // (--test-hook). Otherwise the branch, and with it test_hook.js, is left
+  // out of the bundle.
+  if (TESSERA_TEST_HOOK) installTestHook({ page, view, picker, vertices, editor });
 
   function openDocument(documentId, helloAck) {
     page.session = new DocumentSession({

@@ -1,5 +1,6 @@
 // The page itself in headless Chromium against a real tessera-server, served
-// by the server's own --ws-port from a fresh build. What a person would check:
+// by the server's own --ws-port from a fresh build (with the test hook,
+// build.mjs --test-hook). What a person would check:
 // the cube shows, anti-aliased, with the HUD in its corner; the hash
 // matches the server's; a drag edits and undo takes it back; collaborators'
 // picks show both ways; the keys and the LOD selector work; the start
@@ -24,7 +25,7 @@ let web, server, admin, browser, documentId, base;
 before(async () => {
   if (skip) return;
   web = mkdtempSync(join(tmpdir(), 'tessera-web-build-'));
-  const built = spawnSync(process.execPath, [new URL('../build.mjs', import.meta.url).pathname, '--out', web], { encoding: 'utf8' });
+  const built = spawnSync(process.execPath, [new URL('../build.mjs', import.meta.url).pathname, '--out', web, '--test-hook'], { encoding: 'utf8' });
   assert.equal(built.status, 0, built.stderr);
   console.log(built.stdout.trim());
   const portFile = `${web}.ws-port`;

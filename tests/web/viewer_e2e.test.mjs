@@ -1,9 +1,9 @@
-// The browser viewer end to end (issue 18 §3): the real tessera-server of
-// this build serving the built page on its --ws-port, Debian's Chromium
-// headless (puppeteer-core), and the C++ tools as the other participants:
-// `tessera remote` creates, grants and edits, `tessera-replay surface`
-// computes the surface hash the C++ client library assembles. Loopback
-// only; every wait is bounded.
+// The browser viewer end to end (docs/WEB_VIEWER.md, "Tests"): the real
+// tessera-server of this build serving the built page on its --ws-port,
+// Debian's Chromium headless (puppeteer-core), and the C++ tools as the
+// other participants: `tessera remote` creates, grants and edits,
+// `tessera-replay surface` computes the surface hash the C++ client library
+// assembles. Loopback only; every wait is bounded.
 //
 //   TESSERA_BUILD_DIR=build/release TESSERA_SOURCE_DIR=. node --test tests/web/viewer_e2e.test.mjs
 // (ctest runs it as web_viewer_e2e.)

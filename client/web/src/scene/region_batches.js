@@ -1,13 +1,13 @@
 // The regions on screen, as GPU buffers (one BufferGeometry each). While a
 // document shows at most SEPARATE_REGIONS regions, each region has a buffer
 // of its own, so a delta replaces exactly the buffers of the regions it
-// changed (issue 18 §2). A document of many small regions (fandisk: 12,946
-// of about four triangles each) would cost a draw call per region, more
-// than the triangles themselves; there regions share buffers of up to
-// BATCH_VERTICES vertices, and a region that a delta replaces or removes
-// marks its shared buffer, rebuilt (copied together again) once before the
-// next frame. Each vertex also carries its region's colour, for the
-// region-colour toggle.
+// changed (docs/WEB_VIEWER.md, "What the page does"). A document of many
+// small regions (fandisk: 12,946 of about four triangles each) would cost a
+// draw call per region, more than the triangles themselves; there regions
+// share buffers of up to BATCH_VERTICES vertices, and a region that a delta
+// replaces or removes marks its shared buffer, rebuilt (copied together
+// again) once before the next frame. Each vertex also carries its region's
+// colour, for the region-colour toggle.
 import * as THREE from 'three';
 
 const BATCH_VERTICES = 65536;

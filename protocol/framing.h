@@ -44,7 +44,7 @@ struct FrameDecoderOptions {
   uint32_t maxFrameBytes = kDefaultMaxFrameBytes;  // payload bytes, prefix excluded
   // A tighter limit for the stream's first frame (0: maxFrameBytes). A
   // server's first frame is the Hello, and a peer that has not yet shown a
-  // token should not make it hold megabytes (issue 13 §3).
+  // token should not make it hold megabytes (docs/PROTOCOL.md §1.1).
   uint32_t firstFrameMaxBytes = 0;
 };
 

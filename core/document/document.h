@@ -1,5 +1,6 @@
 // Document: a base mesh, its feature tags and a hierarchy of edits made at
-// any subdivision level (seed 000). Edits are validated before they change
+// any subdivision level (Pulli & Lounsbery, "Hierarchical Editing and
+// Rendering of Subdivision Surfaces"). Edits are validated before they change
 // anything: an invalid command leaves the document exactly as it was.
 //
 //   auto doc = Document::create(mesh, {}, {.maxLevel = 5});
@@ -62,11 +63,12 @@ class Document {
   Expected<EditId> moveBy(std::span<const VertexId> vertices, const Vec3& displacement);
   Expected<EditId> setEdgeSharpness(EdgeId edge, float sharpness);
   Expected<EditId> setVertexSharpness(VertexId vertex, float sharpness);
-  // Seed 004 §4: the surface passes through this vertex's control point
-  // (core/loop/ghost_ring.h), with this tension; `tangent` (boundary and
-  // crease vertices only) sets the tangent line. Refused where no ghost ring
-  // applies (ghostRuleOf says why), at the deepest level, and where finer
-  // edits conflict (interpolation_conflicts.h). interpolating = false ends it.
+  // A locally interpolating vertex (docs/INTERPOLATION.md): the surface passes
+  // through this vertex's control point (core/loop/ghost_ring.h), with this
+  // tension; `tangent` (boundary and crease vertices only) sets the tangent
+  // line. Refused where no ghost ring applies (ghostRuleOf says why), at the
+  // deepest level, and where finer edits conflict (interpolation_conflicts.h).
+  // interpolating = false ends it.
   Expected<EditId> setInterpolation(VertexId vertex, bool interpolating, double tension = 1.0,
                                     const Vec3& tangent = Vec3(0, 0, 0));
   // The vertex's tension if it interpolates now (the latest active edit).

@@ -11,8 +11,8 @@
 
 namespace tessera {
 
-// 1: moves and sharpness tags. 2: also interpolation tags (seed 004 §4, edit
-// kind 4). Every version up to this one reads.
+// 1: moves and sharpness tags. 2: also interpolation tags (docs/INTERPOLATION.md,
+// edit kind 4). Every version up to this one reads.
 inline constexpr uint32_t kDocumentFormatVersion = 2;
 
 std::string serializeDocument(const Document& document);

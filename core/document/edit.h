@@ -1,4 +1,5 @@
-// Edits of a hierarchical document (seed 000 §2): vertex moves stored as
+// Edits of a hierarchical document (Pulli & Lounsbery, "Hierarchical Editing
+// and Rendering of Subdivision Surfaces" §2): vertex moves stored as
 // offsets in local frames at any level, and sharpness tags at any level.
 #pragma once
 
@@ -46,7 +47,7 @@ struct VertexSharpnessEdit {
   float sharpness = 0.0f;
 };
 
-// Seed 004 §4: the vertex becomes locally interpolating -- the surface passes
+// docs/INTERPOLATION.md: the vertex becomes locally interpolating -- the surface passes
 // through its control point -- with this tension (core/loop/ghost_ring.h), or
 // stops being so. Later edits of the same vertex win, as for sharpness. It
 // shapes the next level (the ghost ring), so it needs a level below its own.

@@ -9,7 +9,7 @@
 //   corner v4:900 S                     vertex sharpness: 0 smooth, > 0 corner/cusp
 //   interpolate v1:30 [T] [tangent X Y Z]
 //                                       the surface passes through the vertex's
-//                                       control point (seed 004 §4), tension T
+//                                       control point (docs/INTERPOLATION.md), tension T
 //                                       (default 1); a tangent line for boundary
 //                                       and crease vertices
 //   interpolate v1:30 off               back to plain Loop

@@ -1,16 +1,16 @@
-// What an interpolating vertex (seed 004 §4, core/loop/ghost_ring.h) forbids
-// around it, checked on the canonical ids alone (hierarchy/incidence.h).
+// What an interpolating vertex (docs/INTERPOLATION.md, core/loop/ghost_ring.h)
+// forbids around it, checked on the canonical ids alone (hierarchy/incidence.h).
 //
 // V0 of level l stays at its control point because, from level l+1 on, its
 // descendant is the centroid of its ring and the plain smooth (or crease)
-// rules keep it so (seed eq. 4-5). So below level l nothing may disturb
-// that: no move of V0's descendants or of their ring neighbours (a detail
-// offset there moves the centroid), and no sharpness on V0, its descendants
-// or their edges at level l or finer (a dart or a semi-sharp rule breaks
-// eq. 5). At level l itself V0 and its ring move freely: the ghost ring
-// follows them. Two interpolating vertices may not be neighbours at one
-// level, or one in the other's finer ghost ring: their rings would share
-// points. Sharpness set coarser than l that changes V0's rule
+// rules keep it so (eq. 4-5 of the paper that ghost_ring.h cites). So below
+// level l nothing may disturb that: no move of V0's descendants or of their
+// ring neighbours (a detail offset there moves the centroid), and no
+// sharpness on V0, its descendants or their edges at level l or finer (a
+// dart or a semi-sharp rule breaks eq. 5). At level l itself V0 and its ring
+// move freely: the ghost ring follows them. Two interpolating vertices may
+// not be neighbours at one level, or one in the other's finer ghost ring:
+// their rings would share points. Sharpness set coarser than l that changes V0's rule
 // suspends the interpolation (ghostRuleOf) instead; Document::
 // setInterpolation refuses to start one on such a vertex.
 #pragma once

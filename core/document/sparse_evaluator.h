@@ -1,5 +1,6 @@
 // The document's working state: a sparse forest of triangle quadtrees, one
-// per base face (seed 000 §4.1), evaluated incrementally (§4.2, Fig. 7).
+// per base face (Pulli & Lounsbery, "Hierarchical Editing and Rendering of
+// Subdivision Surfaces" §4.1), evaluated incrementally (§4.2, Fig. 7).
 //
 // Which faces exist: every level up to `uniformLevel` is whole; below it a
 // face is a quadtree node only where it is demanded -- an edit addresses an

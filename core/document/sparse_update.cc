@@ -1,4 +1,5 @@
-// Incremental update of the sparse hierarchy (seed 000 §4.2, Fig. 7): an
+// Incremental update of the sparse hierarchy (Pulli & Lounsbery, "Hierarchical
+// Editing and Rendering of Subdivision Surfaces" §4.2, Fig. 7): an
 // edit at level l changes the points (or rules) of a few level-l vertices;
 // level by level, only the children whose stencils read a changed vertex
 // are recomputed, plus offset vertices whose frame reads one of them;

@@ -1,5 +1,6 @@
 // Canonical, stable identifiers for every vertex, edge and face of every
-// subdivision level (hierarchical editing issue, §2 "Stable identifiers").
+// subdivision level (docs/PROTOCOL.md §3.1, docs/DOCUMENT_FORMAT.md "Ids and
+// frames").
 //
 // An id is (level, index) where index is the element's number in the
 // *uniform* refinement of the base mesh (see core/loop/refinement.h):

@@ -1,4 +1,5 @@
-// One level of the sparse hierarchy (seed 000 §4.1): the faces of a uniform
+// One level of the sparse hierarchy (Pulli & Lounsbery, "Hierarchical Editing
+// and Rendering of Subdivision Surfaces" §4.1): the faces of a uniform
 // level that the forest of quadtrees actually holds, with local indices so
 // that the Loop stencils, limit masks and frames of core/loop run on it
 // unchanged, and each element's canonical id (hierarchy/ids.h) alongside.

@@ -1,5 +1,6 @@
 // FileWriter: streams an export to its file through a 1 MiB buffer, so a
-// 135 MB OBJ is never held in memory whole (issue 15 §2: the OBJ writer built
+// 135 MB OBJ is never held in memory whole (docs/PERFORMANCE.md "File in to
+// file out": the OBJ writer built
 // the file in one string, 2.3 times the memory of the tool it was measured
 // against). Numbers are formatted with std::to_chars: doubles as the shortest
 // text that reads back to the same value. Internal to core/io.

@@ -1,6 +1,6 @@
 // PNG images in memory (8-bit RGBA, rows top to bottom), read and written
 // with Debian's libstb (stb_image, stb_image_write). For the image morph
-// (seed 004 §5, core/morph/image_morph.h).
+// (core/morph/image_morph.h, docs/INTERPOLATION.md).
 #pragma once
 
 #include <cstdint>

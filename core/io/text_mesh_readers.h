@@ -2,7 +2,7 @@
 // binary), straight into a PolygonSoup. Internal to core/io; mesh_import.cc
 // chooses the reader.
 //
-// Why not OpenMesh's readers (used until issue 15): they parse coordinates as
+// Why not OpenMesh's readers (used earlier): they parse coordinates as
 // 32-bit float, so a mesh far from its origin lost its shape (a fan of radius
 // 0.05 around (1000, 1000, 1000) moved by 3e-5, its limit normals 3.6e-4 rad);
 // and they are lenient in ways that would hide bad input (dropping vertices

@@ -1,6 +1,7 @@
 // Pure sharpness rules: how sharpness decays per level and which vertex rule
 // applies. Semantics of OpenSubdiv 3.5's Sdc::Crease; the vertex rules by
-// number of sharp edges are those of Hoppe et al. '94 (seed 000 §2.4):
+// number of sharp edges are those of Hoppe et al. '94 (Pulli & Lounsbery,
+// "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.4):
 // 0 smooth, 1 dart, 2 crease, 3+ corner; a sharp vertex is a corner (or a cusp
 // when no sharp edge meets it -- the corner mask serves both).
 #pragma once

@@ -3,13 +3,14 @@
 //
 // Each Loop step on a lone ring (local_ring.h) is linear in the ring's points,
 // and its weights depend only on the ring's sharpness: the vertex and edge
-// rules, the decay and the fractional blending of seed 000 §2.4 (Sdc's
+// rules, the decay and the fractional blending of Pulli & Lounsbery,
+// "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.4 (Sdc's
 // semantics). So the k steps until every sharpness is 0 or infinite compose
 // into one (n+1) x (n+1) matrix per sharpness configuration. Real documents
 // repeat few configurations (a feature line tagged 2.5 gives the same rings
 // all along it), so the matrix is computed once per configuration and each
-// vertex costs one product instead of 1 to 10 ring refinements (issue 15 §1:
-// exact limits no slower than OpenSubdiv's Limit()).
+// vertex costs one product instead of 1 to 10 ring refinements (docs/LIMITS.md
+// "Speed": exact limits no slower than OpenSubdiv's Limit()).
 #pragma once
 
 #include <span>

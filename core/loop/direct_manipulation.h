@@ -1,4 +1,5 @@
-// Direct manipulation (seed 000 §2.2): the user drags a vertex's *limit*
+// Direct manipulation (Pulli & Lounsbery, "Hierarchical Editing and Rendering
+// of Subdivision Surfaces" §2.2): the user drags a vertex's *limit*
 // position; the control point that puts the limit there follows from the
 // limit mask, an affine combination  L(v) = w_v p_v + sum_i w_i p_i,  solved
 // for p_v with the neighbours fixed:  p_v' = p_v + (target - L(v)) / w_v.

@@ -7,7 +7,7 @@
 // give the exact masks (limit_masks.h). So darts, crease sectors of any
 // size, corner sectors and semi-sharp features at any level get the true
 // limit, where OpenSubdiv's PrimvarRefiner::Limit() applies the masks of the
-// current rules (and limit.cc did the same before issue 15).
+// current rules (and limit.cc once did the same).
 #pragma once
 
 #include <span>

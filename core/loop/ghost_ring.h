@@ -1,9 +1,10 @@
-// Locally interpolating vertices (seed 004 §4, after Claes et al.): a vertex
+// Locally interpolating vertices ("Interactively Morphing Irregularly Shaped
+// Images Employing Subdivision Techniques" §4, after Claes et al.): a vertex
 // V0 of level l whose ring at level l+1 is a "ghost ring" centred on it, so
 // that the unchanged Loop rules keep it in place at every later level and
 // its limit position is V0 itself.
 //
-// The seed inserts ghost points Q_i on the edges V0-V_i of the control mesh
+// The paper inserts ghost points Q_i on the edges V0-V_i of the control mesh
 // so that V0 is their centroid (eq. 3); a Loop step then keeps V0 (eq. 4) and
 // the new edge points keep the centroid (eq. 5), at any valence. Tessera
 // places the ghosts where the next level already has a vertex on each edge
@@ -16,12 +17,12 @@
 //   interior V0:  G_i = V0 + (P_i - mean(P)) / tension,
 //
 // where P_i are the plain Loop edge points around V0. Scaling the ghost
-// configuration about V0 keeps eq. 3 (the seed's tension); tension 1 keeps
+// configuration about V0 keeps eq. 3 (the paper's tension); tension 1 keeps
 // the plain ring's shape, moved so that V0 is its centroid; a larger tension
 // pulls the ring in and the surface tightens around V0.
 //
 // A boundary vertex, or a vertex on an infinitely sharp crease, follows the
-// seed's border construction: the crease rules read only the two crease
+// paper's border construction: the crease rules read only the two crease
 // neighbours, so the two crease edge points become ghosts on each side of
 // V0 at the same distance on the tangent line,
 //

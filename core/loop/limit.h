@@ -3,7 +3,7 @@
 // (Loop '87); every other rule -- darts, creases, corners, cusps, and
 // semi-sharp features that have not decayed at this level -- goes through
 // the eigenstructure of its ring's subdivision matrix, after refining the
-// ring until its rules stop changing (exact_limit.h, issue 15 §1). Normals
+// ring until its rules stop changing (exact_limit.h, docs/LIMITS.md). Normals
 // are tangent1 x tangent2; a crease or corner has one per sector between
 // sharp edges.
 //

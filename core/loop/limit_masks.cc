@@ -339,7 +339,7 @@ std::shared_ptr<const StationaryMasks> stationaryMasks(const StationaryRing& rin
   std::unique_lock lock(mutex);
   if (cache.size() >= kStationaryMasksCacheEntries && !cache.contains(key)) {
     // Full: documents keep sending new configurations. Answer without
-    // keeping it, so memory stays bounded (issue 13: no growth without bound).
+    // keeping it, so memory stays bounded.
     if (cached != nullptr) *cached = false;
     return masks;
   }

@@ -9,7 +9,8 @@
 // boundary. A per-thread cache keyed by exactly those values lets
 // computeLimit evaluate a crease, corner, dart or semi-sharp vertex with
 // one lookup and three dot products, as OpenSubdiv's Limit() does with its
-// approximate masks (issue 15 §1: exact limits no slower than Limit()).
+// approximate masks (docs/LIMITS.md "Speed": exact limits no slower than
+// Limit()).
 #pragma once
 
 #include <array>

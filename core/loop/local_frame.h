@@ -1,4 +1,5 @@
-// Local frames for detail offsets (seed 000 §2.3, §4.3).
+// Local frames for detail offsets (Pulli & Lounsbery, "Hierarchical Editing
+// and Rendering of Subdivision Surfaces" §2.3, §4.3).
 //
 // Fine-level edits are stored as offsets in a frame that follows the surface,
 // so detail moves along when coarser levels change. The paper builds the

@@ -2,7 +2,8 @@
 //
 // Loop's rules are local: the next level's centre and ring points depend
 // only on this level's centre, ring and ring-edge sharpness (the vertex rule
-// and the edge rule, seed 000 §2.4). So the limit at a vertex can be found
+// and the edge rule, Pulli & Lounsbery, "Hierarchical Editing and Rendering
+// of Subdivision Surfaces" §2.4). So the limit at a vertex can be found
 // from its ring alone by repeating one step, without refining the mesh. The
 // step here applies the same rules, with the same sharpness decay and the
 // same blending of fractional sharpness, as interpolate.cc and

@@ -1,5 +1,6 @@
 // The base mesh of a document: an OpenMesh TriMesh with per-edge and
-// per-vertex sharpness properties (seed 000 §2.4: creases, corners, darts,
+// per-vertex sharpness properties (Pulli & Lounsbery, "Hierarchical Editing
+// and Rendering of Subdivision Surfaces" §2.4: creases, corners, darts,
 // cusps are all expressed through these two properties).
 //
 // A BaseMesh is always valid: a closed or bordered 2-manifold of

@@ -7,7 +7,8 @@
 // cube's edge. It is measured between the file's polygons (Newell normals),
 // so the diagonals that triangulating a polygon adds are never creased, and
 // boundary edges (sharp already by the boundary rule) are left alone. The
-// vertex rules follow from the sharp edges as for any tags (seed 000 §2.4,
+// vertex rules follow from the sharp edges as for any tags (Pulli & Lounsbery,
+// "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.4,
 // OpenSubdiv's Sdc): an end of one sharp edge is a dart, a vertex on two a
 // crease vertex, on three or more a corner.
 #pragma once

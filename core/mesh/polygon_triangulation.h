@@ -10,7 +10,7 @@
 // corners (no Steiner points), so a concave polygon gets no flipped or
 // overlapping triangle, and among the triangulations of a non-planar polygon
 // it picks the best-shaped one (largest smallest angle) as seen along the
-// normal. A fan from one corner, Tessera's method before issue 15, does
+// normal. A fan from one corner, Tessera's earlier method, does
 // neither.
 //
 // Refused, with the reason naming the polygon's vertices: a polygon with no

@@ -4,7 +4,8 @@
 // authored for one tool is the same surface in the other:
 //   0            smooth
 //   (0, 10)      semi-sharp: sharp for `s` levels, blended for a fraction
-//                (DeRose, Kass & Truong '98; seed 003)
+//                (DeRose, Kass & Truong '98, "Subdivision Surfaces in
+//                Character Animation")
 //   >= 10        infinitely sharp (a crease, or a corner for vertices)
 #pragma once
 

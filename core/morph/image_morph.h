@@ -1,4 +1,5 @@
-// The seed's system (seed 004 §3, §5): morphing two images through a morph of
+// The system of "Interactively Morphing Irregularly Shaped Images Employing
+// Subdivision Techniques" (§3, §5): morphing two images through a morph of
 // 2D meshes in pixel coordinates (x right, y down, pixel (i, j) covering
 // [i, i+1] x [j, j+1]).
 //
@@ -11,7 +12,7 @@
 // backgrounds at that pixel, cross-dissolved the same way. At t = 0 the warp
 // is the identity on A, at t = 1 on B.
 //
-// A surface whose triangles fold over (the seed's named failure: a
+// A surface whose triangles fold over (the paper's named failure: a
 // triangle's orientation flips between key 0 and t) is no warp; frames that
 // would show one are refused with the count and the first triangle.
 #pragma once

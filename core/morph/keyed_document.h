@@ -1,10 +1,13 @@
-// A service document with morph keys (issue 16 §4): key 0 always, key 1
+// A service document with morph keys (docs/INTERPOLATION.md "Morph
+// documents in the service"): key 0 always, key 1
 // once a second key of the same connectivity was added. Editors edit either
 // key; viewers see the document at a time t in [0, 1], built by Morph::at
-// (seed 004 §5: the control meshes are interpolated, then subdivided).
+// (docs/INTERPOLATION.md "Morphing": the control meshes are interpolated,
+// then subdivided).
 //
 // A 2D morph document carries the two images the keys' meshes are drawn
-// over (seed 004 §5's image morph), as opaque PNG bytes: the core never
+// over (as in the image morph, core/morph/image_morph.h), as opaque PNG
+// bytes: the core never
 // decodes them here, the viewers do.
 //
 //   KeyedDocument doc(std::move(key0));
@@ -60,7 +63,8 @@ class KeyedDocument {
 
   // Adds key 1: key 0's base triangles and tags on these base points, with
   // key 0's edits as they are now (their offsets are in local frames, so
-  // they follow the new points; seed 000 §2.3), and the morph's images.
+  // they follow the new points; core/loop/local_frame.h), and the morph's
+  // images.
   // Refused if the document already has two keys, if the point count
   // differs, or if a point is not finite (each error names the vertex).
   Status addKey(std::vector<Vec3> points, MorphImages images = {});

@@ -1,6 +1,7 @@
-// Morphing between keys of one connectivity (seed 004 §5).
+// Morphing between keys of one connectivity ("Interactively Morphing
+// Irregularly Shaped Images Employing Subdivision Techniques" §5).
 //
-// The seed interpolates the two rough control meshes S_R0 and S_R1 into
+// The paper interpolates the two rough control meshes S_R0 and S_R1 into
 // S_Rt and subdivides that, with the interpolated tension of the
 // interpolating vertices; Kochanek-Bartels paths through the control points
 // are its optional trajectory editing. Here a key is a whole Document of the
@@ -12,7 +13,7 @@
 //   base tags      each crease and corner sharpness piecewise linear in t
 //                  (absent in a key: 0, smooth);
 //   finer edits    each vertex's summed detail offset (in its local frame, so
-//                  it follows the morphing coarse mesh, seed 000 §2.3)
+//                  it follows the morphing coarse mesh, core/loop/local_frame.h)
 //                  piecewise linear, absent = 0; finer sharpness tags and
 //                  interpolating vertices must be on the same elements in
 //                  every key, their values (sharpness, tension, tangent)

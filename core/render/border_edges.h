@@ -1,8 +1,8 @@
 // The normals each region has along its border edges (edges with one
 // triangle in the region), so that a region refined on its own can see
-// across a crease that a region border separates it from (seed 002
-// adapted; dynamic_refinement.h). Edges are keyed by the bits of their end
-// positions, which decode identically in both regions.
+// across a crease that a region border separates it from (Kähler,
+// Haber & Seidel's refinement adapted; dynamic_refinement.h). Edges are
+// keyed by the bits of their end positions, which decode identically in both regions.
 //
 // A flat open-addressing table: a frame records and looks up every border
 // edge of thousands of small regions, and a node per edge cost more than

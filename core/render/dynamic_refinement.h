@@ -1,9 +1,10 @@
-// Dynamic refinement for rendering (seed 002, issue 6 §2 "client-side
-// refinement"): a viewer that subscribed to a coarse LOD splits each edge
+// Dynamic refinement for rendering (Kähler, Haber & Seidel, "Dynamic
+// Refinement of Deformable Triangle Meshes for Rendering"; docs/VIEWER.md
+// "Client-side refinement"): a viewer that subscribed to a coarse LOD splits each edge
 // 0, 1 or 2 times where the limit normals at its ends bend apart, places the
 // new points on a smooth curve through the ends (edge_split.h), and
 // re-triangulates every triangle by table lookup (split_table.h). Nothing
-// is kept between frames (seed §3): each frame refines what it received.
+// is kept between frames (the paper's §3): each frame refines what it received.
 //
 // Input:  one triangle mesh -- positions, unit normals (one per position),
 //         counter-clockwise triangles -- such as a decoded RegionMesh, and

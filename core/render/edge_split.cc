@@ -18,8 +18,9 @@ bool sideLess(const EdgeSide& a, const EdgeSide& b) {
   return bitsLess(a.n1, b.n1);
 }
 
-// The curve's tangent at one end, scaled to the chord e (seed §4.2 adapted,
-// see splitEdge). One normal: the chord projected into the tangent plane.
+// The curve's tangent at one end, scaled to the chord e (Kähler, Haber &
+// Seidel, "Dynamic Refinement of Deformable Triangle Meshes for Rendering"
+// §4.2 adapted, see splitEdge). One normal: the chord projected into the tangent plane.
 // Two normals (a crease): the crease runs along both sectors' tangent
 // planes, so along their intersection a x b; the chord projected onto it.
 Vec3 endTangent(const Vec3& e, const Vec3& a, const Vec3& b) {
@@ -36,7 +37,7 @@ Vec3 endTangent(const Vec3& e, const Vec3& a, const Vec3& b) {
   return e - (e | a) * a;
 }
 
-// Seed §4.4: a new point's normal is interpolated along the edge from its
+// The paper's §4.4: a new point's normal is interpolated along the edge from its
 // neighbours there (original vertices or earlier split points), normalised.
 Vec3 between(const Vec3& a, const Vec3& b) {
   const Vec3 s = a + b;
@@ -63,7 +64,7 @@ bool bitsEqual(const Vec3& a, const Vec3& b) {
   return !bitsLess(a, b) && !bitsLess(b, a);
 }
 
-// Seed §4.2 computes a first-level point with Loop's edge mask, 3/8 of each
+// The paper's §4.2 computes a first-level point with Loop's edge mask, 3/8 of each
 // end plus 1/8 of each opposite vertex, and a second-level point with the
 // same mask on the half edge, reading the first-level points of the other
 // edges (or their midpoints). Across a region border each side holds only
@@ -72,12 +73,12 @@ bool bitsEqual(const Vec3& a, const Vec3& b) {
 // term, (c + d)/8 - (a + b)/8; here the curvature comes from what both
 // sides hold instead, the limit normals at the ends: the cubic through the
 // ends whose tangents are the chord projected into each end's tangent plane
-// (seed §4.4's "new degrees of freedom", placed as Vlachos' PN triangles
+// (the paper's §4.4 "new degrees of freedom", placed as Vlachos' PN triangles
 // place their edge control points). Its midpoint is the chord midpoint plus
 // (T0 - T1) / 8, a Loop-like correction that is exact to second order on a
 // circle. The second-level points are the same rule on the half curves,
 // that is the cubic at 1/4 and 3/4. The original vertices are not moved
-// (the seed smooths them for the first level only): here they are limit
+// (the paper smooths them for the first level only): here they are limit
 // points already, and their rings straddle regions.
 EdgeSplit splitEdge(const Vec3& p0In, const Vec3& p1In, const EdgeSide& sideIn,
                     const std::optional<EdgeSide>& otherIn, const SplitCriterion& criterion) {
@@ -94,7 +95,7 @@ EdgeSplit splitEdge(const Vec3& p0In, const Vec3& p1In, const EdgeSide& sideIn,
   if (swapSides) std::swap(a, b);
 
   EdgeSplit out;
-  // Seed §4.1 on both sides; the smaller dot product decides for both.
+  // The paper's §4.1 on both sides; the smaller dot product decides for both.
   const double dotProduct = std::min(a.n0 | a.n1, b.n0 | b.n1);
   out.splits = dotProduct < criterion.splitTwiceBelow ? 2 : dotProduct < criterion.splitOnceBelow ? 1 : 0;
   out.splits = std::clamp(out.splits, 0, std::max(criterion.maxSplits, 0));

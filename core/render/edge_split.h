@@ -1,5 +1,6 @@
-// One edge of dynamic refinement (seed 002 §4.1-§4.2): how many times it
-// is split, and where its new points go.
+// One edge of dynamic refinement (Kähler, Haber & Seidel, "Dynamic
+// Refinement of Deformable Triangle Meshes for Rendering" §4.1-§4.2): how
+// many times it is split, and where its new points go.
 //
 // Crack-freedom: the two triangles on an edge must agree on both, even when
 // they sit in separately streamed regions. So everything here is a pure
@@ -27,7 +28,7 @@ struct EdgeSide {
   Vec3 n0, n1;
 };
 
-// The split criterion of seed §4.1 with fixed thresholds: the seed compares
+// The split criterion of the paper's §4.1 with fixed thresholds: the paper compares
 // the endpoint normals' dot product with its value on the undeformed mesh;
 // a streamed LOD has no undeformed state, and the bending it leaves is what
 // refinement should remove, so the thresholds are absolute.

@@ -48,7 +48,8 @@ constexpr Polygon boundary(int s0, int s1, int s2) {
 
 constexpr double kNoTriangulation = 1e300;
 
-// Which triangulation of the boundary polygon: the seed leaves it open. No
+// Which triangulation of the boundary polygon: the paper (split_table.h)
+// leaves it open. No
 // point lies inside, so the surface between the edges is spanned by
 // diagonals, and a short diagonal strays less from a curved surface than a
 // long one; so each entry is the triangulation with the least sum of
@@ -104,7 +105,7 @@ constexpr std::array<SplitPattern, kSplitTableSize> buildTable() {
   return table;
 }
 
-// Built by the compiler: the table is data in the binary, as in the seed.
+// Built by the compiler: the table is data in the binary, as in the paper.
 constexpr std::array<SplitPattern, kSplitTableSize> kTable = buildTable();
 
 constexpr bool countsAreRight() {

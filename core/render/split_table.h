@@ -1,13 +1,15 @@
-// The split table of dynamic refinement (seed 002 §4.3, Figures 5 and 6):
+// The split table of dynamic refinement (Kähler, Haber & Seidel, "Dynamic
+// Refinement of Deformable Triangle Meshes for Rendering" §4.3, Figures 5
+// and 6):
 // one triangulation of a triangle for each of the 27 ways its three edges
 // can be split 0, 1 or 2 times, indexed s0 + 3 s1 + 9 s2.
 //
 // An edge split once gains its midpoint; split twice ("into four parts",
-// seed §4) it gains the points at 1/4, 1/2 and 3/4. No point is added inside
-// the triangle (seed §4), so an entry triangulates the polygon of the corners
+// the paper's §4) it gains the points at 1/4, 1/2 and 3/4. No point is added inside
+// the triangle (§4), so an entry triangulates the polygon of the corners
 // and the split points: 3 + n points, n + 1 triangles, at most ten.
 //
-// Points are named by slot, the seed's Figure 6 numbering made fixed-size so
+// Points are named by slot, the paper's Figure 6 numbering made fixed-size so
 // that every entry uses the same names:
 //   0, 1, 2            the corners;
 //   3 + 3k + (q - 1)   the point q/4 of the way along edge k (q = 1, 2, 3),

@@ -1,5 +1,6 @@
 // How far one triangle mesh is from another: the geometric difference that
-// client-side refinement trades against bytes (issue 6 §2), measured by the
+// client-side refinement trades against bytes (docs/VIEWER.md "Client-side
+// refinement"), measured by the
 // refinement tests and bench/refinement_bench.cc.
 //
 // Input:  an approximation and a reference (positions and triangles).

@@ -1,5 +1,7 @@
-// The modified Butterfly scheme's weights (Dyn, Levin & Gregory '90; Zorin,
-// Schroeder & Sweldens '96; seeds 001 and 003): an interpolating scheme, so
+// The modified Butterfly scheme's weights (Dyn, Levin & Gregory '90, "A
+// Butterfly Subdivision Scheme for Surface Interpolation with Tension
+// Control"; Zorin, Schroeder & Sweldens '96, "Interpolating Subdivision for
+// Meshes with Arbitrary Topology"): an interpolating scheme, so
 // old vertices stay and only edge points are computed. Pure functions.
 #pragma once
 

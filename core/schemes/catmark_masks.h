@@ -1,6 +1,7 @@
-// Catmull-Clark's subdivision and limit weights (Catmull & Clark '78; seed
-// 001 "Catmull-Clark"), with the crease masks of DeRose, Kass & Truong '98
-// and the limit and tangent masks of OpenSubdiv 3.5's sdc/catmarkScheme.h
+// Catmull-Clark's subdivision and limit weights (Catmull & Clark '78,
+// "Recursively Generated B-spline Surfaces on Arbitrary Topological Meshes"),
+// with the crease masks of DeRose, Kass & Truong '98 and the limit and
+// tangent masks of OpenSubdiv 3.5's sdc/catmarkScheme.h
 // (Halstead et al. '93 for the smooth limit, Biermann et al. '00 for the
 // tangent across a crease). Pure functions of valence: no mesh, no storage.
 #pragma once

@@ -1,4 +1,5 @@
-// Doo-Sabin's weights (Doo & Sabin '78; seeds 001 and 003): the dual,
+// Doo-Sabin's weights (Doo & Sabin '78, "Behaviour of Recursive Division
+// Surfaces near Extraordinary Points"): the dual,
 // biquadratic scheme. Each face of n corners yields a new point per corner,
 // a fixed mix of that face's corners. Pure functions.
 #pragma once

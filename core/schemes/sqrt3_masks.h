@@ -1,4 +1,4 @@
-// Kobbelt's sqrt(3) subdivision weights (Kobbelt 2000; seed 001 "sqrt(3)"):
+// Kobbelt's sqrt(3) subdivision weights (Kobbelt 2000, "sqrt(3)-Subdivision"):
 // a new point at each triangle's centroid, old vertices relaxed, old edges
 // flipped, so two steps triple the resolution in each direction. Pure.
 #pragma once

@@ -1,4 +1,5 @@
-// Which quadtree nodes a LOD profile shows (seed 000 §3.1): a cut through the
+// Which quadtree nodes a LOD profile shows (Pulli & Lounsbery, "Hierarchical
+// Editing and Rendering of Subdivision Surfaces" §3.1): a cut through the
 // document's hierarchy. A node is split -- replaced by its four children --
 // when
 //   * its level is below the profile's base level;

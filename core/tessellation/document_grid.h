@@ -1,4 +1,5 @@
-// The one quantization grid of a document (tessellation issue §4): every
+// The one quantization grid of a document (docs/REGION_ENCODING.md "One grid
+// per document, bit-identical borders"): every
 // region of every LOD profile is encoded on it, so border vertices decode
 // identically on both sides. It spans the base mesh's box grown to five
 // times its largest extent, so edits have room, with the bits that keep the

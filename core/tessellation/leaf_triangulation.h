@@ -1,4 +1,5 @@
-// Crack-free triangles for one leaf of a cut (seed 000 §3.2.2). A leaf
+// Crack-free triangles for one leaf of a cut (Pulli & Lounsbery,
+// "Hierarchical Editing and Rendering of Subdivision Surfaces" §3.2.2). A leaf
 // next to finer neighbours collects, recursively, the finer vertices on its
 // edges; it is then covered by a fan from the opposite corner when one edge
 // has such vertices. When two or three do, it is first split at those

@@ -1,4 +1,5 @@
-// A viewer's level-of-detail profile (seed 000 §3.1): how finely the
+// A viewer's level-of-detail profile (Pulli & Lounsbery, "Hierarchical
+// Editing and Rendering of Subdivision Surfaces" §3.1): how finely the
 // adaptive tessellation follows the hierarchy. Each subscriber chooses its
 // own; the profile is part of the API and of every encoded region.
 #pragma once

@@ -1,6 +1,6 @@
 // Region codec: one region of a document's displayed surface to and from the
-// self-describing bytes streamed to viewers after an edit (issue 4, §4
-// "Draco deltas").
+// self-describing bytes streamed to viewers after an edit
+// (docs/REGION_ENCODING.md).
 //
 // Input:  a RegionHeader (region id, document version, LOD profile and the
 //         document's quantization grid) and a RegionMesh: positions inside the
@@ -52,7 +52,7 @@
 // region uses the same lattice (an explicit origin and range, not each
 // region's own bounding box) a vertex shared by two regions lands on the same
 // lattice point in both and decodes to bit-identical floats, so the union of
-// separately decoded regions has no cracks (issue 4, §4).
+// separately decoded regions has no cracks (docs/REGION_ENCODING.md).
 //
 // Errors name the region, the element and the reason: invalidArgument for a
 // bad header, grid or compression level, invalidMesh for a mesh that breaks
@@ -124,7 +124,7 @@ struct QuantizationGrid {
   }
 };
 
-inline constexpr double kDefaultMaxErrorFraction = 1e-4;  // of the bbox diagonal (issue 4, §4)
+inline constexpr double kDefaultMaxErrorFraction = 1e-4;  // of the bbox diagonal (docs/REGION_ENCODING.md)
 // Each side of the bounding box is moved out by this fraction of its
 // diagonal, so edits that move the surface a little keep it inside the grid;
 // when it leaves anyway, encodeRegion says so and the document needs a new

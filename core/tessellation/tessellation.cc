@@ -125,7 +125,7 @@ bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile) {
   // The base level is held whole, so its face count is a lower bound on the
-  // triangles: refuse before growing the hierarchy to it (issue 13 §2).
+  // triangles: refuse before growing the hierarchy to it.
   if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&
       static_cast<int64_t>(doc.counts().faces(profile.baseLevel)) > profile.triangleBudget) {
     return invalidArgument("LOD profile (" + profile.describe() + ")" + " needs at least " +

@@ -1,4 +1,5 @@
-// What one LOD profile's viewers draw (seed 000 §3): the crack-free
+// What one LOD profile's viewers draw (Pulli & Lounsbery, "Hierarchical
+// Editing and Rendering of Subdivision Surfaces" §3): the crack-free
 // triangles of an adaptive cut through the document's hierarchy, split
 // into regions that are streamed and re-sent independently.
 //

@@ -1,4 +1,4 @@
-// The cluster mode's figures (issue 17, "Measure"; docs/PERFORMANCE.md and
+// The cluster mode's figures (docs/PERFORMANCE.md and
 // docs/CLUSTER.md "Figures"), against real nats-server and tessera-server
 // processes on loopback, all on this machine's cores:
 //

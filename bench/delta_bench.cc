@@ -1,4 +1,4 @@
-// Edit to encoded region deltas (tessellation issue §5): a document whose
+// Edit to encoded region deltas (docs/PERFORMANCE.md): a document whose
 // displayed surface has more than 1M triangles, single-vertex edits at
 // levels 0-4 timed from the call until every changed region is
 // re-tessellated and Draco-encoded, against a full re-tessellation and a

@@ -1,5 +1,5 @@
 // Editing a document whose displayed surface has more than 1M triangles
-// (hierarchy issue §7): a single-vertex direct-manipulation edit at levels
+// (docs/PERFORMANCE.md "Hierarchical editing"): a single-vertex direct-manipulation edit at levels
 // 0-4, from the call to updated limit positions and normals of its dirty
 // set, against a full recomputation of the same document and OpenSubdiv's
 // uniform refine + limit of the same surface, in the same run.

@@ -1,4 +1,4 @@
-// Work isolation (issue 13 §2): a bystander's edit-to-delta latency on a
+// Work isolation (docs/PERFORMANCE.md): a bystander's edit-to-delta latency on a
 // small document of its own while another client makes the server do bulk
 // work on a large one:
 //   (a) creating a 2.6-million-triangle mesh (binary PLY, just under the

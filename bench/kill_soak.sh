@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The kill -9 soak (issue 13 §5, docs/STORE.md "Kill -9 soak"): the durability
+# The kill -9 soak (docs/STORE.md "Kill -9 soak"): the durability
 # test (tests/integration/durability_test.cc) with many cycles and editors.
 # Each cycle runs a storm of signed moves, creases and undos/redos against the
 # real tessera-server on 127.0.0.1, kills it with SIGKILL at a random moment,

@@ -74,7 +74,7 @@ void refineOpenSubdiv(benchmark::State& state) {
 
 // Limit: every vertex of the level, positions and normals. Tessera's are
 // the exact limit (darts, wide crease sectors, corners and semi-sharp
-// features included, issue 15); OpenSubdiv's Limit() applies the masks of
+// features included, docs/LIMITS.md); OpenSubdiv's Limit() applies the masks of
 // the level's rules. Tagged: 1 edge in 13 infinitely sharp, 1 in 17 with
 // sharpness 2.5, so creases, darts, corners and decaying features occur.
 template <bool kTagged>

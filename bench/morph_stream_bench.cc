@@ -1,4 +1,4 @@
-// Streaming a morph (issue 16 §4), both ways, against the real server:
+// Streaming a morph (docs/PERFORMANCE.md), both ways, against the real server:
 //   (a) region deltas at t: every viewer subscribes at t_k
 //       (LodProfile.morph_t) and receives the surface at t_k as regions; a
 //       frame is encoded once per t and shared by every viewer at that t;

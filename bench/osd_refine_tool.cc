@@ -1,4 +1,4 @@
-// The reference for `tessera refine`'s whole-process speed (issue 15 §2): a
+// The reference for `tessera refine`'s whole-process speed (docs/PERFORMANCE.md "File in to file out"): a
 // small OpenSubdiv-based tool that does what `tessera refine IN --level N -o
 // OUT` does, written plainly -- the kind of tool a user would write instead.
 // It is a benchmark helper, not product code, and links OpenSubdiv only.

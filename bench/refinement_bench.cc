@@ -1,7 +1,7 @@
-// Client-side refinement (issue 6 §2): the bytes a thin client saves by
+// Client-side refinement (docs/VIEWER.md): the bytes a thin client saves by
 // subscribing to a coarser LOD, against how far what it draws is from the
 // fine surface -- coarse as received, and coarse refined with 1 and 2
-// splits per edge (seed 002) -- and the refinement's time per frame.
+// splits per edge (core/render/dynamic_refinement.h) -- and the refinement's time per frame.
 //
 //   build/release/bench/tessera_bench_refine [--mesh PATH] [benchmark flags]
 //

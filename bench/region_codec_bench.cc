@@ -1,4 +1,4 @@
-// Region codec (issue 4, §4): encode time, encoded size and decode time of
+// Region codec: encode time, encoded size and decode time of
 // typical regions at every compression level, to choose the default for
 // latency (docs/REGION_ENCODING.md).
 //
@@ -130,7 +130,8 @@ BENCHMARK(decode)
     ->Unit(benchmark::kMicrosecond);
 
 // The decoded error over the whole surface at the default level, against
-// the grid's bound and the issue's 1e-4 of the diagonal.
+// the grid's bound and the target of 1e-4 of the diagonal
+// (kDefaultMaxErrorFraction).
 void reportQuantizationError(const Vec3& lo, const Vec3& hi) {
   const Input& in = input();
   auto encoded = encodeRegion(in.header, in.surface);

@@ -1,5 +1,5 @@
 // tessera_timed_editor: the C++ editor of the browser viewer's benchmark
-// (issue 18 §4, bench/web_viewer_bench.mjs). Sends N small offset edits to
+// (bench/web_viewer_bench.mjs). Sends N small offset edits to
 // one document at a fixed interval and prints, per acknowledged edit, its
 // version and the wall-clock time (Unix ms, system_clock) just before it
 // was sent, so that a browser on the same machine can time edit-to-pixels

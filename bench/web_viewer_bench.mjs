@@ -1,4 +1,4 @@
-// The browser viewer's figures (issue 18 §4, docs/PERFORMANCE.md "Browser
+// The browser viewer's figures (docs/PERFORMANCE.md "Browser
 // viewer"), in Debian's Chromium, headless, with SwiftShader's software WebGL
 // (no GPU here), against this build's tessera-server on loopback:
 //   1. page load to the first full picture: from navigation (a fresh browser

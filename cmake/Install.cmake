@@ -1,4 +1,4 @@
-# Install rules (issue 14 §1): `cmake --install build [--prefix /usr]` puts
+# Install rules (docs/OPERATIONS.md "Install"): `cmake --install build [--prefix /usr]` puts
 # the binaries, the systemd unit and sysusers entry, the example
 # configuration and the operator's guide in place. Components: server
 # (tessera-server and its files), cli (tessera), viewer, replay; the

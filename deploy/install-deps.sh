@@ -22,7 +22,7 @@ build_packages=(
   libcgal-dev
   # operations: HTTP health and Prometheus metrics, sd_notify
   prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev
-  # cluster mode (issue 17): the NATS C client (JetStream, key-value buckets)
+  # cluster mode (docs/CLUSTER.md): the NATS C client (JetStream, key-value buckets)
   libnats-dev
 )
 # Everything else for the whole tree, its tests and benchmarks.
@@ -42,7 +42,7 @@ packages=(
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
   # the cluster tests and deploy/cluster-loopback.sh start real NATS servers
   nats-server
-  # the browser viewer's tests drive Debian's Chromium headless (issue 18 §3)
+  # the browser viewer's tests drive Debian's Chromium headless (docs/WEB_VIEWER.md "Tests")
   chromium
 )
 if [[ ${1:-} == --build ]]; then

@@ -13,6 +13,6 @@ void addInfoCommand(CLI::App& app, Action& action);
 void addRefineCommand(CLI::App& app, Action& action);
 void addDocCommand(CLI::App& app, Action& action);     // doc new | edit | info | export
 void addRemoteCommand(CLI::App& app, Action& action);  // remote list | create | grant | edit | export | stats
-void addMorphCommand(CLI::App& app, Action& action);   // the image morph of seed 004
+void addMorphCommand(CLI::App& app, Action& action);   // the image morph (docs/INTERPOLATION.md)
 
 }  // namespace tessera::cli

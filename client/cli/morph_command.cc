@@ -1,4 +1,4 @@
-// tessera morph: the seed 004 system. Two images, two 2D meshes of one
+// tessera morph: the image morph (docs/INTERPOLATION.md). Two images, two 2D meshes of one
 // connectivity in pixel coordinates (holes allowed), tags with interpolating
 // vertices; K frames of the image morph (core/morph/image_morph.h).
 #include <cstdio>
@@ -154,7 +154,7 @@ int runMorph(const MorphArgs& args) {
     if (!doc.isOk()) return fail(kName, doc.status());
     auto mesh = planarLimitMesh(*doc, args.level);
     if (!mesh.isOk()) return fail(kName, mesh.status());
-    // The seed's named failure: drawn anyway, a folded mesh shows image
+    // The paper's named failure (core/morph/image_morph.h): drawn anyway, a folded mesh shows image
     // parts twice and others not at all.
     const Folds folds = foldsBetween(*mesh0, *mesh);
     if (folds.count > 0) {

@@ -1,4 +1,4 @@
-// tessera remote morph-key: makes a document a morph document (issue 16 §4)
+// tessera remote morph-key: makes a document a morph document (docs/PROTOCOL.md §14)
 // by sending its second key, a mesh of the same connectivity, and for a 2D
 // morph the two images its keys are drawn over (AddMorphKey).
 #include <cstdio>

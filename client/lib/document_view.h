@@ -1,4 +1,4 @@
-// A document as one subscriber sees it (issue 6 §1): the decoded regions of
+// A document as one subscriber sees it (docs/PROTOCOL.md §6): the decoded regions of
 // its LOD profile, kept current by snapshots and deltas, with version
 // continuity checked -- a delta that does not start at the current version
 // is a gap, after which the view waits for a resync snapshot.

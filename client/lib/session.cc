@@ -127,7 +127,7 @@ Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
     if (got) return message;
     // One read stays in flight across calls: a timeout leaves it pending
     // instead of cancelling it, because a cancelled read may already have
-    // completed with bytes, and dropping them corrupts the stream (issue 13 §1).
+    // completed with bytes, and dropping them corrupts the stream.
     if (!read_.pending) startRead();
     io_.restart();
     io_.run_until(deadline);

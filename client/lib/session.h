@@ -1,4 +1,4 @@
-// A client's connection to tessera-server (issue 6 §1): TCP, the version
+// A client's connection to tessera-server (docs/PROTOCOL.md): TCP, the version
 // handshake, and frames in and out through the bounds-checked decoder.
 // Blocking calls with deadlines, so the viewer, the replay client, the CLI
 // and tests drive it from their own threads.

@@ -1,5 +1,5 @@
 // The version span of a Delta, read from a ServerMessage payload without
-// parsing it (load tester, issue 6 §4): a thousand counting viewers need only
+// parsing it (load tester, docs/REPLAY.md §3): a thousand counting viewers need only
 // the document and the versions of each delta, not copies of its regions.
 #pragma once
 

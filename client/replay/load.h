@@ -1,4 +1,4 @@
-// A bounded load run (issue 6 §3): E editor connections each sending paced
+// A bounded load run (docs/REPLAY.md §3): E editor connections each sending paced
 // edits at R per second, M viewer connections each subscribed and checking
 // version continuity, all on loopback, all bounded in time and count. The
 // result is the machine-readable report of docs/REPLAY.md.

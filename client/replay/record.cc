@@ -70,7 +70,7 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
   lastMs_ = std::max(lastMs_, t);
   c.timeMs = lastMs_;
   c.actor = actorFor(a.author_session_id(), a.author_name());
-  // Scripts have no morph keys (issue 16 §4): an edit of key 1 would replay
+  // Scripts have no morph keys: an edit of key 1 would replay
   // onto key 0, so it is refused rather than recorded wrongly.
   const uint32_t key = morphKeyOf(a);
   if (key != 0) {

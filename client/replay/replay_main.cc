@@ -1,5 +1,5 @@
 // tessera-replay: scripted sessions and load runs against tessera-server
-// (issue 6 §3; the script and report formats are in docs/REPLAY.md). The
+// (the script and report formats are in docs/REPLAY.md). The
 // command line is CLI11's: subcommands with their own --help, --opt=value,
 // errors naming the option, exit 2 on usage errors.
 #include <CLI/CLI.hpp>

@@ -39,7 +39,7 @@ struct ScriptCommand {
   uint64_t edge = 0;               // kCrease, packed
   float sharpness = 0;             // kCrease, kCorner
   bool interpolating = true;       // kInterpolate: "on"
-  double tension = 1.0;            // kInterpolate (seed 004 §4)
+  double tension = 1.0;            // kInterpolate (docs/INTERPOLATION.md)
   // kUndo/kRedo: > 0 an edit id of the document; < 0 counts back through
   // the edits this actor made in this replay (-1: its latest).
   int64_t edit = 0;

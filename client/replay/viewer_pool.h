@@ -1,4 +1,4 @@
-// Counting viewers for load runs (issue 6 §3, §4), many per thread: each
+// Counting viewers for load runs (docs/REPLAY.md §3), many per thread: each
 // connects, says hello, opens the document, subscribes and then only
 // counts what arrives (bytes, version continuity, delta arrival times),
 // without decoding. A thread per connection cannot hold a thousand viewers

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Makes the image-morph sample of seed 004 (deploy/samples/morph/) and the
+# Makes the image-morph sample (docs/INTERPOLATION.md; deploy/samples/morph/) and the
 # frame strip in the README (docs/images/morph_strip.png):
 #   a.png, b.png        a striped ring (a shape with a hole) on two backgrounds,
 #                       the second moved, turned and stretched, a green dot on

@@ -1,4 +1,4 @@
-// The real `tessera` binary with the import options of issue 15 §2
+// The real `tessera` binary with the import options of docs/FORMATS.md
 // (--drop-unused, --crease-angle, polygons) and every output format read
 // back (OBJ, OFF, PLY, STL, GLB).
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// `tessera morph` (seed 004 §3) on the procedural sample (support/morph_sample.h):
+// `tessera morph` (docs/INTERPOLATION.md) on the procedural sample (support/morph_sample.h):
 // the real binary writes the frames; the tests read the PNGs back and check
 // them against what the frames must show.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The command line as issue 14 asks for it: --version, --opt=value,
+// The command line's conventions: --version, --opt=value,
 // per-subcommand help, an output that would overwrite the input refused,
 // numbers for people, and Draco-compressed GLB input.
 #include <gtest/gtest.h>

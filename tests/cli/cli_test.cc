@@ -177,9 +177,9 @@ Vec3 objVertex(const std::string& path, size_t index) {
   return Vec3(0, 0, 0);
 }
 
-// Seed 004 §4 from the command line: after `interpolate`, the limit surface
-// (exported at level 4, vertex order following the numbering) passes through
-// the vertex's level-1 control point (the level-1 control export).
+// Interpolating vertices (docs/INTERPOLATION.md) from the command line: after
+// `interpolate`, the limit surface (exported at level 4, vertex order following
+// the numbering) passes through the vertex's level-1 control point (the level-1 control export).
 TEST(CliDoc, InterpolateMakesTheLimitPassThroughTheControlPoint) {
   const std::string dir = testing::makeTempDir("tessera-doc-interp");
   const std::string doc = dir + "/cube.tsd";

@@ -1,4 +1,4 @@
-// Bad input on the cluster's subjects (issue 17, tests): whatever another
+// Bad input on the cluster's subjects (docs/CLUSTER.md "Tests"): whatever another
 // NATS client publishes on a node's subjects, the node logs it, drops it and
 // goes on serving; garbage on a document's journal subject makes that
 // document refuse edits by name, never a crash.

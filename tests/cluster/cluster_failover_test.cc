@@ -1,4 +1,4 @@
-// Failover (issue 17 §4): the owning node is killed (kill -9) or paused past
+// Failover (docs/CLUSTER.md "Failover"): the owning node is killed (kill -9) or paused past
 // its lease during an edit storm. A surviving node takes the document over
 // from JetStream within a bounded time, every acknowledged edit is in the
 // journal exactly once, an old owner that wakes up cannot append, and every

@@ -1,4 +1,4 @@
-// NATS loses quorum (issue 17 §5): two of the three NATS servers die. Edits
+// NATS loses quorum (docs/CLUSTER.md "When NATS loses quorum"): two of the three NATS servers die. Edits
 // are refused with an error that says what is wrong, within a bounded
 // time; viewers stay connected with what they have; once the servers are
 // back, the document is loaded again from JetStream and edits go on.

@@ -1,5 +1,5 @@
-// Real tessera-server nodes on a real 3-server NATS JetStream cluster (issue
-// 17): any node serves any client, the owner's journal in JetStream is the
+// Real tessera-server nodes on a real 3-server NATS JetStream cluster
+// (docs/CLUSTER.md): any node serves any client, the owner's journal in JetStream is the
 // truth, and every viewer on every node converges to the surface that
 // journal replays to.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Dynamic refinement (seed 002, issue 6 §2): edge decisions and points are
+// Dynamic refinement (core/render/dynamic_refinement.h): edge decisions and points are
 // bit-identical from either end and either side; regions of a real
 // tessellation refined separately fit together watertight; and a refined
 // coarse LOD is closer to the limit surface than the coarse LOD itself.

@@ -1,4 +1,4 @@
-// Locally interpolating vertices (seed 004 §4, core/loop/ghost_ring.h),
+// Locally interpolating vertices (docs/INTERPOLATION.md, core/loop/ghost_ring.h),
 // checked against their definition: the limit surface passes through the
 // vertex's control point at every level and after edits around it, it is
 // the plain Loop surface outside the vertex's 2-ring, the tension tightens

@@ -1,4 +1,4 @@
-// A morph document's keys (issue 16 §4, core/morph/keyed_document.h) and
+// A morph document's keys (docs/INTERPOLATION.md, core/morph/keyed_document.h) and
 // their file (keyed_document_file.h): key 1 starts with key 0's edits on its
 // own points, the document at t is the morph of the two keys, a document of
 // one key is saved exactly as a plain document file, and a morph container
@@ -39,7 +39,7 @@ TEST(KeyedDocument, TheSecondKeyStartsWithTheFirstKeysEditsOnItsOwnPoints) {
   const Document& key1 = k.doc.key(1);
   EXPECT_EQ(key1.basePoints(), k.points1);
   ASSERT_EQ(key1.edits().size(), 1u);
-  // The same offsets, in local frames (seed 000 §2.3): the edit itself is
+  // The same offsets, in local frames (core/loop/local_frame.h): the edit itself is
   // copied, not its world displacement.
   EXPECT_EQ(std::get<MoveEdit>(key1.edits()[0].change).offsets[0].localOffset,
             std::get<MoveEdit>(k.doc.key0().edits()[0].change).offsets[0].localOffset);

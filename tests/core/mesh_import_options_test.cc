@@ -1,4 +1,4 @@
-// Import as users have it (issue 15 §2): every reader keeps the file's
+// Import as users have it (docs/FORMATS.md): every reader keeps the file's
 // precision; --drop-unused renumbers vertices and tags; --crease-angle
 // creases the edges its definition names, and the vertex rules follow;
 // Tessera reads its own Draco exports back.

@@ -1,4 +1,4 @@
-// Morphing between keys of one connectivity (seed 004 §5, core/morph/morph.h),
+// Morphing between keys of one connectivity (docs/INTERPOLATION.md, core/morph/morph.h),
 // checked against definitions: each key's own surface at its time, an
 // interpolating vertex on its interpolated path at every time, a surface
 // continuous in t, Kochanek-Bartels paths against the Catmull-Rom formula,

@@ -1,4 +1,4 @@
-// Regression for fuzz_import_off's out-of-memory (issue 13 §4): an OFF face
+// Regression for fuzz_import_off's out-of-memory (docs/FUZZING.md): an OFF face
 // with a 40-digit "colour" made OpenMesh's reader allocate vertex handles
 // without bound (1.6 GB in one vector) for the face after it. OFF no longer
 // goes through OpenMesh (text_mesh_readers.h); the input must still end

@@ -1,4 +1,4 @@
-// Region codec (issue 4, §4 "Draco deltas"): round trips, bit-identical
+// Region codec (docs/REGION_ENCODING.md): round trips, bit-identical
 // borders between separately encoded regions, the quantization bound, and
 // rejection of truncated, corrupted and foreign bytes.
 //

@@ -1,4 +1,4 @@
-// The sparse forest and its incremental updates (hierarchy issue §1, §4):
+// The sparse forest and its incremental updates (core/document/sparse_evaluator.h):
 // incidence arithmetic against uniform topology, agreement with the dense
 // reference evaluator to 1e-9 after every step of long random histories,
 // dirty sets that cover every changed displayed limit, recompute counts
@@ -174,7 +174,7 @@ void runRandomHistory(const PropertyCase& c, uint32_t seed) {
       made.push_back(*id);
       what = "corner " + v.toString();
     } else if (op < 76) {
-      // Seed 004 §4: an interpolating vertex (or its end); refused where its
+      // An interpolating vertex (or its end; docs/INTERPOLATION.md); refused where its
       // rule admits no ghost ring, at the deepest level, or next to finer edits.
       const VertexId v(std::min(level, maxLevel - 1), vertex % doc->counts().vertices(std::min(level, maxLevel - 1)));
       const bool on = pick(4) != 0;

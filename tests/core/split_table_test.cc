@@ -1,4 +1,4 @@
-// The 27-entry split table of dynamic refinement (seed 002 §4.3): every
+// The 27-entry split table of dynamic refinement (core/render/split_table.h): every
 // entry is a valid, counter-clockwise triangulation of the triangle with
 // its split points, with the right number of triangles and none of zero
 // area, checked on the table's reference triangle and on a scalene 3D one.

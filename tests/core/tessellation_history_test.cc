@@ -40,7 +40,7 @@ bool randomEdit(Document& doc, std::mt19937& rng) {
   auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
   const int op = static_cast<int>(pick(12));
   if (op >= 10) {
-    // Seed 004 §4: an interpolating vertex (refused where it cannot be).
+    // An interpolating vertex (refused where it cannot be).
     const int level = 1 + static_cast<int>(pick(2));
     const VertexId v(level, pick(doc.counts().vertices(level)));
     return doc.setInterpolation(v, pick(4) != 0, std::array<double, 3>{0.5, 1.0, 3.0}[pick(3)]).isOk();
@@ -293,7 +293,7 @@ TEST(TessellationHistory, MovesResolveToTheSameOffsetsAfterAReload) {
 namespace tessera {
 namespace {
 
-// Seed 004 §4 on the creased cube as the service runs it (profile 1..4, a
+// An interpolating vertex on the creased cube as the service runs it (profile 1..4, a
 // level-1 vertex lifted, made interpolating, undone and redone): the
 // tessellation kept up to date shows what a fresh one shows.
 TEST(TessellationHistory, AnInterpolatingVertexShowsTheSameRegionsWhateverTheHistory) {

@@ -1,4 +1,4 @@
-// Adaptive crack-free tessellation and regions (tessellation issue §1-§3):
+// Adaptive crack-free tessellation and regions:
 // watertight, oriented, non-degenerate tessellations whose every vertex is
 // the true limit, the quality of a single deep edit's tessellation, and
 // region change sets equal to a full diff.
@@ -166,7 +166,7 @@ TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
   }
 }
 
-// Seed 004 §4: interpolating vertices at levels 0..2 among random moves
+// Interpolating vertices (docs/INTERPOLATION.md) at levels 0..2 among random moves
 // (those next to them refused): the tessellation stays watertight and
 // oriented, and every displayed vertex is its true limit at the finest level.
 TEST(Tessellation, IsWatertightAndExactWithInterpolatingVertices) {
@@ -197,7 +197,7 @@ TEST(Tessellation, IsWatertightAndExactWithInterpolatingVertices) {
   }
 }
 
-// Issue 15 §1: the normals a viewer shades with are the exact limit
+// docs/LIMITS.md: the normals a viewer shades with are the exact limit
 // normals (exactVertexLimit, checked against Bfr in bfr_limit_test.cc), not
 // the masks of the level's rules. Darts, crease sectors of any size,
 // corners and semi-sharp features are displayed; each displayed normal

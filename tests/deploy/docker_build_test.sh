@@ -6,7 +6,8 @@
 # document over the protocol with the tessera CLI.
 #
 # Skipped (exit 77, saying why) without a docker command or without a
-# reachable engine (issue 14 §1: built wherever Docker is available), and
+# reachable engine (the image is built wherever Docker is available; docs/OPERATIONS.md
+# "Container image"), and
 # when TESSERA_DOCKER_TEST=0: building the image compiles the whole project
 # (547 s on one core on 2026-11-26), which a quick local run may not want.
 # Where no registry is reachable, the Debian base images are made first

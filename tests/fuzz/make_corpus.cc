@@ -192,7 +192,7 @@ std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
     tag->set_interpolating(true);
     tag->set_tension(2.0);
     // A morph document: key 1, a subscription at t = 0.5, an edit of key 1
-    // and the coarse stream (issue 16 §4).
+    // and the coarse stream (docs/PROTOCOL.md §14).
     const Document cube = cubeDocument(maxLevel);
     std::string obj;
     for (const Vec3& p : secondKeyPoints(cube)) {

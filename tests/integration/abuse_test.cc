@@ -1,4 +1,4 @@
-// Abuse by unauthenticated and authenticated peers (issue 13 §3), against
+// Abuse by unauthenticated and authenticated peers (docs/PROTOCOL.md §1.1, §9), against
 // the real server, each case with a bystander on another address and
 // document whose edits must keep arriving promptly (bystander.h).
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // A real server with an admin session and a Bystander (bystander.h), as the
 // abuse tests of the protocol port (abuse_test.cc) and of the web port
 // (web_port_test.cc) start it, and the bound the bystander's latency must
-// keep while peers misbehave (issue 13 §3).
+// keep while peers misbehave (docs/PROTOCOL.md §1.1 and §9).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 namespace tessera::testing {
 
 // Far above a bystander's normal few milliseconds, far below the stalls of
-// seconds the abuse caused before issue 13.
+// seconds the abuse caused before the server was hardened against it.
 inline constexpr double kBystanderMedianMs = 150, kBystanderMaxMs = 1500;
 
 // Every edit of `l` came back as a delta and was acknowledged, within the bound.

@@ -1,4 +1,4 @@
-// A bystander for abuse tests (issue 13 §3): an editor and a viewer of a
+// A bystander for abuse tests (abuse_test.cc): an editor and a viewer of a
 // small document of their own, on another loopback address, measuring how
 // long each edit takes to come back as a delta. An abuse test runs it
 // before and during the abuse: every edit must still arrive, within a

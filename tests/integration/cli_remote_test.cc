@@ -1,4 +1,4 @@
-// `tessera remote` against the real tessera-server (issue 14 §3): a refused
+// `tessera remote` against the real tessera-server: a refused
 // token or an absent server is an error; `remote edit` is one atomic
 // EditBatch (a bad line 2 leaves the document as it was, a good script lands
 // whole as one version, subscribers see it, it survives kill -9 whole);
@@ -251,7 +251,7 @@ TEST(CliRemote, CreateTakesImportOptionsAndNamesTheUsersFile) {
   EXPECT_EQ(fromDraco.exitCode, 0) << fromDraco.err;
 }
 
-// The server imports with --drop-unused and --crease-angle (issue 15 §2):
+// The server imports with --drop-unused and --crease-angle (docs/FORMATS.md):
 // tags keep the file's numbers, and the Ack says what the import changed.
 TEST(CliRemote, CreateDropsUnusedVerticesAndCreasesByAngle) {
   RemoteCli f("tessera-cli-create-options");

@@ -1,4 +1,4 @@
-// Durability (server issue §4, issue 13 §5): an edit storm from several
+// Durability (docs/STORE.md "Kill -9 soak"): an edit storm from several
 // editors -- signed moves, semi-sharp and infinite creases, undos and redos --
 // with the server killed by SIGKILL at a random moment of each cycle and
 // restarted. Every acknowledged edit must be there, and the surface must

@@ -1,4 +1,4 @@
-// Seed 004 §4 through the service: SetInterpolation on the real
+// Interpolating vertices (docs/INTERPOLATION.md) through the service: SetInterpolation on the real
 // tessera-server (127.0.0.1, real store), a viewer whose streamed surface
 // then passes through the vertex's control point, the command relayed to
 // with_commands subscribers, refusals that name the vertex, undo, and the

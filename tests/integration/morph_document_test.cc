@@ -1,4 +1,4 @@
-// Issue 16 §4 through the service: a morph document on the real
+// Morph documents (docs/PROTOCOL.md §14) through the service: a morph document on the real
 // tessera-server (127.0.0.1, real store). AddMorphKey makes the creased cube
 // a morph document; viewers subscribed at t = 0, 0.5 and 1 see the surface
 // of key 0, of the halfway control mesh and of key 1, each checked against a

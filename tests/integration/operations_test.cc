@@ -1,4 +1,4 @@
-// Operations (issue 14 §1, §2): the real tessera-server's HTTP endpoint
+// Operations (docs/OPERATIONS.md): the real tessera-server's HTTP endpoint
 // read with a real HTTP client, its JSON log file and SIGHUP reopen, JSON
 // start-up errors, `token new`, and an online backup restored into a new
 // data directory and compared with the original.

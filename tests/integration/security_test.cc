@@ -1,4 +1,4 @@
-// Access and bad input against the real server (server issue §5): an
+// Access and bad input against the real server (docs/PROTOCOL.md §1.1, §4.1): an
 // unauthenticated or under-privileged client gets typed refusals, bad
 // frames get a fatal error naming the problem, and none of it disturbs
 // another client.
@@ -62,7 +62,7 @@ TEST(ServerSecurity, RefusesWhatARoleDoesNotAllowAndBadInput) {
   EXPECT_EQ(rejected((*viewer)->call(testing::createDocument("x", cube, "", 3), 10)), wire::REJECT_REASON_PERMISSION_DENIED);
   EXPECT_EQ(rejected((*viewer)->call(testing::grant(doc, wire::ROLE_ADMIN, "stolen-token-0123456789"), 10)),
             wire::REJECT_REASON_PERMISSION_DENIED);
-  // A token no grant names fails the handshake (issue 13 §3).
+  // A token no grant names fails the handshake (docs/PROTOCOL.md §4.1).
   auto stranger = Session::connect(server->session("stranger", "unknown-token-0123456789"));
   ASSERT_FALSE(stranger.isOk());
   EXPECT_NE(stranger.status().message().find("the access token is not known to this server"), std::string::npos)
@@ -97,7 +97,7 @@ TEST(ServerSecurity, RefusesWhatARoleDoesNotAllowAndBadInput) {
   tight.mutable_subscribe()->mutable_profile()->set_triangle_budget(1000);
   auto overBudget = (*admin)->call(tight, 30);
   EXPECT_EQ(rejected(overBudget), wire::REJECT_REASON_LIMIT_EXCEEDED);
-  // Refused from the level counts before any work (issue 13 §2).
+  // Refused from the level counts before any work.
   EXPECT_NE(overBudget->reject().message().find("base level 4 alone has 3072 triangles, above the budget of 1000"),
             std::string::npos)
       << overBudget->reject().message();

@@ -1,4 +1,4 @@
-// tessera-server end to end (server issue §1-§5): the real binary on
+// tessera-server end to end (docs/PROTOCOL.md): the real binary on
 // 127.0.0.1, a real SQLite data directory, real clients.
 #include <gtest/gtest.h>
 
@@ -421,7 +421,7 @@ TEST(Server, TheCliCreatesEditsAndListsRemotely) {
 namespace tessera {
 namespace {
 
-// Issue 6 §1: a client reconnects with backoff to a server that comes back,
+// A client reconnects with backoff to a server that comes back,
 // and a view that saw a gap recovers through a fresh snapshot.
 TEST(Server, ClientsReconnectWithBackoffAndResyncAfterAGap) {
   Fixture f;

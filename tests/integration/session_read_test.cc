@@ -1,4 +1,4 @@
-// Clients never lose bytes (issue 13 §1): a receive() whose timeout fires
+// Clients never lose bytes: a receive() whose timeout fires
 // while its read completes must still hand the read's bytes to the decoder.
 // A test server on loopback sends a multi-megabyte snapshot of a real mesh
 // (fandisk's level-2 tessellation) in many small writes while the client

@@ -1,4 +1,4 @@
-// A viewer that stops reading (server issue §2): its queue stays bounded,
+// A viewer that stops reading (docs/PROTOCOL.md §5, back-pressure): its queue stays bounded,
 // merging deltas and then falling back to a resync snapshot, while a
 // viewer that keeps up sees every version in order; once the slow one reads
 // again it converges to the same surface.

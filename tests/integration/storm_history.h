@@ -1,4 +1,4 @@
-// The editing storm of the durability test and soak (issue 13 §5), and the
+// The editing storm of the durability test and soak (docs/STORE.md "Kill -9 soak"), and the
 // local replay of what the server acknowledged.
 //
 // A StormCommand is one command an editor sends: a move of a control vertex

@@ -1,4 +1,4 @@
-// Optional TLS (server issue §5): with a certificate the server speaks only
+// Optional TLS (docs/PROTOCOL.md §1): with a certificate the server speaks only
 // TLS; a client verifying it against the right certificate gets service, a
 // plain client or one trusting another certificate does not.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The web port (issue 18 §1): the viewer's files over HTTP and the protocol
-// over WebSocket, against the real tessera-server, with an independent
+// The web port (docs/WEB_VIEWER.md "Serving it", PROTOCOL.md §1.2): the viewer's
+// files over HTTP and the protocol over WebSocket, against the real tessera-server, with an independent
 // Beast client (web_client.h). Every refusal is checked for its message,
 // and a bystander on the protocol port keeps its latency throughout.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// The web port with TLS on (issue 18 §1, PROTOCOL.md §1.2): the same
+// The web port with TLS on (PROTOCOL.md §1.2): the same
 // certificate serves https:// for the page and wss:// for the protocol, and
 // a plain-HTTP request gets nothing. The client verifies the certificate
 // and speaks the protocol over wss with Boost.Beast.

@@ -8,7 +8,7 @@
 // takes Sdc's limit masks. So Bfr is exact where those masks are: smooth
 // vertices, crease sectors of 1-3 faces, one-face corner sides, and
 // semi-sharp features that decay into those within its levels. There the
-// tolerance is the issue's: 1e-9 of the diagonal and 1e-6 rad. Elsewhere
+// tolerance is docs/LIMITS.md's: 1e-9 of the diagonal and 1e-6 rad. Elsewhere
 // (darts, wider crease sectors, wider corner sides, cusps) Bfr itself only
 // approximates: the test shows its error shrinking towards Tessera's value
 // as its approximation level rises, and records the figures.

@@ -1,4 +1,4 @@
-// Issue 15 §2: a mesh far from the origin, read from each text format, has
+// docs/FORMATS.md "Mesh formats": a mesh far from the origin, read from each text format, has
 // the limit normals OpenSubdiv gives on the same file's coordinates (parsed
 // here with strtod, the definition) to 1e-8 rad. When OBJ and OFF were read
 // as float, this fan's normals were 3.6e-4 rad away.

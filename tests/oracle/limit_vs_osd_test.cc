@@ -1,5 +1,5 @@
-// The explicit comparison with OpenSubdiv's PrimvarRefiner::Limit() that
-// issue 15 §1 asks to keep: per kind of vertex and level, how far Limit()
+// The explicit comparison with OpenSubdiv's PrimvarRefiner::Limit()
+// (docs/LIMITS.md "How it is checked"): per kind of vertex and level, how far Limit()
 // is from Tessera's exact limit. Limit() applies the masks of the rules at
 // the level (semi-sharp counts as infinitely sharp; Hoppe et al.'s crease
 // masks; the smooth mask at darts; the first face's plane at corners), so it
@@ -77,7 +77,7 @@ TEST(LimitVsOpenSubdiv, WhereAndByHowMuchLimitDiffers) {
     const Worst& first = levels.at(0);
     const Worst& last = levels.rbegin()->second;
     if (oracle::osdNormalIsExact(category)) {
-      // Float weights in PrimvarRefiner: the foundation issue's tolerances.
+      // Float weights in PrimvarRefiner: the tolerances of loop_oracle_test.cc.
       for (const auto& [l, w] : levels) {
         EXPECT_LE(w.position, 1e-5) << oracle::nameOf(category) << " level " << l;
         EXPECT_LE(w.normal, 1e-4) << oracle::nameOf(category) << " level " << l;

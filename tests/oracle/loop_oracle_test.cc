@@ -1,5 +1,5 @@
 // Tessera's Loop refinement and limit evaluation against OpenSubdiv 3.5 on
-// many generated shapes and tag sets. Tolerances from the foundation issue:
+// many generated shapes and tag sets. Tolerances:
 // positions within 1e-5 of the bounding-box diagonal, normals within 1e-4 rad
 // (PrimvarRefiner's weights are float). Limits are compared where Limit() is
 // the true limit (limit_categories.h); limit_vs_osd_test.cc lists the rest

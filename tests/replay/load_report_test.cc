@@ -1,4 +1,4 @@
-// tessera-replay load's report against the real server (issue 14 §4): the
+// tessera-replay load's report against the real server (docs/REPLAY.md §3.1): the
 // statistics agree with the report's own histogram and series, thresholds
 // set the exit code, the server's stats cover the run's window, and a
 // missing document or a refused token stops the run at once.

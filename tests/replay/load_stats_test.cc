@@ -1,4 +1,4 @@
-// The load report's pieces on known inputs (issue 14 §4): summary
+// The load report's pieces on known inputs (docs/REPLAY.md §3.1): summary
 // statistics checked against values worked out by hand, the histogram's
 // fixed bucket layout, the per-second series, thresholds, and the server
 // stats window.

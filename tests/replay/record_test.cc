@@ -1,4 +1,4 @@
-// Recording a live session (issue 6 §3, docs/REPLAY.md §2.1): the server's
+// Recording a live session (docs/REPLAY.md §2.1): the server's
 // AppliedCommand stream, the script lines a recorder makes of it, and the
 // real `tessera-replay record` against the real server -- recording a
 // multi-editor session, then replaying the recording on a fresh server, ends
@@ -149,7 +149,7 @@ TEST(RecordScript, ABatchBecomesOneLinePerCommand) {
 }
 
 // Scripts have no morph keys: an edit of a morph document's key 1 would
-// replay onto key 0, so the recorder refuses it by name (issue 16 §4).
+// replay onto key 0, so the recorder refuses it by name.
 TEST(RecordScript, EditsOfASecondMorphKeyAreRefusedByName) {
   replay::ScriptRecorder r(1000);
   wire::AppliedCommand onKey1 = move(4, 2, 7, "alice", 1100);
@@ -285,7 +285,7 @@ TEST(RecordCommand, RefusedRecordingsSayWhy) {
   auto [unknown, unknownCode] = run(
       kReplay + " record" + s.connection("never-granted-token-0123456789") + " --seconds 1 -o " + out, true);
   EXPECT_EQ(unknownCode, 1) << unknown;
-  // A token no grant names fails the handshake (issue 13 §3).
+  // A token no grant names fails the handshake (docs/PROTOCOL.md §4.1).
   EXPECT_NE(unknown.find("record: server refused the handshake (ERROR_CODE_AUTH_FAILED): the access token is not known "
                          "to this server"),
             std::string::npos)

@@ -1,4 +1,4 @@
-// tessera-replay's command line (issue 14 §3, §4): --version, per-subcommand
+// tessera-replay's command line: --version, per-subcommand
 // help, --opt=value, and usage errors that name the option (exit 2).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// tessera-replay (issue 6 §3): the script format's errors, and the real
+// tessera-replay (docs/REPLAY.md): the script format's errors, and the real
 // binary against the real server -- a short bounded load run, and a script
 // replayed on two fresh servers ending at the same surface hash.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Failed authentications space an address's attempts (issue 13 §3):
+// Failed authentications space an address's attempts (docs/PROTOCOL.md §4.1):
 // doubling delays up to a cap, queued turns for parallel attempts, no effect
 // on other addresses, and failures forgotten after the window.
 #include <gtest/gtest.h>

@@ -91,7 +91,7 @@ TEST(JournalEntry, DamagedBatchesAreRefused) {
   EXPECT_NE(nested.status().message().find("a batch inside a batch"), std::string::npos);
 }
 
-// Issue 16 §4: a morph document's second key and the edits on it are
+// A morph document's second key and the edits on it are
 // journal entries too, and replay rebuilds both keys bit for bit.
 TEST(JournalEntry, AMorphKeyAndItsEditsReplayExactly) {
   KeyedDocument live(cube());

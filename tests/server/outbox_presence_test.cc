@@ -1,4 +1,4 @@
-// Presence is droppable from a client that falls behind (issue 13 §3):
+// Presence is droppable from a client that falls behind (docs/PROTOCOL.md §6.3):
 // above the soft limit its queued presence goes, the document is marked,
 // later changes are dropped at once, and the whole list that follows the
 // resync request is kept.

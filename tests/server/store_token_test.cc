@@ -36,7 +36,7 @@ TEST(StoreTokens, HashIsSha256) {
 }
 
 // A Hello's token is a failed authentication when no grant of any scope
-// names it (issue 13 §3).
+// names it (docs/PROTOCOL.md §4.1).
 TEST(StoreTokens, KnowsTokensGrantedForAnyScopeOnly) {
   TempDataDir dir;
   auto store = openStoreOrFail(dir.path());

@@ -1,4 +1,4 @@
-// A small image-morph sample made procedurally (seed 004 §3): two 160 x 120
+// A small image-morph sample made procedurally (docs/INTERPOLATION.md): two 160 x 120
 // images of a striped ring (a shape with a hole) on different backgrounds,
 // a green dot in each at the same mesh vertex, and two annulus meshes of one
 // connectivity over them, the second an affine image of the first (so no

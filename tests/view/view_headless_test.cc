@@ -1,4 +1,4 @@
-// tessera-view end to end (issue 6 §2): the real server, the real viewer
+// tessera-view end to end (docs/VIEWER.md): the real server, the real viewer
 // rendering headless with no display (EGL on Mesa's surfaceless platform,
 // llvmpipe), and the PNG read back.
 // The object must be visible with a plausible silhouette, an edit made by
@@ -254,7 +254,7 @@ std::vector<std::pair<std::string, std::string>> surfaceHashes(const std::string
 
 // --edit-keys: the I, =, E, 2, K, Ctrl+Z and Ctrl+Y keys go through the
 // viewer's own key handling. I makes the vertex picked by click interpolating
-// (seed 004 §4) and = doubles its tension, each changing the surface; I again
+// (docs/INTERPOLATION.md) and = doubles its tension, each changing the surface; I again
 // brings plain Loop back exactly. E on the edge picked by click and
 // shift+click, 2 (semi-sharp) and K change the surface; three undos restore
 // it step by step; redo brings the sharp edge back.

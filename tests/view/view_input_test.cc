@@ -1,4 +1,4 @@
-// tessera-view's real input path (issue 6 §2): the interactive viewer under
+// tessera-view's real input path (docs/VIEWER.md "Controls"): the interactive viewer under
 // Xvfb, driven by X input events from xdotool (XTEST, as a user's mouse and
 // keyboard), not by the self-test scripts. A click on a control vertex picks
 // it (collaborators see the selection), a drag edits the document, Ctrl+Z

@@ -69,7 +69,7 @@ TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   EXPECT_NE(frames.status().message().find("--frames"), std::string::npos);
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--bogus", "1"}).isOk());
   auto refine = parseViewOptions({"--connect", "h:1", "--document", "1", "--refine", "3"});
-  ASSERT_FALSE(refine.isOk());  // at most 2 splits per edge (seed 002)
+  ASSERT_FALSE(refine.isOk());  // at most 2 splits per edge (docs/VIEWER.md "Client-side refinement")
   EXPECT_NE(refine.status().message().find("--refine"), std::string::npos);
   EXPECT_TRUE(parseViewOptions({"--help"})->help);
   auto keys =
@@ -79,7 +79,7 @@ TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1", "--document", "1", "--edit-keys"}).isOk());
 }
 
-// Issue 14 §3 and §5: CLI11's --opt=value, --version, the new display options.
+// CLI11's --opt=value, --version, the display options (docs/VIEWER.md "Usage").
 TEST(ViewOptions, TakesOptEqualsValueVersionAndTheDisplayOptions) {
   auto o = parseViewOptions({"--connect=h:9", "--document=4", "--msaa=0", "--matcap", "--hud-collapsed",
                              "--control-points", "--no-gizmo", "--size=320x200", "--region-colors"});

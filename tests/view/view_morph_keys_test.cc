@@ -1,4 +1,4 @@
-// The morph keys of the interactive tessera-view (issue 16 §4) under Xvfb,
+// The morph keys of the interactive tessera-view (docs/VIEWER.md "Morph documents") under Xvfb,
 // pressed as a user presses them (xdotool, XTEST), on a morph document of
 // the real server. The server's count of encoded regions (StatsReply
 // regions_encoded) shows what the viewer asked for: `.` steps t and

@@ -1,4 +1,4 @@
-// A 2D morph document in the real tessera-view (issue 16 §4), rendered with
+// A 2D morph document in the real tessera-view (docs/VIEWER.md "Morph documents"), rendered with
 // no display from the real server: the sample's annulus (deploy/samples/
 // morph) with key 1 and the two images added over the protocol. At t = 0
 // the surface shows the first image's colours, at t = 1 the second's, and

@@ -1,7 +1,7 @@
-// tessera-view on a real mesh on a busy machine (issue 13 §1): fandisk from
+// tessera-view on a real mesh on a busy machine: fandisk from
 // Debian's libcgal-demo with its sharp feature lines tagged as creases,
 // rendered headless 20 times in a row, with no display (EGL surfaceless;
-// no Xvfb since issue 14 §5), while two other processes keep both cores
+// no Xvfb, docs/VIEWER.md "Headless mode"), while two other processes keep both cores
 // busy. Before the client's read path kept its bytes, a snapshot
 // this size failed in 25 of 26 such runs ("no snapshot: timed out", or a
 // frame announcing a garbage length) because the viewer polls with a 5 ms

@@ -1,4 +1,4 @@
-// What a user of a professional 3D viewer expects to see (issue 14 §5),
+// What a user of a professional 3D viewer expects to see (docs/VIEWER.md "Look"),
 // checked on pictures the real tessera-view renders with no display at all
 // (DISPLAY unset: EGL on Mesa's surfaceless platform) from the real server:
 // anti-aliased silhouettes, a lit top face, control points only when asked

@@ -23,7 +23,7 @@
 #include "core/document/edit.h"
 #include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/ids.h"
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/loop/ghost_ring.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"

@@ -34,16 +34,11 @@
 #include <string>
 #include <vector>
 
+#include "core/mesh/surface_mesh.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
 namespace tessera {
-
-struct SurfaceMesh {
-  std::vector<Vec3> positions;
-  std::vector<Vec3> normals;  // empty, or one unit normal per position
-  std::vector<std::array<int, 3>> triangles;  // counter-clockwise
-};
 
 struct ExportOptions {
   bool draco = false;             // GLB only: KHR_draco_mesh_compression

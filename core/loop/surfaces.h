@@ -7,7 +7,7 @@
 
 #include <span>
 
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/loop/level.h"
 #include "core/loop/loop_options.h"
 #include "core/util/status.h"

@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/loop/level.h"
 #include "core/loop/level_builder.h"
 #include "core/util/status.h"

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/schemes/poly_builder.h"
 #include "core/schemes/poly_level.h"
 #include "core/util/status.h"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/loop/level_builder.h"
 #include "core/schemes/poly_builder.h"
 #include "core/schemes/polygon_reader.h"

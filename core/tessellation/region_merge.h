@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <map>
 
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/tessellation/region_codec.h"
 
 namespace tessera {

@@ -41,7 +41,7 @@
 #include <vector>
 
 #include "core/document/document.h"
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/tessellation/adaptive_cut.h"
 #include "core/tessellation/lod_profile.h"
 #include "core/tessellation/region_codec.h"

@@ -8,7 +8,7 @@
 
 #include "cli/cli_run.h"
 #include "client/cli/human_format.h"
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/io/mesh_import.h"
 #include "support/test_meshes.h"
 

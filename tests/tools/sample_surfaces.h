@@ -11,7 +11,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/io/mesh_export.h"
+#include "core/mesh/surface_mesh.h"
 
 namespace tessera::testing {
 

@@ -69,7 +69,7 @@ uint64_t regionSurfaceHash(const RegionMesh& decoded) {
 uint64_t regionSurfaceHashOnGrid(const RegionMesh& mesh, const QuantizationGrid& grid, bool withIds) {
   // Draco's AttributeQuantizationTransform: the float32 position minus the
   // float32 origin, scaled and rounded by its Quantizer; the decoder's
-  // Dequantizer plus the origin (region_codec.cc decodeDraco).
+  // Dequantizer plus the origin (region_draco.cc decodeDracoPayload).
   const float range = static_cast<float>(grid.range);
   const int32_t maxQuantized = static_cast<int32_t>((uint32_t{1} << grid.positionBits) - 1);
   draco::Quantizer quantizer;

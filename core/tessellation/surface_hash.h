@@ -48,7 +48,7 @@ uint64_t regionSurfaceHash(const RegionMesh& decoded);
 
 // The same for a region before it is encoded: each position quantized on
 // `grid` and dequantized exactly as Draco's encoder and decoder do
-// (region_codec.cc), so the result equals regionSurfaceHash of the decoded
+// (region_draco.cc), so the result equals regionSurfaceHash of the decoded
 // payload. `withIds` false hashes every id as 0 (a display-only profile).
 uint64_t regionSurfaceHashOnGrid(const RegionMesh& mesh, const QuantizationGrid& grid, bool withIds);
 

@@ -1,6 +1,6 @@
-// The coarse morph stream in tessera-view (issue 16 §4, way (b) of
-// docs/PROTOCOL.md section 14): while a morph plays, the viewer asks for the
-// control points at each frame's t (GetMorphControl, about 12 bytes per
+// The coarse morph stream in tessera-view (way (b) of docs/PROTOCOL.md
+// section 14, "The coarse stream"): while a morph plays, the viewer asks for
+// the control points at each frame's t (GetMorphControl, about 12 bytes per
 // base vertex) and evaluates the Loop limit surface itself, instead of
 // receiving every region of every frame (docs/PERFORMANCE.md, "Streaming a
 // morph", measures both). What it shows leaves out the keys' finer edits;
@@ -26,6 +26,7 @@ Expected<CoarseMorphBase> coarseMorphBase(const wire::MorphControl& withTopology
 // region: limit positions and normals, each vertex named by the id of its
 // control vertex at its birth level (as the server's regions name them),
 // crease copies by their original's.
-Expected<RegionMesh> refineCoarseMorph(const CoarseMorphBase& base, const wire::MorphControl& frame, int level);
+Expected<RegionMesh> refineCoarseMorph(const CoarseMorphBase& base, const wire::MorphControl& frame,
+                                       int level);
 
 }  // namespace tessera::view

@@ -30,8 +30,8 @@ struct ViewToggles {
   int baseLevel = 1, maxLevel = 3;
   float angle = 15;
   bool profileChanged = false;
-  // A morph document (issue 16 §4): the time shown (from the slider, the ,
-  // and . keys, or playing), and whether it plays (P).
+  // A morph document (docs/VIEWER.md, "Morph documents"): the time shown
+  // (from the slider, the , and . keys, or playing), and whether it plays (P).
   bool morph = false;  // the document has two keys
   float morphT = 0;
   bool morphShown = false;  // a time is shown (else key 0 live)

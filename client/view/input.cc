@@ -105,7 +105,8 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_2:
     case GLFW_KEY_3:
     case GLFW_KEY_4:
-      // Semi-sharp (seed 003): sharp for that many levels below the edge's,
+      // Semi-sharp (DeRose, Kass & Truong '98, "Subdivision Surfaces in
+      // Character Animation"): sharp for that many levels below the edge's,
       // then smooth, each level taking one off (Chaikin-averaged where the
       // document asks for it).
       if (app.picked && app.edgeEnd) {

@@ -4,8 +4,8 @@
 
 #include <chrono>
 #include <cstdint>
-#include <optional>
 #include <map>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -22,9 +22,9 @@ struct App {
   ViewToggles toggles;
   Connection* connection = nullptr;
   float scroll = 0;
-  std::optional<uint64_t> picked;   // packed id at toggles.controlLevel
-  std::optional<uint64_t> edgeEnd;  // with `picked`: the other end of the picked edge
-  std::set<uint64_t> corners;       // vertices this viewer made corners
+  std::optional<uint64_t> picked;            // packed id at toggles.controlLevel
+  std::optional<uint64_t> edgeEnd;           // with `picked`: the other end of the picked edge
+  std::set<uint64_t> corners;                // vertices this viewer made corners
   std::map<uint64_t, double> interpolating;  // vertices this viewer made interpolating, and their tension
   bool frameRequested = false, quit = false;
   bool undo = false, redo = false;  // done by the frame loop
@@ -35,7 +35,7 @@ struct App {
 // HUD's collapse; F fits the model to the view. E and Shift+E make the picked
 // edge infinitely sharp and smooth again, 1 to 4 give it that semi-sharpness;
 // K toggles the picked vertex between corner and smooth; I toggles it
-// between interpolating (seed 004 §4, tension 1) and plain, and = and -
+// between interpolating (docs/INTERPOLATION.md, tension 1) and plain, and = and -
 // double and halve its tension; Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z) undo and redo.
 // On a morph document, P plays and pauses it, and , and . step its time by
 // 0.05.

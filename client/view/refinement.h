@@ -1,7 +1,8 @@
-// Client-side refinement in tessera-view (issue 6 §2, seed 002,
-// docs/VIEWER.md): every frame the received regions are refined afresh,
-// each on its own with the border normals of all (core/render), and
-// streamed to the GPU. Nothing is kept between frames.
+// Client-side refinement in tessera-view (docs/VIEWER.md, "Client-side
+// refinement", after Kähler, Haber & Seidel, "Dynamic Refinement of
+// Deformable Triangle Meshes for Rendering"): every frame the received
+// regions are refined afresh, each on its own with the border normals of all
+// (core/render), and streamed to the GPU. Nothing is kept between frames.
 #pragma once
 
 #include <cstdint>

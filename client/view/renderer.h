@@ -57,9 +57,9 @@ class Renderer {
   // drawn with them from then on.
   void setMorphImages(const Image& from, const Image& to);
   // Client-side refinement: draws refined[i] for the i-th region of
-  // `regions` (in map order), uploaded every frame as a stream (seed 002
-  // keeps nothing between frames); a later sync() uploads the received
-  // regions again.
+  // `regions` (in map order), uploaded every frame as a stream (nothing is
+  // kept between frames, docs/VIEWER.md "Client-side refinement"); a later
+  // sync() uploads the received regions again.
   void stream(const RegionMap& regions, const std::vector<RefinedMesh>& refined);
   void drawSurface(const DrawOptions& options);
   // Points are drawn over the surface; callers pass only the visible ones.

@@ -34,7 +34,8 @@ void main() {
 // image needed. Two-sided: back faces use the flipped normal.
 // A 2D morph document (uTextured) shows its images instead, unlit: each
 // point takes key 0's image where it was under key 0 and key 1's where it
-// was under key 1, cross-dissolved by t (seed 004 §5).
+// was under key 1, cross-dissolved by t (docs/VIEWER.md, "Morph
+// documents").
 inline constexpr const char* kMeshFragment = R"(#version 330 core
 in vec3 vNormal;
 in vec3 vPosition;

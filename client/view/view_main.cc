@@ -1,5 +1,5 @@
 // tessera-view: a viewer and editor for one document of a tessera-server
-// (issue 6 §2, issue 14 §5, docs/VIEWER.md). The Connection keeps the
+// (docs/VIEWER.md). The Connection keeps the
 // document current on its own thread. In a window (run_window.cc) each frame
 // uploads changed regions, draws them, handles picking and dragging of
 // control vertices, and draws the HUD and the axes gizmo. With --screenshot

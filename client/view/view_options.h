@@ -20,8 +20,9 @@ struct ViewOptions {
   uint32_t baseLevel = 1;
   uint32_t maxLevel = 3;
   double angle = 15;
-  // A morph document (issue 16 §4): show it at this time (LodProfile.morph_t)
-  // instead of key 0 live; P plays it at `morphRate` (t per second).
+  // A morph document (docs/VIEWER.md, "Morph documents"): show it at this
+  // time (LodProfile.morph_t) instead of key 0 live; P plays it at
+  // `morphRate` (t per second).
   std::optional<double> morphT;
   double morphRate = 0.25;
   // Show every time through the coarse stream (control points refined here),
@@ -39,7 +40,8 @@ struct ViewOptions {
   bool matcap = false;         // matcap shading instead of the three lights (key M)
   // Multisample anti-aliasing: samples per pixel, 0 for none (capped by the driver).
   int msaa = 4;
-  // Client-side refinement (seed 002): at most this many splits per edge, 0 for none.
+  // Client-side refinement (docs/VIEWER.md, "Client-side refinement"): at
+  // most this many splits per edge, 0 for none.
   int refine = 0;
   // Headless: render `frames` frames once the document is in, write the PNG, exit.
   std::string screenshot;

@@ -11,22 +11,6 @@ namespace tessera {
 
 namespace {
 
-// Faces sharing a vertex with a flagged face, added to the flags. Every
-// vertex of a flagged face must be complete (the nesting in the header).
-void growByOneRing(const SparseLevel& level, Buffer<uint8_t>& faces) {
-  const Level& m = level.mesh;
-  Buffer<uint8_t> grown = faces;
-  for (Index f = 0; f < m.numFaces(); ++f) {
-    if (!faces[f]) continue;
-    for (Index v : m.faceVertices[f]) {
-      for (Index g : m.ringFacesOf(v)) {
-        if (g >= 0) grown[g] = 1;
-      }
-    }
-  }
-  faces.swap(grown);
-}
-
 template <typename Visit>
 void forEachElement(const Edit& edit, Visit&& visit) {
   if (const auto* move = std::get_if<MoveEdit>(&edit.change)) {
@@ -46,7 +30,7 @@ void forEachElement(const Edit& edit, Visit&& visit) {
 }  // namespace
 
 SparseEvaluator::SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
-    : options_(options), counts_(counts), uniformLevel_(std::min(uniformLevel, counts.maxLevel())) {}
+    : options_(options), counts_(counts), selection_(std::min(uniformLevel, counts.maxLevel())) {}
 
 Expected<SparseEvaluator> SparseEvaluator::create(const BaseTopology& base, std::span<const Vec3> basePoints,
                                                   const LoopOptions& options, const LevelCounts& counts,
@@ -76,73 +60,27 @@ std::vector<FaceId> SparseEvaluator::demandedFaces(const Edit& edit) const {
 }
 
 void SparseEvaluator::addDemand(const Edit& edit) {
-  for (FaceId face : demandedFaces(edit)) {
-    demand_.insert(face);
-    editDemand_.insert(face);
-  }
-}
-
-int SparseEvaluator::deepestDemand() const {
-  int deepest = 0;
-  for (FaceId f : demand_) deepest = std::max(deepest, f.level());
-  for (FaceId f : extraDemand_) deepest = std::max(deepest, f.level());
-  return deepest;
+  for (FaceId face : demandedFaces(edit)) selection_.demandForEdit(face);
 }
 
 // A demanded face adds N1(its ancestor) to Sel at each level from the
 // uniform one down to its parent's; covered if all of those are there.
 bool SparseEvaluator::demandCovered(FaceId face) const {
-  for (int k = uniformLevel_; k < face.level(); ++k) {
+  for (int k = selection_.uniformLevel(); k < face.level(); ++k) {
     if (k + 1 >= numLevels()) return false;
-    const LevelState& state = levels_[k];
-    const Index a = state.topo.findFace(face.index() >> (2 * (face.level() - k)));
-    if (a == kInvalidIndex) return false;
-    for (Index v : state.topo.mesh.faceVertices[a]) {
-      for (Index g : state.topo.mesh.ringFacesOf(v)) {
-        if (g >= 0 && !state.selected[g]) return false;
-      }
-    }
+    if (!SparseSelection::ancestorRingSelected(levels_[k].topo, levels_[k].selected, face)) return false;
   }
   return true;
 }
 
-void SparseEvaluator::selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined,
-                                  Buffer<uint8_t>* editSelected) const {
-  const SparseLevel& topo = levels_[l].topo;
-  const Index numFaces = topo.mesh.numFaces();
-  auto mark = [&](const std::set<FaceId>& demand, Buffer<uint8_t>& faces) {
-    for (FaceId face : demand) {
-      if (face.level() <= l) continue;
-      const Index a = topo.findFace(face.index() >> (2 * (face.level() - l)));
-      if (a != kInvalidIndex) faces[a] = 1;
-    }
-  };
-  if (editSelected != nullptr) {
-    editSelected->assign(numFaces, 0);
-    mark(editDemand_, *editSelected);
-    growByOneRing(topo, *editSelected);
-  }
-  if (l < uniformLevel_) {
-    selected.assign(numFaces, 1);
-    refined.assign(numFaces, 1);
-    return;
-  }
-  selected.assign(numFaces, 0);
-  mark(demand_, selected);
-  mark(extraDemand_, selected);
-  growByOneRing(topo, selected);
-  refined = selected;
-  growByOneRing(topo, refined);
-}
-
 void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
-  const int deepest = std::max(uniformLevel_, deepestDemand());
+  const int deepest = std::max(selection_.uniformLevel(), selection_.deepestDemand());
   std::vector<uint64_t> generations;
   for (const LevelState& state : levels_) generations.push_back(state.generation);
   levels_.resize(l + 1);
   for (int k = l; k <= deepest; ++k) {
     Buffer<uint8_t> refined;
-    selectFaces(k, levels_[k].selected, refined, &levels_[k].editSelected);
+    selection_.select(levels_[k].topo, levels_[k].selected, refined, &levels_[k].editSelected);
     ++levels_[k].generation;
     if (k == deepest) {
       SparseLevel& last = levels_[k].topo;
@@ -211,8 +149,10 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
     // predicted: the stencils read only the parent (interpolate.h).
     const LevelState& parent = levels_[l - 1];
     LoopStencils stencils(parent.topo.mesh, options_);
-    for (Index v = 0; v < topo.numVertexChildren; ++v) state.predicted[v] = stencils.vertexChild(topo.origin[v], parent.points);
-    for (Index v = topo.numVertexChildren; v < n; ++v) state.predicted[v] = stencils.edgeChild(topo.origin[v], parent.points);
+    for (Index v = 0; v < topo.numVertexChildren; ++v)
+      state.predicted[v] = stencils.vertexChild(topo.origin[v], parent.points);
+    for (Index v = topo.numVertexChildren; v < n; ++v)
+      state.predicted[v] = stencils.edgeChild(topo.origin[v], parent.points);
     for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
   }
   state.points = state.predicted;
@@ -220,14 +160,16 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
   for (const Edit& edit : edits) {
     const auto* move = std::get_if<MoveEdit>(&edit.change);
     if (move == nullptr || !edit.active || edit.level() != l) continue;
-    for (const VertexOffset& o : move->offsets) state.offsets[topo.findVertex(o.vertex.index())] += o.localOffset;
+    for (const VertexOffset& o : move->offsets)
+      state.offsets[topo.findVertex(o.vertex.index())] += o.localOffset;
   }
   for (const auto& [v, offset] : state.offsets) applyOffset(l, v);
   state.reached.assign(n, 0);
   std::vector<Index> edited;
   for (const auto& [v, offset] : state.offsets) edited.push_back(v);
   for (const auto& [v, s] : state.vertexTags) edited.push_back(v);
-  for (const auto& [e, s] : state.edgeTags) edited.insert(edited.end(), {topo.mesh.edgeVertices[e][0], topo.mesh.edgeVertices[e][1]});
+  for (const auto& [e, s] : state.edgeTags)
+    edited.insert(edited.end(), {topo.mesh.edgeVertices[e][0], topo.mesh.edgeVertices[e][1]});
   if (l > 0) {
     for (const auto& [v, tag] : levels_[l - 1].interpolationTags) {
       for (Index c : ghostRingChildren(l - 1, v)) edited.push_back(c);
@@ -317,14 +259,14 @@ void SparseEvaluator::recomputeRule(int l, Index v) {
   }
   SharpnessInheritance inherit(levels_[l - 1].topo.mesh, options_);
   m.vertexRules[v] = v < topo.numVertexChildren ? inherit.vertexChildRule(topo.origin[v])
-                                                 : inherit.edgeChildRule(topo.origin[v]);
+                                                : inherit.edgeChildRule(topo.origin[v]);
 }
 
 void SparseEvaluator::applyOffset(int l, Index v) {
   LevelState& state = levels_[l];
   auto it = state.offsets.find(v);
-  state.points[v] = it == state.offsets.end() ? state.predicted[v]
-                                              : state.predicted[v] + frameOf(l, v).toWorld(it->second);
+  state.points[v] =
+      it == state.offsets.end() ? state.predicted[v] : state.predicted[v] + frameOf(l, v).toWorld(it->second);
 }
 
 void SparseEvaluator::applyGhostRing(int l, Index v0) {
@@ -398,8 +340,8 @@ HierarchyStats SparseEvaluator::stats() const {
     level.bytes = state.topo.memoryBytes() + state.selected.capacity() + state.leaf.capacity() +
                   state.displayed.capacity() + state.reached.capacity() + state.vertexMarks.capacity() +
                   state.faceMarks.capacity() +
-                  vec3 * (state.predicted.capacity() + state.points.capacity() + state.limitPosition.capacity() +
-                          state.limitNormal.capacity()) +
+                  vec3 * (state.predicted.capacity() + state.points.capacity() +
+                          state.limitPosition.capacity() + state.limitNormal.capacity()) +
                   (sizeof(Index) + vec3 + 16) * state.offsets.size() +
                   (sizeof(Index) + sizeof(float) + 16) * (state.edgeTags.size() + state.vertexTags.size());
     stats.vertices += level.vertices;
@@ -419,8 +361,7 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
     // Held already (for a tessellation or an earlier edit): the edit still
     // makes its edit nodes, as in a document created with it.
     for (FaceId face : faces) {
-      demand_.insert(face);
-      if (editDemand_.insert(face).second) markEditNodes(face, dirty);
+      if (selection_.demandForEdit(face)) markEditNodes(face, dirty);
     }
     std::sort(dirty.limits.begin(), dirty.limits.end());
     dirty.limits.erase(std::unique(dirty.limits.begin(), dirty.limits.end()), dirty.limits.end());
@@ -439,12 +380,11 @@ DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
   for (const Edit& edit : edits) {
     for (FaceId face : demandedFaces(edit)) now.insert(face);
   }
-  if (now == editDemand_) return dirty;
-  editDemand_ = std::move(now);
+  if (!selection_.replaceEditDemand(std::move(now))) return dirty;
   for (int k = 0; k < numLevels(); ++k) {
     LevelState& state = levels_[k];
     Buffer<uint8_t> selected, refined, editSelected;
-    selectFaces(k, selected, refined, &editSelected);
+    selection_.select(state.topo, selected, refined, &editSelected);
     const Level& m = state.topo.mesh;
     for (Index f = 0; f < static_cast<Index>(editSelected.size()); ++f) {
       if (editSelected[f] == state.editSelected[f]) continue;
@@ -459,7 +399,7 @@ DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
   return dirty;
 }
 
-// What selectFaces() adds to editSelected for one more demanded face, in
+// What the selection adds to editSelected for one more demanded face, in
 // place: N1 of its ancestor at every coarser level. A tessellation decides
 // again only around changed limits, so where faces just became edit nodes
 // the ancestor's corners, whose rings are exactly those faces, are
@@ -468,17 +408,8 @@ void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
   for (int k = 0; k < face.level() && k < numLevels(); ++k) {
     LevelState& state = levels_[k];
     const Level& m = state.topo.mesh;
-    const Index a = state.topo.findFace(face.index() >> (2 * (face.level() - k)));
+    const Index a = SparseSelection::markAncestorRing(state.topo, face, state.editSelected);
     if (a == kInvalidIndex) continue;
-    bool marked = false;
-    for (Index v : m.faceVertices[a]) {
-      for (Index g : m.ringFacesOf(v)) {
-        if (g < 0 || state.editSelected[g]) continue;
-        state.editSelected[g] = 1;
-        marked = true;
-      }
-    }
-    if (!marked) continue;
     const LimitEvaluator limits(m, options_.creaseMethod);
     for (Index v : m.faceVertices[a]) {
       if (!state.topo.isComplete(v)) continue;
@@ -494,10 +425,11 @@ void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
 int SparseEvaluator::firstChangedSelection() const {
   for (int k = 0; k < numLevels(); ++k) {
     Buffer<uint8_t> selected, refined, editSelected;
-    selectFaces(k, selected, refined, &editSelected);
+    selection_.select(levels_[k].topo, selected, refined, &editSelected);
     const auto& was = levels_[k].topo.firstChildFace;
     bool same = selected == levels_[k].selected && editSelected == levels_[k].editSelected;
-    for (Index f = 0; same && f < static_cast<Index>(refined.size()); ++f) same = (refined[f] != 0) == (was[f] >= 0);
+    for (Index f = 0; same && f < static_cast<Index>(refined.size()); ++f)
+      same = (refined[f] != 0) == (was[f] >= 0);
     if (!same) return k;
   }
   return numLevels() - 1;
@@ -506,7 +438,7 @@ int SparseEvaluator::firstChangedSelection() const {
 int SparseEvaluator::reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits) {
   bool covered = true;
   for (FaceId face : faces) {
-    if (face.level() > 0 && !demandCovered(face)) covered = false, extraDemand_.insert(face);
+    if (face.level() > 0 && !demandCovered(face)) covered = false, selection_.demandForTessellation(face);
   }
   if (covered) return -1;
   const int first = firstChangedSelection();
@@ -516,9 +448,9 @@ int SparseEvaluator::reserveFaces(std::span<const FaceId> faces, std::span<const
 
 void SparseEvaluator::raiseUniformLevel(int level, std::span<const Edit> edits) {
   level = std::min(level, counts_.maxLevel());
-  if (level <= uniformLevel_) return;
-  const int first = uniformLevel_;
-  uniformLevel_ = level;
+  if (level <= selection_.uniformLevel()) return;
+  const int first = selection_.uniformLevel();
+  selection_.raiseUniformLevel(level);
   rebuildFrom(first, edits);
 }
 

@@ -30,6 +30,7 @@
 #include "core/document/edit.h"
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_level.h"
+#include "core/hierarchy/sparse_selection.h"
 #include "core/loop/ghost_ring.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/limit.h"
@@ -45,9 +46,9 @@ struct DirtySet {
   std::vector<VertexId> limits;     // complete vertices whose limit position or normal was recomputed, sorted
   std::vector<FaceId> leaves;       // the hierarchy's displayed leaves around them, sorted
   std::vector<uint64_t> baseFaces;  // the quadtree roots holding those leaves, sorted
-  int64_t pointsRecomputed = 0;  // control points, over all levels
+  int64_t pointsRecomputed = 0;     // control points, over all levels
   int64_t limitsRecomputed = 0;
-  int grownFromLevel = -1;       // >= 0: the hierarchy grew; levels below this one were rebuilt
+  int grownFromLevel = -1;  // >= 0: the hierarchy grew; levels below this one were rebuilt
 };
 
 struct HierarchyStats {
@@ -64,8 +65,8 @@ struct HierarchyStats {
 class SparseEvaluator {
  public:
   static Expected<SparseEvaluator> create(const BaseTopology& base, std::span<const Vec3> basePoints,
-                                          const LoopOptions& options, const LevelCounts& counts, int uniformLevel,
-                                          std::span<const Edit> edits);
+                                          const LoopOptions& options, const LevelCounts& counts,
+                                          int uniformLevel, std::span<const Edit> edits);
 
   // Grows the hierarchy so that it holds what `edit` addresses, with complete
   // rings (call before solving a move there). `edits` is the current list.
@@ -90,7 +91,7 @@ class SparseEvaluator {
   DirtySet forgetEditNodes(std::span<const Edit> edits);
 
   int numLevels() const { return static_cast<int>(levels_.size()); }
-  int uniformLevel() const { return uniformLevel_; }
+  int uniformLevel() const { return selection_.uniformLevel(); }
   const SparseLevel& level(int l) const { return levels_[l].topo; }
   std::span<const Vec3> points(int l) const { return levels_[l].points; }
   std::span<const Vec3> predicted(int l) const { return levels_[l].predicted; }
@@ -148,14 +149,13 @@ class SparseEvaluator {
 
   SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
 
-  // Structure (sparse_evaluator.cc).
+  // Structure (sparse_evaluator.cc; which faces exist is selection_'s,
+  // core/hierarchy/sparse_selection.h).
   // The faces an edit addresses below level 0 (incident to its elements).
   std::vector<FaceId> demandedFaces(const Edit& edit) const;
   void addDemand(const Edit& edit);
   void markEditNodes(FaceId face, DirtySet& dirty);
   bool demandCovered(FaceId face) const;
-  int deepestDemand() const;
-  void selectFaces(int l, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined, Buffer<uint8_t>* editSelected) const;
   int firstChangedSelection() const;
   void rebuildFrom(int l, std::span<const Edit> edits);
   void evaluateLevel(int l, std::span<const Edit> edits);
@@ -194,12 +194,9 @@ class SparseEvaluator {
 
   LoopOptions options_;
   LevelCounts counts_;
-  int uniformLevel_ = 0;
   std::vector<float> baseEdgeSharpness_, baseVertexSharpness_;
   std::vector<Vec3> basePoints_;
-  std::set<FaceId> demand_;       // faces edits address or addressed: what the structure holds
-  std::set<FaceId> editDemand_;   // faces the current edits address: what makes edit nodes
-  std::set<FaceId> extraDemand_;  // faces tessellations refine
+  SparseSelection selection_;  // the demanded faces and the uniform level: which faces exist
   std::vector<LevelState> levels_;
 };
 

@@ -1,0 +1,78 @@
+// Which faces of the sparse hierarchy exist (Pulli & Lounsbery, "Hierarchical
+// Editing and Rendering of Subdivision Surfaces" §4.1): the faces each level
+// refines, decided from the faces demanded below it. OpenSubdiv keeps this
+// decision apart from refinement in the same way (Vtr::SparseSelector).
+//
+// Every level up to the uniform level is whole. Below it, a face is a node
+// with children (selected) when it lies in the 1-ring of an ancestor of a
+// demanded face, and the faces refined at level k are the 1-ring of the
+// selected ones: with Sel_k the selected faces, R_k = N1(Sel_k) and
+// Sel_k = N1(ancestors at k of demanded faces). These nest (Sel_k+1 within
+// the children of Sel_k, and N2 of a child face within the children of N1
+// of its parent), so every vertex of a refined face is complete
+// (sparse_evaluator.h in core/document has the whole argument).
+//
+// Demand comes in three kinds: faces edits address or addressed (what the
+// structure holds), faces the current edits address (what makes edit
+// nodes), and faces tessellations refine. Which faces an edit addresses is
+// the evaluator's to say; this class only turns demanded faces into
+// selected faces, level by level.
+#pragma once
+
+#include <cstdint>
+#include <set>
+
+#include "core/hierarchy/ids.h"
+#include "core/hierarchy/sparse_level.h"
+#include "core/util/buffer.h"
+
+namespace tessera {
+
+class SparseSelection {
+ public:
+  explicit SparseSelection(int uniformLevel) : uniformLevel_(uniformLevel) {}
+
+  int uniformLevel() const { return uniformLevel_; }
+  void raiseUniformLevel(int level) { uniformLevel_ = level; }
+
+  // A face an edit addresses: held from now on, and an edit node's reason
+  // while the edit lasts. Returns whether it was not an edit's demand yet.
+  bool demandForEdit(FaceId face) {
+    demand_.insert(face);
+    return editDemand_.insert(face).second;
+  }
+  // A face a tessellation refines.
+  void demandForTessellation(FaceId face) { extraDemand_.insert(face); }
+  // The faces the current edits address, after an edit left for good: what
+  // the structure grew for the others stays. Returns whether that changed
+  // the edits' demand.
+  bool replaceEditDemand(std::set<FaceId> faces);
+
+  // The deepest level a face is demanded at (0 when none is).
+  int deepestDemand() const;
+
+  // The selection of `level` (its depth is the level's number): `selected`
+  // per face, a node with children; `refined` per face, one the next level
+  // refines; and, unless null, `editSelected` per face, a node with children
+  // because of an edit.
+  void select(const SparseLevel& level, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined,
+              Buffer<uint8_t>* editSelected) const;
+
+  // Whether the ancestor of `face` at `level` is present and every face of
+  // its 1-ring is flagged in `selected` (what a demanded face adds to the
+  // level's selection).
+  static bool ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected, FaceId face);
+  // Flags the 1-ring of the ancestor of `face` at `level` in `editSelected`
+  // in place (what select adds to editSelected for one more demanded face).
+  // Returns the ancestor when that flagged a face that was not flagged yet,
+  // kInvalidIndex otherwise.
+  static Index markAncestorRing(const SparseLevel& level, FaceId face, Buffer<uint8_t>& editSelected);
+
+ private:
+  int uniformLevel_ = 0;
+  std::set<FaceId> demand_;       // faces edits address or addressed: what the structure holds
+  std::set<FaceId> editDemand_;   // faces the current edits address: what makes edit nodes
+  std::set<FaceId> extraDemand_;  // faces tessellations refine
+};
+
+}  // namespace tessera

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "protocol/morph_key.h"
-#include "protocol/wire_ids.h"
+#include "protocol/commands.h"
 
 namespace tessera::view {
 
@@ -76,16 +76,17 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     // has the same vertices as the key views (their ids find their
     // texture coordinates); two more sessions follow the keys.
     profile.set_base_level(options.maxLevel);
-    TESSERA_RETURN_IF_ERROR(expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
-                                      "subscribe to document " + std::to_string(options.document)));
+    TESSERA_RETURN_IF_ERROR(
+        expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
+                  "subscribe to document " + std::to_string(options.document)));
+    std::array<std::unique_ptr<client::Session>, 2> keySessions;
     for (int k = 0; k < 2; ++k) {
-      wire::LodProfile atKey = profile;
-      atKey.set_morph_t(k);
       client::SessionOptions keyOptions = s;
       keyOptions.name = s.name + " (key " + std::to_string(k) + ")";
-      TESSERA_ASSIGN_OR_RETURN(c->keySessions_[k], establish(keyOptions, options.document, atKey));
-      c->keyViews_[k] = std::make_unique<client::DocumentView>(options.document);
+      TESSERA_ASSIGN_OR_RETURN(keySessions[k], establish(keyOptions, options.document,
+                                                         MorphKeyFollower::profileAtKey(profile, k)));
     }
+    c->keys_ = std::make_unique<MorphKeyFollower>(options.document, std::move(keySessions));
   }
   c->morphT_ = options.morphT;
   c->wanted_ = profile;
@@ -125,8 +126,7 @@ bool Connection::reconnect() {
       view_ = client::DocumentView(document_);
       for (const auto& [seq, sent] : inFlight_) forget(sent);
       inFlight_.clear();
-      ackedVersions_.clear();
-      deltaArrivals_.clear();
+      latency_.reset();
       std::lock_guard lock(mutex_);
       stats_.connected = true;
       stats_.ready = false;
@@ -161,7 +161,7 @@ ConnectionStats Connection::stats() const {
 
 std::vector<Collaborator> Connection::collaborators() const {
   std::lock_guard lock(mutex_);
-  return collaborators_;
+  return collaborators_.list();
 }
 
 void Connection::enqueue(wire::ClientMessage message, Sent kind) {
@@ -177,8 +177,8 @@ void Connection::enqueueEdit(wire::ClientMessage message, UndoHistory::StepId st
   history_.sent(step);
   if (own) history_.close(step);
   ++stats_.editsPending;
-  outbox_.push_back(
-      {std::move(message), {.at = {}, .edit = true, .undo = false, .redo = false, .step = step, .key = editKey_}});
+  outbox_.push_back({std::move(message),
+                     {.at = {}, .edit = true, .undo = false, .redo = false, .step = step, .key = editKey_}});
 }
 
 void Connection::forget(const Sent& sent) {
@@ -200,7 +200,14 @@ void Connection::closeStep(UndoHistory::StepId step) {
 void Connection::countPending() {
   uint64_t queued = 0;
   for (const Outgoing& o : outbox_) queued += o.sent.edit ? 1 : 0;
-  stats_.editsPending = queued + inFlight_.size() + ackedVersions_.size();
+  stats_.editsPending = queued + inFlight_.size() + latency_.awaitingDelta();
+}
+
+void Connection::publishLatency() {
+  const LatencyTracker::Summary& l = latency_.summary();
+  stats_.lastLatencyMs = l.lastMs;
+  stats_.maxLatencyMs = l.maxMs;
+  stats_.latencySamples = l.samples;
 }
 
 void Connection::moveVertex(uint64_t packedVertex, const Vec3& target, UndoHistory::StepId step) {
@@ -274,17 +281,16 @@ bool Connection::step(bool undo) {
     ids = std::move(*planned);
   }
   for (uint64_t keyed : ids) {
-    const uint64_t id = keyed & ~kKeyOneBit;
-    const uint32_t key = (keyed & kKeyOneBit) != 0 ? 1 : 0;
+    const KeyedEdit edit = splitKeyedEditId(keyed);
     wire::ClientMessage m;
     if (undo) {
       m.mutable_undo()->set_document_id(document_);
-      m.mutable_undo()->set_edit_id(id);
-      m.mutable_undo()->set_key(key);
+      m.mutable_undo()->set_edit_id(edit.editId);
+      m.mutable_undo()->set_key(edit.key);
     } else {
       m.mutable_redo()->set_document_id(document_);
-      m.mutable_redo()->set_edit_id(id);
-      m.mutable_redo()->set_key(key);
+      m.mutable_redo()->set_edit_id(edit.editId);
+      m.mutable_redo()->set_key(edit.key);
     }
     enqueue(std::move(m), {.at = {}, .edit = true, .undo = undo, .redo = !undo});
   }
@@ -347,14 +353,9 @@ void Connection::run() {
   while (!stop_) {
     std::deque<Outgoing> out;
     {
-      // Paced below the server's default rate limit (200 commands a second,
-      // in bursts of up to 200): undoing a long drag sends one Undo per edit.
-      const auto now = Clock::now();
-      sendBudget_ = std::min(
-          kSendBurst, sendBudget_ + kSendRate * std::chrono::duration<double>(now - budgetAt_).count());
-      budgetAt_ = now;
+      pacer_.refill(Clock::now());
       std::lock_guard lock(mutex_);
-      for (; !outbox_.empty() && sendBudget_ >= 1; sendBudget_ -= 1) {
+      while (!outbox_.empty() && pacer_.take()) {
         out.push_back(std::move(outbox_.front()));
         outbox_.pop_front();
       }
@@ -385,7 +386,7 @@ void Connection::run() {
     // Short waits keep queued edits from waiting long for the next send.
     auto message = session_->receive(0.005);
     if (!message.isOk()) {
-      if (message.status().message().rfind("no message from the server", 0) == 0) continue;
+      if (client::isReceiveTimeout(message.status())) continue;
       lost(message.status().message());
       if (!reconnect()) return;
       continue;
@@ -397,57 +398,17 @@ void Connection::run() {
 }
 
 void Connection::pollKeySessions() {
-  bool changed = false;
-  for (int k = 0; k < 2; ++k) {
-    if (!keySessions_[k]) continue;
-    for (int i = 0; i < 16; ++i) {
-      auto m = keySessions_[k]->receive(0.001);
-      if (!m.isOk()) {
-        if (m.status().message().rfind("no message from the server", 0) == 0) break;
-        // The textures stop following the keys; the surface is unaffected.
-        keySessions_[k].reset();
-        std::lock_guard lock(mutex_);
-        stats_.lastError = "key " + std::to_string(k) + " texture session: " + m.status().message();
-        break;
-      }
-      if (!m->has_snapshot() && !m->has_delta()) continue;
-      if (!keyViews_[k]->apply(*m).isOk()) {
-        // A gap: a fresh snapshot at the same time.
-        wire::LodProfile atKey = profile_;
-        atKey.set_base_level(atKey.max_level());
-        atKey.set_morph_t(k);
-        (void)keySessions_[k]->send(subscribeMessage(document_, atKey));
-        continue;
-      }
-      changed = true;
-    }
-  }
-  if (!changed || !keyViews_[0]->ready() || !keyViews_[1]->ready()) return;
-  auto map = std::make_shared<KeyPositionMap>();
-  for (int k = 0; k < 2; ++k) {
-    for (const auto& [id, region] : keyViews_[k]->regions()) {
-      for (size_t i = 0; i < region.positions.size() && i < region.vertexIds.size(); ++i) {
-        auto& uv = (*map)[region.vertexIds[i]];
-        uv[2 * k] = static_cast<float>(region.positions[i][0]);
-        uv[2 * k + 1] = static_cast<float>(region.positions[i][1]);
-      }
-    }
-  }
+  if (!keys_) return;
+  MorphKeyFollower::Polled polled = keys_->poll(profile_);
+  if (polled.error.empty() && !polled.positions) return;
   std::lock_guard lock(mutex_);
-  keyPositions_ = std::move(map);
+  if (!polled.error.empty()) stats_.lastError = std::move(polled.error);
+  if (polled.positions) keyPositions_ = std::move(polled.positions);
 }
 
 std::shared_ptr<const KeyPositionMap> Connection::keyPositions() const {
   std::lock_guard lock(mutex_);
   return keyPositions_;
-}
-
-void Connection::recordLatency(Clock::duration d) {
-  const double ms = std::chrono::duration<double, std::milli>(d).count();
-  std::lock_guard lock(mutex_);
-  stats_.lastLatencyMs = ms;
-  stats_.maxLatencyMs = std::max(stats_.maxLatencyMs, ms);
-  ++stats_.latencySamples;
 }
 
 void Connection::publishAll() {
@@ -476,7 +437,8 @@ void Connection::handle(const wire::ServerMessage& m) {
       std::lock_guard lock(mutex_);
       ++stats_.snapshots;
       stats_.coarseShown = false;
-    } else if (m.has_delta() && wasReady && view_.ready() && m.delta().document_id() == document_ && !coarseShown_) {
+    } else if (m.has_delta() && wasReady && view_.ready() && m.delta().document_id() == document_ &&
+               !coarseShown_) {
       const wire::Delta& d = m.delta();
       std::map<uint64_t, std::shared_ptr<const RegionMesh>> changed;
       for (const wire::Region& r : d.regions()) {
@@ -484,17 +446,9 @@ void Connection::handle(const wire::ServerMessage& m) {
         if (it != view_.regions().end())
           changed[r.region_id()] = std::make_shared<const RegionMesh>(it->second);
       }
-      // Latency: an acked version inside this delta's range, else remember the arrival.
-      bool matched = false;
-      for (auto it = ackedVersions_.upper_bound(d.from_version());
-           it != ackedVersions_.end() && it->first <= d.to_version();) {
-        recordLatency(now - it->second);
-        it = ackedVersions_.erase(it);
-        matched = true;
-      }
-      if (!matched && d.author_session_id() == session_->sessionId()) deltaArrivals_[d.to_version()] = now;
-      while (deltaArrivals_.size() > 256) deltaArrivals_.erase(deltaArrivals_.begin());
+      latency_.delta(d.from_version(), d.to_version(), d.author_session_id() == session_->sessionId(), now);
       std::lock_guard lock(mutex_);
+      publishLatency();
       for (auto& [id, mesh] : changed) published_[id] = std::move(mesh);
       for (uint64_t id : d.removed_region_ids()) published_.erase(id);
       ++stats_.deltas;
@@ -509,7 +463,8 @@ void Connection::handle(const wire::ServerMessage& m) {
     stats_.gaps = view_.gaps();
     return;
   }
-  if (m.has_morph_control() && m.morph_control().document_id() == document_) return showCoarse(m.morph_control());
+  if (m.has_morph_control() && m.morph_control().document_id() == document_)
+    return showCoarse(m.morph_control());
   if (m.has_ack() || m.has_reject()) {
     const uint64_t seq = client::replyTo(m);
     auto it = inFlight_.find(seq);
@@ -529,41 +484,16 @@ void Connection::handle(const wire::ServerMessage& m) {
       ++stats_.editsRejected;
       return;
     }
-    const uint64_t version = m.ack().version();
-    // The first delta reaching the version (deltas may be merged).
-    auto arrived = deltaArrivals_.lower_bound(version);
-    if (arrived != deltaArrivals_.end() && version <= view_.version()) {
-      recordLatency(arrived->second - sent.at);
-      deltaArrivals_.erase(arrived);
-    } else if (version > view_.version()) {
-      ackedVersions_[version] = sent.at;
-    }
-    if (sent.step != 0 && m.ack().edit_id() != 0) {
-      std::lock_guard lock(mutex_);
-      history_.acked(sent.step, m.ack().edit_id() | (sent.key == 1 ? kKeyOneBit : 0));
-    }
+    latency_.acked(m.ack().version(), sent.at, view_.version());
+    std::lock_guard lock(mutex_);
+    publishLatency();
+    if (sent.step != 0 && m.ack().edit_id() != 0)
+      history_.acked(sent.step, keyedEditId(m.ack().edit_id(), sent.key));
     return;
   }
   if (m.has_presence() && m.presence().document_id() == document_) {
-    // A full list replaces ours; otherwise only what changed (PROTOCOL 6.3).
     std::lock_guard lock(mutex_);
-    if (m.presence().full()) collaborators_.clear();
-    auto erase = [&](uint64_t session) {
-      std::erase_if(collaborators_, [&](const Collaborator& c) { return c.sessionId == session; });
-    };
-    for (uint64_t left : m.presence().left_session_ids()) erase(left);
-    for (const wire::Participant& p : m.presence().participants()) {
-      erase(p.session_id());
-      Collaborator c{.sessionId = p.session_id(),
-                     .name = p.name(),
-                     .role = p.role(),
-                     .selectedVertices = {},
-                     .self = p.session_id() == session_->sessionId()};
-      c.selectedVertices.assign(p.selection().vertex_ids().begin(), p.selection().vertex_ids().end());
-      collaborators_.push_back(std::move(c));
-    }
-    std::sort(collaborators_.begin(), collaborators_.end(),
-              [](const Collaborator& a, const Collaborator& b) { return a.sessionId < b.sessionId; });
+    collaborators_.apply(m.presence(), session_->sessionId());
     return;
   }
   if (m.has_error()) {

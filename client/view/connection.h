@@ -1,11 +1,16 @@
-// Connection: tessera-view's link to the server. It connects, opens the
-// document and subscribes with the LOD profile, then a background thread owns
-// the Session: it sends queued commands, receives snapshots, deltas and
-// presence, keeps a DocumentView current (resubscribing after a gap) and
-// publishes immutable region meshes for the render thread. When the
-// connection is lost it connects, opens and subscribes again, with backoff.
-// It also measures edit-to-delta latency: from sending an edit to receiving
-// the delta that carries the version its Ack names.
+// Connection: tessera-view's link to the server, its session I/O. It
+// connects, opens the document and subscribes with the LOD profile, then a
+// background thread owns the Session: it sends queued commands, receives
+// snapshots, deltas, replies and presence and hands each to what keeps it
+// (docs/VIEWER.md, "Look", last paragraph): it keeps a DocumentView current
+// (resubscribing after a gap) and publishes immutable region meshes for the
+// render thread. When the connection is lost it connects, opens and
+// subscribes again, with backoff. Beside it, as in client/web's
+// DocumentSession: the undo steps of this viewer's edits (undo_history.h),
+// the edit-to-delta latency (latency_tracker.h), the collaborators from
+// Presence (collaborators.h), the pacing of what it sends (pacer.h) and, on
+// a 2D morph document, the sessions that follow its keys
+// (morph_key_follower.h).
 #pragma once
 
 #include <atomic>
@@ -18,12 +23,15 @@
 #include <optional>
 #include <string>
 #include <thread>
-#include <unordered_map>
 #include <vector>
 
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "client/view/coarse_morph.h"
+#include "client/view/collaborators.h"
+#include "client/view/latency_tracker.h"
+#include "client/view/morph_key_follower.h"
+#include "client/view/pacer.h"
 #include "client/view/undo_history.h"
 #include "client/view/view_options.h"
 
@@ -33,18 +41,6 @@ namespace tessera::view {
 // renderer re-uploads exactly the regions whose pointer changed.
 using RegionMap = std::map<uint64_t, std::shared_ptr<const RegionMesh>>;
 
-struct Collaborator {
-  uint64_t sessionId = 0;
-  std::string name;
-  wire::Role role = wire::ROLE_UNSPECIFIED;
-  std::vector<uint64_t> selectedVertices;
-  bool self = false;
-};
-
-// A 2D morph document's texture coordinates (issue 16 §4): per displayed
-// vertex id, its position (pixels) under key 0 (x, y) and key 1 (x, y).
-using KeyPositionMap = std::unordered_map<uint64_t, std::array<float, 4>>;
-
 struct ConnectionStats {
   bool connected = true;
   bool ready = false;  // a snapshot has arrived
@@ -53,10 +49,10 @@ struct ConnectionStats {
   uint64_t bytesReceived = 0;  // region bytes
   uint64_t gaps = 0;
   uint64_t snapshots = 0, deltas = 0;
-  uint64_t coarseFrames = 0;  // morph frames refined here from control points (coarse_morph.h)
-  bool coarseShown = false;   // the surface shown is one of them
+  uint64_t coarseFrames = 0;   // morph frames refined here from control points (coarse_morph.h)
+  bool coarseShown = false;    // the surface shown is one of them
   uint64_t regionUpdates = 0;  // bumps whenever the published regions change
-  double lastLatencyMs = -1;   // edit to delta; -1 before the first
+  double lastLatencyMs = -1;   // edit to delta (latency_tracker.h); -1 before the first
   double maxLatencyMs = 0;
   uint64_t latencySamples = 0;
   uint64_t reconnects = 0;  // after a lost connection: connect, open, subscribe again
@@ -102,15 +98,15 @@ class Connection {
   // Unsubscribe and subscribe again with another profile.
   void changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle);
 
-  // A morph document (issue 16 §4; found out at open, by asking for its
-  // control points): its images (empty for a 3D morph) and the time shown.
+  // A morph document (docs/VIEWER.md, "Morph documents"; found out at open,
+  // by asking for its control points): its images (empty for a 3D morph)
+  // and the time shown.
   bool isMorph() const { return morph_; }
   const std::string& imageFrom() const { return imageFrom_; }
   const std::string& imageTo() const { return imageTo_; }
-  // With images: where each displayed vertex is under either key, from two
-  // more subscriptions (t = 0 and t = 1, the uniform profile every view of
-  // the document uses) that follow the keys' edits; null until both have
-  // their snapshot. A new pointer whenever it changes.
+  // With images: where each displayed vertex is under either key
+  // (morph_key_follower.h); null until both keys have their snapshot. A new
+  // pointer whenever it changes.
   std::shared_ptr<const KeyPositionMap> keyPositions() const;
   // Subscribes again at time t (LodProfile.morph_t): a snapshot of the
   // surface at t follows.
@@ -147,26 +143,20 @@ class Connection {
   void forget(const Sent& sent);
   void handle(const wire::ServerMessage& message);
   void publishAll();
-  void recordLatency(std::chrono::steady_clock::duration d);
-  void countPending();  // with mutex_ held
+  void publishLatency();  // with mutex_ held
+  void countPending();    // with mutex_ held
   void lost(const std::string& why);
   // Tries again with backoff until it succeeds (true) or the destructor stops it.
   bool reconnect();
 
-  // Edits of key 1 enter the undo history with this bit set (edit ids stay
-  // far below it), so that their undo names the key they were made on.
-  static constexpr uint64_t kKeyOneBit = uint64_t{1} << 63;
-
-  // A 2D morph's sessions at t = 0 and t = 1 (network thread only), and
-  // what they show.
-  std::unique_ptr<client::Session> keySessions_[2];
-  std::unique_ptr<client::DocumentView> keyViews_[2];
+  // A 2D morph's key sessions (network thread only), and what they show.
+  std::unique_ptr<MorphKeyFollower> keys_;
   std::shared_ptr<const KeyPositionMap> keyPositions_;  // guarded by mutex_
   // Reads what the key sessions received; republishes keyPositions_.
   void pollKeySessions();
 
   std::optional<CoarseMorphBase> coarseBase_;  // set at open, read-only after
-  bool coarseShown_ = false;  // network thread only: the regions shown are a coarse frame
+  bool coarseShown_ = false;                   // network thread only: the regions shown are a coarse frame
   void showCoarse(const wire::MorphControl& frame);
 
   bool morph_ = false;  // set at open, read-only after
@@ -181,18 +171,14 @@ class Connection {
   client::DocumentView view_;          // network thread only
   wire::LodProfile profile_;           // network thread only
   std::map<uint64_t, Sent> inFlight_;  // by client_seq; network thread only
-  // Commands the network thread may send now: at most kSendRate a second.
-  static constexpr double kSendRate = 150, kSendBurst = 150;
-  double sendBudget_ = kSendBurst;
-  std::chrono::steady_clock::time_point budgetAt_ = std::chrono::steady_clock::now();
-  // Versions acked but whose delta has not arrived, and the reverse.
-  std::map<uint64_t, std::chrono::steady_clock::time_point> ackedVersions_, deltaArrivals_;
+  Pacer pacer_{Pacer::Clock::now()};   // network thread only
+  LatencyTracker latency_;             // network thread only
 
   mutable std::mutex mutex_;  // guards everything below
   std::deque<Outgoing> outbox_;
   RegionMap published_;
   ConnectionStats stats_;
-  std::vector<Collaborator> collaborators_;
+  Collaborators collaborators_;
   UndoHistory history_;
 
   std::atomic<bool> stop_{false};

@@ -55,4 +55,23 @@ class UndoHistory {
   StepId next_ = 1;
 };
 
+// A morph document numbers edit ids per key, and an Undo or Redo names the
+// key of its edit (docs/PROTOCOL.md 7.2, "Undo, Redo"). The history holds
+// the edits of key 1 with kKeyOneBit set (edit ids stay far below it), so
+// that each id it gives back names its key.
+inline constexpr uint64_t kKeyOneBit = uint64_t{1} << 63;
+
+struct KeyedEdit {
+  uint64_t editId = 0;
+  uint32_t key = 0;  // 0 or 1
+};
+
+// The id the history holds for edit `editId` of `key` (any key but 1 is key 0).
+inline uint64_t keyedEditId(uint64_t editId, uint32_t key) {
+  return editId | (key == 1 ? kKeyOneBit : 0);
+}
+inline KeyedEdit splitKeyedEditId(uint64_t keyed) {
+  return {.editId = keyed & ~kKeyOneBit, .key = (keyed & kKeyOneBit) != 0 ? 1u : 0u};
+}
+
 }  // namespace tessera::view

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "core/loop/refinement.h"
 #include "core/loop/sharpness_inheritance.h"
 
 namespace tessera {
@@ -31,18 +32,24 @@ struct ChildMap {
 
 }  // namespace
 
-Index SparseLevel::findVertex(uint64_t canonical) const { return findIn(vertexIds, canonical); }
-Index SparseLevel::findEdge(uint64_t canonical) const { return findIn(edgeIds, canonical); }
-Index SparseLevel::findFace(uint64_t canonical) const { return findIn(faceIds, canonical); }
+Index SparseLevel::findVertex(uint64_t canonical) const {
+  return findIn(vertexIds, canonical);
+}
+Index SparseLevel::findEdge(uint64_t canonical) const {
+  return findIn(edgeIds, canonical);
+}
+Index SparseLevel::findFace(uint64_t canonical) const {
+  return findIn(faceIds, canonical);
+}
 
 size_t SparseLevel::memoryBytes() const {
   const Level& m = mesh;
   return bytesOf(m.faceVertices) + bytesOf(m.faceEdges) + bytesOf(m.edgeVertices) + bytesOf(m.edgeFaces) +
          bytesOf(m.edgeFaceLocal) + bytesOf(m.faceEdgeSides) + bytesOf(m.ringOffsets) + bytesOf(m.ringEdges) +
-         bytesOf(m.ringVertices) + bytesOf(m.ringFaces) + bytesOf(m.ringFaceLocal) + bytesOf(m.edgeSharpness) +
-         bytesOf(m.vertexSharpness) + bytesOf(m.vertexRules) + bytesOf(vertexIds) + bytesOf(edgeIds) +
-         bytesOf(faceIds) + bytesOf(complete) + bytesOf(origin) + bytesOf(faceParent) + bytesOf(firstChildFace) +
-         bytesOf(childOfVertex) + bytesOf(childOfEdge) + bytesOf(halvesOfEdge);
+         bytesOf(m.ringVertices) + bytesOf(m.ringFaces) + bytesOf(m.ringFaceLocal) +
+         bytesOf(m.edgeSharpness) + bytesOf(m.vertexSharpness) + bytesOf(m.vertexRules) + bytesOf(vertexIds) +
+         bytesOf(edgeIds) + bytesOf(faceIds) + bytesOf(complete) + bytesOf(origin) + bytesOf(faceParent) +
+         bytesOf(firstChildFace) + bytesOf(childOfVertex) + bytesOf(childOfEdge) + bytesOf(halvesOfEdge);
 }
 
 SparseLevel sparseBaseLevel(Level base) {
@@ -116,7 +123,8 @@ ChildMap numberChildren(const SparseLevel& parent, std::span<const uint8_t> refi
   }
   for (Index f = 0; f < p.numFaces(); ++f) {
     if (!refine[f]) continue;
-    for (int j = 0; j < 3; ++j) child.edgeIds[map.interior[f] + j] = 2 * parentEdges + 3 * parent.faceIds[f] + j;
+    for (int j = 0; j < 3; ++j)
+      child.edgeIds[map.interior[f] + j] = 2 * parentEdges + 3 * parent.faceIds[f] + j;
     for (int k = 0; k < 4; ++k) child.faceIds[map.firstFace[f] + k] = 4 * parent.faceIds[f] + k;
     child.faceParent[map.firstFace[f] / 4] = f;
   }
@@ -130,55 +138,31 @@ void refineFacesAndEdges(const Level& p, const ChildMap& map, std::span<const ui
   for (Index e = 0; e < p.numEdges(); ++e) {
     const Index h = map.edgeHalves[e];
     if (h < 0) continue;
-    const Index m = map.edgeVertex[e];
     const auto& ev = p.edgeVertices[e];
     const auto& ef = p.edgeFaces[e];
-    const auto& el = p.edgeFaceLocal[e];
-    c.edgeVertices[h] = {map.vertexChild[ev[0]], m};
-    c.edgeVertices[h + 1] = {m, map.vertexChild[ev[1]]};
-    for (int end = 0; end < 2; ++end) {
-      const Index fa = map.faceChild(ef[0]), fb = map.faceChild(ef[1]);
-      c.edgeFaces[h + end] = {fa < 0 ? fa : fa + (el[0] + end) % 3, fb < 0 ? fb : fb + (el[1] + 1 - end) % 3};
-      c.edgeFaceLocal[h + end] = el;
-    }
+    splitEdge(h, map.vertexChild[ev[0]], map.edgeVertex[e], map.vertexChild[ev[1]],
+              {map.faceChild(ef[0]), map.faceChild(ef[1])}, p.edgeFaceLocal[e], c);
   }
   for (Index f = 0; f < p.numFaces(); ++f) {
     if (!refine[f]) continue;
     const auto& fv = p.faceVertices[f];
     const auto& fe = p.faceEdges[f];
-    const uint8_t sides = p.faceEdgeSides[f];
-    const Index m0 = map.edgeVertex[fe[0]], m1 = map.edgeVertex[fe[1]], m2 = map.edgeVertex[fe[2]];
-    const Index i0 = map.interior[f], i1 = i0 + 1, i2 = i0 + 2;
-    const Index k = map.firstFace[f];
-    auto atStart = [&](int j) { return map.edgeHalves[fe[j]] + ((sides >> j) & 1); };
-    auto atEnd = [&](int j) { return map.edgeHalves[fe[j]] + 1 - ((sides >> j) & 1); };
-    const Index v0 = map.vertexChild[fv[0]], v1 = map.vertexChild[fv[1]], v2 = map.vertexChild[fv[2]];
-
-    c.faceVertices[k + 0] = {v0, m0, m2};
-    c.faceVertices[k + 1] = {m0, v1, m1};
-    c.faceVertices[k + 2] = {m2, m1, v2};
-    c.faceVertices[k + 3] = {m1, m2, m0};
-    c.faceEdges[k + 0] = {atStart(0), i0, atEnd(2)};
-    c.faceEdges[k + 1] = {atEnd(0), atStart(1), i1};
-    c.faceEdges[k + 2] = {i2, atEnd(1), atStart(2)};
-    c.faceEdges[k + 3] = {i2, i0, i1};
-    c.faceEdgeSides[k + 0] = sides & 0b101;
-    c.faceEdgeSides[k + 1] = sides & 0b011;
-    c.faceEdgeSides[k + 2] = sides & 0b110;
-    c.faceEdgeSides[k + 3] = 0b111;
-    c.edgeVertices[i0] = {m0, m2};
-    c.edgeVertices[i1] = {m1, m0};
-    c.edgeVertices[i2] = {m2, m1};
-    c.edgeFaces[i0] = {k + 0, k + 3};
-    c.edgeFaces[i1] = {k + 1, k + 3};
-    c.edgeFaces[i2] = {k + 2, k + 3};
-    c.edgeFaceLocal[i0] = {1, 1};
-    c.edgeFaceLocal[i1] = {2, 2};
-    c.edgeFaceLocal[i2] = {0, 0};
+    FaceSplit split;
+    for (int j = 0; j < 3; ++j) {
+      split.corners[j] = map.vertexChild[fv[j]];
+      split.midpoints[j] = map.edgeVertex[fe[j]];
+      split.halves[j] = map.edgeHalves[fe[j]];
+    }
+    split.firstInterior = map.interior[f];
+    split.firstFace = map.firstFace[f];
+    split.sides = p.faceEdgeSides[f];
+    splitFace(split, c);
   }
 }
 
-bool isPresentChild(const ChildMap& map, Index f) { return f == kInvalidIndex || map.firstFace[f] >= 0; }
+bool isPresentChild(const ChildMap& map, Index f) {
+  return f == kInvalidIndex || map.firstFace[f] >= 0;
+}
 
 // Rings of the complete child vertices, in the order refinement.cc gives the
 // uniform level (so frames and limit tangents agree with it exactly); an
@@ -202,7 +186,8 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
       if (all) valence = p.valence(o);
     } else {
       const auto& ef = p.edgeFaces[o];
-      if (map.firstFace[ef[0]] >= 0 && (ef[1] == kInvalidIndex || (ef[1] >= 0 && map.firstFace[ef[1]] >= 0))) {
+      if (map.firstFace[ef[0]] >= 0 &&
+          (ef[1] == kInvalidIndex || (ef[1] >= 0 && map.firstFace[ef[1]] >= 0))) {
         valence = ef[1] == kInvalidIndex ? 4 : 6;
       }
     }
@@ -252,9 +237,12 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
     const int jn = (j + 1) % 3, jp = (j + 2) % 3;
     const Index iA = map.interior[fA], cA = map.firstFace[fA];
     const auto& feA = p.faceEdges[fA];
-    ringE[0] = h + 1, ringV[0] = map.vertexChild[ev[1]], ringF[0] = cA + jn, ringL[0] = static_cast<uint8_t>(j);
-    ringE[1] = iA + jn, ringV[1] = map.edgeVertex[feA[jn]], ringF[1] = cA + 3, ringL[1] = static_cast<uint8_t>(jp);
-    ringE[2] = iA + j, ringV[2] = map.edgeVertex[feA[jp]], ringF[2] = cA + j, ringL[2] = static_cast<uint8_t>(jn);
+    ringE[0] = h + 1, ringV[0] = map.vertexChild[ev[1]], ringF[0] = cA + jn,
+    ringL[0] = static_cast<uint8_t>(j);
+    ringE[1] = iA + jn, ringV[1] = map.edgeVertex[feA[jn]], ringF[1] = cA + 3,
+    ringL[1] = static_cast<uint8_t>(jp);
+    ringE[2] = iA + j, ringV[2] = map.edgeVertex[feA[jp]], ringF[2] = cA + j,
+    ringL[2] = static_cast<uint8_t>(jn);
     ringE[3] = h, ringV[3] = map.vertexChild[ev[0]];
     const Index fB = p.edgeFaces[e][1];
     if (fB == kInvalidIndex) {
@@ -266,8 +254,10 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
     const Index iB = map.interior[fB], cB = map.firstFace[fB];
     const auto& feB = p.faceEdges[fB];
     ringF[3] = cB + kn, ringL[3] = static_cast<uint8_t>(k);
-    ringE[4] = iB + kn, ringV[4] = map.edgeVertex[feB[kn]], ringF[4] = cB + 3, ringL[4] = static_cast<uint8_t>(kp);
-    ringE[5] = iB + k, ringV[5] = map.edgeVertex[feB[kp]], ringF[5] = cB + k, ringL[5] = static_cast<uint8_t>(kn);
+    ringE[4] = iB + kn, ringV[4] = map.edgeVertex[feB[kn]], ringF[4] = cB + 3,
+    ringL[4] = static_cast<uint8_t>(kp);
+    ringE[5] = iB + k, ringV[5] = map.edgeVertex[feB[kp]], ringF[5] = cB + k,
+    ringL[5] = static_cast<uint8_t>(kn);
   }
   c.maxValence = std::max(p.maxValence, 6);
 }

@@ -9,6 +9,22 @@ namespace tessera {
 
 namespace {
 
+// Parent face f's split in the uniform numbering (the header's).
+FaceSplit uniformSplit(const Level& parent, Index f) {
+  const Index nV = parent.numVertices;
+  const auto& fe = parent.faceEdges[f];
+  FaceSplit split;
+  split.corners = parent.faceVertices[f];
+  for (int j = 0; j < 3; ++j) {
+    split.midpoints[j] = nV + fe[j];
+    split.halves[j] = 2 * fe[j];
+  }
+  split.firstInterior = 2 * parent.numEdges() + 3 * f;
+  split.firstFace = 4 * f;
+  split.sides = parent.faceEdgeSides[f];
+  return split;
+}
+
 // Child numbering and orientation (see level.h): child 2e runs
 // (edgeVertices[e][0], m) and child 2e+1 runs (m, edgeVertices[e][1]), so
 // the "edgeFaces[0] runs [0] to [1]" invariant holds at every level and no
@@ -17,7 +33,6 @@ void refineFacesAndEdges(const Level& parent, Level& child) {
   const Index nV = parent.numVertices;
   const Index nE = parent.numEdges();
   const Index nF = parent.numFaces();
-  const Index firstInterior = 2 * nE;
 
   child.numVertices = nV + nE;
   child.faceVertices.resize(4 * nF);
@@ -28,76 +43,25 @@ void refineFacesAndEdges(const Level& parent, Level& child) {
   child.edgeFaceLocal.resize(2 * nE + 3 * nF);
 
   for (Index e = 0; e < nE; ++e) {
-    const Index m = nV + e;
     const auto& ev = parent.edgeVertices[e];
     const auto& ef = parent.edgeFaces[e];
-    const auto& el = parent.edgeFaceLocal[e];
-    child.edgeVertices[2 * e] = {ev[0], m};
-    child.edgeVertices[2 * e + 1] = {m, ev[1]};
-    // A half keeps its parent's slot in the corner child at its end: the
-    // corner at end 0 is local j in face 0 and local k+1 in face 1.
-    for (int end = 0; end < 2; ++end) {
-      auto& cf = child.edgeFaces[2 * e + end];
-      cf[0] = 4 * ef[0] + (el[0] + end) % 3;
-      cf[1] = ef[1] == kInvalidIndex ? kInvalidIndex : 4 * ef[1] + (el[1] + 1 - end) % 3;
-      child.edgeFaceLocal[2 * e + end] = el;
-    }
+    splitEdge(2 * e, ev[0], nV + e, ev[1], {4 * ef[0], ef[1] == kInvalidIndex ? kInvalidIndex : 4 * ef[1]},
+              parent.edgeFaceLocal[e], child);
   }
-
-  for (Index f = 0; f < nF; ++f) {
-    const auto& fv = parent.faceVertices[f];
-    const auto& fe = parent.faceEdges[f];
-    const uint8_t sides = parent.faceEdgeSides[f];
-    const Index m0 = nV + fe[0], m1 = nV + fe[1], m2 = nV + fe[2];
-    const Index i0 = firstInterior + 3 * f, i1 = i0 + 1, i2 = i0 + 2;
-    const Index c = 4 * f;
-    // Halves of face edge j at its start (vertex j) and end (vertex j+1).
-    auto atStart = [&](int j) { return 2 * fe[j] + ((sides >> j) & 1); };
-    auto atEnd = [&](int j) { return 2 * fe[j] + 1 - ((sides >> j) & 1); };
-
-    child.faceVertices[c + 0] = {fv[0], m0, m2};
-    child.faceVertices[c + 1] = {m0, fv[1], m1};
-    child.faceVertices[c + 2] = {m2, m1, fv[2]};
-    child.faceVertices[c + 3] = {m1, m2, m0};
-
-    child.faceEdges[c + 0] = {atStart(0), i0, atEnd(2)};
-    child.faceEdges[c + 1] = {atEnd(0), atStart(1), i1};
-    child.faceEdges[c + 2] = {i2, atEnd(1), atStart(2)};
-    child.faceEdges[c + 3] = {i2, i0, i1};
-
-    // Corner children are face 0 of the interior edges, the middle is face 1.
-    child.faceEdgeSides[c + 0] = sides & 0b101;
-    child.faceEdgeSides[c + 1] = sides & 0b011;
-    child.faceEdgeSides[c + 2] = sides & 0b110;
-    child.faceEdgeSides[c + 3] = 0b111;
-
-    // Interior edge j joins the midpoints of face edges j and j-1.
-    child.edgeVertices[i0] = {m0, m2};
-    child.edgeVertices[i1] = {m1, m0};
-    child.edgeVertices[i2] = {m2, m1};
-    child.edgeFaces[i0] = {c + 0, c + 3};
-    child.edgeFaces[i1] = {c + 1, c + 3};
-    child.edgeFaces[i2] = {c + 2, c + 3};
-    child.edgeFaceLocal[i0] = {1, 1};
-    child.edgeFaceLocal[i1] = {2, 2};
-    child.edgeFaceLocal[i2] = {0, 0};
-  }
+  for (Index f = 0; f < nF; ++f) splitFace(uniformSplit(parent, f), child);
 }
 
 // Faces only, for a last level that is interpolated and drawn, not refined.
 void refineFaceVertices(const Level& parent, Level& child) {
-  const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
-  child.numVertices = nV + parent.numEdges();
+  child.numVertices = parent.numVertices + parent.numEdges();
   child.faceVertices.resize(4 * nF);
   for (Index f = 0; f < nF; ++f) {
-    const auto& fv = parent.faceVertices[f];
-    const auto& fe = parent.faceEdges[f];
-    const Index m0 = nV + fe[0], m1 = nV + fe[1], m2 = nV + fe[2];
-    child.faceVertices[4 * f + 0] = {fv[0], m0, m2};
-    child.faceVertices[4 * f + 1] = {m0, fv[1], m1};
-    child.faceVertices[4 * f + 2] = {m2, m1, fv[2]};
-    child.faceVertices[4 * f + 3] = {m1, m2, m0};
+    FaceSplit split;
+    split.corners = parent.faceVertices[f];
+    for (int j = 0; j < 3; ++j) split.midpoints[j] = parent.numVertices + parent.faceEdges[f][j];
+    split.firstFace = 4 * f;
+    splitFaceVertices(split, child);
   }
 }
 

@@ -98,11 +98,30 @@ Expected<ImportedMesh> importMeshWithReport(const std::string& path, const Impor
 }
 
 Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, const std::string& extension,
-                                                     const std::string& displayName, const ImportOptions& options) {
+                                                     const std::string& displayName,
+                                                     const ImportOptions& options) {
   std::string ext = lowerCase(extension);
   if (!ext.empty() && ext[0] != '.') ext.insert(0, ".");
   TESSERA_RETURN_IF_ERROR(checkExtension(displayName, ext));
   return importText(bytes, ext, displayName, options, nullptr);
+}
+
+Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
+                                        const std::string& displayName) {
+  std::string ext = lowerCase(extension);
+  if (!ext.empty() && ext[0] != '.') ext.insert(0, ".");
+  const io_detail::TextReadOptions checked{.checkIndices = true};
+  PolygonSoup soup;
+  if (ext == ".obj") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readObj(bytes, displayName, soup, checked));
+  } else if (ext == ".off") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readOff(bytes, displayName, soup, checked));
+  } else {
+    return unsupported(displayName + ": polygons are read from .obj and .off files, not '" + ext + "'");
+  }
+  if (soup.points.empty()) return parseError(displayName + ": no vertices");
+  if (soup.numFaces() == 0) return parseError(displayName + ": no faces");
+  return soup;
 }
 
 Expected<BaseMesh> importMesh(const std::string& path, const ImportOptions& options) {
@@ -112,7 +131,8 @@ Expected<BaseMesh> importMesh(const std::string& path, const ImportOptions& opti
 
 Expected<BaseMesh> importMeshFromBytes(std::string_view bytes, const std::string& extension,
                                        const std::string& displayName, const ImportOptions& options) {
-  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshFromBytesWithReport(bytes, extension, displayName, options));
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported,
+                           importMeshFromBytesWithReport(bytes, extension, displayName, options));
   return std::move(imported.mesh);
 }
 

@@ -57,7 +57,18 @@ Expected<ImportedMesh> importMeshWithReport(const std::string& path, const Impor
 Expected<BaseMesh> importMeshFromBytes(std::string_view bytes, const std::string& extension,
                                        const std::string& displayName, const ImportOptions& options = {});
 Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, const std::string& extension,
-                                                     const std::string& displayName, const ImportOptions& options = {});
+                                                     const std::string& displayName,
+                                                     const ImportOptions& options = {});
+
+// The polygons of an OBJ or OFF file in memory exactly as the file states
+// them, for the schemes that refine polygons as they are
+// (core/schemes/polygon_reader.h): the readers importMesh uses, and since no
+// buildBaseMesh follows, every face index is checked against the vertices at
+// its line and a file without vertices or faces is refused. `extension`
+// chooses the reader (".obj" or "off", any case); other formats are
+// unsupported here.
+Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
+                                        const std::string& displayName);
 
 // Extensions importMesh() accepts, lower case with the dot: ".obj", ...
 const std::vector<std::string>& supportedImportExtensions();

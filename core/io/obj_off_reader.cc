@@ -32,8 +32,8 @@ Status checkRepeats(const std::vector<int>& face, const std::string& where, cons
 }
 
 // One OBJ face corner: v, v/vt, v//vn or v/vt/vn. Returns the 0-based index.
-Status parseObjCorner(std::string_view token, int vertexCount, const std::string& where, const std::string& element,
-                      int& index) {
+Status parseObjCorner(std::string_view token, int vertexCount, const std::string& where,
+                      const std::string& element, int& index) {
   const size_t slash = token.find('/');
   if (!parseInt(token.substr(0, slash), index) || index == 0) {
     return parseError(where + element + ": bad vertex reference '" + clip(token, 40) +
@@ -43,7 +43,8 @@ Status parseObjCorner(std::string_view token, int vertexCount, const std::string
     const std::string_view rest = token.substr(slash + 1);
     const size_t slash2 = rest.find('/');
     const std::string_view vt = rest.substr(0, slash2);
-    const std::string_view vn = slash2 == std::string_view::npos ? std::string_view() : rest.substr(slash2 + 1);
+    const std::string_view vn =
+        slash2 == std::string_view::npos ? std::string_view() : rest.substr(slash2 + 1);
     int unused = 0;
     if ((!vt.empty() && !parseInt(vt, unused)) || (!vn.empty() && !parseInt(vn, unused))) {
       return parseError(where + element + ": bad vertex reference '" + clip(token, 40) + "'");
@@ -63,8 +64,10 @@ Status parseObjCorner(std::string_view token, int vertexCount, const std::string
 
 }  // namespace
 
-Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup) {
-  if (text.find('\0') != std::string_view::npos) return parseError(src + ": binary data, not a text OBJ file");
+Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup,
+               const TextReadOptions& options) {
+  if (text.find('\0') != std::string_view::npos)
+    return parseError(src + ": binary data, not a text OBJ file");
   LineCursor cursor(text);
   std::string_view line;
   std::vector<std::string_view> tokens;
@@ -97,6 +100,10 @@ Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup)
       for (size_t k = 1; k < tokens.size(); ++k) {
         int index = 0;
         TESSERA_RETURN_IF_ERROR(parseObjCorner(tokens[k], vertexCount, where, element, index));
+        if (options.checkIndices && index >= vertexCount) {
+          return parseError(where + "vertex index " + clip(tokens[k].substr(0, tokens[k].find('/'))) +
+                            " names no vertex read so far (" + std::to_string(vertexCount) + ")");
+        }
         face.push_back(index);
       }
       if (face.size() < 3) {
@@ -106,7 +113,8 @@ Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup)
       TESSERA_RETURN_IF_ERROR(checkRepeats(face, where, element));
       soup.addFace(face);
     } else if (!isKeyword(key)) {
-      return parseError(at(src, cursor.lineNumber()) + "unexpected '" + clip(key) + "' (not an OBJ statement)");
+      return parseError(at(src, cursor.lineNumber()) + "unexpected '" + clip(key) +
+                        "' (not an OBJ statement)");
     }
     // Other statements (o, g, s, usemtl, mtllib, l, p, ...) carry no geometry
     // Tessera uses.
@@ -114,8 +122,10 @@ Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup)
   return Status::ok();
 }
 
-Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup) {
-  if (text.find('\0') != std::string_view::npos) return parseError(src + ": binary data, not a text OFF file");
+Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup,
+               const TextReadOptions& options) {
+  if (text.find('\0') != std::string_view::npos)
+    return parseError(src + ": binary data, not a text OFF file");
   LineCursor cursor(text);
   std::string_view line;
   std::vector<std::string_view> tokens;
@@ -133,8 +143,8 @@ Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup)
         return parseError(where + "header: expected 'OFF', found '" + clip(key) + "'");
       }
       const std::string_view prefix = key.substr(0, key.size() - 3);
-      if (prefix != "" && prefix != "C" && prefix != "N" && prefix != "CN" && prefix != "ST" && prefix != "STC" &&
-          prefix != "STN" && prefix != "STCN") {
+      if (prefix != "" && prefix != "C" && prefix != "N" && prefix != "CN" && prefix != "ST" &&
+          prefix != "STC" && prefix != "STN" && prefix != "STCN") {
         return unsupported(where + "header: OFF variant '" + clip(key) + "' is not supported");
       }
       if (tokens.size() > 1 && tokens[1] == "BINARY") {
@@ -165,15 +175,23 @@ Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup)
     } else {
       const std::string element = "face " + std::to_string(soup.numFaces());
       int n = 0;
-      if (!parseInt(tokens[0], n) || n < 0) return parseError(where + element + ": bad corner count '" + clip(tokens[0]) + "'");
-      if (n < 3) return invalidMesh(where + element + ": has " + std::to_string(n) + " vertices, a face needs at least 3");
+      if (!parseInt(tokens[0], n) || n < 0)
+        return parseError(where + element + ": bad corner count '" + clip(tokens[0]) + "'");
+      if (n < 3)
+        return invalidMesh(where + element + ": has " + std::to_string(n) +
+                           " vertices, a face needs at least 3");
       if (tokens.size() < static_cast<size_t>(n) + 1) {
         return parseError(where + element + ": expected " + std::to_string(n) + " vertex indices");
       }
       face.clear();
       for (int k = 1; k <= n; ++k) {
         int index = 0;
-        if (!parseInt(tokens[k], index)) return parseError(where + element + ": bad vertex index '" + clip(tokens[k]) + "'");
+        if (!parseInt(tokens[k], index))
+          return parseError(where + element + ": bad vertex index '" + clip(tokens[k]) + "'");
+        if (options.checkIndices && (index < 0 || static_cast<size_t>(index) >= declaredVertices)) {
+          return parseError(where + "bad vertex index '" + clip(tokens[k]) + "' (0.." +
+                            std::to_string(static_cast<long long>(declaredVertices) - 1) + ")");
+        }
         face.push_back(index);
       }
       TESSERA_RETURN_IF_ERROR(checkNumeric(tokens, n + 1, where, element));  // an optional colour, ignored
@@ -182,15 +200,20 @@ Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup)
       if (static_cast<size_t>(soup.numFaces()) == declaredFaces) stage = Stage::kDone;
     }
   }
-  if (stage == Stage::kKeyword || stage == Stage::kCounts) return parseError(src + ": header: truncated, no counts");
+  if (stage == Stage::kKeyword || stage == Stage::kCounts)
+    return parseError(src + ": header: truncated, no counts");
+  if (stage == Stage::kVertices) {
+    return parseError(src + ": truncated: " + std::to_string(soup.points.size()) + " of " +
+                      std::to_string(declaredVertices) + " vertices");
+  }
   if (stage != Stage::kDone) {
-    return parseError(src + ": truncated: the header declares " + std::to_string(declaredVertices) + " vertices and " +
-                      std::to_string(declaredFaces) + " faces, the file has " + std::to_string(soup.points.size()) +
-                      " and " + std::to_string(soup.numFaces()));
+    return parseError(src + ": truncated: " + std::to_string(soup.numFaces()) + " of " +
+                      std::to_string(declaredFaces) + " faces");
   }
   while (cursor.next(line)) {
     splitLine(withoutComment(line), tokens);
-    if (!tokens.empty()) return parseError(at(src, cursor.lineNumber()) + "unexpected data after the last face");
+    if (!tokens.empty())
+      return parseError(at(src, cursor.lineNumber()) + "unexpected data after the last face");
   }
   return Status::ok();
 }

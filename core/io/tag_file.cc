@@ -2,10 +2,10 @@
 // because a silently ignored tag changes the surface without telling anyone.
 #include "core/io/tag_file.h"
 
-#include <charconv>
-#include <cmath>
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -78,12 +78,14 @@ Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::
     } else {
       return parseError(where + "unknown keyword '" + tokens[0] + "' (expected 'crease' or 'corner')");
     }
-    const std::string usage = tag.kind == FeatureTag::Kind::kCrease ? "crease I J SHARPNESS" : "corner I SHARPNESS";
+    const std::string usage =
+        tag.kind == FeatureTag::Kind::kCrease ? "crease I J SHARPNESS" : "corner I SHARPNESS";
     if (tokens.size() < arity) {
       return parseError(where + tokens[0] + ": too few values, expected '" + usage + "'");
     }
     if (tokens.size() > arity) {
-      return parseError(where + tokens[0] + ": unexpected trailing '" + tokens[arity] + "', expected '" + usage + "'");
+      return parseError(where + tokens[0] + ": unexpected trailing '" + tokens[arity] + "', expected '" +
+                        usage + "'");
     }
     if (!parseIndex(tokens[1], tag.v0)) {
       return parseError(where + tokens[0] + ": bad vertex index '" + tokens[1] +
@@ -108,10 +110,9 @@ Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::
   return tags;
 }
 
-Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh,
+Status applyTags(const std::vector<FeatureTag>& tags, const TagNaming& naming, const TagTarget& target,
                  const VertexRenumbering& renumbering) {
-  const TriMesh& m = mesh.mesh();
-  const int n = mesh.numVertices();
+  const int n = target.numVertices;
   const int fileVertices = renumbering.isIdentity() ? n : renumbering.fileVertexCount();
   // The file's vertex v in the mesh; checks first that it exists.
   const auto meshVertex = [&](int v, const std::string& where, int& out) -> Status {
@@ -122,7 +123,8 @@ Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, 
     }
     out = renumbering.isIdentity() ? v : renumbering.newIndex[v];
     if (out < 0) {
-      return notFound(where + "vertex " + std::to_string(v) + " was dropped: no face uses it (--drop-unused)");
+      return notFound(where + "vertex " + std::to_string(v) +
+                      " was dropped: no face uses it (--drop-unused)");
     }
     return Status::ok();
   };
@@ -131,35 +133,50 @@ Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, 
   std::map<std::pair<int, int>, size_t> seen;  // (v0, v1) or (v, -1) -> tag
   for (size_t i = 0; i < tags.size(); ++i) {
     const FeatureTag& tag = tags[i];
-    const std::string where = locate(tag) + ": " + describe(tag) + ": ";
+    const std::string where = naming.prefix(tag);
     const bool crease = tag.kind == FeatureTag::Kind::kCrease;
     TESSERA_RETURN_IF_ERROR(meshVertex(tag.v0, where, mapped[i].v0));
     if (crease) TESSERA_RETURN_IF_ERROR(meshVertex(tag.v1, where, mapped[i].v1));
     if (!(tag.sharpness >= 0.0f)) return invalidArgument(where + "sharpness must be a number >= 0");
-    if (crease && !m.find_halfedge(m.vertex_handle(mapped[i].v0), m.vertex_handle(mapped[i].v1)).is_valid()) {
+    if (crease && !target.hasEdge(mapped[i].v0, mapped[i].v1)) {
       return notFound(where + "vertices " + std::to_string(tag.v0) + " and " + std::to_string(tag.v1) +
                       " share no edge");
     }
-    const std::pair<int, int> key = crease ? std::pair<int, int>(std::minmax(tag.v0, tag.v1)) : std::pair<int, int>(tag.v0, -1);
+    const std::pair<int, int> key =
+        crease ? std::pair<int, int>(std::minmax(tag.v0, tag.v1)) : std::pair<int, int>(tag.v0, -1);
     auto [it, inserted] = seen.emplace(key, i);
     if (!inserted) {
       return invalidArgument(where + "duplicate tag, the same " + (crease ? "edge" : "vertex") +
-                             " is already tagged at " + locate(tags[it->second]));
+                             " is already tagged at " + naming.reference(tags[it->second]));
     }
   }
   for (const FeatureTag& tag : mapped) {
-    const Status status = tag.kind == FeatureTag::Kind::kCrease
-                              ? mesh.setCreaseByVertices(tag.v0, tag.v1, tag.sharpness)
-                              : mesh.setCornerByVertex(tag.v0, tag.sharpness);
-    if (!status.isOk()) return status.withContext(locate(tag));  // unreachable after the checks
+    const Status status = target.set(tag);
+    if (!status.isOk()) return status.withContext(naming.reference(tag));  // unreachable after the checks
   }
   return Status::ok();
+}
+
+Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh,
+                 const VertexRenumbering& renumbering) {
+  const TagNaming naming{[&](const FeatureTag& tag) { return locate(tag) + ": " + describe(tag) + ": "; },
+                         locate};
+  const TriMesh& m = mesh.mesh();
+  const TagTarget target{
+      mesh.numVertices(),
+      [&](int a, int b) { return m.find_halfedge(m.vertex_handle(a), m.vertex_handle(b)).is_valid(); },
+      [&](const FeatureTag& tag) {
+        return tag.kind == FeatureTag::Kind::kCrease ? mesh.setCreaseByVertices(tag.v0, tag.v1, tag.sharpness)
+                                                     : mesh.setCornerByVertex(tag.v0, tag.sharpness);
+      }};
+  return applyTags(tags, naming, target, renumbering);
 }
 
 Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceName, BaseMesh& mesh,
                  const VertexRenumbering& renumbering) {
   return applyTags(
-      tags, [&](const FeatureTag& tag) { return sourceName + ":" + std::to_string(tag.line); }, mesh, renumbering);
+      tags, [&](const FeatureTag& tag) { return sourceName + ":" + std::to_string(tag.line); }, mesh,
+      renumbering);
 }
 
 Status applyTagFile(const std::string& path, BaseMesh& mesh, const VertexRenumbering& renumbering) {

@@ -43,6 +43,29 @@ using TagLocator = std::function<std::string(const FeatureTag&)>;
 Status applyTags(const std::vector<FeatureTag>& tags, const TagLocator& locate, BaseMesh& mesh,
                  const VertexRenumbering& renumbering = VertexRenumbering{});
 
+// What the tag applier needs of a mesh, so that one applier serves the
+// triangle mesh (BaseMesh) and the polygon meshes of core/schemes.
+struct TagTarget {
+  int numVertices = 0;
+  std::function<bool(int, int)> hasEdge;         // whether two of the mesh's vertices share an edge
+  std::function<Status(const FeatureTag&)> set;  // sets a checked tag, its vertices the mesh's
+};
+
+// How errors name a tag: every message about a tag starts with prefix(tag)
+// ("t.tags:3: crease 0 4: "), and a duplicate names the tag it repeats by
+// reference(tag) ("t.tags:1").
+struct TagNaming {
+  TagLocator prefix;
+  TagLocator reference;
+};
+
+// The applier behind the overloads above: checks every tag first (its
+// vertices exist, or were dropped, by `renumbering`; its sharpness; a
+// crease's edge; no second tag on an edge or vertex), then sets them in
+// order, so an error leaves the mesh unchanged.
+Status applyTags(const std::vector<FeatureTag>& tags, const TagNaming& naming, const TagTarget& target,
+                 const VertexRenumbering& renumbering = VertexRenumbering{});
+
 // Parses a sharpness token: a finite number >= 0 or `inf` (any case).
 // Returns false for anything else (negative, NaN, junk).
 bool parseSharpness(const std::string& token, float& sharpness);

@@ -24,14 +24,24 @@
 
 namespace tessera::io_detail {
 
+struct TextReadOptions {
+  // Refuse, at its line, a face index that names no vertex (in OBJ, no
+  // vertex read so far). The triangle import leaves indices to
+  // buildBaseMesh, which names the whole face; the polygon import
+  // (importPolygonSoup) uses the soup as the file states it.
+  bool checkIndices = false;
+};
+
 // OBJ: `v x y z [w | r g b]` and `f` with v, v/vt, v//vn or v/vt/vn references
 // (1-based, negative relative to the vertices so far). Other statements
 // (vt, vn, o, g, s, usemtl, mtllib, l, p, ...) carry no geometry Tessera uses.
-Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup);
+Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup,
+               const TextReadOptions& options = {});
 
 // ASCII OFF and its C/N/ST prefixes, with '#' comments; a face's optional
 // colour is checked to be numbers and ignored.
-Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup);
+Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup,
+               const TextReadOptions& options = {});
 
 // PLY 1.0 (ascii, binary_little_endian, binary_big_endian): element vertex
 // with x, y, z of any numeric type, element face with a list property

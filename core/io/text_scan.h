@@ -23,7 +23,9 @@ namespace tessera::io_detail {
 // the checks (areas, bounding boxes) that validation does in double.
 inline constexpr double kMaxCoordinate = std::numeric_limits<float>::max();
 
-inline bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool isBlank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 // Splits `line` at blanks into `tokens` (cleared first).
 inline void splitLine(std::string_view line, std::vector<std::string_view>& tokens) {
@@ -82,14 +84,20 @@ inline bool parseInt(std::string_view token, int& value) {
 }
 
 // "<src>:<line>: " -- the prefix of a reader's errors.
-inline std::string at(const std::string& src, int line) { return src + ":" + std::to_string(line) + ": "; }
+inline std::string at(const std::string& src, int line) {
+  return src + ":" + std::to_string(line) + ": ";
+}
 
-inline std::string clip(std::string_view token, size_t length = 20) { return std::string(token.substr(0, length)); }
+inline std::string clip(std::string_view token, size_t length = 20) {
+  return std::string(token.substr(0, length));
+}
 
 // Parses three coordinates from tokens[first..first+3): each a number, finite
-// and within kMaxCoordinate; errors say "<where><element>: ...".
-inline Status parseCoordinates(const std::vector<std::string_view>& tokens, size_t first, const std::string& where,
-                               const std::string& element, double xyz[3]) {
+// and within kMaxCoordinate; errors say "<where><element>: ...", but for a
+// number that is not finite "<where>bad coordinate '<token>' of <element>: NaN"
+// (or infinite).
+inline Status parseCoordinates(const std::vector<std::string_view>& tokens, size_t first,
+                               const std::string& where, const std::string& element, double xyz[3]) {
   for (int k = 0; k < 3; ++k) {
     if (!parseNumber(tokens[first + k], xyz[k])) {
       return parseError(where + element + ": bad coordinate '" + clip(tokens[first + k], 40) + "'");
@@ -97,7 +105,8 @@ inline Status parseCoordinates(const std::vector<std::string_view>& tokens, size
   }
   for (int k = 0; k < 3; ++k) {
     if (!std::isfinite(xyz[k])) {
-      return invalidMesh(where + element + ": coordinate is " + (std::isnan(xyz[k]) ? "NaN" : "infinite"));
+      return invalidMesh(where + "bad coordinate '" + clip(tokens[first + k], 40) + "' of " + element + ": " +
+                         (std::isnan(xyz[k]) ? "NaN" : "infinite"));
     }
     if (std::abs(xyz[k]) > kMaxCoordinate) {
       return invalidMesh(where + element + ": coordinate " + clip(tokens[first + k], 40) +
@@ -108,11 +117,12 @@ inline Status parseCoordinates(const std::vector<std::string_view>& tokens, size
 }
 
 // Every token from `first` on must be a number (colours, weights).
-inline Status checkNumeric(const std::vector<std::string_view>& tokens, size_t first, const std::string& where,
-                           const std::string& element) {
+inline Status checkNumeric(const std::vector<std::string_view>& tokens, size_t first,
+                           const std::string& where, const std::string& element) {
   double unused;
   for (size_t k = first; k < tokens.size(); ++k) {
-    if (!parseNumber(tokens[k], unused)) return parseError(where + element + ": unexpected '" + clip(tokens[k]) + "'");
+    if (!parseNumber(tokens[k], unused))
+      return parseError(where + element + ": unexpected '" + clip(tokens[k]) + "'");
   }
   return Status::ok();
 }

@@ -1,8 +1,9 @@
-// Polygon input for the quad schemes: OBJ and OFF read as polygons, with
-// coordinates parsed to full double precision (std::from_chars), strictly:
-// every error names the file and the line. Other formats go through the
-// triangle importer (core/io/mesh_import.h) and arrive as triangles.
-// Feature tags come from a tag file (core/io/tag_file.h's syntax).
+// Polygon input for the quad schemes: OBJ and OFF read as polygons by the
+// readers every import uses (core/io/mesh_import.h, importPolygonSoup: full
+// double precision, strict, every error naming the file and the line),
+// other formats through the triangle importer, arriving as triangles.
+// Feature tags come from a tag file, applied by core/io/tag_file.h's
+// applier.
 #pragma once
 
 #include <string>
@@ -21,9 +22,8 @@ struct PolygonMesh {
   std::vector<Vec3> points;
 };
 
-// OBJ: `v x y z [w]` and `f a[/t[/n]] ...` (negative indices count back
-// from the last vertex); other statements are ignored. OFF: the counts, the
-// points and `n i0 .. in-1 [colour]` faces, with `#` comments.
+// OBJ and OFF as core/io reads them (text_mesh_readers.h), each face index
+// checked against the vertices at its line.
 Expected<PolygonSoup> readObjPolygons(std::string_view text, const std::string& name);
 Expected<PolygonSoup> readOffPolygons(std::string_view text, const std::string& name);
 

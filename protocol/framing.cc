@@ -4,6 +4,8 @@
 #include <climits>
 #include <utility>
 
+#include "core/util/byte_io.h"
+
 namespace tessera {
 
 namespace {
@@ -29,11 +31,7 @@ Expected<std::string> encodeFrame(const google::protobuf::MessageLite& message, 
                            " bytes exceeds the frame limit of " + std::to_string(limit) + " bytes");
   }
   std::string frame(kFrameHeaderBytes + size, '\0');
-  // Network byte order, spelled out so that the host's endianness never matters.
-  frame[0] = static_cast<char>((size >> 24) & 0xff);
-  frame[1] = static_cast<char>((size >> 16) & 0xff);
-  frame[2] = static_cast<char>((size >> 8) & 0xff);
-  frame[3] = static_cast<char>(size & 0xff);
+  putBigEndian32(static_cast<uint32_t>(size), frame.data());  // size <= limit < 2^32
   if (!message.SerializeToArray(frame.data() + kFrameHeaderBytes, static_cast<int>(size))) {
     return internalError("serializing a " + message.GetTypeName() + " of " + std::to_string(size) +
                          " bytes failed");
@@ -98,8 +96,7 @@ Status FrameDecoder::feed(std::string_view bytes) {
 }
 
 Status FrameDecoder::headerComplete() {
-  const uint32_t length = (uint32_t{header_[0]} << 24) | (uint32_t{header_[1]} << 16) |
-                          (uint32_t{header_[2]} << 8) | uint32_t{header_[3]};
+  const uint32_t length = getBigEndian32(header_);
   const std::string where = describeFrame(current_.number, current_.offset);
   if (length == 0) {
     fail(FrameError::kZeroLength,
@@ -108,7 +105,8 @@ Status FrameDecoder::headerComplete() {
     return status_;
   }
   const bool first = current_.number == 1 && options_.firstFrameMaxBytes > 0;
-  const uint32_t limit = first ? std::min(options_.firstFrameMaxBytes, options_.maxFrameBytes) : options_.maxFrameBytes;
+  const uint32_t limit =
+      first ? std::min(options_.firstFrameMaxBytes, options_.maxFrameBytes) : options_.maxFrameBytes;
   if (length > limit) {
     fail(FrameError::kTooLarge,
          parseError(where + " announces " + std::to_string(length) + " bytes, more than the limit of " +

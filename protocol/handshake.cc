@@ -1,6 +1,6 @@
 #include "protocol/handshake.h"
 
-#include <cstdio>
+#include "core/util/hex.h"
 
 namespace tessera {
 
@@ -25,10 +25,8 @@ Status checkText(const std::string& text, const char* field, size_t maxBytes) {
   for (size_t i = 0; i < text.size(); ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
     if (c < 0x20 || c == 0x7f) {
-      char hex[8];
-      std::snprintf(hex, sizeof(hex), "0x%02x", c);
-      return invalidArgument(std::string("Hello.") + field + " contains control character " + hex +
-                             " at byte " + std::to_string(i));
+      return invalidArgument(std::string("Hello.") + field + " contains control character " +
+                             hexNumber(c, 2) + " at byte " + std::to_string(i));
     }
   }
   return Status::ok();

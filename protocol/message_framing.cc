@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "core/util/byte_io.h"
 #include "protocol/framing.h"
 
 namespace tessera {
@@ -14,12 +15,13 @@ Status MessageFraming::feed(std::string_view bytes, bool last, bool binary) {
   }
   received_ += bytes.size();
   if (announced_ == 0 && received_ >= kFrameHeaderBytes) {
-    const uint64_t payload = (uint64_t{prefix_[0]} << 24) | (uint64_t{prefix_[1]} << 16) | (uint64_t{prefix_[2]} << 8) | prefix_[3];
+    const uint64_t payload = getBigEndian32(prefix_);
     announced_ = kFrameHeaderBytes + payload;
   }
   if (announced_ != 0 && received_ > announced_) {
     return invalidArgument(where + " holds more than one frame: its prefix announces " +
-                           std::to_string(announced_ - kFrameHeaderBytes) + " payload bytes, but more follow");
+                           std::to_string(announced_ - kFrameHeaderBytes) +
+                           " payload bytes, but more follow");
   }
   if (!last) return Status::ok();
   if (received_ < kFrameHeaderBytes) {
@@ -28,7 +30,8 @@ Status MessageFraming::feed(std::string_view bytes, bool last, bool binary) {
   }
   if (received_ < announced_) {
     return invalidArgument(where + " ends inside its frame: the prefix announces " +
-                           std::to_string(announced_ - kFrameHeaderBytes) + " payload bytes, the message holds " +
+                           std::to_string(announced_ - kFrameHeaderBytes) +
+                           " payload bytes, the message holds " +
                            std::to_string(received_ - kFrameHeaderBytes));
   }
   ++message_;

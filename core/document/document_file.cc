@@ -7,9 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include <zlib.h>
-
 #include "core/util/byte_io.h"
+#include "core/util/crc32.h"
 
 namespace tessera {
 
@@ -19,11 +18,6 @@ namespace {
 constexpr char kMagic[8] = {'T', 'S', 'R', 'D', 'O', 'C', '\r', '\n'};
 constexpr size_t kHeaderSize = 8 + 4 + 4 + 8;  // magic, version, reserved, payload size
 constexpr size_t kTrailerSize = 4;             // CRC-32 of the payload
-
-
-uint32_t crc32Of(const char* data, size_t size) {
-  return static_cast<uint32_t>(::crc32(0L, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(size)));
-}
 
 void writePayload(const Document& doc, ByteWriter& w) {
   const auto& options = doc.options();
@@ -70,7 +64,8 @@ Expected<Document> readPayload(ByteReader& r) {
   if (crease > 1 || boundary > 1 || reserved != 0) return parseError(r.source() + ": bad options");
   DocumentOptions options;
   options.loop.creaseMethod = crease == 0 ? CreaseMethod::kUniform : CreaseMethod::kChaikin;
-  options.loop.boundary = boundary == 0 ? BoundaryInterpolation::kEdgeOnly : BoundaryInterpolation::kEdgeAndCorner;
+  options.loop.boundary =
+      boundary == 0 ? BoundaryInterpolation::kEdgeOnly : BoundaryInterpolation::kEdgeAndCorner;
   options.maxLevel = maxLevel;
 
   BaseTopology base;
@@ -110,7 +105,8 @@ Expected<Document> readPayload(ByteReader& r) {
     float s = 0;
     TESSERA_RETURN_IF_ERROR(r.get(v, "a corner"));
     TESSERA_RETURN_IF_ERROR(r.get(s, "a corner"));
-    if (v >= points.size() || !(s >= 0.0f)) return parseError(r.source() + ": corner " + std::to_string(i) + " is invalid");
+    if (v >= points.size() || !(s >= 0.0f))
+      return parseError(r.source() + ": corner " + std::to_string(i) + " is invalid");
     base.vertexSharpness[v] = s;
   }
 
@@ -122,7 +118,9 @@ Expected<Document> readPayload(ByteReader& r) {
     TESSERA_ASSIGN_OR_RETURN(Edit edit, readEdit(r));
     edits.push_back(std::move(edit));
   }
-  if (r.remaining() != 0) return parseError(r.source() + ": " + std::to_string(r.remaining()) + " unexpected bytes after the edits");
+  if (r.remaining() != 0)
+    return parseError(r.source() + ": " + std::to_string(r.remaining()) +
+                      " unexpected bytes after the edits");
   auto doc = Document::restore(std::move(base), std::move(points), options, std::move(edits), nextEditId);
   if (!doc.isOk()) return doc.status().withContext(r.source());
   return doc;
@@ -139,7 +137,7 @@ std::string serializeDocument(const Document& document) {
   out.put<uint32_t>(0);
   out.put<uint64_t>(payload.bytes().size());
   out.putBytes(payload.bytes());
-  out.put<uint32_t>(crc32Of(payload.bytes().data(), payload.bytes().size()));
+  out.put<uint32_t>(crc32Of(payload.bytes()));
   return std::move(out.bytes());
 }
 
@@ -154,17 +152,19 @@ Expected<Document> deserializeDocument(const std::string& bytes, const std::stri
   TESSERA_RETURN_IF_ERROR(header.get(reserved, "the header"));
   TESSERA_RETURN_IF_ERROR(header.get(payloadSize, "the payload size"));
   if (version == 0 || version > kDocumentFormatVersion) {
-    return unsupported(source + ": document format version " + std::to_string(version) + " is not supported (this build reads 1.." +
-                       std::to_string(kDocumentFormatVersion) + ")");
+    return unsupported(source + ": document format version " + std::to_string(version) +
+                       " is not supported (this build reads 1.." + std::to_string(kDocumentFormatVersion) +
+                       ")");
   }
-  const size_t held = bytes.size() >= kHeaderSize + kTrailerSize ? bytes.size() - kHeaderSize - kTrailerSize : 0;
+  const size_t held =
+      bytes.size() >= kHeaderSize + kTrailerSize ? bytes.size() - kHeaderSize - kTrailerSize : 0;
   if (bytes.size() < kHeaderSize + kTrailerSize || payloadSize != held) {
     return parseError(source + ": truncated or padded: the header announces " + std::to_string(payloadSize) +
                       " payload bytes, the file holds " + std::to_string(held));
   }
   uint32_t stored = 0;
   std::memcpy(&stored, bytes.data() + kHeaderSize + payloadSize, sizeof(stored));
-  if (stored != crc32Of(bytes.data() + kHeaderSize, payloadSize)) {
+  if (stored != crc32Of(std::string_view(bytes.data() + kHeaderSize, payloadSize))) {
     return parseError(source + ": corrupted (payload checksum mismatch)");
   }
   ByteReader payload(bytes.data() + kHeaderSize, payloadSize, source);

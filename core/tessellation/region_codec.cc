@@ -1,10 +1,7 @@
 #include "core/tessellation/region_codec.h"
 
-#include <zlib.h>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <memory>
 
@@ -12,6 +9,8 @@
 #include "core/tessellation/float_text.h"
 #include "core/tessellation/region_draco.h"
 #include "core/util/byte_io.h"
+#include "core/util/crc32.h"
+#include "core/util/hex.h"
 
 namespace tessera {
 namespace {
@@ -28,16 +27,6 @@ constexpr uint16_t kFlagLayoutIds = 2;
 // Bit 2: ids as points of the region's lattice (region_lattice.h), two
 // bytes that Draco predicts from the neighbours instead of eight per id.
 constexpr uint16_t kFlagLatticeIds = 4;
-
-std::string hex32(uint32_t x) {
-  char text[16];
-  std::snprintf(text, sizeof(text), "0x%08x", x);
-  return text;
-}
-
-uint32_t crc32Of(const char* data, size_t size) {
-  return static_cast<uint32_t>(::crc32(0L, reinterpret_cast<const Bytef*>(data), static_cast<uInt>(size)));
-}
 
 Status checkMesh(const RegionMesh& mesh, const QuantizationGrid& grid) {
   const size_t n = mesh.positions.size();
@@ -174,7 +163,7 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
   w.bytes().reserve(kRegionHeaderBytes + kMaxRegionFrameBytes + payload.size() + kRegionTrailerBytes);
   writeHeader(w, header, coding, static_cast<uint32_t>(triangles), static_cast<uint32_t>(payload.size()));
   w.bytes().append(payload);
-  w.put<uint32_t>(crc32Of(w.bytes().data(), w.bytes().size()));
+  w.put<uint32_t>(crc32Of(w.bytes()));
   return std::move(w.bytes());
 }
 
@@ -226,7 +215,8 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   if (std::memcmp(magic.data(), kMagic, sizeof(kMagic)) != 0) {
     uint32_t value = 0;
     std::memcpy(&value, magic.data(), sizeof(value));
-    return parseError(source + ": not a Tessera region (magic " + hex32(value) + ", expected \"TSRG\")");
+    return parseError(source + ": not a Tessera region (magic " + hexNumber(value, 8) +
+                      ", expected \"TSRG\")");
   }
   uint16_t version = 0, flags = 0;
   TESSERA_RETURN_IF_ERROR(r.get(version, "the format version"));
@@ -267,10 +257,10 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   }
   uint32_t stored = 0;
   std::memcpy(&stored, bytes.data() + bytes.size() - kRegionTrailerBytes, sizeof(stored));
-  const uint32_t computed = crc32Of(bytes.data(), bytes.size() - kRegionTrailerBytes);
+  const uint32_t computed = crc32Of(bytes.substr(0, bytes.size() - kRegionTrailerBytes));
   if (stored != computed) {
-    return parseError(source + ": checksum mismatch (stored " + hex32(stored) + ", computed " +
-                      hex32(computed) + "): the bytes are corrupted");
+    return parseError(source + ": checksum mismatch (stored " + hexNumber(stored, 8) + ", computed " +
+                      hexNumber(computed, 8) + "): the bytes are corrupted");
   }
 
   const std::string where = "region " + std::to_string(header.regionId) + " (document version " +

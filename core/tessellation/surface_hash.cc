@@ -5,14 +5,15 @@
 #include <bit>
 #include <vector>
 
+#include "core/util/fnv1a.h"
+
 namespace tessera {
 namespace {
 
-constexpr uint64_t kFnvOffsetBasis = 0xcbf29ce484222325ull;
-constexpr uint64_t kFnvPrime = 0x100000001b3ull;
-
 // -0.0 and +0.0 are the same coordinate; a decoder may produce either.
-uint32_t coordinateBits(float value) { return value == 0.0f ? 0u : std::bit_cast<uint32_t>(value); }
+uint32_t coordinateBits(float value) {
+  return value == 0.0f ? 0u : std::bit_cast<uint32_t>(value);
+}
 
 using CornerKey = std::array<uint64_t, 4>;  // id, then the bits of x, y, z
 
@@ -21,7 +22,7 @@ CornerKey keyOf(const HashedCorner& c) {
 }
 
 void mixLittleEndian(uint64_t& h, uint64_t value, int bytes) {
-  for (int i = 0; i < bytes; ++i) h = (h ^ ((value >> (8 * i)) & 0xff)) * kFnvPrime;
+  for (int i = 0; i < bytes; ++i) h = fnv1aByte(h, static_cast<uint8_t>(value >> (8 * i)));
 }
 
 template <typename Position>
@@ -49,7 +50,7 @@ uint64_t triangleHash(const std::array<HashedCorner, 3>& corners) {
     const std::array<CornerKey, 3> best{keys[first], keys[(first + 1) % 3], keys[(first + 2) % 3]};
     if (candidate < best) first = r;
   }
-  uint64_t h = kFnvOffsetBasis;
+  uint64_t h = kFnv1aOffsetBasis;
   for (int k = 0; k < 3; ++k) {
     const CornerKey& key = keys[(first + k) % 3];
     mixLittleEndian(h, key[0], 8);

@@ -1,5 +1,6 @@
 // Little-endian byte writing and bounds-checked reading: a ByteReader never
-// reads past its end and names what it was reading when data runs out.
+// reads past its end and names what it was reading when data runs out. And
+// the big-endian 32-bit numbers of the wire's length prefixes.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,22 @@
 #include "core/util/status.h"
 
 namespace tessera {
+
+// A 32-bit number in big-endian (network) byte order, as the frames' length
+// prefix carries it (protocol/framing.h); spelled out so that the host's
+// endianness never matters.
+inline void putBigEndian32(uint32_t value, char* out) {
+  out[0] = static_cast<char>((value >> 24) & 0xff);
+  out[1] = static_cast<char>((value >> 16) & 0xff);
+  out[2] = static_cast<char>((value >> 8) & 0xff);
+  out[3] = static_cast<char>(value & 0xff);
+}
+inline uint32_t getBigEndian32(const unsigned char* in) {
+  return (uint32_t{in[0]} << 24) | (uint32_t{in[1]} << 16) | (uint32_t{in[2]} << 8) | uint32_t{in[3]};
+}
+inline uint32_t getBigEndian32(const char* in) {
+  return getBigEndian32(reinterpret_cast<const unsigned char*>(in));
+}
 
 class ByteWriter {
  public:
@@ -35,7 +52,8 @@ class ByteWriter {
 
 class ByteReader {
  public:
-  ByteReader(const char* data, size_t size, std::string source) : data_(data), size_(size), source_(std::move(source)) {}
+  ByteReader(const char* data, size_t size, std::string source)
+      : data_(data), size_(size), source_(std::move(source)) {}
 
   template <typename T>
   Status get(T& value, const char* what) {
@@ -74,8 +92,8 @@ class ByteReader {
   // Takes `size` bytes as they are (a blob inside the data).
   Status getBytes(std::string& out, size_t size, const char* what) {
     if (size_ - offset_ < size) {
-      return parseError(source_ + ": " + what + " of " + std::to_string(size) + " bytes exceeds the remaining " +
-                        std::to_string(size_ - offset_));
+      return parseError(source_ + ": " + what + " of " + std::to_string(size) +
+                        " bytes exceeds the remaining " + std::to_string(size_ - offset_));
     }
     out.assign(data_ + offset_, size);
     offset_ += size;

@@ -9,6 +9,7 @@
 #include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
+#include "core/io/mesh_export.h"
 #include "core/document/edit_script.h"
 #include "core/tessellation/tessellation.h"
 

@@ -7,7 +7,7 @@
 #include "client/cli/remote_commands.h"
 #include "core/document/edit_script.h"
 #include "core/util/file_io.h"
-#include "protocol/edit_batch.h"
+#include "protocol/commands.h"
 #include "protocol/morph_key.h"
 
 namespace tessera::cli {

@@ -52,7 +52,7 @@ Expected<std::unique_ptr<client::Session>> connectTo(const ConnectionArgs& args)
   if (refusal != wire::ERROR_CODE_UNSPECIFIED) {
     return Status(session.status().code(), "tessera-server at " + where + " " + session.status().message());
   }
-  if (session.status().code() == ErrorCode::kIoError) {
+  if (isTransient(session.status())) {
     return Status(ErrorCode::kIoError, "cannot reach tessera-server at " + where + ": " + session.status().message() +
                                            " (is it running? see --host and --port)");
   }

@@ -13,21 +13,7 @@ using asio::ip::tcp;
 
 const std::string kReceiveTimeout = "no message from the server within ";
 
-uint64_t replyTo(const wire::ServerMessage& m) {
-  switch (m.body_case()) {
-    case wire::ServerMessage::kHelloAck: return m.hello_ack().client_seq();
-    case wire::ServerMessage::kAck: return m.ack().client_seq();
-    case wire::ServerMessage::kReject: return m.reject().client_seq();
-    case wire::ServerMessage::kDocumentList: return m.document_list().client_seq();
-    case wire::ServerMessage::kExportResult: return m.export_result().client_seq();
-    case wire::ServerMessage::kPong: return m.pong().client_seq();
-    case wire::ServerMessage::kStatsReply: return m.stats_reply().client_seq();
-    case wire::ServerMessage::kMorphControl: return m.morph_control().client_seq();
-    default: return 0;
-  }
-}
-
-bool isReceiveTimeout(const Status& status) { return status.message().rfind(kReceiveTimeout, 0) == 0; }
+bool isReceiveTimeout(const Status& status) { return status.code() == ErrorCode::kTimeout; }
 
 Session::Session(const SessionOptions& options)
     : options_(options), socket_(io_), decoder_(FrameDecoderOptions{options.maxFrameBytes}) {}
@@ -131,7 +117,7 @@ Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
     if (!read_.pending) startRead();
     io_.restart();
     io_.run_until(deadline);
-    if (read_.pending) return ioError(kReceiveTimeout + std::to_string(timeoutSeconds) + " s");
+    if (read_.pending) return timeoutError(kReceiveTimeout + std::to_string(timeoutSeconds) + " s");
     if (read_.result) return ioError("connection closed: " + read_.result.message());
     TESSERA_RETURN_IF_ERROR(decoder_.feed(std::string_view(buffer_.data(), read_.bytes)));
   }

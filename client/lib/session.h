@@ -18,6 +18,7 @@
 #include <memory>
 #include <string>
 
+#include "protocol/commands.h"
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
 #include "core/util/status.h"
@@ -93,7 +94,7 @@ class Session {
 };
 
 // The client_seq a server message answers, or 0 for unsolicited ones.
-uint64_t replyTo(const wire::ServerMessage& message);
+using tessera::replyTo;  // protocol/commands.h
 // Whether receive() failed only because nothing arrived in time (the
 // connection is still usable).
 bool isReceiveTimeout(const Status& status);

@@ -321,7 +321,7 @@ Expected<json> runLoad(const LoadOptions& o) {
   if (Status access = checkAccess(o); !access.isOk()) {
     // No server to reach (or no answer in time) is a plain failure; a
     // server's refusal stops the run with its reason.
-    if (access.code() == ErrorCode::kIoError) return access.withContext("load");
+    if (isTransient(access)) return access.withContext("load");
     shared.stop(access.message());
   } else {
     runConnections(o, shared, run);

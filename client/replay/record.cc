@@ -8,6 +8,7 @@
 
 #include "client/lib/command_feed.h"
 #include "client/lib/document_view.h"
+#include "protocol/commands.h"
 #include "protocol/morph_key.h"
 
 namespace tessera::replay {
@@ -150,15 +151,7 @@ Expected<std::vector<ScriptCommand>> ScriptRecorder::lines(const wire::AppliedCo
     one.clear_edit_ids();
     one.set_edit_id(a.edit_ids(i));
     const wire::EditCommand& c = commands[i];
-    switch (c.command_case()) {
-      case wire::EditCommand::kMoveVertex: *one.mutable_move_vertex() = c.move_vertex(); break;
-      case wire::EditCommand::kSetEdgeSharpness: *one.mutable_set_edge_sharpness() = c.set_edge_sharpness(); break;
-      case wire::EditCommand::kSetVertexType: *one.mutable_set_vertex_type() = c.set_vertex_type(); break;
-      case wire::EditCommand::kUndo: *one.mutable_undo() = c.undo(); break;
-      case wire::EditCommand::kRedo: *one.mutable_redo() = c.redo(); break;
-      case wire::EditCommand::kSetInterpolation: *one.mutable_set_interpolation() = c.set_interpolation(); break;
-      default: break;  // add() names the empty command
-    }
+    unwrapEditCommand(c, one);  // none: add() names the empty command
     TESSERA_ASSIGN_OR_RETURN(ScriptCommand line, add(one));
     out.push_back(std::move(line));
   }

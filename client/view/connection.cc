@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "protocol/morph_key.h"
-#include "protocol/wire_ids.h"
+#include "protocol/commands.h"
 
 namespace tessera::view {
 

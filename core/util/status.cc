@@ -11,6 +11,8 @@ const char* errorCodeName(ErrorCode code) {
     case ErrorCode::kNotFound: return "not found";
     case ErrorCode::kUnsupported: return "unsupported";
     case ErrorCode::kIoError: return "i/o error";
+    case ErrorCode::kTimeout: return "timed out";
+    case ErrorCode::kUnavailable: return "unavailable";
     case ErrorCode::kInternal: return "internal error";
   }
   return "unknown error";

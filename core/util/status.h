@@ -20,6 +20,8 @@ enum class ErrorCode {
   kNotFound,         // an id, file or element does not exist
   kUnsupported,      // a format or feature Tessera does not handle
   kIoError,          // the operating system refused a read or write
+  kTimeout,          // no answer in time: what was asked may or may not have happened
+  kUnavailable,      // a service needed is not reachable now (no quorum, no responders)
   kInternal,         // a broken invariant: a bug in Tessera
 };
 
@@ -54,6 +56,15 @@ inline Status notFound(std::string m) { return {ErrorCode::kNotFound, std::move(
 inline Status unsupported(std::string m) { return {ErrorCode::kUnsupported, std::move(m)}; }
 inline Status ioError(std::string m) { return {ErrorCode::kIoError, std::move(m)}; }
 inline Status internalError(std::string m) { return {ErrorCode::kInternal, std::move(m)}; }
+inline Status timeoutError(std::string m) { return {ErrorCode::kTimeout, std::move(m)}; }
+inline Status unavailableError(std::string m) { return {ErrorCode::kUnavailable, std::move(m)}; }
+
+// A failure that may pass if tried again later: the operating system's,
+// a timeout, or a service not reachable now.
+inline bool isTransient(const Status& status) {
+  return status.code() == ErrorCode::kIoError || status.code() == ErrorCode::kTimeout ||
+         status.code() == ErrorCode::kUnavailable;
+}
 
 template <typename T>
 class [[nodiscard]] Expected {

@@ -1,4 +1,4 @@
-// Ownership leases: which node applies a document's commands (issue 17 §2).
+// Ownership leases: which node applies a document's commands (docs/CLUSTER.md, "One owner per document").
 //
 // One key per document, doc.<id> -> node name, in the key-value bucket
 // TESSERA_LEASES whose values expire after the lease time (the bucket's

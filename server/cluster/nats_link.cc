@@ -143,6 +143,10 @@ Status NatsLink::error(natsStatus status, std::string_view what, jsErrCode code)
   natsStatus last = NATS_OK;
   const char* detail = nats_GetLastError(&last);
   if (detail != nullptr && *detail != '\0') message += std::string(" [") + detail + "]";
+  if (status == NATS_TIMEOUT) return timeoutError(message);
+  if (status == NATS_NO_RESPONDERS || (status != NATS_OK && jetStreamUnavailable(code))) {
+    return unavailableError(message);
+  }
   return ioError(message);
 }
 

@@ -7,7 +7,6 @@
 #include "server/cluster/journal_message.h"
 #include "server/cluster/nats_blobs.h"
 #include "server/store/store_checks.h"
-#include "server/store/token_hash.h"
 
 namespace tessera::cluster {
 
@@ -20,26 +19,6 @@ constexpr size_t kRecentSequences = 4096;  // versions whose sequence a snapshot
 std::string journalSubject(DocumentId id) { return "tessera.journal." + std::to_string(id.value); }
 std::string blobPrefix(DocumentId id) { return "tessera.blob." + std::to_string(id.value); }
 std::string catalogKey(DocumentId id) { return "doc." + std::to_string(id.value); }
-
-std::string hex(std::string_view bytes) {
-  static const char* digits = "0123456789abcdef";
-  std::string out;
-  for (unsigned char c : bytes) {
-    out.push_back(digits[c >> 4]);
-    out.push_back(digits[c & 15]);
-  }
-  return out;
-}
-
-std::string tokenKey(const std::string& hashHex, TokenScope scope) {
-  return hashHex + (scope.isAllDocuments() ? ".all" : ".doc" + std::to_string(scope.documentId().value));
-}
-
-// <hash>.known exists while any grant of the token does: knowsToken, asked
-// at every Hello, is then one direct read instead of a listing.
-std::string knownKey(const std::string& hashHex) {
-  return hashHex + ".known";
-}
 
 // The snapshots list on tessera.blob.<id>.snaps: newest first.
 struct SnapshotRef {
@@ -82,7 +61,7 @@ Expected<std::unique_ptr<NatsStore>> NatsStore::open(const NatsStoreOptions& opt
 }
 
 NatsStore::NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens)
-    : link_(std::move(link)), catalog_(std::move(catalog)), tokens_(std::move(tokens)) {
+    : link_(std::move(link)), catalog_(std::move(catalog)), tokens_(*link_, std::move(tokens)) {
   writer_ = std::thread([this] { run(); });
 }
 
@@ -214,39 +193,7 @@ Status NatsStore::deleteDocument(DocumentId id) {
   }
   TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kJournalStream, journalSubject(id)));
   TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, blobPrefix(id) + ".>"));
-  kvKeysList keys{};
-  s = kvStore_Keys(&keys, tokens_.get(), nullptr);
-  if (s == NATS_NOT_FOUND) return Status::ok();
-  if (s != NATS_OK) return link_->error(s, "listing the tokens of " + toString(id));
-  // The document's grants go; a token left with no grant at all is
-  // forgotten, as the SQLite store forgets it.
-  const std::string suffix = ".doc" + std::to_string(id.value);
-  std::map<std::string, int> grantsLeft;  // hash -> grants other than this document's
-  std::vector<std::string> revoked;
-  for (int i = 0; i < keys.Count; ++i) {
-    const std::string key = keys.Keys[i];
-    const size_t dot = key.find('.');
-    if (dot == std::string::npos) continue;
-    const std::string hash = key.substr(0, dot);
-    if (key == knownKey(hash)) continue;
-    if (key.substr(dot) == suffix) {
-      revoked.push_back(key);
-      grantsLeft.emplace(hash, 0);
-    } else {
-      ++grantsLeft[hash];
-    }
-  }
-  kvKeysList_Destroy(&keys);
-  for (const std::string& key : revoked) {
-    s = kvStore_Delete(tokens_.get(), key.c_str());
-    if (s != NATS_OK) return link_->error(s, "revoking a token of " + toString(id));
-  }
-  for (const auto& [hash, left] : grantsLeft) {
-    if (left > 0) continue;
-    s = kvStore_Delete(tokens_.get(), knownKey(hash).c_str());
-    if (s != NATS_OK) return link_->error(s, "revoking a token of " + toString(id));
-  }
-  return Status::ok();
+  return tokens_.revokeDocument(id);
 }
 
 Expected<NatsStore::Tail> NatsStore::tailOf(DocumentId id) {
@@ -419,6 +366,26 @@ void NatsStore::run() {
   }
 }
 
+NatsStore::Published NatsStore::publishAfter(DocumentId id, const std::string& payload, uint64_t expectedSequence) {
+  jsPubOptions options;
+  jsPubOptions_Init(&options);
+  options.ExpectLastSubjectSeq = expectedSequence;
+  jsPubAck* raw = nullptr;
+  Published published{NATS_OK, static_cast<jsErrCode>(0), 0};
+  published.status = js_Publish(&raw, link_->jetStream(), journalSubject(id).c_str(), payload.data(),
+                                static_cast<int>(payload.size()), &options, &published.code);
+  PubAckPtr ack(raw);
+  if (published.status == NATS_OK) {
+    published.sequence = ack->Sequence;
+  } else {
+    // Whatever happened, what this store believes of the journal's end may
+    // be wrong now: read it again next time.
+    std::lock_guard<std::mutex> lock(mutex_);
+    tails_.erase(id.value);
+  }
+  return published;
+}
+
 Status NatsStore::publishEntry(const PendingAppend& append) {
   const DocumentId id = append.id;
   TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
@@ -431,21 +398,11 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
                                                                   .authorSession = append.authorSession,
                                                                   .clientSeq = append.clientSeq,
                                                                   .bytes = append.bytes});
-  jsPubOptions options;
-  jsPubOptions_Init(&options);
-  options.ExpectLastSubjectSeq = tail.sequence;  // > 0: the genesis message is there
-  jsPubAck* raw = nullptr;
-  jsErrCode code = static_cast<jsErrCode>(0);
-  const natsStatus s = js_Publish(&raw, link_->jetStream(), journalSubject(id).c_str(), payload.data(),
-                                  static_cast<int>(payload.size()), &options, &code);
-  PubAckPtr ack(raw);
+  // tail.sequence > 0: the genesis message is there.
+  const Published published = publishAfter(id, payload, tail.sequence);
+  const natsStatus s = published.status;
+  const jsErrCode code = published.code;
   if (s != NATS_OK) {
-    // Whatever happened, what this store believes of the journal's end may
-    // be wrong now: read it again next time.
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      tails_.erase(id.value);
-    }
     if (code == JSStreamWrongLastSequenceErr) {
       return ioError(toString(id) + ": journal entry version " + std::to_string(append.version) +
                      " refused: another writer appended to the document's journal after stream sequence " +
@@ -454,13 +411,13 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
     // A timeout leaves the outcome unknown: the entry may be stored.
     const Status failed = link_->error(s, toString(id) + ": journal entry version " + std::to_string(append.version) +
                                               " not acknowledged", code);
-    return ioError(std::string(kOutcomeUnknown) + failed.message());
+    return outcomeUnknownError(failed.message());
   }
   std::lock_guard<std::mutex> lock(mutex_);
   Tail& t = tails_[id.value];
   t.version = append.version;
-  t.sequence = ack->Sequence;
-  t.recent.emplace_back(append.version, ack->Sequence);
+  t.sequence = published.sequence;
+  t.recent.emplace_back(append.version, published.sequence);
   if (t.recent.size() > kRecentSequences) t.recent.pop_front();
   return Status::ok();
 }
@@ -471,30 +428,23 @@ Status NatsStore::fenceJournal(DocumentId id) {
   // Checked like an append: if anyone wrote since this store read the
   // journal's end, the fence is refused and the caller loads again.
   const std::string payload = encodeJournalMessage(JournalMessage{.fence = true, .version = tail.version});
-  jsPubOptions options;
-  jsPubOptions_Init(&options);
-  options.ExpectLastSubjectSeq = tail.sequence;
-  jsPubAck* raw = nullptr;
-  jsErrCode code = static_cast<jsErrCode>(0);
-  const natsStatus s = js_Publish(&raw, link_->jetStream(), journalSubject(id).c_str(), payload.data(),
-                                  static_cast<int>(payload.size()), &options, &code);
-  PubAckPtr ack(raw);
+  const Published published = publishAfter(id, payload, tail.sequence);
+  const natsStatus s = published.status;
+  const jsErrCode code = published.code;
   if (s != NATS_OK) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    tails_.erase(id.value);
     if (code == JSStreamWrongLastSequenceErr) {
       return ioError(toString(id) + ": another writer appended to the journal after stream sequence " +
                      std::to_string(tail.sequence) + " while this node loaded it");
     }
     return link_->error(s, "fencing the journal of " + toString(id), code);
   }
-  const Status alone = checkNothingBeforeFence(id, tail.sequence, ack->Sequence);
+  const Status alone = checkNothingBeforeFence(id, tail.sequence, published.sequence);
   std::lock_guard<std::mutex> lock(mutex_);
   if (!alone.isOk()) {
     tails_.erase(id.value);
     return alone;
   }
-  tails_[id.value].sequence = ack->Sequence;
+  tails_[id.value].sequence = published.sequence;
   return Status::ok();
 }
 
@@ -573,78 +523,22 @@ Status NatsStore::addToken(TokenScope scope, std::string_view token, Role role) 
     TESSERA_ASSIGN_OR_RETURN(std::string name, documentName(scope.documentId()));
     (void)name;
   }
-  TESSERA_RETURN_IF_ERROR(checkTokenToGrant(token));
-  TESSERA_RETURN_IF_ERROR(checkRole(role));
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
-  uint64_t revision = 0;
-  natsStatus s = kvStore_PutString(&revision, tokens_.get(), tokenKey(hex(hash), scope).c_str(), roleName(role));
-  if (s == NATS_OK) s = kvStore_PutString(&revision, tokens_.get(), knownKey(hex(hash)).c_str(), "1");
-  if (s != NATS_OK) return link_->error(s, "granting an access token for " + scope.toString());
-  return Status::ok();
+  return tokens_.add(scope, token, role);
 }
 
 Status NatsStore::revokeToken(std::string_view token) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
-  const std::string prefix = hex(hash) + ".";
-  kvKeysList keys{};
-  natsStatus s = kvStore_Keys(&keys, tokens_.get(), nullptr);
-  if (s == NATS_NOT_FOUND) return notFound("no such access token");
-  if (s != NATS_OK) return link_->error(s, "listing access tokens");
-  int removed = 0;
-  Status result;
-  for (int i = 0; i < keys.Count; ++i) {
-    const std::string key = keys.Keys[i];
-    if (key.substr(0, prefix.size()) != prefix || key == knownKey(hex(hash))) continue;
-    s = kvStore_Delete(tokens_.get(), key.c_str());
-    if (s == NATS_OK) {
-      ++removed;
-    } else if (result.isOk()) {
-      result = link_->error(s, "revoking an access token");
-    }
-  }
-  kvKeysList_Destroy(&keys);
-  TESSERA_RETURN_IF_ERROR(result);
-  s = kvStore_Delete(tokens_.get(), knownKey(hex(hash)).c_str());
-  if (s != NATS_OK) return link_->error(s, "revoking an access token");
-  // Never name the token: the caller knows which one it passed.
-  if (removed == 0) return notFound("no such access token");
-  return Status::ok();
+  return tokens_.revoke(token);
 }
 
 Expected<Role> NatsStore::roleFor(std::string_view token, TokenScope scope) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
-  const Status refused = notFound("access token not valid for " + scope.toString());
-  if (token.empty()) return notFound("no access token given");
-  if (token.size() > kMaxTokenBytes) return refused;
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
-  const std::string h = hex(hash);
-  std::optional<Role> best;
-  std::vector<std::string> keys = {tokenKey(h, TokenScope::allDocuments())};
-  if (!scope.isAllDocuments()) keys.push_back(tokenKey(h, scope));
-  for (const std::string& key : keys) {
-    kvEntry* raw = nullptr;
-    const natsStatus s = kvStore_Get(&raw, tokens_.get(), key.c_str());
-    KvEntryPtr entry(raw);
-    if (s == NATS_NOT_FOUND) continue;
-    if (s != NATS_OK) return link_->error(s, "checking an access token for " + scope.toString());
-    auto role = parseRole(kvEntry_ValueString(entry.get()));
-    if (role.isOk() && (!best || *role > *best)) best = *role;
-  }
-  if (!best) return refused;
-  return *best;
+  return tokens_.roleFor(token, scope);
 }
 
 Expected<bool> NatsStore::knowsToken(std::string_view token) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
-  if (token.empty() || token.size() > kMaxTokenBytes) return false;
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
-  kvEntry* raw = nullptr;
-  const natsStatus s = kvStore_Get(&raw, tokens_.get(), knownKey(hex(hash)).c_str());
-  KvEntryPtr entry(raw);
-  if (s == NATS_NOT_FOUND) return false;
-  if (s != NATS_OK) return link_->error(s, "looking up an access token");
-  return true;
+  return tokens_.knows(token);
 }
 
 StoreStats NatsStore::stats() const {

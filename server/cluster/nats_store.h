@@ -1,4 +1,4 @@
-// NatsStore: the Store of the cluster mode, on NATS JetStream (issue 17).
+// NatsStore: the Store of the cluster mode, on NATS JetStream (docs/CLUSTER.md).
 // Every node of a cluster opens one on the same NATS cluster and sees the
 // same documents, journal and tokens (docs/CLUSTER.md, "What is stored where"):
 //
@@ -18,7 +18,7 @@
 // last message as this store knows it. If another node appended meanwhile
 // (it took the document over), JetStream refuses the append, and the store
 // refuses it with a kIoError that says another writer appended; the host
-// then stops serving the document (issue 17 §2). No version can be written
+// then stops serving the document (docs/CLUSTER.md, "One owner per document"). No version can be written
 // twice, whatever the nodes believe.
 //
 // Appends are published in the order they were called, each after the
@@ -36,6 +36,7 @@
 #include <thread>
 
 #include "server/cluster/nats_link.h"
+#include "server/cluster/nats_tokens.h"
 #include "server/store/store.h"
 
 namespace tessera::cluster {
@@ -97,6 +98,16 @@ class NatsStore final : public Store {
   NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens);
   void run();  // the writer thread
   Status publishEntry(const PendingAppend& append);
+  // Publishes `payload` on the journal of `id` only if the journal's last
+  // message is still at `expectedSequence` (JetStream's expected last
+  // subject sequence: an append and a fence are refused alike when another
+  // node wrote since). On failure the cached tail is forgotten.
+  struct Published {
+    natsStatus status;
+    jsErrCode code;
+    uint64_t sequence;  // the message's stream sequence when published
+  };
+  Published publishAfter(DocumentId id, const std::string& payload, uint64_t expectedSequence);
   // The tail of a document, read from JetStream when not known; kNotFound
   // for a document that does not exist.
   Expected<Tail> tailOf(DocumentId id);
@@ -109,7 +120,8 @@ class NatsStore final : public Store {
   Status checkOpen() const;
 
   std::unique_ptr<NatsLink> link_;
-  KvStorePtr catalog_, tokens_;
+  KvStorePtr catalog_;
+  NatsTokens tokens_;
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "core/util/status.h"
-#include "server/latency_histogram.h"
+#include "server/base/latency_histogram.h"
 
 namespace tessera {
 
@@ -106,13 +106,11 @@ struct StoreStats {
   server::LatencyBuckets commitLatency;            // BEGIN to durable COMMIT, every batch
 };
 
-// The start of the message of a failed write whose outcome the store cannot
-// know (a replicated store's request timed out: the write may be stored),
-// so that callers can tell it from a refusal.
-inline constexpr std::string_view kOutcomeUnknown = "outcome unknown: ";
-inline bool outcomeUnknown(const Status& status) {
-  return !status.isOk() && std::string_view(status.message()).substr(0, kOutcomeUnknown.size()) == kOutcomeUnknown;
-}
+// A failed write whose outcome the store cannot know (a replicated store's
+// request timed out: the write may be stored), so that callers can tell it
+// from a refusal. A store returns kTimeout for a write only in this case.
+inline Status outcomeUnknownError(const std::string& why) { return timeoutError("outcome unknown: " + why); }
+inline bool outcomeUnknown(const Status& status) { return status.code() == ErrorCode::kTimeout; }
 
 // Called exactly once per append: ok once the entry is durable, otherwise why
 // it was refused. Runs on the store's writer thread: keep it short, never

@@ -25,7 +25,7 @@
 #include "core/io/tag_file.h"
 #include "integration/messages.h"
 #include "server/cluster/nats_store.h"
-#include "server/journal_entry.h"
+#include "server/document/journal_entry.h"
 #include "support/test_meshes.h"
 
 namespace tessera {

@@ -12,7 +12,7 @@
 #include "core/tessellation/tessellation.h"
 #include "integration/messages.h"
 #include "server/cluster/nats_store.h"
-#include "server/journal_entry.h"
+#include "server/document/journal_entry.h"
 #include "support/test_meshes.h"
 
 namespace tessera::testing {

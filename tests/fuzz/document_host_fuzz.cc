@@ -28,8 +28,8 @@
 #include "fuzz_support.h"
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
-#include "server/document_host.h"
-#include "server/log.h"
+#include "server/document/document_host.h"
+#include "server/base/log.h"
 #include "tests/support/host_only_store.h"
 
 namespace tessera::fuzz {

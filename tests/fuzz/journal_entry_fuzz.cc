@@ -11,7 +11,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "server/journal_entry.h"
+#include "server/document/journal_entry.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace tessera;

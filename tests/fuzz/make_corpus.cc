@@ -22,7 +22,7 @@
 #include "fuzz_support.h"
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
-#include "server/journal_entry.h"
+#include "server/document/journal_entry.h"
 
 namespace tessera::fuzz {
 namespace {

@@ -13,7 +13,7 @@
 #include "client/lib/session.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
-#include "protocol/edit_batch.h"
+#include "protocol/commands.h"
 #include "support/test_meshes.h"
 
 namespace tessera {

@@ -3,7 +3,7 @@
 // on other addresses, and failures forgotten after the window.
 #include <gtest/gtest.h>
 
-#include "server/auth_throttle.h"
+#include "server/net/auth_throttle.h"
 
 namespace tessera::server {
 namespace {

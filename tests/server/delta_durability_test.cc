@@ -19,7 +19,7 @@
 #include "core/io/mesh_import.h"
 #include "integration/messages.h"
 #include "protocol/framing.h"
-#include "server/document_host.h"
+#include "server/document/document_host.h"
 #include "support/test_meshes.h"
 #include "support/host_only_store.h"
 

@@ -7,7 +7,7 @@
 #include "core/document/document_file.h"
 #include "core/io/mesh_import.h"
 #include "core/morph/keyed_document_file.h"
-#include "server/journal_entry.h"
+#include "server/document/journal_entry.h"
 #include "support/test_meshes.h"
 
 namespace tessera::server {

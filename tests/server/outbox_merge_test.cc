@@ -10,7 +10,7 @@
 
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
-#include "server/outbox.h"
+#include "server/net/outbox.h"
 
 namespace tessera::server {
 namespace {

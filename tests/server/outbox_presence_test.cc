@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "server/outbox.h"
+#include "server/net/outbox.h"
 
 namespace tessera::server {
 namespace {

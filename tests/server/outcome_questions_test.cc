@@ -17,7 +17,7 @@
 #include "core/io/mesh_import.h"
 #include "integration/messages.h"
 #include "protocol/framing.h"
-#include "server/document_host.h"
+#include "server/document/document_host.h"
 #include "support/test_meshes.h"
 #include "support/host_only_store.h"
 
@@ -96,7 +96,7 @@ TEST_F(OutcomeQuestions, ACommandWhoseWriteMayBeStoredIsNeverCalledNotApplied) {
   poll();
   EXPECT_EQ(editor_->answersTo(9), 0) << "its write is under way: its Ack follows, no other answer";
 
-  store_.completeAll(ioError(std::string(kOutcomeUnknown) + "the test's store timed out"));
+  store_.completeAll(outcomeUnknownError("the test's store timed out"));
   poll();
   ASSERT_TRUE(host_->journalFailed());
   EXPECT_EQ(undecided_, 1) << "the command went to whoever reloads the document";

@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "server/serial_queue.h"
+#include "server/base/serial_queue.h"
 
 namespace tessera::server {
 namespace {

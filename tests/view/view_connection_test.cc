@@ -14,7 +14,7 @@
 #include "core/io/mesh_import.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
-#include "protocol/wire_ids.h"
+#include "protocol/commands.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
 #include "view/wait_for.h"

@@ -1,0 +1,111 @@
+#include "server/app/operator_commands.h"
+
+#include <array>
+#include <cerrno>
+#include <cstring>
+#include <cstdio>
+#include <httplib.h>
+#include <sys/random.h>
+
+#include "server/base/log.h"
+#include "server/app/server.h"
+#include "server/store/store_admin.h"
+
+namespace tessera::server {
+
+namespace {
+
+int failed(std::string_view event, const Status& status) {
+  logEvent(LogLevel::kError, event, {{"error", status.message()}});
+  return 1;
+}
+
+// 32 bytes from the kernel's CSPRNG, as 64 hex digits: 256 bits, far above
+// the 16-byte minimum the server accepts.
+Expected<std::string> randomToken() {
+  std::array<unsigned char, 32> bytes{};
+  size_t filled = 0;
+  while (filled < bytes.size()) {
+    const ssize_t n = ::getrandom(bytes.data() + filled, bytes.size() - filled, 0);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return ioError(std::string("getrandom failed: ") + std::strerror(errno));
+    }
+    filled += static_cast<size_t>(n);
+  }
+  static const char* const kHex = "0123456789abcdef";
+  std::string token;
+  for (unsigned char b : bytes) {
+    token += kHex[b >> 4];
+    token += kHex[b & 15];
+  }
+  return token;
+}
+
+}  // namespace
+
+int runTokenNew(const ServerCommandLine& command) {
+  auto role = parseRole(command.role);
+  if (!role.isOk()) return failed("token_new_failed", role.status());
+  auto token = randomToken();
+  if (!token.isOk()) return failed("token_new_failed", token.status());
+  const TokenScope scope =
+      command.documentId == 0 ? TokenScope::allDocuments() : TokenScope::document(DocumentId{command.documentId});
+  Status stored;
+  if (command.config.cluster.empty()) {
+    stored = grantTokenInStore(command.config.dataDirectory, scope, *token, *role);
+  } else {
+    // A cluster's tokens live in NATS, shared by every node: no node needs
+    // to be stopped or told.
+    auto store = openStore(command.config);
+    stored = store.isOk() ? (*store)->addToken(scope, *token, *role) : store.status();
+  }
+  if (!stored.isOk()) return failed("token_new_failed", stored);
+  // The token itself goes to stdout only (never to the log).
+  logEvent(LogLevel::kInfo, "token_created",
+           {{"role", command.role},
+            {"scope", scope.toString()},
+            {"store", command.config.cluster.empty() ? command.config.dataDirectory : command.config.cluster}});
+  std::printf("%s\n", token->c_str());
+  return 0;
+}
+
+int runBackup(const ServerCommandLine& command) {
+  const Status done = backupStore(command.config.dataDirectory, command.path);
+  if (!done.isOk()) return failed("backup_failed", done);
+  logEvent(LogLevel::kInfo, "backup_written", {{"data", command.config.dataDirectory}, {"file", command.path}});
+  return 0;
+}
+
+int runRestore(const ServerCommandLine& command) {
+  const Status done = restoreStore(command.config.dataDirectory, command.path);
+  if (!done.isOk()) return failed("restore_failed", done);
+  logEvent(LogLevel::kInfo, "restored", {{"data", command.config.dataDirectory}, {"file", command.path}});
+  return 0;
+}
+
+int runHealth(const ServerCommandLine& command) {
+  std::string url = command.url;
+  if (url.empty()) {
+    if (command.config.httpPort <= 0) {
+      return failed("health_failed", invalidArgument("health needs --url or --http-port (or a --config that sets it)"));
+    }
+    url = "http://" + command.config.httpListenAddress + ":" + std::to_string(command.config.httpPort) + "/healthz";
+  }
+  const auto schemeEnd = url.find("://");
+  const auto pathStart = schemeEnd == std::string::npos ? std::string::npos : url.find('/', schemeEnd + 3);
+  if (schemeEnd == std::string::npos || url.compare(0, schemeEnd, "http") != 0) {
+    return failed("health_failed", invalidArgument("--url: expected http://HOST:PORT/PATH, got '" + url + "'"));
+  }
+  httplib::Client client(url.substr(0, pathStart));
+  client.set_connection_timeout(3, 0);
+  client.set_read_timeout(3, 0);
+  const auto response = client.Get(pathStart == std::string::npos ? "/" : url.substr(pathStart));
+  if (!response) {
+    return failed("health_failed", ioError(url + ": " + httplib::to_string(response.error())));
+  }
+  std::fputs(response->body.c_str(), stdout);
+  return response->status == 200 ? 0 : 1;
+}
+
+}  // namespace tessera::server

@@ -1,0 +1,255 @@
+// One open document on the server: its single writer. Every
+// command runs on the host's strand, on the worker pool, never on network
+// threads, so the document has a total order of versions.
+//
+// An edit is applied, checked against the grid and journaled at once; its
+// ack goes out when the journal commit is durable (edits are applied while
+// earlier commits are in flight). The views follow in flushes: a flush,
+// posted behind the commands already queued and paced by flushInterval(),
+// updates every LOD profile's tessellation from the union of the edits'
+// changed limits, encodes the changed regions once per profile and sends
+// one delta spanning every version since the last flush (or, with
+// --deltas-after-durable, queues it until its last edit is durable). Acks
+// and recorders' commands always wait for durability. Under light load a
+// flush follows each edit; under heavy
+// load one covers a burst, so the tessellation, encode and fan-out cost
+// follows the delta rate, not the edit rate.
+//
+// A morph document (docs/PROTOCOL.md §14) holds a second key: edits name their key,
+// and a view may follow the document at a time t (LodProfile.morph_t),
+// tessellated from KeyedDocument::at(t) and rebuilt whole when either key
+// changes (a morph moves every region); its changed regions are still
+// encoded once and shared by every subscriber at that t (document_morph.cc).
+#pragma once
+
+#include <boost/asio/any_io_executor.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
+#include <atomic>
+#include <deque>
+#include <functional>
+#include <map>
+#include <set>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "core/document/document.h"
+#include "core/morph/keyed_document.h"
+#include "core/tessellation/region_codec.h"
+#include "core/tessellation/tessellation.h"
+#include "protocol/tessera.pb.h"
+#include "server/base/config.h"
+#include "server/document/document_endpoint.h"
+#include "server/document/journal_entry.h"
+#include "server/document/lod_view.h"
+#include "server/document/outcome_book.h"
+#include "server/base/serial_queue.h"
+#include "server/base/server_stats.h"
+#include "server/store/store.h"
+#include "server/document/subscriber.h"
+
+namespace tessera::server {
+
+// Morph views are at multiples of 1/kMorphTimeSteps (LodProfile.morph_t is
+// rounded), so viewers playing the same frames share them.
+inline constexpr double kMorphTimeSteps = 10000;
+
+class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_this<DocumentHost> {
+ public:
+  // Commands run on `workers`; the heavy ones of a large document (a
+  // profile's first tessellation, an export) on `bulk` (serial_queue.h).
+  DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
+               boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
+               const ServerConfig& config, ServerStats& stats);
+  // Trims the heap once the document's memory is freed (see trimMemory).
+  ~DocumentHost() override;
+
+  DocumentId id() const { return id_; }
+
+  // All of these post onto the host's strand and answer through the
+  // subscriber; they never block the caller.
+  void join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) override;
+  void leave(uint64_t session) override;
+  // Checked: at most --selection-max-ids ids, each existing in the
+  // document; a refused selection gets a Reject for `clientSeq`.
+  void select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) override;
+  // A participant whose presence changes were dropped (its queue was full)
+  // gets the whole list again.
+  void resendPresence(uint64_t session) override;
+  // `withCommands`: also an AppliedCommand per command after the Ack's
+  // version (docs/PROTOCOL.md, AppliedCommand); a later subscribe without it stops them.
+  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
+                 bool withCommands = false) override;
+  void unsubscribe(uint64_t session) override;
+  void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) override;
+  void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) override;
+  // The coarse morph stream: the control points at t (MorphControl).
+  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) override;
+
+  // In a cluster, the journal entries loaded with the document that name
+  // the client command they came from (session, client_seq) -> its Ack.
+  // `fromVersion`: the version the load started from (its snapshot's), the
+  // outcomes cover the entries after it.
+  void setLoadedOutcomes(std::map<OutcomeBook::Key, CommandOutcome> outcomes, uint64_t fromVersion);
+  // A session asks what became of commands it got no answer for (its
+  // document moved here, or its node lost frames in a NATS reconnect): an
+  // Ack for each in the journal as loaded or acknowledged here lately, a
+  // Reject for each that is not; none yet for one still waiting for its
+  // commit (its Ack follows).
+  void answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs);
+
+  // Triangles a profile needs at least (its base level, held whole) and may
+  // reach (its max level); triangles of a uniform surface at `level`. From
+  // the document's level counts alone, so a request over budget is refused
+  // in microseconds, before any work (docs/ARCHITECTURE.md, "Bulk work").
+  int64_t minimumTriangles(const wire::LodProfile& profile) const;
+  int64_t maximumTriangles(const wire::LodProfile& profile) const;
+  int64_t uniformTriangles(uint32_t level) const;
+
+  // Commands whose journal write's outcome is unknown (the store timed
+  // out) at the failure go to `handler` (on the host's strand), unanswered
+  // by this host: whoever reloads the document answers them from the
+  // journal (answerOutcomes). Without a handler (one server: its store
+  // always knows), they are refused as possibly lost, like the others.
+  using Undecided = std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>>;
+  void onUndecided(std::function<void(Undecided)> handler);
+
+  // Whether a journal write failed: the host applies nothing more. In a
+  // cluster this means another node wrote to the journal (it owns the
+  // document now) or NATS lost quorum; the node then moves the sessions.
+  bool journalFailed() const { return journalFailed_.load(); }
+
+ private:
+  using View = LodView;  // one LOD profile's tessellation and its subscribers
+  struct Participant {
+    std::weak_ptr<Subscriber> who;
+    std::string name;
+    wire::Role role;
+    wire::Selection selection;
+  };
+  // Whose presence others have not heard of yet, and who needs the whole list.
+  struct PresenceChanges {
+    std::set<uint64_t> changed, left, needFull;
+  };
+  struct Pending {  // applied, waiting for its commit (its ack) and for its delta (recorders)
+    uint64_t version;
+    std::weak_ptr<Subscriber> author;
+    uint64_t authorSession, clientSeq, editId;
+    std::vector<uint64_t> batchEditIds;  // an EditBatch's, for its Ack
+    std::chrono::steady_clock::time_point applied;
+    wire::ClientMessage command;  // as the author sent it, for recorders
+    std::string authorName;
+  };
+  struct Batch {  // one flush: the delta of every view up to `toVersion`
+    uint64_t toVersion;
+    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
+    std::map<std::string, std::shared_ptr<const std::string>> frames;
+  };
+  struct Recorder {  // a subscriber that asked with_commands
+    std::weak_ptr<Subscriber> who;
+    uint64_t fromVersion;  // its subscribe's Ack version: later commands only
+  };
+
+  // What one applied command (or batch) changed, for afterApply().
+  struct Applied {
+    JournalEntry entry;
+    std::vector<uint64_t> editIds;  // per command: the edit made, undone or redone
+    std::vector<VertexId> limits;   // every limit of key 0 the command(s) changed
+    std::vector<VertexId> key1Limits;  // and of key 1 (a morph document's)
+  };
+  // Adds what the last command changed on `key` to `applied`.
+  void collectLimits(uint32_t key, Applied& applied) const;
+  // AddMorphKey: imports the mesh, checks it against key 0, adds key 1.
+  Status addMorphKey(const wire::AddMorphKey& request, JournalEntry& entry);
+  // The document a view's tessellation follows.
+  const Document& sourceOf(const View& view) const { return view.source ? *view.source : doc_.key0(); }
+  // A morph view's tessellation at `t`, and the document it follows.
+  Expected<View> buildMorphView(double t, const LodProfile& profile);
+  // Rebuilds a morph view after a key changed; the regions that differ.
+  Expected<Tessellation::Changes> rebuildMorphView(View& view);
+  Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
+  // An EditBatch: every command in order, or none (those applied are taken
+  // back in reverse). `failedIndex`: the refused command, from 1.
+  Status applyBatch(const wire::EditBatch& batch, Applied& applied, uint32_t& failedIndex);
+  void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const Applied& applied,
+                  const std::string& authorName, const wire::ClientMessage& command);
+  void scheduleFlush();
+  std::chrono::steady_clock::duration flushInterval() const;
+  // Updates every view from the limits changed since the last flush,
+  // encodes the changed regions once and queues them as one batch.
+  void flush();
+  void committed(uint64_t version, Status status);
+  // Acks every durable edit, then sends every durable batch's deltas not
+  // sent yet and, after them, their commands to the recorders.
+  void release();
+  // Sends the batch's frames to the subscribers whose snapshot does not hold
+  // them, then drops them: sending again is a no-op.
+  void send(Batch& batch);
+  // Sends a durable command to the recorders (from release(), after its delta).
+  void notifyRecorders(const Pending& p);
+  // Takes an applied command back (an edit refused after applying it).
+  Status retract(const JournalEntry& entry);
+  void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  void presenceChanged();
+  void broadcastPresence();
+  // Drops the views no subscriber watches any more (their memory with
+  // them), except the most recently used morph views up to
+  // kRetainedMorphTriangles: viewers playing a morph come back to the same
+  // times, and a kept view is not built and encoded again.
+  void dropUnwatchedViews();
+  // Drops every unwatched morph view (a key changed: they are stale).
+  void dropRetainedMorphViews();
+  // Takes `session` off every view but `key`'s, then drops unwatched ones.
+  void leaveOtherViews(uint64_t session, const std::string& key);
+  Lane laneFor(int64_t triangles) const;
+  void trimMemory();
+  // What is freed off the interactive workers: a closed document, dropped views.
+  struct Released {
+    std::optional<KeyedDocument> doc;
+    std::map<std::string, View> views;
+  };
+  void releaseOnBulk(std::shared_ptr<Released> released);
+  // How the views' regions are encoded now (lod_view.h).
+  EncodeContext encodeContext(const View& view) { return {version_, grid_, sourceOf(view), stats_}; }
+  void maybeSnapshot();
+
+  const DocumentId id_;
+  const std::string name_;
+  KeyedDocument doc_;
+  bool keysChanged_ = false;  // a morph document changed since the last flush: its morph views rebuild
+  uint64_t version_;         // applied
+  uint64_t durableVersion_;  // committed to the journal
+  uint64_t lastSnapshot_;
+  uint64_t flushedVersion_;  // the version views' encoded regions and the last delta reach
+  bool flushScheduled_ = false;
+  bool failed_ = false;
+  std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
+  Status journalFailure_;                   // why, for later commands' Rejects
+  std::mutex undecidedMutex_;  // the handler is set off the strand
+  std::function<void(Undecided)> undecidedHandler_;
+  const LevelCounts counts_;  // the document's uniform level sizes, for estimates
+  boost::asio::any_io_executor bulk_;
+  SerialQueue queue_;  // the single writer; every member below is touched only in its tasks
+  boost::asio::steady_timer presenceTimer_;
+  bool presencePending_ = false;
+  PresenceChanges presence_;
+  Store& store_;
+  const ServerConfig& config_;
+  ServerStats& stats_;
+  QuantizationGrid grid_;
+  std::map<uint64_t, Participant> participants_;
+  std::map<std::string, View> views_;  // by LodProfile::key()
+  uint64_t useClock_ = 0;
+  std::deque<Pending> pending_;
+  std::deque<Batch> batches_;
+  uint64_t ackedVersion_;  // the newest edit whose ack was sent
+  boost::asio::steady_timer flushTimer_;
+  std::chrono::steady_clock::time_point lastFlush_{};
+  std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
+  std::map<uint64_t, Recorder> recorders_;  // by session
+  OutcomeBook outcomes_;  // what became of commands: loaded with the journal and acknowledged here
+};
+
+}  // namespace tessera::server

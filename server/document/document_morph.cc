@@ -1,0 +1,147 @@
+// The morph side of a document host (docs/PROTOCOL.md §14): adding the second key,
+// the views at a time t and the coarse stream of control points.
+#include <algorithm>
+#include <chrono>
+
+#include "core/io/mesh_import.h"
+#include "core/loop/level_builder.h"
+#include "protocol/framing.h"
+#include "server/document/document_host.h"
+#include "server/base/log.h"
+#include "server/document/mesh_format.h"
+#include "server/document/replies.h"
+
+namespace tessera::server {
+
+namespace {
+
+// Each image of a 2D morph: far above a sample's, far below the frame limit.
+constexpr size_t kMaxMorphImageBytes = 16u << 20;
+
+bool isPng(const std::string& bytes) {
+  static const std::string kSignature("\x89PNG\r\n\x1a\n", 8);
+  return bytes.compare(0, kSignature.size(), kSignature) == 0;
+}
+
+}  // namespace
+
+Status DocumentHost::addMorphKey(const wire::AddMorphKey& request, JournalEntry& entry) {
+  const std::string doc = "document " + std::to_string(id_.value);
+  if (doc_.isMorph()) return invalidArgument("add morph key: " + doc + " already has two keys");
+  const char* extension = meshExtensionOf(request.mesh_format());
+  if (extension == nullptr) return invalidArgument("add morph key: mesh_format is not set");
+  for (const auto* image : {&request.image_from(), &request.image_to()}) {
+    const char* which = image == &request.image_from() ? "image_from" : "image_to";
+    if (image->size() > kMaxMorphImageBytes) {
+      return invalidArgument("add morph key: " + std::string(which) + " has " + std::to_string(image->size()) +
+                             " bytes, above the limit of " + std::to_string(kMaxMorphImageBytes));
+    }
+    if (!image->empty() && !isPng(*image)) return invalidArgument("add morph key: " + std::string(which) + " is not a PNG");
+  }
+  if (request.image_from().empty() != request.image_to().empty()) {
+    return invalidArgument("add morph key: send both images or neither");
+  }
+  const std::string name = request.file_name().empty() ? "the second key's mesh" : request.file_name();
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshFromBytesWithReport(request.mesh(), extension, name, ImportOptions{}));
+  TESSERA_RETURN_IF_ERROR(checkSameConnectivity(doc_.key0().baseTopology(), BaseTopology::fromBaseMesh(imported.mesh),
+                                                "key 0 (" + doc + ")", name));
+  entry.kind = JournalEntry::Kind::kAddKey;
+  entry.keyPoints = imported.mesh.positions();
+  entry.images = {request.image_from(), request.image_to()};
+  return doc_.addKey(entry.keyPoints, entry.images);
+}
+
+Expected<DocumentHost::View> DocumentHost::buildMorphView(double t, const LodProfile& profile) {
+  View view;
+  view.morphT = t;
+  TESSERA_ASSIGN_OR_RETURN(Document at, doc_.at(t));
+  view.source = std::make_unique<Document>(std::move(at));
+  TESSERA_ASSIGN_OR_RETURN(Tessellation tessellation, Tessellation::build(*view.source, profile));
+  view.tessellation = std::make_unique<Tessellation>(std::move(tessellation));
+  return view;
+}
+
+// A morph moves every region, so the view is built afresh; the regions
+// whose surface hash (PROTOCOL 6.5) is unchanged are not sent again.
+Expected<Tessellation::Changes> DocumentHost::rebuildMorphView(View& view) {
+  TESSERA_ASSIGN_OR_RETURN(View fresh, buildMorphView(*view.morphT, view.tessellation->profile()));
+  const std::map<uint64_t, uint64_t> before = std::move(view.regionHashes);
+  view.tessellation = std::move(fresh.tessellation);
+  view.source = std::move(fresh.source);
+  view.regionHashes.clear();
+  view.surfaceHash = 0;
+  Tessellation::Changes changes;
+  for (const auto& [region, mesh] : view.tessellation->regions()) {
+    rehashRegion(view, region, grid_);
+    auto old = before.find(region);
+    if (old == before.end() || old->second != view.regionHashes[region]) changes.changed.push_back(region);
+  }
+  for (const auto& [region, hash] : before) {
+    if (!view.tessellation->regions().count(region)) changes.removed.push_back(region);
+  }
+  // Ids always inline: the rebuilt regions have no earlier layout to refer to.
+  changes.relaid = changes.changed;
+  changes.rebuilt = true;
+  // rehashRegion above counted the new regions; flush() rehashes the changed
+  // ones again, which leaves the same sums.
+  return changes;
+}
+
+void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeq, request] {
+    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
+    const double t = request.t();
+    auto points = self->doc_.pointsAt(t);
+    if (!points.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, points.status().withContext("morph control of document " +
+                                                                         std::to_string(self->id_.value))),
+                         maxFrame),
+                 nullptr});
+      return;
+    }
+    wire::ServerMessage m;
+    wire::MorphControl* c = m.mutable_morph_control();
+    c->set_client_seq(clientSeq);
+    c->set_document_id(self->id_.value);
+    c->set_version(self->version_);
+    c->set_t(t);
+    c->mutable_points()->Reserve(static_cast<int>(3 * points->size()));
+    for (const Vec3& p : *points) {
+      for (int k = 0; k < 3; ++k) c->add_points(static_cast<float>(p[k]));
+    }
+    if (request.with_topology()) {
+      auto at = self->doc_.at(t);
+      if (!at.isOk()) {
+        who->send({frameOf(rejectFor(clientSeq, at.status()), maxFrame), nullptr});
+        return;
+      }
+      const BaseTopology& base = at->baseTopology();
+      for (const auto& tri : base.triangles) {
+        for (int k = 0; k < 3; ++k) c->add_triangles(static_cast<uint32_t>(tri[k]));
+      }
+      for (const auto& crease : base.creases) {
+        c->add_crease_vertices(static_cast<uint32_t>(crease.v0));
+        c->add_crease_vertices(static_cast<uint32_t>(crease.v1));
+        c->add_crease_sharpness(crease.sharpness);
+      }
+      for (float s : base.vertexSharpness) c->add_vertex_sharpness(s);
+      const DocumentOptions& options = at->options();
+      c->set_crease_method(options.loop.creaseMethod == CreaseMethod::kChaikin ? wire::CREASE_METHOD_CHAIKIN
+                                                                               : wire::CREASE_METHOD_UNIFORM);
+      c->set_boundary(options.loop.boundary == BoundaryInterpolation::kEdgeAndCorner
+                          ? wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER
+                          : wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
+      c->set_max_level(static_cast<uint32_t>(options.maxLevel));
+      c->set_image_from(self->doc_.images().from);
+      c->set_image_to(self->doc_.images().to);
+    }
+    auto frame = frameOf(m, maxFrame);
+    if (!frame) {
+      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the morph control exceeds the frame limit")), maxFrame), nullptr});
+      return;
+    }
+    who->send({frame, nullptr});
+  });
+}
+
+}  // namespace tessera::server

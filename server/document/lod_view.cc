@@ -1,0 +1,128 @@
+#include "server/document/lod_view.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/tessellation/region_lattice.h"
+#include "core/tessellation/surface_hash.h"
+#include "server/base/log.h"
+#include "server/document/replies.h"
+
+namespace tessera::server {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int64_t microsSince(Clock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region, bool idsInline,
+                                                              const EncodeContext& context) {
+  const auto start = Clock::now();
+  RegionHeader header{region, context.version, view.layout.at(region), view.tessellation->profile(), context.grid,
+                      idsInline};
+  if (header.profile.vertexIds && idsInline) {
+    // Ids as points of the region's lattice: a third of the bytes they
+    // took as eight-byte labels (region_lattice.h).
+    auto frame = regionFrame(context.source.hierarchy(), context.source.counts(), FaceId::fromPacked(region));
+    if (frame.isOk()) header.frame = *frame;
+  }
+  TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
+  context.stats.encodeMicros += microsSince(start);
+  context.stats.encodeLatency.addMicros(microsSince(start));
+  ++context.stats.regionsEncoded;
+  return std::make_shared<const std::string>(std::move(bytes));
+}
+
+void rehashRegion(LodView& view, uint64_t region, const QuantizationGrid& grid, bool removed) {
+  auto [it, fresh] = view.regionHashes.try_emplace(region, 0);
+  view.surfaceHash -= it->second;
+  if (removed) {
+    view.regionHashes.erase(it);
+    return;
+  }
+  it->second = regionSurfaceHashOnGrid(view.tessellation->regions().at(region), grid,
+                                       view.tessellation->profile().vertexIds);
+  view.surfaceHash += it->second;
+}
+
+void buildDelta(LodView& view, const Tessellation::Changes& changes, const EncodeContext& context,
+                uint64_t documentId, DeltaContent& delta) {
+  // A region that only moved keeps its layout: its delta leaves the ids
+  // out (a third of its bytes) and a later snapshot encodes them afresh.
+  const bool withIds = view.tessellation->profile().vertexIds;
+  for (uint64_t region : changes.changed) rehashRegion(view, region, context.grid);
+  for (uint64_t region : changes.removed) rehashRegion(view, region, context.grid, /*removed=*/true);
+  delta.surfaceHash = view.surfaceHash;
+  for (uint64_t region : changes.changed) {
+    const bool relaid = std::binary_search(changes.relaid.begin(), changes.relaid.end(), region);
+    if (relaid) view.layout[region] = context.version;
+    const bool idsInline = relaid || !withIds;
+    auto encoded = encodeViewRegion(view, region, idsInline, context);
+    if (!encoded.isOk()) {
+      logEvent(LogLevel::kError, "encode_failed", {{"doc", documentId}, {"error", encoded.status().message()}});
+      view.encoded.erase(region);
+      continue;
+    }
+    if (idsInline) {
+      view.encoded[region] = *encoded;
+    } else {
+      view.encoded.erase(region);
+    }
+    delta.regions.push_back({region, *encoded, idsInline});
+    ++context.stats.deltaRegions;
+    if (!idsInline) ++context.stats.deltaRegionsLayoutIds;
+  }
+  for (uint64_t region : changes.removed) view.encoded.erase(region), view.layout.erase(region);
+  delta.removed = changes.removed;
+}
+
+std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, uint64_t documentId, bool resync,
+                                                               const EncodeContext& context, size_t partBytes,
+                                                               uint32_t maxFrameBytes) {
+  // Encoded once per region and version; later subscribers share the bytes.
+  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;
+  for (const auto& [region, mesh] : view.tessellation->regions()) {
+    auto& cached = view.encoded[region];
+    if (!cached) {
+      auto encoded = encodeViewRegion(view, region, /*idsInline=*/true, context);
+      if (!encoded.isOk()) {
+        logEvent(LogLevel::kError, "encode_failed", {{"doc", documentId}, {"error", encoded.status().message()}});
+        continue;
+      }
+      cached = *encoded;
+    }
+    regions.emplace_back(region, cached);
+  }
+  std::vector<std::vector<size_t>> parts(1);
+  size_t bytes = 0;
+  for (size_t i = 0; i < regions.size(); ++i) {
+    if (bytes > 0 && bytes + regions[i].second->size() > partBytes) parts.emplace_back(), bytes = 0;
+    parts.back().push_back(i);
+    bytes += regions[i].second->size() + 16;
+  }
+  std::vector<std::shared_ptr<const std::string>> frames;
+  for (size_t p = 0; p < parts.size(); ++p) {
+    wire::ServerMessage m;
+    wire::Snapshot* s = m.mutable_snapshot();
+    s->set_document_id(documentId);
+    s->set_version(context.version);
+    *s->mutable_profile() = view.wireProfile;
+    s->set_remaining_parts(static_cast<uint32_t>(parts.size() - p - 1));
+    s->set_resync(resync);
+    s->set_surface_hash(view.surfaceHash);
+    for (size_t i : parts[p]) {
+      wire::Region* r = s->add_regions();
+      r->set_region_id(regions[i].first);
+      r->set_draco(*regions[i].second);
+    }
+    frames.push_back(frameOf(m, maxFrameBytes));
+  }
+  return frames;
+}
+
+}  // namespace tessera::server

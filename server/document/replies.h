@@ -1,0 +1,30 @@
+// What a document answers besides deltas (docs/PROTOCOL.md §5 and §8): the frame of a server message, and a Reject whose reason follows
+// the failure's ErrorCode. The one mapping from a Status to a wire reason,
+// used by hosts and connections alike.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/util/status.h"
+#include "protocol/tessera.pb.h"
+
+namespace tessera::server {
+
+// Builds the frame of a server message (length prefix + payload); null (and
+// logged) when it cannot be encoded within `maxFrameBytes`.
+std::shared_ptr<const std::string> frameOf(const wire::ServerMessage& message, uint32_t maxFrameBytes);
+
+// The reason a Reject gives for a failure with `code`.
+wire::RejectReason rejectReasonFor(ErrorCode code);
+// A Reject for `clientSeq` with `reason` and the text that says why.
+wire::ServerMessage rejectWith(uint64_t clientSeq, wire::RejectReason reason, const std::string& text);
+// A Reject for a failed command, its reason chosen from the Status code.
+wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status);
+// A Reject with REJECT_REASON_LIMIT_EXCEEDED, framed: a request over a
+// budget or cap (docs/PROTOCOL.md §9).
+std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message,
+                                                 uint32_t maxFrameBytes);
+
+}  // namespace tessera::server

@@ -12,6 +12,7 @@
 
 #include "core/util/status.h"
 #include "protocol/tessera.pb.h"
+#include "protocol/token_limits.h"
 
 namespace tessera {
 
@@ -20,7 +21,6 @@ inline constexpr uint32_t kProtocolVersion = 1;
 
 // Names appear in other clients' presence lists and in server logs.
 inline constexpr size_t kMaxClientNameBytes = 128;
-inline constexpr size_t kMaxTokenBytes = 4096;
 
 struct HelloOptions {
   uint64_t clientSeq = 1;

@@ -7,6 +7,7 @@
 #include <httplib.h>
 #include <sys/random.h>
 
+#include "core/util/hex.h"
 #include "server/base/log.h"
 #include "server/app/server.h"
 #include "server/store/store_admin.h"
@@ -33,13 +34,7 @@ Expected<std::string> randomToken() {
     }
     filled += static_cast<size_t>(n);
   }
-  static const char* const kHex = "0123456789abcdef";
-  std::string token;
-  for (unsigned char b : bytes) {
-    token += kHex[b >> 4];
-    token += kHex[b & 15];
-  }
-  return token;
+  return hexBytes(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <boost/asio/post.hpp>
 
+#include "core/util/byte_io.h"
 #include "protocol/framing.h"
 #include "server/cluster/message_chunks.h"
 #include "protocol/tessera.pb.h"
@@ -82,10 +83,7 @@ Expected<server::Outgoing> framesToOutgoing(const Frames& frames, uint32_t maxFr
   if (bytes.size() <= kFrameHeaderBytes || bytes.size() - kFrameHeaderBytes > maxFrameBytes) {
     return invalidArgument("a cluster frame of " + std::to_string(bytes.size()) + " bytes is not a frame this node sends");
   }
-  const uint32_t announced = (static_cast<uint32_t>(static_cast<unsigned char>(bytes[0])) << 24) |
-                             (static_cast<uint32_t>(static_cast<unsigned char>(bytes[1])) << 16) |
-                             (static_cast<uint32_t>(static_cast<unsigned char>(bytes[2])) << 8) |
-                             static_cast<uint32_t>(static_cast<unsigned char>(bytes[3]));
+  const uint32_t announced = getBigEndian32(bytes.data());
   if (announced != bytes.size() - kFrameHeaderBytes) {
     return invalidArgument("a cluster frame announces " + std::to_string(announced) + " bytes but carries " +
                            std::to_string(bytes.size() - kFrameHeaderBytes));

@@ -6,21 +6,13 @@
 #include <thread>
 
 #include "core/util/byte_io.h"
+#include "core/util/fnv1a.h"
 
 namespace tessera::cluster {
 
 namespace {
 
 constexpr std::string_view kManifestMagic = "TB1";
-
-uint64_t fnv1a(std::string_view bytes) {
-  uint64_t hash = 0xcbf29ce484222325ull;
-  for (char c : bytes) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 0x100000001b3ull;
-  }
-  return hash;
-}
 
 Status publish(NatsLink& link, const std::string& subject, std::string_view bytes) {
   jsPubAck* ack = nullptr;
@@ -50,7 +42,7 @@ Status putBlob(NatsLink& link, const std::string& stream, const std::string& pre
   manifest.putBytes(kManifestMagic);
   manifest.put<uint64_t>(bytes.size());
   manifest.put<uint64_t>(chunks);
-  manifest.put<uint64_t>(fnv1a(bytes));
+  manifest.put<uint64_t>(fnv1a64(bytes));
   return publish(link, prefix, manifest.bytes());
 }
 
@@ -81,7 +73,7 @@ Expected<std::string> getBlob(NatsLink& link, const std::string& stream, const s
     }
     bytes += chunk->payload;
   }
-  if (bytes.size() != size || fnv1a(bytes) != checksum) {
+  if (bytes.size() != size || fnv1a64(bytes) != checksum) {
     return parseError(std::string(where) + ": its chunks hold " + std::to_string(bytes.size()) +
                       " bytes that do not match the manifest (" + std::to_string(size) + " bytes and its checksum)");
   }

@@ -5,22 +5,13 @@
 #include <string>
 #include <vector>
 
+#include "core/util/hex.h"
 #include "server/store/store_checks.h"
 #include "server/store/token_hash.h"
 
 namespace tessera::cluster {
 
 namespace {
-
-std::string hex(std::string_view bytes) {
-  static const char* digits = "0123456789abcdef";
-  std::string out;
-  for (unsigned char c : bytes) {
-    out.push_back(digits[c >> 4]);
-    out.push_back(digits[c & 15]);
-  }
-  return out;
-}
 
 std::string tokenKey(const std::string& hashHex, TokenScope scope) {
   return hashHex + (scope.isAllDocuments() ? ".all" : ".doc" + std::to_string(scope.documentId().value));
@@ -39,15 +30,15 @@ Status NatsTokens::add(TokenScope scope, std::string_view token, Role role) {
   TESSERA_RETURN_IF_ERROR(checkRole(role));
   TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
   uint64_t revision = 0;
-  natsStatus s = kvStore_PutString(&revision, bucket_.get(), tokenKey(hex(hash), scope).c_str(), roleName(role));
-  if (s == NATS_OK) s = kvStore_PutString(&revision, bucket_.get(), knownKey(hex(hash)).c_str(), "1");
+  natsStatus s = kvStore_PutString(&revision, bucket_.get(), tokenKey(hexBytes(hash), scope).c_str(), roleName(role));
+  if (s == NATS_OK) s = kvStore_PutString(&revision, bucket_.get(), knownKey(hexBytes(hash)).c_str(), "1");
   if (s != NATS_OK) return link_.error(s, "granting an access token for " + scope.toString());
   return Status::ok();
 }
 
 Status NatsTokens::revoke(std::string_view token) {
   TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
-  const std::string prefix = hex(hash) + ".";
+  const std::string prefix = hexBytes(hash) + ".";
   kvKeysList keys{};
   natsStatus s = kvStore_Keys(&keys, bucket_.get(), nullptr);
   if (s == NATS_NOT_FOUND) return notFound("no such access token");
@@ -56,7 +47,7 @@ Status NatsTokens::revoke(std::string_view token) {
   Status result;
   for (int i = 0; i < keys.Count; ++i) {
     const std::string key = keys.Keys[i];
-    if (key.substr(0, prefix.size()) != prefix || key == knownKey(hex(hash))) continue;
+    if (key.substr(0, prefix.size()) != prefix || key == knownKey(hexBytes(hash))) continue;
     s = kvStore_Delete(bucket_.get(), key.c_str());
     if (s == NATS_OK) {
       ++removed;
@@ -66,7 +57,7 @@ Status NatsTokens::revoke(std::string_view token) {
   }
   kvKeysList_Destroy(&keys);
   TESSERA_RETURN_IF_ERROR(result);
-  s = kvStore_Delete(bucket_.get(), knownKey(hex(hash)).c_str());
+  s = kvStore_Delete(bucket_.get(), knownKey(hexBytes(hash)).c_str());
   if (s != NATS_OK) return link_.error(s, "revoking an access token");
   // Never name the token: the caller knows which one it passed.
   if (removed == 0) return notFound("no such access token");
@@ -78,7 +69,7 @@ Expected<Role> NatsTokens::roleFor(std::string_view token, TokenScope scope) {
   if (token.empty()) return notFound("no access token given");
   if (token.size() > kMaxTokenBytes) return refused;
   TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
-  const std::string h = hex(hash);
+  const std::string h = hexBytes(hash);
   std::optional<Role> best;
   std::vector<std::string> keys = {tokenKey(h, TokenScope::allDocuments())};
   if (!scope.isAllDocuments()) keys.push_back(tokenKey(h, scope));
@@ -99,7 +90,7 @@ Expected<bool> NatsTokens::knows(std::string_view token) {
   if (token.empty() || token.size() > kMaxTokenBytes) return false;
   TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
   kvEntry* raw = nullptr;
-  const natsStatus s = kvStore_Get(&raw, bucket_.get(), knownKey(hex(hash)).c_str());
+  const natsStatus s = kvStore_Get(&raw, bucket_.get(), knownKey(hexBytes(hash)).c_str());
   KvEntryPtr entry(raw);
   if (s == NATS_NOT_FOUND) return false;
   if (s != NATS_OK) return link_.error(s, "looking up an access token");

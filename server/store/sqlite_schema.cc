@@ -1,5 +1,7 @@
 #include "server/store/sqlite_schema.h"
 
+#include "core/util/hex.h"
+
 #include <array>
 #include <cstdio>
 #include <string>
@@ -44,11 +46,7 @@ constexpr std::array<const char*, kStoreSchemaVersion> kMigrations = {
 
 constexpr std::array<const char*, 4> kTables = {"documents", "journal", "snapshots", "tokens"};
 
-std::string hex32(int64_t value) {
-  char text[16];
-  std::snprintf(text, sizeof text, "0x%08llx", static_cast<unsigned long long>(value & 0xffffffff));
-  return text;
-}
+std::string hex32(int64_t value) { return hexNumber(static_cast<uint64_t>(value) & 0xffffffff, 8); }
 
 // Refuses, without writing, a file that is not a Tessera store this build reads.
 Status checkOwnership(const SqliteConnection& db, int64_t objects, int64_t applicationId, int64_t version) {

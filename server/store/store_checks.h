@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/util/status.h"
+#include "protocol/token_limits.h"
 #include "server/store/store.h"
 
 namespace tessera {
@@ -18,7 +19,6 @@ inline constexpr size_t kMaxAuthorBytes = 1024;
 // Tokens are bearer secrets compared by hash: short ones could be guessed
 // offline from a stolen store, so they are refused when granted.
 inline constexpr size_t kMinTokenBytes = 16;
-inline constexpr size_t kMaxTokenBytes = 4096;
 // Ids and versions fit SQLite's signed 64-bit integers in every engine, so a
 // document can move between engines (tessera store export/import).
 inline constexpr uint64_t kMaxStoredInteger = static_cast<uint64_t>(std::numeric_limits<int64_t>::max());

@@ -41,7 +41,7 @@ const std::vector<FolderRule>& includeRules() {
         {"protocol", {"core/util"}, {"boost/asio", "nats/", "sqlite3", "GLFW/"}},
         // server: one stage per folder, each over the ones before it.
         {"server/base", {"core", "protocol"}, {"GLFW/"}},
-        {"server/store", {"core/util", "server/base"}, {"boost/asio", "google/protobuf", "GLFW/"}},
+        {"server/store", {"core/util", "protocol", "server/base"}, {"boost/asio", "google/protobuf", ".pb.h", "GLFW/"}},
         {"server/document", {"core", "protocol", "server/base", "server/store"}, {"boost/beast", "nats/", "GLFW/"}},
         {"server/cluster", {"core", "protocol", "server/base", "server/store", "server/document"}, {"boost/beast", "GLFW/"}},
         {"server/net", {"core", "protocol", "server/base", "server/store", "server/document"}, {"nats/", "GLFW/"}},

@@ -81,8 +81,9 @@ void logEvent(LogLevel level, std::string_view event, std::initializer_list<LogF
   object["ts"] = ts;
   object["level"] = levelName(level);
   object["event"] = event;
-  for (const auto& [key, value] : fields) {
-    std::visit([&](const auto& v) { object[std::string(key)] = v; }, value);
+  for (const LogField& field : fields) {
+    nlohmann::ordered_json& slot = object[std::string(field.first)];
+    std::visit([&slot](const auto& v) { slot = v; }, field.second);
   }
   // Bytes that are not UTF-8 (a client's text quoted in an event) become
   // U+FFFD rather than an exception or an invalid line; JSON has no inf or

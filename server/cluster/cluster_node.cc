@@ -16,25 +16,9 @@ namespace {
 Expected<uint64_t> takeNodeNumber(NatsLink& link) {
   TESSERA_ASSIGN_OR_RETURN(KvStorePtr bucket,
                            link.ensureBucket(BucketSpec{.name = "TESSERA_NODES", .replicas = 1}));
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    kvEntry* raw = nullptr;
-    natsStatus s = kvStore_Get(&raw, bucket.get(), "next-number");
-    KvEntryPtr entry(raw);
-    uint64_t next = 1, revision = 0;
-    if (s == NATS_OK) {
-      next = std::stoull(std::string(kvEntry_ValueString(entry.get())));
-      revision = kvEntry_Revision(entry.get());
-    } else if (s != NATS_NOT_FOUND) {
-      return link.error(s, "reading the next node number");
-    }
-    const std::string after = std::to_string(next + 1);
-    uint64_t ignored = 0;
-    s = revision == 0 ? kvStore_CreateString(&ignored, bucket.get(), "next-number", after.c_str())
-                      : kvStore_UpdateString(&ignored, bucket.get(), "next-number", after.c_str(), revision);
-    // 2^13 numbers: session ids stay below 2^53, exact in JavaScript too.
-    if (s == NATS_OK) return next % 8191 + 1;
-  }
-  return ioError("NATS (" + link.servers() + "): taking a node number lost 100 races");
+  TESSERA_ASSIGN_OR_RETURN(uint64_t next, link.takeNext(bucket.get(), "next-number", "node number"));
+  // 2^13 numbers: session ids stay below 2^53, exact in JavaScript too.
+  return next % 8191 + 1;
 }
 
 }  // namespace

@@ -150,6 +150,29 @@ Status NatsLink::error(natsStatus status, std::string_view what, jsErrCode code)
   return ioError(message);
 }
 
+Expected<uint64_t> NatsLink::takeNext(kvStore* bucket, const std::string& key, std::string_view what) {
+  constexpr int kAttempts = 100;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    kvEntry* raw = nullptr;
+    natsStatus s = kvStore_Get(&raw, bucket, key.c_str());
+    KvEntryPtr entry(raw);
+    uint64_t next = 1, revision = 0;
+    if (s == NATS_OK) {
+      next = std::stoull(std::string(kvEntry_ValueString(entry.get())));
+      revision = kvEntry_Revision(entry.get());
+    } else if (s != NATS_NOT_FOUND) {
+      return error(s, "reading the next " + std::string(what));
+    }
+    const std::string after = std::to_string(next + 1);
+    uint64_t newRevision = 0;
+    s = revision == 0 ? kvStore_CreateString(&newRevision, bucket, key.c_str(), after.c_str())
+                      : kvStore_UpdateString(&newRevision, bucket, key.c_str(), after.c_str(), revision);
+    if (s == NATS_OK) return next;
+  }
+  return ioError("NATS (" + servers_ + "): taking a " + std::string(what) + " lost " + std::to_string(kAttempts) +
+                 " races with other nodes");
+}
+
 Status NatsLink::ensureStream(const StreamSpec& spec) {
   jsStreamInfo* info = nullptr;
   jsErrCode code = static_cast<jsErrCode>(0);

@@ -88,6 +88,10 @@ class NatsLink {
   // loss: plain NATS messages published to this node meanwhile are gone.
   void onReconnected(std::function<void()> handler);
   Expected<KvStorePtr> ensureBucket(const BucketSpec& spec);
+  // Takes the next value (from 1) of the counter under `key` in `bucket`, a
+  // compare-and-set counter: two nodes taking at once never get the same
+  // value, and no value is taken twice. `what` names it in errors.
+  Expected<uint64_t> takeNext(kvStore* bucket, const std::string& key, std::string_view what);
   // The stream JetStream keeps a key-value bucket in ("KV_<bucket>").
   static std::string bucketStream(std::string_view bucket) { return "KV_" + std::string(bucket); }
 

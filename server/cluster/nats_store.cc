@@ -105,28 +105,8 @@ Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::strin
   TESSERA_RETURN_IF_ERROR(checkDocumentName(name));
   // Ids come from a compare-and-set counter, so two nodes creating at once
   // never get the same id, and ids are never reused.
-  DocumentId id;
-  for (int attempt = 0;; ++attempt) {
-    kvEntry* raw = nullptr;
-    natsStatus s = kvStore_Get(&raw, catalog_.get(), "next-id");
-    KvEntryPtr entry(raw);
-    uint64_t next = 1, revision = 0;
-    if (s == NATS_OK) {
-      next = std::stoull(std::string(kvEntry_ValueString(entry.get())));
-      revision = kvEntry_Revision(entry.get());
-    } else if (s != NATS_NOT_FOUND) {
-      return link_->error(s, "reading the next document id");
-    }
-    const std::string after = std::to_string(next + 1);
-    uint64_t newRevision = 0;
-    s = revision == 0 ? kvStore_CreateString(&newRevision, catalog_.get(), "next-id", after.c_str())
-                      : kvStore_UpdateString(&newRevision, catalog_.get(), "next-id", after.c_str(), revision);
-    if (s == NATS_OK) {
-      id = DocumentId{next};
-      break;
-    }
-    if (attempt >= 100) return link_->error(s, "taking a document id (100 attempts lost to other nodes)");
-  }
+  TESSERA_ASSIGN_OR_RETURN(uint64_t next, link_->takeNext(catalog_.get(), "next-id", "document id"));
+  const DocumentId id{next};
   // The base and the genesis message first, the catalogue entry last: a
   // document is listed only once it is whole.
   TESSERA_RETURN_IF_ERROR(putBlob(*link_, kBlobStream, blobPrefix(id) + ".base", baseBytes));

@@ -36,13 +36,26 @@ uint64_t replyTo(const wire::ServerMessage& message);
 template <typename Message>
 bool unwrapEditCommand(const wire::EditCommand& command, Message& into) {
   switch (command.command_case()) {
-    case wire::EditCommand::kMoveVertex: *into.mutable_move_vertex() = command.move_vertex(); return true;
-    case wire::EditCommand::kSetEdgeSharpness: *into.mutable_set_edge_sharpness() = command.set_edge_sharpness(); return true;
-    case wire::EditCommand::kSetVertexType: *into.mutable_set_vertex_type() = command.set_vertex_type(); return true;
-    case wire::EditCommand::kUndo: *into.mutable_undo() = command.undo(); return true;
-    case wire::EditCommand::kRedo: *into.mutable_redo() = command.redo(); return true;
-    case wire::EditCommand::kSetInterpolation: *into.mutable_set_interpolation() = command.set_interpolation(); return true;
-    case wire::EditCommand::COMMAND_NOT_SET: return false;
+    case wire::EditCommand::kMoveVertex:
+      *into.mutable_move_vertex() = command.move_vertex();
+      return true;
+    case wire::EditCommand::kSetEdgeSharpness:
+      *into.mutable_set_edge_sharpness() = command.set_edge_sharpness();
+      return true;
+    case wire::EditCommand::kSetVertexType:
+      *into.mutable_set_vertex_type() = command.set_vertex_type();
+      return true;
+    case wire::EditCommand::kUndo:
+      *into.mutable_undo() = command.undo();
+      return true;
+    case wire::EditCommand::kRedo:
+      *into.mutable_redo() = command.redo();
+      return true;
+    case wire::EditCommand::kSetInterpolation:
+      *into.mutable_set_interpolation() = command.set_interpolation();
+      return true;
+    case wire::EditCommand::COMMAND_NOT_SET:
+      return false;
   }
   return false;
 }

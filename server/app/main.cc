@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "server/app/command_line.h"
-#include "server/base/log.h"
 #include "server/app/operator_commands.h"
 #include "server/app/server.h"
+#include "server/base/log.h"
 
 int main(int argc, char** argv) {
   using namespace tessera::server;
@@ -30,11 +30,16 @@ int main(int argc, char** argv) {
     }
   }
   switch (command.action) {
-    case ServerAction::kTokenNew: return runTokenNew(command);
-    case ServerAction::kBackup: return runBackup(command);
-    case ServerAction::kRestore: return runRestore(command);
-    case ServerAction::kHealth: return runHealth(command);
-    case ServerAction::kServe: break;
+    case ServerAction::kTokenNew:
+      return runTokenNew(command);
+    case ServerAction::kBackup:
+      return runBackup(command);
+    case ServerAction::kRestore:
+      return runRestore(command);
+    case ServerAction::kHealth:
+      return runHealth(command);
+    case ServerAction::kServe:
+      break;
   }
   auto server = Server::create(config);
   if (!server.isOk()) {

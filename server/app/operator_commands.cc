@@ -1,15 +1,15 @@
 #include "server/app/operator_commands.h"
 
-#include <array>
-#include <cerrno>
-#include <cstring>
-#include <cstdio>
 #include <httplib.h>
 #include <sys/random.h>
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 
 #include "core/util/hex.h"
-#include "server/base/log.h"
 #include "server/app/server.h"
+#include "server/base/log.h"
 #include "server/store/store_admin.h"
 
 namespace tessera::server {
@@ -44,8 +44,8 @@ int runTokenNew(const ServerCommandLine& command) {
   if (!role.isOk()) return failed("token_new_failed", role.status());
   auto token = randomToken();
   if (!token.isOk()) return failed("token_new_failed", token.status());
-  const TokenScope scope =
-      command.documentId == 0 ? TokenScope::allDocuments() : TokenScope::document(DocumentId{command.documentId});
+  const TokenScope scope = command.documentId == 0 ? TokenScope::allDocuments()
+                                                   : TokenScope::document(DocumentId{command.documentId});
   Status stored;
   if (command.config.cluster.empty()) {
     stored = grantTokenInStore(command.config.dataDirectory, scope, *token, *role);
@@ -57,10 +57,11 @@ int runTokenNew(const ServerCommandLine& command) {
   }
   if (!stored.isOk()) return failed("token_new_failed", stored);
   // The token itself goes to stdout only (never to the log).
-  logEvent(LogLevel::kInfo, "token_created",
-           {{"role", command.role},
-            {"scope", scope.toString()},
-            {"store", command.config.cluster.empty() ? command.config.dataDirectory : command.config.cluster}});
+  logEvent(
+      LogLevel::kInfo, "token_created",
+      {{"role", command.role},
+       {"scope", scope.toString()},
+       {"store", command.config.cluster.empty() ? command.config.dataDirectory : command.config.cluster}});
   std::printf("%s\n", token->c_str());
   return 0;
 }
@@ -68,7 +69,8 @@ int runTokenNew(const ServerCommandLine& command) {
 int runBackup(const ServerCommandLine& command) {
   const Status done = backupStore(command.config.dataDirectory, command.path);
   if (!done.isOk()) return failed("backup_failed", done);
-  logEvent(LogLevel::kInfo, "backup_written", {{"data", command.config.dataDirectory}, {"file", command.path}});
+  logEvent(LogLevel::kInfo, "backup_written",
+           {{"data", command.config.dataDirectory}, {"file", command.path}});
   return 0;
 }
 
@@ -83,14 +85,17 @@ int runHealth(const ServerCommandLine& command) {
   std::string url = command.url;
   if (url.empty()) {
     if (command.config.httpPort <= 0) {
-      return failed("health_failed", invalidArgument("health needs --url or --http-port (or a --config that sets it)"));
+      return failed("health_failed",
+                    invalidArgument("health needs --url or --http-port (or a --config that sets it)"));
     }
-    url = "http://" + command.config.httpListenAddress + ":" + std::to_string(command.config.httpPort) + "/healthz";
+    url = "http://" + command.config.httpListenAddress + ":" + std::to_string(command.config.httpPort) +
+          "/healthz";
   }
   const auto schemeEnd = url.find("://");
   const auto pathStart = schemeEnd == std::string::npos ? std::string::npos : url.find('/', schemeEnd + 3);
   if (schemeEnd == std::string::npos || url.compare(0, schemeEnd, "http") != 0) {
-    return failed("health_failed", invalidArgument("--url: expected http://HOST:PORT/PATH, got '" + url + "'"));
+    return failed("health_failed",
+                  invalidArgument("--url: expected http://HOST:PORT/PATH, got '" + url + "'"));
   }
   httplib::Client client(url.substr(0, pathStart));
   client.set_connection_timeout(3, 0);

@@ -2,17 +2,17 @@
 
 #include <filesystem>
 
+#include <sys/resource.h>
+#include <systemd/sd-daemon.h>
+#include <unistd.h>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <fstream>
 #include <thread>
-#include <sys/resource.h>
-#include <systemd/sd-daemon.h>
-#include <unistd.h>
 
 #include "server/base/log.h"
-#include "server/cluster/nats_store.h"
 #include "server/cluster/cluster_node.h"
+#include "server/cluster/nats_store.h"
 #include "server/store/sqlite_store.h"
 
 namespace tessera::server {
@@ -108,23 +108,26 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     auto tls = std::make_unique<asio::ssl::context>(asio::ssl::context::tls_server);
     boost::system::error_code ec;
     tls->set_options(asio::ssl::context::default_workarounds | asio::ssl::context::no_sslv2 |
-                     asio::ssl::context::no_sslv3 | asio::ssl::context::no_tlsv1 | asio::ssl::context::no_tlsv1_1);
+                     asio::ssl::context::no_sslv3 | asio::ssl::context::no_tlsv1 |
+                     asio::ssl::context::no_tlsv1_1);
     tls->use_certificate_chain_file(config.tlsCertificate, ec);
     if (ec) return invalidArgument("--tls-cert " + config.tlsCertificate + ": " + ec.message());
     tls->use_private_key_file(config.tlsPrivateKey, asio::ssl::context::pem, ec);
     if (ec) return invalidArgument("--tls-key " + config.tlsPrivateKey + ": " + ec.message());
     server->tls_ = std::move(tls);
   }
-  server->registry_ = std::make_unique<DocumentRegistry>(*server->store_, server->workers_.get_executor(),
-                                                         server->bulkIo_.get_executor(), server->config_, server->stats_);
+  server->registry_ =
+      std::make_unique<DocumentRegistry>(*server->store_, server->workers_.get_executor(),
+                                         server->bulkIo_.get_executor(), server->config_, server->stats_);
   DocumentOpener* opener = server->registry_.get();
   if (!config.cluster.empty()) {
     server->config_.nodeName = nodeNameOf(config);
     auto* nats = dynamic_cast<cluster::NatsStore*>(server->store_.get());
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     while (true) {
-      auto node = cluster::ClusterNode::start(nats->link(), *server->store_, *server->registry_, server->config_,
-                                     server->stats_, server->workers_.get_executor());
+      auto node =
+          cluster::ClusterNode::start(nats->link(), *server->store_, *server->registry_, server->config_,
+                                      server->stats_, server->workers_.get_executor());
       if (node.isOk()) {
         server->cluster_ = std::move(*node);
         break;
@@ -138,9 +141,9 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     opener = server->cluster_.get();
     server->nextSession_ = server->cluster_->firstSessionId() + 1;
   }
-  server->context_ = std::make_unique<ServerContext>(ServerContext{server->config_, *server->store_, *opener,
-                                                                   server->stats_, server->workers_.get_executor(),
-                                                                   server->bulkIo_.get_executor(), server->authThrottle_});
+  server->context_ = std::make_unique<ServerContext>(
+      ServerContext{server->config_, *server->store_, *opener, server->stats_,
+                    server->workers_.get_executor(), server->bulkIo_.get_executor(), server->authThrottle_});
   boost::system::error_code ec;
   const auto address = asio::ip::make_address(config.listenAddress, ec);
   if (ec) return invalidArgument("--listen: bad address '" + config.listenAddress + "'");
@@ -150,18 +153,18 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   if (!ec) server->acceptor_.bind(endpoint, ec);
   if (!ec) server->acceptor_.listen(asio::socket_base::max_listen_connections, ec);
   if (ec) {
-    return ioError("cannot listen on " + config.listenAddress + ":" + std::to_string(config.port) + ": " + ec.message());
+    return ioError("cannot listen on " + config.listenAddress + ":" + std::to_string(config.port) + ": " +
+                   ec.message());
   }
   server->port_ = server->acceptor_.local_endpoint().port();
   if (config.wsPort >= 0) TESSERA_RETURN_IF_ERROR(server->startWebPort());
   if (config.httpPort >= 0) {
     Server* raw = server.get();
     TESSERA_ASSIGN_OR_RETURN(
-        server->http_,
-        HttpEndpoint::start(config.httpListenAddress, config.httpPort,
-                            HttpSources{&raw->stats_, [raw] { return raw->store_->stats(); },
-                                        [raw] { return raw->registry_->openCount(); },
-                                        [raw] { return raw->unhealthy(); }}));
+        server->http_, HttpEndpoint::start(config.httpListenAddress, config.httpPort,
+                                           HttpSources{&raw->stats_, [raw] { return raw->store_->stats(); },
+                                                       [raw] { return raw->registry_->openCount(); },
+                                                       [raw] { return raw->unhealthy(); }}));
     if (!config.httpPortFile.empty()) {
       writePortFile(config.httpPortFile, server->http_->port());
     }
@@ -193,8 +196,8 @@ std::string defaultWebRoot() {
 Status Server::startWebPort() {
   const std::string root = config_.webRoot.empty() ? defaultWebRoot() : config_.webRoot;
   TESSERA_ASSIGN_OR_RETURN(StaticFiles files, StaticFiles::load(root));
-  WebPortOptions options{config_.listenAddress, config_.wsPort, tls_.get(), config_.wsAllowedOrigins, config_.limits,
-                         config_.timeouts};
+  WebPortOptions options{config_.listenAddress,    config_.wsPort, tls_.get(),
+                         config_.wsAllowedOrigins, config_.limits, config_.timeouts};
   TESSERA_ASSIGN_OR_RETURN(web_, WebPort::start(io_, std::move(options), std::move(files),
                                                 [this](std::shared_ptr<PendingUpgrade> upgrade) {
                                                   asio::post(strand_, [this, upgrade] { admit(upgrade); });
@@ -225,10 +228,11 @@ std::optional<std::string> Server::admission(const std::string& address) {
   return over;
 }
 
-void Server::startConnection(std::unique_ptr<Transport> transport, ConnectionStrand strand, const std::string& address,
-                             const std::optional<std::string>& refusal) {
+void Server::startConnection(std::unique_ptr<Transport> transport, ConnectionStrand strand,
+                             const std::string& address, const std::optional<std::string>& refusal) {
   const uint64_t session = nextSession_++;
-  auto connection = std::make_shared<Connection>(std::move(transport), std::move(strand), *context_, session, address);
+  auto connection =
+      std::make_shared<Connection>(std::move(transport), std::move(strand), *context_, session, address);
   // The refusal is queued on the connection's strand before its start, so
   // with several network threads no Hello can be read and answered first.
   if (refusal) {
@@ -274,11 +278,18 @@ void Server::pingWatchdog() {
 
 void Server::run() {
   if (cluster_) {
-    logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
-                                            {"cluster", config_.cluster}, {"node", cluster_->name()}, {"tls", tls_ != nullptr}});
+    logEvent(LogLevel::kInfo, "listening",
+             {{"address", config_.listenAddress},
+              {"port", static_cast<uint64_t>(port_)},
+              {"cluster", config_.cluster},
+              {"node", cluster_->name()},
+              {"tls", tls_ != nullptr}});
   } else {
-    logEvent(LogLevel::kInfo, "listening", {{"address", config_.listenAddress}, {"port", static_cast<uint64_t>(port_)},
-                                            {"data", config_.dataDirectory}, {"tls", tls_ != nullptr}});
+    logEvent(LogLevel::kInfo, "listening",
+             {{"address", config_.listenAddress},
+              {"port", static_cast<uint64_t>(port_)},
+              {"data", config_.dataDirectory},
+              {"tls", tls_ != nullptr}});
   }
   signals_.async_wait([this](const boost::system::error_code& ec, int signal) {
     if (ec) return;
@@ -305,25 +316,26 @@ void Server::stop() {
 }
 
 void Server::accept() {
-  acceptor_.async_accept(asio::make_strand(io_), [this](const boost::system::error_code& ec, tcp::socket socket) {
-    if (ec) {
-      if (!stopping_) accept();
-      return;
-    }
-    boost::system::error_code ignored;
-    socket.set_option(tcp::no_delay(true), ignored);
-    if (config_.limits.sendBufferBytes > 0) {
-      socket.set_option(asio::socket_base::send_buffer_size(config_.limits.sendBufferBytes), ignored);
-    }
-    const auto remote = socket.remote_endpoint(ignored);
-    const std::string address = remote.address().to_string();
-    const auto over = admission(address);
-    ConnectionStrand strand = asio::make_strand(socket.get_executor());
-    auto transport = makeStreamTransport(std::move(socket), tls_.get(), strand);
-    // Refused in the protocol (an Error frame), which a client library reads.
-    startConnection(std::move(transport), std::move(strand), address, over);
-    accept();
-  });
+  acceptor_.async_accept(
+      asio::make_strand(io_), [this](const boost::system::error_code& ec, tcp::socket socket) {
+        if (ec) {
+          if (!stopping_) accept();
+          return;
+        }
+        boost::system::error_code ignored;
+        socket.set_option(tcp::no_delay(true), ignored);
+        if (config_.limits.sendBufferBytes > 0) {
+          socket.set_option(asio::socket_base::send_buffer_size(config_.limits.sendBufferBytes), ignored);
+        }
+        const auto remote = socket.remote_endpoint(ignored);
+        const std::string address = remote.address().to_string();
+        const auto over = admission(address);
+        ConnectionStrand strand = asio::make_strand(socket.get_executor());
+        auto transport = makeStreamTransport(std::move(socket), tls_.get(), strand);
+        // Refused in the protocol (an Error frame), which a client library reads.
+        startConnection(std::move(transport), std::move(strand), address, over);
+        accept();
+      });
 }
 
 // Prunes finished connections and counts the live ones: all of this
@@ -351,11 +363,12 @@ std::optional<std::string> Server::overLimits(const std::string& address) {
     return "more than " + std::to_string(l.connectionsPerAddress) + " connections from " + address;
   }
   if (unauthenticatedHere >= l.unauthenticatedPerAddress) {
-    return "more than " + std::to_string(l.unauthenticatedPerAddress) + " unauthenticated connections from " + address +
-           " (--unauthenticated-per-address)";
+    return "more than " + std::to_string(l.unauthenticatedPerAddress) + " unauthenticated connections from " +
+           address + " (--unauthenticated-per-address)";
   }
   if (unauthenticated >= l.unauthenticatedTotal) {
-    return "more than " + std::to_string(l.unauthenticatedTotal) + " unauthenticated connections in all (--unauthenticated-total)";
+    return "more than " + std::to_string(l.unauthenticatedTotal) +
+           " unauthenticated connections in all (--unauthenticated-total)";
   }
   return std::nullopt;
 }

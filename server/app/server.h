@@ -5,10 +5,10 @@
 #pragma once
 
 #include <boost/asio/io_context.hpp>
-#include <boost/asio/strand.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/ssl/context.hpp>
+#include <boost/asio/strand.hpp>
 #include <boost/asio/thread_pool.hpp>
 #include <map>
 #include <memory>
@@ -17,17 +17,17 @@
 #include <thread>
 #include <vector>
 
+#include <atomic>
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <atomic>
 
-#include "server/net/auth_throttle.h"
 #include "server/base/config.h"
 #include "server/document/document_registry.h"
+#include "server/net/auth_throttle.h"
 #include "server/net/connection.h"
-#include "server/ops/http_endpoint.h"
-#include "server/net/web_port.h"
 #include "server/net/server_context.h"
+#include "server/net/web_port.h"
+#include "server/ops/http_endpoint.h"
 #include "server/store/store.h"
 
 namespace tessera::cluster {
@@ -74,8 +74,8 @@ class Server {
   std::optional<std::string> admission(const std::string& address);
   // A Connection on `transport`: refused at once with `refusal`, or
   // registered and served.
-  void startConnection(std::unique_ptr<Transport> transport, ConnectionStrand strand, const std::string& address,
-                       const std::optional<std::string>& refusal);
+  void startConnection(std::unique_ptr<Transport> transport, ConnectionStrand strand,
+                       const std::string& address, const std::optional<std::string>& refusal);
 
   ServerConfig config_;
   boost::asio::io_context io_;

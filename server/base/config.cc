@@ -5,7 +5,9 @@
 
 namespace tessera::server {
 
-int defaultNetworkThreads() { return std::max(1, static_cast<int>(std::thread::hardware_concurrency())); }
+int defaultNetworkThreads() {
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
 
 Status checkServerConfig(const ServerConfig& c) {
   if (c.tlsCertificate.empty() != c.tlsPrivateKey.empty()) {
@@ -21,7 +23,8 @@ Status checkServerConfig(const ServerConfig& c) {
     return invalidArgument("--http-port-file needs --http-port (the HTTP endpoint is off without it)");
   }
   if ((!c.wsPortFile.empty() || !c.webRoot.empty() || !c.wsAllowedOrigins.empty()) && c.wsPort < 0) {
-    return invalidArgument("--ws-port-file, --web-root and --ws-allowed-origin need --ws-port (the web port is off without it)");
+    return invalidArgument(
+        "--ws-port-file, --web-root and --ws-allowed-origin need --ws-port (the web port is off without it)");
   }
   return Status::ok();
 }

@@ -11,11 +11,11 @@
 namespace tessera::server {
 
 struct Limits {
-  uint32_t maxFrameBytes = 64u << 20;         // a frame's payload (CreateDocument carries a mesh)
-  uint64_t maxBaseMeshBytes = 48u << 20;      // CreateDocument.mesh, AddMorphKey.mesh
-  int maxLevel = 6;                           // of any document
+  uint32_t maxFrameBytes = 64u << 20;     // a frame's payload (CreateDocument carries a mesh)
+  uint64_t maxBaseMeshBytes = 48u << 20;  // CreateDocument.mesh, AddMorphKey.mesh
+  int maxLevel = 6;                       // of any document
   int64_t maxTrianglesPerSubscriber = 4'000'000;
-  double commandsPerSecond = 200;             // per connection (token bucket, burst = 1 s)
+  double commandsPerSecond = 200;  // per connection (token bucket, burst = 1 s)
   int connectionsPerAddress = 2000;
   // Before a Hello with a known token (docs/PROTOCOL.md §9): the Hello's frame, and
   // the connections that have not authenticated (anonymous ones included).
@@ -32,16 +32,16 @@ struct Limits {
   int profilesPerDocument = 8;
   int subscriptionsPerSession = 16;
   int selectionMaxIds = 1024;
-  uint64_t queueSoftBytes = 8u << 20;         // per client: coalesce queued deltas above this
-  uint64_t queueHardBytes = 32u << 20;        // per client: drop them and resync with a snapshot
+  uint64_t queueSoftBytes = 8u << 20;   // per client: coalesce queued deltas above this
+  uint64_t queueHardBytes = 32u << 20;  // per client: drop them and resync with a snapshot
   uint32_t queueMaxMessages = 4096;
   int sendBufferBytes = 0;  // SO_SNDBUF per connection; 0 keeps the system's
 };
 
 struct Timeouts {
   double handshakeSeconds = 10;
-  double idleSeconds = 300;   // no frame at all from the client
-  double writeSeconds = 30;   // one write making no progress
+  double idleSeconds = 300;  // no frame at all from the client
+  double writeSeconds = 30;  // one write making no progress
 };
 
 // std::thread::hardware_concurrency(), at least 1.
@@ -49,7 +49,7 @@ int defaultNetworkThreads();
 
 struct ServerConfig {
   std::string listenAddress = "127.0.0.1";
-  uint16_t port = 7878;              // 0: any free port
+  uint16_t port = 7878;  // 0: any free port
   std::string dataDirectory = "tessera-data";
   // Cluster mode (docs/CLUSTER.md): the NATS servers, comma
   // separated; empty runs on the SQLite store of dataDirectory.
@@ -59,8 +59,8 @@ struct ServerConfig {
   // A document's owner renews its lease every third of this; a dead owner's
   // documents are taken over once it runs out (docs/CLUSTER.md, "Failover").
   int64_t leaseMs = 3000;
-  std::string portFile;              // write the bound port here (tests, scripts)
-  std::string adminTokenFile;        // a token read at start-up and granted admin on everything
+  std::string portFile;                       // write the bound port here (tests, scripts)
+  std::string adminTokenFile;                 // a token read at start-up and granted admin on everything
   std::string tlsCertificate, tlsPrivateKey;  // both set: TLS on the listening port
   // Connections' reads, writes and the fan-out of deltas: one per core, so
   // a thousand subscribers' writes do not hold up editors' reads and acks.
@@ -73,7 +73,7 @@ struct ServerConfig {
   // behind them.
   int bulkThreads = 1;
   int64_t bulkTriangles = 200'000;
-  uint64_t snapshotEvery = 200;      // journal entries between document snapshots
+  uint64_t snapshotEvery = 200;  // journal entries between document snapshots
   // Deltas of one document at most every max(deltaIntervalMs, subscribers /
   // deltaFramesPerSecond): under load a delta covers the edits of the
   // interval. The frame budget keeps the fan-out (deltas x subscribers) of a
@@ -102,7 +102,7 @@ struct ServerConfig {
   // (off unless given; 0 picks one). TLS, when on, covers it too.
   int wsPort = -1;
   std::string wsPortFile;
-  std::string webRoot;  // the built client/web files; empty: the build's own
+  std::string webRoot;                        // the built client/web files; empty: the build's own
   std::vector<std::string> wsAllowedOrigins;  // besides the page's own; "*" any
 };
 

@@ -14,8 +14,7 @@
 namespace tessera::server {
 
 inline constexpr std::array<double, 17> kLatencyBucketBounds = {
-    0.00005, 0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025,
-    0.05,    0.1,    0.25,    0.5,    1,     2.5,    5,     10};
+    0.00005, 0.0001, 0.00025, 0.0005, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10};
 
 // Index of the first bucket whose bound is >= seconds; the last index (one
 // past the bounds) is the overflow bucket (+Inf).

@@ -1,14 +1,14 @@
 #include "server/base/log.h"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
-#include <fcntl.h>
 #include <mutex>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -34,20 +34,26 @@ Expected<std::FILE*> openAppending(const std::string& path) {
 
 const char* levelName(LogLevel level) {
   switch (level) {
-    case LogLevel::kDebug: return "debug";
-    case LogLevel::kInfo: return "info";
-    case LogLevel::kWarn: return "warn";
-    case LogLevel::kError: return "error";
+    case LogLevel::kDebug:
+      return "debug";
+    case LogLevel::kInfo:
+      return "info";
+    case LogLevel::kWarn:
+      return "warn";
+    case LogLevel::kError:
+      return "error";
   }
   return "info";
 }
 
 }  // namespace
 
-void setLogLevel(LogLevel level) { minimumLevel = static_cast<int>(level); }
+void setLogLevel(LogLevel level) {
+  minimumLevel = static_cast<int>(level);
+}
 
 Status setLogFile(const std::string& path) {
-  TESSERA_ASSIGN_OR_RETURN(std::FILE* file, openAppending(path));
+  TESSERA_ASSIGN_OR_RETURN(std::FILE * file, openAppending(path));
   std::lock_guard lock(outputMutex);
   if (output != nullptr) std::fclose(output);
   output = file;
@@ -70,12 +76,13 @@ void logEvent(LogLevel level, std::string_view event, std::initializer_list<LogF
   if (static_cast<int>(level) < minimumLevel) return;
   const auto now = std::chrono::system_clock::now();
   const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-  const auto millis = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  const auto millis =
+      std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
   std::tm utc{};
   gmtime_r(&seconds, &utc);
   char ts[64];  // room for any int fields, so the compiler can prove no truncation
-  std::snprintf(ts, sizeof ts, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900, utc.tm_mon + 1, utc.tm_mday,
-                utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<int>(millis));
+  std::snprintf(ts, sizeof ts, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", utc.tm_year + 1900, utc.tm_mon + 1,
+                utc.tm_mday, utc.tm_hour, utc.tm_min, utc.tm_sec, static_cast<int>(millis));
   // Keys in the order written: ts, level, event, then the fields.
   nlohmann::ordered_json object;
   object["ts"] = ts;

@@ -19,15 +19,15 @@ struct ServerStats {
   std::atomic<int64_t> framesSent{0};
   std::atomic<int64_t> deltaMerges{0};
   std::atomic<int64_t> resyncs{0};
-  std::atomic<int64_t> queueBytes{0};      // sum over clients
-  std::atomic<int64_t> queueBytesMax{0};   // largest single client queue seen
+  std::atomic<int64_t> queueBytes{0};     // sum over clients
+  std::atomic<int64_t> queueBytesMax{0};  // largest single client queue seen
   std::atomic<int64_t> tessellateMicros{0};
   std::atomic<int64_t> encodeMicros{0};
-  std::atomic<int64_t> commitMicros{0};    // apply to durable, summed
+  std::atomic<int64_t> commitMicros{0};  // apply to durable, summed
   std::atomic<int64_t> regionsEncoded{0};
   std::atomic<int64_t> deltaRegions{0};           // region payloads queued in deltas
   std::atomic<int64_t> deltaRegionsLayoutIds{0};  // of those, moved regions sent without their layout's ids
-  std::atomic<int64_t> deltaFlushes{0};    // deltas made per view; a flush covers every edit queued together
+  std::atomic<int64_t> deltaFlushes{0};  // deltas made per view; a flush covers every edit queued together
   std::atomic<int64_t> connectionsRefused{0};  // over a connection limit, before any Hello
   std::atomic<int64_t> authFailures{0};        // Hellos with a token the store does not know
   // Cluster mode (docs/CLUSTER.md): this node's number, the documents whose lease

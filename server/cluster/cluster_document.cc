@@ -93,7 +93,8 @@ void ClusterDocument::leave(uint64_t session) {
   forward(session, Forward::KIND_LEAVE, nullptr);
 }
 
-void ClusterDocument::select(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::Selection selection) {
+void ClusterDocument::select(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+                             wire::Selection selection) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (host_) return host_->select(std::move(who), clientSeq, std::move(selection));
   forward(who->sessionId(), Forward::KIND_SELECT, [&](Forward& f) {
@@ -108,8 +109,8 @@ void ClusterDocument::resendPresence(uint64_t session) {
   forward(session, Forward::KIND_RESEND_PRESENCE, nullptr);
 }
 
-void ClusterDocument::subscribe(std::shared_ptr<server::Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
-                                bool resync, bool withCommands) {
+void ClusterDocument::subscribe(std::shared_ptr<server::Subscriber> who, const wire::LodProfile& profile,
+                                uint64_t clientSeq, bool resync, bool withCommands) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (auto it = sessions_.find(who->sessionId()); it != sessions_.end()) {
     it->second.profile = profile;
@@ -131,17 +132,19 @@ void ClusterDocument::unsubscribe(uint64_t session) {
   forward(session, Forward::KIND_UNSUBSCRIBE, nullptr);
 }
 
-void ClusterDocument::command(std::shared_ptr<server::Subscriber> author, std::string authorName, wire::ClientMessage message) {
+void ClusterDocument::command(std::shared_ptr<server::Subscriber> author, std::string authorName,
+                              wire::ClientMessage message) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (host_) return host_->command(std::move(author), std::move(authorName), std::move(message));
   if (owner_.empty()) {
     // Between owners: refused now rather than lost later.
     // Why, when a load failed (e.g. NATS without quorum), not only that.
-    std::string why = whyUnowned_.empty() ? "a takeover is under way" : "no node could load it: " + whyUnowned_;
+    std::string why =
+        whyUnowned_.empty() ? "a takeover is under way" : "no node could load it: " + whyUnowned_;
     if (!whyLost_.empty()) why = "its last owner gave it up: " + whyLost_ + "; " + why;
-    wire::ServerMessage reject = server::rejectFor(
-        message.client_seq(),
-        ioError(toString(id_) + " has no owner node right now (" + why + "): the edit was not applied; send it again"));
+    wire::ServerMessage reject =
+        server::rejectFor(message.client_seq(), ioError(toString(id_) + " has no owner node right now (" +
+                                                        why + "): the edit was not applied; send it again"));
     author->send({server::frameOf(reject, node_.maxFrameBytes()), nullptr});
     return;
   }
@@ -154,7 +157,8 @@ void ClusterDocument::command(std::shared_ptr<server::Subscriber> author, std::s
   });
 }
 
-void ClusterDocument::exportGlb(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) {
+void ClusterDocument::exportGlb(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+                                wire::ExportDocument request) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (host_) return host_->exportGlb(std::move(who), clientSeq, std::move(request));
   forward(who->sessionId(), Forward::KIND_EXPORT, [&](Forward& f) {
@@ -163,7 +167,8 @@ void ClusterDocument::exportGlb(std::shared_ptr<server::Subscriber> who, uint64_
   });
 }
 
-void ClusterDocument::morphControl(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) {
+void ClusterDocument::morphControl(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+                                   wire::GetMorphControl request) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (host_) return host_->morphControl(std::move(who), clientSeq, std::move(request));
   forward(who->sessionId(), Forward::KIND_MORPH_CONTROL, [&](Forward& f) {
@@ -197,19 +202,34 @@ bool ClusterDocument::serveRemote(const Forward& request) {
         return true;
       }
       break;
-    case F::KIND_SELECT: host_->select(who, m.client_seq(), m.select().selection()); break;
-    case F::KIND_RESEND_PRESENCE: host_->resendPresence(session); break;
+    case F::KIND_SELECT:
+      host_->select(who, m.client_seq(), m.select().selection());
+      break;
+    case F::KIND_RESEND_PRESENCE:
+      host_->resendPresence(session);
+      break;
     case F::KIND_SUBSCRIBE:
-      host_->subscribe(who, m.subscribe().profile(), m.client_seq(), request.resync(), m.subscribe().with_commands());
+      host_->subscribe(who, m.subscribe().profile(), m.client_seq(), request.resync(),
+                       m.subscribe().with_commands());
       break;
-    case F::KIND_UNSUBSCRIBE: host_->unsubscribe(session); break;
-    case F::KIND_COMMAND: host_->command(who, request.name(), m); break;
-    case F::KIND_EXPORT: host_->exportGlb(who, m.client_seq(), m.export_document()); break;
-    case F::KIND_MORPH_CONTROL: host_->morphControl(who, m.client_seq(), m.get_morph_control()); break;
+    case F::KIND_UNSUBSCRIBE:
+      host_->unsubscribe(session);
+      break;
+    case F::KIND_COMMAND:
+      host_->command(who, request.name(), m);
+      break;
+    case F::KIND_EXPORT:
+      host_->exportGlb(who, m.client_seq(), m.export_document());
+      break;
+    case F::KIND_MORPH_CONTROL:
+      host_->morphControl(who, m.client_seq(), m.get_morph_control());
+      break;
     case F::KIND_OUTCOMES:
-      host_->answerOutcomes(who, std::vector<uint64_t>(request.client_seqs().begin(), request.client_seqs().end()));
+      host_->answerOutcomes(
+          who, std::vector<uint64_t>(request.client_seqs().begin(), request.client_seqs().end()));
       break;
-    default: break;  // refused by the node before it came here
+    default:
+      break;  // refused by the node before it came here
   }
   return true;
 }
@@ -272,7 +292,8 @@ void ClusterDocument::askOverdue(std::chrono::steady_clock::time_point before) {
   if (host_ || owner_.empty()) return;  // here, or between owners: the next rehome answers them
   // The owner answers each from its journal, or not at all while it is
   // still waiting for the command's journal write (its Ack follows).
-  for (auto& [who, seqs] : node_.outstandingOf(id_, /*take=*/false, before)) askOwnerLocked(who->sessionId(), seqs);
+  for (auto& [who, seqs] : node_.outstandingOf(id_, /*take=*/false, before))
+    askOwnerLocked(who->sessionId(), seqs);
 }
 
 bool ClusterDocument::hasRemoteSessions() {
@@ -338,9 +359,13 @@ void ClusterDocument::rehome(const std::string& why) {
   if (from.empty() && !resolved.isOk()) return;  // still no owner: nothing moved, nothing to log
   ++node_.stats().documentsMoved;
   server::logEvent(resolved.isOk() ? server::LogLevel::kInfo : server::LogLevel::kWarn, "document_moved",
-           {{"doc", id_.value}, {"node", node_.name()}, {"from", from}, {"to", owner_}, {"reason", why},
-            {"sessions", static_cast<uint64_t>(sessions_.size())},
-            {"error", resolved.isOk() ? std::string() : resolved.message()}});
+                   {{"doc", id_.value},
+                    {"node", node_.name()},
+                    {"from", from},
+                    {"to", owner_},
+                    {"reason", why},
+                    {"sessions", static_cast<uint64_t>(sessions_.size())},
+                    {"error", resolved.isOk() ? std::string() : resolved.message()}});
   // Told before the resync: an edit sent to the old owner and not
   // acknowledged may be lost (docs/CLUSTER.md, "What a client sees"). A
   // retry that fails again (no owner before, none now) tells nobody anew.
@@ -350,7 +375,8 @@ void ClusterDocument::rehome(const std::string& why) {
     auto who = s.who.lock();
     if (!who) continue;
     if (tell) who->send(notice);
-    if (!owner_.empty()) rejoinLocked(session, who, s);  // otherwise when an owner is found (the monitor tries again)
+    if (!owner_.empty())
+      rejoinLocked(session, who, s);  // otherwise when an owner is found (the monitor tries again)
   }
   // The unanswered commands of this node's sessions (forwarded to the old
   // owner, or undecided by the failed host here): the owner, here or
@@ -383,19 +409,21 @@ std::set<std::string> ClusterDocument::leaveOwnerLocked() {
   return remoteNodes;
 }
 
-std::shared_ptr<const std::string> ClusterDocument::movedNotice(const std::string& from, const std::string& why,
+std::shared_ptr<const std::string> ClusterDocument::movedNotice(const std::string& from,
+                                                                const std::string& why,
                                                                 const Status& resolved) {
   wire::ServerMessage notice;
   notice.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
   const std::string to = owner_.empty() ? "none yet (" + resolved.message() + ")" : "node " + owner_;
-  notice.mutable_error()->set_message(toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to " + to +
-                                      " (" + why + "): an edit without its Ack may be lost; " +
-                                      (owner_.empty() ? "edits are refused until a node can load it"
-                                                      : "a resync snapshot follows"));
+  notice.mutable_error()->set_message(
+      toString(id_) + " moved from node " + (from.empty() ? "?" : from) + " to " + to + " (" + why +
+      "): an edit without its Ack may be lost; " +
+      (owner_.empty() ? "edits are refused until a node can load it" : "a resync snapshot follows"));
   return server::frameOf(notice, node_.maxFrameBytes());
 }
 
-void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<server::Subscriber>& who, const LocalSession& s) {
+void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<server::Subscriber>& who,
+                                   const LocalSession& s) {
   // Its unanswered commands are asked after every session moved (rehome).
   if (host_) {
     host_->join(who, s.name, s.role);

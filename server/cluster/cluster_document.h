@@ -24,13 +24,14 @@
 #include <string>
 
 #include "protocol/cluster.pb.h"
-#include "server/document/document_endpoint.h"
 #include "server/cluster/node_services.h"
+#include "server/document/document_endpoint.h"
 #include "server/document/document_host.h"
 
 namespace tessera::cluster {
 
-class ClusterDocument : public server::DocumentEndpoint, public std::enable_shared_from_this<ClusterDocument> {
+class ClusterDocument : public server::DocumentEndpoint,
+                        public std::enable_shared_from_this<ClusterDocument> {
  public:
   ClusterDocument(DocumentId id, NodeServices& node) : id_(id), node_(node) {}
   ~ClusterDocument() override;
@@ -41,14 +42,18 @@ class ClusterDocument : public server::DocumentEndpoint, public std::enable_shar
 
   void join(std::shared_ptr<server::Subscriber> who, std::string name, wire::Role role) override;
   void leave(uint64_t session) override;
-  void select(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::Selection selection) override;
+  void select(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+              wire::Selection selection) override;
   void resendPresence(uint64_t session) override;
-  void subscribe(std::shared_ptr<server::Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
-                 bool withCommands = false) override;
+  void subscribe(std::shared_ptr<server::Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
+                 bool resync, bool withCommands = false) override;
   void unsubscribe(uint64_t session) override;
-  void command(std::shared_ptr<server::Subscriber> author, std::string authorName, wire::ClientMessage message) override;
-  void exportGlb(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) override;
-  void morphControl(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) override;
+  void command(std::shared_ptr<server::Subscriber> author, std::string authorName,
+               wire::ClientMessage message) override;
+  void exportGlb(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+                 wire::ExportDocument request) override;
+  void morphControl(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+                    wire::GetMorphControl request) override;
 
   // The owner's side: a request of another node's session. False when this
   // node does not own the document (the sender is told NotOwner).
@@ -57,8 +62,8 @@ class ClusterDocument : public server::DocumentEndpoint, public std::enable_shar
   // For the node's lease monitor.
   DocumentId id() const { return id_; }
   bool ownedHere();
-  std::string owner();     // the owner node, "" when unknown
-  bool journalFailed();    // the local host's journal refused a write: it applies nothing more
+  std::string owner();   // the owner node, "" when unknown
+  bool journalFailed();  // the local host's journal refused a write: it applies nothing more
   bool notOwnerReported() const { return notOwner_.load(); }  // a NotOwner came back for a Forward
   void markNotOwner() { notOwner_ = true; }
   // Moves every local session to the document's current owner.
@@ -110,9 +115,9 @@ class ClusterDocument : public server::DocumentEndpoint, public std::enable_shar
   NodeServices& node_;
   std::mutex mutex_;
   std::shared_ptr<server::DocumentHost> host_;  // set while this node owns the document
-  std::string owner_;                   // otherwise: the owner's node name
-  std::string whyUnowned_;              // no owner: why the last attempt to find or load one failed
-  std::string whyLost_;                 // no owner: why the last one was given up (rehome), if it was
+  std::string owner_;                           // otherwise: the owner's node name
+  std::string whyUnowned_;                      // no owner: why the last attempt to find or load one failed
+  std::string whyLost_;                         // no owner: why the last one was given up (rehome), if it was
   std::map<uint64_t, LocalSession> sessions_;
   std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node
   std::atomic<bool> notOwner_{false};

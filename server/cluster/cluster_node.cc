@@ -2,10 +2,10 @@
 
 #include <set>
 
-#include "server/cluster/cluster_document.h"
 #include "protocol/framing.h"
-#include "server/cluster/message_chunks.h"
 #include "server/base/log.h"
+#include "server/cluster/cluster_document.h"
+#include "server/cluster/message_chunks.h"
 
 namespace tessera::cluster {
 
@@ -23,8 +23,9 @@ Expected<uint64_t> takeNodeNumber(NatsLink& link) {
 
 }  // namespace
 
-ClusterNode::ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry& registry, const server::ServerConfig& config,
-                         server::ServerStats& stats, boost::asio::any_io_executor workers, std::string name)
+ClusterNode::ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry& registry,
+                         const server::ServerConfig& config, server::ServerStats& stats,
+                         boost::asio::any_io_executor workers, std::string name)
     : link_(link),
       store_(store),
       registry_(registry),
@@ -34,8 +35,10 @@ ClusterNode::ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry&
       relay_(link, name_, workers) {}
 
 Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(NatsLink& link, Store& store,
-                                                          server::DocumentRegistry& registry, const server::ServerConfig& config,
-                                                          server::ServerStats& stats, boost::asio::any_io_executor workers) {
+                                                          server::DocumentRegistry& registry,
+                                                          const server::ServerConfig& config,
+                                                          server::ServerStats& stats,
+                                                          boost::asio::any_io_executor workers) {
   std::string name = config.nodeName;
   for (char c : name) {
     // A node name is a NATS subject token and a key-value key part.
@@ -43,28 +46,31 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(NatsLink& link, Store&
       return invalidArgument("--node-name '" + name + "': use letters, digits, '-' and '_' only");
     }
   }
-  std::unique_ptr<ClusterNode> node(new ClusterNode(link, store, registry, config, stats, workers, std::move(name)));
+  std::unique_ptr<ClusterNode> node(
+      new ClusterNode(link, store, registry, config, stats, workers, std::move(name)));
   TESSERA_ASSIGN_OR_RETURN(node->number_, takeNodeNumber(link));
-  TESSERA_ASSIGN_OR_RETURN(node->leases_, DocumentLeases::open(link, node->name_,
-                                                                        std::chrono::milliseconds(config.leaseMs),
-                                                                        config.clusterReplicas));
-  TESSERA_ASSIGN_OR_RETURN(node->alive_, link.ensureBucket(BucketSpec{
-                                             .name = "TESSERA_ALIVE",
-                                             .replicas = config.clusterReplicas,
-                                             // Three lease times: a node whose
-                                             // monitor was held up (a load, a busy
-                                             // machine) is not taken for dead; a dead
-                                             // node's sessions only go a little later.
-                                             .ttl = 3 * std::chrono::milliseconds(config.leaseMs)}));
+  TESSERA_ASSIGN_OR_RETURN(node->leases_,
+                           DocumentLeases::open(link, node->name_, std::chrono::milliseconds(config.leaseMs),
+                                                config.clusterReplicas));
+  TESSERA_ASSIGN_OR_RETURN(
+      node->alive_, link.ensureBucket(BucketSpec{.name = "TESSERA_ALIVE",
+                                                 .replicas = config.clusterReplicas,
+                                                 // Three lease times: a node whose
+                                                 // monitor was held up (a load, a busy
+                                                 // machine) is not taken for dead; a dead
+                                                 // node's sessions only go a little later.
+                                                 .ttl = 3 * std::chrono::milliseconds(config.leaseMs)}));
   uint64_t revision = 0;
   natsStatus s = kvStore_PutString(&revision, node->alive_.get(), node->name_.c_str(),
                                    std::to_string(node->number_).c_str());
   if (s != NATS_OK) return link.error(s, "announcing node " + node->name_);
   s = natsConnection_Subscribe(&node->forwardSubscription_, link.connection(),
-                                          nodeSubject(node->name_, "forward").c_str(), &ClusterNode::onForward, node.get());
+                               nodeSubject(node->name_, "forward").c_str(), &ClusterNode::onForward,
+                               node.get());
   if (s == NATS_OK) {
     s = natsConnection_Subscribe(&node->framesSubscription_, link.connection(),
-                                 nodeSubject(node->name_, "frames").c_str(), &ClusterNode::onNodeMessage, node.get());
+                                 nodeSubject(node->name_, "frames").c_str(), &ClusterNode::onNodeMessage,
+                                 node.get());
   }
   if (s == NATS_OK) s = natsConnection_Flush(link.connection());
   if (s != NATS_OK) return link.error(s, "subscribing to node " + node->name_ + "'s subjects");
@@ -77,8 +83,10 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(NatsLink& link, Store&
   });
   node->monitor_ = std::thread([raw = node.get()] { raw->monitor(); });
   server::logEvent(server::LogLevel::kInfo, "cluster_node_started",
-           {{"node", node->name_}, {"number", node->number_}, {"nats", link.servers()},
-            {"lease_ms", static_cast<int64_t>(config.leaseMs)}});
+                   {{"node", node->name_},
+                    {"number", node->number_},
+                    {"nats", link.servers()},
+                    {"lease_ms", static_cast<int64_t>(config.leaseMs)}});
   return node;
 }
 
@@ -155,10 +163,11 @@ std::vector<std::shared_ptr<ClusterDocument>> ClusterNode::liveDocuments() {
 }
 
 void ClusterNode::forward(const std::string& owner, const Forward& request) {
-  const Status sent = publishMessage(link_, nodeSubject(owner, "forward"), name_, request.SerializeAsString());
+  const Status sent =
+      publishMessage(link_, nodeSubject(owner, "forward"), name_, request.SerializeAsString());
   if (!sent.isOk()) {
     server::logEvent(server::LogLevel::kWarn, "cluster_forward_failed",
-             {{"to", owner}, {"doc", request.document_id()}, {"error", sent.message()}});
+                     {{"to", owner}, {"doc", request.document_id()}, {"error", sent.message()}});
   }
 }
 
@@ -261,13 +270,15 @@ std::shared_ptr<ClusterDocument> ClusterNode::liveDocument(uint64_t id) {
 void ClusterNode::dropMessage(const char* subject, int length, const std::string& why) {
   ++dropped_;
   ++stats_.clusterMessagesDropped;
-  server::logEvent(server::LogLevel::kWarn, "cluster_message_dropped",
-           {{"node", name_}, {"subject", subject}, {"bytes", static_cast<int64_t>(length)}, {"reason", why}});
+  server::logEvent(
+      server::LogLevel::kWarn, "cluster_message_dropped",
+      {{"node", name_}, {"subject", subject}, {"bytes", static_cast<int64_t>(length)}, {"reason", why}});
 }
 
 void ClusterNode::handleForward(const char* data, int length, const char* subject) {
   Forward request;
-  if (length <= 0 || !request.ParseFromArray(data, length)) return dropMessage(subject, length, "not a cluster Forward");
+  if (length <= 0 || !request.ParseFromArray(data, length))
+    return dropMessage(subject, length, "not a cluster Forward");
   if (request.kind() == Forward::KIND_UNSPECIFIED || !Forward::Kind_IsValid(request.kind()) ||
       request.via_node().empty() || request.session_id() == 0 || request.document_id() == 0) {
     return dropMessage(subject, length, "a Forward without its kind, node, session or document");
@@ -284,7 +295,8 @@ void ClusterNode::handleForward(const char* data, int length, const char* subjec
 
 void ClusterNode::handleNodeMessage(const char* data, int length, const char* subject) {
   NodeMessage message;
-  if (length <= 0 || !message.ParseFromArray(data, length)) return dropMessage(subject, length, "not a cluster NodeMessage");
+  if (length <= 0 || !message.ParseFromArray(data, length))
+    return dropMessage(subject, length, "not a cluster NodeMessage");
   if (message.has_not_owner()) {
     if (auto doc = liveDocument(message.not_owner().document_id())) {
       doc->markNotOwner();
@@ -300,7 +312,8 @@ void ClusterNode::handleNodeMessage(const char* data, int length, const char* su
   const Frames& f = message.frames();
   if (!f.is_delta() && f.snapshot_of() == 0 && f.presence_of() == 0) {
     wire::ServerMessage reply;
-    if (reply.ParseFromArray(f.frame().data() + kFrameHeaderBytes, static_cast<int>(f.frame().size() - kFrameHeaderBytes))) {
+    if (reply.ParseFromArray(f.frame().data() + kFrameHeaderBytes,
+                             static_cast<int>(f.frame().size() - kFrameHeaderBytes))) {
       if (reply.has_ack()) answered = reply.ack().client_seq();
       if (reply.has_reject()) answered = reply.reject().client_seq();
     }
@@ -329,7 +342,8 @@ void ClusterNode::heartbeat() {
   std::set<std::pair<std::string, uint64_t>> nodes;  // (name, incarnation) of other nodes' sessions here
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& [session, who] : remoteSubscribers_) nodes.emplace(who->node(), sessionIncarnation(session));
+    for (const auto& [session, who] : remoteSubscribers_)
+      nodes.emplace(who->node(), sessionIncarnation(session));
   }
   for (const auto& [node, incarnation] : nodes) {
     kvEntry* raw = nullptr;
@@ -337,7 +351,8 @@ void ClusterNode::heartbeat() {
     KvEntryPtr entry(raw);
     if (s != NATS_OK && s != NATS_NOT_FOUND) continue;  // NATS unavailable: decide nothing
     if (s == NATS_OK && std::to_string(incarnation) == kvEntry_ValueString(entry.get())) continue;
-    server::logEvent(server::LogLevel::kInfo, "cluster_node_gone", {{"node", name_}, {"gone", node}, {"incarnation", incarnation}});
+    server::logEvent(server::LogLevel::kInfo, "cluster_node_gone",
+                     {{"node", name_}, {"gone", node}, {"incarnation", incarnation}});
     // Their subscribers go with the next prunes (pruneRemoteSubscribers).
     for (const auto& doc : liveDocuments()) doc->dropRemoteSessions(node, incarnation);
   }

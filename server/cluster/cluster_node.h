@@ -14,8 +14,8 @@
 // decode is logged and dropped; it never reaches a document.
 #pragma once
 
-#include <boost/asio/any_io_executor.hpp>
 #include <atomic>
+#include <boost/asio/any_io_executor.hpp>
 #include <chrono>
 #include <condition_variable>
 #include <map>
@@ -27,12 +27,12 @@
 #include <thread>
 #include <vector>
 
+#include "server/base/config.h"
 #include "server/cluster/document_leases.h"
 #include "server/cluster/message_chunks.h"
 #include "server/cluster/nats_link.h"
-#include "server/base/config.h"
-#include "server/document/document_endpoint.h"
 #include "server/cluster/node_services.h"
+#include "server/document/document_endpoint.h"
 
 namespace tessera::cluster {
 
@@ -42,8 +42,10 @@ class ClusterNode : public server::DocumentOpener, public NodeServices {
  public:
   // Subscribes to the node's subjects and starts the lease monitor.
   static Expected<std::unique_ptr<ClusterNode>> start(NatsLink& link, Store& store,
-                                                      server::DocumentRegistry& registry, const server::ServerConfig& config,
-                                                      server::ServerStats& stats, boost::asio::any_io_executor workers);
+                                                      server::DocumentRegistry& registry,
+                                                      const server::ServerConfig& config,
+                                                      server::ServerStats& stats,
+                                                      boost::asio::any_io_executor workers);
   ~ClusterNode() override;
 
   Expected<std::shared_ptr<server::DocumentEndpoint>> openEndpoint(DocumentId id) override;
@@ -66,21 +68,24 @@ class ClusterNode : public server::DocumentOpener, public NodeServices {
   void forward(const std::string& owner, const Forward& request) override;
   void addLocalSession(uint64_t session, std::weak_ptr<server::Subscriber> who) override;
   void noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) override;
-  std::vector<Outstanding> outstandingOf(DocumentId document, bool take,
-                                         std::optional<std::chrono::steady_clock::time_point> askedBefore = {}) override;
+  std::vector<Outstanding> outstandingOf(
+      DocumentId document, bool take,
+      std::optional<std::chrono::steady_clock::time_point> askedBefore = {}) override;
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session) override;
   void pin(const std::shared_ptr<ClusterDocument>& document) override;
   void unpin(DocumentId id) override;
   void tellNotOwner(const std::string& node, DocumentId document, const std::string& owner) override;
 
  private:
-  ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry& registry, const server::ServerConfig& config,
-              server::ServerStats& stats, boost::asio::any_io_executor workers, std::string name);
+  ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry& registry,
+              const server::ServerConfig& config, server::ServerStats& stats,
+              boost::asio::any_io_executor workers, std::string name);
   static void onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
   static void onNodeMessage(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
   // Both subscriptions: reassembles chunked messages, then hands each whole
   // one to `handle` (or drops it, logged, when its chunks are bad).
-  void receive(natsMsg* msg, ChunkAssembler& chunks, void (ClusterNode::*handle)(const char*, int, const char*));
+  void receive(natsMsg* msg, ChunkAssembler& chunks,
+               void (ClusterNode::*handle)(const char*, int, const char*));
   std::shared_ptr<ClusterDocument> liveDocument(uint64_t id);  // null when not open here
   void handleForward(const char* data, int length, const char* subject);
   void handleNodeMessage(const char* data, int length, const char* subject);

@@ -4,9 +4,9 @@
 
 #include "core/util/byte_io.h"
 #include "protocol/framing.h"
-#include "server/cluster/message_chunks.h"
 #include "protocol/tessera.pb.h"
 #include "server/base/log.h"
+#include "server/cluster/message_chunks.h"
 
 namespace tessera::cluster {
 
@@ -31,7 +31,8 @@ void FrameRelay::send(const std::string& node, uint64_t session, const server::O
     if (message.delta) {
       p.message.set_document_id(message.delta->documentId);
       p.message.set_is_delta(true);
-      for (const server::RegionPayload& r : message.delta->regions) p.message.add_region_self_contained(r.selfContained);
+      for (const server::RegionPayload& r : message.delta->regions)
+        p.message.add_region_self_contained(r.selfContained);
     }
     queue.push_back(std::move(p));
   }
@@ -59,8 +60,9 @@ void FrameRelay::flush() {
       if (!sent.isOk()) {
         // The node's sessions miss this frame; the version continuity of
         // their deltas makes them ask for a resync (PROTOCOL.md 6.4).
-        server::logEvent(server::LogLevel::kWarn, "cluster_publish_failed",
-                 {{"to", node}, {"bytes", static_cast<uint64_t>(bytes.size())}, {"error", sent.message()}});
+        server::logEvent(
+            server::LogLevel::kWarn, "cluster_publish_failed",
+            {{"to", node}, {"bytes", static_cast<uint64_t>(bytes.size())}, {"error", sent.message()}});
         continue;
       }
       std::lock_guard<std::mutex> lock(mutex_);
@@ -81,7 +83,8 @@ uint64_t FrameRelay::framesPublished() const {
 Expected<server::Outgoing> framesToOutgoing(const Frames& frames, uint32_t maxFrameBytes) {
   const std::string& bytes = frames.frame();
   if (bytes.size() <= kFrameHeaderBytes || bytes.size() - kFrameHeaderBytes > maxFrameBytes) {
-    return invalidArgument("a cluster frame of " + std::to_string(bytes.size()) + " bytes is not a frame this node sends");
+    return invalidArgument("a cluster frame of " + std::to_string(bytes.size()) +
+                           " bytes is not a frame this node sends");
   }
   const uint32_t announced = getBigEndian32(bytes.data());
   if (announced != bytes.size() - kFrameHeaderBytes) {
@@ -95,7 +98,8 @@ Expected<server::Outgoing> framesToOutgoing(const Frames& frames, uint32_t maxFr
   out.presenceFull = frames.presence_full();
   if (!frames.is_delta()) return out;
   wire::ServerMessage message;
-  if (!message.ParseFromArray(bytes.data() + kFrameHeaderBytes, static_cast<int>(announced)) || !message.has_delta()) {
+  if (!message.ParseFromArray(bytes.data() + kFrameHeaderBytes, static_cast<int>(announced)) ||
+      !message.has_delta()) {
     return invalidArgument("a cluster frame marked as a delta does not hold one");
   }
   const wire::Delta& d = message.delta();
@@ -111,9 +115,9 @@ Expected<server::Outgoing> framesToOutgoing(const Frames& frames, uint32_t maxFr
   content->editId = d.edit_id();
   content->surfaceHash = d.surface_hash();
   for (int i = 0; i < d.regions_size(); ++i) {
-    content->regions.push_back(server::RegionPayload{d.regions(i).region_id(),
-                                             std::make_shared<const std::string>(d.regions(i).draco()),
-                                             frames.region_self_contained(i)});
+    content->regions.push_back(server::RegionPayload{
+        d.regions(i).region_id(), std::make_shared<const std::string>(d.regions(i).draco()),
+        frames.region_self_contained(i)});
   }
   content->removed.assign(d.removed_region_ids().begin(), d.removed_region_ids().end());
   out.delta = std::move(content);

@@ -4,15 +4,19 @@ namespace tessera::cluster {
 
 namespace {
 
-std::string leaseKey(DocumentId id) { return "doc." + std::to_string(id.value); }
+std::string leaseKey(DocumentId id) {
+  return "doc." + std::to_string(id.value);
+}
 
 }  // namespace
 
 Expected<std::unique_ptr<DocumentLeases>> DocumentLeases::open(NatsLink& link, std::string node,
-                                                               std::chrono::milliseconds leaseTime, int replicas) {
-  TESSERA_ASSIGN_OR_RETURN(KvStorePtr bucket,
-                           link.ensureBucket(BucketSpec{.name = kBucket, .replicas = replicas, .ttl = leaseTime}));
-  return std::unique_ptr<DocumentLeases>(new DocumentLeases(link, std::move(bucket), std::move(node), leaseTime));
+                                                               std::chrono::milliseconds leaseTime,
+                                                               int replicas) {
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr bucket, link.ensureBucket(BucketSpec{
+                                                  .name = kBucket, .replicas = replicas, .ttl = leaseTime}));
+  return std::unique_ptr<DocumentLeases>(
+      new DocumentLeases(link, std::move(bucket), std::move(node), leaseTime));
 }
 
 Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
@@ -54,15 +58,16 @@ Status DocumentLeases::renew(DocumentId id) {
   }
   uint64_t next = 0;
   const auto sent = Clock::now();
-  const natsStatus s = kvStore_UpdateString(&next, bucket_.get(), leaseKey(id).c_str(), node_.c_str(), held.revision);
+  const natsStatus s =
+      kvStore_UpdateString(&next, bucket_.get(), leaseKey(id).c_str(), node_.c_str(), held.revision);
   const bool undecided = s != NATS_OK && NatsLink::undecided(s);
   std::lock_guard<std::mutex> lock(mutex_);
   if (s == NATS_OK) {
     held_[id.value] = Held{.revision = next, .renewed = sent};
     return Status::ok();
   }
-  const Status failed =
-      link_.error(s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(held.revision) + ")");
+  const Status failed = link_.error(
+      s, "renewing the lease of " + toString(id) + " (revision " + std::to_string(held.revision) + ")");
   if (undecided) {
     // NATS did not decide: nobody else can take the lease either (that
     // needs the same quorum), so the document stays here, read-only in
@@ -109,7 +114,8 @@ Expected<std::optional<std::string>> DocumentLeases::ownerOf(DocumentId id) {
   KvEntryPtr entry(raw);
   if (s == NATS_NOT_FOUND) return std::optional<std::string>();
   if (s != NATS_OK) return link_.error(s, "reading the lease of " + toString(id));
-  std::string holder(static_cast<const char*>(kvEntry_Value(entry.get())), static_cast<size_t>(kvEntry_ValueLen(entry.get())));
+  std::string holder(static_cast<const char*>(kvEntry_Value(entry.get())),
+                     static_cast<size_t>(kvEntry_ValueLen(entry.get())));
   if (holder.empty()) return std::optional<std::string>();  // being released
   return std::optional<std::string>(std::move(holder));
 }

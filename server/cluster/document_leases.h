@@ -60,7 +60,7 @@ class DocumentLeases {
   const std::chrono::milliseconds leaseTime_;
   using Clock = std::chrono::steady_clock;
   struct Held {
-    uint64_t revision = 0;  // of our key, for the compare-and-set renewal
+    uint64_t revision = 0;      // of our key, for the compare-and-set renewal
     Clock::time_point renewed;  // when the last renewal that succeeded was sent
     // A renewal since then got no decision from NATS: if the lease is then
     // found expired, that is why (a cluster without quorum), and it is said.

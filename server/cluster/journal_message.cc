@@ -26,15 +26,16 @@ std::string encodeJournalMessage(const JournalMessage& m) {
 
 Expected<JournalMessage> decodeJournalMessage(std::string_view payload, std::string_view where) {
   if (payload.substr(0, kMagic.size()) != kMagic) {
-    return parseError(std::string(where) + ": not a Tessera journal message (" + std::to_string(payload.size()) +
-                      " bytes without the TJ2 header)");
+    return parseError(std::string(where) + ": not a Tessera journal message (" +
+                      std::to_string(payload.size()) + " bytes without the TJ2 header)");
   }
   ByteReader in(payload.data() + kMagic.size(), payload.size() - kMagic.size(), std::string(where));
   JournalMessage message;
   uint8_t kind = 0;
   uint32_t authorBytes = 0;
   TESSERA_RETURN_IF_ERROR(in.get(kind, "the message kind"));
-  if (kind > 1) return parseError(std::string(where) + ": unknown journal message kind " + std::to_string(kind));
+  if (kind > 1)
+    return parseError(std::string(where) + ": unknown journal message kind " + std::to_string(kind));
   message.fence = kind == 1;
   TESSERA_RETURN_IF_ERROR(in.get(message.version, "the version"));
   TESSERA_RETURN_IF_ERROR(in.getCount(authorBytes, 1, "the author length"));

@@ -14,12 +14,14 @@ std::atomic<uint64_t> nextMessageId{1};
 
 }  // namespace
 
-Status publishMessage(NatsLink& link, const std::string& subject, const std::string& sender, std::string_view message) {
+Status publishMessage(NatsLink& link, const std::string& subject, const std::string& sender,
+                      std::string_view message) {
   const int64_t maxPayload = natsConnection_GetMaxPayload(link.connection());
   auto send = [&](const std::string& bytes) -> Status {
-    const natsStatus s =
-        natsConnection_Publish(link.connection(), subject.c_str(), bytes.data(), static_cast<int>(bytes.size()));
-    if (s != NATS_OK) return link.error(s, "publishing " + std::to_string(bytes.size()) + " bytes on " + subject);
+    const natsStatus s = natsConnection_Publish(link.connection(), subject.c_str(), bytes.data(),
+                                                static_cast<int>(bytes.size()));
+    if (s != NATS_OK)
+      return link.error(s, "publishing " + std::to_string(bytes.size()) + " bytes on " + subject);
     return Status::ok();
   };
   if (maxPayload <= 0 || message.size() + 1 <= static_cast<size_t>(maxPayload)) {
@@ -28,7 +30,8 @@ Status publishMessage(NatsLink& link, const std::string& subject, const std::str
     return send(whole);
   }
   if (sender.size() > 255 || static_cast<size_t>(maxPayload) <= kChunkOverhead + 1024) {
-    return invalidArgument("cannot chunk a message for " + subject + " (max_payload " + std::to_string(maxPayload) + ")");
+    return invalidArgument("cannot chunk a message for " + subject + " (max_payload " +
+                           std::to_string(maxPayload) + ")");
   }
   const size_t chunk = static_cast<size_t>(maxPayload) - kChunkOverhead;
   const uint64_t id = nextMessageId++;
@@ -50,7 +53,9 @@ Status publishMessage(NatsLink& link, const std::string& subject, const std::str
 Expected<std::optional<std::string>> ChunkAssembler::add(std::string_view payload) {
   if (payload.empty()) return invalidArgument("an empty cluster message");
   if (payload[0] == '\0') return std::optional<std::string>(std::string(payload.substr(1)));
-  if (payload[0] != '\1') return invalidArgument("not a cluster message (first byte " + std::to_string(static_cast<unsigned char>(payload[0])) + ")");
+  if (payload[0] != '\1')
+    return invalidArgument("not a cluster message (first byte " +
+                           std::to_string(static_cast<unsigned char>(payload[0])) + ")");
   ByteReader in(payload.data() + 1, payload.size() - 1, "its bytes");
   uint8_t senderBytes = 0;
   std::string sender;
@@ -72,8 +77,8 @@ Expected<std::optional<std::string>> ChunkAssembler::add(std::string_view payloa
   if (p.id != id || p.next != part || p.parts != parts || parts == 0) {
     held_ -= p.bytes.size();
     partial_.erase(sender);
-    return invalidArgument("cluster chunk " + std::to_string(part) + " of " + std::to_string(parts) + " from " + sender +
-                           " out of order (message " + std::to_string(id) + ")");
+    return invalidArgument("cluster chunk " + std::to_string(part) + " of " + std::to_string(parts) +
+                           " from " + sender + " out of order (message " + std::to_string(id) + ")");
   }
   p.bytes += data;
   held_ += data.size();

@@ -25,7 +25,8 @@ namespace tessera::cluster {
 
 // Publishes `message` on `subject`, in chunks when it does not fit the
 // connection's max_payload. `sender` names this node (chunks are keyed by it).
-Status publishMessage(NatsLink& link, const std::string& subject, const std::string& sender, std::string_view message);
+Status publishMessage(NatsLink& link, const std::string& subject, const std::string& sender,
+                      std::string_view message);
 
 // Puts chunked messages back together, per sender. Bounded: at most
 // `maxPartialBytes` held in unfinished messages (the oldest go first).

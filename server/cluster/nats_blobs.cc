@@ -30,11 +30,13 @@ Status putBlob(NatsLink& link, const std::string& stream, const std::string& pre
   (void)stream;  // the subject alone routes the message; kept for symmetry with getBlob
   // Within the NATS servers' max_payload, whatever it is set to.
   const int64_t maxPayload = natsConnection_GetMaxPayload(link.connection());
-  const size_t chunkBytes =
-      maxPayload > 8192 ? std::min<size_t>(kBlobChunkBytes, static_cast<size_t>(maxPayload) - 4096) : kBlobChunkBytes;
+  const size_t chunkBytes = maxPayload > 8192
+                                ? std::min<size_t>(kBlobChunkBytes, static_cast<size_t>(maxPayload) - 4096)
+                                : kBlobChunkBytes;
   uint64_t chunks = 0;
   for (size_t at = 0; at < bytes.size() || chunks == 0; at += chunkBytes) {
-    TESSERA_RETURN_IF_ERROR(publish(link, prefix + "." + std::to_string(chunks), bytes.substr(at, chunkBytes)));
+    TESSERA_RETURN_IF_ERROR(
+        publish(link, prefix + "." + std::to_string(chunks), bytes.substr(at, chunkBytes)));
     ++chunks;
     if (bytes.empty()) break;
   }
@@ -68,14 +70,15 @@ Expected<std::string> getBlob(NatsLink& link, const std::string& stream, const s
   for (uint64_t i = 0; i < chunks; ++i) {
     auto chunk = lastMessage(link, stream, prefix + "." + std::to_string(i));
     if (!chunk.isOk()) {
-      return parseError(std::string(where) + ": chunk " + std::to_string(i) + " of " + std::to_string(chunks) +
-                        " is missing (" + chunk.status().message() + ")");
+      return parseError(std::string(where) + ": chunk " + std::to_string(i) + " of " +
+                        std::to_string(chunks) + " is missing (" + chunk.status().message() + ")");
     }
     bytes += chunk->payload;
   }
   if (bytes.size() != size || fnv1a64(bytes) != checksum) {
     return parseError(std::string(where) + ": its chunks hold " + std::to_string(bytes.size()) +
-                      " bytes that do not match the manifest (" + std::to_string(size) + " bytes and its checksum)");
+                      " bytes that do not match the manifest (" + std::to_string(size) +
+                      " bytes and its checksum)");
   }
   return bytes;
 }
@@ -102,8 +105,10 @@ Expected<LastMessage> nextMessage(NatsLink& link, const std::string& stream, con
   natsMsg* raw = nullptr;
   const natsStatus s = js_DirectGetMsg(&raw, link.jetStream(), stream.c_str(), nullptr, &options);
   NatsMsgPtr msg(raw);
-  if (s == NATS_NOT_FOUND) return notFound("no message on " + subject + " from stream sequence " + std::to_string(from));
-  if (s != NATS_OK) return link.error(s, "reading " + subject + " from stream sequence " + std::to_string(from));
+  if (s == NATS_NOT_FOUND)
+    return notFound("no message on " + subject + " from stream sequence " + std::to_string(from));
+  if (s != NATS_OK)
+    return link.error(s, "reading " + subject + " from stream sequence " + std::to_string(from));
   LastMessage next;
   next.payload.assign(natsMsg_GetData(msg.get()), static_cast<size_t>(natsMsg_GetDataLength(msg.get())));
   next.sequence = natsMsg_GetSequence(msg.get());
@@ -114,12 +119,13 @@ Expected<LastMessage> nextMessage(NatsLink& link, const std::string& stream, con
       next.sequence = std::strtoull(header, nullptr, 10);
     }
   }
-  if (next.sequence < from) return link.error(NATS_ERR, "reading " + subject + ": a direct get without its sequence");
+  if (next.sequence < from)
+    return link.error(NATS_ERR, "reading " + subject + ": a direct get without its sequence");
   return next;
 }
 
-Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& stream, const std::string& subject,
-                                            uint64_t from) {
+Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& stream,
+                                            const std::string& subject, uint64_t from) {
   for (int lagging = 0;; ++lagging) {
     auto next = nextMessage(link, stream, subject, from);
     if (next.isOk() || next.status().code() != ErrorCode::kNotFound || lagging >= 50) return next;

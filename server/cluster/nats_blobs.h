@@ -41,8 +41,8 @@ Expected<LastMessage> nextMessage(NatsLink& link, const std::string& stream, con
 // nextMessage, asked again for up to about a second while it is kNotFound:
 // the replica that answers may lag the leader (whose tail the caller read)
 // by the last few messages. Still kNotFound after that.
-Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& stream, const std::string& subject,
-                                            uint64_t from);
+Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& stream,
+                                            const std::string& subject, uint64_t from);
 // Removes every message on `subject` (a wildcard is allowed).
 Status purgeSubject(NatsLink& link, const std::string& stream, const std::string& subject);
 

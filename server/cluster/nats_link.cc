@@ -7,7 +7,9 @@ namespace tessera::cluster {
 namespace {
 
 // Frees natsOptions on every return path.
-struct OptionsDeleter { void operator()(natsOptions* o) const { natsOptions_Destroy(o); } };
+struct OptionsDeleter {
+  void operator()(natsOptions* o) const { natsOptions_Destroy(o); }
+};
 
 bool isNatsUrl(std::string_view url) {
   constexpr std::string_view kScheme = "nats://";
@@ -28,7 +30,8 @@ Expected<std::vector<std::string>> parseNatsUrls(std::string_view list) {
   size_t start = 0;
   while (start <= list.size()) {
     const size_t comma = list.find(',', start);
-    const std::string_view url = list.substr(start, comma == std::string_view::npos ? list.npos : comma - start);
+    const std::string_view url =
+        list.substr(start, comma == std::string_view::npos ? list.npos : comma - start);
     if (!isNatsUrl(url)) {
       return invalidArgument("--cluster: '" + std::string(url) +
                              "' is not a NATS URL (expected nats://host:port, several separated by commas)");
@@ -55,7 +58,8 @@ Expected<std::unique_ptr<NatsLink>> NatsLink::connect(const NatsLinkOptions& opt
   for (const auto& url : options.urls) urls.push_back(url.c_str());
   s = natsOptions_SetServers(opts.get(), urls.data(), static_cast<int>(urls.size()));
   if (s == NATS_OK) s = natsOptions_SetTimeout(opts.get(), options.timeout.count());
-  if (s == NATS_OK && !options.clientName.empty()) s = natsOptions_SetName(opts.get(), options.clientName.c_str());
+  if (s == NATS_OK && !options.clientName.empty())
+    s = natsOptions_SetName(opts.get(), options.clientName.c_str());
   // Once connected, a lost server is replaced by another of the cluster for
   // as long as the process lives: reconnecting is NATS's job, and commands
   // meanwhile fail with a clear error instead of hanging.
@@ -108,8 +112,8 @@ bool jetStreamUnavailable(jsErrCode code) {
   if (code == JSClusterNotAvailErr) return true;
   natsStatus last = NATS_OK;
   const char* detail = nats_GetLastError(&last);
-  return detail != nullptr && std::string_view(detail).find("JetStream system temporarily unavailable") !=
-                                  std::string_view::npos;
+  return detail != nullptr &&
+         std::string_view(detail).find("JetStream system temporarily unavailable") != std::string_view::npos;
 }
 
 }  // namespace
@@ -169,8 +173,8 @@ Expected<uint64_t> NatsLink::takeNext(kvStore* bucket, const std::string& key, s
                       : kvStore_UpdateString(&newRevision, bucket, key.c_str(), after.c_str(), revision);
     if (s == NATS_OK) return next;
   }
-  return ioError("NATS (" + servers_ + "): taking a " + std::string(what) + " lost " + std::to_string(kAttempts) +
-                 " races with other nodes");
+  return ioError("NATS (" + servers_ + "): taking a " + std::string(what) + " lost " +
+                 std::to_string(kAttempts) + " races with other nodes");
 }
 
 Status NatsLink::ensureStream(const StreamSpec& spec) {

@@ -11,8 +11,8 @@
 
 #include <chrono>
 #include <functional>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,13 +34,27 @@ struct NatsLinkOptions {
 // refuses an empty list or a URL that is not nats://host:port.
 Expected<std::vector<std::string>> parseNatsUrls(std::string_view list);
 
-struct MsgDeleter { void operator()(natsMsg* m) const { natsMsg_Destroy(m); } };
-struct KvEntryDeleter { void operator()(kvEntry* e) const { kvEntry_Destroy(e); } };
-struct PubAckDeleter { void operator()(jsPubAck* a) const { jsPubAck_Destroy(a); } };
-struct SubscriptionDeleter { void operator()(natsSubscription* s) const { natsSubscription_Destroy(s); } };
-struct MetaDataDeleter { void operator()(jsMsgMetaData* m) const { jsMsgMetaData_Destroy(m); } };
-struct KvStoreDeleter { void operator()(kvStore* kv) const { kvStore_Destroy(kv); } };
-struct KvWatcherDeleter { void operator()(kvWatcher* w) const { kvWatcher_Destroy(w); } };
+struct MsgDeleter {
+  void operator()(natsMsg* m) const { natsMsg_Destroy(m); }
+};
+struct KvEntryDeleter {
+  void operator()(kvEntry* e) const { kvEntry_Destroy(e); }
+};
+struct PubAckDeleter {
+  void operator()(jsPubAck* a) const { jsPubAck_Destroy(a); }
+};
+struct SubscriptionDeleter {
+  void operator()(natsSubscription* s) const { natsSubscription_Destroy(s); }
+};
+struct MetaDataDeleter {
+  void operator()(jsMsgMetaData* m) const { jsMsgMetaData_Destroy(m); }
+};
+struct KvStoreDeleter {
+  void operator()(kvStore* kv) const { kvStore_Destroy(kv); }
+};
+struct KvWatcherDeleter {
+  void operator()(kvWatcher* w) const { kvWatcher_Destroy(w); }
+};
 using NatsMsgPtr = std::unique_ptr<natsMsg, MsgDeleter>;
 using KvEntryPtr = std::unique_ptr<kvEntry, KvEntryDeleter>;
 using PubAckPtr = std::unique_ptr<jsPubAck, PubAckDeleter>;
@@ -108,7 +122,8 @@ class NatsLink {
   static bool undecided(natsStatus status, jsErrCode code = static_cast<jsErrCode>(0));
 
  private:
-  NatsLink(std::string servers, std::chrono::milliseconds timeout) : servers_(std::move(servers)), timeout_(timeout) {}
+  NatsLink(std::string servers, std::chrono::milliseconds timeout)
+      : servers_(std::move(servers)), timeout_(timeout) {}
 
   static void reconnected(natsConnection*, void* self);
   Expected<KvStorePtr> createOrOpenBucket(const BucketSpec& spec);

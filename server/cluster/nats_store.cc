@@ -16,9 +16,15 @@ const std::string kJournalStream = "TESSERA_JOURNAL";
 const std::string kBlobStream = "TESSERA_BLOBS";
 constexpr size_t kRecentSequences = 4096;  // versions whose sequence a snapshot may need
 
-std::string journalSubject(DocumentId id) { return "tessera.journal." + std::to_string(id.value); }
-std::string blobPrefix(DocumentId id) { return "tessera.blob." + std::to_string(id.value); }
-std::string catalogKey(DocumentId id) { return "doc." + std::to_string(id.value); }
+std::string journalSubject(DocumentId id) {
+  return "tessera.journal." + std::to_string(id.value);
+}
+std::string blobPrefix(DocumentId id) {
+  return "tessera.blob." + std::to_string(id.value);
+}
+std::string catalogKey(DocumentId id) {
+  return "doc." + std::to_string(id.value);
+}
 
 // The snapshots list on tessera.blob.<id>.snaps: newest first.
 struct SnapshotRef {
@@ -53,10 +59,10 @@ Expected<std::unique_ptr<NatsStore>> NatsStore::open(const NatsStoreOptions& opt
                                                         .subjects = {"tessera.blob.>"},
                                                         .replicas = options.replicas,
                                                         .maxMsgsPerSubject = 1}));
-  TESSERA_ASSIGN_OR_RETURN(KvStorePtr catalog,
-                           link->ensureBucket(BucketSpec{.name = "TESSERA_CATALOG", .replicas = options.replicas}));
-  TESSERA_ASSIGN_OR_RETURN(KvStorePtr tokens,
-                           link->ensureBucket(BucketSpec{.name = "TESSERA_TOKENS", .replicas = options.replicas}));
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr catalog, link->ensureBucket(BucketSpec{.name = "TESSERA_CATALOG",
+                                                                             .replicas = options.replicas}));
+  TESSERA_ASSIGN_OR_RETURN(KvStorePtr tokens, link->ensureBucket(BucketSpec{.name = "TESSERA_TOKENS",
+                                                                            .replicas = options.replicas}));
   return std::unique_ptr<NatsStore>(new NatsStore(std::move(link), std::move(catalog), std::move(tokens)));
 }
 
@@ -122,7 +128,8 @@ Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::strin
     tails_[id.value] = Tail{0, ack->Sequence, true, {}};  // the genesis message is a fence
   }
   uint64_t revision = 0;
-  s = kvStore_Put(&revision, catalog_.get(), catalogKey(id).c_str(), name.data(), static_cast<int>(name.size()));
+  s = kvStore_Put(&revision, catalog_.get(), catalogKey(id).c_str(), name.data(),
+                  static_cast<int>(name.size()));
   if (s != NATS_OK) return link_->error(s, "listing " + toString(id) + " in the catalogue");
   return id;
 }
@@ -189,7 +196,7 @@ Expected<NatsStore::Tail> NatsStore::tailOf(DocumentId id) {
   }
   TESSERA_ASSIGN_OR_RETURN(JournalMessage message,
                            decodeJournalMessage(last->payload, toString(id) + ", stream sequence " +
-                                                                    std::to_string(last->sequence)));
+                                                                   std::to_string(last->sequence)));
   Tail tail{message.version, last->sequence, message.fence, {}};
   std::lock_guard<std::mutex> lock(mutex_);
   return tails_.emplace(id.value, tail).first->second;
@@ -267,9 +274,9 @@ Expected<StoredDocument> NatsStore::loadDocument(DocumentId id) {
   // fence (seen in tests/cluster/cluster_quorum_test.cc: every later load
   // of the document failed).
   if (tail.fence ? document.latestVersion() < tail.version : document.latestVersion() != tail.version) {
-    return parseError(toString(id) + ": its journal ends at version " + std::to_string(document.latestVersion()) +
-                      " but its last message is " + (tail.fence ? "a fence at " : "") + "version " +
-                      std::to_string(tail.version));
+    return parseError(toString(id) + ": its journal ends at version " +
+                      std::to_string(document.latestVersion()) + " but its last message is " +
+                      (tail.fence ? "a fence at " : "") + "version " + std::to_string(tail.version));
   }
   if (tail.fence && document.latestVersion() > tail.version) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -292,8 +299,8 @@ void NatsStore::appendFrom(DocumentId id, uint64_t version, std::string author, 
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!closing_) {
-      queue_.push_back(PendingAppend{id, version, std::move(author), std::move(bytes), std::move(done), authorSession,
-                                     clientSeq});
+      queue_.push_back(PendingAppend{id, version, std::move(author), std::move(bytes), std::move(done),
+                                     authorSession, clientSeq});
       wake_.notify_one();
       return;
     }
@@ -307,7 +314,8 @@ void NatsStore::appendFrom(DocumentId id, uint64_t version, std::string author, 
 
 Status NatsStore::appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) {
   if (std::this_thread::get_id() == writer_.get_id()) {
-    return internalError("NATS (" + link_->servers() + "): a synchronous store call from a store callback would wait for itself");
+    return internalError("NATS (" + link_->servers() +
+                         "): a synchronous store call from a store callback would wait for itself");
   }
   auto promise = std::make_shared<std::promise<Status>>();
   std::future<Status> result = promise->get_future();
@@ -328,7 +336,8 @@ void NatsStore::run() {
     }
     const auto start = std::chrono::steady_clock::now();
     Status status = publishEntry(next);
-    const auto latency = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
+    const auto latency =
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       if (status.isOk()) {
@@ -346,7 +355,8 @@ void NatsStore::run() {
   }
 }
 
-NatsStore::Published NatsStore::publishAfter(DocumentId id, const std::string& payload, uint64_t expectedSequence) {
+NatsStore::Published NatsStore::publishAfter(DocumentId id, const std::string& payload,
+                                             uint64_t expectedSequence) {
   jsPubOptions options;
   jsPubOptions_Init(&options);
   options.ExpectLastSubjectSeq = expectedSequence;
@@ -389,8 +399,9 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
                      std::to_string(tail.sequence) + " (this node no longer owns it)");
     }
     // A timeout leaves the outcome unknown: the entry may be stored.
-    const Status failed = link_->error(s, toString(id) + ": journal entry version " + std::to_string(append.version) +
-                                              " not acknowledged", code);
+    const Status failed = link_->error(
+        s, toString(id) + ": journal entry version " + std::to_string(append.version) + " not acknowledged",
+        code);
     return outcomeUnknownError(failed.message());
   }
   std::lock_guard<std::mutex> lock(mutex_);
@@ -442,7 +453,8 @@ Status NatsStore::checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, ui
   // twice), and the caller loads again.
   auto first = nextMessageOnReplicas(*link_, kJournalStream, journalSubject(id), loadedTail + 1);
   if (!first.isOk()) {
-    return ioError(toString(id) + ": cannot confirm that nothing precedes the journal's fence at stream sequence " +
+    return ioError(toString(id) +
+                   ": cannot confirm that nothing precedes the journal's fence at stream sequence " +
                    std::to_string(fence) + " (" + first.status().message() + "); load the document again");
   }
   if (first->sequence == fence) return Status::ok();
@@ -470,10 +482,12 @@ Status NatsStore::putSnapshot(DocumentId id, uint64_t version, std::string_view 
   std::vector<SnapshotRef> refs;
   auto old = lastMessage(*link_, kBlobStream, blobPrefix(id) + ".snaps");
   if (old.isOk()) refs = decodeSnapshotRefs(old->payload);
-  refs.erase(std::remove_if(refs.begin(), refs.end(), [&](const SnapshotRef& r) { return r.version == version; }),
-             refs.end());
+  refs.erase(
+      std::remove_if(refs.begin(), refs.end(), [&](const SnapshotRef& r) { return r.version == version; }),
+      refs.end());
   refs.insert(refs.begin(), SnapshotRef{version, sequence});
-  std::sort(refs.begin(), refs.end(), [](const SnapshotRef& a, const SnapshotRef& b) { return a.version > b.version; });
+  std::sort(refs.begin(), refs.end(),
+            [](const SnapshotRef& a, const SnapshotRef& b) { return a.version > b.version; });
   std::vector<SnapshotRef> dropped;
   while (refs.size() > 2) {  // the newest two, as the SQLite store keeps
     dropped.push_back(refs.back());
@@ -483,8 +497,8 @@ Status NatsStore::putSnapshot(DocumentId id, uint64_t version, std::string_view 
   jsPubAck* raw = nullptr;
   jsErrCode code = static_cast<jsErrCode>(0);
   const std::string subject = blobPrefix(id) + ".snaps";
-  natsStatus s = js_Publish(&raw, link_->jetStream(), subject.c_str(), list.data(), static_cast<int>(list.size()),
-                            nullptr, &code);
+  natsStatus s = js_Publish(&raw, link_->jetStream(), subject.c_str(), list.data(),
+                            static_cast<int>(list.size()), nullptr, &code);
   PubAckPtr ack(raw);
   if (s != NATS_OK) return link_->error(s, "listing the snapshot of " + toString(id), code);
   for (const SnapshotRef& r : dropped) {

@@ -60,8 +60,8 @@ class NatsStore final : public Store {
   void append(DocumentId id, uint64_t version, std::string author, std::string bytes,
               AppendCallback done) override;
   Status appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) override;
-  void appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession, uint64_t clientSeq,
-                  std::string bytes, AppendCallback done) override;
+  void appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
+                  uint64_t clientSeq, std::string bytes, AppendCallback done) override;
   Status fenceJournal(DocumentId id) override;
 
   Status putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) override;
@@ -115,8 +115,8 @@ class NatsStore final : public Store {
   // tail the load read and the fence (nats_store.cc says why it could).
   Status checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, uint64_t fence);
   Expected<std::string> documentName(DocumentId id);
-  Expected<std::vector<JournalEntry>> readJournal(DocumentId id, uint64_t afterSequence, uint64_t afterVersion,
-                                                  uint64_t lastSequence);
+  Expected<std::vector<JournalEntry>> readJournal(DocumentId id, uint64_t afterSequence,
+                                                  uint64_t afterVersion, uint64_t lastSequence);
   Status checkOpen() const;
 
   std::unique_ptr<NatsLink> link_;

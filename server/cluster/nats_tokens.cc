@@ -30,7 +30,8 @@ Status NatsTokens::add(TokenScope scope, std::string_view token, Role role) {
   TESSERA_RETURN_IF_ERROR(checkRole(role));
   TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
   uint64_t revision = 0;
-  natsStatus s = kvStore_PutString(&revision, bucket_.get(), tokenKey(hexBytes(hash), scope).c_str(), roleName(role));
+  natsStatus s =
+      kvStore_PutString(&revision, bucket_.get(), tokenKey(hexBytes(hash), scope).c_str(), roleName(role));
   if (s == NATS_OK) s = kvStore_PutString(&revision, bucket_.get(), knownKey(hexBytes(hash)).c_str(), "1");
   if (s != NATS_OK) return link_.error(s, "granting an access token for " + scope.toString());
   return Status::ok();

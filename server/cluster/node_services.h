@@ -26,7 +26,9 @@ namespace tessera::cluster {
 class ClusterDocument;
 
 // The number of the node that made `session` (ClusterNode::firstSessionId).
-inline uint64_t sessionIncarnation(uint64_t session) { return session >> 40; }
+inline uint64_t sessionIncarnation(uint64_t session) {
+  return session >> 40;
+}
 
 class NodeServices {
  public:
@@ -58,7 +60,8 @@ class NodeServices {
   // otherwise marked as asked about now. Only those last asked about
   // before `askedBefore` when it is given.
   virtual std::vector<Outstanding> outstandingOf(
-      DocumentId document, bool take, std::optional<std::chrono::steady_clock::time_point> askedBefore = {}) = 0;
+      DocumentId document, bool take,
+      std::optional<std::chrono::steady_clock::time_point> askedBefore = {}) = 0;
 
   virtual std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session) = 0;
   // Kept open for other nodes' sessions, until unpinned.

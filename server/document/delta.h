@@ -27,7 +27,7 @@ struct RegionPayload {
 // payload behind the self-contained one that brought its layout.
 struct DeltaContent {
   uint64_t documentId = 0, fromVersion = 0, toVersion = 0, authorSession = 0, editId = 0;
-  uint64_t surfaceHash = 0;  // the profile's surface at toVersion (PROTOCOL 6.5); 0 = none
+  uint64_t surfaceHash = 0;            // the profile's surface at toVersion (PROTOCOL 6.5); 0 = none
   std::vector<RegionPayload> regions;  // applied in order
   std::vector<uint64_t> removed;
 };

@@ -2,13 +2,13 @@
 // task takes, the triangle estimates a request is judged by before any
 // work, and freeing views and documents off the interactive workers. Part
 // of DocumentHost.
-#include <boost/asio/post.hpp>
 #include <malloc.h>
+#include <boost/asio/post.hpp>
 
 #include <algorithm>
 
-#include "server/document/document_host.h"
 #include "server/base/log.h"
+#include "server/document/document_host.h"
 
 namespace tessera::server {
 
@@ -91,7 +91,8 @@ int64_t DocumentHost::uniformTriangles(uint32_t level) const {
   if (level > static_cast<uint32_t>(counts_.maxLevel())) {
     // Beyond the counts: four times per level, saturating.
     int64_t t = static_cast<int64_t>(counts_.faces(counts_.maxLevel()));
-    for (uint32_t l = static_cast<uint32_t>(counts_.maxLevel()); l < level && t < (INT64_MAX >> 2); ++l) t *= 4;
+    for (uint32_t l = static_cast<uint32_t>(counts_.maxLevel()); l < level && t < (INT64_MAX >> 2); ++l)
+      t *= 4;
     return t;
   }
   return static_cast<int64_t>(counts_.faces(static_cast<int>(level)));
@@ -102,10 +103,11 @@ int64_t DocumentHost::minimumTriangles(const wire::LodProfile& profile) const {
 }
 
 int64_t DocumentHost::maximumTriangles(const wire::LodProfile& profile) const {
-  const int64_t budget = profile.triangle_budget() == 0
-                             ? config_.limits.maxTrianglesPerSubscriber
-                             : static_cast<int64_t>(std::min<uint64_t>(profile.triangle_budget(),
-                                                                        static_cast<uint64_t>(config_.limits.maxTrianglesPerSubscriber)));
+  const int64_t budget =
+      profile.triangle_budget() == 0
+          ? config_.limits.maxTrianglesPerSubscriber
+          : static_cast<int64_t>(std::min<uint64_t>(
+                profile.triangle_budget(), static_cast<uint64_t>(config_.limits.maxTrianglesPerSubscriber)));
   return std::min(budget, uniformTriangles(std::min<uint32_t>(profile.max_level(), 64)));
 }
 

@@ -4,10 +4,10 @@
 // their retraction when the server refuses a command after applying it.
 #include <algorithm>
 
-#include "protocol/morph_key.h"
 #include "protocol/commands.h"
-#include "server/document/document_host.h"
+#include "protocol/morph_key.h"
 #include "server/base/log.h"
+#include "server/document/document_host.h"
 
 namespace tessera::server {
 
@@ -43,7 +43,7 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
               std::to_string(m.end_vertex_ids_size()) + " ids and edge_id " + std::to_string(m.edge_id()));
         }
         TESSERA_ASSIGN_OR_RETURN(edge, doc.edgeBetween(VertexId::fromPacked(m.end_vertex_ids(0)),
-                                                        VertexId::fromPacked(m.end_vertex_ids(1))));
+                                                       VertexId::fromPacked(m.end_vertex_ids(1))));
       }
       return addedEdit(doc.setEdgeSharpness(edge, m.sharpness()));
     }
@@ -63,7 +63,8 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
       const auto& m = message.set_interpolation();
       const double tension = m.tension() == 0.0 ? 1.0 : m.tension();
       const Vec3 tangent(m.tangent().x(), m.tangent().y(), m.tangent().z());
-      return addedEdit(doc.setInterpolation(VertexId::fromPacked(m.vertex_id()), m.interpolating(), tension, tangent));
+      return addedEdit(
+          doc.setInterpolation(VertexId::fromPacked(m.vertex_id()), m.interpolating(), tension, tangent));
     }
     case wire::ClientMessage::kUndo:
     case wire::ClientMessage::kRedo: {
@@ -91,7 +92,8 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
     const uint64_t named = documentOf(one);
     JournalEntry part;
     uint64_t editId = 0;
-    Status status = command.command_case() == wire::EditCommand::COMMAND_NOT_SET ? invalidArgument("no command")
+    Status status = command.command_case() == wire::EditCommand::COMMAND_NOT_SET
+                        ? invalidArgument("no command")
                     : named != 0 && named != id_.value
                         ? invalidArgument("names document " + std::to_string(named) + ", the batch is for " +
                                           std::to_string(id_.value))
@@ -99,10 +101,12 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
     if (!status.isOk()) {
       // All or nothing: what the batch applied goes back, newest first.
       Status back = retract(applied.entry);
-      if (!back.isOk()) logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
+      if (!back.isOk())
+        logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
       failedIndex = static_cast<uint32_t>(i + 1);
-      return Status(status.code(), "edit batch, command " + std::to_string(i + 1) + " of " + std::to_string(count) +
-                                       ": " + status.message() + " (nothing of the batch was applied)");
+      return Status(status.code(), "edit batch, command " + std::to_string(i + 1) + " of " +
+                                       std::to_string(count) + ": " + status.message() +
+                                       " (nothing of the batch was applied)");
     }
     collectLimits(part.key, applied);
     applied.editIds.push_back(editId);
@@ -133,12 +137,17 @@ Status DocumentHost::retract(const JournalEntry& entry) {
     TESSERA_ASSIGN_OR_RETURN(doc, doc_.editKey(entry.key));
   }
   switch (entry.kind) {
-    case JournalEntry::Kind::kAddKey: return Status::ok();
-    case JournalEntry::Kind::kEdit: return doc->retractLast();
-    case JournalEntry::Kind::kUndo: return doc->reinstate(entry.target);
-    case JournalEntry::Kind::kRedo: return doc->undo(entry.target);
+    case JournalEntry::Kind::kAddKey:
+      return Status::ok();
+    case JournalEntry::Kind::kEdit:
+      return doc->retractLast();
+    case JournalEntry::Kind::kUndo:
+      return doc->reinstate(entry.target);
+    case JournalEntry::Kind::kRedo:
+      return doc->undo(entry.target);
     case JournalEntry::Kind::kBatch:
-      for (auto part = entry.batch.rbegin(); part != entry.batch.rend(); ++part) TESSERA_RETURN_IF_ERROR(retract(*part));
+      for (auto part = entry.batch.rbegin(); part != entry.batch.rend(); ++part)
+        TESSERA_RETURN_IF_ERROR(retract(*part));
       return Status::ok();
   }
   return Status::ok();

@@ -11,8 +11,8 @@
 
 #include "core/util/status.h"
 #include "protocol/tessera.pb.h"
-#include "server/store/store.h"
 #include "server/document/subscriber.h"
+#include "server/store/store.h"
 
 namespace tessera::server {
 
@@ -28,9 +28,12 @@ class DocumentEndpoint {
   virtual void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
                          bool resync, bool withCommands = false) = 0;
   virtual void unsubscribe(uint64_t session) = 0;
-  virtual void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) = 0;
-  virtual void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) = 0;
-  virtual void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) = 0;
+  virtual void command(std::shared_ptr<Subscriber> author, std::string authorName,
+                       wire::ClientMessage message) = 0;
+  virtual void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
+                         wire::ExportDocument request) = 0;
+  virtual void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
+                            wire::GetMorphControl request) = 0;
 };
 
 // Opens documents for connections: the registry of hosts on a single node,

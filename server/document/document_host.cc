@@ -1,21 +1,21 @@
 #include "server/document/document_host.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/post.hpp>
 #include <cmath>
 #include <filesystem>
-#include <unistd.h>
 
-#include "core/morph/keyed_document_file.h"
 #include "core/io/mesh_export.h"
+#include "core/morph/keyed_document_file.h"
 #include "core/tessellation/document_grid.h"
 #include "core/util/file_io.h"
 #include "protocol/commands.h"
 #include "protocol/framing.h"
 #include "protocol/utf8_text.h"
-#include "server/document/journal_entry.h"
 #include "server/base/log.h"
+#include "server/document/journal_entry.h"
 #include "server/document/replies.h"
 
 namespace tessera::server {
@@ -38,10 +38,12 @@ void DocumentHost::onUndecided(std::function<void(Undecided)> handler) {
   undecidedHandler_ = std::move(handler);
 }
 
-void DocumentHost::setLoadedOutcomes(std::map<OutcomeBook::Key, CommandOutcome> outcomes, uint64_t fromVersion) {
-  queue_.post(Lane::kInteractive, [self = shared_from_this(), outcomes = std::move(outcomes), fromVersion]() mutable {
-    self->outcomes_.setLoaded(std::move(outcomes), fromVersion);
-  });
+void DocumentHost::setLoadedOutcomes(std::map<OutcomeBook::Key, CommandOutcome> outcomes,
+                                     uint64_t fromVersion) {
+  queue_.post(Lane::kInteractive,
+              [self = shared_from_this(), outcomes = std::move(outcomes), fromVersion]() mutable {
+                self->outcomes_.setLoaded(std::move(outcomes), fromVersion);
+              });
 }
 
 void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs) {
@@ -50,8 +52,9 @@ void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<u
       const OutcomeBook::Key key{who->sessionId(), seq};
       // Applied here and not durable yet: its Ack follows as usual.
       bool waiting = false;
-      for (const Pending& p : self->pending_) waiting |= p.version > self->ackedVersion_ && p.authorSession == key.first &&
-                                                        p.clientSeq == key.second;
+      for (const Pending& p : self->pending_)
+        waiting |=
+            p.version > self->ackedVersion_ && p.authorSession == key.first && p.clientSeq == key.second;
       if (waiting) continue;
       const CommandOutcome* found = self->outcomes_.find(key);
       if (found == nullptr && self->journalFailed_) {
@@ -62,14 +65,15 @@ void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<u
         // the reloaded journal answers.
         continue;
       }
-      who->send({frameOf(self->outcomes_.answer(self->id_, seq, found), self->config_.limits.maxFrameBytes), nullptr});
+      who->send({frameOf(self->outcomes_.answer(self->id_, seq, found), self->config_.limits.maxFrameBytes),
+                 nullptr});
     }
   });
 }
 
 DocumentHost::DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
-                           boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
-                           const ServerConfig& config, ServerStats& stats)
+                           boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk,
+                           Store& store, const ServerConfig& config, ServerStats& stats)
     : id_(id),
       name_(std::move(name)),
       doc_(std::move(doc)),
@@ -98,23 +102,26 @@ DocumentHost::~DocumentHost() {
   logEvent(LogLevel::kInfo, "document_closed", {{"doc", id_.value}});
 }
 
-void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested, uint64_t clientSeq,
-                             bool resync, bool withCommands) {
+void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested,
+                             uint64_t clientSeq, bool resync, bool withCommands) {
   // Refused from the estimate before any work, on the caller's thread: a
   // profile whose base level alone is over its budget (docs/PROTOCOL.md §9).
   const int64_t least = minimumTriangles(requested);
-  const int64_t budget = requested.triangle_budget() == 0
-                             ? config_.limits.maxTrianglesPerSubscriber
-                             : static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX));
+  const int64_t budget =
+      requested.triangle_budget() == 0
+          ? config_.limits.maxTrianglesPerSubscriber
+          : static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX));
   if (least > budget || least > config_.limits.maxTrianglesPerSubscriber) {
-    who->send({limitExceeded(clientSeq, "LOD profile: base level " + std::to_string(requested.base_level()) +
-                                                        " alone has " + std::to_string(least) + " triangles, above the budget of " +
-                                                        std::to_string(std::min(budget, config_.limits.maxTrianglesPerSubscriber)),
-                            config_.limits.maxFrameBytes),
+    who->send({limitExceeded(clientSeq,
+                             "LOD profile: base level " + std::to_string(requested.base_level()) +
+                                 " alone has " + std::to_string(least) + " triangles, above the budget of " +
+                                 std::to_string(std::min(budget, config_.limits.maxTrianglesPerSubscriber)),
+                             config_.limits.maxFrameBytes),
                nullptr});
     return;
   }
-  queue_.post(laneFor(maximumTriangles(requested)), [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
+  queue_.post(laneFor(maximumTriangles(requested)), [self = shared_from_this(), who, requested, clientSeq,
+                                                     resync, withCommands] {
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
     const Limits& limits = self->config_.limits;
@@ -122,16 +129,19 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     profile.baseLevel = static_cast<int>(std::min<uint32_t>(requested.base_level(), 64));
     profile.maxLevel = static_cast<int>(std::min<uint32_t>(requested.max_level(), 64));
     profile.angleThresholdDegrees = requested.angle_threshold_degrees();
-    profile.triangleBudget = requested.triangle_budget() == 0
-                                 ? limits.maxTrianglesPerSubscriber
-                                 : std::min<int64_t>(static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX)),
-                                                     limits.maxTrianglesPerSubscriber);
+    profile.triangleBudget =
+        requested.triangle_budget() == 0
+            ? limits.maxTrianglesPerSubscriber
+            : std::min<int64_t>(
+                  static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX)),
+                  limits.maxTrianglesPerSubscriber);
     profile.fidelity = requested.fidelity() > 0;
     profile.vertexIds = !requested.omit_vertex_ids();
     Status valid = profile.check();
     if (valid.isOk() && profile.maxLevel > self->doc_.key0().options().maxLevel) {
-      valid = invalidArgument("LOD profile: max level " + std::to_string(profile.maxLevel) + " exceeds the document's " +
-                              std::to_string(self->doc_.key0().options().maxLevel));
+      valid =
+          invalidArgument("LOD profile: max level " + std::to_string(profile.maxLevel) +
+                          " exceeds the document's " + std::to_string(self->doc_.key0().options().maxLevel));
     }
     // A morph view's time, rounded so that viewers playing the same frames
     // share one view (PROTOCOL.md "Morph documents").
@@ -139,8 +149,9 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     if (valid.isOk() && requested.has_morph_t()) {
       const double t = requested.morph_t();
       if (!self->doc_.isMorph()) {
-        valid = invalidArgument("LOD profile: morph_t is set but document " + std::to_string(self->id_.value) +
-                                " has one key (AddMorphKey adds the second)");
+        valid =
+            invalidArgument("LOD profile: morph_t is set but document " + std::to_string(self->id_.value) +
+                            " has one key (AddMorphKey adds the second)");
       } else if (!(t >= 0.0 && t <= 1.0)) {
         valid = invalidArgument("LOD profile: morph_t " + std::to_string(t) + " is not in [0, 1]");
       } else {
@@ -151,7 +162,8 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       who->send({frameOf(rejectFor(clientSeq, valid), self->config_.limits.maxFrameBytes), nullptr});
       return;
     }
-    const std::string key = profile.key() + (morphT ? "-t" + std::to_string(std::lround(*morphT * kMorphTimeSteps)) : "");
+    const std::string key =
+        profile.key() + (morphT ? "-t" + std::to_string(std::lround(*morphT * kMorphTimeSteps)) : "");
     auto it = self->views_.find(key);
     // The views left if this subscriber moves to `key`: those someone else
     // still watches. Counted before anything changes, so that a refused
@@ -165,11 +177,13 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     }
     if (it == self->views_.end() && kept >= static_cast<size_t>(limits.profilesPerDocument)) {
       // Every view is re-tessellated on every edit: their number is capped.
-      who->send({limitExceeded(clientSeq, "document " + std::to_string(self->id_.value) + " already serves " +
-                                                         std::to_string(self->views_.size()) +
-                                                         " LOD profiles, the limit (--profiles-per-document); subscribe with one of them",
-                              limits.maxFrameBytes),
-                 nullptr});
+      who->send(
+          {limitExceeded(clientSeq,
+                         "document " + std::to_string(self->id_.value) + " already serves " +
+                             std::to_string(self->views_.size()) +
+                             " LOD profiles, the limit (--profiles-per-document); subscribe with one of them",
+                         limits.maxFrameBytes),
+           nullptr});
       return;
     }
     if (it == self->views_.end()) {
@@ -244,12 +258,14 @@ void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& w
   if (resync) ++stats_.resyncs;
 }
 
-void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) {
+void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string authorName,
+                           wire::ClientMessage message) {
   // A second key's mesh is imported on the bulk lane when it is large.
-  const Lane lane = message.has_add_morph_key() && message.add_morph_key().mesh().size() > (1u << 20) ? Lane::kBulk
-                                                                                                        : Lane::kInteractive;
+  const Lane lane = message.has_add_morph_key() && message.add_morph_key().mesh().size() > (1u << 20)
+                        ? Lane::kBulk
+                        : Lane::kInteractive;
   queue_.post(lane, [self = shared_from_this(), author, authorName = std::move(authorName),
-                              message = std::move(message)] {
+                     message = std::move(message)] {
     const uint64_t seq = message.client_seq();
     if (self->failed_) {
       author->send({frameOf(rejectFor(seq, internalError("the document's journal failed (" +
@@ -295,8 +311,9 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
   });
 }
 
-void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const Applied& applied,
-                              const std::string& authorName, const wire::ClientMessage& command) {
+void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq,
+                              const Applied& applied, const std::string& authorName,
+                              const wire::ClientMessage& command) {
   const JournalEntry& entry = applied.entry;
   // An edit that moves the surface out of the document's quantization grid
   // is taken back and refused before anything is sent: every displayed
@@ -314,20 +331,22 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   if (outside) {
     Status back = retract(entry);
     ++stats_.rejects;
-    if (!back.isOk()) logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
-    author->send({limitExceeded(
-        clientSeq,
-        "the edit would move the surface outside the document's bounds: the cube from (" +
-        std::to_string(grid_.origin[0]) + ", " + std::to_string(grid_.origin[1]) + ", " + std::to_string(grid_.origin[2]) +
-        ") with side " + std::to_string(grid_.range),
-        config_.limits.maxFrameBytes), nullptr});
+    if (!back.isOk())
+      logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
+    author->send(
+        {limitExceeded(clientSeq,
+                       "the edit would move the surface outside the document's bounds: the cube from (" +
+                           std::to_string(grid_.origin[0]) + ", " + std::to_string(grid_.origin[1]) + ", " +
+                           std::to_string(grid_.origin[2]) + ") with side " + std::to_string(grid_.range),
+                       config_.limits.maxFrameBytes),
+         nullptr});
     return;
   }
   stats_.edits += applied.editIds.size();  // a batch's commands count one by one; its version once
   ++version_;
   pending_.push_back({version_, author, author->sessionId(), clientSeq, applied.editIds.back(),
-                      command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(), command,
-                      authorName});
+                      command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(),
+                      command, authorName});
   changedLimits_.insert(changedLimits_.end(), applied.limits.begin(), applied.limits.end());
   keysChanged_ = keysChanged_ || doc_.isMorph();
   // The flush and the commit may finish in either order: each calls
@@ -335,7 +354,8 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   scheduleFlush();
   store_.appendFrom(id_, version_ - 1, authorName, author->sessionId(), clientSeq, encodeJournalEntry(entry),
                     [self = shared_from_this(), version = version_](Status status) {
-                      self->queue_.post(Lane::kInteractive, [self, version, status] { self->committed(version, status); });
+                      self->queue_.post(Lane::kInteractive,
+                                        [self, version, status] { self->committed(version, status); });
                     });
 }
 
@@ -365,7 +385,8 @@ void DocumentHost::scheduleFlush() {
   }
   flushTimer_.expires_at(due);
   flushTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
-    if (ec != boost::asio::error::operation_aborted) self->queue_.post(Lane::kInteractive, [self] { self->flush(); });
+    if (ec != boost::asio::error::operation_aborted)
+      self->queue_.post(Lane::kInteractive, [self] { self->flush(); });
   });
 }
 
@@ -384,7 +405,8 @@ void DocumentHost::flush() {
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
     const auto start = Clock::now();
-    auto changes = view.morphT ? (keysChanged_ ? rebuildMorphView(view) : Expected<Tessellation::Changes>(Tessellation::Changes{}))
+    auto changes = view.morphT ? (keysChanged_ ? rebuildMorphView(view)
+                                               : Expected<Tessellation::Changes>(Tessellation::Changes{}))
                                : view.tessellation->update(doc_.growableKey0(), changedLimits_);
     stats_.tessellateMicros += microsSince(start);
     stats_.tessellateLatency.addMicros(microsSince(start));
@@ -393,7 +415,8 @@ void DocumentHost::flush() {
       // view goes; they may subscribe again with another profile.
       wire::ServerMessage error;
       error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-      error.mutable_error()->set_message("LOD profile " + it->first + " dropped: " + changes.status().message());
+      error.mutable_error()->set_message("LOD profile " + it->first +
+                                         " dropped: " + changes.status().message());
       auto frame = frameOf(error, config_.limits.maxFrameBytes);
       for (auto& [session, weak] : view.subscribers) {
         if (auto who = weak.lock()) who->send({frame, nullptr});
@@ -428,11 +451,12 @@ void DocumentHost::committed(uint64_t version, Status status) {
     failed_ = true;
     journalFailed_ = true;
     journalFailure_ = status;
-    logEvent(LogLevel::kError, "journal_failed", {{"doc", id_.value}, {"version", version}, {"error", status.message()}});
+    logEvent(LogLevel::kError, "journal_failed",
+             {{"doc", id_.value}, {"version", version}, {"error", status.message()}});
     wire::ServerMessage error;
     error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-    error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": journal write failed: " +
-                                       status.message());
+    error.mutable_error()->set_message("document " + std::to_string(id_.value) +
+                                       ": journal write failed: " + status.message());
     auto frame = frameOf(error, config_.limits.maxFrameBytes);
     for (auto& [session, p] : participants_) {
       if (auto who = p.who.lock()) who->send({frame, nullptr});
@@ -457,8 +481,9 @@ void DocumentHost::committed(uint64_t version, Status status) {
       if (auto author = p.author.lock()) {
         // Not acknowledged: lost, or (a store that timed out, e.g. NATS
         // without quorum) possibly durable; the document, once reloaded, says.
-        author->send({frameOf(rejectFor(p.clientSeq, internalError("the journal write failed (" + status.message() +
-                                                                   "): the edit was not acknowledged and may be lost")),
+        author->send({frameOf(rejectFor(p.clientSeq,
+                                        internalError("the journal write failed (" + status.message() +
+                                                      "): the edit was not acknowledged and may be lost")),
                               config_.limits.maxFrameBytes),
                       nullptr});
       }
@@ -491,8 +516,9 @@ void DocumentHost::release() {
     }
     // Kept a while: in a cluster the Ack travels over NATS and may be lost
     // in a reconnect; the author's node then asks again (answerOutcomes).
-    outcomes_.remember({p.authorSession, p.clientSeq},
-                       {p.version, p.batchEditIds.empty() ? std::vector<uint64_t>{p.editId} : p.batchEditIds});
+    outcomes_.remember(
+        {p.authorSession, p.clientSeq},
+        {p.version, p.batchEditIds.empty() ? std::vector<uint64_t>{p.editId} : p.batchEditIds});
   }
   while (!batches_.empty() && batches_.front().toVersion <= durableVersion_) {
     Batch& b = batches_.front();
@@ -529,8 +555,9 @@ void DocumentHost::notifyRecorders(const Pending& p) {
   for (uint64_t id : p.batchEditIds) a->add_edit_ids(id);
   a->set_author_session_id(p.authorSession);
   a->set_author_name(p.authorName);
-  const auto appliedAt = std::chrono::system_clock::now() -
-                         std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - p.applied);
+  const auto appliedAt =
+      std::chrono::system_clock::now() -
+      std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - p.applied);
   a->set_server_time_unix_ms(static_cast<uint64_t>(
       std::chrono::duration_cast<std::chrono::milliseconds>(appliedAt.time_since_epoch()).count()));
   copyEditCommand(p.command, *a);
@@ -549,7 +576,8 @@ void DocumentHost::notifyRecorders(const Pending& p) {
 
 void DocumentHost::maybeSnapshot() {
   // Only at rest: a snapshot must never hold an edit the journal lacks.
-  if (!pending_.empty() || version_ != durableVersion_ || version_ - lastSnapshot_ < config_.snapshotEvery) return;
+  if (!pending_.empty() || version_ != durableVersion_ || version_ - lastSnapshot_ < config_.snapshotEvery)
+    return;
   Status saved = store_.putSnapshot(id_, version_ - 1, serializeKeyedDocument(doc_));
   if (!saved.isOk()) {
     logEvent(LogLevel::kWarn, "snapshot_failed", {{"doc", id_.value}, {"error", saved.message()}});
@@ -558,30 +586,32 @@ void DocumentHost::maybeSnapshot() {
   lastSnapshot_ = version_;
 }
 
-void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) {
+void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
+                             wire::ExportDocument request) {
   // Refused from the exact count before any work (docs/PROTOCOL.md §9).
   const int64_t triangles = uniformTriangles(request.level());
   if (triangles > config_.limits.maxTrianglesPerSubscriber) {
-    who->send({limitExceeded(clientSeq, "export: level " + std::to_string(request.level()) + " has " +
-                                                        std::to_string(triangles) + " triangles, above the limit of " +
-                                                        std::to_string(config_.limits.maxTrianglesPerSubscriber) +
-                                                        " (--max-triangles)",
-                            config_.limits.maxFrameBytes),
-               nullptr});
+    who->send(
+        {limitExceeded(clientSeq,
+                       "export: level " + std::to_string(request.level()) + " has " +
+                           std::to_string(triangles) + " triangles, above the limit of " +
+                           std::to_string(config_.limits.maxTrianglesPerSubscriber) + " (--max-triangles)",
+                       config_.limits.maxFrameBytes),
+         nullptr});
     return;
   }
   queue_.post(laneFor(triangles), [self = shared_from_this(), who, clientSeq, request, triangles] {
     const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
     auto surface = self->doc_.key0().surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
-                                      request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
+                                             request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
     if (!surface.isOk()) {
       who->send({frameOf(rejectFor(clientSeq, surface.status()), maxFrame), nullptr});
       return;
     }
     // The GLB writer targets files: a private temporary one.
     const std::string path = (std::filesystem::temp_directory_path() /
-                              ("tessera-export-" + std::to_string(::getpid()) + "-" + std::to_string(clientSeq) + "-" +
-                               std::to_string(who->sessionId()) + ".glb"))
+                              ("tessera-export-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(clientSeq) + "-" + std::to_string(who->sessionId()) + ".glb"))
                                  .string();
     ExportOptions options;
     options.draco = request.draco();
@@ -601,7 +631,9 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
     r->set_glb(std::move(*bytes));
     auto frame = frameOf(m, maxFrame);
     if (!frame) {
-      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the export exceeds the frame limit")), maxFrame), nullptr});
+      who->send(
+          {frameOf(rejectFor(clientSeq, invalidArgument("the export exceeds the frame limit")), maxFrame),
+           nullptr});
       return;
     }
     who->send({frame, nullptr});

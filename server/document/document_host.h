@@ -22,17 +22,17 @@
 // encoded once and shared by every subscriber at that t (document_morph.cc).
 #pragma once
 
+#include <atomic>
 #include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
-#include <atomic>
 #include <deque>
 #include <functional>
 #include <map>
-#include <set>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "core/document/document.h"
@@ -41,14 +41,14 @@
 #include "core/tessellation/tessellation.h"
 #include "protocol/tessera.pb.h"
 #include "server/base/config.h"
+#include "server/base/serial_queue.h"
+#include "server/base/server_stats.h"
 #include "server/document/document_endpoint.h"
 #include "server/document/journal_entry.h"
 #include "server/document/lod_view.h"
 #include "server/document/outcome_book.h"
-#include "server/base/serial_queue.h"
-#include "server/base/server_stats.h"
-#include "server/store/store.h"
 #include "server/document/subscriber.h"
+#include "server/store/store.h"
 
 namespace tessera::server {
 
@@ -80,13 +80,15 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   void resendPresence(uint64_t session) override;
   // `withCommands`: also an AppliedCommand per command after the Ack's
   // version (docs/PROTOCOL.md, AppliedCommand); a later subscribe without it stops them.
-  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq, bool resync,
-                 bool withCommands = false) override;
+  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
+                 bool resync, bool withCommands = false) override;
   void unsubscribe(uint64_t session) override;
-  void command(std::shared_ptr<Subscriber> author, std::string authorName, wire::ClientMessage message) override;
+  void command(std::shared_ptr<Subscriber> author, std::string authorName,
+               wire::ClientMessage message) override;
   void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) override;
   // The coarse morph stream: the control points at t (MorphControl).
-  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) override;
+  void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
+                    wire::GetMorphControl request) override;
 
   // In a cluster, the journal entries loaded with the document that name
   // the client command they came from (session, client_seq) -> its Ack.
@@ -155,8 +157,8 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // What one applied command (or batch) changed, for afterApply().
   struct Applied {
     JournalEntry entry;
-    std::vector<uint64_t> editIds;  // per command: the edit made, undone or redone
-    std::vector<VertexId> limits;   // every limit of key 0 the command(s) changed
+    std::vector<uint64_t> editIds;     // per command: the edit made, undone or redone
+    std::vector<VertexId> limits;      // every limit of key 0 the command(s) changed
     std::vector<VertexId> key1Limits;  // and of key 1 (a morph document's)
   };
   // Adds what the last command changed on `key` to `applied`.
@@ -219,15 +221,15 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   const std::string name_;
   KeyedDocument doc_;
   bool keysChanged_ = false;  // a morph document changed since the last flush: its morph views rebuild
-  uint64_t version_;         // applied
-  uint64_t durableVersion_;  // committed to the journal
+  uint64_t version_;          // applied
+  uint64_t durableVersion_;   // committed to the journal
   uint64_t lastSnapshot_;
   uint64_t flushedVersion_;  // the version views' encoded regions and the last delta reach
   bool flushScheduled_ = false;
   bool failed_ = false;
   std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
   Status journalFailure_;                   // why, for later commands' Rejects
-  std::mutex undecidedMutex_;  // the handler is set off the strand
+  std::mutex undecidedMutex_;               // the handler is set off the strand
   std::function<void(Undecided)> undecidedHandler_;
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
   boost::asio::any_io_executor bulk_;
@@ -247,7 +249,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   uint64_t ackedVersion_;  // the newest edit whose ack was sent
   boost::asio::steady_timer flushTimer_;
   std::chrono::steady_clock::time_point lastFlush_{};
-  std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
+  std::vector<VertexId> changedLimits_;     // by the edits applied since the last flush
   std::map<uint64_t, Recorder> recorders_;  // by session
   OutcomeBook outcomes_;  // what became of commands: loaded with the journal and acknowledged here
 };

@@ -6,8 +6,8 @@
 #include "core/io/mesh_import.h"
 #include "core/loop/level_builder.h"
 #include "protocol/framing.h"
-#include "server/document/document_host.h"
 #include "server/base/log.h"
+#include "server/document/document_host.h"
 #include "server/document/mesh_format.h"
 #include "server/document/replies.h"
 
@@ -33,18 +33,21 @@ Status DocumentHost::addMorphKey(const wire::AddMorphKey& request, JournalEntry&
   for (const auto* image : {&request.image_from(), &request.image_to()}) {
     const char* which = image == &request.image_from() ? "image_from" : "image_to";
     if (image->size() > kMaxMorphImageBytes) {
-      return invalidArgument("add morph key: " + std::string(which) + " has " + std::to_string(image->size()) +
-                             " bytes, above the limit of " + std::to_string(kMaxMorphImageBytes));
+      return invalidArgument("add morph key: " + std::string(which) + " has " +
+                             std::to_string(image->size()) + " bytes, above the limit of " +
+                             std::to_string(kMaxMorphImageBytes));
     }
-    if (!image->empty() && !isPng(*image)) return invalidArgument("add morph key: " + std::string(which) + " is not a PNG");
+    if (!image->empty() && !isPng(*image))
+      return invalidArgument("add morph key: " + std::string(which) + " is not a PNG");
   }
   if (request.image_from().empty() != request.image_to().empty()) {
     return invalidArgument("add morph key: send both images or neither");
   }
   const std::string name = request.file_name().empty() ? "the second key's mesh" : request.file_name();
-  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshFromBytesWithReport(request.mesh(), extension, name, ImportOptions{}));
-  TESSERA_RETURN_IF_ERROR(checkSameConnectivity(doc_.key0().baseTopology(), BaseTopology::fromBaseMesh(imported.mesh),
-                                                "key 0 (" + doc + ")", name));
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported,
+                           importMeshFromBytesWithReport(request.mesh(), extension, name, ImportOptions{}));
+  TESSERA_RETURN_IF_ERROR(checkSameConnectivity(
+      doc_.key0().baseTopology(), BaseTopology::fromBaseMesh(imported.mesh), "key 0 (" + doc + ")", name));
   entry.kind = JournalEntry::Kind::kAddKey;
   entry.keyPoints = imported.mesh.positions();
   entry.images = {request.image_from(), request.image_to()};
@@ -87,14 +90,15 @@ Expected<Tessellation::Changes> DocumentHost::rebuildMorphView(View& view) {
   return changes;
 }
 
-void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetMorphControl request) {
+void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
+                                wire::GetMorphControl request) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeq, request] {
     const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
     const double t = request.t();
     auto points = self->doc_.pointsAt(t);
     if (!points.isOk()) {
       who->send({frameOf(rejectFor(clientSeq, points.status().withContext("morph control of document " +
-                                                                         std::to_string(self->id_.value))),
+                                                                          std::to_string(self->id_.value))),
                          maxFrame),
                  nullptr});
       return;
@@ -137,7 +141,9 @@ void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t client
     }
     auto frame = frameOf(m, maxFrame);
     if (!frame) {
-      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the morph control exceeds the frame limit")), maxFrame), nullptr});
+      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the morph control exceeds the frame limit")),
+                         maxFrame),
+                 nullptr});
       return;
     }
     who->send({frame, nullptr});

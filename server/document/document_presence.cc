@@ -34,35 +34,37 @@ void DocumentHost::leave(uint64_t session) {
 }
 
 void DocumentHost::select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) {
-  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeq, selection = std::move(selection)] {
-    auto it = self->participants_.find(who->sessionId());
-    if (it == self->participants_.end()) return;
-    // Every participant receives every selection: only real, bounded ones.
-    Status valid = Status::ok();
-    const int count = selection.vertex_ids_size() + selection.edge_ids_size() + selection.face_ids_size();
-    if (count > self->config_.limits.selectionMaxIds) {
-      valid = invalidArgument("select: " + std::to_string(count) + " ids, above the limit of " +
-                              std::to_string(self->config_.limits.selectionMaxIds));
-    }
-    for (uint64_t id : selection.vertex_ids()) {
-      if (valid.isOk()) valid = self->counts_.check(VertexId::fromPacked(id));
-    }
-    for (uint64_t id : selection.edge_ids()) {
-      if (valid.isOk()) valid = self->counts_.check(EdgeId::fromPacked(id));
-    }
-    for (uint64_t id : selection.face_ids()) {
-      if (valid.isOk()) valid = self->counts_.check(FaceId::fromPacked(id));
-    }
-    if (!valid.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, valid.withContext("selection of document " + std::to_string(self->id_.value))),
-                         self->config_.limits.maxFrameBytes),
-                 nullptr});
-      return;
-    }
-    it->second.selection = selection;
-    self->presence_.changed.insert(who->sessionId());
-    self->presenceChanged();
-  });
+  queue_.post(
+      Lane::kInteractive, [self = shared_from_this(), who, clientSeq, selection = std::move(selection)] {
+        auto it = self->participants_.find(who->sessionId());
+        if (it == self->participants_.end()) return;
+        // Every participant receives every selection: only real, bounded ones.
+        Status valid = Status::ok();
+        const int count = selection.vertex_ids_size() + selection.edge_ids_size() + selection.face_ids_size();
+        if (count > self->config_.limits.selectionMaxIds) {
+          valid = invalidArgument("select: " + std::to_string(count) + " ids, above the limit of " +
+                                  std::to_string(self->config_.limits.selectionMaxIds));
+        }
+        for (uint64_t id : selection.vertex_ids()) {
+          if (valid.isOk()) valid = self->counts_.check(VertexId::fromPacked(id));
+        }
+        for (uint64_t id : selection.edge_ids()) {
+          if (valid.isOk()) valid = self->counts_.check(EdgeId::fromPacked(id));
+        }
+        for (uint64_t id : selection.face_ids()) {
+          if (valid.isOk()) valid = self->counts_.check(FaceId::fromPacked(id));
+        }
+        if (!valid.isOk()) {
+          who->send({frameOf(rejectFor(clientSeq, valid.withContext("selection of document " +
+                                                                    std::to_string(self->id_.value))),
+                             self->config_.limits.maxFrameBytes),
+                     nullptr});
+          return;
+        }
+        it->second.selection = selection;
+        self->presence_.changed.insert(who->sessionId());
+        self->presenceChanged();
+      });
 }
 
 void DocumentHost::resendPresence(uint64_t session) {
@@ -117,7 +119,8 @@ void DocumentHost::broadcastPresence() {
     const auto& frame = full ? fullFrame : changeFrame;
     if (!frame) continue;
     if (auto who = participant.who.lock()) {
-      who->send({.frame = frame, .delta = nullptr, .snapshotOf = 0, .presenceOf = id_.value, .presenceFull = full});
+      who->send(
+          {.frame = frame, .delta = nullptr, .snapshotOf = 0, .presenceOf = id_.value, .presenceFull = full});
     }
   }
 }

@@ -1,8 +1,8 @@
 #include "server/document/document_registry.h"
 
 #include "core/morph/keyed_document_file.h"
-#include "server/document/journal_entry.h"
 #include "server/base/log.h"
+#include "server/document/journal_entry.h"
 
 namespace tessera::server {
 
@@ -12,9 +12,11 @@ namespace {
 // a batch's, one per command.
 std::vector<uint64_t> editIdsOf(const JournalEntry& entry) {
   switch (entry.kind) {
-    case JournalEntry::Kind::kEdit: return {entry.edit.id.value};
+    case JournalEntry::Kind::kEdit:
+      return {entry.edit.id.value};
     case JournalEntry::Kind::kUndo:
-    case JournalEntry::Kind::kRedo: return {entry.target.value};
+    case JournalEntry::Kind::kRedo:
+      return {entry.target.value};
     case JournalEntry::Kind::kBatch: {
       std::vector<uint64_t> ids;
       for (const JournalEntry& e : entry.batch) {
@@ -22,7 +24,8 @@ std::vector<uint64_t> editIdsOf(const JournalEntry& entry) {
       }
       return ids;
     }
-    case JournalEntry::Kind::kAddKey: return {};
+    case JournalEntry::Kind::kAddKey:
+      return {};
   }
   return {};
 }
@@ -38,8 +41,9 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, store_.loadDocument(id));
   const std::string source = toString(id);
   const bool fromSnapshot = stored.snapshot.has_value();
-  TESSERA_ASSIGN_OR_RETURN(KeyedDocument doc,
-                           deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source));
+  TESSERA_ASSIGN_OR_RETURN(
+      KeyedDocument doc,
+      deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source));
   uint64_t entries = fromSnapshot ? stored.snapshot->version : 0;
   const uint64_t loadedFrom = documentVersionAfter(entries);
   // Which client command made each replayed entry, where the store kept it
@@ -56,12 +60,14 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
       o.editIds = editIdsOf(decoded);
     }
   }
-  auto host = std::make_shared<DocumentHost>(id, stored.name, std::move(doc), documentVersionAfter(entries), workers_,
-                                             bulk_, store_, config_, stats_);
+  auto host = std::make_shared<DocumentHost>(id, stored.name, std::move(doc), documentVersionAfter(entries),
+                                             workers_, bulk_, store_, config_, stats_);
   if (!outcomes.empty()) host->setLoadedOutcomes(std::move(outcomes), loadedFrom);
   hosts_[id.value] = host;
   logEvent(LogLevel::kInfo, "document_loaded",
-           {{"doc", id.value}, {"version", documentVersionAfter(entries)}, {"replayed", static_cast<uint64_t>(stored.entries.size())}});
+           {{"doc", id.value},
+            {"version", documentVersionAfter(entries)},
+            {"replayed", static_cast<uint64_t>(stored.entries.size())}});
   return host;
 }
 

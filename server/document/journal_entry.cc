@@ -22,9 +22,13 @@ void writeEntry(const JournalEntry& entry, ByteWriter& w) {
   }
   w.put<uint8_t>(static_cast<uint8_t>(entry.kind));
   switch (entry.kind) {
-    case JournalEntry::Kind::kEdit: writeEdit(entry.edit, w); break;
+    case JournalEntry::Kind::kEdit:
+      writeEdit(entry.edit, w);
+      break;
     case JournalEntry::Kind::kUndo:
-    case JournalEntry::Kind::kRedo: w.put<uint64_t>(entry.target.value); break;
+    case JournalEntry::Kind::kRedo:
+      w.put<uint64_t>(entry.target.value);
+      break;
     case JournalEntry::Kind::kBatch:
       w.put<uint32_t>(static_cast<uint32_t>(entry.batch.size()));
       for (const JournalEntry& part : entry.batch) writeEntry(part, w);
@@ -52,7 +56,8 @@ Status readEntry(ByteReader& r, const std::string& source, bool inBatch, Journal
     }
     TESSERA_RETURN_IF_ERROR(r.get(kind, "a journal entry kind"));
     const auto inner = static_cast<JournalEntry::Kind>(kind);
-    if (inner != JournalEntry::Kind::kEdit && inner != JournalEntry::Kind::kUndo && inner != JournalEntry::Kind::kRedo) {
+    if (inner != JournalEntry::Kind::kEdit && inner != JournalEntry::Kind::kUndo &&
+        inner != JournalEntry::Kind::kRedo) {
       return parseError(source + ": a journal entry of kind " + std::to_string(kind) + " on a morph key");
     }
   }
@@ -91,7 +96,8 @@ Status readEntry(ByteReader& r, const std::string& source, bool inBatch, Journal
       for (std::string* image : {&entry.images.from, &entry.images.to}) {
         uint64_t size = 0;
         TESSERA_RETURN_IF_ERROR(r.get(size, "an image size"));
-        if (size > r.remaining()) return parseError(source + ": an image of " + std::to_string(size) + " bytes is truncated");
+        if (size > r.remaining())
+          return parseError(source + ": an image of " + std::to_string(size) + " bytes is truncated");
         TESSERA_RETURN_IF_ERROR(r.getBytes(*image, static_cast<size_t>(size), "an image"));
       }
       break;
@@ -126,10 +132,14 @@ Status applyJournalEntry(KeyedDocument& doc, const JournalEntry& entry) {
   if (entry.kind == JournalEntry::Kind::kAddKey) return doc.addKey(entry.keyPoints, entry.images);
   TESSERA_ASSIGN_OR_RETURN(Document * key, doc.editKey(entry.key));
   switch (entry.kind) {
-    case JournalEntry::Kind::kEdit: return key->replay(entry.edit);
-    case JournalEntry::Kind::kUndo: return key->undo(entry.target);
-    case JournalEntry::Kind::kRedo: return key->redo(entry.target);
-    default: break;
+    case JournalEntry::Kind::kEdit:
+      return key->replay(entry.edit);
+    case JournalEntry::Kind::kUndo:
+      return key->undo(entry.target);
+    case JournalEntry::Kind::kRedo:
+      return key->redo(entry.target);
+    default:
+      break;
   }
   return invalidArgument("unknown journal entry kind");
 }

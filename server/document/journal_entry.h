@@ -21,12 +21,12 @@ namespace tessera::server {
 struct JournalEntry {
   enum class Kind : uint8_t { kEdit = 1, kUndo = 2, kRedo = 3, kBatch = 4, kAddKey = 5 };
   Kind kind = Kind::kEdit;
-  Edit edit;                       // kEdit
-  EditId target;                   // kUndo, kRedo
+  Edit edit;                        // kEdit
+  EditId target;                    // kUndo, kRedo
   std::vector<JournalEntry> batch;  // kBatch: edits, undos and redos (never a batch), in order
-  uint32_t key = 0;                // kEdit, kUndo, kRedo: the morph key they are on
-  std::vector<Vec3> keyPoints;     // kAddKey: the second key's base points, exactly
-  MorphImages images;              // kAddKey: a 2D morph's images (PNG), or none
+  uint32_t key = 0;                 // kEdit, kUndo, kRedo: the morph key they are on
+  std::vector<Vec3> keyPoints;      // kAddKey: the second key's base points, exactly
+  MorphImages images;               // kAddKey: a 2D morph's images (PNG), or none
 };
 
 std::string encodeJournalEntry(const JournalEntry& entry);
@@ -35,6 +35,8 @@ Status applyJournalEntry(KeyedDocument& doc, const JournalEntry& entry);
 
 // A document's version after `journalEntries` journaled commands: 1 at
 // creation, +1 per entry (docs/PROTOCOL.md on versions).
-inline uint64_t documentVersionAfter(uint64_t journalEntries) { return journalEntries + 1; }
+inline uint64_t documentVersionAfter(uint64_t journalEntries) {
+  return journalEntries + 1;
+}
 
 }  // namespace tessera::server

@@ -20,11 +20,11 @@ int64_t microsSince(Clock::time_point t) {
 
 }  // namespace
 
-Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region, bool idsInline,
-                                                              const EncodeContext& context) {
+Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region,
+                                                              bool idsInline, const EncodeContext& context) {
   const auto start = Clock::now();
-  RegionHeader header{region, context.version, view.layout.at(region), view.tessellation->profile(), context.grid,
-                      idsInline};
+  RegionHeader header{region,       context.version, view.layout.at(region), view.tessellation->profile(),
+                      context.grid, idsInline};
   if (header.profile.vertexIds && idsInline) {
     // Ids as points of the region's lattice: a third of the bytes they
     // took as eight-byte labels (region_lattice.h).
@@ -64,7 +64,8 @@ void buildDelta(LodView& view, const Tessellation::Changes& changes, const Encod
     const bool idsInline = relaid || !withIds;
     auto encoded = encodeViewRegion(view, region, idsInline, context);
     if (!encoded.isOk()) {
-      logEvent(LogLevel::kError, "encode_failed", {{"doc", documentId}, {"error", encoded.status().message()}});
+      logEvent(LogLevel::kError, "encode_failed",
+               {{"doc", documentId}, {"error", encoded.status().message()}});
       view.encoded.erase(region);
       continue;
     }
@@ -81,9 +82,9 @@ void buildDelta(LodView& view, const Tessellation::Changes& changes, const Encod
   delta.removed = changes.removed;
 }
 
-std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, uint64_t documentId, bool resync,
-                                                               const EncodeContext& context, size_t partBytes,
-                                                               uint32_t maxFrameBytes) {
+std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, uint64_t documentId,
+                                                               bool resync, const EncodeContext& context,
+                                                               size_t partBytes, uint32_t maxFrameBytes) {
   // Encoded once per region and version; later subscribers share the bytes.
   std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;
   for (const auto& [region, mesh] : view.tessellation->regions()) {
@@ -91,7 +92,8 @@ std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, ui
     if (!cached) {
       auto encoded = encodeViewRegion(view, region, /*idsInline=*/true, context);
       if (!encoded.isOk()) {
-        logEvent(LogLevel::kError, "encode_failed", {{"doc", documentId}, {"error", encoded.status().message()}});
+        logEvent(LogLevel::kError, "encode_failed",
+                 {{"doc", documentId}, {"error", encoded.status().message()}});
         continue;
       }
       cached = *encoded;

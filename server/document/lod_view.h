@@ -26,10 +26,11 @@ namespace tessera::server {
 
 struct LodView {
   std::unique_ptr<Tessellation> tessellation;
-  std::map<uint64_t, std::shared_ptr<const std::string>> encoded;  // region -> Draco with ids, at the host's version
-  std::map<uint64_t, uint64_t> layout;                             // region -> its layout version
-  std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;       // session -> subscriber
-  std::map<uint64_t, uint64_t> knownVersion;                       // session -> version its snapshot held
+  std::map<uint64_t, std::shared_ptr<const std::string>>
+      encoded;                          // region -> Draco with ids, at the host's version
+  std::map<uint64_t, uint64_t> layout;  // region -> its layout version
+  std::map<uint64_t, std::weak_ptr<Subscriber>> subscribers;  // session -> subscriber
+  std::map<uint64_t, uint64_t> knownVersion;                  // session -> version its snapshot held
   wire::LodProfile wireProfile;
   // The surface hash (docs/PROTOCOL.md §6.5) of each region as receivers
   // decode it, and their sum, sent in snapshots and deltas; kept per region
@@ -55,8 +56,8 @@ struct EncodeContext {
 // A region of the view at `context.version`; without inline ids (a delta
 // after a move) it carries its layout's version for receivers holding the
 // ids.
-Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region, bool idsInline,
-                                                              const EncodeContext& context);
+Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region,
+                                                              bool idsInline, const EncodeContext& context);
 
 // Updates the view's surface hash for a region that is new or changed, or,
 // with `removed`, gone.
@@ -73,8 +74,8 @@ void buildDelta(LodView& view, const Tessellation::Changes& changes, const Encod
 // The view's regions at `context.version` as snapshot frames, each part at
 // most `partBytes` of regions, encoded once per region and version (later
 // subscribers share the bytes).
-std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, uint64_t documentId, bool resync,
-                                                               const EncodeContext& context, size_t partBytes,
-                                                               uint32_t maxFrameBytes);
+std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, uint64_t documentId,
+                                                               bool resync, const EncodeContext& context,
+                                                               size_t partBytes, uint32_t maxFrameBytes);
 
 }  // namespace tessera::server

@@ -4,12 +4,18 @@ namespace tessera::server {
 
 const char* meshExtensionOf(wire::MeshFormat format) {
   switch (format) {
-    case wire::MESH_FORMAT_OBJ: return ".obj";
-    case wire::MESH_FORMAT_OFF: return ".off";
-    case wire::MESH_FORMAT_PLY: return ".ply";
-    case wire::MESH_FORMAT_STL: return ".stl";
-    case wire::MESH_FORMAT_GLB: return ".glb";
-    default: return nullptr;
+    case wire::MESH_FORMAT_OBJ:
+      return ".obj";
+    case wire::MESH_FORMAT_OFF:
+      return ".off";
+    case wire::MESH_FORMAT_PLY:
+      return ".ply";
+    case wire::MESH_FORMAT_STL:
+      return ".stl";
+    case wire::MESH_FORMAT_GLB:
+      return ".glb";
+    default:
+      return nullptr;
   }
 }
 

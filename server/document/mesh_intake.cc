@@ -11,7 +11,8 @@ namespace tessera::server {
 Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, ImportReport& report) {
   const char* extension = meshExtensionOf(request.mesh_format());
   if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
-  const std::string meshName = request.file_name().empty() ? "mesh '" + request.name() + "'" : request.file_name();
+  const std::string meshName =
+      request.file_name().empty() ? "mesh '" + request.name() + "'" : request.file_name();
   ImportOptions import;
   import.triangulate = request.triangulate();
   import.dropUnused = request.drop_unused();
@@ -22,7 +23,8 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
     }
     import.creaseAngle = request.crease_angle();
   }
-  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshFromBytesWithReport(request.mesh(), extension, meshName, import));
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported,
+                           importMeshFromBytesWithReport(request.mesh(), extension, meshName, import));
   BaseMesh& mesh = imported.mesh;
   report = imported.report;
   if (!request.tags().empty()) {
@@ -33,14 +35,15 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
     TESSERA_RETURN_IF_ERROR(applyTags(tags, tagsName, mesh, report.renumbering));
   }
   DocumentOptions options;
-  if (request.crease_method() == wire::CREASE_METHOD_CHAIKIN) options.loop.creaseMethod = CreaseMethod::kChaikin;
+  if (request.crease_method() == wire::CREASE_METHOD_CHAIKIN)
+    options.loop.creaseMethod = CreaseMethod::kChaikin;
   if (request.boundary() == wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER) {
     options.loop.boundary = BoundaryInterpolation::kEdgeAndCorner;
   }
   options.maxLevel = request.max_level() == 0 ? std::min(5, maxLevel) : static_cast<int>(request.max_level());
   if (options.maxLevel > maxLevel) {
-    return invalidArgument("create: max level " + std::to_string(request.max_level()) + " exceeds the server's " +
-                           std::to_string(maxLevel));
+    return invalidArgument("create: max level " + std::to_string(request.max_level()) +
+                           " exceeds the server's " + std::to_string(maxLevel));
   }
   auto doc = Document::create(mesh, options);
   if (!doc.isOk()) return doc.status().withContext(meshName);

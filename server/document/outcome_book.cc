@@ -26,7 +26,8 @@ const CommandOutcome* OutcomeBook::find(Key key) const {
   return nullptr;
 }
 
-wire::ServerMessage OutcomeBook::answer(DocumentId document, uint64_t clientSeq, const CommandOutcome* found) const {
+wire::ServerMessage OutcomeBook::answer(DocumentId document, uint64_t clientSeq,
+                                        const CommandOutcome* found) const {
   wire::ServerMessage m;
   if (found != nullptr) {
     // Applied and durable before the move: the Ack it never got.
@@ -43,12 +44,13 @@ wire::ServerMessage OutcomeBook::answer(DocumentId document, uint64_t clientSeq,
   // Neither in the journal as loaded (fenced when this node took the
   // document: nothing written after can come from an old owner) nor
   // applied here since.
-  return rejectFor(clientSeq, Status(ErrorCode::kNotFound,
-                                     "command " + std::to_string(clientSeq) + " was not applied: document " +
-                                         std::to_string(document.value) +
-                                         "'s journal holds no entry from it (since version " +
-                                         std::to_string(loadedFrom_) +
-                                         "); it was lost with its owner node or on the way to it; send it again"));
+  return rejectFor(
+      clientSeq,
+      Status(ErrorCode::kNotFound,
+             "command " + std::to_string(clientSeq) + " was not applied: document " +
+                 std::to_string(document.value) + "'s journal holds no entry from it (since version " +
+                 std::to_string(loadedFrom_) +
+                 "); it was lost with its owner node or on the way to it; send it again"));
 }
 
 }  // namespace tessera::server

@@ -39,18 +39,24 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
   return rejectWith(clientSeq, rejectReasonFor(status.code()), status.message());
 }
 
-std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message, uint32_t maxFrameBytes) {
+std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message,
+                                                 uint32_t maxFrameBytes) {
   return frameOf(rejectWith(clientSeq, wire::REJECT_REASON_LIMIT_EXCEEDED, message), maxFrameBytes);
 }
 
 wire::RejectReason rejectReasonFor(ErrorCode code) {
   switch (code) {
-    case ErrorCode::kInvalidArgument: return wire::REJECT_REASON_INVALID_ARGUMENT;
-    case ErrorCode::kNotFound: return wire::REJECT_REASON_NOT_FOUND;
+    case ErrorCode::kInvalidArgument:
+      return wire::REJECT_REASON_INVALID_ARGUMENT;
+    case ErrorCode::kNotFound:
+      return wire::REJECT_REASON_NOT_FOUND;
     case ErrorCode::kInvalidMesh:
-    case ErrorCode::kParseError: return wire::REJECT_REASON_INVALID_MESH;
-    case ErrorCode::kUnsupported: return wire::REJECT_REASON_INVALID_ARGUMENT;
-    default: return wire::REJECT_REASON_INTERNAL;
+    case ErrorCode::kParseError:
+      return wire::REJECT_REASON_INVALID_MESH;
+    case ErrorCode::kUnsupported:
+      return wire::REJECT_REASON_INVALID_ARGUMENT;
+    default:
+      return wire::REJECT_REASON_INTERNAL;
   }
 }
 

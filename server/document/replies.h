@@ -1,6 +1,6 @@
-// What a document answers besides deltas (docs/PROTOCOL.md §5 and §8): the frame of a server message, and a Reject whose reason follows
-// the failure's ErrorCode. The one mapping from a Status to a wire reason,
-// used by hosts and connections alike.
+// What a document answers besides deltas (docs/PROTOCOL.md §5 and §8): the frame of a server message, and a
+// Reject whose reason follows the failure's ErrorCode. The one mapping from a Status to a wire reason, used
+// by hosts and connections alike.
 #pragma once
 
 #include <cstdint>

@@ -23,7 +23,8 @@ wire::ServerMessage ackFor(uint64_t clientSeq, uint64_t documentId) {
 
 wire::ServerMessage listDocuments(Store& store, const CatalogueCaller& caller, uint64_t clientSeq) {
   auto documents = store.listDocuments();
-  if (!documents.isOk()) return rejectWith(clientSeq, wire::REJECT_REASON_INTERNAL, documents.status().message());
+  if (!documents.isOk())
+    return rejectWith(clientSeq, wire::REJECT_REASON_INTERNAL, documents.status().message());
   wire::ServerMessage m;
   m.mutable_document_list()->set_client_seq(clientSeq);
   for (const DocumentSummary& d : *documents) {
@@ -45,9 +46,10 @@ wire::ServerMessage deleteDocument(Store& store, DocumentOpener& opener, const C
   }
   Status deleted = store.deleteDocument(id);
   if (!deleted.isOk()) {
-    return rejectWith(clientSeq,
-                      deleted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND : wire::REJECT_REASON_INTERNAL,
-                      deleted.message());
+    return rejectWith(
+        clientSeq,
+        deleted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND : wire::REJECT_REASON_INTERNAL,
+        deleted.message());
   }
   opener.forget(id);
   logEvent(LogLevel::kInfo, "document_deleted", {{"doc", id.value}, {"session", caller.session}});
@@ -57,7 +59,8 @@ wire::ServerMessage deleteDocument(Store& store, DocumentOpener& opener, const C
 wire::ServerMessage grantToken(Store& store, const CatalogueCaller& caller, uint64_t clientSeq,
                                const wire::GrantToken& request) {
   if (!caller.globalRole || *caller.globalRole < Role::kAdmin) {
-    return rejectWith(clientSeq, wire::REJECT_REASON_PERMISSION_DENIED, "granting tokens needs an admin token");
+    return rejectWith(clientSeq, wire::REJECT_REASON_PERMISSION_DENIED,
+                      "granting tokens needs an admin token");
   }
   if (request.token().empty() || request.token().size() > kMaxTokenBytes) {
     return rejectWith(clientSeq, wire::REJECT_REASON_INVALID_ARGUMENT,
@@ -65,13 +68,21 @@ wire::ServerMessage grantToken(Store& store, const CatalogueCaller& caller, uint
   }
   Role role;
   switch (request.role()) {
-    case wire::ROLE_VIEWER: role = Role::kViewer; break;
-    case wire::ROLE_EDITOR: role = Role::kEditor; break;
-    case wire::ROLE_ADMIN: role = Role::kAdmin; break;
-    default: return rejectWith(clientSeq, wire::REJECT_REASON_INVALID_ARGUMENT, "grant: no role given");
+    case wire::ROLE_VIEWER:
+      role = Role::kViewer;
+      break;
+    case wire::ROLE_EDITOR:
+      role = Role::kEditor;
+      break;
+    case wire::ROLE_ADMIN:
+      role = Role::kAdmin;
+      break;
+    default:
+      return rejectWith(clientSeq, wire::REJECT_REASON_INVALID_ARGUMENT, "grant: no role given");
   }
-  const TokenScope scope = request.document_id() == 0 ? TokenScope::allDocuments()
-                                                      : TokenScope::document(DocumentId{request.document_id()});
+  const TokenScope scope = request.document_id() == 0
+                               ? TokenScope::allDocuments()
+                               : TokenScope::document(DocumentId{request.document_id()});
   Status granted = store.addToken(scope, request.token(), role);
   if (!granted.isOk()) {
     return rejectWith(clientSeq,
@@ -117,7 +128,8 @@ wire::ServerMessage serverStats(const ServerStats& stats, Store& store, const Se
   add("deltas", static_cast<double>(s.deltaFlushes.load()));
   add("delta_regions", static_cast<double>(s.deltaRegions.load()));
   add("delta_regions_layout_ids", static_cast<double>(s.deltaRegionsLayoutIds.load()));
-  add("edits_per_delta", s.deltaFlushes.load() > 0 ? edits / static_cast<double>(s.deltaFlushes.load()) : 0.0);
+  add("edits_per_delta",
+      s.deltaFlushes.load() > 0 ? edits / static_cast<double>(s.deltaFlushes.load()) : 0.0);
   add("edit_to_durable_ms", edits > 0 ? s.commitMicros.load() / 1000.0 / edits : 0.0);
   add("store_batches", static_cast<double>(storeStats.batches));
   add("store_average_batch", storeStats.averageBatchSize);

@@ -1,12 +1,12 @@
 #include "server/net/connection.h"
 
+#include <malloc.h>
+#include <unistd.h>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 #include <filesystem>
 #include <fstream>
-#include <malloc.h>
-#include <unistd.h>
 
 #include "core/document/document_file.h"
 #include "protocol/commands.h"
@@ -27,9 +27,12 @@ constexpr const char* kServerVersion = "tessera-server 0.1.0";
 
 wire::Role wireRole(Role role) {
   switch (role) {
-    case Role::kViewer: return wire::ROLE_VIEWER;
-    case Role::kEditor: return wire::ROLE_EDITOR;
-    case Role::kAdmin: return wire::ROLE_ADMIN;
+    case Role::kViewer:
+      return wire::ROLE_VIEWER;
+    case Role::kEditor:
+      return wire::ROLE_EDITOR;
+    case Role::kAdmin:
+      return wire::ROLE_ADMIN;
   }
   return wire::ROLE_UNSPECIFIED;
 }
@@ -55,19 +58,25 @@ Connection::Connection(std::unique_ptr<Transport> transport, ConnectionStrand st
   ++context_.stats.connectionsTotal;
 }
 
-Connection::~Connection() { --context_.stats.connections; }
+Connection::~Connection() {
+  --context_.stats.connections;
+}
 
 void Connection::start() {
   asio::post(strand_, [self = shared_from_this()] {
     logEvent(LogLevel::kInfo, "connected",
-             {{"session", self->sessionId_}, {"address", self->address_}, {"transport", self->transport_->kind()}});
+             {{"session", self->sessionId_},
+              {"address", self->address_},
+              {"transport", self->transport_->kind()}});
     self->armIdleTimer(self->context_.config.timeouts.handshakeSeconds);
     if (self->transportReady_) return self->readMore();
     self->transport_->start([self](const boost::system::error_code& ec) {
       if (self->closed_) return;
       if (ec) {
         logEvent(LogLevel::kInfo, "transport_handshake_failed",
-                 {{"session", self->sessionId_}, {"transport", self->transport_->kind()}, {"error", ec.message()}});
+                 {{"session", self->sessionId_},
+                  {"transport", self->transport_->kind()},
+                  {"error", ec.message()}});
         return self->closeNow();
       }
       self->transportReady_ = true;
@@ -78,7 +87,8 @@ void Connection::start() {
 }
 
 void Connection::armIdleTimer(double seconds) {
-  idleTimer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds)));
+  idleTimer_.expires_after(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(seconds)));
   idleTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
     if (ec || self->closed_) return;
     self->fatal(wire::ERROR_CODE_TIMEOUT, self->helloDone_ ? "idle timeout" : "no Hello in time");
@@ -87,7 +97,8 @@ void Connection::armIdleTimer(double seconds) {
 
 void Connection::readMore() {
   if (closed_ || closing_) return;
-  transport_->read([self = shared_from_this()](const boost::system::error_code& ec, std::string_view bytes, Status framing) {
+  transport_->read([self = shared_from_this()](const boost::system::error_code& ec, std::string_view bytes,
+                                               Status framing) {
     if (self->closed_) return;
     if (ec) {
       if (ec != asio::error::eof && ec != asio::error::operation_aborted) {
@@ -126,8 +137,9 @@ void Connection::drainFrames() {
     auto got = decoder_.next(message);
     if (!got.isOk()) {
       const FrameError kind = decoder_.error();
-      fatal(kind == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE : wire::ERROR_CODE_MALFORMED_FRAME,
-            got.status().message());
+      fatal(
+          kind == FrameError::kTooLarge ? wire::ERROR_CODE_FRAME_TOO_LARGE : wire::ERROR_CODE_MALFORMED_FRAME,
+          got.status().message());
       return;
     }
     if (!*got) break;
@@ -150,8 +162,9 @@ void Connection::queue(Outgoing message) {
   queueBytes_ = outbox_.bytes();
   queueMessages_ = outbox_.size();
   int64_t biggest = context_.stats.queueBytesMax.load();
-  while (static_cast<int64_t>(outbox_.bytes()) > biggest &&
-         !context_.stats.queueBytesMax.compare_exchange_weak(biggest, static_cast<int64_t>(outbox_.bytes()))) {
+  while (
+      static_cast<int64_t>(outbox_.bytes()) > biggest &&
+      !context_.stats.queueBytesMax.compare_exchange_weak(biggest, static_cast<int64_t>(outbox_.bytes()))) {
   }
   writeNext();
 }
@@ -175,7 +188,8 @@ CatalogueCaller Connection::caller() {
 
 void Connection::fatal(wire::ErrorCode code, const std::string& message) {
   if (closing_ || closed_) return;
-  logEvent(LogLevel::kInfo, "connection_error", {{"session", sessionId_}, {"code", wire::ErrorCode_Name(code)}, {"message", message}});
+  logEvent(LogLevel::kInfo, "connection_error",
+           {{"session", sessionId_}, {"code", wire::ErrorCode_Name(code)}, {"message", message}});
   wire::ServerMessage m;
   m.mutable_error()->set_code(code);
   m.mutable_error()->set_message(message);
@@ -191,7 +205,9 @@ void Connection::refuse(wire::ErrorCode code, const std::string& message) {
 }
 
 void Connection::shutdown() {
-  asio::post(strand_, [self = shared_from_this()] { self->fatal(wire::ERROR_CODE_SHUTTING_DOWN, "the server is stopping"); });
+  asio::post(strand_, [self = shared_from_this()] {
+    self->fatal(wire::ERROR_CODE_SHUTTING_DOWN, "the server is stopping");
+  });
 }
 
 void Connection::writeNext() {
@@ -219,16 +235,17 @@ void Connection::writeNext() {
   const size_t count = frames.size();
   writeStarted_ = std::chrono::steady_clock::now();
   armWriteWatchdog();
-  transport_->write(std::move(frames), [self = shared_from_this(), count](const boost::system::error_code& ec, size_t n) {
-    if (self->closed_) return;
-    if (ec) return self->closeNow();
-    self->context_.stats.bytesSent += static_cast<int64_t>(n);
-    self->context_.stats.framesSent += static_cast<int64_t>(count);
-    self->outbox_.finishWrite();
-    self->queueBytes_ = self->outbox_.bytes();
-    self->queueMessages_ = self->outbox_.size();
-    self->writeNext();
-  });
+  transport_->write(std::move(frames),
+                    [self = shared_from_this(), count](const boost::system::error_code& ec, size_t n) {
+                      if (self->closed_) return;
+                      if (ec) return self->closeNow();
+                      self->context_.stats.bytesSent += static_cast<int64_t>(n);
+                      self->context_.stats.framesSent += static_cast<int64_t>(count);
+                      self->outbox_.finishWrite();
+                      self->queueBytes_ = self->outbox_.bytes();
+                      self->queueMessages_ = self->outbox_.size();
+                      self->writeNext();
+                    });
 }
 
 // One timer per connection, not one per write: with a thousand subscribers
@@ -297,16 +314,21 @@ void Connection::handle(wire::ClientMessage message) {
   if (!helloDone_) return handleHello(message);
   using C = wire::ClientMessage;
   switch (message.command_case()) {
-    case C::kHello: return reject(seq, wire::REJECT_REASON_INVALID_STATE, "already said hello");
+    case C::kHello:
+      return reject(seq, wire::REJECT_REASON_INVALID_STATE, "already said hello");
     case C::kPing: {
       wire::ServerMessage m;
       m.mutable_pong()->set_client_seq(seq);
-      m.mutable_pong()->set_server_time_unix_ms(static_cast<uint64_t>(
-          std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch()).count()));
+      m.mutable_pong()->set_server_time_unix_ms(
+          static_cast<uint64_t>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                    std::chrono::system_clock::now().time_since_epoch())
+                                    .count()));
       return reply(m);
     }
-    case C::COMMAND_NOT_SET: return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "no command in the message");
-    default: break;
+    case C::COMMAND_NOT_SET:
+      return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "no command in the message");
+    default:
+      break;
   }
   if (token_.empty()) {
     return reject(seq, wire::REJECT_REASON_NOT_AUTHENTICATED, "authenticate with a token in Hello first");
@@ -320,12 +342,16 @@ void Connection::handle(wire::ClientMessage message) {
   const double cost = message.has_edit_batch() ? message.edit_batch().commands_size() : 1.0;
   if (!allowedByRate(seq, cost)) return;
   switch (message.command_case()) {
-    case C::kListDocuments: return answer(listDocuments(context_.store, caller(), seq));
+    case C::kListDocuments:
+      return answer(listDocuments(context_.store, caller(), seq));
     case C::kStats:
       return answer(serverStats(context_.stats, context_.store, context_.config, seq, outbox_.bytes()));
-    case C::kCreateDocument: return createDocument(seq, message.create_document());
-    case C::kOpenDocument: return openDocument(seq, message.open_document().document_id());
-    case C::kCloseDocument: return closeDocument(seq, message.close_document().document_id());
+    case C::kCreateDocument:
+      return createDocument(seq, message.create_document());
+    case C::kOpenDocument:
+      return openDocument(seq, message.open_document().document_id());
+    case C::kCloseDocument:
+      return closeDocument(seq, message.close_document().document_id());
     case C::kDeleteDocument: {
       const DocumentId id{message.delete_document().document_id()};
       wire::ServerMessage answered = deleteDocument(context_.store, context_.opener, caller(), seq, id);
@@ -335,15 +361,18 @@ void Connection::handle(wire::ClientMessage message) {
       }
       return answer(answered);
     }
-    case C::kGrantToken: return answer(grantToken(context_.store, caller(), seq, message.grant_token()));
-    default: break;
+    case C::kGrantToken:
+      return answer(grantToken(context_.store, caller(), seq, message.grant_token()));
+    default:
+      break;
   }
   const uint64_t doc = documentOf(message);
   auto host = openHost(doc, seq);
   if (!host) return;
   switch (message.command_case()) {
     case C::kSubscribe:
-      if (!subscriptions_.count(doc) && subscriptions_.size() >= static_cast<size_t>(context_.config.limits.subscriptionsPerSession)) {
+      if (!subscriptions_.count(doc) &&
+          subscriptions_.size() >= static_cast<size_t>(context_.config.limits.subscriptionsPerSession)) {
         return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
                       "this session already subscribes " + std::to_string(subscriptions_.size()) +
                           " documents, the limit (--subscriptions-per-session)");
@@ -359,9 +388,12 @@ void Connection::handle(wire::ClientMessage message) {
       ack.mutable_ack()->set_document_id(doc);
       return reply(ack);
     }
-    case C::kSelect: return host->select(shared_from_this(), seq, message.select().selection());
-    case C::kExportDocument: return host->exportGlb(shared_from_this(), seq, message.export_document());
-    case C::kGetMorphControl: return host->morphControl(shared_from_this(), seq, message.get_morph_control());
+    case C::kSelect:
+      return host->select(shared_from_this(), seq, message.select().selection());
+    case C::kExportDocument:
+      return host->exportGlb(shared_from_this(), seq, message.export_document());
+    case C::kGetMorphControl:
+      return host->morphControl(shared_from_this(), seq, message.get_morph_control());
     case C::kEditBatch:
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
@@ -372,17 +404,21 @@ void Connection::handle(wire::ClientMessage message) {
     case C::kRedo: {
       const auto role = roleFor(DocumentId{doc});
       if (!role || *role < Role::kEditor) {
-        return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "editing document " + std::to_string(doc) + " needs the editor role");
+        return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED,
+                      "editing document " + std::to_string(doc) + " needs the editor role");
       }
       // A second key's mesh is a base mesh: the same limit as CreateDocument's.
-      if (message.has_add_morph_key() && message.add_morph_key().mesh().size() > context_.config.limits.maxBaseMeshBytes) {
+      if (message.has_add_morph_key() &&
+          message.add_morph_key().mesh().size() > context_.config.limits.maxBaseMeshBytes) {
         return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
                       "add morph key: the mesh has " + std::to_string(message.add_morph_key().mesh().size()) +
-                          " bytes, above the limit of " + std::to_string(context_.config.limits.maxBaseMeshBytes));
+                          " bytes, above the limit of " +
+                          std::to_string(context_.config.limits.maxBaseMeshBytes));
       }
       return host->command(shared_from_this(), name_, std::move(message));
     }
-    default: return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "unknown command");
+    default:
+      return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "unknown command");
   }
 }
 
@@ -404,17 +440,19 @@ void Connection::handleHello(const wire::ClientMessage& message) {
   helloHeld_ = true;
   idleTimer_.cancel();
   helloTimer_.expires_at(turn);
-  helloTimer_.async_wait(boost::asio::bind_executor(strand_, [self = shared_from_this(), message](const boost::system::error_code& ec) {
-    if (ec || self->closed_) return;
-    self->helloHeld_ = false;
-    self->authenticate(message);
-    self->drainFrames();
-  }));
+  helloTimer_.async_wait(boost::asio::bind_executor(
+      strand_, [self = shared_from_this(), message](const boost::system::error_code& ec) {
+        if (ec || self->closed_) return;
+        self->helloHeld_ = false;
+        self->authenticate(message);
+        self->drainFrames();
+      }));
 }
 
 void Connection::authenticate(const wire::ClientMessage& message) {
   token_ = message.hello().token();
-  name_ = message.hello().client_name().empty() ? "session " + std::to_string(sessionId_) : message.hello().client_name();
+  name_ = message.hello().client_name().empty() ? "session " + std::to_string(sessionId_)
+                                                : message.hello().client_name();
   if (!token_.empty()) {
     auto known = context_.store.knowsToken(token_);
     if (!known.isOk()) {
@@ -423,14 +461,18 @@ void Connection::authenticate(const wire::ClientMessage& message) {
       logEvent(LogLevel::kError, "auth_unavailable",
                {{"session", sessionId_}, {"address", address_}, {"error", known.status().message()}});
       token_.clear();
-      return fatal(wire::ERROR_CODE_INTERNAL, "cannot check the access token now: " + known.status().message());
+      return fatal(wire::ERROR_CODE_INTERNAL,
+                   "cannot check the access token now: " + known.status().message());
     }
     if (!*known) {
       // Never the token itself in a log.
       const int failures = context_.authThrottle.failed(address_, std::chrono::steady_clock::now());
       ++context_.stats.authFailures;
       logEvent(LogLevel::kWarn, "auth_failed",
-               {{"session", sessionId_}, {"address", address_}, {"name", name_}, {"recent_failures", static_cast<int64_t>(failures)},
+               {{"session", sessionId_},
+                {"address", address_},
+                {"name", name_},
+                {"recent_failures", static_cast<int64_t>(failures)},
                 {"error", "unknown token"}});
       token_.clear();
       return fatal(wire::ERROR_CODE_AUTH_FAILED, "the access token is not known to this server");
@@ -441,8 +483,11 @@ void Connection::authenticate(const wire::ClientMessage& message) {
   }
   helloDone_ = true;
   armIdleTimer(context_.config.timeouts.idleSeconds);
-  logEvent(LogLevel::kInfo, "hello", {{"session", sessionId_}, {"name", name_}, {"token", !token_.empty()},
-                                      {"role", globalRole_ ? roleName(*globalRole_) : "per-document"}});
+  logEvent(LogLevel::kInfo, "hello",
+           {{"session", sessionId_},
+            {"name", name_},
+            {"token", !token_.empty()},
+            {"role", globalRole_ ? roleName(*globalRole_) : "per-document"}});
   HelloAckOptions ack;
   ack.clientSeq = message.client_seq();
   ack.serverVersion = kServerVersion;
@@ -455,7 +500,8 @@ void Connection::authenticate(const wire::ClientMessage& message) {
 std::shared_ptr<DocumentEndpoint> Connection::openHost(uint64_t documentId, uint64_t clientSeq) {
   auto it = open_.find(documentId);
   if (it == open_.end()) {
-    reject(clientSeq, wire::REJECT_REASON_NOT_OPEN, "document " + std::to_string(documentId) + " is not open here");
+    reject(clientSeq, wire::REJECT_REASON_NOT_OPEN,
+           "document " + std::to_string(documentId) + " is not open here");
     return nullptr;
   }
   return it->second;
@@ -467,7 +513,8 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
   }
   if (request.mesh().size() > context_.config.limits.maxBaseMeshBytes) {
     return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
-                  "create: the mesh has " + std::to_string(request.mesh().size()) + " bytes, above the limit of " +
+                  "create: the mesh has " + std::to_string(request.mesh().size()) +
+                      " bytes, above the limit of " +
                       std::to_string(context_.config.limits.maxBaseMeshBytes));
   }
   // Importing is bulk work: off the network threads and off the workers
@@ -475,16 +522,19 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
   asio::post(context_.bulk, [self = shared_from_this(), seq, request] {
     ImportReport report;
     auto doc = importDocument(request, self->context_.config.limits.maxLevel, report);
-    Expected<DocumentId> id = doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
-                                         : Expected<DocumentId>(doc.status());
+    Expected<DocumentId> id =
+        doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
+                   : Expected<DocumentId>(doc.status());
     doc = invalidArgument("released");
     ::malloc_trim(0);  // an import of millions of triangles leaves its memory in the heap otherwise
     const uint32_t dropped = static_cast<uint32_t>(report.renumbering.dropped);
     const uint32_t creased = static_cast<uint32_t>(report.edgesCreasedByAngle);
     asio::post(self->strand_, [self, seq, id, dropped, creased] {
       if (!id.isOk()) {
-        const bool mesh = id.status().code() == ErrorCode::kInvalidMesh || id.status().code() == ErrorCode::kParseError;
-        return self->reject(seq, mesh ? wire::REJECT_REASON_INVALID_MESH : wire::REJECT_REASON_INVALID_ARGUMENT,
+        const bool mesh =
+            id.status().code() == ErrorCode::kInvalidMesh || id.status().code() == ErrorCode::kParseError;
+        return self->reject(seq,
+                            mesh ? wire::REJECT_REASON_INVALID_MESH : wire::REJECT_REASON_INVALID_ARGUMENT,
                             id.status().message());
       }
       logEvent(LogLevel::kInfo, "document_created", {{"doc", id->value}, {"session", self->sessionId_}});
@@ -502,15 +552,17 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
 void Connection::openDocument(uint64_t seq, uint64_t documentId) {
   const auto role = roleFor(DocumentId{documentId});
   if (!role) {
-    return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "no access to document " + std::to_string(documentId));
+    return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED,
+                  "no access to document " + std::to_string(documentId));
   }
   // Loading replays a journal and may be large: bulk work.
   asio::post(context_.bulk, [self = shared_from_this(), seq, documentId, role = *role] {
     auto host = self->context_.opener.openEndpoint(DocumentId{documentId});
     asio::post(self->strand_, [self, seq, documentId, role, host] {
       if (!host.isOk()) {
-        return self->reject(seq, host.status().code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND
-                                                                               : wire::REJECT_REASON_INTERNAL,
+        return self->reject(seq,
+                            host.status().code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND
+                                                                         : wire::REJECT_REASON_INTERNAL,
                             host.status().message());
       }
       if (self->closed_) return;

@@ -6,8 +6,8 @@
 #pragma once
 
 #include <boost/asio/steady_timer.hpp>
-#include <chrono>
 #include <boost/asio/strand.hpp>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,10 +15,10 @@
 
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
-#include "server/net/outbox.h"
-#include "server/net/server_context.h"
 #include "server/document/subscriber.h"
 #include "server/net/catalogue_commands.h"
+#include "server/net/outbox.h"
+#include "server/net/server_context.h"
 #include "server/net/transport.h"
 
 namespace tessera::server {
@@ -98,7 +98,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
 
   bool helloDone_ = false, closing_ = false, closed_ = false;
   bool transportReady_ = false;  // no write may start while the transport's handshake runs
-  std::string token_;  // never logged
+  std::string token_;            // never logged
   std::string name_;
   std::optional<Role> globalRole_;
   std::map<uint64_t, std::shared_ptr<DocumentEndpoint>> open_;

@@ -45,9 +45,13 @@ void Outbox::finishWrite() {
   }
 }
 
-std::set<uint64_t> Outbox::takeResyncs() { return std::exchange(resyncs_, {}); }
+std::set<uint64_t> Outbox::takeResyncs() {
+  return std::exchange(resyncs_, {});
+}
 
-std::set<uint64_t> Outbox::takePresenceResyncs() { return std::exchange(presenceResyncs_, {}); }
+std::set<uint64_t> Outbox::takePresenceResyncs() {
+  return std::exchange(presenceResyncs_, {});
+}
 
 // Presence a client has not been sent yet goes first when it falls behind:
 // one whole list replaces it once the queue has drained.
@@ -116,7 +120,8 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
       const auto same = [&](const RegionPayload& e) { return e.id == payload.id; };
       if (payload.selfContained) {
         // The newest self-contained payload replaces everything before it.
-        into.regions.erase(std::remove_if(into.regions.begin(), into.regions.end(), same), into.regions.end());
+        into.regions.erase(std::remove_if(into.regions.begin(), into.regions.end(), same),
+                           into.regions.end());
         into.regions.push_back(payload);
       } else {
         // A moved region needs its layout's ids: it replaces an earlier
@@ -128,13 +133,15 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
           into.regions.push_back(payload);
         }
       }
-      into.removed.erase(std::remove(into.removed.begin(), into.removed.end(), payload.id), into.removed.end());
+      into.removed.erase(std::remove(into.removed.begin(), into.removed.end(), payload.id),
+                         into.removed.end());
     }
     for (uint64_t id : d.removed) {
       into.regions.erase(std::remove_if(into.regions.begin(), into.regions.end(),
                                         [&](const RegionPayload& e) { return e.id == id; }),
                          into.regions.end());
-      if (std::find(into.removed.begin(), into.removed.end(), id) == into.removed.end()) into.removed.push_back(id);
+      if (std::find(into.removed.begin(), into.removed.end(), id) == into.removed.end())
+        into.removed.push_back(id);
     }
   }
   bytes_ = 0;

@@ -1,9 +1,8 @@
 // A client's bounded outgoing queue (docs/ARCHITECTURE.md, "Fan-out"):
-// frames are shared between clients (encoded once, document/delta.h), and a client that falls behind never grows server
-// memory without bound. Above the soft limit, queued deltas of a document
-// are merged into one that keeps only the newest payload per region; above
-// the hard limit (or the message cap) they are dropped, and the document is
-// marked for a resync snapshot.
+// frames are shared between clients (encoded once, document/delta.h), and a client that falls behind never
+// grows server memory without bound. Above the soft limit, queued deltas of a document are merged into one
+// that keeps only the newest payload per region; above the hard limit (or the message cap) they are dropped,
+// and the document is marked for a resync snapshot.
 #pragma once
 
 #include <cstdint>

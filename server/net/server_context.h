@@ -4,10 +4,10 @@
 
 #include <boost/asio/any_io_executor.hpp>
 
-#include "server/net/auth_throttle.h"
 #include "server/base/config.h"
-#include "server/document/document_endpoint.h"
 #include "server/base/server_stats.h"
+#include "server/document/document_endpoint.h"
+#include "server/net/auth_throttle.h"
 #include "server/store/store.h"
 
 namespace tessera::server {

@@ -1,8 +1,8 @@
 #include "server/net/static_files.h"
 
+#include <zlib.h>
 #include <fstream>
 #include <sstream>
-#include <zlib.h>
 
 namespace tessera::server {
 
@@ -47,7 +47,8 @@ Expected<StaticFiles> StaticFiles::load(const std::filesystem::path& root) {
       return ioError("--web-root: " + path.string() + ": " + ec.message() +
                      " (build the web viewer: the tessera_web target, docs/WEB_VIEWER.md)");
     }
-    if (size > kMaxFileBytes) return invalidArgument("--web-root: " + path.string() + " is larger than 32 MiB");
+    if (size > kMaxFileBytes)
+      return invalidArgument("--web-root: " + path.string() + " is larger than 32 MiB");
     std::ifstream in(path, std::ios::binary);
     std::ostringstream body;
     body << in.rdbuf();

@@ -33,7 +33,8 @@ class StreamTransport final : public Transport {
 
   void read(Read done) override {
     stream_.async_read_some(asio::buffer(buffer_),
-                            asio::bind_executor(strand_, [this, done = std::move(done)](const boost::system::error_code& ec, size_t n) {
+                            asio::bind_executor(strand_, [this, done = std::move(done)](
+                                                             const boost::system::error_code& ec, size_t n) {
                               done(ec, std::string_view(buffer_.data(), n), Status::ok());
                             }));
   }
@@ -43,10 +44,10 @@ class StreamTransport final : public Transport {
     std::vector<asio::const_buffer> buffers;
     buffers.reserve(held->size());
     for (const auto& f : *held) buffers.push_back(asio::buffer(*f));
-    asio::async_write(stream_, buffers,
-                      asio::bind_executor(strand_, [held, done = std::move(done)](const boost::system::error_code& ec, size_t n) {
-                        done(ec, n);
-                      }));
+    asio::async_write(
+        stream_, buffers,
+        asio::bind_executor(strand_, [held, done = std::move(done)](const boost::system::error_code& ec,
+                                                                    size_t n) { done(ec, n); }));
   }
 
   void close() override {
@@ -77,7 +78,8 @@ class StreamTransport final : public Transport {
 std::unique_ptr<Transport> makeStreamTransport(asio::ip::tcp::socket socket, asio::ssl::context* tls,
                                                const ConnectionStrand& strand) {
   if (tls != nullptr) {
-    return std::make_unique<StreamTransport<asio::ssl::stream<asio::ip::tcp::socket>>>(strand, true, std::move(socket), *tls);
+    return std::make_unique<StreamTransport<asio::ssl::stream<asio::ip::tcp::socket>>>(
+        strand, true, std::move(socket), *tls);
   }
   return std::make_unique<StreamTransport<asio::ip::tcp::socket>>(strand, false, std::move(socket));
 }

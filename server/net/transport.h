@@ -52,7 +52,8 @@ class Transport {
 };
 
 // The protocol port's transports: plain TCP, or TLS with `tls` set.
-std::unique_ptr<Transport> makeStreamTransport(boost::asio::ip::tcp::socket socket, boost::asio::ssl::context* tls,
+std::unique_ptr<Transport> makeStreamTransport(boost::asio::ip::tcp::socket socket,
+                                               boost::asio::ssl::context* tls,
                                                const ConnectionStrand& strand);
 
 }  // namespace tessera::server

@@ -30,19 +30,22 @@ constexpr int kRequestsPerConnection = 100;       // keep-alive, then close
 
 std::string lower(std::string_view text) {
   std::string out(text);
-  std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return out;
 }
 
 std::chrono::steady_clock::duration secondsOf(double seconds) {
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(seconds));
 }
 
 // The peers not yet upgraded (or only fetching files): bounded per address
 // and in all, like the protocol port's unauthenticated connections.
 class PeerCount {
  public:
-  explicit PeerCount(const Limits& limits) : perAddress_(limits.unauthenticatedPerAddress), total_(limits.unauthenticatedTotal) {}
+  explicit PeerCount(const Limits& limits)
+      : perAddress_(limits.unauthenticatedPerAddress), total_(limits.unauthenticatedTotal) {}
 
   // Takes a slot for `address`, or says why not.
   std::optional<std::string> take(const std::string& address) {
@@ -53,7 +56,8 @@ class PeerCount {
              " (--unauthenticated-per-address)";
     }
     if (all_ >= total_) {
-      return "more than " + std::to_string(total_) + " unauthenticated connections in all (--unauthenticated-total)";
+      return "more than " + std::to_string(total_) +
+             " unauthenticated connections in all (--unauthenticated-total)";
     }
     ++here;
     ++all_;
@@ -78,7 +82,11 @@ class PeerCount {
 
 struct WebPort::Impl : std::enable_shared_from_this<WebPort::Impl> {
   Impl(asio::io_context& io, WebPortOptions o, StaticFiles f, OnUpgrade u)
-      : io(io), acceptor(asio::make_strand(io)), options(std::move(o)), files(std::move(f)), onUpgrade(std::move(u)),
+      : io(io),
+        acceptor(asio::make_strand(io)),
+        options(std::move(o)),
+        files(std::move(f)),
+        onUpgrade(std::move(u)),
         peers(options.limits) {}
 
   asio::io_context& io;
@@ -133,14 +141,14 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
   asio::any_io_executor executor() override { return beast::get_lowest_layer(stream_).get_executor(); }
   std::unique_ptr<Transport> accept(const ConnectionStrand& strand) override {
     releaseSlot();
-    WebSocketLimits limits{uint64_t{port_->options.limits.maxFrameBytes} + 4, port_->options.timeouts.handshakeSeconds};
+    WebSocketLimits limits{uint64_t{port_->options.limits.maxFrameBytes} + 4,
+                           port_->options.timeouts.handshakeSeconds};
     return makeWebSocketTransport(std::move(stream_), parser_->release(), strand, limits);
   }
   void refuse(const std::string& reason) override {
     auto self = this->shared_from_this();
-    asio::dispatch(beast::get_lowest_layer(stream_).get_executor(), [self, reason] {
-      self->respond(http::status::service_unavailable, reason, false);
-    });
+    asio::dispatch(beast::get_lowest_layer(stream_).get_executor(),
+                   [self, reason] { self->respond(http::status::service_unavailable, reason, false); });
   }
 
  private:
@@ -150,7 +158,8 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
     parser_->body_limit(0);
     beast::get_lowest_layer(stream_).expires_after(secondsOf(port_->options.timeouts.handshakeSeconds));
     auto self = this->shared_from_this();
-    http::async_read(stream_, buffer_, *parser_, [self](const beast::error_code& ec, size_t) { self->onRequest(ec); });
+    http::async_read(stream_, buffer_, *parser_,
+                     [self](const beast::error_code& ec, size_t) { self->onRequest(ec); });
   }
 
   void onRequest(const beast::error_code& ec) {
@@ -187,7 +196,8 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
     const std::string_view origin(request[http::field::origin].data(), request[http::field::origin].size());
     const std::string_view host(request[http::field::host].data(), request[http::field::host].size());
     if (!port_->originAllowed(origin, host)) {
-      logEvent(LogLevel::kWarn, "websocket_origin_refused", {{"address", address_}, {"origin", std::string(origin)}});
+      logEvent(LogLevel::kWarn, "websocket_origin_refused",
+               {{"address", address_}, {"origin", std::string(origin)}});
       return respond(http::status::forbidden,
                      "origin " + std::string(origin) + " may not connect (--ws-allowed-origin)", false);
     }
@@ -197,10 +207,13 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
 
   void serveFile(const http::request<http::empty_body>& request, const StaticFile& file) {
     const auto encodings = request[http::field::accept_encoding];
-    const bool gzip = !file.gzipped.empty() && lower(std::string_view(encodings.data(), encodings.size())).find("gzip") != std::string::npos;
+    const bool gzip =
+        !file.gzipped.empty() &&
+        lower(std::string_view(encodings.data(), encodings.size())).find("gzip") != std::string::npos;
     // The body points into the port's files, which outlive the response
     // (it holds port_): no copy per request.
-    auto response = std::make_shared<http::response<http::span_body<const char>>>(http::status::ok, request.version());
+    auto response =
+        std::make_shared<http::response<http::span_body<const char>>>(http::status::ok, request.version());
     headers(*response);
     response->set(http::field::content_type, file.contentType);
     response->set(http::field::cache_control, "no-cache");
@@ -278,8 +291,10 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
 // of its request is read.
 void turnAway(tcp::socket socket, const std::string& reason) {
   auto held = std::make_shared<tcp::socket>(std::move(socket));
-  auto text = std::make_shared<std::string>("HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\n"
-                                            "Content-Length: " + std::to_string(reason.size() + 1) + "\r\n\r\n" + reason + "\n");
+  auto text = std::make_shared<std::string>(
+      "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\n"
+      "Content-Length: " +
+      std::to_string(reason.size() + 1) + "\r\n\r\n" + reason + "\n");
   asio::async_write(*held, asio::buffer(*text), [held, text](const boost::system::error_code&, size_t) {
     boost::system::error_code ignored;
     held->shutdown(tcp::socket::shutdown_both, ignored);
@@ -290,7 +305,8 @@ void turnAway(tcp::socket socket, const std::string& reason) {
 }  // namespace
 
 void WebPort::Impl::accept() {
-  acceptor.async_accept(asio::make_strand(io), [self = shared_from_this()](const boost::system::error_code& ec, tcp::socket socket) {
+  acceptor.async_accept(asio::make_strand(io), [self = shared_from_this()](
+                                                   const boost::system::error_code& ec, tcp::socket socket) {
     if (ec) {
       if (!self->stopped && ec != asio::error::operation_aborted) self->accept();
       return;
@@ -299,15 +315,19 @@ void WebPort::Impl::accept() {
     socket.set_option(tcp::no_delay(true), ignored);
     const std::string address = socket.remote_endpoint(ignored).address().to_string();
     if (auto over = self->peers.take(address)) {
-      logEvent(LogLevel::kWarn, "connection_refused", {{"address", address}, {"reason", *over}, {"port", "web"}});
+      logEvent(LogLevel::kWarn, "connection_refused",
+               {{"address", address}, {"reason", *over}, {"port", "web"}});
       turnAway(std::move(socket), *over);
     } else if (self->options.tls != nullptr) {
       auto session = std::make_shared<WebSession<beast::ssl_stream<beast::tcp_stream>>>(
-          self, beast::ssl_stream<beast::tcp_stream>(beast::tcp_stream(std::move(socket)), *self->options.tls), address);
+          self,
+          beast::ssl_stream<beast::tcp_stream>(beast::tcp_stream(std::move(socket)), *self->options.tls),
+          address);
       session->slot_ = true;
       session->start();
     } else {
-      auto session = std::make_shared<WebSession<beast::tcp_stream>>(self, beast::tcp_stream(std::move(socket)), address);
+      auto session = std::make_shared<WebSession<beast::tcp_stream>>(
+          self, beast::tcp_stream(std::move(socket)), address);
       session->slot_ = true;
       session->start();
     }
@@ -317,10 +337,12 @@ void WebPort::Impl::accept() {
 
 WebPort::WebPort(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
 
-WebPort::~WebPort() { stop(); }
+WebPort::~WebPort() {
+  stop();
+}
 
-Expected<std::unique_ptr<WebPort>> WebPort::start(asio::io_context& io, WebPortOptions options, StaticFiles files,
-                                                  OnUpgrade onUpgrade) {
+Expected<std::unique_ptr<WebPort>> WebPort::start(asio::io_context& io, WebPortOptions options,
+                                                  StaticFiles files, OnUpgrade onUpgrade) {
   auto impl = std::make_shared<Impl>(io, std::move(options), std::move(files), std::move(onUpgrade));
   boost::system::error_code ec;
   const auto address = asio::ip::make_address(impl->options.address, ec);
@@ -331,18 +353,22 @@ Expected<std::unique_ptr<WebPort>> WebPort::start(asio::io_context& io, WebPortO
   if (!ec) impl->acceptor.bind(endpoint, ec);
   if (!ec) impl->acceptor.listen(asio::socket_base::max_listen_connections, ec);
   if (ec) {
-    return ioError("--ws-port: cannot listen on " + impl->options.address + ":" + std::to_string(impl->options.port) +
-                   ": " + ec.message());
+    return ioError("--ws-port: cannot listen on " + impl->options.address + ":" +
+                   std::to_string(impl->options.port) + ": " + ec.message());
   }
   impl->port = impl->acceptor.local_endpoint().port();
   logEvent(LogLevel::kInfo, "web_listening",
-           {{"address", impl->options.address}, {"port", static_cast<int64_t>(impl->acceptor.local_endpoint().port())},
-            {"tls", impl->options.tls != nullptr}, {"page_bytes_gzip", impl->files.transferBytes()}});
+           {{"address", impl->options.address},
+            {"port", static_cast<int64_t>(impl->acceptor.local_endpoint().port())},
+            {"tls", impl->options.tls != nullptr},
+            {"page_bytes_gzip", impl->files.transferBytes()}});
   impl->accept();
   return std::unique_ptr<WebPort>(new WebPort(std::move(impl)));
 }
 
-uint16_t WebPort::port() const { return impl_->port; }
+uint16_t WebPort::port() const {
+  return impl_->port;
+}
 
 void WebPort::stop() {
   asio::post(impl_->acceptor.get_executor(), [impl = impl_] {

@@ -25,13 +25,15 @@ namespace {
 template <typename Next>
 class WebSocketTransport final : public Transport {
  public:
-  WebSocketTransport(Next stream, WebRequest request, const ConnectionStrand& strand, WebSocketLimits limits, bool tls)
+  WebSocketTransport(Next stream, WebRequest request, const ConnectionStrand& strand, WebSocketLimits limits,
+                     bool tls)
       : strand_(strand), tls_(tls), request_(std::move(request)), ws_(std::move(stream)) {
     // The Connection keeps the protocol's deadlines (handshake, idle,
     // write); the WebSocket layer's own apply only to its handshake and
     // closing.
     beast::get_lowest_layer(ws_).expires_never();
-    websocket::stream_base::timeout timeouts = websocket::stream_base::timeout::suggested(beast::role_type::server);
+    websocket::stream_base::timeout timeouts =
+        websocket::stream_base::timeout::suggested(beast::role_type::server);
     timeouts.handshake_timeout = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
         std::chrono::duration<double>(limits.handshakeSeconds));
     ws_.set_option(timeouts);
@@ -46,22 +48,26 @@ class WebSocketTransport final : public Transport {
   bool needsHandshake() const override { return true; }
 
   void start(Done done) override {
-    ws_.async_accept(request_, [strand = strand_, done = std::move(done)](const boost::system::error_code& ec) {
-      asio::dispatch(strand, [done, ec] { done(ec); });
-    });
+    ws_.async_accept(request_,
+                     [strand = strand_, done = std::move(done)](const boost::system::error_code& ec) {
+                       asio::dispatch(strand, [done, ec] { done(ec); });
+                     });
   }
 
   void read(Read done) override {
-    ws_.async_read_some(asio::buffer(buffer_), [this, done = std::move(done)](const boost::system::error_code& ec, size_t n) {
-      // Read on the socket's executor; the message state is read here,
-      // before another read can change it.
-      Status framing = ec ? Status::ok() : framing_.feed(std::string_view(buffer_.data(), n), ws_.is_message_done(), ws_.got_binary());
-      // A text message's bytes are not frames at all: none are passed on.
-      const size_t passed = ec || !ws_.got_binary() ? 0 : n;
-      asio::dispatch(strand_, [this, done, ec, passed, framing = std::move(framing)] {
-        done(ec, std::string_view(buffer_.data(), passed), framing);
-      });
-    });
+    ws_.async_read_some(asio::buffer(buffer_),
+                        [this, done = std::move(done)](const boost::system::error_code& ec, size_t n) {
+                          // Read on the socket's executor; the message state is read here,
+                          // before another read can change it.
+                          Status framing = ec ? Status::ok()
+                                              : framing_.feed(std::string_view(buffer_.data(), n),
+                                                              ws_.is_message_done(), ws_.got_binary());
+                          // A text message's bytes are not frames at all: none are passed on.
+                          const size_t passed = ec || !ws_.got_binary() ? 0 : n;
+                          asio::dispatch(strand_, [this, done, ec, passed, framing = std::move(framing)] {
+                            done(ec, std::string_view(buffer_.data(), passed), framing);
+                          });
+                        });
   }
 
   void write(std::vector<std::shared_ptr<const std::string>> frames, Written done) override {
@@ -88,17 +94,18 @@ class WebSocketTransport final : public Transport {
       return done({}, written_);
     }
     const auto& frame = frames_[next_];
-    ws_.async_write(asio::buffer(*frame), [this, done = std::move(done)](const boost::system::error_code& ec, size_t n) mutable {
-      asio::dispatch(strand_, [this, done = std::move(done), ec, n]() mutable {
-        if (ec) {
-          frames_.clear();
-          return done(ec, written_);
-        }
-        written_ += n;
-        ++next_;
-        writeNext(std::move(done));
-      });
-    });
+    ws_.async_write(asio::buffer(*frame),
+                    [this, done = std::move(done)](const boost::system::error_code& ec, size_t n) mutable {
+                      asio::dispatch(strand_, [this, done = std::move(done), ec, n]() mutable {
+                        if (ec) {
+                          frames_.clear();
+                          return done(ec, written_);
+                        }
+                        written_ += n;
+                        ++next_;
+                        writeNext(std::move(done));
+                      });
+                    });
   }
 
   ConnectionStrand strand_;
@@ -116,12 +123,13 @@ class WebSocketTransport final : public Transport {
 
 std::unique_ptr<Transport> makeWebSocketTransport(beast::tcp_stream stream, WebRequest request,
                                                   const ConnectionStrand& strand, WebSocketLimits limits) {
-  return std::make_unique<WebSocketTransport<beast::tcp_stream>>(std::move(stream), std::move(request), strand, limits,
-                                                                 false);
+  return std::make_unique<WebSocketTransport<beast::tcp_stream>>(std::move(stream), std::move(request),
+                                                                 strand, limits, false);
 }
 
-std::unique_ptr<Transport> makeWebSocketTransport(beast::ssl_stream<beast::tcp_stream> stream, WebRequest request,
-                                                  const ConnectionStrand& strand, WebSocketLimits limits) {
+std::unique_ptr<Transport> makeWebSocketTransport(beast::ssl_stream<beast::tcp_stream> stream,
+                                                  WebRequest request, const ConnectionStrand& strand,
+                                                  WebSocketLimits limits) {
   return std::make_unique<WebSocketTransport<beast::ssl_stream<beast::tcp_stream>>>(
       std::move(stream), std::move(request), strand, limits, true);
 }

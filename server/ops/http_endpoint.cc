@@ -1,7 +1,7 @@
 #include "server/ops/http_endpoint.h"
 
-#include <condition_variable>
 #include <httplib.h>
+#include <condition_variable>
 #include <mutex>
 #include <thread>
 
@@ -42,7 +42,8 @@ struct HttpEndpoint::Impl {
         // The reason is the server's own text (never a client's input), but
         // keep the JSON valid whatever it says.
         body += ",\"reason\":\"";
-        for (char c : *reason) body += (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) ? ' ' : c;
+        for (char c : *reason)
+          body += (c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20) ? ' ' : c;
         body += '"';
       }
       body += "}\n";
@@ -51,8 +52,9 @@ struct HttpEndpoint::Impl {
     });
     http.Get("/metrics", [this](const httplib::Request&, httplib::Response& response) {
       edits.sample(std::chrono::steady_clock::now(), sources.stats->edits.load());
-      response.set_content(renderMetrics({*sources.stats, sources.storeStats(), sources.documentsOpen(), edits.perSecond()}),
-                           "text/plain; version=0.0.4; charset=utf-8");
+      response.set_content(
+          renderMetrics({*sources.stats, sources.storeStats(), sources.documentsOpen(), edits.perSecond()}),
+          "text/plain; version=0.0.4; charset=utf-8");
     });
     http.set_error_handler([](const httplib::Request& request, httplib::Response& response) {
       if (response.status == 404) {

@@ -30,7 +30,8 @@ struct HttpSources {
 class HttpEndpoint {
  public:
   // Binds at once (so a taken port fails start-up), then serves.
-  static Expected<std::unique_ptr<HttpEndpoint>> start(const std::string& address, int port, HttpSources sources);
+  static Expected<std::unique_ptr<HttpEndpoint>> start(const std::string& address, int port,
+                                                       HttpSources sources);
   ~HttpEndpoint();  // stops serving and joins its threads
 
   uint16_t port() const { return port_; }

@@ -1,8 +1,8 @@
 #include "server/ops/metrics_exposition.h"
 
-#include <limits>
 #include <prometheus/metric_family.h>
 #include <prometheus/text_serializer.h>
+#include <limits>
 #include <vector>
 
 #include "tessera/version.h"
@@ -19,7 +19,8 @@ void RateWindow::sample(std::chrono::steady_clock::time_point now, int64_t total
 double RateWindow::perSecond() const {
   std::lock_guard lock(mutex_);
   if (samples_.size() < 2) return 0;
-  const double seconds = std::chrono::duration<double>(samples_.back().first - samples_.front().first).count();
+  const double seconds =
+      std::chrono::duration<double>(samples_.back().first - samples_.front().first).count();
   return seconds > 0 ? static_cast<double>(samples_.back().second - samples_.front().second) / seconds : 0;
 }
 
@@ -77,12 +78,14 @@ std::string renderMetrics(const MetricsSample& sample) {
       counter("tessera_connections_total", "Connections accepted.", s.connectionsTotal.load()),
       counter("tessera_connections_refused_total", "Connections refused by a connection limit.",
               s.connectionsRefused.load()),
-      counter("tessera_auth_failures_total", "Hellos with a token the store does not know.", s.authFailures.load()),
+      counter("tessera_auth_failures_total", "Hellos with a token the store does not know.",
+              s.authFailures.load()),
       gauge("tessera_documents_open", "Documents held in memory.", static_cast<double>(sample.documentsOpen)),
-      counter("tessera_edits_total", "Edits applied (moves, sharpness, vertex types, undo, redo).", s.edits.load()),
+      counter("tessera_edits_total", "Edits applied (moves, sharpness, vertex types, undo, redo).",
+              s.edits.load()),
       gauge("tessera_edits_per_second", "Edits per second over the last 10 s.", editsPerSecond),
-      counter("tessera_refusals_total", "Commands refused with a Reject (limits, bad arguments, permissions).",
-              s.rejects.load()),
+      counter("tessera_refusals_total",
+              "Commands refused with a Reject (limits, bad arguments, permissions).", s.rejects.load()),
       counter("tessera_resyncs_total", "Snapshots sent to clients whose queue overflowed.", s.resyncs.load()),
       gauge("tessera_queue_bytes", "Bytes queued for clients, summed over connections.",
             static_cast<double>(s.queueBytes.load())),
@@ -100,10 +103,12 @@ std::string renderMetrics(const MetricsSample& sample) {
               static_cast<int64_t>(store.entriesRejected)),
       counter("tessera_store_batches_total", "Store transactions committed (one fsync each).",
               static_cast<int64_t>(store.batches)),
-      histogram("tessera_edit_ack_seconds", "An edit from being applied to its durable ack.", s.ackLatency.snapshot()),
+      histogram("tessera_edit_ack_seconds", "An edit from being applied to its durable ack.",
+                s.ackLatency.snapshot()),
       histogram("tessera_store_commit_seconds", "One store transaction, BEGIN to durable COMMIT.",
                 store.commitLatency),
-      histogram("tessera_tessellate_seconds", "A view's tessellation build or update.", s.tessellateLatency.snapshot()),
+      histogram("tessera_tessellate_seconds", "A view's tessellation build or update.",
+                s.tessellateLatency.snapshot()),
       histogram("tessera_region_encode_seconds", "One region's Draco encoding.", s.encodeLatency.snapshot()),
   };
   return prometheus::TextSerializer().Serialize(families);

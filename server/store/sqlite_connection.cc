@@ -110,7 +110,8 @@ SqliteConnection::~SqliteConnection() {
 
 Status SqliteConnection::backupInto(const std::string& destination) {
   sqlite3* target = nullptr;
-  int result = sqlite3_open_v2(destination.c_str(), &target, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
+  int result =
+      sqlite3_open_v2(destination.c_str(), &target, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
   if (result != SQLITE_OK) {
     std::string message = target != nullptr ? sqlite3_errmsg(target) : sqlite3_errstr(result);
     sqlite3_close(target);
@@ -129,7 +130,8 @@ Status SqliteConnection::backupInto(const std::string& destination) {
   sqlite3_backup_finish(backup);
   const int closed = sqlite3_close(target);
   if (result != SQLITE_DONE) return error(result, "backing up into " + destination);
-  if (closed != SQLITE_OK) return ioError(destination + ": cannot close the backup file: " + sqlite3_errstr(closed));
+  if (closed != SQLITE_OK)
+    return ioError(destination + ": cannot close the backup file: " + sqlite3_errstr(closed));
   return Status::ok();
 }
 

@@ -184,7 +184,8 @@ Expected<std::optional<Role>> selectRole(SqliteConnection& db, std::string_view 
 }
 
 Expected<bool> selectTokenKnown(SqliteConnection& db, std::string_view tokenHash) {
-  TESSERA_ASSIGN_OR_RETURN(SqliteStatement select, db.prepare("SELECT 1 FROM tokens WHERE token_hash = ?1 LIMIT 1"));
+  TESSERA_ASSIGN_OR_RETURN(SqliteStatement select,
+                           db.prepare("SELECT 1 FROM tokens WHERE token_hash = ?1 LIMIT 1"));
   select.bindBlob(1, tokenHash);
   return select.step();
 }

@@ -46,7 +46,9 @@ constexpr std::array<const char*, kStoreSchemaVersion> kMigrations = {
 
 constexpr std::array<const char*, 4> kTables = {"documents", "journal", "snapshots", "tokens"};
 
-std::string hex32(int64_t value) { return hexNumber(static_cast<uint64_t>(value) & 0xffffffff, 8); }
+std::string hex32(int64_t value) {
+  return hexNumber(static_cast<uint64_t>(value) & 0xffffffff, 8);
+}
 
 // Refuses, without writing, a file that is not a Tessera store this build reads.
 Status checkOwnership(const SqliteConnection& db, int64_t objects, int64_t applicationId, int64_t version) {

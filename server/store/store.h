@@ -109,8 +109,12 @@ struct StoreStats {
 // A failed write whose outcome the store cannot know (a replicated store's
 // request timed out: the write may be stored), so that callers can tell it
 // from a refusal. A store returns kTimeout for a write only in this case.
-inline Status outcomeUnknownError(const std::string& why) { return timeoutError("outcome unknown: " + why); }
-inline bool outcomeUnknown(const Status& status) { return status.code() == ErrorCode::kTimeout; }
+inline Status outcomeUnknownError(const std::string& why) {
+  return timeoutError("outcome unknown: " + why);
+}
+inline bool outcomeUnknown(const Status& status) {
+  return status.code() == ErrorCode::kTimeout;
+}
 
 // Called exactly once per append: ok once the entry is durable, otherwise why
 // it was refused. Runs on the store's writer thread: keep it short, never

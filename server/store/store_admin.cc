@@ -1,10 +1,10 @@
 #include "server/store/store_admin.h"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstring>
-#include <fcntl.h>
 #include <filesystem>
-#include <unistd.h>
 
 #include "server/store/data_directory.h"
 #include "server/store/sqlite_connection.h"
@@ -52,7 +52,8 @@ std::string storePath(const std::string& dataDirectory) {
   return (fs::path(dataDirectory) / "tessera.db").lexically_normal().string();
 }
 
-Status grantTokenInStore(const std::string& dataDirectory, TokenScope scope, std::string_view token, Role role) {
+Status grantTokenInStore(const std::string& dataDirectory, TokenScope scope, std::string_view token,
+                         Role role) {
   const std::string path = storePath(dataDirectory);
   std::error_code ec;
   if (!fs::exists(path, ec)) {
@@ -78,7 +79,8 @@ Status backupStore(const std::string& dataDirectory, const std::string& destinat
   const std::string path = storePath(dataDirectory);
   std::error_code ec;
   if (!fs::exists(path, ec)) return notFound(path + ": no store to back up (is --data right?)");
-  if (fs::exists(destination, ec)) return invalidArgument(destination + ": exists; the backup never overwrites a file");
+  if (fs::exists(destination, ec))
+    return invalidArgument(destination + ": exists; the backup never overwrites a file");
   const std::string partial = destination + ".partial";
   fs::remove(partial, ec);
   TESSERA_ASSIGN_OR_RETURN(auto db, openExisting(path, false));

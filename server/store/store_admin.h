@@ -18,7 +18,8 @@ std::string storePath(const std::string& dataDirectory);
 
 // Grants `token` `role` on `scope` in the store of `dataDirectory`, creating
 // the store if there is none yet. Only the token's hash is written.
-Status grantTokenInStore(const std::string& dataDirectory, TokenScope scope, std::string_view token, Role role);
+Status grantTokenInStore(const std::string& dataDirectory, TokenScope scope, std::string_view token,
+                         Role role);
 
 // Writes a consistent copy of the store to `destination`, a single SQLite
 // file: copied under a temporary name, checked, made durable, then renamed,

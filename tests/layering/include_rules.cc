@@ -4,7 +4,9 @@ namespace tessera::layering {
 
 namespace {
 
-bool startsWith(std::string_view text, std::string_view prefix) { return text.substr(0, prefix.size()) == prefix; }
+bool startsWith(std::string_view text, std::string_view prefix) {
+  return text.substr(0, prefix.size()) == prefix;
+}
 
 // `path` lies in `folder` ("core/loop" holds "core/loop/crease.h", not
 // "core/loopy.h").
@@ -17,7 +19,8 @@ bool inFolder(std::string_view path, std::string_view folder) {
 const std::vector<std::string> kServiceHeaders = {"boost/asio", "boost/beast", "google/protobuf", "nats/",
                                                   "sqlite3",    "GLFW/",       "httplib"};
 
-const std::vector<std::string> kProjectRoots = {"core/", "protocol/", "server/", "client/", "tests/", "bench/"};
+const std::vector<std::string> kProjectRoots = {"core/",   "protocol/", "server/",
+                                                "client/", "tests/",    "bench/"};
 
 }  // namespace
 
@@ -34,17 +37,28 @@ const std::vector<FolderRule>& includeRules() {
         {"core/hierarchy", {"core/util", "core/mesh", "core/loop"}, kServiceHeaders},
         {"core/schemes", {"core/util", "core/mesh", "core/loop", "core/io"}, kServiceHeaders},
         {"core/document", {"core/util", "core/mesh", "core/loop", "core/hierarchy"}, kServiceHeaders},
-        {"core/tessellation", {"core/util", "core/mesh", "core/loop", "core/hierarchy", "core/document"}, kServiceHeaders},
-        {"core/morph", {"core/util", "core/mesh", "core/loop", "core/hierarchy", "core/document", "core/io"},
+        {"core/tessellation",
+         {"core/util", "core/mesh", "core/loop", "core/hierarchy", "core/document"},
+         kServiceHeaders},
+        {"core/morph",
+         {"core/util", "core/mesh", "core/loop", "core/hierarchy", "core/document", "core/io"},
          kServiceHeaders},
         // protocol: the wire, no geometry.
         {"protocol", {"core/util"}, {"boost/asio", "nats/", "sqlite3", "GLFW/"}},
         // server: one stage per folder, each over the ones before it.
         {"server/base", {"core", "protocol"}, {"GLFW/"}},
-        {"server/store", {"core/util", "protocol", "server/base"}, {"boost/asio", "google/protobuf", ".pb.h", "GLFW/"}},
-        {"server/document", {"core", "protocol", "server/base", "server/store"}, {"boost/beast", "nats/", "GLFW/"}},
-        {"server/cluster", {"core", "protocol", "server/base", "server/store", "server/document"}, {"boost/beast", "GLFW/"}},
-        {"server/net", {"core", "protocol", "server/base", "server/store", "server/document"}, {"nats/", "GLFW/"}},
+        {"server/store",
+         {"core/util", "protocol", "server/base"},
+         {"boost/asio", "google/protobuf", ".pb.h", "GLFW/"}},
+        {"server/document",
+         {"core", "protocol", "server/base", "server/store"},
+         {"boost/beast", "nats/", "GLFW/"}},
+        {"server/cluster",
+         {"core", "protocol", "server/base", "server/store", "server/document"},
+         {"boost/beast", "GLFW/"}},
+        {"server/net",
+         {"core", "protocol", "server/base", "server/store", "server/document"},
+         {"nats/", "GLFW/"}},
         {"server/ops", {"core/util", "protocol", "server/base", "server/store"}, {"nats/", "GLFW/"}},
         {"server/app", {"core", "protocol", "server"}, {"GLFW/"}},
         // client: the library over core and protocol; every tool over it.
@@ -53,7 +67,8 @@ const std::vector<FolderRule>& includeRules() {
     };
     // No code under core/ ever includes generated wire messages.
     for (FolderRule& rule : r) {
-      if (startsWith(rule.folder, "core/")) rule.neverUses.insert(rule.neverUses.end(), protobuf.begin(), protobuf.end());
+      if (startsWith(rule.folder, "core/"))
+        rule.neverUses.insert(rule.neverUses.end(), protobuf.begin(), protobuf.end());
     }
     return r;
   }();

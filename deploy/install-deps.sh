@@ -40,6 +40,8 @@ packages=(
   libcgal-demo xvfb xauth xdotool
   # coverage-guided fuzzing: libFuzzer with ASan and UBSan (tests/fuzz)
   clang-14 libfuzzer-14-dev libclang-rt-14-dev
+  # the format check of the formatted folders (tests/format)
+  clang-format-14
   # the cluster tests and deploy/cluster-loopback.sh start real NATS servers
   nats-server
   # the browser viewer's tests drive Debian's Chromium headless (docs/WEB_VIEWER.md "Tests")

@@ -25,8 +25,8 @@
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <optional>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -91,8 +91,8 @@ std::unique_ptr<Session> connectAndOpen(const client::SessionOptions& options, u
   auto opened = (*s)->call(testing::openDocument(doc), 30);
   if (!opened.isOk() || !opened->has_ack()) return nullptr;
   if (subscribe) {
-    auto sub =
-        (*s)->call(testing::subscribe(doc, testing::kClusterBase, testing::kClusterMax, testing::kClusterAngle), 30);
+    auto sub = (*s)->call(
+        testing::subscribe(doc, testing::kClusterBase, testing::kClusterMax, testing::kClusterAngle), 30);
     if (!sub.isOk() || !sub->has_ack()) return nullptr;
   }
   return std::move(*s);
@@ -115,7 +115,8 @@ void readDeltas(TimedViewer& v, std::atomic<bool>& stop) {
 }
 
 // Edits at `rate` per second for `seconds`; the ack latency of each.
-std::vector<double> editAtRate(Session& editor, uint64_t doc, double rate, double seconds, SendTimes& times, int seed) {
+std::vector<double> editAtRate(Session& editor, uint64_t doc, double rate, double seconds, SendTimes& times,
+                               int seed) {
   std::vector<double> acks;
   std::mt19937 rng(static_cast<uint32_t>(seed));
   const auto start = Clock::now();
@@ -134,14 +135,16 @@ std::vector<double> editAtRate(Session& editor, uint64_t doc, double rate, doubl
 std::vector<double> deltaLatencies(const TimedViewer& v, SendTimes& times) {
   std::vector<double> ms;
   for (const auto& [version, when] : v.copy()) {
-    if (auto sent = times.of(version)) ms.push_back(std::chrono::duration<double, std::milli>(when - *sent).count());
+    if (auto sent = times.of(version))
+      ms.push_back(std::chrono::duration<double, std::milli>(when - *sent).count());
   }
   return ms;
 }
 
 void printRow(const char* what, const std::vector<double>& ms) {
-  std::printf("  %-44s n=%5zu  p50 %7.2f ms  p99 %7.2f ms  max %7.2f ms\n", what, ms.size(), percentile(ms, 0.5),
-              percentile(ms, 0.99), ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()));
+  std::printf("  %-44s n=%5zu  p50 %7.2f ms  p99 %7.2f ms  max %7.2f ms\n", what, ms.size(),
+              percentile(ms, 0.5), percentile(ms, 0.99),
+              ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()));
 }
 
 int latency() {
@@ -156,7 +159,8 @@ int latency() {
   auto editor = connectAndOpen(c.session(1, "editor", testing::kEditorToken), *doc, false);
   if (!onOwner.session || !onOther.session || !editor) return 1;
   std::atomic<bool> stop{false};
-  std::thread r0(readDeltas, std::ref(onOwner), std::ref(stop)), r1(readDeltas, std::ref(onOther), std::ref(stop));
+  std::thread r0(readDeltas, std::ref(onOwner), std::ref(stop)),
+      r1(readDeltas, std::ref(onOther), std::ref(stop));
   SendTimes times;
   auto acks = editAtRate(*editor, *doc, 20, 20, times, 1);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -173,9 +177,11 @@ int latency() {
   auto server = testing::ServerProcess::start(dir + "/data");
   if (!server.isOk()) return 1;
   auto admin = Session::connect(server->session("admin", server->adminToken()));
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")),
-                                                        testing::kClusterMaxLevel), 30);
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")),
+                              testing::kClusterMaxLevel),
+      30);
   const uint64_t single = created->ack().document_id();
   TimedViewer viewer{connectAndOpen(server->session("viewer", server->adminToken()), single, true), {}};
   auto sqliteEditor = connectAndOpen(server->session("editor", server->adminToken()), single, false);
@@ -188,12 +194,15 @@ int latency() {
   r2.join();
   printRow("single node: ack (SQLite, synchronous = FULL)", singleAcks);
   printRow("single node: edit to delta", deltaLatencies(viewer, singleTimes));
-  std::printf("  ack p50 ratio cluster / SQLite: %.2f\n", percentile(acks, 0.5) / std::max(1e-9, percentile(singleAcks, 0.5)));
+  std::printf("  ack p50 ratio cluster / SQLite: %.2f\n",
+              percentile(acks, 0.5) / std::max(1e-9, percentile(singleAcks, 0.5)));
   return 0;
 }
 
 int failover(int kills) {
-  std::printf("failover: %d kill -9 of the owner; seconds from the kill to the first delta at a survivor's viewer\n", kills);
+  std::printf(
+      "failover: %d kill -9 of the owner; seconds from the kill to the first delta at a survivor's viewer\n",
+      kills);
   auto run = ClusterRun::start(3);
   if (!run.isOk()) return std::fprintf(stderr, "%s\n", run.status().message().c_str()), 1;
   ClusterRun& c = **run;
@@ -256,7 +265,8 @@ int failover(int kills) {
     if (who.isOk()) {
       auto reply = (*who)->call(stats, 10);
       if (reply.isOk()) {
-        for (const auto& s : reply->stats_reply().stats()) owns |= s.name() == "documents_owned" && s.value() > 0;
+        for (const auto& s : reply->stats_reply().stats())
+          owns |= s.name() == "documents_owned" && s.value() > 0;
       }
     }
     if (!owns) owner = (owner + 1) % 3;
@@ -278,7 +288,8 @@ double fanoutRound(int nodes, int viewers, double* p50) {
   if (!doc.isOk()) return -1;
   std::vector<TimedViewer> vs(static_cast<size_t>(viewers));
   for (int i = 0; i < viewers; ++i) {
-    vs[static_cast<size_t>(i)].session = connectAndOpen(c.session(i % nodes, "viewer", testing::kViewerToken), *doc, true);
+    vs[static_cast<size_t>(i)].session =
+        connectAndOpen(c.session(i % nodes, "viewer", testing::kViewerToken), *doc, true);
     if (!vs[static_cast<size_t>(i)].session) return -1;
   }
   std::atomic<bool> stop{false};
@@ -306,8 +317,9 @@ double fanoutRound(int nodes, int viewers, double* p50) {
 }
 
 int fanout(int maxViewers) {
-  std::printf("fanout: 10 editors x 20 edits/s for 10 s; edit-to-delta over every viewer (all processes share this "
-              "machine's cores)\n");
+  std::printf(
+      "fanout: 10 editors x 20 edits/s for 10 s; edit-to-delta over every viewer (all processes share this "
+      "machine's cores)\n");
   for (int nodes : {1, 3}) {
     for (int viewers = 25; viewers <= maxViewers; viewers *= 2) {
       double p50 = 0;

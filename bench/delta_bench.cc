@@ -19,9 +19,9 @@
 
 #include <benchmark/benchmark.h>
 
-#include "core/document/document.h"
 #include "bench/bench_mesh.h"
 #include "bench/percentile.h"
+#include "core/document/document.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/tessellation.h"
@@ -31,7 +31,8 @@ namespace {
 using namespace tessera;
 using Clock = std::chrono::steady_clock;
 
-const LodProfile kProfile{.baseLevel = 3, .maxLevel = 4, .angleThresholdDegrees = 5, .triangleBudget = 20'000'000};
+const LodProfile kProfile{
+    .baseLevel = 3, .maxLevel = 4, .angleThresholdDegrees = 5, .triangleBudget = 20'000'000};
 
 struct State {
   std::optional<Document> doc;
@@ -50,7 +51,8 @@ size_t encodeRegions(const std::vector<uint64_t>& ids) {
   State& s = state();
   size_t bytes = 0;
   for (uint64_t id : ids) {
-    const RegionHeader header{.regionId = id, .documentVersion = s.version, .profile = s.tessellation->profile(), .grid = s.grid};
+    const RegionHeader header{
+        .regionId = id, .documentVersion = s.version, .profile = s.tessellation->profile(), .grid = s.grid};
     auto encoded = encodeRegion(header, s.tessellation->regions().at(id));
     if (!encoded.isOk()) {
       std::fprintf(stderr, "encode: %s\n", encoded.status().toString().c_str());
@@ -69,7 +71,8 @@ void editToDelta(benchmark::State& bm) {
   std::vector<double> samples;
   double bytes = 0, regions = 0, rebuilds = 0;
   for (auto _ : bm) {
-    const VertexId v(level, std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
+    const VertexId v(level,
+                     std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
     const Index local = *doc.hierarchy().completeVertex(v);
     const Vec3 limit = doc.hierarchy().limitFrameOf(level, local).position;
     const auto start = Clock::now();
@@ -111,9 +114,22 @@ void fullTessellateAndEncode(benchmark::State& bm) {
   bm.counters["regions"] = static_cast<double>(s.tessellation->regions().size());
 }
 
-BENCHMARK(editToDelta)->Name("EditToDelta")->DenseRange(0, 1)->Iterations(100)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(editToDelta)->Name("EditToDelta")->DenseRange(2, 4)->Iterations(1000)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(fullTessellateAndEncode)->Name("FullTessellateAndEncode")->Iterations(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(editToDelta)
+    ->Name("EditToDelta")
+    ->DenseRange(0, 1)
+    ->Iterations(100)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(editToDelta)
+    ->Name("EditToDelta")
+    ->DenseRange(2, 4)
+    ->Iterations(1000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(fullTessellateAndEncode)
+    ->Name("FullTessellateAndEncode")
+    ->Iterations(2)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
@@ -137,9 +153,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   s.tessellation.emplace(std::move(*t));
-  std::printf("displayed (%s): %lld triangles in %zu regions; grid %d position bits\n", kProfile.key().c_str(),
-              static_cast<long long>(s.tessellation->numTriangles()), s.tessellation->regions().size(),
-              s.grid.positionBits);
+  std::printf("displayed (%s): %lld triangles in %zu regions; grid %d position bits\n",
+              kProfile.key().c_str(), static_cast<long long>(s.tessellation->numTriangles()),
+              s.tessellation->regions().size(), s.grid.positionBits);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

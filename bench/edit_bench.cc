@@ -20,10 +20,10 @@
 
 #include <benchmark/benchmark.h>
 
-#include "bench/ratio_reporter.h"
-#include "core/document/document.h"
 #include "bench/bench_mesh.h"
 #include "bench/percentile.h"
+#include "bench/ratio_reporter.h"
+#include "core/document/document.h"
 #include "core/loop/limit.h"
 #include "oracle/osd_adapter.h"
 
@@ -54,9 +54,11 @@ void editTessera(benchmark::State& state) {
   std::vector<double> samples;
   int64_t points = 0, limits = 0;
   for (auto _ : state) {
-    const VertexId v(level, std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
+    const VertexId v(level,
+                     std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
     const Index local = *doc.hierarchy().completeVertex(v);
-    const Vec3 limit = limitFrame(doc.hierarchy().level(level).mesh, local, doc.hierarchy().points(level)).position;
+    const Vec3 limit =
+        limitFrame(doc.hierarchy().level(level).mesh, local, doc.hierarchy().points(level)).position;
     const auto start = Clock::now();
     auto id = doc.moveToLimit(std::span(&v, 1), limit + Vec3(0.002, -0.001, 0.003));
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -82,8 +84,8 @@ void editTessera(benchmark::State& state) {
 void fullTessera(benchmark::State& state) {
   const Document& doc = *input().doc;
   for (auto _ : state) {
-    auto eval = SparseEvaluator::create(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.counts(),
-                                        doc.options().uniformLevel, doc.edits());
+    auto eval = SparseEvaluator::create(doc.baseTopology(), doc.basePoints(), doc.options().loop,
+                                        doc.counts(), doc.options().uniformLevel, doc.edits());
     benchmark::DoNotOptimize(eval.isOk());
   }
 }
@@ -100,17 +102,31 @@ void refineLimitOpenSubdiv(benchmark::State& state) {
   }
 }
 
-BENCHMARK(editTessera)->Name("Edit")->DenseRange(0, 1)->Iterations(200)->UseManualTime()->Unit(benchmark::kMicrosecond);
-BENCHMARK(editTessera)->Name("Edit")->DenseRange(2, 4)->Iterations(2000)->UseManualTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(editTessera)
+    ->Name("Edit")
+    ->DenseRange(0, 1)
+    ->Iterations(200)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(editTessera)
+    ->Name("Edit")
+    ->DenseRange(2, 4)
+    ->Iterations(2000)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(fullTessera)->Name("FullRecompute/Tessera")->Iterations(3)->Unit(benchmark::kMillisecond);
-BENCHMARK(refineLimitOpenSubdiv)->Name("FullRecompute/OpenSubdiv")->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineLimitOpenSubdiv)
+    ->Name("FullRecompute/OpenSubdiv")
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond);
 
 void printMemory(const char* what, const HierarchyStats& stats) {
   const double displayed = static_cast<double>(stats.displayedVertices);
-  std::printf("%s: %lld points held, %lld displayed (overhead %.1f%%), %.1f MiB, %.1f bytes per displayed vertex\n",
-              what, static_cast<long long>(stats.vertices), static_cast<long long>(stats.displayedVertices),
-              100.0 * (static_cast<double>(stats.vertices) - displayed) / displayed,
-              static_cast<double>(stats.bytes) / (1 << 20), static_cast<double>(stats.bytes) / displayed);
+  std::printf(
+      "%s: %lld points held, %lld displayed (overhead %.1f%%), %.1f MiB, %.1f bytes per displayed vertex\n",
+      what, static_cast<long long>(stats.vertices), static_cast<long long>(stats.displayedVertices),
+      100.0 * (static_cast<double>(stats.vertices) - displayed) / displayed,
+      static_cast<double>(stats.bytes) / (1 << 20), static_cast<double>(stats.bytes) / displayed);
 }
 
 // A document displayed at level 2 with 40 edits at levels 3-6 in a few

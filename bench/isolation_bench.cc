@@ -46,7 +46,8 @@ std::string torusPly(int64_t triangles) {
       const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
       const double r = 0.3 + 0.01 * std::sin(7 * u) * std::cos(5 * v);
       const float p[3] = {static_cast<float>((1 + r * std::cos(v)) * std::cos(u)),
-                          static_cast<float>((1 + r * std::cos(v)) * std::sin(u)), static_cast<float>(r * std::sin(v))};
+                          static_cast<float>((1 + r * std::cos(v)) * std::sin(u)),
+                          static_cast<float>(r * std::sin(v))};
       put(p, sizeof p);
     }
   }
@@ -90,8 +91,10 @@ testing::Bystander::Latencies during(testing::Bystander& bystander, std::future<
 
 void report(const char* phase, const testing::Bystander::Latencies& l, double seconds, pid_t server,
             const std::string& outcome) {
-  std::printf("%-34s bystander edits %4zu  p50 %7.1f ms  p99 %7.1f ms  max %7.1f ms | bulk %7.3f s, %s | server RSS %6.0f MiB\n",
-              phase, l.ms.size(), l.median(), l.at(0.99), l.max(), seconds, outcome.c_str(), residentMiB(server));
+  std::printf(
+      "%-34s bystander edits %4zu  p50 %7.1f ms  p99 %7.1f ms  max %7.1f ms | bulk %7.3f s, %s | server RSS "
+      "%6.0f MiB\n",
+      phase, l.ms.size(), l.median(), l.at(0.99), l.max(), seconds, outcome.c_str(), residentMiB(server));
   std::fflush(stdout);
 }
 
@@ -105,7 +108,8 @@ int run(int64_t triangles) {
   if (!bystander.isOk()) return std::fprintf(stderr, "%s\n", bystander.status().message().c_str()), 1;
   const std::string ply = torusPly(triangles);
   std::printf("mesh: %zu bytes of binary PLY, %lld triangles; server RSS at start %.0f MiB\n", ply.size(),
-              static_cast<long long>(2 * static_cast<int64_t>(std::sqrt(triangles / 2.0)) * static_cast<int64_t>(std::sqrt(triangles / 2.0))),
+              static_cast<long long>(2 * static_cast<int64_t>(std::sqrt(triangles / 2.0)) *
+                                     static_cast<int64_t>(std::sqrt(triangles / 2.0))),
               residentMiB(server->pid()));
   report("(idle) no bulk work", (*bystander)->run(100).value(), 0, server->pid(), "-");
 
@@ -120,8 +124,8 @@ int run(int64_t triangles) {
   auto la = during(**bystander, created, 50);
   auto c = created.get();
   const bool ok = c.isOk() && c->has_ack();
-  report("(a) create the large mesh", la, std::chrono::duration<double>(Clock::now() - t0).count(), server->pid(),
-         ok ? "created" : (c.isOk() ? c->DebugString() : c.status().message()));
+  report("(a) create the large mesh", la, std::chrono::duration<double>(Clock::now() - t0).count(),
+         server->pid(), ok ? "created" : (c.isOk() ? c->DebugString() : c.status().message()));
   if (!ok) return 1;
   const uint64_t doc = c->ack().document_id();
   if (!bulk.call(testing::openDocument(doc), 300)->has_ack()) return 1;
@@ -142,8 +146,10 @@ int run(int64_t triangles) {
   });
   auto lb = during(**bystander, subscribed, 50);
   auto sb = subscribed.get();
-  report("(b) subscribe a large profile", lb, std::chrono::duration<double>(Clock::now() - t0).count(), server->pid(),
-         sb.isOk() && sb->has_ack() ? "snapshot received" : (sb.isOk() ? sb->ShortDebugString() : sb.status().message()));
+  report("(b) subscribe a large profile", lb, std::chrono::duration<double>(Clock::now() - t0).count(),
+         server->pid(),
+         sb.isOk() && sb->has_ack() ? "snapshot received"
+                                    : (sb.isOk() ? sb->ShortDebugString() : sb.status().message()));
   wire::ClientMessage unsubscribe;  // drops the large view (its last subscriber)
   unsubscribe.mutable_unsubscribe()->set_document_id(doc);
   (void)bulk.call(unsubscribe, 300);
@@ -171,7 +177,8 @@ int run(int64_t triangles) {
   std::printf("resident memory below 200 MiB %.1f s after the bulk client left (or gave up after 120 s)\n",
               std::chrono::duration<double>(Clock::now() - closed).count());
   report("(after) bulk client gone", (*bystander)->run(20).value(), 0, server->pid(), "-");
-  if (Status acked = (*bystander)->awaitAcks(); !acked.isOk()) std::fprintf(stderr, "bystander: %s\n", acked.message().c_str());
+  if (Status acked = (*bystander)->awaitAcks(); !acked.isOk())
+    std::fprintf(stderr, "bystander: %s\n", acked.message().c_str());
   server->stop();
   return 0;
 }

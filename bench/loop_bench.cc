@@ -13,8 +13,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "bench/ratio_reporter.h"
 #include "bench/bench_mesh.h"
+#include "bench/ratio_reporter.h"
 #include "core/loop/limit.h"
 #include "core/loop/loop_refiner.h"
 #include "core/mesh/sharpness.h"
@@ -46,7 +46,8 @@ Input& input() {
 }
 
 std::unique_ptr<Far::TopologyRefiner> osdRefiner(int level, bool fullTopology, bool tagged = false) {
-  return oracle::createOsdRefiner(tagged ? *input().osdTagged : *input().osd, LoopOptions{}, level, fullTopology);
+  return oracle::createOsdRefiner(tagged ? *input().osdTagged : *input().osd, LoopOptions{}, level,
+                                  fullTopology);
 }
 
 // Refine: the finest level gets faces only (OpenSubdiv's default).
@@ -80,7 +81,8 @@ void refineOpenSubdiv(benchmark::State& state) {
 template <bool kTagged>
 void limitTessera(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
-  auto refiner = LoopRefiner::create(kTagged ? input().tagged : input().topology, LoopOptions{}, {.levels = level});
+  auto refiner =
+      LoopRefiner::create(kTagged ? input().tagged : input().topology, LoopOptions{}, {.levels = level});
   auto points = refiner->refinePoints(input().points);
   std::vector<Vec3> positions(points.size()), normals(points.size());
   for (auto _ : state) {
@@ -139,14 +141,23 @@ void limitBfr(benchmark::State& state) {
 }
 
 BENCHMARK(refineTessera<false>)->Name("Refine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
-BENCHMARK(refineOpenSubdiv<false>)->Name("Refine/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv<false>)
+    ->Name("Refine/OpenSubdiv")
+    ->DenseRange(1, 4)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(refineTessera<true>)->Name("RefineFull/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
-BENCHMARK(refineOpenSubdiv<true>)->Name("RefineFull/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv<true>)
+    ->Name("RefineFull/OpenSubdiv")
+    ->DenseRange(1, 4)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(limitTessera<false>)->Name("Limit/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitOpenSubdiv<false>)->Name("Limit/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitBfr<false>)->Name("Limit/Bfr")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitTessera<true>)->Name("LimitTagged/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
-BENCHMARK(limitOpenSubdiv<true>)->Name("LimitTagged/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(limitOpenSubdiv<true>)
+    ->Name("LimitTagged/OpenSubdiv")
+    ->DenseRange(1, 4)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(limitBfr<true>)->Name("LimitTagged/Bfr")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
 
 }  // namespace
@@ -165,8 +176,10 @@ int main(int argc, char** argv) {
     const Level& level0 = base->level(0);
     for (Index e = 0; e < level0.numEdges(); ++e) {
       const auto& ev = level0.edgeVertices[e];
-      if (e % 13 == 0) in.tagged.creases.push_back({ev[0], ev[1], kSharpnessInfinite});
-      else if (e % 17 == 0) in.tagged.creases.push_back({ev[0], ev[1], 2.5f});
+      if (e % 13 == 0)
+        in.tagged.creases.push_back({ev[0], ev[1], kSharpnessInfinite});
+      else if (e % 17 == 0)
+        in.tagged.creases.push_back({ev[0], ev[1], 2.5f});
     }
   }
   in.osdTagged = std::make_unique<oracle::OsdInput>(in.tagged);

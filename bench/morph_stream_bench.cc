@@ -51,7 +51,9 @@ constexpr uint32_t kBase = 1, kMax = 3;
 constexpr double kAngle = 10;
 constexpr int kDocumentLevel = 3;
 
-double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+double seconds(Clock::duration d) {
+  return std::chrono::duration<double>(d).count();
+}
 
 // Key 1: the mesh bent about its box's long axis (not affine, so every
 // region moves differently).
@@ -105,8 +107,8 @@ struct PlayResult {
 
 // One viewer playing `frames` frames in mode (a) or (b); bytes are the
 // payloads of the frame messages (snapshots, or MorphControl).
-PlayResult play(const testing::ServerProcess& server, const std::string& token, uint64_t doc, int frames, bool coarse,
-                int offset) {
+PlayResult play(const testing::ServerProcess& server, const std::string& token, uint64_t doc, int frames,
+                bool coarse, int offset) {
   PlayResult r;
   auto s = Session::connect(server.session("viewer", token));
   if (!s.isOk()) return {.error = s.status().message()};
@@ -117,11 +119,13 @@ PlayResult play(const testing::ServerProcess& server, const std::string& token, 
     const double t = static_cast<double>((k + offset) % frames) / (frames - 1);
     if (coarse) {
       auto reply = (*s)->call(controlAt(doc, t, false), 60);
-      if (!reply.isOk() || !reply->has_morph_control()) return {.error = "no morph control at t " + std::to_string(t)};
+      if (!reply.isOk() || !reply->has_morph_control())
+        return {.error = "no morph control at t " + std::to_string(t)};
       r.bytes += reply->ByteSizeLong();
     } else {
       auto ack = (*s)->call(subscribeAt(doc, t), 60);
-      if (!ack.isOk() || !ack->has_ack()) return {.error = "subscribe at t " + std::to_string(t) + " refused"};
+      if (!ack.isOk() || !ack->has_ack())
+        return {.error = "subscribe at t " + std::to_string(t) + " refused"};
       for (bool last = false; !last;) {
         auto m = (*s)->receive(60);
         if (!m.isOk()) return {.error = m.status().message()};
@@ -147,9 +151,11 @@ void report(const char* mode, std::vector<PlayResult>& results, double wall) {
     frames += r.frames;
   }
   std::sort(fps.begin(), fps.end());
-  std::printf("%-24s %10.0f B/frame  %6.2f fps/viewer (median)  %6.2f (slowest)  %8.1f frames/s in all  %6.1f s wall\n",
-              mode, frames ? static_cast<double>(bytes) / frames : 0.0, fps[fps.size() / 2], fps.front(),
-              frames / wall, wall);
+  std::printf(
+      "%-24s %10.0f B/frame  %6.2f fps/viewer (median)  %6.2f (slowest)  %8.1f frames/s in all  %6.1f s "
+      "wall\n",
+      mode, frames ? static_cast<double>(bytes) / frames : 0.0, fps[fps.size() / 2], fps.front(),
+      frames / wall, wall);
 }
 
 int run(const std::string& meshPath, int viewers, int frames, const std::string& key1Path) {
@@ -178,9 +184,11 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
   }
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   if (!admin.isOk()) return 2;
-  auto created = (*admin)->call(testing::createDocument("morph", objOf(*mesh, points0), "", kDocumentLevel), 120);
+  auto created =
+      (*admin)->call(testing::createDocument("morph", objOf(*mesh, points0), "", kDocumentLevel), 120);
   if (!created.isOk() || !created->has_ack()) {
-    std::fprintf(stderr, "create: %s\n", created.isOk() ? created->DebugString().c_str() : created.status().message().c_str());
+    std::fprintf(stderr, "create: %s\n",
+                 created.isOk() ? created->DebugString().c_str() : created.status().message().c_str());
     return 2;
   }
   const uint64_t doc = created->ack().document_id();
@@ -191,7 +199,8 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
   add.mutable_add_morph_key()->set_mesh_format(wire::MESH_FORMAT_OBJ);
   auto added = (*admin)->call(add, 120);
   if (!added.isOk() || !added->has_ack()) {
-    std::fprintf(stderr, "add key: %s\n", added.isOk() ? added->DebugString().c_str() : added.status().message().c_str());
+    std::fprintf(stderr, "add key: %s\n",
+                 added.isOk() ? added->DebugString().c_str() : added.status().message().c_str());
     return 2;
   }
   // Level-2 detail on both keys: what the coarse stream leaves out.
@@ -207,9 +216,11 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
     }
   }
   (*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "morph-viewer-token-0123456789"), 30);
-  std::printf("document: %s, %d base triangles, key 1 %s, %d level-2 edits on the two keys; profile base %u max %u "
-              "angle %g; %d viewers x %d frames\n",
-              meshPath.c_str(), mesh->numFaces(), key1Path.empty() ? "bent" : key1Path.c_str(), edits, kBase, kMax, kAngle, viewers, frames);
+  std::printf(
+      "document: %s, %d base triangles, key 1 %s, %d level-2 edits on the two keys; profile base %u max %u "
+      "angle %g; %d viewers x %d frames\n",
+      meshPath.c_str(), mesh->numFaces(), key1Path.empty() ? "bent" : key1Path.c_str(), edits, kBase, kMax,
+      kAngle, viewers, frames);
 
   for (bool coarse : {false, true}) {
     const double encodedBefore = testing::serverStat(**admin, "regions_encoded");
@@ -223,7 +234,8 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
     }
     for (auto& t : threads) t.join();
     report(coarse ? "(b) control points at t" : "(a) regions at t", results, seconds(Clock::now() - start));
-    std::printf("%-24s %10.0f regions encoded by the server\n", "", testing::serverStat(**admin, "regions_encoded") - encodedBefore);
+    std::printf("%-24s %10.0f regions encoded by the server\n", "",
+                testing::serverStat(**admin, "regions_encoded") - encodedBefore);
   }
 
   // The visual difference of (b) against (a).
@@ -247,12 +259,13 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
                                     static_cast<int>(c.triangles(i + 2))});
     }
     for (int i = 0; i < c.crease_sharpness_size(); ++i) {
-      topology.creases.push_back({static_cast<int>(c.crease_vertices(2 * i)), static_cast<int>(c.crease_vertices(2 * i + 1)),
-                                  c.crease_sharpness(i)});
+      topology.creases.push_back({static_cast<int>(c.crease_vertices(2 * i)),
+                                  static_cast<int>(c.crease_vertices(2 * i + 1)), c.crease_sharpness(i)});
     }
     topology.vertexSharpness.assign(c.vertex_sharpness().begin(), c.vertex_sharpness().end());
     std::vector<Vec3> points;
-    for (int i = 0; i + 2 < c.points_size(); i += 3) points.push_back(Vec3(c.points(i), c.points(i + 1), c.points(i + 2)));
+    for (int i = 0; i + 2 < c.points_size(); i += 3)
+      points.push_back(Vec3(c.points(i), c.points(i + 1), c.points(i + 2)));
     // What a viewer of (b) computes per frame: the limit surface at the
     // profile's max level from the control mesh.
     const auto refineStart = Clock::now();
@@ -280,10 +293,11 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
         ++count;
       }
     }
-    std::printf("t = %.2f: (b) against (a) over %lld displayed vertices: max %.3e, RMS %.3e of the diagonal %.4g; "
-                "(b) refined to level %u on the client in %.0f ms (%zu triangles)\n",
-                t, static_cast<long long>(count), worst / diagonal, std::sqrt(squares / count) / diagonal, diagonal, kMax,
-                refineMs, limit->triangles.size());
+    std::printf(
+        "t = %.2f: (b) against (a) over %lld displayed vertices: max %.3e, RMS %.3e of the diagonal %.4g; "
+        "(b) refined to level %u on the client in %.0f ms (%zu triangles)\n",
+        t, static_cast<long long>(count), worst / diagonal, std::sqrt(squares / count) / diagonal, diagonal,
+        kMax, refineMs, limit->triangles.size());
   }
   server->stop();
   return 0;

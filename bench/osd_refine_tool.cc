@@ -62,8 +62,10 @@ void readMesh(const char* path, std::vector<Point>& points, std::vector<int>& in
     while (std::fgets(line, sizeof line, in)) {
       Point p;
       int a = 0, b = 0, c = 0;
-      if (std::sscanf(line, "v %lf %lf %lf", &p.x, &p.y, &p.z) == 3) points.push_back(p);
-      else if (std::sscanf(line, "f %d %d %d", &a, &b, &c) == 3) indices.insert(indices.end(), {a - 1, b - 1, c - 1});
+      if (std::sscanf(line, "v %lf %lf %lf", &p.x, &p.y, &p.z) == 3)
+        points.push_back(p);
+      else if (std::sscanf(line, "f %d %d %d", &a, &b, &c) == 3)
+        indices.insert(indices.end(), {a - 1, b - 1, c - 1});
     }
   }
   std::fclose(in);
@@ -110,7 +112,8 @@ Surface refine(const std::vector<Point>& base, const std::vector<int>& indices, 
   s.normals.assign(s.points.size(), Point());
   for (const auto& t : s.triangles) {
     const Point &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
-    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y,
+                 vz = c.z - a.z;
     const Point n{uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
     for (int v : t) s.normals[v].AddWithWeight(n, 1.0f);
   }
@@ -142,11 +145,12 @@ void writeOff(std::FILE* out, const Surface& s) {
 }
 
 void writePly(std::FILE* out, const Surface& s) {
-  std::fprintf(out,
-               "ply\nformat binary_little_endian 1.0\nelement vertex %zu\nproperty float x\nproperty float y\n"
-               "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nelement face %zu\n"
-               "property list uchar int vertex_indices\nend_header\n",
-               s.points.size(), s.triangles.size());
+  std::fprintf(
+      out,
+      "ply\nformat binary_little_endian 1.0\nelement vertex %zu\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\nelement face %zu\n"
+      "property list uchar int vertex_indices\nend_header\n",
+      s.points.size(), s.triangles.size());
   for (size_t i = 0; i < s.points.size(); ++i) putFloats(out, s.points[i]), putFloats(out, s.normals[i]);
   for (const auto& t : s.triangles) {
     const unsigned char three = 3;
@@ -162,7 +166,8 @@ void writeStl(std::FILE* out, const Surface& s) {
   std::fwrite(&count, 4, 1, out);
   for (const auto& t : s.triangles) {
     const Point &a = s.points[t[0]], &b = s.points[t[1]], &c = s.points[t[2]];
-    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y,
+                 vz = c.z - a.z;
     Point n{uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
     const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
     if (length > 0) n = {n.x / length, n.y / length, n.z / length};
@@ -191,10 +196,11 @@ void writeGlb(std::FILE* out, const Surface& s) {
       "\"min\":[%.9g,%.9g,%.9g],\"max\":[%.9g,%.9g,%.9g]},"
       "{\"bufferView\":1,\"componentType\":5126,\"count\":%zu,\"type\":\"VEC3\"},"
       "{\"bufferView\":2,\"componentType\":5125,\"count\":%zu,\"type\":\"SCALAR\"}],"
-      "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},\"indices\":2,\"mode\":4}]}],"
+      "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},\"indices\":2,\"mode\":4}]}"
+      "],"
       "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
-      binBytes, vertexBytes, vertexBytes, vertexBytes, 2 * vertexBytes, indexBytes, n, lo[0], lo[1], lo[2], hi[0],
-      hi[1], hi[2], n, indexCount);
+      binBytes, vertexBytes, vertexBytes, vertexBytes, 2 * vertexBytes, indexBytes, n, lo[0], lo[1], lo[2],
+      hi[0], hi[1], hi[2], n, indexCount);
   while (length % 4) json[length++] = ' ';
   const uint32_t header[3] = {0x46546C67, 2, static_cast<uint32_t>(12 + 8 + length + 8 + binBytes)};
   const uint32_t jsonChunk[2] = {static_cast<uint32_t>(length), 0x4E4F534A};
@@ -223,12 +229,18 @@ int main(int argc, char** argv) {
   const std::string ext = output.substr(output.find_last_of('.') + 1);
   std::FILE* out = std::fopen(argv[3], "wb");
   if (!out) die("cannot open for writing", argv[3]);
-  if (ext == "obj") writeObj(out, surface);
-  else if (ext == "off") writeOff(out, surface);
-  else if (ext == "ply") writePly(out, surface);
-  else if (ext == "stl") writeStl(out, surface);
-  else if (ext == "glb") writeGlb(out, surface);
-  else die("unknown output extension", argv[3]);
+  if (ext == "obj")
+    writeObj(out, surface);
+  else if (ext == "off")
+    writeOff(out, surface);
+  else if (ext == "ply")
+    writePly(out, surface);
+  else if (ext == "stl")
+    writeStl(out, surface);
+  else if (ext == "glb")
+    writeGlb(out, surface);
+  else
+    die("unknown output extension", argv[3]);
   if (std::fclose(out) != 0) die("write failed", argv[3]);
   std::printf("wrote %s: %zu vertices, %zu triangles (level %s)\n", argv[3], surface.points.size(),
               surface.triangles.size(), argv[2]);

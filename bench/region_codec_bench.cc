@@ -20,8 +20,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include "core/hierarchy/ids.h"
 #include "bench/bench_mesh.h"
+#include "core/hierarchy/ids.h"
 #include "core/loop/loop_refiner.h"
 #include "core/tessellation/region_codec.h"
 
@@ -114,7 +114,9 @@ void decode(benchmark::State& state) {
 
 // With --benchmark_repetitions, the minimum is the figure least disturbed by
 // other work on a shared machine; the median is reported beside it.
-double minimum(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+double minimum(const std::vector<double>& v) {
+  return *std::min_element(v.begin(), v.end());
+}
 
 BENCHMARK(encode)
     ->Name("Encode")
@@ -151,11 +153,12 @@ void reportQuantizationError(const Vec3& lo, const Vec3& hi) {
                                          dot(out.normals[i], in.surface.normals[j])));
   }
   const double diagonal = (hi - lo).norm();
-  std::printf("whole surface, %zu triangles, level %d: %zu bytes; %d position bits, max position error %.3g = %.3g "
-              "of the diagonal (bound %.3g), max normal error %.3f degrees (%d bits)\n",
-              in.surface.triangles.size(), kDefaultRegionCompressionLevel, encoded->size(), in.header.grid.positionBits,
-              position, position / diagonal, in.header.grid.maxPositionError() / diagonal, normal * 180.0 / M_PI,
-              in.header.grid.normalBits);
+  std::printf(
+      "whole surface, %zu triangles, level %d: %zu bytes; %d position bits, max position error %.3g = %.3g "
+      "of the diagonal (bound %.3g), max normal error %.3f degrees (%d bits)\n",
+      in.surface.triangles.size(), kDefaultRegionCompressionLevel, encoded->size(),
+      in.header.grid.positionBits, position, position / diagonal,
+      in.header.grid.maxPositionError() / diagonal, normal * 180.0 / M_PI, in.header.grid.normalBits);
 }
 
 }  // namespace
@@ -176,7 +179,8 @@ int main(int argc, char** argv) {
   in.surface.triangles = limit->triangles;
   // Crease copies (appended after the level's vertices) pick the id of
   // nothing in particular; fandisk without tags has none.
-  for (size_t i = 0; i < limit->positions.size(); ++i) in.surface.vertexIds.push_back(VertexId(kLevel, i).packed());
+  for (size_t i = 0; i < limit->positions.size(); ++i)
+    in.surface.vertexIds.push_back(VertexId(kLevel, i).packed());
   Vec3 lo = limit->positions[0], hi = lo;
   for (const Vec3& p : limit->positions) lo.minimize(p), hi.maximize(p);
   auto grid = gridFor(lo, hi);
@@ -188,8 +192,7 @@ int main(int argc, char** argv) {
   in.header.regionId = 1;
   in.header.documentVersion = 1;
   for (int size : kRegionSizes) in.regions[size] = patch(in.surface, in.surface.triangles.size() / 3, size);
-  std::printf("limit surface at level %d, %zu triangles\n", kLevel,
-              in.surface.triangles.size());
+  std::printf("limit surface at level %d, %zu triangles\n", kLevel, in.surface.triangles.size());
   reportQuantizationError(lo, hi);
 
   benchmark::Initialize(&argc, argv);

@@ -41,7 +41,8 @@ Input& input() {
 }
 
 std::unique_ptr<Far::TopologyRefiner> osdRefiner(int level, bool fullTopology) {
-  return oracle::createOsdQuadRefiner(*input().osd, QuadScheme::kCatmullClark, CreaseOptions{}, level, fullTopology);
+  return oracle::createOsdQuadRefiner(*input().osd, QuadScheme::kCatmullClark, CreaseOptions{}, level,
+                                      fullTopology);
 }
 
 // Refine: the finest level gets faces only (OpenSubdiv's default).
@@ -66,7 +67,8 @@ void refineOpenSubdiv(benchmark::State& state) {
 
 void limitTessera(benchmark::State& state) {
   const int level = static_cast<int>(state.range(0));
-  auto refiner = QuadRefiner::create(input().mesh.topology, QuadScheme::kCatmullClark, CreaseOptions{}, {.levels = level});
+  auto refiner = QuadRefiner::create(input().mesh.topology, QuadScheme::kCatmullClark, CreaseOptions{},
+                                     {.levels = level});
   auto points = refiner->refinePoints(input().mesh.points);
   std::vector<Vec3> positions(points.size()), normals(points.size());
   for (auto _ : state) {
@@ -90,7 +92,10 @@ void limitOpenSubdiv(benchmark::State& state) {
 }
 
 BENCHMARK(refineTessera)->Name("CatmarkRefine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
-BENCHMARK(refineOpenSubdiv)->Name("CatmarkRefine/OpenSubdiv")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(refineOpenSubdiv)
+    ->Name("CatmarkRefine/OpenSubdiv")
+    ->DenseRange(1, 4)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(limitTessera)->Name("CatmarkLimit/Tessera")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitOpenSubdiv)->Name("CatmarkLimit/OpenSubdiv")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
 

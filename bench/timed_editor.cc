@@ -4,7 +4,8 @@
 // version and the wall-clock time (Unix ms, system_clock) just before it
 // was sent, so that a browser on the same machine can time edit-to-pixels
 // against its own Date.now().
-//   tessera_timed_editor --port P --token T --document D --edits 50 --interval-ms 200 [--vertex-level 1 --vertex-index 2]
+//   tessera_timed_editor --port P --token T --document D --edits 50 --interval-ms 200 [--vertex-level 1
+//   --vertex-index 2]
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -17,13 +18,15 @@
 namespace {
 
 double unixMs() {
-  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"tessera_timed_editor: timed offset edits, one line per acknowledged edit: VERSION SENT_UNIX_MS"};
+  CLI::App app{
+      "tessera_timed_editor: timed offset edits, one line per acknowledged edit: VERSION SENT_UNIX_MS"};
   int port = 7878, edits = 50, intervalMs = 200, level = 1;
   uint64_t document = 0, index = 2;
   std::string token;
@@ -36,8 +39,11 @@ int main(int argc, char** argv) {
   app.add_option("--vertex-index", index);
   CLI11_PARSE(app, argc, argv);
 
-  tessera::client::SessionOptions options{.host = "127.0.0.1", .port = static_cast<uint16_t>(port), .name = "timed-editor",
-                                          .token = token, .timeoutSeconds = 20};
+  tessera::client::SessionOptions options{.host = "127.0.0.1",
+                                          .port = static_cast<uint16_t>(port),
+                                          .name = "timed-editor",
+                                          .token = token,
+                                          .timeoutSeconds = 20};
   auto session = tessera::client::Session::connect(options);
   if (!session.isOk()) {
     std::fprintf(stderr, "connect: %s\n", session.status().message().c_str());
@@ -47,7 +53,8 @@ int main(int argc, char** argv) {
   open.mutable_open_document()->set_document_id(document);
   auto opened = (*session)->call(open, 20);
   if (!opened.isOk() || !opened->has_ack()) {
-    std::fprintf(stderr, "open: %s\n", opened.isOk() ? opened->DebugString().c_str() : opened.status().message().c_str());
+    std::fprintf(stderr, "open: %s\n",
+                 opened.isOk() ? opened->DebugString().c_str() : opened.status().message().c_str());
     return 1;
   }
   const uint64_t vertex = tessera::VertexId(level, index).packed();
@@ -61,7 +68,8 @@ int main(int argc, char** argv) {
     const double sent = unixMs();
     auto reply = (*session)->call(m, 20);
     if (!reply.isOk() || !reply->has_ack()) {
-      std::fprintf(stderr, "edit %d: %s\n", k, reply.isOk() ? reply->DebugString().c_str() : reply.status().message().c_str());
+      std::fprintf(stderr, "edit %d: %s\n", k,
+                   reply.isOk() ? reply->DebugString().c_str() : reply.status().message().c_str());
       return 1;
     }
     std::printf("%llu %.3f\n", static_cast<unsigned long long>(reply->ack().version()), sent);

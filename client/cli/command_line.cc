@@ -52,7 +52,9 @@ CLI::Validator oneOf(const std::vector<std::string>& words) {
       "");
 }
 
-int fail(const std::string& command, const Status& status) { return fail(command, status.toString()); }
+int fail(const std::string& command, const Status& status) {
+  return fail(command, status.toString());
+}
 
 int fail(const std::string& command, const std::string& message) {
   std::fprintf(stderr, "tessera %s: %s\n", command.c_str(), message.c_str());
@@ -60,16 +62,17 @@ int fail(const std::string& command, const std::string& message) {
 }
 
 int usage(const std::string& command, const std::string& message) {
-  std::fprintf(stderr, "tessera %s: %s\nRun 'tessera %s --help' for its options.\n", command.c_str(), message.c_str(),
-               command.c_str());
+  std::fprintf(stderr, "tessera %s: %s\nRun 'tessera %s --help' for its options.\n", command.c_str(),
+               message.c_str(), command.c_str());
   return kExitUsage;
 }
 
 Status checkOutputIsNotInput(const std::string& input, const std::string& output) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  const bool same = fs::exists(output, ec) ? fs::equivalent(input, output, ec)
-                                           : fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec);
+  const bool same = fs::exists(output, ec)
+                        ? fs::equivalent(input, output, ec)
+                        : fs::weakly_canonical(input, ec) == fs::weakly_canonical(output, ec);
   if (same && !ec) {
     return invalidArgument("-o " + output + " is the input " + input +
                            "; writing it would destroy the input: choose another output file");

@@ -9,8 +9,8 @@
 #include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
-#include "core/io/mesh_export.h"
 #include "core/document/edit_script.h"
+#include "core/io/mesh_export.h"
 #include "core/tessellation/tessellation.h"
 
 namespace tessera::cli {
@@ -83,12 +83,15 @@ int runInfo(const std::string& path) {
   if (!doc.isOk()) return fail("doc info", doc.status());
   const auto& o = doc->options();
   std::printf("document        %s\n", path.c_str());
-  std::printf("base            %s vertices, %s edges, %s faces\n", formatCount(doc->baseTopology().numVertices).c_str(),
-              formatCount(doc->counts().edges(0)).c_str(), formatCount(doc->baseTopology().triangles.size()).c_str());
+  std::printf("base            %s vertices, %s edges, %s faces\n",
+              formatCount(doc->baseTopology().numVertices).c_str(),
+              formatCount(doc->counts().edges(0)).c_str(),
+              formatCount(doc->baseTopology().triangles.size()).c_str());
   std::printf("scheme          loop, %s creases, %s boundary\n",
               o.loop.creaseMethod == CreaseMethod::kUniform ? "uniform" : "chaikin",
               o.loop.boundary == BoundaryInterpolation::kEdgeOnly ? "edge-only" : "edge-and-corner");
-  std::printf("max level       %d (%s faces there)\n", o.maxLevel, formatCount(doc->counts().faces(o.maxLevel)).c_str());
+  std::printf("max level       %d (%s faces there)\n", o.maxLevel,
+              formatCount(doc->counts().faces(o.maxLevel)).c_str());
   int active = 0;
   std::map<int, int> perLevel;
   for (const Edit& e : doc->edits()) {
@@ -120,7 +123,8 @@ int runInfo(const std::string& path) {
 }
 
 int runAdaptiveExport(const ExportArgs& args) {
-  const LodProfile profile{.baseLevel = args.baseLevel, .maxLevel = args.maxLevel, .angleThresholdDegrees = args.angle};
+  const LodProfile profile{
+      .baseLevel = args.baseLevel, .maxLevel = args.maxLevel, .angleThresholdDegrees = args.angle};
   if (Status valid = profile.check(); !valid.isOk()) return usage("doc export", valid.message());
   auto doc = loadDocument(args.document);
   if (!doc.isOk()) return fail("doc export", doc.status());
@@ -191,20 +195,30 @@ void addExport(CLI::App& doc, Action& action) {
       "--base-level, --max-level, --angle (defaults 2, 5, 10 degrees).");
   auto args = std::make_shared<ExportArgs>();
   sub->add_option("DOC", args->document, "the document file")->required();
-  sub->add_option("-o,--output", args->output, ".obj, .ply or .glb (chosen by extension)")->required()->type_name("OUT");
-  CLI::Option* level = sub->add_option("--level", args->level, "uniform level to write")->check(wholeNumber());
-  CLI::Option* limit = sub->add_flag("--limit", args->limit, "limit positions and normals instead of control points");
+  sub->add_option("-o,--output", args->output, ".obj, .ply or .glb (chosen by extension)")
+      ->required()
+      ->type_name("OUT");
+  CLI::Option* level =
+      sub->add_option("--level", args->level, "uniform level to write")->check(wholeNumber());
+  CLI::Option* limit =
+      sub->add_flag("--limit", args->limit, "limit positions and normals instead of control points");
   sub->add_flag("--draco", args->draco, "GLB only: compress with KHR_draco_mesh_compression");
-  CLI::Option* adaptive =
-      sub->add_flag("--adaptive", args->adaptive, "the adaptive, crack-free limit tessellation instead of a level");
+  CLI::Option* adaptive = sub->add_flag("--adaptive", args->adaptive,
+                                        "the adaptive, crack-free limit tessellation instead of a level");
   adaptive->excludes(level)->excludes(limit);
   const char* group = "Adaptive (with --adaptive)";
   sub->add_option("--base-level", args->baseLevel, "every face at least this fine (default 2)")
-      ->check(wholeNumber())->needs(adaptive)->group(group);
+      ->check(wholeNumber())
+      ->needs(adaptive)
+      ->group(group);
   sub->add_option("--max-level", args->maxLevel, "never finer than this (default 5)")
-      ->check(wholeNumber())->needs(adaptive)->group(group);
+      ->check(wholeNumber())
+      ->needs(adaptive)
+      ->group(group);
   sub->add_option("--angle", args->angle, "refine where limit normals differ more (degrees, default 10)")
-      ->needs(adaptive)->type_name("DEG")->group(group);
+      ->needs(adaptive)
+      ->type_name("DEG")
+      ->group(group);
   onChosen(*sub, action, [args] { return runExport(*args); });
 }
 

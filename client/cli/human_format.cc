@@ -9,7 +9,9 @@ namespace tessera::cli {
 
 namespace {
 
-bool contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const char* part) {
+  return text.find(part) != std::string::npos;
+}
 
 bool endsWith(const std::string& text, const std::string& end) {
   return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
@@ -27,7 +29,9 @@ std::string grouped(const std::string& digits) {
 
 }  // namespace
 
-std::string formatCount(uint64_t value) { return grouped(std::to_string(value)); }
+std::string formatCount(uint64_t value) {
+  return grouped(std::to_string(value));
+}
 
 std::string formatDecimal(double value, int decimals) {
   if (!std::isfinite(value)) return std::isnan(value) ? "nan" : (value > 0 ? "inf" : "-inf");
@@ -60,7 +64,8 @@ std::string formatDuration(double seconds) {
   if (seconds < 60) {
     std::snprintf(buffer, sizeof buffer, "%.1f s", seconds);
   } else if (seconds < 3600) {
-    std::snprintf(buffer, sizeof buffer, "%d min %02d s", static_cast<int>(seconds / 60), static_cast<int>(seconds) % 60);
+    std::snprintf(buffer, sizeof buffer, "%d min %02d s", static_cast<int>(seconds / 60),
+                  static_cast<int>(seconds) % 60);
   } else if (seconds < 86400) {
     std::snprintf(buffer, sizeof buffer, "%d h %02d min", static_cast<int>(seconds / 3600),
                   static_cast<int>(seconds / 60) % 60);
@@ -80,7 +85,8 @@ std::string formatStat(const std::string& name, double value) {
   if (contains(name, "per_second")) return formatDecimal(value, 2) + "/s";
   if (contains(name, "average") || contains(name, "_per_")) return formatDecimal(value, 2);
   if (value == std::floor(value) && std::fabs(value) < 9.0e15) {
-    return value < 0 ? "-" + formatCount(static_cast<uint64_t>(-value)) : formatCount(static_cast<uint64_t>(value));
+    return value < 0 ? "-" + formatCount(static_cast<uint64_t>(-value))
+                     : formatCount(static_cast<uint64_t>(value));
   }
   return formatDecimal(value, 2);
 }

@@ -23,7 +23,8 @@ void addMeshInputOptions(CLI::App& app, MeshInputArgs& args) {
       ->type_name("DEG");
   // The command as people type it ("doc new"), for notes on stderr.
   const CLI::App* parent = app.get_parent();
-  args.command = (parent != nullptr && parent->get_parent() != nullptr ? parent->get_name() + " " : "") + app.get_name();
+  args.command =
+      (parent != nullptr && parent->get_parent() != nullptr ? parent->get_name() + " " : "") + app.get_name();
 }
 
 void addSchemeOptions(CLI::App& app, SchemeArgs& args) {
@@ -68,9 +69,11 @@ Expected<BaseMesh> loadMesh(const MeshInputArgs& args) {
   const ImportOptions options = importOptions(args);
   TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshWithReport(args.input, options));
   // Tags name the file's vertices: renumbered like the mesh.
-  if (!args.tags.empty()) TESSERA_RETURN_IF_ERROR(applyTagFile(args.tags, imported.mesh, imported.report.renumbering));
+  if (!args.tags.empty())
+    TESSERA_RETURN_IF_ERROR(applyTagFile(args.tags, imported.mesh, imported.report.renumbering));
   const std::string note = describeImport(imported.report, options);
-  if (!note.empty()) std::fprintf(stderr, "tessera %s: %s: %s\n", args.command.c_str(), args.input.c_str(), note.c_str());
+  if (!note.empty())
+    std::fprintf(stderr, "tessera %s: %s: %s\n", args.command.c_str(), args.input.c_str(), note.c_str());
   return std::move(imported.mesh);
 }
 

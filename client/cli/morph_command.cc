@@ -71,14 +71,16 @@ Expected<std::vector<InterpolatingLine>> splitTags(const std::string& text, cons
   return out;
 }
 
-Expected<Document> keyDocument(const std::string& path, const std::vector<FeatureTag>& tags, const std::string& tagSource,
+Expected<Document> keyDocument(const std::string& path, const std::vector<FeatureTag>& tags,
+                               const std::string& tagSource,
                                const std::vector<InterpolatingLine>& interpolating, int level) {
   TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, importMesh(path));
   if (!tags.empty()) TESSERA_RETURN_IF_ERROR(applyTags(tags, tagSource, mesh));
   TESSERA_ASSIGN_OR_RETURN(Document doc, Document::create(mesh, {.maxLevel = level}));
   for (const InterpolatingLine& t : interpolating) {
     auto made = doc.setInterpolation(VertexId(0, t.vertex), true, t.tension);
-    if (!made.isOk()) return made.status().withContext(tagSource + ":" + std::to_string(t.line) + " (" + path + ")");
+    if (!made.isOk())
+      return made.status().withContext(tagSource + ":" + std::to_string(t.line) + " (" + path + ")");
   }
   return doc;
 }
@@ -111,7 +113,8 @@ Image strip(const std::vector<Image>& frames) {
 int runMorph(const MorphArgs& args) {
   const char* kName = "morph";
   if (args.frames < 1) return usage(kName, "--frames: at least 1");
-  if (args.level < 1 || args.level > 6) return usage(kName, "--level: 1 to 6 (interpolating vertices need a finer level)");
+  if (args.level < 1 || args.level > 6)
+    return usage(kName, "--level: 1 to 6 (interpolating vertices need a finer level)");
   auto a = readPng(args.from);
   if (!a.isOk()) return fail(kName, a.status());
   auto b = readPng(args.to);
@@ -135,7 +138,8 @@ int runMorph(const MorphArgs& args) {
   if (!key0.isOk()) return fail(kName, key0.status());
   auto key1 = keyDocument(args.meshTo, tags, args.tags, interpolating, args.level);
   if (!key1.isOk()) return fail(kName, key1.status());
-  if (Status same = checkSameConnectivity(key0->baseTopology(), key1->baseTopology(), args.meshFrom, args.meshTo);
+  if (Status same =
+          checkSameConnectivity(key0->baseTopology(), key1->baseTopology(), args.meshFrom, args.meshTo);
       !same.isOk()) {
     return fail(kName, same);
   }
@@ -160,8 +164,8 @@ int runMorph(const MorphArgs& args) {
     if (folds.count > 0) {
       char where[64];
       std::snprintf(where, sizeof where, "%.4g", t);
-      return fail(kName, "frame " + std::to_string(k) + " (t = " + where + "): " + std::to_string(folds.count) +
-                             " of " + std::to_string(mesh->triangles.size()) +
+      return fail(kName, "frame " + std::to_string(k) + " (t = " + where + "): " +
+                             std::to_string(folds.count) + " of " + std::to_string(mesh->triangles.size()) +
                              " triangles of the level-" + std::to_string(args.level) +
                              " surface fold over (the first is triangle " + std::to_string(folds.first) +
                              "); the meshes do not give a valid warp. Move the vertices of " + args.meshTo +
@@ -188,19 +192,29 @@ void addMorphCommand(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand("morph", "morph two images through two 2D meshes (seed 004)");
   sub->footer(
       "Meshes: OBJ/OFF/PLY... in pixel coordinates of their image (x right, y down), one connectivity, holes "
-      "allowed.\nTags: crease/corner lines as in --tags elsewhere, and 'interpolate VERTEX [TENSION]' for base "
-      "vertices the surface passes through in both keys.\nFrames: DIR/frame_0000.png ...; outside the shape the two "
+      "allowed.\nTags: crease/corner lines as in --tags elsewhere, and 'interpolate VERTEX [TENSION]' for "
+      "base "
+      "vertices the surface passes through in both keys.\nFrames: DIR/frame_0000.png ...; outside the shape "
+      "the two "
       "images are cross-dissolved as they are.");
   auto args = std::make_shared<MorphArgs>();
   sub->add_option("--from", args->from, "the first image (PNG)")->required()->type_name("A.png");
   sub->add_option("--to", args->to, "the second image (PNG)")->required()->type_name("B.png");
-  sub->add_option("--mesh-from", args->meshFrom, "the mesh over the first image")->required()->type_name("MA");
-  sub->add_option("--mesh-to", args->meshTo, "the same mesh moved over the second image")->required()->type_name("MB");
-  sub->add_option("--tags", args->tags, "creases, corners and interpolating vertices of both meshes")->type_name("FILE");
+  sub->add_option("--mesh-from", args->meshFrom, "the mesh over the first image")
+      ->required()
+      ->type_name("MA");
+  sub->add_option("--mesh-to", args->meshTo, "the same mesh moved over the second image")
+      ->required()
+      ->type_name("MB");
+  sub->add_option("--tags", args->tags, "creases, corners and interpolating vertices of both meshes")
+      ->type_name("FILE");
   sub->add_option("--level", args->level, "subdivision level of the warp (default 2)")->check(wholeNumber());
-  sub->add_option("--frames", args->frames, "how many frames, t from 0 to 1")->required()->check(wholeNumber());
+  sub->add_option("--frames", args->frames, "how many frames, t from 0 to 1")
+      ->required()
+      ->check(wholeNumber());
   sub->add_option("-o,--output", args->output, "the directory for the frames")->required()->type_name("DIR");
-  sub->add_option("--strip", args->strip, "also write every frame side by side into one PNG")->type_name("FILE");
+  sub->add_option("--strip", args->strip, "also write every frame side by side into one PNG")
+      ->type_name("FILE");
   onChosen(*sub, action, [args] { return runMorph(*args); });
 }
 

@@ -36,8 +36,8 @@ Status writeSurface(const RefineArgs& args, const SurfaceMesh& surface) {
   exportOptions.draco = args.draco;
   TESSERA_RETURN_IF_ERROR(exportMesh(surface, args.output, exportOptions));
   std::printf("wrote %s: %s vertices, %s triangles (level %d%s)\n", args.output.c_str(),
-              formatCount(surface.positions.size()).c_str(), formatCount(surface.triangles.size()).c_str(), args.level,
-              args.limit ? ", limit surface" : "");
+              formatCount(surface.positions.size()).c_str(), formatCount(surface.triangles.size()).c_str(),
+              args.level, args.limit ? ", limit surface" : "");
   return Status::ok();
 }
 
@@ -47,10 +47,12 @@ int runOtherScheme(const RefineArgs& args) {
   const Scheme scheme = parseScheme(args.schemeName).value();  // checked by the option
   const std::string name = schemeName(scheme);
   if (!schemeHasCreases(scheme)) {
-    if (!args.mesh.tags.empty()) return usage("refine", "--tags: the " + name + " scheme has no sharp features");
+    if (!args.mesh.tags.empty())
+      return usage("refine", "--tags: the " + name + " scheme has no sharp features");
     if (!args.scheme.creaseMethod.empty() || !args.scheme.boundary.empty()) {
-      return usage("refine", std::string(args.scheme.creaseMethod.empty() ? "--boundary" : "--crease-method") +
-                                 ": the " + name + " scheme has no crease rules");
+      return usage("refine",
+                   std::string(args.scheme.creaseMethod.empty() ? "--boundary" : "--crease-method") +
+                       ": the " + name + " scheme has no crease rules");
     }
   }
   if (const std::string why = limitUnavailableReason(scheme); args.limit && !why.empty()) {
@@ -138,10 +140,13 @@ void addRefineCommand(CLI::App& app, Action& action) {
   refine->add_option("-o,--output", args->output, ".obj, .ply or .glb (chosen by extension)")
       ->required()
       ->type_name("OUT");
-  refine->add_flag("--limit", args->limit, "write limit positions and limit normals instead of control points");
+  refine->add_flag("--limit", args->limit,
+                   "write limit positions and limit normals instead of control points");
   refine->add_flag("--draco", args->draco, "GLB only: compress with KHR_draco_mesh_compression");
   addSchemeOptions(*refine, args->scheme);
-  refine->add_option("--scheme", args->schemeName, "loop (default), catmull-clark, bilinear, butterfly, sqrt3 or doo-sabin")
+  refine
+      ->add_option("--scheme", args->schemeName,
+                   "loop (default), catmull-clark, bilinear, butterfly, sqrt3 or doo-sabin")
       ->check(oneOf(schemes::schemeNames()))
       ->type_name("S");
   onChosen(*refine, action, [args, refine] {

@@ -22,12 +22,14 @@ int runList(const ConnectionArgs& connection) {
   auto reply = (*session)->call(m, 30);
   if (int rc = outcome("list", reply)) return rc;
   for (const auto& d : reply->document_list().documents()) {
-    std::printf("%llu\t%s\tversion %llu\n", static_cast<unsigned long long>(d.document_id()), d.name().c_str(),
-                static_cast<unsigned long long>(d.version()));
+    std::printf("%llu\t%s\tversion %llu\n", static_cast<unsigned long long>(d.document_id()),
+                d.name().c_str(), static_cast<unsigned long long>(d.version()));
   }
-  if (reply->document_list().documents_size() == 0 && connection.token.empty() && connection.tokenFile.empty()) {
-    std::fprintf(stderr, "tessera remote list: no documents: a session without a token sees none "
-                         "(give --token or --token-file)\n");
+  if (reply->document_list().documents_size() == 0 && connection.token.empty() &&
+      connection.tokenFile.empty()) {
+    std::fprintf(stderr,
+                 "tessera remote list: no documents: a session without a token sees none "
+                 "(give --token or --token-file)\n");
   }
   return 0;
 }
@@ -114,8 +116,9 @@ void addRemoteCommand(CLI::App& app, Action& action) {
   CLI::App* grant = remote->add_subcommand("grant", "let TOKEN act on a document, or on all of them (admin)");
   auto grantArgs = std::make_shared<GrantArgs>();
   grant->add_option("DOC", grantArgs->document, "a document id, or 'all'")->required();
-  grant->add_option("ROLE", grantArgs->role, "viewer, editor or admin")->required()->check(
-      oneOf({"viewer", "editor", "admin"}));
+  grant->add_option("ROLE", grantArgs->role, "viewer, editor or admin")
+      ->required()
+      ->check(oneOf({"viewer", "editor", "admin"}));
   grant->add_option("TOKEN", grantArgs->token, "the token to grant the role")->required();
   onChosen(*grant, action, [connection, grantArgs] { return runGrant(*connection, *grantArgs); });
 
@@ -125,7 +128,9 @@ void addRemoteCommand(CLI::App& app, Action& action) {
   CLI::App* exporter = remote->add_subcommand("export", "write a document's surface at a level as GLB");
   auto exportArgs = std::make_shared<ExportArgs>();
   exporter->add_option("DOC", exportArgs->document, "the document id")->required();
-  exporter->add_option("--level", exportArgs->level, "uniform level to write")->required()->check(wholeNumber());
+  exporter->add_option("--level", exportArgs->level, "uniform level to write")
+      ->required()
+      ->check(wholeNumber());
   exporter->add_option("-o,--output", exportArgs->output, "the .glb to write")->required()->type_name("OUT");
   exporter->add_flag("--limit", exportArgs->limit, "limit positions and normals instead of control points");
   exporter->add_flag("--draco", exportArgs->draco, "compress with KHR_draco_mesh_compression");
@@ -136,8 +141,9 @@ void addRemoteCommand(CLI::App& app, Action& action) {
 
   // The connection options may also follow the command ("remote list --port 7878").
   for (CLI::App* sub : remote->get_subcommands([](CLI::App*) { return true; })) sub->fallthrough();
-  remote->footer("Scripts for 'remote edit' use the format of 'tessera doc edit' (move, offset, crease, corner,\n"
-                 "undo, redo); the server applies a whole script or none of it, as one version.");
+  remote->footer(
+      "Scripts for 'remote edit' use the format of 'tessera doc edit' (move, offset, crease, corner,\n"
+      "undo, redo); the server applies a whole script or none of it, as one version.");
 }
 
 }  // namespace tessera::cli

@@ -49,8 +49,9 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
   const LoopOptions loop = loopOptions(args.document.scheme);
   c->set_crease_method(loop.creaseMethod == CreaseMethod::kChaikin ? wire::CREASE_METHOD_CHAIKIN
                                                                    : wire::CREASE_METHOD_UNIFORM);
-  c->set_boundary(loop.boundary == BoundaryInterpolation::kEdgeAndCorner ? wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER
-                                                                         : wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
+  c->set_boundary(loop.boundary == BoundaryInterpolation::kEdgeAndCorner
+                      ? wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER
+                      : wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
   auto session = connectTo(connection);
   if (!session.isOk()) return connectFailed("create", session.status());
   auto reply = (*session)->call(m, 120);
@@ -60,7 +61,8 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
   report.renumbering.dropped = static_cast<int>(reply->ack().dropped_vertices());
   report.edgesCreasedByAngle = static_cast<int>(reply->ack().creased_edges());
   const std::string note = describeImport(report, importOptions(args.mesh));
-  if (!note.empty()) std::fprintf(stderr, "tessera remote create: %s: %s\n", args.mesh.input.c_str(), note.c_str());
+  if (!note.empty())
+    std::fprintf(stderr, "tessera remote create: %s: %s\n", args.mesh.input.c_str(), note.c_str());
   std::printf("%llu\n", static_cast<unsigned long long>(reply->ack().document_id()));
   return 0;
 }
@@ -68,7 +70,8 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
 }  // namespace
 
 void addRemoteCreate(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action) {
-  CLI::App* create = remote.add_subcommand("create", "import a base mesh as a new document (admin); prints its id");
+  CLI::App* create =
+      remote.add_subcommand("create", "import a base mesh as a new document (admin); prints its id");
   auto args = std::make_shared<CreateArgs>();
   addMeshInputOptions(*create, args->mesh);
   addDocumentOptions(*create, args->document);

@@ -50,9 +50,14 @@ void toWire(const ScriptCommand& c, uint32_t key, wire::EditCommand& m) {
       tag->mutable_tangent()->set_z(c.value[2]);
       break;
     }
-    case Kind::kUndo: m.mutable_undo()->set_edit_id(c.edit.value); break;
-    case Kind::kRedo: m.mutable_redo()->set_edit_id(c.edit.value); break;
-    case Kind::kRemove: break;  // refused before anything is sent
+    case Kind::kUndo:
+      m.mutable_undo()->set_edit_id(c.edit.value);
+      break;
+    case Kind::kRedo:
+      m.mutable_redo()->set_edit_id(c.edit.value);
+      break;
+    case Kind::kRemove:
+      break;  // refused before anything is sent
   }
   setMorphKey(m, key);
 }
@@ -112,11 +117,13 @@ int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
 }  // namespace
 
 void addRemoteEdit(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action) {
-  CLI::App* edit = remote.add_subcommand("edit", "apply an edit script to a document, all or nothing, as one version");
+  CLI::App* edit =
+      remote.add_subcommand("edit", "apply an edit script to a document, all or nothing, as one version");
   auto args = std::make_shared<EditArgs>();
   edit->add_option("DOC", args->document, "the document id")->required();
   edit->add_option("--script", args->script, "the edit script (the format of 'tessera doc edit')")
-      ->required()->type_name("FILE");
+      ->required()
+      ->type_name("FILE");
   edit->add_option("--key", args->key, "a morph document's key the script edits: 0 (default) or 1")
       ->type_name("K")
       ->check(CLI::Range(0, 1));

@@ -53,7 +53,8 @@ int runMorphKey(const ConnectionArgs& connection, const MorphKeyArgs& args) {
 
 void addRemoteMorphKey(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action) {
   CLI::App* sub = remote.add_subcommand(
-      "morph-key", "add a second key of the same connectivity: the document becomes a morph document (editor)");
+      "morph-key",
+      "add a second key of the same connectivity: the document becomes a morph document (editor)");
   auto args = std::make_shared<MorphKeyArgs>();
   sub->add_option("DOC", args->document, "the document id")->required();
   sub->add_option("MESH", args->mesh, "key 1's base mesh: key 0's triangles, other points")->required();

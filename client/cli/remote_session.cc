@@ -11,14 +11,19 @@ namespace tessera::cli {
 void addConnectionOptions(CLI::App& app, ConnectionArgs& args) {
   const char* group = "Connection (before or after the command)";
   app.add_option("--host", args.host, "the server's address (default 127.0.0.1)")->group(group);
-  app.add_option("--port", args.port, "the server's port (default 7878)")->check(CLI::Range(1, 65535))->group(group);
+  app.add_option("--port", args.port, "the server's port (default 7878)")
+      ->check(CLI::Range(1, 65535))
+      ->group(group);
   app.add_option("--token", args.token, "access token")->group(group);
   app.add_option("--token-file", args.tokenFile, "read the access token from the first line of FILE")
-      ->type_name("FILE")->group(group);
+      ->type_name("FILE")
+      ->group(group);
   app.add_option("--name", args.name, "how others see this session (default tessera-cli)")->group(group);
-  app.add_flag("--tls", args.tls, "connect with TLS, verifying the server's certificate and name")->group(group);
+  app.add_flag("--tls", args.tls, "connect with TLS, verifying the server's certificate and name")
+      ->group(group);
   app.add_option("--tls-ca", args.tlsCaFile, "trusted certificates (PEM) for --tls; default: the system's")
-      ->type_name("FILE")->group(group);
+      ->type_name("FILE")
+      ->group(group);
 }
 
 Expected<std::unique_ptr<client::Session>> connectTo(const ConnectionArgs& args) {
@@ -37,7 +42,8 @@ Expected<std::unique_ptr<client::Session>> connectTo(const ConnectionArgs& args)
     while (!options.token.empty() && (options.token.back() == '\r' || options.token.back() == ' ')) {
       options.token.pop_back();
     }
-    if (options.token.empty()) return invalidArgument("--token-file " + args.tokenFile + ": no token in its first line");
+    if (options.token.empty())
+      return invalidArgument("--token-file " + args.tokenFile + ": no token in its first line");
   }
   wire::ErrorCode refusal = wire::ERROR_CODE_UNSPECIFIED;
   auto session = client::Session::connect(options, &refusal);
@@ -53,7 +59,8 @@ Expected<std::unique_ptr<client::Session>> connectTo(const ConnectionArgs& args)
     return Status(session.status().code(), "tessera-server at " + where + " " + session.status().message());
   }
   if (isTransient(session.status())) {
-    return Status(ErrorCode::kIoError, "cannot reach tessera-server at " + where + ": " + session.status().message() +
+    return Status(ErrorCode::kIoError, "cannot reach tessera-server at " + where + ": " +
+                                           session.status().message() +
                                            " (is it running? see --host and --port)");
   }
   return session.status();
@@ -70,11 +77,12 @@ int outcome(const std::string& command, const Expected<wire::ServerMessage>& rep
     // A wrong token is refused at the handshake; a session that reaches a
     // command unauthenticated connected without one.
     const bool noToken = reply->reject().reason() == wire::REJECT_REASON_NOT_AUTHENTICATED;
-    return fail("remote " + command,
-                wire::RejectReason_Name(reply->reject().reason()) + ": " + reply->reject().message() +
-                    (noToken ? " (no token was given: give --token or --token-file; the server's admin makes one "
-                               "with tessera-server token new)"
-                             : ""));
+    return fail(
+        "remote " + command,
+        wire::RejectReason_Name(reply->reject().reason()) + ": " + reply->reject().message() +
+            (noToken ? " (no token was given: give --token or --token-file; the server's admin makes one "
+                       "with tessera-server token new)"
+                     : ""));
   }
   if (reply->has_error()) {
     return fail("remote " + command,
@@ -95,12 +103,15 @@ Expected<uint64_t> parseDocumentId(const std::string& text) {
 Expected<wire::MeshFormat> meshFormatOf(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  const std::map<std::string, wire::MeshFormat> formats = {{".obj", wire::MESH_FORMAT_OBJ}, {".off", wire::MESH_FORMAT_OFF},
-                                                           {".ply", wire::MESH_FORMAT_PLY}, {".stl", wire::MESH_FORMAT_STL},
+  const std::map<std::string, wire::MeshFormat> formats = {{".obj", wire::MESH_FORMAT_OBJ},
+                                                           {".off", wire::MESH_FORMAT_OFF},
+                                                           {".ply", wire::MESH_FORMAT_PLY},
+                                                           {".stl", wire::MESH_FORMAT_STL},
                                                            {".glb", wire::MESH_FORMAT_GLB}};
   auto format = formats.find(ext);
   if (format != formats.end()) return format->second;
-  if (ext == ".gltf") return invalidArgument(path + ": send glTF as a .glb (a .gltf may name files beside it)");
+  if (ext == ".gltf")
+    return invalidArgument(path + ": send glTF as a .glb (a .gltf may name files beside it)");
   return invalidArgument(path + ": not .obj, .off, .ply, .stl or .glb");
 }
 

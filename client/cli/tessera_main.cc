@@ -37,7 +37,8 @@ std::string unknownCommand(CLI::App& app, int argc, char** argv) {
     if (word == "--") return "";
     if (word.size() > 1 && word[0] == '-') {
       const CLI::Option* option = at->get_option_no_throw(word.substr(0, word.find('=')));
-      if (option != nullptr && option->get_items_expected_min() > 0 && word.find('=') == std::string::npos) ++i;
+      if (option != nullptr && option->get_items_expected_min() > 0 && word.find('=') == std::string::npos)
+        ++i;
       continue;
     }
     CLI::App* next = nullptr;
@@ -52,7 +53,8 @@ std::string unknownCommand(CLI::App& app, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   CLI::App app("tessera: hierarchical Loop subdivision surfaces from the command line", "tessera");
-  app.set_version_flag("--version", std::string("tessera ") + tessera::kVersion, "print the version and exit");
+  app.set_version_flag("--version", std::string("tessera ") + tessera::kVersion,
+                       "print the version and exit");
   app.require_subcommand(1);
   Action action;
   tessera::cli::addInfoCommand(app, action);
@@ -67,7 +69,8 @@ int main(int argc, char** argv) {
     return tessera::cli::kExitUsage;
   }
   if (const std::string unknown = unknownCommand(app, argc, argv); !unknown.empty()) {
-    std::fprintf(stderr, "tessera: unknown command '%s'\nRun 'tessera --help' for the commands.\n", unknown.c_str());
+    std::fprintf(stderr, "tessera: unknown command '%s'\nRun 'tessera --help' for the commands.\n",
+                 unknown.c_str());
     return tessera::cli::kExitUsage;
   }
   try {
@@ -80,8 +83,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     const std::string path = chosenPath(app);
-    std::fprintf(stderr, "tessera%s%s: %s\nRun 'tessera%s%s --help' for its options.\n", path.empty() ? "" : " ",
-                 path.c_str(), e.what(), path.empty() ? "" : " ", path.c_str());
+    std::fprintf(stderr, "tessera%s%s: %s\nRun 'tessera%s%s --help' for its options.\n",
+                 path.empty() ? "" : " ", path.c_str(), e.what(), path.empty() ? "" : " ", path.c_str());
     return tessera::cli::kExitUsage;
   }
   if (!action) {

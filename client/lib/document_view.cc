@@ -36,8 +36,9 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
   if (d.from_version() != version_) {
     ++gaps_;
     ready_ = false;
-    return invalidArgument("document " + std::to_string(documentId_) + ": delta " + std::to_string(d.from_version()) +
-                           "->" + std::to_string(d.to_version()) + " does not follow version " + std::to_string(version_));
+    return invalidArgument("document " + std::to_string(documentId_) + ": delta " +
+                           std::to_string(d.from_version()) + "->" + std::to_string(d.to_version()) +
+                           " does not follow version " + std::to_string(version_));
   }
   for (const wire::Region& r : d.regions()) {
     bytes_ += r.draco().size();
@@ -62,7 +63,8 @@ Status DocumentView::adoptIds(const RegionHeader& header, RegionMesh& decoded) c
   if (header.idsInline || !header.profile.vertexIds) return Status::ok();
   const auto held = regions_.find(header.regionId);
   if (held == regions_.end()) {
-    return invalidArgument("document " + std::to_string(documentId_) + ": region " + std::to_string(header.regionId) +
+    return invalidArgument("document " + std::to_string(documentId_) + ": region " +
+                           std::to_string(header.regionId) +
                            " comes without its ids, and this view does not hold it");
   }
   return adoptLayoutIds(header, decoded, held->second, layouts_.at(header.regionId));
@@ -74,7 +76,9 @@ int64_t DocumentView::numTriangles() const {
   return n;
 }
 
-SurfaceMesh DocumentView::surface() const { return mergeRegions(regions_); }
+SurfaceMesh DocumentView::surface() const {
+  return mergeRegions(regions_);
+}
 
 uint64_t DocumentView::surfaceHash() const {
   uint64_t sum = 0;
@@ -91,8 +95,8 @@ Status DocumentView::verifySurface() const {
   const uint64_t held = surfaceHash();
   if (held == announced_) return Status::ok();
   char text[96];
-  std::snprintf(text, sizeof text, "surface hash %016llx, the server's %016llx", static_cast<unsigned long long>(held),
-                static_cast<unsigned long long>(announced_));
+  std::snprintf(text, sizeof text, "surface hash %016llx, the server's %016llx",
+                static_cast<unsigned long long>(held), static_cast<unsigned long long>(announced_));
   return internalError("document " + std::to_string(documentId_) + " at version " + std::to_string(version_) +
                        ": the assembled regions differ from the server's: " + text);
 }

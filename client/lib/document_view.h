@@ -54,7 +54,7 @@ class DocumentView {
   Status adoptIds(const RegionHeader& header, RegionMesh& decoded) const;
 
   std::map<uint64_t, RegionMesh> regions_;
-  std::map<uint64_t, uint64_t> layouts_;  // region -> layout version of the held copy
+  std::map<uint64_t, uint64_t> layouts_;    // region -> layout version of the held copy
   std::map<uint64_t, RegionMesh> staging_;  // snapshot parts still arriving
   std::map<uint64_t, uint64_t> stagingLayouts_;
   mutable std::map<uint64_t, uint64_t> regionHashes_;  // region -> its hash, dropped when it changes

@@ -13,12 +13,16 @@ using asio::ip::tcp;
 
 const std::string kReceiveTimeout = "no message from the server within ";
 
-bool isReceiveTimeout(const Status& status) { return status.code() == ErrorCode::kTimeout; }
+bool isReceiveTimeout(const Status& status) {
+  return status.code() == ErrorCode::kTimeout;
+}
 
 Session::Session(const SessionOptions& options)
     : options_(options), socket_(io_), decoder_(FrameDecoderOptions{options.maxFrameBytes}) {}
 
-Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options) { return connect(options, nullptr); }
+Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options) {
+  return connect(options, nullptr);
+}
 
 Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& options, wire::ErrorCode* refusal) {
   std::unique_ptr<Session> s(new Session(options));
@@ -40,7 +44,9 @@ Expected<std::unique_ptr<Session>> Session::connect(const SessionOptions& option
   } else {
     asio::connect(s->socket_, endpoints, ec);
   }
-  if (ec) return ioError("cannot connect to " + options.host + ":" + std::to_string(options.port) + ": " + ec.message());
+  if (ec)
+    return ioError("cannot connect to " + options.host + ":" + std::to_string(options.port) + ": " +
+                   ec.message());
   s->socket_.set_option(tcp::no_delay(true), ec);
   if (options.tls) {
     s->tlsContext_ = std::make_unique<asio::ssl::context>(asio::ssl::context::tls_client);
@@ -105,8 +111,9 @@ Status Session::sendRaw(const std::string& bytes) {
 }
 
 Expected<wire::ServerMessage> Session::readMessage(double timeoutSeconds) {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeoutSeconds));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(timeoutSeconds));
   for (;;) {
     wire::ServerMessage message;
     TESSERA_ASSIGN_OR_RETURN(bool got, decoder_.next(message));
@@ -146,11 +153,14 @@ Expected<wire::ServerMessage> Session::receive(double timeoutSeconds) {
 
 Expected<wire::ServerMessage> Session::call(wire::ClientMessage message, double timeoutSeconds) {
   TESSERA_ASSIGN_OR_RETURN(uint64_t seq, send(std::move(message)));
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(timeoutSeconds));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                             std::chrono::duration<double>(timeoutSeconds));
   for (;;) {
     const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-    if (left <= 0) return ioError("no reply to message " + std::to_string(seq) + " within " + std::to_string(timeoutSeconds) + " s");
+    if (left <= 0)
+      return ioError("no reply to message " + std::to_string(seq) + " within " +
+                     std::to_string(timeoutSeconds) + " s");
     TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage m, readMessage(left));
     if (replyTo(m) == seq) return m;
     if (m.has_error() && m.error().fatal()) return ioError("server error: " + m.error().message());

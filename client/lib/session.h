@@ -8,20 +8,20 @@
 //   auto next = (*s)->receive(1.0);                  // deltas, presence, ...
 #pragma once
 
+#include <array>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/ssl.hpp>
-#include <optional>
-#include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "core/util/status.h"
 #include "protocol/commands.h"
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
-#include "core/util/status.h"
 
 namespace tessera::client {
 
@@ -32,10 +32,10 @@ struct SessionOptions {
   std::string token = {};
   double timeoutSeconds = 10;
   uint32_t maxFrameBytes = 64u << 20;
-  int receiveBufferBytes = 0;  // SO_RCVBUF; 0 keeps the system's (tests shrink it to act slow)
+  int receiveBufferBytes = 0;     // SO_RCVBUF; 0 keeps the system's (tests shrink it to act slow)
   std::string localAddress = {};  // bind to this source address first (tests: other loopback addresses)
-  bool tls = false;            // TLS, verifying the server's certificate and host name
-  std::string tlsCaFile = {};  // trusted certificates (PEM); empty: the system's
+  bool tls = false;               // TLS, verifying the server's certificate and host name
+  std::string tlsCaFile = {};     // trusted certificates (PEM); empty: the system's
 };
 
 class Session {

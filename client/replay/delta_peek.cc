@@ -21,7 +21,8 @@ std::optional<DeltaHeader> peekDelta(std::string_view payload) {
   google::protobuf::io::CodedInputStream in(reinterpret_cast<const uint8_t*>(payload.data()),
                                             static_cast<int>(payload.size()));
   // The envelope holds exactly one field: its oneof body (tessera.proto).
-  if (in.ReadTag() != tagOf(wire::ServerMessage::kDeltaFieldNumber, WireFormatLite::WIRETYPE_LENGTH_DELIMITED)) {
+  if (in.ReadTag() !=
+      tagOf(wire::ServerMessage::kDeltaFieldNumber, WireFormatLite::WIRETYPE_LENGTH_DELIMITED)) {
     return std::nullopt;
   }
   uint32_t length = 0;
@@ -31,10 +32,17 @@ std::optional<DeltaHeader> peekDelta(std::string_view payload) {
   for (uint32_t tag; (tag = in.ReadTag()) != 0;) {
     uint64_t* into = nullptr;
     switch (WireFormatLite::GetTagFieldNumber(tag)) {
-      case wire::Delta::kDocumentIdFieldNumber: into = &h.documentId; break;
-      case wire::Delta::kFromVersionFieldNumber: into = &h.fromVersion; break;
-      case wire::Delta::kToVersionFieldNumber: into = &h.toVersion; break;
-      default: break;
+      case wire::Delta::kDocumentIdFieldNumber:
+        into = &h.documentId;
+        break;
+      case wire::Delta::kFromVersionFieldNumber:
+        into = &h.fromVersion;
+        break;
+      case wire::Delta::kToVersionFieldNumber:
+        into = &h.toVersion;
+        break;
+      default:
+        break;
     }
     if (into != nullptr && WireFormatLite::GetTagWireType(tag) == WireFormatLite::WIRETYPE_VARINT) {
       if (!in.ReadVarint64(into)) return std::nullopt;

@@ -7,8 +7,8 @@
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <semaphore>
 #include <random>
+#include <semaphore>
 #include <thread>
 #include <unordered_map>
 
@@ -16,8 +16,8 @@
 #include "client/replay/load_report.h"
 #include "client/replay/load_state.h"
 #include "client/replay/proc_sample.h"
-#include "client/replay/server_window.h"
 #include "client/replay/replay.h"
+#include "client/replay/server_window.h"
 #include "client/replay/viewer_pool.h"
 
 namespace tessera::replay {
@@ -26,7 +26,9 @@ namespace {
 
 using nlohmann::json;
 
-double msBetween(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 // Rejections that no later edit can escape: the token or the document will
 // not do, so the run stops rather than collecting the same refusal for its
@@ -44,7 +46,8 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
   if (!connected.isOk()) return shared.error(so.name + ": " + connected.status().message());
   client::Session& s = **connected;
   // Editors open the document but do not subscribe: the viewers measure.
-  if (Status st = openDocument(s, o.document, so.timeoutSeconds); !st.isOk()) return shared.error(so.name + ": " + st.message());
+  if (Status st = openDocument(s, o.document, so.timeoutSeconds); !st.isOk())
+    return shared.error(so.name + ": " + st.message());
   ++shared.editorsReady;
   while (!shared.startEditing) {
     if (shared.stopped) return;
@@ -77,7 +80,8 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
       auto seq = s.send(std::move(m));
       if (!seq.isOk()) return shared.error(so.name + ": " + seq.status().message());
       outstanding[*seq] = now;
-      const auto second = static_cast<size_t>(std::max(0.0, std::chrono::duration<double>(now - start).count()));
+      const auto second =
+          static_cast<size_t>(std::max(0.0, std::chrono::duration<double>(now - start).count()));
       if (sentPerSecond.size() <= second) sentPerSecond.resize(second + 1);
       ++sentPerSecond[second];
       ++sentHere;
@@ -86,7 +90,8 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
       if (next < now - period) next = now;  // fell behind: do not burst to catch up
     }
     if (!editing && (outstanding.empty() || now > drainDeadline)) break;
-    const double wait = editing ? std::clamp(std::chrono::duration<double>(next - now).count(), 0.0005, 0.05) : 0.05;
+    const double wait =
+        editing ? std::clamp(std::chrono::duration<double>(next - now).count(), 0.0005, 0.05) : 0.05;
     auto reply = s.receive(wait);
     if (!reply.isOk()) {
       if (client::isReceiveTimeout(reply.status())) continue;
@@ -118,7 +123,8 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
       return shared.error(so.name + ": server error: " + reply->error().message());
     }
   }
-  if (!outstanding.empty()) shared.error(so.name + ": " + std::to_string(outstanding.size()) + " edits never acknowledged");
+  if (!outstanding.empty())
+    shared.error(so.name + ": " + std::to_string(outstanding.size()) + " edits never acknowledged");
   s.close();
 }
 
@@ -183,7 +189,8 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
       break;
     }
     if (decode) {
-      if (Status st = view.apply(*m); !st.isOk() && !m->has_delta()) shared.error(so.name + ": " + st.message());
+      if (Status st = view.apply(*m); !st.isOk() && !m->has_delta())
+        shared.error(so.name + ": " + st.message());
     }
   }
   if (decode && view.ready()) out.hash = view.surfaceHash();
@@ -206,7 +213,8 @@ Status checkAccess(const LoadOptions& o) {
     (*session)->close();
     return opened.isOk() ? opened : opened.withContext(std::string("the ") + whose + " token");
   };
-  TESSERA_RETURN_IF_ERROR(check(o.session.token, o.viewerToken.empty() ? "editors' and viewers'" : "editors'"));
+  TESSERA_RETURN_IF_ERROR(
+      check(o.session.token, o.viewerToken.empty() ? "editors' and viewers'" : "editors'"));
   if (!o.viewerToken.empty() && o.viewers > 0) TESSERA_RETURN_IF_ERROR(check(o.viewerToken, "viewers'"));
   return Status::ok();
 }
@@ -220,15 +228,16 @@ void sleepUnlessStopped(Clock::time_point until, const Shared& shared) {
 
 void printProgress(int second, int viewers, const Shared& shared, int64_t& lastAcked, const ProcSample& now) {
   const int64_t acked = shared.acked;
-  std::fprintf(stderr,
-               "[%3ds] edits sent %lld acked %lld (+%lld) rejected %lld | viewers ready %lld/%d deltas %lld gaps %lld "
-               "resyncs %lld | errors %lld%s\n",
-               second, static_cast<long long>(shared.sent.load()), static_cast<long long>(acked),
-               static_cast<long long>(acked - lastAcked), static_cast<long long>(shared.rejected.load()),
-               static_cast<long long>(shared.viewersReady.load()), viewers, static_cast<long long>(shared.deltas.load()),
-               static_cast<long long>(shared.gaps.load()), static_cast<long long>(shared.resyncs.load()),
-               static_cast<long long>(shared.errors.load()),
-               now.ok ? (" | server rss " + std::to_string(now.rssBytes >> 20) + " MiB").c_str() : "");
+  std::fprintf(
+      stderr,
+      "[%3ds] edits sent %lld acked %lld (+%lld) rejected %lld | viewers ready %lld/%d deltas %lld gaps %lld "
+      "resyncs %lld | errors %lld%s\n",
+      second, static_cast<long long>(shared.sent.load()), static_cast<long long>(acked),
+      static_cast<long long>(acked - lastAcked), static_cast<long long>(shared.rejected.load()),
+      static_cast<long long>(shared.viewersReady.load()), viewers,
+      static_cast<long long>(shared.deltas.load()), static_cast<long long>(shared.gaps.load()),
+      static_cast<long long>(shared.resyncs.load()), static_cast<long long>(shared.errors.load()),
+      now.ok ? (" | server rss " + std::to_string(now.rssBytes >> 20) + " MiB").c_str() : "");
   lastAcked = acked;
 }
 
@@ -247,20 +256,24 @@ void runConnections(const LoadOptions& o, Shared& shared, LoadRunData& run) {
   }
   const ViewerPoolOptions poolOptions{.firstIndex = threaded, .threads = std::max(o.poolThreads, 1)};
   run.poolThreads = poolOptions.threads;
-  viewerThreads.emplace_back(runViewerPool, std::cref(o), std::cref(poolOptions), hardDeadline, std::ref(shared),
+  viewerThreads.emplace_back(runViewerPool, std::cref(o), std::cref(poolOptions), hardDeadline,
+                             std::ref(shared),
                              std::span<ViewerResult>(run.viewers).subspan(static_cast<size_t>(threaded)));
   std::vector<std::thread> editorThreads;
-  for (int i = 0; i < o.editors; ++i) editorThreads.emplace_back(runEditor, std::cref(o), i, hardDeadline, std::ref(shared));
+  for (int i = 0; i < o.editors; ++i)
+    editorThreads.emplace_back(runEditor, std::cref(o), i, hardDeadline, std::ref(shared));
   // Every viewer subscribed and every editor in (or failed) before the first
   // edit, then until no Presence came for 500 ms (the joins' fan-out).
   const auto connectDeadline = begin + secondsOf(o.connectSeconds);
-  while ((shared.viewersReady + shared.viewersDone < o.viewers || shared.editorsReady + shared.errors < o.editors) &&
+  while ((shared.viewersReady + shared.viewersDone < o.viewers ||
+          shared.editorsReady + shared.errors < o.editors) &&
          Clock::now() < connectDeadline && !shared.stopped) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   run.connectMs = msBetween(begin, Clock::now());
   while (Clock::now() < connectDeadline && !shared.stopped &&
-         Clock::now() - Clock::time_point(Clock::duration(shared.lastPresenceNs.load())) < std::chrono::milliseconds(500)) {
+         Clock::now() - Clock::time_point(Clock::duration(shared.lastPresenceNs.load())) <
+             std::chrono::milliseconds(500)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   run.settleMs = msBetween(begin, Clock::now()) - run.connectMs;

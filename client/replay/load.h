@@ -20,21 +20,21 @@ struct LoadOptions {
   uint64_t document = 0;
   int editors = 1;
   int viewers = 10;
-  double rate = 10;                // edits per second per editor
-  double seconds = 5;              // editing time
-  int64_t maxEdits = 100000;       // per editor
-  wire::LodProfile profile;        // the viewers' profile
-  int decodeViewers = -1;          // viewers that decode with DocumentView; -1: min(viewers, 20)
-  int vertexLevel = 0;             // edits move v<level>:0..vertexCount-1
+  double rate = 10;           // edits per second per editor
+  double seconds = 5;         // editing time
+  int64_t maxEdits = 100000;  // per editor
+  wire::LodProfile profile;   // the viewers' profile
+  int decodeViewers = -1;     // viewers that decode with DocumentView; -1: min(viewers, 20)
+  int vertexLevel = 0;        // edits move v<level>:0..vertexCount-1
   uint64_t vertexCount = 8;
-  double step = 0.01;              // largest offset per axis
+  double step = 0.01;  // largest offset per axis
   uint64_t seed = 1;
-  double drainSeconds = 10;        // after editing: waiting for acks and the last deltas
-  double connectSeconds = 120;     // connecting and subscribing every viewer
-  int serverPid = 0;               // > 0: sample its CPU and RSS from /proc
-  bool progress = true;            // one line per second on stderr
-  double viewerPollSeconds = 1;    // a ready viewer's receive timeout (checks for the end)
-  int poolThreads = 2;             // threads of the counting viewers' pool; 0: a thread per viewer
+  double drainSeconds = 10;      // after editing: waiting for acks and the last deltas
+  double connectSeconds = 120;   // connecting and subscribing every viewer
+  int serverPid = 0;             // > 0: sample its CPU and RSS from /proc
+  bool progress = true;          // one line per second on stderr
+  double viewerPollSeconds = 1;  // a ready viewer's receive timeout (checks for the end)
+  int poolThreads = 2;           // threads of the counting viewers' pool; 0: a thread per viewer
 };
 
 Expected<nlohmann::json> runLoad(const LoadOptions& options);

@@ -10,31 +10,52 @@
 namespace tessera::replay {
 
 CLI::App* addLoadCommand(CLI::App& app, LoadArgs& a) {
-  CLI::App* load = app.add_subcommand("load", "a bounded load run: progress on stderr, a summary on stdout, JSON with --report");
+  CLI::App* load = app.add_subcommand(
+      "load", "a bounded load run: progress on stderr, a summary on stdout, JSON with --report");
   addConnectionOptions(*load, a.connection);
   load->add_option("--viewer-token", a.viewerToken, "the viewers' token (default: --token)");
-  load->add_option("--document", a.document, "the document to edit and watch")->required()->check(CLI::PositiveNumber);
-  load->add_option("--editors", a.editors, "editor connections")->check(CLI::Range(0, 100))->capture_default_str();
-  load->add_option("--viewers", a.viewers, "viewer connections")->check(CLI::Range(0, 2000))->capture_default_str();
+  load->add_option("--document", a.document, "the document to edit and watch")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  load->add_option("--editors", a.editors, "editor connections")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  load->add_option("--viewers", a.viewers, "viewer connections")
+      ->check(CLI::Range(0, 2000))
+      ->capture_default_str();
   load->add_option("--rate", a.rate, "edits per second per editor, (0, 200]")
-      ->check(within(0, 200, true))->capture_default_str();
-  load->add_option("--seconds", a.seconds, "editing time, (0, 3600]")->check(within(0, 3600, true))->capture_default_str();
-  load->add_option("--max-edits", a.maxEdits, "edits per editor at most")->check(CLI::PositiveNumber)->capture_default_str();
-  load->add_option("--decode-viewers", a.decodeViewers, "viewers that decode every region (default: min(viewers, 20))");
-  load->add_option("--vertex-level", a.vertexLevel, "edits move v<L>:0..N-1")->check(CLI::Range(0, 12))->capture_default_str();
-  load->add_option("--vertex-count", a.vertexCount, "N of --vertex-level")->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(within(0, 200, true))
+      ->capture_default_str();
+  load->add_option("--seconds", a.seconds, "editing time, (0, 3600]")
+      ->check(within(0, 3600, true))
+      ->capture_default_str();
+  load->add_option("--max-edits", a.maxEdits, "edits per editor at most")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  load->add_option("--decode-viewers", a.decodeViewers,
+                   "viewers that decode every region (default: min(viewers, 20))");
+  load->add_option("--vertex-level", a.vertexLevel, "edits move v<L>:0..N-1")
+      ->check(CLI::Range(0, 12))
+      ->capture_default_str();
+  load->add_option("--vertex-count", a.vertexCount, "N of --vertex-level")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   load->add_option("--step", a.step, "largest offset per axis")->capture_default_str();
   load->add_option("--seed", a.seed, "random seed")->capture_default_str();
   load->add_option("--drain-seconds", a.drainSeconds, "after editing: waiting for the last acks and deltas")
-      ->check(within(0, 600))->capture_default_str();
-  load->add_option("--pool-threads", a.poolThreads, "threads of the counting viewers' pool; 0: a thread per viewer")
-      ->check(CLI::Range(0, 16))->capture_default_str();
+      ->check(within(0, 600))
+      ->capture_default_str();
+  load->add_option("--pool-threads", a.poolThreads,
+                   "threads of the counting viewers' pool; 0: a thread per viewer")
+      ->check(CLI::Range(0, 16))
+      ->capture_default_str();
   load->add_flag("--display-only", a.displayOnly, "viewers subscribe without vertex ids");
   load->add_option("--server-pid", a.serverPid, "sample this server process's CPU and RSS from /proc");
   load->add_option("--report", a.report, "write the JSON report to FILE");
   load->add_flag("--quiet", a.quiet, "no progress lines");
   load->add_option("--threshold", a.thresholds,
-                   "pass/fail rule, repeatable: 'p99<50ms', 'ack.p95<=10ms', 'mean<5ms', 'errors=0' (exit 4 if one fails)")
+                   "pass/fail rule, repeatable: 'p99<50ms', 'ack.p95<=10ms', 'mean<5ms', 'errors=0' (exit 4 "
+                   "if one fails)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   addProfileOption(*load, a.profile);
@@ -82,7 +103,8 @@ int runLoadCommand(const LoadArgs& a) {
     nlohmann::json checked = nlohmann::json::array();
     for (const ThresholdResult& r : results) {
       checked.push_back({{"threshold", r.threshold.text},
-                         {"metric", r.threshold.metric.empty() ? r.threshold.stat : r.threshold.metric + "." + r.threshold.stat},
+                         {"metric", r.threshold.metric.empty() ? r.threshold.stat
+                                                               : r.threshold.metric + "." + r.threshold.stat},
                          {"limit", r.threshold.limit},
                          {"measured", r.measured ? nlohmann::json(r.value) : nlohmann::json(nullptr)},
                          {"passed", r.passed}});
@@ -102,7 +124,8 @@ int runLoadCommand(const LoadArgs& a) {
   }
   std::fflush(stdout);
   if (report.contains("stopped")) {
-    std::fprintf(stderr, "tessera-replay: load stopped after %.1f s: %s\n", report["stopped"]["after_seconds"].get<double>(),
+    std::fprintf(stderr, "tessera-replay: load stopped after %.1f s: %s\n",
+                 report["stopped"]["after_seconds"].get<double>(),
                  report["stopped"]["reason"].get<std::string>().c_str());
     return kExitStopped;
   }
@@ -114,7 +137,8 @@ int runLoadCommand(const LoadArgs& a) {
   }
   // A run whose connections failed, whose viewers saw gaps or did not catch
   // up by the end of the drain time is a failed run.
-  const bool clean = report["errors"]["count"].get<int64_t>() == 0 && report["viewers"]["gaps"].get<int64_t>() == 0 &&
+  const bool clean = report["errors"]["count"].get<int64_t>() == 0 &&
+                     report["viewers"]["gaps"].get<int64_t>() == 0 &&
                      report["viewers"]["behind_at_end"].get<int64_t>() == 0;
   return clean ? 0 : kExitUncleanRun;
 }

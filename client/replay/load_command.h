@@ -12,9 +12,9 @@ namespace tessera::replay {
 
 // Exit codes of `load` beyond 0, 1 and 2 (docs/REPLAY.md §3.2). When
 // several apply, the highest wins.
-inline constexpr int kExitUncleanRun = 3;        // connection errors, gaps, viewers behind at the end
-inline constexpr int kExitThresholdFailed = 4;   // a --threshold failed
-inline constexpr int kExitStopped = 5;           // stopped: missing document, refused token
+inline constexpr int kExitUncleanRun = 3;       // connection errors, gaps, viewers behind at the end
+inline constexpr int kExitThresholdFailed = 4;  // a --threshold failed
+inline constexpr int kExitStopped = 5;          // stopped: missing document, refused token
 
 struct LoadArgs {
   ConnectionArgs connection;

@@ -18,8 +18,12 @@ namespace {
 
 using nlohmann::json;
 
-double round3(double x) { return std::round(x * 1000) / 1000; }
-double msBetween(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
+double round3(double x) {
+  return std::round(x * 1000) / 1000;
+}
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 json histogramJson(const std::vector<double>& samples) {
   LatencyHistogram h;
@@ -56,7 +60,8 @@ json latencyJson(const std::vector<double>& samples) {
 }
 
 json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& run) {
-  const double editSeconds = run.started ? std::chrono::duration<double>(run.editsDone - run.start).count() : 0.0;
+  const double editSeconds =
+      run.started ? std::chrono::duration<double>(run.editsDone - run.start).count() : 0.0;
   LoadSeries series(seriesSeconds(o, shared, run));
   for (size_t i = 0; i < shared.sentPerSecond.size(); ++i) series.sent(i, shared.sentPerSecond[i]);
   std::vector<double> toAck;
@@ -83,7 +88,8 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
     if (v.ready) ++readyViewers;
     minVersion = std::min(minVersion, v.version);
     maxVersion = std::max(maxVersion, v.version);
-    if (v.decoded && v.hash != 0 && v.version == shared.maxAckedVersion) hashes.insert(v.hash), ++decodedReady;
+    if (v.decoded && v.hash != 0 && v.version == shared.maxAckedVersion)
+      hashes.insert(v.hash), ++decodedReady;
     for (const auto& d : v.deltaTimes) {
       for (uint64_t version = d.fromVersion + 1; version <= d.toVersion; ++version) {
         auto it = shared.sendTimeOfVersion.find(version);
@@ -100,19 +106,21 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
   json report;
   report["format"] = "tessera-replay-report";
   report["version"] = 1;
-  report["config"] = {{"document", o.document},
-                      {"editors", o.editors},
-                      {"viewers", o.viewers},
-                      {"rate_per_editor", o.rate},
-                      {"seconds", o.seconds},
-                      {"max_edits_per_editor", o.maxEdits},
-                      {"profile", {o.profile.base_level(), o.profile.max_level(), o.profile.angle_threshold_degrees()}},
-                      {"display_only", o.profile.omit_vertex_ids()},
-                      {"decoding_viewers", run.decodingViewers},
-                      {"vertices", "v" + std::to_string(o.vertexLevel) + ":0.." + std::to_string(o.vertexCount - 1)}};
+  report["config"] = {
+      {"document", o.document},
+      {"editors", o.editors},
+      {"viewers", o.viewers},
+      {"rate_per_editor", o.rate},
+      {"seconds", o.seconds},
+      {"max_edits_per_editor", o.maxEdits},
+      {"profile", {o.profile.base_level(), o.profile.max_level(), o.profile.angle_threshold_degrees()}},
+      {"display_only", o.profile.omit_vertex_ids()},
+      {"decoding_viewers", run.decodingViewers},
+      {"vertices", "v" + std::to_string(o.vertexLevel) + ":0.." + std::to_string(o.vertexCount - 1)}};
   if (shared.stopped) {
-    report["stopped"] = {{"reason", shared.stopReason},
-                         {"after_seconds", round3(std::chrono::duration<double>(shared.stoppedAt - run.begin).count())}};
+    report["stopped"] = {
+        {"reason", shared.stopReason},
+        {"after_seconds", round3(std::chrono::duration<double>(shared.stoppedAt - run.begin).count())}};
   }
   report["connect_ms"] = std::round(run.connectMs);
   report["settle_ms"] = std::round(run.settleMs);
@@ -128,26 +136,28 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
                           {"edit_to_delta", histogramJson(toDelta)}};
   report["series"] = series.toJson();
   report["final_version"] = shared.maxAckedVersion.load();
-  report["viewers"] = {{"ready_at_end", readyViewers},
-                       {"gaps", shared.gaps.load()},
-                       {"resyncs", shared.resyncs.load()},
-                       {"deltas", shared.deltas.load()},
-                       {"snapshot_bytes_per_viewer", viewers ? snapshotBytes / viewers : 0},
-                       {"delta_bytes_per_viewer", viewers ? deltaBytes / viewers : 0},
-                       {"bytes_per_second_per_viewer", viewers && editSeconds > 0 ? deltaBytes / viewers / editSeconds : 0.0},
-                       {"version_min", minVersion},
-                       {"version_max", maxVersion},
-                       {"behind_at_end", behind},
-                       {"presence_messages_per_viewer", viewers ? presenceMessages / viewers : 0},
-                       {"presence_bytes_per_viewer", viewers ? presenceBytes / viewers : 0},
-                       {"decoded_at_final_version", decodedReady},
-                       {"decoded_hashes_agree", hashes.size() <= 1}};
+  report["viewers"] = {
+      {"ready_at_end", readyViewers},
+      {"gaps", shared.gaps.load()},
+      {"resyncs", shared.resyncs.load()},
+      {"deltas", shared.deltas.load()},
+      {"snapshot_bytes_per_viewer", viewers ? snapshotBytes / viewers : 0},
+      {"delta_bytes_per_viewer", viewers ? deltaBytes / viewers : 0},
+      {"bytes_per_second_per_viewer", viewers && editSeconds > 0 ? deltaBytes / viewers / editSeconds : 0.0},
+      {"version_min", minVersion},
+      {"version_max", maxVersion},
+      {"behind_at_end", behind},
+      {"presence_messages_per_viewer", viewers ? presenceMessages / viewers : 0},
+      {"presence_bytes_per_viewer", viewers ? presenceBytes / viewers : 0},
+      {"decoded_at_final_version", decodedReady},
+      {"decoded_hashes_agree", hashes.size() <= 1}};
   report["errors"] = {{"count", shared.errors.load()}, {"messages", shared.errorMessages}};
   json server = json::object();
   if (run.cpuBefore.ok && run.cpuAfter.ok) {
     server["pid"] = o.serverPid;
-    server["cpu_percent"] =
-        std::round(1000 * (run.cpuAfter.cpuSeconds - run.cpuBefore.cpuSeconds) / std::max(editSeconds, 1e-3)) / 10;
+    server["cpu_percent"] = std::round(1000 * (run.cpuAfter.cpuSeconds - run.cpuBefore.cpuSeconds) /
+                                       std::max(editSeconds, 1e-3)) /
+                            10;
     server["rss_bytes"] = run.cpuAfter.rssBytes;
     server["rss_peak_bytes"] = run.rssPeak;
   }
@@ -167,9 +177,10 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
   getrusage(RUSAGE_SELF, &self);
   const double cpu = static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
                      static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec) / 1e6;
-  report["client"] = {{"cpu_seconds", std::round(cpu * 100) / 100},
-                      {"threads", o.editors + run.threadedViewers + (o.viewers > run.threadedViewers ? run.poolThreads : 0)},
-                      {"pooled_viewers", o.viewers - run.threadedViewers}};
+  report["client"] = {
+      {"cpu_seconds", std::round(cpu * 100) / 100},
+      {"threads", o.editors + run.threadedViewers + (o.viewers > run.threadedViewers ? run.poolThreads : 0)},
+      {"pooled_viewers", o.viewers - run.threadedViewers}};
   return report;
 }
 
@@ -180,55 +191,61 @@ std::string summarize(const json& r) {
       std::snprintf(buf, sizeof buf, "  %-15s (no samples)\n", label);
     } else {
       std::snprintf(buf, sizeof buf, "  %-15s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8lld\n", label,
-                    p["mean"].get<double>(), p["stddev"].get<double>(), p["p50"].get<double>(), p["p90"].get<double>(),
-                    p["p95"].get<double>(), p["p99"].get<double>(), p["p99_9"].get<double>(), p["max"].get<double>(),
-                    p["count"].get<long long>());
+                    p["mean"].get<double>(), p["stddev"].get<double>(), p["p50"].get<double>(),
+                    p["p90"].get<double>(), p["p95"].get<double>(), p["p99"].get<double>(),
+                    p["p99_9"].get<double>(), p["max"].get<double>(), p["count"].get<long long>());
     }
     return std::string(buf);
   };
   char line[256];
   std::ostringstream out;
   const json& c = r["config"];
-  std::snprintf(line, sizeof line, "tessera-replay load: %d editors x %g/s, %d viewers, %.2f s\n", c["editors"].get<int>(),
-                c["rate_per_editor"].get<double>(), c["viewers"].get<int>(), r["edit_seconds"].get<double>());
+  std::snprintf(line, sizeof line, "tessera-replay load: %d editors x %g/s, %d viewers, %.2f s\n",
+                c["editors"].get<int>(), c["rate_per_editor"].get<double>(), c["viewers"].get<int>(),
+                r["edit_seconds"].get<double>());
   out << line;
   if (r.contains("stopped")) {
-    out << "  STOPPED after " << r["stopped"]["after_seconds"].get<double>() << " s: " << r["stopped"]["reason"].get<std::string>()
-        << "\n";
+    out << "  STOPPED after " << r["stopped"]["after_seconds"].get<double>()
+        << " s: " << r["stopped"]["reason"].get<std::string>() << "\n";
   }
   const json& e = r["edits"];
   std::snprintf(line, sizeof line, "  edits: %lld acked of %lld sent, %lld rejected, %.2f acked/s\n",
                 e["acked"].get<long long>(), e["sent"].get<long long>(), e["rejected"].get<long long>(),
                 e["throughput_per_second"].get<double>());
   out << line;
-  out << "  latency (ms)        mean   stddev      p50      p90      p95      p99    p99.9      max        n\n";
+  out << "  latency (ms)        mean   stddev      p50      p90      p95      p99    p99.9      max        "
+         "n\n";
   out << lat("edit -> ack", r["latency_ms"]["edit_to_ack"]);
   out << lat("edit -> delta", r["latency_ms"]["edit_to_delta"]);
   const json& v = r["viewers"];
   std::snprintf(line, sizeof line,
-                "  viewers: %lld ready, %lld behind the last acked version at the end, gaps %lld, resyncs %lld, %.1f KiB/s "
+                "  viewers: %lld ready, %lld behind the last acked version at the end, gaps %lld, resyncs "
+                "%lld, %.1f KiB/s "
                 "each (snapshot %lld B)\n",
-                v["ready_at_end"].get<long long>(), v["behind_at_end"].get<long long>(), v["gaps"].get<long long>(),
-                v["resyncs"].get<long long>(), v["bytes_per_second_per_viewer"].get<double>() / 1024,
+                v["ready_at_end"].get<long long>(), v["behind_at_end"].get<long long>(),
+                v["gaps"].get<long long>(), v["resyncs"].get<long long>(),
+                v["bytes_per_second_per_viewer"].get<double>() / 1024,
                 v["snapshot_bytes_per_viewer"].get<long long>());
   out << line;
   out << "  errors: " << r["errors"]["count"] << "\n";
   const json& s = r["server"];
   if (s.contains("cpu_percent")) {
-    out << "  server: cpu " << s["cpu_percent"] << " %, rss " << (s["rss_bytes"].get<int64_t>() >> 20) << " MiB (peak "
-        << (s["rss_peak_bytes"].get<int64_t>() >> 20) << " MiB)\n";
+    out << "  server: cpu " << s["cpu_percent"] << " %, rss " << (s["rss_bytes"].get<int64_t>() >> 20)
+        << " MiB (peak " << (s["rss_peak_bytes"].get<int64_t>() >> 20) << " MiB)\n";
   }
   if (s.contains("window")) {
     const json& w = s["window"];
     auto count = [&](const char* k) { return w.contains(k) ? w[k].get<double>() : 0.0; };
-    std::snprintf(line, sizeof line,
-                  "  server over the run (%.2f s): %.0f edits (%.1f/s), %.0f rejects, %.0f resyncs, %.0f deltas, "
-                  "%.1f KiB sent (%.1f KiB/s)",
-                  w["seconds"].get<double>(), count("edits"), count("edits_per_second"), count("rejects"),
-                  count("resyncs"), count("deltas"), count("bytes_sent") / 1024, count("bytes_sent_per_second") / 1024);
+    std::snprintf(
+        line, sizeof line,
+        "  server over the run (%.2f s): %.0f edits (%.1f/s), %.0f rejects, %.0f resyncs, %.0f deltas, "
+        "%.1f KiB sent (%.1f KiB/s)",
+        w["seconds"].get<double>(), count("edits"), count("edits_per_second"), count("rejects"),
+        count("resyncs"), count("deltas"), count("bytes_sent") / 1024, count("bytes_sent_per_second") / 1024);
     out << line;
     if (w.contains("tessellate_ms_per_edit")) {
-      std::snprintf(line, sizeof line, ", tessellate %.3f ms/edit", w["tessellate_ms_per_edit"].get<double>());
+      std::snprintf(line, sizeof line, ", tessellate %.3f ms/edit",
+                    w["tessellate_ms_per_edit"].get<double>());
       out << line;
     }
     out << "\n";

@@ -2,8 +2,8 @@
 // turned into the versioned JSON report and the summary for people.
 #pragma once
 
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +17,7 @@ namespace tessera::replay {
 // What one run leaves besides `Shared`'s counters.
 struct LoadRunData {
   Clock::time_point begin{};
-  bool started = false;          // editing started (not stopped while connecting)
+  bool started = false;  // editing started (not stopped while connecting)
   Clock::time_point start{}, editsDone{};
   double connectMs = 0, settleMs = 0;
   int decodingViewers = 0, threadedViewers = 0, poolThreads = 0;

@@ -9,7 +9,9 @@ namespace tessera::replay {
 
 namespace {
 
-double round3(double x) { return std::round(x * 1000) / 1000; }
+double round3(double x) {
+  return std::round(x * 1000) / 1000;
+}
 
 nlohmann::json brief(const std::vector<double>& samples) {
   const LatencySummary s = summarizeLatencies(samples);

@@ -17,7 +17,8 @@ ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point a
   }
   if (m.has_delta()) {
     const auto& d = m.delta();
-    return trackDelta({d.document_id(), d.from_version(), d.to_version()}, bytes, arrival, document, out, shared);
+    return trackDelta({d.document_id(), d.from_version(), d.to_version()}, bytes, arrival, document, out,
+                      shared);
   }
   if (m.has_presence()) {
     shared.lastPresenceNs = arrival.time_since_epoch().count();

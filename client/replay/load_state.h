@@ -30,16 +30,16 @@ struct TimedSample {
 struct Shared {
   std::atomic<bool> stopEditing{false};
   std::atomic<bool> stopViewing{false};
-  std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0}, viewersReady{0},
-      viewersDone{0};
+  std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0},
+      viewersReady{0}, viewersDone{0};
   std::atomic<uint64_t> maxAckedVersion{0};
   // Editors connect and open first, then wait for the start: joins make
   // Presence messages to every participant, and the edits should not queue
   // behind them.
   std::atomic<int64_t> editorsReady{0};
   std::atomic<bool> startEditing{false};
-  std::atomic<int64_t> startNs{0};              // steady_clock, set before startEditing
-  std::atomic<int64_t> lastPresenceNs{0};       // the latest Presence any viewer received
+  std::atomic<int64_t> startNs{0};         // steady_clock, set before startEditing
+  std::atomic<int64_t> lastPresenceNs{0};  // the latest Presence any viewer received
   // Viewers joining at once: connecting, subscribing and reading the snapshot.
   std::counting_semaphore<1024> joining{32};
   // The run cannot go on (a missing document, a refused token): every
@@ -48,8 +48,8 @@ struct Shared {
   std::mutex mu;  // guards what follows
   std::unordered_map<uint64_t, Clock::time_point> sendTimeOfVersion;
   std::vector<TimedSample> ackSamples;
-  std::vector<double> rejectedAt;          // send times of rejected edits (seconds since the start)
-  std::vector<int64_t> sentPerSecond;      // merged from every editor at its end
+  std::vector<double> rejectedAt;      // send times of rejected edits (seconds since the start)
+  std::vector<int64_t> sentPerSecond;  // merged from every editor at its end
   std::vector<Clock::time_point> errorTimes;
   std::vector<std::string> errorMessages;  // the first 20
   std::string stopReason;                  // the first reason given to stop()

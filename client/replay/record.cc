@@ -75,8 +75,9 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
   // onto key 0, so it is refused rather than recorded wrongly.
   const uint32_t key = morphKeyOf(a);
   if (key != 0) {
-    return invalidArgument(where + "an edit of morph key " + std::to_string(key) +
-                           ": replay scripts edit key 0 only, so a morph document's second key cannot be recorded");
+    return invalidArgument(
+        where + "an edit of morph key " + std::to_string(key) +
+        ": replay scripts edit key 0 only, so a morph document's second key cannot be recorded");
   }
   switch (a.command_case()) {
     case wire::AppliedCommand::kMoveVertex: {
@@ -124,8 +125,9 @@ Expected<ScriptCommand> ScriptRecorder::add(const wire::AppliedCommand& a) {
       return c;
     }
     case wire::AppliedCommand::kAddMorphKey:
-      return invalidArgument(where + "a second morph key (AddMorphKey): replay scripts hold edits of one key, "
-                                     "so a morph document cannot be recorded");
+      return invalidArgument(where +
+                             "a second morph key (AddMorphKey): replay scripts hold edits of one key, "
+                             "so a morph document cannot be recorded");
     default:
       return invalidArgument(where + "an AppliedCommand without a command (one this build does not know)");
   }
@@ -141,8 +143,8 @@ Expected<std::vector<ScriptCommand>> ScriptRecorder::lines(const wire::AppliedCo
   const auto& commands = a.edit_batch().commands();
   if (a.edit_ids_size() != commands.size()) {
     return invalidArgument("version " + std::to_string(a.version()) + ": an EditBatch of " +
-                           std::to_string(commands.size()) + " commands with " + std::to_string(a.edit_ids_size()) +
-                           " edit ids");
+                           std::to_string(commands.size()) + " commands with " +
+                           std::to_string(a.edit_ids_size()) + " edit ids");
   }
   std::vector<ScriptCommand> out;
   for (int i = 0; i < commands.size(); ++i) {

@@ -30,7 +30,8 @@ Status openDocument(client::Session& s, uint64_t document, double timeoutSeconds
   wire::ClientMessage open;
   open.mutable_open_document()->set_document_id(document);
   TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage opened, s.call(open, timeoutSeconds));
-  if (!opened.has_ack()) return invalidArgument("document " + std::to_string(document) + ": open: " + describe(opened));
+  if (!opened.has_ack())
+    return invalidArgument("document " + std::to_string(document) + ": open: " + describe(opened));
   return Status::ok();
 }
 
@@ -49,14 +50,16 @@ Status openAndSubscribe(client::Session& s, uint64_t document, const wire::LodPr
   const auto deadline = Clock::now() + std::chrono::duration<double>(timeoutSeconds);
   while (!view->ready()) {
     const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-    if (left <= 0) return ioError("document " + std::to_string(document) + ": no snapshot within the timeout");
+    if (left <= 0)
+      return ioError("document " + std::to_string(document) + ": no snapshot within the timeout");
     TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage m, s.receive(left));
     TESSERA_RETURN_IF_ERROR(view->apply(m));
   }
   return Status::ok();
 }
 
-Expected<SurfaceState> readSurface(const client::SessionOptions& options, uint64_t document, const wire::LodProfile& profile) {
+Expected<SurfaceState> readSurface(const client::SessionOptions& options, uint64_t document,
+                                   const wire::LodProfile& profile) {
   client::SessionOptions o = options;
   o.name = "tessera-replay-check";
   TESSERA_ASSIGN_OR_RETURN(auto session, client::Session::connect(o));
@@ -71,7 +74,8 @@ Expected<SurfaceState> readSurface(const client::SessionOptions& options, uint64
 
 Expected<ReplayResult> runReplay(const Script& script, const ReplayOptions& options) {
   const uint64_t doc = options.document != 0 ? options.document : script.header.document;
-  if (doc == 0) return invalidArgument("no document: give --document or put \"document\" in the script header");
+  if (doc == 0)
+    return invalidArgument("no document: give --document or put \"document\" in the script header");
   struct Actor {
     std::unique_ptr<client::Session> session;
     std::vector<uint64_t> edits;  // edit ids of its accepted edits, oldest first
@@ -81,8 +85,9 @@ Expected<ReplayResult> runReplay(const Script& script, const ReplayOptions& opti
   const auto start = Clock::now();
   for (const ScriptCommand& c : script.commands) {
     if (options.speed > 0) {
-      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(
-                                                std::chrono::duration<double, std::milli>(c.timeMs / options.speed)));
+      std::this_thread::sleep_until(start +
+                                    std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double, std::milli>(c.timeMs / options.speed)));
     }
     Actor& actor = actors[c.actor];
     const std::string where = "line " + std::to_string(c.line) + " (" + c.actor + ")";
@@ -93,7 +98,8 @@ Expected<ReplayResult> runReplay(const Script& script, const ReplayOptions& opti
       auto session = client::Session::connect(o);
       if (!session.isOk()) return session.status().withContext(where);
       actor.session = std::move(*session);
-      TESSERA_RETURN_IF_ERROR(openDocument(*actor.session, doc, options.replyTimeoutSeconds).withContext(where));
+      TESSERA_RETURN_IF_ERROR(
+          openDocument(*actor.session, doc, options.replyTimeoutSeconds).withContext(where));
     }
     uint64_t editId = 0;
     if (c.kind == ScriptCommand::Kind::kUndo || c.kind == ScriptCommand::Kind::kRedo) {
@@ -104,8 +110,8 @@ Expected<ReplayResult> runReplay(const Script& script, const ReplayOptions& opti
       } else {
         ++result.commands;
         ++result.rejected;
-        std::fprintf(stderr, "tessera-replay: %s: edit %lld: the actor has made only %zu edits; skipped\n", where.c_str(),
-                     static_cast<long long>(c.edit), actor.edits.size());
+        std::fprintf(stderr, "tessera-replay: %s: edit %lld: the actor has made only %zu edits; skipped\n",
+                     where.c_str(), static_cast<long long>(c.edit), actor.edits.size());
         continue;
       }
     }

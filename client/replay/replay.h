@@ -44,13 +44,15 @@ struct SurfaceState {
   int64_t triangles = 0;
 };
 // A fresh subscriber's view of `document` with `profile`.
-Expected<SurfaceState> readSurface(const client::SessionOptions& session, uint64_t document, const wire::LodProfile& profile);
+Expected<SurfaceState> readSurface(const client::SessionOptions& session, uint64_t document,
+                                   const wire::LodProfile& profile);
 
 wire::LodProfile profileOf(const ScriptHeader& header);
 
 // Seconds as a steady_clock duration, for deadlines and pacing.
 inline std::chrono::steady_clock::duration secondsOf(double seconds) {
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(seconds));
 }
 
 }  // namespace tessera::replay

@@ -30,7 +30,8 @@ void addConnectionOptions(CLI::App& app, ConnectionArgs& args) {
   app.add_option("--host", args.host, "server address")->capture_default_str();
   app.add_option("--port", args.port, "server port")->check(CLI::Range(1u, 65535u))->capture_default_str();
   auto* token = app.add_option("--token", args.token, "access token");
-  app.add_option("--token-file", args.tokenFile, "read the token from the first line of FILE")->excludes(token);
+  app.add_option("--token-file", args.tokenFile, "read the token from the first line of FILE")
+      ->excludes(token);
 }
 
 void addProfileOption(CLI::App& app, std::string& text) {
@@ -74,7 +75,8 @@ int fail(const Status& s) {
 }
 
 int usage(const std::string& message, const std::string& command) {
-  const std::string help = command.empty() ? "tessera-replay --help" : "tessera-replay " + command + " --help";
+  const std::string help =
+      command.empty() ? "tessera-replay --help" : "tessera-replay " + command + " --help";
   std::fprintf(stderr, "tessera-replay: %s\n(%s lists the options)\n", message.c_str(), help.c_str());
   return kExitUsage;
 }

@@ -79,8 +79,9 @@ int runCheck(const std::string& path) {
 }
 
 void printSurface(const SurfaceState& s) {
-  std::printf("version %llu\nsurface_hash %016llx\ntriangles %lld\n", static_cast<unsigned long long>(s.version),
-              static_cast<unsigned long long>(s.hash), static_cast<long long>(s.triangles));
+  std::printf("version %llu\nsurface_hash %016llx\ntriangles %lld\n",
+              static_cast<unsigned long long>(s.version), static_cast<unsigned long long>(s.hash),
+              static_cast<long long>(s.triangles));
 }
 
 int runReplayCommand(const ReplayArgs& a) {
@@ -111,7 +112,8 @@ int runRecordCommand(const RecordArgs& a) {
   auto session = sessionOptions(a.connection);
   if (!session.isOk()) return usage(session.status().message(), "record");
   session->name = "tessera-replay-record";
-  if (a.seconds == 0 && a.untilVersion == 0) return usage("record needs --seconds S or --until-version V", "record");
+  if (a.seconds == 0 && a.untilVersion == 0)
+    return usage("record needs --seconds S or --until-version V", "record");
   auto header = withProfile(a.profile, ScriptHeader{});
   if (!header.isOk()) return usage(header.status().message(), "record");
   std::ofstream f(a.output, std::ios::binary);
@@ -128,8 +130,11 @@ int runRecordCommand(const RecordArgs& a) {
                 static_cast<unsigned long long>(from));
     std::fflush(stdout);
     if (from != 1) {
-      std::fprintf(stderr, "tessera-replay: the recording starts at version %llu: replay it on a copy of the document "
-                   "at that version, not on a fresh one\n", static_cast<unsigned long long>(from));
+      std::fprintf(
+          stderr,
+          "tessera-replay: the recording starts at version %llu: replay it on a copy of the document "
+          "at that version, not on a fresh one\n",
+          static_cast<unsigned long long>(from));
     }
   };
   auto result = runRecord(o);
@@ -141,7 +146,8 @@ int runRecordCommand(const RecordArgs& a) {
     printSurface(*result->surface);
   } else {
     std::printf("version %llu\n", static_cast<unsigned long long>(result->lastVersion));
-    std::fprintf(stderr, "tessera-replay: record: no surface hash: the recorder's view was not at the last version\n");
+    std::fprintf(
+        stderr, "tessera-replay: record: no surface hash: the recorder's view was not at the last version\n");
   }
   std::printf("wrote %s\n", a.output.c_str());
   if (!result->stopped.isOk()) return fail(result->stopped.withContext("record"));
@@ -160,15 +166,24 @@ int runSurface(const SurfaceArgs& a) {
 }
 
 CLI::App* addGenerate(CLI::App& app, GenerateArgs& a) {
-  CLI::App* c = app.add_subcommand("generate", "write a synthetic script: E editors, R offset edits per second each");
+  CLI::App* c =
+      app.add_subcommand("generate", "write a synthetic script: E editors, R offset edits per second each");
   c->add_option("-o,--output", a.output, "the script to write")->required();
   c->add_option("--document", a.document, "the document id in the header")->capture_default_str();
   c->add_option("--editors", a.editors, "actors")->check(CLI::Range(1, 1000))->capture_default_str();
-  c->add_option("--rate", a.rate, "edits per second per editor, (0, 200]")->check(within(0, 200, true))->capture_default_str();
-  c->add_option("--seconds", a.seconds, "script length, (0, 3600]")->check(within(0, 3600, true))->capture_default_str();
+  c->add_option("--rate", a.rate, "edits per second per editor, (0, 200]")
+      ->check(within(0, 200, true))
+      ->capture_default_str();
+  c->add_option("--seconds", a.seconds, "script length, (0, 3600]")
+      ->check(within(0, 3600, true))
+      ->capture_default_str();
   c->add_option("--seed", a.seed, "random seed (the same options give the same file)")->capture_default_str();
-  c->add_option("--vertex-level", a.vertexLevel, "moves on v<L>:0..N-1")->check(CLI::Range(0, 12))->capture_default_str();
-  c->add_option("--vertex-count", a.vertexCount, "N of --vertex-level")->check(CLI::PositiveNumber)->capture_default_str();
+  c->add_option("--vertex-level", a.vertexLevel, "moves on v<L>:0..N-1")
+      ->check(CLI::Range(0, 12))
+      ->capture_default_str();
+  c->add_option("--vertex-count", a.vertexCount, "N of --vertex-level")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   c->add_option("--step", a.step, "largest offset per axis")->capture_default_str();
   c->add_flag("--no-undo", a.noUndo, "no undo or redo commands");
   addProfileOption(*c, a.profile);
@@ -176,21 +191,25 @@ CLI::App* addGenerate(CLI::App& app, GenerateArgs& a) {
 }
 
 CLI::App* addReplay(CLI::App& app, ReplayArgs& a) {
-  CLI::App* c = app.add_subcommand("replay",
-                                   "replay a script, one connection per actor, in script order; then print the final "
-                                   "version and surface hash a fresh subscriber sees");
+  CLI::App* c =
+      app.add_subcommand("replay",
+                         "replay a script, one connection per actor, in script order; then print the final "
+                         "version and surface hash a fresh subscriber sees");
   c->add_option("SCRIPT", a.script, "the script")->required();
   addConnectionOptions(*c, a.connection);
   c->add_option("--document", a.document, "the document (default: the script's)");
-  c->add_option("--speed", a.speed, "1 real time, 2 twice as fast, 0 no waiting")->check(within(0, 1e6))->capture_default_str();
+  c->add_option("--speed", a.speed, "1 real time, 2 twice as fast, 0 no waiting")
+      ->check(within(0, 1e6))
+      ->capture_default_str();
   addProfileOption(*c, a.profile);
   return c;
 }
 
 CLI::App* addRecord(CLI::App& app, RecordArgs& a) {
-  CLI::App* c = app.add_subcommand("record",
-                                   "record the document's commands live, as a script (any role that may open it); stops "
-                                   "after S seconds, or once version V is recorded (then at most S, default 600)");
+  CLI::App* c = app.add_subcommand(
+      "record",
+      "record the document's commands live, as a script (any role that may open it); stops "
+      "after S seconds, or once version V is recorded (then at most S, default 600)");
   addConnectionOptions(*c, a.connection);
   c->add_option("--document", a.document, "the document to record")->required()->check(CLI::PositiveNumber);
   c->add_option("-o,--output", a.output, "the script to write")->required();
@@ -211,13 +230,15 @@ CLI::App* addSurface(CLI::App& app, SurfaceArgs& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app("tessera-replay: scripted sessions and load runs against tessera-server (docs/REPLAY.md)", "tessera-replay");
+  CLI::App app("tessera-replay: scripted sessions and load runs against tessera-server (docs/REPLAY.md)",
+               "tessera-replay");
   app.set_version_flag("--version", std::string("tessera-replay ") + tessera::kVersion);
   app.require_subcommand(1);
   // A repeated option keeps its last value, as the hand-written parser did.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  app.footer("exit codes: 0 success, 1 a failure, 2 a usage error; load also 3 (connection errors, gaps or viewers\n"
-             "behind), 4 (a --threshold failed), 5 (stopped: missing document or refused token)");
+  app.footer(
+      "exit codes: 0 success, 1 a failure, 2 a usage error; load also 3 (connection errors, gaps or viewers\n"
+      "behind), 4 (a --threshold failed), 5 (stopped: missing document or refused token)");
 
   GenerateArgs generate;
   std::string checked;
@@ -237,9 +258,11 @@ int main(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;
     const std::function<bool(const CLI::App*)> all;  // empty: every subcommand
-    for (const CLI::App* c : std::as_const(app).get_subcommands(all)) known = known || c->get_name() == argv[1];
+    for (const CLI::App* c : std::as_const(app).get_subcommands(all))
+      known = known || c->get_name() == argv[1];
     if (!known) {
-      return usage(std::string("unknown command '") + argv[1] + "' (expected generate, check, replay, record, surface or load)");
+      return usage(std::string("unknown command '") + argv[1] +
+                   "' (expected generate, check, replay, record, surface or load)");
     }
   }
   try {

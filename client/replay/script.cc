@@ -26,7 +26,8 @@ std::string requireKeys(const json& j, std::initializer_list<const char*> allowe
 }
 
 std::string getVertex(const json& j, const char* key, uint64_t& out) {
-  if (!j.contains(key) || !j[key].is_string()) return std::string("\"") + key + "\" must be a vertex id string like \"v2:40\"";
+  if (!j.contains(key) || !j[key].is_string())
+    return std::string("\"") + key + "\" must be a vertex id string like \"v2:40\"";
   auto id = parseVertexId(j[key].get<std::string>());
   if (!id.isOk()) return id.status().message();
   out = id->packed();
@@ -58,7 +59,8 @@ std::string parseCommand(const json& j, ScriptCommand& c) {
   }
   c.actor = j["actor"].get<std::string>();
   if (c.actor.size() > 100) return "\"actor\" is longer than 100 bytes";
-  if (!j.contains("cmd") || !j["cmd"].is_string()) return "\"cmd\" must be one of move, crease, corner, interpolate, undo, redo";
+  if (!j.contains("cmd") || !j["cmd"].is_string())
+    return "\"cmd\" must be one of move, crease, corner, interpolate, undo, redo";
   const std::string cmd = j["cmd"].get<std::string>();
   if (cmd == "move") {
     c.kind = ScriptCommand::Kind::kMove;
@@ -83,7 +85,8 @@ std::string parseCommand(const json& j, ScriptCommand& c) {
   } else if (cmd == "crease") {
     c.kind = ScriptCommand::Kind::kCrease;
     if (auto e = requireKeys(j, {"t", "actor", "cmd", "edge", "sharpness"}); !e.empty()) return e;
-    if (!j.contains("edge") || !j["edge"].is_string()) return "\"edge\" must be an edge id string like \"e1:5\"";
+    if (!j.contains("edge") || !j["edge"].is_string())
+      return "\"edge\" must be an edge id string like \"e1:5\"";
     auto id = parseEdgeId(j["edge"].get<std::string>());
     if (!id.isOk()) return id.status().message();
     c.edge = id->packed();
@@ -123,8 +126,10 @@ std::string parseHeader(const json& j, ScriptHeader& h) {
   if (!j.is_object() || !j.contains("format") || j["format"] != "tessera-replay") {
     return "the first line must be a header {\"format\":\"tessera-replay\",\"version\":1,...}";
   }
-  if (auto e = requireKeys(j, {"format", "version", "document", "profile", "generator"}); !e.empty()) return e;
-  if (!j.contains("version") || !j["version"].is_number_integer()) return "the header has no integer \"version\"";
+  if (auto e = requireKeys(j, {"format", "version", "document", "profile", "generator"}); !e.empty())
+    return e;
+  if (!j.contains("version") || !j["version"].is_number_integer())
+    return "the header has no integer \"version\"";
   if (j["version"].get<int64_t>() != kScriptVersion) {
     return "script version " + j["version"].dump() + " is not supported (this build reads version 1)";
   }
@@ -134,7 +139,8 @@ std::string parseHeader(const json& j, ScriptHeader& h) {
   }
   if (j.contains("profile")) {
     const json& p = j["profile"];
-    if (!p.is_array() || p.size() != 3 || !p[0].is_number_unsigned() || !p[1].is_number_unsigned() || !p[2].is_number()) {
+    if (!p.is_array() || p.size() != 3 || !p[0].is_number_unsigned() || !p[1].is_number_unsigned() ||
+        !p[2].is_number()) {
       return "\"profile\" must be [base_level, max_level, angle_degrees]";
     }
     h.baseLevel = p[0].get<uint32_t>();
@@ -156,7 +162,9 @@ Expected<Script> parseScript(const std::string& text, const std::string& source)
   std::string line;
   int number = 0;
   bool sawHeader = false;
-  auto fail = [&](const std::string& reason) { return parseError(source + ":" + std::to_string(number) + ": " + reason); };
+  auto fail = [&](const std::string& reason) {
+    return parseError(source + ":" + std::to_string(number) + ": " + reason);
+  };
   while (std::getline(in, line)) {
     ++number;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
@@ -198,7 +206,9 @@ std::string headerLine(const ScriptHeader& h) {
 
 std::string commandLine(const ScriptCommand& c) {
   nlohmann::ordered_json j = {{"t", c.timeMs}, {"actor", c.actor}};
-  auto sharp = [](float s) { return std::isinf(s) ? nlohmann::ordered_json("inf") : nlohmann::ordered_json(s); };
+  auto sharp = [](float s) {
+    return std::isinf(s) ? nlohmann::ordered_json("inf") : nlohmann::ordered_json(s);
+  };
   switch (c.kind) {
     case ScriptCommand::Kind::kMove: {
       j["cmd"] = "move";
@@ -283,12 +293,16 @@ Script generateScript(const GenerateOptions& o) {
   std::uniform_int_distribution<uint64_t> vertex(0, o.vertexCount == 0 ? 0 : o.vertexCount - 1);
   const double periodMs = 1000.0 / std::max(o.rate, 1e-3);
   const int64_t perEditor = static_cast<int64_t>(std::floor(o.seconds * o.rate));
-  struct Pending { int64_t t; int editor; };
+  struct Pending {
+    int64_t t;
+    int editor;
+  };
   std::vector<Pending> all;
   for (int e = 0; e < o.editors; ++e) {
     // Stagger the editors evenly inside one period.
     for (int64_t i = 0; i < perEditor; ++i) {
-      all.push_back({static_cast<int64_t>(std::llround((i + static_cast<double>(e) / o.editors) * periodMs)), e});
+      all.push_back(
+          {static_cast<int64_t>(std::llround((i + static_cast<double>(e) / o.editors) * periodMs)), e});
     }
   }
   std::stable_sort(all.begin(), all.end(), [](const Pending& a, const Pending& b) { return a.t < b.t; });

@@ -21,11 +21,11 @@ namespace tessera::replay {
 inline constexpr int kScriptVersion = 1;
 
 struct ScriptHeader {
-  uint64_t document = 0;    // 0: the caller must name one (--document)
-  uint32_t baseLevel = 2;   // the profile a replay's final subscriber uses
+  uint64_t document = 0;   // 0: the caller must name one (--document)
+  uint32_t baseLevel = 2;  // the profile a replay's final subscriber uses
   uint32_t maxLevel = 5;
   double angleDegrees = 10;
-  std::string generator;    // free-form: the tool that wrote the script
+  std::string generator;  // free-form: the tool that wrote the script
 };
 
 struct ScriptCommand {

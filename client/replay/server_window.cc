@@ -7,9 +7,10 @@ namespace tessera::replay {
 namespace {
 
 // Cumulative counters of StatsReply (server/connection.cc, Connection::stats).
-constexpr const char* kCounters[] = {"connections_total", "edits",          "rejects",         "bytes_sent",
-                                     "frames_sent",       "delta_merges",   "resyncs",         "deltas",
-                                     "delta_regions",     "delta_regions_layout_ids", "store_batches"};
+constexpr const char* kCounters[] = {
+    "connections_total", "edits",   "rejects", "bytes_sent",    "frames_sent",
+    "delta_merges",      "resyncs", "deltas",  "delta_regions", "delta_regions_layout_ids",
+    "store_batches"};
 // Counters whose rate is worth reporting.
 constexpr const char* kRated[] = {"edits", "rejects", "bytes_sent", "frames_sent", "resyncs", "deltas"};
 // Values that describe the moment, not a sum: the end's is reported.
@@ -30,7 +31,9 @@ const double* find(const ServerStatsSample& s, const std::string& name) {
   return it == s.end() ? nullptr : &it->second;
 }
 
-double round6(double x) { return std::round(x * 1e6) / 1e6; }
+double round6(double x) {
+  return std::round(x * 1e6) / 1e6;
+}
 
 }  // namespace
 
@@ -43,7 +46,8 @@ Expected<ServerStatsSample> fetchServerStats(const client::SessionOptions& sessi
   auto reply = s->call(m, 10);
   s->close();
   if (!reply.isOk()) return reply.status().withContext("stats");
-  if (!reply->has_stats_reply()) return ioError("stats: the server answered with something else than a StatsReply");
+  if (!reply->has_stats_reply())
+    return ioError("stats: the server answered with something else than a StatsReply");
   ServerStatsSample sample;
   for (const auto& stat : reply->stats_reply().stats()) sample[stat.name()] = stat.value();
   return sample;
@@ -53,7 +57,8 @@ Expected<nlohmann::json> statsWindow(const ServerStatsSample& start, const Serve
   const double* up0 = find(start, "uptime_seconds");
   const double* up1 = find(end, "uptime_seconds");
   if (!up0 || !up1) return invalidArgument("stats window: no uptime_seconds in the server's stats");
-  if (*up1 < *up0) return invalidArgument("stats window: the server's uptime went down (a restart during the run?)");
+  if (*up1 < *up0)
+    return invalidArgument("stats window: the server's uptime went down (a restart during the run?)");
   const double seconds = *up1 - *up0;
   nlohmann::json w = {{"seconds", round6(seconds)}};
   for (const char* name : kCounters) {
@@ -62,7 +67,8 @@ Expected<nlohmann::json> statsWindow(const ServerStatsSample& start, const Serve
     if (a && b) w[name] = *b - *a;
   }
   for (const char* name : kRated) {
-    if (w.contains(name) && seconds > 0) w[std::string(name) + "_per_second"] = round6(w[name].get<double>() / seconds);
+    if (w.contains(name) && seconds > 0)
+      w[std::string(name) + "_per_second"] = round6(w[name].get<double>() / seconds);
   }
   for (const Average& avg : kAverages) {
     const double *a0 = find(start, avg.name), *a1 = find(end, avg.name);

@@ -11,35 +11,52 @@ namespace tessera::replay {
 
 namespace {
 
-const std::map<std::string, std::string> kLatencies = {
-    {"ack", "edit_to_ack"}, {"edit_to_ack", "edit_to_ack"}, {"delta", "edit_to_delta"}, {"edit_to_delta", "edit_to_delta"}};
-const std::map<std::string, std::string> kStats = {{"mean", "mean"}, {"stddev", "stddev"}, {"min", "min"},
-                                                   {"max", "max"},   {"p50", "p50"},       {"p90", "p90"},
-                                                   {"p95", "p95"},   {"p99", "p99"},       {"p99.9", "p99_9"}};
+const std::map<std::string, std::string> kLatencies = {{"ack", "edit_to_ack"},
+                                                       {"edit_to_ack", "edit_to_ack"},
+                                                       {"delta", "edit_to_delta"},
+                                                       {"edit_to_delta", "edit_to_delta"}};
+const std::map<std::string, std::string> kStats = {
+    {"mean", "mean"}, {"stddev", "stddev"}, {"min", "min"}, {"max", "max"},    {"p50", "p50"},
+    {"p90", "p90"},   {"p95", "p95"},       {"p99", "p99"}, {"p99.9", "p99_9"}};
 // Where each count is in the report.
 const std::map<std::string, std::pair<const char*, const char*>> kCounts = {
-    {"errors", {"errors", "count"}},       {"rejected", {"edits", "rejected"}}, {"gaps", {"viewers", "gaps"}},
-    {"resyncs", {"viewers", "resyncs"}},   {"behind", {"viewers", "behind_at_end"}}, {"sent", {"edits", "sent"}},
-    {"acked", {"edits", "acked"}},         {"throughput", {"edits", "throughput_per_second"}}};
+    {"errors", {"errors", "count"}},
+    {"rejected", {"edits", "rejected"}},
+    {"gaps", {"viewers", "gaps"}},
+    {"resyncs", {"viewers", "resyncs"}},
+    {"behind", {"viewers", "behind_at_end"}},
+    {"sent", {"edits", "sent"}},
+    {"acked", {"edits", "acked"}},
+    {"throughput", {"edits", "throughput_per_second"}}};
 
 const char* opText(Comparison op) {
   switch (op) {
-    case Comparison::kLess: return "<";
-    case Comparison::kLessEqual: return "<=";
-    case Comparison::kGreater: return ">";
-    case Comparison::kGreaterEqual: return ">=";
-    case Comparison::kEqual: return "=";
+    case Comparison::kLess:
+      return "<";
+    case Comparison::kLessEqual:
+      return "<=";
+    case Comparison::kGreater:
+      return ">";
+    case Comparison::kGreaterEqual:
+      return ">=";
+    case Comparison::kEqual:
+      return "=";
   }
   return "?";
 }
 
 bool compare(double value, Comparison op, double limit) {
   switch (op) {
-    case Comparison::kLess: return value < limit;
-    case Comparison::kLessEqual: return value <= limit;
-    case Comparison::kGreater: return value > limit;
-    case Comparison::kGreaterEqual: return value >= limit;
-    case Comparison::kEqual: return value == limit;
+    case Comparison::kLess:
+      return value < limit;
+    case Comparison::kLessEqual:
+      return value <= limit;
+    case Comparison::kGreater:
+      return value > limit;
+    case Comparison::kGreaterEqual:
+      return value >= limit;
+    case Comparison::kEqual:
+      return value == limit;
   }
   return false;
 }
@@ -92,7 +109,8 @@ Expected<Threshold> parseThreshold(const std::string& given) {
 
   if (auto count = kCounts.find(name); count != kCounts.end()) {
     t.stat = name;
-    if (!unit.empty() && !(name == "throughput" && unit == "/s")) return bad(name + " is a count and takes no unit");
+    if (!unit.empty() && !(name == "throughput" && unit == "/s"))
+      return bad(name + " is a count and takes no unit");
     t.limit = limit;
     return t;
   }
@@ -119,7 +137,8 @@ Expected<Threshold> parseThreshold(const std::string& given) {
   } else if (unit == "s") {
     t.limit = limit * 1000;
   } else {
-    return bad(unit.empty() ? "a latency needs a unit: us, ms or s" : "unknown unit '" + unit + "' (expected us, ms or s)");
+    return bad(unit.empty() ? "a latency needs a unit: us, ms or s"
+                            : "unknown unit '" + unit + "' (expected us, ms or s)");
   }
   return t;
 }
@@ -130,12 +149,14 @@ std::string ThresholdResult::describe() const {
   if (t.metric.empty()) {
     what = t.stat + " " + (measured ? number(value) : "n/a");
   } else {
-    what = t.metric + " " + (t.stat == "p99_9" ? "p99.9" : t.stat) + " " + (measured ? number(value) + " ms" : "n/a (no samples)");
+    what = t.metric + " " + (t.stat == "p99_9" ? "p99.9" : t.stat) + " " +
+           (measured ? number(value) + " ms" : "n/a (no samples)");
   }
   return t.text + ": " + what + (passed ? " (ok)" : " (FAILED)");
 }
 
-std::vector<ThresholdResult> checkThresholds(const std::vector<Threshold>& thresholds, const nlohmann::json& report) {
+std::vector<ThresholdResult> checkThresholds(const std::vector<Threshold>& thresholds,
+                                             const nlohmann::json& report) {
   std::vector<ThresholdResult> out;
   for (const Threshold& t : thresholds) {
     ThresholdResult r{.threshold = t};

@@ -27,7 +27,7 @@ struct Threshold {
   std::string metric;  // "edit_to_ack", "edit_to_delta", or "" for a count
   std::string stat;    // the report's key: "p99", "p99_9", "mean", ... or the count's name
   Comparison op = Comparison::kLess;
-  double limit = 0;    // milliseconds for latencies
+  double limit = 0;  // milliseconds for latencies
 };
 
 // An error names the threshold and what is wrong with it.
@@ -36,11 +36,12 @@ Expected<Threshold> parseThreshold(const std::string& text);
 struct ThresholdResult {
   Threshold threshold;
   bool passed = false;
-  bool measured = false;  // false: nothing to compare (a latency without samples): failed
-  double value = 0;       // in ms for latencies
+  bool measured = false;         // false: nothing to compare (a latency without samples): failed
+  double value = 0;              // in ms for latencies
   std::string describe() const;  // "p99<50ms: edit_to_delta p99 63.204 ms (failed)"
 };
 
-std::vector<ThresholdResult> checkThresholds(const std::vector<Threshold>& thresholds, const nlohmann::json& report);
+std::vector<ThresholdResult> checkThresholds(const std::vector<Threshold>& thresholds,
+                                             const nlohmann::json& report);
 
 }  // namespace tessera::replay

@@ -1,5 +1,6 @@
 #include "client/replay/viewer_pool.h"
 
+#include <array>
 #include <boost/asio/bind_executor.hpp>
 #include <boost/asio/connect.hpp>
 #include <boost/asio/io_context.hpp>
@@ -8,7 +9,6 @@
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
 #include <boost/asio/write.hpp>
-#include <array>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -83,7 +83,8 @@ class Pool {
       return;
     }
     for (size_t i = 0; i < results.size(); ++i) {
-      viewers_.push_back(std::make_shared<PoolViewer>(*this, io_, p_.firstIndex + static_cast<int>(i), results[i]));
+      viewers_.push_back(
+          std::make_shared<PoolViewer>(*this, io_, p_.firstIndex + static_cast<int>(i), results[i]));
     }
     startMore();
     tick();
@@ -161,23 +162,27 @@ void PoolViewer::start(const tcp::resolver::results_type& endpoints) {
 }
 
 void PoolViewer::connect(const tcp::resolver::results_type& endpoints) {
-  asio::async_connect(socket_, endpoints, asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, const tcp::endpoint&) {
-    if (ec) return self->fail("connect: " + ec.message());
-    HelloOptions hello;
-    hello.clientSeq = self->nextSeq_++;
-    hello.clientName = self->name();
-    const LoadOptions& o = self->pool_.options();
-    hello.token = o.viewerToken.empty() ? o.session.token : o.viewerToken;
-    self->send(makeHello(hello));
-    self->read();
-  }));
+  asio::async_connect(
+      socket_, endpoints,
+      asio::bind_executor(
+          strand_, [self = shared_from_this()](const boost::system::error_code& ec, const tcp::endpoint&) {
+            if (ec) return self->fail("connect: " + ec.message());
+            HelloOptions hello;
+            hello.clientSeq = self->nextSeq_++;
+            hello.clientName = self->name();
+            const LoadOptions& o = self->pool_.options();
+            hello.token = o.viewerToken.empty() ? o.session.token : o.viewerToken;
+            self->send(makeHello(hello));
+            self->read();
+          }));
 }
 
 void PoolViewer::tick(bool pingDue) {
   asio::post(strand_, [self = shared_from_this(), pingDue] {
     if (self->stage_ != Stage::kStreaming) return;
     Shared& shared = self->pool_.shared();
-    if (shared.stopViewing && self->out_.ready && self->out_.version >= shared.maxAckedVersion.load()) return self->close();
+    if (shared.stopViewing && self->out_.ready && self->out_.version >= shared.maxAckedVersion.load())
+      return self->close();
     if (pingDue) {
       wire::ClientMessage ping;
       ping.mutable_ping();
@@ -219,18 +224,20 @@ void PoolViewer::send(wire::ClientMessage message) {
 }
 
 void PoolViewer::writeNext() {
-  asio::async_write(socket_, asio::buffer(outbox_.front()),
-                    asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t) {
-                      if (self->stage_ == Stage::kClosed) return;
-                      if (ec) return self->fail("send: " + ec.message());
-                      self->outbox_.pop_front();
-                      if (!self->outbox_.empty()) self->writeNext();
-                    }));
+  asio::async_write(
+      socket_, asio::buffer(outbox_.front()),
+      asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t) {
+        if (self->stage_ == Stage::kClosed) return;
+        if (ec) return self->fail("send: " + ec.message());
+        self->outbox_.pop_front();
+        if (!self->outbox_.empty()) self->writeNext();
+      }));
 }
 
 void PoolViewer::read() {
   socket_.async_read_some(
-      asio::buffer(buffer_), asio::bind_executor(strand_, [self = shared_from_this()](const boost::system::error_code& ec, size_t n) {
+      asio::buffer(buffer_), asio::bind_executor(strand_, [self = shared_from_this()](
+                                                              const boost::system::error_code& ec, size_t n) {
         if (self->stage_ == Stage::kClosed) return;
         if (ec) return self->fail("connection closed: " + ec.message());
         const auto arrival = Clock::now();
@@ -261,7 +268,8 @@ void PoolViewer::handle(const std::string& payload, Clock::time_point arrival) {
     }
   }
   wire::ServerMessage m;
-  if (!m.ParseFromString(payload)) return fail("a " + std::to_string(payload.size()) + "-byte frame is not a ServerMessage");
+  if (!m.ParseFromString(payload))
+    return fail("a " + std::to_string(payload.size()) + "-byte frame is not a ServerMessage");
   handle(m, arrival);
 }
 
@@ -288,10 +296,17 @@ void PoolViewer::handle(const wire::ServerMessage& m, Clock::time_point arrival)
   }
   if (stage_ == Stage::kSubscribe && reply == subscribeSeq_) stage_ = Stage::kStreaming;
   switch (trackViewerMessage(m, arrival, o.document, out_, pool_.shared())) {
-    case ViewerEvent::kReady: joined(); break;
-    case ViewerEvent::kGap: subscribeSeq_ = nextSeq_, send(subscribeMessage(o.document, o.profile)); break;
-    case ViewerEvent::kFatal: fail("server error: " + m.error().message()); break;
-    case ViewerEvent::kNone: break;
+    case ViewerEvent::kReady:
+      joined();
+      break;
+    case ViewerEvent::kGap:
+      subscribeSeq_ = nextSeq_, send(subscribeMessage(o.document, o.profile));
+      break;
+    case ViewerEvent::kFatal:
+      fail("server error: " + m.error().message());
+      break;
+    case ViewerEvent::kNone:
+      break;
   }
 }
 

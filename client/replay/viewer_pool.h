@@ -14,9 +14,9 @@
 namespace tessera::replay {
 
 struct ViewerPoolOptions {
-  int firstIndex = 0;  // viewers are named viewer-<firstIndex + i + 1>
-  int threads = 1;     // threads running the pool's io_context
-  int maxJoining = 32; // viewers connecting and subscribing at once
+  int firstIndex = 0;   // viewers are named viewer-<firstIndex + i + 1>
+  int threads = 1;      // threads running the pool's io_context
+  int maxJoining = 32;  // viewers connecting and subscribing at once
 };
 
 // Runs `results.size()` viewers until the run ends (shared.stopViewing, then

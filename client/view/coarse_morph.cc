@@ -31,26 +31,29 @@ Expected<CoarseMorphBase> coarseMorphBase(const wire::MorphControl& c) {
     base.topology.triangles.push_back(t);
   }
   for (int i = 0; i < c.crease_sharpness_size(); ++i) {
-    base.topology.creases.push_back({static_cast<int>(c.crease_vertices(2 * i)), static_cast<int>(c.crease_vertices(2 * i + 1)),
-                                     c.crease_sharpness(i)});
+    base.topology.creases.push_back({static_cast<int>(c.crease_vertices(2 * i)),
+                                     static_cast<int>(c.crease_vertices(2 * i + 1)), c.crease_sharpness(i)});
   }
   base.topology.vertexSharpness.assign(c.vertex_sharpness().begin(), c.vertex_sharpness().end());
   base.options.maxLevel = static_cast<int>(c.max_level());
-  if (c.crease_method() == wire::CREASE_METHOD_CHAIKIN) base.options.loop.creaseMethod = CreaseMethod::kChaikin;
+  if (c.crease_method() == wire::CREASE_METHOD_CHAIKIN)
+    base.options.loop.creaseMethod = CreaseMethod::kChaikin;
   if (c.boundary() == wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER) {
     base.options.loop.boundary = BoundaryInterpolation::kEdgeAndCorner;
   }
   return base;
 }
 
-Expected<RegionMesh> refineCoarseMorph(const CoarseMorphBase& base, const wire::MorphControl& frame, int level) {
+Expected<RegionMesh> refineCoarseMorph(const CoarseMorphBase& base, const wire::MorphControl& frame,
+                                       int level) {
   if (frame.points_size() != 3 * base.topology.numVertices) {
     return invalidArgument("morph control: " + std::to_string(frame.points_size() / 3) + " points for " +
                            std::to_string(base.topology.numVertices) + " base vertices");
   }
   std::vector<Vec3> points;
   points.reserve(static_cast<size_t>(base.topology.numVertices));
-  for (int i = 0; i < frame.points_size(); i += 3) points.emplace_back(frame.points(i), frame.points(i + 1), frame.points(i + 2));
+  for (int i = 0; i < frame.points_size(); i += 3)
+    points.emplace_back(frame.points(i), frame.points(i + 1), frame.points(i + 2));
   TESSERA_ASSIGN_OR_RETURN(Document doc, Document::create(base.topology, std::move(points), base.options));
   level = std::clamp(level, 0, base.options.maxLevel);
   TESSERA_ASSIGN_OR_RETURN(SurfaceMesh surface, doc.surface(level, SurfaceKind::kLimit));

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "protocol/morph_key.h"
 #include "protocol/commands.h"
+#include "protocol/morph_key.h"
 
 namespace tessera::view {
 

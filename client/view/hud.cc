@@ -50,7 +50,7 @@ void drawMorph(const HudFacts& f, ViewToggles& t) {
   ImGui::SameLine();
   if (ImGui::SmallButton(t.playing ? "pause" : "play")) t.playing = !t.playing, t.morphShown = true;
   ImGui::TextDisabled("%s; edits: key %u",
-                      !t.morphShown        ? "key 0 live"
+                      !t.morphShown         ? "key 0 live"
                       : f.stats.coarseShown ? "coarse, refined here"
                                             : "exact at t",
                       f.editKey);

@@ -196,8 +196,9 @@ void Renderer::uploadKeyUv(GpuRegion& r, const KeyPositionMap& keyPositions) {
   std::vector<float> uv;
   uv.reserve(mesh.positions.size() * 4);
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    std::array<float, 4> at{static_cast<float>(mesh.positions[v][0]), static_cast<float>(mesh.positions[v][1]),
-                            static_cast<float>(mesh.positions[v][0]), static_cast<float>(mesh.positions[v][1])};
+    std::array<float, 4> at{
+        static_cast<float>(mesh.positions[v][0]), static_cast<float>(mesh.positions[v][1]),
+        static_cast<float>(mesh.positions[v][0]), static_cast<float>(mesh.positions[v][1])};
     if (v < mesh.vertexIds.size()) {
       auto it = keyPositions.find(mesh.vertexIds[v]);
       if (it != keyPositions.end()) at = it->second;
@@ -212,7 +213,8 @@ void Renderer::uploadKeyUv(GpuRegion& r, const KeyPositionMap& keyPositions) {
   }
   glBindVertexArray(r.vao);
   glBindBuffer(GL_ARRAY_BUFFER, r.uvbo);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(uv.size() * sizeof(float)), uv.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(uv.size() * sizeof(float)), uv.data(),
+               GL_STATIC_DRAW);
   glEnableVertexAttribArray(2);
   glVertexAttribPointer(2, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
   glBindVertexArray(0);
@@ -225,8 +227,8 @@ void Renderer::setMorphImages(const Image& from, const Image& to) {
   for (int k = 0; k < 2; ++k) {
     glBindTexture(GL_TEXTURE_2D, textures_[k]);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, images[k]->width, images[k]->height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 images[k]->rgba.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, images[k]->width, images[k]->height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, images[k]->rgba.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

@@ -33,15 +33,15 @@ struct Key {
   const char* name;
 };
 constexpr std::array<Key, 10> kKeys = {{{GLFW_KEY_I, 0, "I"},
-                                       {GLFW_KEY_EQUAL, 0, "tighter"},
-                                       {GLFW_KEY_I, 0, "I-off"},
-                                       {GLFW_KEY_E, 0, "E"},
-                                       {GLFW_KEY_2, 0, "2"},
-                                       {GLFW_KEY_K, 0, "K"},
-                                       {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
-                                       {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
-                                       {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
-                                       {GLFW_KEY_Y, GLFW_MOD_CONTROL, "redo"}}};
+                                        {GLFW_KEY_EQUAL, 0, "tighter"},
+                                        {GLFW_KEY_I, 0, "I-off"},
+                                        {GLFW_KEY_E, 0, "E"},
+                                        {GLFW_KEY_2, 0, "2"},
+                                        {GLFW_KEY_K, 0, "K"},
+                                        {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
+                                        {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
+                                        {GLFW_KEY_Z, GLFW_MOD_CONTROL, "undo"},
+                                        {GLFW_KEY_Y, GLFW_MOD_CONTROL, "redo"}}};
 
 // Six mouse frames: hover, press and release on each end.
 constexpr int kMouseSteps = 6;

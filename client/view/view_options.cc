@@ -85,7 +85,8 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
       ->type_name("T")
       ->check(within(0.0, 1.0))
       ->group(connection);
-  app->add_option("--morph-rate", o.morphRate, "a morph document: P plays it at this many t per second (default 0.25)")
+  app->add_option("--morph-rate", o.morphRate,
+                  "a morph document: P plays it at this many t per second (default 0.25)")
       ->type_name("RATE")
       ->check(within(0.001, 100.0))
       ->group(connection);

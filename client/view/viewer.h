@@ -54,7 +54,7 @@ class Viewer {
   bool synced_ = false, framed_ = false;
   int pointsLevel_ = -1;
   std::shared_ptr<const KeyPositionMap> keyPositions_;  // a 2D morph's texture coordinates
-  double shownT_ = 0;  // the time of the frame on screen
+  double shownT_ = 0;                                   // the time of the frame on screen
   float pointDiameter_ = 0.01f;
   RefineTiming refineTiming_;
   double fps_ = 0, bytesPerSecond_ = 0;

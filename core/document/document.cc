@@ -32,14 +32,16 @@ Status checkFinite(const Vec3& p, const std::string& what) {
 
 }  // namespace
 
-Document::Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options, LevelCounts counts)
+Document::Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options,
+                   LevelCounts counts)
     : base_(std::move(base)), basePoints_(std::move(points)), options_(options), counts_(std::move(counts)) {}
 
 Expected<Document> Document::create(const BaseMesh& mesh, const DocumentOptions& options) {
   return create(BaseTopology::fromBaseMesh(mesh), mesh.positions(), options);
 }
 
-Expected<Document> Document::create(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options) {
+Expected<Document> Document::create(BaseTopology topology, std::vector<Vec3> points,
+                                    const DocumentOptions& options) {
   if (options.maxLevel < 0 || options.maxLevel > kMaxDocumentLevel) {
     return invalidArgument("maximum level must be 0.." + std::to_string(kMaxDocumentLevel) + ", got " +
                            std::to_string(options.maxLevel));
@@ -65,8 +67,9 @@ Expected<Document> Document::create(BaseTopology topology, std::vector<Vec3> poi
   return doc;
 }
 
-Expected<Document> Document::restore(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options,
-                                     std::vector<Edit> edits, uint64_t nextEditId) {
+Expected<Document> Document::restore(BaseTopology topology, std::vector<Vec3> points,
+                                     const DocumentOptions& options, std::vector<Edit> edits,
+                                     uint64_t nextEditId) {
   TESSERA_ASSIGN_OR_RETURN(Document doc, create(std::move(topology), std::move(points), options));
   uint64_t last = 0;
   for (const Edit& edit : edits) {
@@ -101,8 +104,8 @@ Status Document::checkVertices(std::span<const VertexId> vertices) const {
   for (VertexId v : vertices) TESSERA_RETURN_IF_ERROR(counts_.check(v));
   for (VertexId v : vertices) {
     if (v.level() != vertices[0].level()) {
-      return invalidArgument("vertices moved together must share a level: " + vertices[0].toString() + " and " +
-                             v.toString());
+      return invalidArgument("vertices moved together must share a level: " + vertices[0].toString() +
+                             " and " + v.toString());
     }
   }
   for (size_t i = 0; i < vertices.size(); ++i) {
@@ -133,8 +136,10 @@ Status Document::checkEdit(const Edit& edit) const {
   if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
     TESSERA_RETURN_IF_ERROR(counts_.check(t->vertex));
     if (t->vertex.level() >= options_.maxLevel) {
-      return invalidArgument(t->vertex.toString() + ": an interpolating vertex shapes the next level (its ghost ring), "
-                             "so it must lie above the document's deepest level " + std::to_string(options_.maxLevel));
+      return invalidArgument(t->vertex.toString() +
+                             ": an interpolating vertex shapes the next level (its ghost ring), "
+                             "so it must lie above the document's deepest level " +
+                             std::to_string(options_.maxLevel));
     }
     if (!t->interpolating) return Status::ok();
     TESSERA_RETURN_IF_ERROR(checkTension(t->tension, t->vertex.toString()));
@@ -146,8 +151,9 @@ Status Document::checkEdit(const Edit& edit) const {
 }
 
 Status Document::rebuildHierarchy() {
-  TESSERA_ASSIGN_OR_RETURN(SparseEvaluator sparse, SparseEvaluator::create(base_, basePoints_, options_.loop, counts_,
-                                                                           options_.uniformLevel, edits_));
+  TESSERA_ASSIGN_OR_RETURN(
+      SparseEvaluator sparse,
+      SparseEvaluator::create(base_, basePoints_, options_.loop, counts_, options_.uniformLevel, edits_));
   sparse_.emplace(std::move(sparse));
   return Status::ok();
 }
@@ -170,8 +176,8 @@ Expected<EditId> Document::add(Edit edit) {
 
 Status Document::replay(const Edit& edit) {
   if (edit.id.value != nextEditId_) {
-    return invalidArgument(edit.id.toString() + ": replayed out of order (next is edit" + std::to_string(nextEditId_) +
-                           ")");
+    return invalidArgument(edit.id.toString() + ": replayed out of order (next is edit" +
+                           std::to_string(nextEditId_) + ")");
   }
   TESSERA_RETURN_IF_ERROR(checkEdit(edit));
   append(edit);
@@ -233,8 +239,9 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   // An interpolating vertex's limit is its control point (ghost_ring.h).
   const bool interpolates = interpolationOf(vertices[0]).has_value() &&
                             ghostRuleOf(sparse_->level(level).mesh, v) != GhostRule::kNone;
-  const Vec3 solved =
-      interpolates ? target : solveControlPoint(sparse_->level(level).mesh, v, points, target, options_.loop.creaseMethod);
+  const Vec3 solved = interpolates ? target
+                                   : solveControlPoint(sparse_->level(level).mesh, v, points, target,
+                                                       options_.loop.creaseMethod);
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v]));
   return add(Edit{{}, true, std::move(move)});
 }
@@ -270,7 +277,8 @@ Status Document::checkGhostRule(const InterpolationEdit& tag) {
   const GhostRule rule = ghostRuleOf(sparse_->level(tag.vertex.level()).mesh, v, &why);
   if (rule == GhostRule::kNone) return invalidArgument(tag.vertex.toString() + " cannot interpolate: " + why);
   if (rule == GhostRule::kInterior && tag.tangent.norm() > 0) {
-    return invalidArgument(tag.vertex.toString() + ": a tangent applies only to boundary and crease vertices");
+    return invalidArgument(tag.vertex.toString() +
+                           ": a tangent applies only to boundary and crease vertices");
   }
   return Status::ok();
 }
@@ -285,14 +293,17 @@ Status Document::checkUncovered(const Edit& leaving) {
     if (&e != &leaving) after.push_back(e);
   }
   const Edit* deciding = decidingInterpolationEdit(after, tag->vertex);
-  if (deciding == nullptr || !std::get<InterpolationEdit>(deciding->change).interpolating) return Status::ok();
-  const std::string back = "it would make " + tag->vertex.toString() + " interpolate again (" +
-                           deciding->id.toString() + ")";
-  TESSERA_RETURN_IF_ERROR(checkInterpolationConflicts(*deciding, after, sparse_->level(0).mesh, counts_).withContext(back));
+  if (deciding == nullptr || !std::get<InterpolationEdit>(deciding->change).interpolating)
+    return Status::ok();
+  const std::string back =
+      "it would make " + tag->vertex.toString() + " interpolate again (" + deciding->id.toString() + ")";
+  TESSERA_RETURN_IF_ERROR(
+      checkInterpolationConflicts(*deciding, after, sparse_->level(0).mesh, counts_).withContext(back));
   return checkGhostRule(std::get<InterpolationEdit>(deciding->change)).withContext(back);
 }
 
-Expected<EditId> Document::setInterpolation(VertexId vertex, bool interpolating, double tension, const Vec3& tangent) {
+Expected<EditId> Document::setInterpolation(VertexId vertex, bool interpolating, double tension,
+                                            const Vec3& tangent) {
   Edit edit{{}, true, InterpolationEdit{vertex, interpolating, tension, tangent}};
   TESSERA_RETURN_IF_ERROR(checkEdit(edit));
   TESSERA_RETURN_IF_ERROR(checkGhostRule(std::get<InterpolationEdit>(edit.change)));
@@ -303,7 +314,8 @@ std::optional<InterpolationTag> Document::interpolationOf(VertexId vertex) const
   const Edit* deciding = decidingInterpolationEdit(edits_, vertex);
   if (deciding == nullptr) return std::nullopt;
   const auto& t = std::get<InterpolationEdit>(deciding->change);
-  return t.interpolating ? std::optional<InterpolationTag>(InterpolationTag{t.tension, t.tangent}) : std::nullopt;
+  return t.interpolating ? std::optional<InterpolationTag>(InterpolationTag{t.tension, t.tangent})
+                         : std::nullopt;
 }
 
 Expected<EdgeId> Document::edgeBetween(VertexId a, VertexId b) const {
@@ -322,8 +334,8 @@ Status Document::setActive(EditId id, bool active, bool checked) {
     return invalidArgument(id.toString() + (active ? " is not undone" : " is already undone"));
   }
   if (active && checked) {
-    TESSERA_RETURN_IF_ERROR(
-        checkInterpolationConflicts(*edit, edits_, sparse_->level(0).mesh, counts_).withContext("redo " + id.toString()));
+    TESSERA_RETURN_IF_ERROR(checkInterpolationConflicts(*edit, edits_, sparse_->level(0).mesh, counts_)
+                                .withContext("redo " + id.toString()));
     if (const auto* tag = std::get_if<InterpolationEdit>(&edit->change)) {
       TESSERA_RETURN_IF_ERROR(checkGhostRule(*tag).withContext("redo " + id.toString()));
     }
@@ -336,7 +348,8 @@ Status Document::setActive(EditId id, bool active, bool checked) {
 }
 
 Status Document::retractLast() {
-  if (edits_.empty() || edits_.back().id.value + 1 != nextEditId_) return invalidArgument("no edit to retract");
+  if (edits_.empty() || edits_.back().id.value + 1 != nextEditId_)
+    return invalidArgument("no edit to retract");
   const Edit removed = edits_.back();
   edits_.pop_back();
   --nextEditId_;
@@ -352,9 +365,15 @@ void Document::forgetRemovedEditNodes() {
   addChangedLimits(sparse_->forgetEditNodes(edits_).limits);
 }
 
-Status Document::undo(EditId id) { return setActive(id, false); }
-Status Document::redo(EditId id) { return setActive(id, true); }
-Status Document::reinstate(EditId id) { return setActive(id, true, false); }
+Status Document::undo(EditId id) {
+  return setActive(id, false);
+}
+Status Document::redo(EditId id) {
+  return setActive(id, true);
+}
+Status Document::reinstate(EditId id) {
+  return setActive(id, true, false);
+}
 
 Status Document::remove(EditId id) {
   Edit* edit = find(id);
@@ -370,14 +389,16 @@ Status Document::remove(EditId id) {
 
 Expected<std::shared_ptr<const Evaluation>> Document::evaluate(int level) const {
   if (level < 0 || level > options_.maxLevel) {
-    return invalidArgument("level " + std::to_string(level) + " is outside 0.." + std::to_string(options_.maxLevel));
+    return invalidArgument("level " + std::to_string(level) + " is outside 0.." +
+                           std::to_string(options_.maxLevel));
   }
   if (counts_.faces(level) > kMaxEvaluatedFaces) {
     return invalidArgument("level " + std::to_string(level) + " has " + std::to_string(counts_.faces(level)) +
                            " triangles, above the evaluation limit of " + std::to_string(kMaxEvaluatedFaces));
   }
   if (cache_ && static_cast<int>(cache_->levels.size()) > level) return cache_;
-  TESSERA_ASSIGN_OR_RETURN(Evaluation eval, evaluateDocument(base_, basePoints_, options_.loop, edits_, level));
+  TESSERA_ASSIGN_OR_RETURN(Evaluation eval,
+                           evaluateDocument(base_, basePoints_, options_.loop, edits_, level));
   cache_ = std::make_shared<const Evaluation>(std::move(eval));
   return cache_;
 }

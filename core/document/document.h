@@ -23,11 +23,11 @@
 #include "core/document/edit.h"
 #include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/ids.h"
-#include "core/mesh/surface_mesh.h"
 #include "core/loop/ghost_ring.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/util/status.h"
 
 namespace tessera {
@@ -47,7 +47,8 @@ enum class SurfaceKind { kControl, kLimit };
 class Document {
  public:
   static Expected<Document> create(const BaseMesh& mesh, const DocumentOptions& options);
-  static Expected<Document> create(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options);
+  static Expected<Document> create(BaseTopology topology, std::vector<Vec3> points,
+                                   const DocumentOptions& options);
 
   const BaseTopology& baseTopology() const { return base_; }
   const std::vector<Vec3>& basePoints() const { return basePoints_; }
@@ -86,8 +87,8 @@ class Document {
   // reused): for a server refusing an edit after applying it.
   Status retractLast();
 
-  Status undo(EditId id);    // the edit stops applying; error if unknown or already undone
-  Status redo(EditId id);    // it applies again; error if unknown or not undone
+  Status undo(EditId id);  // the edit stops applying; error if unknown or already undone
+  Status redo(EditId id);  // it applies again; error if unknown or not undone
   // Takes back an undo (a server retracting a refused command): like redo,
   // without redo's conflict checks, since the state before the undo held.
   Status reinstate(EditId id);
@@ -111,8 +112,9 @@ class Document {
 
   // Restores a document from its parts (document_file.cc); every edit is
   // validated as if it had just been made.
-  static Expected<Document> restore(BaseTopology topology, std::vector<Vec3> points, const DocumentOptions& options,
-                                    std::vector<Edit> edits, uint64_t nextEditId);
+  static Expected<Document> restore(BaseTopology topology, std::vector<Vec3> points,
+                                    const DocumentOptions& options, std::vector<Edit> edits,
+                                    uint64_t nextEditId);
 
  private:
   Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options, LevelCounts counts);

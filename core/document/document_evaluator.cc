@@ -9,7 +9,9 @@ namespace tessera {
 
 int Edit::level() const {
   struct Visitor {
-    int operator()(const MoveEdit& m) const { return m.offsets.empty() ? 0 : m.offsets.front().vertex.level(); }
+    int operator()(const MoveEdit& m) const {
+      return m.offsets.empty() ? 0 : m.offsets.front().vertex.level();
+    }
     int operator()(const EdgeSharpnessEdit& e) const { return e.edge.level(); }
     int operator()(const VertexSharpnessEdit& v) const { return v.vertex.level(); }
     int operator()(const InterpolationEdit& t) const { return t.vertex.level(); }
@@ -35,8 +37,8 @@ void applySharpnessEdits(std::span<const Edit> edits, int level, Level& topology
   if (changed) topology.recomputeVertexRules();
 }
 
-void applyOffsets(std::span<const Edit> edits, int level, const Level& topology, std::span<const Vec3> predicted,
-                  std::vector<Vec3>& points) {
+void applyOffsets(std::span<const Edit> edits, int level, const Level& topology,
+                  std::span<const Vec3> predicted, std::vector<Vec3>& points) {
   for (const Edit& edit : edits) {
     if (!edit.active || edit.level() != level) continue;
     const auto* move = std::get_if<MoveEdit>(&edit.change);
@@ -50,8 +52,9 @@ void applyOffsets(std::span<const Edit> edits, int level, const Level& topology,
 
 // The interpolating vertices of level l (later edits of a vertex win) write
 // their ghost rings over the plain predictions of level l+1 (ghost_ring.h).
-void applyGhostRings(std::span<const Edit> edits, int level, const Level& topology, std::span<const Vec3> points,
-                     const LoopOptions& options, std::vector<Vec3>& childPoints) {
+void applyGhostRings(std::span<const Edit> edits, int level, const Level& topology,
+                     std::span<const Vec3> points, const LoopOptions& options,
+                     std::vector<Vec3>& childPoints) {
   std::vector<std::pair<Index, InterpolationTag>> tags;
   for (const Edit& edit : edits) {
     const auto* t = std::get_if<InterpolationEdit>(&edit.change);

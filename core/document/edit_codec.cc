@@ -44,7 +44,8 @@ Expected<Edit> readEdit(ByteReader& r) {
   TESSERA_RETURN_IF_ERROR(r.get(edit.id.value, "an edit id"));
   TESSERA_RETURN_IF_ERROR(r.get(active, "an edit state"));
   TESSERA_RETURN_IF_ERROR(r.get(kind, "an edit kind"));
-  if (active > 1) return parseError(r.source() + ": " + edit.id.toString() + ": bad state " + std::to_string(active));
+  if (active > 1)
+    return parseError(r.source() + ": " + edit.id.toString() + ": bad state " + std::to_string(active));
   edit.active = active == 1;
   uint64_t packed = 0;
   switch (static_cast<EditKind>(kind)) {
@@ -85,7 +86,8 @@ Expected<Edit> readEdit(ByteReader& r) {
       t.vertex = VertexId::fromPacked(packed);
       TESSERA_RETURN_IF_ERROR(r.get(on, "an interpolation state"));
       if (on > 1) {
-        return parseError(r.source() + ": " + edit.id.toString() + ": bad interpolation state " + std::to_string(on));
+        return parseError(r.source() + ": " + edit.id.toString() + ": bad interpolation state " +
+                          std::to_string(on));
       }
       t.interpolating = on == 1;
       TESSERA_RETURN_IF_ERROR(r.get(t.tension, "a tension"));

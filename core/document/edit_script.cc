@@ -37,7 +37,8 @@ Expected<EditId> parseEditId(const std::string& token) {
 }
 
 // "v2:40 v2:41 to X Y Z": ids up to the keyword, then three numbers.
-Status parseMove(const std::vector<std::string>& t, const char* keyword, std::vector<VertexId>& ids, Vec3& value) {
+Status parseMove(const std::vector<std::string>& t, const char* keyword, std::vector<VertexId>& ids,
+                 Vec3& value) {
   size_t k = 1;
   for (; k < t.size() && t[k] != keyword; ++k) {
     TESSERA_ASSIGN_OR_RETURN(VertexId id, parseVertexId(t[k]));
@@ -74,7 +75,8 @@ Expected<ScriptCommand> parseLine(const std::vector<std::string>& t) {
     return c;
   }
   if (cmd == "interpolate") {
-    if (t.size() < 2) return parseError("expected 'interpolate ID [TENSION] [tangent X Y Z]' or 'interpolate ID off'");
+    if (t.size() < 2)
+      return parseError("expected 'interpolate ID [TENSION] [tangent X Y Z]' or 'interpolate ID off'");
     c.kind = Kind::kInterpolate;
     c.value = Vec3(0, 0, 0);
     TESSERA_ASSIGN_OR_RETURN(VertexId vertex, parseVertexId(t[1]));
@@ -90,7 +92,8 @@ Expected<ScriptCommand> parseLine(const std::vector<std::string>& t) {
       ++k;
     }
     if (k < t.size()) {
-      if (t[k] != "tangent" || t.size() != k + 4) return parseError("expected 'tangent X Y Z' after the tension");
+      if (t[k] != "tangent" || t.size() != k + 4)
+        return parseError("expected 'tangent X Y Z' after the tension");
       for (int i = 0; i < 3; ++i) {
         if (!parseDouble(t[k + 1 + i], c.value[i])) return parseError("bad number '" + t[k + 1 + i] + "'");
       }
@@ -103,7 +106,8 @@ Expected<ScriptCommand> parseLine(const std::vector<std::string>& t) {
     TESSERA_ASSIGN_OR_RETURN(c.edit, parseEditId(t[1]));
     return c;
   }
-  return parseError("unknown command '" + cmd + "' (move, offset, crease, corner, interpolate, undo, redo, remove)");
+  return parseError("unknown command '" + cmd +
+                    "' (move, offset, crease, corner, interpolate, undo, redo, remove)");
 }
 
 }  // namespace
@@ -121,7 +125,8 @@ Expected<std::vector<ScriptCommand>> parseEditScript(const std::string& text, co
     if (tokens.empty()) continue;
     auto command = parseLine(tokens);
     if (!command.isOk()) {
-      return Status(command.status().code(), source + ":" + std::to_string(lineNumber) + ": " + command.status().message());
+      return Status(command.status().code(),
+                    source + ":" + std::to_string(lineNumber) + ": " + command.status().message());
     }
     command->line = lineNumber;
     commands.push_back(std::move(*command));
@@ -132,24 +137,34 @@ Expected<std::vector<ScriptCommand>> parseEditScript(const std::string& text, co
 Status applyScriptCommand(const ScriptCommand& c, Document& doc) {
   using Kind = ScriptCommand::Kind;
   switch (c.kind) {
-    case Kind::kMove: return doc.moveToLimit(c.vertices, c.value).status();
-    case Kind::kOffset: return doc.moveBy(c.vertices, c.value).status();
-    case Kind::kCrease: return doc.setEdgeSharpness(c.edge, c.sharpness).status();
-    case Kind::kCorner: return doc.setVertexSharpness(c.vertices[0], c.sharpness).status();
-    case Kind::kInterpolate: return doc.setInterpolation(c.vertices[0], c.interpolating, c.tension, c.value).status();
-    case Kind::kUndo: return doc.undo(c.edit);
-    case Kind::kRedo: return doc.redo(c.edit);
-    case Kind::kRemove: return doc.remove(c.edit);
+    case Kind::kMove:
+      return doc.moveToLimit(c.vertices, c.value).status();
+    case Kind::kOffset:
+      return doc.moveBy(c.vertices, c.value).status();
+    case Kind::kCrease:
+      return doc.setEdgeSharpness(c.edge, c.sharpness).status();
+    case Kind::kCorner:
+      return doc.setVertexSharpness(c.vertices[0], c.sharpness).status();
+    case Kind::kInterpolate:
+      return doc.setInterpolation(c.vertices[0], c.interpolating, c.tension, c.value).status();
+    case Kind::kUndo:
+      return doc.undo(c.edit);
+    case Kind::kRedo:
+      return doc.redo(c.edit);
+    case Kind::kRemove:
+      return doc.remove(c.edit);
   }
   return internalError("unknown script command");
 }
 
-Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source, Document& document) {
+Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source,
+                                       Document& document) {
   TESSERA_ASSIGN_OR_RETURN(std::vector<ScriptCommand> commands, parseEditScript(text, source));
   Document working = document;  // all or nothing
   for (const ScriptCommand& c : commands) {
     Status status = applyScriptCommand(c, working);
-    if (!status.isOk()) return Status(status.code(), source + ":" + std::to_string(c.line) + ": " + status.message());
+    if (!status.isOk())
+      return Status(status.code(), source + ":" + std::to_string(c.line) + ": " + status.message());
   }
   document = std::move(working);
   return ScriptResult{static_cast<int>(commands.size())};

@@ -52,6 +52,7 @@ struct ScriptCommand {
 Expected<std::vector<ScriptCommand>> parseEditScript(const std::string& text, const std::string& source);
 Status applyScriptCommand(const ScriptCommand& command, Document& document);
 
-Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source, Document& document);
+Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source,
+                                       Document& document);
 
 }  // namespace tessera

@@ -29,7 +29,9 @@ bool inGhostRing(VertexId u, VertexId v0, const Level& base, const LevelCounts& 
   return u == descendant || edgeBetween(base, counts, u, descendant).isOk();
 }
 
-bool onDescendant(VertexId u, VertexId v0) { return u.level() >= v0.level() && u.index() == v0.index(); }
+bool onDescendant(VertexId u, VertexId v0) {
+  return u.level() >= v0.level() && u.index() == v0.index();
+}
 
 Status conflict(const std::string& what, VertexId v0, const char* why) {
   return invalidArgument(what + " conflicts with interpolating vertex " + v0.toString() + ": " + why);
@@ -38,13 +40,15 @@ Status conflict(const std::string& what, VertexId v0, const char* why) {
 // Whether one edit `e` conflicts with interpolating vertex v0. Sharpness at
 // v0's own level counts only for an edit made after the tag: before it, the
 // tag's own check of v0's rule decides (Document::setInterpolation).
-Status conflictWith(const Edit& e, VertexId v0, const Level& base, const LevelCounts& counts, bool sameLevelSharpness) {
+Status conflictWith(const Edit& e, VertexId v0, const Level& base, const LevelCounts& counts,
+                    bool sameLevelSharpness) {
   if (const auto* move = std::get_if<MoveEdit>(&e.change)) {
     for (const VertexOffset& o : move->offsets) {
       if (inGhostRing(o.vertex, v0, base, counts)) {
-        return conflict("moving " + o.vertex.toString(), v0,
-                        "a finer-level move at or next to its descendant would pull it off its control point; "
-                        "move it or its ring at its own level instead");
+        return conflict(
+            "moving " + o.vertex.toString(), v0,
+            "a finer-level move at or next to its descendant would pull it off its control point; "
+            "move it or its ring at its own level instead");
       }
     }
   } else if (const auto* edge = std::get_if<EdgeSharpnessEdit>(&e.change)) {
@@ -52,9 +56,10 @@ Status conflictWith(const Edit& e, VertexId v0, const Level& base, const LevelCo
     if (edge->edge.level() < first || edge->sharpness == 0.0f) return Status::ok();
     for (VertexId end : edgeEnds(base, counts, edge->edge)) {
       if (onDescendant(end, v0)) {
-        return conflict("sharpness on " + edge->edge.toString(), v0,
-                        "a sharp edge at it makes a dart, corner or semi-sharp rule, under which it would drift; "
-                        "turn its interpolation off first");
+        return conflict(
+            "sharpness on " + edge->edge.toString(), v0,
+            "a sharp edge at it makes a dart, corner or semi-sharp rule, under which it would drift; "
+            "turn its interpolation off first");
       }
     }
   } else if (const auto* vertex = std::get_if<VertexSharpnessEdit>(&e.change)) {
@@ -74,8 +79,10 @@ Status checkInterpolationConflicts(const Edit& candidate, std::span<const Edit> 
   if (const auto* t = std::get_if<InterpolationEdit>(&candidate.change)) {
     if (!t->interpolating) return Status::ok();
     for (const Edit& other : edits) {
-      if (!other.active || &other == &candidate || std::holds_alternative<InterpolationEdit>(other.change)) continue;
-      TESSERA_RETURN_IF_ERROR(conflictWith(other, t->vertex, base, counts, false).withContext(other.id.toString()));
+      if (!other.active || &other == &candidate || std::holds_alternative<InterpolationEdit>(other.change))
+        continue;
+      TESSERA_RETURN_IF_ERROR(
+          conflictWith(other, t->vertex, base, counts, false).withContext(other.id.toString()));
     }
     // Two ghost rings may not share a point: each edge point around V0 must
     // keep V0 the centroid of its ring, which one point cannot do for two
@@ -83,7 +90,8 @@ Status checkInterpolationConflicts(const Edit& candidate, std::span<const Edit> 
     // level, nor at or next to its descendants below, nor the other way round.
     for (VertexId other : interpolatingVertices(edits, &candidate)) {
       if (other == t->vertex) continue;
-      const bool overlap = other.level() == t->vertex.level() ? edgeBetween(base, counts, other, t->vertex).isOk()
+      const bool overlap = other.level() == t->vertex.level()
+                               ? edgeBetween(base, counts, other, t->vertex).isOk()
                            : other.level() > t->vertex.level() ? inGhostRing(other, t->vertex, base, counts)
                                                                : inGhostRing(t->vertex, other, base, counts);
       if (overlap) {

@@ -55,7 +55,8 @@ DirtySet SparseEvaluator::update(const Edit& edit, std::span<const Edit> edits) 
   DirtySet dirty;
   const int l = edit.level();
   std::vector<Index> sources = applyEditAtItsLevel(edit, edits);
-  if (std::holds_alternative<MoveEdit>(edit.change)) dirty.pointsRecomputed += static_cast<int64_t>(sources.size());
+  if (std::holds_alternative<MoveEdit>(edit.change))
+    dirty.pointsRecomputed += static_cast<int64_t>(sources.size());
   propagate(l, std::move(sources), dirty);
   std::sort(dirty.limits.begin(), dirty.limits.end());
   std::sort(dirty.leaves.begin(), dirty.leaves.end());
@@ -99,7 +100,8 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
     state.edgeTags.erase(e);
     for (const Edit& other : edits) {
       const auto* t = std::get_if<EdgeSharpnessEdit>(&other.change);
-      if (t != nullptr && other.active && t->edge == tag->edge) state.edgeTags[e] = canonicalSharpness(t->sharpness);
+      if (t != nullptr && other.active && t->edge == tag->edge)
+        state.edgeTags[e] = canonicalSharpness(t->sharpness);
     }
     auto it = state.edgeTags.find(e);
     m.edgeSharpness[e] = it != state.edgeTags.end() ? it->second : inheritedEdgeSharpness(l, e);
@@ -122,7 +124,8 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
     state.vertexTags.erase(v);
     for (const Edit& other : edits) {
       const auto* t = std::get_if<VertexSharpnessEdit>(&other.change);
-      if (t != nullptr && other.active && t->vertex == vtag.vertex) state.vertexTags[v] = canonicalSharpness(t->sharpness);
+      if (t != nullptr && other.active && t->vertex == vtag.vertex)
+        state.vertexTags[v] = canonicalSharpness(t->sharpness);
     }
     auto it = state.vertexTags.find(v);
     m.vertexSharpness[v] = it != state.vertexTags.end() ? it->second : inheritedVertexSharpness(l, v);
@@ -163,7 +166,8 @@ void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dir
     // a change anywhere around an interpolating vertex recomputes it whole.
     for (const auto& [v0, tag] : levels_[k].interpolationTags) {
       const auto around = m.ringFacesOf(v0);
-      if (std::none_of(around.begin(), around.end(), [&](Index f) { return f >= 0 && faces.has(f); })) continue;
+      if (std::none_of(around.begin(), around.end(), [&](Index f) { return f >= 0 && faces.has(f); }))
+        continue;
       for (Index f : around) {
         if (f >= 0) faces.add(f);
       }
@@ -180,7 +184,8 @@ void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dir
       Marked predictedChanged(child.vertexMarks);
       for (Index v : next) predictedChanged.add(v);
       for (Index w : near) {
-        if (child.offsets.count(w) == 0 || predictedChanged.has(w) || !touches(child.topo.mesh, w, predictedChanged)) {
+        if (child.offsets.count(w) == 0 || predictedChanged.has(w) ||
+            !touches(child.topo.mesh, w, predictedChanged)) {
           continue;
         }
         applyOffset(k + 1, w);
@@ -214,13 +219,15 @@ std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Ind
       if (half < 0) continue;
       for (int end = 0; end < 2; ++end) {
         auto tag = state.edgeTags.find(half + end);
-        c.mesh.edgeSharpness[half + end] = tag != state.edgeTags.end() ? tag->second : inherit.halfSharpness(e, end);
+        c.mesh.edgeSharpness[half + end] =
+            tag != state.edgeTags.end() ? tag->second : inherit.halfSharpness(e, end);
       }
     }
   }
   for (Index v : vertices.items()) {
     auto tag = state.vertexTags.find(v);
-    c.mesh.vertexSharpness[v] = tag != state.vertexTags.end() ? tag->second : inheritedVertexSharpness(l + 1, v);
+    c.mesh.vertexSharpness[v] =
+        tag != state.vertexTags.end() ? tag->second : inheritedVertexSharpness(l + 1, v);
   }
   for (Index v : vertices.items()) recomputeRule(l + 1, v);
   LoopStencils stencils(p.mesh, options_);

@@ -25,7 +25,8 @@ Expected<Id> parseId(const std::string& text, char kind, const char* name) {
     return parseError(std::string(name) + " id '" + text + "' must look like " + form);
   }
   if (level < 0 || level > kMaxIdLevel) {
-    return parseError(std::string(name) + " id '" + text + "': level must be 0.." + std::to_string(kMaxIdLevel));
+    return parseError(std::string(name) + " id '" + text + "': level must be 0.." +
+                      std::to_string(kMaxIdLevel));
   }
   if (index > Id::kIndexMask) return parseError(std::string(name) + " id '" + text + "': index too large");
   return Id(level, index);
@@ -33,9 +34,15 @@ Expected<Id> parseId(const std::string& text, char kind, const char* name) {
 
 }  // namespace
 
-Expected<VertexId> parseVertexId(const std::string& text) { return parseId<VertexId>(text, 'v', "vertex"); }
-Expected<EdgeId> parseEdgeId(const std::string& text) { return parseId<EdgeId>(text, 'e', "edge"); }
-Expected<FaceId> parseFaceId(const std::string& text) { return parseId<FaceId>(text, 'f', "face"); }
+Expected<VertexId> parseVertexId(const std::string& text) {
+  return parseId<VertexId>(text, 'v', "vertex");
+}
+Expected<EdgeId> parseEdgeId(const std::string& text) {
+  return parseId<EdgeId>(text, 'e', "edge");
+}
+Expected<FaceId> parseFaceId(const std::string& text) {
+  return parseId<FaceId>(text, 'f', "face");
+}
 
 LevelCounts::LevelCounts(uint64_t vertices, uint64_t edges, uint64_t faces, int maxLevel) {
   counts_.push_back({vertices, edges, faces});
@@ -54,8 +61,8 @@ Status checkId(Id id, int maxLevel, uint64_t count, const char* what) {
                     std::to_string(maxLevel));
   }
   if (id.index() >= count) {
-    return notFound(id.toString() + ": level " + std::to_string(id.level()) + " has " + std::to_string(count) + " " +
-                    what);
+    return notFound(id.toString() + ": level " + std::to_string(id.level()) + " has " +
+                    std::to_string(count) + " " + what);
   }
   return Status::ok();
 }

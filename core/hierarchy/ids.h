@@ -47,7 +47,9 @@ class ElementId {
     return id;
   }
 
-  std::string toString() const { return std::string(1, kKind) + std::to_string(level()) + ":" + std::to_string(index()); }
+  std::string toString() const {
+    return std::string(1, kKind) + std::to_string(level()) + ":" + std::to_string(index());
+  }
 
   friend constexpr bool operator==(ElementId a, ElementId b) { return a.packed_ == b.packed_; }
   friend constexpr auto operator<=>(ElementId a, ElementId b) { return a.packed_ <=> b.packed_; }
@@ -93,7 +95,9 @@ class LevelCounts {
   VertexId childOf(VertexId id) const { return {id.level() + 1, id.index()}; }
   VertexId childOf(EdgeId id) const { return {id.level() + 1, vertices(id.level()) + id.index()}; }
   FaceId parentFace(FaceId id) const { return {id.level() - 1, id.index() / 4}; }
-  FaceId childFace(FaceId id, int k) const { return {id.level() + 1, 4 * id.index() + static_cast<uint64_t>(k)}; }
+  FaceId childFace(FaceId id, int k) const {
+    return {id.level() + 1, 4 * id.index() + static_cast<uint64_t>(k)};
+  }
   FaceId baseFace(FaceId id) const { return {0, id.index() >> (2 * id.level())}; }
 
  private:
@@ -104,5 +108,7 @@ class LevelCounts {
 
 template <char kKind>
 struct std::hash<tessera::ElementId<kKind>> {
-  size_t operator()(tessera::ElementId<kKind> id) const noexcept { return std::hash<uint64_t>{}(id.packed()); }
+  size_t operator()(tessera::ElementId<kKind> id) const noexcept {
+    return std::hash<uint64_t>{}(id.packed());
+  }
 };

@@ -38,7 +38,8 @@ std::unique_ptr<draco::Mesh> buildDracoMesh(const SurfaceMesh& surface, int& pos
   mesh.SetNumFaces(surface.triangles.size());
   for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
     draco::Mesh::Face face;
-    for (int c = 0; c < 3; ++c) face[c] = draco::PointIndex(static_cast<std::uint32_t>(surface.triangles[f][c]));
+    for (int c = 0; c < 3; ++c)
+      face[c] = draco::PointIndex(static_cast<std::uint32_t>(surface.triangles[f][c]));
     mesh.SetFace(draco::FaceIndex(static_cast<std::uint32_t>(f)), face);
   }
 
@@ -89,7 +90,8 @@ Status measureDecoded(DracoEncodedMesh& encoded) {
   for (draco::PointIndex p(0); p < decoded->num_points(); ++p) {
     std::array<float, 3> value{};
     if (!positions->ConvertValue<float, 3>(positions->mapped_index(p), value.data())) {
-      return internalError("decoded Draco position " + std::to_string(p.value()) + " is not convertible to float");
+      return internalError("decoded Draco position " + std::to_string(p.value()) +
+                           " is not convertible to float");
     }
     for (int k = 0; k < 3; ++k) {
       encoded.positionMin[k] = std::min(encoded.positionMin[k], value[k]);
@@ -104,11 +106,13 @@ Status measureDecoded(DracoEncodedMesh& encoded) {
 Status validateDracoOptions(const ExportOptions& options) {
   if (options.dracoPositionBits < kMinPositionBits || options.dracoPositionBits > kMaxQuantizationBits) {
     return invalidArgument("dracoPositionBits " + std::to_string(options.dracoPositionBits) + " outside [" +
-                           std::to_string(kMinPositionBits) + ", " + std::to_string(kMaxQuantizationBits) + "]");
+                           std::to_string(kMinPositionBits) + ", " + std::to_string(kMaxQuantizationBits) +
+                           "]");
   }
   if (options.dracoNormalBits < kMinNormalBits || options.dracoNormalBits > kMaxQuantizationBits) {
     return invalidArgument("dracoNormalBits " + std::to_string(options.dracoNormalBits) + " outside [" +
-                           std::to_string(kMinNormalBits) + ", " + std::to_string(kMaxQuantizationBits) + "]");
+                           std::to_string(kMinNormalBits) + ", " + std::to_string(kMaxQuantizationBits) +
+                           "]");
   }
   if (options.dracoCompressionLevel < 0 || options.dracoCompressionLevel > kMaxCompressionLevel) {
     return invalidArgument("dracoCompressionLevel " + std::to_string(options.dracoCompressionLevel) +

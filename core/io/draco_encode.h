@@ -21,10 +21,10 @@ namespace tessera::io_detail {
 
 struct DracoEncodedMesh {
   std::vector<std::uint8_t> bytes;
-  int positionUniqueId = -1;  // Draco attribute unique id of POSITION
-  int normalUniqueId = -1;    // of NORMAL, -1 when the surface has no normals
-  std::size_t pointCount = 0;  // decoded vertex count (accessor count)
-  std::size_t faceCount = 0;   // decoded triangle count
+  int positionUniqueId = -1;           // Draco attribute unique id of POSITION
+  int normalUniqueId = -1;             // of NORMAL, -1 when the surface has no normals
+  std::size_t pointCount = 0;          // decoded vertex count (accessor count)
+  std::size_t faceCount = 0;           // decoded triangle count
   std::array<float, 3> positionMin{};  // of the decoded, dequantized positions
   std::array<float, 3> positionMax{};
 };

@@ -5,7 +5,8 @@
 
 namespace tessera::io_detail {
 
-static_assert(std::endian::native == std::endian::little, "binary exports are written little-endian byte for byte");
+static_assert(std::endian::native == std::endian::little,
+              "binary exports are written little-endian byte for byte");
 
 FileWriter::FileWriter(std::string path, std::FILE* file)
     : path_(std::move(path)), file_(file), buffer_(new char[kBufferSize]) {}

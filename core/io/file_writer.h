@@ -38,11 +38,13 @@ class FileWriter {
   // Shortest round-trip text of a double (at most 24 characters).
   void appendNumber(double value) {
     reserve(32);
-    used_ = static_cast<size_t>(std::to_chars(buffer_.get() + used_, buffer_.get() + kBufferSize, value).ptr - buffer_.get());
+    used_ = static_cast<size_t>(std::to_chars(buffer_.get() + used_, buffer_.get() + kBufferSize, value).ptr -
+                                buffer_.get());
   }
   void appendNumber(long long value) {
     reserve(24);
-    used_ = static_cast<size_t>(std::to_chars(buffer_.get() + used_, buffer_.get() + kBufferSize, value).ptr - buffer_.get());
+    used_ = static_cast<size_t>(std::to_chars(buffer_.get() + used_, buffer_.get() + kBufferSize, value).ptr -
+                                buffer_.get());
   }
   // The bytes of a 4-byte value, little-endian (every binary format Tessera
   // writes is little-endian; so is every host it builds on, checked in .cc).

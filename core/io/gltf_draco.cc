@@ -12,8 +12,8 @@ namespace tessera::io_detail {
 
 namespace {
 
-constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
-constexpr uint32_t kJsonChunk = 0x4E4F534A;     // "JSON"
+constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
+constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
 constexpr size_t kGlbHeaderBytes = 12, kChunkHeaderBytes = 8;
 
 uint32_t readU32(const std::string& data, size_t at) {
@@ -22,7 +22,9 @@ uint32_t readU32(const std::string& data, size_t at) {
   return value;
 }
 
-void appendU32(std::string& out, uint32_t value) { out.append(reinterpret_cast<const char*>(&value), 4); }
+void appendU32(std::string& out, uint32_t value) {
+  out.append(reinterpret_cast<const char*>(&value), 4);
+}
 
 // Removes "indices" from each compressed primitive; false if none is.
 bool dropIndices(nlohmann::json& gltf) {
@@ -49,12 +51,14 @@ Expected<std::string> dropDracoIndices(const std::string& data, const std::strin
   std::string json;
   size_t rest = 0;  // where the GLB's chunks after the JSON start
   if (binary) {
-    if (data.size() < kGlbHeaderBytes + kChunkHeaderBytes || readU32(data, kGlbHeaderBytes + 4) != kJsonChunk) {
+    if (data.size() < kGlbHeaderBytes + kChunkHeaderBytes ||
+        readU32(data, kGlbHeaderBytes + 4) != kJsonChunk) {
       return parseError(name + ": malformed GLB: no JSON chunk after the header");
     }
     const uint64_t jsonBytes = readU32(data, kGlbHeaderBytes);
     rest = kGlbHeaderBytes + kChunkHeaderBytes + jsonBytes;
-    if (rest > data.size()) return parseError(name + ": malformed GLB: the JSON chunk runs past the end of the file");
+    if (rest > data.size())
+      return parseError(name + ": malformed GLB: the JSON chunk runs past the end of the file");
     json = data.substr(kGlbHeaderBytes + kChunkHeaderBytes, jsonBytes);
   } else {
     json = data;
@@ -69,7 +73,8 @@ Expected<std::string> dropDracoIndices(const std::string& data, const std::strin
   out.reserve(kGlbHeaderBytes + kChunkHeaderBytes + text.size() + (data.size() - rest));
   appendU32(out, kGlbMagic);
   appendU32(out, readU32(data, 4));  // version
-  appendU32(out, static_cast<uint32_t>(kGlbHeaderBytes + kChunkHeaderBytes + text.size() + (data.size() - rest)));
+  appendU32(out,
+            static_cast<uint32_t>(kGlbHeaderBytes + kChunkHeaderBytes + text.size() + (data.size() - rest)));
   appendU32(out, static_cast<uint32_t>(text.size()));
   appendU32(out, kJsonChunk);
   out += text;
@@ -83,10 +88,12 @@ Expected<DracoPrimitive> decodeDracoPrimitive(const unsigned char* data, size_t 
   buffer.Init(reinterpret_cast<const char*>(data), size);
   auto type = draco::Decoder::GetEncodedGeometryType(&buffer);
   if (!type.ok()) return parseError(where + ": Draco data: " + type.status().error_msg_string());
-  if (type.value() != draco::TRIANGULAR_MESH) return parseError(where + ": Draco data is not a triangle mesh");
+  if (type.value() != draco::TRIANGULAR_MESH)
+    return parseError(where + ": Draco data is not a triangle mesh");
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-  if (!decoded.ok()) return parseError(where + ": Draco data does not decode: " + decoded.status().error_msg_string());
+  if (!decoded.ok())
+    return parseError(where + ": Draco data does not decode: " + decoded.status().error_msg_string());
   const std::unique_ptr<draco::Mesh> mesh = std::move(decoded).value();
   const draco::PointAttribute* position = mesh->GetAttributeByUniqueId(static_cast<uint32_t>(positionId));
   if (position == nullptr) {
@@ -94,13 +101,15 @@ Expected<DracoPrimitive> decodeDracoPrimitive(const unsigned char* data, size_t 
                       " (the extension's POSITION)");
   }
   if (position->attribute_type() != draco::GeometryAttribute::POSITION || position->num_components() != 3) {
-    return parseError(where + ": Draco attribute " + std::to_string(positionId) + " is not a 3-component POSITION");
+    return parseError(where + ": Draco attribute " + std::to_string(positionId) +
+                      " is not a 3-component POSITION");
   }
   DracoPrimitive out;
   out.positions.resize(mesh->num_points());
   for (draco::PointIndex p(0); p < mesh->num_points(); ++p) {
     if (!position->ConvertValue<float, 3>(position->mapped_index(p), out.positions[p.value()].data())) {
-      return parseError(where + ": Draco POSITION of point " + std::to_string(p.value()) + " does not convert");
+      return parseError(where + ": Draco POSITION of point " + std::to_string(p.value()) +
+                        " does not convert");
     }
   }
   out.indices.reserve(3 * static_cast<size_t>(mesh->num_faces()));

@@ -19,7 +19,8 @@ namespace {
 
 // Images are irrelevant to geometry; skipping them also keeps a corrupt image
 // from failing (or slowing) the mesh import.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+               void*) {
   return true;
 }
 
@@ -34,11 +35,13 @@ tinygltf::FsCallbacks noFiles() {
   tinygltf::FsCallbacks callbacks{};
   callbacks.FileExists = [](const std::string&, void*) { return false; };
   callbacks.ExpandFilePath = [](const std::string& path, void*) { return path; };
-  callbacks.ReadWholeFile = [](std::vector<unsigned char>*, std::string* err, const std::string& path, void*) {
+  callbacks.ReadWholeFile = [](std::vector<unsigned char>*, std::string* err, const std::string& path,
+                               void*) {
     if (err) *err += "external file '" + path + "' cannot be read here: send a .glb (or data: URIs)\n";
     return false;
   };
-  callbacks.WriteWholeFile = [](std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  callbacks.WriteWholeFile = [](std::string* err, const std::string&, const std::vector<unsigned char>&,
+                                void*) {
     if (err) *err += "writing is not supported\n";
     return false;
   };
@@ -61,7 +64,8 @@ Status viewAccessor(const tinygltf::Model& model, int index, int expectedType, c
   const tinygltf::Accessor& acc = model.accessors[index];
   const std::string name = where + ": accessor " + std::to_string(index);
   if (acc.sparse.isSparse) return unsupported(name + ": sparse accessors are not supported");
-  if (acc.type != expectedType) return parseError(name + ": unexpected element type " + std::to_string(acc.type));
+  if (acc.type != expectedType)
+    return parseError(name + ": unexpected element type " + std::to_string(acc.type));
   if (acc.bufferView < 0 || acc.bufferView >= static_cast<int>(model.bufferViews.size())) {
     return parseError(name + ": has no valid bufferView");
   }
@@ -91,10 +95,23 @@ Status viewAccessor(const tinygltf::Model& model, int index, int expectedType, c
 Status readIndex(const AccessorView& view, size_t i, uint32_t& out) {
   const unsigned char* p = view.data + i * view.stride;
   switch (view.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out = *p; return Status::ok();
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); out = v; return Status::ok(); }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); out = v; return Status::ok(); }
-    default: return parseError("index component type " + std::to_string(view.componentType) + " is not allowed");
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      out = *p;
+      return Status::ok();
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t v;
+      std::memcpy(&v, p, 2);
+      out = v;
+      return Status::ok();
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t v;
+      std::memcpy(&v, p, 4);
+      out = v;
+      return Status::ok();
+    }
+    default:
+      return parseError("index component type " + std::to_string(view.componentType) + " is not allowed");
   }
 }
 
@@ -113,8 +130,8 @@ bool isIntegral(const tinygltf::Value& v) {
   return std::isfinite(d) && d == std::trunc(d);
 }
 
-Status parseExtrasTags(const tinygltf::Value& extras, const std::string& meshName, const MeshVertices& vertices,
-                       GltfContent& content, std::vector<std::string>& names) {
+Status parseExtrasTags(const tinygltf::Value& extras, const std::string& meshName,
+                       const MeshVertices& vertices, GltfContent& content, std::vector<std::string>& names) {
   if (!extras.IsObject() || !extras.Has("tessera")) return Status::ok();
   const tinygltf::Value& tessera = extras.Get("tessera");
   const std::string base = meshName + ".extras.tessera";
@@ -221,12 +238,13 @@ Status readDraco(const tinygltf::Model& model, const tinygltf::Value& extension,
   const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(viewIndex)];
   if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()) ||
       static_cast<uint64_t>(view.byteOffset) + view.byteLength > model.buffers[view.buffer].data.size()) {
-    return parseError(name + ": bufferView " + std::to_string(viewIndex) + " runs past its buffer (truncated file?)");
+    return parseError(name + ": bufferView " + std::to_string(viewIndex) +
+                      " runs past its buffer (truncated file?)");
   }
-  TESSERA_ASSIGN_OR_RETURN(io_detail::DracoPrimitive decoded,
-                           io_detail::decodeDracoPrimitive(model.buffers[view.buffer].data.data() + view.byteOffset,
-                                                           view.byteLength,
-                                                           attributes.Get("POSITION").GetNumberAsInt(), name));
+  TESSERA_ASSIGN_OR_RETURN(
+      io_detail::DracoPrimitive decoded,
+      io_detail::decodeDracoPrimitive(model.buffers[view.buffer].data.data() + view.byteOffset,
+                                      view.byteLength, attributes.Get("POSITION").GetNumberAsInt(), name));
   out.positions = std::move(decoded.positions);
   out.indices = std::move(decoded.indices);
   return Status::ok();
@@ -270,9 +288,9 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& pr
     for (int k = 0; k < 3; ++k) {
       const uint32_t local = data.indices[t + k];
       if (local >= data.positions.size()) {
-        return invalidMesh(where + ": triangle " + std::to_string(t / 3) + ": vertex index " + std::to_string(local) +
-                           " is out of range (the primitive has " + std::to_string(data.positions.size()) +
-                           " vertices)");
+        return invalidMesh(where + ": triangle " + std::to_string(t / 3) + ": vertex index " +
+                           std::to_string(local) + " is out of range (the primitive has " +
+                           std::to_string(data.positions.size()) + " vertices)");
       }
       face[k] = vertices.soupIndex[first + local];
     }
@@ -283,7 +301,8 @@ Status readPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& pr
 
 }  // namespace
 
-Expected<GltfContent> readGltf(const std::string& path, const std::string& original, const std::string* baseDir) {
+Expected<GltfContent> readGltf(const std::string& path, const std::string& original,
+                               const std::string* baseDir) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
   if (baseDir == nullptr) loader.SetFsCallbacks(noFiles());
@@ -294,14 +313,17 @@ Expected<GltfContent> readGltf(const std::string& path, const std::string& origi
   const bool binary = data.size() >= 4 && data.compare(0, 4, "glTF") == 0;
   bool ok = false;
   try {
-    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(data.data()),
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                              reinterpret_cast<const unsigned char*>(data.data()),
                                               static_cast<unsigned int>(data.size()), dir)
-                : loader.LoadASCIIFromString(&model, &err, &warn, data.data(), static_cast<unsigned int>(data.size()),
-                                             dir);
+                : loader.LoadASCIIFromString(&model, &err, &warn, data.data(),
+                                             static_cast<unsigned int>(data.size()), dir);
   } catch (const std::exception& e) {
     return parseError(path + ": malformed glTF: " + e.what());
   }
-  if (!ok) return parseError(path + ": malformed glTF: " + (err.empty() ? "tinygltf could not load it" : trimmed(err)));
+  if (!ok)
+    return parseError(path +
+                      ": malformed glTF: " + (err.empty() ? "tinygltf could not load it" : trimmed(err)));
   if (model.meshes.empty()) return invalidMesh(path + ": mesh: empty, the file has no meshes");
 
   GltfContent content;
@@ -312,9 +334,11 @@ Expected<GltfContent> readGltf(const std::string& path, const std::string& origi
     std::map<std::tuple<float, float, float>, int> weld;  // per mesh: meshes are never welded together
     for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
       const std::string where = path + ": " + meshName + ".primitives[" + std::to_string(p) + "]";
-      TESSERA_RETURN_IF_ERROR(readPrimitive(model, model.meshes[m].primitives[p], where, vertices, weld, content.soup));
+      TESSERA_RETURN_IF_ERROR(
+          readPrimitive(model, model.meshes[m].primitives[p], where, vertices, weld, content.soup));
     }
-    TESSERA_RETURN_IF_ERROR(parseExtrasTags(model.meshes[m].extras, path + ": " + meshName, vertices, content, *names));
+    TESSERA_RETURN_IF_ERROR(
+        parseExtrasTags(model.meshes[m].extras, path + ": " + meshName, vertices, content, *names));
   }
   content.locate = [names](const FeatureTag& tag) { return (*names)[static_cast<size_t>(tag.line)]; };
   return content;

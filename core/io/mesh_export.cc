@@ -81,12 +81,14 @@ Status validateSurfaceMesh(const SurfaceMesh& surface) {
   }
   for (std::size_t i = 0; i < n; ++i) {
     if (!isFinite(surface.positions[i])) {
-      return invalidMesh("position " + std::to_string(i) + " is not finite " + formatVec(surface.positions[i]));
+      return invalidMesh("position " + std::to_string(i) + " is not finite " +
+                         formatVec(surface.positions[i]));
     }
   }
   for (std::size_t i = 0; i < surface.normals.size(); ++i) {
     const Vec3& normal = surface.normals[i];
-    if (!isFinite(normal)) return invalidMesh("normal " + std::to_string(i) + " is not finite " + formatVec(normal));
+    if (!isFinite(normal))
+      return invalidMesh("normal " + std::to_string(i) + " is not finite " + formatVec(normal));
     // Zero normals cannot be made unit length, which glTF requires.
     if (normal.sqrnorm() == 0.0) return invalidMesh("normal " + std::to_string(i) + " is zero");
   }
@@ -94,8 +96,8 @@ Status validateSurfaceMesh(const SurfaceMesh& surface) {
     for (int c = 0; c < 3; ++c) {
       const int v = surface.triangles[f][c];
       if (v < 0 || static_cast<std::size_t>(v) >= n) {
-        return invalidMesh("triangle " + std::to_string(f) + " corner " + std::to_string(c) + ": vertex index " +
-                           std::to_string(v) + " outside [0, " + std::to_string(n) + ")");
+        return invalidMesh("triangle " + std::to_string(f) + " corner " + std::to_string(c) +
+                           ": vertex index " + std::to_string(v) + " outside [0, " + std::to_string(n) + ")");
       }
     }
   }
@@ -122,11 +124,21 @@ Status exportMesh(const SurfaceMesh& surface, const std::string& path, const Exp
   }
   TESSERA_ASSIGN_OR_RETURN(io_detail::FileWriter out, io_detail::FileWriter::open(path));
   switch (format) {
-    case ExportFormat::kObj: io_detail::writeObj(surface, out); break;
-    case ExportFormat::kOff: io_detail::writeOff(surface, out); break;
-    case ExportFormat::kPly: io_detail::writePly(surface, out); break;
-    case ExportFormat::kStl: io_detail::writeStl(surface, out); break;
-    case ExportFormat::kGlb: io_detail::writePlainGlb(surface, out); break;
+    case ExportFormat::kObj:
+      io_detail::writeObj(surface, out);
+      break;
+    case ExportFormat::kOff:
+      io_detail::writeOff(surface, out);
+      break;
+    case ExportFormat::kPly:
+      io_detail::writePly(surface, out);
+      break;
+    case ExportFormat::kStl:
+      io_detail::writeStl(surface, out);
+      break;
+    case ExportFormat::kGlb:
+      io_detail::writePlainGlb(surface, out);
+      break;
   }
   return out.close();
   return internalError(path + ": unhandled export format");

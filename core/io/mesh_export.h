@@ -41,7 +41,7 @@
 namespace tessera {
 
 struct ExportOptions {
-  bool draco = false;             // GLB only: KHR_draco_mesh_compression
+  bool draco = false;  // GLB only: KHR_draco_mesh_compression
   // Quantization of positions, 1..30 bits. Draco quantizes each coordinate on
   // a uniform grid spanning the largest bounding-box extent, so every decoded
   // coordinate is within maxExtent / (2^bits - 1) of the input (half a step

@@ -120,27 +120,36 @@ void writePlainGlb(const SurfaceMesh& surface, FileWriter& out) {
   const std::size_t binBytes = (indexOffset + indexBytes + 3) & ~std::size_t{3};
 
   using nlohmann::json;
-  json views = json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vertexBytes}, {"target", 34962}}});
-  json accessors = json::array({{{"bufferView", 0}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"},
-                                 {"min", {lo[0], lo[1], lo[2]}}, {"max", {hi[0], hi[1], hi[2]}}}});
+  json views =
+      json::array({{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vertexBytes}, {"target", 34962}}});
+  json accessors = json::array({{{"bufferView", 0},
+                                 {"componentType", 5126},
+                                 {"count", n},
+                                 {"type", "VEC3"},
+                                 {"min", {lo[0], lo[1], lo[2]}},
+                                 {"max", {hi[0], hi[1], hi[2]}}}});
   json attributes = {{"POSITION", 0}};
   if (withNormals) {
-    views.push_back({{"buffer", 0}, {"byteOffset", vertexBytes}, {"byteLength", vertexBytes}, {"target", 34962}});
+    views.push_back(
+        {{"buffer", 0}, {"byteOffset", vertexBytes}, {"byteLength", vertexBytes}, {"target", 34962}});
     accessors.push_back({{"bufferView", 1}, {"componentType", 5126}, {"count", n}, {"type", "VEC3"}});
     attributes["NORMAL"] = 1;
   }
   const int indexView = withNormals ? 2 : 1;
-  views.push_back({{"buffer", 0}, {"byteOffset", indexOffset}, {"byteLength", indexBytes}, {"target", 34963}});
-  accessors.push_back({{"bufferView", indexView}, {"componentType", shortIndices ? 5123 : 5125},
-                       {"count", surface.triangles.size() * 3}, {"type", "SCALAR"}});
+  views.push_back(
+      {{"buffer", 0}, {"byteOffset", indexOffset}, {"byteLength", indexBytes}, {"target", 34963}});
+  accessors.push_back({{"bufferView", indexView},
+                       {"componentType", shortIndices ? 5123 : 5125},
+                       {"count", surface.triangles.size() * 3},
+                       {"type", "SCALAR"}});
   const json gltf = {
       {"asset", {{"version", "2.0"}, {"generator", "Tessera"}}},
       {"buffers", json::array({{{"byteLength", binBytes}}})},
       {"bufferViews", views},
       {"accessors", accessors},
-      {"meshes", json::array({{{"primitives", json::array({{{"attributes", attributes},
-                                                             {"indices", indexView},
-                                                             {"mode", 4}}})}}})},
+      {"meshes",
+       json::array({{{"primitives",
+                      json::array({{{"attributes", attributes}, {"indices", indexView}, {"mode", 4}}})}}})},
       {"nodes", json::array({{{"mesh", 0}}})},
       {"scenes", json::array({{{"nodes", {0}}}})},
       {"scene", 0}};
@@ -162,8 +171,10 @@ void writePlainGlb(const SurfaceMesh& surface, FileWriter& out) {
   }
   for (const auto& t : surface.triangles) {
     for (int v : t) {
-      if (shortIndices) out.appendBytes(static_cast<std::uint16_t>(v));
-      else out.appendBytes(static_cast<std::uint32_t>(v));
+      if (shortIndices)
+        out.appendBytes(static_cast<std::uint16_t>(v));
+      else
+        out.appendBytes(static_cast<std::uint32_t>(v));
     }
   }
   for (std::size_t pad = indexOffset + indexBytes; pad < binBytes; ++pad) out.append('\0');

@@ -36,11 +36,11 @@ struct PlyRoles {
 
 PlyType plyType(std::string_view name) {
   static const std::pair<const char*, PlyType> kTypes[] = {
-      {"char", PlyType::kInt8},    {"int8", PlyType::kInt8},       {"uchar", PlyType::kUint8},
-      {"uint8", PlyType::kUint8},  {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUint16}, {"uint16", PlyType::kUint16},  {"int", PlyType::kInt32},
-      {"int32", PlyType::kInt32},  {"uint", PlyType::kUint32},     {"uint32", PlyType::kUint32},
-      {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
+      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},       {"uchar", PlyType::kUint8},
+      {"uint8", PlyType::kUint8},    {"short", PlyType::kInt16},     {"int16", PlyType::kInt16},
+      {"ushort", PlyType::kUint16},  {"uint16", PlyType::kUint16},   {"int", PlyType::kInt32},
+      {"int32", PlyType::kInt32},    {"uint", PlyType::kUint32},     {"uint32", PlyType::kUint32},
+      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32}, {"double", PlyType::kFloat64},
       {"float64", PlyType::kFloat64}};
   for (const auto& [n, t] : kTypes) {
     if (name == n) return t;
@@ -50,16 +50,27 @@ PlyType plyType(std::string_view name) {
 
 int sizeOf(PlyType type) {
   switch (type) {
-    case PlyType::kInt8: case PlyType::kUint8: return 1;
-    case PlyType::kInt16: case PlyType::kUint16: return 2;
-    case PlyType::kInt32: case PlyType::kUint32: case PlyType::kFloat32: return 4;
-    case PlyType::kFloat64: return 8;
-    case PlyType::kNone: return 0;
+    case PlyType::kInt8:
+    case PlyType::kUint8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUint16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUint32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
+    case PlyType::kNone:
+      return 0;
   }
   return 0;
 }
 
-bool isInteger(PlyType type) { return type != PlyType::kFloat32 && type != PlyType::kFloat64; }
+bool isInteger(PlyType type) {
+  return type != PlyType::kFloat32 && type != PlyType::kFloat64;
+}
 
 // One binary value, exactly (every PLY type fits a double without rounding).
 double readBinary(const unsigned char* p, PlyType type, bool bigEndian) {
@@ -67,15 +78,45 @@ double readBinary(const unsigned char* p, PlyType type, bool bigEndian) {
   const int size = sizeOf(type);
   for (int k = 0; k < size; ++k) bytes[k] = p[bigEndian ? size - 1 - k : k];
   switch (type) {
-    case PlyType::kInt8: { int8_t v; std::memcpy(&v, bytes, 1); return v; }
-    case PlyType::kUint8: return bytes[0];
-    case PlyType::kInt16: { int16_t v; std::memcpy(&v, bytes, 2); return v; }
-    case PlyType::kUint16: { uint16_t v; std::memcpy(&v, bytes, 2); return v; }
-    case PlyType::kInt32: { int32_t v; std::memcpy(&v, bytes, 4); return v; }
-    case PlyType::kUint32: { uint32_t v; std::memcpy(&v, bytes, 4); return v; }
-    case PlyType::kFloat32: { float v; std::memcpy(&v, bytes, 4); return v; }
-    case PlyType::kFloat64: { double v; std::memcpy(&v, bytes, 8); return v; }
-    case PlyType::kNone: return 0;
+    case PlyType::kInt8: {
+      int8_t v;
+      std::memcpy(&v, bytes, 1);
+      return v;
+    }
+    case PlyType::kUint8:
+      return bytes[0];
+    case PlyType::kInt16: {
+      int16_t v;
+      std::memcpy(&v, bytes, 2);
+      return v;
+    }
+    case PlyType::kUint16: {
+      uint16_t v;
+      std::memcpy(&v, bytes, 2);
+      return v;
+    }
+    case PlyType::kInt32: {
+      int32_t v;
+      std::memcpy(&v, bytes, 4);
+      return v;
+    }
+    case PlyType::kUint32: {
+      uint32_t v;
+      std::memcpy(&v, bytes, 4);
+      return v;
+    }
+    case PlyType::kFloat32: {
+      float v;
+      std::memcpy(&v, bytes, 4);
+      return v;
+    }
+    case PlyType::kFloat64: {
+      double v;
+      std::memcpy(&v, bytes, 8);
+      return v;
+    }
+    case PlyType::kNone:
+      return 0;
   }
   return 0;
 }
@@ -87,7 +128,8 @@ struct PlyHeader {
 };
 
 Status parseHeader(std::string_view text, const std::string& src, PlyHeader& header) {
-  if (text.substr(0, 4) != "ply\n" && text.substr(0, 5) != "ply\r\n") return parseError(src + ": header: missing 'ply' magic");
+  if (text.substr(0, 4) != "ply\n" && text.substr(0, 5) != "ply\r\n")
+    return parseError(src + ": header: missing 'ply' magic");
   // The header ends at a line that is exactly "end_header".
   const size_t end = text.find("\nend_header");
   if (end == std::string_view::npos) return parseError(src + ": header: truncated, no 'end_header'");
@@ -104,7 +146,8 @@ Status parseHeader(std::string_view text, const std::string& src, PlyHeader& hea
   while (cursor.next(line)) {
     splitLine(line, tokens);
     const std::string where = at(src, cursor.lineNumber()) + "header: ";
-    if (tokens.empty() || cursor.lineNumber() == 1 || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
+    if (tokens.empty() || cursor.lineNumber() == 1 || tokens[0] == "comment" || tokens[0] == "obj_info")
+      continue;
     if (tokens[0] == "format") {
       if (tokens.size() != 3 || tokens[2] != "1.0" ||
           (tokens[1] != "ascii" && tokens[1] != "binary_little_endian" && tokens[1] != "binary_big_endian")) {
@@ -113,21 +156,24 @@ Status parseHeader(std::string_view text, const std::string& src, PlyHeader& hea
       header.format = tokens[1];
     } else if (tokens[0] == "element") {
       int n = -1;
-      if (tokens.size() != 3 || !parseInt(tokens[2], n) || n < 0) return parseError(where + "bad element line");
+      if (tokens.size() != 3 || !parseInt(tokens[2], n) || n < 0)
+        return parseError(where + "bad element line");
       header.elements.push_back({std::string(tokens[1]), static_cast<size_t>(n), {}});
     } else if (tokens[0] == "property" && !header.elements.empty()) {
       PlyProperty property;
       if (tokens.size() == 5 && tokens[1] == "list") {
         property.countType = plyType(tokens[2]);
         property.type = plyType(tokens[3]);
-        if (property.countType == PlyType::kNone || !isInteger(property.countType) || sizeOf(property.countType) > 4 ||
-            property.type == PlyType::kNone) {
-          return parseError(where + "bad list property types '" + clip(tokens[2]) + " " + clip(tokens[3]) + "'");
+        if (property.countType == PlyType::kNone || !isInteger(property.countType) ||
+            sizeOf(property.countType) > 4 || property.type == PlyType::kNone) {
+          return parseError(where + "bad list property types '" + clip(tokens[2]) + " " + clip(tokens[3]) +
+                            "'");
         }
         property.name = tokens[4];
       } else if (tokens.size() == 3) {
         property.type = plyType(tokens[1]);
-        if (property.type == PlyType::kNone) return parseError(where + "unknown property type '" + clip(tokens[1]) + "'");
+        if (property.type == PlyType::kNone)
+          return parseError(where + "unknown property type '" + clip(tokens[1]) + "'");
         property.name = tokens[2];
       } else {
         return parseError(where + "bad property line");
@@ -169,12 +215,14 @@ Status findRoles(const PlyHeader& header, const std::string& src, PlyRoles& role
     haveVertex |= element.name == "vertex";
     haveFace |= element.name == "face";
   }
-  if (!haveVertex || !haveFace) return parseError(src + ": header: needs 'element vertex' and 'element face'");
+  if (!haveVertex || !haveFace)
+    return parseError(src + ": header: needs 'element vertex' and 'element face'");
   if (roles.x < 0 || roles.y < 0 || roles.z < 0) {
     return parseError(src + ": header: element vertex needs properties x, y and z");
   }
   if (roles.faceList < 0) {
-    return parseError(src + ": header: element face needs a list property 'vertex_indices' (or 'vertex_index')");
+    return parseError(src +
+                      ": header: element face needs a list property 'vertex_indices' (or 'vertex_index')");
   }
   return Status::ok();
 }
@@ -183,7 +231,8 @@ Status findRoles(const PlyHeader& header, const std::string& src, PlyRoles& role
 // and face indices.
 class SoupBuilder {
  public:
-  SoupBuilder(const PlyRoles& roles, const std::string& src, PolygonSoup& soup) : roles_(roles), src_(src), soup_(soup) {}
+  SoupBuilder(const PlyRoles& roles, const std::string& src, PolygonSoup& soup)
+      : roles_(roles), src_(src), soup_(soup) {}
 
   void beginElement(const PlyElement& element, size_t index) {
     element_ = &element;
@@ -215,8 +264,10 @@ class SoupBuilder {
     if (element_->name == "vertex") {
       const std::string name = src_ + ": vertex " + std::to_string(index_);
       for (double c : xyz_) {
-        if (!std::isfinite(c)) return invalidMesh(name + ": coordinate is " + (std::isnan(c) ? "NaN" : "infinite"));
-        if (std::abs(c) > kMaxCoordinate) return invalidMesh(name + ": coordinate is outside float range (|x| <= 3.4e38)");
+        if (!std::isfinite(c))
+          return invalidMesh(name + ": coordinate is " + (std::isnan(c) ? "NaN" : "infinite"));
+        if (std::abs(c) > kMaxCoordinate)
+          return invalidMesh(name + ": coordinate is outside float range (|x| <= 3.4e38)");
       }
       soup_.points.emplace_back(xyz_[0], xyz_[1], xyz_[2]);
     } else if (element_->name == "face") {
@@ -235,7 +286,8 @@ class SoupBuilder {
   std::vector<int> face_;
 };
 
-Status readAsciiBody(std::string_view body, const PlyHeader& header, const std::string& src, SoupBuilder& out) {
+Status readAsciiBody(std::string_view body, const PlyHeader& header, const std::string& src,
+                     SoupBuilder& out) {
   LineCursor cursor(body);
   std::string_view line;
   std::vector<std::string_view> tokens;
@@ -262,14 +314,16 @@ Status readAsciiBody(std::string_view body, const PlyHeader& header, const std::
           TESSERA_RETURN_IF_ERROR(out.value(p, value));
         }
       }
-      if (at != tokens.size()) return parseError(src + ": " + name + ": unexpected '" + clip(tokens[at]) + "'");
+      if (at != tokens.size())
+        return parseError(src + ": " + name + ": unexpected '" + clip(tokens[at]) + "'");
       TESSERA_RETURN_IF_ERROR(out.endElement());
     }
   }
   return Status::ok();
 }
 
-Status readBinaryBody(std::string_view text, const PlyHeader& header, const std::string& src, SoupBuilder& out) {
+Status readBinaryBody(std::string_view text, const PlyHeader& header, const std::string& src,
+                      SoupBuilder& out) {
   const bool bigEndian = header.format == "binary_big_endian";
   const auto* data = reinterpret_cast<const unsigned char*>(text.data());
   size_t at = header.bodyStart;
@@ -281,7 +335,8 @@ Status readBinaryBody(std::string_view text, const PlyHeader& header, const std:
     if (element.properties.empty()) continue;
     for (size_t i = 0; i < element.count; ++i) {
       const auto truncated = [&] {
-        return parseError(src + ": truncated: " + element.name + " " + std::to_string(i) + " runs past the end of the file");
+        return parseError(src + ": truncated: " + element.name + " " + std::to_string(i) +
+                          " runs past the end of the file");
       };
       out.beginElement(element, i);
       for (int p = 0; p < static_cast<int>(element.properties.size()); ++p) {
@@ -291,7 +346,8 @@ Status readBinaryBody(std::string_view text, const PlyHeader& header, const std:
           const size_t countSize = static_cast<size_t>(sizeOf(property.countType));
           if (at + countSize > text.size()) return truncated();
           const double count = readBinary(data + at, property.countType, bigEndian);
-          if (count < 0) return parseError(src + ": " + element.name + " " + std::to_string(i) + ": bad list length");
+          if (count < 0)
+            return parseError(src + ": " + element.name + " " + std::to_string(i) + ": bad list length");
           n = static_cast<uint64_t>(count);
           at += countSize;
         }

@@ -26,7 +26,8 @@ Expected<Image> readPng(const std::string& path) {
     return invalidArgument(path + ": " + std::to_string(w) + " x " + std::to_string(h) + " pixels; at most " +
                            std::to_string(kMaxSide) + " a side");
   }
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load(path.c_str(), &w, &h, &channels, 4), stbi_image_free);
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load(path.c_str(), &w, &h, &channels, 4),
+                                                   stbi_image_free);
   if (!pixels) return parseError(path + ": cannot decode (" + std::string(stbi_failure_reason()) + ")");
   Image image{w, h, {}};
   image.rgba.assign(pixels.get(), pixels.get() + static_cast<size_t>(w) * h * 4);
@@ -42,8 +43,8 @@ Expected<Image> decodePng(const std::string& bytes, const std::string& source) {
     return parseError(source + ": not a readable image (" + std::string(stbi_failure_reason()) + ")");
   }
   if (w <= 0 || h <= 0 || w > kMaxSide || h > kMaxSide) {
-    return invalidArgument(source + ": " + std::to_string(w) + " x " + std::to_string(h) + " pixels; at most " +
-                           std::to_string(kMaxSide) + " a side");
+    return invalidArgument(source + ": " + std::to_string(w) + " x " + std::to_string(h) +
+                           " pixels; at most " + std::to_string(kMaxSide) + " a side");
   }
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 4),
                                                    stbi_image_free);
@@ -54,7 +55,8 @@ Expected<Image> decodePng(const std::string& bytes, const std::string& source) {
 }
 
 Status writePng(const std::string& path, const Image& image) {
-  if (image.width <= 0 || image.height <= 0 || image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4) {
     return invalidArgument(path + ": not a whole image");
   }
   if (!stbi_write_png(path.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4)) {

@@ -22,7 +22,8 @@ class Welder {
     const std::string element = "facet " + std::to_string(facet);
     for (int k = 0; k < 3; ++k) {
       for (float c : corners[k]) {
-        if (!std::isfinite(c)) return invalidMesh(where + element + ": corner " + std::to_string(k) + " is not finite");
+        if (!std::isfinite(c))
+          return invalidMesh(where + element + ": corner " + std::to_string(k) + " is not finite");
       }
     }
     for (int a = 0; a < 3; ++a) {
@@ -79,7 +80,8 @@ Status readAsciiStl(std::string_view text, const std::string& src, PolygonSoup& 
       if (key != "solid") return parseError(where + "expected 'solid', found '" + clip(key) + "'");
       started = true;
     } else if (key == "facet" && corner == -1) {
-      if (tokens.size() != 5 || tokens[1] != "normal") return parseError(where + element + ": expected 'facet normal X Y Z'");
+      if (tokens.size() != 5 || tokens[1] != "normal")
+        return parseError(where + element + ": expected 'facet normal X Y Z'");
       TESSERA_RETURN_IF_ERROR(checkNumeric(tokens, 2, where, element));
       corner = 0;
     } else if (key == "outer" || key == "endloop") {
@@ -88,17 +90,21 @@ Status readAsciiStl(std::string_view text, const std::string& src, PolygonSoup& 
       if (tokens.size() != 4) return parseError(where + element + ": expected 'vertex X Y Z'");
       double xyz[3];
       TESSERA_RETURN_IF_ERROR(parseCoordinates(tokens, 1, where, element, xyz));
-      corners[corner++] = {static_cast<float>(xyz[0]), static_cast<float>(xyz[1]), static_cast<float>(xyz[2])};
+      corners[corner++] = {static_cast<float>(xyz[0]), static_cast<float>(xyz[1]),
+                           static_cast<float>(xyz[2])};
     } else if (key == "endfacet" && corner == 3) {
       TESSERA_RETURN_IF_ERROR(welder.addFacet(corners, soup.numFaces(), where));
       corner = -1;
     } else if (key == "endsolid" && corner == -1) {
       ended = true;
     } else {
-      return parseError(where + "unexpected '" + clip(key) + "'" + (corner >= 0 ? " in " + element : std::string()));
+      return parseError(where + "unexpected '" + clip(key) + "'" +
+                        (corner >= 0 ? " in " + element : std::string()));
     }
   }
-  if (!ended) return parseError(src + ": truncated, no 'endsolid' (" + std::to_string(soup.numFaces()) + " complete facets)");
+  if (!ended)
+    return parseError(src + ": truncated, no 'endsolid' (" + std::to_string(soup.numFaces()) +
+                      " complete facets)");
   return Status::ok();
 }
 
@@ -112,8 +118,9 @@ Status readStl(std::string_view text, const std::string& src, PolygonSoup& soup)
   }
   const size_t first = text.find_first_not_of(" \t\r\n");
   if (first == std::string_view::npos || text.substr(first, 5) != "solid") {
-    return parseError(src + ": neither ASCII STL (starting with 'solid') nor binary STL (84 + 50 * N bytes)" +
-                      (text.size() >= 84 ? ", binary header declares " + std::to_string(declared) + " facets" : ""));
+    return parseError(
+        src + ": neither ASCII STL (starting with 'solid') nor binary STL (84 + 50 * N bytes)" +
+        (text.size() >= 84 ? ", binary header declares " + std::to_string(declared) + " facets" : ""));
   }
   return readAsciiStl(text, src, soup);
 }

@@ -13,10 +13,14 @@ float decrementSharpness(float s) {
 VertexRule vertexRule(float vertexSharpness, int sharpEdgeCount) {
   if (isSharp(vertexSharpness)) return VertexRule::kCorner;
   switch (sharpEdgeCount) {
-    case 0: return VertexRule::kSmooth;
-    case 1: return VertexRule::kDart;
-    case 2: return VertexRule::kCrease;
-    default: return VertexRule::kCorner;
+    case 0:
+      return VertexRule::kSmooth;
+    case 1:
+      return VertexRule::kDart;
+    case 2:
+      return VertexRule::kCrease;
+    default:
+      return VertexRule::kCorner;
   }
 }
 

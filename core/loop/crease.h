@@ -21,7 +21,9 @@ enum class VertexRule : uint8_t {
   kCorner = 8,
 };
 
-inline bool isSmoothLike(VertexRule r) { return r == VertexRule::kSmooth || r == VertexRule::kDart; }
+inline bool isSmoothLike(VertexRule r) {
+  return r == VertexRule::kSmooth || r == VertexRule::kDart;
+}
 
 float decrementSharpness(float s);
 

@@ -13,7 +13,9 @@ namespace {
 // The configuration as bytes: everything refineLocalRing reads besides the
 // points. Float sharpness goes in bit for bit, so two rings share a matrix
 // only if every step would take the same branches with the same weights.
-void appendWord(std::string& key, uint32_t word) { key.append(reinterpret_cast<const char*>(&word), sizeof word); }
+void appendWord(std::string& key, uint32_t word) {
+  key.append(reinterpret_cast<const char*>(&word), sizeof word);
+}
 
 void appendFloat(std::string& key, float value) {
   uint32_t bits;
@@ -28,7 +30,8 @@ void configurationKey(const Level& level, Index v, CreaseMethod method, std::str
   const int n = level.valence(v);
   key.clear();
   appendWord(key, static_cast<uint32_t>(n) | (level.isBoundaryVertex(v) ? 1u << 16 : 0u) |
-                      (static_cast<uint32_t>(level.vertexRules[v]) << 17) | (static_cast<uint32_t>(method) << 24));
+                      (static_cast<uint32_t>(level.vertexRules[v]) << 17) |
+                      (static_cast<uint32_t>(method) << 24));
   appendFloat(key, level.vertexSharpness[v]);
   auto ringE = level.ringEdgesOf(v);
   for (int k = 0; k < n; ++k) appendFloat(key, level.edgeSharpness[ringE[k]]);
@@ -50,7 +53,8 @@ void configurationKey(const Level& level, Index v, CreaseMethod method, std::str
 
 // m . W for a mask m over the stationary ring: the same mask over the
 // original ring.
-std::vector<double> composeMask(const std::vector<double>& mask, const std::vector<double>& weights, int size) {
+std::vector<double> composeMask(const std::vector<double>& mask, const std::vector<double>& weights,
+                                int size) {
   std::vector<double> out(size, 0.0);
   for (int i = 0; i < size; ++i) {
     if (mask[i] == 0.0) continue;
@@ -104,7 +108,8 @@ DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method) {
     const int steps = refineUntilStationary(rings, method);
     const LocalRing& last = rings[steps % 2];
     for (int i = 0; i < size; ++i) {
-      for (int d = 0; d < 3 && c + d < size; ++d) out.weights[static_cast<size_t>(i) * size + c + d] = last.points[i][d];
+      for (int d = 0; d < 3 && c + d < size; ++d)
+        out.weights[static_cast<size_t>(i) * size + c + d] = last.points[i][d];
     }
     if (c == 0) {
       out.steps = steps;
@@ -118,7 +123,8 @@ DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method) {
   return out;
 }
 
-const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
+const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<const Vec3> points,
+                                     CreaseMethod method) {
   // Per thread, so a lookup takes no lock; entries are never evicted, so
   // the pointers stay valid for the thread's life.
   thread_local std::unordered_map<std::string, DecayMatrix> cache;

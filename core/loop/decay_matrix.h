@@ -54,7 +54,8 @@ struct DecayMatrix {
 // fill a ring on a miss). nullptr when the cache is full: the caller then
 // refines the ring itself, so a document with unboundedly many distinct
 // sharpness values costs time, never unbounded memory.
-const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method);
+const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<const Vec3> points,
+                                     CreaseMethod method);
 
 // Uncached: the ring's semi-sharp features refined away on unit points.
 DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method);

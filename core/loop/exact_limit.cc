@@ -242,7 +242,8 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
   VertexLimit out;
   out.position = apply(masks.position, p);
   out.selfWeight = 0.0;
-  for (size_t i = 0; i < masks.position.size(); ++i) out.selfWeight += masks.position[i] * ring.centreWeight[i];
+  for (size_t i = 0; i < masks.position.size(); ++i)
+    out.selfWeight += masks.position[i] * ring.centreWeight[i];
 
   const Vec3 normal = sectorNormal(*ring.primarySector, p, n);
   out.frame.position = out.position;
@@ -267,8 +268,8 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
   return out;
 }
 
-void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                                 Vec3& position, Vec3& normal) {
+void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points,
+                                 CreaseMethod method, Vec3& position, Vec3& normal) {
   LimitStencilKey key;
   const bool keyed = method == CreaseMethod::kUniform && limitStencilKey(level, v, key);
   const LimitStencil* stencil = keyed ? findLimitStencil(key) : nullptr;
@@ -276,7 +277,8 @@ void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Ve
     // The same sums, in the same order, as apply() and sectorNormal().
     auto ringV = level.ringVerticesOf(v);
     const Vec3& centre = points[v];
-    Vec3 p = stencil->position[0] * centre, t1 = stencil->tangent1[0] * centre, t2 = stencil->tangent2[0] * centre;
+    Vec3 p = stencil->position[0] * centre, t1 = stencil->tangent1[0] * centre,
+         t2 = stencil->tangent2[0] * centre;
     for (size_t k = 0; k < ringV.size(); ++k) {
       const Vec3& q = points[ringV[k]];
       p += stencil->position[1 + k] * q;

@@ -42,7 +42,7 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
 // The position and the primary sector's unit normal only (what
 // computeLimit writes): the same values as exactVertexLimit's frame.position
 // and frame.normal(), without building the frame.
-void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                                 Vec3& position, Vec3& normal);
+void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points,
+                                 CreaseMethod method, Vec3& position, Vec3& normal);
 
 }  // namespace tessera

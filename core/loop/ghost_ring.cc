@@ -10,8 +10,9 @@ namespace tessera {
 Status checkTension(double tension, const std::string& what) {
   if (!(tension >= kMinTension && tension <= kMaxTension)) {  // also NaN
     // The bounds as written in ghost_ring.h (to_string would print 0.001000).
-    return invalidArgument(what + ": tension must be in [0.001, 1000] (it scales the ghost ring by 1/tension), got " +
-                           std::to_string(tension));
+    return invalidArgument(
+        what + ": tension must be in [0.001, 1000] (it scales the ghost ring by 1/tension), got " +
+        std::to_string(tension));
   }
   return Status::ok();
 }
@@ -35,8 +36,8 @@ GhostRule ghostRuleOf(const Level& m, Index v, std::string* reason) {
                             : "three or more sharp edges make it a corner, which already interpolates");
 }
 
-std::optional<GhostRing> ghostRing(const Level& m, Index v, std::span<const Vec3> points, const LoopOptions& options,
-                                   const InterpolationTag& tag) {
+std::optional<GhostRing> ghostRing(const Level& m, Index v, std::span<const Vec3> points,
+                                   const LoopOptions& options, const InterpolationTag& tag) {
   const GhostRule rule = ghostRuleOf(m, v);
   if (rule == GhostRule::kNone) return std::nullopt;
   LoopStencils stencils(m, options);

@@ -68,13 +68,13 @@ enum class GhostRule { kInterior, kCrease, kNone };
 GhostRule ghostRuleOf(const Level& level, Index v, std::string* reason = nullptr);
 
 struct GhostRing {
-  Vec3 centre;                                  // V0's child
-  std::vector<std::pair<Index, Vec3>> edges;    // level-l edge of V0 -> its child's point
+  Vec3 centre;                                // V0's child
+  std::vector<std::pair<Index, Vec3>> edges;  // level-l edge of V0 -> its child's point
 };
 
 // The ghost ring of v at the next level from the level's points, or nothing
 // when ghostRuleOf(level, v) is kNone.
-std::optional<GhostRing> ghostRing(const Level& level, Index v, std::span<const Vec3> points, const LoopOptions& options,
-                                   const InterpolationTag& tag);
+std::optional<GhostRing> ghostRing(const Level& level, Index v, std::span<const Vec3> points,
+                                   const LoopOptions& options, const InterpolationTag& tag);
 
 }  // namespace tessera

@@ -31,7 +31,8 @@ Vec3 LoopStencils::vertexPointForRule(Index v, VertexRule rule, const float* rin
     case VertexRule::kCrease: {
       int ends[2];
       sharpEdgePair(std::span(ringSharpness, n), ends);
-      return loop::kCreaseVertexWeight * p[v] + loop::kCreaseNeighbourWeight * (p[ring[ends[0]]] + p[ring[ends[1]]]);
+      return loop::kCreaseVertexWeight * p[v] +
+             loop::kCreaseNeighbourWeight * (p[ring[ends[0]]] + p[ring[ends[1]]]);
     }
     case VertexRule::kCorner:
       return p[v];

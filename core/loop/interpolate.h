@@ -26,7 +26,8 @@ class LoopStencils {
   Vec3 edgeChild(Index e, std::span<const Vec3> p);
 
  private:
-  Vec3 vertexPointForRule(Index v, VertexRule rule, const float* ringSharpness, std::span<const Vec3> p) const;
+  Vec3 vertexPointForRule(Index v, VertexRule rule, const float* ringSharpness,
+                          std::span<const Vec3> p) const;
 
   const Level& parent_;
   SharpnessInheritance inherit_;

@@ -23,7 +23,9 @@ BaseTopology BaseTopology::fromBaseMesh(const BaseMesh& mesh) {
 
 namespace {
 
-std::string vertexName(int v) { return "vertex " + std::to_string(v); }
+std::string vertexName(int v) {
+  return "vertex " + std::to_string(v);
+}
 
 // Finds edge (a, b) among the edges already created at vertex a.
 Index findEdge(const Level& level, const std::vector<Index>& edgesAt, const std::vector<Index>& edgesAtCount,
@@ -177,8 +179,8 @@ Expected<Level> buildBaseLevel(const BaseTopology& topology, const LoopOptions& 
     const auto& t = topology.triangles[f];
     for (int j = 0; j < 3; ++j) {
       if (t[j] < 0 || t[j] >= numVertices) {
-        return invalidMesh("face " + std::to_string(f) + " names vertex " + std::to_string(t[j]) +
-                           " of " + std::to_string(numVertices));
+        return invalidMesh("face " + std::to_string(f) + " names vertex " + std::to_string(t[j]) + " of " +
+                           std::to_string(numVertices));
       }
     }
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
@@ -224,7 +226,8 @@ Expected<Level> buildBaseLevel(const BaseTopology& topology, const LoopOptions& 
     if (static_cast<int>(topology.vertexSharpness.size()) != numVertices) {
       return invalidArgument("vertex sharpness count differs from the vertex count");
     }
-    for (int v = 0; v < numVertices; ++v) level.vertexSharpness[v] = canonicalSharpness(topology.vertexSharpness[v]);
+    for (int v = 0; v < numVertices; ++v)
+      level.vertexSharpness[v] = canonicalSharpness(topology.vertexSharpness[v]);
   }
   for (Index e = 0; e < level.numEdges(); ++e) {
     if (level.isBoundaryEdge(e)) level.edgeSharpness[e] = kSharpnessInfinite;

@@ -68,11 +68,13 @@ struct SectorMasks {
 
   // The normal is tangent1 x tangent2, linear in the ring in each factor;
   // the other kinds orient it by the ring's faces.
-  bool normalIsCrossProduct() const { return kind == Kind::kTangentPlane || kind == Kind::kDominantAndCrease; }
+  bool normalIsCrossProduct() const {
+    return kind == Kind::kTangentPlane || kind == Kind::kDominantAndCrease;
+  }
 };
 
 struct StationaryMasks {
-  std::vector<double> position;     // weights over (vertex, ring 0 .. valence-1)
+  std::vector<double> position;      // weights over (vertex, ring 0 .. valence-1)
   std::vector<SectorMasks> sectors;  // in ring order from the first sharp edge
 };
 

@@ -24,8 +24,12 @@ struct LocalFrame {
   Vec3 bitangent;  // unit, normal x tangent
   Vec3 normal;     // unit, the smooth-rule (or boundary-rule) limit normal
 
-  Vec3 toWorld(const Vec3& local) const { return local[0] * tangent + local[1] * bitangent + local[2] * normal; }
-  Vec3 toLocal(const Vec3& world) const { return {dot(world, tangent), dot(world, bitangent), dot(world, normal)}; }
+  Vec3 toWorld(const Vec3& local) const {
+    return local[0] * tangent + local[1] * bitangent + local[2] * normal;
+  }
+  Vec3 toLocal(const Vec3& world) const {
+    return {dot(world, tangent), dot(world, bitangent), dot(world, normal)};
+  }
 };
 
 // Interior vertices use Loop's smooth tangent masks over the whole ring;

@@ -38,7 +38,8 @@ T centreForRule(VertexRule rule, std::span<const float> ringSharpness, std::span
     case VertexRule::kCrease: {
       int ends[2];
       sharpEdgePair(ringSharpness, ends);
-      return loop::kCreaseVertexWeight * p[0] + loop::kCreaseNeighbourWeight * (p[1 + ends[0]] + p[1 + ends[1]]);
+      return loop::kCreaseVertexWeight * p[0] +
+             loop::kCreaseNeighbourWeight * (p[1 + ends[0]] + p[1 + ends[1]]);
     }
     case VertexRule::kCorner:
       return p[0];
@@ -51,7 +52,8 @@ T centreForRule(VertexRule rule, std::span<const float> ringSharpness, std::span
 // and edgeChild, read for a lone ring).
 template <typename T>
 void stepPoints(const LocalRing& ring, std::span<const T> p, const std::vector<float>& halves,
-                const std::vector<float>& farHalves, VertexRule childRule, double blend, std::vector<T>& out) {
+                const std::vector<float>& farHalves, VertexRule childRule, double blend,
+                std::vector<T>& out) {
   const int n = ring.valence;
   out.resize(p.size());
   out[0] = centreForRule(ring.rule, std::span<const float>(ring.edgeSharpness), p);
@@ -140,7 +142,8 @@ void refineLocalRing(const LocalRing& ring, CreaseMethod method, LocalRing& chil
     const float s = ring.edgeSharpness[k];
     halves[k] = halfAtEnd(s, ring.edgeSharpness, method);
     // Uniform decay reads no ring: both halves decay alike.
-    farHalves[k] = method == CreaseMethod::kChaikin ? halfAtEnd(s, ring.farRingSharpness[k], method) : halves[k];
+    farHalves[k] =
+        method == CreaseMethod::kChaikin ? halfAtEnd(s, ring.farRingSharpness[k], method) : halves[k];
   }
   const float childVertexSharpness = decrementSharpness(ring.vertexSharpness);
   // SharpnessInheritance::vertexChildRule: sharpness never grows, so a

@@ -14,11 +14,11 @@
 #include <span>
 #include <vector>
 
-#include "core/mesh/surface_mesh.h"
 #include "core/loop/level.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/util/status.h"
 
 namespace tessera {
@@ -36,7 +36,8 @@ class LoopRefiner {
     std::function<void(int level, int levels)> onLevel = nullptr;
   };
 
-  static Expected<LoopRefiner> create(const BaseMesh& mesh, const LoopOptions& options, const Uniform& uniform);
+  static Expected<LoopRefiner> create(const BaseMesh& mesh, const LoopOptions& options,
+                                      const Uniform& uniform);
   static Expected<LoopRefiner> create(const BaseTopology& topology, const LoopOptions& options,
                                       const Uniform& uniform);
 

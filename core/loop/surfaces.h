@@ -7,9 +7,9 @@
 
 #include <span>
 
-#include "core/mesh/surface_mesh.h"
 #include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/util/status.h"
 
 namespace tessera {

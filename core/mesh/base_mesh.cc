@@ -5,7 +5,9 @@
 
 namespace tessera {
 
-BaseMesh::BaseMesh() { addProperties(); }
+BaseMesh::BaseMesh() {
+  addProperties();
+}
 
 BaseMesh::BaseMesh(const BaseMesh& other) : mesh_(other.mesh_) {
   // OpenMesh copies properties with the mesh; re-find the handles by name.
@@ -97,8 +99,10 @@ BaseMesh::TagCounts BaseMesh::tagCounts() const {
   TagCounts counts;
   for (auto eh : mesh_.edges()) {
     float s = edgeSharpness(eh);
-    if (isInfinite(s)) ++counts.infiniteCreases;
-    else if (isSharp(s)) ++counts.semiSharpCreases;
+    if (isInfinite(s))
+      ++counts.infiniteCreases;
+    else if (isSharp(s))
+      ++counts.semiSharpCreases;
   }
   for (auto vh : mesh_.vertices()) {
     if (isSharp(vertexSharpness(vh))) ++counts.sharpVertices;

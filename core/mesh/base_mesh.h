@@ -51,8 +51,12 @@ class BaseMesh {
   // Sharpness accessors by OpenMesh handle.
   float edgeSharpness(OpenMesh::EdgeHandle e) const { return mesh_.property(edgeSharpness_, e); }
   float vertexSharpness(OpenMesh::VertexHandle v) const { return mesh_.property(vertexSharpness_, v); }
-  void setEdgeSharpness(OpenMesh::EdgeHandle e, float s) { mesh_.property(edgeSharpness_, e) = canonicalSharpness(s); }
-  void setVertexSharpness(OpenMesh::VertexHandle v, float s) { mesh_.property(vertexSharpness_, v) = canonicalSharpness(s); }
+  void setEdgeSharpness(OpenMesh::EdgeHandle e, float s) {
+    mesh_.property(edgeSharpness_, e) = canonicalSharpness(s);
+  }
+  void setVertexSharpness(OpenMesh::VertexHandle v, float s) {
+    mesh_.property(vertexSharpness_, v) = canonicalSharpness(s);
+  }
 
   // Tags by vertex indices, as tag files and glTF extras name them.
   // Errors name the missing edge or vertex.

@@ -41,8 +41,8 @@ Expected<int> creaseByDihedralAngle(const PolygonSoup& soup, double degrees, Bas
     // atan2 of |sin| and cos: accurate at every angle, unlike acos near 0.
     const double angle = std::atan2((n0 % n1).norm(), n0 | n1);
     if (angle <= limit) continue;
-    TESSERA_RETURN_IF_ERROR(
-        mesh.setCreaseByVertices(static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu), kSharpnessInfinite));
+    TESSERA_RETURN_IF_ERROR(mesh.setCreaseByVertices(
+        static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu), kSharpnessInfinite));
     ++creased;
   }
   return creased;

@@ -31,8 +31,8 @@ constexpr double kRelativeAreaEpsilon = 1e-12;
 
 struct Triangle {
   std::array<int, 3> v;
-  int sourceFace;      // index of the polygon in the soup
-  bool fromPolygon;    // one of the triangles of a triangulated polygon
+  int sourceFace;    // index of the polygon in the soup
+  bool fromPolygon;  // one of the triangles of a triangulated polygon
 };
 
 std::string joinIndices(const int* begin, const int* end) {
@@ -94,8 +94,9 @@ Status collectTriangles(const PolygonSoup& soup, const BuildOptions& options, co
       }
     }
     if (n > 3 && !options.triangulate) {
-      return unsupported(src + ": " + faceName(soup, f) + ": has " + std::to_string(n) +
-                         " vertices; only triangles are accepted (use --triangulate to triangulate polygons)");
+      return unsupported(
+          src + ": " + faceName(soup, f) + ": has " + std::to_string(n) +
+          " vertices; only triangles are accepted (use --triangulate to triangulate polygons)");
     }
     pieces.clear();
     const Status split = triangulatePolygon(soup.points, std::span<const int>(idx, n), pieces);
@@ -125,7 +126,8 @@ Status checkAreas(const PolygonSoup& soup, const std::vector<Triangle>& triangle
   return Status::ok();
 }
 
-Status checkDuplicates(const PolygonSoup& soup, const std::vector<Triangle>& triangles, const std::string& src) {
+Status checkDuplicates(const PolygonSoup& soup, const std::vector<Triangle>& triangles,
+                       const std::string& src) {
   // Sorted corner triple -> first triangle; catches any rotation and either
   // orientation.
   struct Hash {
@@ -168,10 +170,12 @@ Status checkEdges(const PolygonSoup& soup, const std::vector<Triangle>& triangle
       const int a = triangles[i].v[k];
       const int b = triangles[i].v[(k + 1) % 3];
       const std::vector<Use>& list = uses[edgeKey(a, b)];
-      const std::string edge = "edge " + std::to_string(std::min(a, b)) + "-" + std::to_string(std::max(a, b));
+      const std::string edge =
+          "edge " + std::to_string(std::min(a, b)) + "-" + std::to_string(std::max(a, b));
       if (list.size() > 2) {
         std::string faces;
-        for (const Use& u : list) faces += (faces.empty() ? "" : "; ") + triangleName(soup, triangles[u.triangle]);
+        for (const Use& u : list)
+          faces += (faces.empty() ? "" : "; ") + triangleName(soup, triangles[u.triangle]);
         return invalidMesh(src + ": " + edge + ": non-manifold, used by " + std::to_string(list.size()) +
                            " faces: " + faces);
       }
@@ -193,7 +197,8 @@ int findRoot(std::vector<int>& parent, int x) {
 
 // Every vertex must be used, and its faces must form one fan: joining the
 // faces around it across shared edges must give a single connected group.
-Status checkVertices(const PolygonSoup& soup, const std::vector<Triangle>& triangles, const std::string& src) {
+Status checkVertices(const PolygonSoup& soup, const std::vector<Triangle>& triangles,
+                     const std::string& src) {
   const int n = static_cast<int>(soup.points.size());
   std::vector<int> start(n + 1, 0);
   for (const Triangle& t : triangles) {
@@ -201,8 +206,9 @@ Status checkVertices(const PolygonSoup& soup, const std::vector<Triangle>& trian
   }
   for (int v = 0; v < n; ++v) {
     if (start[v + 1] == 0) {
-      return invalidMesh(src + ": vertex " + std::to_string(v) + " " + formatPoint(soup.points[v]) +
-                         ": not used by any face (isolated vertices are not accepted; --drop-unused drops them)");
+      return invalidMesh(
+          src + ": vertex " + std::to_string(v) + " " + formatPoint(soup.points[v]) +
+          ": not used by any face (isolated vertices are not accepted; --drop-unused drops them)");
     }
     start[v + 1] += start[v];
   }
@@ -280,7 +286,8 @@ Expected<BaseMesh> buildBaseMesh(const PolygonSoup& soup, const BuildOptions& op
     const OpenMesh::FaceHandle fh = mesh.add_face(v0, v1, v2);
     ::omerr().enable();
     if (!fh.is_valid()) {
-      return internalError(src + ": " + triangleName(soup, t) + ": OpenMesh rejected the face after validation");
+      return internalError(src + ": " + triangleName(soup, t) +
+                           ": OpenMesh rejected the face after validation");
     }
     // Face circulation starts at the to-vertex of the face's anchor halfedge;
     // anchor at the halfedge into v0 so that circulation yields v0, v1, v2,

@@ -23,8 +23,9 @@ struct FaceInfo {
   bool outside = false;
   bool visited = false;
 };
-using FaceBase = CGAL::Constrained_triangulation_face_base_2<
-    Kernel, CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>>;
+using FaceBase =
+    CGAL::Constrained_triangulation_face_base_2<Kernel,
+                                                CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::Exact_predicates_tag>;
 
@@ -49,7 +50,8 @@ std::string findCrossing(const std::vector<Point2>& outline, std::span<const int
         const Point2& p = j == i + 1 ? outline[i] : outline[1];
         const Point2& q = j == i + 1 ? outline[(j + 1) % n] : outline[n - 1];
         if (CGAL::collinear(p, shared, q) && !CGAL::collinear_are_strictly_ordered_along_line(p, shared, q)) {
-          return "its edges " + edgeName(corners, i) + " and " + edgeName(corners, j) + " fold back onto each other";
+          return "its edges " + edgeName(corners, i) + " and " + edgeName(corners, j) +
+                 " fold back onto each other";
         }
         continue;
       }
@@ -102,7 +104,8 @@ Vec3 polygonNormal(std::span<const Vec3> points, std::span<const int> corners) {
   Vec3 n(0, 0, 0);
   const size_t count = corners.size();
   const Vec3& origin = points[corners[0]];
-  for (size_t k = 1; k + 1 < count; ++k) n += (points[corners[k]] - origin) % (points[corners[k + 1]] - origin);
+  for (size_t k = 1; k + 1 < count; ++k)
+    n += (points[corners[k]] - origin) % (points[corners[k + 1]] - origin);
   return n;
 }
 
@@ -116,7 +119,8 @@ Status triangulatePolygon(std::span<const Vec3> points, std::span<const int> cor
   }
   const Vec3 normal = polygonNormal(points, corners);
   double longest = 0;
-  for (size_t k = 0; k < n; ++k) longest = std::max(longest, (points[corners[(k + 1) % n]] - points[corners[k]]).sqrnorm());
+  for (size_t k = 0; k < n; ++k)
+    longest = std::max(longest, (points[corners[(k + 1) % n]] - points[corners[k]]).sqrnorm());
   if (!(normal.norm() > kRelativeAreaEpsilon * longest)) {
     // No area overall: collinear corners, or lobes of opposite orientation
     // that cancel (a bow tie). The largest corner triangle tells which, and
@@ -171,8 +175,8 @@ Status triangulatePolygon(std::span<const Vec3> points, std::span<const int> cor
   for (std::array<int, 3>& t : triangles) t = {corners[t[0]], corners[t[1]], corners[t[2]]};
   // A simple polygon of n corners has exactly n - 2 triangles.
   if (triangles.size() != n - 2) {
-    return internalError("triangulation: " + std::to_string(triangles.size()) + " triangles for " + std::to_string(n) +
-                         " corners");
+    return internalError("triangulation: " + std::to_string(triangles.size()) + " triangles for " +
+                         std::to_string(n) + " corners");
   }
   out.insert(out.end(), triangles.begin(), triangles.end());
   return Status::ok();

@@ -16,12 +16,22 @@ namespace tessera {
 inline constexpr float kSharpnessSmooth = 0.0f;
 inline constexpr float kSharpnessInfinite = 10.0f;
 
-inline bool isSharp(float s) { return s > kSharpnessSmooth; }
-inline bool isSmooth(float s) { return s <= kSharpnessSmooth; }
-inline bool isInfinite(float s) { return s >= kSharpnessInfinite; }
-inline bool isSemiSharp(float s) { return s > kSharpnessSmooth && s < kSharpnessInfinite; }
+inline bool isSharp(float s) {
+  return s > kSharpnessSmooth;
+}
+inline bool isSmooth(float s) {
+  return s <= kSharpnessSmooth;
+}
+inline bool isInfinite(float s) {
+  return s >= kSharpnessInfinite;
+}
+inline bool isSemiSharp(float s) {
+  return s > kSharpnessSmooth && s < kSharpnessInfinite;
+}
 
 // Canonical stored value: infinite values collapse to kSharpnessInfinite.
-inline float canonicalSharpness(float s) { return isInfinite(s) ? kSharpnessInfinite : s; }
+inline float canonicalSharpness(float s) {
+  return isInfinite(s) ? kSharpnessInfinite : s;
+}
 
 }  // namespace tessera

@@ -17,7 +17,8 @@ double cross(const P2& a, const P2& b, const P2& c) {
 
 // Bilinear sample at pixel coordinates (centres at +0.5), clamped to the image.
 std::array<double, 4> sample(const Image& image, double x, double y) {
-  const double fx = std::clamp(x - 0.5, 0.0, image.width - 1.0), fy = std::clamp(y - 0.5, 0.0, image.height - 1.0);
+  const double fx = std::clamp(x - 0.5, 0.0, image.width - 1.0),
+               fy = std::clamp(y - 0.5, 0.0, image.height - 1.0);
   const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
   const int x1 = std::min(x0 + 1, image.width - 1), y1 = std::min(y0 + 1, image.height - 1);
   const double u = fx - x0, v = fy - y0;
@@ -32,7 +33,8 @@ std::array<double, 4> sample(const Image& image, double x, double y) {
 
 void put(Image& out, int x, int y, const std::array<double, 4>& a, const std::array<double, 4>& b, double t) {
   uint8_t* p = out.at(x, y);
-  for (int c = 0; c < 4; ++c) p[c] = static_cast<uint8_t>(std::clamp(std::lround((1 - t) * a[c] + t * b[c]), 0L, 255L));
+  for (int c = 0; c < 4; ++c)
+    p[c] = static_cast<uint8_t>(std::clamp(std::lround((1 - t) * a[c] + t * b[c]), 0L, 255L));
 }
 
 // Top-left rule (as GPUs rasterise): a pixel centre on an edge shared by two
@@ -77,7 +79,8 @@ Image morphFrame(const Image& a, const Image& b, const PlanarMesh& key0, const P
                  const PlanarMesh& at, double t) {
   Image out{a.width, a.height, std::vector<uint8_t>(a.rgba.size())};
   for (int y = 0; y < out.height; ++y) {
-    for (int x = 0; x < out.width; ++x) put(out, x, y, sample(a, x + 0.5, y + 0.5), sample(b, x + 0.5, y + 0.5), t);
+    for (int x = 0; x < out.width; ++x)
+      put(out, x, y, sample(a, x + 0.5, y + 0.5), sample(b, x + 0.5, y + 0.5), t);
   }
   for (const auto& tri : at.triangles) {
     P2 p[3] = {at.points[tri[0]], at.points[tri[1]], at.points[tri[2]]};

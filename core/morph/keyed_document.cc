@@ -6,7 +6,8 @@ namespace tessera {
 
 Expected<Document*> KeyedDocument::editKey(uint32_t k) {
   if (k >= keys_.size()) {
-    return notFound("key " + std::to_string(k) + " does not exist: the document has " + std::to_string(keys_.size()) +
+    return notFound("key " + std::to_string(k) + " does not exist: the document has " +
+                    std::to_string(keys_.size()) +
                     (keys_.size() == 1 ? " key (add a second with AddMorphKey)" : " keys"));
   }
   morph_.reset();
@@ -15,7 +16,8 @@ Expected<Document*> KeyedDocument::editKey(uint32_t k) {
 
 Status KeyedDocument::addKey(std::vector<Vec3> points, MorphImages images) {
   if (keys_.size() >= kMaxMorphKeys) {
-    return invalidArgument("the document already has " + std::to_string(keys_.size()) + " keys, the most a morph document holds");
+    return invalidArgument("the document already has " + std::to_string(keys_.size()) +
+                           " keys, the most a morph document holds");
   }
   const Document& first = keys_[0];
   if (points.size() != first.basePoints().size()) {
@@ -29,14 +31,16 @@ Status KeyedDocument::addKey(std::vector<Vec3> points, MorphImages images) {
       }
     }
   }
-  auto key1 = Document::restore(first.baseTopology(), std::move(points), first.options(), first.edits(), first.nextEditId());
+  auto key1 = Document::restore(first.baseTopology(), std::move(points), first.options(), first.edits(),
+                                first.nextEditId());
   if (!key1.isOk()) return key1.status().withContext("the second key (key 0's edits on its points)");
   return restoreKey(std::move(*key1), std::move(images));
 }
 
 Status KeyedDocument::restoreKey(Document key1, MorphImages images) {
   if (keys_.size() >= kMaxMorphKeys) return invalidArgument("the document already has two keys");
-  TESSERA_RETURN_IF_ERROR(checkSameConnectivity(keys_[0].baseTopology(), key1.baseTopology(), "key 0", "key 1"));
+  TESSERA_RETURN_IF_ERROR(
+      checkSameConnectivity(keys_[0].baseTopology(), key1.baseTopology(), "key 0", "key 1"));
   keys_.push_back(std::move(key1));
   images_ = std::move(images);
   morph_.reset();
@@ -44,7 +48,8 @@ Status KeyedDocument::restoreKey(Document key1, MorphImages images) {
 }
 
 Expected<const Morph*> KeyedDocument::morph() const {
-  if (!isMorph()) return invalidArgument("the document has one key: add a second (AddMorphKey) to view it at a time t");
+  if (!isMorph())
+    return invalidArgument("the document has one key: add a second (AddMorphKey) to view it at a time t");
   if (!morph_) {
     TESSERA_ASSIGN_OR_RETURN(Morph m, Morph::create(keys_));
     morph_ = std::make_shared<const Morph>(std::move(m));
@@ -53,7 +58,8 @@ Expected<const Morph*> KeyedDocument::morph() const {
 }
 
 Expected<const Morph*> KeyedDocument::morphAt(double t) const {
-  if (!(t >= 0.0 && t <= 1.0)) return invalidArgument("morph time " + std::to_string(t) + " is not in [0, 1]");
+  if (!(t >= 0.0 && t <= 1.0))
+    return invalidArgument("morph time " + std::to_string(t) + " is not in [0, 1]");
   return morph();
 }
 
@@ -64,7 +70,8 @@ Expected<Document> KeyedDocument::at(double t) const {
 
 Expected<Vec3> KeyedDocument::pointAt(uint32_t v, double t) const {
   TESSERA_ASSIGN_OR_RETURN(const Morph* m, morphAt(t));
-  if (v >= keys_[0].basePoints().size()) return notFound("base vertex " + std::to_string(v) + " does not exist");
+  if (v >= keys_[0].basePoints().size())
+    return notFound("base vertex " + std::to_string(v) + " does not exist");
   return m->pointAt(v, t);
 }
 

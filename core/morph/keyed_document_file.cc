@@ -23,8 +23,8 @@ Status getBlob(ByteReader& r, const char* what, std::string& out) {
   uint64_t size = 0;
   TESSERA_RETURN_IF_ERROR(r.get(size, what));
   if (size > r.remaining()) {
-    return parseError(r.source() + ": " + what + " of " + std::to_string(size) + " bytes exceeds the remaining " +
-                      std::to_string(r.remaining()));
+    return parseError(r.source() + ": " + what + " of " + std::to_string(size) +
+                      " bytes exceeds the remaining " + std::to_string(r.remaining()));
   }
   return r.getBytes(out, static_cast<size_t>(size), what);
 }
@@ -52,12 +52,13 @@ Expected<KeyedDocument> deserializeKeyedDocument(const std::string& bytes, const
   uint32_t version = 0, keys = 0;
   TESSERA_RETURN_IF_ERROR(r.get(version, "the morph container version"));
   if (version != kContainerVersion) {
-    return parseError(source + ": morph container version " + std::to_string(version) + ", this build reads " +
-                      std::to_string(kContainerVersion));
+    return parseError(source + ": morph container version " + std::to_string(version) +
+                      ", this build reads " + std::to_string(kContainerVersion));
   }
   TESSERA_RETURN_IF_ERROR(r.get(keys, "the key count"));
   if (keys != kMaxMorphKeys) {
-    return parseError(source + ": a morph container of " + std::to_string(keys) + " keys (it holds exactly 2)");
+    return parseError(source + ": a morph container of " + std::to_string(keys) +
+                      " keys (it holds exactly 2)");
   }
   std::string key0, key1;
   MorphImages images;

@@ -42,15 +42,20 @@ KeyState stateOf(const Document& doc) {
       }
     }
   }
-  for (const auto& c : doc.baseTopology().creases) s.baseCreases[{std::min(c.v0, c.v1), std::max(c.v0, c.v1)}] = c.sharpness;
+  for (const auto& c : doc.baseTopology().creases)
+    s.baseCreases[{std::min(c.v0, c.v1), std::max(c.v0, c.v1)}] = c.sharpness;
   s.baseCorners = doc.baseTopology().vertexSharpness;
   s.baseCorners.resize(doc.baseTopology().numVertices, 0.0f);
   return s;
 }
 
 // (1 - s) a + s b: exactly a at s = 0 and b at s = 1.
-Vec3 lerp(const Vec3& a, const Vec3& b, double s) { return (1 - s) * a + s * b; }
-double lerp(double a, double b, double s) { return (1 - s) * a + s * b; }
+Vec3 lerp(const Vec3& a, const Vec3& b, double s) {
+  return (1 - s) * a + s * b;
+}
+double lerp(double a, double b, double s) {
+  return (1 - s) * a + s * b;
+}
 
 template <typename Value>
 Value valueOr(const std::map<uint64_t, Value>& m, uint64_t key, Value fallback) {
@@ -85,42 +90,50 @@ Status checkSameConnectivity(const BaseTopology& a, const BaseTopology& b, const
                            std::to_string(a.numVertices) + ": a morph needs one connectivity");
   }
   if (a.triangles.size() != b.triangles.size()) {
-    return invalidArgument(nameB + " has " + std::to_string(b.triangles.size()) + " triangles, " + nameA + " has " +
-                           std::to_string(a.triangles.size()) + ": a morph needs one connectivity");
+    return invalidArgument(nameB + " has " + std::to_string(b.triangles.size()) + " triangles, " + nameA +
+                           " has " + std::to_string(a.triangles.size()) + ": a morph needs one connectivity");
   }
   for (size_t f = 0; f < a.triangles.size(); ++f) {
     if (a.triangles[f] != b.triangles[f]) {
-      return invalidArgument("triangle " + std::to_string(f) + " is " + triangleText(a.triangles[f]) + " in " + nameA +
-                             " but " + triangleText(b.triangles[f]) + " in " + nameB +
+      return invalidArgument("triangle " + std::to_string(f) + " is " + triangleText(a.triangles[f]) +
+                             " in " + nameA + " but " + triangleText(b.triangles[f]) + " in " + nameB +
                              ": a morph needs one connectivity");
     }
   }
   return Status::ok();
 }
 
-Morph::Morph(std::vector<Document> keys, std::vector<double> times) : keys_(std::move(keys)), times_(std::move(times)) {}
+Morph::Morph(std::vector<Document> keys, std::vector<double> times)
+    : keys_(std::move(keys)), times_(std::move(times)) {}
 
 Expected<Morph> Morph::create(std::vector<Document> keys, std::vector<double> times) {
-  if (keys.size() < 2) return invalidArgument("a morph needs at least two keys, got " + std::to_string(keys.size()));
+  if (keys.size() < 2)
+    return invalidArgument("a morph needs at least two keys, got " + std::to_string(keys.size()));
   if (times.empty()) {
-    for (size_t k = 0; k < keys.size(); ++k) times.push_back(static_cast<double>(k) / static_cast<double>(keys.size() - 1));
+    for (size_t k = 0; k < keys.size(); ++k)
+      times.push_back(static_cast<double>(k) / static_cast<double>(keys.size() - 1));
   }
   if (times.size() != keys.size()) {
-    return invalidArgument(std::to_string(keys.size()) + " keys but " + std::to_string(times.size()) + " times");
+    return invalidArgument(std::to_string(keys.size()) + " keys but " + std::to_string(times.size()) +
+                           " times");
   }
   for (size_t k = 0; k < keys.size(); ++k) {
     if (!std::isfinite(times[k]) || (k > 0 && !(times[k] > times[k - 1]))) {
-      return invalidArgument("key times must be finite and strictly increasing (key " + std::to_string(k) + ")");
+      return invalidArgument("key times must be finite and strictly increasing (key " + std::to_string(k) +
+                             ")");
     }
   }
   const Document& first = keys[0];
   for (size_t k = 1; k < keys.size(); ++k) {
     const std::string name = "key " + std::to_string(k);
-    TESSERA_RETURN_IF_ERROR(checkSameConnectivity(first.baseTopology(), keys[k].baseTopology(), "key 0", name));
+    TESSERA_RETURN_IF_ERROR(
+        checkSameConnectivity(first.baseTopology(), keys[k].baseTopology(), "key 0", name));
     const DocumentOptions& a = first.options();
     const DocumentOptions& b = keys[k].options();
-    if (a.maxLevel != b.maxLevel || a.loop.creaseMethod != b.loop.creaseMethod || a.loop.boundary != b.loop.boundary) {
-      return invalidArgument(name + " has other document options (max level, crease method or boundary rule) than key 0");
+    if (a.maxLevel != b.maxLevel || a.loop.creaseMethod != b.loop.creaseMethod ||
+        a.loop.boundary != b.loop.boundary) {
+      return invalidArgument(
+          name + " has other document options (max level, crease method or boundary rule) than key 0");
     }
   }
   return Morph(std::move(keys), std::move(times));
@@ -174,8 +187,10 @@ Expected<Document> Morph::at(double t) const {
   auto vertexName = [](uint64_t id) { return VertexId::fromPacked(id).toString(); };
   auto edgeName = [](uint64_t id) { return EdgeId::fromPacked(id).toString(); };
   TESSERA_RETURN_IF_ERROR(sameKeys(a.edgeTags, b.edgeTags, k, k + 1, "a sharpness edit", edgeName));
-  TESSERA_RETURN_IF_ERROR(sameKeys(a.vertexTags, b.vertexTags, k, k + 1, "a vertex sharpness edit", vertexName));
-  TESSERA_RETURN_IF_ERROR(sameKeys(a.interpolating, b.interpolating, k, k + 1, "an interpolating tag", vertexName));
+  TESSERA_RETURN_IF_ERROR(
+      sameKeys(a.vertexTags, b.vertexTags, k, k + 1, "a vertex sharpness edit", vertexName));
+  TESSERA_RETURN_IF_ERROR(
+      sameKeys(a.interpolating, b.interpolating, k, k + 1, "an interpolating tag", vertexName));
 
   BaseTopology topology = keys_[0].baseTopology();
   std::map<std::pair<int, int>, float> creases = a.baseCreases;
@@ -183,7 +198,8 @@ Expected<Document> Morph::at(double t) const {
   topology.creases.clear();
   for (const auto& [edge, unused] : creases) {
     const auto fa = a.baseCreases.find(edge), fb = b.baseCreases.find(edge);
-    const float sa = fa == a.baseCreases.end() ? 0.0f : fa->second, sb = fb == b.baseCreases.end() ? 0.0f : fb->second;
+    const float sa = fa == a.baseCreases.end() ? 0.0f : fa->second,
+                sb = fb == b.baseCreases.end() ? 0.0f : fb->second;
     const float blended = static_cast<float>(lerp(sa, sb, s));
     if (blended > 0) topology.creases.push_back({edge.first, edge.second, blended});
   }
@@ -206,7 +222,8 @@ Expected<Document> Morph::at(double t) const {
     moves[vertex.level()].offsets.push_back({vertex, blended});
   }
   for (auto& [level, move] : moves) add(std::move(move));
-  for (const auto& [e, sa] : a.edgeTags) add(EdgeSharpnessEdit{EdgeId::fromPacked(e), static_cast<float>(lerp(sa, b.edgeTags.at(e), s))});
+  for (const auto& [e, sa] : a.edgeTags)
+    add(EdgeSharpnessEdit{EdgeId::fromPacked(e), static_cast<float>(lerp(sa, b.edgeTags.at(e), s))});
   for (const auto& [v, sa] : a.vertexTags) {
     add(VertexSharpnessEdit{VertexId::fromPacked(v), static_cast<float>(lerp(sa, b.vertexTags.at(v), s))});
   }
@@ -214,7 +231,8 @@ Expected<Document> Morph::at(double t) const {
     const InterpolationEdit& tb = b.interpolating.at(v);
     add(InterpolationEdit{ta.vertex, true, lerp(ta.tension, tb.tension, s), lerp(ta.tangent, tb.tangent, s)});
   }
-  auto doc = Document::restore(std::move(topology), std::move(points), keys_[0].options(), std::move(edits), id);
+  auto doc =
+      Document::restore(std::move(topology), std::move(points), keys_[0].options(), std::move(edits), id);
   if (!doc.isOk()) return doc.status().withContext("the morph at t = " + std::to_string(t));
   return doc;
 }

@@ -6,7 +6,9 @@
 namespace tessera::bilinear {
 
 // Face point: the centroid of the face's corners.
-inline double facePointWeight(int faceSize) { return 1.0 / faceSize; }
+inline double facePointWeight(int faceSize) {
+  return 1.0 / faceSize;
+}
 // Edge point: the midpoint.
 inline constexpr double kEdgeEndWeight = 0.5;
 // Vertex point: the vertex itself.

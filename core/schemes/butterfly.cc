@@ -10,7 +10,9 @@ namespace tessera::schemes {
 namespace {
 
 // Is v an interior vertex whose valence is not 6?
-bool irregularInterior(const Level& level, Index v) { return level.valence(v) != 6 && !level.isBoundaryVertex(v); }
+bool irregularInterior(const Level& level, Index v) {
+  return level.valence(v) != 6 && !level.isBoundaryVertex(v);
+}
 
 // Zorin's stencil around interior end `a` of the edge towards `b`.
 Vec3 irregularStencil(const Level& level, Index a, Index b, std::span<const Vec3> p) {
@@ -24,7 +26,9 @@ Vec3 irregularStencil(const Level& level, Index a, Index b, std::span<const Vec3
 }
 
 // The vertex opposite edge e in face f, where e has local index `local`.
-Index oppositeIn(const Level& level, Index f, int local) { return level.faceVertices[f][(local + 2) % 3]; }
+Index oppositeIn(const Level& level, Index f, int local) {
+  return level.faceVertices[f][(local + 2) % 3];
+}
 
 // The wing tip across face f's edge `wing` (joining x and b): the opposite
 // vertex of the face on the other side, or the reflection x + b - a.
@@ -47,7 +51,8 @@ Vec3 edgePoint(const Level& level, Index e, std::span<const Vec3> p) {
     const Index beyond1 = level.ringVerticesOf(a1)[0];
     auto ring0 = level.ringVerticesOf(a0);
     const Index beyond0 = ring0[ring0.size() - 1];
-    return butterfly::kBoundaryEndWeight * (p[a0] + p[a1]) + butterfly::kBoundaryOuterWeight * (p[beyond0] + p[beyond1]);
+    return butterfly::kBoundaryEndWeight * (p[a0] + p[a1]) +
+           butterfly::kBoundaryOuterWeight * (p[beyond0] + p[beyond1]);
   }
   const bool irregular0 = irregularInterior(level, a0), irregular1 = irregularInterior(level, a1);
   if (!irregular0 && !irregular1) {
@@ -63,7 +68,8 @@ Vec3 edgePoint(const Level& level, Index e, std::span<const Vec3> p) {
     return butterfly::kEndWeight * (p[a0] + p[a1]) + butterfly::kOppositeWeight * (p[b0] + p[b1]) +
            butterfly::kWingWeight * wings;
   }
-  if (irregular0 && irregular1) return 0.5 * (irregularStencil(level, a0, a1, p) + irregularStencil(level, a1, a0, p));
+  if (irregular0 && irregular1)
+    return 0.5 * (irregularStencil(level, a0, a1, p) + irregularStencil(level, a1, a0, p));
   return irregular0 ? irregularStencil(level, a0, a1, p) : irregularStencil(level, a1, a0, p);
 }
 
@@ -83,8 +89,8 @@ SurfaceMesh TriangleRefinement::surface() const {
   return s;
 }
 
-Expected<TriangleRefinement> refineButterfly(const BaseTopology& topology, std::span<const Vec3> points, int levels,
-                                             long long maxFaces) {
+Expected<TriangleRefinement> refineButterfly(const BaseTopology& topology, std::span<const Vec3> points,
+                                             int levels, long long maxFaces) {
   if (levels < 0) return invalidArgument("level must be 0 or more, got " + std::to_string(levels));
   BaseTopology plain = topology;  // no tags: the Butterfly has no crease rules
   plain.creases.clear();
@@ -93,8 +99,8 @@ Expected<TriangleRefinement> refineButterfly(const BaseTopology& topology, std::
   long long faces = base.numFaces();
   for (int l = 0; l < levels && faces <= maxFaces; ++l) faces *= 4;
   if (faces > maxFaces) {
-    return invalidArgument("level " + std::to_string(levels) + " would make more than " + std::to_string(maxFaces) +
-                           " triangles; choose a lower level");
+    return invalidArgument("level " + std::to_string(levels) + " would make more than " +
+                           std::to_string(maxFaces) + " triangles; choose a lower level");
   }
   TriangleRefinement out;
   out.levels.push_back(std::move(base));

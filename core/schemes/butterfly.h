@@ -11,16 +11,17 @@
 #include <span>
 #include <vector>
 
-#include "core/mesh/surface_mesh.h"
 #include "core/loop/level.h"
 #include "core/loop/level_builder.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
 namespace tessera::schemes {
 
 // `childPoints` holds parent.numVertices + parent.numEdges() points.
-void interpolateButterfly(const Level& parent, std::span<const Vec3> parentPoints, std::span<Vec3> childPoints);
+void interpolateButterfly(const Level& parent, std::span<const Vec3> parentPoints,
+                          std::span<Vec3> childPoints);
 
 // Levels 0..levels of topology (Loop numbering) and the finest points.
 struct TriangleRefinement {
@@ -30,7 +31,7 @@ struct TriangleRefinement {
 };
 
 // Sharpness tags are ignored: the Butterfly has no crease rules.
-Expected<TriangleRefinement> refineButterfly(const BaseTopology& topology, std::span<const Vec3> points, int levels,
-                                             long long maxFaces = 16LL * 1024 * 1024);
+Expected<TriangleRefinement> refineButterfly(const BaseTopology& topology, std::span<const Vec3> points,
+                                             int levels, long long maxFaces = 16LL * 1024 * 1024);
 
 }  // namespace tessera::schemes

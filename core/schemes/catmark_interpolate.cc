@@ -105,9 +105,9 @@ class CatmarkStencils {
       const Index e = ringEdges[k];
       childSharpness_[k] = child_.edgeSharpness[corners_ + 2 * e + (parent_.edgeVertices[e][0] == v ? 0 : 1)];
     }
-    const double pw = fractionalWeightAtVertex(parent_.vertexSharpness[v], child_.vertexSharpness[v],
-                                               std::span(parentSharpness_.data(), n),
-                                               std::span(childSharpness_.data(), n));
+    const double pw =
+        fractionalWeightAtVertex(parent_.vertexSharpness[v], child_.vertexSharpness[v],
+                                 std::span(parentSharpness_.data(), n), std::span(childSharpness_.data(), n));
     const Vec3 childRulePoint = pointForRule(v, cRule, childSharpness_.data());
     return pw * point + (1.0 - pw) * childRulePoint;
   }

@@ -33,7 +33,9 @@ class TangentTables {
 };
 
 // Opposite corner of v in quad f, v being at corner c.
-inline Index opposite(const PolyLevel& level, Index f, int c) { return level.faceVertices[4 * f + ((c + 2) & 3)]; }
+inline Index opposite(const PolyLevel& level, Index f, int c) {
+  return level.faceVertices[4 * f + ((c + 2) & 3)];
+}
 
 CatmarkLimitFrame cornerFrame(const PolyLevel& level, Index v, std::span<const Vec3> p) {
   auto ring = level.ringVerticesOf(v);
@@ -56,7 +58,8 @@ CatmarkLimitFrame regularFrame(const PolyLevel& level, Index v, Index o, std::sp
           4.0 * (e0 - e2) + ((f0 - f1) + (f3 - f2)), 4.0 * (e1 - e3) + ((f0 + f1) - (f2 + f3))};
 }
 
-CatmarkLimitFrame smoothFrame(const PolyLevel& level, Index v, std::span<const Vec3> p, const TangentTables& tables) {
+CatmarkLimitFrame smoothFrame(const PolyLevel& level, Index v, std::span<const Vec3> p,
+                              const TangentTables& tables) {
   const int n = level.valence(v);
   if (n == 2) return cornerFrame(level, v, p);
   const Index o = level.ringOffsets[v];
@@ -117,7 +120,8 @@ Vec3 faceNormals(const PolyLevel& level, Index v, std::span<const Vec3> p) {
   return sum;
 }
 
-CatmarkLimitFrame frameWith(const PolyLevel& level, Index v, std::span<const Vec3> points, const TangentTables& tables) {
+CatmarkLimitFrame frameWith(const PolyLevel& level, Index v, std::span<const Vec3> points,
+                            const TangentTables& tables) {
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
     case VertexRule::kDart:
@@ -139,9 +143,11 @@ CatmarkLimitFrame catmarkLimitFrame(const PolyLevel& level, Index v, std::span<c
 Status computeCatmarkLimit(const PolyLevel& level, std::span<const Vec3> points, std::span<Vec3> positions,
                            std::span<Vec3> normals) {
   if (!level.allQuads()) {
-    return invalidArgument("the Catmull-Clark limit needs a level of quads: this one has other polygons (refine once)");
+    return invalidArgument(
+        "the Catmull-Clark limit needs a level of quads: this one has other polygons (refine once)");
   }
-  if (level.ringOffsets.empty()) return internalError("the Catmull-Clark limit needs the level's full topology");
+  if (level.ringOffsets.empty())
+    return internalError("the Catmull-Clark limit needs the level's full topology");
   const bool wantNormals = !normals.empty();
   const TangentTables tables(level.maxValence);
   for (Index v = 0; v < level.numVertices; ++v) {

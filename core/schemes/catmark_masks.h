@@ -12,7 +12,9 @@
 namespace tessera::catmark {
 
 // Face point: the centroid of the face's corners.
-inline double facePointWeight(int faceSize) { return 1.0 / faceSize; }
+inline double facePointWeight(int faceSize) {
+  return 1.0 / faceSize;
+}
 
 // Smooth edge point: the mean of its two ends and the two adjacent face
 // points (1/4 each).
@@ -23,8 +25,12 @@ inline constexpr double kEdgeFaceWeight = 0.25;
 // ring neighbour and 1/n^2 of each adjacent face point -- the B-spline's
 // (Q + 2R + (n-3)S)/n written per neighbour, since each edge midpoint R holds
 // the vertex and one neighbour.
-inline double smoothVertexWeight(int n) { return static_cast<double>(n - 2) / n; }
-inline double smoothNeighbourWeight(int n) { return 1.0 / (static_cast<double>(n) * n); }
+inline double smoothVertexWeight(int n) {
+  return static_cast<double>(n - 2) / n;
+}
+inline double smoothNeighbourWeight(int n) {
+  return 1.0 / (static_cast<double>(n) * n);
+}
 
 // Crease vertex: (1/8, 3/4, 1/8) along the crease, a cubic B-spline curve.
 inline constexpr double kCreaseVertexWeight = 0.75;
@@ -34,9 +40,15 @@ inline constexpr double kCreaseNeighbourWeight = 0.125;
 // subdivision matrix): each face's opposite corner weighs 1/(n(n+5)), each
 // ring neighbour 4/(n(n+5)), the vertex n/(n+5). Valence 4 gives the bicubic
 // B-spline's 1/36, 1/9, 4/9.
-inline double smoothLimitFaceWeight(int n) { return 1.0 / (static_cast<double>(n) * (n + 5)); }
-inline double smoothLimitNeighbourWeight(int n) { return 4.0 * smoothLimitFaceWeight(n); }
-inline double smoothLimitVertexWeight(int n) { return static_cast<double>(n) / (n + 5); }
+inline double smoothLimitFaceWeight(int n) {
+  return 1.0 / (static_cast<double>(n) * (n + 5));
+}
+inline double smoothLimitNeighbourWeight(int n) {
+  return 4.0 * smoothLimitFaceWeight(n);
+}
+inline double smoothLimitVertexWeight(int n) {
+  return static_cast<double>(n) / (n + 5);
+}
 
 // Crease limit: the cubic B-spline's (1/6, 2/3, 1/6).
 inline constexpr double kCreaseLimitVertexWeight = 2.0 / 3.0;
@@ -48,9 +60,12 @@ inline constexpr double kCreaseLimitNeighbourWeight = 1.0 / 6.0;
 // the subdominant eigenvalue. The second tangent is the first rotated by one.
 inline double smoothTangentLambda(int n) {
   const double theta = 2.0 * std::numbers::pi / n;
-  return 5.0 / 16.0 + (std::cos(theta) + std::cos(0.5 * theta) * std::sqrt(2.0 * (9.0 + std::cos(theta)))) / 16.0;
+  return 5.0 / 16.0 +
+         (std::cos(theta) + std::cos(0.5 * theta) * std::sqrt(2.0 * (9.0 + std::cos(theta)))) / 16.0;
 }
-inline double smoothTangentNeighbourWeight(int n, int k) { return 4.0 * std::cos(2.0 * std::numbers::pi * k / n); }
+inline double smoothTangentNeighbourWeight(int n, int k) {
+  return 4.0 * std::cos(2.0 * std::numbers::pi * k / n);
+}
 inline double smoothTangentFaceWeight(int n, int k) {
   const double theta = 2.0 * std::numbers::pi / n;
   return (std::cos(k * theta) + std::cos((k + 1) * theta)) / (4.0 * smoothTangentLambda(n) - 1.0);

@@ -49,14 +49,15 @@ PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> p)
     if (parent.isBoundaryVertex(v)) continue;
     face.clear();
     const Index o = parent.ringOffsets[v];
-    for (int k = 0; k < parent.valence(v); ++k) face.push_back(parent.faceOffsets[parent.ringFaces[o + k]] + parent.ringFaceLocal[o + k]);
+    for (int k = 0; k < parent.valence(v); ++k)
+      face.push_back(parent.faceOffsets[parent.ringFaces[o + k]] + parent.ringFaceLocal[o + k]);
     t.addFace(face);
   }
   return out;
 }
 
-Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::span<const Vec3> points, int levels,
-                                           long long maxFaces) {
+Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::span<const Vec3> points,
+                                           int levels, long long maxFaces) {
   if (levels < 0) return invalidArgument("level must be 0 or more, got " + std::to_string(levels));
   PolygonRefinement current{topology, std::vector<Vec3>(points.begin(), points.end())};
   current.topology.creases.clear();
@@ -66,8 +67,8 @@ Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::sp
     // Faces of the child: one per face, edge and vertex of the parent.
     const long long faces = static_cast<long long>(level.numFaces()) + level.numEdges() + level.numVertices;
     if (faces > maxFaces) {
-      return invalidArgument("level " + std::to_string(levels) + " would make more than " + std::to_string(maxFaces) +
-                             " faces; choose a lower level");
+      return invalidArgument("level " + std::to_string(levels) + " would make more than " +
+                             std::to_string(maxFaces) + " faces; choose a lower level");
     }
     current = dooSabinStep(level, current.points);
     if (l + 1 < levels) {
@@ -78,8 +79,8 @@ Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::sp
   return current;
 }
 
-void dooSabinFaceLimits(const PolyTopology& topology, std::span<const Vec3> points, std::vector<Vec3>& positions,
-                        std::vector<Vec3>& normals) {
+void dooSabinFaceLimits(const PolyTopology& topology, std::span<const Vec3> points,
+                        std::vector<Vec3>& positions, std::vector<Vec3>& normals) {
   positions.assign(topology.numFaces(), Vec3(0, 0, 0));
   normals.assign(topology.numFaces(), Vec3(0, 0, 0));
   for (int f = 0; f < topology.numFaces(); ++f) {

@@ -26,12 +26,12 @@ struct PolygonRefinement {
 PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> parentPoints);
 
 // `levels` steps; tags are ignored (Doo-Sabin has no crease rules here).
-Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::span<const Vec3> points, int levels,
-                                           long long maxFaces = 16LL * 1024 * 1024);
+Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::span<const Vec3> points,
+                                           int levels, long long maxFaces = 16LL * 1024 * 1024);
 
 // The limit point and normal of each face (doo_sabin_masks.h): its centroid,
 // and the normal of its first Fourier modes (unit, zero if degenerate).
-void dooSabinFaceLimits(const PolyTopology& topology, std::span<const Vec3> points, std::vector<Vec3>& positions,
-                        std::vector<Vec3>& normals);
+void dooSabinFaceLimits(const PolyTopology& topology, std::span<const Vec3> points,
+                        std::vector<Vec3>& positions, std::vector<Vec3>& normals);
 
 }  // namespace tessera::schemes

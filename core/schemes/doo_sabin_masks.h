@@ -13,7 +13,8 @@ namespace tessera::doosabin {
 // (3 + 2 cos(2 pi (i - j) / n)) / (4 n), plus 1/4 for j = i. On quads this is
 // 9/16, 3/16, 3/16, 1/16: the tensor product of Chaikin's (3/4, 1/4).
 inline double cornerWeight(int n, int distance) {
-  return (3.0 + 2.0 * std::cos(2.0 * std::numbers::pi * distance / n)) / (4.0 * n) + (distance == 0 ? 0.25 : 0.0);
+  return (3.0 + 2.0 * std::cos(2.0 * std::numbers::pi * distance / n)) / (4.0 * n) +
+         (distance == 0 ? 0.25 : 0.0);
 }
 
 // The weights form a circulant matrix with eigenvalues 1 (the centroid),
@@ -21,7 +22,11 @@ inline double cornerWeight(int n, int distance) {
 // shrinks onto it, so the centroid is the limit point of the face, and the
 // first Fourier modes, sum cos(2 pi k / n) p_k and sum sin(2 pi k / n) p_k,
 // span the limit tangent plane there.
-inline double tangentCosWeight(int n, int k) { return std::cos(2.0 * std::numbers::pi * k / n); }
-inline double tangentSinWeight(int n, int k) { return std::sin(2.0 * std::numbers::pi * k / n); }
+inline double tangentCosWeight(int n, int k) {
+  return std::cos(2.0 * std::numbers::pi * k / n);
+}
+inline double tangentSinWeight(int n, int k) {
+  return std::sin(2.0 * std::numbers::pi * k / n);
+}
 
 }  // namespace tessera::doosabin

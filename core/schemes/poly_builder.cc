@@ -31,7 +31,9 @@ PolyTopology PolyTopology::fromSoup(const PolygonSoup& soup) {
 
 namespace {
 
-std::string edgeName(Index a, Index b) { return "edge " + std::to_string(a) + "-" + std::to_string(b); }
+std::string edgeName(Index a, Index b) {
+  return "edge " + std::to_string(a) + "-" + std::to_string(b);
+}
 
 Status checkFaces(const PolyTopology& t, PolyLevel& level) {
   const int nF = t.numFaces();
@@ -43,17 +45,20 @@ Status checkFaces(const PolyTopology& t, PolyLevel& level) {
   for (int f = 0; f < nF; ++f) {
     const int from = t.faceOffsets[f], to = t.faceOffsets[f + 1];
     const int n = to - from;
-    if (n < 3) return invalidMesh("face " + std::to_string(f) + " has " + std::to_string(n) + " corners (3 or more needed)");
+    if (n < 3)
+      return invalidMesh("face " + std::to_string(f) + " has " + std::to_string(n) +
+                         " corners (3 or more needed)");
     if (n > kMaxFaceSize) return invalidMesh("face " + std::to_string(f) + " has more than 65535 corners");
     for (int k = from; k < to; ++k) {
       const int v = t.indices[k];
       if (v < 0 || v >= t.numVertices) {
-        return invalidMesh("face " + std::to_string(f) + " names vertex " + std::to_string(v) + ", out of range 0.." +
-                           std::to_string(t.numVertices - 1));
+        return invalidMesh("face " + std::to_string(f) + " names vertex " + std::to_string(v) +
+                           ", out of range 0.." + std::to_string(t.numVertices - 1));
       }
       for (int j = from; j < k; ++j) {
         if (t.indices[j] == v) {
-          return invalidMesh("face " + std::to_string(f) + " uses vertex " + std::to_string(v) + " twice (degenerate)");
+          return invalidMesh("face " + std::to_string(f) + " uses vertex " + std::to_string(v) +
+                             " twice (degenerate)");
         }
       }
     }
@@ -105,8 +110,9 @@ Status buildEdges(const PolyTopology& t, PolyLevel& level, std::vector<Index>& e
       } else {
         auto& ef = level.edgeFaces[e];
         if (ef[1] != kNoIndex || ef[0] == f) {
-          return invalidMesh(edgeName(a, b) + " is non-manifold: used by faces " + std::to_string(ef[0]) + ", " +
-                             std::to_string(ef[1] == kNoIndex ? f : ef[1]) + " and " + std::to_string(f));
+          return invalidMesh(edgeName(a, b) + " is non-manifold: used by faces " + std::to_string(ef[0]) +
+                             ", " + std::to_string(ef[1] == kNoIndex ? f : ef[1]) + " and " +
+                             std::to_string(f));
         }
         if (level.edgeVertices[e][0] == a) {
           return invalidMesh("faces " + std::to_string(ef[0]) + " and " + std::to_string(f) +
@@ -227,7 +233,8 @@ Status applySharpness(const PolyTopology& t, const CreaseOptions& options, PolyL
       return invalidMesh("crease " + std::to_string(i) + " names " + edgeName(c.v0, c.v1) + ", out of range");
     }
     const Index e = findEdge(level, c.v0, c.v1);
-    if (e == kNoIndex) return invalidMesh("crease " + std::to_string(i) + ": " + edgeName(c.v0, c.v1) + " does not exist");
+    if (e == kNoIndex)
+      return invalidMesh("crease " + std::to_string(i) + ": " + edgeName(c.v0, c.v1) + " does not exist");
     level.edgeSharpness[e] = canonicalSharpness(c.sharpness);
   }
   if (!t.vertexSharpness.empty()) {
@@ -242,7 +249,8 @@ Status applySharpness(const PolyTopology& t, const CreaseOptions& options, PolyL
   }
   level.vertexRules.resize(nV);
   for (Index v = 0; v < nV; ++v) {
-    if (options.boundary == BoundaryInterpolation::kEdgeAndCorner && level.valence(v) == 2 && level.isBoundaryVertex(v)) {
+    if (options.boundary == BoundaryInterpolation::kEdgeAndCorner && level.valence(v) == 2 &&
+        level.isBoundaryVertex(v)) {
       level.vertexSharpness[v] = kSharpnessInfinite;
     }
     int sharp = 0;

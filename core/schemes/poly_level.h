@@ -40,8 +40,8 @@ struct PolyLevel {
   Buffer<Index> faceEdges;  // parallel to faceVertices
 
   Buffer<std::array<Index, 2>> edgeVertices;
-  Buffer<std::array<Index, 2>> edgeFaces;            // [1] is kNoIndex on a boundary
-  Buffer<std::array<LocalIndex, 2>> edgeFaceLocal;   // position of the edge in each face
+  Buffer<std::array<Index, 2>> edgeFaces;           // [1] is kNoIndex on a boundary
+  Buffer<std::array<LocalIndex, 2>> edgeFaceLocal;  // position of the edge in each face
 
   // Rings in compressed rows: ringOffsets[v] .. ringOffsets[v+1]. ringVertices[k]
   // is the far end of ringEdges[k]; ringFaceLocal[k] is v's corner in ringFaces[k]

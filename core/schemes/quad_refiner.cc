@@ -11,7 +11,8 @@ namespace tessera::schemes {
 
 Expected<QuadRefiner> QuadRefiner::create(const PolyTopology& topology, QuadScheme scheme,
                                           const CreaseOptions& options, const Uniform& uniform) {
-  if (uniform.levels < 0) return invalidArgument("level must be 0 or more, got " + std::to_string(uniform.levels));
+  if (uniform.levels < 0)
+    return invalidArgument("level must be 0 or more, got " + std::to_string(uniform.levels));
   QuadRefiner refiner;
   refiner.scheme_ = scheme;
   // Bilinear has no creases: its base level ignores them (and boundary rules).
@@ -29,8 +30,9 @@ Expected<QuadRefiner> QuadRefiner::create(const PolyTopology& topology, QuadSche
   refiner.levels_.reserve(uniform.levels + 1);
   refiner.levels_.push_back(std::move(base));
   for (int l = 1; l <= uniform.levels; ++l) {
-    const SplitDetail detail =
-        (l < uniform.levels || uniform.fullTopologyInLastLevel) ? SplitDetail::kFull : SplitDetail::kFacesOnly;
+    const SplitDetail detail = (l < uniform.levels || uniform.fullTopologyInLastLevel)
+                                   ? SplitDetail::kFull
+                                   : SplitDetail::kFacesOnly;
     refiner.levels_.push_back(splitToQuads(refiner.levels_.back(), options, detail));
     if (uniform.onLevel) uniform.onLevel(l, uniform.levels);
   }

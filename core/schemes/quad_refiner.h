@@ -39,8 +39,8 @@ class QuadRefiner {
     std::function<void(int level, int levels)> onLevel = nullptr;
   };
 
-  static Expected<QuadRefiner> create(const PolyTopology& topology, QuadScheme scheme, const CreaseOptions& options,
-                                      const Uniform& uniform);
+  static Expected<QuadRefiner> create(const PolyTopology& topology, QuadScheme scheme,
+                                      const CreaseOptions& options, const Uniform& uniform);
 
   QuadScheme scheme() const { return scheme_; }
   int maxLevel() const { return static_cast<int>(levels_.size()) - 1; }
@@ -67,6 +67,7 @@ class QuadRefiner {
 };
 
 // Bilinear refinement of vertex data (quad_split.h numbering).
-void interpolateBilinear(const PolyLevel& parent, std::span<const Vec3> parentPoints, std::span<Vec3> childPoints);
+void interpolateBilinear(const PolyLevel& parent, std::span<const Vec3> parentPoints,
+                         std::span<Vec3> childPoints);
 
 }  // namespace tessera::schemes

@@ -10,7 +10,9 @@ namespace {
 // Child face j of a face: its corner vertex, the vertex of the edge leaving
 // it, the face vertex, the vertex of the edge arriving. A quad's children are
 // rotated so that the corner vertex keeps its position j (as Vtr does).
-inline int childSlot(int size, int j, int k) { return size == 4 ? (j + k) & 3 : k; }
+inline int childSlot(int size, int j, int k) {
+  return size == 4 ? (j + k) & 3 : k;
+}
 
 void splitFaces(const PolyLevel& parent, PolyLevel& child, bool withEdges) {
   const Index nV = parent.numVertices;
@@ -206,7 +208,8 @@ void splitSharpness(const PolyLevel& parent, const CreaseOptions& options, PolyL
         if (chaikin && isSemiSharp(s)) {
           const Index x = parent.edgeVertices[e][end];
           parent.ringSharpness(x, ring.data());
-          halves[end] = subdivideEdgeSharpnessAtVertex(options.creaseMethod, s, std::span(ring.data(), parent.valence(x)));
+          halves[end] = subdivideEdgeSharpnessAtVertex(options.creaseMethod, s,
+                                                       std::span(ring.data(), parent.valence(x)));
         } else {
           halves[end] = decrementSharpness(s);
         }
@@ -216,8 +219,9 @@ void splitSharpness(const PolyLevel& parent, const CreaseOptions& options, PolyL
     child.edgeSharpness[corners + 2 * e + 1] = halves[1];
     const Index m = nV + nF + e;
     child.vertexSharpness[m] = kSharpnessSmooth;
-    child.vertexRules[m] = isSharp(s) ? vertexRule(kSharpnessSmooth, (isSharp(halves[0]) ? 1 : 0) + (isSharp(halves[1]) ? 1 : 0))
-                                      : VertexRule::kSmooth;
+    child.vertexRules[m] =
+        isSharp(s) ? vertexRule(kSharpnessSmooth, (isSharp(halves[0]) ? 1 : 0) + (isSharp(halves[1]) ? 1 : 0))
+                   : VertexRule::kSmooth;
   }
   for (Index f = 0; f < nF; ++f) {
     child.vertexSharpness[nV + f] = kSharpnessSmooth;
@@ -232,7 +236,8 @@ void splitSharpness(const PolyLevel& parent, const CreaseOptions& options, PolyL
     }
     int sharp = 0;
     for (Index e : parent.ringEdgesOf(v)) {
-      sharp += isSharp(child.edgeSharpness[corners + 2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1)]) ? 1 : 0;
+      sharp +=
+          isSharp(child.edgeSharpness[corners + 2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1)]) ? 1 : 0;
     }
     child.vertexRules[v] = vertexRule(s, sharp);
   }

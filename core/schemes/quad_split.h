@@ -23,7 +23,9 @@ enum class SplitDetail {
 PolyLevel splitToQuads(const PolyLevel& parent, const CreaseOptions& options, SplitDetail detail);
 
 // Index helpers for the numbering above.
-inline Index faceChildVertex(const PolyLevel& parent, Index f) { return parent.numVertices + f; }
+inline Index faceChildVertex(const PolyLevel& parent, Index f) {
+  return parent.numVertices + f;
+}
 inline Index edgeChildVertex(const PolyLevel& parent, Index e) {
   return parent.numVertices + parent.numFaces() + e;
 }

@@ -8,7 +8,8 @@
 namespace tessera::schemes {
 
 const std::vector<std::string>& schemeNames() {
-  static const std::vector<std::string> names = {"loop", "catmull-clark", "bilinear", "butterfly", "sqrt3", "doo-sabin"};
+  static const std::vector<std::string> names = {"loop",      "catmull-clark", "bilinear",
+                                                 "butterfly", "sqrt3",         "doo-sabin"};
   return names;
 }
 
@@ -30,7 +31,9 @@ bool schemeTakesPolygons(Scheme scheme) {
   return scheme == Scheme::kCatmullClark || scheme == Scheme::kBilinear || scheme == Scheme::kDooSabin;
 }
 
-bool schemeHasCreases(Scheme scheme) { return scheme == Scheme::kLoop || scheme == Scheme::kCatmullClark; }
+bool schemeHasCreases(Scheme scheme) {
+  return scheme == Scheme::kLoop || scheme == Scheme::kCatmullClark;
+}
 
 std::string limitUnavailableReason(Scheme scheme) {
   switch (scheme) {
@@ -52,7 +55,8 @@ SurfaceMesh fanPolygons(const PolyTopology& t, std::vector<Vec3> points) {
   s.positions = std::move(points);
   for (int f = 0; f < t.numFaces(); ++f) {
     const int from = t.faceOffsets[f], to = t.faceOffsets[f + 1];
-    for (int k = from + 1; k + 1 < to; ++k) s.triangles.push_back({t.indices[from], t.indices[k], t.indices[k + 1]});
+    for (int k = from + 1; k + 1 < to; ++k)
+      s.triangles.push_back({t.indices[from], t.indices[k], t.indices[k + 1]});
   }
   return s;
 }
@@ -66,12 +70,14 @@ Expected<SurfaceMesh> refinePolygons(const PolygonMesh& mesh, const SchemeReques
   switch (request.scheme) {
     case Scheme::kCatmullClark:
     case Scheme::kBilinear: {
-      const QuadScheme quad = request.scheme == Scheme::kBilinear ? QuadScheme::kBilinear : QuadScheme::kCatmullClark;
+      const QuadScheme quad =
+          request.scheme == Scheme::kBilinear ? QuadScheme::kBilinear : QuadScheme::kCatmullClark;
       QuadRefiner::Uniform uniform;
       uniform.levels = request.levels;
       uniform.fullTopologyInLastLevel = request.limit;
       uniform.maxFaces = request.maxFaces;
-      TESSERA_ASSIGN_OR_RETURN(QuadRefiner refiner, QuadRefiner::create(mesh.topology, quad, request.crease, uniform));
+      TESSERA_ASSIGN_OR_RETURN(QuadRefiner refiner,
+                               QuadRefiner::create(mesh.topology, quad, request.crease, uniform));
       const std::vector<Vec3> points = refiner.refinePoints(mesh.points);
       if (request.limit) return refiner.limitSurface(points);
       return refiner.controlSurface(points);
@@ -92,11 +98,13 @@ Expected<SurfaceMesh> refineTriangles(const BaseTopology& topology, std::span<co
     return unsupported(why);
   }
   if (request.scheme == Scheme::kButterfly) {
-    TESSERA_ASSIGN_OR_RETURN(TriangleRefinement refined, refineButterfly(topology, points, request.levels, request.maxFaces));
+    TESSERA_ASSIGN_OR_RETURN(TriangleRefinement refined,
+                             refineButterfly(topology, points, request.levels, request.maxFaces));
     return refined.surface();
   }
   if (request.scheme == Scheme::kSqrt3) {
-    TESSERA_ASSIGN_OR_RETURN(TriangleRefinement refined, refineSqrt3(topology, points, request.levels, request.maxFaces));
+    TESSERA_ASSIGN_OR_RETURN(TriangleRefinement refined,
+                             refineSqrt3(topology, points, request.levels, request.maxFaces));
     SurfaceMesh surface = refined.surface();
     if (request.limit) surface.positions = sqrt3LimitPositions(refined.levels.back(), refined.points);
     return surface;

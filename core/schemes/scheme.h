@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh/surface_mesh.h"
 #include "core/loop/level_builder.h"
+#include "core/mesh/surface_mesh.h"
 #include "core/schemes/poly_builder.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/util/status.h"
@@ -31,8 +31,8 @@ const std::vector<std::string>& schemeNames();
 Expected<Scheme> parseScheme(const std::string& name);
 const char* schemeName(Scheme scheme);
 
-bool schemeTakesPolygons(Scheme scheme);   // otherwise triangles
-bool schemeHasCreases(Scheme scheme);      // sharpness tags and crease options apply
+bool schemeTakesPolygons(Scheme scheme);  // otherwise triangles
+bool schemeHasCreases(Scheme scheme);     // sharpness tags and crease options apply
 // Empty when --limit is available, otherwise why not.
 std::string limitUnavailableReason(Scheme scheme);
 

@@ -50,8 +50,8 @@ std::vector<Vec3> sqrt3LimitPositions(const Level& level, std::span<const Vec3> 
   return out;
 }
 
-Expected<TriangleRefinement> refineSqrt3(const BaseTopology& topology, std::span<const Vec3> points, int levels,
-                                         long long maxFaces) {
+Expected<TriangleRefinement> refineSqrt3(const BaseTopology& topology, std::span<const Vec3> points,
+                                         int levels, long long maxFaces) {
   if (levels < 0) return invalidArgument("level must be 0 or more, got " + std::to_string(levels));
   BaseTopology plain = topology;
   plain.creases.clear();
@@ -59,15 +59,15 @@ Expected<TriangleRefinement> refineSqrt3(const BaseTopology& topology, std::span
   TESSERA_ASSIGN_OR_RETURN(Level base, buildBaseLevel(plain, LoopOptions{}));
   for (Index e = 0; e < base.numEdges(); ++e) {
     if (base.isBoundaryEdge(e)) {
-      return unsupported("sqrt3 refines closed meshes only: edge " + std::to_string(base.edgeVertices[e][0]) + "-" +
-                         std::to_string(base.edgeVertices[e][1]) + " is on a boundary");
+      return unsupported("sqrt3 refines closed meshes only: edge " + std::to_string(base.edgeVertices[e][0]) +
+                         "-" + std::to_string(base.edgeVertices[e][1]) + " is on a boundary");
     }
   }
   long long faces = base.numFaces();
   for (int l = 0; l < levels && faces <= maxFaces; ++l) faces *= 3;
   if (faces > maxFaces) {
-    return invalidArgument("level " + std::to_string(levels) + " would make more than " + std::to_string(maxFaces) +
-                           " triangles; choose a lower level");
+    return invalidArgument("level " + std::to_string(levels) + " would make more than " +
+                           std::to_string(maxFaces) + " triangles; choose a lower level");
   }
   TriangleRefinement out;
   out.levels.push_back(std::move(base));

@@ -25,8 +25,8 @@ void interpolateSqrt3(const Level& parent, std::span<const Vec3> parentPoints, s
 std::vector<std::array<int, 3>> sqrt3ChildTriangles(const Level& parent);
 
 // Sharpness tags are ignored: sqrt(3) has no crease rules here.
-Expected<TriangleRefinement> refineSqrt3(const BaseTopology& topology, std::span<const Vec3> points, int levels,
-                                         long long maxFaces = 16LL * 1024 * 1024);
+Expected<TriangleRefinement> refineSqrt3(const BaseTopology& topology, std::span<const Vec3> points,
+                                         int levels, long long maxFaces = 16LL * 1024 * 1024);
 
 // Limit positions of every vertex of a level (Kobbelt's limit mask).
 std::vector<Vec3> sqrt3LimitPositions(const Level& level, std::span<const Vec3> points);

@@ -111,7 +111,8 @@ bool AdaptiveCut::aroundEditedVertex(const SparseEvaluator& h, int l, Index f) c
 bool AdaptiveCut::normalsDisagree(const SparseEvaluator& h, int l, Index f) const {
   const auto& fv = h.level(l).mesh.faceVertices[f];
   for (int j = 0; j < 3; ++j) {
-    if (cosAngle(sideNormal(h, l, fv[j], f), sideNormal(h, l, fv[(j + 1) % 3], f)) < cosThreshold_) return true;
+    if (cosAngle(sideNormal(h, l, fv[j], f), sideNormal(h, l, fv[(j + 1) % 3], f)) < cosThreshold_)
+      return true;
   }
   return false;
 }

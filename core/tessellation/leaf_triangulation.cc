@@ -72,7 +72,8 @@ void cover(VertexRef a, VertexRef b, VertexRef c, const Points& ab, const Points
 
 }  // namespace
 
-void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index f, std::vector<RefTriangle>& out) {
+void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index f,
+                     std::vector<RefTriangle>& out) {
   const Level& m = h.level(l).mesh;
   const auto& fv = m.faceVertices[f];
   std::array<Points, 3> edges;

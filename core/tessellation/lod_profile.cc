@@ -23,12 +23,14 @@ std::string shortest(double value) {
 }  // namespace
 
 Status LodProfile::check() const {
-  if (baseLevel < 0) return invalidArgument("LOD profile: base level must be >= 0, got " + std::to_string(baseLevel));
+  if (baseLevel < 0)
+    return invalidArgument("LOD profile: base level must be >= 0, got " + std::to_string(baseLevel));
   if (maxLevel < baseLevel) {
-    return invalidArgument("LOD profile: max level " + std::to_string(maxLevel) + " is below the base level " +
-                           std::to_string(baseLevel));
+    return invalidArgument("LOD profile: max level " + std::to_string(maxLevel) +
+                           " is below the base level " + std::to_string(baseLevel));
   }
-  if (!std::isfinite(angleThresholdDegrees) || angleThresholdDegrees <= 0.0 || angleThresholdDegrees > 180.0) {
+  if (!std::isfinite(angleThresholdDegrees) || angleThresholdDegrees <= 0.0 ||
+      angleThresholdDegrees > 180.0) {
     return invalidArgument("LOD profile: angle threshold must be in (0, 180] degrees, got " +
                            shortest(angleThresholdDegrees));
   }

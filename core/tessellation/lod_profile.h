@@ -12,11 +12,11 @@
 namespace tessera {
 
 struct LodProfile {
-  int baseLevel = 2;                  // every face is shown at least this fine
-  int maxLevel = 5;                   // never finer than this
-  double angleThresholdDegrees = 10;  // refine where limit normals (or crease tangents) differ more
-  int64_t triangleBudget = 4'000'000; // refuse tessellations above this
-  bool fidelity = false;              // edits at level l refine their 2-ring to l+1, not l (§3.1.1)
+  int baseLevel = 2;                   // every face is shown at least this fine
+  int maxLevel = 5;                    // never finer than this
+  double angleThresholdDegrees = 10;   // refine where limit normals (or crease tangents) differ more
+  int64_t triangleBudget = 4'000'000;  // refuse tessellations above this
+  bool fidelity = false;               // edits at level l refine their 2-ring to l+1, not l (§3.1.1)
   // Regions carry the id of the control vertex each vertex is the limit of,
   // which a viewer needs to pick and drag. A display-only viewer (streaming
   // to thin clients, watching a session) can do without: about a third

@@ -24,8 +24,8 @@ Expected<RegionFrame> readFrame(ByteReader& r) {
   TESSERA_RETURN_IF_ERROR(r.get(level, "the frame's face level"));
   TESSERA_RETURN_IF_ERROR(r.getVarint(index, 64, "the frame's face"));
   if (level > kMaxIdLevel || index > FaceId::kIndexMask) {
-    return parseError(r.source() + ": the frame's face f" + std::to_string(level) + ":" + std::to_string(index) +
-                      " is not a face id");
+    return parseError(r.source() + ": the frame's face f" + std::to_string(level) + ":" +
+                      std::to_string(index) + " is not a face id");
   }
   frame.face = FaceId(level, index).packed();
   for (uint64_t& c : frame.corners) TESSERA_RETURN_IF_ERROR(r.getVarint(c, 64, "the frame's corners"));
@@ -37,7 +37,8 @@ Expected<RegionFrame> readFrame(ByteReader& r) {
 
 Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& counts, FaceId region) {
   const int r = region.level();
-  if (r >= h.numLevels()) return notFound("region " + region.toString() + ": the hierarchy holds no level " + std::to_string(r));
+  if (r >= h.numLevels())
+    return notFound("region " + region.toString() + ": the hierarchy holds no level " + std::to_string(r));
   const SparseLevel& level = h.level(r);
   const Index f = level.findFace(region.index());
   if (f < 0) return notFound("region " + region.toString() + ": the hierarchy does not hold its face");
@@ -56,7 +57,8 @@ Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& c
       frame.forward |= static_cast<uint8_t>(1u << j);
     } else if (ends[1].index() != frame.corners[j] || ends[0].index() != frame.corners[(j + 1) % 3]) {
       return internalError("region " + region.toString() + ": edge " + EdgeId(r, frame.edges[j]).toString() +
-                           " does not join corners " + std::to_string(j) + " and " + std::to_string((j + 1) % 3));
+                           " does not join corners " + std::to_string(j) + " and " +
+                           std::to_string((j + 1) % 3));
     }
   }
   frame.baseCounts = {counts.vertices(0), counts.edges(0), counts.faces(0)};
@@ -90,8 +92,8 @@ Expected<RegionLattice> RegionLattice::build(const RegionFrame& frame, int depth
   uint64_t v = frame.baseCounts[0], e = frame.baseCounts[1], f = frame.baseCounts[2];
   for (int l = 0;; ++l) {
     if (v > VertexId::kIndexMask || e > EdgeId::kIndexMask || f > FaceId::kIndexMask) {
-      return invalidArgument("region lattice of " + root.toString() + ": the base counts overflow the ids at level " +
-                             std::to_string(l));
+      return invalidArgument("region lattice of " + root.toString() +
+                             ": the base counts overflow the ids at level " + std::to_string(l));
     }
     if (l == deepest) break;
     std::tie(v, e, f) = std::make_tuple(v + e, 2 * e + 3 * f, 4 * f);
@@ -99,8 +101,9 @@ Expected<RegionLattice> RegionLattice::build(const RegionFrame& frame, int depth
   const LevelCounts counts(frame.baseCounts[0], frame.baseCounts[1], frame.baseCounts[2], deepest);
   for (int j = 0; j < 3; ++j) {
     if (frame.corners[j] >= counts.vertices(root.level()) || frame.edges[j] >= counts.edges(root.level())) {
-      return invalidArgument("region lattice of " + root.toString() + ": corner or edge " + std::to_string(j) +
-                             " is not an element of level " + std::to_string(root.level()));
+      return invalidArgument("region lattice of " + root.toString() + ": corner or edge " +
+                             std::to_string(j) + " is not an element of level " +
+                             std::to_string(root.level()));
     }
   }
   if (root.index() >= counts.faces(root.level())) {
@@ -119,7 +122,10 @@ Expected<RegionLattice> RegionLattice::build(const RegionFrame& frame, int depth
     lattice.points_.emplace(id.packed(), p);
   };
 
-  std::vector<Node> nodes{{root.index(), {{{0, 0}, {n, 0}, {0, n}}}, frame.corners, frame.edges,
+  std::vector<Node> nodes{{root.index(),
+                           {{{0, 0}, {n, 0}, {0, n}}},
+                           frame.corners,
+                           frame.edges,
                            {(frame.forward & 1) != 0, (frame.forward & 2) != 0, (frame.forward & 4) != 0}}};
   for (int j = 0; j < 3; ++j) record(nodes[0].at[j], nodes[0].vertex[j]);
   // Level by level (refinement.h): the vertex on edge e is V + e; edge e
@@ -154,16 +160,26 @@ Expected<RegionLattice> RegionLattice::build(const RegionFrame& frame, int depth
       // Child edge k joins child corners k and k+1; `forward` says whether
       // the edge runs that way. A half running corner->m joins (corner, m).
       // c0 = (v0, m0, m2): half0@0 (v0->m0), i0 (m0->m2), half2@v0 (m2->v0)
-      next.push_back({4 * p.face, {p.at[0], m[0], m[2]}, {p.vertex[0], mv[0], mv[2]},
-                      {half[0][0].first, i0, half[2][1].first}, {half[0][0].second, true, !half[2][1].second}});
+      next.push_back({4 * p.face,
+                      {p.at[0], m[0], m[2]},
+                      {p.vertex[0], mv[0], mv[2]},
+                      {half[0][0].first, i0, half[2][1].first},
+                      {half[0][0].second, true, !half[2][1].second}});
       // c1 = (m0, v1, m1): half0@v1 (m0->v1), half1@v1 (v1->m1), i1 (m1->m0)
-      next.push_back({4 * p.face + 1, {m[0], p.at[1], m[1]}, {mv[0], p.vertex[1], mv[1]},
-                      {half[0][1].first, half[1][0].first, i1}, {!half[0][1].second, half[1][0].second, true}});
+      next.push_back({4 * p.face + 1,
+                      {m[0], p.at[1], m[1]},
+                      {mv[0], p.vertex[1], mv[1]},
+                      {half[0][1].first, half[1][0].first, i1},
+                      {!half[0][1].second, half[1][0].second, true}});
       // c2 = (m2, m1, v2): i2 (m2->m1), half1@v2 (m1->v2), half2@v2 (v2->m2)
-      next.push_back({4 * p.face + 2, {m[2], m[1], p.at[2]}, {mv[2], mv[1], p.vertex[2]},
-                      {i2, half[1][1].first, half[2][0].first}, {true, !half[1][1].second, half[2][0].second}});
+      next.push_back({4 * p.face + 2,
+                      {m[2], m[1], p.at[2]},
+                      {mv[2], mv[1], p.vertex[2]},
+                      {i2, half[1][1].first, half[2][0].first},
+                      {true, !half[1][1].second, half[2][0].second}});
       // c3 = (m1, m2, m0): i2 (m2->m1), i0 (m0->m2), i1 (m1->m0), all backwards
-      next.push_back({4 * p.face + 3, {m[1], m[2], m[0]}, {mv[1], mv[2], mv[0]}, {i2, i0, i1}, {false, false, false}});
+      next.push_back(
+          {4 * p.face + 3, {m[1], m[2], m[0]}, {mv[1], mv[2], mv[0]}, {i2, i0, i1}, {false, false, false}});
     }
     nodes = std::move(next);
   }

@@ -25,10 +25,10 @@ class SparseEvaluator;
 
 // What names the vertices of one region's root face.
 struct RegionFrame {
-  uint64_t face = 0;                  // packed FaceId of the root face (the region id)
-  std::array<uint64_t, 3> corners{};  // canonical indices of its corner vertices, in the face's order
-  std::array<uint64_t, 3> edges{};    // canonical indices of its edges: edge j joins corners j and j+1
-  uint8_t forward = 0;                // bit j: edge j runs from corner j to corner j+1 (refinement.h)
+  uint64_t face = 0;                     // packed FaceId of the root face (the region id)
+  std::array<uint64_t, 3> corners{};     // canonical indices of its corner vertices, in the face's order
+  std::array<uint64_t, 3> edges{};       // canonical indices of its edges: edge j joins corners j and j+1
+  uint8_t forward = 0;                   // bit j: edge j runs from corner j to corner j+1 (refinement.h)
   std::array<uint64_t, 3> baseCounts{};  // vertices, edges and faces of the base mesh
 
   friend bool operator==(const RegionFrame&, const RegionFrame&) = default;

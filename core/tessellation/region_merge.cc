@@ -37,7 +37,8 @@ void splitFans(SurfaceMesh& mesh) {
       const int next = ti[(corners[i].second + 1) % 3];
       for (size_t j = 0; j < corners.size(); ++j) {
         const auto& tj = mesh.triangles[corners[j].first];
-        if (i != j && tj[(corners[j].second + 2) % 3] == next) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
+        if (i != j && tj[(corners[j].second + 2) % 3] == next)
+          parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
       }
     }
     std::vector<int> copyOfPiece(corners.size(), -1);
@@ -70,7 +71,8 @@ SurfaceMesh mergeRegions(const std::map<uint64_t, RegionMesh>& regions) {
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
       const Vec3& n = mesh.normals[v];
       const Vec3& p = mesh.positions[v];
-      const Key key{withIds ? mesh.vertexIds[v] : 0, {n[0], n[1], n[2]},
+      const Key key{withIds ? mesh.vertexIds[v] : 0,
+                    {n[0], n[1], n[2]},
                     withIds ? std::array<double, 3>{} : std::array<double, 3>{p[0], p[1], p[2]}};
       auto [it, fresh] = index.emplace(key, static_cast<int>(out.positions.size()));
       if (fresh) out.positions.push_back(p), out.normals.push_back(n);

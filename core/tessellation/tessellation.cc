@@ -64,7 +64,8 @@ std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts
   };
   if (!held(at.level, at.local)) return grow(at.level, h.level(at.level).vertexIds[at.local]);
   while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local)) {
-    const Index child = at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kInvalidIndex;
+    const Index child =
+        at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kInvalidIndex;
     if (!held(at.level + 1, child)) return grow(at.level + 1, h.level(at.level).vertexIds[at.local]);
     at = {at.level + 1, child};
   }
@@ -74,7 +75,8 @@ std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts
 // The limit normal of side `side` > 0 of a crease or corner vertex
 // (limitSideOfRingFace's numbering; side 0's is its limit normal).
 Vec3 sideNormal(const SparseEvaluator& h, VertexRef v, int side) {
-  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod())[side - 1].normal;
+  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod())[side - 1]
+      .normal;
 }
 
 // The side of a displayed vertex (`at`: its limit's level and index) that
@@ -116,7 +118,8 @@ bool sameLayout(const RegionMesh& a, const RegionMesh& b) {
 
 bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
   auto sameVec = [](const std::vector<Vec3>& x, const std::vector<Vec3>& y) {
-    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(Vec3)) == 0);
+    return x.size() == y.size() &&
+           (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(Vec3)) == 0);
   };
   return sameLayout(a, b) && sameVec(a.positions, b.positions) && sameVec(a.normals, b.normals);
 }
@@ -129,9 +132,9 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
   if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&
       static_cast<int64_t>(doc.counts().faces(profile.baseLevel)) > profile.triangleBudget) {
     return invalidArgument("LOD profile (" + profile.describe() + ")" + " needs at least " +
-                           std::to_string(doc.counts().faces(profile.baseLevel)) + " triangles (its base level " +
-                           std::to_string(profile.baseLevel) + "), above its budget of " +
-                           std::to_string(profile.triangleBudget));
+                           std::to_string(doc.counts().faces(profile.baseLevel)) +
+                           " triangles (its base level " + std::to_string(profile.baseLevel) +
+                           "), above its budget of " + std::to_string(profile.triangleBudget));
   }
   // Growing the hierarchy for the limits' levels rebuilds levels (new local
   // indices), so the cut is made again over the grown hierarchy; its
@@ -145,7 +148,8 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
     for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
     std::vector<FaceId> growth;
     for (uint64_t id : ids) {
-      RegionMesh& mesh = tessellation.regions_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
+      RegionMesh& mesh = tessellation.regions_[id] =
+          tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
       tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
     }
     if (growth.empty()) {
@@ -153,8 +157,9 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
       return tessellation;
     }
     if (round > kMaxDocumentLevel) {
-      return internalError("LOD profile (" + profile.describe() + ")" + ": the hierarchy does not hold the limits' rings after " +
-                           std::to_string(round) + " growths");
+      return internalError("LOD profile (" + profile.describe() + ")" +
+                           ": the hierarchy does not hold the limits' rings after " + std::to_string(round) +
+                           " growths");
     }
     doc.refineHierarchy(growth);
   }
@@ -163,8 +168,9 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
 Status Tessellation::checkBudget() const {
   const int64_t triangles = numTriangles();
   if (triangles > profile().triangleBudget) {
-    return invalidArgument("LOD profile (" + profile().describe() + ")" + " needs " + std::to_string(triangles) +
-                           " triangles, above its budget of " + std::to_string(profile().triangleBudget));
+    return invalidArgument("LOD profile (" + profile().describe() + ")" + " needs " +
+                           std::to_string(triangles) + " triangles, above its budget of " +
+                           std::to_string(profile().triangleBudget));
   }
   return Status::ok();
 }
@@ -178,7 +184,8 @@ void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::v
   for (int k = 0; k < 4; ++k) regionsUnder(h, l + 1, first + k, out);
 }
 
-RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, std::vector<FaceId>& growth) const {
+RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region,
+                                     std::vector<FaceId>& growth) const {
   std::vector<RefTriangle> triangles;
   std::vector<VertexRef> leaves;  // per triangle, its leaf (level, face)
   std::vector<VertexRef> stack{{region.level(), h.level(region.level()).findFace(region.index())}};
@@ -214,7 +221,8 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, st
       if (fresh) {
         const VertexId id(counts_.birthLevel(VertexId(at[k].level, canonical)), canonical);
         mesh.positions.push_back(h.limitPosition(at[k].level, at[k].local));
-        mesh.normals.push_back(side == 0 ? h.limitNormal(at[k].level, at[k].local) : sideNormal(h, at[k], side));
+        mesh.normals.push_back(side == 0 ? h.limitNormal(at[k].level, at[k].local)
+                                         : sideNormal(h, at[k], side));
         mesh.vertexIds.push_back(id.packed());
       }
       tri[k] = it->second;
@@ -224,7 +232,9 @@ RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region, st
   return mesh;
 }
 
-SurfaceMesh Tessellation::surface() const { return mergeRegions(regions_); }
+SurfaceMesh Tessellation::surface() const {
+  return mergeRegions(regions_);
+}
 
 Expected<Tessellation::Changes> Tessellation::rebuildAll(Document& doc) {
   TESSERA_ASSIGN_OR_RETURN(Tessellation fresh, build(doc, profile()));

@@ -49,15 +49,33 @@ class [[nodiscard]] Status {
   std::string message_;
 };
 
-inline Status invalidArgument(std::string m) { return {ErrorCode::kInvalidArgument, std::move(m)}; }
-inline Status parseError(std::string m) { return {ErrorCode::kParseError, std::move(m)}; }
-inline Status invalidMesh(std::string m) { return {ErrorCode::kInvalidMesh, std::move(m)}; }
-inline Status notFound(std::string m) { return {ErrorCode::kNotFound, std::move(m)}; }
-inline Status unsupported(std::string m) { return {ErrorCode::kUnsupported, std::move(m)}; }
-inline Status ioError(std::string m) { return {ErrorCode::kIoError, std::move(m)}; }
-inline Status internalError(std::string m) { return {ErrorCode::kInternal, std::move(m)}; }
-inline Status timeoutError(std::string m) { return {ErrorCode::kTimeout, std::move(m)}; }
-inline Status unavailableError(std::string m) { return {ErrorCode::kUnavailable, std::move(m)}; }
+inline Status invalidArgument(std::string m) {
+  return {ErrorCode::kInvalidArgument, std::move(m)};
+}
+inline Status parseError(std::string m) {
+  return {ErrorCode::kParseError, std::move(m)};
+}
+inline Status invalidMesh(std::string m) {
+  return {ErrorCode::kInvalidMesh, std::move(m)};
+}
+inline Status notFound(std::string m) {
+  return {ErrorCode::kNotFound, std::move(m)};
+}
+inline Status unsupported(std::string m) {
+  return {ErrorCode::kUnsupported, std::move(m)};
+}
+inline Status ioError(std::string m) {
+  return {ErrorCode::kIoError, std::move(m)};
+}
+inline Status internalError(std::string m) {
+  return {ErrorCode::kInternal, std::move(m)};
+}
+inline Status timeoutError(std::string m) {
+  return {ErrorCode::kTimeout, std::move(m)};
+}
+inline Status unavailableError(std::string m) {
+  return {ErrorCode::kUnavailable, std::move(m)};
+}
 
 // A failure that may pass if tried again later: the operating system's,
 // a timeout, or a service not reachable now.
@@ -69,7 +87,7 @@ inline bool isTransient(const Status& status) {
 template <typename T>
 class [[nodiscard]] Expected {
  public:
-  Expected(T value) : data_(std::move(value)) {}  // NOLINT: implicit by design
+  Expected(T value) : data_(std::move(value)) {}        // NOLINT: implicit by design
   Expected(Status status) : data_(std::move(status)) {  // NOLINT: implicit by design
     assert(!std::get<Status>(data_).isOk() && "Expected built from an ok Status");
   }
@@ -100,9 +118,9 @@ class [[nodiscard]] Expected {
 #define TESSERA_CONCAT_INNER(a, b) a##b
 #define TESSERA_CONCAT(a, b) TESSERA_CONCAT_INNER(a, b)
 
-#define TESSERA_RETURN_IF_ERROR(expr)          \
-  do {                                         \
-    ::tessera::Status tessera_status_ = (expr); \
+#define TESSERA_RETURN_IF_ERROR(expr)                    \
+  do {                                                   \
+    ::tessera::Status tessera_status_ = (expr);          \
     if (!tessera_status_.isOk()) return tessera_status_; \
   } while (0)
 

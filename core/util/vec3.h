@@ -55,20 +55,40 @@ struct Vec3 {
   bool operator==(const Vec3& o) const { return v[0] == o.v[0] && v[1] == o.v[1] && v[2] == o.v[2]; }
 };
 
-inline Vec3 operator+(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-inline Vec3 operator-(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline Vec3 operator-(const Vec3& a) { return {-a[0], -a[1], -a[2]}; }
-inline Vec3 operator*(double s, const Vec3& a) { return {s * a[0], s * a[1], s * a[2]}; }
-inline Vec3 operator*(const Vec3& a, double s) { return {s * a[0], s * a[1], s * a[2]}; }
-inline Vec3 operator/(const Vec3& a, double s) { return a * (1.0 / s); }
+inline Vec3 operator+(const Vec3& a, const Vec3& b) {
+  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+inline Vec3 operator-(const Vec3& a, const Vec3& b) {
+  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline Vec3 operator-(const Vec3& a) {
+  return {-a[0], -a[1], -a[2]};
+}
+inline Vec3 operator*(double s, const Vec3& a) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+inline Vec3 operator*(const Vec3& a, double s) {
+  return {s * a[0], s * a[1], s * a[2]};
+}
+inline Vec3 operator/(const Vec3& a, double s) {
+  return a * (1.0 / s);
+}
 // OpenMesh's spelling: | is the dot product, % the cross product.
-inline double operator|(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline double operator|(const Vec3& a, const Vec3& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline Vec3 operator%(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-inline double dot(const Vec3& a, const Vec3& b) { return a | b; }
-inline Vec3 cross(const Vec3& a, const Vec3& b) { return a % b; }
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a | b;
+}
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return a % b;
+}
 
-inline bool isFinite(const Vec3& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+inline bool isFinite(const Vec3& p) {
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
 
 }  // namespace tessera

@@ -13,8 +13,12 @@
 namespace tessera {
 namespace {
 
-std::string cube() { return testing::sourceTestDataPath("cube.obj"); }
-std::string cubeQuads() { return testing::sourceTestDataPath("good/cube_quads.obj"); }
+std::string cube() {
+  return testing::sourceTestDataPath("cube.obj");
+}
+std::string cubeQuads() {
+  return testing::sourceTestDataPath("good/cube_quads.obj");
+}
 
 std::string write(const std::string& dir, const std::string& name, const std::string& text) {
   std::ofstream(dir + "/" + name, std::ios::binary) << text;
@@ -72,17 +76,20 @@ TEST(CliImport, DropUnusedSaysHowManyAndRemapsTags) {
 
   CliRun info = runCli("info " + mesh + " --drop-unused --tags " + tags);
   ASSERT_EQ(info.exitCode, 0) << info.err;
-  EXPECT_NE(info.err.find("tessera info: " + mesh + ": dropped 1 unused vertex (--drop-unused)"), std::string::npos)
+  EXPECT_NE(info.err.find("tessera info: " + mesh + ": dropped 1 unused vertex (--drop-unused)"),
+            std::string::npos)
       << info.err;
   EXPECT_NE(info.out.find("vertices        4\n"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("creases         1 infinite"), std::string::npos) << info.out;
 
   CliRun doc = runCli("doc new " + mesh + " --drop-unused -o " + dir + "/unused.tsd");
   ASSERT_EQ(doc.exitCode, 0) << doc.err;
-  EXPECT_NE(doc.err.find("tessera doc new: " + mesh + ": dropped 1 unused vertex"), std::string::npos) << doc.err;
+  EXPECT_NE(doc.err.find("tessera doc new: " + mesh + ": dropped 1 unused vertex"), std::string::npos)
+      << doc.err;
 
   const std::string onDropped = write(dir, "dropped.tags", "corner 2 inf\n");
-  CliRun bad = runCli("refine " + mesh + " --drop-unused --tags " + onDropped + " --level 1 -o " + dir + "/x.obj");
+  CliRun bad =
+      runCli("refine " + mesh + " --drop-unused --tags " + onDropped + " --level 1 -o " + dir + "/x.obj");
   EXPECT_EQ(bad.exitCode, 1);
   EXPECT_NE(bad.err.find("dropped.tags:1: corner 2: vertex 2 was dropped"), std::string::npos) << bad.err;
   std::filesystem::remove_all(dir);
@@ -93,13 +100,14 @@ TEST(CliImport, CreaseAngleCreasesTheCubesEdges) {
   CliRun info = runCli("info " + cubeQuads() + " --triangulate --crease-angle 30");
   ASSERT_EQ(info.exitCode, 0) << info.err;
   EXPECT_NE(info.out.find("creases         12 infinite, 0 semi-sharp\n"), std::string::npos) << info.out;
-  EXPECT_NE(info.err.find("creased 12 edges sharper than 30 degrees (--crease-angle)"), std::string::npos) << info.err;
+  EXPECT_NE(info.err.find("creased 12 edges sharper than 30 degrees (--crease-angle)"), std::string::npos)
+      << info.err;
   CliRun flat = runCli("info " + cubeQuads() + " --triangulate --crease-angle=100");
   ASSERT_EQ(flat.exitCode, 0) << flat.err;
   EXPECT_NE(flat.out.find("creases         0 infinite"), std::string::npos) << flat.out;
   // The creased cube refines to a cube: its corners stay put at the limit.
-  CliRun limit = runCli("refine " + cubeQuads() + " --triangulate --crease-angle 30 --level 3 --limit -o " + dir +
-                        "/cube.obj");
+  CliRun limit = runCli("refine " + cubeQuads() + " --triangulate --crease-angle 30 --level 3 --limit -o " +
+                        dir + "/cube.obj");
   ASSERT_EQ(limit.exitCode, 0) << limit.err;
   auto refined = importMesh(dir + "/cube.obj");
   ASSERT_TRUE(refined.isOk()) << refined.status().toString();
@@ -123,16 +131,19 @@ TEST(CliImport, CreaseAngleCreasesTheCubesEdges) {
 TEST(CliImport, ConcavePolygonsAndDracoInputRefine) {
   const std::string dir = testing::makeTempDir("tessera-polygons");
   // A concave pentagon fanned from corner 0 would overlap itself.
-  const std::string arrow = write(dir, "arrow.obj", "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nf 1 2 3 4 5\n");
+  const std::string arrow =
+      write(dir, "arrow.obj", "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nf 1 2 3 4 5\n");
   CliRun refined = runCli("refine " + arrow + " --triangulate --level 1 -o " + dir + "/arrow.ply");
   ASSERT_EQ(refined.exitCode, 0) << refined.err;
-  const std::string star = write(dir, "star.obj",
-                                 "v 1 0 0\nv 0.309 0.951 0\nv -0.809 0.588 0\nv -0.809 -0.588 0\nv 0.309 -0.951 0\n"
-                                 "f 1 3 5 2 4\n");
+  const std::string star =
+      write(dir, "star.obj",
+            "v 1 0 0\nv 0.309 0.951 0\nv -0.809 0.588 0\nv -0.809 -0.588 0\nv 0.309 -0.951 0\n"
+            "f 1 3 5 2 4\n");
   CliRun refused = runCli("refine " + star + " --triangulate --level 1 -o " + dir + "/star.ply");
   EXPECT_EQ(refused.exitCode, 1);
-  EXPECT_NE(refused.err.find(star + ": face 0 (vertices 0, 2, 4, 1, 3): cannot be triangulated: self-intersecting"),
-            std::string::npos)
+  EXPECT_NE(
+      refused.err.find(star + ": face 0 (vertices 0, 2, 4, 1, 3): cannot be triangulated: self-intersecting"),
+      std::string::npos)
       << refused.err;
   // Tessera reads its own Draco export as input to refine.
   ASSERT_EQ(runCli("refine " + cube() + " --level 1 --draco -o " + dir + "/d.glb").exitCode, 0);

@@ -34,8 +34,10 @@ double psnr(const Image& x, const Image& y) {
 // `radius` pixels of `near`; nullopt if there are none.
 std::optional<Vec3> dotCentroid(const Image& image, const Vec3& near, int radius) {
   double wx = 0, wy = 0, w = 0;
-  for (int j = std::max(0, int(near[1]) - radius); j <= std::min(image.height - 1, int(near[1]) + radius); ++j) {
-    for (int i = std::max(0, int(near[0]) - radius); i <= std::min(image.width - 1, int(near[0]) + radius); ++i) {
+  for (int j = std::max(0, int(near[1]) - radius); j <= std::min(image.height - 1, int(near[1]) + radius);
+       ++j) {
+    for (int i = std::max(0, int(near[0]) - radius); i <= std::min(image.width - 1, int(near[0]) + radius);
+         ++i) {
       const uint8_t* p = image.at(i, j);
       const double g = double(p[1]) - std::max(p[0], p[2]);
       if (g < 100) continue;
@@ -62,9 +64,9 @@ MorphRun morph(const std::string& name, bool mirrored, bool tags, int frames) {
   MorphRun r{testing::makeTempDir(name), testing::makeMorphSample(mirrored), {}};
   EXPECT_TRUE(testing::writeMorphSample(r.sample, r.dir).isOk());
   r.cli = runCli("morph --from " + r.dir + "/a.png --to " + r.dir + "/b.png --mesh-from " + r.dir +
-                          "/mesh_a.obj --mesh-to " + r.dir + "/mesh_b.obj" + (tags ? " --tags " + r.dir + "/morph.tags" : "") +
-                          " --level 3 --frames " + std::to_string(frames) + " -o " + r.dir + "/out --strip " + r.dir +
-                          "/strip.png");
+                 "/mesh_a.obj --mesh-to " + r.dir + "/mesh_b.obj" +
+                 (tags ? " --tags " + r.dir + "/morph.tags" : "") + " --level 3 --frames " +
+                 std::to_string(frames) + " -o " + r.dir + "/out --strip " + r.dir + "/strip.png");
   return r;
 }
 
@@ -99,11 +101,12 @@ TEST(CliMorph, TheEndFramesAreTheImagesAndTheDotFollowsItsInterpolatingVertex) {
     const int hx = int(hole[0]), hy = int(hole[1]);
     const uint8_t* px = image->at(hx, hy);
     for (int c = 0; c < 3; ++c) {
-      EXPECT_NEAR(px[c], (1 - t) * s.a.at(hx, hy)[c] + t * s.b.at(hx, hy)[c], 1.0) << "frame " << k << " channel " << c;
+      EXPECT_NEAR(px[c], (1 - t) * s.a.at(hx, hy)[c] + t * s.b.at(hx, hy)[c], 1.0)
+          << "frame " << k << " channel " << c;
     }
   }
-  std::printf("PSNR frame 0 vs A %.1f dB, last vs B %.1f dB; the dot at most %.2f px from its vertex\n", p0, p1,
-              worstDot);
+  std::printf("PSNR frame 0 vs A %.1f dB, last vs B %.1f dB; the dot at most %.2f px from its vertex\n", p0,
+              p1, worstDot);
   auto strip = readPng(r.dir + "/strip.png");
   ASSERT_TRUE(strip.isOk());
   EXPECT_EQ(strip->width, kFrames * s.a.width);
@@ -120,7 +123,8 @@ TEST(CliMorph, WithoutInterpolationTheDotDrifts) {
   const Vec3 expected = 0.5 * (s.meshA[s.dotVertex] + s.meshB[s.dotVertex]);
   auto found = dotCentroid(*middle, expected, 12);
   ASSERT_TRUE(found.has_value());
-  std::printf("without interpolation the dot is %.2f px from its vertex at t = 0.5\n", (*found - expected).norm());
+  std::printf("without interpolation the dot is %.2f px from its vertex at t = 0.5\n",
+              (*found - expected).norm());
   EXPECT_GT((*found - expected).norm(), 1.0);
 }
 
@@ -136,15 +140,17 @@ TEST(CliMorph, FoldsAndMismatchedMeshesAreReportedNotDrawn) {
   std::string line = text.substr(f + 1, text.find('\n', f + 1) - f - 1);
   int a, b, c;
   ASSERT_EQ(std::sscanf(line.c_str(), "f %d %d %d", &a, &b, &c), 3);
-  text.replace(f + 1, line.size(), "f " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(a));
+  text.replace(f + 1, line.size(),
+               "f " + std::to_string(b) + " " + std::to_string(c) + " " + std::to_string(a));
   std::ofstream(r.dir + "/rotated.obj") << text;
   CliRun other = runCli("morph --from " + r.dir + "/a.png --to " + r.dir + "/b.png --mesh-from " + r.dir +
-                                 "/mesh_a.obj --mesh-to " + r.dir + "/rotated.obj --frames 2 -o " + r.dir + "/x");
+                        "/mesh_a.obj --mesh-to " + r.dir + "/rotated.obj --frames 2 -o " + r.dir + "/x");
   EXPECT_EQ(other.exitCode, 1);
   EXPECT_NE(other.err.find("triangle 0 is ("), std::string::npos) << other.err;
   EXPECT_NE(other.err.find("rotated.obj"), std::string::npos) << other.err;
-  CliRun missing = runCli("morph --from " + r.dir + "/nope.png --to " + r.dir + "/b.png --mesh-from " + r.dir +
-                                   "/mesh_a.obj --mesh-to " + r.dir + "/mesh_b.obj --frames 2 -o " + r.dir + "/x");
+  CliRun missing =
+      runCli("morph --from " + r.dir + "/nope.png --to " + r.dir + "/b.png --mesh-from " + r.dir +
+             "/mesh_a.obj --mesh-to " + r.dir + "/mesh_b.obj --frames 2 -o " + r.dir + "/x");
   EXPECT_EQ(missing.exitCode, 1);
   EXPECT_NE(missing.err.find("nope.png: no such file"), std::string::npos) << missing.err;
 }

@@ -8,8 +8,8 @@
 
 #include "cli/cli_run.h"
 #include "client/cli/human_format.h"
-#include "core/mesh/surface_mesh.h"
 #include "core/io/mesh_import.h"
+#include "core/mesh/surface_mesh.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -17,14 +17,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string cube() { return testing::sourceTestDataPath("cube.obj"); }
+std::string cube() {
+  return testing::sourceTestDataPath("cube.obj");
+}
 
 TEST(CliOptions, VersionAndEqualsForm) {
   CliRun version = runCli("--version");
   EXPECT_EQ(version.exitCode, 0);
   EXPECT_EQ(version.out, "tessera 0.1.0\n");
   const std::string dir = testing::makeTempDir("tessera-equals");
-  CliRun equals = runCli("refine " + cube() + " --level=2 --output=" + dir + "/x.obj --crease-method=chaikin");
+  CliRun equals =
+      runCli("refine " + cube() + " --level=2 --output=" + dir + "/x.obj --crease-method=chaikin");
   ASSERT_EQ(equals.exitCode, 0) << equals.err;
   EXPECT_NE(equals.out.find("98 vertices, 192 triangles (level 2)"), std::string::npos) << equals.out;
   CliRun spaced = runCli("refine " + cube() + " --level 2 -o " + dir + "/y.obj");
@@ -165,13 +168,14 @@ TEST(ImportFromBytes, NamesTheCallersFileAndTouchesNoFile) {
   const std::string quads = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
   auto refused = importMeshFromBytes(quads, "obj", "user/quad.obj");
   ASSERT_FALSE(refused.isOk());
-  EXPECT_NE(refused.status().message().find("user/quad.obj"), std::string::npos) << refused.status().message();
+  EXPECT_NE(refused.status().message().find("user/quad.obj"), std::string::npos)
+      << refused.status().message();
   auto fanned = importMeshFromBytes(quads, ".OBJ", "user/quad.obj", {.triangulate = true});
   ASSERT_TRUE(fanned.isOk()) << fanned.status().toString();
   EXPECT_EQ(fanned->numFaces(), 2);
   // Every format from memory reads as from its file.
-  for (const char* name : {"good/tetra.obj", "good/tetra.off", "good/tetra_binary.ply", "good/tetra_binary.stl",
-                           "good/tetra.glb"}) {
+  for (const char* name : {"good/tetra.obj", "good/tetra.off", "good/tetra_binary.ply",
+                           "good/tetra_binary.stl", "good/tetra.glb"}) {
     const std::string path = testing::sourceTestDataPath(name);
     auto fromFile = importMesh(path);
     auto fromBytes = importMeshFromBytes(readAll(path), fs::path(path).extension().string(), name);
@@ -180,11 +184,10 @@ TEST(ImportFromBytes, NamesTheCallersFileAndTouchesNoFile) {
     EXPECT_EQ(fromBytes->numFaces(), fromFile->numFaces()) << name;
   }
   // A .gltf naming a buffer file beside it: refused, nothing read.
-  const std::string gltf =
-      R"({"asset":{"version":"2.0"},"buffers":[{"uri":"tetra.bin","byteLength":48}],)"
-      R"("bufferViews":[{"buffer":0,"byteLength":48}],)"
-      R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"}],)"
-      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]})";
+  const std::string gltf = R"({"asset":{"version":"2.0"},"buffers":[{"uri":"tetra.bin","byteLength":48}],)"
+                           R"("bufferViews":[{"buffer":0,"byteLength":48}],)"
+                           R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"}],)"
+                           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]})";
   auto external = importMeshFromBytes(gltf, ".gltf", "scene.gltf");
   ASSERT_FALSE(external.isOk());
   EXPECT_NE(external.status().message().find("scene.gltf"), std::string::npos) << external.status().message();

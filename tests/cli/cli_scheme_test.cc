@@ -13,8 +13,9 @@ namespace {
 
 std::string writeQuadCube(const std::string& dir) {
   const std::string path = dir + "/quad-cube.obj";
-  std::ofstream(path) << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  std::ofstream(path)
+      << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
   return path;
 }
 
@@ -30,7 +31,8 @@ TEST(CliScheme, CatmullClarkRefinesQuadsAsQuads) {
             std::string::npos);
   run = runCli("refine " + cube + " --scheme=catmull-clark --level 2 --limit -o " + dir + "/cc2.ply");
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  EXPECT_NE(run.out.find("98 vertices, 192 triangles (level 2, limit surface)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("98 vertices, 192 triangles (level 2, limit surface)"), std::string::npos)
+      << run.out;
 }
 
 TEST(CliScheme, EveryOtherSchemeWritesItsCounts) {
@@ -52,7 +54,8 @@ TEST(CliScheme, EveryOtherSchemeWritesItsCounts) {
   run = runCli("refine " + triangles + " --scheme sqrt3 --level 2 --limit -o " + dir + "/s3.obj");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   // Each step: a vertex per face, three triangles per triangle.
-  EXPECT_NE(run.out.find("56 vertices, 108 triangles (level 2, limit surface)"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("56 vertices, 108 triangles (level 2, limit surface)"), std::string::npos)
+      << run.out;
 }
 
 TEST(CliScheme, RefusalsNameTheOption) {
@@ -70,7 +73,8 @@ TEST(CliScheme, RefusalsNameTheOption) {
        "--tags"},
       {"refine " + cube + " --scheme bilinear --crease-method chaikin --level 1 -o " + dir + "/x.obj",
        "--crease-method"},
-      {"refine " + cube + " --scheme catmull-clark --triangulate --level 1 -o " + dir + "/x.obj", "--triangulate"},
+      {"refine " + cube + " --scheme catmull-clark --triangulate --level 1 -o " + dir + "/x.obj",
+       "--triangulate"},
   };
   for (const Case& c : cases) {
     const CliRun run = runCli(c.args);
@@ -83,7 +87,8 @@ TEST(CliScheme, RefusalsNameTheOption) {
   CliRun run = runCli("refine " + dir + "/open.obj --scheme sqrt3 --level 1 -o " + dir + "/x.obj");
   EXPECT_EQ(run.exitCode, 1) << run.err;
   EXPECT_NE(run.err.find("boundary"), std::string::npos) << run.err;
-  std::ofstream(dir + "/tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+  std::ofstream(dir + "/tri.obj")
+      << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
   run = runCli("refine " + dir + "/tri.obj --scheme catmull-clark --level 0 --limit -o " + dir + "/x.obj");
   EXPECT_EQ(run.exitCode, 1) << run.err;
   EXPECT_NE(run.err.find("tri.obj"), std::string::npos) << run.err;

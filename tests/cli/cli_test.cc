@@ -16,12 +16,16 @@
 namespace tessera {
 namespace {
 
-std::string cube() { return testing::sourceTestDataPath("cube.obj"); }
-std::string cubeTags() { return testing::sourceTestDataPath("cube.tags"); }
+std::string cube() {
+  return testing::sourceTestDataPath("cube.obj");
+}
+std::string cubeTags() {
+  return testing::sourceTestDataPath("cube.tags");
+}
 
 TEST(Cli, HelpForEveryCommand) {
-  for (const char* args : {"--help", "info --help", "refine --help", "doc --help", "doc new --help", "remote --help",
-                           "remote edit --help", "-h"}) {
+  for (const char* args : {"--help", "info --help", "refine --help", "doc --help", "doc new --help",
+                           "remote --help", "remote edit --help", "-h"}) {
     CliRun r = runCli(args);
     EXPECT_EQ(r.exitCode, 0) << args;
     EXPECT_NE(r.out.find("Usage: tessera"), std::string::npos) << args;
@@ -98,7 +102,8 @@ TEST(Cli, ErrorsExitCleanlyWithMessages) {
   std::vector<Case> cases = {
       {"refine " + cube() + " --level 2", 2, "tessera refine: --output is required"},
       {"refine " + cube() + " -o " + dir + "/x.obj", 2, "tessera refine: --level is required"},
-      {"refine " + cube() + " --level two -o " + dir + "/x.obj", 2, "--level: expects a whole number from 0 to 1000, got 'two'"},
+      {"refine " + cube() + " --level two -o " + dir + "/x.obj", 2,
+       "--level: expects a whole number from 0 to 1000, got 'two'"},
       {"refine " + cube() + " --level=-1 -o " + dir + "/x.obj", 2, "--level: expects a whole number"},
       {"refine " + cube() + " --level 1 --bogus -o " + dir + "/x.obj", 2, "not expected: --bogus"},
       {"refine " + cube() + " --level 1 --crease-method cubic -o " + dir + "/x.obj", 2,
@@ -225,7 +230,8 @@ TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
       {"interpolate v6:3\n", "bad.txt:1: v6:3: an interpolating vertex shapes the next level"},
       {"interpolate v1:3 off 2\n", "bad.txt:1: nothing may follow 'off'"},
       {"interpolate v1:3 1 tangent 1 0\n", "bad.txt:1: expected 'tangent X Y Z' after the tension"},
-      {"interpolate v1:3 1 tangent 1 0 0\n", "bad.txt:1: v1:3: a tangent applies only to boundary and crease"},
+      {"interpolate v1:3 1 tangent 1 0 0\n",
+       "bad.txt:1: v1:3: a tangent applies only to boundary and crease"},
   };
   for (const auto& c : cases) {
     std::ofstream(dir + "/bad.txt") << c.script;
@@ -238,9 +244,11 @@ TEST(CliDoc, ABadScriptLeavesTheDocumentUntouched) {
   CliRun junk = runCli("doc info " + dir + "/junk.tsd");
   EXPECT_EQ(junk.exitCode, 1);
   EXPECT_NE(junk.err.find("not a Tessera document"), std::string::npos) << junk.err;
-  CliRun badProfile = runCli("doc export " + doc + " --adaptive --base-level 4 --max-level 2 -o " + dir + "/a.glb");
+  CliRun badProfile =
+      runCli("doc export " + doc + " --adaptive --base-level 4 --max-level 2 -o " + dir + "/a.glb");
   EXPECT_EQ(badProfile.exitCode, 2);
-  EXPECT_NE(badProfile.err.find("max level 2 is below the base level 4"), std::string::npos) << badProfile.err;
+  EXPECT_NE(badProfile.err.find("max level 2 is below the base level 4"), std::string::npos)
+      << badProfile.err;
   EXPECT_EQ(readAll(doc), before);
   CliRun badAngle = runCli("doc export " + doc + " --adaptive --angle nan -o " + dir + "/a.glb");
   EXPECT_EQ(badAngle.exitCode, 2);
@@ -255,7 +263,8 @@ TEST(CliDoc, ExportsTheAdaptiveTessellation) {
   ASSERT_EQ(runCli("doc new " + cube() + " --tags " + cubeTags() + " -o " + doc).exitCode, 0);
   std::ofstream(dir + "/edit.txt") << "offset v4:3 by 0 0 0.05\n";
   ASSERT_EQ(runCli("doc edit " + doc + " --script " + dir + "/edit.txt").exitCode, 0);
-  CliRun r = runCli("doc export " + doc + " --adaptive --base-level 1 --max-level 4 --angle 20 -o " + dir + "/a.ply");
+  CliRun r = runCli("doc export " + doc + " --adaptive --base-level 1 --max-level 4 --angle 20 -o " + dir +
+                    "/a.ply");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   // The profile for people: no "angle20.000000" cache key.
   EXPECT_NE(r.out.find("(adaptive: base level 1, max level 4, angle 20\u00b0"), std::string::npos) << r.out;

@@ -22,7 +22,8 @@ using client::Session;
 using testing::ClusterRun;
 
 void publish(natsConnection* nc, const std::string& subject, const std::string& bytes) {
-  ASSERT_EQ(natsConnection_Publish(nc, subject.c_str(), bytes.data(), static_cast<int>(bytes.size())), NATS_OK);
+  ASSERT_EQ(natsConnection_Publish(nc, subject.c_str(), bytes.data(), static_cast<int>(bytes.size())),
+            NATS_OK);
 }
 
 std::string logOf(const ClusterRun& run, int node) {
@@ -44,8 +45,11 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   ASSERT_TRUE(owner.isOk() && viewer.isOk());
   ASSERT_TRUE((*owner)->call(testing::openDocument(*doc), 30)->has_ack());
   ASSERT_TRUE((*viewer)->call(testing::openDocument(*doc), 30)->has_ack());
-  ASSERT_TRUE((*viewer)->call(testing::subscribe(*doc, testing::kClusterBase, testing::kClusterMax,
-                                                 testing::kClusterAngle), 30)->has_ack());
+  ASSERT_TRUE((*viewer)
+                  ->call(testing::subscribe(*doc, testing::kClusterBase, testing::kClusterMax,
+                                            testing::kClusterAngle),
+                         30)
+                  ->has_ack());
   DocumentView view(*doc);
   ASSERT_TRUE(testing::followUntil(**viewer, view, 1, 20));
 
@@ -77,8 +81,12 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   // Whole messages start with 0x00, chunks with 0x01 (message_chunks.h):
   // a chunk out of order, and one whose header is cut short, too.
   const std::string whole(1, '\0');
-  std::string lateChunk("\x01\x03" "bad", 5);
-  lateChunk += std::string("\x07\0\0\0\0\0\0\0", 8) + std::string("\x01\0\0\0", 4) + std::string("\x02\0\0\0", 4) + "data";
+  std::string lateChunk(
+      "\x01\x03"
+      "bad",
+      5);
+  lateChunk += std::string("\x07\0\0\0\0\0\0\0", 8) + std::string("\x01\0\0\0", 4) +
+               std::string("\x02\0\0\0", 4) + "data";
   for (int node = 0; node < 2; ++node) {
     const std::string forward = "tessera.node." + c.nodeName(node) + ".forward";
     const std::string frames = "tessera.node." + c.nodeName(node) + ".frames";
@@ -97,7 +105,8 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   ASSERT_EQ(natsConnection_Flush(nc), NATS_OK);
 
   // Both nodes still serve: an edit on node 0 reaches the viewer on node 1.
-  auto ack = (*owner)->call(testing::moveVertex(*doc, VertexId(1, 3).packed(), 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 30);
+  auto ack = (*owner)->call(
+      testing::moveVertex(*doc, VertexId(1, 3).packed(), 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 30);
   ASSERT_TRUE(ack.isOk() && ack->has_ack()) << (ack.isOk() ? ack->DebugString() : ack.status().message());
   ASSERT_TRUE(testing::followUntil(**viewer, view, ack->ack().version(), 20));
   auto journal = testing::journalState(c.nats, *doc);
@@ -111,7 +120,8 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
     EXPECT_NE(log.find("cluster chunk 1 of 2 from bad out of order"), std::string::npos) << c.nodeName(node);
     EXPECT_NE(log.find("a cluster chunk without its header"), std::string::npos) << c.nodeName(node);
     EXPECT_NE(log.find("a Forward without its kind"), std::string::npos) << c.nodeName(node);
-    EXPECT_NE(log.find("a cluster frame announces 9 bytes but carries 5"), std::string::npos) << c.nodeName(node);
+    EXPECT_NE(log.find("a cluster frame announces 9 bytes but carries 5"), std::string::npos)
+        << c.nodeName(node);
     EXPECT_NE(log.find("region flags"), std::string::npos) << c.nodeName(node);
   }
 
@@ -125,11 +135,13 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   const std::string garbage = "not a journal message";
   const std::string subject = "tessera.journal." + std::to_string(*doc);
   jsPubAck* stored = nullptr;
-  ASSERT_EQ(js_Publish(&stored, js, subject.c_str(), garbage.data(), static_cast<int>(garbage.size()), nullptr, nullptr),
+  ASSERT_EQ(js_Publish(&stored, js, subject.c_str(), garbage.data(), static_cast<int>(garbage.size()),
+                       nullptr, nullptr),
             NATS_OK);
   jsPubAck_Destroy(stored);
   jsCtx_Destroy(js);
-  auto refused = (*owner)->call(testing::moveVertex(*doc, VertexId(1, 4).packed(), 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 30);
+  auto refused = (*owner)->call(
+      testing::moveVertex(*doc, VertexId(1, 4).packed(), 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 30);
   ASSERT_TRUE(refused.isOk()) << refused.status().message();
   EXPECT_TRUE(refused->has_reject()) << refused->DebugString();
   auto second = c.createCube();
@@ -137,14 +149,17 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   auto admin = Session::connect(c.session(0, "admin", c.nodes[0]->adminToken()));
   ASSERT_TRUE(admin.isOk());
   ASSERT_TRUE((*admin)->call(testing::openDocument(*second), 30)->has_ack());
-  auto fine = (*admin)->call(testing::moveVertex(*second, VertexId(1, 4).packed(), 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 30);
-  ASSERT_TRUE(fine.isOk() && fine->has_ack()) << (fine.isOk() ? fine->DebugString() : fine.status().message());
+  auto fine = (*admin)->call(
+      testing::moveVertex(*second, VertexId(1, 4).packed(), 0, 0, 0.01, wire::MOVE_MODE_OFFSET), 30);
+  ASSERT_TRUE(fine.isOk() && fine->has_ack())
+      << (fine.isOk() ? fine->DebugString() : fine.status().message());
   // The viewer on node 1 is told the document has no owner, and why; then
   // opening it names the message that does not decode.
   bool told = false;
   for (int i = 0; i < 40 && !told; ++i) {
     auto m = (*viewer)->receive(0.5);
-    told = m.isOk() && m->has_error() && m->error().message().find("not a Tessera journal message") != std::string::npos;
+    told = m.isOk() && m->has_error() &&
+           m->error().message().find("not a Tessera journal message") != std::string::npos;
   }
   EXPECT_TRUE(told) << "the viewer was not told why the document stopped";
   auto reopen = Session::connect(c.session(1, "viewer@node1", testing::kViewerToken));
@@ -154,8 +169,9 @@ TEST(ClusterBadInput, GarbageOnClusterSubjectsIsLoggedAndDropped) {
   // (Its stream sequence depends on how many fences takeovers wrote.)
   EXPECT_NE(damaged->reject().message().find("document 1, stream sequence "), std::string::npos)
       << damaged->reject().message();
-  EXPECT_NE(damaged->reject().message().find(": not a Tessera journal message (21 bytes without the TJ2 header)"),
-            std::string::npos)
+  EXPECT_NE(
+      damaged->reject().message().find(": not a Tessera journal message (21 bytes without the TJ2 header)"),
+      std::string::npos)
       << damaged->reject().message();
   natsConnection_Destroy(nc);
   EXPECT_GE(testing::serverStat(**admin, "connections"), 1);

@@ -11,16 +11,16 @@
 #include <atomic>
 #include <chrono>
 #include <future>
-#include <span>
 #include <map>
 #include <mutex>
 #include <optional>
 #include <random>
+#include <span>
 #include <thread>
 
 #include "cluster/cluster_run.h"
-#include "core/hierarchy/ids.h"
 #include "core/document/document.h"
+#include "core/hierarchy/ids.h"
 #include "core/io/mesh_import.h"
 #include "core/io/tag_file.h"
 #include "integration/messages.h"
@@ -82,7 +82,8 @@ void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, 
       ++log.unknown[author];
     } else {
       std::lock_guard<std::mutex> lock(log.mutex);
-      if (log.refused[author]++ < 2) std::printf("%s refused: %s\n", author.c_str(), reply->ShortDebugString().c_str());
+      if (log.refused[author]++ < 2)
+        std::printf("%s refused: %s\n", author.c_str(), reply->ShortDebugString().c_str());
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   }
@@ -112,7 +113,8 @@ void expectJournalHoldsExactlyTheAcknowledged(const testing::JournalState& journ
 
 void waitForAcks(StormLog& log, size_t count, std::chrono::seconds limit) {
   const auto deadline = Clock::now() + limit;
-  while (log.ackedCount() < count && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  while (log.ackedCount() < count && Clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
 }
 
 TEST(ClusterFailover, OwnerKilledDuringAStormThenANatsServerKilled) {
@@ -149,7 +151,8 @@ TEST(ClusterFailover, OwnerKilledDuringAStormThenANatsServerKilled) {
     }
   }
   const double takeover = std::chrono::duration<double>(firstAfter - killed).count();
-  std::printf("kill -9 of the owner to the first Ack of an edit sent after it: %.2f s (lease 1.5 s)\n", takeover);
+  std::printf("kill -9 of the owner to the first Ack of an edit sent after it: %.2f s (lease 1.5 s)\n",
+              takeover);
   EXPECT_LT(takeover, 15.0);
 
   // One NATS server of three dies: JetStream keeps its quorum.
@@ -169,9 +172,10 @@ TEST(ClusterFailover, OwnerKilledDuringAStormThenANatsServerKilled) {
     EXPECT_EQ(v.view->version(), journal->version);
     EXPECT_EQ(v.view->surfaceHash(), journal->surfaceHash);
   }
-  std::printf("storm: %zu acknowledged, %d + %d refused, %d + %d without an answer, journal at version %llu\n",
-              log.acked.size(), log.refused["editor@node1"], log.refused["editor@node2"], log.unknown["editor@node1"],
-              log.unknown["editor@node2"], static_cast<unsigned long long>(journal->version));
+  std::printf(
+      "storm: %zu acknowledged, %d + %d refused, %d + %d without an answer, journal at version %llu\n",
+      log.acked.size(), log.refused["editor@node1"], log.refused["editor@node2"], log.unknown["editor@node1"],
+      log.unknown["editor@node2"], static_cast<unsigned long long>(journal->version));
   // Every command is answered, and every answer decides: an Ack (in the
   // journal) or a Reject saying it was not applied, also for a journal
   // write JetStream did not answer in time (the reloaded journal decides).
@@ -197,7 +201,8 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
   auto stale = Session::connect(c.session(0, "editor@node0", testing::kEditorToken));
   auto other = Session::connect(c.session(1, "editor@node1", testing::kEditorToken));
   ASSERT_TRUE(stale.isOk() && other.isOk());
-  for (Session* s : {stale->get(), other->get()}) ASSERT_TRUE(s->call(testing::openDocument(*doc), 30)->has_ack());
+  for (Session* s : {stale->get(), other->get()})
+    ASSERT_TRUE(s->call(testing::openDocument(*doc), 30)->has_ack());
   std::mt19937 rng(5);
   StormLog log;
   for (int i = 0; i < 5; ++i) {

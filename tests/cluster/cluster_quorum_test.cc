@@ -42,8 +42,11 @@ class ClusterQuorum : public ::testing::Test {
     viewer = std::move(*v);
     editor = std::move(*e);
     ASSERT_TRUE(viewer->call(testing::openDocument(doc), 30)->has_ack());
-    ASSERT_TRUE(viewer->call(testing::subscribe(doc, testing::kClusterBase, testing::kClusterMax,
-                                                testing::kClusterAngle), 30)->has_ack());
+    ASSERT_TRUE(viewer
+                    ->call(testing::subscribe(doc, testing::kClusterBase, testing::kClusterMax,
+                                              testing::kClusterAngle),
+                           30)
+                    ->has_ack());
     ASSERT_TRUE(editor->call(testing::openDocument(doc), 30)->has_ack());
     view.emplace(doc);
     auto first = editor->call(move(), 30);

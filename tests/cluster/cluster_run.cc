@@ -17,7 +17,8 @@
 
 namespace tessera::testing {
 
-Expected<std::unique_ptr<ClusterRun>> ClusterRun::start(int nodes, int leaseMs, std::vector<std::string> extraArgs,
+Expected<std::unique_ptr<ClusterRun>> ClusterRun::start(int nodes, int leaseMs,
+                                                        std::vector<std::string> extraArgs,
                                                         const std::string& natsMaxPayload) {
   TESSERA_ASSIGN_OR_RETURN(NatsCluster nats, NatsCluster::start(3, natsMaxPayload));
   std::unique_ptr<ClusterRun> run(new ClusterRun(makeTempDir("tessera-cluster"), std::move(nats)));
@@ -37,25 +38,28 @@ ClusterRun::~ClusterRun() {
 }
 
 Status ClusterRun::startNode(int index) {
-  std::vector<std::string> args = {"--cluster",        nats.urls(), "--node-name",   nodeName(index),
-                                   "--cluster-replicas", "3",      "--lease-ms",    std::to_string(leaseMs_),
+  std::vector<std::string> args = {"--cluster",          nats.urls(), "--node-name", nodeName(index),
+                                   "--cluster-replicas", "3",         "--lease-ms",  std::to_string(leaseMs_),
                                    "--snapshot-every",   "1000000"};
   args.insert(args.end(), extraArgs_.begin(), extraArgs_.end());
-  TESSERA_ASSIGN_OR_RETURN(ServerProcess process, ServerProcess::start(directory + "/" + nodeName(index), args));
+  TESSERA_ASSIGN_OR_RETURN(ServerProcess process,
+                           ServerProcess::start(directory + "/" + nodeName(index), args));
   nodes[static_cast<size_t>(index)] = std::make_unique<ServerProcess>(std::move(process));
   return Status::ok();
 }
 
-client::SessionOptions ClusterRun::session(int node, const std::string& name, const std::string& token) const {
+client::SessionOptions ClusterRun::session(int node, const std::string& name,
+                                           const std::string& token) const {
   return nodes[static_cast<size_t>(node)]->session(name, token);
 }
 
 Expected<uint64_t> ClusterRun::createCube() {
   TESSERA_ASSIGN_OR_RETURN(auto admin, client::Session::connect(session(0, "admin", nodes[0]->adminToken())));
-  TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage created,
-                           admin->call(createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
-                                                      fileBytes(sourceTestDataPath("cube.tags")), kClusterMaxLevel),
-                                       30));
+  TESSERA_ASSIGN_OR_RETURN(
+      wire::ServerMessage created,
+      admin->call(createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
+                                 fileBytes(sourceTestDataPath("cube.tags")), kClusterMaxLevel),
+                  30));
   if (!created.has_ack()) return internalError("create: " + created.DebugString());
   const uint64_t doc = created.ack().document_id();
   for (auto [token, role] : {std::pair{kEditorToken, wire::ROLE_EDITOR}, {kViewerToken, wire::ROLE_VIEWER}}) {
@@ -73,13 +77,15 @@ Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId
   Expected<StoredDocument> loaded = ioError("not tried");
   for (int attempt = 0; attempt < 20 && !loaded.isOk(); ++attempt) {
     auto store = cluster::NatsStore::open(options);
-    loaded = store.isOk() ? (*store)->loadDocument(DocumentId{documentId}) : Expected<StoredDocument>(store.status());
+    loaded = store.isOk() ? (*store)->loadDocument(DocumentId{documentId})
+                          : Expected<StoredDocument>(store.status());
     if (!loaded.isOk()) std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
   TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, std::move(loaded));
   // From the base, never from a snapshot: the snapshots are the server's
   // own output, the journal is what it acknowledged.
-  TESSERA_ASSIGN_OR_RETURN(KeyedDocument doc, deserializeKeyedDocument(stored.baseBytes, "the test's replay"));
+  TESSERA_ASSIGN_OR_RETURN(KeyedDocument doc,
+                           deserializeKeyedDocument(stored.baseBytes, "the test's replay"));
   JournalState state;
   state.entries = stored.entries;
   if (stored.snapshot) {
@@ -98,7 +104,8 @@ Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId
   profile.angleThresholdDegrees = kClusterAngle;
   Document key0 = doc.key0();  // build() takes a document it may evaluate lazily
   TESSERA_ASSIGN_OR_RETURN(Tessellation tessellation, Tessellation::build(key0, profile));
-  for (const auto& [id, region] : tessellation.regions()) state.surfaceHash += regionSurfaceHashOnGrid(region, grid, true);
+  for (const auto& [id, region] : tessellation.regions())
+    state.surfaceHash += regionSurfaceHashOnGrid(region, grid, true);
   return state;
 }
 

@@ -33,7 +33,7 @@ struct ClusterRun {
   static Expected<std::unique_ptr<ClusterRun>> start(int nodes, int leaseMs = 1500,
                                                      std::vector<std::string> extraArgs = {},
                                                      const std::string& natsMaxPayload = "8MB");
-  ~ClusterRun();  // kills what runs; removes the logs unless TESSERA_KEEP_NATS is set
+  ~ClusterRun();                // kills what runs; removes the logs unless TESSERA_KEEP_NATS is set
   Status startNode(int index);  // again, after a kill
   std::string nodeName(int index) const { return "node" + std::to_string(index); }
   client::SessionOptions session(int node, const std::string& name, const std::string& token) const;
@@ -50,7 +50,7 @@ struct ClusterRun {
 // The surface hash (PROTOCOL 6.5) of the document as the journal in
 // JetStream holds it, replayed here, at the tests' profile; and the journal.
 struct JournalState {
-  uint64_t version = 0;       // document version (1 + entries)
+  uint64_t version = 0;  // document version (1 + entries)
   uint64_t surfaceHash = 0;
   std::vector<JournalEntry> entries;
 };

@@ -60,7 +60,8 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
     for (size_t e = 0; e < editors.size(); ++e) {
       auto ack = editors[e]->call(testing::smallMove(*doc, rng), 30);
       ASSERT_TRUE(ack.isOk() && ack->has_ack()) << (ack.isOk() ? ack->DebugString() : ack.status().message());
-      EXPECT_TRUE(ackedBy.emplace(ack->ack().version(), "editor@" + c.nodeName(static_cast<int>(e) + 1)).second)
+      EXPECT_TRUE(
+          ackedBy.emplace(ack->ack().version(), "editor@" + c.nodeName(static_cast<int>(e) + 1)).second)
           << "version " << ack->ack().version() << " acknowledged twice";
     }
   }
@@ -72,7 +73,8 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
   auto journal = testing::journalState(c.nats, *doc);
   ASSERT_TRUE(journal.isOk()) << journal.status().message();
   ASSERT_EQ(journal->version, last);
-  for (const auto& [version, author] : ackedBy) EXPECT_EQ(journal->entries[version - 2].author, author) << version;
+  for (const auto& [version, author] : ackedBy)
+    EXPECT_EQ(journal->entries[version - 2].author, author) << version;
   for (auto& v : viewers) {
     ASSERT_TRUE(testing::followUntil(*v.session, *v.view, last, 30));
     EXPECT_EQ(v.view->version(), last);
@@ -136,7 +138,8 @@ TEST(ClusterServers, ViewersOnEveryNodeConvergeWithEditorsOnTwoNodes) {
     wire::ClientMessage close;
     close.mutable_close_document()->set_document_id(*doc);
     auto closed = s->call(close, 30);
-    ASSERT_TRUE(closed.isOk() && closed->has_ack()) << (closed.isOk() ? closed->DebugString() : closed.status().message());
+    ASSERT_TRUE(closed.isOk() && closed->has_ack())
+        << (closed.isOk() ? closed->DebugString() : closed.status().message());
   }
   double remote = -1;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -156,9 +159,10 @@ TEST(ClusterServers, MessagesLargerThanNatsMaxPayloadCrossInChunks) {
   ClusterRun& c = **run;
   auto admin = Session::connect(c.session(0, "admin", c.nodes[0]->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(testing::createDocument("fine cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
-                                30);
+  auto created = (*admin)->call(
+      testing::createDocument("fine cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
   const uint64_t doc = created->ack().document_id();
   std::vector<std::unique_ptr<Session>> viewers;
@@ -183,11 +187,13 @@ TEST(ClusterServers, MessagesLargerThanNatsMaxPayloadCrossInChunks) {
   ASSERT_TRUE(follow(0, 1));
   ASSERT_TRUE(follow(1, 1)) << "the snapshot did not cross to node 1";
   std::printf("a level-5 snapshot of %lld triangles, %llu bytes, crossed NATS in messages of at most 8 KB\n",
-              static_cast<long long>(views[1].numTriangles()), static_cast<unsigned long long>(views[1].bytesReceived()));
+              static_cast<long long>(views[1].numTriangles()),
+              static_cast<unsigned long long>(views[1].bytesReceived()));
   EXPECT_GT(views[1].bytesReceived(), 16u * 1024);  // several chunks
   EXPECT_EQ(views[1].surfaceHash(), views[0].surfaceHash());
   EXPECT_TRUE(views[1].verifySurface().isOk());
-  auto ack = viewers[1]->call(testing::moveVertex(doc, VertexId(1, 3).packed(), 0, 0, 0.05, wire::MOVE_MODE_OFFSET), 30);
+  auto ack = viewers[1]->call(
+      testing::moveVertex(doc, VertexId(1, 3).packed(), 0, 0, 0.05, wire::MOVE_MODE_OFFSET), 30);
   ASSERT_TRUE(ack.isOk() && ack->has_ack()) << (ack.isOk() ? ack->DebugString() : ack.status().message());
   ASSERT_TRUE(follow(0, ack->ack().version()));
   ASSERT_TRUE(follow(1, ack->ack().version()));

@@ -1,7 +1,7 @@
 #include "cluster/nats_cluster.h"
 
-#include <netinet/in.h>
 #include <nats/nats.h>
+#include <netinet/in.h>
 #include <signal.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -44,7 +44,9 @@ std::vector<int> freePorts(int count) {
 }
 
 // Each server's server_name, which is also how JetStream names a leader.
-std::string serverName(int server) { return "n" + std::to_string(server + 1); }
+std::string serverName(int server) {
+  return "n" + std::to_string(server + 1);
+}
 
 }  // namespace
 
@@ -67,7 +69,8 @@ Expected<NatsCluster> NatsCluster::start(int servers, const std::string& maxPayl
     conf << "server_name: " << name << "\n"
          << "listen: 127.0.0.1:" << s.clientPort << "\n"
          << "max_payload: " << maxPayload << "\n"
-         << "jetstream { store_dir: \"" << cluster.directory_ << "/" << name << "\", max_mem: 64MB, max_file: 2GB }\n";
+         << "jetstream { store_dir: \"" << cluster.directory_ << "/" << name
+         << "\", max_mem: 64MB, max_file: 2GB }\n";
     if (servers > 1) {
       conf << "cluster { name: tessera-test, listen: 127.0.0.1:" << s.routePort << ", routes: [";
       const char* separator = "";
@@ -151,7 +154,8 @@ Expected<int> NatsCluster::leaderOf(const std::string& stream) const {
   jsErrCode code = static_cast<jsErrCode>(0);
   const natsStatus s = js_GetStreamInfo(&info, link->jetStream(), stream.c_str(), nullptr, &code);
   if (s != NATS_OK) return link->error(s, "stream info of " + stream, code);
-  const std::string leader = info->Cluster != nullptr && info->Cluster->Leader != nullptr ? info->Cluster->Leader : "";
+  const std::string leader =
+      info->Cluster != nullptr && info->Cluster->Leader != nullptr ? info->Cluster->Leader : "";
   jsStreamInfo_Destroy(info);
   for (int i = 0; i < size(); ++i) {
     if (leader == serverName(i)) return i;
@@ -184,11 +188,13 @@ Status NatsCluster::restart(int server) {
 }
 
 void NatsCluster::pause(int server) {
-  if (servers_[static_cast<size_t>(server)].pid > 0) ::kill(servers_[static_cast<size_t>(server)].pid, SIGSTOP);
+  if (servers_[static_cast<size_t>(server)].pid > 0)
+    ::kill(servers_[static_cast<size_t>(server)].pid, SIGSTOP);
 }
 
 void NatsCluster::resume(int server) {
-  if (servers_[static_cast<size_t>(server)].pid > 0) ::kill(servers_[static_cast<size_t>(server)].pid, SIGCONT);
+  if (servers_[static_cast<size_t>(server)].pid > 0)
+    ::kill(servers_[static_cast<size_t>(server)].pid, SIGCONT);
 }
 
 }  // namespace tessera::testing

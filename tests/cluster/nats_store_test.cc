@@ -122,7 +122,8 @@ TEST(NatsStore, RefusesWhatTheSqliteStoreRefusesWithTheSameWords) {
   EXPECT_EQ(skipped.code(), ErrorCode::kInvalidArgument);
   EXPECT_EQ(skipped.message(), "document 1: journal entry version 3 refused: the next version is 2");
   EXPECT_EQ(store->appendSync(*id, 1, "a", "x").code(), ErrorCode::kInvalidArgument);
-  EXPECT_EQ(store->appendSync(*id, 2, std::string(kMaxAuthorBytes + 1, 'a'), "x").code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(store->appendSync(*id, 2, std::string(kMaxAuthorBytes + 1, 'a'), "x").code(),
+            ErrorCode::kInvalidArgument);
   EXPECT_EQ(store->appendSync(DocumentId{99}, 1, "a", "x").message(), "document 99 does not exist");
   EXPECT_EQ(store->putSnapshot(*id, 5, "s").message(),
             "document 1: snapshot at version 5 refused: the journal ends at version 1");
@@ -140,8 +141,10 @@ TEST(NatsStore, TokensAreCheckedByHashPerDocumentAndForgottenWithTheirLastGrant)
   ASSERT_TRUE(one.isOk() && two.isOk());
   const std::string editor = "editor-token-0123456789", viewer = "viewer-token-0123456789",
                     admin = "admin-token-0123456789";
-  EXPECT_EQ(store->addToken(TokenScope::document(*one), "short", Role::kViewer).code(), ErrorCode::kInvalidArgument);
-  EXPECT_EQ(store->addToken(TokenScope::document(DocumentId{77}), viewer, Role::kViewer).code(), ErrorCode::kNotFound);
+  EXPECT_EQ(store->addToken(TokenScope::document(*one), "short", Role::kViewer).code(),
+            ErrorCode::kInvalidArgument);
+  EXPECT_EQ(store->addToken(TokenScope::document(DocumentId{77}), viewer, Role::kViewer).code(),
+            ErrorCode::kNotFound);
   ASSERT_TRUE(store->addToken(TokenScope::document(*one), editor, Role::kEditor).isOk());
   ASSERT_TRUE(store->addToken(TokenScope::document(*two), viewer, Role::kViewer).isOk());
   ASSERT_TRUE(store->addToken(TokenScope::allDocuments(), admin, Role::kAdmin).isOk());
@@ -189,7 +192,8 @@ TEST(NatsStore, TwoWritersNeverBothAppendAVersion) {
       Status status = store.appendSync(*id, version, "w" + std::to_string(salt), bytes);
       if (status.isOk()) {
         std::lock_guard<std::mutex> lock(mutex);
-        EXPECT_TRUE(acknowledged.emplace(version, bytes).second) << "version " << version << " acknowledged twice";
+        EXPECT_TRUE(acknowledged.emplace(version, bytes).second)
+            << "version " << version << " acknowledged twice";
       } else if (status.message().find("another writer appended") != std::string::npos ||
                  status.message().find("refused: the next version is") != std::string::npos) {
         ++conflicts;
@@ -211,8 +215,8 @@ TEST(NatsStore, TwoWritersNeverBothAppendAVersion) {
   }
   EXPECT_GE(acknowledged.size(), 150u);  // each writer wins at least when the other is not trying
   // Reported, not asserted: how often the two collided.
-  std::printf("two writers: %zu versions acknowledged, %d appends refused as conflicts\n", acknowledged.size(),
-              conflicts.load());
+  std::printf("two writers: %zu versions acknowledged, %d appends refused as conflicts\n",
+              acknowledged.size(), conflicts.load());
 }
 
 // A journal write that timed out without quorum can land just before the
@@ -229,7 +233,8 @@ TEST(NatsStore, AJournalEndingInAFenceThatSaysLessIsLoadedWhole) {
   ASSERT_NE(writer, nullptr);
   auto id = writer->createDocument("late write", "base");
   ASSERT_TRUE(id.isOk()) << id.status().toString();
-  for (uint64_t v = 1; v <= 2; ++v) ASSERT_TRUE(writer->appendSync(*id, v, "alice", entryBytes(v, 1)).isOk()) << v;
+  for (uint64_t v = 1; v <= 2; ++v)
+    ASSERT_TRUE(writer->appendSync(*id, v, "alice", entryBytes(v, 1)).isOk()) << v;
   {
     auto link = nats->connect();
     ASSERT_TRUE(link.isOk()) << link.status().toString();
@@ -237,8 +242,8 @@ TEST(NatsStore, AJournalEndingInAFenceThatSaysLessIsLoadedWhole) {
     const std::string fence = cluster::encodeJournalMessage({.fence = true, .version = 1});
     const std::string subject = "tessera.journal." + std::to_string(id->value);
     jsPubAck* ack = nullptr;
-    ASSERT_EQ(js_Publish(&ack, (*link)->jetStream(), subject.c_str(), fence.data(), static_cast<int>(fence.size()),
-                         nullptr, nullptr),
+    ASSERT_EQ(js_Publish(&ack, (*link)->jetStream(), subject.c_str(), fence.data(),
+                         static_cast<int>(fence.size()), nullptr, nullptr),
               NATS_OK);
     jsPubAck_Destroy(ack);
   }

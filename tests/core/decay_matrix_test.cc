@@ -65,16 +65,19 @@ void checkAgainstSteps(const TestMesh& mesh, CreaseMethod method) {
       for (int i = 0; i <= ring.valence; ++i) {
         ASSERT_LE((applied[i] - expected.points[i]).norm(), 1e-13 * std::max(scale, 1.0))
             << "level " << l << " vertex " << v << " point " << i;
-        ASSERT_NEAR(decay.weights[static_cast<size_t>(i) * (ring.valence + 1)], expected.centreWeight[i], 1e-14);
+        ASSERT_NEAR(decay.weights[static_cast<size_t>(i) * (ring.valence + 1)], expected.centreWeight[i],
+                    1e-14);
       }
-      for (int k = 0; k < ring.valence; ++k) ASSERT_EQ(decay.sharpEdges[k], isSharp(expected.edgeSharpness[k]));
+      for (int k = 0; k < ring.valence; ++k)
+        ASSERT_EQ(decay.sharpEdges[k], isSharp(expected.edgeSharpness[k]));
       // The composed masks on the level's ring give what the stationary
       // masks give on the stationary ring.
       const StationaryMasks stationary =
           computeStationaryMasks({ring.valence, expected.boundary, expected.rule, decay.sharpEdges});
       ASSERT_EQ(decay.composed.sectors.size(), stationary.sectors.size());
-      ASSERT_LE((weigh(decay.composed.position, ring.points) - weigh(stationary.position, expected.points)).norm(),
-                1e-13 * std::max(scale, 1.0));
+      ASSERT_LE(
+          (weigh(decay.composed.position, ring.points) - weigh(stationary.position, expected.points)).norm(),
+          1e-13 * std::max(scale, 1.0));
       bool linear = true;
       for (size_t i = 0; i < stationary.sectors.size(); ++i) {
         const SectorMasks& a = decay.composed.sectors[i];
@@ -103,15 +106,17 @@ void checkAgainstSteps(const TestMesh& mesh, CreaseMethod method) {
 }
 
 TEST(DecayMatrix, ComposesTheLoneRingStepsUniform) {
-  checkAgainstSteps(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 3), 0.3, 0.1, 31),
-                    CreaseMethod::kUniform);
+  checkAgainstSteps(
+      testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 3), 0.3, 0.1, 31),
+      CreaseMethod::kUniform);
   checkAgainstSteps(testing::withRandomTags(testing::openGrid(7, 6), 0.35, 0.1, 32), CreaseMethod::kUniform);
   checkAgainstSteps(testing::withRandomTags(testing::bipyramid(9), 0.4, 0.2, 33), CreaseMethod::kUniform);
 }
 
 TEST(DecayMatrix, ComposesTheLoneRingStepsChaikin) {
-  checkAgainstSteps(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 4), 0.4, 0.1, 41),
-                    CreaseMethod::kChaikin);
+  checkAgainstSteps(
+      testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 4), 0.4, 0.1, 41),
+      CreaseMethod::kChaikin);
   checkAgainstSteps(testing::withRandomTags(testing::openGrid(7, 6), 0.45, 0.1, 42), CreaseMethod::kChaikin);
   checkAgainstSteps(testing::withRandomTags(testing::diskWithPole(11), 0.5, 0.2, 43), CreaseMethod::kChaikin);
 }
@@ -129,7 +134,9 @@ TEST(DecayMatrix, TheCacheIsBounded) {
       EXPECT_TRUE(level.isOk()) << level.status().toString();
       return std::move(*level);
     };
-    auto cached = [&](const Level& level) { return cachedDecayMatrix(level, a, mesh.points, CreaseMethod::kUniform); };
+    auto cached = [&](const Level& level) {
+      return cachedDecayMatrix(level, a, mesh.points, CreaseMethod::kUniform);
+    };
     const Level first = withCrease(0.25f);
     ASSERT_NE(cached(first), nullptr);
     float s = 0.25f;

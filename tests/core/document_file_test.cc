@@ -18,7 +18,8 @@ namespace {
 
 Document editedDocument() {
   auto mesh = testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.02, 8), 0.1, 0.05, 8);
-  auto doc = Document::create(mesh.topology, mesh.points, {.loop = {.creaseMethod = CreaseMethod::kChaikin}, .maxLevel = 5});
+  auto doc = Document::create(mesh.topology, mesh.points,
+                              {.loop = {.creaseMethod = CreaseMethod::kChaikin}, .maxLevel = 5});
   if (!doc.isOk()) throw std::runtime_error(doc.status().toString());
   auto a = doc->moveToLimit(std::vector<VertexId>{VertexId(2, 40)}, Vec3(0.3, 0.1, 0.4));
   auto b = doc->moveBy(std::vector<VertexId>{VertexId(3, 7), VertexId(3, 300)}, Vec3(1e-3, 2e-3, -0.1 / 3.0));
@@ -29,7 +30,8 @@ Document editedDocument() {
   auto f = doc->setInterpolation(VertexId(2, 200), true, 0.75);
   auto g = doc->setInterpolation(VertexId(2, 200), false);
   if (!a.isOk() || !b.isOk() || !c.isOk() || !d.isOk()) throw std::runtime_error("edit failed");
-  if (!e.isOk() || !f.isOk() || !g.isOk()) throw std::runtime_error("interpolation failed: " + e.status().toString() + f.status().toString());
+  if (!e.isOk() || !f.isOk() || !g.isOk())
+    throw std::runtime_error("interpolation failed: " + e.status().toString() + f.status().toString());
   if (!doc->undo(*c).isOk()) throw std::runtime_error("undo failed");
   return std::move(doc).value();
 }

@@ -70,12 +70,14 @@ TEST(Document, FineDetailRotatesWithACoarseEdit) {
   const double c = std::cos(M_PI / 3), s = std::sin(M_PI / 3);
   auto rot = [&](const Vec3& p) { return Vec3(c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]); };
   for (int v = 0; v < mesh.topology.numVertices; ++v) {
-    ASSERT_TRUE(doc.moveBy(std::vector<VertexId>{VertexId(0, v)}, rot(mesh.points[v]) - mesh.points[v]).isOk());
+    ASSERT_TRUE(
+        doc.moveBy(std::vector<VertexId>{VertexId(0, v)}, rot(mesh.points[v]) - mesh.points[v]).isOk());
   }
   // The same rotation without the fine edit, for the plain surface.
   Document plainDoc = makeDocument(mesh);
   for (int v = 0; v < mesh.topology.numVertices; ++v) {
-    ASSERT_TRUE(plainDoc.moveBy(std::vector<VertexId>{VertexId(0, v)}, rot(mesh.points[v]) - mesh.points[v]).isOk());
+    ASSERT_TRUE(
+        plainDoc.moveBy(std::vector<VertexId>{VertexId(0, v)}, rot(mesh.points[v]) - mesh.points[v]).isOk());
   }
   const Vec3 detailAfter = pointsAt(doc, 3)[400] - pointsAt(plainDoc, 3)[400];
   EXPECT_NEAR((detailAfter - rot(detailBefore)).norm(), 0.0, 1e-12);
@@ -147,7 +149,8 @@ TEST(Document, RandomEditHistoriesEqualTheirActiveEditsReplayed) {
       made.push_back(*id);
     } else if (choice == 3) {
       // Torus: no boundary, every edge may be tagged.
-      auto id = doc.setEdgeSharpness(EdgeId(level, rng() % doc.counts().edges(level)), float(rng() % 4) * 0.75f);
+      auto id =
+          doc.setEdgeSharpness(EdgeId(level, rng() % doc.counts().edges(level)), float(rng() % 4) * 0.75f);
       ASSERT_TRUE(id.isOk()) << id.status().toString();
       made.push_back(*id);
     } else {
@@ -162,7 +165,8 @@ TEST(Document, RandomEditHistoriesEqualTheirActiveEditsReplayed) {
   for (const Edit& e : doc.edits()) {
     if (e.active) active.push_back(e);
   }
-  auto replay = Document::restore(doc.baseTopology(), doc.basePoints(), doc.options(), active, doc.nextEditId());
+  auto replay =
+      Document::restore(doc.baseTopology(), doc.basePoints(), doc.options(), active, doc.nextEditId());
   ASSERT_TRUE(replay.isOk()) << replay.status().toString();
   EXPECT_EQ(pointsAt(doc, 3), pointsAt(*replay, 3));
 }
@@ -180,13 +184,17 @@ TEST(Document, BadCommandsAreRejectedWithoutChange) {
   std::vector<Case> cases;
   cases.push_back({doc.undo(EditId{99}), "edit99: no such edit"});
   cases.push_back({doc.redo(EditId{1}), "edit1 is not undone"});
-  cases.push_back({doc.moveBy(std::vector<VertexId>{VertexId(4, 0)}, Vec3(0, 0, 1)).status(), "above the maximum level 3"});
-  cases.push_back({doc.moveToLimit(std::vector<VertexId>{VertexId(1, 3)}, Vec3(nan, 0, 0)).status(), "target position must be finite"});
-  cases.push_back({doc.moveBy(std::vector<VertexId>{VertexId(2, 1u << 20)}, Vec3(0, 0, 1)).status(), "v2:1048576: level 2 has"});
+  cases.push_back({doc.moveBy(std::vector<VertexId>{VertexId(4, 0)}, Vec3(0, 0, 1)).status(),
+                   "above the maximum level 3"});
+  cases.push_back({doc.moveToLimit(std::vector<VertexId>{VertexId(1, 3)}, Vec3(nan, 0, 0)).status(),
+                   "target position must be finite"});
+  cases.push_back({doc.moveBy(std::vector<VertexId>{VertexId(2, 1u << 20)}, Vec3(0, 0, 1)).status(),
+                   "v2:1048576: level 2 has"});
   cases.push_back({doc.setEdgeSharpness(EdgeId(1, 40), -1.0f).status(), "sharpness must be >= 0"});
   cases.push_back({doc.setVertexSharpness(VertexId(1, 4), std::nanf("")).status(), "sharpness must be >= 0"});
   cases.push_back({doc.setEdgeSharpness(EdgeId(0, 0), 1.0f).status(), "lies on the boundary"});
-  cases.push_back({doc.moveBy(std::vector<VertexId>{VertexId(1, 2), VertexId(2, 2)}, Vec3(0, 0, 1)).status(), "must share a level"});
+  cases.push_back({doc.moveBy(std::vector<VertexId>{VertexId(1, 2), VertexId(2, 2)}, Vec3(0, 0, 1)).status(),
+                   "must share a level"});
   cases.push_back({doc.moveBy(std::vector<VertexId>{}, Vec3(0, 0, 1)).status(), "names no vertex"});
   for (const auto& c : cases) {
     EXPECT_FALSE(c.status.isOk()) << c.message;

@@ -11,8 +11,8 @@
 //              when projected back onto the sphere, with a 2x margin).
 #include <draco/compression/decode.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -94,8 +94,10 @@ Decoded decodePrimitive(const GlbChunks& glb) {
   Decoded decoded;
   if (!decodedOr.ok()) return decoded;
   decoded.mesh = std::move(decodedOr).value();
-  decoded.positions = decoded.mesh->GetAttributeByUniqueId(extension["attributes"]["POSITION"].get<std::uint32_t>());
-  decoded.normals = decoded.mesh->GetAttributeByUniqueId(extension["attributes"]["NORMAL"].get<std::uint32_t>());
+  decoded.positions =
+      decoded.mesh->GetAttributeByUniqueId(extension["attributes"]["POSITION"].get<std::uint32_t>());
+  decoded.normals =
+      decoded.mesh->GetAttributeByUniqueId(extension["attributes"]["NORMAL"].get<std::uint32_t>());
   return decoded;
 }
 
@@ -142,7 +144,8 @@ TEST_F(DracoExportTest, AccessorsDescribeTheDecodedMesh) {
   // whose count and bounds match the decoded mesh.
   for (const char* name : {"POSITION", "NORMAL"}) {
     const json& accessor = gltf["accessors"][primitive["attributes"][name].get<int>()];
-    EXPECT_FALSE(accessor.contains("bufferView") || accessor.contains("byteOffset") || accessor.contains("sparse"));
+    EXPECT_FALSE(accessor.contains("bufferView") || accessor.contains("byteOffset") ||
+                 accessor.contains("sparse"));
     EXPECT_EQ(accessor["count"].get<std::size_t>(), decoded.mesh->num_points()) << name;
     EXPECT_EQ(accessor["componentType"], TINYGLTF_COMPONENT_TYPE_FLOAT);
     EXPECT_EQ(accessor["type"], "VEC3");
@@ -162,7 +165,8 @@ TEST_F(DracoExportTest, AccessorsDescribeTheDecodedMesh) {
 // errors far below the vertex spacing the match is the true correspondence;
 // it must be one-to-one, and the decoded triangles must be the input ones with
 // the same orientation.
-void checkQuantizationBound(const SurfaceMesh& surface, const std::string& file, const ExportOptions& options) {
+void checkQuantizationBound(const SurfaceMesh& surface, const std::string& file,
+                            const ExportOptions& options) {
   const Decoded decoded = decodePrimitive(readGlb(file));
   ASSERT_TRUE(decoded.mesh && decoded.positions && decoded.normals);
   ASSERT_EQ(decoded.mesh->num_points(), surface.positions.size());
@@ -188,15 +192,16 @@ void checkQuantizationBound(const SurfaceMesh& surface, const std::string& file,
     const int i = match[p.value()];
     matched.insert(i);
     const Vec3 error = point - surface.positions[i];
-    maxCoordinateError = std::max({maxCoordinateError, std::abs(error[0]), std::abs(error[1]), std::abs(error[2])});
+    maxCoordinateError =
+        std::max({maxCoordinateError, std::abs(error[0]), std::abs(error[1]), std::abs(error[2])});
     maxDistance = std::max(maxDistance, error.norm());
     const auto n = valueAt(decoded.normals, p);
     const Vec3 normal = Vec3(n[0], n[1], n[2]).normalized();
     maxNormalAngle = std::max(maxNormalAngle, std::acos(std::clamp(normal | surface.normals[i], -1.0, 1.0)));
   }
   std::cout << "[ draco    ] " << options.dracoPositionBits << "-bit positions: max coordinate error "
-            << maxCoordinateError << " (bound " << positionBound << "), max distance " << maxDistance
-            << "; " << options.dracoNormalBits << "-bit normals: max angle " << maxNormalAngle << " rad (bound "
+            << maxCoordinateError << " (bound " << positionBound << "), max distance " << maxDistance << "; "
+            << options.dracoNormalBits << "-bit normals: max angle " << maxNormalAngle << " rad (bound "
             << normalBound << ")\n";
   EXPECT_LE(maxCoordinateError, positionBound);
   EXPECT_LE(maxNormalAngle, normalBound);
@@ -211,7 +216,8 @@ void checkQuantizationBound(const SurfaceMesh& surface, const std::string& file,
   for (draco::FaceIndex f(0); f < decoded.mesh->num_faces(); ++f) {
     const auto& face = decoded.mesh->face(f);
     const std::array<int, 3> mapped{match[face[0].value()], match[face[1].value()], match[face[2].value()]};
-    ASSERT_TRUE(input.count(canonical(mapped))) << "decoded face " << f.value() << " is not an input triangle";
+    ASSERT_TRUE(input.count(canonical(mapped)))
+        << "decoded face " << f.value() << " is not an input triangle";
   }
 }
 

@@ -56,9 +56,10 @@ TEST(IdPrecedence, EndVerticesOfAnEdge) {
   EXPECT_EQ(doc.edgeBetween(a, VertexId(2, doc.counts().vertices(2))).status().code(), ErrorCode::kNotFound);
   EXPECT_EQ(doc.edgeBetween(missing, b).status().code(), ErrorCode::kNotFound);
   EXPECT_EQ(doc.edgeBetween(missing, missing).status().code(), ErrorCode::kNotFound);
-  EXPECT_EQ(doc.edgeBetween(a, b).status().code(), ErrorCode::kInvalidArgument);       // two levels
-  EXPECT_EQ(doc.edgeBetween(a, a).status().code(), ErrorCode::kInvalidArgument);       // one vertex twice
-  EXPECT_EQ(doc.edgeBetween(VertexId(0, 0), VertexId(0, 6)).status().code(), ErrorCode::kInvalidArgument);  // not joined
+  EXPECT_EQ(doc.edgeBetween(a, b).status().code(), ErrorCode::kInvalidArgument);  // two levels
+  EXPECT_EQ(doc.edgeBetween(a, a).status().code(), ErrorCode::kInvalidArgument);  // one vertex twice
+  EXPECT_EQ(doc.edgeBetween(VertexId(0, 0), VertexId(0, 6)).status().code(),
+            ErrorCode::kInvalidArgument);  // not joined
 }
 
 TEST(IdPrecedence, ASingleMissingElementWinsOverItsValue) {

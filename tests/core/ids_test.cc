@@ -21,8 +21,8 @@ TEST(ElementIds, PrintAndParseRoundTrip) {
 }
 
 TEST(ElementIds, ParseRejectsMalformedText) {
-  for (const char* bad : {"", "v", "v3", "v3:", "v:12", "x3:12", "v3:12x", "v-1:4", "v64:1", "v3:-1", "v3:1:2",
-                          "e3:1", "v 3:1"}) {
+  for (const char* bad : {"", "v", "v3", "v3:", "v:12", "x3:12", "v3:12x", "v-1:4", "v64:1", "v3:-1",
+                          "v3:1:2", "e3:1", "v 3:1"}) {
     auto id = parseVertexId(bad);
     EXPECT_FALSE(id.isOk()) << bad;
     if (!id.isOk()) {

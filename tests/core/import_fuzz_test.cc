@@ -3,11 +3,11 @@
 // with fixed seeds. Every result must be either a mesh or a non-empty error
 // naming the file -- never a crash, hang or sanitizer report.
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <iostream>
-#include <cstdlib>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -74,9 +74,11 @@ TEST_P(ImportFuzz, MutatedFilesNeverCrash) {
   int accepted = 0;
   const auto start = std::chrono::steady_clock::now();
   // TESSERA_FUZZ_MUTATIONS / TESSERA_FUZZ_SEED widen a local run; CI uses the defaults.
-  const int mutations = std::getenv("TESSERA_FUZZ_MUTATIONS") ? std::atoi(std::getenv("TESSERA_FUZZ_MUTATIONS"))
-                                                              : kMutationsPerFormat;
-  if (std::getenv("TESSERA_FUZZ_SEED")) rng.seed(static_cast<unsigned>(std::atoi(std::getenv("TESSERA_FUZZ_SEED"))));
+  const int mutations = std::getenv("TESSERA_FUZZ_MUTATIONS")
+                            ? std::atoi(std::getenv("TESSERA_FUZZ_MUTATIONS"))
+                            : kMutationsPerFormat;
+  if (std::getenv("TESSERA_FUZZ_SEED"))
+    rng.seed(static_cast<unsigned>(std::atoi(std::getenv("TESSERA_FUZZ_SEED"))));
   for (int i = 0; i < mutations; ++i) {
     const std::string data = mutate(original, rng);
     if (dumpPrefix != nullptr) {  // debugging aid: keep each input, name the one that hangs
@@ -104,9 +106,10 @@ TEST_P(ImportFuzz, MutatedFilesNeverCrash) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllFormats, ImportFuzz,
-                         ::testing::Values("good/tetra.obj", "good/tetra_vtvn.obj", "good/tetra.off", "good/tetra.ply",
-                                           "good/tetra_binary.ply", "good/tetra.stl", "good/tetra_binary.stl",
-                                           "good/tetra_split.gltf", "good/tetra.glb"));
+                         ::testing::Values("good/tetra.obj", "good/tetra_vtvn.obj", "good/tetra.off",
+                                           "good/tetra.ply", "good/tetra_binary.ply", "good/tetra.stl",
+                                           "good/tetra_binary.stl", "good/tetra_split.gltf",
+                                           "good/tetra.glb"));
 
 }  // namespace
 }  // namespace tessera

@@ -100,7 +100,8 @@ TEST(InterpolatingVertex, TheLimitIsTheControlPointAtEveryLevelAndAfterEditsArou
         ASSERT_TRUE(d.moveBy(std::span(&v, 1), Vec3(0.05, -0.03, 0.02)).isOk());
         expectInterpolates(d, v, scale, where + " after moving it");
         auto eval = d.evaluate(level);
-        const VertexId ring(level, static_cast<uint64_t>((*eval)->levels[level].ringVerticesOf(static_cast<Index>(index))[0]));
+        const VertexId ring(level, static_cast<uint64_t>(
+                                       (*eval)->levels[level].ringVerticesOf(static_cast<Index>(index))[0]));
         ASSERT_TRUE(d.moveBy(std::span(&ring, 1), Vec3(-0.04, 0.06, 0.03)).isOk());
         expectInterpolates(d, v, scale, where + " after moving " + ring.toString());
         if (level > 0) {
@@ -148,7 +149,9 @@ TEST(InterpolatingVertex, BoundaryAndCreaseVerticesInterpolateAlongTheirTangent)
   std::vector<Vec3> sides;
   for (Index e : m.ringEdgesOf(static_cast<Index>(b))) {
     if (isInfinite(m.edgeSharpness[e])) {
-      sides.push_back(limitFrame(m, m.otherVertex(e, static_cast<Index>(b)), (*eval)->points[5], CreaseMethod::kUniform).position);
+      sides.push_back(
+          limitFrame(m, m.otherVertex(e, static_cast<Index>(b)), (*eval)->points[5], CreaseMethod::kUniform)
+              .position);
     }
   }
   ASSERT_EQ(sides.size(), 2u);
@@ -221,7 +224,8 @@ double spreadAround(const Document& doc, VertexId v) {
   const Vec3 centre = controlPoint(doc, v);
   double sum = 0;
   const auto ring = m.ringVerticesOf(static_cast<Index>(v.index()));
-  for (Index u : ring) sum += (limitFrame(m, u, (*eval)->points[l], CreaseMethod::kUniform).position - centre).norm();
+  for (Index u : ring)
+    sum += (limitFrame(m, u, (*eval)->points[l], CreaseMethod::kUniform).position - centre).norm();
   return sum / static_cast<double>(ring.size());
 }
 
@@ -238,11 +242,13 @@ TEST(InterpolatingVertex, TensionTightensTheSurfaceMonotonicallyAndIsBounded) {
     EXPECT_LT(spread, previous) << "tension " << tension;
     previous = spread;
   }
-  for (double bad : {0.0, -1.0, kMinTension / 2, kMaxTension * 2, std::nan(""), std::numeric_limits<double>::infinity()}) {
+  for (double bad :
+       {0.0, -1.0, kMinTension / 2, kMaxTension * 2, std::nan(""), std::numeric_limits<double>::infinity()}) {
     Document d = doc;
     auto refused = d.setInterpolation(v, true, bad);
     ASSERT_FALSE(refused.isOk()) << bad;
-    EXPECT_NE(refused.status().message().find("tension must be in"), std::string::npos) << refused.status().message();
+    EXPECT_NE(refused.status().message().find("tension must be in"), std::string::npos)
+        << refused.status().message();
     EXPECT_NE(refused.status().message().find(v.toString()), std::string::npos) << refused.status().message();
   }
 }
@@ -278,7 +284,8 @@ TEST(InterpolatingVertex, WhatCannotInterpolateIsRefusedByName) {
   // At the deepest level there is no next level for the ghost ring.
   auto deepest = doc.setInterpolation(VertexId(3, 0), true);
   ASSERT_FALSE(deepest.isOk());
-  EXPECT_NE(deepest.status().message().find("deepest level 3"), std::string::npos) << deepest.status().message();
+  EXPECT_NE(deepest.status().message().find("deepest level 3"), std::string::npos)
+      << deepest.status().message();
   // A dart, a corner and a semi-sharp edge each say why.
   Document dart = doc;
   ASSERT_TRUE(dart.setEdgeSharpness(*dart.edgeBetween(v0, VertexId(0, ring[0])), kSharpnessInfinite).isOk());
@@ -290,7 +297,8 @@ TEST(InterpolatingVertex, WhatCannotInterpolateIsRefusedByName) {
   ASSERT_TRUE(corner.setVertexSharpness(v0, kSharpnessInfinite).isOk());
   refused = corner.setInterpolation(v0, true);
   ASSERT_FALSE(refused.isOk());
-  EXPECT_NE(refused.status().message().find("already interpolates"), std::string::npos) << refused.status().message();
+  EXPECT_NE(refused.status().message().find("already interpolates"), std::string::npos)
+      << refused.status().message();
   Document semi = doc;
   ASSERT_TRUE(semi.setEdgeSharpness(*semi.edgeBetween(v0, VertexId(0, ring[1])), 1.5f).isOk());
   refused = semi.setInterpolation(v0, true);
@@ -327,12 +335,14 @@ TEST(InterpolatingVertex, WhatCannotInterpolateIsRefusedByName) {
   ASSERT_TRUE(early.isOk());
   refused = e.setInterpolation(v0, true);
   ASSERT_FALSE(refused.isOk());
-  EXPECT_NE(refused.status().message().find(early->toString()), std::string::npos) << refused.status().message();
+  EXPECT_NE(refused.status().message().find(early->toString()), std::string::npos)
+      << refused.status().message();
   ASSERT_TRUE(e.undo(*early).isOk());
   ASSERT_TRUE(e.setInterpolation(v0, true).isOk());
   Status redo = e.redo(*early);
   ASSERT_FALSE(redo.isOk());
-  EXPECT_NE(redo.message().find("conflicts with interpolating vertex v0:0"), std::string::npos) << redo.message();
+  EXPECT_NE(redo.message().find("conflicts with interpolating vertex v0:0"), std::string::npos)
+      << redo.message();
 
   // Two ghost rings may not share points: no interpolating neighbour at the
   // same level, nor one at or next to its descendant below.
@@ -351,7 +361,8 @@ TEST(InterpolatingVertex, WhatCannotInterpolateIsRefusedByName) {
   ASSERT_TRUE(u.moveBy(std::span(&onEdge, 1), Vec3(0, 0.1, 0)).isOk());
   Status undoOff = u.undo(*off);
   ASSERT_FALSE(undoOff.isOk());
-  EXPECT_NE(undoOff.message().find("it would make v0:0 interpolate again"), std::string::npos) << undoOff.message();
+  EXPECT_NE(undoOff.message().find("it would make v0:0 interpolate again"), std::string::npos)
+      << undoOff.message();
   EXPECT_FALSE(u.remove(*off).isOk());
 }
 

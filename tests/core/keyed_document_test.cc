@@ -49,10 +49,12 @@ TEST(KeyedDocument, TheSecondKeyStartsWithTheFirstKeysEditsOnItsOwnPoints) {
   for (auto [t, key] : {std::pair{0.0, 0}, {1.0, 1}}) {
     auto at = k.doc.at(t);
     ASSERT_TRUE(at.isOk()) << at.status().message();
-    auto a = at->surface(kLevel, SurfaceKind::kLimit), b = k.doc.key(key).surface(kLevel, SurfaceKind::kLimit);
+    auto a = at->surface(kLevel, SurfaceKind::kLimit),
+         b = k.doc.key(key).surface(kLevel, SurfaceKind::kLimit);
     ASSERT_TRUE(a.isOk() && b.isOk());
     double worst = 0;
-    for (size_t i = 0; i < a->positions.size(); ++i) worst = std::max(worst, (a->positions[i] - b->positions[i]).norm());
+    for (size_t i = 0; i < a->positions.size(); ++i)
+      worst = std::max(worst, (a->positions[i] - b->positions[i]).norm());
     EXPECT_LE(worst, 1e-12) << "t = " << t;
   }
   auto half = k.doc.pointsAt(0.5);
@@ -77,7 +79,8 @@ TEST(KeyedDocument, RefusalsNameWhatIsWrong) {
   Keys k = torusKeys();
   EXPECT_NE(k.doc.at(0.5).status().message().find("the document has one key"), std::string::npos);
   std::vector<Vec3> short1(k.points1.begin(), k.points1.end() - 1);
-  EXPECT_NE(k.doc.addKey(short1).message().find("the second key has 47 points, key 0 has 48"), std::string::npos)
+  EXPECT_NE(k.doc.addKey(short1).message().find("the second key has 47 points, key 0 has 48"),
+            std::string::npos)
       << k.doc.addKey(short1).message();
   std::vector<Vec3> nan = k.points1;
   nan[9][1] = std::nan("");
@@ -92,7 +95,9 @@ TEST(KeyedDocument, RefusalsNameWhatIsWrong) {
 TEST(KeyedDocumentFile, OneKeyIsAPlainDocumentFileAndTwoKeysReadBackExactly) {
   Keys k = torusKeys();
   EXPECT_EQ(serializeKeyedDocument(k.doc), serializeDocument(k.doc.key0()));
-  ASSERT_TRUE(k.doc.addKey(k.points1, {std::string("\x89PNG\r\n\x1a\nA", 9), std::string("\x89PNG\r\n\x1a\nBB", 10)}).isOk());
+  ASSERT_TRUE(
+      k.doc.addKey(k.points1, {std::string("\x89PNG\r\n\x1a\nA", 9), std::string("\x89PNG\r\n\x1a\nBB", 10)})
+          .isOk());
   const VertexId fine(2, 41);
   ASSERT_TRUE((*k.doc.editKey(1))->moveBy(std::span(&fine, 1), Vec3(0.01, 0, 0)).isOk());
   const std::string bytes = serializeKeyedDocument(k.doc);
@@ -106,13 +111,16 @@ TEST(KeyedDocumentFile, OneKeyIsAPlainDocumentFileAndTwoKeysReadBackExactly) {
   for (size_t cut = 0; cut < bytes.size(); cut += std::max<size_t>(1, bytes.size() / 300)) {
     auto cutShort = deserializeKeyedDocument(bytes.substr(0, cut), "morph.tsd");
     ASSERT_FALSE(cutShort.isOk()) << cut;
-    EXPECT_NE(cutShort.status().message().find("morph.tsd"), std::string::npos) << cutShort.status().message();
+    EXPECT_NE(cutShort.status().message().find("morph.tsd"), std::string::npos)
+        << cutShort.status().message();
   }
   // Another key count, and trailing bytes.
   std::string three = bytes;
   three[12] = 3;
-  EXPECT_NE(deserializeKeyedDocument(three, "m").status().message().find("a morph container of 3 keys"), std::string::npos);
-  EXPECT_NE(deserializeKeyedDocument(bytes + "x", "m").status().message().find("trailing bytes"), std::string::npos);
+  EXPECT_NE(deserializeKeyedDocument(three, "m").status().message().find("a morph container of 3 keys"),
+            std::string::npos);
+  EXPECT_NE(deserializeKeyedDocument(bytes + "x", "m").status().message().find("trailing bytes"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -48,8 +48,8 @@ std::vector<StationaryRing> configurations() {
 }
 
 std::string describe(const StationaryRing& r) {
-  std::string s = "valence " + std::to_string(r.valence) + (r.boundary ? " boundary" : " interior") + " rule " +
-                  std::to_string(static_cast<int>(r.rule)) + " sharp";
+  std::string s = "valence " + std::to_string(r.valence) + (r.boundary ? " boundary" : " interior") +
+                  " rule " + std::to_string(static_cast<int>(r.rule)) + " sharp";
   for (int k = 0; k < r.valence; ++k) {
     if (r.sharpEdges[k]) s += " " + std::to_string(k);
   }
@@ -96,7 +96,8 @@ TEST(LimitMasks, MatrixIsTheLoneRingStep) {
       impulse[j] = Vec3(1, 0, 0);
       const LocalRing next = refineLocalRing(lone(r, impulse), CreaseMethod::kUniform);
       ASSERT_EQ(next.rule, r.rule);
-      for (int i = 0; i < size; ++i) ASSERT_EQ(s[i * size + j], next.points[i][0]) << "row " << i << " col " << j;
+      for (int i = 0; i < size; ++i)
+        ASSERT_EQ(s[i * size + j], next.points[i][0]) << "row " << i << " col " << j;
     }
   }
 }
@@ -147,9 +148,10 @@ TEST(LimitMasks, TangentPlaneIsWhereTheRefinedRingFlattens) {
     const int n = r.valence;
     for (const SectorMasks& sector : masks.sectors) {
       if (sector.kind != SectorMasks::Kind::kTangentPlane) continue;
-      SCOPED_TRACE("sector from " + std::to_string(sector.firstEdge) + ", " + std::to_string(sector.faceCount) +
-                   " faces");
-      const Vec3 normal = (applyMask(sector.tangent1, points) % applyMask(sector.tangent2, points)).normalized();
+      SCOPED_TRACE("sector from " + std::to_string(sector.firstEdge) + ", " +
+                   std::to_string(sector.faceCount) + " faces");
+      const Vec3 normal =
+          (applyMask(sector.tangent1, points) % applyMask(sector.tangent2, points)).normalized();
       // The sector's points: centre and ring firstEdge .. firstEdge+faceCount.
       std::vector<int> idx{0};
       const int last = sector.faceCount == n && !r.boundary ? n - 1 : sector.faceCount;
@@ -254,7 +256,8 @@ TEST(LimitMasks, TheProcessCacheIsBounded) {
     ASSERT_NE(masks, nullptr);
     if (!cached) {
       refusedBits = bits;
-      EXPECT_EQ(masks->position, computeStationaryMasks(corner(bits)).position) << "an answer not kept is still right";
+      EXPECT_EQ(masks->position, computeStationaryMasks(corner(bits)).position)
+          << "an answer not kept is still right";
       break;
     }
   }

@@ -25,7 +25,9 @@ using testing::TestMesh;
 
 // atan2 keeps small angles exact (acos of a rounded cosine cannot go
 // below 1.5e-8).
-double angle(const Vec3& a, const Vec3& b) { return std::atan2((a % b).norm(), dot(a, b)); }
+double angle(const Vec3& a, const Vec3& b) {
+  return std::atan2((a % b).norm(), dot(a, b));
+}
 
 // Returns how many non-smooth vertices were compared.
 int compareWithFrames(const TestMesh& mesh) {
@@ -49,7 +51,8 @@ int compareWithFrames(const TestMesh& mesh) {
         if (expected.sqrnorm() == 0.0) {
           EXPECT_EQ(normals[v].sqrnorm(), 0.0) << "level " << l << " vertex " << v;
         } else {
-          EXPECT_LE(angle(normals[v], expected), 1e-12) << "level " << l << " vertex " << v << " pass " << pass;
+          EXPECT_LE(angle(normals[v], expected), 1e-12)
+              << "level " << l << " vertex " << v << " pass " << pass;
         }
         compared += pass == 0 ? 1 : 0;
       }
@@ -60,10 +63,12 @@ int compareWithFrames(const TestMesh& mesh) {
 
 TEST(LimitStencil, ComputeLimitEqualsTheGeneralPath) {
   int compared = 0;
-  compared += compareWithFrames(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 5), 0.3, 0.1, 51));
+  compared += compareWithFrames(
+      testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 5), 0.3, 0.1, 51));
   compared += compareWithFrames(testing::withRandomTags(testing::openGrid(7, 6), 0.35, 0.1, 52));
   compared += compareWithFrames(testing::withRandomTags(testing::bipyramid(9), 0.4, 0.2, 53));
-  compared += compareWithFrames(testing::withRandomTags(testing::withRandomFlips(testing::torus(8, 6), 20, 7), 0.3, 0.15, 54));
+  compared += compareWithFrames(
+      testing::withRandomTags(testing::withRandomFlips(testing::torus(8, 6), 20, 7), 0.3, 0.15, 54));
   EXPECT_GT(compared, 1000);
 }
 
@@ -90,7 +95,9 @@ TEST(LimitStencil, AFullCacheChangesNoAnswer) {
     const LimitStencilKey key = keyWithCrease(s);
     EXPECT_EQ(findLimitStencil(key), nullptr);
     EXPECT_EQ(insertLimitStencil(key, unused), nullptr);
-    EXPECT_GT(compareWithFrames(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 5), 0.3, 0.1, 51)), 100);
+    EXPECT_GT(compareWithFrames(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 5),
+                                                        0.3, 0.1, 51)),
+              100);
   }).join();
 }
 

@@ -36,7 +36,8 @@ void checkAgainstRefinement(const TestMesh& mesh, CreaseMethod method) {
       auto ringV = child.ringVerticesOf(v);
       auto ringE = child.ringEdgesOf(v);
       for (int k = 0; k < next.valence; ++k) {
-        ASSERT_EQ(next.points[1 + k], points[l + 1][ringV[k]]) << "level " << l << " vertex " << v << " ring " << k;
+        ASSERT_EQ(next.points[1 + k], points[l + 1][ringV[k]])
+            << "level " << l << " vertex " << v << " ring " << k;
         ASSERT_EQ(next.edgeSharpness[k], child.edgeSharpness[ringE[k]]) << "level " << l << " vertex " << v;
       }
       ++checked;
@@ -47,24 +48,31 @@ void checkAgainstRefinement(const TestMesh& mesh, CreaseMethod method) {
 }
 
 TEST(LocalRing, OneStepIsTheRefinersStepUniform) {
-  checkAgainstRefinement(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 3), 0.3, 0.1, 11),
+  checkAgainstRefinement(
+      testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 3), 0.3, 0.1, 11),
+      CreaseMethod::kUniform);
+  checkAgainstRefinement(testing::withRandomTags(testing::openGrid(7, 6), 0.35, 0.1, 12),
                          CreaseMethod::kUniform);
-  checkAgainstRefinement(testing::withRandomTags(testing::openGrid(7, 6), 0.35, 0.1, 12), CreaseMethod::kUniform);
-  checkAgainstRefinement(testing::withRandomTags(testing::bipyramid(9), 0.4, 0.2, 13), CreaseMethod::kUniform);
+  checkAgainstRefinement(testing::withRandomTags(testing::bipyramid(9), 0.4, 0.2, 13),
+                         CreaseMethod::kUniform);
 }
 
 TEST(LocalRing, OneStepIsTheRefinersStepChaikin) {
-  checkAgainstRefinement(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 4), 0.4, 0.1, 21),
+  checkAgainstRefinement(
+      testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 4), 0.4, 0.1, 21),
+      CreaseMethod::kChaikin);
+  checkAgainstRefinement(testing::withRandomTags(testing::openGrid(7, 6), 0.45, 0.1, 22),
                          CreaseMethod::kChaikin);
-  checkAgainstRefinement(testing::withRandomTags(testing::openGrid(7, 6), 0.45, 0.1, 22), CreaseMethod::kChaikin);
-  checkAgainstRefinement(testing::withRandomTags(testing::diskWithPole(11), 0.5, 0.2, 23), CreaseMethod::kChaikin);
+  checkAgainstRefinement(testing::withRandomTags(testing::diskWithPole(11), 0.5, 0.2, 23),
+                         CreaseMethod::kChaikin);
 }
 
 // The centre's weight channel is the derivative of every point, after any
 // number of steps, with respect to the original centre's control point:
 // check it by moving that point.
 TEST(LocalRing, CentreWeightIsTheDerivative) {
-  const TestMesh mesh = testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 5), 0.35, 0.15, 31);
+  const TestMesh mesh =
+      testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.05, 5), 0.35, 0.15, 31);
   auto refiner = LoopRefiner::create(mesh.topology, {}, {.levels = 1});
   ASSERT_TRUE(refiner.isOk());
   const Level& level = refiner->level(1);
@@ -79,7 +87,8 @@ TEST(LocalRing, CentreWeightIsTheDerivative) {
       moved = refineLocalRing(moved, CreaseMethod::kUniform);
       for (size_t i = 0; i < ring.points.size(); ++i) {
         const double derivative = (moved.points[i][0] - ring.points[i][0]) / 0.5;
-        ASSERT_NEAR(derivative, ring.centreWeight[i], 1e-12) << "vertex " << v << " step " << step << " point " << i;
+        ASSERT_NEAR(derivative, ring.centreWeight[i], 1e-12)
+            << "vertex " << v << " step " << step << " point " << i;
       }
     }
     ++checked;

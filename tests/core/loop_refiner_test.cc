@@ -158,7 +158,9 @@ TEST(LoopRefiner, LimitSurfaceSplitsCreasesIntoOneNormalPerSide) {
     EXPECT_GT(static_cast<int>(s.positions.size()), levelVertices);  // creases were split
     for (size_t t = 0; t < s.triangles.size(); ++t) {
       const auto& tri = s.triangles[t];
-      const Vec3 faceNormal = ((s.positions[tri[1]] - s.positions[tri[0]]) % (s.positions[tri[2]] - s.positions[tri[0]])).normalized();
+      const Vec3 faceNormal =
+          ((s.positions[tri[1]] - s.positions[tri[0]]) % (s.positions[tri[2]] - s.positions[tri[0]]))
+              .normalized();
       for (int c : tri) {
         EXPECT_NEAR(dot(s.normals[c], faceNormal), 1.0, 1e-9) << "triangle " << t << " corner vertex " << c;
       }

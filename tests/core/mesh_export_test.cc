@@ -3,10 +3,10 @@
 // The Khronos glTF-Validator run lives in tests/validator.cmake.
 //
 // OpenMesh requires MeshIO.hh before any mesh kernel header.
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <algorithm>
 #include <array>
@@ -55,7 +55,8 @@ std::string readFile(const std::string& path) {
 ReadMesh readWithOpenMesh(const std::string& path, bool withNormals) {
   ReadMesh mesh;
   mesh.request_vertex_normals();
-  OpenMesh::IO::Options options = withNormals ? OpenMesh::IO::Options::VertexNormal : OpenMesh::IO::Options::Default;
+  OpenMesh::IO::Options options =
+      withNormals ? OpenMesh::IO::Options::VertexNormal : OpenMesh::IO::Options::Default;
   EXPECT_TRUE(OpenMesh::IO::read_mesh(mesh, path, options)) << path;
   EXPECT_EQ(options.check(OpenMesh::IO::Options::VertexNormal), withNormals) << path;
   return mesh;
@@ -162,7 +163,8 @@ std::vector<T> accessorData(const tinygltf::Model& model, int accessorIndex) {
   const std::size_t components = accessor.type == TINYGLTF_TYPE_VEC3 ? 3 : 1;
   std::vector<T> values(accessor.count * components);
   EXPECT_LE(accessor.byteOffset + values.size() * sizeof(T), view.byteLength);
-  std::memcpy(values.data(), model.buffers.at(view.buffer).data.data() + view.byteOffset + accessor.byteOffset,
+  std::memcpy(values.data(),
+              model.buffers.at(view.buffer).data.data() + view.byteOffset + accessor.byteOffset,
               values.size() * sizeof(T));
   return values;
 }
@@ -228,7 +230,8 @@ void checkPlainGlb(const SurfaceMesh& surface, const std::string& file, int expe
     read = accessorData<std::uint32_t>(model, primitive.indices);
   }
   for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
-    for (int c = 0; c < 3; ++c) ASSERT_EQ(read[3 * f + c], std::uint32_t(surface.triangles[f][c])) << "face " << f;
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(read[3 * f + c], std::uint32_t(surface.triangles[f][c])) << "face " << f;
   }
 }
 
@@ -258,7 +261,8 @@ TEST_F(ExportTest, GlbNormalisesNormals) {
 void expectError(const Status& status, ErrorCode code, const std::vector<std::string>& mentions) {
   ASSERT_FALSE(status.isOk());
   EXPECT_EQ(status.code(), code) << status.toString();
-  for (const std::string& m : mentions) EXPECT_NE(status.message().find(m), std::string::npos) << status.toString();
+  for (const std::string& m : mentions)
+    EXPECT_NE(status.message().find(m), std::string::npos) << status.toString();
 }
 
 TEST_F(ExportTest, RejectsUnknownExtensionListingSupportedOnes) {
@@ -282,7 +286,8 @@ TEST_F(ExportTest, RejectsDracoOptionsOutOfRange) {
   ExportOptions options;
   options.draco = true;
   options.dracoPositionBits = 0;
-  expectError(exportMesh(surface, path("a.glb"), options), ErrorCode::kInvalidArgument, {"dracoPositionBits"});
+  expectError(exportMesh(surface, path("a.glb"), options), ErrorCode::kInvalidArgument,
+              {"dracoPositionBits"});
   options = {};
   options.draco = true;
   options.dracoNormalBits = 31;
@@ -290,7 +295,8 @@ TEST_F(ExportTest, RejectsDracoOptionsOutOfRange) {
   options = {};
   options.draco = true;
   options.dracoCompressionLevel = 11;
-  expectError(exportMesh(surface, path("a.glb"), options), ErrorCode::kInvalidArgument, {"dracoCompressionLevel"});
+  expectError(exportMesh(surface, path("a.glb"), options), ErrorCode::kInvalidArgument,
+              {"dracoCompressionLevel"});
   EXPECT_FALSE(fs::exists(path("a.glb")));
 }
 
@@ -335,7 +341,8 @@ TEST_F(ExportTest, ReportsUnwritablePath) {
   }
   ExportOptions draco;
   draco.draco = true;
-  expectError(exportMesh(surface, path("missing-dir/d.glb"), draco), ErrorCode::kIoError, {"missing-dir/d.glb"});
+  expectError(exportMesh(surface, path("missing-dir/d.glb"), draco), ErrorCode::kIoError,
+              {"missing-dir/d.glb"});
 }
 
 }  // namespace

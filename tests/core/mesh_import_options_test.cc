@@ -100,8 +100,10 @@ TEST(ImportPrecision, TextFormatsKeepEveryDigitOfADouble) {
   std::istringstream lines(vertices);
   for (std::string line; std::getline(lines, line);) obj += "v " + line + "\n";
   off += vertices;
-  ply = "ply\nformat ascii 1.0\nelement vertex 7\nproperty double x\nproperty double y\nproperty double z\n"
-        "element face 6\nproperty list uchar int vertex_indices\nend_header\n" + vertices;
+  ply =
+      "ply\nformat ascii 1.0\nelement vertex 7\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 6\nproperty list uchar int vertex_indices\nend_header\n" +
+      vertices;
   for (int k = 0; k < 6; ++k) {
     const int a = 1 + k, b = 1 + (k + 1) % 6;
     obj += "f 1 " + std::to_string(a + 1) + " " + std::to_string(b + 1) + "\n";
@@ -183,9 +185,11 @@ TEST(ImportDropUnused, RefusedWithoutTheOptionNamingIt) {
   auto refused = importMeshFromBytes(kTetraWithUnused, ".obj", "unused.obj");
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidMesh);
-  EXPECT_NE(refused.status().message().find("unused.obj: vertex 2 (7, 7, 7): not used by any face"), std::string::npos)
+  EXPECT_NE(refused.status().message().find("unused.obj: vertex 2 (7, 7, 7): not used by any face"),
+            std::string::npos)
       << refused.status().message();
-  EXPECT_NE(refused.status().message().find("--drop-unused"), std::string::npos) << refused.status().message();
+  EXPECT_NE(refused.status().message().find("--drop-unused"), std::string::npos)
+      << refused.status().message();
 }
 
 TEST(ImportDropUnused, DropsRenumbersAndRemapsTagsByTheFilesNumbers) {
@@ -197,7 +201,8 @@ TEST(ImportDropUnused, DropsRenumbersAndRemapsTagsByTheFilesNumbers) {
   EXPECT_EQ(report.renumbering.newIndex, (std::vector<int>{0, 1, -1, 2, 3}));
   EXPECT_EQ(describeImport(report, options), "dropped 1 unused vertex (--drop-unused)");
   BaseMesh& mesh = imported->mesh;
-  EXPECT_EQ(mesh.positions(), (std::vector<Vec3>{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}));
+  EXPECT_EQ(mesh.positions(),
+            (std::vector<Vec3>{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}));
 
   // Tags name the file's vertices: "crease 3 4" is the edge (0,1,0)-(0,0,1),
   // "corner 1" the vertex (1,0,0).
@@ -215,12 +220,14 @@ TEST(ImportDropUnused, DropsRenumbersAndRemapsTagsByTheFilesNumbers) {
   }
   EXPECT_EQ(creases, 1);
   for (auto v : m.vertices()) {
-    EXPECT_EQ(mesh.vertexSharpness(v), Vec3(m.point(v)) == Vec3(1, 0, 0) ? 2.5f : 0.0f) << "vertex " << v.idx();
+    EXPECT_EQ(mesh.vertexSharpness(v), Vec3(m.point(v)) == Vec3(1, 0, 0) ? 2.5f : 0.0f)
+        << "vertex " << v.idx();
   }
   // A tag on the dropped vertex, or beyond the file's vertices: named.
   BaseMesh copy = mesh;
   const Status dropped = applyTagFile(writeFile(dir, "d.tags", "corner 2 1\n"), copy, report.renumbering);
-  EXPECT_NE(dropped.message().find("d.tags:1: corner 2: vertex 2 was dropped"), std::string::npos) << dropped.message();
+  EXPECT_NE(dropped.message().find("d.tags:1: corner 2: vertex 2 was dropped"), std::string::npos)
+      << dropped.message();
   const Status missing = applyTagFile(writeFile(dir, "m.tags", "corner 5 1\n"), copy, report.renumbering);
   EXPECT_NE(missing.message().find("vertex 5 does not exist (the file has 5 vertices)"), std::string::npos)
       << missing.message();
@@ -243,7 +250,9 @@ std::vector<VertexRule> rulesAtLevel0(const BaseMesh& mesh) {
   return std::vector<VertexRule>(level.vertexRules.begin(), level.vertexRules.begin() + level.numVertices);
 }
 
-int infiniteCreases(const BaseMesh& mesh) { return mesh.tagCounts().infiniteCreases; }
+int infiniteCreases(const BaseMesh& mesh) {
+  return mesh.tagCounts().infiniteCreases;
+}
 
 TEST(ImportCreaseAngle, CubeHasTwelveSharpEdgesAt30DegreesAndNoneAt100) {
   const std::string cube = testing::sourceTestDataPath("good/cube_quads.obj");
@@ -268,7 +277,8 @@ TEST(ImportCreaseAngle, CubeHasTwelveSharpEdgesAt30DegreesAndNoneAt100) {
   EXPECT_EQ(at100->report.edgesCreasedByAngle, 0);
   EXPECT_EQ(infiniteCreases(at100->mesh), 0);
   for (VertexRule rule : rulesAtLevel0(at100->mesh)) EXPECT_EQ(rule, VertexRule::kSmooth);
-  EXPECT_EQ(describeImport(at100->report, {.creaseAngle = 100}), "creased 0 edges sharper than 100 degrees (--crease-angle)");
+  EXPECT_EQ(describeImport(at100->report, {.creaseAngle = 100}),
+            "creased 0 edges sharper than 100 degrees (--crease-angle)");
 }
 
 // A closed 16-sided prism with polygon caps: neighbouring sides meet at
@@ -296,13 +306,15 @@ std::string prismObj(int sides) {
 
 TEST(ImportCreaseAngle, PrismRimsAreCreasesAndSidesFollowTheAngle) {
   const std::string obj = prismObj(16);
-  auto at30 = importMeshFromBytesWithReport(obj, ".obj", "prism.obj", {.triangulate = true, .creaseAngle = 30});
+  auto at30 =
+      importMeshFromBytesWithReport(obj, ".obj", "prism.obj", {.triangulate = true, .creaseAngle = 30});
   ASSERT_TRUE(at30.isOk()) << at30.status().toString();
   EXPECT_EQ(at30->report.edgesCreasedByAngle, 32);  // the two rims
   // Every vertex is on a rim, on two sharp edges: the crease rule.
   for (VertexRule rule : rulesAtLevel0(at30->mesh)) EXPECT_EQ(rule, VertexRule::kCrease);
 
-  auto at20 = importMeshFromBytesWithReport(obj, ".obj", "prism.obj", {.triangulate = true, .creaseAngle = 20});
+  auto at20 =
+      importMeshFromBytesWithReport(obj, ".obj", "prism.obj", {.triangulate = true, .creaseAngle = 20});
   ASSERT_TRUE(at20.isOk()) << at20.status().toString();
   EXPECT_EQ(at20->report.edgesCreasedByAngle, 48);  // rims and the 16 side edges
   for (VertexRule rule : rulesAtLevel0(at20->mesh)) EXPECT_EQ(rule, VertexRule::kCorner);
@@ -312,7 +324,8 @@ TEST(ImportCreaseAngle, TriangulationDiagonalsAreNeverCreased) {
   // One quad folded along its diagonal 1-3 by more than 30 degrees: the
   // diagonal is not an edge of the file, and the file has only boundary edges.
   const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0.9\nv 0 1 0\nf 1 2 3 4\n";
-  auto mesh = importMeshFromBytesWithReport(quad, ".obj", "fold.obj", {.triangulate = true, .creaseAngle = 30});
+  auto mesh =
+      importMeshFromBytesWithReport(quad, ".obj", "fold.obj", {.triangulate = true, .creaseAngle = 30});
   ASSERT_TRUE(mesh.isOk()) << mesh.status().toString();
   const auto faces = mesh->mesh.faceVertexIndices();
   const std::vector<Vec3> p = mesh->mesh.positions();
@@ -365,8 +378,8 @@ TEST(ImportDraco, ReadsItsOwnDracoExportWithinTheQuantization) {
       }
       worst = std::max(worst, best);
     }
-    std::cout << "[ draco    ] fandisk " << bits << "-bit: worst coordinate error " << worst << " (bound " << bound
-              << ")\n";
+    std::cout << "[ draco    ] fandisk " << bits << "-bit: worst coordinate error " << worst << " (bound "
+              << bound << ")\n";
     EXPECT_LE(worst, bound) << bits << " bits";
     EXPECT_GT(worst, 0) << "quantized positions cannot all be exact";
   }

@@ -106,7 +106,8 @@ TEST(MeshImport, GltfWeldsSplitVerticesAndAppliesExtrasTags) {
 }
 
 TEST(MeshImport, TriangulateSplitsQuads) {
-  expectImportError("bad/quad.obj", ErrorCode::kUnsupported, {"face 0 (vertices 0, 3, 2, 1)", "--triangulate"});
+  expectImportError("bad/quad.obj", ErrorCode::kUnsupported,
+                    {"face 0 (vertices 0, 3, 2, 1)", "--triangulate"});
   auto mesh = importMesh(sourceTestDataPath("good/cube_quads.obj"), ImportOptions{.triangulate = true});
   ASSERT_TRUE(mesh.isOk()) << mesh.status().toString();
   EXPECT_EQ(mesh->numFaces(), 12);
@@ -141,11 +142,14 @@ TEST(MeshImportErrors, NonFiniteCoordinates) {
 TEST(MeshImportErrors, BadIndices) {
   expectImportError("bad/out_of_range.obj", ErrorCode::kInvalidMesh,
                     {"face 2 (vertices 1, 2, 8)", "vertex index 8 is out of range", "4 vertices"});
-  expectImportError("bad/out_of_range.off", ErrorCode::kInvalidMesh, {"face 2", "vertex index 7 is out of range"});
+  expectImportError("bad/out_of_range.off", ErrorCode::kInvalidMesh,
+                    {"face 2", "vertex index 7 is out of range"});
   expectImportError("bad/negative_index.off", ErrorCode::kInvalidMesh, {"face 1", "vertex index -1"});
-  expectImportError("bad/zero_index.obj", ErrorCode::kParseError, {":6:", "face 1", "bad vertex reference '0'"});
+  expectImportError("bad/zero_index.obj", ErrorCode::kParseError,
+                    {":6:", "face 1", "bad vertex reference '0'"});
   expectImportError("bad/bad_token.obj", ErrorCode::kParseError, {":7:", "face 2", "'4x'"});
-  expectImportError("bad/short_vertex.obj", ErrorCode::kParseError, {":2:", "vertex 1", "expected 3 coordinates"});
+  expectImportError("bad/short_vertex.obj", ErrorCode::kParseError,
+                    {":2:", "vertex 1", "expected 3 coordinates"});
 }
 
 TEST(MeshImportErrors, DegenerateAndDuplicateFaces) {
@@ -163,9 +167,9 @@ TEST(MeshImportErrors, DegenerateAndDuplicateFaces) {
 TEST(MeshImportErrors, NonManifold) {
   expectImportError("bad/non_manifold_edge.obj", ErrorCode::kInvalidMesh,
                     {"edge 0-1", "non-manifold, used by 3 faces", "face 0", "face 1", "face 2"});
-  expectImportError("bad/inconsistent_orientation.obj", ErrorCode::kInvalidMesh,
-                    {"edge 0-2", "inconsistent orientation", "face 0 (vertices 0, 2, 1)",
-                     "face 3 (vertices 0, 2, 3)"});
+  expectImportError(
+      "bad/inconsistent_orientation.obj", ErrorCode::kInvalidMesh,
+      {"edge 0-2", "inconsistent orientation", "face 0 (vertices 0, 2, 1)", "face 3 (vertices 0, 2, 3)"});
   expectImportError("bad/non_manifold_vertex.obj", ErrorCode::kInvalidMesh,
                     {"vertex 0", "more than one fan"});
   expectImportError("bad/isolated_vertex.obj", ErrorCode::kInvalidMesh, {"vertex 4", "not used by any face"});
@@ -177,7 +181,8 @@ TEST(MeshImportErrors, EmptyMeshes) {
 }
 
 TEST(MeshImportErrors, TruncatedFiles) {
-  expectImportError("bad/truncated.off", ErrorCode::kParseError, {":8:", "face 1", "expected 3 vertex indices"});
+  expectImportError("bad/truncated.off", ErrorCode::kParseError,
+                    {":8:", "face 1", "expected 3 vertex indices"});
   expectImportError("bad/truncated.ply", ErrorCode::kParseError, {"truncated"});
   expectImportError("bad/truncated_header.ply", ErrorCode::kParseError, {"header", "end_header"});
   expectImportError("bad/truncated.stl", ErrorCode::kParseError, {"truncated", "endsolid"});

@@ -12,7 +12,8 @@ namespace {
 PolygonSoup tetra() {
   PolygonSoup soup;
   soup.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-  for (const auto& f : std::vector<std::vector<int>>{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}) soup.addFace(f);
+  for (const auto& f : std::vector<std::vector<int>>{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}})
+    soup.addFace(f);
   return soup;
 }
 
@@ -55,7 +56,8 @@ TEST(MeshValidation, RejectsEmpty) {
 TEST(MeshValidation, RejectsNonFiniteCoordinates) {
   PolygonSoup soup = tetra();
   soup.points[2][1] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(errorOf(soup).find("soup.obj: vertex 2 (0, nan, 0): coordinate is NaN"), std::string::npos) << errorOf(soup);
+  EXPECT_NE(errorOf(soup).find("soup.obj: vertex 2 (0, nan, 0): coordinate is NaN"), std::string::npos)
+      << errorOf(soup);
   soup.points[2][1] = -std::numeric_limits<double>::infinity();
   EXPECT_NE(errorOf(soup).find("vertex 2 (0, -inf, 0): coordinate is infinite"), std::string::npos);
 }
@@ -65,7 +67,8 @@ TEST(MeshValidation, RejectsBadIndices) {
   EXPECT_EQ(errorOf(soup),
             "soup.obj: face 1 (vertices 0, 1, 4): vertex index 4 is out of range (the mesh has 4 vertices)");
   soup = withFaces(tetra().points, {{0, -2, 1}});
-  EXPECT_NE(errorOf(soup).find("face 0 (vertices 0, -2, 1): vertex index -2 is out of range"), std::string::npos);
+  EXPECT_NE(errorOf(soup).find("face 0 (vertices 0, -2, 1): vertex index -2 is out of range"),
+            std::string::npos);
   soup = withFaces(tetra().points, {{0, 1}});
   EXPECT_NE(errorOf(soup).find("face 0 (vertices 0, 1): has 2 vertices"), std::string::npos);
 }
@@ -90,22 +93,25 @@ TEST(MeshValidation, RejectsDegenerateFaces) {
   EXPECT_EQ(errorOf(withFaces(tetra().points, {{0, 2, 1}, {1, 3, 1}})),
             "soup.obj: face 1 (vertices 1, 3, 1): degenerate, repeats vertex 1");
   // Collinear corners: zero area relative to the bounding box.
-  PolygonSoup line = withFaces({Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(0, 1, 0)}, {{0, 1, 3}, {0, 2, 1}});
+  PolygonSoup line =
+      withFaces({Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(0, 1, 0)}, {{0, 1, 3}, {0, 2, 1}});
   EXPECT_NE(errorOf(line).find("face 1 (vertices 0, 2, 1): degenerate, zero area"), std::string::npos)
       << errorOf(line);
   // A quad with a corner on a straight side is a triangle with an extra
   // corner: its triangulation never uses the three collinear corners (a fan
   // from corner 0 did, and was refused for it).
-  PolygonSoup flatQuad = withFaces({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(1, 1, 0)}, {{0, 1, 2, 3}});
+  PolygonSoup flatQuad =
+      withFaces({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(1, 1, 0)}, {{0, 1, 2, 3}});
   auto split = buildBaseMesh(flatQuad, BuildOptions{.triangulate = true}, "soup.obj");
   ASSERT_TRUE(split.isOk()) << split.status().toString();
   const std::vector<std::array<int, 3>> expected = {{0, 1, 3}, {1, 2, 3}};
   EXPECT_EQ(split->faceVertexIndices(), expected);
   // A polygon of collinear corners has no triangulation: refused, named.
   PolygonSoup line4 = withFaces({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(3, 0, 0)}, {{0, 1, 2, 3}});
-  EXPECT_EQ(errorOf(line4, BuildOptions{.triangulate = true}),
-            "soup.obj: face 0 (vertices 0, 1, 2, 3): cannot be triangulated: degenerate, no area (its corners are "
-            "collinear)");
+  EXPECT_EQ(
+      errorOf(line4, BuildOptions{.triangulate = true}),
+      "soup.obj: face 0 (vertices 0, 1, 2, 3): cannot be triangulated: degenerate, no area (its corners are "
+      "collinear)");
 }
 
 TEST(MeshValidation, RejectsDuplicateFacesInAnyRotationOrOrientation) {
@@ -128,27 +134,31 @@ TEST(MeshValidation, RejectsNonManifoldEdges) {
 }
 
 TEST(MeshValidation, RejectsInconsistentOrientationNamingBothFaces) {
-  PolygonSoup soup = withFaces({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}, {{0, 1, 2}, {1, 2, 3}});
-  EXPECT_EQ(errorOf(soup),
-            "soup.obj: edge 1-2: inconsistent orientation, face 0 (vertices 0, 1, 2) and face 1 (vertices 1, 2, 3) "
-            "both run from vertex 1 (flip one of them)");
+  PolygonSoup soup =
+      withFaces({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}, {{0, 1, 2}, {1, 2, 3}});
+  EXPECT_EQ(
+      errorOf(soup),
+      "soup.obj: edge 1-2: inconsistent orientation, face 0 (vertices 0, 1, 2) and face 1 (vertices 1, 2, 3) "
+      "both run from vertex 1 (flip one of them)");
 }
 
 TEST(MeshValidation, RejectsNonManifoldVertex) {
   // Two triangles sharing only vertex 0 (a bow tie).
-  PolygonSoup bowTie = withFaces({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(-1, 0, 0), Vec3(-1, -1, 0)},
-                                 {{0, 1, 2}, {0, 3, 4}});
+  PolygonSoup bowTie = withFaces(
+      {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(-1, 0, 0), Vec3(-1, -1, 0)}, {{0, 1, 2}, {0, 3, 4}});
   EXPECT_EQ(errorOf(bowTie),
-            "soup.obj: vertex 0: non-manifold, its faces form more than one fan (e.g. face 0 (vertices 0, 1, 2) and "
+            "soup.obj: vertex 0: non-manifold, its faces form more than one fan (e.g. face 0 (vertices 0, 1, "
+            "2) and "
             "face 1 (vertices 0, 3, 4) touch only at this vertex)");
 }
 
 TEST(MeshValidation, RejectsIsolatedVertex) {
   PolygonSoup soup = tetra();
   soup.points.push_back(Vec3(5, 5, 5));
-  EXPECT_EQ(errorOf(soup),
-            "soup.obj: vertex 4 (5, 5, 5): not used by any face (isolated vertices are not accepted; --drop-unused "
-            "drops them)");
+  EXPECT_EQ(
+      errorOf(soup),
+      "soup.obj: vertex 4 (5, 5, 5): not used by any face (isolated vertices are not accepted; --drop-unused "
+      "drops them)");
 }
 
 }  // namespace

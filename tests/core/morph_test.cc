@@ -38,7 +38,8 @@ std::vector<Document> twoKeys() {
   const testing::TestMesh mesh = testing::withJitter(testing::torus(8, 6), 0.05, 31);
   auto a = Document::create(mesh.topology, mesh.points, {.maxLevel = kLevel});
   std::vector<Vec3> moved = mesh.points;
-  for (size_t v = 0; v < moved.size(); ++v) moved[v] += Vec3(0.3 * std::sin(double(v)), 0.2, 0.1 * std::cos(3.0 * v));
+  for (size_t v = 0; v < moved.size(); ++v)
+    moved[v] += Vec3(0.3 * std::sin(double(v)), 0.2, 0.1 * std::cos(3.0 * v));
   auto b = Document::create(mesh.topology, moved, {.maxLevel = kLevel});
   EXPECT_TRUE(a.isOk() && b.isOk());
   const VertexId tagged(0, 5), fine(2, 100);
@@ -115,7 +116,8 @@ TEST(Morph, KochanekBartelsPathsFollowTheirDefinition) {
     for (int v : {0, 1, 2}) EXPECT_EQ(morph->pointAt(v, k / 3.0), P(k, v)) << "key " << k;
   }
   // Catmull-Rom (T = C = B = 0) through keys 0..3 at the middle of segment 1..2.
-  const Vec3 cr = 0.5 * (2 * P(1, 0) + 0.5 * (P(2, 0) - P(0, 0)) + 0.25 * (2 * P(0, 0) - 5 * P(1, 0) + 4 * P(2, 0) - P(3, 0)) +
+  const Vec3 cr = 0.5 * (2 * P(1, 0) + 0.5 * (P(2, 0) - P(0, 0)) +
+                         0.25 * (2 * P(0, 0) - 5 * P(1, 0) + 4 * P(2, 0) - P(3, 0)) +
                          0.125 * (-1 * P(0, 0) + 3 * P(1, 0) - 3 * P(2, 0) + P(3, 0)));
   EXPECT_LE((morph->pointAt(0, 0.5) - cr).norm(), 1e-14);
   // Tension 1: zero tangents, so the middle is the mean of the two keys.
@@ -134,8 +136,10 @@ TEST(Morph, KeysThatCannotBeMorphedAreRefusedSayingWhere) {
   auto b = *Document::create(turned, mesh.points, {.maxLevel = 3});
   auto refused = Morph::create({a, b});
   ASSERT_FALSE(refused.isOk());
-  EXPECT_NE(refused.status().message().find("triangle 7 is ("), std::string::npos) << refused.status().message();
-  EXPECT_NE(refused.status().message().find("in key 0 but ("), std::string::npos) << refused.status().message();
+  EXPECT_NE(refused.status().message().find("triangle 7 is ("), std::string::npos)
+      << refused.status().message();
+  EXPECT_NE(refused.status().message().find("in key 0 but ("), std::string::npos)
+      << refused.status().message();
   const testing::TestMesh other = testing::torus(6, 5);
   refused = Morph::create({a, *Document::create(other.topology, other.points, {.maxLevel = 3})});
   ASSERT_FALSE(refused.isOk());
@@ -152,7 +156,8 @@ TEST(Morph, KeysThatCannotBeMorphedAreRefusedSayingWhere) {
   ASSERT_TRUE(morph.isOk());
   auto at = morph->at(0.5);
   ASSERT_FALSE(at.isOk());
-  EXPECT_NE(at.status().message().find("v1:3 has an interpolating tag in key 1 but not in key 0"), std::string::npos)
+  EXPECT_NE(at.status().message().find("v1:3 has an interpolating tag in key 1 but not in key 0"),
+            std::string::npos)
       << at.status().message();
 }
 

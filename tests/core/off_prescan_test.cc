@@ -12,14 +12,17 @@
 namespace tessera {
 namespace {
 
-const std::string kFuzzInput = "OFF\n4 4 0\n0 0 0\n1 0 80\n\n 0 2 1\n3 0  3\n3 1 2 0  60000000000000000000000000000000000000000000001\n3  0 1 3\n3 91 2 3\n3 0 3 2\n";
+const std::string kFuzzInput =
+    "OFF\n4 4 0\n0 0 0\n1 0 80\n\n 0 2 1\n3 0  3\n3 1 2 0  "
+    "60000000000000000000000000000000000000000000001\n3  0 1 3\n3 91 2 3\n3 0 3 2\n";
 
 TEST(OffPrescan, FaceColoursNeverReachOpenMesh) {
   // The colour is a number and is ignored; face 2 names vertex 91 of 4.
   auto mesh = importMeshFromBytes(kFuzzInput, ".off", "oom.off");
   ASSERT_FALSE(mesh.isOk());
-  EXPECT_NE(mesh.status().message().find("oom.off: face 2 (vertices 91, 2, 3): vertex index 91 is out of range"),
-            std::string::npos)
+  EXPECT_NE(
+      mesh.status().message().find("oom.off: face 2 (vertices 91, 2, 3): vertex index 91 is out of range"),
+      std::string::npos)
       << mesh.status().message();
 }
 

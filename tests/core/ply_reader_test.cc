@@ -26,7 +26,8 @@ TEST(PlyReader, SecondFaceElementIsRefused) {
       "0 0 0\n1 0 0\n0 1 0\n0.5\n3 0 1 2\n";
   auto mesh = importMeshFromBytes(ply, ".ply", "twice.ply");
   ASSERT_FALSE(mesh.isOk());
-  EXPECT_NE(mesh.status().message().find("twice.ply: header: element 'face' is declared twice"), std::string::npos)
+  EXPECT_NE(mesh.status().message().find("twice.ply: header: element 'face' is declared twice"),
+            std::string::npos)
       << mesh.status().message();
 }
 
@@ -35,7 +36,8 @@ TEST(PlyReader, TheFuzzersInputIsRefusedByName) {
   ASSERT_FALSE(bytes.empty());
   auto mesh = importMeshFromBytes(bytes, ".ply", "nan.ply");
   ASSERT_FALSE(mesh.isOk());
-  EXPECT_NE(mesh.status().message().find("nan.ply: header: element 'face' is declared twice"), std::string::npos)
+  EXPECT_NE(mesh.status().message().find("nan.ply: header: element 'face' is declared twice"),
+            std::string::npos)
       << mesh.status().message();
 }
 
@@ -45,7 +47,8 @@ TEST(PlyReader, TheFuzzersInputIsRefusedByName) {
 // nothing bounded the loop over them: it ran 139 s of CPU before the fix.
 // Now such an element is skipped and the file is read as what it holds.
 TEST(PlyReader, AnElementWithoutPropertiesIsSkippedAtOnce) {
-  const std::string bytes = readBytes(testing::sourceTestDataPath("bad/fuzz_ply_empty_element_555555555.ply"));
+  const std::string bytes =
+      readBytes(testing::sourceTestDataPath("bad/fuzz_ply_empty_element_555555555.ply"));
   ASSERT_FALSE(bytes.empty());
   auto mesh = importMeshFromBytes(bytes, ".ply", "empty.ply");
   if (!mesh.isOk()) {

@@ -81,9 +81,11 @@ void expectExactCover(const std::vector<Vec3>& polygon) {
   int insideSamples = 0;
   for (int i = 0; i < 97; ++i) {
     for (int j = 0; j < 89; ++j) {
-      const Vec3 q(lo[0] + (hi[0] - lo[0]) * (i + 0.5123) / 97, lo[1] + (hi[1] - lo[1]) * (j + 0.4871) / 89, 0);
+      const Vec3 q(lo[0] + (hi[0] - lo[0]) * (i + 0.5123) / 97, lo[1] + (hi[1] - lo[1]) * (j + 0.4871) / 89,
+                   0);
       int covering = 0;
-      for (const auto& t : triangles) covering += strictlyInside(q, polygon[t[0]], polygon[t[1]], polygon[t[2]]);
+      for (const auto& t : triangles)
+        covering += strictlyInside(q, polygon[t[0]], polygon[t[1]], polygon[t[2]]);
       const bool inside = insidePolygon(q, polygon);
       insideSamples += inside;
       EXPECT_EQ(covering, inside ? 1 : 0) << "sample (" << q[0] << ", " << q[1] << ")";
@@ -173,17 +175,18 @@ TEST(PolygonTriangulation, RefusesSelfIntersectingAndDegeneratePolygonsNamingThe
   auto refused = importMeshFromBytes(star, ".obj", "star.obj", {.triangulate = true});
   ASSERT_FALSE(refused.isOk());
   EXPECT_EQ(refused.status().code(), ErrorCode::kInvalidMesh);
-  EXPECT_NE(refused.status().message().find("star.obj: face 0 (vertices 0, 2, 4, 1, 3): cannot be triangulated: "
-                                            "self-intersecting"),
-            std::string::npos)
+  EXPECT_NE(
+      refused.status().message().find("star.obj: face 0 (vertices 0, 2, 4, 1, 3): cannot be triangulated: "
+                                      "self-intersecting"),
+      std::string::npos)
       << refused.status().message();
   // Collinear corners: no area.
   const std::vector<Vec3> line = {Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3)};
   const Status flat = triangulatePolygon(line, std::vector<int>{0, 1, 2, 3}, out);
   EXPECT_NE(flat.message().find("degenerate, no area"), std::string::npos) << flat.message();
   // A corner that doubles back along its edge (a zero-width spike).
-  const std::vector<Vec3> spike = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0), Vec3(1, 2, 0), Vec3(1, 3, 0),
-                                   Vec3(1, 2.5, 0), Vec3(0, 2, 0)};
+  const std::vector<Vec3> spike = {Vec3(0, 0, 0), Vec3(2, 0, 0),   Vec3(2, 2, 0), Vec3(1, 2, 0),
+                                   Vec3(1, 3, 0), Vec3(1, 2.5, 0), Vec3(0, 2, 0)};
   const Status folded = triangulatePolygon(spike, std::vector<int>{0, 1, 2, 3, 4, 5, 6}, out);
   EXPECT_EQ(folded.code(), ErrorCode::kInvalidMesh) << folded.toString();
   EXPECT_TRUE(out.empty());

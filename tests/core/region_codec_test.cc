@@ -98,7 +98,9 @@ std::vector<RegionMesh> splitIntoSectors(const Surface& s, int count) {
   return regions;
 }
 
-RegionMesh wholeSurface(const Surface& s) { return {s.positions, s.normals, s.ids, s.triangles}; }
+RegionMesh wholeSurface(const Surface& s) {
+  return {s.positions, s.normals, s.ids, s.triangles};
+}
 
 RegionHeader headerFor(const Surface& s, uint64_t regionId) {
   RegionHeader header;
@@ -166,8 +168,8 @@ TEST(RegionCodec, RoundTripKeepsHeaderIdsAndTriangles) {
     for (const Vec3& n : decoded.normals) EXPECT_NEAR(n.norm(), 1.0, 1e-12);
     if (level == kDefaultRegionCompressionLevel) {
       std::cout << "[ measured ] " << region.triangles.size() << " triangles: position error " << position
-                << " = " << position / diagonal << " of the diagonal (bound " << header.grid.maxPositionError()
-                << "), normal error " << normal << " degrees\n";
+                << " = " << position / diagonal << " of the diagonal (bound "
+                << header.grid.maxPositionError() << "), normal error " << normal << " degrees\n";
     }
   }
 }
@@ -251,7 +253,8 @@ TEST(RegionCodec, SharedBordersDecodeBitIdenticallyAndTheUnionIsCrackFree) {
       }
     }
     EXPECT_EQ(triangles, s.triangles.size());
-    const size_t shared2 = std::count_if(regionsById.begin(), regionsById.end(), [](auto& e) { return e.second > 1; });
+    const size_t shared2 =
+        std::count_if(regionsById.begin(), regionsById.end(), [](auto& e) { return e.second > 1; });
     EXPECT_GT(shared2, 0u);
     EXPECT_GE(borderChecks, shared2);
     // Closed, manifold and consistently oriented: every directed edge once,
@@ -278,12 +281,14 @@ TEST(RegionCodec, DecodedPositionsMatchAPlainDracoDecoder) {
   draco::Decoder decoder;
   auto plain = decoder.DecodeMeshFromBuffer(&buffer);
   ASSERT_TRUE(plain.ok());
-  const draco::PointAttribute* positions = plain.value()->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  const draco::PointAttribute* positions =
+      plain.value()->GetNamedAttribute(draco::GeometryAttribute::POSITION);
   ASSERT_EQ(plain.value()->num_points(), decoded->second.positions.size());
   for (draco::PointIndex p(0); p < plain.value()->num_points(); ++p) {
     float value[3];
     positions->GetValue(positions->mapped_index(p), value);
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(static_cast<double>(value[k]), decoded->second.positions[p.value()][k]);
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(static_cast<double>(value[k]), decoded->second.positions[p.value()][k]);
   }
 }
 
@@ -294,7 +299,8 @@ RegionMesh pointsIn(const Vec3& lo, const Vec3& hi, int count, uint32_t seed) {
   RegionMesh m;
   for (int i = 0; i < count; ++i) {
     Vec3 p;
-    for (int k = 0; k < 3; ++k) p[k] = i < 8 ? ((i >> k) & 1 ? hi[k] : lo[k]) : lo[k] + (hi[k] - lo[k]) * unit(rng);
+    for (int k = 0; k < 3; ++k)
+      p[k] = i < 8 ? ((i >> k) & 1 ? hi[k] : lo[k]) : lo[k] + (hi[k] - lo[k]) * unit(rng);
     m.positions.push_back(p);
     m.normals.push_back(Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) + 0.1).normalized());
     m.vertexIds.push_back(VertexId(2, i).packed());
@@ -308,9 +314,11 @@ TEST(RegionCodec, GridBitsMeetTheErrorBoundOnDecodedData) {
     Vec3 lo, hi;
   };
   const Box boxes[] = {
-      {{0, 0, 0}, {1, 1, 1}},          {{-50, -50, -0.005}, {50, 50, 0.005}},
-      {{100, 100, 100}, {101, 101, 101}}, {{-3e-4, 1e-4, 0}, {7e-4, 2e-4, 5e-4}},
-      {{-2, -1, 0}, {3, 0.5, 0}},      // flat: zero extent on z
+      {{0, 0, 0}, {1, 1, 1}},
+      {{-50, -50, -0.005}, {50, 50, 0.005}},
+      {{100, 100, 100}, {101, 101, 101}},
+      {{-3e-4, 1e-4, 0}, {7e-4, 2e-4, 5e-4}},
+      {{-2, -1, 0}, {3, 0.5, 0}},  // flat: zero extent on z
   };
   for (const Box& box : boxes) {
     auto grid = gridFor(box.lo, box.hi);
@@ -338,10 +346,9 @@ TEST(RegionCodec, GridBitsMeetTheErrorBoundOnDecodedData) {
   auto far = gridFor({1e4, 1e4, 1e4}, {1e4 + 1, 1e4 + 1, 1e4 + 1});
   ASSERT_FALSE(far.isOk());
   EXPECT_NE(far.status().message().find("float32"), std::string::npos) << far.status().toString();
-  for (const auto& [lo, hi, fraction] : {std::tuple{Vec3(0, 0, 0), Vec3(0, 0, 0), 1e-4},
-                                         std::tuple{Vec3(1, 0, 0), Vec3(0, 1, 1), 1e-4},
-                                         std::tuple{Vec3(0, 0, 0), Vec3(NAN, 1, 1), 1e-4},
-                                         std::tuple{Vec3(0, 0, 0), Vec3(1, 1, 1), 0.0}}) {
+  for (const auto& [lo, hi, fraction] :
+       {std::tuple{Vec3(0, 0, 0), Vec3(0, 0, 0), 1e-4}, std::tuple{Vec3(1, 0, 0), Vec3(0, 1, 1), 1e-4},
+        std::tuple{Vec3(0, 0, 0), Vec3(NAN, 1, 1), 1e-4}, std::tuple{Vec3(0, 0, 0), Vec3(1, 1, 1), 0.0}}) {
     EXPECT_EQ(gridFor(lo, hi, fraction).status().code(), ErrorCode::kInvalidArgument);
   }
 }
@@ -392,8 +399,8 @@ TEST(RegionCodec, RejectsInvalidInputWithClearErrors) {
   const RegionHeader header = headerFor(s, 77);
   const RegionMesh good = wholeSurface(s);
   ASSERT_TRUE(encodeStatus(header, good).isOk());
-  const auto expectError = [&](const RegionHeader& h, const RegionMesh& m, ErrorCode code, const std::string& words,
-                               int level = 5) {
+  const auto expectError = [&](const RegionHeader& h, const RegionMesh& m, ErrorCode code,
+                               const std::string& words, int level = 5) {
     const Status status = encodeStatus(h, m, level);
     EXPECT_EQ(status.code(), code) << status.toString();
     EXPECT_NE(status.message().find(words), std::string::npos) << status.toString();
@@ -501,15 +508,16 @@ TEST(RegionCodec, DisplayOnlyRegionsOmitIdsAndKeepTheGeometry) {
   };
   EXPECT_EQ(corners(a->second), corners(b->second));
   EXPECT_LT(thin->size(), full->size());
-  std::cout << "[ measured ] " << region.triangles.size() << " triangles: " << full->size() << " bytes with ids, "
-            << thin->size() << " display-only\n";
+  std::cout << "[ measured ] " << region.triangles.size() << " triangles: " << full->size()
+            << " bytes with ids, " << thin->size() << " display-only\n";
 
   std::string unknownFlag = *thin;
   unknownFlag[6] = 8;  // the flags follow the magic and the version
   refreshRegionChecksum(unknownFlag);
   auto refused = decodeRegion(unknownFlag);
   EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
-  EXPECT_NE(refused.status().message().find("unknown flags 8"), std::string::npos) << refused.status().toString();
+  EXPECT_NE(refused.status().message().find("unknown flags 8"), std::string::npos)
+      << refused.status().toString();
   std::string noFlag = *thin;
   noFlag[6] = 0;  // claims ids the payload does not hold
   refreshRegionChecksum(noFlag);
@@ -583,7 +591,8 @@ TEST(RegionCodec, LayoutIdsRefuseAnotherLayoutAndBadFlags) {
   RegionMesh mesh = decoded->second;
   Status status = adoptLayoutIds(decoded->first, mesh, held, 39);
   EXPECT_EQ(status.code(), ErrorCode::kInvalidArgument);
-  EXPECT_NE(status.message().find("layout 40, the receiver holds layout 39"), std::string::npos) << status.toString();
+  EXPECT_NE(status.message().find("layout 40, the receiver holds layout 39"), std::string::npos)
+      << status.toString();
   status = adoptLayoutIds(decoded->first, mesh, other, 40);
   EXPECT_NE(status.message().find("triangles differ"), std::string::npos) << status.toString();
   EXPECT_TRUE(mesh.vertexIds.empty());
@@ -596,12 +605,14 @@ TEST(RegionCodec, LayoutIdsRefuseAnotherLayoutAndBadFlags) {
   bad.layoutVersion = 43;
   status = encodeRegion(bad, sectors[0]).status();
   EXPECT_EQ(status.code(), ErrorCode::kInvalidArgument);
-  EXPECT_NE(status.message().find("layout version 43 is later than the document version 42"), std::string::npos)
+  EXPECT_NE(status.message().find("layout version 43 is later than the document version 42"),
+            std::string::npos)
       << status.toString();
   bad = header;
   bad.profile.vertexIds = false;
   status = encodeRegion(bad, sectors[0]).status();
-  EXPECT_NE(status.message().find("only in a profile with vertex ids"), std::string::npos) << status.toString();
+  EXPECT_NE(status.message().find("only in a profile with vertex ids"), std::string::npos)
+      << status.toString();
 
   // The decoder refuses two flags at once, a flag that disagrees with the
   // payload, and a layout later than the document.
@@ -637,10 +648,12 @@ TEST(RegionCodec, RejectsEveryTruncation) {
       const auto decoded = decodeRegion(std::string_view(bytes).substr(0, length));
       ASSERT_FALSE(decoded.isOk()) << "length " << length;
       EXPECT_EQ(decoded.status().code(), ErrorCode::kParseError);
-      EXPECT_NE(decoded.status().message().find("truncated"), std::string::npos) << decoded.status().toString();
+      EXPECT_NE(decoded.status().message().find("truncated"), std::string::npos)
+          << decoded.status().toString();
     }
     const auto padded = decodeRegion(bytes + '\0');
-    EXPECT_NE(padded.status().message().find("1 trailing bytes"), std::string::npos) << padded.status().toString();
+    EXPECT_NE(padded.status().message().find("1 trailing bytes"), std::string::npos)
+        << padded.status().toString();
   }
 }
 
@@ -650,19 +663,23 @@ TEST(RegionCodec, RejectsForeignBytesWrongMagicAndWrongVersion) {
   std::memcpy(foreign.data(), "glTF", 4);
   auto decoded = decodeRegion(foreign);
   EXPECT_EQ(decoded.status().code(), ErrorCode::kParseError);
-  EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos) << decoded.status().toString();
+  EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos)
+      << decoded.status().toString();
   // The bare Draco payload is foreign too.
   decoded = decodeRegion(bytes.substr(kRegionHeaderBytes));
-  EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos) << decoded.status().toString();
+  EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos)
+      << decoded.status().toString();
   decoded = decodeRegion(std::string(300, 'x'));
-  EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos) << decoded.status().toString();
+  EXPECT_NE(decoded.status().message().find("not a Tessera region"), std::string::npos)
+      << decoded.status().toString();
 
   std::string future = bytes;
   future[4] = 3;
   refreshRegionChecksum(future);
   decoded = decodeRegion(future);
   EXPECT_EQ(decoded.status().code(), ErrorCode::kUnsupported);
-  EXPECT_NE(decoded.status().message().find("format version 3"), std::string::npos) << decoded.status().toString();
+  EXPECT_NE(decoded.status().message().find("format version 3"), std::string::npos)
+      << decoded.status().toString();
 }
 
 TEST(RegionCodec, RejectsOversizedAndInconsistentCounts) {

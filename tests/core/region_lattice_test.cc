@@ -33,10 +33,14 @@ std::array<Point, 3> childCorners(const std::array<Point, 3>& at, int k) {
   auto mid = [&](int a, int b) { return Point{(at[a][0] + at[b][0]) / 2, (at[a][1] + at[b][1]) / 2}; };
   const Point m0 = mid(0, 1), m1 = mid(1, 2), m2 = mid(2, 0);
   switch (k) {
-    case 0: return {at[0], m0, m2};
-    case 1: return {m0, at[1], m1};
-    case 2: return {m2, m1, at[2]};
-    default: return {m1, m2, m0};
+    case 0:
+      return {at[0], m0, m2};
+    case 1:
+      return {m0, at[1], m1};
+    case 2:
+      return {m2, m1, at[2]};
+    default:
+      return {m1, m2, m0};
   }
 }
 
@@ -66,8 +70,8 @@ void expectLatticeMatchesHierarchy(const testing::TestMesh& mesh, int rootLevel,
         const uint64_t index = h.level(deepest).vertexIds[h.level(deepest).mesh.faceVertices[local][k]];
         const auto id = lattice->idAt(at[k][0], at[k][1]);
         ASSERT_TRUE(id.has_value());
-        ASSERT_EQ(id->index(), index) << mesh.name << " root " << face.toString() << " point (" << at[k][0] << ", "
-                                      << at[k][1] << ")";
+        ASSERT_EQ(id->index(), index)
+            << mesh.name << " root " << face.toString() << " point (" << at[k][0] << ", " << at[k][1] << ")";
         ASSERT_EQ(id->level(), counts.birthLevel(*id));
         ASSERT_EQ(lattice->pointOf(*id), at[k]);
         ++checked;
@@ -167,7 +171,8 @@ TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
     ASSERT_TRUE(grid.isOk());
     size_t bytesAsIds = 0, bytesAsPoints = 0;
     for (const auto& [id, region] : t->regions()) {
-      RegionHeader header{.regionId = id, .documentVersion = 3, .layoutVersion = 2, .profile = c.profile, .grid = *grid};
+      RegionHeader header{
+          .regionId = id, .documentVersion = 3, .layoutVersion = 2, .profile = c.profile, .grid = *grid};
       auto plain = encodeRegion(header, region);
       auto frame = regionFrame(c.doc->hierarchy(), c.doc->counts(), FaceId::fromPacked(id));
       ASSERT_TRUE(frame.isOk()) << frame.status().message();
@@ -179,11 +184,13 @@ TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
       auto decoded = decodeRegion(*lattice);
       ASSERT_TRUE(decoded.isOk()) << decoded.status().message();
       EXPECT_EQ(decoded->first, header);
-      EXPECT_EQ(trianglesOverIds(decoded->second), trianglesOverIds(region)) << FaceId::fromPacked(id).toString();
+      EXPECT_EQ(trianglesOverIds(decoded->second), trianglesOverIds(region))
+          << FaceId::fromPacked(id).toString();
     }
     EXPECT_LT(bytesAsPoints, bytesAsIds);
-    std::printf("[ measured ] %zu regions, %lld triangles: %zu bytes with 8-byte ids, %zu with lattice points\n",
-                t->regions().size(), static_cast<long long>(t->numTriangles()), bytesAsIds, bytesAsPoints);
+    std::printf(
+        "[ measured ] %zu regions, %lld triangles: %zu bytes with 8-byte ids, %zu with lattice points\n",
+        t->regions().size(), static_cast<long long>(t->numTriangles()), bytesAsIds, bytesAsPoints);
   }
 }
 
@@ -221,7 +228,8 @@ TEST(RegionLattice, RefusesFramesOfOtherRegionsAndMixedFlags) {
                          bytes->substr(kRegionHeaderBytes + 2);
   status = decodeRegion(overlong).status();
   EXPECT_EQ(status.code(), ErrorCode::kParseError);
-  EXPECT_NE(status.message().find("the frame's face is not a 64-bit varint"), std::string::npos) << status.toString();
+  EXPECT_NE(status.message().find("the frame's face is not a 64-bit varint"), std::string::npos)
+      << status.toString();
 }
 
 // Random byte changes behind a valid checksum, in the frame and the Draco
@@ -239,7 +247,8 @@ TEST(RegionLattice, MutatedLatticeRegionsNeverCrash) {
   for (int i = 0; i < 2000; ++i) {
     std::string b = *bytes;
     const size_t from = kRegionHeaderBytes, span = b.size() - 4 - from;
-    for (int k = 0; k < 1 + static_cast<int>(rng() % 3); ++k) b[from + rng() % span] = static_cast<char>(rng());
+    for (int k = 0; k < 1 + static_cast<int>(rng() % 3); ++k)
+      b[from + rng() % span] = static_cast<char>(rng());
     refreshRegionChecksum(b);
     auto result = decodeRegion(b);
     if (!result.isOk()) {

@@ -31,7 +31,8 @@ std::vector<int> fansPerVertex(const SurfaceMesh& mesh) {
     for (size_t i = 0; i < corners.size(); ++i)
       for (size_t j = 0; j < corners.size(); ++j)
         if (corners[i][1] == corners[j][0]) parent[find(static_cast<int>(i))] = find(static_cast<int>(j));
-    for (size_t i = 0; i < corners.size(); ++i) fans[v] += find(static_cast<int>(i)) == static_cast<int>(i) ? 1 : 0;
+    for (size_t i = 0; i < corners.size(); ++i)
+      fans[v] += find(static_cast<int>(i)) == static_cast<int>(i) ? 1 : 0;
   }
   return fans;
 }
@@ -64,10 +65,12 @@ TEST(RegionMerge, CopiesOfOneFanAcrossRegionsStayOneVertex) {
   // vertex is in both, with one normal, and joins into one.
   const std::vector<Vec3> pts = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   std::map<uint64_t, RegionMesh> regions;
-  regions[1] = regionOf({0, 1, 2, 3, 4}, {pts[0], pts[1], pts[2], pts[3], pts[4]},
-                        {pts[0], pts[1], pts[2], pts[3], pts[4]}, {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
-  regions[2] = regionOf({0, 1, 2, 3, 5}, {pts[0], pts[1], pts[2], pts[3], pts[5]},
-                        {pts[0], pts[1], pts[2], pts[3], pts[5]}, {{1, 0, 4}, {2, 1, 4}, {3, 2, 4}, {0, 3, 4}});
+  regions[1] =
+      regionOf({0, 1, 2, 3, 4}, {pts[0], pts[1], pts[2], pts[3], pts[4]},
+               {pts[0], pts[1], pts[2], pts[3], pts[4]}, {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}});
+  regions[2] =
+      regionOf({0, 1, 2, 3, 5}, {pts[0], pts[1], pts[2], pts[3], pts[5]},
+               {pts[0], pts[1], pts[2], pts[3], pts[5]}, {{1, 0, 4}, {2, 1, 4}, {3, 2, 4}, {0, 3, 4}});
   const SurfaceMesh merged = mergeRegions(regions);
   EXPECT_EQ(merged.positions.size(), 6u);
   EXPECT_EQ(merged.triangles.size(), 8u);

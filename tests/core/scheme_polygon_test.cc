@@ -27,8 +27,8 @@ using namespace schemes;
 using testing::PolyTestMesh;
 
 void expectNear(const Vec3& a, const Vec3& b, double tolerance) {
-  EXPECT_LE((a - b).norm(), tolerance) << "(" << a[0] << ", " << a[1] << ", " << a[2] << ") vs (" << b[0] << ", "
-                                       << b[1] << ", " << b[2] << ")";
+  EXPECT_LE((a - b).norm(), tolerance) << "(" << a[0] << ", " << a[1] << ", " << a[2] << ") vs (" << b[0]
+                                       << ", " << b[1] << ", " << b[2] << ")";
 }
 
 TEST(SchemeCatmark, GoldenMasks) {
@@ -40,8 +40,8 @@ TEST(SchemeCatmark, GoldenMasks) {
   // Masks sum to one at every valence.
   for (int n = 3; n <= 12; ++n) {
     EXPECT_NEAR(catmark::smoothVertexWeight(n) + 2 * n * catmark::smoothNeighbourWeight(n), 1.0, 1e-15) << n;
-    EXPECT_NEAR(catmark::smoothLimitVertexWeight(n) + n * (catmark::smoothLimitNeighbourWeight(n) +
-                                                           catmark::smoothLimitFaceWeight(n)),
+    EXPECT_NEAR(catmark::smoothLimitVertexWeight(n) +
+                    n * (catmark::smoothLimitNeighbourWeight(n) + catmark::smoothLimitFaceWeight(n)),
                 1.0, 1e-15)
         << n;
   }
@@ -88,7 +88,8 @@ TEST(SchemeCatmark, LimitIsWhereRefinementConverges) {
 
   // On a mixed mesh: the limit at level 1 (all quads) against level 9.
   auto one = QuadRefiner::create(mesh.topology, QuadScheme::kCatmullClark, {}, {.levels = 1});
-  auto fine = QuadRefiner::create(mesh.topology, QuadScheme::kCatmullClark, {}, {.levels = 8, .fullTopologyInLastLevel = false});
+  auto fine = QuadRefiner::create(mesh.topology, QuadScheme::kCatmullClark, {},
+                                  {.levels = 8, .fullTopologyInLastLevel = false});
   ASSERT_TRUE(one.isOk() && fine.isOk());
   const auto p1 = one->refinePoints(mesh.points);
   const auto p8 = fine->refinePoints(mesh.points);
@@ -113,7 +114,9 @@ TEST(SchemeCatmark, TopologyErrorsNameTheElement) {
     for (const auto& f : faces) t.addFace(f);
     return buildPolyLevel(t, {});
   };
-  auto message = [](const Expected<PolyLevel>& r) { return r.isOk() ? std::string("ok") : r.status().message(); };
+  auto message = [](const Expected<PolyLevel>& r) {
+    return r.isOk() ? std::string("ok") : r.status().message();
+  };
   EXPECT_NE(message(build({{0, 1, 2, 3}, {1, 0, 4}, {0, 1, 5}}, 6)).find("non-manifold"), std::string::npos);
   EXPECT_NE(message(build({{0, 1, 2, 3}, {0, 1, 4}}, 5)).find("inconsistently oriented"), std::string::npos);
   EXPECT_NE(message(build({{0, 1, 2, 3}}, 5)).find("vertex 4 is used by no face"), std::string::npos);
@@ -202,7 +205,8 @@ TEST(SchemeDooSabin, FaceLimitsAreTheSplinesKnotPointsAndAreWhereFacesShrink) {
   for (int f = 0; f < mixed.topology.numFaces(); ++f) {
     expectNear(finePositions[f], positions[f], 1e-12);  // the centroid never moves
     const int from = fine->topology.faceOffsets[f], to = fine->topology.faceOffsets[f + 1];
-    for (int k = from; k < to; ++k) EXPECT_LT((fine->points[fine->topology.indices[k]] - positions[f]).norm(), 0.05);
+    for (int k = from; k < to; ++k)
+      EXPECT_LT((fine->points[fine->topology.indices[k]] - positions[f]).norm(), 0.05);
     EXPECT_LT(std::acos(std::min(1.0, fineNormals[f] | normals[f])), 1e-3) << "face " << f;
   }
 }
@@ -233,7 +237,8 @@ TEST(SchemeBilinear, MidpointsCentroidsAndUnmovedVertices) {
   }
   for (Index e = 0; e < base.numEdges(); ++e) {
     const auto& ev = base.edgeVertices[e];
-    expectNear(levels[1][base.numVertices + base.numFaces() + e], 0.5 * (mesh.points[ev[0]] + mesh.points[ev[1]]), 1e-15);
+    expectNear(levels[1][base.numVertices + base.numFaces() + e],
+               0.5 * (mesh.points[ev[0]] + mesh.points[ev[1]]), 1e-15);
   }
   EXPECT_EQ(bilinear::kEdgeEndWeight, 0.5);
   auto limit = refiner->limitSurface(levels[2]);
@@ -257,7 +262,8 @@ TEST(SchemePolygonReader, ObjPolygonsWithFullPrecision) {
   EXPECT_EQ(soup->numFaces(), 5);
   EXPECT_EQ(soup->faceOffsets[1], 4);
   EXPECT_EQ(soup->points[0][0], 1000.000000000001);  // not rounded through float
-  EXPECT_EQ(std::vector<int>(soup->indices.begin() + 10, soup->indices.begin() + 13), (std::vector<int>{3, 4, 0}));
+  EXPECT_EQ(std::vector<int>(soup->indices.begin() + 10, soup->indices.begin() + 13),
+            (std::vector<int>{3, 4, 0}));
   auto bad = readObjPolygons("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "bad.obj");
   ASSERT_FALSE(bad.isOk());
   EXPECT_NE(bad.status().message().find("bad.obj:4:"), std::string::npos) << bad.status().toString();
@@ -270,7 +276,8 @@ TEST(SchemePolygonReader, ObjPolygonsWithFullPrecision) {
 }
 
 TEST(SchemePolygonReader, OffPolygonsCommentsColoursAndTruncation) {
-  auto soup = readOffPolygons("OFF # cube-ish\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 255 0 0\n", "q.off");
+  auto soup =
+      readOffPolygons("OFF # cube-ish\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 255 0 0\n", "q.off");
   ASSERT_TRUE(soup.isOk()) << soup.status().toString();
   EXPECT_EQ(soup->numFaces(), 1);
   EXPECT_EQ(soup->indices.size(), 4u);

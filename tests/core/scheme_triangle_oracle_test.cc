@@ -59,8 +59,11 @@ std::map<std::vector<int>, int> newVerticesByOldNeighbours(const TriMesh& m, int
 
 TEST(SchemeButterfly, MatchesOpenMeshVertexForVertex) {
   using namespace testing;
-  const std::vector<TestMesh> meshes = {icosahedron(), withJitter(torus(8, 6), 0.02, 1),
-                                        withJitter(openGrid(6, 5), 0.02, 2), diskWithPole(9), bipyramid(4),
+  const std::vector<TestMesh> meshes = {icosahedron(),
+                                        withJitter(torus(8, 6), 0.02, 1),
+                                        withJitter(openGrid(6, 5), 0.02, 2),
+                                        diskWithPole(9),
+                                        bipyramid(4),
                                         withRandomFlips(withJitter(doubleTorus(), 0.02, 3), 30, 4),
                                         withRandomFlips(withJitter(openGrid(7, 6), 0.02, 5), 20, 6)};
   long long compared = 0;
@@ -116,7 +119,8 @@ TEST(SchemeButterfly, InterpolatesAndRefusesNothingButBadInput) {
   auto refined = schemes::refineButterfly(mesh.topology, mesh.points, 2);
   ASSERT_TRUE(refined.isOk());
   // Interpolating: the input vertices are where they were.
-  for (size_t v = 0; v < mesh.points.size(); ++v) EXPECT_EQ((refined->points[v] - mesh.points[v]).norm(), 0.0);
+  for (size_t v = 0; v < mesh.points.size(); ++v)
+    EXPECT_EQ((refined->points[v] - mesh.points[v]).norm(), 0.0);
   EXPECT_EQ(refined->levels.back().numFaces(), 20 * 16);
   EXPECT_FALSE(schemes::refineButterfly(mesh.topology, mesh.points, -1).isOk());
   EXPECT_FALSE(schemes::refineButterfly(mesh.topology, mesh.points, 20).isOk());  // beyond the face budget

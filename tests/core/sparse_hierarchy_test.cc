@@ -64,8 +64,8 @@ void expectMatchesDense(const Document& doc, const std::string& where) {
       }
       worstPoint = std::max(worstPoint, err);
       if (!level.isComplete(v)) continue;
-      const LimitFrame ref =
-          limitFrame(dense->levels[l], static_cast<Index>(id), dense->points[l], doc.options().loop.creaseMethod);
+      const LimitFrame ref = limitFrame(dense->levels[l], static_cast<Index>(id), dense->points[l],
+                                        doc.options().loop.creaseMethod);
       worstLimit = std::max(worstLimit, (sparse.limitPosition(l, v) - ref.position).norm());
       worstNormal = std::max(worstNormal, (sparse.limitNormal(l, v) - ref.normal()).norm());
     }
@@ -89,7 +89,8 @@ std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> completeLimits(const S
 }
 
 // Every complete vertex whose limit changed is in the dirty set.
-void expectDirtySetCovers(const Document& doc, const std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>>& before,
+void expectDirtySetCovers(const Document& doc,
+                          const std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>>& before,
                           const std::string& where) {
   const SparseEvaluator& sparse = doc.hierarchy();
   const DirtySet& dirty = doc.lastUpdate();
@@ -100,7 +101,8 @@ void expectDirtySetCovers(const Document& doc, const std::map<std::pair<int, uin
       if (!level.isComplete(v)) continue;
       auto it = before.find({l, level.vertexIds[v]});
       ASSERT_TRUE(it != before.end()) << where;
-      if (sparse.limitPosition(l, v) == it->second.first && sparse.limitNormal(l, v) == it->second.second) continue;
+      if (sparse.limitPosition(l, v) == it->second.first && sparse.limitNormal(l, v) == it->second.second)
+        continue;
       const VertexId id(l, level.vertexIds[v]);
       ASSERT_TRUE(std::binary_search(dirty.limits.begin(), dirty.limits.end(), id))
           << where << ": the limit of " << id.toString() << " changed but is not in the dirty set";
@@ -108,8 +110,10 @@ void expectDirtySetCovers(const Document& doc, const std::map<std::pair<int, uin
       for (Index f : level.mesh.ringFacesOf(v)) {
         if (f < 0 || !sparse.isLeaf(l, f)) continue;
         const FaceId leaf(l, level.faceIds[f]);
-        ASSERT_TRUE(std::binary_search(dirty.leaves.begin(), dirty.leaves.end(), leaf)) << where << " " << leaf.toString();
-        ASSERT_TRUE(std::binary_search(dirty.baseFaces.begin(), dirty.baseFaces.end(), doc.counts().baseFace(leaf).index()));
+        ASSERT_TRUE(std::binary_search(dirty.leaves.begin(), dirty.leaves.end(), leaf))
+            << where << " " << leaf.toString();
+        ASSERT_TRUE(std::binary_search(dirty.baseFaces.begin(), dirty.baseFaces.end(),
+                                       doc.counts().baseFace(leaf).index()));
       }
     }
   }
@@ -176,7 +180,8 @@ void runRandomHistory(const PropertyCase& c, uint32_t seed) {
     } else if (op < 76) {
       // An interpolating vertex (or its end; docs/INTERPOLATION.md); refused where its
       // rule admits no ghost ring, at the deepest level, or next to finer edits.
-      const VertexId v(std::min(level, maxLevel - 1), vertex % doc->counts().vertices(std::min(level, maxLevel - 1)));
+      const VertexId v(std::min(level, maxLevel - 1),
+                       vertex % doc->counts().vertices(std::min(level, maxLevel - 1)));
       const bool on = pick(4) != 0;
       auto id = doc->setInterpolation(v, on, std::array<double, 3>{0.5, 1.0, 3.0}[pick(3)]);
       if (!id.isOk()) continue;
@@ -267,7 +272,8 @@ TEST(SparseHierarchy, ADeepEditRefinesOnlyAroundItself) {
   const HierarchyStats stats = doc->hierarchy().stats();
   ASSERT_EQ(stats.levels.size(), 7u);
   for (int l = 1; l <= 6; ++l) {
-    EXPECT_LT(stats.levels[l].vertices * 50, static_cast<int64_t>(doc->counts().vertices(l)) * (l >= 3 ? 1 : 50))
+    EXPECT_LT(stats.levels[l].vertices * 50,
+              static_cast<int64_t>(doc->counts().vertices(l)) * (l >= 3 ? 1 : 50))
         << "level " << l;
     EXPECT_GT(stats.levels[l].leaves, 0) << "level " << l;
   }

@@ -15,15 +15,16 @@ namespace {
 BaseMesh tetra() {
   PolygonSoup soup;
   soup.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-  for (const auto& f : std::vector<std::vector<int>>{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}}) soup.addFace(f);
+  for (const auto& f : std::vector<std::vector<int>>{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}})
+    soup.addFace(f);
   return std::move(buildBaseMesh(soup, {}, "tetra")).value();
 }
 
 // A tetrahedron plus one far vertex-fan triangle, so that 0 and 4 share no edge.
 BaseMesh twoPieces() {
   PolygonSoup soup;
-  soup.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(5, 5, 5), Vec3(6, 5, 5),
-                 Vec3(5, 6, 5)};
+  soup.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
+                 Vec3(5, 5, 5), Vec3(6, 5, 5), Vec3(5, 6, 5)};
   for (const auto& f : std::vector<std::vector<int>>{{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}, {4, 5, 6}}) {
     soup.addFace(f);
   }
@@ -39,7 +40,8 @@ std::string parseErrorOf(const std::string& text) {
 }
 
 TEST(TagFile, ParsesCreasesCornersCommentsAndInf) {
-  auto tags = parseTags("# header comment\n\ncrease 0 1 2.5  # semi-sharp\ncorner 3 INF\n  crease 1 2 inf\n", "t");
+  auto tags =
+      parseTags("# header comment\n\ncrease 0 1 2.5  # semi-sharp\ncorner 3 INF\n  crease 1 2 inf\n", "t");
   ASSERT_TRUE(tags.isOk()) << tags.status().toString();
   ASSERT_EQ(tags->size(), 3u);
   EXPECT_EQ((*tags)[0].kind, FeatureTag::Kind::kCrease);
@@ -62,7 +64,8 @@ TEST(TagFile, LargeFiniteSharpnessIsInfinite) {
 TEST(TagFile, RejectsMalformedLinesWithFileAndLine) {
   EXPECT_EQ(parseErrorOf("crease 0 1 1\nbevel 0 1\n"),
             "t.tags:2: unknown keyword 'bevel' (expected 'crease' or 'corner')");
-  EXPECT_EQ(parseErrorOf("crease 0 1\n"), "t.tags:1: crease: too few values, expected 'crease I J SHARPNESS'");
+  EXPECT_EQ(parseErrorOf("crease 0 1\n"),
+            "t.tags:1: crease: too few values, expected 'crease I J SHARPNESS'");
   EXPECT_EQ(parseErrorOf("corner 0 1 2\n"),
             "t.tags:1: corner: unexpected trailing '2', expected 'corner I SHARPNESS'");
   EXPECT_EQ(parseErrorOf("\ncrease 0 1 1 junk\n"),
@@ -75,7 +78,8 @@ TEST(TagFile, RejectsMalformedLinesWithFileAndLine) {
             "t.tags:1: corner: bad vertex index '99999999999' (expected a non-negative integer)");
   EXPECT_EQ(parseErrorOf("crease 0 1 -0.5\n"),
             "t.tags:1: crease 0 1: bad sharpness '-0.5' (expected a number >= 0 or 'inf')");
-  EXPECT_EQ(parseErrorOf("corner 2 nan\n"), "t.tags:1: corner 2: bad sharpness 'nan' (expected a number >= 0 or 'inf')");
+  EXPECT_EQ(parseErrorOf("corner 2 nan\n"),
+            "t.tags:1: corner 2: bad sharpness 'nan' (expected a number >= 0 or 'inf')");
   EXPECT_EQ(parseErrorOf("corner 2 1.0x\n"),
             "t.tags:1: corner 2: bad sharpness '1.0x' (expected a number >= 0 or 'inf')");
   EXPECT_EQ(parseErrorOf("crease 3 3 1\n"), "t.tags:1: crease 3 3: names the same vertex twice");
@@ -124,7 +128,8 @@ TEST(TagFile, ApplyTagFileReadsFromDisk) {
   }
   EXPECT_TRUE(applyTagFile(dir + "/good.tags", mesh).isOk());
   const Status bad = applyTagFile(dir + "/bad.tags", mesh);
-  EXPECT_NE(bad.message().find("bad.tags:2: corner 0: bad sharpness '-1'"), std::string::npos) << bad.message();
+  EXPECT_NE(bad.message().find("bad.tags:2: corner 0: bad sharpness '-1'"), std::string::npos)
+      << bad.message();
   const Status missing = applyTagFile(dir + "/missing.tags", mesh);
   EXPECT_EQ(missing.code(), ErrorCode::kNotFound);
   EXPECT_NE(missing.message().find("missing.tags"), std::string::npos);

@@ -63,7 +63,8 @@ bool randomEdit(Document& doc, std::mt19937& rng) {
     const float sharpness = pick(3) == 0 ? kSharpnessInfinite : (pick(2) ? 1.5f : 2.0f);
     return doc.setEdgeSharpness(EdgeId(level, pick(doc.counts().edges(level))), sharpness).isOk();
   }
-  return doc.setVertexSharpness(VertexId(level, pick(doc.counts().vertices(level))), pick(2) ? 1.0f : 0.0f).isOk();
+  return doc.setVertexSharpness(VertexId(level, pick(doc.counts().vertices(level))), pick(2) ? 1.0f : 0.0f)
+      .isOk();
 }
 
 void expectHistoryIndependent(Expected<Document> created, const std::string& name, uint32_t seed) {
@@ -164,7 +165,8 @@ TEST(TessellationHistory, TheCreasedCubeShowsTheSameRegionsWhateverTheHistory) {
   auto mesh = testing::creasedCube();
   ASSERT_TRUE(mesh.isOk()) << mesh.status().message();
   for (uint32_t seed : {1u, 2u, 3u}) {
-    expectHistoryIndependent(Document::create(*mesh, {.maxLevel = 5}), "cube seed " + std::to_string(seed), seed);
+    expectHistoryIndependent(Document::create(*mesh, {.maxLevel = 5}), "cube seed " + std::to_string(seed),
+                             seed);
     if (HasFatalFailure()) return;
   }
 }
@@ -280,7 +282,8 @@ TEST(TessellationHistory, MovesResolveToTheSameOffsetsAfterAReload) {
       ASSERT_TRUE(back.isOk()) << back.status().message();
       *reloaded = std::move(*back);
       // A subscriber's tessellation grows the hierarchy and follows the edits.
-      auto built = Tessellation::build(*reloaded, {.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15});
+      auto built =
+          Tessellation::build(*reloaded, {.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15});
       ASSERT_TRUE(built.isOk());
       view = std::move(*built);
     }

@@ -41,7 +41,8 @@ void randomEdits(Document& doc, int count, uint32_t seed, float creaseSharpness)
                                          : pick(doc.counts().vertices(level));
     if (creaseSharpness < 0 || pick(10) < 8) {
       const VertexId v(level, vertex);
-      ASSERT_TRUE(doc.moveBy(std::span(&v, 1), Vec3(uniform(-.1, .1), uniform(-.1, .1), uniform(-.1, .1))).isOk());
+      ASSERT_TRUE(
+          doc.moveBy(std::span(&v, 1), Vec3(uniform(-.1, .1), uniform(-.1, .1), uniform(-.1, .1))).isOk());
     } else {
       (void)doc.setEdgeSharpness(EdgeId(level, pick(doc.counts().edges(level))), creaseSharpness);
     }
@@ -59,7 +60,8 @@ struct Check {
 void expectSoundTessellation(const Document& doc, const Tessellation& t, const std::string& where) {
   const SparseEvaluator& h = doc.hierarchy();
   const int finest = doc.options().maxLevel;
-  auto dense = evaluateDocument(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.edits(), finest);
+  auto dense =
+      evaluateDocument(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.edits(), finest);
   ASSERT_TRUE(dense.isOk());
   std::map<std::pair<uint64_t, uint64_t>, int> directed;
   double worstLimit = 0.0;
@@ -69,7 +71,8 @@ void expectSoundTessellation(const Document& doc, const Tessellation& t, const s
       uint64_t v[3];
       for (int k = 0; k < 3; ++k) v[k] = VertexId::fromPacked(mesh.vertexIds[tri[k]]).index();
       ASSERT_TRUE(v[0] != v[1] && v[1] != v[2] && v[2] != v[0]) << where << ": a triangle repeats a vertex";
-      const Vec3 n = (mesh.positions[tri[1]] - mesh.positions[tri[0]]) % (mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+      const Vec3 n = (mesh.positions[tri[1]] - mesh.positions[tri[0]]) %
+                     (mesh.positions[tri[2]] - mesh.positions[tri[0]]);
       // Twice the area, against the square of a typical edge of the finest level.
       degenerate += n.norm() < 1e-14 ? 1 : 0;
       for (int k = 0; k < 3; ++k) ++directed[{v[k], v[(k + 1) % 3]}];
@@ -80,13 +83,15 @@ void expectSoundTessellation(const Document& doc, const Tessellation& t, const s
       // level still count them as sharp), and what the tessellation shows
       // where they do not (tessellation.h).
       const uint64_t index = VertexId::fromPacked(mesh.vertexIds[i]).index();
-      const Vec3 truth = limitFrame(dense->levels[finest], static_cast<Index>(index), dense->points[finest]).position;
+      const Vec3 truth =
+          limitFrame(dense->levels[finest], static_cast<Index>(index), dense->points[finest]).position;
       const double err = (mesh.positions[i] - truth).norm();
       if (err > 1e-9 && worstLimit <= 1e-9) {
         std::string info;
         for (int l = 0; l < std::min(h.numLevels(), finest + 1); ++l) {
           const Index local = h.level(l).findVertex(index);
-          info += " L" + std::to_string(l) + (local < 0 ? ":absent" : (h.level(l).isComplete(local) ? ":complete" : ":partial"));
+          info += " L" + std::to_string(l) +
+                  (local < 0 ? ":absent" : (h.level(l).isComplete(local) ? ":complete" : ":partial"));
           if (local >= 0 && h.level(l).isComplete(local)) {
             info += " rule " + std::to_string(int(h.level(l).mesh.vertexRules[local]));
             const Vec3 d = limitFrame(dense->levels[l], static_cast<Index>(index), dense->points[l]).position;
@@ -116,7 +121,8 @@ void expectSoundTessellation(const Document& doc, const Tessellation& t, const s
     ASSERT_EQ(count, 1) << where << ": a directed edge is used twice (orientation or non-manifold)";
     if (directed.count({edge.second, edge.first}) != 0) continue;
     ++open;
-    ASSERT_FALSE(closed) << where << ": open edge v" << edge.first << "-v" << edge.second << " (crack or T-junction)";
+    ASSERT_FALSE(closed) << where << ": open edge v" << edge.first << "-v" << edge.second
+                         << " (crack or T-junction)";
     ASSERT_TRUE(onBoundary(edge.first) && onBoundary(edge.second))
         << where << ": open edge v" << edge.first << "-v" << edge.second << " inside the surface";
   }
@@ -125,7 +131,8 @@ void expectSoundTessellation(const Document& doc, const Tessellation& t, const s
   }
 }
 
-const LodProfile kProfile{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 12, .triangleBudget = 10'000'000};
+const LodProfile kProfile{
+    .baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 12, .triangleBudget = 10'000'000};
 
 TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
   LoopOptions corners;
@@ -159,7 +166,8 @@ TEST(Tessellation, IsWatertightOrientedAndExactAfterRandomEdits) {
         profile.fidelity = fidelity;
         auto t = Tessellation::build(*doc, profile);
         ASSERT_TRUE(t.isOk()) << t.status().message();
-        expectSoundTessellation(*doc, *t, mesh.name + " crease " + std::to_string(crease) + " round " + std::to_string(round));
+        expectSoundTessellation(
+            *doc, *t, mesh.name + " crease " + std::to_string(crease) + " round " + std::to_string(round));
         if (HasFailure()) return;
       }
     }
@@ -184,7 +192,8 @@ TEST(Tessellation, IsWatertightAndExactWithInterpolatingVertices) {
       const int level = static_cast<int>(pick(3));
       const VertexId v(level, pick(doc->counts().vertices(level)));
       if (i % 3 == 0) {
-        tagged += doc->setInterpolation(v, true, std::array<double, 3>{0.5, 1.0, 4.0}[pick(3)]).isOk() ? 1 : 0;
+        tagged +=
+            doc->setInterpolation(v, true, std::array<double, 3>{0.5, 1.0, 4.0}[pick(3)]).isOk() ? 1 : 0;
       } else {
         (void)doc->moveBy(std::span(&v, 1), Vec3(0.03 * (pick(7) - 3.0), 0.02, -0.04));
       }
@@ -204,12 +213,14 @@ TEST(Tessellation, IsWatertightAndExactWithInterpolatingVertices) {
 // must be one of its vertex's exact sector normals at the finest level.
 TEST(Tessellation, NormalsAreTheExactLimitNormals) {
   for (const LoopOptions& options : {LoopOptions{}, LoopOptions{.creaseMethod = CreaseMethod::kChaikin}}) {
-    const TestMesh mesh = testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.05, 9), 0.25, 0.1, 61);
+    const TestMesh mesh =
+        testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.05, 9), 0.25, 0.1, 61);
     auto doc = Document::create(mesh.topology, mesh.points, {.loop = options, .maxLevel = 3});
     ASSERT_TRUE(doc.isOk());
     randomEdits(*doc, 6, 62, 2.5f);
-    auto t = Tessellation::build(*doc, LodProfile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 12,
-                                                  .triangleBudget = 10'000'000});
+    auto t = Tessellation::build(
+        *doc,
+        LodProfile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 12, .triangleBudget = 10'000'000});
     ASSERT_TRUE(t.isOk()) << t.status().message();
     const int finest = doc->options().maxLevel;
     auto dense = evaluateDocument(doc->baseTopology(), doc->basePoints(), options, doc->edits(), finest);
@@ -221,9 +232,11 @@ TEST(Tessellation, NormalsAreTheExactLimitNormals) {
       for (size_t i = 0; i < region.positions.size(); ++i) {
         const auto v = static_cast<Index>(VertexId::fromPacked(region.vertexIds[i]).index());
         const VertexLimit exact = exactVertexLimit(level, v, dense->points[finest], options.creaseMethod);
-        double best = std::atan2((region.normals[i] % exact.frame.normal()).norm(), dot(region.normals[i], exact.frame.normal()));
+        double best = std::atan2((region.normals[i] % exact.frame.normal()).norm(),
+                                 dot(region.normals[i], exact.frame.normal()));
         for (const LimitSector& side : exact.others) {
-          best = std::min(best, std::atan2((region.normals[i] % side.normal).norm(), dot(region.normals[i], side.normal)));
+          best = std::min(best, std::atan2((region.normals[i] % side.normal).norm(),
+                                           dot(region.normals[i], side.normal)));
         }
         worst = std::max(worst, best);
         ++displayed;
@@ -236,9 +249,11 @@ TEST(Tessellation, NormalsAreTheExactLimitNormals) {
     EXPECT_LE(worst, 1e-9) << "a displayed normal is none of its vertex's exact limit normals";
     EXPECT_GT(nonSmooth, 50) << "the tags must put creases, darts and corners on screen";
     EXPECT_GT(semiSharp, 5) << "semi-sharp features must still be decaying at the finest level";
-    std::printf("[ measured ] %s decay: %d displayed vertices, %d not smooth, %d with features still decaying, worst %.2e rad\n",
-                options.creaseMethod == CreaseMethod::kChaikin ? "Chaikin" : "uniform", displayed, nonSmooth, semiSharp,
-                worst);
+    std::printf(
+        "[ measured ] %s decay: %d displayed vertices, %d not smooth, %d with features still decaying, worst "
+        "%.2e rad\n",
+        options.creaseMethod == CreaseMethod::kChaikin ? "Chaikin" : "uniform", displayed, nonSmooth,
+        semiSharp, worst);
   }
 }
 
@@ -292,17 +307,18 @@ TEST(Tessellation, ASingleDeepEditNeedsFarFewerTrianglesThanUniform) {
     if (i % 7 != 0 && (limit[i] - editAt).norm() > 0.3) continue;
     double best = 1e300;
     for (const auto& tri : surface.triangles) {
-      best = std::min(best, pointTriangleDistance(limit[i], surface.positions[tri[0]], surface.positions[tri[1]],
-                                                  surface.positions[tri[2]]));
+      best = std::min(best, pointTriangleDistance(limit[i], surface.positions[tri[0]],
+                                                  surface.positions[tri[1]], surface.positions[tri[2]]));
     }
     worst = std::max(worst, best);
   }
   EXPECT_LE(onUniform, 1e-9 * diagonal);
   EXPECT_LE(worst, 0.01 * diagonal);
-  std::printf("single level-4 edit: %lld adaptive triangles vs %lld uniform (%.1fx fewer); uniform surface within "
-              "%.5f of the diagonal\n",
-              static_cast<long long>(t->numTriangles()), static_cast<long long>(uniformTriangles),
-              static_cast<double>(uniformTriangles) / static_cast<double>(t->numTriangles()), worst / diagonal);
+  std::printf(
+      "single level-4 edit: %lld adaptive triangles vs %lld uniform (%.1fx fewer); uniform surface within "
+      "%.5f of the diagonal\n",
+      static_cast<long long>(t->numTriangles()), static_cast<long long>(uniformTriangles),
+      static_cast<double>(uniformTriangles) / static_cast<double>(t->numTriangles()), worst / diagonal);
 }
 
 // An updated tessellation holds what a fresh build holds
@@ -321,7 +337,8 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
   const std::vector<Case> cases = {
       {testing::withRandomTags(testing::torus(8, 6), 0.1, 0.05, 9),
        {.baseLevel = 1, .maxLevel = 6, .angleThresholdDegrees = 12}},
-      {testing::icosahedron(), {.baseLevel = 2, .maxLevel = 6, .angleThresholdDegrees = 20, .fidelity = true}},
+      {testing::icosahedron(),
+       {.baseLevel = 2, .maxLevel = 6, .angleThresholdDegrees = 20, .fidelity = true}},
       {testing::openGrid(4, 4), {.baseLevel = 0, .maxLevel = 5, .angleThresholdDegrees = 8}},
   };
   for (const Case& c : cases) {
@@ -362,11 +379,13 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
       std::vector<uint64_t> changed, relaid, removed;
       for (const auto& [id, mesh] : fresh->regions()) {
         auto old = before.find(id);
-        if (old == before.end() || old->second.triangles != mesh.triangles || old->second.positions != mesh.positions ||
-            old->second.normals != mesh.normals || old->second.vertexIds != mesh.vertexIds) {
+        if (old == before.end() || old->second.triangles != mesh.triangles ||
+            old->second.positions != mesh.positions || old->second.normals != mesh.normals ||
+            old->second.vertexIds != mesh.vertexIds) {
           changed.push_back(id);
         }
-        if (old == before.end() || old->second.triangles != mesh.triangles || old->second.vertexIds != mesh.vertexIds) {
+        if (old == before.end() || old->second.triangles != mesh.triangles ||
+            old->second.vertexIds != mesh.vertexIds) {
           relaid.push_back(id);
         }
       }
@@ -383,16 +402,22 @@ void expectChangesEqualAFullDiff(int maxBatch, uint32_t seed) {
       expectSameRegions(*t, *fresh, where);
       if (::testing::Test::HasFatalFailure()) return;
     }
-    std::printf("%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth), %d regions only moved\n",
-                c.mesh.name.c_str(), maxBatch, incremental, rebuilt, moved);
+    std::printf(
+        "%s, up to %d edits per update: %d incremental updates, %d rebuilds (hierarchy growth), %d regions "
+        "only moved\n",
+        c.mesh.name.c_str(), maxBatch, incremental, rebuilt, moved);
     EXPECT_GT(incremental, 0);
     EXPECT_GT(moved, 0);
   }
 }
 
-TEST(Tessellation, RegionChangesEqualAFullDiff) { expectChangesEqualAFullDiff(1, 21); }
+TEST(Tessellation, RegionChangesEqualAFullDiff) {
+  expectChangesEqualAFullDiff(1, 21);
+}
 
-TEST(Tessellation, RegionChangesAfterSeveralEditsEqualAFullDiff) { expectChangesEqualAFullDiff(5, 77); }
+TEST(Tessellation, RegionChangesAfterSeveralEditsEqualAFullDiff) {
+  expectChangesEqualAFullDiff(5, 77);
+}
 
 // What a server does to the demo document: the creased cube (infinitely
 // sharp, semi-sharp and one-level creases, a corner) under the load
@@ -417,7 +442,8 @@ TEST(Tessellation, TheCreasedCubeUnderMixedEditsMatchesAFreshBuild) {
       const int op = static_cast<int>(pick(20));
       if (op < 14) {
         const VertexId v(2, pick(98));
-        const Vec3 d(0.01 * (static_cast<double>(pick(21)) - 10) / 10, 0.01 * (static_cast<double>(pick(21)) - 10) / 10, 0.005);
+        const Vec3 d(0.01 * (static_cast<double>(pick(21)) - 10) / 10,
+                     0.01 * (static_cast<double>(pick(21)) - 10) / 10, 0.005);
         auto id = doc->moveBy(std::span(&v, 1), d);
         ASSERT_TRUE(id.isOk());
         made.push_back(*id);
@@ -433,9 +459,13 @@ TEST(Tessellation, TheCreasedCubeUnderMixedEditsMatchesAFreshBuild) {
         made.push_back(id);
       } else if (op == 18) {
         const int level = 1 + static_cast<int>(pick(2));
-        if (!doc->setEdgeSharpness(EdgeId(level, pick(doc->counts().edges(level))), pick(2) ? 2.0f : kSharpnessInfinite).isOk()) continue;
+        if (!doc->setEdgeSharpness(EdgeId(level, pick(doc->counts().edges(level))),
+                                   pick(2) ? 2.0f : kSharpnessInfinite)
+                 .isOk())
+          continue;
       } else {
-        if (!doc->setVertexSharpness(VertexId(1, pick(doc->counts().vertices(1))), kSharpnessInfinite).isOk()) continue;
+        if (!doc->setVertexSharpness(VertexId(1, pick(doc->counts().vertices(1))), kSharpnessInfinite).isOk())
+          continue;
       }
       limits.insert(limits.end(), doc->lastUpdate().limits.begin(), doc->lastUpdate().limits.end());
     }
@@ -459,13 +489,15 @@ TEST(Tessellation, RefusesProfilesOverTheirTriangleBudget) {
   const int levelsBefore = doc->hierarchy().numLevels();
   auto t = Tessellation::build(*doc, {.baseLevel = 4, .maxLevel = 4, .triangleBudget = 1000});
   ASSERT_FALSE(t.isOk());
-  EXPECT_NE(t.status().message().find("needs at least 5120 triangles (its base level 4), above its budget of 1000"),
-            std::string::npos)
+  EXPECT_NE(
+      t.status().message().find("needs at least 5120 triangles (its base level 4), above its budget of 1000"),
+      std::string::npos)
       << t.status().message();
   EXPECT_EQ(doc->hierarchy().numLevels(), levelsBefore);
   // Within budget at its base level, over it once refined everywhere (a tiny
   // angle threshold): refused after the cut.
-  auto refined = Tessellation::build(*doc, {.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 1e-3, .triangleBudget = 1000});
+  auto refined = Tessellation::build(
+      *doc, {.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 1e-3, .triangleBudget = 1000});
   ASSERT_FALSE(refined.isOk());
   EXPECT_NE(refined.status().message().find("5120 triangles, above its budget of 1000"), std::string::npos)
       << refined.status().message();
@@ -489,7 +521,8 @@ TEST(Tessellation, RefinesAlongCurvedCreasesWhereNormalsAgree) {
   auto id = [](int i, int j) { return i * 7 + j; };
   // Sharp square corners keep the sheet's boundary straight.
   sheet.topology.vertexSharpness.assign(sheet.topology.numVertices, 0.0f);
-  for (int v : {id(0, 0), id(0, 6), id(6, 0), id(6, 6)}) sheet.topology.vertexSharpness[v] = kSharpnessInfinite;
+  for (int v : {id(0, 0), id(0, 6), id(6, 0), id(6, 6)})
+    sheet.topology.vertexSharpness[v] = kSharpnessInfinite;
   const int stairs[][2] = {{1, 1}, {2, 1}, {2, 2}, {3, 2}, {3, 3}, {4, 3}, {4, 4}, {5, 4}};
   TestMesh creased = sheet;
   for (int k = 0; k + 1 < 8; ++k) {
@@ -595,8 +628,8 @@ void expectManifoldCopies(const Tessellation& t, const std::string& where) {
     return -1;
   };
   for (const auto& [v, corners] : around) {
-    ASSERT_EQ(secondPiece(corners), -1) << where << ": the triangles around " << VertexId::fromPacked(v).toString()
-                                        << " form more than one fan";
+    ASSERT_EQ(secondPiece(corners), -1) << where << ": the triangles around "
+                                        << VertexId::fromPacked(v).toString() << " form more than one fan";
   }
   std::map<uint64_t, int> copiesOf;
   for (const auto& [copy, corners] : copies) ++copiesOf[copy.first];
@@ -608,8 +641,8 @@ void expectManifoldCopies(const Tessellation& t, const std::string& where) {
     const int second = secondPiece(corners);
     ASSERT_EQ(second, -1) << where << ": the triangles using one copy of " << name(copy)
                           << " form more than one fan, e.g. the one from " << name(corners[0].next) << " to "
-                          << name(corners[0].prev) << " and the one from " << name(corners[second].next) << " to "
-                          << name(corners[second].prev);
+                          << name(corners[0].prev) << " and the one from " << name(corners[second].next)
+                          << " to " << name(corners[second].prev);
   }
 }
 
@@ -657,7 +690,8 @@ TEST(Tessellation, CreaseCopiesFormOneFanPerSideAfterRandomEdits) {
       for (int step = 0; step < 8; ++step) {
         // One edit at a time, so that lastUpdate() covers it (a refused
         // crease leaves the previous one there: updating it again is fine).
-        randomEdits(*doc, 1, seed * 100 + step, seed % 3 == 0 ? kSharpnessInfinite : (which == 0 ? 2.0f : 1.5f));
+        randomEdits(*doc, 1, seed * 100 + step,
+                    seed % 3 == 0 ? kSharpnessInfinite : (which == 0 ? 2.0f : 1.5f));
         for (size_t p = 0; p < profiles.size(); ++p) {
           const std::string where = name + " step " + std::to_string(step) + " profile " + profiles[p].key();
           auto changes = kept[p].update(*doc);

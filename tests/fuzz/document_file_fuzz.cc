@@ -30,7 +30,8 @@ void readOne(const std::string& bytes) {
   }
   const std::string written = serializeKeyedDocument(*doc);
   auto again = deserializeKeyedDocument(written, "rewritten.tsd");
-  if (!again.isOk()) fail("a document that read does not read back after saving: " + again.status().toString());
+  if (!again.isOk())
+    fail("a document that read does not read back after saving: " + again.status().toString());
   require(serializeKeyedDocument(*again) == written, "saving a document twice gives different bytes");
 }
 
@@ -46,7 +47,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const uint32_t crc = static_cast<uint32_t>(
         ::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data() + kHeaderBytes), static_cast<uInt>(payload)));
     std::string repaired = bytes;
-    std::memcpy(repaired.data() + kHeaderBytes - 8, &payload, sizeof(payload));  // little-endian, as the format
+    std::memcpy(repaired.data() + kHeaderBytes - 8, &payload,
+                sizeof(payload));  // little-endian, as the format
     std::memcpy(repaired.data() + repaired.size() - kTrailerBytes, &crc, sizeof(crc));
     if (repaired != bytes) readOne(repaired);
   }

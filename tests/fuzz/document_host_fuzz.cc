@@ -12,9 +12,9 @@
 // sessions (the low bit of client_seq picks which), both joined, one as an
 // editor and one as a viewer, and the host's strand runs between messages
 // as a server's workers would (one io_context serves as both the worker
-// pool and the bulk lane, so bulk work runs in order with the rest). Asio's io_context is polled, never run, so
-// timers that are not due yet (the 100 ms presence broadcast) do not make an
-// input wait; their handlers are dropped with the io_context.
+// pool and the bulk lane, so bulk work runs in order with the rest). Asio's io_context is polled, never run,
+// so timers that are not due yet (the 100 ms presence broadcast) do not make an input wait; their handlers
+// are dropped with the io_context.
 //
 // Oracles besides the sanitizers: every frame the host queues decodes as a
 // ServerMessage, and no Reject carries an internal error unless the store
@@ -28,8 +28,8 @@
 #include "fuzz_support.h"
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
-#include "server/document/document_host.h"
 #include "server/base/log.h"
+#include "server/document/document_host.h"
 #include "tests/support/host_only_store.h"
 
 namespace tessera::fuzz {
@@ -69,9 +69,11 @@ class Inbox final : public server::Subscriber {
     checkError(decoder.feed(*message.frame), "a frame the host queued");
     auto got = decoder.next(m);
     require(got.isOk() && *got, "a frame the host queued does not decode");
-    require(!decoder.next(m).isOk() || decoder.bufferedBytes() == 0, "a queued frame holds more than one message");
+    require(!decoder.next(m).isOk() || decoder.bufferedBytes() == 0,
+            "a queued frame holds more than one message");
     if (m.has_reject() && !internalAllowed_) {
-      require(m.reject().reason() != wire::REJECT_REASON_INTERNAL, "an internal error: " + m.reject().message());
+      require(m.reject().reason() != wire::REJECT_REASON_INTERNAL,
+              "an internal error: " + m.reject().message());
     }
   }
 
@@ -95,19 +97,26 @@ void route(server::DocumentHost& host, const std::shared_ptr<Inbox>& who, wire::
   const uint64_t seq = message.client_seq();
   switch (message.command_case()) {
     case C::kSubscribe:
-      return host.subscribe(who, message.subscribe().profile(), seq, false, message.subscribe().with_commands());
-    case C::kUnsubscribe: return host.unsubscribe(who->sessionId());
-    case C::kSelect: return host.select(who, seq, message.select().selection());
-    case C::kExportDocument: return host.exportGlb(who, seq, message.export_document());
+      return host.subscribe(who, message.subscribe().profile(), seq, false,
+                            message.subscribe().with_commands());
+    case C::kUnsubscribe:
+      return host.unsubscribe(who->sessionId());
+    case C::kSelect:
+      return host.select(who, seq, message.select().selection());
+    case C::kExportDocument:
+      return host.exportGlb(who, seq, message.export_document());
     case C::kMoveVertex:
     case C::kSetEdgeSharpness:
     case C::kSetVertexType:
     case C::kSetInterpolation:
     case C::kAddMorphKey:
     case C::kUndo:
-    case C::kRedo: return host.command(who, "session " + std::to_string(who->sessionId()), std::move(message));
-    case C::kGetMorphControl: return host.morphControl(who, seq, message.get_morph_control());
-    default: return;  // the connection answers these itself
+    case C::kRedo:
+      return host.command(who, "session " + std::to_string(who->sessionId()), std::move(message));
+    case C::kGetMorphControl:
+      return host.morphControl(who, seq, message.get_morph_control());
+    default:
+      return;  // the connection answers these itself
   }
 }
 
@@ -137,9 +146,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   boost::asio::io_context io;
   store.attach(io);
   {
-    auto host = std::make_shared<server::DocumentHost>(DocumentId{1}, "cube", KeyedDocument(cubeDocument(kFuzzDocumentLevel)), 1, io.get_executor(),
-                                                       io.get_executor(), store, config, stats);
-    std::shared_ptr<Inbox> sessions[2] = {std::make_shared<Inbox>(1, failStore), std::make_shared<Inbox>(2, failStore)};
+    auto host = std::make_shared<server::DocumentHost>(
+        DocumentId{1}, "cube", KeyedDocument(cubeDocument(kFuzzDocumentLevel)), 1, io.get_executor(),
+        io.get_executor(), store, config, stats);
+    std::shared_ptr<Inbox> sessions[2] = {std::make_shared<Inbox>(1, failStore),
+                                          std::make_shared<Inbox>(2, failStore)};
     host->join(sessions[0], "editor", wire::ROLE_EDITOR);
     host->join(sessions[1], "viewer", wire::ROLE_VIEWER);
     pollAll(io);

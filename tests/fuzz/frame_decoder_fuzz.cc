@@ -66,8 +66,9 @@ void run(std::string_view stream, size_t chunk, uint32_t maxFrameBytes) {
   const Outcome chunked = decode<Message>(stream, chunk, maxFrameBytes);
   const Outcome whole = decode<Message>(stream, std::max<size_t>(stream.size(), 1), maxFrameBytes);
   require(chunked.messages == whole.messages, "chunking changed the frames delivered");
-  require(chunked.error == whole.error, std::string("chunking changed the error: ") + frameErrorName(chunked.error) +
-                                            " vs " + frameErrorName(whole.error));
+  require(chunked.error == whole.error, std::string("chunking changed the error: ") +
+                                            frameErrorName(chunked.error) + " vs " +
+                                            frameErrorName(whole.error));
   for (const std::string& bytes : whole.messages) {
     Message message;
     require(message.ParseFromString(bytes), "a delivered message does not re-parse");
@@ -78,8 +79,10 @@ void run(std::string_view stream, size_t chunk, uint32_t maxFrameBytes) {
       continue;
     }
     Outcome again = decode<Message>(*frame, frame->size(), 1u << 20);
-    require(again.messages.size() == 1 && again.error == FrameError::kNone, "a re-encoded frame does not decode");
-    require(again.messages[0] == message.SerializeAsString(), "a re-encoded frame decodes to another message");
+    require(again.messages.size() == 1 && again.error == FrameError::kNone,
+            "a re-encoded frame does not decode");
+    require(again.messages[0] == message.SerializeAsString(),
+            "a re-encoded frame decodes to another message");
   }
 }
 

@@ -32,7 +32,8 @@ inline void require(bool condition, const std::string& what) {
 inline void checkError(const Status& status, const char* where) {
   if (status.isOk()) return;
   if (status.message().empty()) fail(std::string(where) + ": an error with no message");
-  if (status.code() == ErrorCode::kInternal) fail(std::string(where) + ": internal error: " + status.message());
+  if (status.code() == ErrorCode::kInternal)
+    fail(std::string(where) + ": internal error: " + status.message());
 }
 
 inline std::string bytesOf(const uint8_t* data, size_t size) {

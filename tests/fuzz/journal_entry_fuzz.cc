@@ -29,7 +29,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     const std::string encoded = server::encodeJournalEntry(*entry);
     auto again = server::decodeJournalEntry(encoded, "re-encoded entry");
-    if (!again.isOk()) fail("a decoded journal entry does not decode after re-encoding: " + again.status().toString());
+    if (!again.isOk())
+      fail("a decoded journal entry does not decode after re-encoding: " + again.status().toString());
     require(server::encodeJournalEntry(*again) == encoded, "a journal entry re-encodes differently");
     checkError(server::applyJournalEntry(doc, *entry), "applyJournalEntry");
   }

@@ -73,7 +73,8 @@ void documents() {
   write("document_file", "edited.tsd", serializeDocument(editedCube()));
   // A morph document (two keys, keyed_document_file.h), as snapshots hold it.
   KeyedDocument morph(editedCube());
-  ok(morph.addKey(secondKeyPoints(morph.key0()), {std::string("\x89PNG\r\n\x1a\n", 8), std::string("\x89PNG\r\n\x1a\n", 8)}),
+  ok(morph.addKey(secondKeyPoints(morph.key0()),
+                  {std::string("\x89PNG\r\n\x1a\n", 8), std::string("\x89PNG\r\n\x1a\n", 8)}),
      "add key");
   const VertexId moved[] = {VertexId(1, 3)};
   value((*morph.editKey(1))->moveBy(moved, Vec3(0.05, 0, 0)), "key 1 offset");
@@ -115,9 +116,11 @@ void journals() {
     undo.target = onKey1.edit.id;
     undo.key = 1;
     write("journal_entry", "morph",
-          prefixed({server::encodeJournalEntry(add), server::encodeJournalEntry(onKey1), server::encodeJournalEntry(undo)}));
+          prefixed({server::encodeJournalEntry(add), server::encodeJournalEntry(onKey1),
+                    server::encodeJournalEntry(undo)}));
   }
-  for (size_t i = 0; i < 5; ++i) write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
+  for (size_t i = 0; i < 5; ++i)
+    write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
 }
 
 void regions() {
@@ -141,7 +144,9 @@ void regions() {
   }
 }
 
-std::string frame(const google::protobuf::MessageLite& m) { return value(encodeFrame(m, 1u << 20), "frame"); }
+std::string frame(const google::protobuf::MessageLite& m) {
+  return value(encodeFrame(m, 1u << 20), "frame");
+}
 
 // Client messages for document 1, with client_seq `seq` (its low bit picks
 // the session in the document host target), subscribing up to `maxLevel`.
@@ -199,7 +204,8 @@ std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
       obj += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
     }
     for (const auto& t : cube.baseTopology().triangles) {
-      obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+      obj += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+             std::to_string(t[2] + 1) + "\n";
     }
     auto* key = add().mutable_add_morph_key();
     key->set_document_id(1);

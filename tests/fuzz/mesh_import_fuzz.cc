@@ -25,7 +25,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   auto mesh = importMeshFromBytes(bytes, TESSERA_FUZZ_EXTENSION, name, {.triangulate = size % 2 == 1});
   if (!mesh.isOk()) {
     checkError(mesh.status(), "importMeshFromBytes");
-    require(mesh.status().message().find(name) != std::string::npos, "an import error does not name the input");
+    require(mesh.status().message().find(name) != std::string::npos,
+            "an import error does not name the input");
     return 0;
   }
   if (mesh->numFaces() > 256) return 0;  // larger meshes only slow the run down

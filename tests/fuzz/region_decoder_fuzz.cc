@@ -29,10 +29,12 @@ void decodeOne(const std::string& bytes) {
   const auto& [header, mesh] = *decoded;
   const size_t n = mesh.positions.size();
   require(mesh.normals.size() == n, "a decoded region has not one normal per position");
-  require(mesh.vertexIds.empty() || mesh.vertexIds.size() == n, "a decoded region has not one id per position");
+  require(mesh.vertexIds.empty() || mesh.vertexIds.size() == n,
+          "a decoded region has not one id per position");
   require(!mesh.triangles.empty(), "a decoded region has no triangle");
   for (const auto& t : mesh.triangles) {
-    for (int c : t) require(c >= 0 && static_cast<size_t>(c) < n, "a decoded triangle corner is out of range");
+    for (int c : t)
+      require(c >= 0 && static_cast<size_t>(c) < n, "a decoded triangle corner is out of range");
   }
   if (!header.idsInline || (header.profile.vertexIds && mesh.vertexIds.empty())) return;
   auto again = encodeRegion(header, mesh);
@@ -57,8 +59,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::string bytes = fuzz::bytesOf(data, size);
   fuzz::decodeOne(bytes);
   if (bytes.size() > kRegionTrailerBytes) {
-    const uint32_t crc = static_cast<uint32_t>(
-        ::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()), static_cast<uInt>(bytes.size() - kRegionTrailerBytes)));
+    const uint32_t crc =
+        static_cast<uint32_t>(::crc32(0L, reinterpret_cast<const Bytef*>(bytes.data()),
+                                      static_cast<uInt>(bytes.size() - kRegionTrailerBytes)));
     if (std::memcmp(bytes.data() + bytes.size() - kRegionTrailerBytes, &crc, sizeof(crc)) != 0) {
       std::memcpy(bytes.data() + bytes.size() - kRegionTrailerBytes, &crc, sizeof(crc));
       fuzz::decodeOne(bytes);

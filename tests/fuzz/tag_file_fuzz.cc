@@ -17,7 +17,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;
   }
   for (const FeatureTag& tag : *tags) {
-    require(tag.sharpness >= 0.0f && !std::isnan(tag.sharpness), "a parsed tag has a negative or NaN sharpness");
+    require(tag.sharpness >= 0.0f && !std::isnan(tag.sharpness),
+            "a parsed tag has a negative or NaN sharpness");
     require(tag.line >= 1, "a parsed tag has no line number");
   }
   BaseMesh mesh = creasedCube();

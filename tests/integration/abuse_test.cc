@@ -21,16 +21,20 @@ namespace {
 
 namespace asio = boost::asio;
 using client::Session;
-using testing::Bystander;
 using testing::BystandedServer;
+using testing::Bystander;
 using testing::expectServed;
-using testing::startBystanded;
 using testing::ServerProcess;
+using testing::startBystanded;
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
-std::string serverLog(const std::string& dataDirectory) { return testing::fileBytes(dataDirectory + ".log"); }
+std::string serverLog(const std::string& dataDirectory) {
+  return testing::fileBytes(dataDirectory + ".log");
+}
 
 Expected<std::unique_ptr<Session>> connectFrom(const ServerProcess& server, const std::string& address,
                                                const std::string& token) {
@@ -44,7 +48,8 @@ Expected<std::unique_ptr<Session>> connectFrom(const ServerProcess& server, cons
 // and never the token.
 TEST(ServerAbuse, FailedTokensSlowDownPerAddressOnly) {
   BystandedServer s;
-  startBystanded(s, "tessera-abuse-auth", {"--auth-failure-delay-ms", "200", "--auth-failure-max-delay-ms", "800"});
+  startBystanded(s, "tessera-abuse-auth",
+                 {"--auth-failure-delay-ms", "200", "--auth-failure-max-delay-ms", "800"});
   if (::testing::Test::HasFatalFailure()) return;
   auto abuse = std::async(std::launch::async, [&] {
     const auto t0 = Clock::now();
@@ -66,7 +71,8 @@ TEST(ServerAbuse, FailedTokensSlowDownPerAddressOnly) {
   std::vector<std::future<bool>> parallel;
   for (int i = 0; i < 3; ++i) {
     parallel.push_back(std::async(std::launch::async, [&, i] {
-      return !connectFrom(*s.server, "127.0.0.1", "parallel-wrong-" + std::to_string(i) + "-0123456789").isOk();
+      return !connectFrom(*s.server, "127.0.0.1", "parallel-wrong-" + std::to_string(i) + "-0123456789")
+                  .isOk();
     }));
   }
   for (auto& p : parallel) EXPECT_TRUE(p.get());
@@ -94,8 +100,9 @@ TEST(ServerAbuse, FailedTokensSlowDownPerAddressOnly) {
 // bytes do not extend, and their own connection limits.
 TEST(ServerAbuse, UnauthenticatedPeersHoldNeitherMemoryNorSlots) {
   BystandedServer s;
-  startBystanded(s, "tessera-abuse-preauth", {"--handshake-timeout", "1.5", "--unauthenticated-per-address", "3",
-                                     "--unauthenticated-total", "5", "--hello-max-bytes", "4096"});
+  startBystanded(s, "tessera-abuse-preauth",
+                 {"--handshake-timeout", "1.5", "--unauthenticated-per-address", "3",
+                  "--unauthenticated-total", "5", "--hello-max-bytes", "4096"});
   if (::testing::Test::HasFatalFailure()) return;
   asio::io_context io;
   auto rawFrom = [&](const std::string& address) {
@@ -161,7 +168,8 @@ TEST(ServerAbuse, UnauthenticatedPeersHoldNeitherMemoryNorSlots) {
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   auto sixth = connectFrom(*s.server, "127.0.0.5", "");
   ASSERT_FALSE(sixth.isOk());
-  EXPECT_NE(sixth.status().message().find("unauthenticated connections in all"), std::string::npos) << sixth.status().message();
+  EXPECT_NE(sixth.status().message().find("unauthenticated connections in all"), std::string::npos)
+      << sixth.status().message();
   expectServed(*s.bystander, s.bystander->run(20), "with the unauthenticated slots full");
 
   const double trickled = trickle.get();
@@ -181,8 +189,9 @@ wire::ClientMessage profile(uint64_t doc, uint32_t base, uint32_t max, double an
 // profiles and exports are refused from an estimate.
 TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
   BystandedServer s;
-  startBystanded(s, "tessera-abuse-profiles", {"--profiles-per-document", "2", "--subscriptions-per-session", "1",
-                                      "--max-triangles", "20000"});
+  startBystanded(
+      s, "tessera-abuse-profiles",
+      {"--profiles-per-document", "2", "--subscriptions-per-session", "1", "--max-triangles", "20000"});
   if (::testing::Test::HasFatalFailure()) return;
   const std::string cube = testing::fileBytes(testing::sourceTestDataPath("cube.obj"));
   auto created = s.admin->call(testing::createDocument("target", cube, "", 5), 30);
@@ -196,24 +205,30 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
   auto b = connectFrom(*s.server, "127.0.0.1", s.server->adminToken());
   auto c = connectFrom(*s.server, "127.0.0.1", s.server->adminToken());
   ASSERT_TRUE(a.isOk() && b.isOk() && c.isOk());
-  for (Session* x : {a->get(), b->get(), c->get()}) ASSERT_TRUE(x->call(testing::openDocument(doc), 20)->has_ack());
+  for (Session* x : {a->get(), b->get(), c->get()})
+    ASSERT_TRUE(x->call(testing::openDocument(doc), 20)->has_ack());
 
   // One session churning through many profiles holds one view at a time:
   // each replaced profile is dropped, so the cap of 2 is never reached.
   for (int i = 0; i < 12; ++i) {
     auto r = (*a)->call(profile(doc, 1, 3, 5 + i), 30);
-    ASSERT_TRUE(r.isOk() && r->has_ack()) << "profile " << i << ": " << (r.isOk() ? r->DebugString() : r.status().message());
+    ASSERT_TRUE(r.isOk() && r->has_ack())
+        << "profile " << i << ": " << (r.isOk() ? r->DebugString() : r.status().message());
   }
   // Two distinct profiles held: a third is refused while they are watched,
   // and the refused session keeps the profile it had (c shares b's).
   ASSERT_TRUE((*b)->call(profile(doc, 1, 3, 40), 30)->has_ack());
   ASSERT_TRUE((*c)->call(profile(doc, 1, 3, 40), 30)->has_ack());
   auto third = (*c)->call(profile(doc, 1, 3, 50), 30);
-  ASSERT_TRUE(third.isOk() && third->has_reject()) << (third.isOk() ? third->DebugString() : third.status().message());
+  ASSERT_TRUE(third.isOk() && third->has_reject())
+      << (third.isOk() ? third->DebugString() : third.status().message());
   EXPECT_EQ(third->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
-  EXPECT_NE(third->reject().message().find("--profiles-per-document"), std::string::npos) << third->reject().message();
-  ASSERT_TRUE((*a)->call(testing::moveVertex(doc, VertexId(1, 3).packed(), 0.01, 0.0, 0.02, wire::MOVE_MODE_OFFSET), 30)
-                  ->has_ack());
+  EXPECT_NE(third->reject().message().find("--profiles-per-document"), std::string::npos)
+      << third->reject().message();
+  ASSERT_TRUE(
+      (*a)->call(testing::moveVertex(doc, VertexId(1, 3).packed(), 0.01, 0.0, 0.02, wire::MOVE_MODE_OFFSET),
+                 30)
+          ->has_ack());
   bool delta = false;
   for (auto until = Clock::now() + std::chrono::seconds(10); !delta && Clock::now() < until;) {
     auto m = (*c)->receive(1);
@@ -224,13 +239,15 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
   (*b)->close();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   auto again = (*c)->call(profile(doc, 1, 3, 50), 30);
-  ASSERT_TRUE(again.isOk() && again->has_ack()) << (again.isOk() ? again->DebugString() : again.status().message());
+  ASSERT_TRUE(again.isOk() && again->has_ack())
+      << (again.isOk() ? again->DebugString() : again.status().message());
 
   // One subscription per session here: a second document is refused.
   ASSERT_TRUE((*c)->call(testing::openDocument(other), 20)->has_ack());
   auto second = (*c)->call(profile(other, 0, 2, 15), 30);
   ASSERT_TRUE(second.isOk() && second->has_reject());
-  EXPECT_NE(second->reject().message().find("--subscriptions-per-session"), std::string::npos) << second->reject().message();
+  EXPECT_NE(second->reject().message().find("--subscriptions-per-session"), std::string::npos)
+      << second->reject().message();
 
   // Estimates: base level 5 of the cube alone has 12 * 4^5 = 12,288
   // triangles, within 20,000; a budget of 10,000 is below it. Export at
@@ -240,8 +257,9 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
   auto refused = (*a)->call(tight, 30);
   ASSERT_TRUE(refused.isOk() && refused->has_reject());
   EXPECT_EQ(refused->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
-  EXPECT_NE(refused->reject().message().find("base level 5 alone has 12288 triangles, above the budget of 10000"),
-            std::string::npos)
+  EXPECT_NE(
+      refused->reject().message().find("base level 5 alone has 12288 triangles, above the budget of 10000"),
+      std::string::npos)
       << refused->reject().message();
   wire::ClientMessage exportDeep;
   exportDeep.mutable_export_document()->set_document_id(doc);
@@ -249,7 +267,8 @@ TEST(ServerAbuse, ProfilesAreCappedReleasedAndEstimated) {
   auto deep = (*a)->call(exportDeep, 30);
   ASSERT_TRUE(deep.isOk() && deep->has_reject());
   EXPECT_EQ(deep->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
-  EXPECT_NE(deep->reject().message().find("export: level 7 has 196608 triangles, above the limit of 20000"), std::string::npos)
+  EXPECT_NE(deep->reject().message().find("export: level 7 has 196608 triangles, above the limit of 20000"),
+            std::string::npos)
       << deep->reject().message();
   expectServed(*s.bystander, s.bystander->run(20), "after the profile churn");
   EXPECT_EQ(s.server->stop(), 0);
@@ -279,14 +298,16 @@ TEST(ServerAbuse, SelectionsAreCheckedAndPresenceSendsChanges) {
   };
   // Unknown ids and too many ids: a Reject naming the problem.
   auto unknown = (*selector)->call(select({VertexId(1, 2).packed(), VertexId(2, 999999).packed()}), 20);
-  ASSERT_TRUE(unknown.isOk() && unknown->has_reject()) << (unknown.isOk() ? unknown->DebugString() : unknown.status().message());
+  ASSERT_TRUE(unknown.isOk() && unknown->has_reject())
+      << (unknown.isOk() ? unknown->DebugString() : unknown.status().message());
   EXPECT_EQ(unknown->reject().reason(), wire::REJECT_REASON_NOT_FOUND);
   EXPECT_NE(unknown->reject().message().find("v2:999999"), std::string::npos) << unknown->reject().message();
   std::vector<uint64_t> many;
   for (uint64_t i = 0; i < 601; ++i) many.push_back(VertexId(4, i).packed());
   auto tooMany = (*selector)->call(select(many), 20);
   ASSERT_TRUE(tooMany.isOk() && tooMany->has_reject());
-  EXPECT_NE(tooMany->reject().message().find("601 ids, above the limit of 600"), std::string::npos) << tooMany->reject().message();
+  EXPECT_NE(tooMany->reject().message().find("601 ids, above the limit of 600"), std::string::npos)
+      << tooMany->reject().message();
 
   // A valid selection of 600 ids (about 4 KB on the wire).
   many.pop_back();
@@ -354,7 +375,8 @@ TEST(ServerAbuse, MeshErrorsQuotingBinaryBytesReachTheClient) {
   ASSERT_TRUE(refused->has_reject()) << refused->DebugString();
   EXPECT_NE(refused->reject().message().find("\\xFF\\xFE"), std::string::npos) << refused->reject().message();
 
-  auto created = s.admin->call(testing::createDocument("tri", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", 3), 30);
+  auto created =
+      s.admin->call(testing::createDocument("tri", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "", 3), 30);
   ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
   const uint64_t doc = created->ack().document_id();
   ASSERT_TRUE(s.admin->call(testing::openDocument(doc), 10).isOk());
@@ -365,7 +387,8 @@ TEST(ServerAbuse, MeshErrorsQuotingBinaryBytesReachTheClient) {
   auto keyRefused = s.admin->call(add, 30);
   ASSERT_TRUE(keyRefused.isOk()) << "the reply did not parse: " << keyRefused.status().message();
   ASSERT_TRUE(keyRefused->has_reject()) << keyRefused->DebugString();
-  EXPECT_NE(keyRefused->reject().message().find("\\xFF\\xFE"), std::string::npos) << keyRefused->reject().message();
+  EXPECT_NE(keyRefused->reject().message().find("\\xFF\\xFE"), std::string::npos)
+      << keyRefused->reject().message();
   // The session goes on, and so does the bystander.
   auto pong = s.admin->call(testing::ping(), 10);
   ASSERT_TRUE(pong.isOk() && pong->has_pong());

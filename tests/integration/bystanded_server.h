@@ -20,7 +20,8 @@ namespace tessera::testing {
 inline constexpr double kBystanderMedianMs = 150, kBystanderMaxMs = 1500;
 
 // Every edit of `l` came back as a delta and was acknowledged, within the bound.
-inline void expectServed(Bystander& bystander, const Expected<Bystander::Latencies>& l, const std::string& during) {
+inline void expectServed(Bystander& bystander, const Expected<Bystander::Latencies>& l,
+                         const std::string& during) {
   ASSERT_TRUE(l.isOk()) << during << ": " << l.status().message();
   Status acked = bystander.awaitAcks();
   EXPECT_TRUE(acked.isOk()) << during << ": " << acked.message();
@@ -38,7 +39,8 @@ struct BystandedServer {
 // Starts the server with `args` in a new temporary directory named after
 // `name`, connects the admin and the bystander, and checks that the
 // bystander is served before any abuse. Fails the test (ASSERT) otherwise.
-inline void startBystanded(BystandedServer& s, const std::string& name, const std::vector<std::string>& args) {
+inline void startBystanded(BystandedServer& s, const std::string& name,
+                           const std::vector<std::string>& args) {
   s.data = makeTempDir(name) + "/data";
   auto server = ServerProcess::start(s.data, args);
   ASSERT_TRUE(server.isOk()) << server.status().message();

@@ -8,9 +8,9 @@
 
 #include <algorithm>
 #include <atomic>
-#include <mutex>
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -40,9 +40,10 @@ class Bystander {
 
   // Creates its document through `admin` and connects from `address`.
   static Expected<std::unique_ptr<Bystander>> start(const ServerProcess& server, client::Session& admin,
-                                                     const std::string& address = "127.0.0.9") {
+                                                    const std::string& address = "127.0.0.9") {
     std::unique_ptr<Bystander> b(new Bystander);
-    auto created = admin.call(createDocument("bystander", fileBytes(sourceTestDataPath("cube.obj")), "", 4), 30);
+    auto created =
+        admin.call(createDocument("bystander", fileBytes(sourceTestDataPath("cube.obj")), "", 4), 30);
     if (!created.isOk()) return created.status();
     if (!created->has_ack()) return invalidArgument("bystander document refused: " + created->DebugString());
     b->doc_ = created->ack().document_id();
@@ -78,7 +79,8 @@ class Bystander {
 
   // The same, sending until `stop()` (asked before each edit) says so.
   template <typename Stop>
-  Expected<Latencies> runUntil(Stop stop, std::chrono::milliseconds interval = std::chrono::milliseconds(20)) {
+  Expected<Latencies> runUntil(Stop stop,
+                               std::chrono::milliseconds interval = std::chrono::milliseconds(20)) {
     using Clock = std::chrono::steady_clock;
     const uint64_t first = view_->version() + 1;
     std::vector<Clock::time_point> sent;  // guarded by mutex
@@ -118,7 +120,8 @@ class Bystander {
         [&] {
           const bool last = senderDone.load();
           std::lock_guard lock(mutex);
-          while (arrived.size() < static_cast<size_t>(view_->version() + 1 - first) && arrived.size() < sent.size()) {
+          while (arrived.size() < static_cast<size_t>(view_->version() + 1 - first) &&
+                 arrived.size() < sent.size()) {
             arrived.push_back(Clock::now());
           }
           return last && arrived.size() == sent.size();
@@ -155,7 +158,8 @@ class Bystander {
   Status readUntil(Done done, double seconds) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
     while (!done()) {
-      if (std::chrono::steady_clock::now() > deadline) return ioError("bystander: not done within " + std::to_string(seconds) + " s");
+      if (std::chrono::steady_clock::now() > deadline)
+        return ioError("bystander: not done within " + std::to_string(seconds) + " s");
       auto m = viewer_->receive(0.05);
       if (!m.isOk()) {
         if (client::isReceiveTimeout(m.status())) continue;

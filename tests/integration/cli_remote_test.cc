@@ -67,7 +67,8 @@ struct RemoteCli {
 
 TEST(CliRemote, WrongTokenAndNoServerAreErrors) {
   RemoteCli f("tessera-cli-auth");
-  const std::string wrong = "remote --port " + std::to_string(f.server->port()) + " --token WRONG-TOKEN-0123456789 ";
+  const std::string wrong =
+      "remote --port " + std::to_string(f.server->port()) + " --token WRONG-TOKEN-0123456789 ";
   const std::string script = f.write("one.txt", "offset v1:3 by 0 0 0.01\n");
   for (const std::string& command : {std::string("list"), std::string("stats"), "edit 1 --script " + script,
                                      "create " + testing::sourceTestDataPath("cube.obj")}) {
@@ -83,14 +84,16 @@ TEST(CliRemote, WrongTokenAndNoServerAreErrors) {
   EXPECT_TRUE(none.out.empty()) << none.out;
   EXPECT_NE(none.err.find("no token was given: give --token or --token-file"), std::string::npos) << none.err;
   // The same token file form, and the token in the option after the command.
-  CliRun after = runCli("remote list --port " + std::to_string(f.server->port()) + " --token WRONG-TOKEN-0123456789");
+  CliRun after =
+      runCli("remote list --port " + std::to_string(f.server->port()) + " --token WRONG-TOKEN-0123456789");
   EXPECT_EQ(after.exitCode, 1);
   EXPECT_NE(after.err.find("authentication failed"), std::string::npos) << after.err;
   const uint16_t port = f.server->port();
   EXPECT_EQ(f.server->stop(), 0);
   CliRun gone = runCli("remote --port " + std::to_string(port) + " --token-file " + f.tokenFile + " list");
   EXPECT_EQ(gone.exitCode, 1);
-  EXPECT_NE(gone.err.find("cannot reach tessera-server at 127.0.0.1:" + std::to_string(port)), std::string::npos)
+  EXPECT_NE(gone.err.find("cannot reach tessera-server at 127.0.0.1:" + std::to_string(port)),
+            std::string::npos)
       << gone.err;
   CliRun noFile = runCli("remote --port " + std::to_string(port) + " --token-file " + f.dir + "/none list");
   EXPECT_EQ(noFile.exitCode, 2);
@@ -136,8 +139,9 @@ TEST(CliRemote, EditScriptIsAtomic) {
   EXPECT_EQ(f.listed(doc), "version 1");
   EXPECT_EQ(f.exported(doc, "after-twice.glb"), before);
 
-  const std::string good = f.write("good.txt", "# three lines, one version\noffset v1:3 by 0 0 0.1\n"
-                                               "crease e1:4 2\ncorner v2:5 inf\n");
+  const std::string good = f.write("good.txt",
+                                   "# three lines, one version\noffset v1:3 by 0 0 0.1\n"
+                                   "crease e1:4 2\ncorner v2:5 inf\n");
   CliRun applied = f.run("edit " + std::to_string(doc) + " --script " + good);
   ASSERT_EQ(applied.exitCode, 0) << applied.err;
   EXPECT_NE(applied.out.find("good.txt:2: edit 1\n"), std::string::npos) << applied.out;
@@ -233,7 +237,8 @@ TEST(CliRemote, CreateTakesImportOptionsAndNamesTheUsersFile) {
   EXPECT_NE(refused.err.find(quads), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("--triangulate"), std::string::npos) << refused.err;
   EXPECT_EQ(refused.err.find("tessera-import"), std::string::npos) << refused.err;
-  CliRun made = f.run("create " + quads + " --triangulate --crease-method chaikin --boundary edge-and-corner "
+  CliRun made = f.run("create " + quads +
+                      " --triangulate --crease-method chaikin --boundary edge-and-corner "
                       "--max-level 3 --doc-name quads");
   ASSERT_EQ(made.exitCode, 0) << made.err;
   const std::string badTags = f.write("bad.tags", "crease 0 1 inf\ncrease 0 99 2\n");
@@ -244,8 +249,8 @@ TEST(CliRemote, CreateTakesImportOptionsAndNamesTheUsersFile) {
   EXPECT_EQ(truncated.exitCode, 1);
   EXPECT_NE(truncated.err.find("broken.obj"), std::string::npos) << truncated.err;
   // A Draco GLB is a mesh like any other.
-  CliRun draco = runCli("refine " + testing::sourceTestDataPath("cube.obj") + " --level 1 --draco -o " + f.dir +
-                        "/d.glb");
+  CliRun draco = runCli("refine " + testing::sourceTestDataPath("cube.obj") + " --level 1 --draco -o " +
+                        f.dir + "/d.glb");
   ASSERT_EQ(draco.exitCode, 0) << draco.err;
   CliRun fromDraco = f.run("create " + f.dir + "/d.glb");
   EXPECT_EQ(fromDraco.exitCode, 0) << fromDraco.err;
@@ -260,12 +265,14 @@ TEST(CliRemote, CreateDropsUnusedVerticesAndCreasesByAngle) {
                                    "f 1 4 2\nf 1 2 5\nf 2 4 5\nf 1 5 4\n");
   CliRun refused = f.run("create " + mesh);
   EXPECT_EQ(refused.exitCode, 1);
-  EXPECT_NE(refused.err.find("unused.obj: vertex 2 (7, 7, 7): not used by any face"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("unused.obj: vertex 2 (7, 7, 7): not used by any face"), std::string::npos)
+      << refused.err;
   EXPECT_NE(refused.err.find("--drop-unused"), std::string::npos) << refused.err;
   const std::string onDropped = f.write("dropped.tags", "corner 2 inf\n");
   CliRun badTag = f.run("create " + mesh + " --drop-unused --tags " + onDropped);
   EXPECT_EQ(badTag.exitCode, 1);
-  EXPECT_NE(badTag.err.find("dropped.tags:1: corner 2: vertex 2 was dropped"), std::string::npos) << badTag.err;
+  EXPECT_NE(badTag.err.find("dropped.tags:1: corner 2: vertex 2 was dropped"), std::string::npos)
+      << badTag.err;
   CliRun made = f.run("create " + mesh + " --drop-unused --tags " + f.write("ok.tags", "crease 3 4 inf\n"));
   ASSERT_EQ(made.exitCode, 0) << made.err;
   EXPECT_NE(made.err.find("tessera remote create: " + mesh + ": dropped 1 unused vertex (--drop-unused)"),
@@ -290,9 +297,9 @@ TEST(CliRemote, StatsArePrintedForPeople) {
   EXPECT_EQ(r.out.find("e+"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("e-"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("uptime_seconds"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find(" B\n"), std::string::npos) << r.out;     // bytes_sent
-  EXPECT_NE(r.out.find(" ms\n"), std::string::npos) << r.out;    // *_ms
-  EXPECT_NE(r.out.find("/s\n"), std::string::npos) << r.out;     // *_per_second
+  EXPECT_NE(r.out.find(" B\n"), std::string::npos) << r.out;   // bytes_sent
+  EXPECT_NE(r.out.find(" ms\n"), std::string::npos) << r.out;  // *_ms
+  EXPECT_NE(r.out.find("/s\n"), std::string::npos) << r.out;   // *_per_second
 }
 
 }  // namespace

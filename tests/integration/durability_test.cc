@@ -144,7 +144,8 @@ struct Tally {
   std::map<Kind, int> acknowledged, refused;
   std::map<std::string, int> refusalReasons;
   int movesRefusedOtherwise = 0;  // for a reason other than the per-connection rate limit
-  int editorCycles = 0, editorCyclesOpened = 0;  // editors started, and those that opened the document before the kill
+  int editorCycles = 0,
+      editorCyclesOpened = 0;  // editors started, and those that opened the document before the kill
   int inFlight = 0, inFlightRecovered = 0;
   int losses = 0;  // acknowledged versions missing after a restart, or 1 for a surface no replay explains
   size_t maxHistories = 1;
@@ -159,12 +160,14 @@ struct Tally {
     std::string reasons;
     for (const auto& [reason, count] : refusalReasons) reasons += " " + reason + "=" + std::to_string(count);
     std::printf(
-        "soak: %d/%d cycles; editors opened the document in %d of %d editor-cycles; acknowledged %d (moves %d, creases "
-        "%d, undos %d, redos %d); refused %d (moves %d)%s; in flight at the kill %d, recovered %d; losses %d; "
+        "soak: %d/%d cycles; editors opened the document in %d of %d editor-cycles; acknowledged %d (moves "
+        "%d, creases "
+        "%d, undos %d, redos %d); refused %d (moves %d)%s; in flight at the kill %d, recovered %d; losses "
+        "%d; "
         "candidate histories at most %zu; %.1f s\n",
-        cycles, cyclesPlanned, editorCyclesOpened, editorCycles, sum(acknowledged), acknowledged[Kind::kMove], acknowledged[Kind::kCrease],
-        acknowledged[Kind::kUndo], acknowledged[Kind::kRedo], sum(refused), refused[Kind::kMove], reasons.c_str(),
-        inFlight, inFlightRecovered, losses, maxHistories,
+        cycles, cyclesPlanned, editorCyclesOpened, editorCycles, sum(acknowledged), acknowledged[Kind::kMove],
+        acknowledged[Kind::kCrease], acknowledged[Kind::kUndo], acknowledged[Kind::kRedo], sum(refused),
+        refused[Kind::kMove], reasons.c_str(), inFlight, inFlightRecovered, losses, maxHistories,
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     std::fflush(stdout);
   }
@@ -179,9 +182,10 @@ struct Acknowledged {
 // and redos name this editor's own edits acknowledged in this cycle: so
 // every one the server acknowledges is valid in every candidate history,
 // and no edit changes after its cycle (settledStateKey relies on it).
-void editorStorm(const ServerProcess& server, const std::string& token, uint64_t docId, const StormOptions& options,
-                 const LevelCounts& counts, uint32_t seed, int index, std::mutex& mutex,
-                 std::map<uint64_t, Acknowledged>& acked, std::vector<StormCommand>& inFlight, Tally& tally) {
+void editorStorm(const ServerProcess& server, const std::string& token, uint64_t docId,
+                 const StormOptions& options, const LevelCounts& counts, uint32_t seed, int index,
+                 std::mutex& mutex, std::map<uint64_t, Acknowledged>& acked,
+                 std::vector<StormCommand>& inFlight, Tally& tally) {
   auto session = Session::connect(server.session("editor" + std::to_string(index), token));
   if (!session.isOk() || !(*session)->call(testing::openDocument(docId), 10).isOk()) return;  // killed first
   {
@@ -225,8 +229,10 @@ void editorStorm(const ServerProcess& server, const std::string& token, uint64_t
       }
     } else {
       ++tally.refused[command.kind];
-      ++tally.refusalReasons[reply->has_reject() ? wire::RejectReason_Name(reply->reject().reason()) : "other reply"];
-      const bool rateLimited = reply->has_reject() && reply->reject().reason() == wire::REJECT_REASON_RATE_LIMITED;
+      ++tally.refusalReasons[reply->has_reject() ? wire::RejectReason_Name(reply->reject().reason())
+                                                 : "other reply"];
+      const bool rateLimited =
+          reply->has_reject() && reply->reject().reason() == wire::REJECT_REASON_RATE_LIMITED;
       if (command.kind == Kind::kMove && !rateLimited) ++tally.movesRefusedOtherwise;
     }
   }
@@ -287,11 +293,12 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
     std::vector<std::thread> editors;
     tally.editorCycles += options.editors;
     for (int e = 0; e < options.editors; ++e) {
-      editors.emplace_back(editorStorm, std::cref(*server), std::cref(token), docId, std::cref(options), std::cref(counts),
-                           static_cast<uint32_t>(rng()), e, std::ref(mutex), std::ref(acked), std::ref(inFlight),
-                           std::ref(tally));
+      editors.emplace_back(editorStorm, std::cref(*server), std::cref(token), docId, std::cref(options),
+                           std::cref(counts), static_cast<uint32_t>(rng()), e, std::ref(mutex),
+                           std::ref(acked), std::ref(inFlight), std::ref(tally));
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(30 + rng() % static_cast<uint32_t>(options.stormMs - 29)));
+    std::this_thread::sleep_for(
+        std::chrono::milliseconds(30 + rng() % static_cast<uint32_t>(options.stormMs - 29)));
     server->kill9();
     for (auto& t : editors) t.join();
     tally.inFlight += static_cast<int>(inFlight.size());
@@ -344,7 +351,8 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
       std::set<std::vector<int>> tried;  // orders that differ only past the gaps are one assignment
       std::sort(order.begin(), order.end());
       do {
-        if (!tried.insert(std::vector<int>(order.begin(), order.begin() + static_cast<long>(gaps.size()))).second) {
+        if (!tried.insert(std::vector<int>(order.begin(), order.begin() + static_cast<long>(gaps.size())))
+                 .second) {
           continue;
         }
         Document candidate = replica;
@@ -367,9 +375,10 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
       } while (std::next_permutation(order.begin(), order.end()));
     }
     if (survivors.empty()) ++tally.losses;
-    ASSERT_FALSE(survivors.empty()) << "the recovered surface is no replay of the acknowledged history (version "
-                                    << recovered << ", " << acked.size() << " acked, " << inFlight.size()
-                                    << " in flight, " << replicas.size() << " candidate histories)";
+    ASSERT_FALSE(survivors.empty())
+        << "the recovered surface is no replay of the acknowledged history (version " << recovered << ", "
+        << acked.size() << " acked, " << inFlight.size() << " in flight, " << replicas.size()
+        << " candidate histories)";
     // A bound on the check's work: each history is replayed for every
     // assignment of the next cycle's in-flight commands (up to 4! = 24 with
     // 4 editors). Soaks of 100 to 300 cycles kept at most 2 (docs/STORE.md);
@@ -389,7 +398,8 @@ TEST(ServerDurability, AcknowledgedEditsSurviveKillNine) {
   // (The soak's longer storms may meet the server's 200 commands per second
   // per connection; those refusals say nothing about the moves.)
   const int judgedMoves = tally.acknowledged[Kind::kMove] + tally.movesRefusedOtherwise;
-  EXPECT_GE(tally.acknowledged[Kind::kMove] * 20, judgedMoves * 19) << "more than 5 % of the moves were refused";
+  EXPECT_GE(tally.acknowledged[Kind::kMove] * 20, judgedMoves * 19)
+      << "more than 5 % of the moves were refused";
   EXPECT_GE(tally.acknowledged[Kind::kMove], 5 * options.cycles);
   if (options.creasePercent > 0) {
     EXPECT_GT(tally.acknowledged[Kind::kCrease], 0);

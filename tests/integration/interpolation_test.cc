@@ -49,7 +49,8 @@ wire::ClientMessage setInterpolation(uint64_t doc, VertexId v, bool on, double t
 }
 
 // Reads until `view` reaches `version`; AppliedCommands go to `applied`.
-void readUntil(Session& s, DocumentView& view, uint64_t version, std::vector<wire::AppliedCommand>* applied = nullptr) {
+void readUntil(Session& s, DocumentView& view, uint64_t version,
+               std::vector<wire::AppliedCommand>* applied = nullptr) {
   for (int i = 0; i < 400 && (!view.ready() || view.version() < version); ++i) {
     auto m = s.receive(10);
     ASSERT_TRUE(m.isOk()) << m.status().message();
@@ -99,13 +100,16 @@ TEST(ServerInterpolation, TheStreamedSurfacePassesThroughTheTaggedVertex) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
-                                30);
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
   const uint64_t doc = created->ack().document_id();
-  ASSERT_TRUE((*admin)->call(testing::grant(doc, wire::ROLE_EDITOR, "editor-token-0123456789"), 10)->has_ack());
-  ASSERT_TRUE((*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "viewer-token-0123456789"), 10)->has_ack());
+  ASSERT_TRUE(
+      (*admin)->call(testing::grant(doc, wire::ROLE_EDITOR, "editor-token-0123456789"), 10)->has_ack());
+  ASSERT_TRUE(
+      (*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "viewer-token-0123456789"), 10)->has_ack());
 
   auto viewer = Session::connect(server->session("viewer", "viewer-token-0123456789"));
   auto editor = Session::connect(server->session("editor", "editor-token-0123456789"));
@@ -115,7 +119,8 @@ TEST(ServerInterpolation, TheStreamedSurfacePassesThroughTheTaggedVertex) {
   sub.mutable_subscribe()->set_with_commands(true);
   ASSERT_TRUE((*viewer)->call(sub, 30)->has_ack());
   ASSERT_TRUE((*editor)->call(testing::openDocument(doc), 10)->has_ack());
-  auto lifted = (*editor)->call(testing::moveVertex(doc, v.packed(), lift[0], lift[1], lift[2], wire::MOVE_MODE_OFFSET), 10);
+  auto lifted = (*editor)->call(
+      testing::moveVertex(doc, v.packed(), lift[0], lift[1], lift[2], wire::MOVE_MODE_OFFSET), 10);
   ASSERT_TRUE(lifted.isOk() && lifted->has_ack()) << lifted->DebugString();
   DocumentView seen(doc);
   readUntil(**viewer, seen, 2);
@@ -126,9 +131,12 @@ TEST(ServerInterpolation, TheStreamedSurfacePassesThroughTheTaggedVertex) {
   // Refusals name the vertex and why; nothing changes.
   for (const auto& [message, why] : std::vector<std::pair<wire::ClientMessage, std::string>>{
            {setInterpolation(doc, v, true, -2), v.toString() + ": tension must be in [0.001, 1000]"},
-           {setInterpolation(doc, VertexId(kMaxLevel, 3), true, 1), "must lie above the document's deepest level 4"},
-           {setInterpolation(doc, VertexId(1, 6), true, 1), "v1:6 cannot interpolate: it is a corner or cusp"},
-           {setInterpolation(doc, VertexId(1, 0), true, 1), "v1:0 cannot interpolate: a semi-sharp edge meets it"}}) {
+           {setInterpolation(doc, VertexId(kMaxLevel, 3), true, 1),
+            "must lie above the document's deepest level 4"},
+           {setInterpolation(doc, VertexId(1, 6), true, 1),
+            "v1:6 cannot interpolate: it is a corner or cusp"},
+           {setInterpolation(doc, VertexId(1, 0), true, 1),
+            "v1:0 cannot interpolate: a semi-sharp edge meets it"}}) {
     auto refused = (*editor)->call(message, 10);
     ASSERT_TRUE(refused.isOk() && refused->has_reject()) << refused->DebugString();
     EXPECT_NE(refused->reject().message().find(why), std::string::npos) << refused->reject().message();
@@ -150,18 +158,21 @@ TEST(ServerInterpolation, TheStreamedSurfacePassesThroughTheTaggedVertex) {
   // The stream quantizes positions (13 bits over the cube's ~2.6 units:
   // 3.2e-4 per step); the surface now passes through the control point.
   EXPECT_LE(taggedDistance, 1e-3) << "plain " << plainDistance;
-  std::printf("streamed limit of %s from its control point: %.3g plain, %.3g interpolating (%d and %d vertices)\n",
-              v.toString().c_str(), plainDistance, taggedDistance, plainCount, taggedCount);
+  std::printf(
+      "streamed limit of %s from its control point: %.3g plain, %.3g interpolating (%d and %d vertices)\n",
+      v.toString().c_str(), plainDistance, taggedDistance, plainCount, taggedCount);
   ASSERT_FALSE(applied.empty());
   EXPECT_TRUE(applied.back().has_set_interpolation());
   EXPECT_EQ(applied.back().set_interpolation().vertex_id(), v.packed());
   const uint64_t tagged = seen.surfaceHash();
 
   // A finer move in its ghost ring is refused; undo brings plain Loop back.
-  wire::ClientMessage nearMove = testing::moveVertex(doc, VertexId(2, v.index()).packed(), 0, 0, 0.1, wire::MOVE_MODE_OFFSET);
+  wire::ClientMessage nearMove =
+      testing::moveVertex(doc, VertexId(2, v.index()).packed(), 0, 0, 0.1, wire::MOVE_MODE_OFFSET);
   auto refused = (*editor)->call(nearMove, 10);
   ASSERT_TRUE(refused.isOk() && refused->has_reject());
-  EXPECT_NE(refused->reject().message().find("conflicts with interpolating vertex " + v.toString()), std::string::npos)
+  EXPECT_NE(refused->reject().message().find("conflicts with interpolating vertex " + v.toString()),
+            std::string::npos)
       << refused->reject().message();
   wire::ClientMessage undo;
   undo.mutable_undo()->set_document_id(doc);

@@ -16,8 +16,8 @@ inline std::string fileBytes(const std::string& path) {
   return ss.str();
 }
 
-inline wire::ClientMessage createDocument(const std::string& name, const std::string& obj, const std::string& tags,
-                                          int maxLevel) {
+inline wire::ClientMessage createDocument(const std::string& name, const std::string& obj,
+                                          const std::string& tags, int maxLevel) {
   wire::ClientMessage m;
   auto* c = m.mutable_create_document();
   c->set_name(name);

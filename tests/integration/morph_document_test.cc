@@ -37,7 +37,9 @@ constexpr double kAngle = 15;
 
 // Key 1: every cube point moved by a map that is not affine (so the
 // halfway mesh is not a scaled cube).
-Vec3 keyOnePoint(const Vec3& p) { return Vec3(1.6 * p[0] + 0.3 * p[1] * p[2], p[1] + 0.2 * p[0] * p[0], 0.7 * p[2] + 0.1); }
+Vec3 keyOnePoint(const Vec3& p) {
+  return Vec3(1.6 * p[0] + 0.3 * p[1] * p[2], p[1] + 0.2 * p[0] * p[0], 0.7 * p[2] + 0.1);
+}
 
 BaseMesh cubeMesh() {
   auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
@@ -83,7 +85,8 @@ uint64_t referenceHash(const std::vector<Vec3>& points) {
   auto tessellation = Tessellation::build(*doc, profile);
   EXPECT_TRUE(tessellation.isOk());
   uint64_t sum = 0;
-  for (const auto& [id, region] : tessellation->regions()) sum += regionSurfaceHashOnGrid(region, *grid, true);
+  for (const auto& [id, region] : tessellation->regions())
+    sum += regionSurfaceHashOnGrid(region, *grid, true);
   return sum;
 }
 
@@ -155,23 +158,27 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
-                                30);
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
   const uint64_t doc = created->ack().document_id();
   expectAck(**admin, testing::grant(doc, wire::ROLE_VIEWER, "viewer-token-0123456789"));
   expectAck(**admin, testing::openDocument(doc));
 
   // Before a second key: refusals that say so.
-  expectRejected(**admin, subscribeAt(doc, 0.5), "morph_t is set but document " + std::to_string(doc) + " has one key");
+  expectRejected(**admin, subscribeAt(doc, 0.5),
+                 "morph_t is set but document " + std::to_string(doc) + " has one key");
   expectRejected(**admin, control(doc, 0.5, false), "the document has one key");
-  wire::ClientMessage onKey1 = testing::moveVertex(doc, VertexId(0, 2).packed(), 0, 0, 0.1, wire::MOVE_MODE_OFFSET);
+  wire::ClientMessage onKey1 =
+      testing::moveVertex(doc, VertexId(0, 2).packed(), 0, 0, 0.1, wire::MOVE_MODE_OFFSET);
   onKey1.mutable_move_vertex()->set_key(1);
   expectRejected(**admin, onKey1, "key 1 does not exist: the document has 1 key");
   // Another connectivity, by a viewer, a non-PNG image.
-  expectRejected(**admin, addKey(doc, objWith(points1, /*otherDiagonal=*/true)),
-                 "triangle 2 is (4, 5, 6) in key 0 (document " + std::to_string(doc) + ") but (4, 5, 7) in key1.obj");
+  expectRejected(
+      **admin, addKey(doc, objWith(points1, /*otherDiagonal=*/true)),
+      "triangle 2 is (4, 5, 6) in key 0 (document " + std::to_string(doc) + ") but (4, 5, 7) in key1.obj");
   auto viewerSession = Session::connect(server->session("viewer", "viewer-token-0123456789"));
   ASSERT_TRUE(viewerSession.isOk());
   expectAck(**viewerSession, testing::openDocument(doc));
@@ -187,7 +194,8 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   auto tooLarge = (*admin)->call(addKey(doc, padded), 30);
   ASSERT_TRUE(tooLarge.isOk() && tooLarge->has_reject()) << tooLarge->DebugString();
   EXPECT_EQ(tooLarge->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED);
-  EXPECT_NE(tooLarge->reject().message().find("above the limit of 4096"), std::string::npos) << tooLarge->reject().message();
+  EXPECT_NE(tooLarge->reject().message().find("above the limit of 4096"), std::string::npos)
+      << tooLarge->reject().message();
 
   // Key 1 far outside the document's grid (the cube around key 0): its
   // surface could not be encoded, so the key is refused and not kept.
@@ -214,7 +222,8 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
     ASSERT_TRUE(s.isOk());
     *slot = std::move(*s);
     expectAck(**slot, testing::openDocument(doc));
-    auto subscribed = (*slot)->call(t < 0 ? testing::subscribe(doc, kBase, kMax, kAngle) : subscribeAt(doc, t), 30);
+    auto subscribed =
+        (*slot)->call(t < 0 ? testing::subscribe(doc, kBase, kMax, kAngle) : subscribeAt(doc, t), 30);
     ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack()) << subscribed->DebugString();
   }
   DocumentView key0(doc), at0(doc), half(doc), at1(doc);
@@ -222,7 +231,8 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   readUntil(*v.at0, at0, 2);
   readUntil(*v.half, half, 2);
   readUntil(*v.at1, at1, 2);
-  const uint64_t hash0 = referenceHash(points0), hashHalf = referenceHash(halfway), hash1 = referenceHash(points1);
+  const uint64_t hash0 = referenceHash(points0), hashHalf = referenceHash(halfway),
+                 hash1 = referenceHash(points1);
   EXPECT_EQ(key0.surfaceHash(), hash0);
   EXPECT_EQ(at0.surfaceHash(), hash0);  // t = 0 is key 0 exactly
   EXPECT_EQ(half.surfaceHash(), hashHalf);
@@ -236,7 +246,8 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   const wire::MorphControl& c = coarse->morph_control();
   ASSERT_EQ(c.points_size(), static_cast<int>(3 * halfway.size()));
   for (size_t i = 0; i < halfway.size(); ++i) {
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(c.points(static_cast<int>(3 * i + k)), static_cast<float>(halfway[i][k]));
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(c.points(static_cast<int>(3 * i + k)), static_cast<float>(halfway[i][k]));
   }
   EXPECT_EQ(c.triangles_size(), 36);
   EXPECT_EQ(c.crease_sharpness_size(), 12);
@@ -270,7 +281,8 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
   const uint64_t halfMoved = half.surfaceHash();
 
   // An edit of key 0 (key unset): every view but the one at t = 1 changes.
-  auto moved0 = (*admin)->call(testing::moveVertex(doc, VertexId(0, 5).packed(), 0.05, 0, 0, wire::MOVE_MODE_OFFSET), 10);
+  auto moved0 = (*admin)->call(
+      testing::moveVertex(doc, VertexId(0, 5).packed(), 0.05, 0, 0, wire::MOVE_MODE_OFFSET), 10);
   ASSERT_TRUE(moved0.isOk() && moved0->has_ack()) << moved0->DebugString();
   readUntil(*v.key0, key0, 4);
   readUntil(*v.at0, at0, 4);
@@ -322,7 +334,9 @@ TEST(MorphDocument, ViewersSeeEachTimeAndEditsOfEitherKey) {
 namespace tessera {
 namespace {
 
-double regionsEncoded(Session& s) { return testing::serverStat(s, "regions_encoded"); }
+double regionsEncoded(Session& s) {
+  return testing::serverStat(s, "regions_encoded");
+}
 
 // A viewer playing a morph comes back to the times it showed: a view at a
 // time nobody watches is kept (within --max-triangles) and its regions are
@@ -336,9 +350,10 @@ TEST(MorphDocument, ViewsAtATimeAreKeptForViewersComingBack) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
-                                30);
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), kMaxLevel),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack());
   const uint64_t doc = created->ack().document_id();
   expectAck(**admin, testing::openDocument(doc));
@@ -384,7 +399,8 @@ TEST(MorphDocument, ViewsAtATimeAreKeptForViewersComingBack) {
 
   // An edit of key 1: the view at 0.25 is watched and rebuilt; the kept one
   // at 0.75 is dropped, so coming back to it builds it again.
-  wire::ClientMessage onKey1 = testing::moveVertex(doc, VertexId(0, 3).packed(), 0, 0.1, 0, wire::MOVE_MODE_OFFSET);
+  wire::ClientMessage onKey1 =
+      testing::moveVertex(doc, VertexId(0, 3).packed(), 0, 0.1, 0, wire::MOVE_MODE_OFFSET);
   onKey1.mutable_move_vertex()->set_key(1);
   expectAck(**admin, onKey1);
   DocumentView followed(doc);

@@ -4,14 +4,14 @@
 // data directory and compared with the original.
 #include <gtest/gtest.h>
 
+#include <httplib.h>
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
-#include <httplib.h>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -61,7 +61,8 @@ void expectJsonLines(const std::string& text, const std::string& what) {
     ++lines;
     auto parsed = nlohmann::json::parse(line, nullptr, false);
     ASSERT_FALSE(parsed.is_discarded()) << what << ": not JSON: " << line;
-    EXPECT_TRUE(parsed.is_object() && parsed.contains("ts") && parsed.contains("level") && parsed.contains("event"))
+    EXPECT_TRUE(parsed.is_object() && parsed.contains("ts") && parsed.contains("level") &&
+                parsed.contains("event"))
         << what << ": " << line;
   }
   EXPECT_GT(lines, 0) << what << " is empty";
@@ -92,7 +93,8 @@ std::map<std::string, double> parseMetrics(const std::string& body) {
 
 void openIn(Session& session, uint64_t doc) {
   auto opened = session.call(testing::openDocument(doc), 30);
-  EXPECT_TRUE(opened.isOk() && !opened->has_reject()) << (opened.isOk() ? opened->DebugString() : opened.status().message());
+  EXPECT_TRUE(opened.isOk() && !opened->has_reject())
+      << (opened.isOk() ? opened->DebugString() : opened.status().message());
 }
 
 struct Cube {
@@ -106,20 +108,24 @@ Cube createCube(const ServerProcess& server, const std::string& name) {
   EXPECT_TRUE(admin.isOk()) << admin.status().message();
   if (!admin.isOk()) return c;
   c.admin = std::move(*admin);
-  auto created = c.admin->call(testing::createDocument(name, testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                       testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 4),
-                               30);
-  EXPECT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  auto created =
+      c.admin->call(testing::createDocument(name, testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                                            testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 4),
+                    30);
+  EXPECT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
   if (created.isOk() && created->has_ack()) c.doc = created->ack().document_id();
   openIn(*c.admin, c.doc);
   return c;
 }
 
 void moveOnce(Session& session, uint64_t doc, int i) {
-  auto acked = session.call(testing::moveVertex(doc, VertexId(2, static_cast<uint64_t>(i % 60)).packed(),
-                                                0.001 * (i % 7), -0.002 * (i % 3), 0.0015, wire::MOVE_MODE_OFFSET),
-                            20);
-  ASSERT_TRUE(acked.isOk() && acked->has_ack()) << (acked.isOk() ? acked->DebugString() : acked.status().message());
+  auto acked =
+      session.call(testing::moveVertex(doc, VertexId(2, static_cast<uint64_t>(i % 60)).packed(),
+                                       0.001 * (i % 7), -0.002 * (i % 3), 0.0015, wire::MOVE_MODE_OFFSET),
+                   20);
+  ASSERT_TRUE(acked.isOk() && acked->has_ack())
+      << (acked.isOk() ? acked->DebugString() : acked.status().message());
 }
 
 std::string exportGlb(Session& session, uint64_t doc) {
@@ -128,13 +134,15 @@ std::string exportGlb(Session& session, uint64_t doc) {
   m.mutable_export_document()->set_level(3);
   m.mutable_export_document()->set_limit(true);
   auto reply = session.call(m, 30);
-  EXPECT_TRUE(reply.isOk() && reply->has_export_result()) << (reply.isOk() ? reply->DebugString() : reply.status().message());
+  EXPECT_TRUE(reply.isOk() && reply->has_export_result())
+      << (reply.isOk() ? reply->DebugString() : reply.status().message());
   return reply.isOk() && reply->has_export_result() ? reply->export_result().glb() : std::string();
 }
 
 TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   const std::string dir = testing::makeTempDir("tessera-ops-http");
-  auto server = ServerProcess::start(dir + "/data", {"--http-port", "0", "--http-port-file", dir + "/http-port"});
+  auto server =
+      ServerProcess::start(dir + "/data", {"--http-port", "0", "--http-port-file", dir + "/http-port"});
   ASSERT_TRUE(server.isOk()) << server.status().message();
   const uint16_t httpPort = readPortFile(dir + "/http-port");
   ASSERT_GT(httpPort, 0);
@@ -171,15 +179,15 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   EXPECT_EQ(m.at("tessera_edit_ack_seconds_count"), kEdits);
   EXPECT_GE(m.at("tessera_store_commit_seconds_count"), 1);
   EXPECT_GE(m.at("tessera_store_entries_committed_total"), kEdits);
-  for (const char* h : {"tessera_edit_ack_seconds", "tessera_store_commit_seconds", "tessera_tessellate_seconds",
-                        "tessera_region_encode_seconds"}) {
+  for (const char* h : {"tessera_edit_ack_seconds", "tessera_store_commit_seconds",
+                        "tessera_tessellate_seconds", "tessera_region_encode_seconds"}) {
     // Buckets are cumulative, end at +Inf with the count, and the sum is a time.
     int buckets = 0;
     for (const auto& entry : m) buckets += entry.first.rfind(std::string(h) + "_bucket{", 0) == 0 ? 1 : 0;
     EXPECT_EQ(buckets, 18) << h;
     std::vector<double> cumulative;
-    for (const char* le : {"5e-05", "0.0001", "0.00025", "0.0005", "0.001", "0.0025", "0.005", "0.01", "0.025",
-                           "0.05", "0.1", "0.25", "0.5", "1", "2.5", "5", "10", "+Inf"}) {
+    for (const char* le : {"5e-05", "0.0001", "0.00025", "0.0005", "0.001", "0.0025", "0.005", "0.01",
+                           "0.025", "0.05", "0.1", "0.25", "0.5", "1", "2.5", "5", "10", "+Inf"}) {
       auto it = m.find(std::string(h) + "_bucket{le=\"" + le + "\"}");
       ASSERT_NE(it, m.end()) << h << " le=" << le << "\n" << after->body;
       cumulative.push_back(it->second);
@@ -192,14 +200,16 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   // A refused command counts as a refusal.
   auto refused = cube.admin->call(testing::moveVertex(cube.doc, VertexId(9, 0).packed(), 0, 0, 0), 10);
   ASSERT_TRUE(refused.isOk() && refused->has_reject()) << (refused.isOk() ? refused->DebugString() : "");
-  EXPECT_EQ(parseMetrics(http.Get("/metrics")->body).at("tessera_refusals_total"), m.at("tessera_refusals_total") + 1);
+  EXPECT_EQ(parseMetrics(http.Get("/metrics")->body).at("tessera_refusals_total"),
+            m.at("tessera_refusals_total") + 1);
 
   auto missing = http.Get("/admin");
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->status, 404);
   // Loopback by default, and said so in the log.
-  EXPECT_NE(testing::fileBytes(dir + "/data.log").find("\"event\":\"http_listening\",\"address\":\"127.0.0.1\""),
-            std::string::npos);
+  EXPECT_NE(
+      testing::fileBytes(dir + "/data.log").find("\"event\":\"http_listening\",\"address\":\"127.0.0.1\""),
+      std::string::npos);
 
   EXPECT_EQ(server->stop(), 0);
   auto gone = httplib::Client("127.0.0.1", httpPort).Get("/healthz");
@@ -223,7 +233,8 @@ TEST(Operations, LogFileIsJsonAndReopensOnSighup) {
   // logrotate's way: move the file, then SIGHUP.
   std::filesystem::rename(log, log + ".1");
   ASSERT_EQ(::kill(server->pid(), SIGHUP), 0);
-  for (int i = 0; i < 500 && !std::filesystem::exists(log); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 500 && !std::filesystem::exists(log); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   ASSERT_TRUE(std::filesystem::exists(log)) << "no new log file after SIGHUP";
   moveOnce(*cube.admin, cube.doc, 1);
   cube.admin.reset();
@@ -268,13 +279,14 @@ TEST(Operations, StartupAndUsageErrorsAreJsonNamingTheCause) {
   ProgramRun help = runServerBinary("backup --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.out.find("--to"), std::string::npos) << help.out;
-  EXPECT_EQ(help.out.find("--max-level"), std::string::npos) << "backup's help lists the serving options:\n" << help.out;
+  EXPECT_EQ(help.out.find("--max-level"), std::string::npos) << "backup's help lists the serving options:\n"
+                                                             << help.out;
 }
 
 TEST(Operations, ConfigFileSetsOptionsAndTheCommandLineWins) {
   const std::string dir = testing::makeTempDir("tessera-ops-config");
-  std::ofstream(dir + "/server.conf") << "# a comment\nhttp-port = 0\nhttp-port-file = \"" << dir
-                                      << "/http-port\"\nmax-level = 1\n";
+  std::ofstream(dir + "/server.conf")
+      << "# a comment\nhttp-port = 0\nhttp-port-file = \"" << dir << "/http-port\"\nmax-level = 1\n";
   auto server = ServerProcess::start(dir + "/data", {"--config", dir + "/server.conf", "--max-level", "2"});
   ASSERT_TRUE(server.isOk()) << server.status().message();
   EXPECT_GT(readPortFile(dir + "/http-port"), 0) << "the config file's http-port was not applied";
@@ -283,7 +295,8 @@ TEST(Operations, ConfigFileSetsOptionsAndTheCommandLineWins) {
   const std::string cube = testing::fileBytes(testing::sourceTestDataPath("cube.obj"));
   auto two = (*admin)->call(testing::createDocument("two", cube, "", 2), 30);
   ASSERT_TRUE(two.isOk());
-  EXPECT_TRUE(two->has_ack()) << "--max-level 2 on the command line must override the file's 1: " << two->DebugString();
+  EXPECT_TRUE(two->has_ack()) << "--max-level 2 on the command line must override the file's 1: "
+                              << two->DebugString();
   auto three = (*admin)->call(testing::createDocument("three", cube, "", 3), 30);
   ASSERT_TRUE(three.isOk());
   EXPECT_TRUE(three->has_reject()) << three->DebugString();
@@ -296,7 +309,8 @@ TEST(Operations, TokenNewStoresAWorkingTokenWhileTheServerRuns) {
   Cube cube = createCube(*server, "tokens");
   ASSERT_NE(cube.doc, 0u);
 
-  ProgramRun viewer = runServerBinary("token new --role viewer --document " + std::to_string(cube.doc) + " --data " + dir + "/data");
+  ProgramRun viewer = runServerBinary("token new --role viewer --document " + std::to_string(cube.doc) +
+                                      " --data " + dir + "/data");
   ASSERT_EQ(viewer.exitCode, 0) << viewer.err;
   const std::string token = viewer.out.substr(0, viewer.out.find('\n'));
   EXPECT_TRUE(std::regex_match(token, std::regex("[0-9a-f]{64}"))) << token;
@@ -309,7 +323,8 @@ TEST(Operations, TokenNewStoresAWorkingTokenWhileTheServerRuns) {
   ASSERT_TRUE(session.isOk()) << session.status().message();
   openIn(**session, cube.doc);
   auto subscribed = (*session)->call(testing::subscribe(cube.doc, 0, 2), 20);
-  ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack()) << (subscribed.isOk() ? subscribed->DebugString() : "");
+  ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack())
+      << (subscribed.isOk() ? subscribed->DebugString() : "");
   auto snapshot = (*session)->receive(20);
   ASSERT_TRUE(snapshot.isOk()) << snapshot.status().message();
   EXPECT_TRUE(snapshot->has_snapshot()) << snapshot->DebugString();

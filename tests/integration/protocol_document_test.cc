@@ -52,10 +52,12 @@ void startWithCube(Server& s, const std::string& name, int maxLevel) {
   auto admin = Session::connect(s.process->session("admin", s.process->adminToken()));
   ASSERT_TRUE(admin.isOk()) << admin.status().message();
   s.admin = std::move(*admin);
-  auto created = s.admin->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                       testing::fileBytes(testing::sourceTestDataPath("cube.tags")), maxLevel),
-                               30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  auto created = s.admin->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), maxLevel),
+      30);
+  ASSERT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
   s.doc = created->ack().document_id();
   auto opened = s.admin->call(testing::openDocument(s.doc), 10);
   ASSERT_TRUE(opened.isOk() && opened->has_ack());
@@ -89,7 +91,8 @@ TEST(ProtocolDocument, StatsListMatchesTheServersReply) {
   startWithCube(s, "tessera-protocol-stats", 3);
   if (::testing::Test::HasFatalFailure()) return;
   const std::vector<std::string> documented = documentedStats(protocolText());
-  ASSERT_GT(documented.size(), 10u) << "no stats table found after 'always in this order' in docs/PROTOCOL.md";
+  ASSERT_GT(documented.size(), 10u)
+      << "no stats table found after 'always in this order' in docs/PROTOCOL.md";
   wire::ClientMessage stats;
   stats.mutable_stats();
   auto reply = s.admin->call(stats, 10);
@@ -115,9 +118,8 @@ uint64_t hashFromTheText(const std::map<uint64_t, RegionMesh>& regions) {
           keys[k][1 + c] = value == 0.0f ? 0u : std::bit_cast<uint32_t>(value);
         }
       }
-      std::array<std::array<Key, 3>, 3> rotations{{{keys[0], keys[1], keys[2]},
-                                                   {keys[1], keys[2], keys[0]},
-                                                   {keys[2], keys[0], keys[1]}}};
+      std::array<std::array<Key, 3>, 3> rotations{
+          {{keys[0], keys[1], keys[2]}, {keys[1], keys[2], keys[0]}, {keys[2], keys[0], keys[1]}}};
       const auto& smallest = *std::min_element(rotations.begin(), rotations.end());
       std::vector<uint8_t> bytes;
       for (const Key& key : smallest) {
@@ -196,8 +198,8 @@ TEST(ProtocolDocument, SurfaceHashIsRecomputedFromTheText) {
 
   const uint64_t before = hashFromTheText(withIds.regions());
   EXPECT_NE(before, 0u);
-  EXPECT_EQ(withIds.surfaceHash(), before);            // the client library's
-  EXPECT_EQ(withIds.announcedSurfaceHash(), before);   // the server's, in the snapshot
+  EXPECT_EQ(withIds.surfaceHash(), before);           // the client library's
+  EXPECT_EQ(withIds.announcedSurfaceHash(), before);  // the server's, in the snapshot
   EXPECT_TRUE(withIds.verifySurface().isOk());
   const uint64_t plainBefore = hashFromTheText(displayOnly.regions());
   EXPECT_EQ(displayOnly.announcedSurfaceHash(), plainBefore);
@@ -237,10 +239,11 @@ TEST(ProtocolDocument, DecodedIdsArriveAtTheirBirthLevel) {
   ASSERT_TRUE(process.isOk()) << process.status().message();
   auto admin = Session::connect(process->session("admin", process->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        "", 10),
-                                30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 10),
+      30);
+  ASSERT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
   const uint64_t doc = created->ack().document_id();
   ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10)->has_ack());
   // A coarse profile reaching level 10: its leaf regions at level 2 lie 8
@@ -254,7 +257,8 @@ TEST(ProtocolDocument, DecodedIdsArriveAtTheirBirthLevel) {
     if (m->has_snapshot()) {
       for (const auto& r : m->snapshot().regions()) {
         ASSERT_GE(r.draco().size(), 8u);
-        ++flags[static_cast<uint16_t>(static_cast<uint8_t>(r.draco()[6]) | (static_cast<uint8_t>(r.draco()[7]) << 8))];
+        ++flags[static_cast<uint16_t>(static_cast<uint8_t>(r.draco()[6]) |
+                                      (static_cast<uint8_t>(r.draco()[7]) << 8))];
       }
     }
     ASSERT_TRUE(view.apply(*m).isOk());
@@ -264,9 +268,10 @@ TEST(ProtocolDocument, DecodedIdsArriveAtTheirBirthLevel) {
   const auto perLevel = expectBirthLevels(view, 10);
   // Vertices of one leaf level, yet their ids name three levels.
   EXPECT_GT(perLevel.count(0) + perLevel.count(1) + perLevel.count(2), 2u);
-  std::printf("[ measured ] %d regions with 8-byte ids, %d with lattice ids; ids at levels 0/1/2: %zu/%zu/%zu\n",
-              flags[0], flags[4], perLevel.count(0) ? perLevel.at(0) : 0, perLevel.count(1) ? perLevel.at(1) : 0,
-              perLevel.count(2) ? perLevel.at(2) : 0);
+  std::printf(
+      "[ measured ] %d regions with 8-byte ids, %d with lattice ids; ids at levels 0/1/2: %zu/%zu/%zu\n",
+      flags[0], flags[4], perLevel.count(0) ? perLevel.at(0) : 0, perLevel.count(1) ? perLevel.at(1) : 0,
+      perLevel.count(2) ? perLevel.at(2) : 0);
 }
 
 // ---------------------------------------------------------------------------
@@ -284,14 +289,16 @@ Glb exportGlb(Session& s, uint64_t doc, uint32_t level, bool limit) {
   m.mutable_export_document()->set_level(level);
   m.mutable_export_document()->set_limit(limit);
   auto reply = s.call(m, 60);
-  EXPECT_TRUE(reply.isOk() && reply->has_export_result()) << (reply.isOk() ? reply->DebugString() : reply.status().message());
+  EXPECT_TRUE(reply.isOk() && reply->has_export_result())
+      << (reply.isOk() ? reply->DebugString() : reply.status().message());
   Glb out;
   if (!reply.isOk() || !reply->has_export_result()) return out;
   const std::string& bytes = reply->export_result().glb();
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
-  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+  EXPECT_TRUE(loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                          reinterpret_cast<const unsigned char*>(bytes.data()),
                                           static_cast<unsigned>(bytes.size())))
       << err;
   const tinygltf::Primitive& p = model.meshes.at(0).primitives.at(0);
@@ -299,7 +306,8 @@ Glb exportGlb(Session& s, uint64_t doc, uint32_t level, bool limit) {
     const tinygltf::Accessor& a = model.accessors.at(accessorIndex);
     const tinygltf::BufferView& v = model.bufferViews.at(a.bufferView);
     std::vector<std::array<float, 3>> values(a.count);
-    std::memcpy(values.data(), model.buffers.at(v.buffer).data.data() + v.byteOffset + a.byteOffset, a.count * 12);
+    std::memcpy(values.data(), model.buffers.at(v.buffer).data.data() + v.byteOffset + a.byteOffset,
+                a.count * 12);
     return values;
   };
   out.positions = floats(p.attributes.at("POSITION"));
@@ -388,7 +396,8 @@ std::vector<std::array<uint64_t, 3>> withoutCopies(const Glb& glb, uint64_t vert
                                                    size_t& otherNormal) {
   std::map<std::array<uint32_t, 3>, uint64_t> at;
   auto bits = [](const std::array<float, 3>& p) {
-    return std::array<uint32_t, 3>{std::bit_cast<uint32_t>(p[0]), std::bit_cast<uint32_t>(p[1]), std::bit_cast<uint32_t>(p[2])};
+    return std::array<uint32_t, 3>{std::bit_cast<uint32_t>(p[0]), std::bit_cast<uint32_t>(p[1]),
+                                   std::bit_cast<uint32_t>(p[2])};
   };
   for (uint64_t k = 0; k < vertices && k < glb.positions.size(); ++k) {
     EXPECT_TRUE(at.emplace(bits(glb.positions[k]), k).second) << "two vertices at one position: " << k;
@@ -422,7 +431,11 @@ TEST(ProtocolDocument, ExportVertexOrderFollowsTheNumbering) {
   startWithCube(s, "tessera-protocol-export", 3);
   if (::testing::Test::HasFatalFailure()) return;
   // Some edits, so that positions are not those of a plain cube.
-  ASSERT_TRUE(s.admin->call(testing::moveVertex(s.doc, VertexId(1, 9).packed(), 0.05, 0.02, -0.03, wire::MOVE_MODE_OFFSET), 10)->has_ack());
+  ASSERT_TRUE(s.admin
+                  ->call(testing::moveVertex(s.doc, VertexId(1, 9).packed(), 0.05, 0.02, -0.03,
+                                             wire::MOVE_MODE_OFFSET),
+                         10)
+                  ->has_ack());
 
   const Glb base = exportGlb(*s.admin, s.doc, 0, false);
   ASSERT_EQ(base.positions.size(), 8u);
@@ -450,14 +463,17 @@ TEST(ProtocolDocument, ExportVertexOrderFollowsTheNumbering) {
     // The infinitely sharp top rim and corner keep a crease in the limit:
     // their further sides have normals of their own.
     EXPECT_GT(otherNormal, 0u) << "no copy has a normal of its own side";
-    std::printf("[ measured ] level %u: %llu vertices, %zu split copies (%zu with another normal), %zu triangles\n",
-                l, static_cast<unsigned long long>(levels[l].vertices), copies, otherNormal,
-                limit[l].triangles.size());
+    std::printf(
+        "[ measured ] level %u: %llu vertices, %zu split copies (%zu with another normal), %zu triangles\n",
+        l, static_cast<unsigned long long>(levels[l].vertices), copies, otherNormal,
+        limit[l].triangles.size());
   }
   // Vertices keep their index: vertex k of level 1 has the same limit at
   // level 2, the same point evaluated from another level. Exact only where
   // no semi-sharp crease is still decaying (3.2), so on the smooth cube.
-  auto smooth = s.admin->call(testing::createDocument("smooth", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 3), 30);
+  auto smooth = s.admin->call(
+      testing::createDocument("smooth", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 3),
+      30);
   ASSERT_TRUE(smooth.isOk() && smooth->has_ack());
   const uint64_t smoothDoc = smooth->ack().document_id();
   ASSERT_TRUE(s.admin->call(testing::openDocument(smoothDoc), 10)->has_ack());
@@ -474,7 +490,8 @@ TEST(ProtocolDocument, ExportVertexOrderFollowsTheNumbering) {
 
 wire::RejectReason rejectOf(Session& s, wire::ClientMessage m) {
   auto reply = s.call(std::move(m), 10);
-  EXPECT_TRUE(reply.isOk() && reply->has_reject()) << (reply.isOk() ? reply->DebugString() : reply.status().message());
+  EXPECT_TRUE(reply.isOk() && reply->has_reject())
+      << (reply.isOk() ? reply->DebugString() : reply.status().message());
   return reply.isOk() && reply->has_reject() ? reply->reject().reason() : wire::REJECT_REASON_UNSPECIFIED;
 }
 
@@ -506,7 +523,8 @@ TEST(ProtocolDocument, AMissingIdWinsOverHowTheIdsRelate) {
     if (count > 1) e->add_end_vertex_ids(y);
     return m;
   };
-  EXPECT_EQ(rejectOf(*s.admin, crease(a, VertexId(2, counts.vertices(2)).packed())), wire::REJECT_REASON_NOT_FOUND);
+  EXPECT_EQ(rejectOf(*s.admin, crease(a, VertexId(2, counts.vertices(2)).packed())),
+            wire::REJECT_REASON_NOT_FOUND);
   EXPECT_EQ(rejectOf(*s.admin, crease(missing, b)), wire::REJECT_REASON_NOT_FOUND);
   EXPECT_EQ(rejectOf(*s.admin, crease(a, b)), wire::REJECT_REASON_INVALID_ARGUMENT);
   // The form of the message comes first: one end vertex, even a missing one.

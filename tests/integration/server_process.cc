@@ -12,7 +12,8 @@
 
 namespace tessera::testing {
 
-Expected<ServerProcess> ServerProcess::start(const std::string& dataDirectory, const std::vector<std::string>& extraArgs) {
+Expected<ServerProcess> ServerProcess::start(const std::string& dataDirectory,
+                                             const std::vector<std::string>& extraArgs) {
   ServerProcess p;
   const std::string base = std::filesystem::path(dataDirectory).parent_path().string();
   const std::string portFile = dataDirectory + ".port";
@@ -22,8 +23,15 @@ Expected<ServerProcess> ServerProcess::start(const std::string& dataDirectory, c
   std::filesystem::remove(portFile);
   // TESSERA_SERVER_BINARY runs another build (benchmarks compare before and after).
   const char* binary = std::getenv("TESSERA_SERVER_BINARY");
-  std::vector<std::string> args = {binary != nullptr ? binary : TESSERA_SERVER_PATH, "--data", dataDirectory, "--port", "0", "--port-file", portFile,
-                                   "--admin-token-file", tokenFile};
+  std::vector<std::string> args = {binary != nullptr ? binary : TESSERA_SERVER_PATH,
+                                   "--data",
+                                   dataDirectory,
+                                   "--port",
+                                   "0",
+                                   "--port-file",
+                                   portFile,
+                                   "--admin-token-file",
+                                   tokenFile};
   args.insert(args.end(), extraArgs.begin(), extraArgs.end());
   const std::string log = dataDirectory + ".log";
   p.pid_ = fork();

@@ -17,7 +17,8 @@ namespace tessera::testing {
 class ServerProcess {
  public:
   // `dataDirectory` holds the store; the admin token is written beside it.
-  static Expected<ServerProcess> start(const std::string& dataDirectory, const std::vector<std::string>& extraArgs = {});
+  static Expected<ServerProcess> start(const std::string& dataDirectory,
+                                       const std::vector<std::string>& extraArgs = {});
   ServerProcess(ServerProcess&& other) noexcept;
   ~ServerProcess();
 

@@ -12,9 +12,9 @@
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
-#include "protocol/framing.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
+#include "protocol/framing.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -60,15 +60,18 @@ void startWithCube(Fixture& f, const std::string& name, const std::vector<std::s
   auto admin = Session::connect(f.server->session("admin", f.server->adminToken()));
   ASSERT_TRUE(admin.isOk()) << admin.status().message();
   EXPECT_EQ((*admin)->role(), wire::ROLE_ADMIN);
-  auto created = (*admin)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                        testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
-                                30);
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
+      30);
   ASSERT_TRUE(created.isOk()) << created.status().message();
   ASSERT_TRUE(created->has_ack()) << created->DebugString();
   f.doc = created->ack().document_id();
-  for (auto [role, token] : {std::pair{wire::ROLE_VIEWER, "viewer-token-0123456789"}, std::pair{wire::ROLE_EDITOR, "editor-token-0123456789"}}) {
+  for (auto [role, token] : {std::pair{wire::ROLE_VIEWER, "viewer-token-0123456789"},
+                             std::pair{wire::ROLE_EDITOR, "editor-token-0123456789"}}) {
     auto granted = (*admin)->call(testing::grant(f.doc, role, token), 10);
-    ASSERT_TRUE(granted.isOk() && granted->has_ack()) << (granted.isOk() ? granted->DebugString() : granted.status().message());
+    ASSERT_TRUE(granted.isOk() && granted->has_ack())
+        << (granted.isOk() ? granted->DebugString() : granted.status().message());
   }
 }
 
@@ -81,7 +84,8 @@ TEST(Server, EditsStreamToEveryViewerAndLateJoinersCatchUp) {
   ASSERT_TRUE(viewer.isOk() && editor.isOk());
   for (Session* s : {viewer->get(), editor->get()}) {
     auto opened = s->call(testing::openDocument(f.doc), 10);
-    ASSERT_TRUE(opened.isOk() && opened->has_ack()) << (opened.isOk() ? opened->DebugString() : opened.status().message());
+    ASSERT_TRUE(opened.isOk() && opened->has_ack())
+        << (opened.isOk() ? opened->DebugString() : opened.status().message());
     auto subscribed = s->call(testing::subscribe(f.doc, 1, 4), 30);
     ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack()) << subscribed->DebugString();
   }
@@ -114,7 +118,8 @@ TEST(Server, EditsStreamToEveryViewerAndLateJoinersCatchUp) {
   EXPECT_EQ(joined.surfaceHash(), seen.surfaceHash());
 
   // Then deltas with no gap: another edit reaches all three.
-  auto second = (*editor)->call(testing::moveVertex(f.doc, VertexId(3, 40).packed(), 0.3, 0.3, 0.3, wire::MOVE_MODE_OFFSET), 10);
+  auto second = (*editor)->call(
+      testing::moveVertex(f.doc, VertexId(3, 40).packed(), 0.3, 0.3, 0.3, wire::MOVE_MODE_OFFSET), 10);
   ASSERT_TRUE(second.isOk() && second->has_ack()) << second->DebugString();
   waitForVersion(**late, joined, 3);
   waitForVersion(**viewer, seen, 3);
@@ -190,8 +195,9 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
   constexpr int kEdits = 60;
   std::string burst;
   for (int i = 0; i < kEdits; ++i) {
-    wire::ClientMessage m = testing::moveVertex(f.doc, VertexId(2, static_cast<uint64_t>(i * 7 % 98)).packed(), 0.002 * (i % 5),
-                                                -0.001 * (i % 3), 0.0015, wire::MOVE_MODE_OFFSET);
+    wire::ClientMessage m =
+        testing::moveVertex(f.doc, VertexId(2, static_cast<uint64_t>(i * 7 % 98)).packed(), 0.002 * (i % 5),
+                            -0.001 * (i % 3), 0.0015, wire::MOVE_MODE_OFFSET);
     m.set_client_seq(1000 + static_cast<uint64_t>(i));
     auto frame = encodeFrame(m);
     ASSERT_TRUE(frame.isOk());
@@ -206,7 +212,8 @@ TEST(Server, ABurstOfEditsIsAckedPerEditAndStreamedAsSpanningDeltas) {
     if (m->has_ack()) versionOfSeq[m->ack().client_seq()] = m->ack().version();
   }
   ASSERT_EQ(versionOfSeq.size(), static_cast<size_t>(kEdits));
-  for (int i = 0; i < kEdits; ++i) EXPECT_EQ(versionOfSeq[1000 + static_cast<uint64_t>(i)], 2u + static_cast<uint64_t>(i));
+  for (int i = 0; i < kEdits; ++i)
+    EXPECT_EQ(versionOfSeq[1000 + static_cast<uint64_t>(i)], 2u + static_cast<uint64_t>(i));
 
   int deltas = 0, spanning = 0;
   for (int i = 0; i < 400 && seen.version() < 1 + kEdits; ++i) {
@@ -247,7 +254,8 @@ TEST(Server, DisplayOnlySubscribersGetTheSameSurfaceWithoutIds) {
   DocumentView thinView(f.doc);
   waitForSnapshot(**thin, thinView);
   EXPECT_LT(thinView.bytesReceived(), c.seen.bytesReceived());
-  auto acked = c.editor->call(testing::moveVertex(f.doc, VertexId(2, 5).packed(), 0.02, 0.0, 0.01, wire::MOVE_MODE_OFFSET), 10);
+  auto acked = c.editor->call(
+      testing::moveVertex(f.doc, VertexId(2, 5).packed(), 0.02, 0.0, 0.01, wire::MOVE_MODE_OFFSET), 10);
   ASSERT_TRUE(acked.isOk() && acked->has_ack());
   waitForVersion(*c.viewer, c.seen, 2);
   waitForVersion(**thin, thinView, 2);
@@ -273,7 +281,8 @@ TEST(Server, MovedRegionsStreamWithoutIdsAndViewersKeepTheirIds) {
   int withoutIds = 0, withIds = 0;
   for (int i = 0; i < 12; ++i) {
     const VertexId v(2, static_cast<uint64_t>(i * 11 % 98));
-    auto acked = c.editor->call(testing::moveVertex(f.doc, v.packed(), 0.004, -0.003, 0.002, wire::MOVE_MODE_OFFSET), 10);
+    auto acked = c.editor->call(
+        testing::moveVertex(f.doc, v.packed(), 0.004, -0.003, 0.002, wire::MOVE_MODE_OFFSET), 10);
     ASSERT_TRUE(acked.isOk() && acked->has_ack());
     while (c.seen.version() < acked->ack().version()) {
       auto m = c.viewer->receive(10);
@@ -291,7 +300,8 @@ TEST(Server, MovedRegionsStreamWithoutIdsAndViewersKeepTheirIds) {
   }
   EXPECT_GT(withoutIds, 0);
   EXPECT_EQ(c.seen.gaps(), 0u);
-  for (const auto& [id, region] : c.seen.regions()) EXPECT_EQ(region.vertexIds.size(), region.positions.size()) << id;
+  for (const auto& [id, region] : c.seen.regions())
+    EXPECT_EQ(region.vertexIds.size(), region.positions.size()) << id;
   DocumentView fresh(f.doc);
   subscribeFresh(f, fresh);
   EXPECT_EQ(fresh.version(), c.seen.version());
@@ -314,8 +324,10 @@ TEST(Server, PacedDeltasCoverTheEditsOfTheirInterval) {
   constexpr uint64_t kEdits = 10;
   for (uint64_t i = 0; i < kEdits; ++i) {
     auto acked = editor->call(
-        testing::moveVertex(f.doc, VertexId(2, i * 9).packed(), 0.002, 0.001, -0.002, wire::MOVE_MODE_OFFSET), 10);
-    ASSERT_TRUE(acked.isOk() && acked->has_ack()) << (acked.isOk() ? acked->DebugString() : acked.status().message());
+        testing::moveVertex(f.doc, VertexId(2, i * 9).packed(), 0.002, 0.001, -0.002, wire::MOVE_MODE_OFFSET),
+        10);
+    ASSERT_TRUE(acked.isOk() && acked->has_ack())
+        << (acked.isOk() ? acked->DebugString() : acked.status().message());
     EXPECT_EQ(acked->ack().version(), 2 + i);
   }
   std::vector<std::pair<uint64_t, uint64_t>> spans;
@@ -389,8 +401,8 @@ TEST(Server, TheCliCreatesEditsAndListsRemotely) {
   ASSERT_TRUE(server.isOk());
   std::ofstream(dir + "/token") << server->adminToken() << "\n";
   std::ofstream(dir + "/script.txt") << "move v1:20 to 0.5 0.5 1.25\noffset v3:200 by 0 0 0.04\nundo 1\n";
-  const std::string remote = std::string(TESSERA_CLI_PATH) + " remote --port " + std::to_string(server->port()) +
-                             " --token-file " + dir + "/token ";
+  const std::string remote = std::string(TESSERA_CLI_PATH) + " remote --port " +
+                             std::to_string(server->port()) + " --token-file " + dir + "/token ";
   auto run = [&](const std::string& args) {
     const std::string out = dir + "/out.txt";
     const int status = std::system((remote + args + " >" + out + " 2>&1").c_str());
@@ -403,14 +415,16 @@ TEST(Server, TheCliCreatesEditsAndListsRemotely) {
   ASSERT_EQ(edited.first, 0) << edited.second;
   // One EditBatch: the whole script is one version (cli_remote_test.cc).
   EXPECT_NE(edited.second.find("script.txt:3: edit 1\n"), std::string::npos) << edited.second;
-  EXPECT_NE(edited.second.find("applied 3 commands to document 1 as version 2"), std::string::npos) << edited.second;
+  EXPECT_NE(edited.second.find("applied 3 commands to document 1 as version 2"), std::string::npos)
+      << edited.second;
   auto listed = run("list");
   EXPECT_EQ(listed.second, "1\tbox\tversion 2\n");
   auto bad = run("edit 1 --script /nonexistent");
   EXPECT_EQ(bad.first, 1);
-  auto denied = std::system((std::string(TESSERA_CLI_PATH) + " remote --port " + std::to_string(server->port()) +
-                             " --token nobody-token-0123456789 create " + testing::sourceTestDataPath("cube.obj") +
-                             " >/dev/null 2>&1").c_str());
+  auto denied = std::system((std::string(TESSERA_CLI_PATH) + " remote --port " +
+                             std::to_string(server->port()) + " --token nobody-token-0123456789 create " +
+                             testing::sourceTestDataPath("cube.obj") + " >/dev/null 2>&1")
+                                .c_str());
   EXPECT_EQ(WEXITSTATUS(denied), 1);
   EXPECT_EQ(server->stop(), 0);
 }

@@ -66,10 +66,11 @@ wire::ServerMessage fandiskSnapshot() {
 // Keeps a core busy until destroyed.
 class Spinner {
  public:
-  Spinner() : thread_([this] {
-      volatile uint64_t x = 0;
-      while (!stop_) x = x + 1;
-    }) {}
+  Spinner()
+      : thread_([this] {
+          volatile uint64_t x = 0;
+          while (!stop_) x = x + 1;
+        }) {}
   ~Spinner() {
     stop_ = true;
     thread_.join();
@@ -147,7 +148,8 @@ TEST(SessionRead, AShortPollingTimeoutNeverLosesBytesUnderLoad) {
   while (received < kCopies && Clock::now() < deadline) {
     auto m = (*session)->receive(0.001);
     if (!m.isOk()) {
-      ASSERT_TRUE(client::isReceiveTimeout(m.status())) << "copy " << received << ": " << m.status().message();
+      ASSERT_TRUE(client::isReceiveTimeout(m.status()))
+          << "copy " << received << ": " << m.status().message();
       ++timeouts;
       continue;
     }

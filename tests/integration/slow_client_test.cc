@@ -30,16 +30,17 @@ struct Outcome {
 // 400 edits while one viewer reads nothing; returns the server's counters.
 void runWithASlowViewer(uint64_t softBytes, uint64_t hardBytes, Outcome& outcome) {
   const std::string dir = testing::makeTempDir("tessera-server-slow");
-  auto server = ServerProcess::start(dir + "/data", {"--queue-soft-bytes", std::to_string(softBytes), "--queue-hard-bytes",
-                                                     std::to_string(hardBytes), "--queue-messages", "64",
-                                                     "--write-timeout", "120", "--commands-per-second", "100000",
-                                                     "--send-buffer-bytes", "4096"});
+  auto server = ServerProcess::start(
+      dir + "/data", {"--queue-soft-bytes", std::to_string(softBytes), "--queue-hard-bytes",
+                      std::to_string(hardBytes), "--queue-messages", "64", "--write-timeout", "120",
+                      "--commands-per-second", "100000", "--send-buffer-bytes", "4096"});
   EXPECT_TRUE(server.isOk()) << server.status().message();
   if (!server.isOk()) return;
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   if (!admin.isOk()) return;
   auto created = (*admin)->call(
-      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 4), 30);
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 4),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack());
   const uint64_t doc = created->ack().document_id();
   ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10)->has_ack());
@@ -84,9 +85,11 @@ void runWithASlowViewer(uint64_t softBytes, uint64_t hardBytes, Outcome& outcome
   EXPECT_EQ(slowView.surfaceHash(), fastView.surfaceHash());
   outcome.slowGaps = slowView.gaps();
   outcome.resyncs = testing::serverStat(**admin, "resyncs");
-  std::printf("slow viewer, queue limits %llu/%llu bytes: largest queue %.0f bytes, %.0f delta merges, %.0f resyncs\n",
-              static_cast<unsigned long long>(softBytes), static_cast<unsigned long long>(hardBytes), outcome.queueMax,
-              outcome.merges, outcome.resyncs);
+  std::printf(
+      "slow viewer, queue limits %llu/%llu bytes: largest queue %.0f bytes, %.0f delta merges, %.0f "
+      "resyncs\n",
+      static_cast<unsigned long long>(softBytes), static_cast<unsigned long long>(hardBytes),
+      outcome.queueMax, outcome.merges, outcome.resyncs);
   EXPECT_EQ(server->stop(), 0);
 }
 
@@ -119,7 +122,8 @@ TEST(ServerBackpressure, AViewerThatStopsReadingIsClosedAfterTheWriteTimeout) {
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
   auto created = (*admin)->call(
-      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 5), 30);
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 5),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack());
   const uint64_t doc = created->ack().document_id();
 

@@ -31,11 +31,11 @@ namespace tessera::testing {
 struct StormCommand {
   enum class Kind { kMove, kCrease, kUndo, kRedo };
   Kind kind = Kind::kMove;
-  VertexId vertex;        // kMove
-  Vec3 displacement;      // kMove, in world units
-  EdgeId edge;            // kCrease
-  float sharpness = 0;    // kCrease
-  uint64_t target = 0;    // kUndo, kRedo: an acknowledged edit id
+  VertexId vertex;      // kMove
+  Vec3 displacement;    // kMove, in world units
+  EdgeId edge;          // kCrease
+  float sharpness = 0;  // kCrease
+  uint64_t target = 0;  // kUndo, kRedo: an acknowledged edit id
 
   wire::ClientMessage message(uint64_t documentId) const {
     wire::ClientMessage m;
@@ -78,8 +78,12 @@ struct StormCommand {
         TESSERA_ASSIGN_OR_RETURN(EditId id, doc.setEdgeSharpness(edge, sharpness));
         return id.value;
       }
-      case Kind::kUndo: TESSERA_RETURN_IF_ERROR(doc.undo(EditId{target})); return target;
-      case Kind::kRedo: TESSERA_RETURN_IF_ERROR(doc.redo(EditId{target})); return target;
+      case Kind::kUndo:
+        TESSERA_RETURN_IF_ERROR(doc.undo(EditId{target}));
+        return target;
+      case Kind::kRedo:
+        TESSERA_RETURN_IF_ERROR(doc.redo(EditId{target}));
+        return target;
     }
     return target;
   }
@@ -87,10 +91,14 @@ struct StormCommand {
 
 inline const char* kindName(StormCommand::Kind kind) {
   switch (kind) {
-    case StormCommand::Kind::kMove: return "move";
-    case StormCommand::Kind::kCrease: return "crease";
-    case StormCommand::Kind::kUndo: return "undo";
-    case StormCommand::Kind::kRedo: return "redo";
+    case StormCommand::Kind::kMove:
+      return "move";
+    case StormCommand::Kind::kCrease:
+      return "crease";
+    case StormCommand::Kind::kUndo:
+      return "undo";
+    case StormCommand::Kind::kRedo:
+      return "redo";
   }
   return "?";
 }
@@ -113,7 +121,8 @@ inline uint64_t pickIndex(std::mt19937& rng, uint64_t count, int part, int parts
 // components are computed in signed arithmetic: `rng() % 21` is unsigned,
 // and subtracting an unsigned 10 from it wrapped negative offsets to about
 // 1.8e16, which the server refused as out of its grid.
-inline StormCommand randomSignedMove(std::mt19937& rng, const LevelCounts& counts, int part = 0, int parts = 1) {
+inline StormCommand randomSignedMove(std::mt19937& rng, const LevelCounts& counts, int part = 0,
+                                     int parts = 1) {
   StormCommand c;
   c.kind = StormCommand::Kind::kMove;
   const int level = static_cast<int>(rng() % 3);
@@ -171,13 +180,14 @@ inline std::string settledStateKey(const Document& doc) {
     std::memcpy(bytes, &value, sizeof(value));
     out.append(bytes, sizeof(value));
   };
-  std::map<uint64_t, std::string> offsets;                   // packed vertex -> its active offsets
-  std::map<std::tuple<int, uint64_t>, float> lastTag;        // (0 edge / 1 vertex, packed id) -> sharpness
+  std::map<uint64_t, std::string> offsets;             // packed vertex -> its active offsets
+  std::map<std::tuple<int, uint64_t>, float> lastTag;  // (0 edge / 1 vertex, packed id) -> sharpness
   for (const Edit& edit : doc.edits()) {
     if (!edit.active) continue;
     if (const auto* move = std::get_if<MoveEdit>(&edit.change)) {
       for (const VertexOffset& o : move->offsets) {
-        for (int k = 0; k < 3; ++k) put(offsets[o.vertex.packed()], std::bit_cast<uint64_t>(o.localOffset[k]));
+        for (int k = 0; k < 3; ++k)
+          put(offsets[o.vertex.packed()], std::bit_cast<uint64_t>(o.localOffset[k]));
       }
     } else if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
       lastTag[{0, e->edge.packed()}] = e->sharpness;

@@ -6,8 +6,8 @@
 #include <cstdlib>
 
 #include "client/lib/session.h"
-#include "integration/messages.h"
 #include "integration/certificates.h"
+#include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
 
@@ -23,7 +23,8 @@ TEST(ServerTls, ServesVerifiedTlsClientsOnly) {
   const std::string dir = testing::makeTempDir("tessera-server-tls");
   ASSERT_TRUE(makeCertificate(dir, "server"));
   ASSERT_TRUE(makeCertificate(dir, "other"));
-  auto server = ServerProcess::start(dir + "/data", {"--tls-cert", dir + "/server.pem", "--tls-key", dir + "/server.key"});
+  auto server = ServerProcess::start(dir + "/data",
+                                     {"--tls-cert", dir + "/server.pem", "--tls-key", dir + "/server.key"});
   ASSERT_TRUE(server.isOk()) << server.status().message();
 
   client::SessionOptions options = server->session("secure", server->adminToken());
@@ -33,7 +34,9 @@ TEST(ServerTls, ServesVerifiedTlsClientsOnly) {
   ASSERT_TRUE(secure.isOk()) << secure.status().message();
   EXPECT_EQ((*secure)->role(), wire::ROLE_ADMIN);
   EXPECT_TRUE((*secure)->call(testing::ping(), 10)->has_pong());
-  auto created = (*secure)->call(testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 3), 30);
+  auto created = (*secure)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")), "", 3),
+      30);
   ASSERT_TRUE(created.isOk() && created->has_ack());
 
   client::SessionOptions plain = server->session("plain", server->adminToken());
@@ -44,7 +47,8 @@ TEST(ServerTls, ServesVerifiedTlsClientsOnly) {
   wrongTrust.tlsCaFile = dir + "/other.pem";
   auto refused = Session::connect(wrongTrust);
   ASSERT_FALSE(refused.isOk());
-  EXPECT_NE(refused.status().message().find("TLS handshake"), std::string::npos) << refused.status().message();
+  EXPECT_NE(refused.status().message().find("TLS handshake"), std::string::npos)
+      << refused.status().message();
 
   EXPECT_TRUE((*secure)->call(testing::ping(), 10)->has_pong());
   EXPECT_EQ(server->stop(), 0);
@@ -53,7 +57,8 @@ TEST(ServerTls, ServesVerifiedTlsClientsOnly) {
 TEST(ServerTls, RefusesToStartWithABadCertificate) {
   const std::string dir = testing::makeTempDir("tessera-server-badtls");
   std::ofstream(dir + "/bad.pem") << "not a certificate\n";
-  auto server = ServerProcess::start(dir + "/data", {"--tls-cert", dir + "/bad.pem", "--tls-key", dir + "/bad.pem"});
+  auto server =
+      ServerProcess::start(dir + "/data", {"--tls-cert", dir + "/bad.pem", "--tls-key", dir + "/bad.pem"});
   ASSERT_FALSE(server.isOk());
   EXPECT_NE(testing::fileBytes(dir + "/data.log").find("--tls-cert " + dir + "/bad.pem"), std::string::npos)
       << testing::fileBytes(dir + "/data.log");

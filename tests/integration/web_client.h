@@ -68,12 +68,16 @@ class WebSocketClient {
     if (ec) return ioError("connect: " + ec.message());
     setReceiveTimeout(c->ws_.next_layer(), 20);
     if (!origin.empty()) {
-      c->ws_.set_option(boost::beast::websocket::stream_base::decorator(
-          [origin](boost::beast::websocket::request_type& r) { r.set(boost::beast::http::field::origin, origin); }));
+      c->ws_.set_option(
+          boost::beast::websocket::stream_base::decorator([origin](boost::beast::websocket::request_type& r) {
+            r.set(boost::beast::http::field::origin, origin);
+          }));
     }
     boost::beast::websocket::response_type response;
     c->ws_.handshake(response, "127.0.0.1:" + std::to_string(port), path, ec);
-    if (ec) return ioError("WebSocket handshake: " + ec.message() + " (HTTP " + std::to_string(response.result_int()) + ")");
+    if (ec)
+      return ioError("WebSocket handshake: " + ec.message() + " (HTTP " +
+                     std::to_string(response.result_int()) + ")");
     c->ws_.binary(true);
     return c;
   }
@@ -102,7 +106,9 @@ class WebSocketClient {
     TESSERA_RETURN_IF_ERROR(decoder.feed(bytes));
     wire::ServerMessage message;
     TESSERA_ASSIGN_OR_RETURN(bool got, decoder.next(message));
-    if (!got) return invalidArgument("a WebSocket message of " + std::to_string(bytes.size()) + " bytes is not a whole frame");
+    if (!got)
+      return invalidArgument("a WebSocket message of " + std::to_string(bytes.size()) +
+                             " bytes is not a whole frame");
     wire::ServerMessage extra;
     auto more = decoder.next(extra);
     if (more.isOk() && *more) return invalidArgument("a WebSocket message holds more than one frame");
@@ -117,7 +123,8 @@ class WebSocketClient {
     for (int i = 0; i < 100000; ++i) {
       TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage m, receive());
       if (m.has_error()) return m;
-      if ((m.has_ack() && m.ack().client_seq() == clientSeq) || (m.has_reject() && m.reject().client_seq() == clientSeq) ||
+      if ((m.has_ack() && m.ack().client_seq() == clientSeq) ||
+          (m.has_reject() && m.reject().client_seq() == clientSeq) ||
           (m.has_hello_ack() && m.hello_ack().client_seq() == clientSeq)) {
         return m;
       }

@@ -49,7 +49,9 @@ std::string get(const std::string& target, const std::string& extraHeaders = "")
   return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n" + extraHeaders + "\r\n";
 }
 
-std::string builtFile(const std::string& name) { return testing::fileBytes(std::string(TESSERA_WEB_DIR) + "/" + name); }
+std::string builtFile(const std::string& name) {
+  return testing::fileBytes(std::string(TESSERA_WEB_DIR) + "/" + name);
+}
 
 std::string upgradeRequest(const std::string& extraHeaders = "") {
   return "GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
@@ -104,27 +106,33 @@ TEST(WebPort, ServesTheViewersFilesAndNothingElse) {
   const std::string gz = httpExchange(w.webPort, get("/viewer.js", "Accept-Encoding: gzip, br\r\n"));
   EXPECT_NE(gz.find("Content-Encoding: gzip"), std::string::npos);
   EXPECT_LT(gz.size(), js.size());
-  const std::string head = httpExchange(w.webPort, "HEAD /viewer.js HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  const std::string head =
+      httpExchange(w.webPort, "HEAD /viewer.js HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(httpStatus(head), 200);
-  EXPECT_NE(head.find("Content-Length: " + std::to_string(builtFile("viewer.js").size())), std::string::npos) << head;
+  EXPECT_NE(head.find("Content-Length: " + std::to_string(builtFile("viewer.js").size())), std::string::npos)
+      << head;
   EXPECT_TRUE(head.ends_with("\r\n\r\n")) << "HEAD sent a body";
 
   // Path traversal and other names: 404, never a file of the machine.
   for (const std::string target :
-       {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc%2fpasswd", "/viewer.js/../../etc/passwd",
-        "//etc/passwd", "/web/", "/index.html/", "/./index.html", "/INDEX.HTML", "/node_modules/three/package.json",
-        "/favicon.ico", "/ws/../index.html", "/CMakeLists.txt", "/viewer.js%00.html"}) {
+       {"/../../../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc%2fpasswd",
+        "/viewer.js/../../etc/passwd", "//etc/passwd", "/web/", "/index.html/", "/./index.html",
+        "/INDEX.HTML", "/node_modules/three/package.json", "/favicon.ico", "/ws/../index.html",
+        "/CMakeLists.txt", "/viewer.js%00.html"}) {
     const std::string r = httpExchange(w.webPort, get(target));
     EXPECT_EQ(httpStatus(r), 404) << target << ": " << r.substr(0, 200);
     EXPECT_EQ(r.find("root:"), std::string::npos) << target;
   }
   // Only GET and HEAD; no bodies; bounded headers; garbage is a 400.
-  const std::string post = httpExchange(w.webPort, "POST / HTTP/1.1\r\nHost: x\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
+  const std::string post =
+      httpExchange(w.webPort, "POST / HTTP/1.1\r\nHost: x\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
   EXPECT_EQ(httpStatus(post), 405) << post;
   EXPECT_NE(post.find("Allow: GET, HEAD"), std::string::npos);
-  const std::string body = httpExchange(w.webPort, "GET / HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n\r\nhello");
+  const std::string body =
+      httpExchange(w.webPort, "GET / HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n\r\nhello");
   EXPECT_EQ(httpStatus(body), 413) << body;
-  const std::string huge = httpExchange(w.webPort, get("/", "X-Padding: " + std::string(64 * 1024, 'a') + "\r\n"));
+  const std::string huge =
+      httpExchange(w.webPort, get("/", "X-Padding: " + std::string(64 * 1024, 'a') + "\r\n"));
   EXPECT_EQ(httpStatus(huge), 431) << huge.substr(0, 200);
   EXPECT_EQ(httpStatus(httpExchange(w.webPort, "NONSENSE\r\n\r\n")), 400);
   // A WebSocket upgrade anywhere but /ws.
@@ -142,10 +150,12 @@ TEST(WebPort, TheProtocolOverWebSocketAssemblesTheSameSurface) {
   WebServer w;
   start(w, "tessera-web-protocol");
   if (::testing::Test::HasFatalFailure()) return;
-  auto created = w.admin->call(testing::createDocument("ws", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                                                       testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 4),
-                               30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : created.status().message());
+  auto created =
+      w.admin->call(testing::createDocument("ws", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                                            testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 4),
+                    30);
+  ASSERT_TRUE(created.isOk() && created->has_ack())
+      << (created.isOk() ? created->DebugString() : created.status().message());
   const uint64_t doc = created->ack().document_id();
   ASSERT_TRUE(w.admin->call(testing::openDocument(doc), 20).isOk());
 
@@ -166,7 +176,8 @@ TEST(WebPort, TheProtocolOverWebSocketAssemblesTheSameSurface) {
   };
   ASSERT_TRUE((*ws)->send(withSeq(testing::openDocument(doc), 2)).isOk());
   auto opened = (*ws)->callReply(2, applyTo(webView));
-  ASSERT_TRUE(opened.isOk() && opened->has_ack()) << (opened.isOk() ? opened->DebugString() : opened.status().message());
+  ASSERT_TRUE(opened.isOk() && opened->has_ack())
+      << (opened.isOk() ? opened->DebugString() : opened.status().message());
   ASSERT_TRUE((*ws)->send(withSeq(testing::subscribe(doc, 1, 3), 3)).isOk());
   auto subscribed = (*ws)->callReply(3, applyTo(webView));
   ASSERT_TRUE(subscribed.isOk() && subscribed->has_ack()) << subscribed->DebugString();
@@ -191,8 +202,10 @@ TEST(WebPort, TheProtocolOverWebSocketAssemblesTheSameSurface) {
 
   // Three edits from the TCP side; the WebSocket view follows each.
   for (int k = 0; k < 3; ++k) {
-    auto moved = w.admin->call(testing::moveVertex(doc, VertexId(1, 2).packed(), 0, 0, 0.05 * (k + 1), wire::MOVE_MODE_OFFSET), 20);
-    ASSERT_TRUE(moved.isOk() && moved->has_ack()) << (moved.isOk() ? moved->DebugString() : moved.status().message());
+    auto moved = w.admin->call(
+        testing::moveVertex(doc, VertexId(1, 2).packed(), 0, 0, 0.05 * (k + 1), wire::MOVE_MODE_OFFSET), 20);
+    ASSERT_TRUE(moved.isOk() && moved->has_ack())
+        << (moved.isOk() ? moved->DebugString() : moved.status().message());
     const uint64_t version = moved->ack().version();
     while (webView.version() < version) {
       auto m = (*ws)->receive();
@@ -208,7 +221,11 @@ TEST(WebPort, TheProtocolOverWebSocketAssemblesTheSameSurface) {
     EXPECT_EQ(webView.surfaceHash(), tcpView.surfaceHash()) << "version " << version;
   }
   // An edit through the WebSocket reaches the TCP side.
-  ASSERT_TRUE((*ws)->send(withSeq(testing::moveVertex(doc, VertexId(0, 1).packed(), 0, 0.1, 0, wire::MOVE_MODE_OFFSET), 4)).isOk());
+  ASSERT_TRUE(
+      (*ws)
+          ->send(withSeq(testing::moveVertex(doc, VertexId(0, 1).packed(), 0, 0.1, 0, wire::MOVE_MODE_OFFSET),
+                         4))
+          .isOk());
   auto moved = (*ws)->callReply(4, applyTo(webView));
   ASSERT_TRUE(moved.isOk() && moved->has_ack()) << moved->DebugString();
   while (tcpView.version() < moved->ack().version()) {
@@ -314,7 +331,8 @@ TEST(WebPort, BadWebSocketPeersAreRefusedByName) {
   ASSERT_TRUE(w1.isOk());
   ASSERT_TRUE((*w1)->send(hello(w.server->adminToken(), 1)).isOk());
   ASSERT_TRUE((*w1)->receive().isOk());
-  EXPECT_FALSE(WebSocketClient::connect(w.webPort).isOk()) << "a fourth connection from 127.0.0.1 was upgraded";
+  EXPECT_FALSE(WebSocketClient::connect(w.webPort).isOk())
+      << "a fourth connection from 127.0.0.1 was upgraded";
   const std::string over = httpExchange(w.webPort, upgradeRequest());
   EXPECT_EQ(httpStatus(over), 503) << over;
   EXPECT_NE(over.find("more than 3 connections from 127.0.0.1"), std::string::npos) << over;

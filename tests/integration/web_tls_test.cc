@@ -30,8 +30,9 @@ TEST(WebPortTls, ServesHttpsAndWssWithTheServersCertificate) {
   const std::string dir = testing::makeTempDir("tessera-web-tls");
   ASSERT_TRUE(testing::makeCertificate(dir, "server"));
   const std::string portFile = dir + "/ws.port";
-  auto server = ServerProcess::start(dir + "/data", {"--tls-cert", dir + "/server.pem", "--tls-key", dir + "/server.key",
-                                                     "--ws-port", "0", "--ws-port-file", portFile, "--web-root", TESSERA_WEB_DIR});
+  auto server = ServerProcess::start(
+      dir + "/data", {"--tls-cert", dir + "/server.pem", "--tls-key", dir + "/server.key", "--ws-port", "0",
+                      "--ws-port-file", portFile, "--web-root", TESSERA_WEB_DIR});
   ASSERT_TRUE(server.isOk()) << server.status().message();
   int port = 0;
   std::ifstream(portFile) >> port;
@@ -82,7 +83,8 @@ TEST(WebPortTls, ServesHttpsAndWssWithTheServersCertificate) {
     EXPECT_EQ(reply.hello_ack().role(), wire::ROLE_ADMIN);
   }
   // Plain HTTP on the TLS port: no page, no upgrade.
-  const std::string plain = testing::httpExchange(static_cast<uint16_t>(port), "GET / HTTP/1.1\r\nHost: x\r\n\r\n", 5);
+  const std::string plain =
+      testing::httpExchange(static_cast<uint16_t>(port), "GET / HTTP/1.1\r\nHost: x\r\n\r\n", 5);
   EXPECT_EQ(testing::httpStatus(plain), 0) << plain.substr(0, 100);
   EXPECT_EQ(plain.find("<html"), std::string::npos);
   EXPECT_EQ(server->stop(), 0);

@@ -50,8 +50,10 @@ oracle::LimitCategory finalCategory(const Level& level, Index v, std::span<const
     if (isSharp(ring.edgeSharpness[k])) sharp.push_back(k);
   }
   switch (ring.rule) {
-    case VertexRule::kSmooth: return oracle::LimitCategory::kSmooth;
-    case VertexRule::kDart: return oracle::LimitCategory::kDart;
+    case VertexRule::kSmooth:
+      return oracle::LimitCategory::kSmooth;
+    case VertexRule::kDart:
+      return oracle::LimitCategory::kDart;
     case VertexRule::kCrease:
       return sharp[1] - sharp[0] <= 3 && (ring.boundary || ring.valence - (sharp[1] - sharp[0]) <= 3)
                  ? oracle::LimitCategory::kNarrowCrease
@@ -62,7 +64,8 @@ oracle::LimitCategory finalCategory(const Level& level, Index v, std::span<const
       for (size_t i = 0; i + 1 < sharp.size(); ++i) {
         if (sharp[i + 1] - sharp[i] > 1) return oracle::LimitCategory::kCornerWide;
       }
-      if (!ring.boundary && sharp[0] + ring.valence - sharp.back() > 1) return oracle::LimitCategory::kCornerWide;
+      if (!ring.boundary && sharp[0] + ring.valence - sharp.back() > 1)
+        return oracle::LimitCategory::kCornerWide;
       return oracle::LimitCategory::kCornerOneFace;
     }
   }
@@ -81,14 +84,16 @@ bool hasTangentPlane(oracle::LimitCategory c) {
   return c != oracle::LimitCategory::kCusp && c != oracle::LimitCategory::kCornerWide;
 }
 
-double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2((a % b).norm(), dot(a, b)); }
+double angleBetween(const Vec3& a, const Vec3& b) {
+  return std::atan2((a % b).norm(), dot(a, b));
+}
 
 struct Corner {
   int level;
   Index vertex;
   int baseFace;
   Param uv;
-  Vec3 position, normal;  // Tessera's
+  Vec3 position, normal;                // Tessera's
   oracle::LimitCategory category;       // of the rules the vertex ends with
   oracle::LimitCategory levelCategory;  // of its rules at this level
 };
@@ -101,7 +106,8 @@ std::vector<Corner> tesseraCorners(const TestMesh& mesh, const LoopOptions& opti
   if (!refiner.isOk()) throw std::runtime_error(refiner.status().toString());
   const auto points = refiner->refinePointsPerLevel(mesh.points);
   std::vector<std::array<Param, 3>> params;
-  for (int f = 0; f < refiner->level(0).numFaces(); ++f) params.push_back({Param{0, 0}, Param{1, 0}, Param{0, 1}});
+  for (int f = 0; f < refiner->level(0).numFaces(); ++f)
+    params.push_back({Param{0, 0}, Param{1, 0}, Param{0, 1}});
   std::vector<Corner> corners;
   for (int l = 0; l <= levels; ++l) {
     const Level& level = refiner->level(l);
@@ -155,7 +161,8 @@ class BfrEvaluator {
   BfrValue at(int face, const Param& uv) {
     auto& s = surfaces_[face];
     if (!s.surface.IsValid()) {
-      if (!factory_->InitVertexSurface(face, &s.surface)) throw std::runtime_error("Bfr: no surface for a face");
+      if (!factory_->InitVertexSurface(face, &s.surface))
+        throw std::runtime_error("Bfr: no surface for a face");
       s.patch.resize(3 * s.surface.GetNumPatchPoints());
       s.surface.PreparePatchPoints(meshPoints_.data(), 3, s.patch.data(), 3);
     }
@@ -221,10 +228,11 @@ void checkAgainstBfr(const TestMesh& mesh, const LoopOptions& options, int level
   const auto atDeepest = compare(mesh, options, corners, 10);
   for (const auto& [category, w] : atDefault) {
     const Worst& deep = atDeepest.at(category);
-    std::printf("  %-22s %-20s corners %6d (%4d without Bfr normal)  Bfr level 6: %.2e diag %.2e rad   "
-                "level 10: %.2e diag %.2e rad\n",
-                mesh.name.c_str(), oracle::nameOf(category).c_str(), w.count, w.noNormal, w.position, w.normal,
-                deep.position, deep.normal);
+    std::printf(
+        "  %-22s %-20s corners %6d (%4d without Bfr normal)  Bfr level 6: %.2e diag %.2e rad   "
+        "level 10: %.2e diag %.2e rad\n",
+        mesh.name.c_str(), oracle::nameOf(category).c_str(), w.count, w.noNormal, w.position, w.normal,
+        deep.position, deep.normal);
     EXPECT_LE(w.noNormal, w.count / 10) << oracle::nameOf(category);
     if (bfrIsExact(category)) {
       EXPECT_LE(w.position, 1e-9) << oracle::nameOf(category);
@@ -247,8 +255,8 @@ TEST(BfrLimit, SmoothShapes) {
 
 TEST(BfrLimit, RandomTagSets) {
   for (uint32_t seed = 1; seed <= 4; ++seed) {
-    checkAgainstBfr(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.03, seed), 0.15, 0.05,
-                                            100 + seed),
+    checkAgainstBfr(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.03, seed), 0.15,
+                                            0.05, 100 + seed),
                     {}, 2);
     checkAgainstBfr(testing::withRandomTags(testing::openGrid(6, 5), 0.3, 0.05, 200 + seed), {}, 2);
   }
@@ -261,7 +269,8 @@ TEST(BfrLimit, RandomTagSets) {
 // Tessera and Far agree to float-weight precision. So Far, not Bfr, is the
 // oracle for Chaikin creasing; this test pins the disagreement down.
 TEST(BfrLimit, ChaikinReferenceIsFarNotBfr) {
-  const TestMesh mesh = testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.03, 7), 0.3, 0.05, 301);
+  const TestMesh mesh =
+      testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.03, 7), 0.3, 0.05, 301);
   LoopOptions chaikin;
   chaikin.creaseMethod = CreaseMethod::kChaikin;
   auto refiner = LoopRefiner::create(mesh.topology, chaikin, {.levels = 2});
@@ -276,8 +285,8 @@ TEST(BfrLimit, ChaikinReferenceIsFarNotBfr) {
     bfrVsFar = std::max(bfrVsFar, (bfr.at(c.baseFace, c.uv).position - reference).norm() / diagonal);
     oursVsFar = std::max(oursVsFar, (c.position - reference).norm() / diagonal);
   }
-  std::printf("  smooth corners near Chaikin creases: Bfr vs Far %.2e diag, Tessera vs Far %.2e diag\n", bfrVsFar,
-              oursVsFar);
+  std::printf("  smooth corners near Chaikin creases: Bfr vs Far %.2e diag, Tessera vs Far %.2e diag\n",
+              bfrVsFar, oursVsFar);
   EXPECT_LT(oursVsFar, 1e-6);
   EXPECT_GT(bfrVsFar, 1e-5);
 }

@@ -27,9 +27,9 @@ using schemes::QuadRefiner;
 using schemes::QuadScheme;
 using testing::PolyTestMesh;
 
-constexpr double kPointTolerance = 1e-12;     // times the bounding-box diagonal
-constexpr double kPositionTolerance = 1e-9;   // times the bounding-box diagonal
-constexpr double kNormalTolerance = 1e-6;     // radians
+constexpr double kPointTolerance = 1e-12;    // times the bounding-box diagonal
+constexpr double kPositionTolerance = 1e-9;  // times the bounding-box diagonal
+constexpr double kNormalTolerance = 1e-6;    // radians
 
 double diagonal(const std::vector<Vec3>& points) {
   Vec3 lo = points[0], hi = points[0];
@@ -57,13 +57,15 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
   const auto ours = refiner->refinePointsPerLevel(mesh.points);
   const bool limit = scheme == QuadScheme::kCatmullClark;
   const int firstLimitLevel = refiner->level(0).allQuads() ? 0 : 1;
-  const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, limit, firstLimitLevel);
+  const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, limit,
+                                                     firstLimitLevel);
   const double diag = diagonal(mesh.points);
   for (int l = 0; l <= levels; ++l) {
     const int n = refiner->level(l).numVertices;
     ASSERT_EQ(static_cast<int>(ours[l].size()), n);
     for (int v = 0; v < n; ++v) {
-      ASSERT_LE((ours[l][v] - osd[l].points[v]).norm(), kPointTolerance * diag) << "level " << l << " vertex " << v;
+      ASSERT_LE((ours[l][v] - osd[l].points[v]).norm(), kPointTolerance * diag)
+          << "level " << l << " vertex " << v;
     }
     totals.points += n;
     if (!limit || l < firstLimitLevel) continue;
@@ -78,7 +80,8 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
         ++totals.degenerateNormals;  // parallel tangents: Limit() gives no normal
         continue;
       }
-      ASSERT_LE(angleBetween(normals[v], osdNormal), kNormalTolerance) << "normal at level " << l << " vertex " << v;
+      ASSERT_LE(angleBetween(normals[v], osdNormal), kNormalTolerance)
+          << "normal at level " << l << " vertex " << v;
       ++totals.normals;
     }
     totals.limits += n;
@@ -87,11 +90,8 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
 
 std::vector<PolyTestMesh> shapes() {
   using namespace testing;
-  return {quadCube(),
-          withPolyJitter(quadGrid(5, 4), 0.05, 7),
-          withPolyJitter(quadTorus(7, 5), 0.05, 3),
-          withPolyJitter(mixedPrism(5, false), 0.05, 11),
-          withPolyJitter(mixedPrism(7, true), 0.05, 12)};
+  return {quadCube(), withPolyJitter(quadGrid(5, 4), 0.05, 7), withPolyJitter(quadTorus(7, 5), 0.05, 3),
+          withPolyJitter(mixedPrism(5, false), 0.05, 11), withPolyJitter(mixedPrism(7, true), 0.05, 12)};
 }
 
 std::vector<CreaseOptions> allOptions() {
@@ -107,11 +107,12 @@ std::vector<CreaseOptions> allOptions() {
 TEST(CatmarkOracle, ProceduralShapesWithoutTags) {
   Totals totals;
   for (const auto& mesh : shapes()) {
-    for (const auto& options : allOptions()) checkAgainstOsd(mesh, QuadScheme::kCatmullClark, options, 3, totals);
+    for (const auto& options : allOptions())
+      checkAgainstOsd(mesh, QuadScheme::kCatmullClark, options, 3, totals);
   }
   EXPECT_GT(totals.normals, 0);
-  std::printf("points %lld, limits %lld, normals %lld (parallel OpenSubdiv tangents skipped: %lld)\n", totals.points,
-              totals.limits, totals.normals, totals.degenerateNormals);
+  std::printf("points %lld, limits %lld, normals %lld (parallel OpenSubdiv tangents skipped: %lld)\n",
+              totals.points, totals.limits, totals.normals, totals.degenerateNormals);
 }
 
 TEST(CatmarkOracle, RandomTagsFromFixedSeeds) {
@@ -119,12 +120,13 @@ TEST(CatmarkOracle, RandomTagsFromFixedSeeds) {
   for (const auto& mesh : shapes()) {
     for (uint32_t seed : {1u, 2u, 3u}) {
       const PolyTestMesh tagged = testing::withRandomPolyTags(mesh, 0.3, 0.1, seed);
-      for (const auto& options : allOptions()) checkAgainstOsd(tagged, QuadScheme::kCatmullClark, options, 3, totals);
+      for (const auto& options : allOptions())
+        checkAgainstOsd(tagged, QuadScheme::kCatmullClark, options, 3, totals);
     }
   }
   EXPECT_GT(totals.normals, 0);
-  std::printf("points %lld, limits %lld, normals %lld (parallel OpenSubdiv tangents skipped: %lld)\n", totals.points,
-              totals.limits, totals.normals, totals.degenerateNormals);
+  std::printf("points %lld, limits %lld, normals %lld (parallel OpenSubdiv tangents skipped: %lld)\n",
+              totals.points, totals.limits, totals.normals, totals.degenerateNormals);
 }
 
 TEST(CatmarkOracle, RealPolygonMeshDoubleTorus) {

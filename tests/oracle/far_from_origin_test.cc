@@ -51,8 +51,10 @@ std::vector<FanFile> fanFiles() {
   std::istringstream lines(vertices);
   for (std::string line; std::getline(lines, line);) obj += "v " + line + "\n";
   off += vertices;
-  std::string ply = "ply\nformat ascii 1.0\nelement vertex 7\nproperty double x\nproperty double y\nproperty double z\n"
-                    "element face 6\nproperty list uchar int vertex_indices\nend_header\n" + vertices;
+  std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 7\nproperty double x\nproperty double y\nproperty double z\n"
+      "element face 6\nproperty list uchar int vertex_indices\nend_header\n" +
+      vertices;
   for (int k = 0; k < 6; ++k) {
     const int a = 1 + k, b = 1 + (k + 1) % 6;
     obj += "f 1 " + std::to_string(a + 1) + " " + std::to_string(b + 1) + "\n";
@@ -80,12 +82,14 @@ std::vector<Vec3> strtodPoints(const FanFile& file) {
   return points;
 }
 
-double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2((a % b).norm(), a | b); }
+double angleBetween(const Vec3& a, const Vec3& b) {
+  return std::atan2((a % b).norm(), a | b);
+}
 
 // The worst angle between Tessera's limit normals from `ours` (the points it
 // evaluates) and OpenSubdiv's from `reference` (the file's), levels 0 to 2.
-double worstNormalAngle(const BaseMesh& mesh, const std::vector<Vec3>& ours, const std::vector<Vec3>& reference,
-                        int& compared) {
+double worstNormalAngle(const BaseMesh& mesh, const std::vector<Vec3>& ours,
+                        const std::vector<Vec3>& reference, int& compared) {
   const BaseTopology topology = BaseTopology::fromBaseMesh(mesh);
   auto refiner = LoopRefiner::create(topology, LoopOptions{}, {.levels = 2});
   EXPECT_TRUE(refiner.isOk()) << refiner.status().toString();
@@ -107,7 +111,8 @@ double worstNormalAngle(const BaseMesh& mesh, const std::vector<Vec3>& ours, con
 TEST(FarFromOrigin, LimitNormalsMatchOpenSubdivOnTheFilesCoordinates) {
   for (const FanFile& file : fanFiles()) {
     SCOPED_TRACE(file.name);
-    auto mesh = importMeshFromBytes(file.text, std::filesystem::path(file.name).extension().string(), file.name);
+    auto mesh =
+        importMeshFromBytes(file.text, std::filesystem::path(file.name).extension().string(), file.name);
     ASSERT_TRUE(mesh.isOk()) << mesh.status().toString();
     const std::vector<Vec3> reference = strtodPoints(file);
     ASSERT_EQ(mesh->positions(), reference);

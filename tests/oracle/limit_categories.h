@@ -12,26 +12,34 @@
 namespace tessera::oracle {
 
 enum class LimitCategory {
-  kSmooth,           // no sharp edge in the ring
-  kNarrowCrease,     // infinitely sharp crease, first sector of 1..3 faces
-  kWideCrease,       // infinitely sharp crease, first sector of 4+ faces
-  kDart,             // one infinitely sharp edge
-  kCornerOneFace,    // infinitely sharp corner, the sector of ring face 0 has one face
-  kCornerWide,       // infinitely sharp corner, that sector has 2+ faces
-  kCusp,             // sharp vertex with fewer than two sharp edges
-  kSemiSharp,        // a semi-sharp edge or vertex that has not decayed
+  kSmooth,         // no sharp edge in the ring
+  kNarrowCrease,   // infinitely sharp crease, first sector of 1..3 faces
+  kWideCrease,     // infinitely sharp crease, first sector of 4+ faces
+  kDart,           // one infinitely sharp edge
+  kCornerOneFace,  // infinitely sharp corner, the sector of ring face 0 has one face
+  kCornerWide,     // infinitely sharp corner, that sector has 2+ faces
+  kCusp,           // sharp vertex with fewer than two sharp edges
+  kSemiSharp,      // a semi-sharp edge or vertex that has not decayed
 };
 
 inline std::string nameOf(LimitCategory c) {
   switch (c) {
-    case LimitCategory::kSmooth: return "smooth";
-    case LimitCategory::kNarrowCrease: return "crease, 1-3 faces";
-    case LimitCategory::kWideCrease: return "crease, 4+ faces";
-    case LimitCategory::kDart: return "dart";
-    case LimitCategory::kCornerOneFace: return "corner, 1-face side";
-    case LimitCategory::kCornerWide: return "corner, wider side";
-    case LimitCategory::kCusp: return "cusp";
-    case LimitCategory::kSemiSharp: return "semi-sharp";
+    case LimitCategory::kSmooth:
+      return "smooth";
+    case LimitCategory::kNarrowCrease:
+      return "crease, 1-3 faces";
+    case LimitCategory::kWideCrease:
+      return "crease, 4+ faces";
+    case LimitCategory::kDart:
+      return "dart";
+    case LimitCategory::kCornerOneFace:
+      return "corner, 1-face side";
+    case LimitCategory::kCornerWide:
+      return "corner, wider side";
+    case LimitCategory::kCusp:
+      return "cusp";
+    case LimitCategory::kSemiSharp:
+      return "semi-sharp";
   }
   return "?";
 }
@@ -43,8 +51,10 @@ inline LimitCategory categoryOf(const Level& level, Index v) {
   }
   const std::vector<int> sharp = sharpRingEdges(level, v);
   switch (level.vertexRules[v]) {
-    case VertexRule::kSmooth: return LimitCategory::kSmooth;
-    case VertexRule::kDart: return LimitCategory::kDart;
+    case VertexRule::kSmooth:
+      return LimitCategory::kSmooth;
+    case VertexRule::kDart:
+      return LimitCategory::kDart;
     case VertexRule::kCrease:
       return sharp[1] - sharp[0] <= 3 ? LimitCategory::kNarrowCrease : LimitCategory::kWideCrease;
     case VertexRule::kCorner: {
@@ -63,7 +73,8 @@ inline bool osdPositionIsExact(LimitCategory c) {
   return c != LimitCategory::kDart && c != LimitCategory::kSemiSharp;
 }
 inline bool osdNormalIsExact(LimitCategory c) {
-  return c == LimitCategory::kSmooth || c == LimitCategory::kNarrowCrease || c == LimitCategory::kCornerOneFace;
+  return c == LimitCategory::kSmooth || c == LimitCategory::kNarrowCrease ||
+         c == LimitCategory::kCornerOneFace;
 }
 
 }  // namespace tessera::oracle

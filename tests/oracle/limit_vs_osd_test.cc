@@ -59,8 +59,9 @@ void accumulate(const TestMesh& mesh, const LoopOptions& options, int levels, Ta
 TEST(LimitVsOpenSubdiv, WhereAndByHowMuchLimitDiffers) {
   Table table;
   for (uint32_t seed = 1; seed <= 3; ++seed) {
-    accumulate(testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.03, seed), 0.2, 0.05, seed),
-               {}, 3, table);
+    accumulate(
+        testing::withRandomTags(testing::withJitter(testing::doubleTorus(), 0.03, seed), 0.2, 0.05, seed), {},
+        3, table);
     accumulate(testing::withRandomTags(testing::openGrid(7, 6), 0.3, 0.05, 10 + seed), {}, 3, table);
     accumulate(testing::withRandomTags(testing::withJitter(testing::torus(10, 8), 0.05, seed), 0.25, 0.05,
                                        20 + seed),

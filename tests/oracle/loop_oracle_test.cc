@@ -12,10 +12,10 @@
 
 #include "core/io/mesh_import.h"
 #include "core/loop/limit.h"
-#include "support/test_meshes.h"
 #include "oracle/limit_categories.h"
 #include "oracle/osd_reference.h"
 #include "support/procedural_meshes.h"
+#include "support/test_meshes.h"
 
 namespace tessera {
 namespace {
@@ -124,8 +124,9 @@ TEST(LoopOracle, BoundaryEdgeAndCornerMatchesOpenSubdiv) {
 TEST(LoopOracle, RandomCreaseSetsMatchOpenSubdiv) {
   int count = 0;
   for (uint32_t seed = 1; seed <= 6; ++seed) {
-    for (const TestMesh& base : {testing::withRandomFlips(testing::torus(10, 8), 40, seed), testing::openGrid(7, 6),
-                                 testing::bipyramid(5 + seed), testing::doubleTorus()}) {
+    for (const TestMesh& base :
+         {testing::withRandomFlips(testing::torus(10, 8), 40, seed), testing::openGrid(7, 6),
+          testing::bipyramid(5 + seed), testing::doubleTorus()}) {
       for (double fraction : {0.08, 0.25}) {
         LoopOptions o;
         checkAgainstOpenSubdiv({testing::withRandomTags(base, fraction, 0.04, seed * 31 + count), o, 3});
@@ -139,8 +140,9 @@ TEST(LoopOracle, ChaikinCreasingMatchesOpenSubdiv) {
   for (uint32_t seed = 11; seed <= 16; ++seed) {
     LoopOptions o;
     o.creaseMethod = CreaseMethod::kChaikin;
-    checkAgainstOpenSubdiv({testing::withRandomTags(testing::withRandomFlips(testing::torus(10, 8), 40, seed),
-                                                    0.3, 0.02, seed), o, 3});
+    checkAgainstOpenSubdiv(
+        {testing::withRandomTags(testing::withRandomFlips(testing::torus(10, 8), 40, seed), 0.3, 0.02, seed),
+         o, 3});
   }
 }
 
@@ -160,10 +162,11 @@ TEST(LoopOracle, NamedFeaturesMatchOpenSubdiv) {
 
   TestMesh corners = testing::icosahedron();
   corners.name = "corner-and-cusp";
-  corners.topology.creases = {{0, 11, kSharpnessInfinite}, {0, 5, kSharpnessInfinite}, {0, 1, kSharpnessInfinite}};
+  corners.topology.creases = {
+      {0, 11, kSharpnessInfinite}, {0, 5, kSharpnessInfinite}, {0, 1, kSharpnessInfinite}};
   corners.topology.vertexSharpness.assign(12, 0.0f);
   corners.topology.vertexSharpness[3] = kSharpnessInfinite;  // cusp: no sharp edge meets it
-  corners.topology.vertexSharpness[7] = 1.5f;                 // semi-sharp cusp
+  corners.topology.vertexSharpness[7] = 1.5f;                // semi-sharp cusp
   checkAgainstOpenSubdiv({corners, LoopOptions{}, 4});
 }
 
@@ -198,12 +201,14 @@ TEST(LoopOracle, RealMeshesMatchOpenSubdiv) {
 }
 
 TEST(LoopOracle, RealMeshesWithRandomTagsMatchOpenSubdiv) {
-  checkAgainstOpenSubdiv({testing::withRandomTags(loadReal("fandisk.off"), 0.05, 0.01, 41), LoopOptions{}, 3});
+  checkAgainstOpenSubdiv(
+      {testing::withRandomTags(loadReal("fandisk.off"), 0.05, 0.01, 41), LoopOptions{}, 3});
   checkAgainstOpenSubdiv({testing::withRandomTags(loadReal("hand.off"), 0.1, 0.02, 42), LoopOptions{}, 3});
   LoopOptions chaikinCorners;
   chaikinCorners.creaseMethod = CreaseMethod::kChaikin;
   chaikinCorners.boundary = BoundaryInterpolation::kEdgeAndCorner;
-  checkAgainstOpenSubdiv({testing::withRandomTags(loadReal("mushroom.off"), 0.1, 0.02, 43), chaikinCorners, 3});
+  checkAgainstOpenSubdiv(
+      {testing::withRandomTags(loadReal("mushroom.off"), 0.1, 0.02, 43), chaikinCorners, 3});
 }
 
 }  // namespace

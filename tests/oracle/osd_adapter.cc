@@ -43,14 +43,14 @@ void throwOnOsdError(Far::ErrorType, const char* message) {
 
 }  // namespace
 
-std::unique_ptr<Far::TopologyRefiner> createOsdRefiner(const OsdInput& input, const LoopOptions& options, int levels,
-                                                       bool fullTopologyInLastLevel) {
+std::unique_ptr<Far::TopologyRefiner> createOsdRefiner(const OsdInput& input, const LoopOptions& options,
+                                                       int levels, bool fullTopologyInLastLevel) {
   Sdc::Options sdc;
   sdc.SetVtxBoundaryInterpolation(options.boundary == BoundaryInterpolation::kEdgeOnly
                                       ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                       : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
   sdc.SetCreasingMethod(options.creaseMethod == CreaseMethod::kUniform ? Sdc::Options::CREASE_UNIFORM
-                                                                      : Sdc::Options::CREASE_CHAIKIN);
+                                                                       : Sdc::Options::CREASE_CHAIKIN);
   Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Options factoryOptions(Sdc::SCHEME_LOOP, sdc);
   Far::SetErrorCallback(throwOnOsdError);
   std::unique_ptr<Far::TopologyRefiner> refiner(
@@ -63,8 +63,8 @@ std::unique_ptr<Far::TopologyRefiner> createOsdRefiner(const OsdInput& input, co
   return refiner;
 }
 
-std::vector<OsdPoint> interpolateOsd(const Far::TopologyRefiner& refiner, std::span<const OsdPoint> basePoints,
-                                     int level) {
+std::vector<OsdPoint> interpolateOsd(const Far::TopologyRefiner& refiner,
+                                     std::span<const OsdPoint> basePoints, int level) {
   Far::PrimvarRefiner primvar(refiner);
   std::vector<OsdPoint> current(basePoints.begin(), basePoints.end()), next;
   for (int l = 1; l <= level; ++l) {

@@ -70,7 +70,8 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
       auto ourCorners = parent.faceVerticesOf(f);
       auto osdCorners = osdParent.GetFaceVertices(of);
       auto children = osdParent.GetFaceChildFaces(of);
-      if (osdCorners.size() != static_cast<int>(ourCorners.size())) throw std::runtime_error("face sizes differ");
+      if (osdCorners.size() != static_cast<int>(ourCorners.size()))
+        throw std::runtime_error("face sizes differ");
       for (int j = 0; j < osdCorners.size(); ++j) {
         if (osdCorners[j] != maps[l][ourCorners[j]]) {
           throw std::runtime_error("face corners differ at level " + std::to_string(l));
@@ -79,7 +80,8 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
       }
     }
     for (int e = 0; e < parent.numEdges(); ++e) {
-      const int osdEdge = osdParent.FindEdge(maps[l][parent.edgeVertices[e][0]], maps[l][parent.edgeVertices[e][1]]);
+      const int osdEdge =
+          osdParent.FindEdge(maps[l][parent.edgeVertices[e][0]], maps[l][parent.edgeVertices[e][1]]);
       if (osdEdge < 0) throw std::runtime_error("edge missing in OpenSubdiv at level " + std::to_string(l));
       next[schemes::edgeChildVertex(parent, e)] = osdParent.GetEdgeChildVertex(osdEdge);
     }
@@ -88,11 +90,14 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
   return maps;
 }
 
-Vec3 toVec3(const OsdDoublePoint& p) { return Vec3(p.x, p.y, p.z); }
+Vec3 toVec3(const OsdDoublePoint& p) {
+  return Vec3(p.x, p.y, p.z);
+}
 
 }  // namespace
 
-std::unique_ptr<Far::TopologyRefiner> createOsdQuadRefiner(const OsdPolyInput& input, schemes::QuadScheme scheme,
+std::unique_ptr<Far::TopologyRefiner> createOsdQuadRefiner(const OsdPolyInput& input,
+                                                           schemes::QuadScheme scheme,
                                                            const schemes::CreaseOptions& options, int levels,
                                                            bool fullTopologyInLastLevel) {
   Sdc::Options sdc;
@@ -100,8 +105,9 @@ std::unique_ptr<Far::TopologyRefiner> createOsdQuadRefiner(const OsdPolyInput& i
                                       ? Sdc::Options::VTX_BOUNDARY_EDGE_ONLY
                                       : Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
   sdc.SetCreasingMethod(options.creaseMethod == CreaseMethod::kUniform ? Sdc::Options::CREASE_UNIFORM
-                                                                      : Sdc::Options::CREASE_CHAIKIN);
-  const Sdc::SchemeType type = scheme == schemes::QuadScheme::kBilinear ? Sdc::SCHEME_BILINEAR : Sdc::SCHEME_CATMARK;
+                                                                       : Sdc::Options::CREASE_CHAIKIN);
+  const Sdc::SchemeType type =
+      scheme == schemes::QuadScheme::kBilinear ? Sdc::SCHEME_BILINEAR : Sdc::SCHEME_CATMARK;
   Far::TopologyRefinerFactory<Far::TopologyDescriptor>::Options factoryOptions(type, sdc);
   Far::SetErrorCallback(throwOnOsdError);
   std::unique_ptr<Far::TopologyRefiner> refiner(

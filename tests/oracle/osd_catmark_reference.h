@@ -43,7 +43,8 @@ class OsdPolyInput {
 std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> createOsdQuadRefiner(const OsdPolyInput& input,
                                                                        schemes::QuadScheme scheme,
                                                                        const schemes::CreaseOptions& options,
-                                                                       int levels, bool fullTopologyInLastLevel);
+                                                                       int levels,
+                                                                       bool fullTopologyInLastLevel);
 
 // Points of the finest level, double weights throughout.
 struct OsdDoublePoint {

@@ -12,7 +12,8 @@ namespace {
 namespace Far = OpenSubdiv::Far;
 
 // map[l][ourVertex] = OpenSubdiv's vertex, level by level through children.
-std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const LoopRefiner& ours, int levels) {
+std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const LoopRefiner& ours,
+                                         int levels) {
   std::vector<std::vector<int>> maps(levels + 1);
   maps[0].resize(ours.level(0).numVertices);
   for (int v = 0; v < ours.level(0).numVertices; ++v) maps[0][v] = v;
@@ -23,7 +24,8 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
     next.resize(ours.level(l + 1).numVertices);
     for (int v = 0; v < parent.numVertices; ++v) next[v] = osdParent.GetVertexChildVertex(maps[l][v]);
     for (int e = 0; e < parent.numEdges(); ++e) {
-      int osdEdge = osdParent.FindEdge(maps[l][parent.edgeVertices[e][0]], maps[l][parent.edgeVertices[e][1]]);
+      int osdEdge =
+          osdParent.FindEdge(maps[l][parent.edgeVertices[e][0]], maps[l][parent.edgeVertices[e][1]]);
       if (osdEdge < 0) throw std::runtime_error("edge missing in OpenSubdiv at level " + std::to_string(l));
       next[parent.numVertices + e] = osdParent.GetEdgeChildVertex(osdEdge);
     }
@@ -33,9 +35,9 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
 
 }  // namespace
 
-std::vector<OsdLevelResult> refineWithOpenSubdiv(const BaseTopology& topology, std::span<const Vec3> basePoints,
-                                                 const LoopOptions& options, const LoopRefiner& ours,
-                                                 bool withLimit) {
+std::vector<OsdLevelResult> refineWithOpenSubdiv(const BaseTopology& topology,
+                                                 std::span<const Vec3> basePoints, const LoopOptions& options,
+                                                 const LoopRefiner& ours, bool withLimit) {
   const int levels = ours.maxLevel();
   const OsdInput input(topology);
   auto refiner = createOsdRefiner(input, options, levels, true);
@@ -49,7 +51,8 @@ std::vector<OsdLevelResult> refineWithOpenSubdiv(const BaseTopology& topology, s
     // Limit() applies to the last level only: one refiner per level. Vertex
     // numbering up to level l does not depend on deeper levels, so the map holds.
     // The deepest one is the refiner already built for the vertex maps.
-    std::unique_ptr<Far::TopologyRefiner> owned = l == levels ? nullptr : createOsdRefiner(input, options, l, true);
+    std::unique_ptr<Far::TopologyRefiner> owned =
+        l == levels ? nullptr : createOsdRefiner(input, options, l, true);
     const Far::TopologyRefiner& levelRefiner = l == levels ? *refiner : *owned;
     std::vector<OsdPoint> points = interpolateOsd(levelRefiner, base, l);
     const int count = levelRefiner.GetLevel(l).GetNumVertices();

@@ -23,8 +23,8 @@ struct OsdLevelResult {
 
 // Results for levels 0..levels; limit data for every level when withLimit.
 // `ours` supplies Tessera's per-level topology for the vertex mapping.
-std::vector<OsdLevelResult> refineWithOpenSubdiv(const BaseTopology& topology, std::span<const Vec3> basePoints,
-                                                 const LoopOptions& options, const LoopRefiner& ours,
-                                                 bool withLimit);
+std::vector<OsdLevelResult> refineWithOpenSubdiv(const BaseTopology& topology,
+                                                 std::span<const Vec3> basePoints, const LoopOptions& options,
+                                                 const LoopRefiner& ours, bool withLimit);
 
 }  // namespace tessera::oracle

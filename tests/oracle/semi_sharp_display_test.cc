@@ -82,8 +82,10 @@ TEST(SemiSharpDisplay, ShowsOpenSubdivsDecayedLimitWhateverTheHistory) {
       ++normalsChecked;
     }
   }
-  std::printf("%d semi-sharp crease vertices displayed (%d normals); OpenSubdiv's level-2 masks are off by up to %g\n",
-              checked, normalsChecked, worstCoarseMask);
+  std::printf(
+      "%d semi-sharp crease vertices displayed (%d normals); OpenSubdiv's level-2 masks are off by up to "
+      "%g\n",
+      checked, normalsChecked, worstCoarseMask);
   EXPECT_GE(checked, 8);
   EXPECT_GE(normalsChecked, 4);
   // The check is sharp: the level-2 masks would fail it.

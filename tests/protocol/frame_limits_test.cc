@@ -132,7 +132,8 @@ TEST(ProtocolFrameLimits, TheFirstFrameHasItsOwnLimit) {
   Status status = tight.feed(frame);
   ASSERT_FALSE(status.isOk());
   EXPECT_EQ(tight.error(), FrameError::kTooLarge);
-  EXPECT_TRUE(contains(status, "more than the limit of " + std::to_string(length - 1) + " bytes for the first frame"))
+  EXPECT_TRUE(
+      contains(status, "more than the limit of " + std::to_string(length - 1) + " bytes for the first frame"))
       << status.message();
 
   FrameDecoder enough({.maxFrameBytes = 1u << 20, .firstFrameMaxBytes = length});

@@ -41,7 +41,9 @@ TEST(MessageFraming, RefusesWhatIsNotExactlyOneFrameNamingTheMessage) {
     ASSERT_TRUE(framing.feed(frameOf(5), true, true).isOk());
     Status s = framing.feed(frameOf(5) + frameOf(5), true, true);
     EXPECT_FALSE(s.isOk());
-    EXPECT_EQ(s.message(), "WebSocket message 2 holds more than one frame: its prefix announces 5 payload bytes, but more follow");
+    EXPECT_EQ(s.message(),
+              "WebSocket message 2 holds more than one frame: its prefix announces 5 payload bytes, but more "
+              "follow");
   }
   {  // Too long is seen before the message ends.
     MessageFraming framing;
@@ -51,7 +53,9 @@ TEST(MessageFraming, RefusesWhatIsNotExactlyOneFrameNamingTheMessage) {
   {
     MessageFraming framing;
     Status s = framing.feed(frameOf(10).substr(0, 9), true, true);
-    EXPECT_EQ(s.message(), "WebSocket message 1 ends inside its frame: the prefix announces 10 payload bytes, the message holds 5");
+    EXPECT_EQ(s.message(),
+              "WebSocket message 1 ends inside its frame: the prefix announces 10 payload bytes, the message "
+              "holds 5");
   }
   {
     MessageFraming framing;

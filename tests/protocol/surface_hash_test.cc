@@ -33,7 +33,8 @@ TEST(SurfaceHash, MatchesTheDocumentsExample) {
   const auto t = exampleTriangle();
   EXPECT_EQ(triangleHash(t), 0xe453ef2728c8a2b3ull);
   // Without ids (a display-only profile), every id is 0.
-  const std::array<HashedCorner, 3> noIds{HashedCorner{0, {1.0f, 2.0f, 3.0f}}, HashedCorner{0, {1.0f, 2.0f, 2.0f}},
+  const std::array<HashedCorner, 3> noIds{HashedCorner{0, {1.0f, 2.0f, 3.0f}},
+                                          HashedCorner{0, {1.0f, 2.0f, 2.0f}},
                                           HashedCorner{0, {0.5f, 2.0f, 3.0f}}};
   EXPECT_EQ(triangleHash(noIds), 0xfe0234f5371dc0e8ull);
   // The two as a region: the sum modulo 2^64.
@@ -77,14 +78,16 @@ TEST(SurfaceHash, ServersFormEqualsTheDecodedRegions) {
   auto grid = documentGrid(*doc);
   ASSERT_TRUE(grid.isOk());
   for (bool withIds : {true, false}) {
-    const LodProfile profile{.baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10, .vertexIds = withIds};
+    const LodProfile profile{
+        .baseLevel = 2, .maxLevel = 5, .angleThresholdDegrees = 10, .vertexIds = withIds};
     auto t = Tessellation::build(*doc, profile);
     ASSERT_TRUE(t.isOk()) << t.status().message();
     std::map<uint64_t, RegionMesh> decodedAsBytes, decodedAsPoints;
     uint64_t serverSum = 0;
     double encodeSeconds = 0, hashSeconds = 0;  // reported, never asserted
     for (const auto& [id, region] : t->regions()) {
-      RegionHeader header{.regionId = id, .documentVersion = 7, .layoutVersion = 7, .profile = profile, .grid = *grid};
+      RegionHeader header{
+          .regionId = id, .documentVersion = 7, .layoutVersion = 7, .profile = profile, .grid = *grid};
       auto bytes = encodeRegion(header, region);
       auto frame = regionFrame(doc->hierarchy(), doc->counts(), FaceId::fromPacked(id));
       ASSERT_TRUE(bytes.isOk() && frame.isOk());
@@ -108,7 +111,8 @@ TEST(SurfaceHash, ServersFormEqualsTheDecodedRegions) {
     EXPECT_EQ(surfaceHash(decodedAsPoints), serverSum);
     EXPECT_NE(serverSum, 0u);
     std::printf("[ measured ] %zu regions, %lld triangles: encoding %.2f ms, the server's hashing %.2f ms\n",
-                t->regions().size(), static_cast<long long>(t->numTriangles()), encodeSeconds * 1e3, hashSeconds * 1e3);
+                t->regions().size(), static_cast<long long>(t->numTriangles()), encodeSeconds * 1e3,
+                hashSeconds * 1e3);
   }
 }
 

@@ -27,7 +27,8 @@ std::string deltaPayload(uint64_t document, uint64_t from, uint64_t to) {
 }
 
 TEST(DeltaPeek, ReadsTheVersionsAFullParseReads) {
-  for (auto [doc, from, to] : {std::tuple<uint64_t, uint64_t, uint64_t>{1, 1, 2}, {7, 300, 304}, {1ull << 50, 0, 1}}) {
+  for (auto [doc, from, to] :
+       {std::tuple<uint64_t, uint64_t, uint64_t>{1, 1, 2}, {7, 300, 304}, {1ull << 50, 0, 1}}) {
     const std::string payload = deltaPayload(doc, from, to);
     auto h = peekDelta(payload);
     ASSERT_TRUE(h.has_value());

@@ -25,7 +25,9 @@ json readReport(const std::string& path) {
   return json::parse(in, nullptr, false);
 }
 
-std::string reportPath(const std::string& name) { return testing::makeTempDir("tessera-load-report") + "/" + name; }
+std::string reportPath(const std::string& name) {
+  return testing::makeTempDir("tessera-load-report") + "/" + name;
+}
 
 // Where a nearest-rank percentile must fall, from the histogram alone: the
 // bucket in which the running count first reaches ceil(p/100 * n).
@@ -56,7 +58,12 @@ void expectConsistent(const json& latency, const json& buckets, const std::strin
   const double mean = latency["mean"].get<double>() * 1000;
   EXPECT_GE(mean, lowSum / n - 1);
   EXPECT_LE(mean, highSum / n + 1);
-  for (auto [key, p] : {std::pair{"p50", 50.0}, {"p90", 90.0}, {"p95", 95.0}, {"p99", 99.0}, {"p99_9", 99.9}, {"max", 100.0}}) {
+  for (auto [key, p] : {std::pair{"p50", 50.0},
+                        {"p90", 90.0},
+                        {"p95", 95.0},
+                        {"p99", 99.0},
+                        {"p99_9", 99.9},
+                        {"max", 100.0}}) {
     const auto [low, high] = bucketOfRank(buckets, p, n);
     const double us = latency[key].get<double>() * 1000;
     EXPECT_GE(us, low - 1) << key;
@@ -77,9 +84,10 @@ TEST(LoadReport, StatisticsSeriesAndPassingThresholds) {
   testing::startServer(s, "tessera-load-stats");
   if (HasFatalFailure()) return;
   const std::string path = reportPath("stats.json");
-  auto [out, code] = run(kReplay + " load" + s.connection() +
-                         " --editors 2 --viewers 3 --rate 10 --seconds 2 --drain-seconds 5 --quiet --report " + path +
-                         " --threshold 'p99<60s' --threshold 'ack.max<=60000ms' --threshold errors=0 --threshold gaps=0");
+  auto [out, code] =
+      run(kReplay + " load" + s.connection() +
+          " --editors 2 --viewers 3 --rate 10 --seconds 2 --drain-seconds 5 --quiet --report " + path +
+          " --threshold 'p99<60s' --threshold 'ack.max<=60000ms' --threshold errors=0 --threshold gaps=0");
   EXPECT_EQ(code, 0) << out;
   const json r = readReport(path);
   ASSERT_TRUE(r.is_object()) << out;
@@ -102,7 +110,8 @@ TEST(LoadReport, StatisticsSeriesAndPassingThresholds) {
     seriesAcked += series[i]["acked"].get<int64_t>();
     seriesDeltas += series[i]["edit_to_delta"]["count"].get<int64_t>();
     EXPECT_GT(series[i]["sent"].get<int64_t>(), 0) << i;
-    EXPECT_LE(series[i]["edit_to_ack"]["p99"].get<double>(), r["latency_ms"]["edit_to_ack"]["max"].get<double>());
+    EXPECT_LE(series[i]["edit_to_ack"]["p99"].get<double>(),
+              r["latency_ms"]["edit_to_ack"]["max"].get<double>());
   }
   EXPECT_EQ(seriesSent, sent);
   EXPECT_EQ(seriesAcked, sent);
@@ -134,7 +143,8 @@ TEST(LoadReport, AFailingThresholdExitsWith4AndNamesItsValue) {
   EXPECT_EQ(r["thresholds"][0]["metric"], "edit_to_ack.max");
   EXPECT_EQ(r["thresholds"][0]["measured"], r["latency_ms"]["edit_to_ack"]["max"]);
   EXPECT_TRUE(r["thresholds"][1]["passed"].get<bool>());
-  EXPECT_NE(out.find("tessera-replay: threshold failed: ack.max<1us: edit_to_ack max "), std::string::npos) << out;
+  EXPECT_NE(out.find("tessera-replay: threshold failed: ack.max<1us: edit_to_ack max "), std::string::npos)
+      << out;
   EXPECT_EQ(out.find("threshold failed: errors=0"), std::string::npos) << out;
 }
 
@@ -153,8 +163,8 @@ TEST(LoadReport, ServerStatsCoverTheRunsWindow) {
   testing::startServer(s, "tessera-load-window");
   if (HasFatalFailure()) return;
   const std::string busy = reportPath("busy.json"), idle = reportPath("idle.json");
-  auto [busyOut, busyCode] =
-      run(kReplay + " load" + s.connection() + " --editors 2 --viewers 2 --rate 20 --seconds 1 --quiet --report " + busy);
+  auto [busyOut, busyCode] = run(kReplay + " load" + s.connection() +
+                                 " --editors 2 --viewers 2 --rate 20 --seconds 1 --quiet --report " + busy);
   ASSERT_EQ(busyCode, 0) << busyOut;
   const json b = readReport(busy);
   const double acked = b["edits"]["acked"].get<double>();
@@ -169,8 +179,8 @@ TEST(LoadReport, ServerStatsCoverTheRunsWindow) {
 
   // An idle run after it: the window is near zero, the server's whole-uptime
   // figures are not.
-  auto [idleOut, idleCode] =
-      run(kReplay + " load" + s.connection() + " --editors 0 --viewers 1 --seconds 1 --quiet --report " + idle);
+  auto [idleOut, idleCode] = run(kReplay + " load" + s.connection() +
+                                 " --editors 0 --viewers 1 --seconds 1 --quiet --report " + idle);
   ASSERT_EQ(idleCode, 0) << idleOut;
   const json i = readReport(idle);
   const json& iw = i["server"]["window"];

@@ -40,8 +40,8 @@ TEST(LatencyStats, TextbookStandardDeviation) {
   const LatencySummary s = summarizeLatencies({2, 4, 4, 4, 5, 5, 7, 9});
   EXPECT_DOUBLE_EQ(s.mean, 5);
   EXPECT_NEAR(s.stddev, std::sqrt(32.0 / 7.0), 1e-12);
-  EXPECT_EQ(s.p50, 4);   // 4th of 8
-  EXPECT_EQ(s.p90, 9);   // ceil(7.2) = 8th
+  EXPECT_EQ(s.p50, 4);  // 4th of 8
+  EXPECT_EQ(s.p90, 9);  // ceil(7.2) = 8th
 }
 
 TEST(LatencyStats, AThousandSamplesHitExactRanks) {
@@ -132,7 +132,7 @@ TEST(LoadSeries, PlacesEventsBySendSecond) {
   EXPECT_EQ(j[0]["acked"], 4);
   EXPECT_EQ(j[0]["errors"], 1);
   EXPECT_DOUBLE_EQ(j[0]["edit_to_ack"]["mean"].get<double>(), 4.0);  // (1+2+3+10)/4
-  EXPECT_EQ(j[0]["edit_to_ack"]["p50"], 2.0);                         // 2nd of 4
+  EXPECT_EQ(j[0]["edit_to_ack"]["p50"], 2.0);                        // 2nd of 4
   EXPECT_EQ(j[0]["edit_to_ack"]["p99"], 10.0);
   EXPECT_EQ(j[0]["edit_to_delta"]["count"], 1);
   EXPECT_EQ(j[1]["sent"], 0);
@@ -189,7 +189,8 @@ TEST(Thresholds, ParseEveryForm) {
 }
 
 TEST(Thresholds, BadOnesNameTheThresholdAndTheFault) {
-  EXPECT_EQ(parseError("p99"), "--threshold 'p99': no comparison (expected <, <=, >, >= or =), e.g. 'p99<50ms'");
+  EXPECT_EQ(parseError("p99"),
+            "--threshold 'p99': no comparison (expected <, <=, >, >= or =), e.g. 'p99<50ms'");
   EXPECT_EQ(parseError("p99<50"), "--threshold 'p99<50': a latency needs a unit: us, ms or s");
   EXPECT_EQ(parseError("p99<50min"), "--threshold 'p99<50min': unknown unit 'min' (expected us, ms or s)");
   EXPECT_EQ(parseError("p98<5ms").rfind("--threshold 'p98<5ms': unknown statistic 'p98' (expected ", 0), 0u);
@@ -206,9 +207,10 @@ TEST(Thresholds, CheckedAgainstTheReportsValues) {
       {"errors", {{"count", 2}}},
       {"edits", {{"rejected", 0}, {"throughput_per_second", 19.9}}},
       {"viewers", {{"gaps", 0}}}};
-  auto results = checkThresholds({parsed("ack.p99<4ms"), parsed("ack.p99<=4ms"), parsed("ack.mean>1999us"),
-                                  parsed("errors=0"), parsed("rejected=0"), parsed("p99<1s"), parsed("throughput>=20")},
-                                 report);
+  auto results =
+      checkThresholds({parsed("ack.p99<4ms"), parsed("ack.p99<=4ms"), parsed("ack.mean>1999us"),
+                       parsed("errors=0"), parsed("rejected=0"), parsed("p99<1s"), parsed("throughput>=20")},
+                      report);
   ASSERT_EQ(results.size(), 7u);
   EXPECT_FALSE(results[0].passed);  // 4 < 4
   EXPECT_TRUE(results[1].passed);
@@ -226,12 +228,14 @@ TEST(Thresholds, CheckedAgainstTheReportsValues) {
 }
 
 TEST(ServerWindow, DifferencesRatesAndWindowAverages) {
-  const ServerStatsSample start = {{"uptime_seconds", 100}, {"edits", 40},   {"bytes_sent", 1000},
-                                   {"deltas", 10},          {"rejects", 1},  {"tessellate_ms_per_edit", 0.5},
-                                   {"connections", 3},      {"store_batches", 4}, {"store_average_batch", 10}};
-  const ServerStatsSample end = {{"uptime_seconds", 110}, {"edits", 60},   {"bytes_sent", 6000},
-                                 {"deltas", 15},          {"rejects", 1},  {"tessellate_ms_per_edit", 0.6},
-                                 {"connections", 5},      {"store_batches", 8}, {"store_average_batch", 7.5}};
+  const ServerStatsSample start = {
+      {"uptime_seconds", 100}, {"edits", 40},        {"bytes_sent", 1000},
+      {"deltas", 10},          {"rejects", 1},       {"tessellate_ms_per_edit", 0.5},
+      {"connections", 3},      {"store_batches", 4}, {"store_average_batch", 10}};
+  const ServerStatsSample end = {
+      {"uptime_seconds", 110}, {"edits", 60},        {"bytes_sent", 6000},
+      {"deltas", 15},          {"rejects", 1},       {"tessellate_ms_per_edit", 0.6},
+      {"connections", 5},      {"store_batches", 8}, {"store_average_batch", 7.5}};
   auto w = statsWindow(start, end);
   ASSERT_TRUE(w.isOk()) << w.status().message();
   EXPECT_DOUBLE_EQ((*w)["seconds"].get<double>(), 10);

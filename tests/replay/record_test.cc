@@ -107,8 +107,10 @@ TEST(RecordScript, ActorsTimesAndUndoTargets) {
   ASSERT_TRUE(parsed.isOk()) << parsed.status().message();
   EXPECT_EQ(parsed->header.generator, "test");
   // An interpolation line reads back as it was recorded.
-  EXPECT_NE(text.find(R"({"t":800,"actor":"bob","cmd":"interpolate","vertex":"v1:9","on":true,"tension":2.5})"),
-            std::string::npos) << text;
+  EXPECT_NE(
+      text.find(R"({"t":800,"actor":"bob","cmd":"interpolate","vertex":"v1:9","on":true,"tension":2.5})"),
+      std::string::npos)
+      << text;
   const ScriptCommand& back = parsed->commands.back();
   EXPECT_EQ(back.kind, ScriptCommand::Kind::kInterpolate);
   EXPECT_EQ(back.vertices.at(0), VertexId(1, 9).packed());
@@ -145,7 +147,8 @@ TEST(RecordScript, ABatchBecomesOneLinePerCommand) {
   batch.add_edit_ids(10);
   auto mismatched = r.lines(batch);
   ASSERT_FALSE(mismatched.isOk());
-  EXPECT_NE(mismatched.status().message().find("version 3"), std::string::npos) << mismatched.status().message();
+  EXPECT_NE(mismatched.status().message().find("version 3"), std::string::npos)
+      << mismatched.status().message();
 }
 
 // Scripts have no morph keys: an edit of a morph document's key 1 would
@@ -166,7 +169,8 @@ TEST(RecordScript, EditsOfASecondMorphKeyAreRefusedByName) {
   key.mutable_add_morph_key()->set_document_id(1);
   auto keyRefused = r.add(key);
   ASSERT_FALSE(keyRefused.isOk());
-  EXPECT_NE(keyRefused.status().message().find("version 7: a second morph key (AddMorphKey)"), std::string::npos)
+  EXPECT_NE(keyRefused.status().message().find("version 7: a second morph key (AddMorphKey)"),
+            std::string::npos)
       << keyRefused.status().message();
 }
 
@@ -286,9 +290,11 @@ TEST(RecordCommand, RefusedRecordingsSayWhy) {
       kReplay + " record" + s.connection("never-granted-token-0123456789") + " --seconds 1 -o " + out, true);
   EXPECT_EQ(unknownCode, 1) << unknown;
   // A token no grant names fails the handshake (docs/PROTOCOL.md §4.1).
-  EXPECT_NE(unknown.find("record: server refused the handshake (ERROR_CODE_AUTH_FAILED): the access token is not known "
-                         "to this server"),
-            std::string::npos)
+  EXPECT_NE(
+      unknown.find(
+          "record: server refused the handshake (ERROR_CODE_AUTH_FAILED): the access token is not known "
+          "to this server"),
+      std::string::npos)
       << unknown;
   auto [other, otherCode] =
       run(kReplay + " record --port " + std::to_string(s.process->port()) + " --token " +

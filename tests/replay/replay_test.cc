@@ -25,14 +25,17 @@ std::string errorOf(const std::string& text) {
 }
 
 TEST(ReplayScript, ParsesEveryCommandAndRoundTrips) {
-  const std::string text = std::string(kHeader) +
-                           "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"offset\",\"to\":[0,0,0.01]}\n"
-                           "\n"
-                           "{\"t\":5,\"actor\":\"b\",\"cmd\":\"move\",\"vertex\":[\"v1:1\",\"v1:2\"],\"mode\":\"direct\",\"to\":[1,2,3]}\n"
-                           "{\"t\":5,\"actor\":\"a\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
-                           "{\"t\":9,\"actor\":\"a\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
-                           "{\"t\":10,\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":-1}\n"
-                           "{\"t\":11,\"actor\":\"a\",\"cmd\":\"redo\",\"edit\":4}\n";
+  const std::string text =
+      std::string(kHeader) +
+      "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"offset\",\"to\":[0,0,0.01]}"
+      "\n"
+      "\n"
+      "{\"t\":5,\"actor\":\"b\",\"cmd\":\"move\",\"vertex\":[\"v1:1\",\"v1:2\"],\"mode\":\"direct\",\"to\":["
+      "1,2,3]}\n"
+      "{\"t\":5,\"actor\":\"a\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":\"inf\"}\n"
+      "{\"t\":9,\"actor\":\"a\",\"cmd\":\"corner\",\"vertex\":\"v0:3\",\"sharpness\":2.5}\n"
+      "{\"t\":10,\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":-1}\n"
+      "{\"t\":11,\"actor\":\"a\",\"cmd\":\"redo\",\"edit\":4}\n";
   auto script = parseScript(text, "s.jsonl");
   ASSERT_TRUE(script.isOk()) << script.status().message();
   EXPECT_EQ(script->header.document, 1u);
@@ -54,18 +57,22 @@ TEST(ReplayScript, ParsesEveryCommandAndRoundTrips) {
 TEST(ReplayScript, BadLinesNameFileLineAndReason) {
   const std::string h = kHeader;
   EXPECT_EQ(errorOf(""), "s.jsonl: empty script (no header line)");
-  EXPECT_EQ(errorOf("{\"t\":0}\n"), "s.jsonl:1: the first line must be a header {\"format\":\"tessera-replay\",\"version\":1,...}");
+  EXPECT_EQ(errorOf("{\"t\":0}\n"),
+            "s.jsonl:1: the first line must be a header {\"format\":\"tessera-replay\",\"version\":1,...}");
   EXPECT_EQ(errorOf("{\"format\":\"tessera-replay\",\"version\":2}\n"),
             "s.jsonl:1: script version 2 is not supported (this build reads version 1)");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\"\n"), "s.jsonl:2: not valid JSON");
   EXPECT_EQ(errorOf(h + "{\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":1}\n"),
             "s.jsonl:2: \"t\" must be a non-negative integer (milliseconds)");
-  EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"\",\"cmd\":\"undo\",\"edit\":1}\n"), "s.jsonl:2: \"actor\" must be a non-empty string");
+  EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"\",\"cmd\":\"undo\",\"edit\":1}\n"),
+            "s.jsonl:2: \"actor\" must be a non-empty string");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"jump\"}\n"),
             "s.jsonl:2: unknown cmd \"jump\" (expected move, crease, corner, interpolate, undo, redo)");
-  EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"offset\",\"to\":[0,0]}\n"),
+  EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"offset\","
+                        "\"to\":[0,0]}\n"),
             "s.jsonl:2: \"to\" must be [x, y, z]");
-  EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"fly\",\"to\":[0,0,0]}\n"),
+  EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"move\",\"vertex\":\"v2:40\",\"mode\":\"fly\","
+                        "\"to\":[0,0,0]}\n"),
             "s.jsonl:2: \"mode\" must be \"offset\" or \"direct\"");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"crease\",\"edge\":\"e1:5\",\"sharpness\":-1}\n"),
             "s.jsonl:2: \"sharpness\" must be >= 0");
@@ -73,10 +80,12 @@ TEST(ReplayScript, BadLinesNameFileLineAndReason) {
             "s.jsonl:2: \"edit\" must be an edit id (> 0) or a step back through the actor's edits (< 0)");
   EXPECT_EQ(errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":1,\"extra\":true}\n"),
             "s.jsonl:2: unknown key \"extra\"");
-  EXPECT_EQ(errorOf(h + "{\"t\":5,\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":1}\n{\"t\":4,\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":1}\n"),
+  EXPECT_EQ(errorOf(h + "{\"t\":5,\"actor\":\"a\",\"cmd\":\"undo\",\"edit\":1}\n{\"t\":4,\"actor\":\"a\","
+                        "\"cmd\":\"undo\",\"edit\":1}\n"),
             "s.jsonl:3: \"t\" 4 is before the previous line's 5");
   // A bad element id: the id parser's reason after FILE:LINE.
-  const std::string bad = errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"corner\",\"vertex\":\"e1:2\",\"sharpness\":1}\n");
+  const std::string bad =
+      errorOf(h + "{\"t\":0,\"actor\":\"a\",\"cmd\":\"corner\",\"vertex\":\"e1:2\",\"sharpness\":1}\n");
   EXPECT_EQ(bad.rfind("s.jsonl:2: ", 0), 0u) << bad;
 }
 
@@ -99,9 +108,11 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   testing::startServer(s, "tessera-replay-load");
   if (HasFatalFailure()) return;
   const std::string report = testing::makeTempDir("tessera-replay-report") + "/report.json";
-  auto [out, code] = run(std::string(TESSERA_REPLAY_PATH) + " load" + s.connection() +
-                         " --editors 2 --viewers 6 --decode-viewers 2 --rate 10 --seconds 2 --profile 2,5,10 --drain-seconds 5"
-                         " --report " + report);
+  auto [out, code] = run(
+      std::string(TESSERA_REPLAY_PATH) + " load" + s.connection() +
+      " --editors 2 --viewers 6 --decode-viewers 2 --rate 10 --seconds 2 --profile 2,5,10 --drain-seconds 5"
+      " --report " +
+      report);
   EXPECT_EQ(code, 0) << out;
   std::ifstream in(report);
   ASSERT_TRUE(in) << out;
@@ -146,9 +157,11 @@ TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
     ReplayServer s;
     testing::startServer(s, "tessera-replay-twice");
     if (HasFatalFailure()) return;
-    auto [before, beforeCode] = run(std::string(TESSERA_REPLAY_PATH) + " surface" + s.connection() + " --profile 2,5,10");
+    auto [before, beforeCode] =
+        run(std::string(TESSERA_REPLAY_PATH) + " surface" + s.connection() + " --profile 2,5,10");
     ASSERT_EQ(beforeCode, 0) << before;
-    auto [out, replayCode] = run(std::string(TESSERA_REPLAY_PATH) + " replay " + script + s.connection() + " --speed 4");
+    auto [out, replayCode] =
+        run(std::string(TESSERA_REPLAY_PATH) + " replay " + script + s.connection() + " --speed 4");
     ASSERT_EQ(replayCode, 0) << out;
     EXPECT_EQ(field(out, "commands"), "60") << out;
     EXPECT_EQ(field(out, "rejected"), "0") << out;

@@ -12,7 +12,8 @@ using std::chrono::milliseconds;
 using std::chrono::seconds;
 
 TEST(AuthThrottle, DelaysDoublePerFailureUpToTheCapForThatAddressOnly) {
-  AuthThrottle throttle({.baseDelay = milliseconds(100), .maxDelay = milliseconds(350), .forgetAfter = seconds(60)});
+  AuthThrottle throttle(
+      {.baseDelay = milliseconds(100), .maxDelay = milliseconds(350), .forgetAfter = seconds(60)});
   const auto t0 = AuthThrottle::Clock::time_point{} + seconds(1000);
   EXPECT_EQ(throttle.admit("10.0.0.1", t0), t0);  // no failure yet: at once
   EXPECT_EQ(throttle.failed("10.0.0.1", t0), 1);
@@ -29,7 +30,8 @@ TEST(AuthThrottle, DelaysDoublePerFailureUpToTheCapForThatAddressOnly) {
 }
 
 TEST(AuthThrottle, ParallelAttemptsQueueBehindEachOther) {
-  AuthThrottle throttle({.baseDelay = milliseconds(100), .maxDelay = seconds(10), .forgetAfter = seconds(60)});
+  AuthThrottle throttle(
+      {.baseDelay = milliseconds(100), .maxDelay = seconds(10), .forgetAfter = seconds(60)});
   const auto t0 = AuthThrottle::Clock::time_point{} + seconds(1000);
   throttle.failed("a", t0);
   // Three connections arrive at once: each gets its own turn, 100 ms apart
@@ -43,7 +45,8 @@ TEST(AuthThrottle, ParallelAttemptsQueueBehindEachOther) {
 }
 
 TEST(AuthThrottle, FailuresAreForgottenAfterTheWindow) {
-  AuthThrottle throttle({.baseDelay = milliseconds(100), .maxDelay = seconds(10), .forgetAfter = seconds(60)});
+  AuthThrottle throttle(
+      {.baseDelay = milliseconds(100), .maxDelay = seconds(10), .forgetAfter = seconds(60)});
   const auto t0 = AuthThrottle::Clock::time_point{} + seconds(1000);
   for (int i = 0; i < 5; ++i) throttle.failed("a", t0);
   const auto later = t0 + seconds(61);
@@ -52,7 +55,9 @@ TEST(AuthThrottle, FailuresAreForgottenAfterTheWindow) {
 }
 
 TEST(AuthThrottle, ManyAddressesArePrunedNotKeptForever) {
-  AuthThrottle throttle({.baseDelay = milliseconds(1), .maxDelay = milliseconds(2), .forgetAfter = seconds(1),
+  AuthThrottle throttle({.baseDelay = milliseconds(1),
+                         .maxDelay = milliseconds(2),
+                         .forgetAfter = seconds(1),
                          .maxAddresses = 100});
   const auto t0 = AuthThrottle::Clock::time_point{} + seconds(1000);
   for (int i = 0; i < 1000; ++i) throttle.failed("addr-" + std::to_string(i), t0 + milliseconds(i));

@@ -6,9 +6,9 @@
 // commit until the test releases it makes the order observable.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
-#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <functional>
@@ -20,15 +20,21 @@
 #include "integration/messages.h"
 #include "protocol/framing.h"
 #include "server/document/document_host.h"
-#include "support/test_meshes.h"
 #include "support/host_only_store.h"
+#include "support/test_meshes.h"
 
 namespace tessera::server {
 namespace {
 
-bool isDelta(const wire::ServerMessage& m) { return m.has_delta(); }
-bool isAck(const wire::ServerMessage& m) { return m.has_ack() && m.ack().client_seq() == 9; }
-bool isApplied(const wire::ServerMessage& m) { return m.has_applied_command(); }
+bool isDelta(const wire::ServerMessage& m) {
+  return m.has_delta();
+}
+bool isAck(const wire::ServerMessage& m) {
+  return m.has_ack() && m.ack().client_seq() == 9;
+}
+bool isApplied(const wire::ServerMessage& m) {
+  return m.has_applied_command();
+}
 
 // Decodes what the host queues for it, in order.
 class Inbox final : public Subscriber {
@@ -38,7 +44,8 @@ class Inbox final : public Subscriber {
   void send(Outgoing message) override {
     FrameDecoder decoder({.maxFrameBytes = 1u << 30});
     wire::ServerMessage m;
-    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk()) m.mutable_error()->set_message("bad frame");
+    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk())
+      m.mutable_error()->set_message("bad frame");
     std::lock_guard lock(mutex_);
     received_.push_back(std::move(m));
     arrived_.notify_all();
@@ -81,8 +88,8 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
     ASSERT_TRUE(mesh.isOk());
     auto doc = Document::create(*mesh, {.maxLevel = 4});
     ASSERT_TRUE(doc.isOk());
-    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1, io_.get_executor(), io_.get_executor(), store_,
-                                           config_, stats_);
+    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1,
+                                           io_.get_executor(), io_.get_executor(), store_, config_, stats_);
     thread_ = std::thread([this] { io_.run(); });
     wire::LodProfile profile;
     profile.set_base_level(1);
@@ -114,11 +121,13 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
 
 TEST_P(DeltaDurability, AcksAndRecordersWaitForTheCommitAndDeltasOnlyIfAsked) {
   const bool afterDurable = GetParam();
-  wire::ClientMessage move = testing::moveVertex(1, VertexId(1, 3).packed(), 0.01, 0.02, 0.0, wire::MOVE_MODE_OFFSET);
+  wire::ClientMessage move =
+      testing::moveVertex(1, VertexId(1, 3).packed(), 0.01, 0.02, 0.0, wire::MOVE_MODE_OFFSET);
   move.set_client_seq(9);
   const size_t before = viewer_->count();
   host_->command(editor_, "editor", move);
-  for (int i = 0; i < 1000 && store_.held() == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  for (int i = 0; i < 1000 && store_.held() == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   ASSERT_EQ(store_.held(), 1u) << "the edit reached the journal";
 
   // Held commit: no ack and no recorded command, whatever the mode.

@@ -136,7 +136,8 @@ TEST(JournalEntry, DamagedMorphEntriesAreRefused) {
   key2[1] = 2;
   auto bad = decodeJournalEntry(key2, "entry 6");
   ASSERT_FALSE(bad.isOk());
-  EXPECT_NE(bad.status().message().find("entry 6: an entry on morph key 2"), std::string::npos) << bad.status().message();
+  EXPECT_NE(bad.status().message().find("entry 6: an entry on morph key 2"), std::string::npos)
+      << bad.status().message();
   std::string batchOnKey = bytes;
   batchOnKey[5] = 4;
   auto batch = decodeJournalEntry(batchOnKey, "entry 7");
@@ -146,13 +147,15 @@ TEST(JournalEntry, DamagedMorphEntriesAreRefused) {
   KeyedDocument single(cube());
   Status missing = applyJournalEntry(single, edit);
   ASSERT_FALSE(missing.isOk());
-  EXPECT_NE(missing.message().find("key 1 does not exist: the document has 1 key"), std::string::npos) << missing.message();
+  EXPECT_NE(missing.message().find("key 1 does not exist: the document has 1 key"), std::string::npos)
+      << missing.message();
   // A second key of another vertex count.
   JournalEntry add = entryOf(JournalEntry::Kind::kAddKey);
   add.keyPoints.assign(3, Vec3(0, 0, 0));
   Status count = applyJournalEntry(single, add);
   ASSERT_FALSE(count.isOk());
-  EXPECT_NE(count.message().find("the second key has 3 points, key 0 has 8"), std::string::npos) << count.message();
+  EXPECT_NE(count.message().find("the second key has 3 points, key 0 has 8"), std::string::npos)
+      << count.message();
   EXPECT_FALSE(single.isMorph());
 }
 

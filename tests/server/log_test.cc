@@ -31,8 +31,13 @@ TEST(Log, EveryLineIsOneJsonObjectWhateverTheTextHolds) {
   const std::string quoted = "a \"quoted\" name\\ with\na newline and a tab\t";
   const std::string notUtf8 = std::string("cube") + static_cast<char>(0xff) + ".obj";
   logEvent(LogLevel::kWarn, "odd_text",
-           {{"doc", uint64_t{3}}, {"text", std::string_view(quoted)}, {"file", std::string_view(notUtf8)},
-            {"ms", 1.25}, {"none", std::nan("")}, {"ok", true}, {"delta", int64_t{-7}}});
+           {{"doc", uint64_t{3}},
+            {"text", std::string_view(quoted)},
+            {"file", std::string_view(notUtf8)},
+            {"ms", 1.25},
+            {"none", std::nan("")},
+            {"ok", true},
+            {"delta", int64_t{-7}}});
   logEvent(LogLevel::kDebug, "below_the_level");  // the default level is info: not written
   logEvent(LogLevel::kInfo, "plain");
   ASSERT_TRUE(setLogFile(dir + "/other.log").isOk());  // closes server.log; later tests log elsewhere
@@ -42,7 +47,8 @@ TEST(Log, EveryLineIsOneJsonObjectWhateverTheTextHolds) {
   const auto first = nlohmann::ordered_json::parse(lines[0]);  // throws on a line that is not JSON
   std::vector<std::string> keys;
   for (const auto& [key, value] : first.items()) keys.push_back(key);
-  EXPECT_EQ(keys, (std::vector<std::string>{"ts", "level", "event", "doc", "text", "file", "ms", "none", "ok", "delta"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"ts", "level", "event", "doc", "text", "file", "ms", "none", "ok",
+                                            "delta"}));
   EXPECT_EQ(first["level"], "warn");
   EXPECT_EQ(first["event"], "odd_text");
   EXPECT_EQ(first["doc"], 3);

@@ -15,9 +15,12 @@
 namespace tessera::server {
 namespace {
 
-std::shared_ptr<const std::string> bytesOf(const std::string& text) { return std::make_shared<const std::string>(text); }
+std::shared_ptr<const std::string> bytesOf(const std::string& text) {
+  return std::make_shared<const std::string>(text);
+}
 
-Outgoing deltaOf(uint64_t from, uint64_t to, std::vector<RegionPayload> regions, std::vector<uint64_t> removed = {}) {
+Outgoing deltaOf(uint64_t from, uint64_t to, std::vector<RegionPayload> regions,
+                 std::vector<uint64_t> removed = {}) {
   auto content = std::make_shared<DeltaContent>();
   content->documentId = 7;
   content->fromVersion = from;

@@ -12,11 +12,16 @@ namespace tessera::server {
 namespace {
 
 Outgoing presence(uint64_t doc, bool full, size_t bytes) {
-  return {.frame = std::make_shared<const std::string>(std::string(bytes, 'p')), .delta = nullptr, .snapshotOf = 0,
-          .presenceOf = doc, .presenceFull = full};
+  return {.frame = std::make_shared<const std::string>(std::string(bytes, 'p')),
+          .delta = nullptr,
+          .snapshotOf = 0,
+          .presenceOf = doc,
+          .presenceFull = full};
 }
 
-Outgoing reply(size_t bytes) { return {.frame = std::make_shared<const std::string>(std::string(bytes, 'r')), .delta = nullptr}; }
+Outgoing reply(size_t bytes) {
+  return {.frame = std::make_shared<const std::string>(std::string(bytes, 'r')), .delta = nullptr};
+}
 
 TEST(OutboxPresence, PresenceIsDroppedAboveTheSoftLimitAndResentWhole) {
   Limits limits;

@@ -18,8 +18,8 @@
 #include "integration/messages.h"
 #include "protocol/framing.h"
 #include "server/document/document_host.h"
-#include "support/test_meshes.h"
 #include "support/host_only_store.h"
+#include "support/test_meshes.h"
 
 namespace tessera::server {
 namespace {
@@ -31,7 +31,8 @@ class Inbox final : public Subscriber {
   void send(Outgoing message) override {
     FrameDecoder decoder({.maxFrameBytes = 1u << 30});
     wire::ServerMessage m;
-    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk()) m.mutable_error()->set_message("bad frame");
+    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk())
+      m.mutable_error()->set_message("bad frame");
     received.push_back(std::move(m));
   }
   // Acks and Rejects that answer client_seq `seq`.
@@ -56,8 +57,8 @@ class OutcomeQuestions : public ::testing::Test {
     ASSERT_TRUE(mesh.isOk());
     auto doc = Document::create(*mesh, {.maxLevel = 2});
     ASSERT_TRUE(doc.isOk());
-    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1, io_.get_executor(),
-                                           io_.get_executor(), store_, config_, stats_);
+    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1,
+                                           io_.get_executor(), io_.get_executor(), store_, config_, stats_);
     // As a cluster node does: the commands of a write with an unknown
     // outcome go to whoever reloads the document.
     host_->onUndecided([this](DocumentHost::Undecided u) { undecided_ += static_cast<int>(u.size()); });
@@ -74,7 +75,8 @@ class OutcomeQuestions : public ::testing::Test {
   }
   // An edit from the editor with client_seq `seq`, applied and held at its journal write.
   void editHeld(uint64_t seq) {
-    wire::ClientMessage move = testing::moveVertex(1, VertexId(1, 3).packed(), 0.01, 0.02, 0.0, wire::MOVE_MODE_OFFSET);
+    wire::ClientMessage move =
+        testing::moveVertex(1, VertexId(1, 3).packed(), 0.01, 0.02, 0.0, wire::MOVE_MODE_OFFSET);
     move.set_client_seq(seq);
     host_->command(editor_, "editor", move);
     poll();
@@ -125,7 +127,8 @@ TEST_F(OutcomeQuestions, DurableCommandsAreAckedAndUnknownOnesRefusedWhileTheJou
     if (m.has_reject() && m.reject().client_seq() == 10) {
       refused10 = true;
       EXPECT_EQ(m.reject().reason(), wire::REJECT_REASON_NOT_FOUND);
-      EXPECT_NE(m.reject().message().find("command 10 was not applied"), std::string::npos) << m.reject().message();
+      EXPECT_NE(m.reject().message().find("command 10 was not applied"), std::string::npos)
+          << m.reject().message();
     }
   }
   EXPECT_EQ(acks, 2);

@@ -9,8 +9,8 @@ namespace tessera::testing {
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
-constexpr int kSegments = 12;                          // around the ring
-constexpr double kRadii[3] = {18.0, 32.0, 46.0};       // hole, middle, outline
+constexpr int kSegments = 12;                     // around the ring
+constexpr double kRadii[3] = {18.0, 32.0, 46.0};  // hole, middle, outline
 
 // Mesh A's vertex (ring r, segment s); B is an affine image of A.
 Vec3 ringPoint(int r, int s) {
@@ -48,7 +48,8 @@ Image ringImage(const std::array<uint8_t, 3>& background, const std::array<uint8
       const bool dark = std::fmod(angle + 4 * M_PI, 2 * M_PI / 16) < M_PI / 16;
       const double shade = 0.6 + 0.4 * (r - kRadii[0]) / (kRadii[2] - kRadii[0]);
       fill(image, x, y, static_cast<uint8_t>(stripe[0] * shade * (dark ? 0.55 : 1)),
-           static_cast<uint8_t>(stripe[1] * shade * (dark ? 0.55 : 1)), static_cast<uint8_t>(stripe[2] * shade));
+           static_cast<uint8_t>(stripe[1] * shade * (dark ? 0.55 : 1)),
+           static_cast<uint8_t>(stripe[2] * shade));
     }
   }
   return image;
@@ -57,7 +58,8 @@ Image ringImage(const std::array<uint8_t, 3>& background, const std::array<uint8
 void dot(Image& image, const Vec3& centre) {
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
-      fill(image, static_cast<int>(std::floor(centre[0])) + dx, static_cast<int>(std::floor(centre[1])) + dy, 0, 255, 0);
+      fill(image, static_cast<int>(std::floor(centre[0])) + dx, static_cast<int>(std::floor(centre[1])) + dy,
+           0, 255, 0);
     }
   }
 }

@@ -16,11 +16,11 @@ namespace tessera::testing {
 
 struct MorphSample {
   Image a, b;
-  std::vector<Vec3> meshA, meshB;           // z = 0, pixel coordinates
+  std::vector<Vec3> meshA, meshB;  // z = 0, pixel coordinates
   std::vector<std::array<int, 3>> triangles;
-  std::vector<int> interpolating;           // base vertices tagged in morph.tags
-  int dotVertex = 0;                        // the vertex the dots mark (interpolating)
-  Vec3 holeA, holeB;                        // the centre of the hole in each image
+  std::vector<int> interpolating;  // base vertices tagged in morph.tags
+  int dotVertex = 0;               // the vertex the dots mark (interpolating)
+  Vec3 holeA, holeB;               // the centre of the hole in each image
 };
 
 // `mirrored`: mesh B is a mirror image of mesh A (every triangle turns over).

@@ -21,7 +21,8 @@ struct PolyTestMesh {
   std::vector<Vec3> points;
 };
 
-inline PolyTestMesh makePoly(std::string name, std::vector<Vec3> points, const std::vector<std::vector<int>>& faces) {
+inline PolyTestMesh makePoly(std::string name, std::vector<Vec3> points,
+                             const std::vector<std::vector<int>>& faces) {
   PolyTestMesh m;
   m.name = std::move(name);
   m.points = std::move(points);
@@ -31,9 +32,10 @@ inline PolyTestMesh makePoly(std::string name, std::vector<Vec3> points, const s
 }
 
 inline PolyTestMesh quadCube() {
-  return makePoly("quad-cube",
-                  {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
-                  {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
+  return makePoly(
+      "quad-cube",
+      {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}},
+      {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}});
 }
 
 // An open, bumpy nu x nv grid of quads (a boundary with corners).
@@ -57,7 +59,8 @@ inline PolyTestMesh quadTorus(int nu, int nv) {
   for (int i = 0; i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const double a = 2 * std::numbers::pi * i / nu, b = 2 * std::numbers::pi * j / nv;
-      p.push_back(Vec3((2 + 0.7 * std::cos(b)) * std::cos(a), (2 + 0.7 * std::cos(b)) * std::sin(a), 0.7 * std::sin(b)));
+      p.push_back(Vec3((2 + 0.7 * std::cos(b)) * std::cos(a), (2 + 0.7 * std::cos(b)) * std::sin(a),
+                       0.7 * std::sin(b)));
     }
   }
   std::vector<std::vector<int>> f;

@@ -37,8 +37,8 @@ void addQuad(std::vector<std::array<int, 3>>& tris, int a, int b, int c, int d, 
 
 TestMesh icosahedron() {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Vec3> p = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                        {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
                                        {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
@@ -91,7 +91,8 @@ TestMesh openGrid(int nu, int nv) {
   std::vector<std::array<int, 3>> f;
   auto id = [&](int i, int j) { return i * (nv + 1) + j; };
   for (int i = 0; i < nu; ++i) {
-    for (int j = 0; j < nv; ++j) addQuad(f, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 1);
+    for (int j = 0; j < nv; ++j)
+      addQuad(f, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1), (i + j) % 2 == 1);
   }
   return make("grid" + std::to_string(nu) + "x" + std::to_string(nv), p, f);
 }

@@ -20,11 +20,11 @@ struct TestMesh {
 };
 
 TestMesh icosahedron();
-TestMesh bipyramid(int n);                    // poles of valence n, genus 0
-TestMesh torus(int nu, int nv);               // regular valence 6, genus 1
-TestMesh openGrid(int nu, int nv);            // a bumpy patch with a boundary
-TestMesh diskWithPole(int n);                 // open fan: interior pole of valence n
-TestMesh doubleTorus();                       // genus 2, irregular valences
+TestMesh bipyramid(int n);          // poles of valence n, genus 0
+TestMesh torus(int nu, int nv);     // regular valence 6, genus 1
+TestMesh openGrid(int nu, int nv);  // a bumpy patch with a boundary
+TestMesh diskWithPole(int n);       // open fan: interior pole of valence n
+TestMesh doubleTorus();             // genus 2, irregular valences
 
 // Flips `count` random flippable edges (fixed seed): valences spread out.
 TestMesh withRandomFlips(const TestMesh& mesh, int count, uint32_t seed);

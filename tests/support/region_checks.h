@@ -18,7 +18,8 @@ namespace tessera::testing {
 // `actual` holds what `expected` holds: the same regions, and in each the
 // same ids, triangles, and positions and normals bit for bit (memcmp, so
 // -0.0 and 0.0 differ); the message names the first vertex that differs.
-inline void expectSameRegions(const Tessellation& actual, const Tessellation& expected, const std::string& where) {
+inline void expectSameRegions(const Tessellation& actual, const Tessellation& expected,
+                              const std::string& where) {
   ASSERT_EQ(actual.regions().size(), expected.regions().size()) << where;
   for (const auto& [id, region] : expected.regions()) {
     ASSERT_EQ(actual.regions().count(id), 1u) << where << " region " << id;

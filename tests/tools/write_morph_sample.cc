@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: write_morph_sample DIR\n");
     return 2;
   }
-  const tessera::Status written = tessera::testing::writeMorphSample(tessera::testing::makeMorphSample(), argv[1]);
+  const tessera::Status written =
+      tessera::testing::writeMorphSample(tessera::testing::makeMorphSample(), argv[1]);
   if (!written.isOk()) {
     std::fprintf(stderr, "write_morph_sample: %s\n", written.message().c_str());
     return 1;

@@ -24,8 +24,12 @@ int main(int argc, char** argv) {
   cube.numVertices = 8;
   cube.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
                     {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
-  cube.creases = {{4, 5, tessera::kSharpnessInfinite}, {5, 6, tessera::kSharpnessInfinite},
-                  {0, 4, 2.5f}, {1, 5, 2.5f}, {2, 6, 2.5f}, {3, 7, 2.5f}};
+  cube.creases = {{4, 5, tessera::kSharpnessInfinite},
+                  {5, 6, tessera::kSharpnessInfinite},
+                  {0, 4, 2.5f},
+                  {1, 5, 2.5f},
+                  {2, 6, 2.5f},
+                  {3, 7, 2.5f}};
   cube.vertexSharpness = {0, 0, 0, 0, 0, 0, tessera::kSharpnessInfinite, 0};
   const std::vector<tessera::Vec3> cubePoints = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                                  {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};

@@ -74,9 +74,9 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
                       std::to_string(kLevel), "--size", "800x600", "--no-hud", "--control-points"},
                      testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
   const std::string& display = xvfb.display();
-  const std::string window =
-      ::tessera::testing::xdotool(*xdotoolBinary, display,
-              "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
+  const std::string window = ::tessera::testing::xdotool(
+      *xdotoolBinary, display,
+      "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
   const std::string id = window.substr(0, window.find('\n'));
   ASSERT_FALSE(id.empty()) << "no viewer window: " << window
                            << ::tessera::testing::fileBytes(dir + "/view.log");
@@ -93,8 +93,8 @@ TEST(ViewInput, RealMouseAndKeyEventsPickDragUndoAndQuit) {
   bool picked = false;
   for (int attempt = 0; attempt < 20 && !picked; ++attempt) {
     ::tessera::testing::xdotool(*xdotoolBinary, display,
-            "mousemove --window " + id + " " + std::to_string(x) + " " + std::to_string(y) +
-                " sleep 0.1 mousedown 1 sleep 0.2 mouseup 1");
+                                "mousemove --window " + id + " " + std::to_string(x) + " " +
+                                    std::to_string(y) + " sleep 0.1 mousedown 1 sleep 0.2 mouseup 1");
     picked = waitFor(selectedByViewer, 0.5);
   }
   ASSERT_TRUE(picked) << "a click at (" << x << ", " << y << ") did not pick "

@@ -341,7 +341,8 @@ namespace {
 // copies by their original's id; malformed replies refused by name.
 TEST(ViewCoarseMorph, VerticesCarryTheirBirthLevelIdsAndBadRepliesAreRefused) {
   wire::MorphControl c;
-  const float cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const float cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   for (const auto& p : cube)
     for (float x : p) c.add_points(x);
   const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
@@ -371,12 +372,14 @@ TEST(ViewCoarseMorph, VerticesCarryTheirBirthLevelIdsAndBadRepliesAreRefused) {
   }
   wire::MorphControl bad = c;
   bad.set_triangles(5, 9);
-  EXPECT_NE(coarseMorphBase(bad).status().message().find("triangle 1 names vertex 9 of 8"), std::string::npos);
+  EXPECT_NE(coarseMorphBase(bad).status().message().find("triangle 1 names vertex 9 of 8"),
+            std::string::npos);
   wire::MorphControl fewer = c;
   fewer.mutable_points()->RemoveLast();
   fewer.mutable_points()->RemoveLast();
   fewer.mutable_points()->RemoveLast();
-  EXPECT_NE(refineCoarseMorph(*base, fewer, 2).status().message().find("7 points for 8 base vertices"), std::string::npos);
+  EXPECT_NE(refineCoarseMorph(*base, fewer, 2).status().message().find("7 points for 8 base vertices"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -27,7 +27,9 @@ namespace {
 
 using ::tessera::testing::waitFor;
 
-double regionsEncoded(client::Session& s) { return ::tessera::testing::serverStat(s, "regions_encoded"); }
+double regionsEncoded(client::Session& s) {
+  return ::tessera::testing::serverStat(s, "regions_encoded");
+}
 
 // The value once it has not changed for half a second.
 double settled(client::Session& s) {
@@ -77,15 +79,17 @@ TEST(ViewMorphKeys, StepPlayAndPauseAskTheServerForWhatTheyShow) {
   ASSERT_TRUE(xvfb.start(*xvfbBinary, dir + "/xvfb.log")) << "Xvfb did not start; see " << dir << "/xvfb.log";
   const double beforeViewer = regionsEncoded(**admin);
   const pid_t viewer = ::tessera::testing::spawn(
-      {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()), "--token", server->adminToken(),
-       "--document", std::to_string(doc), "--base-level", "1", "--max-level", "2", "--morph-rate", "0.5", "--size",
-       "640x480"},
+      {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()), "--token",
+       server->adminToken(), "--document", std::to_string(doc), "--base-level", "1", "--max-level", "2",
+       "--morph-rate", "0.5", "--size", "640x480"},
       ::tessera::testing::viewerEnvironment(xvfb.display()), dir + "/view.log");
   const std::string& display = xvfb.display();
-  const std::string window = ::tessera::testing::xdotool(*xdotoolBinary, display,
-                                     "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
+  const std::string window = ::tessera::testing::xdotool(
+      *xdotoolBinary, display,
+      "search --sync --onlyvisible --name 'tessera-view: document " + std::to_string(doc) + "'");
   const std::string id = window.substr(0, window.find('\n'));
-  ASSERT_FALSE(id.empty()) << "no viewer window: " << window << ::tessera::testing::fileBytes(dir + "/view.log");
+  ASSERT_FALSE(id.empty()) << "no viewer window: " << window
+                           << ::tessera::testing::fileBytes(dir + "/view.log");
   ::tessera::testing::xdotool(*xdotoolBinary, display, "windowfocus --sync " + id);
   // Key 0 live first: its view is built once the viewer subscribes.
   ASSERT_TRUE(waitFor([&] { return regionsEncoded(**admin) > beforeViewer; }, 30))

@@ -34,7 +34,9 @@ std::string samplePath(const std::string& name) {
   return testing::sourceTestDataPath("../../deploy/samples/morph/" + name);
 }
 
-bool isGreenDot(Rgb c) { return c[1] > 170 && c[0] < 110 && c[2] < 110; }
+bool isGreenDot(Rgb c) {
+  return c[1] > 170 && c[0] < 110 && c[2] < 110;
+}
 
 // The mean colour of an image's pixels that are neither near-white (the
 // sample's background) nor the green dot: the colours a shape shows.
@@ -64,7 +66,8 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = client::Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(testing::createDocument("annulus", testing::fileBytes(samplePath("mesh_a.obj")), "", 4), 30);
+  auto created = (*admin)->call(
+      testing::createDocument("annulus", testing::fileBytes(samplePath("mesh_a.obj")), "", 4), 30);
   ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
   const uint64_t doc = created->ack().document_id();
   ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10).isOk());
@@ -79,10 +82,25 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
 
   auto render = [&](const std::string& t, std::vector<std::string> extra = {}) -> Image {
     const std::string png = dir + "/t" + t + (extra.empty() ? "" : "-coarse") + ".png";
-    std::vector<std::string> args = {TESSERA_VIEW_PATH, "--connect", "127.0.0.1:" + std::to_string(server->port()),
-                                     "--token", server->adminToken(), "--document", std::to_string(doc), "--morph-t", t,
-                                     "--max-level", "3", "--no-hud", "--no-gizmo", "--screenshot", png, "--frames", "10",
-                                     "--timeout", "60"};
+    std::vector<std::string> args = {TESSERA_VIEW_PATH,
+                                     "--connect",
+                                     "127.0.0.1:" + std::to_string(server->port()),
+                                     "--token",
+                                     server->adminToken(),
+                                     "--document",
+                                     std::to_string(doc),
+                                     "--morph-t",
+                                     t,
+                                     "--max-level",
+                                     "3",
+                                     "--no-hud",
+                                     "--no-gizmo",
+                                     "--screenshot",
+                                     png,
+                                     "--frames",
+                                     "10",
+                                     "--timeout",
+                                     "60"};
     args.insert(args.end(), extra.begin(), extra.end());
     const int rc = testing::runBounded(args, testing::headlessEnvironment(), dir + "/view.log", 120);
     EXPECT_EQ(rc, 0) << testing::fileBytes(dir + "/view.log");
@@ -106,10 +124,11 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   const auto shown0 = meanShapeColour(at0, kBackground, true);
   const auto shown1 = meanShapeColour(at1, kBackground, true);
   const auto shownHalf = meanShapeColour(half, kBackground, true);
-  std::printf("mean colours: a.png %.0f %.0f %.0f, b.png %.0f %.0f %.0f; shown at 0: %.0f %.0f %.0f, "
-              "0.5: %.0f %.0f %.0f, 1: %.0f %.0f %.0f\n",
-              colourA[0], colourA[1], colourA[2], colourB[0], colourB[1], colourB[2], shown0[0], shown0[1], shown0[2],
-              shownHalf[0], shownHalf[1], shownHalf[2], shown1[0], shown1[1], shown1[2]);
+  std::printf(
+      "mean colours: a.png %.0f %.0f %.0f, b.png %.0f %.0f %.0f; shown at 0: %.0f %.0f %.0f, "
+      "0.5: %.0f %.0f %.0f, 1: %.0f %.0f %.0f\n",
+      colourA[0], colourA[1], colourA[2], colourB[0], colourB[1], colourB[2], shown0[0], shown0[1], shown0[2],
+      shownHalf[0], shownHalf[1], shownHalf[2], shown1[0], shown1[1], shown1[2]);
   // Each key's picture shows its own image, not the other one.
   EXPECT_LT(gap(shown0, colourA), gap(shown0, colourB) / 3);
   EXPECT_LT(gap(shown1, colourB), gap(shown1, colourA) / 3);
@@ -124,8 +143,10 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   // The coarse stream (control points refined in the viewer) shows the
   // same picture here: the sample's keys have no finer edits to leave out.
   const auto shownCoarse = meanShapeColour(coarseHalf, kBackground, true);
-  EXPECT_LT(gap(shownCoarse, shownHalf), 6) << shownCoarse[0] << " " << shownCoarse[1] << " " << shownCoarse[2];
-  EXPECT_LT(testing::difference(coarseHalf, half, 24).pixels, static_cast<size_t>(half.width) * half.height / 50);
+  EXPECT_LT(gap(shownCoarse, shownHalf), 6)
+      << shownCoarse[0] << " " << shownCoarse[1] << " " << shownCoarse[2];
+  EXPECT_LT(testing::difference(coarseHalf, half, 24).pixels,
+            static_cast<size_t>(half.width) * half.height / 50);
   // The dot is on the surface at every time.
   for (const Image* image : {&at0, &half, &at1, &coarseHalf}) {
     int green = 0;

@@ -19,7 +19,9 @@ MouseInput at(float px, float py, bool left = false, bool right = false) {
 struct Pose {
   V3 eye, target;
 };
-Pose poseOf(const OrbitCamera& c) { return {c.eye(), c.target()}; }
+Pose poseOf(const OrbitCamera& c) {
+  return {c.eye(), c.target()};
+}
 
 void expectSamePose(const Pose& a, const Pose& b, const char* when) {
   EXPECT_FLOAT_EQ(a.eye.x, b.eye.x) << when;

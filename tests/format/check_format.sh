@@ -20,7 +20,7 @@ wrong=()
 while IFS= read -r -d '' file; do
   checked=$((checked + 1))
   if ! "$formatter" --style=file --dry-run --Werror "$file" >/dev/null 2>&1; then wrong+=("$file"); fi
-done < <(find "${folders[@]}" -type f \( -name '*.h' -o -name '*.cc' -o -name '*.cpp' \) -print0)
+done < <(find "${folders[@]}" -type d -name node_modules -prune -o -type f \( -name '*.h' -o -name '*.cc' -o -name '*.cpp' \) -print0)
 if ((checked == 0)); then
   echo "check_format: no C++ source found under ${folders[*]}" >&2
   exit 1

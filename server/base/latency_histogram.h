@@ -24,6 +24,13 @@ inline size_t latencyBucketIndex(double seconds) {
   return i;
 }
 
+// Microseconds from `start` to now, on the steady clock the server times
+// its stages with.
+inline int64_t microsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
 // A plain value: per-bucket (not cumulative) counts, count and sum.
 struct LatencyBuckets {
   std::array<uint64_t, kLatencyBucketBounds.size() + 1> counts{};

@@ -24,10 +24,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-int64_t microsSince(Clock::time_point t) {
-  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - t).count();
-}
-
 // Snapshot parts stay well under any client's frame limit.
 constexpr size_t kSnapshotPartBytes = 4u << 20;
 
@@ -222,9 +218,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     }
     View& view = it->second;
     if (!resync) {
-      wire::ServerMessage ack;
-      ack.mutable_ack()->set_client_seq(clientSeq);
-      ack.mutable_ack()->set_document_id(self->id_.value);
+      wire::ServerMessage ack = ackFor(clientSeq, self->id_.value);
       ack.mutable_ack()->set_version(self->version_);
       who->send({frameOf(ack, self->config_.limits.maxFrameBytes), nullptr});
       if (withCommands) {
@@ -506,9 +500,7 @@ void DocumentHost::release() {
     stats_.commitMicros += microsSince(p.applied);
     stats_.ackLatency.addMicros(microsSince(p.applied));
     if (auto author = p.author.lock()) {
-      wire::ServerMessage ack;
-      ack.mutable_ack()->set_client_seq(p.clientSeq);
-      ack.mutable_ack()->set_document_id(id_.value);
+      wire::ServerMessage ack = ackFor(p.clientSeq, id_.value);
       ack.mutable_ack()->set_version(p.version);
       ack.mutable_ack()->set_edit_id(p.editId);
       for (uint64_t id : p.batchEditIds) ack.mutable_ack()->add_edit_ids(id);

@@ -10,15 +10,7 @@
 
 namespace tessera::server {
 
-namespace {
-
 using Clock = std::chrono::steady_clock;
-
-int64_t microsSince(Clock::time_point t) {
-  return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - t).count();
-}
-
-}  // namespace
 
 Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region,
                                                               bool idsInline, const EncodeContext& context) {

@@ -28,12 +28,10 @@ const CommandOutcome* OutcomeBook::find(Key key) const {
 
 wire::ServerMessage OutcomeBook::answer(DocumentId document, uint64_t clientSeq,
                                         const CommandOutcome* found) const {
-  wire::ServerMessage m;
   if (found != nullptr) {
     // Applied and durable before the move: the Ack it never got.
+    wire::ServerMessage m = ackFor(clientSeq, document.value);
     wire::Ack* ack = m.mutable_ack();
-    ack->set_client_seq(clientSeq);
-    ack->set_document_id(document.value);
     ack->set_version(found->version);
     if (!found->editIds.empty()) ack->set_edit_id(found->editIds.back());
     if (found->editIds.size() > 1) {

@@ -26,6 +26,13 @@ std::shared_ptr<const std::string> frameOf(const wire::ServerMessage& message, u
   return std::make_shared<const std::string>(std::move(*frame));
 }
 
+wire::ServerMessage ackFor(uint64_t clientSeq, uint64_t documentId) {
+  wire::ServerMessage m;
+  m.mutable_ack()->set_client_seq(clientSeq);
+  m.mutable_ack()->set_document_id(documentId);
+  return m;
+}
+
 wire::ServerMessage rejectWith(uint64_t clientSeq, wire::RejectReason reason, const std::string& text) {
   wire::ServerMessage m;
   wire::Reject* r = m.mutable_reject();

@@ -18,6 +18,9 @@ std::shared_ptr<const std::string> frameOf(const wire::ServerMessage& message, u
 
 // The reason a Reject gives for a failure with `code`.
 wire::RejectReason rejectReasonFor(ErrorCode code);
+// An Ack of `clientSeq` for `documentId` (0: none); callers add a version or
+// edit ids where the command has them.
+wire::ServerMessage ackFor(uint64_t clientSeq, uint64_t documentId);
 // A Reject for `clientSeq` with `reason` and the text that says why.
 wire::ServerMessage rejectWith(uint64_t clientSeq, wire::RejectReason reason, const std::string& text);
 // A Reject for a failed command, its reason chosen from the Status code.

@@ -10,17 +10,6 @@
 
 namespace tessera::server {
 
-namespace {
-
-wire::ServerMessage ackFor(uint64_t clientSeq, uint64_t documentId) {
-  wire::ServerMessage ack;
-  ack.mutable_ack()->set_client_seq(clientSeq);
-  ack.mutable_ack()->set_document_id(documentId);
-  return ack;
-}
-
-}  // namespace
-
 wire::ServerMessage listDocuments(Store& store, const CatalogueCaller& caller, uint64_t clientSeq) {
   auto documents = store.listDocuments();
   if (!documents.isOk())

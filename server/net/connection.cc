@@ -383,9 +383,7 @@ void Connection::handle(wire::ClientMessage message) {
     case C::kUnsubscribe: {
       subscriptions_.erase(doc);
       host->unsubscribe(sessionId_);
-      wire::ServerMessage ack;
-      ack.mutable_ack()->set_client_seq(seq);
-      ack.mutable_ack()->set_document_id(doc);
+      wire::ServerMessage ack = ackFor(seq, doc);
       return reply(ack);
     }
     case C::kSelect:
@@ -538,9 +536,7 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
                             id.status().message());
       }
       logEvent(LogLevel::kInfo, "document_created", {{"doc", id->value}, {"session", self->sessionId_}});
-      wire::ServerMessage ack;
-      ack.mutable_ack()->set_client_seq(seq);
-      ack.mutable_ack()->set_document_id(id->value);
+      wire::ServerMessage ack = ackFor(seq, id->value);
       ack.mutable_ack()->set_version(1);
       ack.mutable_ack()->set_dropped_vertices(dropped);
       ack.mutable_ack()->set_creased_edges(creased);
@@ -568,9 +564,7 @@ void Connection::openDocument(uint64_t seq, uint64_t documentId) {
       if (self->closed_) return;
       self->open_[documentId] = *host;
       (*host)->join(self, self->name_, wireRole(role));
-      wire::ServerMessage ack;
-      ack.mutable_ack()->set_client_seq(seq);
-      ack.mutable_ack()->set_document_id(documentId);
+      wire::ServerMessage ack = ackFor(seq, documentId);
       self->reply(ack);
     });
   });
@@ -582,9 +576,7 @@ void Connection::closeDocument(uint64_t seq, uint64_t documentId) {
   host->leave(sessionId_);
   open_.erase(documentId);
   subscriptions_.erase(documentId);
-  wire::ServerMessage ack;
-  ack.mutable_ack()->set_client_seq(seq);
-  ack.mutable_ack()->set_document_id(documentId);
+  wire::ServerMessage ack = ackFor(seq, documentId);
   reply(ack);
 }
 

@@ -11,7 +11,6 @@
 #include "core/morph/keyed_document_file.h"
 #include "core/tessellation/document_grid.h"
 #include "core/util/file_io.h"
-#include "protocol/commands.h"
 #include "protocol/framing.h"
 #include "protocol/utf8_text.h"
 #include "server/base/log.h"
@@ -38,31 +37,15 @@ void DocumentHost::setLoadedOutcomes(std::map<OutcomeBook::Key, CommandOutcome> 
                                      uint64_t fromVersion) {
   queue_.post(Lane::kInteractive,
               [self = shared_from_this(), outcomes = std::move(outcomes), fromVersion]() mutable {
-                self->outcomes_.setLoaded(std::move(outcomes), fromVersion);
+                self->commits_.setLoadedOutcomes(std::move(outcomes), fromVersion);
               });
 }
 
 void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeqs = std::move(clientSeqs)] {
     for (uint64_t seq : clientSeqs) {
-      const OutcomeBook::Key key{who->sessionId(), seq};
-      // Applied here and not durable yet: its Ack follows as usual.
-      bool waiting = false;
-      for (const Pending& p : self->pending_)
-        waiting |=
-            p.version > self->ackedVersion_ && p.authorSession == key.first && p.clientSeq == key.second;
-      if (waiting) continue;
-      const CommandOutcome* found = self->outcomes_.find(key);
-      if (found == nullptr && self->journalFailed_) {
-        // A failed write (committed()) took its commands out of pending_,
-        // and when the store could not know its outcome the entry may be
-        // stored: "not applied" could make the client send the edit twice.
-        // The asker asks again after the reload (a move, askOverdue), and
-        // the reloaded journal answers.
-        continue;
-      }
-      who->send({frameOf(self->outcomes_.answer(self->id_, seq, found), self->config_.limits.maxFrameBytes),
-                 nullptr});
+      auto answer = self->commits_.outcomeOf({who->sessionId(), seq}, self->journalFailed_);
+      if (answer) who->send({frameOf(*answer, self->config_.limits.maxFrameBytes), nullptr});
     }
   });
 }
@@ -74,7 +57,6 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, KeyedDocument doc, u
       name_(std::move(name)),
       doc_(std::move(doc)),
       version_(version),
-      durableVersion_(version),
       lastSnapshot_(version),
       flushedVersion_(version),
       counts_(doc_.key0().counts()),
@@ -84,8 +66,8 @@ DocumentHost::DocumentHost(DocumentId id, std::string name, KeyedDocument doc, u
       store_(store),
       config_(config),
       stats_(stats),
-      ackedVersion_(version),
-      flushTimer_(workers) {
+      flushTimer_(workers),
+      commits_(id, version, config.limits.maxFrameBytes, stats) {
   auto grid = documentGrid(doc_.key0());
   if (grid.isOk()) grid_ = *grid;
 }
@@ -222,9 +204,9 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       ack.mutable_ack()->set_version(self->version_);
       who->send({frameOf(ack, self->config_.limits.maxFrameBytes), nullptr});
       if (withCommands) {
-        self->recorders_.try_emplace(who->sessionId(), Recorder{who, self->version_});
+        self->commits_.record(who->sessionId(), who, self->version_);
       } else {
-        self->recorders_.erase(who->sessionId());
+        self->commits_.stopRecording(who->sessionId());
       }
     }
     self->sendSnapshot(view, who, resync);
@@ -235,7 +217,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
 
 void DocumentHost::unsubscribe(uint64_t session) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
-    self->recorders_.erase(session);
+    self->commits_.stopRecording(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
     self->dropUnwatchedViews();
   });
@@ -268,37 +250,13 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
                     nullptr});
       return;
     }
-    Applied applied;
-    uint32_t failedIndex = 0;
-    Status status;
-    if (message.has_edit_batch()) {
-      status = self->applyBatch(message.edit_batch(), applied, failedIndex);
-    } else {
-      uint64_t editId = 0;
-      status = self->apply(message, editId, applied.entry);
-      applied.editIds.push_back(editId);
-      if (status.isOk() && applied.entry.kind == JournalEntry::Kind::kAddKey) {
-        // The new key's every base limit, for the grid check in afterApply.
-        const int n = self->doc_.key(1).baseTopology().numVertices;
-        for (int v = 0; v < n; ++v) applied.key1Limits.push_back(VertexId(0, static_cast<uint64_t>(v)));
-      } else if (status.isOk()) {
-        self->collectLimits(applied.entry.key, applied);
-      }
-    }
+    AppliedChange applied;
+    Status status = applyCommand(self->doc_, self->id_, message, applied);
     if (!status.isOk()) {
       ++self->stats_.rejects;
-      auto reject = rejectFor(seq, status);
-      const auto kind = message.has_edit_batch() && failedIndex > 0
-                            ? message.edit_batch().commands(static_cast<int>(failedIndex - 1)).command_case()
-                            : wire::EditCommand::COMMAND_NOT_SET;
-      const bool undoOrRedo = message.command_case() == wire::ClientMessage::kUndo ||
-                              message.command_case() == wire::ClientMessage::kRedo ||
-                              kind == wire::EditCommand::kUndo || kind == wire::EditCommand::kRedo;
-      if (undoOrRedo && status.code() == ErrorCode::kInvalidArgument) {
-        reject.mutable_reject()->set_reason(wire::REJECT_REASON_INVALID_STATE);
-      }
-      reject.mutable_reject()->set_batch_index(failedIndex);
-      author->send({frameOf(reject, self->config_.limits.maxFrameBytes), nullptr});
+      author->send({frameOf(rejectForCommand(seq, message, applied.failedIndex, status),
+                            self->config_.limits.maxFrameBytes),
+                    nullptr});
       return;
     }
     self->afterApply(author, seq, applied, authorName, message);
@@ -306,7 +264,7 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
 }
 
 void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq,
-                              const Applied& applied, const std::string& authorName,
+                              const AppliedChange& applied, const std::string& authorName,
                               const wire::ClientMessage& command) {
   const JournalEntry& entry = applied.entry;
   // An edit that moves the surface out of the document's quantization grid
@@ -323,7 +281,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
     }
   }
   if (outside) {
-    Status back = retract(entry);
+    Status back = retractCommand(doc_, entry);
     ++stats_.rejects;
     if (!back.isOk())
       logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
@@ -338,9 +296,9 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   }
   stats_.edits += applied.editIds.size();  // a batch's commands count one by one; its version once
   ++version_;
-  pending_.push_back({version_, author, author->sessionId(), clientSeq, applied.editIds.back(),
-                      command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(),
-                      command, authorName});
+  commits_.applied({version_, author, author->sessionId(), clientSeq, applied.editIds.back(),
+                    command.has_edit_batch() ? applied.editIds : std::vector<uint64_t>{}, Clock::now(),
+                    command, authorName});
   changedLimits_.insert(changedLimits_.end(), applied.limits.begin(), applied.limits.end());
   keysChanged_ = keysChanged_ || doc_.isMorph();
   // The flush and the commit may finish in either order: each calls
@@ -393,8 +351,8 @@ void DocumentHost::flush() {
   // the document, but nothing is sent.
   // Kept morph views nobody watches are stale now: dropped, not rebuilt.
   if (keysChanged_) dropRetainedMorphViews();
-  const Pending* last = pending_.empty() ? nullptr : &pending_.back();
-  Batch batch{version_, {}, {}};
+  const PendingEdit* last = commits_.newest();
+  FlushBatch batch{version_, {}, {}};
   if (last) ++stats_.deltaFlushes;
   for (auto it = views_.begin(); it != views_.end();) {
     View& view = it->second;
@@ -435,7 +393,7 @@ void DocumentHost::flush() {
   lastFlush_ = Clock::now();
   if (!last) return;
   if (!config_.deltasAfterDurable) send(batch);
-  batches_.push_back(std::move(batch));
+  commits_.flushed(std::move(batch));
   release();  // its commit may already be durable
   maybeSnapshot();
 }
@@ -464,67 +422,20 @@ void DocumentHost::committed(uint64_t version, Status status) {
       std::lock_guard<std::mutex> lock(undecidedMutex_);
       handler = undecidedHandler_;
     }
-    const bool unknown = outcomeUnknown(status) && handler;
-    Undecided undecided;
-    for (const Pending& p : pending_) {
-      if (p.version <= ackedVersion_) continue;  // durable, acked
-      if (unknown) {
-        undecided.push_back({p.author, p.clientSeq});
-        continue;
-      }
-      if (auto author = p.author.lock()) {
-        // Not acknowledged: lost, or (a store that timed out, e.g. NATS
-        // without quorum) possibly durable; the document, once reloaded, says.
-        author->send({frameOf(rejectFor(p.clientSeq,
-                                        internalError("the journal write failed (" + status.message() +
-                                                      "): the edit was not acknowledged and may be lost")),
-                              config_.limits.maxFrameBytes),
-                      nullptr});
-      }
-    }
-    pending_.clear();
-    batches_.clear();
+    Undecided undecided = commits_.failed(status, outcomeUnknown(status) && handler);
     if (!undecided.empty()) handler(std::move(undecided));
     return;
   }
-  durableVersion_ = std::max(durableVersion_, version);
+  commits_.durable(version);
   release();
   maybeSnapshot();
 }
 
 void DocumentHost::release() {
-  for (const Pending& p : pending_) {
-    if (p.version > durableVersion_) break;
-    if (p.version <= ackedVersion_) continue;
-    ackedVersion_ = p.version;
-    stats_.commitMicros += microsSince(p.applied);
-    stats_.ackLatency.addMicros(microsSince(p.applied));
-    if (auto author = p.author.lock()) {
-      wire::ServerMessage ack = ackFor(p.clientSeq, id_.value);
-      ack.mutable_ack()->set_version(p.version);
-      ack.mutable_ack()->set_edit_id(p.editId);
-      for (uint64_t id : p.batchEditIds) ack.mutable_ack()->add_edit_ids(id);
-      author->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
-    }
-    // Kept a while: in a cluster the Ack travels over NATS and may be lost
-    // in a reconnect; the author's node then asks again (answerOutcomes).
-    outcomes_.remember(
-        {p.authorSession, p.clientSeq},
-        {p.version, p.batchEditIds.empty() ? std::vector<uint64_t>{p.editId} : p.batchEditIds});
-  }
-  while (!batches_.empty() && batches_.front().toVersion <= durableVersion_) {
-    Batch& b = batches_.front();
-    send(b);  // unless it went at its flush
-    // A recorder gets each command after the delta that carries it.
-    while (!pending_.empty() && pending_.front().version <= b.toVersion) {
-      notifyRecorders(pending_.front());
-      pending_.pop_front();
-    }
-    batches_.pop_front();
-  }
+  commits_.release([this](FlushBatch& batch) { send(batch); });
 }
 
-void DocumentHost::send(Batch& b) {
+void DocumentHost::send(FlushBatch& b) {
   for (auto& [key, view] : views_) {
     auto frame = b.frames.find(key);
     if (frame == b.frames.end() || !frame->second) continue;
@@ -537,39 +448,9 @@ void DocumentHost::send(Batch& b) {
   b.deltas.clear();
 }
 
-void DocumentHost::notifyRecorders(const Pending& p) {
-  if (recorders_.empty()) return;
-  wire::ServerMessage m;
-  wire::AppliedCommand* a = m.mutable_applied_command();
-  a->set_document_id(id_.value);
-  a->set_version(p.version);
-  a->set_edit_id(p.editId);
-  for (uint64_t id : p.batchEditIds) a->add_edit_ids(id);
-  a->set_author_session_id(p.authorSession);
-  a->set_author_name(p.authorName);
-  const auto appliedAt =
-      std::chrono::system_clock::now() -
-      std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - p.applied);
-  a->set_server_time_unix_ms(static_cast<uint64_t>(
-      std::chrono::duration_cast<std::chrono::milliseconds>(appliedAt.time_since_epoch()).count()));
-  copyEditCommand(p.command, *a);
-  auto frame = frameOf(m, config_.limits.maxFrameBytes);
-  if (!frame) return;
-  for (auto it = recorders_.begin(); it != recorders_.end();) {
-    auto who = it->second.who.lock();
-    if (!who) {
-      it = recorders_.erase(it);
-      continue;
-    }
-    if (p.version > it->second.fromVersion) who->send({frame, nullptr});
-    ++it;
-  }
-}
-
 void DocumentHost::maybeSnapshot() {
   // Only at rest: a snapshot must never hold an edit the journal lacks.
-  if (!pending_.empty() || version_ != durableVersion_ || version_ - lastSnapshot_ < config_.snapshotEvery)
-    return;
+  if (!commits_.atRest(version_) || version_ - lastSnapshot_ < config_.snapshotEvery) return;
   Status saved = store_.putSnapshot(id_, version_ - 1, serializeKeyedDocument(doc_));
   if (!saved.isOk()) {
     logEvent(LogLevel::kWarn, "snapshot_failed", {{"doc", id_.value}, {"error", saved.message()}});

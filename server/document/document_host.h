@@ -26,7 +26,6 @@
 #include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
-#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
@@ -43,10 +42,11 @@
 #include "server/base/config.h"
 #include "server/base/serial_queue.h"
 #include "server/base/server_stats.h"
+#include "server/document/command_application.h"
+#include "server/document/commit_log.h"
 #include "server/document/document_endpoint.h"
 #include "server/document/journal_entry.h"
 #include "server/document/lod_view.h"
-#include "server/document/outcome_book.h"
 #include "server/document/subscriber.h"
 #include "server/store/store.h"
 
@@ -115,7 +115,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // by this host: whoever reloads the document answers them from the
   // journal (answerOutcomes). Without a handler (one server: its store
   // always knows), they are refused as possibly lost, like the others.
-  using Undecided = std::vector<std::pair<std::weak_ptr<Subscriber>, uint64_t>>;
+  using Undecided = CommitLog::Undecided;
   void onUndecided(std::function<void(Undecided)> handler);
 
   // Whether a journal write failed: the host applies nothing more. In a
@@ -135,47 +135,14 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   struct PresenceChanges {
     std::set<uint64_t> changed, left, needFull;
   };
-  struct Pending {  // applied, waiting for its commit (its ack) and for its delta (recorders)
-    uint64_t version;
-    std::weak_ptr<Subscriber> author;
-    uint64_t authorSession, clientSeq, editId;
-    std::vector<uint64_t> batchEditIds;  // an EditBatch's, for its Ack
-    std::chrono::steady_clock::time_point applied;
-    wire::ClientMessage command;  // as the author sent it, for recorders
-    std::string authorName;
-  };
-  struct Batch {  // one flush: the delta of every view up to `toVersion`
-    uint64_t toVersion;
-    std::map<std::string, std::shared_ptr<const DeltaContent>> deltas;  // by view key
-    std::map<std::string, std::shared_ptr<const std::string>> frames;
-  };
-  struct Recorder {  // a subscriber that asked with_commands
-    std::weak_ptr<Subscriber> who;
-    uint64_t fromVersion;  // its subscribe's Ack version: later commands only
-  };
-
-  // What one applied command (or batch) changed, for afterApply().
-  struct Applied {
-    JournalEntry entry;
-    std::vector<uint64_t> editIds;     // per command: the edit made, undone or redone
-    std::vector<VertexId> limits;      // every limit of key 0 the command(s) changed
-    std::vector<VertexId> key1Limits;  // and of key 1 (a morph document's)
-  };
-  // Adds what the last command changed on `key` to `applied`.
-  void collectLimits(uint32_t key, Applied& applied) const;
-  // AddMorphKey: imports the mesh, checks it against key 0, adds key 1.
-  Status addMorphKey(const wire::AddMorphKey& request, JournalEntry& entry);
   // The document a view's tessellation follows.
   const Document& sourceOf(const View& view) const { return view.source ? *view.source : doc_.key0(); }
   // A morph view's tessellation at `t`, and the document it follows.
   Expected<View> buildMorphView(double t, const LodProfile& profile);
   // Rebuilds a morph view after a key changed; the regions that differ.
   Expected<Tessellation::Changes> rebuildMorphView(View& view);
-  Status apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry);
-  // An EditBatch: every command in order, or none (those applied are taken
-  // back in reverse). `failedIndex`: the refused command, from 1.
-  Status applyBatch(const wire::EditBatch& batch, Applied& applied, uint32_t& failedIndex);
-  void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const Applied& applied,
+  // Checks an applied command against the grid, then journals it.
+  void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const AppliedChange& applied,
                   const std::string& authorName, const wire::ClientMessage& command);
   void scheduleFlush();
   std::chrono::steady_clock::duration flushInterval() const;
@@ -183,16 +150,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // encodes the changed regions once and queues them as one batch.
   void flush();
   void committed(uint64_t version, Status status);
-  // Acks every durable edit, then sends every durable batch's deltas not
-  // sent yet and, after them, their commands to the recorders.
+  // Releases what the commit log holds that is durable now.
   void release();
   // Sends the batch's frames to the subscribers whose snapshot does not hold
   // them, then drops them: sending again is a no-op.
-  void send(Batch& batch);
-  // Sends a durable command to the recorders (from release(), after its delta).
-  void notifyRecorders(const Pending& p);
-  // Takes an applied command back (an edit refused after applying it).
-  Status retract(const JournalEntry& entry);
+  void send(FlushBatch& batch);
   void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
   void presenceChanged();
   void broadcastPresence();
@@ -222,7 +184,6 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   KeyedDocument doc_;
   bool keysChanged_ = false;  // a morph document changed since the last flush: its morph views rebuild
   uint64_t version_;          // applied
-  uint64_t durableVersion_;   // committed to the journal
   uint64_t lastSnapshot_;
   uint64_t flushedVersion_;  // the version views' encoded regions and the last delta reach
   bool flushScheduled_ = false;
@@ -244,14 +205,10 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   std::map<uint64_t, Participant> participants_;
   std::map<std::string, View> views_;  // by LodProfile::key()
   uint64_t useClock_ = 0;
-  std::deque<Pending> pending_;
-  std::deque<Batch> batches_;
-  uint64_t ackedVersion_;  // the newest edit whose ack was sent
   boost::asio::steady_timer flushTimer_;
   std::chrono::steady_clock::time_point lastFlush_{};
-  std::vector<VertexId> changedLimits_;     // by the edits applied since the last flush
-  std::map<uint64_t, Recorder> recorders_;  // by session
-  OutcomeBook outcomes_;  // what became of commands: loaded with the journal and acknowledged here
+  std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
+  CommitLog commits_;  // applied, waiting for durability; Acks, recorders and outcome answers
 };
 
 }  // namespace tessera::server

@@ -23,7 +23,7 @@ void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire:
 void DocumentHost::leave(uint64_t session) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
     self->participants_.erase(session);
-    self->recorders_.erase(session);
+    self->commits_.stopRecording(session);
     for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
     self->dropUnwatchedViews();
     self->presence_.changed.erase(session);

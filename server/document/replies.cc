@@ -46,6 +46,22 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status) {
   return rejectWith(clientSeq, rejectReasonFor(status.code()), status.message());
 }
 
+wire::ServerMessage rejectForCommand(uint64_t clientSeq, const wire::ClientMessage& command,
+                                     uint32_t failedIndex, const Status& status) {
+  wire::ServerMessage reject = rejectFor(clientSeq, status);
+  const auto kind = command.has_edit_batch() && failedIndex > 0
+                        ? command.edit_batch().commands(static_cast<int>(failedIndex - 1)).command_case()
+                        : wire::EditCommand::COMMAND_NOT_SET;
+  const bool undoOrRedo = command.command_case() == wire::ClientMessage::kUndo ||
+                          command.command_case() == wire::ClientMessage::kRedo ||
+                          kind == wire::EditCommand::kUndo || kind == wire::EditCommand::kRedo;
+  if (undoOrRedo && status.code() == ErrorCode::kInvalidArgument) {
+    reject.mutable_reject()->set_reason(wire::REJECT_REASON_INVALID_STATE);
+  }
+  reject.mutable_reject()->set_batch_index(failedIndex);
+  return reject;
+}
+
 std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message,
                                                  uint32_t maxFrameBytes) {
   return frameOf(rejectWith(clientSeq, wire::REJECT_REASON_LIMIT_EXCEEDED, message), maxFrameBytes);

@@ -25,6 +25,11 @@ wire::ServerMessage ackFor(uint64_t clientSeq, uint64_t documentId);
 wire::ServerMessage rejectWith(uint64_t clientSeq, wire::RejectReason reason, const std::string& text);
 // A Reject for a failed command, its reason chosen from the Status code.
 wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status);
+// The Reject of a document command that failed: undo and redo of an edit
+// that cannot be undone or redone now give REJECT_REASON_INVALID_STATE; a
+// batch's Reject names its refused command (`failedIndex`, from 1).
+wire::ServerMessage rejectForCommand(uint64_t clientSeq, const wire::ClientMessage& command,
+                                     uint32_t failedIndex, const Status& status);
 // A Reject with REJECT_REASON_LIMIT_EXCEEDED, framed: a request over a
 // budget or cap (docs/PROTOCOL.md §9).
 std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message,

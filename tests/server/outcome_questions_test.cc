@@ -16,38 +16,15 @@
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
 #include "integration/messages.h"
-#include "protocol/framing.h"
 #include "server/document/document_host.h"
+#include "support/decoding_inbox.h"
 #include "support/host_only_store.h"
 #include "support/test_meshes.h"
 
 namespace tessera::server {
 namespace {
 
-class Inbox final : public Subscriber {
- public:
-  explicit Inbox(uint64_t session) : session_(session) {}
-  uint64_t sessionId() const override { return session_; }
-  void send(Outgoing message) override {
-    FrameDecoder decoder({.maxFrameBytes = 1u << 30});
-    wire::ServerMessage m;
-    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk())
-      m.mutable_error()->set_message("bad frame");
-    received.push_back(std::move(m));
-  }
-  // Acks and Rejects that answer client_seq `seq`.
-  int answersTo(uint64_t seq) const {
-    int n = 0;
-    for (const auto& m : received) {
-      n += (m.has_ack() && m.ack().client_seq() == seq) || (m.has_reject() && m.reject().client_seq() == seq);
-    }
-    return n;
-  }
-  std::vector<wire::ServerMessage> received;
-
- private:
-  const uint64_t session_;
-};
+using Inbox = testing::DecodingInbox;
 
 class OutcomeQuestions : public ::testing::Test {
  protected:

@@ -1,20 +1,23 @@
-// The commands of a document host turned into document changes
-// (docs/PROTOCOL.md §5, and §14 for the keys): one edit, undo or redo, an
-// EditBatch all or nothing, a second morph key (document_morph.cc), and
-// their retraction when the server refuses a command after applying it.
+#include "server/document/command_application.h"
+
 #include <algorithm>
+#include <string>
 
 #include "protocol/commands.h"
 #include "protocol/morph_key.h"
 #include "server/base/log.h"
-#include "server/document/document_host.h"
+#include "server/document/morph_key_command.h"
 
 namespace tessera::server {
 
-Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId, JournalEntry& entry) {
-  if (message.has_add_morph_key()) return addMorphKey(message.add_morph_key(), entry);
+namespace {
+
+// One command that is not a batch.
+Status applyOne(KeyedDocument& keyed, DocumentId id, const wire::ClientMessage& message, uint64_t& editId,
+                JournalEntry& entry) {
+  if (message.has_add_morph_key()) return applyAddMorphKey(keyed, id, message.add_morph_key(), entry);
   entry.key = morphKeyOf(message);
-  TESSERA_ASSIGN_OR_RETURN(Document * edited, doc_.editKey(entry.key));
+  TESSERA_ASSIGN_OR_RETURN(Document * edited, keyed.editKey(entry.key));
   Document& doc = *edited;
   auto addedEdit = [&](Expected<EditId> id) -> Status {
     TESSERA_RETURN_IF_ERROR(id.status());
@@ -81,7 +84,14 @@ Status DocumentHost::apply(const wire::ClientMessage& message, uint64_t& editId,
   }
 }
 
-Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, uint32_t& failedIndex) {
+// Adds what the last command changed on `key` to `applied`.
+void collectLimits(const KeyedDocument& keyed, uint32_t key, AppliedChange& applied) {
+  const auto& limits = keyed.key(key).lastUpdate().limits;
+  auto& into = key == 0 ? applied.limits : applied.key1Limits;
+  into.insert(into.end(), limits.begin(), limits.end());
+}
+
+Status applyBatch(KeyedDocument& keyed, DocumentId id, const wire::EditBatch& batch, AppliedChange& applied) {
   const int count = batch.commands_size();
   if (count == 0) return invalidArgument("edit batch: no commands");
   applied.entry.kind = JournalEntry::Kind::kBatch;
@@ -92,23 +102,22 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
     const uint64_t named = documentOf(one);
     JournalEntry part;
     uint64_t editId = 0;
-    Status status = command.command_case() == wire::EditCommand::COMMAND_NOT_SET
-                        ? invalidArgument("no command")
-                    : named != 0 && named != id_.value
-                        ? invalidArgument("names document " + std::to_string(named) + ", the batch is for " +
-                                          std::to_string(id_.value))
-                        : apply(one, editId, part);
+    Status status =
+        command.command_case() == wire::EditCommand::COMMAND_NOT_SET ? invalidArgument("no command")
+        : named != 0 && named != id.value ? invalidArgument("names document " + std::to_string(named) +
+                                                            ", the batch is for " + std::to_string(id.value))
+                                          : applyOne(keyed, id, one, editId, part);
     if (!status.isOk()) {
       // All or nothing: what the batch applied goes back, newest first.
-      Status back = retract(applied.entry);
+      Status back = retractCommand(keyed, applied.entry);
       if (!back.isOk())
-        logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
-      failedIndex = static_cast<uint32_t>(i + 1);
+        logEvent(LogLevel::kError, "retract_failed", {{"doc", id.value}, {"error", back.message()}});
+      applied.failedIndex = static_cast<uint32_t>(i + 1);
       return Status(status.code(), "edit batch, command " + std::to_string(i + 1) + " of " +
                                        std::to_string(count) + ": " + status.message() +
                                        " (nothing of the batch was applied)");
     }
-    collectLimits(part.key, applied);
+    collectLimits(keyed, part.key, applied);
     applied.editIds.push_back(editId);
     applied.entry.batch.push_back(std::move(part));
   }
@@ -119,22 +128,34 @@ Status DocumentHost::applyBatch(const wire::EditBatch& batch, Applied& applied, 
   return Status::ok();
 }
 
-void DocumentHost::collectLimits(uint32_t key, Applied& applied) const {
-  const auto& limits = doc_.key(key).lastUpdate().limits;
-  auto& into = key == 0 ? applied.limits : applied.key1Limits;
-  into.insert(into.end(), limits.begin(), limits.end());
+}  // namespace
+
+Status applyCommand(KeyedDocument& keyed, DocumentId id, const wire::ClientMessage& message,
+                    AppliedChange& applied) {
+  if (message.has_edit_batch()) return applyBatch(keyed, id, message.edit_batch(), applied);
+  uint64_t editId = 0;
+  TESSERA_RETURN_IF_ERROR(applyOne(keyed, id, message, editId, applied.entry));
+  applied.editIds.push_back(editId);
+  if (applied.entry.kind == JournalEntry::Kind::kAddKey) {
+    // The new key's every base limit, for the host's grid check.
+    const int n = keyed.key(1).baseTopology().numVertices;
+    for (int v = 0; v < n; ++v) applied.key1Limits.push_back(VertexId(0, static_cast<uint64_t>(v)));
+  } else {
+    collectLimits(keyed, applied.entry.key, applied);
+  }
+  return Status::ok();
 }
 
 // The views never saw the command (they update at the next flush), so only
 // the document goes back; its limits are restored bit for bit.
-Status DocumentHost::retract(const JournalEntry& entry) {
+Status retractCommand(KeyedDocument& keyed, const JournalEntry& entry) {
   if (entry.kind == JournalEntry::Kind::kAddKey) {
-    doc_.removeLastKey();
+    keyed.removeLastKey();
     return Status::ok();
   }
   Document* doc = nullptr;
   if (entry.kind != JournalEntry::Kind::kBatch) {
-    TESSERA_ASSIGN_OR_RETURN(doc, doc_.editKey(entry.key));
+    TESSERA_ASSIGN_OR_RETURN(doc, keyed.editKey(entry.key));
   }
   switch (entry.kind) {
     case JournalEntry::Kind::kAddKey:
@@ -147,7 +168,7 @@ Status DocumentHost::retract(const JournalEntry& entry) {
       return doc->undo(entry.target);
     case JournalEntry::Kind::kBatch:
       for (auto part = entry.batch.rbegin(); part != entry.batch.rend(); ++part)
-        TESSERA_RETURN_IF_ERROR(retract(*part));
+        TESSERA_RETURN_IF_ERROR(retractCommand(keyed, *part));
       return Status::ok();
   }
   return Status::ok();

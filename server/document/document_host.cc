@@ -15,6 +15,7 @@
 #include "protocol/utf8_text.h"
 #include "server/base/log.h"
 #include "server/document/journal_entry.h"
+#include "server/document/profile_request.h"
 #include "server/document/replies.h"
 
 namespace tessera::server {
@@ -85,15 +86,12 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
   // Refused from the estimate before any work, on the caller's thread: a
   // profile whose base level alone is over its budget (docs/PROTOCOL.md §9).
   const int64_t least = minimumTriangles(requested);
-  const int64_t budget =
-      requested.triangle_budget() == 0
-          ? config_.limits.maxTrianglesPerSubscriber
-          : static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX));
-  if (least > budget || least > config_.limits.maxTrianglesPerSubscriber) {
+  const int64_t budget = budgetOf(requested, config_.limits);
+  if (least > budget) {
     who->send({limitExceeded(clientSeq,
                              "LOD profile: base level " + std::to_string(requested.base_level()) +
                                  " alone has " + std::to_string(least) + " triangles, above the budget of " +
-                                 std::to_string(std::min(budget, config_.limits.maxTrianglesPerSubscriber)),
+                                 std::to_string(budget),
                              config_.limits.maxFrameBytes),
                nullptr});
     return;
@@ -103,45 +101,15 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
     const Limits& limits = self->config_.limits;
-    LodProfile profile;
-    profile.baseLevel = static_cast<int>(std::min<uint32_t>(requested.base_level(), 64));
-    profile.maxLevel = static_cast<int>(std::min<uint32_t>(requested.max_level(), 64));
-    profile.angleThresholdDegrees = requested.angle_threshold_degrees();
-    profile.triangleBudget =
-        requested.triangle_budget() == 0
-            ? limits.maxTrianglesPerSubscriber
-            : std::min<int64_t>(
-                  static_cast<int64_t>(std::min<uint64_t>(requested.triangle_budget(), INT64_MAX)),
-                  limits.maxTrianglesPerSubscriber);
-    profile.fidelity = requested.fidelity() > 0;
-    profile.vertexIds = !requested.omit_vertex_ids();
-    Status valid = profile.check();
-    if (valid.isOk() && profile.maxLevel > self->doc_.key0().options().maxLevel) {
-      valid =
-          invalidArgument("LOD profile: max level " + std::to_string(profile.maxLevel) +
-                          " exceeds the document's " + std::to_string(self->doc_.key0().options().maxLevel));
-    }
-    // A morph view's time, rounded so that viewers playing the same frames
-    // share one view (PROTOCOL.md "Morph documents").
-    std::optional<double> morphT;
-    if (valid.isOk() && requested.has_morph_t()) {
-      const double t = requested.morph_t();
-      if (!self->doc_.isMorph()) {
-        valid =
-            invalidArgument("LOD profile: morph_t is set but document " + std::to_string(self->id_.value) +
-                            " has one key (AddMorphKey adds the second)");
-      } else if (!(t >= 0.0 && t <= 1.0)) {
-        valid = invalidArgument("LOD profile: morph_t " + std::to_string(t) + " is not in [0, 1]");
-      } else {
-        morphT = std::round(t * kMorphTimeSteps) / kMorphTimeSteps;
-      }
-    }
-    if (!valid.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, valid), self->config_.limits.maxFrameBytes), nullptr});
+    auto checked = checkProfileRequest(requested, limits, self->id_, self->doc_.key0().options().maxLevel,
+                                       self->doc_.isMorph());
+    if (!checked.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, checked.status()), limits.maxFrameBytes), nullptr});
       return;
     }
-    const std::string key =
-        profile.key() + (morphT ? "-t" + std::to_string(std::lround(*morphT * kMorphTimeSteps)) : "");
+    const LodProfile& profile = checked->profile;
+    const std::optional<double>& morphT = checked->morphT;
+    const std::string& key = checked->key;
     auto it = self->views_.find(key);
     // The views left if this subscriber moves to `key`: those someone else
     // still watches. Counted before anything changes, so that a refused

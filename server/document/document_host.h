@@ -52,10 +52,6 @@
 
 namespace tessera::server {
 
-// Morph views are at multiples of 1/kMorphTimeSteps (LodProfile.morph_t is
-// rounded), so viewers playing the same frames share them.
-inline constexpr double kMorphTimeSteps = 10000;
-
 class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_this<DocumentHost> {
  public:
   // Commands run on `workers`; the heavy ones of a large document (a

@@ -30,6 +30,12 @@ std::vector<uint64_t> editIdsOf(const JournalEntry& entry) {
   return {};
 }
 
+// A stored document that cannot be read back is the server's failure, not
+// a client's argument: its Reject gives REJECT_REASON_INTERNAL (replies.h).
+Status unreadable(const Status& status) {
+  return Status(ErrorCode::kInternal, status.message());
+}
+
 }  // namespace
 
 Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
@@ -41,9 +47,9 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, store_.loadDocument(id));
   const std::string source = toString(id);
   const bool fromSnapshot = stored.snapshot.has_value();
-  TESSERA_ASSIGN_OR_RETURN(
-      KeyedDocument doc,
-      deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source));
+  auto loaded = deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source);
+  if (!loaded.isOk()) return unreadable(loaded.status());
+  KeyedDocument doc = std::move(*loaded);
   uint64_t entries = fromSnapshot ? stored.snapshot->version : 0;
   const uint64_t loadedFrom = documentVersionAfter(entries);
   // Which client command made each replayed entry, where the store kept it
@@ -51,13 +57,15 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   std::map<OutcomeBook::Key, CommandOutcome> outcomes;
   for (const auto& entry : stored.entries) {
     const std::string where = source + " journal entry " + std::to_string(entry.version);
-    TESSERA_ASSIGN_OR_RETURN(JournalEntry decoded, decodeJournalEntry(entry.bytes, where));
-    TESSERA_RETURN_IF_ERROR(applyJournalEntry(doc, decoded).withContext(where));
+    auto decoded = decodeJournalEntry(entry.bytes, where);
+    if (!decoded.isOk()) return unreadable(decoded.status());
+    if (Status replayed = applyJournalEntry(doc, *decoded); !replayed.isOk())
+      return unreadable(replayed.withContext(where));
     entries = entry.version;
     if (entry.authorSession != 0) {
       CommandOutcome& o = outcomes[{entry.authorSession, entry.clientSeq}];
       o.version = documentVersionAfter(entry.version);
-      o.editIds = editIdsOf(decoded);
+      o.editIds = editIdsOf(*decoded);
     }
   }
   auto host = std::make_shared<DocumentHost>(id, stored.name, std::move(doc), documentVersionAfter(entries),

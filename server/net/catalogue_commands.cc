@@ -12,8 +12,7 @@ namespace tessera::server {
 
 wire::ServerMessage listDocuments(Store& store, const CatalogueCaller& caller, uint64_t clientSeq) {
   auto documents = store.listDocuments();
-  if (!documents.isOk())
-    return rejectWith(clientSeq, wire::REJECT_REASON_INTERNAL, documents.status().message());
+  if (!documents.isOk()) return rejectFor(clientSeq, documents.status());
   wire::ServerMessage m;
   m.mutable_document_list()->set_client_seq(clientSeq);
   for (const DocumentSummary& d : *documents) {
@@ -35,10 +34,7 @@ wire::ServerMessage deleteDocument(Store& store, DocumentOpener& opener, const C
   }
   Status deleted = store.deleteDocument(id);
   if (!deleted.isOk()) {
-    return rejectWith(
-        clientSeq,
-        deleted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND : wire::REJECT_REASON_INTERNAL,
-        deleted.message());
+    return rejectFor(clientSeq, deleted);
   }
   opener.forget(id);
   logEvent(LogLevel::kInfo, "document_deleted", {{"doc", id.value}, {"session", caller.session}});
@@ -74,10 +70,7 @@ wire::ServerMessage grantToken(Store& store, const CatalogueCaller& caller, uint
                                : TokenScope::document(DocumentId{request.document_id()});
   Status granted = store.addToken(scope, request.token(), role);
   if (!granted.isOk()) {
-    return rejectWith(clientSeq,
-                      granted.code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND
-                                                             : wire::REJECT_REASON_INVALID_ARGUMENT,
-                      granted.message());
+    return rejectFor(clientSeq, granted);
   }
   logEvent(LogLevel::kInfo, "token_granted",
            {{"session", caller.session}, {"scope", scope.toString()}, {"role", roleName(role)}});

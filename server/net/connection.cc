@@ -528,13 +528,7 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
     const uint32_t dropped = static_cast<uint32_t>(report.renumbering.dropped);
     const uint32_t creased = static_cast<uint32_t>(report.edgesCreasedByAngle);
     asio::post(self->strand_, [self, seq, id, dropped, creased] {
-      if (!id.isOk()) {
-        const bool mesh =
-            id.status().code() == ErrorCode::kInvalidMesh || id.status().code() == ErrorCode::kParseError;
-        return self->reject(seq,
-                            mesh ? wire::REJECT_REASON_INVALID_MESH : wire::REJECT_REASON_INVALID_ARGUMENT,
-                            id.status().message());
-      }
+      if (!id.isOk()) return self->answer(rejectFor(seq, id.status()));
       logEvent(LogLevel::kInfo, "document_created", {{"doc", id->value}, {"session", self->sessionId_}});
       wire::ServerMessage ack = ackFor(seq, id->value);
       ack.mutable_ack()->set_version(1);
@@ -555,12 +549,7 @@ void Connection::openDocument(uint64_t seq, uint64_t documentId) {
   asio::post(context_.bulk, [self = shared_from_this(), seq, documentId, role = *role] {
     auto host = self->context_.opener.openEndpoint(DocumentId{documentId});
     asio::post(self->strand_, [self, seq, documentId, role, host] {
-      if (!host.isOk()) {
-        return self->reject(seq,
-                            host.status().code() == ErrorCode::kNotFound ? wire::REJECT_REASON_NOT_FOUND
-                                                                         : wire::REJECT_REASON_INTERNAL,
-                            host.status().message());
-      }
+      if (!host.isOk()) return self->answer(rejectFor(seq, host.status()));
       if (self->closed_) return;
       self->open_[documentId] = *host;
       (*host)->join(self, self->name_, wireRole(role));

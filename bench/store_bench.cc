@@ -40,10 +40,10 @@ std::string benchRoot() {
 // barriers across the threads of a run).
 struct Run {
   std::string directory;
-  std::unique_ptr<SqliteStore> store;
-  std::vector<DocumentId> documents;             // one per producer
+  std::unique_ptr<store::SqliteStore> store;
+  std::vector<store::DocumentId> documents;      // one per producer
   std::vector<std::vector<double>> latenciesUs;  // one per producer
-  StoreStats statsBefore;
+  store::StoreStats statsBefore;
 };
 std::unique_ptr<Run> currentRun;
 
@@ -55,9 +55,9 @@ std::unique_ptr<Run> startRun(int producers, bool grouped, std::string& error) {
     return nullptr;
   }
   run->directory = pattern;
-  SqliteStoreOptions options;
+  store::SqliteStoreOptions options;
   options.maxBatchWrites = grouped ? 4096 : 1;
-  auto store = SqliteStore::open(run->directory, options);
+  auto store = store::SqliteStore::open(run->directory, options);
   if (!store.isOk()) {
     error = store.status().toString();
     return nullptr;
@@ -81,7 +81,7 @@ void finishRun(benchmark::State& state, Run& run) {
   for (const std::vector<double>& latencies : run.latenciesUs)
     all.insert(all.end(), latencies.begin(), latencies.end());
   std::sort(all.begin(), all.end());
-  const StoreStats stats = run.store->stats();
+  const store::StoreStats stats = run.store->stats();
   const double entries = static_cast<double>(stats.entriesCommitted - run.statsBefore.entriesCommitted);
   const double batches = static_cast<double>(stats.batches - run.statsBefore.batches);
   // Counters of a threaded run are summed over threads; only thread 0 sets these.

@@ -40,15 +40,16 @@ Expected<std::string> randomToken() {
 }  // namespace
 
 int runTokenNew(const ServerCommandLine& command) {
-  auto role = parseRole(command.role);
+  auto role = store::parseRole(command.role);
   if (!role.isOk()) return failed("token_new_failed", role.status());
   auto token = randomToken();
   if (!token.isOk()) return failed("token_new_failed", token.status());
-  const TokenScope scope = command.documentId == 0 ? TokenScope::allDocuments()
-                                                   : TokenScope::document(DocumentId{command.documentId});
+  const store::TokenScope scope = command.documentId == 0
+                                      ? store::TokenScope::allDocuments()
+                                      : store::TokenScope::document(store::DocumentId{command.documentId});
   Status stored;
   if (command.config.cluster.empty()) {
-    stored = grantTokenInStore(command.config.dataDirectory, scope, *token, *role);
+    stored = store::grantTokenInStore(command.config.dataDirectory, scope, *token, *role);
   } else {
     // A cluster's tokens live in NATS, shared by every node: no node needs
     // to be stopped or told.
@@ -67,7 +68,7 @@ int runTokenNew(const ServerCommandLine& command) {
 }
 
 int runBackup(const ServerCommandLine& command) {
-  const Status done = backupStore(command.config.dataDirectory, command.path);
+  const Status done = store::backupStore(command.config.dataDirectory, command.path);
   if (!done.isOk()) return failed("backup_failed", done);
   logEvent(LogLevel::kInfo, "backup_written",
            {{"data", command.config.dataDirectory}, {"file", command.path}});
@@ -75,7 +76,7 @@ int runBackup(const ServerCommandLine& command) {
 }
 
 int runRestore(const ServerCommandLine& command) {
-  const Status done = restoreStore(command.config.dataDirectory, command.path);
+  const Status done = store::restoreStore(command.config.dataDirectory, command.path);
   if (!done.isOk()) return failed("restore_failed", done);
   logEvent(LogLevel::kInfo, "restored", {{"data", command.config.dataDirectory}, {"file", command.path}});
   return 0;

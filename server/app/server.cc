@@ -66,10 +66,10 @@ void writePortFile(const std::string& path, uint16_t port) {
 
 }  // namespace
 
-Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config) {
+Expected<std::unique_ptr<store::Store>> openStore(const ServerConfig& config) {
   if (config.cluster.empty()) {
-    TESSERA_ASSIGN_OR_RETURN(auto store, SqliteStore::open(config.dataDirectory));
-    return std::unique_ptr<Store>(std::move(store));
+    TESSERA_ASSIGN_OR_RETURN(auto store, store::SqliteStore::open(config.dataDirectory));
+    return std::unique_ptr<store::Store>(std::move(store));
   }
   cluster::NatsStoreOptions options;
   TESSERA_ASSIGN_OR_RETURN(options.link.urls, cluster::parseNatsUrls(config.cluster));
@@ -80,7 +80,7 @@ Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (true) {
     auto store = cluster::NatsStore::open(options);
-    if (store.isOk()) return std::unique_ptr<Store>(std::move(*store));
+    if (store.isOk()) return std::unique_ptr<store::Store>(std::move(*store));
     if (!isTransient(store.status()) || std::chrono::steady_clock::now() > deadline) return store.status();
     logEvent(LogLevel::kWarn, "cluster_waiting", {{"error", store.status().message()}});
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
@@ -102,7 +102,8 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
     std::string token;
     std::getline(in, token);
     if (token.empty()) return invalidArgument(config.adminTokenFile + ": no admin token in the file");
-    TESSERA_RETURN_IF_ERROR(server->store_->addToken(TokenScope::allDocuments(), token, Role::kAdmin));
+    TESSERA_RETURN_IF_ERROR(
+        server->store_->addToken(store::TokenScope::allDocuments(), token, store::Role::kAdmin));
   }
   if (!config.tlsCertificate.empty()) {
     auto tls = std::make_unique<asio::ssl::context>(asio::ssl::context::tls_server);

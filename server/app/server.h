@@ -38,7 +38,7 @@ namespace tessera::server {
 
 // The store `config` names: the SQLite one of --data, or, with --cluster,
 // the NATS JetStream one shared by every node of the cluster.
-Expected<std::unique_ptr<Store>> openStore(const ServerConfig& config);
+Expected<std::unique_ptr<store::Store>> openStore(const ServerConfig& config);
 // --node-name, or the host name.
 std::string nodeNameOf(const ServerConfig& config);
 
@@ -92,7 +92,7 @@ class Server {
   boost::asio::signal_set signals_;
   boost::asio::signal_set hangup_;
   boost::asio::steady_timer watchdog_;
-  std::unique_ptr<Store> store_;
+  std::unique_ptr<store::Store> store_;
   std::unique_ptr<boost::asio::ssl::context> tls_;
   ServerStats stats_;
   std::unique_ptr<DocumentRegistry> registry_;

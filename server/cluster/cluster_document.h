@@ -33,7 +33,7 @@ namespace tessera::cluster {
 class ClusterDocument : public server::DocumentEndpoint,
                         public std::enable_shared_from_this<ClusterDocument> {
  public:
-  ClusterDocument(DocumentId id, NodeServices& node) : id_(id), node_(node) {}
+  ClusterDocument(store::DocumentId id, NodeServices& node) : id_(id), node_(node) {}
   ~ClusterDocument() override;
 
   // Takes the lease and loads the document, or finds its owner, unless an
@@ -60,7 +60,7 @@ class ClusterDocument : public server::DocumentEndpoint,
   bool serveRemote(const Forward& request);
 
   // For the node's lease monitor.
-  DocumentId id() const { return id_; }
+  store::DocumentId id() const { return id_; }
   bool ownedHere();
   std::string owner();   // the owner node, "" when unknown
   bool journalFailed();  // the local host's journal refused a write: it applies nothing more
@@ -111,7 +111,7 @@ class ClusterDocument : public server::DocumentEndpoint,
                                                  const Status& resolved);
   void rejoinLocked(uint64_t session, const std::shared_ptr<server::Subscriber>& who, const LocalSession& s);
 
-  const DocumentId id_;
+  const store::DocumentId id_;
   NodeServices& node_;
   std::mutex mutex_;
   std::shared_ptr<server::DocumentHost> host_;  // set while this node owns the document

@@ -23,7 +23,7 @@ Expected<uint64_t> takeNodeNumber(NatsLink& link) {
 
 }  // namespace
 
-ClusterNode::ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry& registry,
+ClusterNode::ClusterNode(NatsLink& link, store::Store& store, server::DocumentRegistry& registry,
                          const server::ServerConfig& config, server::ServerStats& stats,
                          boost::asio::any_io_executor workers, std::string name)
     : link_(link),
@@ -34,7 +34,7 @@ ClusterNode::ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry&
       name_(std::move(name)),
       relay_(link, name_, workers) {}
 
-Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(NatsLink& link, Store& store,
+Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(NatsLink& link, store::Store& store,
                                                           server::DocumentRegistry& registry,
                                                           const server::ServerConfig& config,
                                                           server::ServerStats& stats,
@@ -111,7 +111,7 @@ ClusterNode::~ClusterNode() {
   pinned_.clear();
 }
 
-Expected<std::shared_ptr<server::DocumentEndpoint>> ClusterNode::openEndpoint(DocumentId id) {
+Expected<std::shared_ptr<server::DocumentEndpoint>> ClusterNode::openEndpoint(store::DocumentId id) {
   std::shared_ptr<ClusterDocument> doc;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -133,7 +133,7 @@ Expected<std::shared_ptr<server::DocumentEndpoint>> ClusterNode::openEndpoint(Do
   return std::shared_ptr<server::DocumentEndpoint>(doc);
 }
 
-void ClusterNode::forget(DocumentId id) {
+void ClusterNode::forget(store::DocumentId id) {
   std::lock_guard<std::mutex> lock(mutex_);
   documents_.erase(id.value);
   pinned_.erase(id.value);
@@ -171,13 +171,13 @@ void ClusterNode::forward(const std::string& owner, const Forward& request) {
   }
 }
 
-void ClusterNode::noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) {
+void ClusterNode::noteOutstanding(uint64_t session, uint64_t clientSeq, store::DocumentId document) {
   std::lock_guard<std::mutex> lock(mutex_);
   outstanding_[session][clientSeq] = BookEntry{document.value, std::chrono::steady_clock::now()};
 }
 
 std::vector<ClusterNode::Outstanding> ClusterNode::outstandingOf(
-    DocumentId document, bool take, std::optional<std::chrono::steady_clock::time_point> askedBefore) {
+    store::DocumentId document, bool take, std::optional<std::chrono::steady_clock::time_point> askedBefore) {
   const auto now = std::chrono::steady_clock::now();
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<Outstanding> found;
@@ -217,7 +217,8 @@ std::shared_ptr<RemoteSubscriber> ClusterNode::remoteSubscriber(const std::strin
   return slot;
 }
 
-void ClusterNode::tellNotOwner(const std::string& node, DocumentId document, const std::string& owner) {
+void ClusterNode::tellNotOwner(const std::string& node, store::DocumentId document,
+                               const std::string& owner) {
   NodeMessage message;
   message.mutable_not_owner()->set_document_id(document.value);
   message.mutable_not_owner()->set_owner(owner);
@@ -229,7 +230,7 @@ void ClusterNode::pin(const std::shared_ptr<ClusterDocument>& document) {
   pinned_[document->id().value] = document;
 }
 
-void ClusterNode::unpin(DocumentId id) {
+void ClusterNode::unpin(store::DocumentId id) {
   std::shared_ptr<ClusterDocument> released;  // destroyed outside the lock
   std::lock_guard<std::mutex> lock(mutex_);
   if (auto it = pinned_.find(id.value); it != pinned_.end()) {
@@ -288,7 +289,7 @@ void ClusterNode::handleForward(const char* data, int length, const char* subjec
   if (request.kind() == Forward::KIND_LEAVE) return;  // nothing to leave here
   NodeMessage reply;
   reply.mutable_not_owner()->set_document_id(request.document_id());
-  auto owner = leases_->ownerOf(DocumentId{request.document_id()});
+  auto owner = leases_->ownerOf(store::DocumentId{request.document_id()});
   if (owner.isOk() && owner->has_value()) reply.mutable_not_owner()->set_owner(**owner);
   relay_.publish(request.via_node(), reply);
 }

@@ -41,15 +41,15 @@ class ClusterDocument;
 class ClusterNode : public server::DocumentOpener, public NodeServices {
  public:
   // Subscribes to the node's subjects and starts the lease monitor.
-  static Expected<std::unique_ptr<ClusterNode>> start(NatsLink& link, Store& store,
+  static Expected<std::unique_ptr<ClusterNode>> start(NatsLink& link, store::Store& store,
                                                       server::DocumentRegistry& registry,
                                                       const server::ServerConfig& config,
                                                       server::ServerStats& stats,
                                                       boost::asio::any_io_executor workers);
   ~ClusterNode() override;
 
-  Expected<std::shared_ptr<server::DocumentEndpoint>> openEndpoint(DocumentId id) override;
-  void forget(DocumentId id) override;
+  Expected<std::shared_ptr<server::DocumentEndpoint>> openEndpoint(store::DocumentId id) override;
+  void forget(store::DocumentId id) override;
 
   // Session ids of this node start here: the node's number (unique in the
   // cluster, from a counter in NATS) in the high bits, so a session id names
@@ -64,20 +64,20 @@ class ClusterNode : public server::DocumentOpener, public NodeServices {
   DocumentLeases& leases() override { return *leases_; }
   server::DocumentRegistry& registry() override { return registry_; }
   server::ServerStats& stats() override { return stats_; }
-  Store& store() override { return store_; }
+  store::Store& store() override { return store_; }
   void forward(const std::string& owner, const Forward& request) override;
   void addLocalSession(uint64_t session, std::weak_ptr<server::Subscriber> who) override;
-  void noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) override;
+  void noteOutstanding(uint64_t session, uint64_t clientSeq, store::DocumentId document) override;
   std::vector<Outstanding> outstandingOf(
-      DocumentId document, bool take,
+      store::DocumentId document, bool take,
       std::optional<std::chrono::steady_clock::time_point> askedBefore = {}) override;
   std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session) override;
   void pin(const std::shared_ptr<ClusterDocument>& document) override;
-  void unpin(DocumentId id) override;
-  void tellNotOwner(const std::string& node, DocumentId document, const std::string& owner) override;
+  void unpin(store::DocumentId id) override;
+  void tellNotOwner(const std::string& node, store::DocumentId document, const std::string& owner) override;
 
  private:
-  ClusterNode(NatsLink& link, Store& store, server::DocumentRegistry& registry,
+  ClusterNode(NatsLink& link, store::Store& store, server::DocumentRegistry& registry,
               const server::ServerConfig& config, server::ServerStats& stats,
               boost::asio::any_io_executor workers, std::string name);
   static void onForward(natsConnection*, natsSubscription*, natsMsg* msg, void* self);
@@ -102,7 +102,7 @@ class ClusterNode : public server::DocumentOpener, public NodeServices {
   std::vector<std::shared_ptr<ClusterDocument>> liveDocuments();
 
   NatsLink& link_;
-  Store& store_;
+  store::Store& store_;
   server::DocumentRegistry& registry_;
   const server::ServerConfig& config_;
   server::ServerStats& stats_;

@@ -4,7 +4,7 @@ namespace tessera::cluster {
 
 namespace {
 
-std::string leaseKey(DocumentId id) {
+std::string leaseKey(store::DocumentId id) {
   return "doc." + std::to_string(id.value);
 }
 
@@ -19,7 +19,7 @@ Expected<std::unique_ptr<DocumentLeases>> DocumentLeases::open(NatsLink& link, s
       new DocumentLeases(link, std::move(bucket), std::move(node), leaseTime));
 }
 
-Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
+Expected<bool> DocumentLeases::acquire(store::DocumentId id, std::string* owner) {
   if (holds(id)) return true;
   uint64_t revision = 0;
   const auto sent = Clock::now();
@@ -48,7 +48,7 @@ Expected<bool> DocumentLeases::acquire(DocumentId id, std::string* owner) {
   return false;
 }
 
-Status DocumentLeases::renew(DocumentId id) {
+Status DocumentLeases::renew(store::DocumentId id) {
   Held held;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -91,7 +91,7 @@ Status DocumentLeases::renew(DocumentId id) {
   return notFound(message);
 }
 
-void DocumentLeases::release(DocumentId id) {
+void DocumentLeases::release(store::DocumentId id) {
   uint64_t revision = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -108,7 +108,7 @@ void DocumentLeases::release(DocumentId id) {
   }
 }
 
-Expected<std::optional<std::string>> DocumentLeases::ownerOf(DocumentId id) {
+Expected<std::optional<std::string>> DocumentLeases::ownerOf(store::DocumentId id) {
   kvEntry* raw = nullptr;
   const natsStatus s = kvStore_Get(&raw, bucket_.get(), leaseKey(id).c_str());
   KvEntryPtr entry(raw);
@@ -120,7 +120,7 @@ Expected<std::optional<std::string>> DocumentLeases::ownerOf(DocumentId id) {
   return std::optional<std::string>(std::move(holder));
 }
 
-bool DocumentLeases::holds(DocumentId id) const {
+bool DocumentLeases::holds(store::DocumentId id) const {
   std::lock_guard<std::mutex> lock(mutex_);
   return held_.count(id.value) > 0;
 }

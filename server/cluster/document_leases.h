@@ -34,16 +34,16 @@ class DocumentLeases {
   // answer, or when the lease is held under this node's own name but not
   // by this process (from before a restart, or expired while NATS had no
   // quorum): never an owner to forward to.
-  Expected<bool> acquire(DocumentId id, std::string* owner = nullptr);
+  Expected<bool> acquire(store::DocumentId id, std::string* owner = nullptr);
   // Renews a held lease. kNotFound: taken by another node or expired, this
   // node no longer owns the document. kIoError: NATS did not answer (no
   // quorum, disconnected): ownership is unknown but nobody can take it.
-  Status renew(DocumentId id);
+  Status renew(store::DocumentId id);
   // Gives the lease up (the document closed here); another node may take it at once.
-  void release(DocumentId id);
+  void release(store::DocumentId id);
   // Who holds the lease now, if anyone.
-  Expected<std::optional<std::string>> ownerOf(DocumentId id);
-  bool holds(DocumentId id) const;
+  Expected<std::optional<std::string>> ownerOf(store::DocumentId id);
+  bool holds(store::DocumentId id) const;
 
   static constexpr const char* kBucket = "TESSERA_LEASES";
 

@@ -16,13 +16,13 @@ const std::string kJournalStream = "TESSERA_JOURNAL";
 const std::string kBlobStream = "TESSERA_BLOBS";
 constexpr size_t kRecentSequences = 4096;  // versions whose sequence a snapshot may need
 
-std::string journalSubject(DocumentId id) {
+std::string journalSubject(store::DocumentId id) {
   return "tessera.journal." + std::to_string(id.value);
 }
-std::string blobPrefix(DocumentId id) {
+std::string blobPrefix(store::DocumentId id) {
   return "tessera.blob." + std::to_string(id.value);
 }
-std::string catalogKey(DocumentId id) {
+std::string catalogKey(store::DocumentId id) {
   return "doc." + std::to_string(id.value);
 }
 
@@ -95,24 +95,24 @@ Status NatsStore::checkOpen() const {
 
 // ---- documents -------------------------------------------------------------
 
-Expected<std::string> NatsStore::documentName(DocumentId id) {
-  TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
+Expected<std::string> NatsStore::documentName(store::DocumentId id) {
+  TESSERA_RETURN_IF_ERROR(store::checkDocumentId(id));
   kvEntry* raw = nullptr;
   const natsStatus s = kvStore_Get(&raw, catalog_.get(), catalogKey(id).c_str());
   KvEntryPtr entry(raw);
-  if (s == NATS_NOT_FOUND) return documentNotFound(id);
+  if (s == NATS_NOT_FOUND) return store::documentNotFound(id);
   if (s != NATS_OK) return link_->error(s, "reading the catalogue entry of " + toString(id));
   return std::string(static_cast<const char*>(kvEntry_Value(entry.get())),
                      static_cast<size_t>(kvEntry_ValueLen(entry.get())));
 }
 
-Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::string_view baseBytes) {
+Expected<store::DocumentId> NatsStore::createDocument(std::string_view name, std::string_view baseBytes) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
-  TESSERA_RETURN_IF_ERROR(checkDocumentName(name));
+  TESSERA_RETURN_IF_ERROR(store::checkDocumentName(name));
   // Ids come from a compare-and-set counter, so two nodes creating at once
   // never get the same id, and ids are never reused.
   TESSERA_ASSIGN_OR_RETURN(uint64_t next, link_->takeNext(catalog_.get(), "next-id", "document id"));
-  const DocumentId id{next};
+  const store::DocumentId id{next};
   // The base and the genesis message first, the catalogue entry last: a
   // document is listed only once it is whole.
   TESSERA_RETURN_IF_ERROR(putBlob(*link_, kBlobStream, blobPrefix(id) + ".base", baseBytes));
@@ -134,7 +134,7 @@ Expected<DocumentId> NatsStore::createDocument(std::string_view name, std::strin
   return id;
 }
 
-Expected<std::vector<DocumentSummary>> NatsStore::listDocuments() {
+Expected<std::vector<store::DocumentSummary>> NatsStore::listDocuments() {
   TESSERA_RETURN_IF_ERROR(checkOpen());
   kvKeysList keys{};
   const natsStatus s = kvStore_Keys(&keys, catalog_.get(), nullptr);
@@ -149,9 +149,9 @@ Expected<std::vector<DocumentSummary>> NatsStore::listDocuments() {
     return link_->error(s, "listing the catalogue");
   }
   std::sort(ids.begin(), ids.end());
-  std::vector<DocumentSummary> documents;
+  std::vector<store::DocumentSummary> documents;
   for (uint64_t value : ids) {
-    const DocumentId id{value};
+    const store::DocumentId id{value};
     auto name = documentName(id);
     if (!name.isOk()) {
       if (name.status().code() == ErrorCode::kNotFound) continue;  // deleted meanwhile
@@ -161,12 +161,12 @@ Expected<std::vector<DocumentSummary>> NatsStore::listDocuments() {
     // landed before (Tail::fence), a lower bound until the next owner
     // loads the document and fences it with the whole journal's version.
     TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
-    documents.push_back(DocumentSummary{id, std::move(*name), tail.version});
+    documents.push_back(store::DocumentSummary{id, std::move(*name), tail.version});
   }
   return documents;
 }
 
-Status NatsStore::deleteDocument(DocumentId id) {
+Status NatsStore::deleteDocument(store::DocumentId id) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
   TESSERA_ASSIGN_OR_RETURN(std::string name, documentName(id));
   (void)name;
@@ -183,7 +183,7 @@ Status NatsStore::deleteDocument(DocumentId id) {
   return tokens_.revokeDocument(id);
 }
 
-Expected<NatsStore::Tail> NatsStore::tailOf(DocumentId id) {
+Expected<NatsStore::Tail> NatsStore::tailOf(store::DocumentId id) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = tails_.find(id.value);
@@ -191,7 +191,7 @@ Expected<NatsStore::Tail> NatsStore::tailOf(DocumentId id) {
   }
   auto last = lastMessage(*link_, kJournalStream, journalSubject(id));
   if (!last.isOk()) {
-    if (last.status().code() == ErrorCode::kNotFound) return documentNotFound(id);
+    if (last.status().code() == ErrorCode::kNotFound) return store::documentNotFound(id);
     return last.status();
   }
   TESSERA_ASSIGN_OR_RETURN(JournalMessage message,
@@ -202,13 +202,15 @@ Expected<NatsStore::Tail> NatsStore::tailOf(DocumentId id) {
   return tails_.emplace(id.value, tail).first->second;
 }
 
-Expected<std::vector<JournalEntry>> NatsStore::readJournal(DocumentId id, uint64_t afterSequence,
-                                                           uint64_t afterVersion, uint64_t lastSequence) {
+Expected<std::vector<store::JournalEntry>> NatsStore::readJournal(store::DocumentId id,
+                                                                  uint64_t afterSequence,
+                                                                  uint64_t afterVersion,
+                                                                  uint64_t lastSequence) {
   // Direct gets, one per entry: no consumer to create, and any replica
   // answers, so a takeover reads the journal while the stream's leader is
   // still being elected. A replica may lag the tail read from the leader by
   // a few messages: those are asked for again, briefly.
-  std::vector<JournalEntry> entries;
+  std::vector<store::JournalEntry> entries;
   const std::string subject = journalSubject(id);
   uint64_t from = afterSequence + 1, expected = afterVersion + 1;
   while (from <= lastSequence) {
@@ -227,8 +229,9 @@ Expected<std::vector<JournalEntry>> NatsStore::readJournal(DocumentId id, uint64
         return parseError(where + ": journal entry version " + std::to_string(message.version) + " where " +
                           std::to_string(expected) + " was next");
       }
-      entries.push_back(JournalEntry{message.version, std::move(message.author), std::move(message.bytes),
-                                     message.authorSession, message.clientSeq});
+      entries.push_back(store::JournalEntry{message.version, std::move(message.author),
+                                            std::move(message.bytes), message.authorSession,
+                                            message.clientSeq});
       ++expected;
     }
     from = next->sequence + 1;
@@ -236,9 +239,9 @@ Expected<std::vector<JournalEntry>> NatsStore::readJournal(DocumentId id, uint64
   return entries;
 }
 
-Expected<StoredDocument> NatsStore::loadDocument(DocumentId id) {
+Expected<store::StoredDocument> NatsStore::loadDocument(store::DocumentId id) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
-  StoredDocument document;
+  store::StoredDocument document;
   document.id = id;
   TESSERA_ASSIGN_OR_RETURN(document.name, documentName(id));
   TESSERA_ASSIGN_OR_RETURN(document.baseBytes,
@@ -258,7 +261,7 @@ Expected<StoredDocument> NatsStore::loadDocument(DocumentId id) {
       auto bytes = getBlob(*link_, kBlobStream, blobPrefix(id) + ".snap." + std::to_string(ref.version),
                            toString(id) + "'s snapshot at version " + std::to_string(ref.version));
       if (!bytes.isOk()) continue;
-      document.snapshot = Snapshot{ref.version, std::move(*bytes)};
+      document.snapshot = store::Snapshot{ref.version, std::move(*bytes)};
       fromSequence = ref.sequence;
       fromVersion = ref.version;
       break;
@@ -289,13 +292,13 @@ Expected<StoredDocument> NatsStore::loadDocument(DocumentId id) {
 
 // ---- journal ---------------------------------------------------------------
 
-void NatsStore::append(DocumentId id, uint64_t version, std::string author, std::string bytes,
-                       AppendCallback done) {
+void NatsStore::append(store::DocumentId id, uint64_t version, std::string author, std::string bytes,
+                       store::AppendCallback done) {
   appendFrom(id, version, std::move(author), 0, 0, std::move(bytes), std::move(done));
 }
 
-void NatsStore::appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
-                           uint64_t clientSeq, std::string bytes, AppendCallback done) {
+void NatsStore::appendFrom(store::DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
+                           uint64_t clientSeq, std::string bytes, store::AppendCallback done) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!closing_) {
@@ -312,7 +315,7 @@ void NatsStore::appendFrom(DocumentId id, uint64_t version, std::string author, 
   done(ioError("NATS (" + link_->servers() + "): the store is closed"));
 }
 
-Status NatsStore::appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) {
+Status NatsStore::appendSync(store::DocumentId id, uint64_t version, std::string author, std::string bytes) {
   if (std::this_thread::get_id() == writer_.get_id()) {
     return internalError("NATS (" + link_->servers() +
                          "): a synchronous store call from a store callback would wait for itself");
@@ -355,7 +358,7 @@ void NatsStore::run() {
   }
 }
 
-NatsStore::Published NatsStore::publishAfter(DocumentId id, const std::string& payload,
+NatsStore::Published NatsStore::publishAfter(store::DocumentId id, const std::string& payload,
                                              uint64_t expectedSequence) {
   jsPubOptions options;
   jsPubOptions_Init(&options);
@@ -377,12 +380,12 @@ NatsStore::Published NatsStore::publishAfter(DocumentId id, const std::string& p
 }
 
 Status NatsStore::publishEntry(const PendingAppend& append) {
-  const DocumentId id = append.id;
-  TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
-  TESSERA_RETURN_IF_ERROR(checkVersion(id, append.version, "journal entry"));
-  TESSERA_RETURN_IF_ERROR(checkAuthor(id, append.author));
+  const store::DocumentId id = append.id;
+  TESSERA_RETURN_IF_ERROR(store::checkDocumentId(id));
+  TESSERA_RETURN_IF_ERROR(store::checkVersion(id, append.version, "journal entry"));
+  TESSERA_RETURN_IF_ERROR(store::checkAuthor(id, append.author));
   TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
-  if (append.version != tail.version + 1) return versionNotNext(id, append.version, tail.version);
+  if (append.version != tail.version + 1) return store::versionNotNext(id, append.version, tail.version);
   const std::string payload = encodeJournalMessage(JournalMessage{.version = append.version,
                                                                   .author = append.author,
                                                                   .authorSession = append.authorSession,
@@ -402,7 +405,7 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
     const Status failed = link_->error(
         s, toString(id) + ": journal entry version " + std::to_string(append.version) + " not acknowledged",
         code);
-    return outcomeUnknownError(failed.message());
+    return store::outcomeUnknownError(failed.message());
   }
   std::lock_guard<std::mutex> lock(mutex_);
   Tail& t = tails_[id.value];
@@ -413,7 +416,7 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
   return Status::ok();
 }
 
-Status NatsStore::fenceJournal(DocumentId id) {
+Status NatsStore::fenceJournal(store::DocumentId id) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
   TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
   // Checked like an append: if anyone wrote since this store read the
@@ -439,7 +442,7 @@ Status NatsStore::fenceJournal(DocumentId id) {
   return Status::ok();
 }
 
-Status NatsStore::checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, uint64_t fence) {
+Status NatsStore::checkNothingBeforeFence(store::DocumentId id, uint64_t loadedTail, uint64_t fence) {
   // A write that timed out while the stream had no quorum stays in its
   // leader's Raft log, and may be committed when the quorum is back, after
   // this store read the journal's end. The expected-last-subject-sequence
@@ -464,12 +467,12 @@ Status NatsStore::checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, ui
                  "): a write that had timed out landed late; load the document again");
 }
 
-Status NatsStore::putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) {
+Status NatsStore::putSnapshot(store::DocumentId id, uint64_t version, std::string_view bytes) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
-  TESSERA_RETURN_IF_ERROR(checkDocumentId(id));
-  TESSERA_RETURN_IF_ERROR(checkVersion(id, version, "snapshot"));
+  TESSERA_RETURN_IF_ERROR(store::checkDocumentId(id));
+  TESSERA_RETURN_IF_ERROR(store::checkVersion(id, version, "snapshot"));
   TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
-  if (version > tail.version) return snapshotPastEnd(id, version, tail.version);
+  if (version > tail.version) return store::snapshotPastEnd(id, version, tail.version);
   // The stream sequence of entry `version` lets a load read the journal from
   // there; 0 (not known here) makes it read from the start and skip.
   uint64_t sequence = 0;
@@ -511,7 +514,7 @@ Status NatsStore::putSnapshot(DocumentId id, uint64_t version, std::string_view 
 
 // ---- tokens ----------------------------------------------------------------
 
-Status NatsStore::addToken(TokenScope scope, std::string_view token, Role role) {
+Status NatsStore::addToken(store::TokenScope scope, std::string_view token, store::Role role) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
   if (!scope.isAllDocuments()) {
     TESSERA_ASSIGN_OR_RETURN(std::string name, documentName(scope.documentId()));
@@ -525,7 +528,7 @@ Status NatsStore::revokeToken(std::string_view token) {
   return tokens_.revoke(token);
 }
 
-Expected<Role> NatsStore::roleFor(std::string_view token, TokenScope scope) {
+Expected<store::Role> NatsStore::roleFor(std::string_view token, store::TokenScope scope) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
   return tokens_.roleFor(token, scope);
 }
@@ -535,7 +538,7 @@ Expected<bool> NatsStore::knowsToken(std::string_view token) {
   return tokens_.knows(token);
 }
 
-StoreStats NatsStore::stats() const {
+store::StoreStats NatsStore::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stats_;
 }

@@ -46,32 +46,32 @@ struct NatsStoreOptions {
   int replicas = 1;  // of every stream and bucket; 3 in a 3-node NATS cluster
 };
 
-class NatsStore final : public Store {
+class NatsStore final : public store::Store {
  public:
   // Connects and creates the streams and buckets when they do not exist.
   static Expected<std::unique_ptr<NatsStore>> open(const NatsStoreOptions& options);
   ~NatsStore() override;
 
-  Expected<DocumentId> createDocument(std::string_view name, std::string_view baseBytes) override;
-  Expected<std::vector<DocumentSummary>> listDocuments() override;
-  Status deleteDocument(DocumentId id) override;
-  Expected<StoredDocument> loadDocument(DocumentId id) override;
+  Expected<store::DocumentId> createDocument(std::string_view name, std::string_view baseBytes) override;
+  Expected<std::vector<store::DocumentSummary>> listDocuments() override;
+  Status deleteDocument(store::DocumentId id) override;
+  Expected<store::StoredDocument> loadDocument(store::DocumentId id) override;
 
-  void append(DocumentId id, uint64_t version, std::string author, std::string bytes,
-              AppendCallback done) override;
-  Status appendSync(DocumentId id, uint64_t version, std::string author, std::string bytes) override;
-  void appendFrom(DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
-                  uint64_t clientSeq, std::string bytes, AppendCallback done) override;
-  Status fenceJournal(DocumentId id) override;
+  void append(store::DocumentId id, uint64_t version, std::string author, std::string bytes,
+              store::AppendCallback done) override;
+  Status appendSync(store::DocumentId id, uint64_t version, std::string author, std::string bytes) override;
+  void appendFrom(store::DocumentId id, uint64_t version, std::string author, uint64_t authorSession,
+                  uint64_t clientSeq, std::string bytes, store::AppendCallback done) override;
+  Status fenceJournal(store::DocumentId id) override;
 
-  Status putSnapshot(DocumentId id, uint64_t version, std::string_view bytes) override;
+  Status putSnapshot(store::DocumentId id, uint64_t version, std::string_view bytes) override;
 
-  Status addToken(TokenScope scope, std::string_view token, Role role) override;
+  Status addToken(store::TokenScope scope, std::string_view token, store::Role role) override;
   Status revokeToken(std::string_view token) override;
-  Expected<Role> roleFor(std::string_view token, TokenScope scope) override;
+  Expected<store::Role> roleFor(std::string_view token, store::TokenScope scope) override;
   Expected<bool> knowsToken(std::string_view token) override;
 
-  StoreStats stats() const override;
+  store::StoreStats stats() const override;
   void close() override;
 
   NatsLink& link() { return *link_; }
@@ -88,10 +88,10 @@ class NatsStore final : public Store {
     std::deque<std::pair<uint64_t, uint64_t>> recent;  // (version, sequence), for snapshots
   };
   struct PendingAppend {
-    DocumentId id;
+    store::DocumentId id;
     uint64_t version;
     std::string author, bytes;
-    AppendCallback done;
+    store::AppendCallback done;
     uint64_t authorSession = 0, clientSeq = 0;
   };
 
@@ -107,16 +107,16 @@ class NatsStore final : public Store {
     jsErrCode code;
     uint64_t sequence;  // the message's stream sequence when published
   };
-  Published publishAfter(DocumentId id, const std::string& payload, uint64_t expectedSequence);
+  Published publishAfter(store::DocumentId id, const std::string& payload, uint64_t expectedSequence);
   // The tail of a document, read from JetStream when not known; kNotFound
   // for a document that does not exist.
-  Expected<Tail> tailOf(DocumentId id);
+  Expected<Tail> tailOf(store::DocumentId id);
   // After a fence at `fence`: no message of the journal lies between the
   // tail the load read and the fence (nats_store.cc says why it could).
-  Status checkNothingBeforeFence(DocumentId id, uint64_t loadedTail, uint64_t fence);
-  Expected<std::string> documentName(DocumentId id);
-  Expected<std::vector<JournalEntry>> readJournal(DocumentId id, uint64_t afterSequence,
-                                                  uint64_t afterVersion, uint64_t lastSequence);
+  Status checkNothingBeforeFence(store::DocumentId id, uint64_t loadedTail, uint64_t fence);
+  Expected<std::string> documentName(store::DocumentId id);
+  Expected<std::vector<store::JournalEntry>> readJournal(store::DocumentId id, uint64_t afterSequence,
+                                                         uint64_t afterVersion, uint64_t lastSequence);
   Status checkOpen() const;
 
   std::unique_ptr<NatsLink> link_;
@@ -128,7 +128,7 @@ class NatsStore final : public Store {
   std::deque<PendingAppend> queue_;
   std::map<uint64_t, Tail> tails_;  // guarded by mutex_
   bool closing_ = false, closed_ = false;
-  StoreStats stats_;
+  store::StoreStats stats_;
   std::thread writer_;
 };
 

@@ -13,7 +13,7 @@ namespace tessera::cluster {
 
 namespace {
 
-std::string tokenKey(const std::string& hashHex, TokenScope scope) {
+std::string tokenKey(const std::string& hashHex, store::TokenScope scope) {
   return hashHex + (scope.isAllDocuments() ? ".all" : ".doc" + std::to_string(scope.documentId().value));
 }
 
@@ -25,20 +25,20 @@ std::string knownKey(const std::string& hashHex) {
 
 }  // namespace
 
-Status NatsTokens::add(TokenScope scope, std::string_view token, Role role) {
-  TESSERA_RETURN_IF_ERROR(checkTokenToGrant(token));
-  TESSERA_RETURN_IF_ERROR(checkRole(role));
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+Status NatsTokens::add(store::TokenScope scope, std::string_view token, store::Role role) {
+  TESSERA_RETURN_IF_ERROR(store::checkTokenToGrant(token));
+  TESSERA_RETURN_IF_ERROR(store::checkRole(role));
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, store::hashToken(token));
   uint64_t revision = 0;
-  natsStatus s =
-      kvStore_PutString(&revision, bucket_.get(), tokenKey(hexBytes(hash), scope).c_str(), roleName(role));
+  natsStatus s = kvStore_PutString(&revision, bucket_.get(), tokenKey(hexBytes(hash), scope).c_str(),
+                                   store::roleName(role));
   if (s == NATS_OK) s = kvStore_PutString(&revision, bucket_.get(), knownKey(hexBytes(hash)).c_str(), "1");
   if (s != NATS_OK) return link_.error(s, "granting an access token for " + scope.toString());
   return Status::ok();
 }
 
 Status NatsTokens::revoke(std::string_view token) {
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, store::hashToken(token));
   const std::string prefix = hexBytes(hash) + ".";
   kvKeysList keys{};
   natsStatus s = kvStore_Keys(&keys, bucket_.get(), nullptr);
@@ -65,14 +65,14 @@ Status NatsTokens::revoke(std::string_view token) {
   return Status::ok();
 }
 
-Expected<Role> NatsTokens::roleFor(std::string_view token, TokenScope scope) {
+Expected<store::Role> NatsTokens::roleFor(std::string_view token, store::TokenScope scope) {
   const Status refused = notFound("access token not valid for " + scope.toString());
   if (token.empty()) return notFound("no access token given");
   if (token.size() > kMaxTokenBytes) return refused;
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, store::hashToken(token));
   const std::string h = hexBytes(hash);
-  std::optional<Role> best;
-  std::vector<std::string> keys = {tokenKey(h, TokenScope::allDocuments())};
+  std::optional<store::Role> best;
+  std::vector<std::string> keys = {tokenKey(h, store::TokenScope::allDocuments())};
   if (!scope.isAllDocuments()) keys.push_back(tokenKey(h, scope));
   for (const std::string& key : keys) {
     kvEntry* raw = nullptr;
@@ -80,7 +80,7 @@ Expected<Role> NatsTokens::roleFor(std::string_view token, TokenScope scope) {
     KvEntryPtr entry(raw);
     if (s == NATS_NOT_FOUND) continue;
     if (s != NATS_OK) return link_.error(s, "checking an access token for " + scope.toString());
-    auto role = parseRole(kvEntry_ValueString(entry.get()));
+    auto role = store::parseRole(kvEntry_ValueString(entry.get()));
     if (role.isOk() && (!best || *role > *best)) best = *role;
   }
   if (!best) return refused;
@@ -89,7 +89,7 @@ Expected<Role> NatsTokens::roleFor(std::string_view token, TokenScope scope) {
 
 Expected<bool> NatsTokens::knows(std::string_view token) {
   if (token.empty() || token.size() > kMaxTokenBytes) return false;
-  TESSERA_ASSIGN_OR_RETURN(std::string hash, hashToken(token));
+  TESSERA_ASSIGN_OR_RETURN(std::string hash, store::hashToken(token));
   kvEntry* raw = nullptr;
   const natsStatus s = kvStore_Get(&raw, bucket_.get(), knownKey(hexBytes(hash)).c_str());
   KvEntryPtr entry(raw);
@@ -98,7 +98,7 @@ Expected<bool> NatsTokens::knows(std::string_view token) {
   return true;
 }
 
-Status NatsTokens::revokeDocument(DocumentId id) {
+Status NatsTokens::revokeDocument(store::DocumentId id) {
   natsStatus s = NATS_OK;
   kvKeysList keys{};
   s = kvStore_Keys(&keys, bucket_.get(), nullptr);

@@ -18,13 +18,13 @@ class NatsTokens {
   NatsTokens(NatsLink& link, KvStorePtr bucket) : link_(link), bucket_(std::move(bucket)) {}
 
   // The caller checked that a document scope names a document that exists.
-  Status add(TokenScope scope, std::string_view token, Role role);
+  Status add(store::TokenScope scope, std::string_view token, store::Role role);
   Status revoke(std::string_view token);
-  Expected<Role> roleFor(std::string_view token, TokenScope scope);
+  Expected<store::Role> roleFor(std::string_view token, store::TokenScope scope);
   Expected<bool> knows(std::string_view token);
   // A deleted document's grants; a token left with no grant is forgotten,
   // as the SQLite store forgets it.
-  Status revokeDocument(DocumentId id);
+  Status revokeDocument(store::DocumentId id);
 
  private:
   NatsLink& link_;

@@ -39,7 +39,7 @@ class NodeServices {
   virtual DocumentLeases& leases() = 0;
   virtual server::DocumentRegistry& registry() = 0;
   virtual server::ServerStats& stats() = 0;
-  virtual Store& store() = 0;
+  virtual store::Store& store() = 0;
 
   // Sends a request of a local session to the document's owner.
   virtual void forward(const std::string& owner, const Forward& request) = 0;
@@ -50,7 +50,7 @@ class NodeServices {
   // their client_seq comes back), or undecided by a host here whose
   // journal write timed out. Whoever owns the document next answers them
   // (ClusterDocument::answerBookLocked).
-  virtual void noteOutstanding(uint64_t session, uint64_t clientSeq, DocumentId document) = 0;
+  virtual void noteOutstanding(uint64_t session, uint64_t clientSeq, store::DocumentId document) = 0;
   struct Outstanding {
     std::shared_ptr<server::Subscriber> who;
     std::vector<uint64_t> clientSeqs;
@@ -60,16 +60,17 @@ class NodeServices {
   // otherwise marked as asked about now. Only those last asked about
   // before `askedBefore` when it is given.
   virtual std::vector<Outstanding> outstandingOf(
-      DocumentId document, bool take,
+      store::DocumentId document, bool take,
       std::optional<std::chrono::steady_clock::time_point> askedBefore = {}) = 0;
 
   virtual std::shared_ptr<RemoteSubscriber> remoteSubscriber(const std::string& node, uint64_t session) = 0;
   // Kept open for other nodes' sessions, until unpinned.
   virtual void pin(const std::shared_ptr<ClusterDocument>& document) = 0;
-  virtual void unpin(DocumentId id) = 0;
+  virtual void unpin(store::DocumentId id) = 0;
   // Tells `node` this node no longer serves its sessions of `document` as
   // before (they must rejoin `owner`).
-  virtual void tellNotOwner(const std::string& node, DocumentId document, const std::string& owner) = 0;
+  virtual void tellNotOwner(const std::string& node, store::DocumentId document,
+                            const std::string& owner) = 0;
 };
 
 }  // namespace tessera::cluster

@@ -13,8 +13,8 @@ namespace tessera::server {
 namespace {
 
 // One command that is not a batch.
-Status applyOne(KeyedDocument& keyed, DocumentId id, const wire::ClientMessage& message, uint64_t& editId,
-                JournalEntry& entry) {
+Status applyOne(KeyedDocument& keyed, store::DocumentId id, const wire::ClientMessage& message,
+                uint64_t& editId, JournalEntry& entry) {
   if (message.has_add_morph_key()) return applyAddMorphKey(keyed, id, message.add_morph_key(), entry);
   entry.key = morphKeyOf(message);
   TESSERA_ASSIGN_OR_RETURN(Document * edited, keyed.editKey(entry.key));
@@ -91,7 +91,8 @@ void collectLimits(const KeyedDocument& keyed, uint32_t key, AppliedChange& appl
   into.insert(into.end(), limits.begin(), limits.end());
 }
 
-Status applyBatch(KeyedDocument& keyed, DocumentId id, const wire::EditBatch& batch, AppliedChange& applied) {
+Status applyBatch(KeyedDocument& keyed, store::DocumentId id, const wire::EditBatch& batch,
+                  AppliedChange& applied) {
   const int count = batch.commands_size();
   if (count == 0) return invalidArgument("edit batch: no commands");
   applied.entry.kind = JournalEntry::Kind::kBatch;
@@ -130,7 +131,7 @@ Status applyBatch(KeyedDocument& keyed, DocumentId id, const wire::EditBatch& ba
 
 }  // namespace
 
-Status applyCommand(KeyedDocument& keyed, DocumentId id, const wire::ClientMessage& message,
+Status applyCommand(KeyedDocument& keyed, store::DocumentId id, const wire::ClientMessage& message,
                     AppliedChange& applied) {
   if (message.has_edit_batch()) return applyBatch(keyed, id, message.edit_batch(), applied);
   uint64_t editId = 0;

@@ -28,7 +28,7 @@ struct AppliedChange {
 
 // Applies `message` to document `id`. On an error nothing of it stays
 // applied (a batch's applied commands are taken back, newest first).
-Status applyCommand(KeyedDocument& doc, DocumentId id, const wire::ClientMessage& message,
+Status applyCommand(KeyedDocument& doc, store::DocumentId id, const wire::ClientMessage& message,
                     AppliedChange& applied);
 
 // Takes an applied command back: its limits are restored bit for bit.

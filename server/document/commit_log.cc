@@ -8,7 +8,7 @@ namespace tessera::server {
 
 using Clock = std::chrono::steady_clock;
 
-CommitLog::CommitLog(DocumentId document, uint64_t version, uint32_t maxFrameBytes, ServerStats& stats)
+CommitLog::CommitLog(store::DocumentId document, uint64_t version, uint32_t maxFrameBytes, ServerStats& stats)
     : document_(document),
       maxFrameBytes_(maxFrameBytes),
       stats_(stats),

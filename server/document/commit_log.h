@@ -50,7 +50,7 @@ struct FlushBatch {
 class CommitLog {
  public:
   // `version`: the document's version as loaded, durable by definition.
-  CommitLog(DocumentId document, uint64_t version, uint32_t maxFrameBytes, ServerStats& stats);
+  CommitLog(store::DocumentId document, uint64_t version, uint32_t maxFrameBytes, ServerStats& stats);
 
   // A command applied as `edit.version` (the newest).
   void applied(PendingEdit edit);
@@ -100,7 +100,7 @@ class CommitLog {
   void ack(const PendingEdit& edit);
   void notifyRecorders(const PendingEdit& edit);
 
-  const DocumentId document_;
+  const store::DocumentId document_;
   const uint32_t maxFrameBytes_;
   ServerStats& stats_;
   uint64_t durableVersion_;

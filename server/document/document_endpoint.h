@@ -42,9 +42,9 @@ class DocumentOpener {
  public:
   virtual ~DocumentOpener() = default;
   // Called on a bulk thread: loading may replay a long journal.
-  virtual Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(DocumentId id) = 0;
+  virtual Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(store::DocumentId id) = 0;
   // A deleted document: forget what is open of it.
-  virtual void forget(DocumentId id) = 0;
+  virtual void forget(store::DocumentId id) = 0;
 };
 
 }  // namespace tessera::server

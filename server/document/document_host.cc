@@ -51,9 +51,9 @@ void DocumentHost::answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<u
   });
 }
 
-DocumentHost::DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
+DocumentHost::DocumentHost(store::DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
                            boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk,
-                           Store& store, const ServerConfig& config, ServerStats& stats)
+                           store::Store& store, const ServerConfig& config, ServerStats& stats)
     : id_(id),
       name_(std::move(name)),
       doc_(std::move(doc)),
@@ -390,7 +390,7 @@ void DocumentHost::committed(uint64_t version, Status status) {
       std::lock_guard<std::mutex> lock(undecidedMutex_);
       handler = undecidedHandler_;
     }
-    Undecided undecided = commits_.failed(status, outcomeUnknown(status) && handler);
+    Undecided undecided = commits_.failed(status, store::outcomeUnknown(status) && handler);
     if (!undecided.empty()) handler(std::move(undecided));
     return;
   }

@@ -56,13 +56,13 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
  public:
   // Commands run on `workers`; the heavy ones of a large document (a
   // profile's first tessellation, an export) on `bulk` (serial_queue.h).
-  DocumentHost(DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
-               boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, Store& store,
+  DocumentHost(store::DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
+               boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, store::Store& store,
                const ServerConfig& config, ServerStats& stats);
   // Trims the heap once the document's memory is freed (see trimMemory).
   ~DocumentHost() override;
 
-  DocumentId id() const { return id_; }
+  store::DocumentId id() const { return id_; }
 
   // All of these post onto the host's strand and answer through the
   // subscriber; they never block the caller.
@@ -175,7 +175,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   EncodeContext encodeContext(const View& view) { return {version_, grid_, sourceOf(view), stats_}; }
   void maybeSnapshot();
 
-  const DocumentId id_;
+  const store::DocumentId id_;
   const std::string name_;
   KeyedDocument doc_;
   bool keysChanged_ = false;  // a morph document changed since the last flush: its morph views rebuild
@@ -194,7 +194,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   boost::asio::steady_timer presenceTimer_;
   bool presencePending_ = false;
   PresenceChanges presence_;
-  Store& store_;
+  store::Store& store_;
   const ServerConfig& config_;
   ServerStats& stats_;
   QuantizationGrid grid_;

@@ -38,13 +38,13 @@ Status unreadable(const Status& status) {
 
 }  // namespace
 
-Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
+Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(store::DocumentId id) {
   std::lock_guard lock(mutex_);
   if (auto it = hosts_.find(id.value); it != hosts_.end()) {
     if (auto host = it->second.lock()) return host;
   }
   // The newest snapshot, then the journal after it, replayed exactly.
-  TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, store_.loadDocument(id));
+  TESSERA_ASSIGN_OR_RETURN(store::StoredDocument stored, store_.loadDocument(id));
   const std::string source = toString(id);
   const bool fromSnapshot = stored.snapshot.has_value();
   auto loaded = deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source);
@@ -79,7 +79,7 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(DocumentId id) {
   return host;
 }
 
-Expected<std::shared_ptr<DocumentEndpoint>> DocumentRegistry::openEndpoint(DocumentId id) {
+Expected<std::shared_ptr<DocumentEndpoint>> DocumentRegistry::openEndpoint(store::DocumentId id) {
   TESSERA_ASSIGN_OR_RETURN(std::shared_ptr<DocumentHost> host, open(id));
   return std::shared_ptr<DocumentEndpoint>(std::move(host));
 }
@@ -98,7 +98,7 @@ int64_t DocumentRegistry::openCount() {
   return live;
 }
 
-void DocumentRegistry::forget(DocumentId id) {
+void DocumentRegistry::forget(store::DocumentId id) {
   std::lock_guard lock(mutex_);
   hosts_.erase(id.value);
 }

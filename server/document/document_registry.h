@@ -21,21 +21,21 @@ namespace tessera::server {
 // connection that opened them.
 class DocumentRegistry : public DocumentOpener {
  public:
-  DocumentRegistry(Store& store, boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk,
-                   const ServerConfig& config, ServerStats& stats)
+  DocumentRegistry(store::Store& store, boost::asio::any_io_executor workers,
+                   boost::asio::any_io_executor bulk, const ServerConfig& config, ServerStats& stats)
       : store_(store), workers_(workers), bulk_(bulk), config_(config), stats_(stats) {}
 
   // Loads (on the calling thread) or shares the host of a document.
-  Expected<std::shared_ptr<DocumentHost>> open(DocumentId id);
+  Expected<std::shared_ptr<DocumentHost>> open(store::DocumentId id);
   // A single node's endpoints are its hosts.
-  Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(DocumentId id) override;
+  Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(store::DocumentId id) override;
   // Forgets a deleted document's host.
-  void forget(DocumentId id) override;
+  void forget(store::DocumentId id) override;
   // Documents whose host is alive (held by a session or still loading).
   int64_t openCount();
 
  private:
-  Store& store_;
+  store::Store& store_;
   boost::asio::any_io_executor workers_, bulk_;
   const ServerConfig& config_;
   ServerStats& stats_;

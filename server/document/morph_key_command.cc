@@ -20,7 +20,7 @@ bool isPng(const std::string& bytes) {
 
 }  // namespace
 
-Status applyAddMorphKey(KeyedDocument& keyed, DocumentId id, const wire::AddMorphKey& request,
+Status applyAddMorphKey(KeyedDocument& keyed, store::DocumentId id, const wire::AddMorphKey& request,
                         JournalEntry& entry) {
   const std::string doc = "document " + std::to_string(id.value);
   if (keyed.isMorph()) return invalidArgument("add morph key: " + doc + " already has two keys");

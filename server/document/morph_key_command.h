@@ -10,7 +10,7 @@
 
 namespace tessera::server {
 
-Status applyAddMorphKey(KeyedDocument& doc, DocumentId id, const wire::AddMorphKey& request,
+Status applyAddMorphKey(KeyedDocument& doc, store::DocumentId id, const wire::AddMorphKey& request,
                         JournalEntry& entry);
 
 }  // namespace tessera::server

@@ -26,7 +26,7 @@ const CommandOutcome* OutcomeBook::find(Key key) const {
   return nullptr;
 }
 
-wire::ServerMessage OutcomeBook::answer(DocumentId document, uint64_t clientSeq,
+wire::ServerMessage OutcomeBook::answer(store::DocumentId document, uint64_t clientSeq,
                                         const CommandOutcome* found) const {
   if (found != nullptr) {
     // Applied and durable before the move: the Ack it never got.

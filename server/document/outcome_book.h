@@ -38,7 +38,8 @@ class OutcomeBook {
   const CommandOutcome* find(Key key) const;
   // The Ack a found command missed, or, with no outcome, the Reject that
   // says the journal holds no entry from it.
-  wire::ServerMessage answer(DocumentId document, uint64_t clientSeq, const CommandOutcome* found) const;
+  wire::ServerMessage answer(store::DocumentId document, uint64_t clientSeq,
+                             const CommandOutcome* found) const;
 
   static constexpr size_t kRecent = 4096;
 

@@ -12,7 +12,7 @@ int64_t budgetOf(const wire::LodProfile& requested, const Limits& limits) {
 }
 
 Expected<ProfileRequest> checkProfileRequest(const wire::LodProfile& requested, const Limits& limits,
-                                             DocumentId document, int documentMaxLevel, bool isMorph) {
+                                             store::DocumentId document, int documentMaxLevel, bool isMorph) {
   ProfileRequest request;
   LodProfile& profile = request.profile;
   profile.baseLevel = static_cast<int>(std::min<uint32_t>(requested.base_level(), 64));

@@ -35,6 +35,6 @@ int64_t budgetOf(const wire::LodProfile& requested, const Limits& limits);
 // `documentMaxLevel`, a morph time on a document with one key
 // (`isMorph` false) or outside [0, 1].
 Expected<ProfileRequest> checkProfileRequest(const wire::LodProfile& requested, const Limits& limits,
-                                             DocumentId document, int documentMaxLevel, bool isMorph);
+                                             store::DocumentId document, int documentMaxLevel, bool isMorph);
 
 }  // namespace tessera::server

@@ -10,12 +10,12 @@
 
 namespace tessera::server {
 
-wire::ServerMessage listDocuments(Store& store, const CatalogueCaller& caller, uint64_t clientSeq) {
+wire::ServerMessage listDocuments(store::Store& store, const CatalogueCaller& caller, uint64_t clientSeq) {
   auto documents = store.listDocuments();
   if (!documents.isOk()) return rejectFor(clientSeq, documents.status());
   wire::ServerMessage m;
   m.mutable_document_list()->set_client_seq(clientSeq);
-  for (const DocumentSummary& d : *documents) {
+  for (const store::DocumentSummary& d : *documents) {
     if (!caller.roleOn(d.id)) continue;  // only what this token may read
     wire::DocumentInfo* info = m.mutable_document_list()->add_documents();
     info->set_document_id(d.id.value);
@@ -25,10 +25,10 @@ wire::ServerMessage listDocuments(Store& store, const CatalogueCaller& caller, u
   return m;
 }
 
-wire::ServerMessage deleteDocument(Store& store, DocumentOpener& opener, const CatalogueCaller& caller,
-                                   uint64_t clientSeq, DocumentId id) {
+wire::ServerMessage deleteDocument(store::Store& store, DocumentOpener& opener, const CatalogueCaller& caller,
+                                   uint64_t clientSeq, store::DocumentId id) {
   const auto role = caller.roleOn(id);
-  if (!role || *role < Role::kAdmin) {
+  if (!role || *role < store::Role::kAdmin) {
     return rejectWith(clientSeq, wire::REJECT_REASON_PERMISSION_DENIED,
                       "deleting document " + std::to_string(id.value) + " needs the admin role");
   }
@@ -41,9 +41,9 @@ wire::ServerMessage deleteDocument(Store& store, DocumentOpener& opener, const C
   return ackFor(clientSeq, id.value);
 }
 
-wire::ServerMessage grantToken(Store& store, const CatalogueCaller& caller, uint64_t clientSeq,
+wire::ServerMessage grantToken(store::Store& store, const CatalogueCaller& caller, uint64_t clientSeq,
                                const wire::GrantToken& request) {
-  if (!caller.globalRole || *caller.globalRole < Role::kAdmin) {
+  if (!caller.globalRole || *caller.globalRole < store::Role::kAdmin) {
     return rejectWith(clientSeq, wire::REJECT_REASON_PERMISSION_DENIED,
                       "granting tokens needs an admin token");
   }
@@ -51,39 +51,39 @@ wire::ServerMessage grantToken(Store& store, const CatalogueCaller& caller, uint
     return rejectWith(clientSeq, wire::REJECT_REASON_INVALID_ARGUMENT,
                       "grant: the token must have 1.." + std::to_string(kMaxTokenBytes) + " bytes");
   }
-  Role role;
+  store::Role role;
   switch (request.role()) {
     case wire::ROLE_VIEWER:
-      role = Role::kViewer;
+      role = store::Role::kViewer;
       break;
     case wire::ROLE_EDITOR:
-      role = Role::kEditor;
+      role = store::Role::kEditor;
       break;
     case wire::ROLE_ADMIN:
-      role = Role::kAdmin;
+      role = store::Role::kAdmin;
       break;
     default:
       return rejectWith(clientSeq, wire::REJECT_REASON_INVALID_ARGUMENT, "grant: no role given");
   }
-  const TokenScope scope = request.document_id() == 0
-                               ? TokenScope::allDocuments()
-                               : TokenScope::document(DocumentId{request.document_id()});
+  const store::TokenScope scope = request.document_id() == 0
+                                      ? store::TokenScope::allDocuments()
+                                      : store::TokenScope::document(store::DocumentId{request.document_id()});
   Status granted = store.addToken(scope, request.token(), role);
   if (!granted.isOk()) {
     return rejectFor(clientSeq, granted);
   }
   logEvent(LogLevel::kInfo, "token_granted",
-           {{"session", caller.session}, {"scope", scope.toString()}, {"role", roleName(role)}});
+           {{"session", caller.session}, {"scope", scope.toString()}, {"role", store::roleName(role)}});
   return ackFor(clientSeq, request.document_id());
 }
 
-wire::ServerMessage serverStats(const ServerStats& stats, Store& store, const ServerConfig& config,
+wire::ServerMessage serverStats(const ServerStats& stats, store::Store& store, const ServerConfig& config,
                                 uint64_t clientSeq, uint64_t ownQueueBytes) {
   const ServerStats& s = stats;
   const double uptime = std::max(1e-9, s.uptimeSeconds());
   const double edits = static_cast<double>(s.edits.load());
   const double regions = std::max<double>(1, static_cast<double>(s.regionsEncoded.load()));
-  const StoreStats storeStats = store.stats();
+  const store::StoreStats storeStats = store.stats();
   wire::ServerMessage m;
   m.mutable_stats_reply()->set_client_seq(clientSeq);
   auto add = [&](const char* name, double value) {

@@ -21,20 +21,20 @@ namespace tessera::server {
 // and the role it has on one document (its global role or that document's).
 struct CatalogueCaller {
   uint64_t session = 0;
-  std::optional<Role> globalRole;
-  std::function<std::optional<Role>(DocumentId)> roleOn;
+  std::optional<store::Role> globalRole;
+  std::function<std::optional<store::Role>(store::DocumentId)> roleOn;
 };
 
 // Only the documents the caller may read.
-wire::ServerMessage listDocuments(Store& store, const CatalogueCaller& caller, uint64_t clientSeq);
+wire::ServerMessage listDocuments(store::Store& store, const CatalogueCaller& caller, uint64_t clientSeq);
 // Needs the admin role on the document; forgets its open host on success.
-wire::ServerMessage deleteDocument(Store& store, DocumentOpener& opener, const CatalogueCaller& caller,
-                                   uint64_t clientSeq, DocumentId id);
+wire::ServerMessage deleteDocument(store::Store& store, DocumentOpener& opener, const CatalogueCaller& caller,
+                                   uint64_t clientSeq, store::DocumentId id);
 // Needs an admin token for every document.
-wire::ServerMessage grantToken(Store& store, const CatalogueCaller& caller, uint64_t clientSeq,
+wire::ServerMessage grantToken(store::Store& store, const CatalogueCaller& caller, uint64_t clientSeq,
                                const wire::GrantToken& request);
 // The server's counters; `ownQueueBytes`: the caller's own queue.
-wire::ServerMessage serverStats(const ServerStats& stats, Store& store, const ServerConfig& config,
+wire::ServerMessage serverStats(const ServerStats& stats, store::Store& store, const ServerConfig& config,
                                 uint64_t clientSeq, uint64_t ownQueueBytes);
 
 }  // namespace tessera::server

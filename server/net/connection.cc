@@ -25,13 +25,13 @@ namespace {
 
 constexpr const char* kServerVersion = "tessera-server 0.1.0";
 
-wire::Role wireRole(Role role) {
+wire::Role wireRole(store::Role role) {
   switch (role) {
-    case Role::kViewer:
+    case store::Role::kViewer:
       return wire::ROLE_VIEWER;
-    case Role::kEditor:
+    case store::Role::kEditor:
       return wire::ROLE_EDITOR;
-    case Role::kAdmin:
+    case store::Role::kAdmin:
       return wire::ROLE_ADMIN;
   }
   return wire::ROLE_UNSPECIFIED;
@@ -183,7 +183,7 @@ void Connection::answer(const wire::ServerMessage& message) {
 }
 
 CatalogueCaller Connection::caller() {
-  return {sessionId_, globalRole_, [this](DocumentId id) { return roleFor(id); }};
+  return {sessionId_, globalRole_, [this](store::DocumentId id) { return roleFor(id); }};
 }
 
 void Connection::fatal(wire::ErrorCode code, const std::string& message) {
@@ -300,10 +300,10 @@ bool Connection::allowedByRate(uint64_t clientSeq, double cost) {
   return false;
 }
 
-std::optional<Role> Connection::roleFor(DocumentId id) {
+std::optional<store::Role> Connection::roleFor(store::DocumentId id) {
   if (token_.empty()) return std::nullopt;
   if (auto it = roles_.find(id.value); it != roles_.end()) return it->second;
-  auto role = context_.store.roleFor(token_, TokenScope::document(id));
+  auto role = context_.store.roleFor(token_, store::TokenScope::document(id));
   if (!role.isOk()) return std::nullopt;
   roles_[id.value] = *role;
   return *role;
@@ -353,7 +353,7 @@ void Connection::handle(wire::ClientMessage message) {
     case C::kCloseDocument:
       return closeDocument(seq, message.close_document().document_id());
     case C::kDeleteDocument: {
-      const DocumentId id{message.delete_document().document_id()};
+      const store::DocumentId id{message.delete_document().document_id()};
       wire::ServerMessage answered = deleteDocument(context_.store, context_.opener, caller(), seq, id);
       if (answered.has_ack()) {
         open_.erase(id.value);
@@ -400,8 +400,8 @@ void Connection::handle(wire::ClientMessage message) {
     case C::kAddMorphKey:
     case C::kUndo:
     case C::kRedo: {
-      const auto role = roleFor(DocumentId{doc});
-      if (!role || *role < Role::kEditor) {
+      const auto role = roleFor(store::DocumentId{doc});
+      if (!role || *role < store::Role::kEditor) {
         return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED,
                       "editing document " + std::to_string(doc) + " needs the editor role");
       }
@@ -476,7 +476,7 @@ void Connection::authenticate(const wire::ClientMessage& message) {
       return fatal(wire::ERROR_CODE_AUTH_FAILED, "the access token is not known to this server");
     }
     authenticated_ = true;
-    auto role = context_.store.roleFor(token_, TokenScope::allDocuments());
+    auto role = context_.store.roleFor(token_, store::TokenScope::allDocuments());
     if (role.isOk()) globalRole_ = *role;
   }
   helloDone_ = true;
@@ -485,7 +485,7 @@ void Connection::authenticate(const wire::ClientMessage& message) {
            {{"session", sessionId_},
             {"name", name_},
             {"token", !token_.empty()},
-            {"role", globalRole_ ? roleName(*globalRole_) : "per-document"}});
+            {"role", globalRole_ ? store::roleName(*globalRole_) : "per-document"}});
   HelloAckOptions ack;
   ack.clientSeq = message.client_seq();
   ack.serverVersion = kServerVersion;
@@ -506,7 +506,7 @@ std::shared_ptr<DocumentEndpoint> Connection::openHost(uint64_t documentId, uint
 }
 
 void Connection::createDocument(uint64_t seq, const wire::CreateDocument& request) {
-  if (!globalRole_ || *globalRole_ < Role::kAdmin) {
+  if (!globalRole_ || *globalRole_ < store::Role::kAdmin) {
     return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED, "creating documents needs an admin token");
   }
   if (request.mesh().size() > context_.config.limits.maxBaseMeshBytes) {
@@ -520,9 +520,9 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
   asio::post(context_.bulk, [self = shared_from_this(), seq, request] {
     ImportReport report;
     auto doc = importDocument(request, self->context_.config.limits.maxLevel, report);
-    Expected<DocumentId> id =
+    Expected<store::DocumentId> id =
         doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
-                   : Expected<DocumentId>(doc.status());
+                   : Expected<store::DocumentId>(doc.status());
     doc = invalidArgument("released");
     ::malloc_trim(0);  // an import of millions of triangles leaves its memory in the heap otherwise
     const uint32_t dropped = static_cast<uint32_t>(report.renumbering.dropped);
@@ -540,14 +540,14 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
 }
 
 void Connection::openDocument(uint64_t seq, uint64_t documentId) {
-  const auto role = roleFor(DocumentId{documentId});
+  const auto role = roleFor(store::DocumentId{documentId});
   if (!role) {
     return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED,
                   "no access to document " + std::to_string(documentId));
   }
   // Loading replays a journal and may be large: bulk work.
   asio::post(context_.bulk, [self = shared_from_this(), seq, documentId, role = *role] {
-    auto host = self->context_.opener.openEndpoint(DocumentId{documentId});
+    auto host = self->context_.opener.openEndpoint(store::DocumentId{documentId});
     asio::post(self->strand_, [self, seq, documentId, role, host] {
       if (!host.isOk()) return self->answer(rejectFor(seq, host.status()));
       if (self->closed_) return;

@@ -74,7 +74,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   // `cost`: the commands the message holds (an EditBatch holds several; it
   // costs at most a second's worth, so any allowed batch can pass).
   bool allowedByRate(uint64_t clientSeq, double cost = 1.0);
-  std::optional<Role> roleFor(DocumentId id);
+  std::optional<store::Role> roleFor(store::DocumentId id);
   std::shared_ptr<DocumentEndpoint> openHost(uint64_t documentId, uint64_t clientSeq);
   void createDocument(uint64_t clientSeq, const wire::CreateDocument& request);
   void openDocument(uint64_t clientSeq, uint64_t documentId);
@@ -100,9 +100,9 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   bool transportReady_ = false;  // no write may start while the transport's handshake runs
   std::string token_;            // never logged
   std::string name_;
-  std::optional<Role> globalRole_;
+  std::optional<store::Role> globalRole_;
   std::map<uint64_t, std::shared_ptr<DocumentEndpoint>> open_;
-  std::map<uint64_t, Role> roles_;
+  std::map<uint64_t, store::Role> roles_;
   std::map<uint64_t, wire::LodProfile> subscriptions_;
   double bucket_ = 0;
   std::chrono::steady_clock::time_point refilled_;

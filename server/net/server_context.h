@@ -14,7 +14,7 @@ namespace tessera::server {
 
 struct ServerContext {
   const ServerConfig& config;
-  Store& store;
+  store::Store& store;
   // Where connections open documents: the registry of hosts on a single
   // node, the cluster node's router in a cluster.
   DocumentOpener& opener;

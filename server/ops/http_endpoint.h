@@ -21,7 +21,7 @@ namespace tessera::server {
 
 struct HttpSources {
   const ServerStats* stats = nullptr;
-  std::function<StoreStats()> storeStats;
+  std::function<store::StoreStats()> storeStats;
   std::function<int64_t()> documentsOpen;
   // Why the server is not healthy, or nullopt when it is.
   std::function<std::optional<std::string>()> unhealthy;

@@ -66,7 +66,7 @@ MetricFamily histogram(std::string name, std::string help, const LatencyBuckets&
 
 std::string renderMetrics(const MetricsSample& sample) {
   const ServerStats& s = sample.stats;
-  const StoreStats& store = sample.store;
+  const store::StoreStats& store = sample.store;
   const double editsPerSecond = sample.editsPerSecond;
   ClientMetric info;
   info.label = {{"version", kVersion}};

@@ -33,7 +33,7 @@ class RateWindow {
 // The whole /metrics body.
 struct MetricsSample {
   const ServerStats& stats;
-  StoreStats store;
+  store::StoreStats store;
   int64_t documentsOpen = 0;
   double editsPerSecond = 0;
 };

@@ -11,7 +11,7 @@
 #include <system_error>
 #include <utility>
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 std::string errnoText(int error) {
@@ -89,4 +89,4 @@ void DataDirectoryLock::release() {
   if (fd_ >= 0) ::close(std::exchange(fd_, -1));
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

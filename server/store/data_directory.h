@@ -11,7 +11,7 @@
 
 #include "core/util/status.h"
 
-namespace tessera {
+namespace tessera::store {
 
 class DataDirectoryLock {
  public:
@@ -31,4 +31,4 @@ class DataDirectoryLock {
   int fd_ = -1;
 };
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -5,7 +5,7 @@
 #include <iterator>
 #include <utility>
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 // Transaction control through cached statements: a batch of thousands of
@@ -129,4 +129,4 @@ void GroupCommitWriter::recordBatch(const std::vector<PendingWrite>& batch,
                           : static_cast<double>(stats_.writesCommitted) / static_cast<double>(stats_.batches);
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -27,7 +27,7 @@
 #include "server/store/sqlite_connection.h"
 #include "server/store/store.h"
 
-namespace tessera {
+namespace tessera::store {
 
 struct PendingWrite {
   // Runs inside the batch transaction. Its changes are kept iff it returns ok.
@@ -85,4 +85,4 @@ class GroupCommitWriter {
   std::thread thread_;  // last: starts once everything above is initialized
 };
 
-}  // namespace tessera
+}  // namespace tessera::store

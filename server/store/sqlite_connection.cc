@@ -4,7 +4,7 @@
 
 #include <utility>
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 // Statement text in messages: enough to recognise it, never a bound value
@@ -213,4 +213,4 @@ Status SqliteConnection::error(int code, std::string_view what) const {
   }
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

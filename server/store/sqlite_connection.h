@@ -23,7 +23,7 @@
 struct sqlite3;
 struct sqlite3_stmt;
 
-namespace tessera {
+namespace tessera::store {
 
 class SqliteConnection;
 
@@ -100,4 +100,4 @@ class SqliteConnection {
   std::unordered_map<std::string, sqlite3_stmt*> statements_;  // finalized by the destructor
 };
 
-}  // namespace tessera
+}  // namespace tessera::store

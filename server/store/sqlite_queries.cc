@@ -4,7 +4,7 @@
 
 #include <string>
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 int64_t sqlId(DocumentId id) {
@@ -190,4 +190,4 @@ Expected<bool> selectTokenKnown(SqliteConnection& db, std::string_view tokenHash
   return select.step();
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

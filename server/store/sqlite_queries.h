@@ -16,7 +16,7 @@
 #include "server/store/sqlite_connection.h"
 #include "server/store/store.h"
 
-namespace tessera {
+namespace tessera::store {
 
 // Snapshots kept per document: the newest, plus one in case the newest
 // turns out to be unreadable by the server.
@@ -39,4 +39,4 @@ Expected<std::optional<Role>> selectRole(SqliteConnection& db, std::string_view 
 // Whether any grant of any scope names the token.
 Expected<bool> selectTokenKnown(SqliteConnection& db, std::string_view tokenHash);
 
-}  // namespace tessera
+}  // namespace tessera::store

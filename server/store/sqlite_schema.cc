@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 // Migration i takes a file from version i to i + 1. Never edit a released
@@ -139,4 +139,4 @@ Status prepareSchema(SqliteConnection& db, const SchemaOptions& options) {
   return checkTables(db);
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

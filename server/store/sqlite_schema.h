@@ -12,7 +12,7 @@
 #include "core/util/status.h"
 #include "server/store/sqlite_connection.h"
 
-namespace tessera {
+namespace tessera::store {
 
 inline constexpr int64_t kStoreApplicationId = 0x54455353;  // "TESS"
 inline constexpr int64_t kStoreSchemaVersion = 1;
@@ -28,4 +28,4 @@ struct SchemaOptions {
 // persistent in the file, only once it is known to be ours.
 Status prepareSchema(SqliteConnection& connection, const SchemaOptions& options);
 
-}  // namespace tessera
+}  // namespace tessera::store

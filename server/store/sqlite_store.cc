@@ -11,7 +11,7 @@
 #include "server/store/store_checks.h"
 #include "server/store/token_hash.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 Status openConnection(const std::string& path, const SqliteStoreOptions& options,
@@ -202,4 +202,4 @@ StoreStats SqliteStore::stats() const {
   return writer_->stats();
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

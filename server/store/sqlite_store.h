@@ -26,7 +26,7 @@
 #include "server/store/store.h"
 #include "server/store/store_checks.h"
 
-namespace tessera {
+namespace tessera::store {
 
 struct SqliteStoreOptions {
   int busyTimeoutMs = 5000;      // waits for another connection's lock (e.g. an admin's sqlite3 shell)
@@ -86,4 +86,4 @@ class SqliteStore final : public Store {
   std::unique_ptr<SqliteConnection> readConnection_;  // null once closed
 };
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -1,6 +1,6 @@
 #include "server/store/store.h"
 
-namespace tessera {
+namespace tessera::store {
 
 std::string toString(DocumentId id) {
   return "document " + std::to_string(id.value);
@@ -26,7 +26,7 @@ Expected<Role> parseRole(std::string_view name) {
 }
 
 std::string TokenScope::toString() const {
-  return isAllDocuments() ? std::string("all documents") : tessera::toString(documentId());
+  return isAllDocuments() ? std::string("all documents") : store::toString(documentId());
 }
 
 uint64_t StoredDocument::latestVersion() const {
@@ -34,4 +34,4 @@ uint64_t StoredDocument::latestVersion() const {
   return snapshot ? snapshot->version : 0;
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -27,7 +27,7 @@
 #include "core/util/status.h"
 #include "server/base/latency_histogram.h"
 
-namespace tessera {
+namespace tessera::store {
 
 // Documents are numbered from 1 and numbers are never reused, so a stale id
 // held by a client can never name a newer document.
@@ -179,4 +179,4 @@ class Store {
   virtual void close() = 0;
 };
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -13,7 +13,7 @@
 #include "server/store/sqlite_store.h"
 #include "server/store/token_hash.h"
 
-namespace tessera {
+namespace tessera::store {
 
 namespace {
 
@@ -141,4 +141,4 @@ Status restoreStore(const std::string& dataDirectory, const std::string& source)
   return syncPath(parentOf(path), true);
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -11,7 +11,7 @@
 #include "core/util/status.h"
 #include "server/store/store.h"
 
-namespace tessera {
+namespace tessera::store {
 
 // The store file of a data directory: <dataDirectory>/tessera.db.
 std::string storePath(const std::string& dataDirectory);
@@ -33,4 +33,4 @@ Status backupStore(const std::string& dataDirectory, const std::string& destinat
 // there is kept beside it as tessera.db.before-restore.
 Status restoreStore(const std::string& dataDirectory, const std::string& source);
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -2,7 +2,7 @@
 
 #include <string>
 
-namespace tessera {
+namespace tessera::store {
 
 Status checkDocumentId(DocumentId id) {
   if (id.value == 0 || id.value > kMaxStoredInteger) return documentNotFound(id);
@@ -64,4 +64,4 @@ Status snapshotPastEnd(DocumentId id, uint64_t version, uint64_t latest) {
                          " refused: the journal ends at version " + std::to_string(latest));
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

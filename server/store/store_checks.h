@@ -12,7 +12,7 @@
 #include "protocol/token_limits.h"
 #include "server/store/store.h"
 
-namespace tessera {
+namespace tessera::store {
 
 inline constexpr size_t kMaxDocumentNameBytes = 1024;
 inline constexpr size_t kMaxAuthorBytes = 1024;
@@ -39,4 +39,4 @@ Status versionNotNext(DocumentId id, uint64_t version, uint64_t latest);
 // The refusal of a snapshot past the journal's end.
 Status snapshotPastEnd(DocumentId id, uint64_t version, uint64_t latest);
 
-}  // namespace tessera
+}  // namespace tessera::store

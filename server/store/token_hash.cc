@@ -2,7 +2,7 @@
 
 #include <openssl/evp.h>
 
-namespace tessera {
+namespace tessera::store {
 
 Expected<std::string> hashToken(std::string_view token) {
   unsigned char digest[EVP_MAX_MD_SIZE];
@@ -14,4 +14,4 @@ Expected<std::string> hashToken(std::string_view token) {
   return std::string(reinterpret_cast<const char*>(digest), digestSize);
 }
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -10,11 +10,11 @@
 
 #include "core/util/status.h"
 
-namespace tessera {
+namespace tessera::store {
 
 inline constexpr size_t kTokenHashBytes = 32;
 
 // The raw 32-byte SHA-256 digest of `token`. Errors never contain the token.
 Expected<std::string> hashToken(std::string_view token);
 
-}  // namespace tessera
+}  // namespace tessera::store

@@ -308,7 +308,7 @@ TEST(ClusterFailover, ACommandJournaledJustBeforeItsOwnerDiedIsAcknowledgedByThe
   auto store = cluster::NatsStore::open(options);
   ASSERT_TRUE(store.isOk()) << store.status().message();
   auto promise = std::make_shared<std::promise<Status>>();
-  (*store)->appendFrom(DocumentId{*doc}, 1, "editor@node1", (*editor)->sessionId(), *seq,
+  (*store)->appendFrom(store::DocumentId{*doc}, 1, "editor@node1", (*editor)->sessionId(), *seq,
                        server::encodeJournalEntry(entry), [promise](Status s) { promise->set_value(s); });
   const Status appended = promise->get_future().get();
   ASSERT_TRUE(appended.isOk()) << appended.message();

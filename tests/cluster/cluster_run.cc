@@ -74,14 +74,14 @@ Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId
   TESSERA_ASSIGN_OR_RETURN(options.link.urls, cluster::parseNatsUrls(nats.urls()));
   options.replicas = 3;
   // A server just restarted may still be catching up: retried for a while.
-  Expected<StoredDocument> loaded = ioError("not tried");
+  Expected<store::StoredDocument> loaded = ioError("not tried");
   for (int attempt = 0; attempt < 20 && !loaded.isOk(); ++attempt) {
     auto store = cluster::NatsStore::open(options);
-    loaded = store.isOk() ? (*store)->loadDocument(DocumentId{documentId})
-                          : Expected<StoredDocument>(store.status());
+    loaded = store.isOk() ? (*store)->loadDocument(store::DocumentId{documentId})
+                          : Expected<store::StoredDocument>(store.status());
     if (!loaded.isOk()) std::this_thread::sleep_for(std::chrono::milliseconds(500));
   }
-  TESSERA_ASSIGN_OR_RETURN(StoredDocument stored, std::move(loaded));
+  TESSERA_ASSIGN_OR_RETURN(store::StoredDocument stored, std::move(loaded));
   // From the base, never from a snapshot: the snapshots are the server's
   // own output, the journal is what it acknowledged.
   TESSERA_ASSIGN_OR_RETURN(KeyedDocument doc,
@@ -92,7 +92,7 @@ Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId
     return internalError("journalState: the document has a snapshot at version " +
                          std::to_string(stored.snapshot->version) + "; replay needs the whole journal");
   }
-  for (const JournalEntry& e : stored.entries) {
+  for (const store::JournalEntry& e : stored.entries) {
     TESSERA_ASSIGN_OR_RETURN(server::JournalEntry decoded, server::decodeJournalEntry(e.bytes, "entry"));
     TESSERA_RETURN_IF_ERROR(server::applyJournalEntry(doc, decoded));
   }

@@ -52,7 +52,7 @@ struct ClusterRun {
 struct JournalState {
   uint64_t version = 0;  // document version (1 + entries)
   uint64_t surfaceHash = 0;
-  std::vector<JournalEntry> entries;
+  std::vector<store::JournalEntry> entries;
 };
 Expected<JournalState> journalState(const NatsCluster& nats, uint64_t documentId);
 

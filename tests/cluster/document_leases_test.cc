@@ -47,7 +47,7 @@ TEST(DocumentLeases, OneOwnerAtATimeAndNeverItselfUnderALeaseFromBefore) {
   ASSERT_TRUE(linkA && linkB && linkRestarted);
   auto a = leasesOf(*linkA, "node0"), b = leasesOf(*linkB, "node1");
   ASSERT_TRUE(a && b);
-  const DocumentId doc{1};
+  const store::DocumentId doc{1};
 
   auto taken = a->acquire(doc);
   ASSERT_TRUE(taken.isOk()) << taken.status().toString();
@@ -93,7 +93,7 @@ TEST(DocumentLeases, ALeaseLostWhileNatsHasNoMajorityNamesTheMajority) {
   auto opened = DocumentLeases::open(*link, "node0", 1000ms, 3);
   ASSERT_TRUE(opened.isOk()) << opened.status().toString();
   DocumentLeases& leases = **opened;
-  const DocumentId doc{1};
+  const store::DocumentId doc{1};
   auto taken = leases.acquire(doc);
   ASSERT_TRUE(taken.isOk() && *taken) << (taken.isOk() ? "taken by another node" : taken.status().toString());
   auto leader = nats->leaderOf(NatsLink::bucketStream(DocumentLeases::kBucket));

@@ -115,16 +115,16 @@ TEST(NatsStore, RefusesWhatTheSqliteStoreRefusesWithTheSameWords) {
   auto id = store->createDocument("d", "base");
   ASSERT_TRUE(id.isOk());
   EXPECT_EQ(store->createDocument("", "x").status().code(), ErrorCode::kInvalidArgument);
-  EXPECT_EQ(store->createDocument(std::string(kMaxDocumentNameBytes + 1, 'n'), "x").status().code(),
+  EXPECT_EQ(store->createDocument(std::string(store::kMaxDocumentNameBytes + 1, 'n'), "x").status().code(),
             ErrorCode::kInvalidArgument);
   ASSERT_TRUE(store->appendSync(*id, 1, "a", "x").isOk());
   Status skipped = store->appendSync(*id, 3, "a", "x");
   EXPECT_EQ(skipped.code(), ErrorCode::kInvalidArgument);
   EXPECT_EQ(skipped.message(), "document 1: journal entry version 3 refused: the next version is 2");
   EXPECT_EQ(store->appendSync(*id, 1, "a", "x").code(), ErrorCode::kInvalidArgument);
-  EXPECT_EQ(store->appendSync(*id, 2, std::string(kMaxAuthorBytes + 1, 'a'), "x").code(),
+  EXPECT_EQ(store->appendSync(*id, 2, std::string(store::kMaxAuthorBytes + 1, 'a'), "x").code(),
             ErrorCode::kInvalidArgument);
-  EXPECT_EQ(store->appendSync(DocumentId{99}, 1, "a", "x").message(), "document 99 does not exist");
+  EXPECT_EQ(store->appendSync(store::DocumentId{99}, 1, "a", "x").message(), "document 99 does not exist");
   EXPECT_EQ(store->putSnapshot(*id, 5, "s").message(),
             "document 1: snapshot at version 5 refused: the journal ends at version 1");
   ASSERT_TRUE(store->appendSync(*id, 2, "a", "x").isOk());  // nothing refused was kept
@@ -141,21 +141,22 @@ TEST(NatsStore, TokensAreCheckedByHashPerDocumentAndForgottenWithTheirLastGrant)
   ASSERT_TRUE(one.isOk() && two.isOk());
   const std::string editor = "editor-token-0123456789", viewer = "viewer-token-0123456789",
                     admin = "admin-token-0123456789";
-  EXPECT_EQ(store->addToken(TokenScope::document(*one), "short", Role::kViewer).code(),
+  EXPECT_EQ(store->addToken(store::TokenScope::document(*one), "short", store::Role::kViewer).code(),
             ErrorCode::kInvalidArgument);
-  EXPECT_EQ(store->addToken(TokenScope::document(DocumentId{77}), viewer, Role::kViewer).code(),
+  EXPECT_EQ(store->addToken(store::TokenScope::document(store::DocumentId{77}), viewer, store::Role::kViewer)
+                .code(),
             ErrorCode::kNotFound);
-  ASSERT_TRUE(store->addToken(TokenScope::document(*one), editor, Role::kEditor).isOk());
-  ASSERT_TRUE(store->addToken(TokenScope::document(*two), viewer, Role::kViewer).isOk());
-  ASSERT_TRUE(store->addToken(TokenScope::allDocuments(), admin, Role::kAdmin).isOk());
+  ASSERT_TRUE(store->addToken(store::TokenScope::document(*one), editor, store::Role::kEditor).isOk());
+  ASSERT_TRUE(store->addToken(store::TokenScope::document(*two), viewer, store::Role::kViewer).isOk());
+  ASSERT_TRUE(store->addToken(store::TokenScope::allDocuments(), admin, store::Role::kAdmin).isOk());
 
   EXPECT_TRUE(*store->knowsToken(editor));
   EXPECT_FALSE(*store->knowsToken("never-granted-token-000"));
-  EXPECT_EQ(*store->roleFor(editor, TokenScope::document(*one)), Role::kEditor);
-  EXPECT_EQ(store->roleFor(editor, TokenScope::document(*two)).status().message(),
+  EXPECT_EQ(*store->roleFor(editor, store::TokenScope::document(*one)), store::Role::kEditor);
+  EXPECT_EQ(store->roleFor(editor, store::TokenScope::document(*two)).status().message(),
             "access token not valid for document 2");
-  EXPECT_EQ(*store->roleFor(admin, TokenScope::document(*two)), Role::kAdmin);
-  EXPECT_EQ(*store->roleFor(admin, TokenScope::allDocuments()), Role::kAdmin);
+  EXPECT_EQ(*store->roleFor(admin, store::TokenScope::document(*two)), store::Role::kAdmin);
+  EXPECT_EQ(*store->roleFor(admin, store::TokenScope::allDocuments()), store::Role::kAdmin);
 
   // Deleting document 2 takes its grants; the viewer token had no other.
   ASSERT_TRUE(store->deleteDocument(*two).isOk());
@@ -164,7 +165,7 @@ TEST(NatsStore, TokensAreCheckedByHashPerDocumentAndForgottenWithTheirLastGrant)
   ASSERT_TRUE(store->revokeToken(editor).isOk());
   EXPECT_FALSE(*store->knowsToken(editor));
   EXPECT_EQ(store->revokeToken(editor).message(), "no such access token");
-  EXPECT_EQ(store->roleFor(editor, TokenScope::document(*one)).status().code(), ErrorCode::kNotFound);
+  EXPECT_EQ(store->roleFor(editor, store::TokenScope::document(*one)).status().code(), ErrorCode::kNotFound);
 }
 
 // Two nodes that both believe they own a document race to append: for every
@@ -209,7 +210,7 @@ TEST(NatsStore, TwoWritersNeverBothAppendAVersion) {
   ASSERT_TRUE(journal.isOk()) << journal.status().toString();
   ASSERT_EQ(journal->entries.size(), acknowledged.size());
   for (size_t i = 0; i < journal->entries.size(); ++i) {
-    const JournalEntry& e = journal->entries[i];
+    const store::JournalEntry& e = journal->entries[i];
     EXPECT_EQ(e.version, i + 1);
     EXPECT_EQ(e.bytes, acknowledged[e.version]) << "version " << e.version;
   }

@@ -43,7 +43,8 @@ class PostingStore final : public testing::HostOnlyStore {
  public:
   explicit PostingStore(int failAppend) : failAppend_(failAppend) {}
   void attach(boost::asio::io_context& io) { io_ = &io; }
-  void append(DocumentId, uint64_t, std::string, std::string bytes, AppendCallback done) override {
+  void append(store::DocumentId, uint64_t, std::string, std::string bytes,
+              store::AppendCallback done) override {
     require(!bytes.empty(), "the host journaled an empty entry");
     const bool refuse = ++appends_ == failAppend_;
     boost::asio::post(*io_, [done = std::move(done), refuse] {
@@ -147,7 +148,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   store.attach(io);
   {
     auto host = std::make_shared<server::DocumentHost>(
-        DocumentId{1}, "cube", KeyedDocument(cubeDocument(kFuzzDocumentLevel)), 1, io.get_executor(),
+        store::DocumentId{1}, "cube", KeyedDocument(cubeDocument(kFuzzDocumentLevel)), 1, io.get_executor(),
         io.get_executor(), store, config, stats);
     std::shared_ptr<Inbox> sessions[2] = {std::make_shared<Inbox>(1, failStore),
                                           std::make_shared<Inbox>(2, failStore)};

@@ -17,10 +17,12 @@ namespace {
 class FailingStore final : public testing::HostOnlyStore {
  public:
   explicit FailingStore(Status status) : status_(std::move(status)) {}
-  Expected<std::vector<DocumentSummary>> listDocuments() override { return status_; }
-  Status deleteDocument(DocumentId) override { return status_; }
-  Status addToken(TokenScope, std::string_view, Role) override { return status_; }
-  void append(DocumentId, uint64_t, std::string, std::string, AppendCallback done) override { done(status_); }
+  Expected<std::vector<store::DocumentSummary>> listDocuments() override { return status_; }
+  Status deleteDocument(store::DocumentId) override { return status_; }
+  Status addToken(store::TokenScope, std::string_view, store::Role) override { return status_; }
+  void append(store::DocumentId, uint64_t, std::string, std::string, store::AppendCallback done) override {
+    done(status_);
+  }
 
  private:
   Status status_;
@@ -28,15 +30,17 @@ class FailingStore final : public testing::HostOnlyStore {
 
 class NoOpener final : public DocumentOpener {
  public:
-  Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(DocumentId) override {
+  Expected<std::shared_ptr<DocumentEndpoint>> openEndpoint(store::DocumentId) override {
     return internalError("not used");
   }
-  void forget(DocumentId) override { ++forgotten; }
+  void forget(store::DocumentId) override { ++forgotten; }
   int forgotten = 0;
 };
 
 CatalogueCaller admin() {
-  return {.session = 1, .globalRole = Role::kAdmin, .roleOn = [](DocumentId) { return Role::kAdmin; }};
+  return {.session = 1, .globalRole = store::Role::kAdmin, .roleOn = [](store::DocumentId) {
+            return store::Role::kAdmin;
+          }};
 }
 
 wire::GrantToken grant(const std::string& token) {
@@ -54,7 +58,7 @@ TEST(CatalogueCommands, AStoreFailureIsInternal) {
   ASSERT_TRUE(granted.has_reject());
   EXPECT_EQ(granted.reject().reason(), wire::REJECT_REASON_INTERNAL);
   EXPECT_EQ(granted.reject().message(), "disk I/O error");
-  EXPECT_EQ(deleteDocument(store, opener, admin(), 8, DocumentId{4}).reject().reason(),
+  EXPECT_EQ(deleteDocument(store, opener, admin(), 8, store::DocumentId{4}).reject().reason(),
             wire::REJECT_REASON_INTERNAL);
   EXPECT_EQ(listDocuments(store, admin(), 9).reject().reason(), wire::REJECT_REASON_INTERNAL);
   EXPECT_EQ(opener.forgotten, 0);
@@ -64,7 +68,7 @@ TEST(CatalogueCommands, WhatTheCallerNamedAndIsMissingIsNotFound) {
   FailingStore store(notFound("document 4 does not exist"));
   NoOpener opener;
   EXPECT_EQ(grantToken(store, admin(), 7, grant("tok")).reject().reason(), wire::REJECT_REASON_NOT_FOUND);
-  EXPECT_EQ(deleteDocument(store, opener, admin(), 8, DocumentId{4}).reject().reason(),
+  EXPECT_EQ(deleteDocument(store, opener, admin(), 8, store::DocumentId{4}).reject().reason(),
             wire::REJECT_REASON_NOT_FOUND);
 }
 
@@ -83,12 +87,12 @@ TEST(CatalogueCommands, WhatTheCallerSentWrongIsAnInvalidArgument) {
 TEST(CatalogueCommands, RolesAreCheckedBeforeTheStore) {
   FailingStore store(ioError("must not be reached"));
   NoOpener opener;
-  CatalogueCaller editor{.session = 2, .globalRole = Role::kEditor, .roleOn = [](DocumentId) {
-                           return std::optional<Role>(Role::kEditor);
+  CatalogueCaller editor{.session = 2, .globalRole = store::Role::kEditor, .roleOn = [](store::DocumentId) {
+                           return std::optional<store::Role>(store::Role::kEditor);
                          }};
   EXPECT_EQ(grantToken(store, editor, 7, grant("tok")).reject().reason(),
             wire::REJECT_REASON_PERMISSION_DENIED);
-  const wire::ServerMessage deleted = deleteDocument(store, opener, editor, 8, DocumentId{4});
+  const wire::ServerMessage deleted = deleteDocument(store, opener, editor, 8, store::DocumentId{4});
   EXPECT_EQ(deleted.reject().reason(), wire::REJECT_REASON_PERMISSION_DENIED);
   EXPECT_EQ(deleted.reject().message(), "deleting document 4 needs the admin role");
 }

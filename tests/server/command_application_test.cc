@@ -18,7 +18,7 @@
 namespace tessera::server {
 namespace {
 
-constexpr DocumentId kDoc{1};
+constexpr store::DocumentId kDoc{1};
 
 class CommandApplication : public ::testing::Test {
  protected:

@@ -48,7 +48,7 @@ class CommitLogTest : public ::testing::Test {
   }
 
   ServerStats stats_;
-  CommitLog log_{DocumentId{7}, 1, 1u << 20, stats_};
+  CommitLog log_{store::DocumentId{7}, 1, 1u << 20, stats_};
   std::shared_ptr<Inbox> author_ = std::make_shared<Inbox>(40);
   std::vector<uint64_t> delivered_;
 };
@@ -153,7 +153,7 @@ TEST_F(CommitLogTest, AFailedWriteRefusesWhatWasNotAcknowledged) {
 TEST_F(CommitLogTest, AWriteOfUnknownOutcomeIsHandedOnNotRefused) {
   log_.applied(edit(2, 100, 11));
   log_.applied(edit(3, 101, 12));
-  auto undecided = log_.failed(outcomeUnknownError("journal append timed out"), true);
+  auto undecided = log_.failed(store::outcomeUnknownError("journal append timed out"), true);
   ASSERT_EQ(undecided.size(), 2u);
   EXPECT_EQ(undecided[0].second, 100u);
   EXPECT_EQ(undecided[1].second, 101u);

@@ -88,7 +88,7 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
     ASSERT_TRUE(mesh.isOk());
     auto doc = Document::create(*mesh, {.maxLevel = 4});
     ASSERT_TRUE(doc.isOk());
-    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1,
+    host_ = std::make_shared<DocumentHost>(store::DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1,
                                            io_.get_executor(), io_.get_executor(), store_, config_, stats_);
     thread_ = std::thread([this] { io_.run(); });
     wire::LodProfile profile;

@@ -34,7 +34,7 @@ class OutcomeQuestions : public ::testing::Test {
     ASSERT_TRUE(mesh.isOk());
     auto doc = Document::create(*mesh, {.maxLevel = 2});
     ASSERT_TRUE(doc.isOk());
-    host_ = std::make_shared<DocumentHost>(DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1,
+    host_ = std::make_shared<DocumentHost>(store::DocumentId{1}, "cube", KeyedDocument(std::move(*doc)), 1,
                                            io_.get_executor(), io_.get_executor(), store_, config_, stats_);
     // As a cluster node does: the commands of a write with an unknown
     // outcome go to whoever reloads the document.
@@ -75,7 +75,7 @@ TEST_F(OutcomeQuestions, ACommandWhoseWriteMayBeStoredIsNeverCalledNotApplied) {
   poll();
   EXPECT_EQ(editor_->answersTo(9), 0) << "its write is under way: its Ack follows, no other answer";
 
-  store_.completeAll(outcomeUnknownError("the test's store timed out"));
+  store_.completeAll(store::outcomeUnknownError("the test's store timed out"));
   poll();
   ASSERT_TRUE(host_->journalFailed());
   EXPECT_EQ(undecided_, 1) << "the command went to whoever reloads the document";

@@ -32,40 +32,41 @@ TEST(ProfileRequest, MorphTimesRoundToSharedViews) {
   a.set_morph_t(0.25);
   b.set_morph_t(0.25 + 0.4 / kMorphTimeSteps);  // rounds to the same step
   c.set_morph_t(0.25 + 1.0 / kMorphTimeSteps);  // the next step
-  auto ra = checkProfileRequest(a, Limits{}, DocumentId{3}, 4, true);
-  auto rb = checkProfileRequest(b, Limits{}, DocumentId{3}, 4, true);
-  auto rc = checkProfileRequest(c, Limits{}, DocumentId{3}, 4, true);
+  auto ra = checkProfileRequest(a, Limits{}, store::DocumentId{3}, 4, true);
+  auto rb = checkProfileRequest(b, Limits{}, store::DocumentId{3}, 4, true);
+  auto rc = checkProfileRequest(c, Limits{}, store::DocumentId{3}, 4, true);
   ASSERT_TRUE(ra.isOk() && rb.isOk() && rc.isOk());
   EXPECT_EQ(*ra->morphT, 0.25);
   EXPECT_EQ(ra->key, rb->key);
   EXPECT_NE(ra->key, rc->key);
-  auto still = checkProfileRequest(requested(0, 2), Limits{}, DocumentId{3}, 4, true);
+  auto still = checkProfileRequest(requested(0, 2), Limits{}, store::DocumentId{3}, 4, true);
   ASSERT_TRUE(still.isOk());
   EXPECT_FALSE(still->morphT.has_value());
   EXPECT_NE(still->key, ra->key) << "a still view and a morph view are different views";
 }
 
 TEST(ProfileRequest, RefusalsNameTheField) {
-  auto tooDeep = checkProfileRequest(requested(0, 5), Limits{}, DocumentId{3}, 4, false);
+  auto tooDeep = checkProfileRequest(requested(0, 5), Limits{}, store::DocumentId{3}, 4, false);
   ASSERT_FALSE(tooDeep.isOk());
   EXPECT_EQ(tooDeep.status().message(), "LOD profile: max level 5 exceeds the document's 4");
   EXPECT_EQ(tooDeep.status().code(), ErrorCode::kInvalidArgument);
 
   wire::LodProfile morph = requested(0, 2);
   morph.set_morph_t(0.5);
-  auto oneKey = checkProfileRequest(morph, Limits{}, DocumentId{3}, 4, false);
+  auto oneKey = checkProfileRequest(morph, Limits{}, store::DocumentId{3}, 4, false);
   ASSERT_FALSE(oneKey.isOk());
   EXPECT_NE(oneKey.status().message().find("document 3 has one key"), std::string::npos);
 
   morph.set_morph_t(1.5);
-  auto outside = checkProfileRequest(morph, Limits{}, DocumentId{3}, 4, true);
+  auto outside = checkProfileRequest(morph, Limits{}, store::DocumentId{3}, 4, true);
   ASSERT_FALSE(outside.isOk());
   EXPECT_NE(outside.status().message().find("is not in [0, 1]"), std::string::npos);
 
   morph.set_morph_t(std::nan(""));
-  EXPECT_FALSE(checkProfileRequest(morph, Limits{}, DocumentId{3}, 4, true).isOk()) << "NaN is not a time";
+  EXPECT_FALSE(checkProfileRequest(morph, Limits{}, store::DocumentId{3}, 4, true).isOk())
+      << "NaN is not a time";
 
-  auto reversed = checkProfileRequest(requested(3, 1), Limits{}, DocumentId{3}, 4, false);
+  auto reversed = checkProfileRequest(requested(3, 1), Limits{}, store::DocumentId{3}, 4, false);
   EXPECT_FALSE(reversed.isOk());
 }
 

@@ -29,7 +29,7 @@
 #include "server/store/sqlite_store.h"
 #include "server/store_test_support.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -229,4 +229,4 @@ TEST(StoreCrash, AcknowledgedAppendsSurviveKillNine) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::store

@@ -9,7 +9,7 @@
 #include "server/store/sqlite_store.h"
 #include "server/store_test_support.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 using testing::entryBytes;
@@ -240,4 +240,4 @@ TEST(StoreSnapshots, LoadStartsFromTheNewestAndTwoAreKept) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::store

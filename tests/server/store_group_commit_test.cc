@@ -16,7 +16,7 @@
 #include "server/store/sqlite_store.h"
 #include "server/store_test_support.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 using testing::entryBytes;
@@ -113,4 +113,4 @@ TEST(StoreGroupCommit, ConcurrentProducersAreBatchedAndKeepPerDocumentOrder) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::store

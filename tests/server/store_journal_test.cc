@@ -12,7 +12,7 @@
 #include "server/store/sqlite_store.h"
 #include "server/store_test_support.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 using testing::entryBytes;
@@ -203,4 +203,4 @@ TEST(StoreJournal, SynchronousCallFromACallbackIsRefusedNotDeadlocked) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::store

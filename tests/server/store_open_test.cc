@@ -14,7 +14,7 @@
 #include "server/store/sqlite_store.h"
 #include "server/store_test_support.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 using testing::entryBytes;
@@ -197,4 +197,4 @@ TEST(StoreOpen, AJournalGapIsReportedByLoad) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::store

@@ -36,9 +36,9 @@ class TempDataDir {
 };
 
 // Opens a store, recording a test failure (and returning null) if it cannot.
-inline std::unique_ptr<SqliteStore> openStoreOrFail(const std::string& directory,
-                                                    const SqliteStoreOptions& options = {}) {
-  auto store = SqliteStore::open(directory, options);
+inline std::unique_ptr<store::SqliteStore> openStoreOrFail(const std::string& directory,
+                                                           const store::SqliteStoreOptions& options = {}) {
+  auto store = store::SqliteStore::open(directory, options);
   if (!store.isOk()) {
     ADD_FAILURE() << "opening " << directory << ": " << store.status().toString();
     return nullptr;

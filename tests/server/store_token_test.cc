@@ -10,7 +10,7 @@
 #include "server/store/token_hash.h"
 #include "server/store_test_support.h"
 
-namespace tessera {
+namespace tessera::store {
 namespace {
 
 using testing::openStoreOrFail;
@@ -147,4 +147,4 @@ TEST(StoreTokens, OnlyHashesReachTheDisk) {
 }
 
 }  // namespace
-}  // namespace tessera
+}  // namespace tessera::store

@@ -13,19 +13,19 @@
 
 namespace tessera::testing {
 
-class HostOnlyStore : public Store {
+class HostOnlyStore : public store::Store {
  public:
-  Expected<DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
-  Expected<std::vector<DocumentSummary>> listDocuments() override { return unused(); }
-  Status deleteDocument(DocumentId) override { return unused(); }
-  Expected<StoredDocument> loadDocument(DocumentId) override { return unused(); }
-  Status appendSync(DocumentId, uint64_t, std::string, std::string) override { return unused(); }
-  Status putSnapshot(DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
-  Status addToken(TokenScope, std::string_view, Role) override { return unused(); }
+  Expected<store::DocumentId> createDocument(std::string_view, std::string_view) override { return unused(); }
+  Expected<std::vector<store::DocumentSummary>> listDocuments() override { return unused(); }
+  Status deleteDocument(store::DocumentId) override { return unused(); }
+  Expected<store::StoredDocument> loadDocument(store::DocumentId) override { return unused(); }
+  Status appendSync(store::DocumentId, uint64_t, std::string, std::string) override { return unused(); }
+  Status putSnapshot(store::DocumentId, uint64_t, std::string_view) override { return Status::ok(); }
+  Status addToken(store::TokenScope, std::string_view, store::Role) override { return unused(); }
   Status revokeToken(std::string_view) override { return unused(); }
-  Expected<Role> roleFor(std::string_view, TokenScope) override { return unused(); }
+  Expected<store::Role> roleFor(std::string_view, store::TokenScope) override { return unused(); }
   Expected<bool> knowsToken(std::string_view) override { return unused(); }
-  StoreStats stats() const override { return {}; }
+  store::StoreStats stats() const override { return {}; }
   void close() override {}
 
  private:
@@ -36,7 +36,7 @@ class HostOnlyStore : public Store {
 // (thread-safe: a host may append from its workers).
 class HeldStore final : public HostOnlyStore {
  public:
-  void append(DocumentId, uint64_t, std::string, std::string, AppendCallback done) override {
+  void append(store::DocumentId, uint64_t, std::string, std::string, store::AppendCallback done) override {
     std::lock_guard lock(mutex_);
     held_.push_back(std::move(done));
   }
@@ -45,7 +45,7 @@ class HeldStore final : public HostOnlyStore {
     return held_.size();
   }
   void completeAll(const Status& status) {
-    std::vector<AppendCallback> done;
+    std::vector<store::AppendCallback> done;
     {
       std::lock_guard lock(mutex_);
       done.swap(held_);
@@ -55,7 +55,7 @@ class HeldStore final : public HostOnlyStore {
 
  private:
   std::mutex mutex_;
-  std::vector<AppendCallback> held_;
+  std::vector<store::AppendCallback> held_;
 };
 
 }  // namespace tessera::testing

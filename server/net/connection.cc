@@ -12,6 +12,7 @@
 #include "protocol/commands.h"
 #include "protocol/handshake.h"
 #include "server/base/log.h"
+#include "server/document/document_dispatch.h"
 #include "server/document/journal_entry.h"
 #include "server/document/mesh_intake.h"
 #include "server/document/replies.h"
@@ -378,46 +379,32 @@ void Connection::handle(wire::ClientMessage message) {
                           " documents, the limit (--subscriptions-per-session)");
       }
       subscriptions_[doc] = message.subscribe().profile();
-      return host->subscribe(shared_from_this(), message.subscribe().profile(), seq, false,
-                             message.subscribe().with_commands());
-    case C::kUnsubscribe: {
+      break;
+    case C::kUnsubscribe:
       subscriptions_.erase(doc);
-      host->unsubscribe(sessionId_);
-      wire::ServerMessage ack = ackFor(seq, doc);
-      return reply(ack);
-    }
-    case C::kSelect:
-      return host->select(shared_from_this(), seq, message.select().selection());
-    case C::kExportDocument:
-      return host->exportGlb(shared_from_this(), seq, message.export_document());
-    case C::kGetMorphControl:
-      return host->morphControl(shared_from_this(), seq, message.get_morph_control());
-    case C::kEditBatch:
-    case C::kMoveVertex:
-    case C::kSetEdgeSharpness:
-    case C::kSetVertexType:
-    case C::kSetInterpolation:
-    case C::kAddMorphKey:
-    case C::kUndo:
-    case C::kRedo: {
-      const auto role = roleFor(store::DocumentId{doc});
-      if (!role || *role < store::Role::kEditor) {
-        return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED,
-                      "editing document " + std::to_string(doc) + " needs the editor role");
-      }
-      // A second key's mesh is a base mesh: the same limit as CreateDocument's.
-      if (message.has_add_morph_key() &&
-          message.add_morph_key().mesh().size() > context_.config.limits.maxBaseMeshBytes) {
-        return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
-                      "add morph key: the mesh has " + std::to_string(message.add_morph_key().mesh().size()) +
-                          " bytes, above the limit of " +
-                          std::to_string(context_.config.limits.maxBaseMeshBytes));
-      }
-      return host->command(shared_from_this(), name_, std::move(message));
-    }
+      break;
     default:
-      return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "unknown command");
+      break;
   }
+  if (isEditCommand(message)) {
+    const auto role = roleFor(store::DocumentId{doc});
+    if (!role || *role < store::Role::kEditor) {
+      return reject(seq, wire::REJECT_REASON_PERMISSION_DENIED,
+                    "editing document " + std::to_string(doc) + " needs the editor role");
+    }
+    // A second key's mesh is a base mesh: the same limit as CreateDocument's.
+    if (message.has_add_morph_key() &&
+        message.add_morph_key().mesh().size() > context_.config.limits.maxBaseMeshBytes) {
+      return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
+                    "add morph key: the mesh has " + std::to_string(message.add_morph_key().mesh().size()) +
+                        " bytes, above the limit of " +
+                        std::to_string(context_.config.limits.maxBaseMeshBytes));
+    }
+  }
+  const bool unsubscribe = message.has_unsubscribe();
+  if (!dispatchToDocument(*host, shared_from_this(), name_, std::move(message)))
+    return reject(seq, wire::REJECT_REASON_UNKNOWN_COMMAND, "unknown command");
+  if (unsubscribe) reply(ackFor(seq, doc));
 }
 
 void Connection::handleHello(const wire::ClientMessage& message) {

@@ -1,4 +1,4 @@
-// The whole command path of a server document host (server/document_host.h)
+// The whole command path of a server document host (server/document/document_host.h)
 // in-process: a sequence of client messages, decoded from the input as the
 // server decodes a connection's stream, against a creased-cube document of
 // max level kFuzzDocumentLevel (fuzz_support.h says why it is 2).
@@ -6,9 +6,11 @@
 // Input: byte 0 sets the run up (bit 0: the store refuses the third append,
 // so the journal-failure path runs; bit 1: --deltas-after-durable); the rest
 // is a stream of frames (protocol/framing.h), at most 24 ClientMessages.
-// Each message is routed as Connection::handle routes document commands
-// (subscribe, unsubscribe, select, export, the six edits, a second morph
-// key and the morph's control points) from one of two
+// Each message is routed by dispatchToDocument
+// (server/document/document_dispatch.h), the routing the connection uses
+// after its session checks (subscribe, unsubscribe, select, export, the
+// edits and edit batches, a second morph key and the morph's control
+// points), from one of two
 // sessions (the low bit of client_seq picks which), both joined, one as an
 // editor and one as a viewer, and the host's strand runs between messages
 // as a server's workers would (one io_context serves as both the worker
@@ -29,6 +31,7 @@
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
 #include "server/base/log.h"
+#include "server/document/document_dispatch.h"
 #include "server/document/document_host.h"
 #include "tests/support/host_only_store.h"
 
@@ -93,32 +96,10 @@ server::ServerConfig makeConfig(bool deltasAfterDurable) {
   return config;
 }
 
+// As the connection routes them (its session checks aside): the one routing.
 void route(server::DocumentHost& host, const std::shared_ptr<Inbox>& who, wire::ClientMessage message) {
-  using C = wire::ClientMessage;
-  const uint64_t seq = message.client_seq();
-  switch (message.command_case()) {
-    case C::kSubscribe:
-      return host.subscribe(who, message.subscribe().profile(), seq, false,
-                            message.subscribe().with_commands());
-    case C::kUnsubscribe:
-      return host.unsubscribe(who->sessionId());
-    case C::kSelect:
-      return host.select(who, seq, message.select().selection());
-    case C::kExportDocument:
-      return host.exportGlb(who, seq, message.export_document());
-    case C::kMoveVertex:
-    case C::kSetEdgeSharpness:
-    case C::kSetVertexType:
-    case C::kSetInterpolation:
-    case C::kAddMorphKey:
-    case C::kUndo:
-    case C::kRedo:
-      return host.command(who, "session " + std::to_string(who->sessionId()), std::move(message));
-    case C::kGetMorphControl:
-      return host.morphControl(who, seq, message.get_morph_control());
-    default:
-      return;  // the connection answers these itself
-  }
+  const std::string author = "session " + std::to_string(who->sessionId());
+  server::dispatchToDocument(host, who, author, std::move(message));
 }
 
 void pollAll(boost::asio::io_context& io) {

@@ -20,8 +20,8 @@ build_packages=(
   libeigen3-dev
   # polygon triangulation on import: constrained Delaunay (header-only; GMP at run time)
   libcgal-dev
-  # operations: HTTP health and Prometheus metrics, sd_notify
-  prometheus-cpp-dev libcpp-httplib-dev libsystemd-dev
+  # operations: Prometheus metrics (the text format), sd_notify; HTTP is Boost.Beast (libboost-dev)
+  prometheus-cpp-dev libsystemd-dev
   # cluster mode (docs/CLUSTER.md): the NATS C client (JetStream, key-value buckets)
   libnats-dev
 )

@@ -1,20 +1,24 @@
 #include "server/app/operator_commands.h"
 
-#include <httplib.h>
 #include <sys/random.h>
 #include <array>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 
 #include "core/util/hex.h"
 #include "server/app/server.h"
 #include "server/base/log.h"
+#include "server/ops/http_get.h"
 #include "server/store/store_admin.h"
 
 namespace tessera::server {
 
 namespace {
+
+// Within the container image's HEALTHCHECK --timeout of 5 s (deploy/Dockerfile).
+constexpr std::chrono::seconds kHealthTimeout{3};
 
 int failed(std::string_view event, const Status& status) {
   logEvent(LogLevel::kError, event, {{"error", status.message()}});
@@ -89,24 +93,17 @@ int runHealth(const ServerCommandLine& command) {
       return failed("health_failed",
                     invalidArgument("health needs --url or --http-port (or a --config that sets it)"));
     }
-    url = "http://" + command.config.httpListenAddress + ":" + std::to_string(command.config.httpPort) +
-          "/healthz";
+    const std::string& host = command.config.httpListenAddress;
+    url = "http://" + (host.find(':') == std::string::npos ? host : "[" + host + "]") + ":" +
+          std::to_string(command.config.httpPort) + "/healthz";
   }
-  const auto schemeEnd = url.find("://");
-  const auto pathStart = schemeEnd == std::string::npos ? std::string::npos : url.find('/', schemeEnd + 3);
-  if (schemeEnd == std::string::npos || url.compare(0, schemeEnd, "http") != 0) {
-    return failed("health_failed",
-                  invalidArgument("--url: expected http://HOST:PORT/PATH, got '" + url + "'"));
+  auto reply = httpGet(url, kHealthTimeout);
+  if (!reply.isOk()) {
+    const bool badOption = !command.url.empty() && reply.status().code() == ErrorCode::kInvalidArgument;
+    return failed("health_failed", badOption ? reply.status().withContext("--url") : reply.status());
   }
-  httplib::Client client(url.substr(0, pathStart));
-  client.set_connection_timeout(3, 0);
-  client.set_read_timeout(3, 0);
-  const auto response = client.Get(pathStart == std::string::npos ? "/" : url.substr(pathStart));
-  if (!response) {
-    return failed("health_failed", ioError(url + ": " + httplib::to_string(response.error())));
-  }
-  std::fputs(response->body.c_str(), stdout);
-  return response->status == 200 ? 0 : 1;
+  std::fputs(reply->body.c_str(), stdout);
+  return reply->status == 200 ? 0 : 1;
 }
 
 }  // namespace tessera::server

@@ -12,9 +12,9 @@
 #include <mutex>
 #include <optional>
 
+#include "server/base/http_requests.h"
 #include "server/base/log.h"
 #include "server/net/websocket_transport.h"
-#include "tessera/version.h"
 
 namespace tessera::server {
 
@@ -24,9 +24,6 @@ namespace http = beast::http;
 using tcp = asio::ip::tcp;
 
 namespace {
-
-constexpr uint32_t kHeaderLimitBytes = 8 * 1024;  // a request's start line and headers
-constexpr int kRequestsPerConnection = 100;       // keep-alive, then close
 
 std::string lower(std::string_view text) {
   std::string out(text);
@@ -154,8 +151,7 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
  private:
   void readRequest() {
     parser_.emplace();
-    parser_->header_limit(kHeaderLimitBytes);
-    parser_->body_limit(0);
+    limitToHeaders(*parser_);
     beast::get_lowest_layer(stream_).expires_after(secondsOf(port_->options.timeouts.handshakeSeconds));
     auto self = this->shared_from_this();
     http::async_read(stream_, buffer_, *parser_,
@@ -163,18 +159,10 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
   }
 
   void onRequest(const beast::error_code& ec) {
-    if (ec == http::error::header_limit) {
-      return respond(http::status::request_header_fields_too_large,
-                     "request headers larger than " + std::to_string(kHeaderLimitBytes) + " bytes", false);
+    if (ec) {
+      const auto unreadable = unreadableRequest(ec);
+      return unreadable ? respond(unreadable->status, unreadable->reason, false) : closeSocket();
     }
-    if (ec == http::error::body_limit || ec == http::error::unexpected_body) {
-      return respond(http::status::payload_too_large, "requests to this port carry no body", false);
-    }
-    if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == asio::error::eof ||
-        ec == asio::error::operation_aborted || ec == asio::error::connection_reset) {
-      return closeSocket();
-    }
-    if (ec) return respond(http::status::bad_request, "malformed request: " + ec.message(), false);
     const auto& request = parser_->get();
     ++requests_;
     const std::string_view target(request.target().data(), request.target().size());
@@ -231,20 +219,15 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
   }
 
   void respond(http::status status, const std::string& text, bool keepAlive) {
-    auto response = std::make_shared<http::response<http::string_body>>(status, 11);
+    auto response = std::make_shared<TextResponse>(
+        textResponse(status, text, keepAlive && requests_ < kRequestsPerConnection));
     headers(*response);
-    response->set(http::field::content_type, "text/plain; charset=utf-8");
-    if (status == http::status::method_not_allowed) response->set(http::field::allow, "GET, HEAD");
-    response->body() = text + "\n";
-    response->prepare_payload();
-    response->keep_alive(keepAlive && requests_ < kRequestsPerConnection);
     send(response);
   }
 
   template <class Body>
   static void headers(http::response<Body>& response) {
-    response.set(http::field::server, std::string("tessera-server ") + kVersion);
-    response.set("X-Content-Type-Options", "nosniff");
+    serverHeaders(response);
     response.set("Referrer-Policy", "no-referrer");
     // The page loads only its own files and talks only to its own host;
     // WebAssembly needs 'wasm-unsafe-eval' to compile the Draco decoder.
@@ -263,12 +246,7 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
     });
   }
 
-  void closeSocket() {
-    beast::error_code ignored;
-    auto& socket = beast::get_lowest_layer(stream_).socket();
-    socket.shutdown(tcp::socket::shutdown_both, ignored);
-    socket.close(ignored);
-  }
+  void closeSocket() { server::closeSocket(beast::get_lowest_layer(stream_).socket()); }
 
   void releaseSlot() {
     if (slot_) port_->peers.give(address_);
@@ -283,24 +261,9 @@ class WebSession : public PendingUpgrade, public std::enable_shared_from_this<We
   Stream stream_;
   std::string address_;
   beast::flat_buffer buffer_;
-  std::optional<http::request_parser<http::empty_body>> parser_;
+  std::optional<RequestParser> parser_;
   int requests_ = 0;
 };
-
-// A peer over the limits gets a plain 503 and the connection closes; nothing
-// of its request is read.
-void turnAway(tcp::socket socket, const std::string& reason) {
-  auto held = std::make_shared<tcp::socket>(std::move(socket));
-  auto text = std::make_shared<std::string>(
-      "HTTP/1.1 503 Service Unavailable\r\nContent-Type: text/plain\r\nConnection: close\r\n"
-      "Content-Length: " +
-      std::to_string(reason.size() + 1) + "\r\n\r\n" + reason + "\n");
-  asio::async_write(*held, asio::buffer(*text), [held, text](const boost::system::error_code&, size_t) {
-    boost::system::error_code ignored;
-    held->shutdown(tcp::socket::shutdown_both, ignored);
-    held->close(ignored);
-  });
-}
 
 }  // namespace
 

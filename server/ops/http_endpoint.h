@@ -3,29 +3,25 @@
 //   GET /healthz  200 {"status":"ok",...} while serving; 503 with the reason
 //                 while stopping or when the store cannot be read
 //   GET /metrics  Prometheus text format (metrics_exposition.h)
-// It runs on two threads of its own, so a scrape never waits behind
-// documents' work, and accepts nothing but small GETs.
+// (what it answers: endpoint_pages.h). Boost.Beast, as the web port: the
+// requests it reads are those of server/base/http_requests.h (8 KiB of
+// headers, no body; GET and HEAD only, anything else a 405). It runs on an
+// io_context and two threads of its own, so a scrape never waits behind
+// documents' work, and one answer waiting for the store does not hold the
+// others.
+// Every connection has 5 s to send its request (and to take its answer),
+// then it is closed, so slow or idle peers cannot hold the endpoint; at
+// most 32 are open at once, more get a 503.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "core/util/status.h"
-#include "server/base/server_stats.h"
-#include "server/store/store.h"
+#include "server/ops/endpoint_pages.h"
 
 namespace tessera::server {
-
-struct HttpSources {
-  const ServerStats* stats = nullptr;
-  std::function<store::StoreStats()> storeStats;
-  std::function<int64_t()> documentsOpen;
-  // Why the server is not healthy, or nullopt when it is.
-  std::function<std::optional<std::string>()> unhealthy;
-};
 
 class HttpEndpoint {
  public:

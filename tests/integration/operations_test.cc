@@ -1,12 +1,13 @@
 // Operations (docs/OPERATIONS.md): the real tessera-server's HTTP endpoint
-// read with a real HTTP client, its JSON log file and SIGHUP reopen, JSON
-// start-up errors, `token new`, and an online backup restored into a new
-// data directory and compared with the original.
+// read with an HTTP client of the tests' own (http_exchange.h), what it
+// refuses and how it bounds its peers, the `health` command, its JSON log
+// file and SIGHUP reopen, JSON start-up errors, `token new`, and an online
+// backup restored into a new data directory and compared with the original.
 #include <gtest/gtest.h>
 
-#include <httplib.h>
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 #include <regex>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <sys/socket.h>
 #include <sys/un.h>
@@ -24,6 +26,7 @@
 
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
+#include "integration/http_exchange.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
@@ -146,20 +149,19 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   const uint16_t httpPort = readPortFile(dir + "/http-port");
   ASSERT_GT(httpPort, 0);
-  httplib::Client http("127.0.0.1", httpPort);
-  http.set_read_timeout(10, 0);
+  auto get = [&](const std::string& target) { return testing::httpGet(httpPort, target, 10); };
 
-  auto health = http.Get("/healthz");
-  ASSERT_TRUE(health) << httplib::to_string(health.error());
+  auto health = get("/healthz");
+  ASSERT_TRUE(health.isOk()) << health.status().message();
   EXPECT_EQ(health->status, 200);
   auto healthJson = nlohmann::json::parse(health->body, nullptr, false);
   ASSERT_FALSE(healthJson.is_discarded()) << health->body;
   EXPECT_EQ(healthJson["status"], "ok");
 
-  auto before = http.Get("/metrics");
-  ASSERT_TRUE(before);
+  auto before = get("/metrics");
+  ASSERT_TRUE(before.isOk()) << before.status().message();
   EXPECT_EQ(before->status, 200);
-  EXPECT_NE(before->get_header_value("Content-Type").find("text/plain"), std::string::npos);
+  EXPECT_NE(before->contentType.find("text/plain"), std::string::npos);
   const auto m0 = parseMetrics(before->body);
   EXPECT_EQ(m0.at("tessera_edits_total"), 0);
 
@@ -168,8 +170,8 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   constexpr int kEdits = 12;
   for (int i = 0; i < kEdits; ++i) moveOnce(*cube.admin, cube.doc, i);
 
-  auto after = http.Get("/metrics");
-  ASSERT_TRUE(after);
+  auto after = get("/metrics");
+  ASSERT_TRUE(after.isOk()) << after.status().message();
   const auto m = parseMetrics(after->body);
   EXPECT_EQ(m.at("tessera_edits_total"), kEdits);
   EXPECT_EQ(m.at("tessera_connections"), 1);  // the admin session
@@ -200,11 +202,12 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   // A refused command counts as a refusal.
   auto refused = cube.admin->call(testing::moveVertex(cube.doc, VertexId(9, 0).packed(), 0, 0, 0), 10);
   ASSERT_TRUE(refused.isOk() && refused->has_reject()) << (refused.isOk() ? refused->DebugString() : "");
-  EXPECT_EQ(parseMetrics(http.Get("/metrics")->body).at("tessera_refusals_total"),
-            m.at("tessera_refusals_total") + 1);
+  auto refusals = get("/metrics");
+  ASSERT_TRUE(refusals.isOk()) << refusals.status().message();
+  EXPECT_EQ(parseMetrics(refusals->body).at("tessera_refusals_total"), m.at("tessera_refusals_total") + 1);
 
-  auto missing = http.Get("/admin");
-  ASSERT_TRUE(missing);
+  auto missing = get("/admin");
+  ASSERT_TRUE(missing.isOk()) << missing.status().message();
   EXPECT_EQ(missing->status, 404);
   // Loopback by default, and said so in the log.
   EXPECT_NE(
@@ -212,8 +215,210 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
       std::string::npos);
 
   EXPECT_EQ(server->stop(), 0);
-  auto gone = httplib::Client("127.0.0.1", httpPort).Get("/healthz");
-  EXPECT_FALSE(gone) << "the endpoint still answers after the server stopped";
+  auto gone = get("/healthz");
+  EXPECT_FALSE(gone.isOk()) << "the endpoint still answers after the server stopped";
+}
+
+// What the endpoint refuses (docs/OPERATIONS.md, "Health and metrics"):
+// methods but GET and HEAD, paths but its two, requests larger than 8 KiB
+// of headers or with a body, and garbage; each refusal closes the
+// connection, and the endpoint goes on serving.
+TEST(Operations, HttpEndpointAnswersSmallGetsOnly) {
+  const std::string dir = testing::makeTempDir("tessera-ops-http-edges");
+  auto server =
+      ServerProcess::start(dir + "/data", {"--http-port", "0", "--http-port-file", dir + "/http-port"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  const uint16_t httpPort = readPortFile(dir + "/http-port");
+  ASSERT_GT(httpPort, 0);
+  using testing::httpExchange;
+  using testing::httpStatus;
+
+  for (const std::string method : {"POST", "PUT", "DELETE"}) {
+    const std::string answer = httpExchange(
+        httpPort, method + " /healthz HTTP/1.1\r\nHost: x\r\nContent-Length: 0\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(httpStatus(answer), 405) << method << ": " << answer;
+    EXPECT_NE(answer.find("Allow: GET, HEAD"), std::string::npos) << answer;
+  }
+  auto unknown = testing::httpGet(httpPort, "/nope");
+  ASSERT_TRUE(unknown.isOk()) << unknown.status().message();
+  EXPECT_EQ(unknown->status, 404);
+  EXPECT_NE(unknown->body.find("/healthz"), std::string::npos) << unknown->body;
+  // The query is not part of the path; HEAD has the headers only.
+  auto query = testing::httpGet(httpPort, "/healthz?from=probe");
+  ASSERT_TRUE(query.isOk()) << query.status().message();
+  EXPECT_EQ(query->status, 200);
+  const std::string head =
+      httpExchange(httpPort, "HEAD /healthz HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(httpStatus(head), 200) << head;
+  EXPECT_TRUE(head.ends_with("\r\n\r\n")) << "HEAD sent a body: " << head;
+  // Two requests on one kept-alive connection, sent at once: two answers.
+  const std::string two = httpExchange(httpPort,
+                                       "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n"
+                                       "GET /metrics HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  EXPECT_EQ(httpStatus(two), 200) << two.substr(0, 300);
+  EXPECT_NE(two.find("HTTP/1.1 200", 1), std::string::npos) << "no second answer: " << two.substr(0, 300);
+  EXPECT_NE(two.find("tessera_edits_total"), std::string::npos);
+
+  struct Refused {
+    std::string what, request;
+    int status;
+  };
+  for (const Refused& refused : std::vector<Refused>{
+           {"headers over 8 KiB",
+            "GET /healthz HTTP/1.1\r\nHost: x\r\nX-Padding: " + std::string(64 * 1024, 'a') + "\r\n\r\n",
+            431},
+           {"a body", "GET /healthz HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n\r\nhello", 413},
+           {"a chunked body",
+            "GET /healthz HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n",
+            413},
+           {"garbage", "NONSENSE\r\n\r\n", 400}}) {
+    // No "Connection: close" in these requests: the endpoint closes by itself.
+    const std::string answer = httpExchange(httpPort, refused.request);
+    EXPECT_EQ(httpStatus(answer), refused.status) << refused.what << ": " << answer.substr(0, 300);
+    EXPECT_NE(answer.find("Connection: close"), std::string::npos)
+        << refused.what << ": " << answer.substr(0, 300);
+  }
+
+  auto health = testing::httpGet(httpPort, "/healthz");
+  ASSERT_TRUE(health.isOk()) << health.status().message();
+  EXPECT_EQ(health->status, 200) << "after the refusals";
+}
+
+// Peers that send half a request and wait hold nothing but their own
+// connection: a probe on another is answered at once, and the endpoint
+// closes each of them when its 5 s are up (docs/OPERATIONS.md, "Health and
+// metrics").
+TEST(Operations, SlowHttpClientsDoNotHoldTheEndpoint) {
+  const std::string dir = testing::makeTempDir("tessera-ops-http-slow");
+  auto server =
+      ServerProcess::start(dir + "/data", {"--http-port", "0", "--http-port-file", dir + "/http-port"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  const uint16_t httpPort = readPortFile(dir + "/http-port");
+  ASSERT_GT(httpPort, 0);
+
+  namespace asio = boost::asio;
+  constexpr int kSlow = 6;  // more than the endpoint's two threads, fewer than its 32 connections
+  asio::io_context io;
+  std::vector<asio::ip::tcp::socket> slow;
+  for (int i = 0; i < kSlow; ++i) {
+    slow.emplace_back(io);
+    boost::system::error_code ec;
+    slow.back().connect({asio::ip::make_address("127.0.0.1"), httpPort}, ec);
+    ASSERT_FALSE(ec) << ec.message();
+    // A request line and one header, but never the blank line that ends them.
+    asio::write(slow.back(), asio::buffer(std::string("GET /healthz HTTP/1.1\r\nHost: x\r\n")), ec);
+    ASSERT_FALSE(ec) << ec.message();
+  }
+
+  auto health = testing::httpGet(httpPort, "/healthz", 10);
+  ASSERT_TRUE(health.isOk()) << health.status().message();
+  EXPECT_EQ(health->status, 200);
+  // Answered while the slow ones were still waiting (a probe takes
+  // milliseconds, their time runs for 5 s): nothing was sent to them yet and
+  // they are open.
+  for (auto& socket : slow) {
+    char byte = 0;
+    const ssize_t n = ::recv(socket.native_handle(), &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+    EXPECT_TRUE(n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
+        << "a slow connection was answered or closed before the probe was: recv " << n;
+  }
+
+  // Each is closed by the endpoint without an answer; 30 s bounds the wait.
+  for (auto& socket : slow) {
+    testing::setReceiveTimeout(socket, 30);
+    char buffer[256];
+    boost::system::error_code ec;
+    const size_t n = socket.read_some(asio::buffer(buffer), ec);
+    EXPECT_TRUE(ec == asio::error::eof || ec == asio::error::connection_reset)
+        << "a slow connection is still open after 30 s: " << ec.message() << ", " << std::string(buffer, n);
+  }
+  auto again = testing::httpGet(httpPort, "/healthz", 10);
+  ASSERT_TRUE(again.isOk()) << again.status().message();
+  EXPECT_EQ(again->status, 200);
+}
+
+// At most 32 connections at once: one more gets a 503 naming the limit,
+// and the endpoint serves again once they are gone.
+TEST(Operations, HttpConnectionsAreBounded) {
+  const std::string dir = testing::makeTempDir("tessera-ops-http-bound");
+  auto server =
+      ServerProcess::start(dir + "/data", {"--http-port", "0", "--http-port-file", dir + "/http-port"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  const uint16_t httpPort = readPortFile(dir + "/http-port");
+  ASSERT_GT(httpPort, 0);
+
+  namespace asio = boost::asio;
+  constexpr int kLimit = 32;
+  asio::io_context io;
+  std::vector<asio::ip::tcp::socket> idle;
+  for (int i = 0; i < kLimit; ++i) {
+    idle.emplace_back(io);
+    boost::system::error_code ec;
+    idle.back().connect({asio::ip::make_address("127.0.0.1"), httpPort}, ec);
+    ASSERT_FALSE(ec) << ec.message();
+  }
+  // Accepted after the others (the listen queue is first in, first out).
+  const std::string over = testing::httpExchange(httpPort, "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
+  EXPECT_EQ(testing::httpStatus(over), 503) << over;
+  EXPECT_NE(over.find("more than 32 connections"), std::string::npos) << over;
+  EXPECT_NE(testing::fileBytes(dir + "/data.log").find("\"event\":\"connection_refused\""),
+            std::string::npos);
+
+  for (auto& socket : idle) socket.close();
+  // The endpoint frees their places as it sees them close: within 10 s.
+  int status = 0;
+  for (int i = 0; i < 100 && status != 200; ++i) {
+    auto health = testing::httpGet(httpPort, "/healthz", 10);
+    status = health.isOk() ? health->status : 0;
+    if (status != 200) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(status, 200) << "the endpoint still refuses after its connections closed";
+}
+
+// `tessera-server health` (docs/OPERATIONS.md, "Health and metrics"): exit
+// 0 and the JSON on stdout when healthy; exit 1 with a JSON error naming the
+// URL when nothing answers, whether nothing listens or a peer takes the
+// connection and never answers.
+TEST(Operations, HealthCommandAsksTheEndpoint) {
+  const std::string dir = testing::makeTempDir("tessera-ops-health");
+  auto server =
+      ServerProcess::start(dir + "/data", {"--http-port", "0", "--http-port-file", dir + "/http-port"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  const uint16_t httpPort = readPortFile(dir + "/http-port");
+  ASSERT_GT(httpPort, 0);
+
+  const std::string url = "http://127.0.0.1:" + std::to_string(httpPort) + "/healthz";
+  ProgramRun healthy = runServerBinary("health --url " + url);
+  EXPECT_EQ(healthy.exitCode, 0) << healthy.err;
+  auto json = nlohmann::json::parse(healthy.out, nullptr, false);
+  ASSERT_FALSE(json.is_discarded()) << healthy.out;
+  EXPECT_EQ(json["status"], "ok");
+  // The URL from --http-port (and --http-listen's default, loopback).
+  ProgramRun fromPort = runServerBinary("--http-port " + std::to_string(httpPort) + " health");
+  EXPECT_EQ(fromPort.exitCode, 0) << fromPort.err;
+  EXPECT_NE(fromPort.out.find("\"status\":\"ok\""), std::string::npos) << fromPort.out;
+
+  ProgramRun refused = runServerBinary("health --url http://127.0.0.1:1/healthz");
+  EXPECT_EQ(refused.exitCode, 1);
+  expectJsonLines(refused.err, "health against a closed port");
+  EXPECT_NE(refused.err.find("http://127.0.0.1:1/healthz"), std::string::npos) << refused.err;
+
+  // A port whose connections are never accepted, let alone answered.
+  namespace asio = boost::asio;
+  asio::io_context io;
+  asio::ip::tcp::acceptor silent(io, {asio::ip::make_address("127.0.0.1"), 0});
+  const std::string silentUrl =
+      "http://127.0.0.1:" + std::to_string(silent.local_endpoint().port()) + "/healthz";
+  ProgramRun mute = runServerBinary("health --url " + silentUrl);
+  EXPECT_EQ(mute.exitCode, 1);
+  expectJsonLines(mute.err, "health against a silent port");
+  EXPECT_NE(mute.err.find(silentUrl), std::string::npos) << mute.err;
+  EXPECT_NE(mute.err.find("no answer within"), std::string::npos) << mute.err;
+
+  ProgramRun notHttp = runServerBinary("health --url ftp://127.0.0.1/healthz");
+  EXPECT_EQ(notHttp.exitCode, 1);
+  EXPECT_NE(notHttp.err.find("--url"), std::string::npos) << notHttp.err;
+  EXPECT_NE(notHttp.err.find("ftp://127.0.0.1/healthz"), std::string::npos) << notHttp.err;
 }
 
 TEST(Operations, NoHttpEndpointUnlessAsked) {

@@ -1,17 +1,12 @@
 // A minimal client of tessera-server's web port (--ws-port) for tests: raw
-// HTTP exchanges, and the protocol over a WebSocket, one frame per binary
-// message (PROTOCOL.md §1.2), written with Boost.Beast independently of
-// the server's code. Blocking, with a receive timeout on the socket so that
-// a silent server fails a test instead of hanging it.
+// HTTP exchanges (http_exchange.h), and the protocol over a WebSocket, one
+// frame per binary message (PROTOCOL.md §1.2), written with Boost.Beast
+// independently of the server's code. Blocking, with a receive timeout on
+// the socket so that a silent server fails a test instead of hanging it.
 #pragma once
-
-#include <sys/socket.h>
-#include <sys/time.h>
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/read.hpp>
-#include <boost/asio/write.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
@@ -19,42 +14,11 @@
 #include <string>
 
 #include "core/util/status.h"
+#include "integration/http_exchange.h"
 #include "protocol/framing.h"
 #include "protocol/tessera.pb.h"
 
 namespace tessera::testing {
-
-inline void setReceiveTimeout(boost::asio::ip::tcp::socket& socket, int seconds) {
-  timeval tv{seconds, 0};
-  setsockopt(socket.native_handle(), SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-}
-
-// Sends `request` as it is and returns everything the server sends until
-// it closes (or the timeout).
-inline std::string httpExchange(uint16_t port, const std::string& request, int timeoutSeconds = 10) {
-  namespace asio = boost::asio;
-  asio::io_context io;
-  asio::ip::tcp::socket socket(io);
-  boost::system::error_code ec;
-  socket.connect({asio::ip::make_address("127.0.0.1"), port}, ec);
-  if (ec) return "connect failed: " + ec.message();
-  setReceiveTimeout(socket, timeoutSeconds);
-  asio::write(socket, asio::buffer(request), ec);
-  std::string response;
-  char buffer[65536];
-  while (true) {
-    const size_t n = socket.read_some(asio::buffer(buffer), ec);
-    response.append(buffer, n);
-    if (ec) break;
-  }
-  return response;
-}
-
-// The status code of an HTTP response, or 0.
-inline int httpStatus(const std::string& response) {
-  if (response.rfind("HTTP/1.1 ", 0) != 0 || response.size() < 12) return 0;
-  return std::stoi(response.substr(9, 3));
-}
 
 class WebSocketClient {
  public:

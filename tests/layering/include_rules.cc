@@ -16,8 +16,8 @@ bool inFolder(std::string_view path, std::string_view folder) {
 
 // Headers no geometry code may reach: the network, the wire format, the
 // store's and the cluster's engines, windows.
-const std::vector<std::string> kServiceHeaders = {"boost/asio", "boost/beast", "google/protobuf", "nats/",
-                                                  "sqlite3",    "GLFW/",       "httplib"};
+const std::vector<std::string> kServiceHeaders = {"boost/asio", "boost/beast", "google/protobuf",
+                                                  "nats/",      "sqlite3",     "GLFW/"};
 
 const std::vector<std::string> kProjectRoots = {"core/",   "protocol/", "server/",
                                                 "client/", "tests/",    "bench/"};

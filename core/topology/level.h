@@ -7,9 +7,10 @@
 // Doo-Sabin (core/schemes). Levels are built by buildLevel (level_builder.h)
 // and tagged by applyTags (tags.h); the refinements write them directly.
 //
-// Faces may have any number of corners (docs/ARCHITECTURE.md "One topology
-// for every scheme"). Their vertices and edges are compressed rows over
-// faceVertices and faceEdges. A level whose faces all have one size
+// Faces may have any number of corners (docs/ARCHITECTURE.md
+// "core/topology: one topology for every scheme"). Their vertices and
+// edges are compressed rows over faceVertices and faceEdges. A level whose
+// faces all have one size
 // (regularFaceSize: 3 for every Loop level, 4 for every level after a quad
 // split) stores no faceOffsets: face f is entries regularFaceSize * f onward,
 // so the Loop loops read a triangle at 3f without a lookup (triangleVertices),

@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "core/document/edit.h"
-#include "core/loop/level.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 
 namespace tessera {

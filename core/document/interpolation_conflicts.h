@@ -19,7 +19,7 @@
 
 #include "core/document/edit.h"
 #include "core/hierarchy/ids.h"
-#include "core/loop/level.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 
 namespace tessera {

@@ -84,10 +84,10 @@ void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
     ++levels_[k].generation;
     if (k == deepest) {
       SparseLevel& last = levels_[k].topo;
-      last.firstChildFace.assign(last.mesh.numFaces(), kInvalidIndex);
-      last.childOfVertex.assign(last.mesh.numVertices, kInvalidIndex);
-      last.childOfEdge.assign(last.mesh.numEdges(), kInvalidIndex);
-      last.halvesOfEdge.assign(last.mesh.numEdges(), kInvalidIndex);
+      last.firstChildFace.assign(last.mesh.numFaces(), kNoIndex);
+      last.childOfVertex.assign(last.mesh.numVertices, kNoIndex);
+      last.childOfEdge.assign(last.mesh.numEdges(), kNoIndex);
+      last.halvesOfEdge.assign(last.mesh.numEdges(), kNoIndex);
       break;
     }
     SparseLevel child = refineSparse(levels_[k].topo, refined, counts_, options_);
@@ -108,7 +108,7 @@ void SparseEvaluator::markLeaves(int l, bool freshLevel) {
     const bool node = l == 0 || levels_[l - 1].selected[state.topo.faceParent[f / 4]];
     if (!node || state.selected[f]) continue;
     state.leaf[f] = 1;
-    for (Index v : m.faceVertices[f]) state.displayed[v] = 1;
+    for (Index v : m.triangleVertices(f)) state.displayed[v] = 1;
   }
   // Above a rebuild, points and completeness are unchanged: limits hold.
   if (!freshLevel && !state.limitPosition.empty()) return;
@@ -320,7 +320,7 @@ Expected<Index> SparseEvaluator::completeVertex(VertexId id) const {
   }
   const SparseLevel& topo = levels_[id.level()].topo;
   const Index v = topo.findVertex(id.index());
-  if (v == kInvalidIndex || !topo.isComplete(v)) {
+  if (v == kNoIndex || !topo.isComplete(v)) {
     return notFound(id.toString() + ": not held with its whole ring by the hierarchy");
   }
   return v;
@@ -388,7 +388,7 @@ DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
     const Level& m = state.topo.mesh;
     for (Index f = 0; f < static_cast<Index>(editSelected.size()); ++f) {
       if (editSelected[f] == state.editSelected[f]) continue;
-      for (Index v : m.faceVertices[f]) {
+      for (Index v : m.triangleVertices(f)) {
         if (state.topo.isComplete(v)) dirty.limits.push_back(VertexId(k, state.topo.vertexIds[v]));
       }
     }
@@ -409,9 +409,9 @@ void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
     LevelState& state = levels_[k];
     const Level& m = state.topo.mesh;
     const Index a = SparseSelection::markAncestorRing(state.topo, face, state.editSelected);
-    if (a == kInvalidIndex) continue;
+    if (a == kNoIndex) continue;
     const LimitEvaluator limits(m, options_.creaseMethod);
-    for (Index v : m.faceVertices[a]) {
+    for (Index v : m.triangleVertices(a)) {
       if (!state.topo.isComplete(v)) continue;
       refreshLimit(k, v, limits);
       ++dirty.limitsRecomputed;

@@ -144,7 +144,7 @@ std::vector<Index> SparseEvaluator::verticesAround(int l, const std::vector<Inde
   for (Index v : vertices) {
     for (Index f : m.ringFacesOf(v)) {
       if (f < 0) continue;
-      for (Index x : m.faceVertices[f]) out.add(x);
+      for (Index x : m.triangleVertices(f)) out.add(x);
     }
   }
   return out.toVector();
@@ -210,10 +210,10 @@ std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Ind
   SharpnessInheritance inherit(p.mesh, options_);
   Marked vertices(state.vertexMarks);
   for (Index f : parentFaces) {
-    for (Index u : p.mesh.faceVertices[f]) {
+    for (Index u : p.mesh.triangleVertices(f)) {
       if (const Index child = p.childOfVertex[u]; child >= 0) vertices.add(child);
     }
-    for (Index e : p.mesh.faceEdges[f]) {
+    for (Index e : p.mesh.triangleEdges(f)) {
       if (const Index child = p.childOfEdge[e]; child >= 0) vertices.add(child);
       const Index half = p.halvesOfEdge[e];
       if (half < 0) continue;

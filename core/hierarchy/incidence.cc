@@ -66,7 +66,7 @@ struct FaceEdges {
 
 FaceEdges faceEdgesOf(const Level& base, const LevelCounts& counts, int level, uint64_t face) {
   if (level == 0) {
-    const auto& fe = base.faceEdges[static_cast<Index>(face)];
+    const auto fe = base.triangleEdges(static_cast<Index>(face));
     return {{static_cast<uint64_t>(fe[0]), static_cast<uint64_t>(fe[1]), static_cast<uint64_t>(fe[2])},
             base.faceEdgeSides[static_cast<Index>(face)]};
   }
@@ -98,7 +98,7 @@ EdgeFaces edgeFacesOf(const Level& base, const LevelCounts& counts, int level, u
   if (level == 0) {
     const auto& ef = base.edgeFaces[static_cast<Index>(index)];
     const auto& el = base.edgeFaceLocal[static_cast<Index>(index)];
-    return {{static_cast<uint64_t>(ef[0]), ef[1] == kInvalidIndex ? kNoFace : static_cast<uint64_t>(ef[1])},
+    return {{static_cast<uint64_t>(ef[0]), ef[1] == kNoIndex ? kNoFace : static_cast<uint64_t>(ef[1])},
             {el[0], el[1]}};
   }
   const uint64_t halves = 2 * counts.edges(level - 1);

@@ -13,7 +13,7 @@
 #include <array>
 
 #include "core/hierarchy/ids.h"
-#include "core/loop/level.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 
 namespace tessera {

@@ -17,7 +17,7 @@ size_t bytesOf(const Buffer<T>& b) {
 
 Index findIn(const Buffer<uint64_t>& ids, uint64_t canonical) {
   auto it = std::lower_bound(ids.begin(), ids.end(), canonical);
-  return it != ids.end() && *it == canonical ? static_cast<Index>(it - ids.begin()) : kInvalidIndex;
+  return it != ids.end() && *it == canonical ? static_cast<Index>(it - ids.begin()) : kNoIndex;
 }
 
 // Local indices of everything the refined faces of a parent produce.
@@ -64,7 +64,7 @@ SparseLevel sparseBaseLevel(Level base) {
   for (Index f = 0; f < m.numFaces(); ++f) level.faceIds[f] = static_cast<uint64_t>(f);
   level.complete.assign(m.numVertices, 1);
   level.numVertexChildren = m.numVertices;
-  level.firstChildFace.assign(m.numFaces(), kInvalidIndex);
+  level.firstChildFace.assign(m.numFaces(), kNoIndex);
   return level;
 }
 
@@ -76,17 +76,19 @@ ChildMap numberChildren(const SparseLevel& parent, std::span<const uint8_t> refi
                         SparseLevel& child) {
   const Level& p = parent.mesh;
   ChildMap map;
-  map.vertexChild.assign(p.numVertices, kInvalidIndex);
-  map.edgeVertex.assign(p.numEdges(), kInvalidIndex);
-  map.edgeHalves.assign(p.numEdges(), kInvalidIndex);
-  map.interior.assign(p.numFaces(), kInvalidIndex);
-  map.firstFace.assign(p.numFaces(), kInvalidIndex);
+  map.vertexChild.assign(p.numVertices, kNoIndex);
+  map.edgeVertex.assign(p.numEdges(), kNoIndex);
+  map.edgeHalves.assign(p.numEdges(), kNoIndex);
+  map.interior.assign(p.numFaces(), kNoIndex);
+  map.firstFace.assign(p.numFaces(), kNoIndex);
   for (Index f = 0; f < p.numFaces(); ++f) {
     if (!refine[f]) continue;
+    const auto fv = p.triangleVertices(f);
+    const auto fe = p.triangleEdges(f);
     for (int k = 0; k < 3; ++k) {
-      assert(parent.isComplete(p.faceVertices[f][k]) && "a refined face needs complete vertices");
-      map.vertexChild[p.faceVertices[f][k]] = 0;
-      map.edgeVertex[p.faceEdges[f][k]] = 0;
+      assert(parent.isComplete(fv[k]) && "a refined face needs complete vertices");
+      map.vertexChild[fv[k]] = 0;
+      map.edgeVertex[fe[k]] = 0;
     }
   }
   const int d = parent.depth;
@@ -145,8 +147,8 @@ void refineFacesAndEdges(const Level& p, const ChildMap& map, std::span<const ui
   }
   for (Index f = 0; f < p.numFaces(); ++f) {
     if (!refine[f]) continue;
-    const auto& fv = p.faceVertices[f];
-    const auto& fe = p.faceEdges[f];
+    const auto fv = p.triangleVertices(f);
+    const auto fe = p.triangleEdges(f);
     FaceSplit split;
     for (int j = 0; j < 3; ++j) {
       split.corners[j] = map.vertexChild[fv[j]];
@@ -161,7 +163,7 @@ void refineFacesAndEdges(const Level& p, const ChildMap& map, std::span<const ui
 }
 
 bool isPresentChild(const ChildMap& map, Index f) {
-  return f == kInvalidIndex || map.firstFace[f] >= 0;
+  return f == kNoIndex || map.firstFace[f] >= 0;
 }
 
 // Rings of the complete child vertices, in the order refinement.cc gives the
@@ -172,9 +174,7 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
   Level& c = child.mesh;
   child.complete.assign(c.numVertices, 0);
   std::vector<Index> presentFaces(c.numVertices, 0);
-  for (const auto& fv : c.faceVertices) {
-    for (Index v : fv) ++presentFaces[v];
-  }
+  for (Index v : c.faceVertices) ++presentFaces[v];
   c.ringOffsets.resize(c.numVertices + 1);
   c.ringOffsets[0] = 0;
   for (Index v = 0; v < c.numVertices; ++v) {
@@ -186,9 +186,8 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
       if (all) valence = p.valence(o);
     } else {
       const auto& ef = p.edgeFaces[o];
-      if (map.firstFace[ef[0]] >= 0 &&
-          (ef[1] == kInvalidIndex || (ef[1] >= 0 && map.firstFace[ef[1]] >= 0))) {
-        valence = ef[1] == kInvalidIndex ? 4 : 6;
+      if (map.firstFace[ef[0]] >= 0 && (ef[1] == kNoIndex || (ef[1] >= 0 && map.firstFace[ef[1]] >= 0))) {
+        valence = ef[1] == kNoIndex ? 4 : 6;
       }
     }
     child.complete[v] = valence > 0;
@@ -200,14 +199,15 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
   c.ringFaces.resize(total);
   c.ringFaceLocal.resize(total);
 
-  for (Index f = 0; f < static_cast<Index>(c.faceVertices.size()); ++f) {
+  for (Index f = 0; f < c.numFaces(); ++f) {
+    const auto fv = c.triangleVertices(f);
     for (int k = 0; k < 3; ++k) {
-      const Index v = c.faceVertices[f][k];
+      const Index v = fv[k];
       if (child.complete[v]) continue;
       const Index slot = c.ringOffsets[v] + --presentFaces[v];
-      c.ringEdges[slot] = c.ringVertices[slot] = kInvalidIndex;
+      c.ringEdges[slot] = c.ringVertices[slot] = kNoIndex;
       c.ringFaces[slot] = f;
-      c.ringFaceLocal[slot] = static_cast<uint8_t>(k);
+      c.ringFaceLocal[slot] = static_cast<LocalIndex>(k);
     }
   }
   for (Index v = 0; v < c.numVertices; ++v) {
@@ -216,48 +216,29 @@ void refineRings(const SparseLevel& parent, const ChildMap& map, SparseLevel& ch
     Index* ringE = c.ringEdges.data() + c.ringOffsets[v];
     Index* ringV = c.ringVertices.data() + c.ringOffsets[v];
     Index* ringF = c.ringFaces.data() + c.ringOffsets[v];
-    uint8_t* ringL = c.ringFaceLocal.data() + c.ringOffsets[v];
+    LocalIndex* ringL = c.ringFaceLocal.data() + c.ringOffsets[v];
     if (v < child.numVertexChildren) {
-      const Index from = p.ringOffsets[o], to = p.ringOffsets[o + 1];
-      for (Index k = from; k < to; ++k) {
-        const Index e = p.ringEdges[k];
-        const Index f = p.ringFaces[k];
-        ringE[k - from] = map.edgeHalves[e] + (p.edgeVertices[e][0] == o ? 0 : 1);
-        ringV[k - from] = map.edgeVertex[e];
-        ringF[k - from] = f == kInvalidIndex ? kInvalidIndex : map.firstFace[f] + p.ringFaceLocal[k];
-        ringL[k - from] = p.ringFaceLocal[k];
-      }
+      writeVertexChildRing(
+          p, o, [&](Index e) { return map.edgeHalves[e]; }, [&](Index e) { return map.edgeVertex[e]; },
+          [&](Index f) { return map.firstFace[f]; }, ringE, ringV, ringF, ringL);
       continue;
     }
-    const Index e = o;
-    const auto& ev = p.edgeVertices[e];
-    const Index h = map.edgeHalves[e];
-    const Index fA = p.edgeFaces[e][0];
-    const int j = p.edgeFaceLocal[e][0];
-    const int jn = (j + 1) % 3, jp = (j + 2) % 3;
-    const Index iA = map.interior[fA], cA = map.firstFace[fA];
-    const auto& feA = p.faceEdges[fA];
-    ringE[0] = h + 1, ringV[0] = map.vertexChild[ev[1]], ringF[0] = cA + jn,
-    ringL[0] = static_cast<uint8_t>(j);
-    ringE[1] = iA + jn, ringV[1] = map.edgeVertex[feA[jn]], ringF[1] = cA + 3,
-    ringL[1] = static_cast<uint8_t>(jp);
-    ringE[2] = iA + j, ringV[2] = map.edgeVertex[feA[jp]], ringF[2] = cA + j,
-    ringL[2] = static_cast<uint8_t>(jn);
-    ringE[3] = h, ringV[3] = map.vertexChild[ev[0]];
-    const Index fB = p.edgeFaces[e][1];
-    if (fB == kInvalidIndex) {
-      ringF[3] = kInvalidIndex, ringL[3] = 0;
-      continue;
-    }
-    const int k = p.edgeFaceLocal[e][1];
-    const int kn = (k + 1) % 3, kp = (k + 2) % 3;
-    const Index iB = map.interior[fB], cB = map.firstFace[fB];
-    const auto& feB = p.faceEdges[fB];
-    ringF[3] = cB + kn, ringL[3] = static_cast<uint8_t>(k);
-    ringE[4] = iB + kn, ringV[4] = map.edgeVertex[feB[kn]], ringF[4] = cB + 3,
-    ringL[4] = static_cast<uint8_t>(kp);
-    ringE[5] = iB + k, ringV[5] = map.edgeVertex[feB[kp]], ringF[5] = cB + k,
-    ringL[5] = static_cast<uint8_t>(kn);
+    // On parent edge o: the uniform level's order (refinement.h,
+    // EdgeVertexRing) in this level's numbering.
+    auto side = [&](Index f, int j) -> EdgeVertexRing::Side {
+      const auto fe = p.triangleEdges(f);
+      return {map.firstFace[f],
+              map.interior[f],
+              j,
+              {map.edgeVertex[fe[(j + 1) % 3]], map.edgeVertex[fe[(j + 2) % 3]]}};
+    };
+    const auto& ef = p.edgeFaces[o];
+    const auto& el = p.edgeFaceLocal[o];
+    const EdgeVertexRing ring{
+        map.edgeHalves[o],
+        {map.vertexChild[p.edgeVertices[o][0]], map.vertexChild[p.edgeVertices[o][1]]},
+        {side(ef[0], el[0]), ef[1] == kNoIndex ? EdgeVertexRing::Side{} : side(ef[1], el[1])}};
+    writeEdgeVertexRing(ring, ringE, ringV, ringF, ringL);
   }
   c.maxValence = std::max(p.maxValence, 6);
 }
@@ -294,9 +275,11 @@ SparseLevel refineSparse(SparseLevel& parent, std::span<const uint8_t> refine, c
   const ChildMap map = numberChildren(parent, refine, counts, child);
   Level& c = child.mesh;
   c.numVertices = static_cast<int>(child.vertexIds.size());
+  c.regularFaceSize = 3;
+  c.maxFaceSize = 3;
   const size_t nf = child.faceIds.size(), ne = child.edgeIds.size();
-  c.faceVertices.resize(nf);
-  c.faceEdges.resize(nf);
+  c.faceVertices.resize(3 * nf);
+  c.faceEdges.resize(3 * nf);
   c.faceEdgeSides.resize(nf);
   c.edgeVertices.resize(ne);
   c.edgeFaces.resize(ne);
@@ -304,7 +287,7 @@ SparseLevel refineSparse(SparseLevel& parent, std::span<const uint8_t> refine, c
   refineFacesAndEdges(parent.mesh, map, refine, c);
   refineRings(parent, map, child);
   inheritSharpness(parent, map, options, child);
-  child.firstChildFace.assign(nf, kInvalidIndex);
+  child.firstChildFace.assign(nf, kNoIndex);
   parent.firstChildFace.assign(map.firstFace.begin(), map.firstFace.end());
   parent.childOfVertex.assign(map.vertexChild.begin(), map.vertexChild.end());
   parent.childOfEdge.assign(map.edgeVertex.begin(), map.edgeVertex.end());

@@ -8,7 +8,7 @@
 // complete vertices carry an ordered ring, and only they may be refined,
 // evaluated at the limit or given a frame. The ring of an incomplete vertex
 // lists just its present faces (ringFaces, ringFaceLocal; its ring edges
-// and vertices are kInvalidIndex), which is what the incremental update
+// and vertices are kNoIndex), which is what the incremental update
 // needs to find the stencils a changed vertex enters. An edge whose face
 // exists in the uniform level but not here has kAbsentFace in edgeFaces, so
 // it is never mistaken for a boundary.
@@ -24,8 +24,8 @@
 #include <span>
 
 #include "core/hierarchy/ids.h"
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/buffer.h"
 
 namespace tessera {
@@ -43,17 +43,17 @@ struct SparseLevel {
   Index numVertexChildren = 0;
   Buffer<Index> origin;
   Buffer<Index> faceParent;  // per group of four child faces: the parent face
-  // Set when the next level is built, kInvalidIndex where there is no child:
+  // Set when the next level is built, kNoIndex where there is no child:
   Buffer<Index> firstChildFace;  // per face: the first of its 4 consecutive children
   Buffer<Index> childOfVertex;   // per vertex: its child vertex
   Buffer<Index> childOfEdge;     // per edge: the vertex on it
   Buffer<Index> halvesOfEdge;    // per edge: the first of its two consecutive halves
 
-  Index findVertex(uint64_t canonical) const;  // kInvalidIndex if not present
+  Index findVertex(uint64_t canonical) const;  // kNoIndex if not present
   Index findEdge(uint64_t canonical) const;
   Index findFace(uint64_t canonical) const;
   bool isComplete(Index v) const { return complete[v] != 0; }
-  bool isRefined(Index f) const { return firstChildFace[f] != kInvalidIndex; }
+  bool isRefined(Index f) const { return firstChildFace[f] != kNoIndex; }
 
   size_t memoryBytes() const;
 };

@@ -13,7 +13,7 @@ void growByOneRing(const SparseLevel& level, Buffer<uint8_t>& faces) {
   Buffer<uint8_t> grown = faces;
   for (Index f = 0; f < m.numFaces(); ++f) {
     if (!faces[f]) continue;
-    for (Index v : m.faceVertices[f]) {
+    for (Index v : m.triangleVertices(f)) {
       for (Index g : m.ringFacesOf(v)) {
         if (g >= 0) grown[g] = 1;
       }
@@ -22,7 +22,7 @@ void growByOneRing(const SparseLevel& level, Buffer<uint8_t>& faces) {
   faces.swap(grown);
 }
 
-// The local index of the ancestor of `face` at `level`, kInvalidIndex if the
+// The local index of the ancestor of `face` at `level`, kNoIndex if the
 // level does not hold it.
 Index ancestorAt(const SparseLevel& level, FaceId face) {
   return level.findFace(face.index() >> (2 * (face.level() - level.depth)));
@@ -51,7 +51,7 @@ void SparseSelection::select(const SparseLevel& level, Buffer<uint8_t>& selected
     for (FaceId face : demand) {
       if (face.level() <= l) continue;
       const Index a = ancestorAt(level, face);
-      if (a != kInvalidIndex) faces[a] = 1;
+      if (a != kNoIndex) faces[a] = 1;
     }
   };
   if (editSelected != nullptr) {
@@ -75,8 +75,8 @@ void SparseSelection::select(const SparseLevel& level, Buffer<uint8_t>& selected
 bool SparseSelection::ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected,
                                            FaceId face) {
   const Index a = ancestorAt(level, face);
-  if (a == kInvalidIndex) return false;
-  for (Index v : level.mesh.faceVertices[a]) {
+  if (a == kNoIndex) return false;
+  for (Index v : level.mesh.triangleVertices(a)) {
     for (Index g : level.mesh.ringFacesOf(v)) {
       if (g >= 0 && !selected[g]) return false;
     }
@@ -87,16 +87,16 @@ bool SparseSelection::ancestorRingSelected(const SparseLevel& level, const Buffe
 Index SparseSelection::markAncestorRing(const SparseLevel& level, FaceId face,
                                         Buffer<uint8_t>& editSelected) {
   const Index a = ancestorAt(level, face);
-  if (a == kInvalidIndex) return kInvalidIndex;
+  if (a == kNoIndex) return kNoIndex;
   bool marked = false;
-  for (Index v : level.mesh.faceVertices[a]) {
+  for (Index v : level.mesh.triangleVertices(a)) {
     for (Index g : level.mesh.ringFacesOf(v)) {
       if (g < 0 || editSelected[g]) continue;
       editSelected[g] = 1;
       marked = true;
     }
   }
-  return marked ? a : kInvalidIndex;
+  return marked ? a : kNoIndex;
 }
 
 }  // namespace tessera

@@ -65,7 +65,7 @@ class SparseSelection {
   // Flags the 1-ring of the ancestor of `face` at `level` in `editSelected`
   // in place (what select adds to editSelected for one more demanded face).
   // Returns the ancestor when that flagged a face that was not flagged yet,
-  // kInvalidIndex otherwise.
+  // kNoIndex otherwise.
   static Index markAncestorRing(const SparseLevel& level, FaceId face, Buffer<uint8_t>& editSelected);
 
  private:

@@ -10,20 +10,6 @@ float decrementSharpness(float s) {
   return s > 1.0f ? s - 1.0f : kSharpnessSmooth;
 }
 
-VertexRule vertexRule(float vertexSharpness, int sharpEdgeCount) {
-  if (isSharp(vertexSharpness)) return VertexRule::kCorner;
-  switch (sharpEdgeCount) {
-    case 0:
-      return VertexRule::kSmooth;
-    case 1:
-      return VertexRule::kDart;
-    case 2:
-      return VertexRule::kCrease;
-    default:
-      return VertexRule::kCorner;
-  }
-}
-
 float subdivideEdgeSharpnessAtVertex(CreaseMethod method, float edgeSharpness,
                                      std::span<const float> sharpnessAtVertex) {
   if (method == CreaseMethod::kUniform || sharpnessAtVertex.size() < 2) {

@@ -1,9 +1,6 @@
-// Pure sharpness rules: how sharpness decays per level and which vertex rule
-// applies. Semantics of OpenSubdiv 3.5's Sdc::Crease; the vertex rules by
-// number of sharp edges are those of Hoppe et al. '94 (Pulli & Lounsbery,
-// "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.4):
-// 0 smooth, 1 dart, 2 crease, 3+ corner; a sharp vertex is a corner (or a cusp
-// when no sharp edge meets it -- the corner mask serves both).
+// Pure sharpness rules: how sharpness decays per level. Semantics of
+// OpenSubdiv 3.5's Sdc::Crease. Which vertex rule applies is shared by every
+// scheme and the topology (core/mesh/sharpness.h).
 #pragma once
 
 #include <cstdint>
@@ -14,20 +11,7 @@
 
 namespace tessera {
 
-enum class VertexRule : uint8_t {
-  kSmooth = 1,
-  kDart = 2,
-  kCrease = 4,
-  kCorner = 8,
-};
-
-inline bool isSmoothLike(VertexRule r) {
-  return r == VertexRule::kSmooth || r == VertexRule::kDart;
-}
-
 float decrementSharpness(float s);
-
-VertexRule vertexRule(float vertexSharpness, int sharpEdgeCount);
 
 // Sharpness of the child of an edge with sharpness `edgeSharpness` at one of
 // its end vertices, whose incident edges have `sharpnessAtVertex`.

@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "core/loop/crease.h"
-#include "core/loop/level.h"
 #include "core/loop/limit_masks.h"
 #include "core/loop/local_ring.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera {

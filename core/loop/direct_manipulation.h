@@ -9,8 +9,8 @@
 
 #include <span>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera {

@@ -42,8 +42,8 @@
 #include <string>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 

@@ -71,8 +71,8 @@ Vec3 LoopStencils::edgeChild(Index e, std::span<const Vec3> p) {
   const auto& ef = parent_.edgeFaces[e];
   const auto& el = parent_.edgeFaceLocal[e];
   assert(ef[0] >= 0 && ef[1] >= 0 && "boundary edges are infinitely sharp; absent faces are never refined");
-  const Index oA = parent_.faceVertices[ef[0]][(el[0] + 2) % 3];
-  const Index oB = parent_.faceVertices[ef[1]][(el[1] + 2) % 3];
+  const Index oA = parent_.triangleVertices(ef[0])[(el[0] + 2) % 3];
+  const Index oB = parent_.triangleVertices(ef[1])[(el[1] + 2) % 3];
   Vec3 point = loop::kEdgeEndWeight * ends + loop::kEdgeOppositeWeight * (p[oA] + p[oB]);
   if (isSharp(s)) {
     // Blend with the crease rule by the parent sharpness, as Sdc does (its

@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
 #include "core/loop/sharpness_inheritance.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera {

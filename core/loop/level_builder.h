@@ -1,15 +1,16 @@
-// Builds the base Level (level 0) from triangles and feature tags, applying
-// the boundary rules: boundary edges become infinitely sharp, and with
-// kEdgeAndCorner a boundary vertex with a single face becomes a corner
-// (Sdc's prepareComponentTagsAndSharpness semantics).
+// Builds the base Level (level 0) of a triangle mesh for the Loop scheme:
+// the triangles go through the one topology builder (core/topology/
+// level_builder.h), the creases, corners and boundary rules through the one
+// tag applier (core/topology/tags.h), as for every other scheme.
 #pragma once
 
 #include <array>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
+#include "core/topology/level.h"
+#include "core/topology/tags.h"
 #include "core/util/status.h"
 
 namespace tessera {
@@ -17,10 +18,7 @@ namespace tessera {
 struct BaseTopology {
   int numVertices = 0;
   std::vector<std::array<int, 3>> triangles;
-  struct Crease {
-    int v0, v1;
-    float sharpness;
-  };
+  using Crease = topology::Crease;
   std::vector<Crease> creases;
   std::vector<float> vertexSharpness;  // empty, or one per vertex
 

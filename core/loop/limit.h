@@ -18,8 +18,8 @@
 #include <cmath>
 #include <span>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera {

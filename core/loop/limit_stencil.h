@@ -19,7 +19,7 @@
 #include <cstring>
 #include <vector>
 
-#include "core/loop/level.h"
+#include "core/topology/level.h"
 
 namespace tessera {
 

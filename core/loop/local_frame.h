@@ -14,7 +14,7 @@
 
 #include <span>
 
-#include "core/loop/level.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera {

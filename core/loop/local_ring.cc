@@ -2,6 +2,7 @@
 
 #include <cassert>
 
+#include "core/loop/crease.h"
 #include "core/loop/masks.h"
 #include "core/mesh/sharpness.h"
 

@@ -19,8 +19,8 @@
 #include <span>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera {

@@ -14,11 +14,11 @@
 #include <span>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 
 namespace tessera {

@@ -13,8 +13,8 @@
 #include <array>
 #include <cstdint>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 
 namespace tessera {
 
@@ -25,16 +25,13 @@ enum class RefineDetail {
                // fullTopologyInLastLevel = false)
 };
 
-// The child of parent edge e that touches its end vertex `end` (2e or 2e+1).
-inline Index childEdgeAtEnd(const Level& parent, Index e, Index end) {
-  return 2 * e + (parent.edgeVertices[e][0] == end ? 0 : 1);
-}
-
 // One parent face's 1-to-4 split in the local indices of the child level
 // (docs/ARCHITECTURE.md "Numbering"). The uniform refinement numbers the
 // children arithmetically; the sparse hierarchy (core/hierarchy/
 // sparse_level.h) numbers only those present; both write the same pattern
-// through splitFace and splitEdge. Both are inline, splitFace forced so: the
+// through splitFace and splitEdge, and the same rings through
+// writeVertexChildRing and writeEdgeVertexRing (below). The splits are
+// inline, splitFace forced so: the
 // uniform refinement runs them for every face and edge of a level, and as a
 // call splitFace made that loop run about 15% more instructions (callgrind,
 // fandisk refined from level 3 to 4).
@@ -47,15 +44,20 @@ struct FaceSplit {
   uint8_t sides = 0;                 // the parent face's faceEdgeSides
 };
 
-// The child faces' vertices alone (RefineDetail::kFacesOnly).
+// The four child triangles of a face with corners v0..v2 and the vertices
+// m0..m2 on its edges 0..2, into out[0 .. 12): corners 0..2, then the middle.
+inline void writeChildTriangles(Index* out, Index v0, Index v1, Index v2, Index m0, Index m1, Index m2) {
+  out[0] = v0, out[1] = m0, out[2] = m2;
+  out[3] = m0, out[4] = v1, out[5] = m1;
+  out[6] = m2, out[7] = m1, out[8] = v2;
+  out[9] = m1, out[10] = m2, out[11] = m0;
+}
+
+// The child faces' vertices alone.
 inline void splitFaceVertices(const FaceSplit& split, Level& child) {
   const auto& [v0, v1, v2] = split.corners;
   const auto& [m0, m1, m2] = split.midpoints;
-  const Index c = split.firstFace;
-  child.faceVertices[c + 0] = {v0, m0, m2};
-  child.faceVertices[c + 1] = {m0, v1, m1};
-  child.faceVertices[c + 2] = {m2, m1, v2};
-  child.faceVertices[c + 3] = {m1, m2, m0};
+  writeChildTriangles(child.faceVertices.data() + 3 * split.firstFace, v0, v1, v2, m0, m1, m2);
 }
 
 // Child faces firstFace .. firstFace + 3 (corners 0..2, then the middle):
@@ -71,10 +73,11 @@ inline void splitFaceVertices(const FaceSplit& split, Level& child) {
   auto atStart = [&](int j) { return split.halves[j] + ((sides >> j) & 1); };
   auto atEnd = [&](int j) { return split.halves[j] + 1 - ((sides >> j) & 1); };
 
-  child.faceEdges[c + 0] = {atStart(0), i0, atEnd(2)};
-  child.faceEdges[c + 1] = {atEnd(0), atStart(1), i1};
-  child.faceEdges[c + 2] = {i2, atEnd(1), atStart(2)};
-  child.faceEdges[c + 3] = {i2, i0, i1};
+  Index* fe = child.faceEdges.data() + 3 * c;
+  fe[0] = atStart(0), fe[1] = i0, fe[2] = atEnd(2);
+  fe[3] = atEnd(0), fe[4] = atStart(1), fe[5] = i1;
+  fe[6] = i2, fe[7] = atEnd(1), fe[8] = atStart(2);
+  fe[9] = i2, fe[10] = i0, fe[11] = i1;
 
   // Corner children are face 0 of the interior edges, the middle is face 1.
   child.faceEdgeSides[c + 0] = sides & 0b101;
@@ -101,7 +104,7 @@ inline void splitFaceVertices(const FaceSplit& split, Level& child) {
 // `local` the edge's position in each, which each half keeps in the corner
 // child at its end.
 inline void splitEdge(Index firstHalf, Index from, Index middle, Index to, std::array<Index, 2> children,
-                      std::array<uint8_t, 2> local, Level& child) {
+                      std::array<LocalIndex, 2> local, Level& child) {
   child.edgeVertices[firstHalf] = {from, middle};
   child.edgeVertices[firstHalf + 1] = {middle, to};
   // A half keeps its parent's slot in the corner child at its end: the
@@ -112,6 +115,62 @@ inline void splitEdge(Index firstHalf, Index from, Index middle, Index to, std::
   child.edgeFaces[firstHalf + 1] = {a < 0 ? a : a + (j + 1) % 3, b < 0 ? b : b + k};
   child.edgeFaceLocal[firstHalf] = local;
   child.edgeFaceLocal[firstHalf + 1] = local;
+}
+
+// The ring of the child of parent vertex v keeps v's ring order: each entry
+// becomes the half of its edge at v, the vertex on that edge, and the corner
+// child of its face at v, in which v keeps its corner index. firstHalf(e),
+// onEdge(e) and firstChild(f) give the child numbering (uniform or sparse).
+template <typename FirstHalf, typename OnEdge, typename FirstChild>
+inline void writeVertexChildRing(const Level& parent, Index v, FirstHalf firstHalf, OnEdge onEdge,
+                                 FirstChild firstChild, Index* ringE, Index* ringV, Index* ringF,
+                                 LocalIndex* ringL) {
+  const Index from = parent.ringOffsets[v], to = parent.ringOffsets[v + 1];
+  for (Index k = from; k < to; ++k) {
+    const Index e = parent.ringEdges[k];
+    const Index f = parent.ringFaces[k];
+    const LocalIndex corner = parent.ringFaceLocal[k];
+    ringE[k - from] = firstHalf(e) + (parent.edgeVertices[e][0] == v ? 0 : 1);
+    ringV[k - from] = onEdge(e);
+    ringF[k - from] = f == kNoIndex ? kNoIndex : firstChild(f) + corner;
+    ringL[k - from] = corner;
+  }
+}
+
+// The ring of the child vertex on a parent edge, in the order OpenSubdiv's
+// TriRefinement gives it: from the half towards edgeVertices[1], across the
+// three children of the edge's face 0 (which runs the edge from its vertex 0
+// to 1, at local j), then those of face 1. Written once for the uniform
+// refinement and the sparse hierarchy, each with its own numbering.
+struct EdgeVertexRing {
+  Index firstHalf = 0;          // the half at edgeVertices[0]; the other is firstHalf + 1
+  std::array<Index, 2> ends{};  // the child vertices of edgeVertices[0] and [1]
+  struct Side {
+    Index firstChild = kNoIndex;      // the face's first child face; kNoIndex: no face (boundary)
+    Index firstInterior = 0;          // its first interior child edge
+    int local = 0;                    // the edge's position in the face
+    std::array<Index, 2> opposite{};  // the child vertices on face edges local+1 and local+2
+  };
+  std::array<Side, 2> sides;
+};
+
+inline void writeEdgeVertexRing(const EdgeVertexRing& r, Index* ringE, Index* ringV, Index* ringF,
+                                LocalIndex* ringL) {
+  const auto& a = r.sides[0];
+  const int j = a.local, jn = (j + 1) % 3, jp = (j + 2) % 3;
+  ringE[0] = r.firstHalf + 1, ringV[0] = r.ends[1], ringF[0] = a.firstChild + jn, ringL[0] = j;
+  ringE[1] = a.firstInterior + jn, ringV[1] = a.opposite[0], ringF[1] = a.firstChild + 3, ringL[1] = jp;
+  ringE[2] = a.firstInterior + j, ringV[2] = a.opposite[1], ringF[2] = a.firstChild + j, ringL[2] = jn;
+  ringE[3] = r.firstHalf, ringV[3] = r.ends[0];
+  const auto& b = r.sides[1];
+  if (b.firstChild == kNoIndex) {
+    ringF[3] = kNoIndex, ringL[3] = 0;
+    return;
+  }
+  const int k = b.local, kn = (k + 1) % 3, kp = (k + 2) % 3;
+  ringF[3] = b.firstChild + kn, ringL[3] = k;
+  ringE[4] = b.firstInterior + kn, ringV[4] = b.opposite[0], ringF[4] = b.firstChild + 3, ringL[4] = kp;
+  ringE[5] = b.firstInterior + k, ringV[5] = b.opposite[1], ringF[5] = b.firstChild + k, ringL[5] = kn;
 }
 
 Level refineLevel(const Level& parent, const LoopOptions& options, RefineDetail detail = RefineDetail::kFull);

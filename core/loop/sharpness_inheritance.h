@@ -8,8 +8,9 @@
 
 #include <vector>
 
-#include "core/loop/level.h"
+#include "core/loop/crease.h"
 #include "core/loop/loop_options.h"
+#include "core/topology/level.h"
 
 namespace tessera {
 

@@ -5,13 +5,14 @@
 
 namespace tessera {
 
-namespace {
-
 std::vector<std::array<int, 3>> trianglesOf(const Level& level) {
-  return {level.faceVertices.begin(), level.faceVertices.end()};
+  std::vector<std::array<int, 3>> triangles(level.numFaces());
+  for (Index f = 0; f < level.numFaces(); ++f) {
+    const auto fv = level.triangleVertices(f);
+    triangles[f] = {fv[0], fv[1], fv[2]};
+  }
+  return triangles;
 }
-
-}  // namespace
 
 SurfaceMesh controlSurfaceOf(const Level& level, std::span<const Vec3> points) {
   SurfaceMesh surface;

@@ -5,14 +5,19 @@
 // numbering is unchanged).
 #pragma once
 
+#include <array>
 #include <span>
+#include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 
 namespace tessera {
+
+// The faces of a level of triangles, as meshes and exporters take them.
+std::vector<std::array<int, 3>> trianglesOf(const Level& level);
 
 SurfaceMesh controlSurfaceOf(const Level& level, std::span<const Vec3> points);
 // Needs the level's full topology (rings).

@@ -1,4 +1,5 @@
-// Sharpness values shared by tags, the base mesh and the Loop rules.
+// Sharpness values and vertex rules shared by tags, the base mesh, the
+// topology and the rules of every scheme.
 //
 // Semantics follow OpenSubdiv 3.5's Sdc (sdc/crease.h), so that a surface
 // authored for one tool is the same surface in the other:
@@ -10,6 +11,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 namespace tessera {
 
@@ -33,5 +35,43 @@ inline bool isSemiSharp(float s) {
 inline float canonicalSharpness(float s) {
   return isInfinite(s) ? kSharpnessInfinite : s;
 }
+
+// The rule of a vertex by its number of sharp edges, those of Hoppe et al.
+// '94 (Pulli & Lounsbery, "Hierarchical Editing and Rendering of Subdivision
+// Surfaces" §2.4): 0 smooth, 1 dart, 2 crease, 3+ corner; a sharp vertex is a
+// corner (or a cusp when no sharp edge meets it -- the corner mask serves
+// both). Every scheme and the topology (core/topology/level.h) share it, as
+// they share Sdc::Crease in OpenSubdiv.
+enum class VertexRule : uint8_t {
+  kSmooth = 1,
+  kDart = 2,
+  kCrease = 4,
+  kCorner = 8,
+};
+
+inline bool isSmoothLike(VertexRule r) {
+  return r == VertexRule::kSmooth || r == VertexRule::kDart;
+}
+
+inline VertexRule vertexRule(float vertexSharpness, int sharpEdgeCount) {
+  if (isSharp(vertexSharpness)) return VertexRule::kCorner;
+  switch (sharpEdgeCount) {
+    case 0:
+      return VertexRule::kSmooth;
+    case 1:
+      return VertexRule::kDart;
+    case 2:
+      return VertexRule::kCrease;
+    default:
+      return VertexRule::kCorner;
+  }
+}
+
+// Boundary edges are always infinitely sharp; this decides boundary corners
+// (Sdc's VtxBoundaryInterpolation, shared by every scheme).
+enum class BoundaryInterpolation {
+  kEdgeOnly,       // a boundary vertex with one face follows the crease rule
+  kEdgeAndCorner,  // a boundary vertex with one face is an infinitely sharp corner
+};
 
 }  // namespace tessera

@@ -57,7 +57,7 @@ Expected<PlanarMesh> planarLimitMesh(const Document& doc, int level) {
     mesh.points[v] = {p[0], p[1]};
   }
   for (Index f = 0; f < m.numFaces(); ++f) {
-    const auto& fv = m.faceVertices[f];
+    const auto fv = m.triangleVertices(f);
     mesh.triangles.push_back({fv[0], fv[1], fv[2]});
   }
   return mesh;

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/loop/refinement.h"
+#include "core/loop/surfaces.h"
 #include "core/schemes/butterfly_masks.h"
 
 namespace tessera::schemes {
@@ -27,7 +28,7 @@ Vec3 irregularStencil(const Level& level, Index a, Index b, std::span<const Vec3
 
 // The vertex opposite edge e in face f, where e has local index `local`.
 Index oppositeIn(const Level& level, Index f, int local) {
-  return level.faceVertices[f][(local + 2) % 3];
+  return level.triangleVertices(f)[(local + 2) % 3];
 }
 
 // The wing tip across face f's edge `wing` (joining x and b): the opposite
@@ -35,7 +36,7 @@ Index oppositeIn(const Level& level, Index f, int local) {
 Vec3 wingTip(const Level& level, Index f, Index wing, Index x, Index b, Index a, std::span<const Vec3> p) {
   const auto& ef = level.edgeFaces[wing];
   const int side = ef[0] == f ? 1 : 0;
-  if (ef[side] == kInvalidIndex) return p[x] + p[b] - p[a];
+  if (ef[side] == kNoIndex) return p[x] + p[b] - p[a];
   return p[oppositeIn(level, ef[side], level.edgeFaceLocal[wing][side])];
 }
 
@@ -44,7 +45,7 @@ Vec3 edgePoint(const Level& level, Index e, std::span<const Vec3> p) {
   const Index a0 = ev[0], a1 = ev[1];
   const auto& ef = level.edgeFaces[e];
   const auto& el = level.edgeFaceLocal[e];
-  if (ef[1] == kInvalidIndex) {
+  if (ef[1] == kNoIndex) {
     // 4-point rule along the boundary: the boundary neighbours of each end.
     // Face 0 runs the edge from a0 to a1; the boundary continues past a1 at
     // the first edge of a1's ring and before a0 at the last of a0's ring.
@@ -59,8 +60,8 @@ Vec3 edgePoint(const Level& level, Index e, std::span<const Vec3> p) {
     // Face 0 is (a0, a1, b0) from local el[0]; face 1 is (a1, a0, b1).
     const Index f0 = ef[0], f1 = ef[1];
     const Index b0 = oppositeIn(level, f0, el[0]), b1 = oppositeIn(level, f1, el[1]);
-    const auto& fe0 = level.faceEdges[f0];
-    const auto& fe1 = level.faceEdges[f1];
+    const auto fe0 = level.triangleEdges(f0);
+    const auto fe1 = level.triangleEdges(f1);
     Vec3 wings = wingTip(level, f0, fe0[(el[0] + 1) % 3], a1, b0, a0, p) +
                  wingTip(level, f0, fe0[(el[0] + 2) % 3], a0, b0, a1, p) +
                  wingTip(level, f1, fe1[(el[1] + 1) % 3], a0, b1, a1, p) +
@@ -85,7 +86,7 @@ SurfaceMesh TriangleRefinement::surface() const {
   SurfaceMesh s;
   s.positions = points;
   const Level& finest = levels.back();
-  s.triangles.assign(finest.faceVertices.begin(), finest.faceVertices.end());
+  s.triangles = trianglesOf(finest);
   return s;
 }
 

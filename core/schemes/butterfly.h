@@ -1,5 +1,5 @@
-// Modified Butterfly refinement (interpolating, 1-to-4 like Loop) on the
-// Loop Level topology (core/loop/level.h): vertices keep their positions,
+// Modified Butterfly refinement (interpolating, 1-to-4 like Loop) on a
+// level of triangles (core/topology/level.h): vertices keep their positions,
 // each edge gains a point from butterfly_masks.h. Boundaries follow
 // OpenMesh's ModifiedButterflyT: a boundary edge takes the 4-point rule; an
 // interior edge uses the 8-point stencil when neither end is an interior
@@ -11,9 +11,9 @@
 #include <span>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/level_builder.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 

@@ -3,6 +3,7 @@
 #include <cassert>
 #include <vector>
 
+#include "core/loop/crease.h"
 #include "core/schemes/catmark_masks.h"
 
 namespace tessera::schemes {
@@ -11,7 +12,7 @@ namespace {
 
 class CatmarkStencils {
  public:
-  CatmarkStencils(const PolyLevel& parent, const PolyLevel& child, std::span<const Vec3> p, std::span<Vec3> c)
+  CatmarkStencils(const Level& parent, const Level& child, std::span<const Vec3> p, std::span<Vec3> c)
       : parent_(parent),
         child_(child),
         p_(p),
@@ -23,7 +24,7 @@ class CatmarkStencils {
 
   void facePoints() const {
     for (Index f = 0, nF = parent_.numFaces(); f < nF; ++f) {
-      const Index from = parent_.faceOffsets[f], to = parent_.faceOffsets[f + 1];
+      const Index from = parent_.faceBegin(f), to = from + parent_.faceSize(f);
       const Index* fv = parent_.faceVertices.data();
       Vec3 sum = p_[fv[from]];
       for (Index k = from + 1; k < to; ++k) sum += p_[fv[k]];
@@ -112,8 +113,8 @@ class CatmarkStencils {
     return pw * point + (1.0 - pw) * childRulePoint;
   }
 
-  const PolyLevel& parent_;
-  const PolyLevel& child_;
+  const Level& parent_;
+  const Level& child_;
   std::span<const Vec3> p_;
   std::span<Vec3> c_;
   const Index corners_;
@@ -123,7 +124,7 @@ class CatmarkStencils {
 
 }  // namespace
 
-void interpolateCatmark(const PolyLevel& parent, const PolyLevel& child, std::span<const Vec3> parentPoints,
+void interpolateCatmark(const Level& parent, const Level& child, std::span<const Vec3> parentPoints,
                         std::span<Vec3> childPoints) {
   assert(static_cast<int>(childPoints.size()) >= child.numVertices);
   CatmarkStencils stencils(parent, child, parentPoints, childPoints);

@@ -5,13 +5,13 @@
 
 #include <span>
 
-#include "core/schemes/poly_level.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera::schemes {
 
 // `childPoints` holds child.numVertices points (quad_split.h numbering).
-void interpolateCatmark(const PolyLevel& parent, const PolyLevel& child, std::span<const Vec3> parentPoints,
+void interpolateCatmark(const Level& parent, const Level& child, std::span<const Vec3> parentPoints,
                         std::span<Vec3> childPoints);
 
 }  // namespace tessera::schemes

@@ -33,11 +33,11 @@ class TangentTables {
 };
 
 // Opposite corner of v in quad f, v being at corner c.
-inline Index opposite(const PolyLevel& level, Index f, int c) {
+inline Index opposite(const Level& level, Index f, int c) {
   return level.faceVertices[4 * f + ((c + 2) & 3)];
 }
 
-CatmarkLimitFrame cornerFrame(const PolyLevel& level, Index v, std::span<const Vec3> p) {
+CatmarkLimitFrame cornerFrame(const Level& level, Index v, std::span<const Vec3> p) {
   auto ring = level.ringVerticesOf(v);
   return {p[v], p[ring[0]] - p[v], p[ring[1]] - p[v]};
 }
@@ -45,7 +45,7 @@ CatmarkLimitFrame cornerFrame(const PolyLevel& level, Index v, std::span<const V
 // The regular case, valence 4, written out: the bicubic B-spline's limit
 // (4/9, 1/9, 1/36) and tangents (edges 4, 0, -4, 0; faces 1, -1, -1, 1),
 // as catmarkScheme.h specialises it.
-CatmarkLimitFrame regularFrame(const PolyLevel& level, Index v, Index o, std::span<const Vec3> p) {
+CatmarkLimitFrame regularFrame(const Level& level, Index v, Index o, std::span<const Vec3> p) {
   const Index* rv = level.ringVertices.data() + o;
   const Index* rf = level.ringFaces.data() + o;
   const LocalIndex* rl = level.ringFaceLocal.data() + o;
@@ -58,7 +58,7 @@ CatmarkLimitFrame regularFrame(const PolyLevel& level, Index v, Index o, std::sp
           4.0 * (e0 - e2) + ((f0 - f1) + (f3 - f2)), 4.0 * (e1 - e3) + ((f0 + f1) - (f2 + f3))};
 }
 
-CatmarkLimitFrame smoothFrame(const PolyLevel& level, Index v, std::span<const Vec3> p,
+CatmarkLimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3> p,
                               const TangentTables& tables) {
   const int n = level.valence(v);
   if (n == 2) return cornerFrame(level, v, p);
@@ -84,7 +84,7 @@ CatmarkLimitFrame smoothFrame(const PolyLevel& level, Index v, std::span<const V
   return frame;
 }
 
-CatmarkLimitFrame creaseFrame(const PolyLevel& level, Index v, std::span<const Vec3> p) {
+CatmarkLimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3> p) {
   const int n = level.valence(v);
   const Index o = level.ringOffsets[v];
   int ends[2] = {-1, -1};
@@ -110,7 +110,7 @@ CatmarkLimitFrame creaseFrame(const PolyLevel& level, Index v, std::span<const V
   return frame;
 }
 
-Vec3 faceNormals(const PolyLevel& level, Index v, std::span<const Vec3> p) {
+Vec3 faceNormals(const Level& level, Index v, std::span<const Vec3> p) {
   Vec3 sum(0, 0, 0);
   for (Index f : level.ringFacesOf(v)) {
     if (f == kNoIndex) continue;
@@ -120,7 +120,7 @@ Vec3 faceNormals(const PolyLevel& level, Index v, std::span<const Vec3> p) {
   return sum;
 }
 
-CatmarkLimitFrame frameWith(const PolyLevel& level, Index v, std::span<const Vec3> points,
+CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points,
                             const TangentTables& tables) {
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
@@ -136,11 +136,11 @@ CatmarkLimitFrame frameWith(const PolyLevel& level, Index v, std::span<const Vec
 
 }  // namespace
 
-CatmarkLimitFrame catmarkLimitFrame(const PolyLevel& level, Index v, std::span<const Vec3> points) {
+CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points) {
   return frameWith(level, v, points, TangentTables(level.valence(v)));
 }
 
-Status computeCatmarkLimit(const PolyLevel& level, std::span<const Vec3> points, std::span<Vec3> positions,
+Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                            std::span<Vec3> normals) {
   if (!level.allQuads()) {
     return invalidArgument(

@@ -8,7 +8,7 @@
 
 #include <span>
 
-#include "core/schemes/poly_level.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
@@ -21,13 +21,13 @@ struct CatmarkLimitFrame {
 };
 
 // One vertex of an all-quad level with full topology.
-CatmarkLimitFrame catmarkLimitFrame(const PolyLevel& level, Index v, std::span<const Vec3> points);
+CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points);
 
 // Every vertex; `normals` may be empty. A level with a face that is not a
 // quad is refused (refine it once first): the masks read each face's
 // opposite corner. Where the tangents are parallel (a degenerate control
 // net), the normal is the area-weighted normal of the adjacent faces.
-Status computeCatmarkLimit(const PolyLevel& level, std::span<const Vec3> points, std::span<Vec3> positions,
+Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                            std::span<Vec3> normals);
 
 }  // namespace tessera::schemes

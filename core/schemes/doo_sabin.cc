@@ -6,7 +6,7 @@
 
 namespace tessera::schemes {
 
-PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> p) {
+PolygonRefinement dooSabinStep(const Level& parent, std::span<const Vec3> p) {
   PolygonRefinement out;
   const Index corners = static_cast<Index>(parent.faceVertices.size());
   out.points.resize(corners);
@@ -18,7 +18,7 @@ PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> p)
     for (int i = 0; i < n; ++i) {
       Vec3 sum(0, 0, 0);
       for (int j = 0; j < n; ++j) sum += w[(i - j + n) % n] * p[fv[j]];
-      out.points[parent.faceOffsets[f] + i] = sum;
+      out.points[parent.faceBegin(f) + i] = sum;
     }
   }
   PolyTopology& t = out.topology;
@@ -27,7 +27,7 @@ PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> p)
   // F-faces: the face's own corner points.
   for (Index f = 0; f < parent.numFaces(); ++f) {
     face.clear();
-    for (Index k = parent.faceOffsets[f]; k < parent.faceOffsets[f + 1]; ++k) face.push_back(k);
+    for (Index k = parent.faceBegin(f), end = k + parent.faceSize(f); k < end; ++k) face.push_back(k);
     t.addFace(face);
   }
   // E-faces: the two faces' points at each end of an interior edge. Face 0
@@ -36,8 +36,8 @@ PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> p)
     const auto& ef = parent.edgeFaces[e];
     if (ef[1] == kNoIndex) continue;
     const auto& el = parent.edgeFaceLocal[e];
-    const Index o0 = parent.faceOffsets[ef[0]], n0 = parent.faceSize(ef[0]);
-    const Index o1 = parent.faceOffsets[ef[1]], n1 = parent.faceSize(ef[1]);
+    const Index o0 = parent.faceBegin(ef[0]), n0 = parent.faceSize(ef[0]);
+    const Index o1 = parent.faceBegin(ef[1]), n1 = parent.faceSize(ef[1]);
     const Index a0 = o0 + el[0], b0 = o0 + (el[0] + 1) % n0;  // face 0's points at a and b
     const Index b1 = o1 + el[1], a1 = o1 + (el[1] + 1) % n1;  // face 1's points at b and a
     face.assign({a0, a1, b1, b0});
@@ -50,7 +50,7 @@ PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> p)
     face.clear();
     const Index o = parent.ringOffsets[v];
     for (int k = 0; k < parent.valence(v); ++k)
-      face.push_back(parent.faceOffsets[parent.ringFaces[o + k]] + parent.ringFaceLocal[o + k]);
+      face.push_back(parent.faceBegin(parent.ringFaces[o + k]) + parent.ringFaceLocal[o + k]);
     t.addFace(face);
   }
   return out;
@@ -62,7 +62,7 @@ Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::sp
   PolygonRefinement current{topology, std::vector<Vec3>(points.begin(), points.end())};
   current.topology.creases.clear();
   current.topology.vertexSharpness.clear();
-  TESSERA_ASSIGN_OR_RETURN(PolyLevel level, buildPolyLevel(current.topology, CreaseOptions{}));
+  TESSERA_ASSIGN_OR_RETURN(Level level, buildPolyLevel(current.topology, CreaseOptions{}));
   for (int l = 0; l < levels; ++l) {
     // Faces of the child: one per face, edge and vertex of the parent.
     const long long faces = static_cast<long long>(level.numFaces()) + level.numEdges() + level.numVertices;
@@ -72,7 +72,7 @@ Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::sp
     }
     current = dooSabinStep(level, current.points);
     if (l + 1 < levels) {
-      TESSERA_ASSIGN_OR_RETURN(PolyLevel next, buildPolyLevel(current.topology, CreaseOptions{}));
+      TESSERA_ASSIGN_OR_RETURN(Level next, buildPolyLevel(current.topology, CreaseOptions{}));
       level = std::move(next);
     }
   }

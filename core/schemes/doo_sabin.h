@@ -1,5 +1,5 @@
-// Doo-Sabin refinement of polygon meshes (on the PolyLevel topology). Child
-// numbering: one vertex per parent face corner (faceOffsets[f] + i). Child
+// Doo-Sabin refinement of polygon meshes (on the Level topology). Child
+// numbering: one vertex per parent face corner (faceBegin(f) + i). Child
 // faces, in this order: one per parent face (its corners' points), one quad
 // per interior edge, one polygon per interior vertex (its faces' points in
 // ring order). Boundary edges and vertices get no face: the mesh's border
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/schemes/poly_builder.h"
-#include "core/schemes/poly_level.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
@@ -23,7 +23,7 @@ struct PolygonRefinement {
 };
 
 // One Doo-Sabin step: child points and faces from a parent level.
-PolygonRefinement dooSabinStep(const PolyLevel& parent, std::span<const Vec3> parentPoints);
+PolygonRefinement dooSabinStep(const Level& parent, std::span<const Vec3> parentPoints);
 
 // `levels` steps; tags are ignored (Doo-Sabin has no crease rules here).
 Expected<PolygonRefinement> refineDooSabin(const PolyTopology& topology, std::span<const Vec3> points,

@@ -1,7 +1,7 @@
-// Builds the base PolyLevel (level 0) of a polygon mesh with its feature tags
-// and the boundary rules of OpenSubdiv's Far factory: boundary edges become
-// infinitely sharp, and with kEdgeAndCorner a boundary vertex with a single
-// face becomes an infinitely sharp corner.
+// Builds the base Level (level 0) of a polygon mesh with its feature tags
+// and the boundary rules of OpenSubdiv's Far factory, through the one
+// topology builder (core/topology/level_builder.h) and the one tag applier
+// (core/topology/tags.h) that the Loop base level uses too.
 #pragma once
 
 #include <vector>
@@ -9,7 +9,8 @@
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
 #include "core/mesh/polygon_soup.h"
-#include "core/schemes/poly_level.h"
+#include "core/topology/level.h"
+#include "core/topology/tags.h"
 #include "core/util/status.h"
 
 namespace tessera::schemes {
@@ -23,10 +24,7 @@ struct PolyTopology {
   // Face f uses indices[faceOffsets[f] .. faceOffsets[f+1]), counter-clockwise.
   std::vector<int> faceOffsets{0};
   std::vector<int> indices;
-  struct Crease {
-    int v0, v1;
-    float sharpness;
-  };
+  using Crease = topology::Crease;
   std::vector<Crease> creases;
   std::vector<float> vertexSharpness;  // empty, or one per vertex
 
@@ -46,6 +44,6 @@ struct PolyTopology {
 // fewer than 3 corners or a repeated corner, out-of-range indices, non-
 // manifold edges and vertices, inconsistent orientation, unused vertices,
 // and tags on missing edges or vertices.
-Expected<PolyLevel> buildPolyLevel(const PolyTopology& topology, const CreaseOptions& options);
+Expected<Level> buildPolyLevel(const PolyTopology& topology, const CreaseOptions& options);
 
 }  // namespace tessera::schemes

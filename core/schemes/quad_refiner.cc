@@ -16,7 +16,7 @@ Expected<QuadRefiner> QuadRefiner::create(const PolyTopology& topology, QuadSche
   QuadRefiner refiner;
   refiner.scheme_ = scheme;
   // Bilinear has no creases: its base level ignores them (and boundary rules).
-  TESSERA_ASSIGN_OR_RETURN(PolyLevel base, buildPolyLevel(topology, options));
+  TESSERA_ASSIGN_OR_RETURN(Level base, buildPolyLevel(topology, options));
   long long faces = static_cast<long long>(base.faceVertices.size());
   for (int l = 1; l < uniform.levels; ++l) {
     faces *= 4;
@@ -70,7 +70,7 @@ std::vector<std::vector<Vec3>> QuadRefiner::refinePointsPerLevel(std::span<const
 
 namespace {
 
-void addTriangles(const PolyLevel& level, SurfaceMesh& surface) {
+void addTriangles(const Level& level, SurfaceMesh& surface) {
   surface.triangles.reserve(level.faceVertices.size() - 2 * static_cast<size_t>(level.numFaces()));
   for (Index f = 0; f < level.numFaces(); ++f) {
     auto fv = level.faceVerticesOf(f);
@@ -91,7 +91,7 @@ Expected<SurfaceMesh> QuadRefiner::limitSurface(std::span<const Vec3> finestPoin
   if (scheme_ != QuadScheme::kCatmullClark) {
     return unsupported("bilinear subdivision has no limit to evaluate: its limit is its own control mesh");
   }
-  const PolyLevel& level = finestLevel();
+  const Level& level = finestLevel();
   SurfaceMesh surface;
   surface.positions.resize(level.numVertices);
   surface.normals.resize(level.numVertices);
@@ -100,7 +100,7 @@ Expected<SurfaceMesh> QuadRefiner::limitSurface(std::span<const Vec3> finestPoin
   return surface;
 }
 
-void interpolateBilinear(const PolyLevel& parent, std::span<const Vec3> p, std::span<Vec3> c) {
+void interpolateBilinear(const Level& parent, std::span<const Vec3> p, std::span<Vec3> c) {
   const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
   for (Index v = 0; v < nV; ++v) c[v] = p[v];

@@ -16,7 +16,7 @@
 
 #include "core/mesh/surface_mesh.h"
 #include "core/schemes/poly_builder.h"
-#include "core/schemes/poly_level.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
@@ -44,8 +44,8 @@ class QuadRefiner {
 
   QuadScheme scheme() const { return scheme_; }
   int maxLevel() const { return static_cast<int>(levels_.size()) - 1; }
-  const PolyLevel& level(int l) const { return levels_[l]; }
-  const PolyLevel& finestLevel() const { return levels_.back(); }
+  const Level& level(int l) const { return levels_[l]; }
+  const Level& finestLevel() const { return levels_.back(); }
 
   // Points of the finest level from base points (one per base vertex).
   std::vector<Vec3> refinePoints(std::span<const Vec3> basePoints) const;
@@ -63,11 +63,11 @@ class QuadRefiner {
   void interpolate(int level, std::span<const Vec3> parent, std::span<Vec3> child) const;
 
   QuadScheme scheme_ = QuadScheme::kCatmullClark;
-  std::vector<PolyLevel> levels_;
+  std::vector<Level> levels_;
 };
 
 // Bilinear refinement of vertex data (quad_split.h numbering).
-void interpolateBilinear(const PolyLevel& parent, std::span<const Vec3> parentPoints,
+void interpolateBilinear(const Level& parent, std::span<const Vec3> parentPoints,
                          std::span<Vec3> childPoints);
 
 }  // namespace tessera::schemes

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/loop/crease.h"
+
 namespace tessera::schemes {
 
 namespace {
@@ -14,18 +16,16 @@ inline int childSlot(int size, int j, int k) {
   return size == 4 ? (j + k) & 3 : k;
 }
 
-void splitFaces(const PolyLevel& parent, PolyLevel& child, bool withEdges) {
+void splitFaces(const Level& parent, Level& child, bool withEdges) {
   const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
   const Index corners = static_cast<Index>(parent.faceVertices.size());
   const Index firstEdgeVertex = nV + nF;
-  child.faceOffsets.resize(corners + 1);
-  for (Index c = 0; c <= corners; ++c) child.faceOffsets[c] = 4 * c;
   child.faceVertices.resize(4 * corners);
   if (withEdges) child.faceEdges.resize(4 * corners);
   for (Index f = 0; f < nF; ++f) {
-    const Index o = parent.faceOffsets[f];
-    const int n = parent.faceOffsets[f + 1] - o;
+    const Index o = parent.faceBegin(f);
+    const int n = parent.faceSize(f);
     const Index* fv = parent.faceVertices.data() + o;
     const Index* fe = parent.faceEdges.data() + o;
     for (int j = 0; j < n; ++j) {
@@ -47,7 +47,7 @@ void splitFaces(const PolyLevel& parent, PolyLevel& child, bool withEdges) {
   }
 }
 
-void splitEdges(const PolyLevel& parent, PolyLevel& child) {
+void splitEdges(const Level& parent, Level& child) {
   const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
   const Index nE = parent.numEdges();
@@ -58,8 +58,8 @@ void splitEdges(const PolyLevel& parent, PolyLevel& child) {
   child.edgeFaceLocal.resize(corners + 2 * nE);
   // Edges inside a face: between child j and child j+1.
   for (Index f = 0; f < nF; ++f) {
-    const Index o = parent.faceOffsets[f];
-    const int n = parent.faceOffsets[f + 1] - o;
+    const Index o = parent.faceBegin(f);
+    const int n = parent.faceSize(f);
     for (int j = 0; j < n; ++j) {
       const int jNext = j + 1 < n ? j + 1 : 0;
       child.edgeVertices[o + j] = {nV + f, firstEdgeVertex + parent.faceEdges[o + j]};
@@ -78,8 +78,8 @@ void splitEdges(const PolyLevel& parent, PolyLevel& child) {
       child.edgeVertices[c] = {firstEdgeVertex + e, ev[end]};
       child.edgeFaces[c] = {kNoIndex, kNoIndex};
       for (int i = 0; i < 2 && ef[i] != kNoIndex; ++i) {
-        const Index o = parent.faceOffsets[ef[i]];
-        const int n = parent.faceOffsets[ef[i] + 1] - o;
+        const Index o = parent.faceBegin(ef[i]);
+        const int n = parent.faceSize(ef[i]);
         const int edgeInFace = el[i];
         const int childOfEdge = parent.faceVertices[o + edgeInFace] != ev[end] ? 1 : 0;
         int childInFace = edgeInFace + childOfEdge;
@@ -91,7 +91,7 @@ void splitEdges(const PolyLevel& parent, PolyLevel& child) {
   }
 }
 
-void splitRings(const PolyLevel& parent, PolyLevel& child) {
+void splitRings(const Level& parent, Level& child) {
   const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
   const Index nE = parent.numEdges();
@@ -129,15 +129,15 @@ void splitRings(const PolyLevel& parent, PolyLevel& child) {
         rF[out + k] = kNoIndex, rL[out + k] = 0;
       } else {
         const int c = parent.ringFaceLocal[k];
-        rF[out + k] = parent.faceOffsets[f] + c;
+        rF[out + k] = parent.faceBegin(f) + c;
         rL[out + k] = static_cast<LocalIndex>(parent.faceSize(f) == 4 ? c : 0);
       }
     }
   }
   // A face vertex: child k lies between the edges to edge k-1's and edge k's vertices.
   for (Index f = 0; f < nF; ++f) {
-    const Index o = parent.faceOffsets[f];
-    const int n = parent.faceOffsets[f + 1] - o;
+    const Index o = parent.faceBegin(f);
+    const int n = parent.faceSize(f);
     const Index out = offsets[nV + f];
     for (int k = 0; k < n; ++k) {
       const int kPrev = k ? k - 1 : n - 1;
@@ -154,8 +154,8 @@ void splitRings(const PolyLevel& parent, PolyLevel& child) {
     const auto& ev = parent.edgeVertices[e];
     const auto& ef = parent.edgeFaces[e];
     const auto& el = parent.edgeFaceLocal[e];
-    const Index o0 = parent.faceOffsets[ef[0]];
-    const int n0 = parent.faceOffsets[ef[0] + 1] - o0;
+    const Index o0 = parent.faceBegin(ef[0]);
+    const int n0 = parent.faceSize(ef[0]);
     const int j0 = el[0];
     const int j0Next = j0 + 1 < n0 ? j0 + 1 : 0;
     const int b = parent.faceVertices[o0 + j0] == ev[0] ? 1 : 0;  // end of the edge face 0 runs to
@@ -173,8 +173,8 @@ void splitRings(const PolyLevel& parent, PolyLevel& child) {
       rF[out + 2] = kNoIndex, rL[out + 2] = 0;
       continue;
     }
-    const Index o1 = parent.faceOffsets[ef[1]];
-    const int n1 = parent.faceOffsets[ef[1] + 1] - o1;
+    const Index o1 = parent.faceBegin(ef[1]);
+    const int n1 = parent.faceSize(ef[1]);
     const int j1 = el[1];
     const int j1Next = j1 + 1 < n1 ? j1 + 1 : 0;
     rF[out + 2] = o1 + j1Next;
@@ -188,7 +188,7 @@ void splitRings(const PolyLevel& parent, PolyLevel& child) {
 
 // Sharpness and rules of the child (Vtr's subdivideEdgeSharpness,
 // subdivideVertexSharpness and reclassifySemisharpVertices).
-void splitSharpness(const PolyLevel& parent, const CreaseOptions& options, PolyLevel& child) {
+void splitSharpness(const Level& parent, const CreaseOptions& options, Level& child) {
   const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
   const Index nE = parent.numEdges();
@@ -245,12 +245,14 @@ void splitSharpness(const PolyLevel& parent, const CreaseOptions& options, PolyL
 
 }  // namespace
 
-PolyLevel splitToQuads(const PolyLevel& parent, const CreaseOptions& options, SplitDetail detail) {
-  PolyLevel child;
+Level splitToQuads(const Level& parent, const CreaseOptions& options, SplitDetail detail) {
+  Level child;
   child.numVertices = parent.numVertices + parent.numFaces() + parent.numEdges();
   child.maxFaceSize = 4;
+  child.regularFaceSize = 4;  // no face offsets (core/topology/level.h)
   child.maxValence = std::max({parent.maxValence, parent.maxFaceSize, 4});
   const bool full = detail == SplitDetail::kFull;
+  child.fullTopology = full;
   splitFaces(parent, child, full);
   if (full) {
     splitEdges(parent, child);

@@ -1,17 +1,17 @@
-// Quad splitting of a PolyLevel (Catmull-Clark and bilinear topology): a face
+// Quad splitting of a Level (Catmull-Clark and bilinear topology): a face
 // of n corners becomes n quads around a new face vertex, every edge gains a
 // vertex and two halves. Numbering and ring orders are OpenSubdiv's
 // QuadRefinement with vertices from vertices first:
 //   child vertices: [0, nV) from vertices, then one per face, then one per edge;
-//   child faces:    child j of face f is faceOffsets[f] + j (at corner j);
-//   child edges:    faceOffsets[f] + j joins face f's vertex to edge j's vertex,
+//   child faces:    child j of face f is faceBegin(f) + j (at corner j);
+//   child edges:    faceBegin(f) + j joins face f's vertex to edge j's vertex,
 //                   then 2 per parent edge e: corners + 2e + end joins e's
 //                   vertex to the child of edgeVertices[e][end].
 // Sharpness decays by the crease method (Sdc semantics, core/loop/crease.h).
 #pragma once
 
 #include "core/schemes/poly_builder.h"
-#include "core/schemes/poly_level.h"
+#include "core/topology/level.h"
 
 namespace tessera::schemes {
 
@@ -20,13 +20,13 @@ enum class SplitDetail {
   kFacesOnly,  // faces, sharpness and rules: enough to interpolate into and draw
 };
 
-PolyLevel splitToQuads(const PolyLevel& parent, const CreaseOptions& options, SplitDetail detail);
+Level splitToQuads(const Level& parent, const CreaseOptions& options, SplitDetail detail);
 
 // Index helpers for the numbering above.
-inline Index faceChildVertex(const PolyLevel& parent, Index f) {
+inline Index faceChildVertex(const Level& parent, Index f) {
   return parent.numVertices + f;
 }
-inline Index edgeChildVertex(const PolyLevel& parent, Index e) {
+inline Index edgeChildVertex(const Level& parent, Index e) {
   return parent.numVertices + parent.numFaces() + e;
 }
 

@@ -17,7 +17,7 @@ void interpolateSqrt3(const Level& parent, std::span<const Vec3> p, std::span<Ve
     c[v] = (1.0 - a) * p[v] + (a / n) * sum;
   }
   for (Index f = 0; f < parent.numFaces(); ++f) {
-    const auto& fv = parent.faceVertices[f];
+    const auto fv = parent.triangleVertices(f);
     c[nV + f] = sqrt3::kFacePointWeight * (p[fv[0]] + p[fv[1]] + p[fv[2]]);
   }
 }

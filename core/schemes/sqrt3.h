@@ -11,9 +11,9 @@
 #include <span>
 #include <vector>
 
-#include "core/loop/level.h"
 #include "core/loop/level_builder.h"
 #include "core/schemes/butterfly.h"
+#include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 

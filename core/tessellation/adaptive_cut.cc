@@ -101,7 +101,7 @@ bool AdaptiveCut::wantsSplit(const SparseEvaluator& h, int l, Index f) const {
 }
 
 bool AdaptiveCut::aroundEditedVertex(const SparseEvaluator& h, int l, Index f) const {
-  for (Index v : h.level(l).mesh.faceVertices[f]) {
+  for (Index v : h.level(l).mesh.triangleVertices(f)) {
     const uint64_t id = VertexId(l, h.level(l).vertexIds[v]).packed();
     if (std::binary_search(editedVertices_.begin(), editedVertices_.end(), id)) return true;
   }
@@ -109,7 +109,7 @@ bool AdaptiveCut::aroundEditedVertex(const SparseEvaluator& h, int l, Index f) c
 }
 
 bool AdaptiveCut::normalsDisagree(const SparseEvaluator& h, int l, Index f) const {
-  const auto& fv = h.level(l).mesh.faceVertices[f];
+  const auto fv = h.level(l).mesh.triangleVertices(f);
   for (int j = 0; j < 3; ++j) {
     if (cosAngle(sideNormal(h, l, fv[j], f), sideNormal(h, l, fv[(j + 1) % 3], f)) < cosThreshold_)
       return true;
@@ -120,8 +120,8 @@ bool AdaptiveCut::normalsDisagree(const SparseEvaluator& h, int l, Index f) cons
 bool AdaptiveCut::creaseTangentsDisagree(const SparseEvaluator& h, int l, Index f) const {
   const Level& m = h.level(l).mesh;
   for (int j = 0; j < 3; ++j) {
-    if (!isSharp(m.edgeSharpness[m.faceEdges[f][j]])) continue;
-    const Index a = m.faceVertices[f][j], b = m.faceVertices[f][(j + 1) % 3];
+    if (!isSharp(m.edgeSharpness[m.triangleEdges(f)[j]])) continue;
+    const Index a = m.triangleVertices(f)[j], b = m.triangleVertices(f)[(j + 1) % 3];
     const Vec3 ta = creaseTangent(h, l, a, b);
     const Vec3 tb = -1.0 * creaseTangent(h, l, b, a);
     if (cosAngle(ta, tb) < cosThreshold_) return true;

@@ -75,10 +75,10 @@ void cover(VertexRef a, VertexRef b, VertexRef c, const Points& ab, const Points
 void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index f,
                      std::vector<RefTriangle>& out) {
   const Level& m = h.level(l).mesh;
-  const auto& fv = m.faceVertices[f];
+  const auto fv = m.triangleVertices(f);
   std::array<Points, 3> edges;
   for (int j = 0; j < 3; ++j) {
-    const Index e = m.faceEdges[f][j];
+    const Index e = m.triangleEdges(f)[j];
     const auto& ef = m.edgeFaces[e];
     const Index far = ef[0] == f ? ef[1] : ef[0];
     collectEdge(h, cut, l, e, far, fv[j], fv[(j + 1) % 3], edges[j]);

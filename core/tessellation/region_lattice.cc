@@ -45,8 +45,8 @@ Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& c
   RegionFrame frame;
   frame.face = region.packed();
   for (int j = 0; j < 3; ++j) {
-    frame.corners[j] = level.vertexIds[level.mesh.faceVertices[f][j]];
-    frame.edges[j] = level.edgeIds[level.mesh.faceEdges[f][j]];
+    frame.corners[j] = level.vertexIds[level.mesh.triangleVertices(f)[j]];
+    frame.edges[j] = level.edgeIds[level.mesh.triangleEdges(f)[j]];
   }
   const Level& base = h.level(0).mesh;
   for (int j = 0; j < 3; ++j) {

@@ -64,8 +64,7 @@ std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts
   };
   if (!held(at.level, at.local)) return grow(at.level, h.level(at.level).vertexIds[at.local]);
   while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local)) {
-    const Index child =
-        at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kInvalidIndex;
+    const Index child = at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kNoIndex;
     if (!held(at.level + 1, child)) return grow(at.level + 1, h.level(at.level).vertexIds[at.local]);
     at = {at.level + 1, child};
   }
@@ -277,7 +276,7 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   };
   for (VertexId id : changedLimits) addAround(id.level(), h.level(id.level()).findVertex(id.index()));
   for (auto [l, f] : *flipped) {
-    for (Index v : h.level(l).mesh.faceVertices[f]) addAround(l, v);
+    for (Index v : h.level(l).mesh.triangleVertices(f)) addAround(l, v);
   }
   std::sort(areas.begin(), areas.end());
   areas.erase(std::unique(areas.begin(), areas.end()), areas.end());

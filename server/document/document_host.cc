@@ -244,7 +244,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
     for (VertexId id : key == 0 ? applied.limits : applied.key1Limits) {
       if (id.level() >= h.numLevels()) continue;  // a batch's later undo dropped the level: its limit is gone
       const Index v = h.level(id.level()).findVertex(id.index());
-      if (v == kInvalidIndex) continue;
+      if (v == kNoIndex) continue;
       outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
     }
   }

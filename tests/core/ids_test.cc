@@ -73,7 +73,7 @@ TEST(ElementIds, ParentAndChildRelationsMatchTheRefinedTopology) {
       }
       // Corner k of face f is the corner k of child face 4f+k: same vertex id.
       for (int k = 0; k < 3; ++k) {
-        EXPECT_EQ(child.faceVertices[4 * f + k][k], parent.faceVertices[f][k]);
+        EXPECT_EQ(child.triangleVertices(4 * f + k)[k], parent.triangleVertices(f)[k]);
       }
     }
   }

@@ -197,7 +197,7 @@ TEST(InterpolatingVertex, OutsideItsTwoRingTheSurfaceIsExactlyPlainLoop) {
     int outside = 0, inside = 0, changedInside = 0;
     for (Index f = 0; f < fine.numFaces(); ++f) {
       const bool isNear = near[f >> (2 * (deep - level))] != 0;
-      for (Index w : fine.faceVertices[f]) {
+      for (Index w : fine.triangleVertices(f)) {
         const LimitFrame p = limitFrame(fine, w, (*a)->points[deep], CreaseMethod::kUniform);
         const LimitFrame q = limitFrame((*b)->levels[deep], w, (*b)->points[deep], CreaseMethod::kUniform);
         if (!isNear) {

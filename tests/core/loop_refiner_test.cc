@@ -33,7 +33,8 @@ TEST(LoopRefiner, ClosedMeshStaysWatertightAndOriented) {
   const Level& fine = refiner->finestLevel();
   // Every directed edge appears once, and its reverse once: closed, manifold, oriented.
   std::map<std::pair<int, int>, int> directed;
-  for (const auto& f : fine.faceVertices) {
+  for (Index t = 0; t < fine.numFaces(); ++t) {
+    const auto f = fine.triangleVertices(t);
     for (int j = 0; j < 3; ++j) ++directed[{f[j], f[(j + 1) % 3]}];
   }
   for (const auto& [edge, count] : directed) {

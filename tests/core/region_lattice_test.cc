@@ -67,7 +67,7 @@ void expectLatticeMatchesHierarchy(const testing::TestMesh& mesh, int rootLevel,
       const Index local = h.level(deepest).findFace(canonical);
       ASSERT_GE(local, 0);
       for (int k = 0; k < 3; ++k) {
-        const uint64_t index = h.level(deepest).vertexIds[h.level(deepest).mesh.faceVertices[local][k]];
+        const uint64_t index = h.level(deepest).vertexIds[h.level(deepest).mesh.triangleVertices(local)[k]];
         const auto id = lattice->idAt(at[k][0], at[k][1]);
         ASSERT_TRUE(id.has_value());
         ASSERT_EQ(id->index(), index)

@@ -114,9 +114,7 @@ TEST(SchemeCatmark, TopologyErrorsNameTheElement) {
     for (const auto& f : faces) t.addFace(f);
     return buildPolyLevel(t, {});
   };
-  auto message = [](const Expected<PolyLevel>& r) {
-    return r.isOk() ? std::string("ok") : r.status().message();
-  };
+  auto message = [](const Expected<Level>& r) { return r.isOk() ? std::string("ok") : r.status().message(); };
   EXPECT_NE(message(build({{0, 1, 2, 3}, {1, 0, 4}, {0, 1, 5}}, 6)).find("non-manifold"), std::string::npos);
   EXPECT_NE(message(build({{0, 1, 2, 3}, {0, 1, 4}}, 5)).find("inconsistently oriented"), std::string::npos);
   EXPECT_NE(message(build({{0, 1, 2, 3}}, 5)).find("vertex 4 is used by no face"), std::string::npos);
@@ -228,7 +226,7 @@ TEST(SchemeBilinear, MidpointsCentroidsAndUnmovedVertices) {
   auto refiner = QuadRefiner::create(mesh.topology, QuadScheme::kBilinear, {}, {.levels = 2});
   ASSERT_TRUE(refiner.isOk());
   const auto levels = refiner->refinePointsPerLevel(mesh.points);
-  const PolyLevel& base = refiner->level(0);
+  const Level& base = refiner->level(0);
   for (size_t v = 0; v < mesh.points.size(); ++v) EXPECT_EQ((levels[2][v] - mesh.points[v]).norm(), 0.0);
   for (Index f = 0; f < base.numFaces(); ++f) {
     Vec3 c(0, 0, 0);

@@ -151,7 +151,7 @@ TEST(SchemeSqrt3, MatchesOpenMeshVertexForVertexOnClosedMeshes) {
       for (Index v = 0; v < parent.numVertices; ++v) next[v] = map[v];
       for (Index f = 0; f < parent.numFaces(); ++f) {
         std::vector<int> key;
-        for (Index v : parent.faceVertices[f]) key.push_back(map[v]);
+        for (Index v : parent.triangleVertices(f)) key.push_back(map[v]);
         std::sort(key.begin(), key.end());
         auto it = byKey.find(key);
         ASSERT_NE(it, byKey.end()) << "no OpenMesh vertex in face " << f << " at level " << l;

@@ -31,12 +31,12 @@ TEST(Incidence, TheIncidentFaceHoldsTheElementAtEveryLevel) {
       const Level& level = refiner->level(l);
       for (Index v = 0; v < level.numVertices; ++v) {
         const FaceId f = incidentFace(base, counts, VertexId(l, v));
-        const auto& fv = level.faceVertices[f.index()];
+        const auto fv = level.triangleVertices(f.index());
         ASSERT_TRUE(std::find(fv.begin(), fv.end(), v) != fv.end()) << mesh.name << " v" << l << ":" << v;
       }
       for (Index e = 0; e < level.numEdges(); ++e) {
         const FaceId f = incidentFace(base, counts, EdgeId(l, e));
-        const auto& fe = level.faceEdges[f.index()];
+        const auto fe = level.triangleEdges(f.index());
         ASSERT_TRUE(std::find(fe.begin(), fe.end(), e) != fe.end()) << mesh.name << " e" << l << ":" << e;
       }
     }

@@ -130,7 +130,7 @@ std::vector<Corner> tesseraCorners(const TestMesh& mesh, const LoopOptions& opti
       auto ringF = level.ringFacesOf(v);
       for (int k = 0; k < level.valence(v); ++k) {
         const Index f = ringF[k];
-        if (f == kInvalidIndex) continue;
+        if (f == kNoIndex) continue;
         const int side = limitSideOfRingFace(level, v, k);
         const Vec3 normal = side == 0 ? limit.frame.normal() : limit.others[side - 1].normal;
         const int corner = level.vertexInFace(f, v);

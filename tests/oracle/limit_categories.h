@@ -6,8 +6,8 @@
 #include <string>
 
 #include "core/loop/exact_limit.h"
-#include "core/loop/level.h"
 #include "core/mesh/sharpness.h"
+#include "core/topology/level.h"
 
 namespace tessera::oracle {
 

@@ -58,7 +58,7 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
   maps[0].resize(ours.level(0).numVertices);
   for (int v = 0; v < ours.level(0).numVertices; ++v) maps[0][v] = v;
   for (int l = 0; l < levels; ++l) {
-    const schemes::PolyLevel& parent = ours.level(l);
+    const Level& parent = ours.level(l);
     const Far::TopologyLevel& osdParent = osd.GetLevel(l);
     auto& next = maps[l + 1];
     next.assign(ours.level(l + 1).numVertices, -1);
@@ -76,7 +76,7 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
         if (osdCorners[j] != maps[l][ourCorners[j]]) {
           throw std::runtime_error("face corners differ at level " + std::to_string(l));
         }
-        nextFaceMap[parent.faceOffsets[f] + j] = children[j];
+        nextFaceMap[parent.faceBegin(f) + j] = children[j];
       }
     }
     for (int e = 0; e < parent.numEdges(); ++e) {

@@ -1,15 +1,13 @@
-#include "core/loop/level.h"
+#include "core/topology/level.h"
 
 #include <algorithm>
 
-#include "core/mesh/sharpness.h"
-
-namespace tessera {
+namespace tessera::topology {
 
 void Level::ringSharpness(Index v, float* out) const {
-  // A sparse level's incomplete vertex lists its ring edges as
-  // kInvalidIndex (hierarchy/sparse_level.h): they count as smooth, never
-  // as whatever lies before the array (found by ASan under Chaikin decay,
+  // A sparse level's incomplete vertex lists its ring edges as kNoIndex
+  // (core/hierarchy/sparse_level.h): they count as smooth, never as
+  // whatever lies before the array (found by ASan under Chaikin decay,
   // which reads the far vertex's ring of a semi-sharp edge).
   int k = 0;
   for (Index e : ringEdgesOf(v)) out[k++] = e >= 0 ? edgeSharpness[e] : kSharpnessSmooth;
@@ -30,4 +28,4 @@ void Level::recomputeVertexRules() {
   }
 }
 
-}  // namespace tessera
+}  // namespace tessera::topology

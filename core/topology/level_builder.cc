@@ -248,18 +248,25 @@ Status orderRings(const VertexFaces& at, Level& level) {
     int c = cornerOf<kSize>(faceVertices + begin, v);
     Index e = faceEdges[begin + c];
     const Index first = e;
+    // The far end of the edge last entered, read from the face rows (which
+    // the walk reads anyway) rather than from the edge's vertices.
+    Index previousCorner = kNoIndex;
     for (int k = 0; k < n; ++k) {
       ringE[k] = e;
-      ringV[k] = level.otherVertex(e, v);
       if (f == kNoIndex) {
         if (k != n - 1) return nonManifold(v);
+        ringV[k] = previousCorner;
         ringF[k] = kNoIndex;
         ringL[k] = 0;
         break;
       }
+      const int size = faceSize(f);
+      ringV[k] = faceVertices[begin + (c + 1 < size ? c + 1 : 0)];
       ringF[k] = f;
       ringL[k] = static_cast<LocalIndex>(c);
-      const Index incoming = faceEdges[begin + (c ? c - 1 : faceSize(f) - 1)];
+      const int before = c ? c - 1 : size - 1;
+      previousCorner = faceVertices[begin + before];
+      const Index incoming = faceEdges[begin + before];
       if (k + 1 < n && incoming == first) return nonManifold(v);
       e = incoming;
       const auto& ef = level.edgeFaces[e];

@@ -84,7 +84,7 @@ void editTessera(benchmark::State& state) {
 void fullTessera(benchmark::State& state) {
   const Document& doc = *input().doc;
   for (auto _ : state) {
-    auto eval = SparseEvaluator::create(doc.baseTopology(), doc.basePoints(), doc.options().loop,
+    auto eval = SparseHierarchy::create(doc.baseTopology(), doc.basePoints(), doc.options().loop,
                                         doc.counts(), doc.options().uniformLevel, doc.edits());
     benchmark::DoNotOptimize(eval.isOk());
   }

@@ -5,8 +5,8 @@
 #include <string>
 #include <utility>
 
-#include "core/document/interpolation_conflicts.h"
 #include "core/hierarchy/incidence.h"
+#include "core/hierarchy/interpolation_conflicts.h"
 #include "core/loop/direct_manipulation.h"
 #include "core/loop/local_frame.h"
 #include "core/loop/surfaces.h"
@@ -152,8 +152,8 @@ Status Document::checkEdit(const Edit& edit) const {
 
 Status Document::rebuildHierarchy() {
   TESSERA_ASSIGN_OR_RETURN(
-      SparseEvaluator sparse,
-      SparseEvaluator::create(base_, basePoints_, options_.loop, counts_, options_.uniformLevel, edits_));
+      SparseHierarchy sparse,
+      SparseHierarchy::create(base_, basePoints_, options_.loop, counts_, options_.uniformLevel, edits_));
   sparse_.emplace(std::move(sparse));
   return Status::ok();
 }
@@ -359,7 +359,7 @@ Status Document::retractLast() {
   return Status::ok();
 }
 
-// The removed edit's edit nodes go with it (sparse_evaluator.h): what the
+// The removed edit's edit nodes go with it (sparse_hierarchy.h): what the
 // document shows is what a document created without it shows.
 void Document::forgetRemovedEditNodes() {
   addChangedLimits(sparse_->forgetEditNodes(edits_).limits);

@@ -9,7 +9,7 @@
 //   auto surface = doc->surface(4, SurfaceKind::kLimit);
 //
 // The working state is a sparse forest of quadtrees updated incrementally
-// after every change (sparse_evaluator.h); lastUpdate() says what changed.
+// after every change (sparse_hierarchy.h); lastUpdate() says what changed.
 // Uniform surfaces for export are evaluated from scratch by the dense
 // reference (document_evaluator.h).
 #pragma once
@@ -20,9 +20,9 @@
 #include <vector>
 
 #include "core/document/document_evaluator.h"
-#include "core/document/edit.h"
-#include "core/document/sparse_evaluator.h"
+#include "core/hierarchy/edit.h"
 #include "core/hierarchy/ids.h"
+#include "core/hierarchy/sparse_hierarchy.h"
 #include "core/loop/ghost_ring.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
@@ -104,7 +104,7 @@ class Document {
   void holdWhole(int level) { sparse_->raiseUniformLevel(std::min(level, options_.maxLevel), edits_); }
 
   // The incremental state, and what the last change recomputed.
-  const SparseEvaluator& hierarchy() const { return *sparse_; }
+  const SparseHierarchy& hierarchy() const { return *sparse_; }
   const DirtySet& lastUpdate() const { return lastUpdate_; }
 
   // Full evaluation up to `level`, cached until the next change.
@@ -148,7 +148,7 @@ class Document {
   std::vector<uint8_t> baseBoundaryEdges_;
   std::vector<Edit> edits_;
   uint64_t nextEditId_ = 1;
-  std::optional<SparseEvaluator> sparse_;
+  std::optional<SparseHierarchy> sparse_;
   DirtySet lastUpdate_;
   int pendingGrowth_ = -1;
   std::vector<VertexId> pendingLimits_;  // limits reserve() reported, for lastUpdate()

@@ -18,7 +18,7 @@
 #include <span>
 #include <vector>
 
-#include "core/document/edit.h"
+#include "core/hierarchy/edit.h"
 #include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
 #include "core/topology/level.h"

@@ -3,7 +3,7 @@
 // for bit.
 #pragma once
 
-#include "core/document/edit.h"
+#include "core/hierarchy/edit.h"
 #include "core/util/byte_io.h"
 #include "core/util/status.h"
 

@@ -10,7 +10,7 @@
 // Sel_k = N1(ancestors at k of demanded faces). These nest (Sel_k+1 within
 // the children of Sel_k, and N2 of a child face within the children of N1
 // of its parent), so every vertex of a refined face is complete
-// (sparse_evaluator.h in core/document has the whole argument).
+// (sparse_hierarchy.h in core/document has the whole argument).
 //
 // Demand comes in three kinds: faces edits address or addressed (what the
 // structure holds), faces the current edits address (what makes edit

@@ -12,7 +12,7 @@ namespace {
 
 // The limit normal of vertex v on the side of face f: a crease or corner
 // has one per sector between sharp edges (limit.h).
-Vec3 sideNormal(const SparseEvaluator& h, int l, Index v, Index f) {
+Vec3 sideNormal(const SparseHierarchy& h, int l, Index v, Index f) {
   const Level& m = h.level(l).mesh;
   if (isSmoothLike(m.vertexRules[v])) return h.limitNormal(l, v);
   auto faces = m.ringFacesOf(v);
@@ -32,7 +32,7 @@ double cosAngle(const Vec3& a, const Vec3& b) {
 // The direction of the crease through edge a->b at a: the limit tangent
 // along the crease at a crease vertex, the chord elsewhere (a corner has no
 // single tangent), oriented from a towards b.
-Vec3 creaseTangent(const SparseEvaluator& h, int l, Index a, Index b) {
+Vec3 creaseTangent(const SparseHierarchy& h, int l, Index a, Index b) {
   const Vec3 chord = h.limitPosition(l, b) - h.limitPosition(l, a);
   if (h.level(l).mesh.vertexRules[a] != VertexRule::kCrease) return chord;
   const Vec3 t = h.limitFrameOf(l, a).tangent1;
@@ -53,7 +53,7 @@ Expected<AdaptiveCut> AdaptiveCut::build(Document& doc, const LodProfile& profil
   // first level whose selection changed; restart from there.
   if (cut.profile_.fidelity) cut.markEditedVertices(doc);
   for (int l = 0; l < doc.hierarchy().numLevels(); ++l) {
-    const SparseEvaluator& h = doc.hierarchy();
+    const SparseHierarchy& h = doc.hierarchy();
     cut.split_.resize(h.numLevels());
     cut.split_[l].assign(h.level(l).mesh.numFaces(), 0);
     std::vector<FaceId> requests;
@@ -66,7 +66,7 @@ Expected<AdaptiveCut> AdaptiveCut::build(Document& doc, const LodProfile& profil
     const int first = doc.refineHierarchy(requests);
     if (first >= 0 && first < l) l = -1;  // local indices above changed: start over
   }
-  const SparseEvaluator& h = doc.hierarchy();
+  const SparseHierarchy& h = doc.hierarchy();
   cut.split_.resize(h.numLevels());
   cut.generations_.clear();
   for (int l = 0; l < h.numLevels(); ++l) cut.generations_.push_back(h.generation(l));
@@ -85,7 +85,7 @@ void AdaptiveCut::markEditedVertices(const Document& doc) {
   std::sort(editedVertices_.begin(), editedVertices_.end());
 }
 
-bool AdaptiveCut::isCurrent(const SparseEvaluator& h) const {
+bool AdaptiveCut::isCurrent(const SparseHierarchy& h) const {
   if (h.numLevels() != numLevels()) return false;
   for (int l = 0; l < h.numLevels(); ++l) {
     if (h.generation(l) != generations_[l]) return false;
@@ -93,14 +93,14 @@ bool AdaptiveCut::isCurrent(const SparseEvaluator& h) const {
   return true;
 }
 
-bool AdaptiveCut::wantsSplit(const SparseEvaluator& h, int l, Index f) const {
+bool AdaptiveCut::wantsSplit(const SparseHierarchy& h, int l, Index f) const {
   if (l >= profile_.maxLevel) return false;
   if (l < profile_.baseLevel || h.isEditNode(l, f)) return true;
   if (profile_.fidelity && aroundEditedVertex(h, l, f)) return true;
   return normalsDisagree(h, l, f) || creaseTangentsDisagree(h, l, f);
 }
 
-bool AdaptiveCut::aroundEditedVertex(const SparseEvaluator& h, int l, Index f) const {
+bool AdaptiveCut::aroundEditedVertex(const SparseHierarchy& h, int l, Index f) const {
   for (Index v : h.level(l).mesh.triangleVertices(f)) {
     const uint64_t id = VertexId(l, h.level(l).vertexIds[v]).packed();
     if (std::binary_search(editedVertices_.begin(), editedVertices_.end(), id)) return true;
@@ -108,7 +108,7 @@ bool AdaptiveCut::aroundEditedVertex(const SparseEvaluator& h, int l, Index f) c
   return false;
 }
 
-bool AdaptiveCut::normalsDisagree(const SparseEvaluator& h, int l, Index f) const {
+bool AdaptiveCut::normalsDisagree(const SparseHierarchy& h, int l, Index f) const {
   const auto fv = h.level(l).mesh.triangleVertices(f);
   for (int j = 0; j < 3; ++j) {
     if (cosAngle(sideNormal(h, l, fv[j], f), sideNormal(h, l, fv[(j + 1) % 3], f)) < cosThreshold_)
@@ -117,7 +117,7 @@ bool AdaptiveCut::normalsDisagree(const SparseEvaluator& h, int l, Index f) cons
   return false;
 }
 
-bool AdaptiveCut::creaseTangentsDisagree(const SparseEvaluator& h, int l, Index f) const {
+bool AdaptiveCut::creaseTangentsDisagree(const SparseHierarchy& h, int l, Index f) const {
   const Level& m = h.level(l).mesh;
   for (int j = 0; j < 3; ++j) {
     if (!isSharp(m.edgeSharpness[m.triangleEdges(f)[j]])) continue;
@@ -129,7 +129,7 @@ bool AdaptiveCut::creaseTangentsDisagree(const SparseEvaluator& h, int l, Index 
   return false;
 }
 
-void AdaptiveCut::clearSubtree(const SparseEvaluator& h, int l, Index f) {
+void AdaptiveCut::clearSubtree(const SparseHierarchy& h, int l, Index f) {
   if (!split_[l][f]) return;
   split_[l][f] = 0;
   const Index first = h.level(l).firstChildFace[f];
@@ -138,7 +138,7 @@ void AdaptiveCut::clearSubtree(const SparseEvaluator& h, int l, Index f) {
 }
 
 bool AdaptiveCut::decideSubtree(Document& doc, int l, Index f, std::vector<std::pair<int, Index>>& flipped) {
-  const SparseEvaluator& h = doc.hierarchy();
+  const SparseHierarchy& h = doc.hierarchy();
   if (!h.isNodeWithChildren(l, f)) return false;  // needs growth
   const Index first = h.level(l).firstChildFace[f];
   for (int k = 0; k < 4; ++k) {
@@ -154,7 +154,7 @@ bool AdaptiveCut::decideSubtree(Document& doc, int l, Index f, std::vector<std::
 std::optional<std::vector<std::pair<int, Index>>> AdaptiveCut::redecide(Document& doc,
                                                                         std::span<const VertexId> limits) {
   std::vector<std::pair<int, Index>> flipped;
-  const SparseEvaluator& h = doc.hierarchy();
+  const SparseHierarchy& h = doc.hierarchy();
   if (profile_.fidelity) markEditedVertices(doc);
   std::vector<std::pair<int, Index>> faces;
   for (VertexId id : limits) {

@@ -32,7 +32,7 @@ class AdaptiveCut {
 
   // False when the hierarchy was rebuilt since the cut was made (its local
   // indices changed): build a new cut.
-  bool isCurrent(const SparseEvaluator& hierarchy) const;
+  bool isCurrent(const SparseHierarchy& hierarchy) const;
 
   // Re-decides the nodes around the vertices whose limits changed. Returns
   // the nodes (level, local face) whose decision flipped, or an error-free
@@ -40,7 +40,7 @@ class AdaptiveCut {
   std::optional<std::vector<std::pair<int, Index>>> redecide(Document& doc, std::span<const VertexId> limits);
 
   int numLevels() const { return static_cast<int>(split_.size()); }
-  bool isNode(const SparseEvaluator& h, int l, Index f) const {
+  bool isNode(const SparseHierarchy& h, int l, Index f) const {
     return l == 0 || split_[l - 1][h.level(l).faceParent[f / 4]] != 0;
   }
   bool isSplit(int l, Index f) const { return split_[l][f] != 0; }
@@ -49,13 +49,13 @@ class AdaptiveCut {
  private:
   explicit AdaptiveCut(const LodProfile& profile) : profile_(profile) {}
 
-  bool wantsSplit(const SparseEvaluator& h, int l, Index f) const;
-  bool normalsDisagree(const SparseEvaluator& h, int l, Index f) const;
-  bool creaseTangentsDisagree(const SparseEvaluator& h, int l, Index f) const;
-  bool aroundEditedVertex(const SparseEvaluator& h, int l, Index f) const;
+  bool wantsSplit(const SparseHierarchy& h, int l, Index f) const;
+  bool normalsDisagree(const SparseHierarchy& h, int l, Index f) const;
+  bool creaseTangentsDisagree(const SparseHierarchy& h, int l, Index f) const;
+  bool aroundEditedVertex(const SparseHierarchy& h, int l, Index f) const;
   // Decides the subtree below a node that just became split.
   bool decideSubtree(Document& doc, int l, Index f, std::vector<std::pair<int, Index>>& flipped);
-  void clearSubtree(const SparseEvaluator& h, int l, Index f);
+  void clearSubtree(const SparseHierarchy& h, int l, Index f);
   void markEditedVertices(const Document& doc);
 
   LodProfile profile_;

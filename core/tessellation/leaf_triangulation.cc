@@ -11,7 +11,7 @@ using Points = std::vector<VertexRef>;
 // The vertices strictly inside edge e (level l) from x to y, as the face g
 // on its far side refines it: its midpoint where g is split, recursively
 // the points of the halves from g's corner children.
-void collectEdge(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index e, Index g, Index x, Index y,
+void collectEdge(const SparseHierarchy& h, const AdaptiveCut& cut, int l, Index e, Index g, Index x, Index y,
                  Points& out) {
   if (g < 0 || !cut.isSplit(l, g)) return;
   const SparseLevel& level = h.level(l);
@@ -72,7 +72,7 @@ void cover(VertexRef a, VertexRef b, VertexRef c, const Points& ab, const Points
 
 }  // namespace
 
-void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int l, Index f,
+void triangulateLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int l, Index f,
                      std::vector<RefTriangle>& out) {
   const Level& m = h.level(l).mesh;
   const auto fv = m.triangleVertices(f);

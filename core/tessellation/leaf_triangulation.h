@@ -13,7 +13,7 @@
 #include <array>
 #include <vector>
 
-#include "core/document/sparse_evaluator.h"
+#include "core/hierarchy/sparse_hierarchy.h"
 #include "core/tessellation/adaptive_cut.h"
 
 namespace tessera {
@@ -25,7 +25,7 @@ struct VertexRef {
 
 using RefTriangle = std::array<VertexRef, 3>;
 
-void triangulateLeaf(const SparseEvaluator& h, const AdaptiveCut& cut, int level, Index face,
+void triangulateLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int level, Index face,
                      std::vector<RefTriangle>& out);
 
 }  // namespace tessera

@@ -2,8 +2,8 @@
 
 #include <tuple>
 
-#include "core/document/sparse_evaluator.h"
 #include "core/hierarchy/incidence.h"
+#include "core/hierarchy/sparse_hierarchy.h"
 
 namespace tessera {
 
@@ -35,7 +35,7 @@ Expected<RegionFrame> readFrame(ByteReader& r) {
   return frame;
 }
 
-Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& counts, FaceId region) {
+Expected<RegionFrame> regionFrame(const SparseHierarchy& h, const LevelCounts& counts, FaceId region) {
   const int r = region.level();
   if (r >= h.numLevels())
     return notFound("region " + region.toString() + ": the hierarchy holds no level " + std::to_string(r));

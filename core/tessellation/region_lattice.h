@@ -21,7 +21,7 @@
 
 namespace tessera {
 
-class SparseEvaluator;
+class SparseHierarchy;
 
 // What names the vertices of one region's root face.
 struct RegionFrame {
@@ -43,7 +43,7 @@ void writeFrame(ByteWriter& w, const RegionFrame& frame);
 Expected<RegionFrame> readFrame(ByteReader& r);
 
 // The frame of a region whose root face the hierarchy holds.
-Expected<RegionFrame> regionFrame(const SparseEvaluator& h, const LevelCounts& counts, FaceId region);
+Expected<RegionFrame> regionFrame(const SparseHierarchy& h, const LevelCounts& counts, FaceId region);
 
 // The lattice of a frame's face `depth` levels down: (u, v) with u + v <=
 // 2^depth, corner 0 at (0, 0), corner 1 at (2^depth, 0), corner 2 at

@@ -44,7 +44,7 @@ bool maskInexact(const Level& m, Index v) {
 // bit. When the hierarchy does not hold the vertex's ring at the chosen
 // level, a face to grow it there is appended to `growth` and nothing is
 // returned.
-std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts& counts, VertexRef v,
+std::optional<VertexRef> limitSource(const SparseHierarchy& h, const LevelCounts& counts, VertexRef v,
                                      std::vector<FaceId>& growth) {
   while (v.level > 0 && v.local < h.level(v.level).numVertexChildren) {
     v = {v.level - 1, h.level(v.level).origin[v.local]};
@@ -73,7 +73,7 @@ std::optional<VertexRef> limitSource(const SparseEvaluator& h, const LevelCounts
 
 // The limit normal of side `side` > 0 of a crease or corner vertex
 // (limitSideOfRingFace's numbering; side 0's is its limit normal).
-Vec3 sideNormal(const SparseEvaluator& h, VertexRef v, int side) {
+Vec3 sideNormal(const SparseHierarchy& h, VertexRef v, int side) {
   return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod())[side - 1]
       .normal;
 }
@@ -91,7 +91,7 @@ Vec3 sideNormal(const SparseEvaluator& h, VertexRef v, int side) {
 // limit's level, deeper than the display, a semi-sharp edge may have
 // decayed and merged two displayed sectors into one whose normal is far
 // from (even perpendicular to) the faces in it.
-int sideOf(const SparseEvaluator& h, VertexRef at, int l, Index f) {
+int sideOf(const SparseHierarchy& h, VertexRef at, int l, Index f) {
   const SparseLevel& level = h.level(at.level);
   if (isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
   const uint64_t leaf = h.level(l).faceIds[f];
@@ -142,7 +142,7 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
     TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));
     const int regionLevel = std::max(0, cut.profile().maxLevel - kRegionDepth);
     Tessellation tessellation(std::move(cut), regionLevel, doc.counts());
-    const SparseEvaluator& h = doc.hierarchy();
+    const SparseHierarchy& h = doc.hierarchy();
     std::vector<uint64_t> ids;
     for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
     std::vector<FaceId> growth;
@@ -174,7 +174,7 @@ Status Tessellation::checkBudget() const {
   return Status::ok();
 }
 
-void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::vector<uint64_t>& out) const {
+void Tessellation::regionsUnder(const SparseHierarchy& h, int l, Index f, std::vector<uint64_t>& out) const {
   if (l == regionLevel_ || !cut_.isSplit(l, f)) {
     out.push_back(FaceId(l, h.level(l).faceIds[f]).packed());
     return;
@@ -183,7 +183,7 @@ void Tessellation::regionsUnder(const SparseEvaluator& h, int l, Index f, std::v
   for (int k = 0; k < 4; ++k) regionsUnder(h, l + 1, first + k, out);
 }
 
-RegionMesh Tessellation::buildRegion(const SparseEvaluator& h, FaceId region,
+RegionMesh Tessellation::buildRegion(const SparseHierarchy& h, FaceId region,
                                      std::vector<FaceId>& growth) const {
   std::vector<RefTriangle> triangles;
   std::vector<VertexRef> leaves;  // per triangle, its leaf (level, face)
@@ -255,7 +255,7 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   if (!cut_.isCurrent(doc.hierarchy())) return rebuildAll(doc);
   auto flipped = cut_.redecide(doc, changedLimits);
   if (!flipped) return rebuildAll(doc);
-  const SparseEvaluator& h = doc.hierarchy();
+  const SparseHierarchy& h = doc.hierarchy();
 
   // The area whose triangles may differ: the faces around every vertex
   // whose limit changed (every triangle using it lies in them) and around

@@ -81,10 +81,10 @@ class Tessellation {
       : cut_(std::move(cut)), regionLevel_(regionLevel), counts_(counts) {}
 
   // The regions of the cut under (level, face), appended as packed FaceIds.
-  void regionsUnder(const SparseEvaluator& h, int l, Index f, std::vector<uint64_t>& out) const;
+  void regionsUnder(const SparseHierarchy& h, int l, Index f, std::vector<uint64_t>& out) const;
   // Appends to `growth` the faces the hierarchy must hold for the limits
   // the region shows (the mesh is then incomplete).
-  RegionMesh buildRegion(const SparseEvaluator& h, FaceId region, std::vector<FaceId>& growth) const;
+  RegionMesh buildRegion(const SparseHierarchy& h, FaceId region, std::vector<FaceId>& growth) const;
   Expected<Changes> rebuildAll(Document& doc);
   Status checkBudget() const;
 

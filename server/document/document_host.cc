@@ -240,7 +240,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   // vertex is a hierarchy limit, and the changed ones are listed.
   bool outside = false;
   for (uint32_t key = 0; key < doc_.numKeys(); ++key) {
-    const SparseEvaluator& h = doc_.key(key).hierarchy();
+    const SparseHierarchy& h = doc_.key(key).hierarchy();
     for (VertexId id : key == 0 ? applied.limits : applied.key1Limits) {
       if (id.level() >= h.numLevels()) continue;  // a batch's later undo dropped the level: its limit is gone
       const Index v = h.level(id.level()).findVertex(id.index());

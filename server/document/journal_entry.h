@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/document/document.h"
-#include "core/document/edit.h"
+#include "core/hierarchy/edit.h"
 #include "core/morph/keyed_document.h"
 #include "core/util/status.h"
 

@@ -48,7 +48,7 @@ void expectLatticeMatchesHierarchy(const testing::TestMesh& mesh, int rootLevel,
   const int deepest = rootLevel + depth;
   auto doc = Document::create(mesh.topology, mesh.points, {.maxLevel = deepest, .uniformLevel = deepest});
   ASSERT_TRUE(doc.isOk()) << doc.status().message();
-  const SparseEvaluator& h = doc->hierarchy();
+  const SparseHierarchy& h = doc->hierarchy();
   const LevelCounts& counts = doc->counts();
   const int n = 1 << depth;
   int checked = 0;

@@ -1,4 +1,4 @@
-// The sparse forest and its incremental updates (core/document/sparse_evaluator.h):
+// The sparse forest and its incremental updates (core/hierarchy/sparse_hierarchy.h):
 // incidence arithmetic against uniform topology, agreement with the dense
 // reference evaluator to 1e-9 after every step of long random histories,
 // dirty sets that cover every changed displayed limit, recompute counts
@@ -46,7 +46,7 @@ TEST(Incidence, TheIncidentFaceHoldsTheElementAtEveryLevel) {
 // Every present vertex of every level equals the dense reference; every
 // displayed limit equals the dense limit at that level.
 void expectMatchesDense(const Document& doc, const std::string& where) {
-  const SparseEvaluator& sparse = doc.hierarchy();
+  const SparseHierarchy& sparse = doc.hierarchy();
   auto dense = evaluateDocument(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.edits(),
                                 sparse.numLevels() - 1);
   ASSERT_TRUE(dense.isOk()) << dense.status().message();
@@ -76,7 +76,7 @@ void expectMatchesDense(const Document& doc, const std::string& where) {
 }
 
 // Limits of complete vertices, keyed by (level, canonical vertex).
-std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> completeLimits(const SparseEvaluator& sparse) {
+std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> completeLimits(const SparseHierarchy& sparse) {
   std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> out;
   for (int l = 0; l < sparse.numLevels(); ++l) {
     for (Index v = 0; v < sparse.level(l).mesh.numVertices; ++v) {
@@ -92,7 +92,7 @@ std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>> completeLimits(const S
 void expectDirtySetCovers(const Document& doc,
                           const std::map<std::pair<int, uint64_t>, std::pair<Vec3, Vec3>>& before,
                           const std::string& where) {
-  const SparseEvaluator& sparse = doc.hierarchy();
+  const SparseHierarchy& sparse = doc.hierarchy();
   const DirtySet& dirty = doc.lastUpdate();
   if (dirty.grownFromLevel >= 0) return;  // growth rebuilds the levels below it
   for (int l = 0; l < sparse.numLevels(); ++l) {

@@ -50,7 +50,7 @@ bool randomEdit(Document& doc, std::mt19937& rng) {
     const VertexId v(level, pick(doc.counts().vertices(level)));
     const Vec3 d(uniform(-.05, .05), uniform(-.05, .05), uniform(-.05, .05));
     if (op < 5) return doc.moveBy(std::span(&v, 1), d).isOk();
-    const SparseEvaluator& h = doc.hierarchy();
+    const SparseHierarchy& h = doc.hierarchy();
     Vec3 target = d;
     if (v.level() < h.numLevels()) {
       const Index local = h.level(v.level()).findVertex(v.index());

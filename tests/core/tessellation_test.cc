@@ -58,7 +58,7 @@ struct Check {
 // no T-junctions (every edge of the union is shared by two triangles, or is
 // on the boundary), no degenerate triangles, and every vertex its limit.
 void expectSoundTessellation(const Document& doc, const Tessellation& t, const std::string& where) {
-  const SparseEvaluator& h = doc.hierarchy();
+  const SparseHierarchy& h = doc.hierarchy();
   const int finest = doc.options().maxLevel;
   auto dense =
       evaluateDocument(doc.baseTopology(), doc.basePoints(), doc.options().loop, doc.edits(), finest);

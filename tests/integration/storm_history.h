@@ -154,7 +154,7 @@ inline StormCommand randomCrease(std::mt19937& rng, const LevelCounts& counts, i
 //
 // Why this is enough: the evaluators add a vertex's offsets one by one in
 // edit order and let the last active tag of an element win
-// (document_evaluator.h, sparse_evaluator.cc), so the points and rules
+// (document_evaluator.h, sparse_hierarchy.cc), so the points and rules
 // depend only on these; later moves resolve from those points. And the
 // storm settles every edit at the end of its cycle: an editor undoes and
 // redoes only its own edits acknowledged in the running cycle, so when a

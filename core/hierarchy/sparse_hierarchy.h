@@ -17,7 +17,7 @@
 // children -- are the hierarchy's own display (tessellations cut through
 // the nodes by their LOD profiles, core/tessellation).
 //
-// Semantics are those of document_evaluator.h, the dense reference: the
+// Semantics are those of core/document/document_evaluator.h, the dense reference: the
 // property tests require agreement to 1e-9 at every present vertex.
 #pragma once
 
@@ -27,7 +27,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/document/edit.h"
+#include "core/hierarchy/edit.h"
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_level.h"
 #include "core/hierarchy/sparse_selection.h"
@@ -62,9 +62,9 @@ struct HierarchyStats {
   size_t bytes = 0;               // topology, ids, points, limits, edits' indices
 };
 
-class SparseEvaluator {
+class SparseHierarchy {
  public:
-  static Expected<SparseEvaluator> create(const BaseTopology& base, std::span<const Vec3> basePoints,
+  static Expected<SparseHierarchy> create(const BaseTopology& base, std::span<const Vec3> basePoints,
                                           const LoopOptions& options, const LevelCounts& counts,
                                           int uniformLevel, std::span<const Edit> edits);
 
@@ -147,9 +147,9 @@ class SparseEvaluator {
     std::vector<uint8_t> vertexMarks, faceMarks;
   };
 
-  SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
+  SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
 
-  // Structure (sparse_evaluator.cc; which faces exist is selection_'s,
+  // Structure (sparse_hierarchy.cc; which faces exist is selection_'s,
   // core/hierarchy/sparse_selection.h).
   // The faces an edit addresses below level 0 (incident to its elements).
   std::vector<FaceId> demandedFaces(const Edit& edit) const;
@@ -164,7 +164,7 @@ class SparseEvaluator {
   void markLeaves(int l, bool freshLevel);
   void refreshLimit(int l, Index vertex, const LimitEvaluator& limits);
 
-  // Edits at one level (sparse_evaluator.cc).
+  // Edits at one level (sparse_hierarchy.cc).
   void resolveTags(int l, std::span<const Edit> edits);
   void applyTags(int l);
   float inheritedEdgeSharpness(int l, Index edge) const;

@@ -6,8 +6,8 @@
 // limits are refreshed where a displayed vertex or a ring neighbour changed.
 #include <algorithm>
 
-#include "core/document/interpolation_conflicts.h"
-#include "core/document/sparse_evaluator.h"
+#include "core/hierarchy/interpolation_conflicts.h"
+#include "core/hierarchy/sparse_hierarchy.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/sharpness_inheritance.h"
 
@@ -51,7 +51,7 @@ bool touches(const Level& m, Index v, const Marked& set) {
 
 }  // namespace
 
-DirtySet SparseEvaluator::update(const Edit& edit, std::span<const Edit> edits) {
+DirtySet SparseHierarchy::update(const Edit& edit, std::span<const Edit> edits) {
   DirtySet dirty;
   const int l = edit.level();
   std::vector<Index> sources = applyEditAtItsLevel(edit, edits);
@@ -70,7 +70,7 @@ DirtySet SparseEvaluator::update(const Edit& edit, std::span<const Edit> edits) 
 // Re-resolves the edited elements from the whole edit list (so adding,
 // undoing, redoing and removing are one operation) and returns the level-l
 // vertices whose point or rule changed.
-std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::span<const Edit> edits) {
+std::vector<Index> SparseHierarchy::applyEditAtItsLevel(const Edit& edit, std::span<const Edit> edits) {
   const int l = edit.level();
   LevelState& state = levels_[l];
   Level& m = state.topo.mesh;
@@ -138,7 +138,7 @@ std::vector<Index> SparseEvaluator::applyEditAtItsLevel(const Edit& edit, std::s
 }
 
 // Vertices of the faces around `vertices` (present faces only).
-std::vector<Index> SparseEvaluator::verticesAround(int l, const std::vector<Index>& vertices) {
+std::vector<Index> SparseHierarchy::verticesAround(int l, const std::vector<Index>& vertices) {
   const Level& m = levels_[l].topo.mesh;
   Marked out(levels_[l].vertexMarks);
   for (Index v : vertices) {
@@ -150,7 +150,7 @@ std::vector<Index> SparseEvaluator::verticesAround(int l, const std::vector<Inde
   return out.toVector();
 }
 
-void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dirty) {
+void SparseHierarchy::propagate(int l, std::vector<Index> changed, DirtySet& dirty) {
   refreshLimitsNear(l, changed, verticesAround(l, changed), dirty);
   for (int k = l; k + 1 < numLevels() && !changed.empty(); ++k) {
     // A child's stencil reads a changed vertex exactly when the child
@@ -202,7 +202,7 @@ void SparseEvaluator::propagate(int l, std::vector<Index> changed, DirtySet& dir
 // Sharpness, rules, predictions and points of the children (at level l+1)
 // of the vertices and edges of `parentFaces`, in that order: each step reads
 // only what the previous one and the parent level settled.
-std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Index>& parentFaces) {
+std::vector<Index> SparseHierarchy::refreshChildren(int l, const std::vector<Index>& parentFaces) {
   const LevelState& parent = levels_[l];
   const SparseLevel& p = parent.topo;
   LevelState& state = levels_[l + 1];
@@ -243,7 +243,7 @@ std::vector<Index> SparseEvaluator::refreshChildren(int l, const std::vector<Ind
   return vertices.toVector();
 }
 
-void SparseEvaluator::refreshLimitsNear(int l, const std::vector<Index>& changed,
+void SparseHierarchy::refreshLimitsNear(int l, const std::vector<Index>& changed,
                                         const std::vector<Index>& candidates, DirtySet& dirty) {
   const LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;

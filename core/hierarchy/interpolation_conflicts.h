@@ -17,7 +17,7 @@
 
 #include <span>
 
-#include "core/document/edit.h"
+#include "core/hierarchy/edit.h"
 #include "core/hierarchy/ids.h"
 #include "core/topology/level.h"
 #include "core/util/status.h"

@@ -1,4 +1,4 @@
-#include "core/document/interpolation_conflicts.h"
+#include "core/hierarchy/interpolation_conflicts.h"
 
 #include <optional>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "core/document/sparse_evaluator.h"
+#include "core/hierarchy/sparse_hierarchy.h"
 
 #include <algorithm>
 
@@ -29,15 +29,15 @@ void forEachElement(const Edit& edit, Visit&& visit) {
 
 }  // namespace
 
-SparseEvaluator::SparseEvaluator(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
+SparseHierarchy::SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
     : options_(options), counts_(counts), selection_(std::min(uniformLevel, counts.maxLevel())) {}
 
-Expected<SparseEvaluator> SparseEvaluator::create(const BaseTopology& base, std::span<const Vec3> basePoints,
+Expected<SparseHierarchy> SparseHierarchy::create(const BaseTopology& base, std::span<const Vec3> basePoints,
                                                   const LoopOptions& options, const LevelCounts& counts,
                                                   int uniformLevel, std::span<const Edit> edits) {
   if (uniformLevel < 0) return invalidArgument("the uniform level must be >= 0");
   TESSERA_ASSIGN_OR_RETURN(Level level0, buildBaseLevel(base, options));
-  SparseEvaluator eval(options, counts, uniformLevel);
+  SparseHierarchy eval(options, counts, uniformLevel);
   eval.baseEdgeSharpness_.assign(level0.edgeSharpness.begin(), level0.edgeSharpness.end());
   eval.baseVertexSharpness_.assign(level0.vertexSharpness.begin(), level0.vertexSharpness.end());
   eval.basePoints_.assign(basePoints.begin(), basePoints.end());
@@ -51,7 +51,7 @@ Expected<SparseEvaluator> SparseEvaluator::create(const BaseTopology& base, std:
 
 // ---- Structure ---------------------------------------------------------
 
-std::vector<FaceId> SparseEvaluator::demandedFaces(const Edit& edit) const {
+std::vector<FaceId> SparseHierarchy::demandedFaces(const Edit& edit) const {
   std::vector<FaceId> faces;
   forEachElement(edit, [&](auto id) {
     if (id.level() > 0) faces.push_back(incidentFace(levels_[0].topo.mesh, counts_, id));
@@ -59,13 +59,13 @@ std::vector<FaceId> SparseEvaluator::demandedFaces(const Edit& edit) const {
   return faces;
 }
 
-void SparseEvaluator::addDemand(const Edit& edit) {
+void SparseHierarchy::addDemand(const Edit& edit) {
   for (FaceId face : demandedFaces(edit)) selection_.demandForEdit(face);
 }
 
 // A demanded face adds N1(its ancestor) to Sel at each level from the
 // uniform one down to its parent's; covered if all of those are there.
-bool SparseEvaluator::demandCovered(FaceId face) const {
+bool SparseHierarchy::demandCovered(FaceId face) const {
   for (int k = selection_.uniformLevel(); k < face.level(); ++k) {
     if (k + 1 >= numLevels()) return false;
     if (!SparseSelection::ancestorRingSelected(levels_[k].topo, levels_[k].selected, face)) return false;
@@ -73,7 +73,7 @@ bool SparseEvaluator::demandCovered(FaceId face) const {
   return true;
 }
 
-void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
+void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
   const int deepest = std::max(selection_.uniformLevel(), selection_.deepestDemand());
   std::vector<uint64_t> generations;
   for (const LevelState& state : levels_) generations.push_back(state.generation);
@@ -99,7 +99,7 @@ void SparseEvaluator::rebuildFrom(int l, std::span<const Edit> edits) {
   for (int k = l; k < numLevels(); ++k) markLeaves(k, k > l);
 }
 
-void SparseEvaluator::markLeaves(int l, bool freshLevel) {
+void SparseHierarchy::markLeaves(int l, bool freshLevel) {
   LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
   state.leaf.assign(m.numFaces(), 0);
@@ -120,11 +120,11 @@ void SparseEvaluator::markLeaves(int l, bool freshLevel) {
   }
 }
 
-LimitFrame SparseEvaluator::limitFrameOf(int l, Index v) const {
+LimitFrame SparseHierarchy::limitFrameOf(int l, Index v) const {
   return limitFrame(levels_[l].topo.mesh, v, levels_[l].points, options_.creaseMethod);
 }
 
-void SparseEvaluator::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
+void SparseHierarchy::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
   LevelState& state = levels_[l];
   const LimitFrame frame = limits.frame(v, state.points);
   state.limitPosition[v] = frame.position;
@@ -133,7 +133,7 @@ void SparseEvaluator::refreshLimit(int l, Index v, const LimitEvaluator& limits)
 
 // ---- One level's points and tags -------------------------------------
 
-void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
+void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits) {
   LevelState& state = levels_[l];
   const SparseLevel& topo = state.topo;
   resolveTags(l, edits);
@@ -178,7 +178,7 @@ void SparseEvaluator::evaluateLevel(int l, std::span<const Edit> edits) {
   if (!edited.empty()) refreshReached(l, verticesAround(l, edited));
 }
 
-void SparseEvaluator::refreshReached(int l, const std::vector<Index>& vertices) {
+void SparseHierarchy::refreshReached(int l, const std::vector<Index>& vertices) {
   LevelState& state = levels_[l];
   const SparseLevel& topo = state.topo;
   auto moved = [&](Index u) {
@@ -196,7 +196,7 @@ void SparseEvaluator::refreshReached(int l, const std::vector<Index>& vertices) 
 }
 
 // Later edits win: they are resolved in edit order.
-void SparseEvaluator::resolveTags(int l, std::span<const Edit> edits) {
+void SparseHierarchy::resolveTags(int l, std::span<const Edit> edits) {
   LevelState& state = levels_[l];
   state.edgeTags.clear();
   state.vertexTags.clear();
@@ -218,7 +218,7 @@ void SparseEvaluator::resolveTags(int l, std::span<const Edit> edits) {
   }
 }
 
-void SparseEvaluator::applyTags(int l) {
+void SparseHierarchy::applyTags(int l) {
   LevelState& state = levels_[l];
   Level& m = state.topo.mesh;
   for (const auto& [e, s] : state.edgeTags) m.edgeSharpness[e] = s;
@@ -230,14 +230,14 @@ void SparseEvaluator::applyTags(int l) {
   for (const auto& [v, s] : state.vertexTags) recomputeRule(l, v);
 }
 
-float SparseEvaluator::inheritedVertexSharpness(int l, Index v) const {
+float SparseHierarchy::inheritedVertexSharpness(int l, Index v) const {
   if (l == 0) return baseVertexSharpness_[v];
   const SparseLevel& topo = levels_[l].topo;
   if (v >= topo.numVertexChildren) return kSharpnessSmooth;
   return decrementSharpness(levels_[l - 1].topo.mesh.vertexSharpness[topo.origin[v]]);
 }
 
-float SparseEvaluator::inheritedEdgeSharpness(int l, Index e) const {
+float SparseHierarchy::inheritedEdgeSharpness(int l, Index e) const {
   if (l == 0) return baseEdgeSharpness_[e];
   const uint64_t id = levels_[l].topo.edgeIds[e];
   if (id >= 2 * counts_.edges(l - 1)) return kSharpnessSmooth;  // interior to a parent face
@@ -248,7 +248,7 @@ float SparseEvaluator::inheritedEdgeSharpness(int l, Index e) const {
 
 // Complete vertices read their own ring (tags on this level count); the
 // others inherit the rule their parent passes down.
-void SparseEvaluator::recomputeRule(int l, Index v) {
+void SparseHierarchy::recomputeRule(int l, Index v) {
   Level& m = levels_[l].topo.mesh;
   const SparseLevel& topo = levels_[l].topo;
   if (topo.isComplete(v)) {
@@ -262,14 +262,14 @@ void SparseEvaluator::recomputeRule(int l, Index v) {
                                                 : inherit.edgeChildRule(topo.origin[v]);
 }
 
-void SparseEvaluator::applyOffset(int l, Index v) {
+void SparseHierarchy::applyOffset(int l, Index v) {
   LevelState& state = levels_[l];
   auto it = state.offsets.find(v);
   state.points[v] =
       it == state.offsets.end() ? state.predicted[v] : state.predicted[v] + frameOf(l, v).toWorld(it->second);
 }
 
-void SparseEvaluator::applyGhostRing(int l, Index v0) {
+void SparseHierarchy::applyGhostRing(int l, Index v0) {
   const LevelState& parent = levels_[l - 1];
   const SparseLevel& p = parent.topo;
   LevelState& state = levels_[l];
@@ -283,7 +283,7 @@ void SparseEvaluator::applyGhostRing(int l, Index v0) {
   }
 }
 
-bool SparseEvaluator::isGhosted(int l, Index v) const {
+bool SparseHierarchy::isGhosted(int l, Index v) const {
   if (l == 0) return false;
   const LevelState& parent = levels_[l - 1];
   if (parent.interpolationTags.empty()) return false;
@@ -297,7 +297,7 @@ bool SparseEvaluator::isGhosted(int l, Index v) const {
   return applies(ends[0]) || applies(ends[1]);
 }
 
-std::vector<Index> SparseEvaluator::ghostRingChildren(int l, Index v) const {
+std::vector<Index> SparseHierarchy::ghostRingChildren(int l, Index v) const {
   std::vector<Index> children;
   if (l + 1 >= numLevels() || v < 0) return children;
   const SparseLevel& p = levels_[l].topo;
@@ -308,13 +308,13 @@ std::vector<Index> SparseEvaluator::ghostRingChildren(int l, Index v) const {
   return children;
 }
 
-LocalFrame SparseEvaluator::frameOf(int l, Index v) const {
+LocalFrame SparseHierarchy::frameOf(int l, Index v) const {
   return localFrame(levels_[l].topo.mesh, v, levels_[l].predicted);
 }
 
 // ---- Queries -------------------------------------------------------------
 
-Expected<Index> SparseEvaluator::completeVertex(VertexId id) const {
+Expected<Index> SparseHierarchy::completeVertex(VertexId id) const {
   if (id.level() >= numLevels()) {
     return notFound(id.toString() + ": level " + std::to_string(id.level()) + " is not in the hierarchy");
   }
@@ -326,7 +326,7 @@ Expected<Index> SparseEvaluator::completeVertex(VertexId id) const {
   return v;
 }
 
-HierarchyStats SparseEvaluator::stats() const {
+HierarchyStats SparseHierarchy::stats() const {
   HierarchyStats stats;
   for (const LevelState& state : levels_) {
     HierarchyStats::PerLevel level;
@@ -354,7 +354,7 @@ HierarchyStats SparseEvaluator::stats() const {
 
 // ---- Growth ----------------------------------------------------------------
 
-DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits) {
+DirtySet SparseHierarchy::reserve(const Edit& edit, std::span<const Edit> edits) {
   DirtySet dirty;
   const std::vector<FaceId> faces = demandedFaces(edit);
   if (std::all_of(faces.begin(), faces.end(), [&](FaceId face) { return demandCovered(face); })) {
@@ -374,7 +374,7 @@ DirtySet SparseEvaluator::reserve(const Edit& edit, std::span<const Edit> edits)
   return dirty;
 }
 
-DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
+DirtySet SparseHierarchy::forgetEditNodes(std::span<const Edit> edits) {
   DirtySet dirty;
   std::set<FaceId> now;
   for (const Edit& edit : edits) {
@@ -404,7 +404,7 @@ DirtySet SparseEvaluator::forgetEditNodes(std::span<const Edit> edits) {
 // again only around changed limits, so where faces just became edit nodes
 // the ancestor's corners, whose rings are exactly those faces, are
 // reported as such (recomputed, unchanged).
-void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
+void SparseHierarchy::markEditNodes(FaceId face, DirtySet& dirty) {
   for (int k = 0; k < face.level() && k < numLevels(); ++k) {
     LevelState& state = levels_[k];
     const Level& m = state.topo.mesh;
@@ -422,7 +422,7 @@ void SparseEvaluator::markEditNodes(FaceId face, DirtySet& dirty) {
 
 // Rebuild below the first level whose selection changes: levels above keep
 // their topology, points and limits.
-int SparseEvaluator::firstChangedSelection() const {
+int SparseHierarchy::firstChangedSelection() const {
   for (int k = 0; k < numLevels(); ++k) {
     Buffer<uint8_t> selected, refined, editSelected;
     selection_.select(levels_[k].topo, selected, refined, &editSelected);
@@ -435,7 +435,7 @@ int SparseEvaluator::firstChangedSelection() const {
   return numLevels() - 1;
 }
 
-int SparseEvaluator::reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits) {
+int SparseHierarchy::reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits) {
   bool covered = true;
   for (FaceId face : faces) {
     if (face.level() > 0 && !demandCovered(face)) covered = false, selection_.demandForTessellation(face);
@@ -446,7 +446,7 @@ int SparseEvaluator::reserveFaces(std::span<const FaceId> faces, std::span<const
   return first;
 }
 
-void SparseEvaluator::raiseUniformLevel(int level, std::span<const Edit> edits) {
+void SparseHierarchy::raiseUniformLevel(int level, std::span<const Edit> edits) {
   level = std::min(level, counts_.maxLevel());
   if (level <= selection_.uniformLevel()) return;
   const int first = selection_.uniformLevel();

@@ -189,7 +189,8 @@ int runMorph(const MorphArgs& args) {
 }  // namespace
 
 void addMorphCommand(CLI::App& app, Action& action) {
-  CLI::App* sub = app.add_subcommand("morph", "morph two images through two 2D meshes (seed 004)");
+  CLI::App* sub = app.add_subcommand(
+      "morph", "morph two images through two 2D meshes (docs/INTERPOLATION.md, \"The image morph\")");
   sub->footer(
       "Meshes: OBJ/OFF/PLY... in pixel coordinates of their image (x right, y down), one connectivity, holes "
       "allowed.\nTags: crease/corner lines as in --tags elsewhere, and 'interpolate VERTEX [TENSION]' for "

@@ -116,7 +116,8 @@ constexpr bool countsAreRight() {
   return true;
 }
 static_assert(countsAreRight(), "every split pattern has n + 1 triangles");
-static_assert(kTable[26].count == kMaxSplitTriangles, "the seed's maximum of ten sub-triangles");
+static_assert(kTable[26].count == kMaxSplitTriangles,
+              "at most ten sub-triangles (Kähler, Haber & Seidel §4)");
 
 }  // namespace
 

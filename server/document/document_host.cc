@@ -14,8 +14,11 @@
 #include "protocol/framing.h"
 #include "protocol/utf8_text.h"
 #include "server/base/log.h"
+#include "server/document/bulk_release.h"
+#include "server/document/document_admission.h"
 #include "server/document/journal_entry.h"
-#include "server/document/profile_request.h"
+#include "server/document/morph_control.h"
+#include "server/document/morph_view.h"
 #include "server/document/replies.h"
 
 namespace tessera::server {
@@ -64,9 +67,11 @@ DocumentHost::DocumentHost(store::DocumentId id, std::string name, KeyedDocument
       bulk_(bulk),
       queue_(workers, bulk),
       presenceTimer_(workers),
+      presence_(id.value, config.limits.maxFrameBytes),
       store_(store),
       config_(config),
       stats_(stats),
+      views_(id, config.limits.maxTrianglesPerSubscriber, config.limits.maxFrameBytes),
       flushTimer_(workers),
       commits_(id, version, config.limits.maxFrameBytes, stats) {
   auto grid = documentGrid(doc_.key0());
@@ -77,7 +82,7 @@ DocumentHost::~DocumentHost() {
   // Freeing a large document takes seconds: the document and its views go
   // on a bulk thread, which then trims the heap, rather than on the worker
   // that dropped the last reference (it may owe a small document an edit).
-  releaseOnBulk(std::make_shared<Released>(Released{std::move(doc_), std::move(views_)}));
+  releaseOnBulk(bulk_, std::make_shared<Released>(Released{std::move(doc_), views_.takeAll()}));
   logEvent(LogLevel::kInfo, "document_closed", {{"doc", id_.value}});
 }
 
@@ -85,7 +90,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
                              uint64_t clientSeq, bool resync, bool withCommands) {
   // Refused from the estimate before any work, on the caller's thread: a
   // profile whose base level alone is over its budget (docs/PROTOCOL.md §9).
-  const int64_t least = minimumTriangles(requested);
+  const int64_t least = minimumTriangles(counts_, requested);
   const int64_t budget = budgetOf(requested, config_.limits);
   if (least > budget) {
     who->send({limitExceeded(clientSeq,
@@ -96,8 +101,8 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
                nullptr});
     return;
   }
-  queue_.post(laneFor(maximumTriangles(requested)), [self = shared_from_this(), who, requested, clientSeq,
-                                                     resync, withCommands] {
+  const Lane lane = laneFor(maximumTriangles(counts_, requested, config_.limits), config_);
+  queue_.post(lane, [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
     const Limits& limits = self->config_.limits;
@@ -107,21 +112,13 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
       who->send({frameOf(rejectFor(clientSeq, checked.status()), limits.maxFrameBytes), nullptr});
       return;
     }
-    const LodProfile& profile = checked->profile;
-    const std::optional<double>& morphT = checked->morphT;
     const std::string& key = checked->key;
-    auto it = self->views_.find(key);
+    LodView* view = self->views_.find(key);
     // The views left if this subscriber moves to `key`: those someone else
     // still watches. Counted before anything changes, so that a refused
     // profile leaves the subscriber on the one it had.
-    size_t kept = 0;
-    for (const auto& [other, view] : self->views_) {
-      kept += std::any_of(view.subscribers.begin(), view.subscribers.end(),
-                          [&](const auto& s) { return s.first != who->sessionId() && !s.second.expired(); })
-                  ? 1
-                  : 0;
-    }
-    if (it == self->views_.end() && kept >= static_cast<size_t>(limits.profilesPerDocument)) {
+    const size_t kept = self->views_.watchedByOthers(who->sessionId());
+    if (!view && kept >= static_cast<size_t>(limits.profilesPerDocument)) {
       // Every view is re-tessellated on every edit: their number is capped.
       who->send(
           {limitExceeded(clientSeq,
@@ -132,19 +129,8 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
            nullptr});
       return;
     }
-    if (it == self->views_.end()) {
-      const auto start = Clock::now();
-      Expected<View> built = morphT ? self->buildMorphView(*morphT, profile) : Expected<View>(View{});
-      if (built.isOk() && !morphT) {
-        auto tessellation = Tessellation::build(self->doc_.growableKey0(), profile);
-        if (tessellation.isOk()) {
-          built->tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
-        } else {
-          built = tessellation.status();
-        }
-      }
-      self->stats_.tessellateMicros += microsSince(start);
-      self->stats_.tessellateLatency.addMicros(microsSince(start));
+    if (!view) {
+      Expected<LodView> built = self->buildView(*checked, requested);
       if (!built.isOk()) {
         // Over the budget, or a morph whose keys do not match (the error says where).
         const Status& why = built.status();
@@ -154,19 +140,12 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
                    nullptr});
         return;
       }
-      View view = std::move(*built);
-      view.wireProfile = requested;
-      for (const auto& [region, mesh] : view.tessellation->regions()) {
-        view.layout[region] = self->version_;
-        rehashRegion(view, region, self->grid_);
-      }
-      self->leaveOtherViews(who->sessionId(), key);
-      it = self->views_.emplace(key, std::move(view)).first;
+      self->releaseViews(self->views_.leaveAllBut(who->sessionId(), key));
+      view = &self->views_.add(key, std::move(*built));
     } else {
-      self->leaveOtherViews(who->sessionId(), key);
-      it = self->views_.find(key);  // still there: watched by others, or by this subscriber
+      self->releaseViews(self->views_.leaveAllBut(who->sessionId(), key));
+      view = self->views_.find(key);  // still there: watched by others, or by this subscriber
     }
-    View& view = it->second;
     if (!resync) {
       wire::ServerMessage ack = ackFor(clientSeq, self->id_.value);
       ack.mutable_ack()->set_version(self->version_);
@@ -177,29 +156,105 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
         self->commits_.stopRecording(who->sessionId());
       }
     }
-    self->sendSnapshot(view, who, resync);
+    self->sendSnapshot(*view, who, resync);
     // Other views may have rebuilt (the hierarchy can grow); their next
     // update notices it by itself.
   });
 }
 
+Expected<LodView> DocumentHost::buildView(const ProfileRequest& checked, const wire::LodProfile& requested) {
+  const auto start = Clock::now();
+  Expected<LodView> built =
+      checked.morphT ? buildMorphView(doc_, *checked.morphT, checked.profile) : Expected<LodView>(LodView{});
+  if (built.isOk() && !checked.morphT) {
+    auto tessellation = Tessellation::build(doc_.growableKey0(), checked.profile);
+    if (tessellation.isOk()) {
+      built->tessellation = std::make_unique<Tessellation>(std::move(*tessellation));
+    } else {
+      built = tessellation.status();
+    }
+  }
+  stats_.tessellateMicros += microsSince(start);
+  stats_.tessellateLatency.addMicros(microsSince(start));
+  if (!built.isOk()) return built;
+  built->wireProfile = requested;
+  for (const auto& [region, mesh] : built->tessellation->regions()) {
+    built->layout[region] = version_;
+    rehashRegion(*built, region, grid_);
+  }
+  return built;
+}
+
 void DocumentHost::unsubscribe(uint64_t session) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
     self->commits_.stopRecording(session);
-    for (auto& [key, view] : self->views_) view.subscribers.erase(session), view.knownVersion.erase(session);
-    self->dropUnwatchedViews();
+    self->releaseViews(self->views_.leave(session));
   });
 }
 
-void DocumentHost::sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync) {
+void DocumentHost::sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync) {
   for (auto& frame : snapshotFrames(view, id_.value, resync, encodeContext(view), kSnapshotPartBytes,
                                     config_.limits.maxFrameBytes)) {
     who->send({frame, nullptr, id_.value});
   }
-  view.subscribers[who->sessionId()] = who;
-  view.knownVersion[who->sessionId()] = version_;
-  view.lastUsed = ++useClock_;
+  views_.attach(view, who, version_);
   if (resync) ++stats_.resyncs;
+}
+
+void DocumentHost::releaseViews(DocumentViews::Views dropped) {
+  if (!dropped.empty()) releaseOnBulk(bulk_, std::make_shared<DocumentViews::Views>(std::move(dropped)));
+}
+
+// Presence changes within 100 ms share one broadcast (document_presence.h).
+void DocumentHost::presenceChanged() {
+  if (presencePending_) return;
+  presencePending_ = true;
+  presenceTimer_.expires_after(std::chrono::milliseconds(100));
+  presenceTimer_.async_wait([self = shared_from_this()](const boost::system::error_code&) {
+    self->queue_.post(Lane::kInteractive, [self] {
+      self->presencePending_ = false;
+      self->presence_.broadcast();
+    });
+  });
+}
+
+void DocumentHost::join(std::shared_ptr<Subscriber> who, std::string name, wire::Role role) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, name = std::move(name), role] {
+    self->presence_.join(who, name, role);
+    self->presenceChanged();
+  });
+}
+
+void DocumentHost::leave(uint64_t session) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
+    self->presence_.leave(session);
+    self->commits_.stopRecording(session);
+    self->releaseViews(self->views_.leave(session));
+    self->presenceChanged();
+  });
+}
+
+void DocumentHost::select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) {
+  queue_.post(Lane::kInteractive,
+              [self = shared_from_this(), who, clientSeq, selection = std::move(selection)] {
+                if (!self->presence_.isParticipant(who->sessionId())) return;
+                Status valid = checkSelection(selection, self->counts_, self->config_.limits);
+                if (!valid.isOk()) {
+                  who->send({frameOf(rejectFor(clientSeq, valid.withContext("selection of document " +
+                                                                            std::to_string(self->id_.value))),
+                                     self->config_.limits.maxFrameBytes),
+                             nullptr});
+                  return;
+                }
+                self->presence_.select(who->sessionId(), selection);
+                self->presenceChanged();
+              });
+}
+
+void DocumentHost::resendPresence(uint64_t session) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
+    if (self->presence_.resendTo(session)) self->presenceChanged();
+  });
 }
 
 void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string authorName,
@@ -288,8 +343,7 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
 Clock::duration DocumentHost::flushInterval() const {
   double ms = config_.deltaIntervalMs;
   if (config_.deltaFramesPerSecond > 0) {
-    size_t subscribers = 0;
-    for (const auto& [key, view] : views_) subscribers += view.subscribers.size();
+    const size_t subscribers = views_.subscriberCount();
     ms = std::max(ms, 1000.0 * static_cast<double>(subscribers) / config_.deltaFramesPerSecond);
   }
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(ms));
@@ -318,32 +372,20 @@ void DocumentHost::flush() {
   // After a failed journal write the edits are lost: views still follow
   // the document, but nothing is sent.
   // Kept morph views nobody watches are stale now: dropped, not rebuilt.
-  if (keysChanged_) dropRetainedMorphViews();
+  if (keysChanged_) releaseViews(views_.dropRetainedMorphViews());
   const PendingEdit* last = commits_.newest();
   FlushBatch batch{version_, {}, {}};
   if (last) ++stats_.deltaFlushes;
-  for (auto it = views_.begin(); it != views_.end();) {
-    View& view = it->second;
+  // A view over its triangle budget now goes, its subscribers told why
+  // (DocumentViews::updateEach).
+  views_.updateEach([&](const std::string& key, LodView& view) -> Status {
     const auto start = Clock::now();
-    auto changes = view.morphT ? (keysChanged_ ? rebuildMorphView(view)
+    auto changes = view.morphT ? (keysChanged_ ? rebuildMorphView(doc_, view, grid_)
                                                : Expected<Tessellation::Changes>(Tessellation::Changes{}))
                                : view.tessellation->update(doc_.growableKey0(), changedLimits_);
     stats_.tessellateMicros += microsSince(start);
     stats_.tessellateLatency.addMicros(microsSince(start));
-    if (!changes.isOk()) {
-      // Over its triangle budget now: its subscribers get an error and the
-      // view goes; they may subscribe again with another profile.
-      wire::ServerMessage error;
-      error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-      error.mutable_error()->set_message("LOD profile " + it->first +
-                                         " dropped: " + changes.status().message());
-      auto frame = frameOf(error, config_.limits.maxFrameBytes);
-      for (auto& [session, weak] : view.subscribers) {
-        if (auto who = weak.lock()) who->send({frame, nullptr});
-      }
-      it = views_.erase(it);
-      continue;
-    }
+    if (!changes.isOk()) return changes.status();
     auto delta = std::make_shared<DeltaContent>();
     delta->documentId = id_.value;
     delta->fromVersion = flushedVersion_;
@@ -351,16 +393,16 @@ void DocumentHost::flush() {
     delta->authorSession = last ? last->authorSession : 0;
     delta->editId = last ? last->editId : 0;
     buildDelta(view, *changes, encodeContext(view), id_.value, *delta);
-    batch.frames[it->first] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
-    batch.deltas[it->first] = std::move(delta);
-    ++it;
-  }
+    batch.frames[key] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
+    batch.deltas[key] = std::move(delta);
+    return Status::ok();
+  });
   changedLimits_.clear();
   keysChanged_ = false;
   flushedVersion_ = version_;
   lastFlush_ = Clock::now();
   if (!last) return;
-  if (!config_.deltasAfterDurable) send(batch);
+  if (!config_.deltasAfterDurable) views_.send(batch);
   commits_.flushed(std::move(batch));
   release();  // its commit may already be durable
   maybeSnapshot();
@@ -377,10 +419,7 @@ void DocumentHost::committed(uint64_t version, Status status) {
     error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
     error.mutable_error()->set_message("document " + std::to_string(id_.value) +
                                        ": journal write failed: " + status.message());
-    auto frame = frameOf(error, config_.limits.maxFrameBytes);
-    for (auto& [session, p] : participants_) {
-      if (auto who = p.who.lock()) who->send({frame, nullptr});
-    }
+    presence_.sendToAll(frameOf(error, config_.limits.maxFrameBytes));
     // Every edit still waiting for its commit is lost, or, when the store
     // cannot know (outcomeUnknown: a replicated journal timed out), may be
     // stored: those go to whoever reloads the document, which can tell
@@ -400,20 +439,7 @@ void DocumentHost::committed(uint64_t version, Status status) {
 }
 
 void DocumentHost::release() {
-  commits_.release([this](FlushBatch& batch) { send(batch); });
-}
-
-void DocumentHost::send(FlushBatch& b) {
-  for (auto& [key, view] : views_) {
-    auto frame = b.frames.find(key);
-    if (frame == b.frames.end() || !frame->second) continue;
-    for (auto& [session, weak] : view.subscribers) {
-      if (view.knownVersion[session] >= b.toVersion) continue;  // its snapshot holds this one
-      if (auto who = weak.lock()) who->send({frame->second, b.deltas[key]});
-    }
-  }
-  b.frames.clear();  // the batch stays only to order the recorders' commands
-  b.deltas.clear();
+  commits_.release([this](FlushBatch& batch) { views_.send(batch); });
 }
 
 void DocumentHost::maybeSnapshot() {
@@ -430,7 +456,7 @@ void DocumentHost::maybeSnapshot() {
 void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
                              wire::ExportDocument request) {
   // Refused from the exact count before any work (docs/PROTOCOL.md §9).
-  const int64_t triangles = uniformTriangles(request.level());
+  const int64_t triangles = uniformTriangles(counts_, request.level());
   if (triangles > config_.limits.maxTrianglesPerSubscriber) {
     who->send(
         {limitExceeded(clientSeq,
@@ -441,7 +467,8 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
          nullptr});
     return;
   }
-  queue_.post(laneFor(triangles), [self = shared_from_this(), who, clientSeq, request, triangles] {
+  const Lane lane = laneFor(triangles, config_);
+  queue_.post(lane, [self = shared_from_this(), who, clientSeq, request, lane] {
     const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
     auto surface = self->doc_.key0().surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
                                              request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
@@ -478,7 +505,27 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
       return;
     }
     who->send({frame, nullptr});
-    if (self->laneFor(triangles) == Lane::kBulk) self->trimMemory();
+    if (lane == Lane::kBulk) trimHeapOnBulk(self->bulk_);
+  });
+}
+
+void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
+                                wire::GetMorphControl request) {
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeq, request] {
+    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
+    auto message = morphControlMessage(self->doc_, self->id_.value, self->version_, clientSeq, request);
+    if (!message.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, message.status()), maxFrame), nullptr});
+      return;
+    }
+    auto frame = frameOf(*message, maxFrame);
+    if (!frame) {
+      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the morph control exceeds the frame limit")),
+                         maxFrame),
+                 nullptr});
+      return;
+    }
+    who->send({frame, nullptr});
   });
 }
 

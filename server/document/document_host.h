@@ -15,24 +15,33 @@
 // load one covers a burst, so the tessellation, encode and fan-out cost
 // follows the delta rate, not the edit rate.
 //
+// The host keeps the order of things (its serial queue, the flushes and
+// their pacing, the presence broadcasts' timer) and composes the stages
+// (docs/ARCHITECTURE.md, "One edit, end to end"): command_application.h
+// applies, commit_log.h acknowledges once durable, document_views.h keeps
+// the views and who watches them (lod_view.h tessellates and encodes one),
+// document_presence.h says who is here, document_admission.h judges a
+// request's size and picks its lane, bulk_release.h frees memory off the
+// interactive workers.
+//
 // A morph document (docs/PROTOCOL.md §14) holds a second key: edits name their key,
 // and a view may follow the document at a time t (LodProfile.morph_t),
 // tessellated from KeyedDocument::at(t) and rebuilt whole when either key
 // changes (a morph moves every region); its changed regions are still
-// encoded once and shared by every subscriber at that t (document_morph.cc).
+// encoded once and shared by every subscriber at that t (morph_view.h). The
+// coarse stream of control points is morph_control.h's.
 #pragma once
 
 #include <atomic>
 #include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/asio/strand.hpp>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
+#include <vector>
 
 #include "core/document/document.h"
 #include "core/morph/keyed_document.h"
@@ -45,8 +54,10 @@
 #include "server/document/command_application.h"
 #include "server/document/commit_log.h"
 #include "server/document/document_endpoint.h"
-#include "server/document/journal_entry.h"
+#include "server/document/document_presence.h"
+#include "server/document/document_views.h"
 #include "server/document/lod_view.h"
+#include "server/document/profile_request.h"
 #include "server/document/subscriber.h"
 #include "server/store/store.h"
 
@@ -59,7 +70,8 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   DocumentHost(store::DocumentId id, std::string name, KeyedDocument doc, uint64_t version,
                boost::asio::any_io_executor workers, boost::asio::any_io_executor bulk, store::Store& store,
                const ServerConfig& config, ServerStats& stats);
-  // Trims the heap once the document's memory is freed (see trimMemory).
+  // Frees the document and its views on a bulk thread, which then trims the
+  // heap (bulk_release.h).
   ~DocumentHost() override;
 
   store::DocumentId id() const { return id_; }
@@ -98,14 +110,6 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // commit (its Ack follows).
   void answerOutcomes(std::shared_ptr<Subscriber> who, std::vector<uint64_t> clientSeqs);
 
-  // Triangles a profile needs at least (its base level, held whole) and may
-  // reach (its max level); triangles of a uniform surface at `level`. From
-  // the document's level counts alone, so a request over budget is refused
-  // in microseconds, before any work (docs/ARCHITECTURE.md, "Bulk work").
-  int64_t minimumTriangles(const wire::LodProfile& profile) const;
-  int64_t maximumTriangles(const wire::LodProfile& profile) const;
-  int64_t uniformTriangles(uint32_t level) const;
-
   // Commands whose journal write's outcome is unknown (the store timed
   // out) at the failure go to `handler` (on the host's strand), unanswered
   // by this host: whoever reloads the document answers them from the
@@ -120,23 +124,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   bool journalFailed() const { return journalFailed_.load(); }
 
  private:
-  using View = LodView;  // one LOD profile's tessellation and its subscribers
-  struct Participant {
-    std::weak_ptr<Subscriber> who;
-    std::string name;
-    wire::Role role;
-    wire::Selection selection;
-  };
-  // Whose presence others have not heard of yet, and who needs the whole list.
-  struct PresenceChanges {
-    std::set<uint64_t> changed, left, needFull;
-  };
   // The document a view's tessellation follows.
-  const Document& sourceOf(const View& view) const { return view.source ? *view.source : doc_.key0(); }
-  // A morph view's tessellation at `t`, and the document it follows.
-  Expected<View> buildMorphView(double t, const LodProfile& profile);
-  // Rebuilds a morph view after a key changed; the regions that differ.
-  Expected<Tessellation::Changes> rebuildMorphView(View& view);
+  const Document& sourceOf(const LodView& view) const { return view.source ? *view.source : doc_.key0(); }
+  // The view a checked profile asks for, tessellated at version_ with its
+  // regions hashed; a morph view at its time (morph_view.h).
+  Expected<LodView> buildView(const ProfileRequest& checked, const wire::LodProfile& requested);
   // Checks an applied command against the grid, then journals it.
   void afterApply(const std::shared_ptr<Subscriber>& author, uint64_t clientSeq, const AppliedChange& applied,
                   const std::string& authorName, const wire::ClientMessage& command);
@@ -148,31 +140,18 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   void committed(uint64_t version, Status status);
   // Releases what the commit log holds that is durable now.
   void release();
-  // Sends the batch's frames to the subscribers whose snapshot does not hold
-  // them, then drops them: sending again is a no-op.
-  void send(FlushBatch& batch);
-  void sendSnapshot(View& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  void sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  // Presence changed: one broadcast within 100 ms carries every change.
   void presenceChanged();
-  void broadcastPresence();
-  // Drops the views no subscriber watches any more (their memory with
-  // them), except the most recently used morph views up to
-  // kRetainedMorphTriangles: viewers playing a morph come back to the same
-  // times, and a kept view is not built and encoded again.
-  void dropUnwatchedViews();
-  // Drops every unwatched morph view (a key changed: they are stale).
-  void dropRetainedMorphViews();
-  // Takes `session` off every view but `key`'s, then drops unwatched ones.
-  void leaveOtherViews(uint64_t session, const std::string& key);
-  Lane laneFor(int64_t triangles) const;
-  void trimMemory();
-  // What is freed off the interactive workers: a closed document, dropped views.
+  // Frees the views dropped from views_ on a bulk thread (bulk_release.h).
+  void releaseViews(DocumentViews::Views dropped);
+  // What is freed off the interactive workers when the document closes.
   struct Released {
     std::optional<KeyedDocument> doc;
-    std::map<std::string, View> views;
+    DocumentViews::Views views;
   };
-  void releaseOnBulk(std::shared_ptr<Released> released);
   // How the views' regions are encoded now (lod_view.h).
-  EncodeContext encodeContext(const View& view) { return {version_, grid_, sourceOf(view), stats_}; }
+  EncodeContext encodeContext(const LodView& view) { return {version_, grid_, sourceOf(view), stats_}; }
   void maybeSnapshot();
 
   const store::DocumentId id_;
@@ -193,14 +172,12 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   SerialQueue queue_;  // the single writer; every member below is touched only in its tasks
   boost::asio::steady_timer presenceTimer_;
   bool presencePending_ = false;
-  PresenceChanges presence_;
+  DocumentPresence presence_;
   store::Store& store_;
   const ServerConfig& config_;
   ServerStats& stats_;
   QuantizationGrid grid_;
-  std::map<uint64_t, Participant> participants_;
-  std::map<std::string, View> views_;  // by LodProfile::key()
-  uint64_t useClock_ = 0;
+  DocumentViews views_;
   boost::asio::steady_timer flushTimer_;
   std::chrono::steady_clock::time_point lastFlush_{};
   std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush

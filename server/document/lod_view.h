@@ -41,7 +41,7 @@ struct LodView {
   // tessellation follows (else it follows key 0).
   std::optional<double> morphT;
   std::unique_ptr<Document> source;
-  uint64_t lastUsed = 0;  // the host's use clock when a subscriber last joined it
+  uint64_t lastUsed = 0;  // DocumentViews' use clock when a subscriber last joined it
 };
 
 // How a view's regions are encoded: at which version, on which grid, from

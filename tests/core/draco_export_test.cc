@@ -254,8 +254,8 @@ TEST_F(DracoExportTest, IsSmallerThanPlainGlbForTenThousandTriangles) {
 
 // tinygltf loads a Draco GLB only when built with TINYGLTF_ENABLE_DRACO, which
 // Debian's libtinygltf 2.7 is not. Without it, tinygltf insists on a bufferView
-// for the indices accessor (syoyo/tinygltf#378; relaxed upstream by #456,
-// after 2.7) and fails, which is also what the extension's conformance section
+// for the indices accessor (tinygltf's own rule, relaxed upstream after 2.7)
+// and fails, which is also what the extension's conformance section
 // requires of a loader that lacks Draco. Either way nothing else may be wrong.
 TEST_F(DracoExportTest, TinyGltfParsesEverythingButTheDracoPayload) {
   ExportOptions options;

@@ -6,20 +6,16 @@
 // commit until the test releases it makes the order observable.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
 #include <chrono>
-#include <condition_variable>
-#include <functional>
-#include <mutex>
 #include <thread>
 
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
 #include "integration/messages.h"
-#include "protocol/framing.h"
 #include "server/document/document_host.h"
+#include "support/decoding_inbox.h"
 #include "support/host_only_store.h"
 #include "support/test_meshes.h"
 
@@ -36,48 +32,7 @@ bool isApplied(const wire::ServerMessage& m) {
   return m.has_applied_command();
 }
 
-// Decodes what the host queues for it, in order.
-class Inbox final : public Subscriber {
- public:
-  explicit Inbox(uint64_t session) : session_(session) {}
-  uint64_t sessionId() const override { return session_; }
-  void send(Outgoing message) override {
-    FrameDecoder decoder({.maxFrameBytes = 1u << 30});
-    wire::ServerMessage m;
-    if (!decoder.feed(*message.frame).isOk() || !decoder.next(m).isOk())
-      m.mutable_error()->set_message("bad frame");
-    std::lock_guard lock(mutex_);
-    received_.push_back(std::move(m));
-    arrived_.notify_all();
-  }
-  // The index of the first message after `from` that `match` accepts, or -1
-  // after `seconds`.
-  int waitFor(const std::function<bool(const wire::ServerMessage&)>& match, double seconds, size_t from = 0) {
-    std::unique_lock lock(mutex_);
-    int found = -1;
-    arrived_.wait_for(lock, std::chrono::duration<double>(seconds), [&] {
-      for (size_t i = from; i < received_.size(); ++i) {
-        if (match(received_[i])) return found = static_cast<int>(i), true;
-      }
-      return false;
-    });
-    return found;
-  }
-  size_t count() {
-    std::lock_guard lock(mutex_);
-    return received_.size();
-  }
-  size_t deltas() {
-    std::lock_guard lock(mutex_);
-    return static_cast<size_t>(std::count_if(received_.begin(), received_.end(), isDelta));
-  }
-
- private:
-  const uint64_t session_;
-  std::mutex mutex_;
-  std::condition_variable arrived_;
-  std::vector<wire::ServerMessage> received_;
-};
+using Inbox = testing::DecodingInbox;
 
 class DeltaDurability : public ::testing::TestWithParam<bool> {
  protected:
@@ -150,7 +105,7 @@ TEST_P(DeltaDurability, AcksAndRecordersWaitForTheCommitAndDeltasOnlyIfAsked) {
   ASSERT_GE(applied, 0);
   ASSERT_GE(editorDelta, 0);
   EXPECT_LT(editorDelta, applied) << "a recorder gets the command after the delta that carries it";
-  EXPECT_EQ(viewer_->deltas(), 1u) << "one delta, sent once";
+  EXPECT_EQ(viewer_->countOf(isDelta), 1u) << "one delta, sent once";
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, DeltaDurability, ::testing::Bool(),

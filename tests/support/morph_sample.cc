@@ -115,7 +115,8 @@ Status writeMorphSample(const MorphSample& s, const std::string& dir) {
     if (!out) return ioError(dir + "/" + name + ": cannot write");
   }
   std::ofstream tags(dir + "/morph.tags");
-  tags << "# the middle ring's vertices 0, 4 and 8 interpolate (seed 004 §4); the dots mark vertex "
+  tags << "# the middle ring's vertices 0, 4 and 8 interpolate (docs/INTERPOLATION.md, \"Locally "
+          "interpolating vertices\"); the dots mark vertex "
        << s.dotVertex << "\n";
   for (int v : s.interpolating) tags << "interpolate " << v << "\n";
   if (!tags) return ioError(dir + "/morph.tags: cannot write");

@@ -59,7 +59,7 @@ DocumentViews::Views DocumentViews::leaveAllBut(uint64_t session, const std::str
   for (auto& [other, view] : views_) {
     if (other != key) view.subscribers.erase(session), view.knownVersion.erase(session);
   }
-  return dropUnwatched();
+  return dropUnwatched(key);
 }
 
 DocumentViews::Views DocumentViews::leave(uint64_t session) {
@@ -67,12 +67,13 @@ DocumentViews::Views DocumentViews::leave(uint64_t session) {
   return dropUnwatched();
 }
 
-DocumentViews::Views DocumentViews::dropUnwatched() {
+DocumentViews::Views DocumentViews::dropUnwatched(std::string_view keep) {
   // The unwatched morph views, most recently used first: kept while their
-  // triangles fit the budget.
+  // triangles fit the budget. `keep` is about to be watched: neither dropped
+  // nor counted.
   std::vector<std::pair<uint64_t, std::string>> morphs;
   for (const auto& [key, view] : views_) {
-    if (view.morphT && !watched(view)) morphs.emplace_back(view.lastUsed, key);
+    if (view.morphT && !watched(view) && key != keep) morphs.emplace_back(view.lastUsed, key);
   }
   std::sort(morphs.rbegin(), morphs.rend());
   std::set<std::string> kept;
@@ -84,7 +85,7 @@ DocumentViews::Views DocumentViews::dropUnwatched() {
   }
   Views dropped;
   for (auto it = views_.begin(); it != views_.end();) {
-    if (watched(it->second) || kept.count(it->first)) {
+    if (watched(it->second) || kept.count(it->first) || it->first == keep) {
       ++it;
       continue;
     }

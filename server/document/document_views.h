@@ -16,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "core/util/status.h"
 #include "server/document/commit_log.h"
@@ -48,14 +49,17 @@ class DocumentViews {
   void attach(LodView& view, const std::shared_ptr<Subscriber>& who, uint64_t version);
   // One profile per subscriber and document: `session` leaves every view but
   // `key`'s, once `key`'s exists (a refused profile keeps the old one);
-  // then the unwatched views are dropped (dropUnwatched).
+  // then the unwatched views but `key`'s are dropped (dropUnwatched): the
+  // view it moves to may be a retained morph view that the one it left
+  // would otherwise push out of the budget.
   Views leaveAllBut(uint64_t session, const std::string& key);
   // `session` leaves every view; then the unwatched views are dropped.
   Views leave(uint64_t session);
 
   // Drops the views no subscriber watches, but the most recently used morph
-  // views whose triangles fit `retainedMorphTriangles`; returns the dropped.
-  Views dropUnwatched();
+  // views whose triangles fit `retainedMorphTriangles` and the view `keep`
+  // (a subscriber is about to watch it); returns the dropped.
+  Views dropUnwatched(std::string_view keep = {});
   // Drops every unwatched morph view (a key changed: they are stale);
   // returns them.
   Views dropRetainedMorphViews();

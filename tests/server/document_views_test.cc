@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
 #include "server/document/document_views.h"
 #include "server/document/replies.h"
 #include "support/decoding_inbox.h"
@@ -33,9 +32,7 @@ std::vector<std::string> keysOf(const DocumentViews::Views& views) {
 class DocumentViewsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-    ASSERT_TRUE(mesh.isOk());
-    auto doc = Document::create(*mesh, {.maxLevel = 2});
+    auto doc = testing::cubeDocument(2);
     ASSERT_TRUE(doc.isOk()) << doc.status().message();
     doc_.emplace(std::move(*doc));
     auto tessellation = Tessellation::build(*doc_, {.baseLevel = 1, .maxLevel = 2});
@@ -130,6 +127,24 @@ TEST_F(DocumentViewsTest, UnwatchedMorphViewsStayMostRecentFirstWithinTheBudget)
   // A key changed: every unwatched morph view is stale, the watched one stays.
   EXPECT_EQ(keysOf(views_->dropRetainedMorphViews()), (std::vector<std::string>{"t0.2", "t0.3"}));
   EXPECT_NE(views_->find("t0.9"), nullptr);
+}
+
+TEST_F(DocumentViewsTest, MovingBackToARetainedMorphViewKeepsIt) {
+  subscribe(ann_, "t0.1", morphView(0.1));
+  subscribe(ann_, "t0.2", morphView(0.2));
+  subscribe(ann_, "t0.3", morphView(0.3));  // t0.1 and t0.2 kept, unwatched
+  // Ann goes back to t0.1, the least recently used. The view she leaves,
+  // t0.3, is now unwatched and the most recent: with t0.2 it fills the
+  // budget of unwatched views, so counted with them t0.1 would go. It is
+  // about to be watched: it stays, and is not counted.
+  EXPECT_TRUE(views_->leaveAllBut(ann_->sessionId(), "t0.1").empty());
+  LodView* back = views_->find("t0.1");
+  ASSERT_NE(back, nullptr) << "the view a subscriber moves to was dropped under it";
+  views_->attach(*back, ann_, 1);
+  EXPECT_NE(views_->find("t0.2"), nullptr);
+  EXPECT_NE(views_->find("t0.3"), nullptr);
+  // Leaving t0.1 now makes three unwatched views: the oldest use goes.
+  EXPECT_EQ(keysOf(views_->leave(ann_->sessionId())), std::vector<std::string>{"t0.2"});
 }
 
 TEST_F(DocumentViewsTest, AViewWhoseUpdateFailsGoesAndItsSubscribersAreTold) {

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
 #include "integration/messages.h"
 #include "server/document/command_application.h"
 #include "server/document/replies.h"
@@ -23,9 +22,7 @@ constexpr store::DocumentId kDoc{1};
 class CommandApplication : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-    ASSERT_TRUE(mesh.isOk());
-    auto doc = Document::create(*mesh, {.maxLevel = 2});
+    auto doc = testing::cubeDocument(2);
     ASSERT_TRUE(doc.isOk()) << doc.status().message();
     keyed_.emplace(std::move(*doc));
   }

@@ -5,7 +5,6 @@
 
 #include "core/document/document.h"
 #include "core/document/document_file.h"
-#include "core/io/mesh_import.h"
 #include "core/morph/keyed_document_file.h"
 #include "server/document/journal_entry.h"
 #include "support/test_meshes.h"
@@ -14,10 +13,8 @@ namespace tessera::server {
 namespace {
 
 Document cube() {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  EXPECT_TRUE(mesh.isOk());
-  auto doc = Document::create(*mesh, {.maxLevel = 4});
-  EXPECT_TRUE(doc.isOk());
+  auto doc = testing::cubeDocument(4);
+  EXPECT_TRUE(doc.isOk()) << doc.status().message();
   return std::move(*doc);
 }
 

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
 #include "server/document/morph_control.h"
 #include "support/test_meshes.h"
 
@@ -16,10 +15,8 @@ namespace tessera::server {
 namespace {
 
 Document cube() {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  EXPECT_TRUE(mesh.isOk());
-  auto doc = Document::create(*mesh, {.maxLevel = 2});
-  EXPECT_TRUE(doc.isOk());
+  auto doc = testing::cubeDocument(2);
+  EXPECT_TRUE(doc.isOk()) << doc.status().message();
   return std::move(*doc);
 }
 

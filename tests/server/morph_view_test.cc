@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "core/document/document.h"
-#include "core/io/mesh_import.h"
 #include "core/tessellation/document_grid.h"
 #include "server/document/morph_view.h"
 #include "support/test_meshes.h"
@@ -19,10 +18,8 @@ namespace {
 const LodProfile kProfile{.baseLevel = 1, .maxLevel = 2};
 
 Document cube() {
-  auto mesh = importMesh(testing::sourceTestDataPath("cube.obj"));
-  EXPECT_TRUE(mesh.isOk());
-  auto doc = Document::create(*mesh, {.maxLevel = 2});
-  EXPECT_TRUE(doc.isOk());
+  auto doc = testing::cubeDocument(2);
+  EXPECT_TRUE(doc.isOk()) << doc.status().message();
   return std::move(*doc);
 }
 

@@ -29,4 +29,9 @@ Expected<BaseMesh> creasedCube() {
   return mesh;
 }
 
+Expected<Document> cubeDocument(int maxLevel) {
+  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, importMesh(sourceTestDataPath("cube.obj")));
+  return Document::create(mesh, {.maxLevel = maxLevel});
+}
+
 }  // namespace tessera::testing

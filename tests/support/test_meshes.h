@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "core/document/document.h"
 #include "core/mesh/base_mesh.h"
 #include "core/util/status.h"
 
@@ -16,5 +17,7 @@ std::string sourceTestDataPath(const std::string& relative);
 std::string makeTempDir(const std::string& prefix);
 // tests/data/cube.obj with the creases and corners of cube.tags.
 Expected<BaseMesh> creasedCube();
+// A document of tests/data/cube.obj, untagged, held to `maxLevel`.
+Expected<Document> cubeDocument(int maxLevel);
 
 }  // namespace tessera::testing

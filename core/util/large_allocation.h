@@ -2,11 +2,12 @@
 // tens of megabytes, and every fresh 4 KiB page costs the kernel a fault:
 // perf on tessera_bench_loop (RefineFull, fandisk level 4) put about 70 % of
 // the time in the kernel's page-fault path and 20 % in the refinement itself
-// (docs/PERFORMANCE.md "Large arrays on huge pages"). Blocks of at least
-// kLargeAllocationBytes are aligned to 2 MiB and advised MADV_HUGEPAGE, so
-// where the kernel allows huge pages on request (the "madvise" setting of
-// /sys/kernel/mm/transparent_hugepage/enabled, Debian's default) one fault
-// maps 2 MiB. Where it does not, the advice is ignored and nothing changes.
+// (docs/PERFORMANCE.md "One topology type for every scheme, and large arrays
+// on huge pages"). Blocks of at least kLargeAllocationBytes are aligned to
+// 2 MiB and advised MADV_HUGEPAGE, so where the kernel allows huge pages on
+// request (the "madvise" setting of /sys/kernel/mm/transparent_hugepage/
+// enabled, Debian's default) one fault maps 2 MiB. Where it does not, the
+// advice is ignored and nothing changes.
 #pragma once
 
 #include <cstddef>

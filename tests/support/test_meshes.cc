@@ -2,7 +2,10 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
+#include <system_error>
+#include <vector>
 
 #include "core/io/mesh_import.h"
 #include "core/io/tag_file.h"
@@ -17,9 +20,44 @@ std::string sourceTestDataPath(const std::string& relative) {
   return std::string(TESSERA_SOURCE_TESTDATA_DIR) + "/" + relative;
 }
 
+namespace {
+
+// The directories makeTempDir made in this process, removed when it exits
+// normally (a crashed test leaves its directory to be looked at).
+struct TempDirs {
+  std::mutex mutex;
+  std::vector<std::string> paths;
+};
+
+TempDirs& tempDirs() {
+  static TempDirs* dirs = [] {
+    auto* made = new TempDirs;  // never destroyed, so the exit handler never finds it gone
+    std::atexit(removeTempDirs);
+    return made;
+  }();
+  return *dirs;
+}
+
+}  // namespace
+
+void removeTempDirs() {
+  if (const char* keep = std::getenv("TESSERA_KEEP_TEST_DIRS"); keep && *keep && std::string(keep) != "0")
+    return;
+  TempDirs& dirs = tempDirs();
+  std::lock_guard lock(dirs.mutex);
+  for (const std::string& path : dirs.paths) {
+    std::error_code ignored;  // a server still writing there loses nothing the test needed
+    std::filesystem::remove_all(path, ignored);
+  }
+  dirs.paths.clear();
+}
+
 std::string makeTempDir(const std::string& prefix) {
   std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "-XXXXXX")).string();
   if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
+  TempDirs& dirs = tempDirs();
+  std::lock_guard lock(dirs.mutex);
+  dirs.paths.push_back(pattern);
   return pattern;
 }
 

@@ -13,8 +13,12 @@ namespace tessera::testing {
 std::string cgalMeshPath(const std::string& name);
 // Path of a file under tests/data.
 std::string sourceTestDataPath(const std::string& relative);
-// A fresh temporary directory for one test.
+// A fresh temporary directory for one test, removed with everything in it
+// when the test process exits normally (set TESSERA_KEEP_TEST_DIRS=1 to
+// keep them for a look).
 std::string makeTempDir(const std::string& prefix);
+// Removes the directories makeTempDir made so far (it runs at exit).
+void removeTempDirs();
 // tests/data/cube.obj with the creases and corners of cube.tags.
 Expected<BaseMesh> creasedCube();
 // A document of tests/data/cube.obj, untagged, held to `maxLevel`.

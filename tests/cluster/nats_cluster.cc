@@ -52,8 +52,10 @@ std::string serverName(int server) {
 
 Expected<NatsCluster> NatsCluster::start(int servers, const std::string& maxPayload) {
   NatsCluster cluster;
-  char pattern[] = "/tmp/tessera-nats-XXXXXX";
-  if (::mkdtemp(pattern) == nullptr) return ioError("mkdtemp failed");
+  // In $TMPDIR, where the suite's other temporary files go (deploy/test.sh
+  // checks that the suite leaves nothing there).
+  std::string pattern = (std::filesystem::temp_directory_path() / "tessera-nats-XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr) return ioError("mkdtemp failed for " + pattern);
   cluster.directory_ = pattern;
   cluster.servers_.resize(static_cast<size_t>(servers));
   const std::vector<int> ports = freePorts(2 * servers);

@@ -1,9 +1,11 @@
 // The suites' temporary directories (tests/support/test_meshes.h): a test
-// process that exits normally leaves none behind, whatever it wrote there.
+// process that exits normally leaves none behind, whatever it wrote there;
+// a failed test keeps its directories and names them.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -70,6 +72,39 @@ TEST(TestSupport, TemporaryDirectoriesStayWhenAskedTo) {
     std::filesystem::remove_all(dir);
   }
   EXPECT_EQ(count, 2u);
+}
+
+// Not run by the suite: the failing test the next one runs in a process of
+// its own. It prints the directory it made, then fails.
+TEST(TestSupport, DISABLED_FailsAfterWritingADirectory) {
+  const std::string dir = testing::makeTempDir("tessera-temp-dirs-failed");
+  std::ofstream(dir + "/what-went-wrong.txt") << "evidence";
+  std::printf("made %s\n", dir.c_str());
+  std::fflush(stdout);
+  ADD_FAILURE() << "failing on purpose";
+}
+
+TEST(TestSupport, AFailedTestKeepsItsDirectoriesAndNamesThem) {
+  ASSERT_EQ(unsetenv("TESSERA_KEEP_TEST_DIRS"), 0);
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command = self +
+                              " --gtest_also_run_disabled_tests"
+                              " --gtest_filter=TestSupport.DISABLED_FailsAfterWritingADirectory 2>&1";
+  FILE* run = popen(command.c_str(), "r");
+  ASSERT_NE(run, nullptr);
+  std::string out;
+  char buffer[512];
+  for (size_t n; (n = fread(buffer, 1, sizeof buffer, run)) > 0;) out.append(buffer, n);
+  const int status = pclose(run);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0) << "the failing test passed:\n" << out;
+  const size_t at = out.find("made ");
+  ASSERT_NE(at, std::string::npos) << out;
+  const std::string dir = out.substr(at + 5, out.find('\n', at) - at - 5);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/what-went-wrong.txt")) << dir << " was removed:\n" << out;
+  EXPECT_NE(out.find("kept " + dir + ": the failed test TestSupport.DISABLED_FailsAfterWritingADirectory"),
+            std::string::npos)
+      << out;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

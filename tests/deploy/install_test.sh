@@ -9,7 +9,7 @@
 # Usage: install_test.sh BUILD_DIR
 set -euo pipefail
 build=$1
-root=$(mktemp -d /tmp/tessera-install.XXXXXX)
+root=$(mktemp -d "${TMPDIR:-/tmp}/tessera-install.XXXXXX")
 trap 'rm -rf "$root"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 

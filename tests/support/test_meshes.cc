@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <mutex>
 #include <stdexcept>
 #include <system_error>
@@ -26,7 +27,7 @@ namespace {
 // normally (a crashed test leaves its directory to be looked at).
 struct TempDirs {
   std::mutex mutex;
-  std::vector<std::string> paths;
+  std::vector<std::string> paths;  // made and not kept
 };
 
 TempDirs& tempDirs() {
@@ -39,6 +40,13 @@ TempDirs& tempDirs() {
 }
 
 }  // namespace
+
+void keepTempDirs(const std::string& why) {
+  TempDirs& dirs = tempDirs();
+  std::lock_guard lock(dirs.mutex);
+  for (const std::string& path : dirs.paths) std::cerr << "kept " << path << ": " << why << "\n";
+  dirs.paths.clear();
+}
 
 void removeTempDirs() {
   if (const char* keep = std::getenv("TESSERA_KEEP_TEST_DIRS"); keep && *keep && std::string(keep) != "0")

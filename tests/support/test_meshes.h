@@ -13,11 +13,15 @@ namespace tessera::testing {
 std::string cgalMeshPath(const std::string& name);
 // Path of a file under tests/data.
 std::string sourceTestDataPath(const std::string& relative);
-// A fresh temporary directory for one test, removed with everything in it
-// when the test process exits normally (set TESSERA_KEEP_TEST_DIRS=1 to
-// keep them for a look).
+// A fresh temporary directory for one test, in $TMPDIR (or /tmp), removed
+// with everything in it when the test process exits normally, unless a test
+// failed (failed_test_dirs.cc keeps them and names them) or
+// TESSERA_KEEP_TEST_DIRS=1 asks to keep them all.
 std::string makeTempDir(const std::string& prefix);
-// Removes the directories makeTempDir made so far (it runs at exit).
+// Keeps every directory makeTempDir made so far, naming each on stderr with
+// `why`.
+void keepTempDirs(const std::string& why);
+// Removes the directories makeTempDir made and nobody kept (it runs at exit).
 void removeTempDirs();
 // tests/data/cube.obj with the creases and corners of cube.tags.
 Expected<BaseMesh> creasedCube();

@@ -2,7 +2,8 @@
 # Runs tessera-replay load rows against fresh release servers (docs/REPLAY.md §5.1):
 #   printf "100 10 10\n10 1 50\n" | bash bench/load_matrix.sh
 # One row per line "VIEWERS EDITORS RATE [DECODING_VIEWERS]" (default min(VIEWERS, 20)).
-# SECONDS_PER_ROW (default 5) sets the editing time; reports go to /tmp/load-report-V-E-R.json.
+# SECONDS_PER_ROW (default 5) sets the editing time; reports go to /tmp/load-report-V-E-R.json,
+# and each row's server directory is removed.
 set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 B=$ROOT/build/release
@@ -23,4 +24,5 @@ while read -r V E R K; do
   cat $D/summary.txt | head -20
   kill -TERM $S; wait $S 2>/dev/null
   cp $D/report.json /tmp/load-report-$V-$E-$R.json 2>/dev/null
+  rm -rf $D   # the report is kept above; the server's data and logs go
 done

@@ -1,15 +1,13 @@
 // tessera doc: hierarchical documents -- create, edit by script, inspect, export.
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <memory>
-#include <sstream>
 
 #include "client/cli/commands.h"
+#include "client/cli/doc_edit.h"
 #include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
-#include "core/document/edit_script.h"
 #include "core/io/mesh_export.h"
 #include "core/tessellation/tessellation.h"
 
@@ -53,21 +51,6 @@ int runNew(const NewArgs& args) {
   std::printf("wrote %s: %s vertices, %s faces, max level %d\n", args.output.c_str(),
               formatCount(doc->baseTopology().numVertices).c_str(),
               formatCount(doc->baseTopology().triangles.size()).c_str(), options.maxLevel);
-  return 0;
-}
-
-int runEdit(const std::string& path, const std::string& script) {
-  auto doc = loadDocument(path);
-  if (!doc.isOk()) return fail("doc edit", doc.status());
-  std::ifstream in(script);
-  if (!in) return fail("doc edit", notFound(script + ": cannot open the script"));
-  std::stringstream text;
-  text << in.rdbuf();
-  auto result = applyEditScript(text.str(), script, *doc);
-  if (!result.isOk()) return fail("doc edit", result.status());
-  Status saved = saveDocument(*doc, path);
-  if (!saved.isOk()) return fail("doc edit", saved);
-  std::printf("applied %d commands; %zu edits in %s\n", result->commands, doc->edits().size(), path.c_str());
   return 0;
 }
 
@@ -171,13 +154,15 @@ void addNew(CLI::App& doc, Action& action) {
 }
 
 void addEdit(CLI::App& doc, Action& action) {
-  CLI::App* sub = doc.add_subcommand("edit", "apply an edit script to a document (all or nothing)");
+  CLI::App* sub = doc.add_subcommand(
+      "edit", "apply an edit script to a document (all or nothing), under the server's bounds rule");
   sub->footer(kScriptHelp);
-  auto document = std::make_shared<std::string>();
-  auto script = std::make_shared<std::string>();
-  sub->add_option("DOC", *document, "the document file, rewritten in place")->required();
-  sub->add_option("--script", *script, "the edit script")->required()->type_name("FILE");
-  onChosen(*sub, action, [document, script] { return runEdit(*document, *script); });
+  auto args = std::make_shared<DocEditArgs>();
+  sub->add_option("DOC", args->document, "the document file, rewritten in place")->required();
+  sub->add_option("--script", args->script, "the edit script")->required()->type_name("FILE");
+  sub->add_flag("--each", args->each,
+                "each line on its own, as a server takes commands: refused lines are reported and skipped");
+  onChosen(*sub, action, [args] { return runDocEdit(*args); });
 }
 
 void addInfo(CLI::App& doc, Action& action) {

@@ -5,10 +5,10 @@
 #include <cstdio>
 
 #include "client/cli/remote_commands.h"
+#include "client/lib/script_wire.h"
 #include "core/document/edit_script.h"
 #include "core/util/file_io.h"
 #include "protocol/commands.h"
-#include "protocol/morph_key.h"
 
 namespace tessera::cli {
 
@@ -18,49 +18,6 @@ struct EditArgs {
   std::string document, script;
   uint32_t key = 0;  // a morph document's key every command goes to
 };
-
-void toWire(const ScriptCommand& c, uint32_t key, wire::EditCommand& m) {
-  using Kind = ScriptCommand::Kind;
-  switch (c.kind) {
-    case Kind::kMove:
-    case Kind::kOffset: {
-      auto* move = m.mutable_move_vertex();
-      for (VertexId v : c.vertices) move->add_vertex_ids(v.packed());
-      move->mutable_target()->set_x(c.value[0]);
-      move->mutable_target()->set_y(c.value[1]);
-      move->mutable_target()->set_z(c.value[2]);
-      move->set_mode(c.kind == Kind::kMove ? wire::MOVE_MODE_DIRECT_MANIPULATION : wire::MOVE_MODE_OFFSET);
-      break;
-    }
-    case Kind::kCrease:
-      m.mutable_set_edge_sharpness()->set_edge_id(c.edge.packed());
-      m.mutable_set_edge_sharpness()->set_sharpness(c.sharpness);
-      break;
-    case Kind::kCorner:
-      m.mutable_set_vertex_type()->set_vertex_id(c.vertices[0].packed());
-      m.mutable_set_vertex_type()->set_sharpness(c.sharpness);
-      break;
-    case Kind::kInterpolate: {
-      auto* tag = m.mutable_set_interpolation();
-      tag->set_vertex_id(c.vertices[0].packed());
-      tag->set_interpolating(c.interpolating);
-      tag->set_tension(c.tension);
-      tag->mutable_tangent()->set_x(c.value[0]);
-      tag->mutable_tangent()->set_y(c.value[1]);
-      tag->mutable_tangent()->set_z(c.value[2]);
-      break;
-    }
-    case Kind::kUndo:
-      m.mutable_undo()->set_edit_id(c.edit.value);
-      break;
-    case Kind::kRedo:
-      m.mutable_redo()->set_edit_id(c.edit.value);
-      break;
-    case Kind::kRemove:
-      break;  // refused before anything is sent
-  }
-  setMorphKey(m, key);
-}
 
 int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
   auto doc = parseDocumentId(args.document);
@@ -87,7 +44,7 @@ int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
       return fail("remote edit", args.script + ":" + std::to_string(c.line) +
                                      ": remove is local only (use undo); nothing was sent");
     }
-    toWire(c, args.key, *batch.mutable_edit_batch()->add_commands());
+    *batch.mutable_edit_batch()->add_commands() = client::editCommandOf(c, args.key);
   }
 
   auto session = connectTo(connection);

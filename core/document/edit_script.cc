@@ -157,6 +157,20 @@ Status applyScriptCommand(const ScriptCommand& c, Document& doc) {
   return internalError("unknown script command");
 }
 
+Status takeBackScriptCommand(const ScriptCommand& c, Document& doc) {
+  using Kind = ScriptCommand::Kind;
+  switch (c.kind) {
+    case Kind::kUndo:
+      return doc.reinstate(c.edit);
+    case Kind::kRedo:
+      return doc.undo(c.edit);
+    case Kind::kRemove:
+      return unsupported("a remove cannot be taken back");
+    default:
+      return doc.retractLast();
+  }
+}
+
 Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source,
                                        Document& document) {
   TESSERA_ASSIGN_OR_RETURN(std::vector<ScriptCommand> commands, parseEditScript(text, source));

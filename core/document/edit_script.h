@@ -51,6 +51,10 @@ struct ScriptCommand {
 // Errors are "SOURCE:LINE: reason".
 Expected<std::vector<ScriptCommand>> parseEditScript(const std::string& text, const std::string& source);
 Status applyScriptCommand(const ScriptCommand& command, Document& document);
+// Takes back a command applyScriptCommand just applied, leaving the document
+// as it was before it (a replay refusing a command the way a server does).
+// A remove cannot be taken back: kUnsupported.
+Status takeBackScriptCommand(const ScriptCommand& command, Document& document);
 
 Expected<ScriptResult> applyEditScript(const std::string& text, const std::string& source,
                                        Document& document);

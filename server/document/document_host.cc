@@ -9,6 +9,7 @@
 
 #include "core/io/mesh_export.h"
 #include "core/morph/keyed_document_file.h"
+#include "core/tessellation/document_bounds.h"
 #include "core/tessellation/document_grid.h"
 #include "core/util/file_io.h"
 #include "protocol/framing.h"
@@ -290,31 +291,18 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
                               const AppliedChange& applied, const std::string& authorName,
                               const wire::ClientMessage& command) {
   const JournalEntry& entry = applied.entry;
-  // An edit that moves the surface out of the document's quantization grid
-  // is taken back and refused before anything is sent: every displayed
-  // vertex is a hierarchy limit, and the changed ones are listed.
-  bool outside = false;
-  for (uint32_t key = 0; key < doc_.numKeys(); ++key) {
-    const SparseHierarchy& h = doc_.key(key).hierarchy();
-    for (VertexId id : key == 0 ? applied.limits : applied.key1Limits) {
-      if (id.level() >= h.numLevels()) continue;  // a batch's later undo dropped the level: its limit is gone
-      const Index v = h.level(id.level()).findVertex(id.index());
-      if (v == kNoIndex) continue;
-      outside = outside || !grid_.contains(h.limitPosition(id.level(), v));
-    }
-  }
-  if (outside) {
+  // The document's bounds (core/tessellation/document_bounds.h): read on
+  // limits the history alone determines, never on what viewers made the
+  // hierarchy hold, so every server and every replay decides alike.
+  Status bounds = checkWithinBounds(doc_.key(0).hierarchy(), applied.limits, grid_);
+  if (bounds.isOk() && doc_.numKeys() > 1)
+    bounds = checkWithinBounds(doc_.key(1).hierarchy(), applied.key1Limits, grid_);
+  if (!bounds.isOk()) {
     Status back = retractCommand(doc_, entry);
     ++stats_.rejects;
     if (!back.isOk())
       logEvent(LogLevel::kError, "retract_failed", {{"doc", id_.value}, {"error", back.message()}});
-    author->send(
-        {limitExceeded(clientSeq,
-                       "the edit would move the surface outside the document's bounds: the cube from (" +
-                           std::to_string(grid_.origin[0]) + ", " + std::to_string(grid_.origin[1]) + ", " +
-                           std::to_string(grid_.origin[2]) + ") with side " + std::to_string(grid_.range),
-                       config_.limits.maxFrameBytes),
-         nullptr});
+    author->send({limitExceeded(clientSeq, bounds.message(), config_.limits.maxFrameBytes), nullptr});
     return;
   }
   stats_.edits += applied.editIds.size();  // a batch's commands count one by one; its version once

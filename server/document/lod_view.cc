@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "core/tessellation/document_bounds.h"
 #include "core/tessellation/region_lattice.h"
 #include "core/tessellation/surface_hash.h"
 #include "server/base/log.h"
@@ -23,7 +24,9 @@ Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& vie
     auto frame = regionFrame(context.source.hierarchy(), context.source.counts(), FaceId::fromPacked(region));
     if (frame.isOk()) header.frame = *frame;
   }
-  TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, view.tessellation->regions().at(region)));
+  const RegionMesh& mesh = view.tessellation->regions().at(region);
+  const std::optional<RegionMesh> clamped = clampedToGrid(mesh, context.grid);
+  TESSERA_ASSIGN_OR_RETURN(std::string bytes, encodeRegion(header, clamped ? *clamped : mesh));
   context.stats.encodeMicros += microsSince(start);
   context.stats.encodeLatency.addMicros(microsSince(start));
   ++context.stats.regionsEncoded;
@@ -37,8 +40,10 @@ void rehashRegion(LodView& view, uint64_t region, const QuantizationGrid& grid, 
     view.regionHashes.erase(it);
     return;
   }
-  it->second = regionSurfaceHashOnGrid(view.tessellation->regions().at(region), grid,
-                                       view.tessellation->profile().vertexIds);
+  const RegionMesh& mesh = view.tessellation->regions().at(region);
+  const std::optional<RegionMesh> clamped = clampedToGrid(mesh, grid);
+  it->second =
+      regionSurfaceHashOnGrid(clamped ? *clamped : mesh, grid, view.tessellation->profile().vertexIds);
   view.surfaceHash += it->second;
 }
 

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include <optional>
+#include <tuple>
 #include <unordered_map>
 
 #include "core/hierarchy/incidence.h"
@@ -126,6 +127,11 @@ bool sameMesh(const RegionMesh& a, const RegionMesh& b) {
 }  // namespace
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile) {
+  return build(doc, profile, nullptr);
+}
+
+Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile,
+                                           std::shared_ptr<const BaseFaceClusters> clusters) {
   // The base level is held whole, so its face count is a lower bound on the
   // triangles: refuse before growing the hierarchy to it.
   if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&
@@ -147,12 +153,21 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
     for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
     std::vector<FaceId> growth;
     for (uint64_t id : ids) {
-      RegionMesh& mesh = tessellation.regions_[id] =
-          tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
+      RegionMesh& mesh = tessellation.fine_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
       tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
     }
     if (growth.empty()) {
       TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
+      const int maxLevel = tessellation.profile().maxLevel;
+      if (maxLevel <= kMaxGroupedLevel) {
+        const int size = 1 << (2 * (kGroupDepth - maxLevel));
+        if (!clusters || clusters->size() != size)
+          clusters =
+              std::make_shared<const BaseFaceClusters>(BaseFaceClusters::build(doc.baseTopology(), size));
+        tessellation.clusters_ = clusters;
+        for (uint32_t c = 0; c < static_cast<uint32_t>(clusters->numClusters()); ++c)
+          tessellation.groups_[FaceId(0, clusters->seedOf(c)).packed()] = tessellation.buildGroup(c);
+      }
       return tessellation;
     }
     if (round > kMaxDocumentLevel) {
@@ -232,20 +247,71 @@ RegionMesh Tessellation::buildRegion(const SparseHierarchy& h, FaceId region,
 }
 
 SurfaceMesh Tessellation::surface() const {
-  return mergeRegions(regions_);
+  return mergeRegions(fine_);
+}
+
+RegionMesh Tessellation::buildGroup(uint32_t cluster) const {
+  // A vertex shared by two member faces is one vertex of the group: its id
+  // and normal (creases keep a copy per side) are the same in both, and so
+  // is its position, bit for bit (the rule in this file's header).
+  RegionMesh group;
+  std::map<std::tuple<uint64_t, double, double, double>, int> index;
+  for (int f : clusters_->facesOf(cluster)) {
+    const RegionMesh& member = fine_.at(FaceId(0, static_cast<uint64_t>(f)).packed());
+    std::vector<int> map(member.positions.size());
+    for (size_t v = 0; v < member.positions.size(); ++v) {
+      const Vec3& n = member.normals[v];
+      auto [it, fresh] = index.emplace(std::tuple{member.vertexIds[v], n[0], n[1], n[2]},
+                                       static_cast<int>(group.positions.size()));
+      if (fresh) {
+        group.positions.push_back(member.positions[v]);
+        group.normals.push_back(n);
+        group.vertexIds.push_back(member.vertexIds[v]);
+      }
+      map[v] = it->second;
+    }
+    for (const auto& t : member.triangles) group.triangles.push_back({map[t[0]], map[t[1]], map[t[2]]});
+  }
+  return group;
+}
+
+Tessellation::Changes Tessellation::regroup(const Changes& fine) {
+  std::vector<uint32_t> touched;
+  for (const auto* ids : {&fine.changed, &fine.removed}) {
+    for (uint64_t id : *ids) {
+      const FaceId face = FaceId::fromPacked(id);
+      touched.push_back(clusters_->clusterOf(static_cast<int>(face.index() >> (2 * face.level()))));
+    }
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  Changes changes;
+  changes.rebuilt = fine.rebuilt;
+  for (uint32_t c : touched) {
+    const uint64_t id = FaceId(0, clusters_->seedOf(c)).packed();
+    RegionMesh mesh = buildGroup(c);
+    RegionMesh& old = groups_.at(id);
+    if (sameMesh(old, mesh)) continue;
+    if (!sameLayout(old, mesh)) changes.relaid.push_back(id);
+    changes.changed.push_back(id);
+    old = std::move(mesh);
+  }
+  std::sort(changes.changed.begin(), changes.changed.end());
+  std::sort(changes.relaid.begin(), changes.relaid.end());
+  return changes;
 }
 
 Expected<Tessellation::Changes> Tessellation::rebuildAll(Document& doc) {
-  TESSERA_ASSIGN_OR_RETURN(Tessellation fresh, build(doc, profile()));
+  TESSERA_ASSIGN_OR_RETURN(Tessellation fresh, build(doc, profile(), clusters_));
   Changes changes;
   changes.rebuilt = true;
-  for (const auto& [id, mesh] : fresh.regions_) {
-    auto old = regions_.find(id);
-    if (old == regions_.end() || !sameMesh(old->second, mesh)) changes.changed.push_back(id);
-    if (old == regions_.end() || !sameLayout(old->second, mesh)) changes.relaid.push_back(id);
+  for (const auto& [id, mesh] : fresh.regions()) {
+    auto old = regions().find(id);
+    if (old == regions().end() || !sameMesh(old->second, mesh)) changes.changed.push_back(id);
+    if (old == regions().end() || !sameLayout(old->second, mesh)) changes.relaid.push_back(id);
   }
-  for (const auto& [id, mesh] : regions_) {
-    if (fresh.regions_.count(id) == 0) changes.removed.push_back(id);
+  for (const auto& [id, mesh] : regions()) {
+    if (fresh.regions().count(id) == 0) changes.removed.push_back(id);
   }
   *this = std::move(fresh);
   return changes;
@@ -301,12 +367,12 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
     // region level.
     for (int j = 0; j <= l; ++j) {
       const uint64_t id = FaceId(j, canonical >> (2 * (l - j))).packed();
-      if (regions_.count(id)) gone.push_back(id);
+      if (fine_.count(id)) gone.push_back(id);
     }
     for (int j = l + 1; j <= regionLevel_; ++j) {
       const int shift = 2 * (j - l);
-      auto it = regions_.lower_bound(FaceId(j, canonical << shift).packed());
-      const auto end = regions_.lower_bound(FaceId(j, (canonical + 1) << shift).packed());
+      auto it = fine_.lower_bound(FaceId(j, canonical << shift).packed());
+      const auto end = fine_.lower_bound(FaceId(j, (canonical + 1) << shift).packed());
       for (; it != end; ++it) gone.push_back(it->first);
     }
   }
@@ -329,21 +395,22 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   for (size_t i = 0; i < candidates.size(); ++i) {
     const uint64_t id = candidates[i];
     RegionMesh& mesh = meshes[i];
-    auto old = regions_.find(id);
-    if (old != regions_.end() && sameMesh(old->second, mesh)) continue;
+    auto old = fine_.find(id);
+    if (old != fine_.end() && sameMesh(old->second, mesh)) continue;
     triangles_ += static_cast<int64_t>(mesh.triangles.size());
-    if (old != regions_.end()) triangles_ -= static_cast<int64_t>(old->second.triangles.size());
-    if (old == regions_.end() || !sameLayout(old->second, mesh)) changes.relaid.push_back(id);
-    regions_[id] = std::move(mesh);
+    if (old != fine_.end()) triangles_ -= static_cast<int64_t>(old->second.triangles.size());
+    if (old == fine_.end() || !sameLayout(old->second, mesh)) changes.relaid.push_back(id);
+    fine_[id] = std::move(mesh);
     changes.changed.push_back(id);
   }
   for (uint64_t id : gone) {
     if (std::binary_search(candidates.begin(), candidates.end(), id)) continue;
-    triangles_ -= static_cast<int64_t>(regions_.at(id).triangles.size());
-    regions_.erase(id);
+    triangles_ -= static_cast<int64_t>(fine_.at(id).triangles.size());
+    fine_.erase(id);
     changes.removed.push_back(id);
   }
   TESSERA_RETURN_IF_ERROR(checkBudget());
+  if (clusters_) return regroup(changes);
   return changes;
 }
 

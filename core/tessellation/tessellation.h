@@ -6,7 +6,12 @@
 // Regions are the cut's nodes at level maxLevel - 5 (or its leaves above
 // that level), so a region never holds more than 4^5 leaf triangles before
 // crack-closing fans; their ids are the nodes' packed FaceIds, stable as
-// long as the cut above them is. At a crease or corner the normal is that
+// long as the cut above them is. For a profile whose deepest level is at
+// most kMaxGroupedLevel (below), where a base face shows few triangles, the
+// base faces' regions are grouped instead, 4^(kGroupDepth - maxLevel)
+// neighbouring faces to a region (base_face_clusters.h), so that each
+// region's fixed costs are shared (docs/REGION_ENCODING.md "Region
+// groups"); a group is named by the packed FaceId of its seed face. At a crease or corner the normal is that
 // of the sector the triangle lies in, so shading breaks only along sharp
 // features.
 //
@@ -37,16 +42,27 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "core/document/document.h"
 #include "core/mesh/surface_mesh.h"
 #include "core/tessellation/adaptive_cut.h"
+#include "core/tessellation/base_face_clusters.h"
 #include "core/tessellation/lod_profile.h"
 #include "core/tessellation/region_codec.h"
 
 namespace tessera {
+
+// Base faces' regions are grouped for profiles whose deepest level is at
+// most kMaxGroupedLevel (a base face then shows at most 64 triangles):
+// 4^(kGroupDepth - maxLevel) faces to a region, so a region holds at most
+// 4^kGroupDepth = 4,096 leaf triangles. Deeper profiles keep a region per
+// base face or below (at most 1,024 leaf triangles), which keeps an edit's
+// delta small where edits are made.
+inline constexpr int kGroupDepth = 6;
+inline constexpr int kMaxGroupedLevel = 3;
 
 class Tessellation {
  public:
@@ -71,7 +87,10 @@ class Tessellation {
 
   const LodProfile& profile() const { return cut_.profile(); }
   int regionLevel() const { return regionLevel_; }
-  const std::map<uint64_t, RegionMesh>& regions() const { return regions_; }
+  // The regions viewers receive: groups of base faces' regions, or the
+  // cut's own regions (regionsAreGroups()).
+  const std::map<uint64_t, RegionMesh>& regions() const { return clusters_ ? groups_ : fine_; }
+  bool regionsAreGroups() const { return clusters_ != nullptr; }
   int64_t numTriangles() const { return triangles_; }
   // All regions as one mesh, vertices merged by identity (tests, export).
   SurfaceMesh surface() const;
@@ -79,6 +98,10 @@ class Tessellation {
  private:
   Tessellation(AdaptiveCut cut, int regionLevel, const LevelCounts& counts)
       : cut_(std::move(cut)), regionLevel_(regionLevel), counts_(counts) {}
+  // build, with the clusters of an earlier build of the same document when
+  // there are any (they depend on the base topology and profile alone).
+  static Expected<Tessellation> build(Document& doc, const LodProfile& profile,
+                                      std::shared_ptr<const BaseFaceClusters> clusters);
 
   // The regions of the cut under (level, face), appended as packed FaceIds.
   void regionsUnder(const SparseHierarchy& h, int l, Index f, std::vector<uint64_t>& out) const;
@@ -86,12 +109,19 @@ class Tessellation {
   // the region shows (the mesh is then incomplete).
   RegionMesh buildRegion(const SparseHierarchy& h, FaceId region, std::vector<FaceId>& growth) const;
   Expected<Changes> rebuildAll(Document& doc);
+  // The group of every base face's region, merged (vertices shared by id
+  // and normal, region_merge.h).
+  RegionMesh buildGroup(uint32_t cluster) const;
+  // The cut's changes as changes of the groups that hold them.
+  Changes regroup(const Changes& fine);
   Status checkBudget() const;
 
   AdaptiveCut cut_;
   int regionLevel_ = 0;
   LevelCounts counts_;
-  std::map<uint64_t, RegionMesh> regions_;
+  std::map<uint64_t, RegionMesh> fine_;               // the cut's regions
+  std::shared_ptr<const BaseFaceClusters> clusters_;  // when base faces' regions are grouped
+  std::map<uint64_t, RegionMesh> groups_;             // by the seed face's packed FaceId
   int64_t triangles_ = 0;
 };
 

@@ -18,9 +18,10 @@ Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& vie
   const auto start = Clock::now();
   RegionHeader header{region,       context.version, view.layout.at(region), view.tessellation->profile(),
                       context.grid, idsInline};
-  if (header.profile.vertexIds && idsInline) {
+  if (header.profile.vertexIds && idsInline && !view.tessellation->regionsAreGroups()) {
     // Ids as points of the region's lattice: a third of the bytes they
-    // took as eight-byte labels (region_lattice.h).
+    // took as eight-byte labels (region_lattice.h). A group of base faces
+    // has no one root face: its ids stay labels.
     auto frame = regionFrame(context.source.hierarchy(), context.source.counts(), FaceId::fromPacked(region));
     if (frame.isOk()) header.frame = *frame;
   }

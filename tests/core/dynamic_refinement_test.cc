@@ -162,8 +162,10 @@ TEST(DynamicRefinement, RegionsRefinedSeparatelyAreWatertight) {
     Document* doc;
     LodProfile profile;
   } cases[] = {
-      {"cube", &cube, {.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15}},
-      {"torus with random tags", &*torusDoc, {.baseLevel = 0, .maxLevel = 3, .angleThresholdDegrees = 20}}};
+      // Deepest level 4: a region per base face (a coarser profile groups
+      // these small meshes' faces into one or two regions).
+      {"cube", &cube, {.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 15}},
+      {"torus with random tags", &*torusDoc, {.baseLevel = 0, .maxLevel = 4, .angleThresholdDegrees = 20}}};
   for (auto& c : cases) {
     auto t = Tessellation::build(*c.doc, c.profile);
     ASSERT_TRUE(t.isOk()) << c.name << ": " << t.status().message();

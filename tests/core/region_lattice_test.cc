@@ -198,7 +198,8 @@ TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
 // carrying ids, are refused.
 TEST(RegionLattice, RefusesFramesOfOtherRegionsAndMixedFlags) {
   IcosahedronRegion r;
-  firstIcosahedronRegion({.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 10}, r);
+  // Deepest level 4: a region per base face, which has a frame.
+  firstIcosahedronRegion({.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 10}, r);
   if (::testing::Test::HasFatalFailure()) return;
   auto other = regionFrame(r.doc->hierarchy(), r.doc->counts(), FaceId(0, 5));
   ASSERT_TRUE(other.isOk());

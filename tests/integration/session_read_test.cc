@@ -40,9 +40,11 @@ constexpr uint64_t kDocument = 7;
 wire::ServerMessage fandiskSnapshot() {
   auto mesh = importMesh(testing::cgalMeshPath("fandisk.off"));
   EXPECT_TRUE(mesh.isOk()) << mesh.status().message();
-  auto doc = Document::create(*mesh, DocumentOptions{.loop = {}, .maxLevel = 3});
+  auto doc = Document::create(*mesh, DocumentOptions{.loop = {}, .maxLevel = 4});
   EXPECT_TRUE(doc.isOk()) << doc.status().message();
-  auto t = Tessellation::build(*doc, {.baseLevel = 2, .maxLevel = 2, .angleThresholdDegrees = 15});
+  // Deepest level 4: a region per base face (a coarser profile groups them
+  // into a few hundred regions and megabytes no more).
+  auto t = Tessellation::build(*doc, {.baseLevel = 2, .maxLevel = 4, .angleThresholdDegrees = 15});
   auto grid = documentGrid(*doc);
   EXPECT_TRUE(t.isOk() && grid.isOk());
   wire::ServerMessage m;

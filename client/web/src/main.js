@@ -64,6 +64,7 @@ async function main() {
     onRegionColours: (on) => view.setRegionColours(on),
     onLevel: (delta) => { editor.setLevel(editor.level + delta); refreshMarkers(); },
   });
+  view.reservedTop = () => hud.coveredTop() + 8;
 
   const editor = new Editor({
     element: view.renderer.domElement, view, picker, vertices, controlPoints,

@@ -99,6 +99,46 @@ test('the cube shows, anti-aliased, hashed like the server, with the HUD in its 
   await page.close();
 });
 
+// The box of the pixels the canvas draws (the surface and its markers),
+// from a screenshot taken without the page's background: the canvas is
+// transparent where nothing is drawn.
+async function drawnBox(page, skip) {
+  await page.evaluate(() => { document.body.style.background = 'none'; });
+  const png = decodePng(await page.screenshot({ type: 'png', omitBackground: true }));
+  await page.evaluate(() => { document.body.style.background = ''; });
+  let x0 = png.width, y0 = png.height, x1 = -1, y1 = -1;
+  for (let y = 0; y < png.height; ++y) {
+    for (let x = 0; x < png.width; ++x) {
+      if (skip(x, y) || png.alpha(x, y) < 128) continue;
+      x0 = Math.min(x0, x), y0 = Math.min(y0, y), x1 = Math.max(x1, x), y1 = Math.max(y1, y);
+    }
+  }
+  return { x0, y0, x1, y1 };
+}
+
+test('on a phone-sized page the panel starts folded, never covers the model, and the fit centres it below the panel', { skip }, async () => {
+  const size = { width: 390, height: 844 };
+  const page = await openPage(browser, docUrl(VIEWER), size);
+  await ready(page);
+  if (process.env.TESSERA_KEEP_SCREENSHOTS) (await import('node:fs')).writeFileSync(`${process.env.TESSERA_KEEP_SCREENSHOTS}/phone.png`, await page.screenshot({ type: 'png' }));
+  const hud = await page.$eval('#hud', (e) => ({ folded: e.classList.contains('folded'), ...e.getBoundingClientRect().toJSON() }));
+  assert.equal(hud.folded, true, 'folded at first');
+  assert.ok(hud.bottom < 60, `the folded panel is one row: ${JSON.stringify(hud)}`);
+  const inHud = (x, y) => x <= hud.right + 1 && y <= hud.bottom + 1;
+  const box = await drawnBox(page, inHud);
+  console.log(`phone: HUD ${Math.round(hud.width)}x${Math.round(hud.height)} px, surface rows ${box.y0}..${box.y1}, columns ${box.x0}..${box.x1}`);
+  assert.ok(box.y0 > hud.bottom, `the surface starts below the panel: ${JSON.stringify(box)}`);
+  const above = box.y0 - hud.bottom, below = size.height - 1 - box.y1;
+  assert.ok(Math.abs(above - below) < 0.1 * size.height, `centred in the free area: ${above} px above, ${below} below`);
+  assert.ok(box.x1 - box.x0 > 0.6 * size.width, `and fills its width: ${JSON.stringify(box)}`);
+  // H unfolds it, and it stays within the top half.
+  await page.keyboard.press('h');
+  const open = await page.$eval('#hud', (e) => e.getBoundingClientRect().toJSON());
+  assert.ok(open.bottom < size.height / 2 && open.right <= size.width, JSON.stringify(open));
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
 test('a drag edits the document as one undo step; undo and redo come back to the hashes', { skip }, async () => {
   const page = await openPage(browser, docUrl(EDITOR, '&name=dragger'));
   await ready(page);

@@ -5,7 +5,9 @@
 // tessera-view's 86%: the page's panel is wider than its HUD). Solved per axis
 // under perspective: fitting a bounding sphere or centring the box leaves
 // long models small or off-centre. The orbit then turns about the box's
-// centre, and the clipping planes follow the model's size.
+// centre, and the clipping planes follow the model's size. `reservedTop`,
+// a fraction of the frame's height that a panel covers at the top, is left
+// free: the model is fitted into the rows below it and centred there.
 import * as THREE from 'three';
 
 const FILL = 0.8;
@@ -42,7 +44,7 @@ class Extent {
 }
 
 // points: a flat array (or several) of x, y, z; box: their THREE.Box3.
-export function fitCamera(camera, controls, box, pointArrays) {
+export function fitCamera(camera, controls, box, pointArrays, reservedTop = 0) {
   const centre = box.getCenter(new THREE.Vector3());
   const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-6);
   const back = camera.position.clone().sub(controls.target);
@@ -50,8 +52,12 @@ export function fitCamera(camera, controls, box, pointArrays) {
   back.normalize();
   const right = new THREE.Vector3().crossVectors(camera.up, back).normalize();
   const up = new THREE.Vector3().crossVectors(back, right);
-  const tanY = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2)) * FILL;
-  const across = new Extent(tanY * camera.aspect), upward = new Extent(tanY);
+  const top = Math.min(Math.max(reservedTop, 0), 0.5);
+  const halfY = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
+  const tanY = halfY * FILL;
+  // The free rows span normalized heights -1 .. 1 - 2 top: half of them is
+  // (1 - top) of the frame's, centred at -top.
+  const across = new Extent(tanY * camera.aspect), upward = new Extent(tanY * (1 - top));
   const q = new THREE.Vector3();
   for (const points of pointArrays) {
     for (let i = 0; i < points.length; i += 3) {
@@ -62,7 +68,10 @@ export function fitCamera(camera, controls, box, pointArrays) {
     }
   }
   const d = Math.max(across.distance(), upward.distance(), radius * 0.05);
-  const target = centre.clone().addScaledVector(right, across.offset(d)).addScaledVector(up, upward.offset(d));
+  // Looking at a point top x the frame's half height above the model's centre
+  // puts that centre at height -top on the screen.
+  const target = centre.clone().addScaledVector(right, across.offset(d))
+    .addScaledVector(up, upward.offset(d) + top * halfY * d);
   controls.target.copy(target);
   camera.position.copy(target).addScaledVector(back, d);
   camera.near = radius / 100;

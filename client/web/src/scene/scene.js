@@ -27,6 +27,8 @@ function softwareRenderer(renderer) {
 export class SceneView {
   constructor(container) {
     this.container = container;
+    // Pixels at the top of the frame a panel covers: fit-to-view leaves them free.
+    this.reservedTop = () => 0;
     this.renderer = new THREE.WebGLRenderer({ antialias: true, alpha: true, powerPreference: 'high-performance' });
     this.renderer.setPixelRatio(Math.min(window.devicePixelRatio || 1, 2));
     this.renderer.outputColorSpace = THREE.SRGBColorSpace;
@@ -158,7 +160,8 @@ export class SceneView {
     const box = this.bounds();
     if (box.isEmpty()) return;
     const points = this.batches.batches.filter((b) => b.geometry).map((b) => b.geometry.getAttribute('position').array);
-    fitCamera(this.camera, this.controls, box, points);
+    const height = this.renderer.domElement.clientHeight || 1;
+    fitCamera(this.camera, this.controls, box, points, this.reservedTop() / height);
     this.fitted = true;
     this.invalidate();
   }

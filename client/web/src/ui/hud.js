@@ -5,13 +5,15 @@
 // triangles, frame rate); then latency, bytes per second, the surface hash
 // check, the LOD profile and the display toggles, the pick, the
 // collaborators, and a status and an error line. H folds it to its first
-// line. It only reads facts handed to it; it owns no state of the document.
+// line, and on a phone-sized page it starts so. It only reads facts handed
+// to it; it owns no state of the document.
 import { LOD_PRESETS } from '../session/lod_profiles.js';
 import { idName } from '../codec/ids.js';
 import { hex64 } from '../codec/uint64.js';
 import { sessionColour } from '../scene/presence_layer.js';
 
 const ROLE_NAMES = ['no role', 'viewer', 'editor', 'admin'];
+const SMALL_PAGE = '(max-width: 600px), (max-height: 500px)';
 
 function shortCount(n) {
   if (n < 1e4) return String(Math.round(n));
@@ -86,6 +88,14 @@ export class Hud {
     this.f.down.addEventListener('click', () => this.h.onLevel(-1));
     this.f.up.addEventListener('click', () => this.h.onLevel(1));
     root.querySelector('.hud-fold').addEventListener('click', () => this.toggle());
+    // On a phone-sized page the open panel would cover the top third of the
+    // frame, the model's top with it: it starts folded to its first line.
+    if (window.matchMedia?.(SMALL_PAGE).matches) root.classList.add('folded');
+  }
+
+  // The page's rows the panel covers from the top, for fit-to-view to leave free.
+  coveredTop() {
+    return this.root.getBoundingClientRect().bottom;
   }
 
   toggle() {

@@ -1,6 +1,6 @@
 // Just enough PNG decoding for the browser tests to look at screenshots:
 // 8-bit RGB or RGBA, not interlaced (what Chromium writes). Returns
-// {width, height, pixel(x, y) -> [r, g, b]}.
+// {width, height, pixel(x, y) -> [r, g, b], alpha(x, y)}.
 import { inflateSync } from 'node:zlib';
 
 export function decodePng(buffer) {
@@ -47,5 +47,7 @@ export function decodePng(buffer) {
   return {
     width, height,
     pixel: (x, y) => [0, 1, 2].map((k) => out[y * stride + x * channels + k]),
+    // 255 for an RGB image.
+    alpha: (x, y) => (channels === 4 ? out[y * stride + x * channels + 3] : 255),
   };
 }

@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <array>
 #include <deque>
+#include <functional>
 #include <unordered_map>
 
 namespace tessera {
 
-BaseFaceClusters BaseFaceClusters::build(const BaseTopology& base, int size) {
+namespace cluster_detail {
+
+template <typename SameParent>
+BaseFaceClusters grow(const BaseTopology& base, int size, SameParent sameParent,
+                      std::function<int(int)> limitOf) {
   BaseFaceClusters c;
   c.size_ = std::max(1, size);
   const int n = static_cast<int>(base.triangles.size());
@@ -39,14 +44,16 @@ BaseFaceClusters BaseFaceClusters::build(const BaseTopology& base, int size) {
     const uint32_t cluster = static_cast<uint32_t>(c.seeds_.size());
     c.seeds_.push_back(seed);
     members.clear();
+    const int limit = limitOf(seed);
     queue.assign(1, seed);
     c.clusterOf_[seed] = cluster;
     members.push_back(seed);
-    while (!queue.empty() && static_cast<int>(members.size()) < c.size_) {
+    while (!queue.empty() && static_cast<int>(members.size()) < limit) {
       const int f = queue.front();
       queue.pop_front();
       for (int g : across[f]) {
-        if (g < 0 || c.clusterOf_[g] != kNone || static_cast<int>(members.size()) >= c.size_) continue;
+        if (g < 0 || c.clusterOf_[g] != kNone || static_cast<int>(members.size()) >= limit) continue;
+        if (!sameParent(f, g)) continue;
         c.clusterOf_[g] = cluster;
         members.push_back(g);
         queue.push_back(g);
@@ -57,6 +64,20 @@ BaseFaceClusters BaseFaceClusters::build(const BaseTopology& base, int size) {
     c.offsets_.push_back(static_cast<int>(c.faces_.size()));
   }
   return c;
+}
+
+}  // namespace cluster_detail
+
+BaseFaceClusters BaseFaceClusters::build(const BaseTopology& base, int size) {
+  return cluster_detail::grow(
+      base, size, [](int, int) { return true; }, [size](int) { return size; });
+}
+
+BaseFaceClusters BaseFaceClusters::buildWithin(const BaseTopology& base, int size,
+                                               const BaseFaceClusters& within) {
+  return cluster_detail::grow(
+      base, size, [&](int f, int g) { return within.clusterOf(f) == within.clusterOf(g); },
+      [size](int) { return size; });
 }
 
 }  // namespace tessera

@@ -15,10 +15,22 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
 #include "core/loop/level_builder.h"
+
+namespace tessera {
+class BaseFaceClusters;
+}
+
+namespace tessera::cluster_detail {
+// Grows the clusters; `sameParent(f, g)` says whether g may join f's.
+template <typename SameParent>
+BaseFaceClusters grow(const BaseTopology& base, int size, SameParent sameParent,
+                      std::function<int(int)> limitOf);
+}  // namespace tessera::cluster_detail
 
 namespace tessera {
 
@@ -26,6 +38,9 @@ class BaseFaceClusters {
  public:
   // size >= 1; size 1 puts every face in a cluster of its own.
   static BaseFaceClusters build(const BaseTopology& base, int size);
+  // The same, each cluster grown only over faces of one cluster of
+  // `within`: the clusters nest in those (a view's tiles, tile_tree.h).
+  static BaseFaceClusters buildWithin(const BaseTopology& base, int size, const BaseFaceClusters& within);
 
   int size() const { return size_; }
   int numClusters() const { return static_cast<int>(seeds_.size()); }
@@ -39,6 +54,9 @@ class BaseFaceClusters {
   }
 
  private:
+  template <typename SameParent>
+  friend BaseFaceClusters cluster_detail::grow(const BaseTopology&, int, SameParent, std::function<int(int)>);
+
   int size_ = 1;
   std::vector<uint32_t> clusterOf_;  // per face
   std::vector<int> seeds_;           // per cluster

@@ -1,0 +1,40 @@
+#include "core/view/tile_builder.h"
+
+#include "core/tessellation/displayed_vertices.h"
+
+namespace tessera {
+
+Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKey& tile) {
+  if (!tree.contains(tile)) return notFound(tile.toString() + " is not a tile of this document");
+  if (tile.level > doc.counts().maxLevel()) {
+    return invalidArgument(tile.toString() + " is deeper than the document's level " +
+                           std::to_string(doc.counts().maxLevel()));
+  }
+  const std::vector<FaceId> faces = tree.facesShown(tile);
+  doc.refineHierarchy(faces);
+  // Growing for the limits' levels rebuilds levels (new local indices):
+  // the triangles are gathered again until nothing more is needed.
+  for (int round = 0; round <= kMaxDocumentLevel + 1; ++round) {
+    const SparseHierarchy& h = doc.hierarchy();
+    std::vector<RefTriangle> triangles;
+    std::vector<VertexRef> leaves;
+    triangles.reserve(faces.size());
+    for (const FaceId& f : faces) {
+      const Index local = h.level(tile.level).findFace(f.index());
+      if (local == kNoIndex)
+        return internalError(tile.toString() + ": the hierarchy does not hold " + f.toString());
+      const auto corners = h.level(tile.level).mesh.triangleVertices(local);
+      triangles.push_back({VertexRef{tile.level, corners[0]}, VertexRef{tile.level, corners[1]},
+                           VertexRef{tile.level, corners[2]}});
+      leaves.push_back({tile.level, local});
+    }
+    std::vector<FaceId> growth;
+    RegionMesh mesh = meshOfTriangles(h, doc.counts(), triangles, leaves, growth);
+    if (growth.empty()) return mesh;
+    doc.refineHierarchy(growth);
+  }
+  return internalError(tile.toString() +
+                       ": the hierarchy does not hold the limits' rings after repeated growth");
+}
+
+}  // namespace tessera

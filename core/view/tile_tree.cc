@@ -1,0 +1,96 @@
+#include "core/view/tile_tree.h"
+
+#include <algorithm>
+#include <string>
+
+namespace tessera {
+
+namespace {
+
+constexpr int kClusterLevels = kTileDepth - 1;  // levels 0..4 are clusters
+
+int clusterSize(int level) {
+  return 1 << (2 * (kTileDepth - level));
+}
+
+}  // namespace
+
+std::string TileKey::toString() const {
+  return "tile L" + std::to_string(level) + " " + FaceId::fromPacked(face).toString();
+}
+
+TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, int maxLevel) {
+  TileTree t;
+  t.maxLevel_ = maxLevel;
+  t.counts_ = counts;
+  for (int l = 0; l <= std::min(kClusterLevels, maxLevel); ++l) {
+    t.clusters_.push_back(l == 0 ? BaseFaceClusters::build(base, clusterSize(0))
+                                 : BaseFaceClusters::buildWithin(base, clusterSize(l), t.clusters_.back()));
+  }
+  return t;
+}
+
+std::vector<TileKey> TileTree::roots() const {
+  std::vector<TileKey> out;
+  const BaseFaceClusters& c = clusters_.front();
+  for (uint32_t k = 0; k < static_cast<uint32_t>(c.numClusters()); ++k)
+    out.push_back({0, FaceId(0, static_cast<uint64_t>(c.seedOf(k))).packed()});
+  return out;
+}
+
+std::vector<TileKey> TileTree::children(const TileKey& tile) const {
+  std::vector<TileKey> out;
+  if (tile.level >= maxLevel_) return out;
+  const int next = tile.level + 1;
+  if (next <= kClusterLevels) {
+    // The clusters of the next level inside this one: those of its faces.
+    const BaseFaceClusters& here = clusters_[tile.level];
+    const BaseFaceClusters& there = clusters_[next];
+    const uint32_t mine = here.clusterOf(static_cast<int>(FaceId::fromPacked(tile.face).index()));
+    for (int f : here.facesOf(mine)) {
+      const uint32_t c = there.clusterOf(f);
+      if (there.seedOf(c) == f) out.push_back({next, FaceId(0, static_cast<uint64_t>(f)).packed()});
+    }
+    return out;
+  }
+  for (const FaceId& f : rootFaces(tile)) {
+    if (next == kTileDepth) {
+      out.push_back({next, f.packed()});  // the cluster's faces, each a tile
+    } else {
+      for (uint64_t k = 0; k < 4; ++k)
+        out.push_back({next, FaceId(f.level() + 1, 4 * f.index() + k).packed()});
+    }
+  }
+  return out;
+}
+
+std::vector<FaceId> TileTree::rootFaces(const TileKey& tile) const {
+  if (tile.level >= kTileDepth) return {FaceId::fromPacked(tile.face)};
+  const BaseFaceClusters& c = clusters_[tile.level];
+  std::vector<FaceId> out;
+  for (int f : c.facesOf(c.clusterOf(static_cast<int>(FaceId::fromPacked(tile.face).index()))))
+    out.push_back(FaceId(0, static_cast<uint64_t>(f)));
+  return out;
+}
+
+std::vector<FaceId> TileTree::facesShown(const TileKey& tile) const {
+  std::vector<FaceId> out;
+  for (const FaceId& root : rootFaces(tile)) {
+    const int depth = tile.level - root.level();
+    const uint64_t n = uint64_t{1} << (2 * depth);
+    for (uint64_t k = 0; k < n; ++k) out.push_back(FaceId(tile.level, (root.index() << (2 * depth)) + k));
+  }
+  return out;
+}
+
+bool TileTree::contains(const TileKey& tile) const {
+  if (tile.level < 0 || tile.level > maxLevel_) return false;
+  const FaceId f = FaceId::fromPacked(tile.face);
+  if (tile.level >= kTileDepth)
+    return f.level() == tile.level - kTileDepth && f.index() < counts_.faces(f.level());
+  if (f.level() != 0 || f.index() >= counts_.faces(0)) return false;
+  const BaseFaceClusters& c = clusters_[tile.level];
+  return c.seedOf(c.clusterOf(static_cast<int>(f.index()))) == static_cast<int>(f.index());
+}
+
+}  // namespace tessera

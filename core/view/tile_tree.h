@@ -1,0 +1,62 @@
+// The tiles of a view-dependent subscription (docs/PROTOCOL.md "Views"): the
+// surface cut into pieces that are each shown uniformly at one level, in a
+// tree where a tile's children cover exactly its surface one level finer --
+// the hierarchy of tiles that 3D Tiles streams by screen-space error, here
+// made of the subdivision levels themselves.
+//
+//   level L <= 4: a cluster of up to 4^(5 - L) edge-connected base faces
+//                 (1,024 at level 0, 4 at level 4), each cluster grown
+//                 inside one cluster of level L - 1 (base_face_clusters.h),
+//                 so clusters nest;
+//   level L >= 5: one face of level L - 5 (a base face at level 5).
+//
+// Either way a full tile shows 4^5 = 1,024 triangles, and has about four
+// children: the clusters of level L + 1 inside it, or, from level 4 on, its
+// faces' children. A tile is named by its level and a packed FaceId: the
+// cluster's lowest base face, or its face. The tree is a function of the base
+// topology alone, like the region groups.
+#pragma once
+
+#include <compare>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/hierarchy/ids.h"
+#include "core/tessellation/base_face_clusters.h"
+
+namespace tessera {
+
+inline constexpr int kTileDepth = 5;  // a full tile: 4^5 triangles
+
+struct TileKey {
+  int level = 0;
+  uint64_t face = 0;  // packed FaceId: the seed base face (level <= 4) or the face of level - 5
+
+  friend auto operator<=>(const TileKey&, const TileKey&) = default;
+  std::string toString() const;
+};
+
+class TileTree {
+ public:
+  // Tiles of levels 0..maxLevel over `base`.
+  static TileTree build(const BaseTopology& base, const LevelCounts& counts, int maxLevel);
+
+  int maxLevel() const { return maxLevel_; }
+  std::vector<TileKey> roots() const;
+  // Empty at maxLevel.
+  std::vector<TileKey> children(const TileKey& tile) const;
+  // The faces the tile covers: base faces (level <= 5) or its one face.
+  std::vector<FaceId> rootFaces(const TileKey& tile) const;
+  // The faces of the tile's level it shows, in order.
+  std::vector<FaceId> facesShown(const TileKey& tile) const;
+  // Whether `tile` names a tile of this tree.
+  bool contains(const TileKey& tile) const;
+
+ private:
+  int maxLevel_ = 0;
+  LevelCounts counts_{0, 0, 0, 0};
+  std::vector<BaseFaceClusters> clusters_;  // levels 0..min(4, maxLevel)
+};
+
+}  // namespace tessera

@@ -1,0 +1,140 @@
+// A view's tiles (core/view/tile_tree.h, tile_builder.h): the tree covers
+// the surface once at every level, children cover exactly their parent one
+// level finer, a tile holds at most 1,024 triangles; and the tiles of a
+// level, built one by one, show exactly the triangles, vertices, positions
+// and normals of the uniform tessellation at that level -- two code paths,
+// bit for bit, on a document with creases and edits.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <map>
+#include <random>
+#include <set>
+
+#include "core/document/document.h"
+#include "core/io/mesh_import.h"
+#include "core/tessellation/tessellation.h"
+#include "core/view/tile_builder.h"
+#include "core/view/tile_tree.h"
+#include "support/procedural_meshes.h"
+#include "support/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+// The level-`level` ancestor of a face.
+FaceId ancestor(FaceId f, int level) {
+  return FaceId(level, f.index() >> (2 * (f.level() - level)));
+}
+
+TEST(TileTree, EveryLevelCoversTheSurfaceOnceAndChildrenCoverTheirParent) {
+  auto fandisk = importMesh(testing::cgalMeshPath("fandisk.off"));
+  ASSERT_TRUE(fandisk.isOk());
+  auto doc = Document::create(*fandisk, {.maxLevel = 7});
+  ASSERT_TRUE(doc.isOk());
+  const TileTree tree = TileTree::build(doc->baseTopology(), doc->counts(), 7);
+  std::vector<TileKey> level = tree.roots();
+  ASSERT_GE(level.size(), (doc->counts().faces(0) + 1023) / 1024);
+  std::mt19937 rng(3);
+  for (int l = 0; l <= 7; ++l) {
+    // Level l: every base face exactly once, every tile at most 1,024 triangles.
+    std::map<uint64_t, int> covered;
+    size_t full = 0;
+    for (const TileKey& t : level) {
+      ASSERT_TRUE(tree.contains(t)) << t.toString();
+      ASSERT_EQ(t.level, l);
+      const auto shown = tree.facesShown(t);
+      EXPECT_LE(shown.size(), 1024u) << t.toString();
+      if (shown.size() == 1024) ++full;
+      for (const FaceId& f : tree.rootFaces(t)) ++covered[ancestor(f, 0).packed()];
+    }
+    if (l < 5) {
+      EXPECT_EQ(covered.size(), doc->counts().faces(0)) << "level " << l;
+      for (const auto& [face, n] : covered) ASSERT_EQ(n, 1) << "level " << l;
+    }
+    // Clusters grown greedily leave fragments at their parents' borders
+    // (docs/PROTOCOL.md "Views" gives the figures); they are counted here.
+    if (l < 5) std::printf("[ measured ] level %d: %zu tiles, %zu of them full\n", l, level.size(), full);
+    if (l == 7) break;
+    // Children: a sample of tiles (all of them down to level 4).
+    std::vector<TileKey> next;
+    for (const TileKey& t : level) {
+      if (l >= 4 && next.size() >= 64) break;  // deeper, a sample
+      const auto kids = tree.children(t);
+      std::set<uint64_t> parentShownOneFiner;
+      for (const FaceId& f : tree.facesShown(t))
+        for (uint64_t k = 0; k < 4; ++k)
+          parentShownOneFiner.insert(FaceId(l + 1, 4 * f.index() + k).packed());
+      std::set<uint64_t> childrenShown;
+      for (const TileKey& c : kids) {
+        EXPECT_EQ(c.level, l + 1);
+        for (const FaceId& f : tree.facesShown(c)) EXPECT_TRUE(childrenShown.insert(f.packed()).second);
+      }
+      EXPECT_EQ(childrenShown, parentShownOneFiner) << t.toString();
+      next.insert(next.end(), kids.begin(), kids.end());
+    }
+    level = std::move(next);
+  }
+  EXPECT_TRUE(tree.children({7, FaceId(2, 0).packed()}).empty()) << "no children at the deepest level";
+  EXPECT_FALSE(tree.contains({0, FaceId(0, 1).packed()})) << "face 1 is no cluster's seed at level 0";
+  EXPECT_FALSE(tree.contains({8, FaceId(3, 0).packed()}));
+}
+
+// (vertex ids of the corners, in order) -> positions and normals, bitwise.
+using Triangles = std::map<std::array<uint64_t, 3>, std::string>;
+
+void add(const RegionMesh& m, Triangles& out) {
+  for (const auto& t : m.triangles) {
+    std::array<uint64_t, 3> key;
+    std::string bits;
+    for (int k = 0; k < 3; ++k) {
+      key[k] = m.vertexIds[t[k]];
+      bits.append(reinterpret_cast<const char*>(&m.positions[t[k]]), sizeof(Vec3));
+      bits.append(reinterpret_cast<const char*>(&m.normals[t[k]]), sizeof(Vec3));
+    }
+    // The same triangle from another first corner.
+    while (key[0] > key[1] || key[0] > key[2]) {
+      std::rotate(key.begin(), key.begin() + 1, key.end());
+      std::rotate(bits.begin(), bits.begin() + 2 * sizeof(Vec3), bits.end());
+    }
+    out.emplace(key, bits);
+  }
+}
+
+TEST(TileBuilder, TheTilesOfALevelAreTheUniformTessellationBitForBit) {
+  const testing::TestMesh mesh =
+      testing::withRandomTags(testing::withRandomFlips(testing::torus(12, 8), 10, 2), 0.1, 0.05, 4);
+  auto doc = Document::create(mesh.topology, mesh.points, {.maxLevel = 4});
+  ASSERT_TRUE(doc.isOk());
+  std::mt19937 rng(9);
+  for (int e = 0; e < 12; ++e) {
+    const int level = static_cast<int>(rng() % 3);
+    const VertexId v(level, rng() % doc->counts().vertices(level));
+    ASSERT_TRUE(doc->moveBy(std::span<const VertexId>(&v, 1), Vec3(0.05, -0.03, 0.04)).isOk());
+  }
+  const TileTree tree = TileTree::build(doc->baseTopology(), doc->counts(), 4);
+  std::vector<TileKey> level = tree.roots();
+  for (int l = 0; l <= 3; ++l) {
+    Triangles tiles, uniform;
+    Document copy = *doc;
+    for (const TileKey& t : level) {
+      auto m = buildTile(copy, tree, t);
+      ASSERT_TRUE(m.isOk()) << m.status().message();
+      add(*m, tiles);
+    }
+    Document other = *doc;
+    auto u = Tessellation::build(other, {.baseLevel = l, .maxLevel = l, .angleThresholdDegrees = 10});
+    ASSERT_TRUE(u.isOk()) << u.status().message();
+    for (const auto& [id, region] : u->regions()) add(region, uniform);
+    ASSERT_EQ(tiles.size(), uniform.size()) << "level " << l;
+    EXPECT_TRUE(tiles == uniform) << "level " << l;
+    std::vector<TileKey> next;
+    for (const TileKey& t : level)
+      for (const TileKey& c : tree.children(t)) next.push_back(c);
+    level = std::move(next);
+  }
+  EXPECT_EQ(buildTile(*doc, tree, {0, FaceId(0, 1).packed()}).status().code(), ErrorCode::kNotFound);
+}
+
+}  // namespace
+}  // namespace tessera

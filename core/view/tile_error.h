@@ -1,6 +1,6 @@
 // How far a tile (tile_tree.h) may lie from the limit surface, and where it
 // is: what a view needs to decide a tile's level by screen-space error
-// (docs/PROTOCOL.md "Views", "The error of a tile").
+// (docs/VIEWS.md "The error of a tile").
 //
 // A tile shows its faces flat between the limits of their corners. Its
 // error is measured at the next level: for every edge of every face, the

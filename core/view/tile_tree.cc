@@ -64,6 +64,16 @@ std::vector<TileKey> TileTree::children(const TileKey& tile) const {
   return out;
 }
 
+TileKey TileTree::parent(const TileKey& tile) const {
+  if (tile.level == 0) return tile;
+  const FaceId f = FaceId::fromPacked(tile.face);
+  // A cluster's (or, at level 5, a base face's) parent is the cluster of the
+  // level above that holds its seed face; a deeper face's, its parent face.
+  if (tile.level <= kTileDepth)
+    return {tile.level - 1, clusterSeed(tile.level - 1, static_cast<int>(f.index()))};
+  return {tile.level - 1, FaceId(f.level() - 1, f.index() >> 2).packed()};
+}
+
 std::vector<FaceId> TileTree::rootFaces(const TileKey& tile) const {
   if (tile.level >= kTileDepth) return {FaceId::fromPacked(tile.face)};
   const BaseFaceClusters& c = clusters_[tile.level];
@@ -81,6 +91,11 @@ std::vector<FaceId> TileTree::facesShown(const TileKey& tile) const {
     for (uint64_t k = 0; k < n; ++k) out.push_back(FaceId(tile.level, (root.index() << (2 * depth)) + k));
   }
   return out;
+}
+
+uint64_t TileTree::clusterSeed(int level, int face) const {
+  const BaseFaceClusters& c = clusters_[level];
+  return FaceId(0, static_cast<uint64_t>(c.seedOf(c.clusterOf(face)))).packed();
 }
 
 bool TileTree::contains(const TileKey& tile) const {

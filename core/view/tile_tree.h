@@ -1,4 +1,4 @@
-// The tiles of a view-dependent subscription (docs/PROTOCOL.md "Views"): the
+// The tiles of a view-dependent subscription (docs/VIEWS.md): the
 // surface cut into pieces that are each shown uniformly at one level, in a
 // tree where a tile's children cover exactly its surface one level finer --
 // the hierarchy of tiles that 3D Tiles streams by screen-space error, here
@@ -46,12 +46,17 @@ class TileTree {
   std::vector<TileKey> roots() const;
   // Empty at maxLevel.
   std::vector<TileKey> children(const TileKey& tile) const;
+  // The tile one level coarser that covers this one; a root's is itself.
+  TileKey parent(const TileKey& tile) const;
   // The faces the tile covers: base faces (level <= 5) or its one face.
   std::vector<FaceId> rootFaces(const TileKey& tile) const;
   // The faces of the tile's level it shows, in order.
   std::vector<FaceId> facesShown(const TileKey& tile) const;
   // Whether `tile` names a tile of this tree.
   bool contains(const TileKey& tile) const;
+  // The packed FaceId naming the cluster of `level` (at most 4) that holds
+  // base face `face`.
+  uint64_t clusterSeed(int level, int face) const;
 
  private:
   int maxLevel_ = 0;

@@ -1,6 +1,6 @@
 // A viewer's camera, as a view-dependent subscription states it: where the
 // eye is and where it looks, the projection, the viewport in pixels and the
-// screen-space error it tolerates (docs/PROTOCOL.md "Views"). From it, how
+// screen-space error it tolerates (docs/VIEWS.md). From it, how
 // large a world-space error looks on the screen at a place, and whether a
 // place can be seen at all -- the criteria of adaptive subdivision for
 // rendering that depend on the viewer: screen size and the view frustum.
@@ -21,7 +21,7 @@ namespace tessera {
 
 enum class Projection { kPerspective, kOrthographic };
 
-// Bounds a view accepts (docs/PROTOCOL.md "Views").
+// Bounds a view accepts (docs/VIEWS.md).
 inline constexpr double kMinTolerancePixels = 0.25;
 inline constexpr double kMaxTolerancePixels = 256;
 inline constexpr int kMaxViewportPixels = 16384;

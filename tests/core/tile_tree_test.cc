@@ -53,7 +53,7 @@ TEST(TileTree, EveryLevelCoversTheSurfaceOnceAndChildrenCoverTheirParent) {
       for (const auto& [face, n] : covered) ASSERT_EQ(n, 1) << "level " << l;
     }
     // Clusters grown greedily leave fragments at their parents' borders
-    // (docs/PROTOCOL.md "Views" gives the figures); they are counted here.
+    // (docs/VIEWS.md gives the figures); they are counted here.
     if (l < 5) std::printf("[ measured ] level %d: %zu tiles, %zu of them full\n", l, level.size(), full);
     if (l == 7) break;
     // Children: a sample of tiles (all of them down to level 4).

@@ -1,0 +1,39 @@
+// Which tiles a view needs (docs/VIEWS.md), after 3D Tiles'
+// refinement by screen-space error: from the roots down, a tile in the view
+// frustum is replaced by its children while its error, projected at its
+// sphere's nearest depth, exceeds the view's tolerance. A tile wholly
+// outside the frustum is kept as it is: the coarsest the tree offers there,
+// enough to turn towards. Under a triangle budget the tolerance is raised
+// by steps of 1.25 until the selection fits, so quality falls evenly over
+// the screen and no visible part is dropped.
+//
+// The result comes in the order it should be sent: visible before hidden,
+// coarse before fine, near before far.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/util/status.h"
+#include "core/view/tile_catalogue.h"
+#include "core/view/view.h"
+
+namespace tessera {
+
+struct SelectedTile {
+  TileKey key;
+  bool visible = true;
+  double projectedError = 0;  // pixels, at the sphere's nearest depth
+  double depth = 0;           // of the sphere's centre along the view
+};
+
+struct TileSelection {
+  std::vector<SelectedTile> tiles;
+  int64_t triangles = 0;
+  double tolerancePixels = 0;  // the view's, or what the budget raised it to
+};
+
+// `budget` <= 0: none. Errors: a bad view, a tile that cannot be built.
+Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget = 0);
+
+}  // namespace tessera

@@ -5,6 +5,7 @@
 
 #include "client/cli/commands.h"
 #include "client/cli/doc_edit.h"
+#include "client/cli/doc_view.h"
 #include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
@@ -165,6 +166,26 @@ void addEdit(CLI::App& doc, Action& action) {
   onChosen(*sub, action, [args] { return runDocEdit(*args); });
 }
 
+void addView(CLI::App& doc, Action& action) {
+  CLI::App* sub =
+      doc.add_subcommand("view", "the tiles a camera would be sent, by level: triangles, bytes, errors");
+  sub->footer("docs/VIEWS.md: tiles chosen by screen-space error.");
+  auto args = std::make_shared<DocViewArgs>();
+  sub->add_option("DOC", args->document, "the document file")->required();
+  sub->add_option("--eye", args->eye, "where the camera is")->required()->type_name("X Y Z");
+  sub->add_option("--target", args->target, "the point it looks at")->required()->type_name("X Y Z");
+  sub->add_option("--up", args->up, "its up direction (default 0 1 0)")->type_name("X Y Z");
+  sub->add_option("--fov", args->fovDegrees, "vertical field of view, degrees (default 50)")
+      ->type_name("DEG");
+  sub->add_option("--ortho", args->orthoHeight, "orthographic: the height in view")->type_name("HEIGHT");
+  sub->add_option("--size", args->size, "viewport in pixels (default 390x844, a phone)")->type_name("WxH");
+  sub->add_option("--tolerance", args->tolerance, "screen-space error allowed, pixels (default 1)")
+      ->type_name("PX");
+  sub->add_option("--budget", args->budget, "at most this many triangles (the tolerance rises)")
+      ->type_name("N");
+  onChosen(*sub, action, [args] { return runDocView(*args); });
+}
+
 void addInfo(CLI::App& doc, Action& action) {
   CLI::App* sub = doc.add_subcommand("info", "base mesh, options and the edit history of a document");
   auto document = std::make_shared<std::string>();
@@ -216,6 +237,7 @@ void addDocCommand(CLI::App& app, Action& action) {
   addEdit(*doc, action);
   addInfo(*doc, action);
   addExport(*doc, action);
+  addView(*doc, action);
 }
 
 }  // namespace tessera::cli

@@ -25,7 +25,7 @@ std::string cubeTags() {
 
 TEST(Cli, HelpForEveryCommand) {
   for (const char* args : {"--help", "info --help", "refine --help", "doc --help", "doc new --help",
-                           "remote --help", "remote edit --help", "-h"}) {
+                           "doc view --help", "remote --help", "remote edit --help", "-h"}) {
     CliRun r = runCli(args);
     EXPECT_EQ(r.exitCode, 0) << args;
     EXPECT_NE(r.out.find("Usage: tessera"), std::string::npos) << args;
@@ -276,6 +276,36 @@ TEST(CliDoc, ExportsTheAdaptiveTessellation) {
   const std::string count = r.out.substr(r.out.rfind(' ', at - 1) + 1, at - r.out.rfind(' ', at - 1) - 1);
   EXPECT_NE(info.out.find(count), std::string::npos) << info.out;
   EXPECT_LT(std::stoll(count), 12 * 256);
+}
+
+// `doc view` prints what a camera would be sent, by level; a near camera
+// gets finer tiles than a far one; bad views are refused by name.
+TEST(CliDoc, ViewPrintsTheTilesACameraNeeds) {
+  const std::string dir = testing::makeTempDir("tessera-doc-view");
+  const std::string doc = dir + "/cube.tsd";
+  ASSERT_EQ(runCli("doc new " + cube() + " --tags " + cubeTags() + " --max-level 5 -o " + doc).exitCode, 0);
+  CliRun far = runCli("doc view " + doc + " --eye 0 0 40 --target 0 0 0 --size 390x844");
+  ASSERT_EQ(far.exitCode, 0) << far.err;
+  EXPECT_NE(far.out.find("view 390x844 px, tolerance 1 px;"), std::string::npos) << far.out;
+  EXPECT_NE(far.out.find("level  tiles (hidden)"), std::string::npos) << far.out;
+  CliRun near = runCli("doc view " + doc + " --eye 0 0 1.6 --target 0 0 0 --size 1920x1080 --tolerance 0.5");
+  ASSERT_EQ(near.exitCode, 0) << near.err;
+  auto finest = [](const std::string& out) {
+    const size_t at = out.find("the whole document at level ");
+    return at == std::string::npos ? -1 : std::stoi(out.substr(at + 28));
+  };
+  EXPECT_GT(finest(near.out), finest(far.out)) << far.out << near.out;
+  for (const std::string& bad : {std::string("--size 0x844"), std::string("--tolerance 0"),
+                                 std::string("--tolerance 1e9"), std::string("--size phone")}) {
+    CliRun r = runCli("doc view " + doc + " --eye 0 0 4 --target 0 0 0 " + bad);
+    EXPECT_EQ(r.exitCode, 2) << bad;
+    EXPECT_TRUE(r.err.find("viewport") != std::string::npos || r.err.find("tolerance") != std::string::npos ||
+                r.err.find("--size") != std::string::npos)
+        << bad << ": " << r.err;
+  }
+  CliRun same = runCli("doc view " + doc + " --eye 0 0 4 --target 0 0 4");
+  EXPECT_EQ(same.exitCode, 2);
+  EXPECT_NE(same.err.find("forward is zero"), std::string::npos) << same.err;
 }
 
 }  // namespace

@@ -31,14 +31,23 @@ trap cleanup EXIT INT TERM
 
 # 1. Three NATS servers with JetStream, clustered (JetStream needs a name
 # per server and a cluster name). max_payload 8MB: snapshot frames of large
-# documents travel between nodes in one message.
+# documents travel between nodes in one message. From nats-server 2.10 on,
+# sync_interval: always puts each write on disk before JetStream
+# acknowledges it (docs/CLUSTER.md "What an acknowledged edit survives");
+# 2.9 refuses the option, and its acknowledgements are from memory.
+nats_version=$(nats-server --version | sed 's/^.*v//')
+sync=""
+if [ "$(printf '%s\n' 2.10.0 "$nats_version" | sort -V | head -1)" = 2.10.0 ]; then
+  sync="sync_interval: always, "
+fi
+echo "nats-server $nats_version: ${sync:-no sync_interval (acknowledged from memory and the page cache)}"
 urls=()
 for i in 1 2 3; do
   cat >"$dir/nats$i.conf" <<CONF
 server_name: nats$i
 listen: 127.0.0.1:$((14221 + i))
 max_payload: 8MB
-jetstream { store_dir: "$dir/nats$i", max_mem: 256MB, max_file: 8GB }
+jetstream { ${sync}store_dir: "$dir/nats$i", max_mem: 256MB, max_file: 8GB }
 cluster {
   name: tessera
   listen: 127.0.0.1:$((16221 + i))

@@ -53,6 +53,9 @@ void addClusterOptions(CLI::App& app, ServerConfig& c) {
       ->group(g);
   app.add_option("--node-name", c.nodeName, "this node's name in the cluster (default: the host name)")
       ->group(g);
+  app.add_flag("--require-fsync", c.requireFsync,
+               "refuse to start unless each acknowledged edit is on disk before its acknowledgement "
+               "(nats-server before 2.10 cannot; docs/CLUSTER.md)");
   app.add_option("--cluster-replicas", c.clusterReplicas,
                  "JetStream replicas of the journal, snapshots and catalogue (3 in a 3-server NATS cluster)")
       ->check(CLI::Range(1, 5))

@@ -97,6 +97,23 @@ std::string nodeNameOf(const ServerConfig& config) {
 Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
   std::unique_ptr<Server> server(new Server(config));
   TESSERA_ASSIGN_OR_RETURN(server->store_, openStore(config));
+  const store::Durability durability = server->store_->durability();
+  logEvent(LogLevel::kInfo, "store_durability",
+           {{"backend", durability.backend},
+            {"engine_version", durability.engineVersion},
+            {"write_sync", store::writeSyncName(durability.sync)},
+            {"statement", durability.statement}});
+  if (config.requireFsync && durability.sync == store::WriteSync::kNotEachWrite) {
+    return unsupported("--require-fsync: " + durability.statement +
+                       ". Install nats-server 2.10 or later on every NATS machine and set jetstream { "
+                       "sync_interval: always }, or run without --cluster (SQLite fsyncs each write)");
+  }
+  if (config.requireFsync && durability.sync == store::WriteSync::kConfigured) {
+    logEvent(LogLevel::kWarn, "require_fsync_unverified",
+             {{"statement",
+               "--require-fsync relies on the NATS servers setting jetstream { sync_interval: always }, "
+               "which a node cannot read"}});
+  }
   if (!config.adminTokenFile.empty()) {
     std::ifstream in(config.adminTokenFile);
     std::string token;
@@ -165,7 +182,7 @@ Expected<std::unique_ptr<Server>> Server::create(const ServerConfig& config) {
         server->http_, HttpEndpoint::start(config.httpListenAddress, config.httpPort,
                                            HttpSources{&raw->stats_, [raw] { return raw->store_->stats(); },
                                                        [raw] { return raw->registry_->openCount(); },
-                                                       [raw] { return raw->unhealthy(); }}));
+                                                       [raw] { return raw->unhealthy(); }, durability}));
     if (!config.httpPortFile.empty()) {
       writePortFile(config.httpPortFile, server->http_->port());
     }

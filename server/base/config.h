@@ -56,6 +56,10 @@ struct ServerConfig {
   std::string cluster;
   std::string nodeName;     // this node in logs, stats and leases (default: the host name)
   int clusterReplicas = 3;  // JetStream replicas of the journal, blobs and buckets
+  // Refuse to start on a store that cannot put each acknowledged write on
+  // disk before its acknowledgement (docs/CLUSTER.md "What an acknowledged
+  // edit survives").
+  bool requireFsync = false;
   // A document's owner renews its lease every third of this; a dead owner's
   // documents are taken over once it runs out (docs/CLUSTER.md, "Failover").
   int64_t leaseMs = 3000;

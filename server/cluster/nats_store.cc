@@ -1,5 +1,7 @@
 #include "server/cluster/nats_store.h"
 
+#include "server/cluster/nats_server_info.h"
+
 #include <algorithm>
 #include <future>
 #include <string>
@@ -51,6 +53,28 @@ std::vector<SnapshotRef> decodeSnapshotRefs(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// The weakest guarantee among the NATS servers that answer: an acknowledged
+// write is as durable as the servers that hold it.
+store::Durability durabilityOf(const std::vector<std::string>& urls) {
+  std::optional<NatsServerInfo> weakest;
+  for (const std::string& url : urls) {
+    auto info = readNatsServerInfo(url, std::chrono::milliseconds(2000));
+    if (!info.isOk()) continue;
+    if (!weakest || (supportsPerWriteSync(weakest->version) && !supportsPerWriteSync(info->version)))
+      weakest = *info;
+  }
+  if (!weakest) {
+    return {
+        "nats", "unknown", store::WriteSync::kNotEachWrite,
+        "no NATS server told its version: acknowledged writes are taken to be in memory and the page cache"};
+  }
+  return natsDurability(*weakest);
+}
+
+}  // namespace
+
 Expected<std::unique_ptr<NatsStore>> NatsStore::open(const NatsStoreOptions& options) {
   TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<NatsLink> link, NatsLink::connect(options.link));
   TESSERA_RETURN_IF_ERROR(link->ensureStream(
@@ -63,7 +87,9 @@ Expected<std::unique_ptr<NatsStore>> NatsStore::open(const NatsStoreOptions& opt
                                                                              .replicas = options.replicas}));
   TESSERA_ASSIGN_OR_RETURN(KvStorePtr tokens, link->ensureBucket(BucketSpec{.name = "TESSERA_TOKENS",
                                                                             .replicas = options.replicas}));
-  return std::unique_ptr<NatsStore>(new NatsStore(std::move(link), std::move(catalog), std::move(tokens)));
+  std::unique_ptr<NatsStore> store(new NatsStore(std::move(link), std::move(catalog), std::move(tokens)));
+  store->durability_ = durabilityOf(options.link.urls);
+  return store;
 }
 
 NatsStore::NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens)

@@ -72,6 +72,7 @@ class NatsStore final : public store::Store {
   Expected<bool> knowsToken(std::string_view token) override;
 
   store::StoreStats stats() const override;
+  store::Durability durability() const override { return durability_; }
   void close() override;
 
   NatsLink& link() { return *link_; }
@@ -129,6 +130,7 @@ class NatsStore final : public store::Store {
   std::map<uint64_t, Tail> tails_;  // guarded by mutex_
   bool closing_ = false, closed_ = false;
   store::StoreStats stats_;
+  store::Durability durability_;
   std::thread writer_;
 };
 

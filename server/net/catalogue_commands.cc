@@ -116,6 +116,12 @@ wire::ServerMessage serverStats(const ServerStats& stats, store::Store& store, c
   add("store_batches", static_cast<double>(storeStats.batches));
   add("store_average_batch", storeStats.averageBatchSize);
   add("store_last_commit_ms", static_cast<double>(storeStats.lastCommitLatency.count()) / 1000.0);
+  // 1: each acknowledged write is on disk first; 0: it is not (a majority's
+  // memory and page cache); -1: per the NATS servers' configuration.
+  const store::WriteSync sync = store.durability().sync;
+  add("acknowledgement_syncs_each_write", sync == store::WriteSync::kEachWrite      ? 1.0
+                                          : sync == store::WriteSync::kNotEachWrite ? 0.0
+                                                                                    : -1.0);
   if (!config.cluster.empty()) {
     add("cluster_node", static_cast<double>(s.clusterNode.load()));
     add("documents_owned", static_cast<double>(s.documentsOwned.load()));

@@ -37,9 +37,9 @@ EndpointPage EndpointPages::health() const {
 
 EndpointPage EndpointPages::metrics() {
   sampleEdits();
-  return {
-      200, "text/plain; version=0.0.4; charset=utf-8",
-      renderMetrics({*sources_.stats, sources_.storeStats(), sources_.documentsOpen(), edits_.perSecond()})};
+  return {200, "text/plain; version=0.0.4; charset=utf-8",
+          renderMetrics({*sources_.stats, sources_.storeStats(), sources_.documentsOpen(), edits_.perSecond(),
+                         sources_.durability})};
 }
 
 }  // namespace tessera::server

@@ -25,6 +25,7 @@ struct HttpSources {
   std::function<int64_t()> documentsOpen;
   // Why the server is not healthy, or nullopt when it is.
   std::function<std::optional<std::string>()> unhealthy;
+  store::Durability durability;  // what an acknowledged edit survives (the store says, once)
 };
 
 struct EndpointPage {

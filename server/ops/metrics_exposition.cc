@@ -71,8 +71,19 @@ std::string renderMetrics(const MetricsSample& sample) {
   ClientMetric info;
   info.label = {{"version", kVersion}};
   info.gauge.value = 1;
+  ClientMetric durability;
+  durability.label = {{"backend", sample.durability.backend},
+                      {"engine_version", sample.durability.engineVersion},
+                      {"write_sync", store::writeSyncName(sample.durability.sync)}};
+  durability.gauge.value = 1;
   std::vector<MetricFamily> families = {
       MetricFamily{"tessera_build_info", "Always 1; the version is a label.", MetricType::Gauge, {info}},
+      MetricFamily{
+          "tessera_store_durability_info",
+          "Always 1. write_sync: each-write (on disk before the acknowledgement), not-each-write "
+          "(a majority's memory and page cache), or configured (per the NATS servers' sync_interval).",
+          MetricType::Gauge,
+          {durability}},
       gauge("tessera_uptime_seconds", "Seconds since the server started.", s.uptimeSeconds()),
       gauge("tessera_connections", "Open client connections.", static_cast<double>(s.connections.load())),
       counter("tessera_connections_total", "Connections accepted.", s.connectionsTotal.load()),

@@ -36,6 +36,7 @@ struct MetricsSample {
   store::StoreStats store;
   int64_t documentsOpen = 0;
   double editsPerSecond = 0;
+  store::Durability durability;
 };
 std::string renderMetrics(const MetricsSample& sample);
 

@@ -1,5 +1,7 @@
 #include "server/store/sqlite_store.h"
 
+#include <sqlite3.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <future>
@@ -200,6 +202,11 @@ Expected<bool> SqliteStore::knowsToken(std::string_view token) {
 
 StoreStats SqliteStore::stats() const {
   return writer_->stats();
+}
+
+Durability SqliteStore::durability() const {
+  return {"sqlite", sqlite3_libversion(), WriteSync::kEachWrite,
+          "each acknowledged edit was fsynced to this machine's disk before its acknowledgement"};
 }
 
 }  // namespace tessera::store

@@ -60,6 +60,7 @@ class SqliteStore final : public Store {
   Expected<bool> knowsToken(std::string_view token) override;
 
   StoreStats stats() const override;
+  Durability durability() const override;
   void close() override;
 
   const std::string& databasePath() const { return databasePath_; }

@@ -18,6 +18,18 @@ const char* roleName(Role role) {
   return "unknown role";
 }
 
+const char* writeSyncName(WriteSync sync) {
+  switch (sync) {
+    case WriteSync::kEachWrite:
+      return "each-write";
+    case WriteSync::kNotEachWrite:
+      return "not-each-write";
+    case WriteSync::kConfigured:
+      return "configured";
+  }
+  return "unknown";
+}
+
 Expected<Role> parseRole(std::string_view name) {
   for (Role role : {Role::kViewer, Role::kEditor, Role::kAdmin}) {
     if (name == roleName(role)) return role;

@@ -106,6 +106,22 @@ struct StoreStats {
   server::LatencyBuckets commitLatency;            // BEGIN to durable COMMIT, every batch
 };
 
+// What an acknowledged write survives in this store (docs/CLUSTER.md "What
+// an acknowledged edit survives"), for the log, the stats and the metrics.
+enum class WriteSync {
+  kEachWrite,     // on disk (fsync) before the acknowledgement: SQLite
+  kNotEachWrite,  // acknowledged from memory and the page cache: nats-server before 2.10
+  kConfigured,    // per the NATS servers' sync_interval, which a node cannot read (2.10 and later)
+};
+const char* writeSyncName(WriteSync sync);  // "each-write", "not-each-write", "configured"
+
+struct Durability {
+  std::string backend;        // "sqlite", "nats" (or a test's)
+  std::string engineVersion;  // SQLite's, or the NATS servers'
+  WriteSync sync = WriteSync::kNotEachWrite;
+  std::string statement;  // one sentence for people
+};
+
 // A failed write whose outcome the store cannot know (a replicated store's
 // request timed out: the write may be stored), so that callers can tell it
 // from a refusal. A store returns kTimeout for a write only in this case.
@@ -172,6 +188,7 @@ class Store {
   virtual Expected<bool> knowsToken(std::string_view token) = 0;
 
   virtual StoreStats stats() const = 0;
+  virtual Durability durability() const = 0;
 
   // Stops accepting writes, commits those already queued (their callbacks
   // are called), and releases the data directory. Idempotent; later calls

@@ -7,15 +7,36 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
 #include <vector>
 
+#include "server/cluster/nats_server_info.h"
+
 namespace tessera::testing {
 
 namespace {
+
+// Whether this nats-server (2.10 and later) can sync each write: then the
+// test clusters run with sync_interval: always, as docs/CLUSTER.md tells
+// operators to ("What an acknowledged edit survives"). Debian 12's 2.9.10
+// refuses the option.
+bool natsSyncsEachWrite() {
+  static const bool syncs = [] {
+    FILE* pipe = ::popen("nats-server --version 2>&1", "r");
+    if (!pipe) return false;
+    char text[128] = {};
+    const size_t n = std::fread(text, 1, sizeof text - 1, pipe);
+    ::pclose(pipe);
+    const std::string out(text, n);
+    const size_t v = out.find('v');
+    return v != std::string::npos && cluster::supportsPerWriteSync(out.substr(v + 1));
+  }();
+  return syncs;
+}
 
 // Ports the kernel has just handed out and taken back: free, with a small
 // race that a test run on loopback rarely meets. All are held until the
@@ -71,8 +92,8 @@ Expected<NatsCluster> NatsCluster::start(int servers, const std::string& maxPayl
     conf << "server_name: " << name << "\n"
          << "listen: 127.0.0.1:" << s.clientPort << "\n"
          << "max_payload: " << maxPayload << "\n"
-         << "jetstream { store_dir: \"" << cluster.directory_ << "/" << name
-         << "\", max_mem: 64MB, max_file: 2GB }\n";
+         << "jetstream { " << (natsSyncsEachWrite() ? "sync_interval: always, " : "") << "store_dir: \""
+         << cluster.directory_ << "/" << name << "\", max_mem: 64MB, max_file: 2GB }\n";
     if (servers > 1) {
       conf << "cluster { name: tessera-test, listen: 127.0.0.1:" << s.routePort << ", routes: [";
       const char* separator = "";

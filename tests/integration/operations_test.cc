@@ -164,6 +164,11 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   EXPECT_NE(before->contentType.find("text/plain"), std::string::npos);
   const auto m0 = parseMetrics(before->body);
   EXPECT_EQ(m0.at("tessera_edits_total"), 0);
+  // SQLite fsyncs each write before its acknowledgement, and says so.
+  EXPECT_NE(before->body.find("tessera_store_durability_info{backend=\"sqlite\",engine_version=\""),
+            std::string::npos)
+      << before->body;
+  EXPECT_NE(before->body.find("write_sync=\"each-write\"} 1"), std::string::npos) << before->body;
 
   Cube cube = createCube(*server, "metrics");
   ASSERT_NE(cube.doc, 0u);

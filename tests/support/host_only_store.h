@@ -26,6 +26,9 @@ class HostOnlyStore : public store::Store {
   Expected<store::Role> roleFor(std::string_view, store::TokenScope) override { return unused(); }
   Expected<bool> knowsToken(std::string_view) override { return unused(); }
   store::StoreStats stats() const override { return {}; }
+  store::Durability durability() const override {
+    return {"memory", "", store::WriteSync::kNotEachWrite, "nothing is durable"};
+  }
   void close() override {}
 
  private:

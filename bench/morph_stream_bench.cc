@@ -192,7 +192,7 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
     return 2;
   }
   const uint64_t doc = created->ack().document_id();
-  (*admin)->call(testing::openDocument(doc), 30);
+  if (!(*admin)->call(testing::openDocument(doc), 30).isOk()) return 2;
   wire::ClientMessage add;
   add.mutable_add_morph_key()->set_document_id(doc);
   add.mutable_add_morph_key()->set_mesh(objOf(*mesh, points1));
@@ -215,7 +215,8 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
       edits += r.isOk() && r->has_ack() ? 1 : 0;
     }
   }
-  (*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "morph-viewer-token-0123456789"), 30);
+  if (!(*admin)->call(testing::grant(doc, wire::ROLE_VIEWER, "morph-viewer-token-0123456789"), 30).isOk())
+    return 2;
   std::printf(
       "document: %s, %d base triangles, key 1 %s, %d level-2 edits on the two keys; profile base %u max %u "
       "angle %g; %d viewers x %d frames\n",
@@ -241,7 +242,7 @@ int run(const std::string& meshPath, int viewers, int frames, const std::string&
   // The visual difference of (b) against (a).
   auto viewer = Session::connect(server->session("probe", "morph-viewer-token-0123456789"));
   if (!viewer.isOk()) return 2;
-  (*viewer)->call(testing::openDocument(doc), 30);
+  if (!(*viewer)->call(testing::openDocument(doc), 30).isOk()) return 2;
   for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
     if (!(*viewer)->call(subscribeAt(doc, t), 60).isOk()) return 2;
     DocumentView shown(doc);

@@ -12,9 +12,10 @@ namespace tessera::server {
 
 namespace {
 
-bool watched(const LodView& view) {
+// Whether a live subscriber other than `except` (0: none excepted) watches it.
+bool watched(const LodView& view, uint64_t except = 0) {
   return std::any_of(view.subscribers.begin(), view.subscribers.end(),
-                     [](const auto& s) { return !s.second.expired(); });
+                     [&](const auto& s) { return s.first != except && !s.second.expired(); });
 }
 
 }  // namespace
@@ -30,12 +31,7 @@ LodView* DocumentViews::find(const std::string& key) {
 
 size_t DocumentViews::watchedByOthers(uint64_t session) const {
   size_t kept = 0;
-  for (const auto& [key, view] : views_) {
-    kept += std::any_of(view.subscribers.begin(), view.subscribers.end(),
-                        [&](const auto& s) { return s.first != session && !s.second.expired(); })
-                ? 1
-                : 0;
-  }
+  for (const auto& [key, view] : views_) kept += watched(view, session) ? 1 : 0;
   return kept;
 }
 
@@ -56,15 +52,18 @@ void DocumentViews::attach(LodView& view, const std::shared_ptr<Subscriber>& who
 }
 
 DocumentViews::Views DocumentViews::leaveAllBut(uint64_t session, const std::string& key) {
-  for (auto& [other, view] : views_) {
-    if (other != key) view.subscribers.erase(session), view.knownVersion.erase(session);
-  }
-  return dropUnwatched(key);
+  return forget(session, key);
 }
 
 DocumentViews::Views DocumentViews::leave(uint64_t session) {
-  for (auto& [key, view] : views_) view.subscribers.erase(session), view.knownVersion.erase(session);
-  return dropUnwatched();
+  return forget(session, {});
+}
+
+DocumentViews::Views DocumentViews::forget(uint64_t session, std::string_view keep) {
+  for (auto& [key, view] : views_) {
+    if (key != keep) view.subscribers.erase(session), view.knownVersion.erase(session);
+  }
+  return dropUnwatched(keep);
 }
 
 DocumentViews::Views DocumentViews::dropUnwatched(std::string_view keep) {

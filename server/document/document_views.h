@@ -77,6 +77,8 @@ class DocumentViews {
   Views takeAll();
 
  private:
+  // `session` leaves every view but `keep`'s; then dropUnwatched(keep).
+  Views forget(uint64_t session, std::string_view keep);
   const store::DocumentId document_;
   const int64_t retainedMorphTriangles_;
   const uint32_t maxFrameBytes_;

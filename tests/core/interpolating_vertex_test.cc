@@ -118,7 +118,9 @@ TEST(InterpolatingVertex, TheLimitIsTheControlPointAtEveryLevelAndAfterEditsArou
         ASSERT_TRUE(d.undo(*tag).isOk());
         Document plain = doc;
         for (const Edit& e : d.edits()) {
-          if (e.active) ASSERT_TRUE(plain.replay(Edit{EditId{plain.nextEditId()}, true, e.change}).isOk());
+          if (e.active) {
+            ASSERT_TRUE(plain.replay(Edit{EditId{plain.nextEditId()}, true, e.change}).isOk());
+          }
         }
         const auto a = d.evaluate(level + 3), b = plain.evaluate(level + 3);
         EXPECT_EQ((*a)->points[level + 3], (*b)->points[level + 3]) << where;

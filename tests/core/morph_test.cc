@@ -93,7 +93,9 @@ TEST(Morph, TheSurfaceIsContinuousInTime) {
       const double d = farthest(limits(*morph->at(t + h)), base);
       EXPECT_GT(d, 0) << "t " << t << " h " << h;
       // Lipschitz: the change shrinks with the step at a bounded rate.
-      if (previousRate > 0) EXPECT_LE(d / h, 2 * previousRate) << "t " << t << " h " << h;
+      if (previousRate > 0) {
+        EXPECT_LE(d / h, 2 * previousRate) << "t " << t << " h " << h;
+      }
       previousRate = d / h;
     }
   }

@@ -115,8 +115,9 @@ Status writeMorphSample(const MorphSample& s, const std::string& dir) {
     if (!out) return ioError(dir + "/" + name + ": cannot write");
   }
   std::ofstream tags(dir + "/morph.tags");
-  tags << "# the middle ring's vertices 0, 4 and 8 interpolate (docs/INTERPOLATION.md, \"Locally "
-          "interpolating vertices\"); the dots mark vertex "
+  tags << "# the middle ring's segments 0, 4 and 8 (vertices " << s.interpolating[0] << ", "
+       << s.interpolating[1] << " and " << s.interpolating[2]
+       << ") interpolate (docs/INTERPOLATION.md, \"Locally interpolating vertices\"); the dots mark vertex "
        << s.dotVertex << "\n";
   for (int v : s.interpolating) tags << "interpolate " << v << "\n";
   if (!tags) return ioError(dir + "/morph.tags: cannot write");

@@ -39,7 +39,9 @@ class ViewScreenshot : public ::testing::Test {
     server_.emplace(std::move(*server));
   }
   void TearDown() override {
-    if (server_) EXPECT_EQ(server_->stop(), 0);
+    if (server_) {
+      EXPECT_EQ(server_->stop(), 0);
+    }
   }
 
   // Renders `document` with no display; the picture, or a failure.

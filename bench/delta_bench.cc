@@ -1,8 +1,9 @@
 // Edit to encoded region deltas (docs/PERFORMANCE.md): a document whose
 // displayed surface has more than 1M triangles, single-vertex edits at
 // levels 0-4 timed from the call until every changed region is
-// re-tessellated and Draco-encoded, against a full re-tessellation and a
-// full encode of the whole surface in the same run.
+// re-tessellated, hashed and Draco-encoded (each stage's median reported
+// apart), against a full re-tessellation and a full encode of the whole
+// surface in the same run.
 //
 //   build/release/bench/tessera_bench_delta [--mesh PATH] [benchmark flags]
 //
@@ -24,6 +25,7 @@
 #include "core/document/document.h"
 #include "core/loop/limit.h"
 #include "core/tessellation/region_codec.h"
+#include "core/tessellation/surface_hash.h"
 #include "core/tessellation/tessellation.h"
 
 namespace {
@@ -68,7 +70,7 @@ void editToDelta(benchmark::State& bm) {
   State& s = state();
   Document& doc = *s.doc;
   std::mt19937 rng(7 + level);
-  std::vector<double> samples;
+  std::vector<double> samples, evaluate, tessellate, hash, encode;  // the stages, seconds
   double bytes = 0, regions = 0, rebuilds = 0;
   for (auto _ : bm) {
     const VertexId v(level,
@@ -77,10 +79,24 @@ void editToDelta(benchmark::State& bm) {
     const Vec3 limit = doc.hierarchy().limitFrameOf(level, local).position;
     const auto start = Clock::now();
     auto id = doc.moveToLimit(std::span(&v, 1), limit + Vec3(0.002, -0.001, 0.003));
+    const auto evaluated = Clock::now();
     auto changes = s.tessellation->update(doc);
+    const auto tessellated = Clock::now();
+    // The surface hash of each changed region, as a server keeps it
+    // (docs/PROTOCOL.md 6.5).
+    uint64_t sum = 0;
+    for (uint64_t region : changes->changed)
+      sum += regionSurfaceHashOnGrid(s.tessellation->regions().at(region), s.grid, kProfile.vertexIds);
+    benchmark::DoNotOptimize(sum);
+    const auto hashed = Clock::now();
     ++s.version;
     const size_t delta = encodeRegions(changes->changed);
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const auto end = Clock::now();
+    const double seconds = std::chrono::duration<double>(end - start).count();
+    evaluate.push_back(std::chrono::duration<double>(evaluated - start).count());
+    tessellate.push_back(std::chrono::duration<double>(tessellated - evaluated).count());
+    hash.push_back(std::chrono::duration<double>(hashed - tessellated).count());
+    encode.push_back(std::chrono::duration<double>(end - hashed).count());
     bm.SetIterationTime(seconds);
     samples.push_back(seconds);
     bytes += static_cast<double>(delta);
@@ -94,6 +110,13 @@ void editToDelta(benchmark::State& bm) {
   const double n = static_cast<double>(samples.size());
   bm.counters["p50_us"] = tessera::bench::percentile(samples, 0.5) * 1e6;
   bm.counters["p99_us"] = tessera::bench::percentile(samples, 0.99) * 1e6;
+  // Where the time goes: the edit and the hierarchy's update (evaluation),
+  // the regions' re-tessellation, their surface hashes and their Draco
+  // encoding; medians.
+  bm.counters["evaluate_p50_us"] = tessera::bench::percentile(evaluate, 0.5) * 1e6;
+  bm.counters["tessellate_p50_us"] = tessera::bench::percentile(tessellate, 0.5) * 1e6;
+  bm.counters["hash_p50_us"] = tessera::bench::percentile(hash, 0.5) * 1e6;
+  bm.counters["encode_p50_us"] = tessera::bench::percentile(encode, 0.5) * 1e6;
   bm.counters["delta_bytes"] = bytes / n;
   bm.counters["regions"] = regions / n;
   bm.counters["rebuilds"] = rebuilds;

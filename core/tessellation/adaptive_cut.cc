@@ -156,17 +156,30 @@ std::optional<std::vector<std::pair<int, Index>>> AdaptiveCut::redecide(Document
   std::vector<std::pair<int, Index>> flipped;
   const SparseHierarchy& h = doc.hierarchy();
   if (profile_.fidelity) markEditedVertices(doc);
-  std::vector<std::pair<int, Index>> faces;
+  // The faces around the changed limits, each once, by level and index. A
+  // level-0 edit on a surface held to level 4 changes thousands of limits:
+  // marking faces costs what sorting every (level, face) pair did not.
+  std::vector<std::vector<Index>> byLevel(static_cast<size_t>(numLevels()));
+  if (faceMarks_.size() < byLevel.size()) faceMarks_.resize(byLevel.size());
   for (VertexId id : limits) {
     const int l = id.level();
     if (l >= numLevels()) continue;
     const Index v = h.level(l).findVertex(id.index());
+    std::vector<uint8_t>& marks = faceMarks_[l];
+    if (marks.size() < static_cast<size_t>(h.level(l).mesh.numFaces()))
+      marks.resize(h.level(l).mesh.numFaces(), 0);
     for (Index f : h.level(l).mesh.ringFacesOf(v)) {
-      if (f >= 0) faces.emplace_back(l, f);
+      if (f < 0 || marks[f]) continue;
+      marks[f] = 1;
+      byLevel[l].push_back(f);
     }
   }
-  std::sort(faces.begin(), faces.end());
-  faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+  std::vector<std::pair<int, Index>> faces;
+  for (int l = 0; l < numLevels(); ++l) {
+    for (Index f : byLevel[l]) faceMarks_[l][f] = 0;
+    std::sort(byLevel[l].begin(), byLevel[l].end());
+    for (Index f : byLevel[l]) faces.emplace_back(l, f);
+  }
   // Coarser levels first: a flip there decides (or clears) the finer ones.
   for (auto [l, f] : faces) {
     if (!isNode(h, l, f)) continue;

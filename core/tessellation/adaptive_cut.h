@@ -63,6 +63,8 @@ class AdaptiveCut {
   std::vector<Buffer<uint8_t>> split_;
   std::vector<uint64_t> generations_;
   std::vector<uint64_t> editedVertices_;  // packed ids of vertices an edit moves, sorted (fidelity)
+  // Per level, per face: seen in this redecide (all zero between calls).
+  std::vector<std::vector<uint8_t>> faceMarks_;
 };
 
 }  // namespace tessera

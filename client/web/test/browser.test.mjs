@@ -69,6 +69,9 @@ function differing(png, x0, y0, x1, y1, reference = png.pixel(png.width - 2, png
 test('the cube shows, anti-aliased, hashed like the server, with the HUD in its corner', { skip }, async () => {
   const page = await openPage(browser, docUrl(VIEWER));
   await ready(page);
+  // On a loaded machine the page was once ready before its state carried
+  // the session's role: wait for it.
+  await page.waitForFunction(() => window.tesseraViewer.state().role !== 'ROLE_UNSPECIFIED', { timeout: 10000 });
   const s = await state(page);
   assert.equal(s.connected, true);
   assert.equal(s.ready, true);

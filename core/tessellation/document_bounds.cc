@@ -15,21 +15,26 @@ std::string point(const Vec3& p) {
   return text;
 }
 
+// The vertex's local index when it belongs to the bounded set, else kNoIndex.
+Index boundedVertex(const SparseHierarchy& hierarchy, VertexId id) {
+  if (id.level() >= hierarchy.numLevels()) return kNoIndex;
+  const Index v = hierarchy.level(id.level()).findVertex(id.index());
+  if (v == kNoIndex) return kNoIndex;
+  return id.level() == 0 || hierarchy.isReachedByEdit(id.level(), v) ? v : kNoIndex;
+}
+
 }  // namespace
 
 bool inBoundedSet(const SparseHierarchy& hierarchy, VertexId id) {
-  if (id.level() >= hierarchy.numLevels()) return false;
-  const Index v = hierarchy.level(id.level()).findVertex(id.index());
-  if (v == kNoIndex) return false;
-  return id.level() == 0 || hierarchy.isReachedByEdit(id.level(), v);
+  return boundedVertex(hierarchy, id) != kNoIndex;
 }
 
 Status checkWithinBounds(const SparseHierarchy& hierarchy, std::span<const VertexId> recomputed,
                          const QuantizationGrid& grid) {
   for (VertexId id : recomputed) {
-    if (!inBoundedSet(hierarchy, id)) continue;
-    const Vec3& limit =
-        hierarchy.limitPosition(id.level(), hierarchy.level(id.level()).findVertex(id.index()));
+    const Index v = boundedVertex(hierarchy, id);
+    if (v == kNoIndex) continue;
+    const Vec3& limit = hierarchy.limitPosition(id.level(), v);
     if (grid.contains(limit)) continue;
     return invalidArgument("the edit would move the surface outside the document's bounds: the limit of " +
                            id.toString() + " would be at " + point(limit) + ", outside the cube from " +

@@ -14,7 +14,7 @@
 #include "client/cli/human_format.h"
 #include "core/document/document_file.h"
 #include "core/tessellation/document_grid.h"
-#include "core/tessellation/region_lattice.h"
+#include "core/view/tile_encoding.h"
 #include "core/view/tile_selection.h"
 
 namespace tessera::cli {
@@ -31,17 +31,8 @@ Expected<std::pair<int, int>> parseSize(const std::string& text) {
 
 size_t encodedBytes(const Document& doc, const TileKey& key, const RegionMesh& mesh,
                     const QuantizationGrid& grid, bool ids) {
-  RegionHeader header;
-  header.regionId = key.face;
-  header.documentVersion = header.layoutVersion = 1;
-  header.profile = {.baseLevel = key.level, .maxLevel = key.level, .vertexIds = ids};
-  header.grid = grid;
-  if (ids && key.level >= kTileDepth) {
-    auto frame = regionFrame(doc.hierarchy(), doc.counts(), FaceId::fromPacked(key.face));
-    if (frame.isOk()) header.frame = *frame;
-  }
-  auto bytes = encodeRegion(header, mesh);
-  return bytes.isOk() ? bytes->size() : 0;
+  auto encoded = encodeTile(doc, key, mesh, grid, 1, ids);
+  return encoded.isOk() ? encoded->bytes->size() : 0;
 }
 
 }  // namespace
@@ -90,7 +81,7 @@ int runDocView(const DocViewArgs& args) {
     PerLevel& l = levels[t.key.level];
     ++l.tiles;
     if (!t.visible) ++l.hidden;
-    l.triangles += static_cast<int64_t>((*tile)->mesh.triangles.size());
+    l.triangles += (*tile)->triangles;
     l.withIds += encodedBytes(*doc, t.key, (*tile)->mesh, *grid, true);
     l.withoutIds += encodedBytes(*doc, t.key, (*tile)->mesh, *grid, false);
     if (t.visible) {

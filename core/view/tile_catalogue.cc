@@ -1,5 +1,7 @@
 #include "core/view/tile_catalogue.h"
 
+#include <algorithm>
+
 #include "core/view/tile_builder.h"
 
 namespace tessera {
@@ -28,11 +30,48 @@ Expected<const Tile*> TileCatalogue::get(const TileKey& key) {
   }
   TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, buildTile(doc_, tree_, key));
   TESSERA_ASSIGN_OR_RETURN(TileBounds bounds, tileBounds(doc_, tree_, key, mesh, parentError));
-  auto tile = std::make_unique<Tile>(Tile{std::move(mesh), bounds});
+  const auto triangles = static_cast<int64_t>(mesh.triangles.size());
+  auto tile = std::make_unique<Tile>(Tile{std::move(mesh), bounds, triangles});
   const Tile* out = tile.get();
   tiles_.emplace(key, std::move(tile));
   ++built_;
   return out;
+}
+
+Expected<const RegionMesh*> TileCatalogue::mesh(const TileKey& key) {
+  TESSERA_ASSIGN_OR_RETURN(const Tile* found, get(key));
+  if (!found->meshReleased) return &found->mesh;
+  Tile& tile = *tiles_.at(key);
+  TESSERA_ASSIGN_OR_RETURN(tile.mesh, buildTile(doc_, tree_, key));
+  tile.meshReleased = false;
+  ++rebuilt_;
+  return &tile.mesh;
+}
+
+void TileCatalogue::releaseMesh(const TileKey& key) {
+  auto found = tiles_.find(key);
+  if (found == tiles_.end() || found->second->meshReleased) return;
+  found->second->mesh = RegionMesh{};
+  found->second->meshReleased = true;
+}
+
+std::vector<TileKey> TileCatalogue::forget(const TouchedTiles& touched) {
+  std::vector<TileKey> gone;
+  if (touched.empty()) return gone;
+  const int deepest = doc_.counts().maxLevel();
+  // Key order is level first: a parent is judged before its children.
+  for (auto it = tiles_.begin(); it != tiles_.end();) {
+    const TileKey& key = it->first;
+    const bool parentGone = key.level == deepest && key.level > 0 &&
+                            std::binary_search(gone.begin(), gone.end(), tree_.parent(key));
+    if (touched.touches(key) || parentGone) {
+      gone.push_back(key);
+      it = tiles_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return gone;
 }
 
 }  // namespace tessera

@@ -12,13 +12,16 @@
 #include "core/tessellation/region_codec.h"
 #include "core/util/status.h"
 #include "core/view/tile_error.h"
+#include "core/view/tile_invalidation.h"
 #include "core/view/tile_tree.h"
 
 namespace tessera {
 
 struct Tile {
-  RegionMesh mesh;
+  RegionMesh mesh;  // empty once released (releaseMesh)
   TileBounds bounds;
+  int64_t triangles = 0;
+  bool meshReleased = false;
 };
 
 class TileCatalogue {
@@ -33,16 +36,27 @@ class TileCatalogue {
   // that building them one by one grows it no more: each growth rebuilds
   // the levels below it, and a selection asks for hundreds of tiles.
   void prepare(std::span<const TileKey> keys);
-  // Tiles built so far (a statistic; each counts once).
+  // The tile's mesh, built again if it was released.
+  Expected<const RegionMesh*> mesh(const TileKey& key);
+  // Frees a tile's mesh and keeps its bounds: a server that holds the
+  // tile's encoding needs only those to select (docs/VIEWS.md "The tile cache").
+  void releaseMesh(const TileKey& key);
+  // Tiles built so far, and meshes built again after a release (statistics).
   int64_t built() const { return built_; }
-  // Forgets every tile (the document changed; a server forgets only those an edit reached).
+  int64_t rebuilt() const { return rebuilt_; }
+  size_t size() const { return tiles_.size(); }
+  // Forgets every tile (the document changed).
   void clear() { tiles_.clear(); }
+  // Forgets the tiles an edit reached (tile_invalidation.h), and the
+  // deepest level's tiles whose parent goes (their error is the parent's
+  // over 4); returns them, in key order.
+  std::vector<TileKey> forget(const TouchedTiles& touched);
 
  private:
   Document& doc_;
   TileTree tree_;
   std::map<TileKey, std::unique_ptr<Tile>> tiles_;
-  int64_t built_ = 0;
+  int64_t built_ = 0, rebuilt_ = 0;
 };
 
 }  // namespace tessera

@@ -30,7 +30,7 @@ Expected<TileSelection> selectAt(const View& view, TileCatalogue& tiles, double 
           continue;
         }
       }
-      out.triangles += static_cast<int64_t>(tile->mesh.triangles.size());
+      out.triangles += tile->triangles;
       out.tiles.push_back(s);
     }
     frontier = std::move(next);

@@ -19,6 +19,16 @@ std::string TileKey::toString() const {
   return "tile L" + std::to_string(level) + " " + FaceId::fromPacked(face).toString();
 }
 
+uint64_t TileKey::regionId() const {
+  return (static_cast<uint64_t>(level) << 58) | FaceId::fromPacked(face).index();
+}
+
+TileKey TileKey::fromRegionId(uint64_t id) {
+  const int level = static_cast<int>(id >> 58);
+  const uint64_t index = id & ((uint64_t{1} << 58) - 1);
+  return {level, FaceId(std::max(0, level - kTileDepth), index).packed()};
+}
+
 TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, int maxLevel) {
   TileTree t;
   t.maxLevel_ = maxLevel;

@@ -35,6 +35,11 @@ struct TileKey {
 
   friend auto operator<=>(const TileKey&, const TileKey&) = default;
   std::string toString() const;
+  // The tile's region id on the wire (docs/PROTOCOL.md "Views"): the level
+  // in the high 6 bits, the face's index in the low 58; the face's own
+  // level follows from the tile's.
+  uint64_t regionId() const;
+  static TileKey fromRegionId(uint64_t id);
 };
 
 class TileTree {

@@ -162,8 +162,9 @@ TEST(TileSelection, RandomCamerasGetAWatertightSurfaceWithinTheirTolerance) {
         ++levels[t.key.level];
         for (const FaceId& f : catalogue.tree().facesShown(t.key))
           area[f.index() >> (2 * f.level())] += std::ldexp(1.0, -2 * f.level());
-        if (t.visible && t.key.level < m.doc.counts().maxLevel())
+        if (t.visible && t.key.level < m.doc.counts().maxLevel()) {
           EXPECT_LE(t.projectedError, view.tolerancePixels) << where << " " << t.key.toString();
+        }
         if (!t.visible && t.key.level > 0) {
           // Nothing is refined out of view: a hidden tile is a root, or the
           // sibling of a visible one its parent was refined for.
@@ -183,7 +184,9 @@ TEST(TileSelection, RandomCamerasGetAWatertightSurfaceWithinTheirTolerance) {
       std::vector<std::vector<Vec3>> raw;
       for (const RegionMesh* mesh : meshes) raw.push_back(mesh->positions);
       const int64_t open = unmatchedEdges(meshes, raw, m.radius);
-      if (moved > 0) EXPECT_GT(open, 0) << where << ": moved vertices closed real cracks";
+      if (moved > 0) {
+        EXPECT_GT(open, 0) << where << ": moved vertices closed real cracks";
+      }
       crackedWithoutClosing += open;
     }
     // Every tile built once, however many cameras wanted it.

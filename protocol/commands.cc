@@ -31,6 +31,8 @@ uint64_t documentOf(const wire::ClientMessage& m) {
       return m.add_morph_key().document_id();
     case C::kGetMorphControl:
       return m.get_morph_control().document_id();
+    case C::kSetView:
+      return m.set_view().document_id();
     default:
       return 0;
   }

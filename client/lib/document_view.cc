@@ -5,6 +5,7 @@
 
 #include "core/tessellation/region_merge.h"
 #include "core/tessellation/surface_hash.h"
+#include "core/view/tile_assembly.h"
 
 namespace tessera::client {
 
@@ -27,6 +28,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
       version_ = s.version();
       announced_ = s.surface_hash();
       ready_ = true;
+      viewComplete_ = false;
     }
     return Status::ok();
   }
@@ -56,6 +58,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
   for (uint64_t id : d.removed_region_ids()) regions_.erase(id), layouts_.erase(id), regionHashes_.erase(id);
   version_ = d.to_version();
   announced_ = d.surface_hash();
+  viewComplete_ = d.view_complete();
   return Status::ok();
 }
 
@@ -78,6 +81,16 @@ int64_t DocumentView::numTriangles() const {
 
 SurfaceMesh DocumentView::surface() const {
   return mergeRegions(regions_);
+}
+
+std::map<uint64_t, std::vector<Vec3>> DocumentView::closedTilePositions(int64_t* moved) const {
+  std::vector<const RegionMesh*> meshes;
+  for (const auto& [id, mesh] : regions_) meshes.push_back(&mesh);
+  std::vector<std::vector<Vec3>> closed = closeCracks(meshes, moved);
+  std::map<uint64_t, std::vector<Vec3>> out;
+  size_t i = 0;
+  for (const auto& [id, mesh] : regions_) out.emplace(id, std::move(closed[i++]));
+  return out;
 }
 
 uint64_t DocumentView::surfaceHash() const {

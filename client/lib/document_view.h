@@ -31,6 +31,13 @@ class DocumentView {
   int64_t numTriangles() const;
   // Everything decoded, merged by vertex id and normal (for export and tests).
   SurfaceMesh surface() const;
+  // A view-dependent subscription's tiles (docs/VIEWS.md "Assembling
+  // tiles"): each tile's positions with the cracks towards coarser
+  // neighbours closed (core/view/tile_assembly.h), by region id.
+  std::map<uint64_t, std::vector<Vec3>> closedTilePositions(int64_t* moved = nullptr) const;
+  // The last delta applied said the view's tiles are all here
+  // (Delta.view_complete); a snapshot starts a view's picture, not complete.
+  bool viewComplete() const { return viewComplete_; }
   // The surface hash of docs/PROTOCOL.md 6.5 (core/tessellation/
   // surface_hash.h) of the regions held: equal for equal document states
   // and profiles, and comparable with the server's. Each region is hashed
@@ -59,6 +66,7 @@ class DocumentView {
   std::map<uint64_t, uint64_t> stagingLayouts_;
   mutable std::map<uint64_t, uint64_t> regionHashes_;  // region -> its hash, dropped when it changes
   uint64_t announced_ = 0;
+  bool viewComplete_ = false;
   uint64_t gaps_ = 0, bytes_ = 0;
 };
 

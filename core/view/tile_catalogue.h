@@ -30,6 +30,7 @@ class TileCatalogue {
       : doc_(doc), tree_(TileTree::build(doc.baseTopology(), doc.counts(), doc.counts().maxLevel())) {}
 
   const TileTree& tree() const { return tree_; }
+  const Document& document() const { return doc_; }
   // The tile, built (and measured) the first time it is asked for.
   Expected<const Tile*> get(const TileKey& key);
   // Grows the hierarchy once for all these tiles (those not built yet), so

@@ -173,6 +173,17 @@ void addTimingOptions(CLI::App& app, ServerConfig& c) {
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str()
       ->group(g);
+  app.add_option("--tile-cache-bytes", c.tileCacheBytes,
+                 "encoded tiles kept per document for view-dependent subscribers (least recently used go)")
+      ->check(atLeast<uint64_t>(1))
+      ->capture_default_str()
+      ->group(g);
+  app.add_option(
+         "--view-interval-ms", c.viewIntervalMs,
+         "a subscriber's camera is applied at most once per this many ms (newer views replace waiting ones)")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str()
+      ->group(g);
   app.add_option("--delta-frames-per-second", c.deltaFramesPerSecond,
                  "and at most this many delta frames per second per document over all subscribers")
       ->check(CLI::Range(0.0, 1e12))

@@ -91,6 +91,12 @@ struct ServerConfig {
   // state a crash could take back, at the cost of the fsync in every
   // viewer's latency.
   bool deltasAfterDurable = false;
+  // View-dependent subscriptions (docs/VIEWS.md "The server"): a
+  // document's encoded tiles are kept up to this many bytes (least recently
+  // used go first), and each subscriber's camera is applied at most once
+  // per viewIntervalMs (a newer view replaces one waiting).
+  uint64_t tileCacheBytes = 256u << 20;
+  double viewIntervalMs = 50;
   Limits limits;
   Timeouts timeouts;
   bool verbose = false;

@@ -38,6 +38,19 @@ struct ServerStats {
   std::atomic<int64_t> documentsMoved{0};
   std::atomic<int64_t> clusterMessagesDropped{0};
   std::atomic<int64_t> remoteSessions{0};  // other nodes' sessions served by this node's documents
+  // View-dependent subscriptions (docs/VIEWS.md "The server"): tiles
+  // tessellated (and built again after their mesh was released), encoded,
+  // found encoded, evicted; encoded bytes held over every document; views
+  // received and applied (the rest were replaced by newer ones in their
+  // interval); subscribers with a view now.
+  std::atomic<int64_t> tilesBuilt{0};
+  std::atomic<int64_t> tilesEncoded{0};
+  std::atomic<int64_t> tileCacheHits{0};
+  std::atomic<int64_t> tileCacheEvictions{0};
+  std::atomic<int64_t> tileCacheBytes{0};
+  std::atomic<int64_t> viewsReceived{0};
+  std::atomic<int64_t> viewsApplied{0};
+  std::atomic<int64_t> viewSubscribers{0};
   // Latencies (histograms for /metrics): an edit from being applied to its
   // durable ack (the journal commit), a view's tessellation build or
   // update, and one region's encoding.

@@ -77,7 +77,7 @@ void ClusterDocument::forward(uint64_t session, Forward::Kind kind,
 void ClusterDocument::join(std::shared_ptr<server::Subscriber> who, std::string name, wire::Role role) {
   std::lock_guard<std::mutex> lock(mutex_);
   const uint64_t session = who->sessionId();
-  sessions_[session] = LocalSession{who, name, role, std::nullopt, false};
+  sessions_[session] = LocalSession{who, name, role, std::nullopt};
   node_.addLocalSession(session, who);
   if (host_) return host_->join(std::move(who), std::move(name), role);
   forward(session, Forward::KIND_JOIN, [&](Forward& f) {
@@ -109,25 +109,35 @@ void ClusterDocument::resendPresence(uint64_t session) {
   forward(session, Forward::KIND_RESEND_PRESENCE, nullptr);
 }
 
-void ClusterDocument::subscribe(std::shared_ptr<server::Subscriber> who, const wire::LodProfile& profile,
-                                uint64_t clientSeq, bool resync, bool withCommands) {
+void ClusterDocument::subscribe(std::shared_ptr<server::Subscriber> who, const wire::Subscribe& request,
+                                uint64_t clientSeq, bool resync) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (auto it = sessions_.find(who->sessionId()); it != sessions_.end()) {
-    it->second.profile = profile;
-    it->second.withCommands = withCommands;
-  }
-  if (host_) return host_->subscribe(std::move(who), profile, clientSeq, resync, withCommands);
+  if (auto it = sessions_.find(who->sessionId()); it != sessions_.end()) it->second.subscription = request;
+  if (host_) return host_->subscribe(std::move(who), request, clientSeq, resync);
   forward(who->sessionId(), Forward::KIND_SUBSCRIBE, [&](Forward& f) {
     f.mutable_message()->set_client_seq(clientSeq);
-    *f.mutable_message()->mutable_subscribe()->mutable_profile() = profile;
-    f.mutable_message()->mutable_subscribe()->set_with_commands(withCommands);
+    *f.mutable_message()->mutable_subscribe() = request;
     f.set_resync(resync);
+  });
+}
+
+void ClusterDocument::setView(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::View view) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  // A session that moves to another owner resubscribes with its latest view.
+  if (auto it = sessions_.find(who->sessionId());
+      it != sessions_.end() && it->second.subscription && it->second.subscription->has_view()) {
+    *it->second.subscription->mutable_view() = view;
+  }
+  if (host_) return host_->setView(std::move(who), clientSeq, std::move(view));
+  forward(who->sessionId(), Forward::KIND_SET_VIEW, [&](Forward& f) {
+    f.mutable_message()->set_client_seq(clientSeq);
+    *f.mutable_message()->mutable_set_view()->mutable_view() = std::move(view);
   });
 }
 
 void ClusterDocument::unsubscribe(uint64_t session) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (auto it = sessions_.find(session); it != sessions_.end()) it->second.profile.reset();
+  if (auto it = sessions_.find(session); it != sessions_.end()) it->second.subscription.reset();
   if (host_) return host_->unsubscribe(session);
   forward(session, Forward::KIND_UNSUBSCRIBE, nullptr);
 }
@@ -209,8 +219,10 @@ bool ClusterDocument::serveRemote(const Forward& request) {
       host_->resendPresence(session);
       break;
     case F::KIND_SUBSCRIBE:
-      host_->subscribe(who, m.subscribe().profile(), m.client_seq(), request.resync(),
-                       m.subscribe().with_commands());
+      host_->subscribe(who, m.subscribe(), m.client_seq(), request.resync());
+      break;
+    case F::KIND_SET_VIEW:
+      host_->setView(who, m.client_seq(), m.set_view().view());
       break;
     case F::KIND_UNSUBSCRIBE:
       host_->unsubscribe(session);
@@ -427,17 +439,16 @@ void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<serve
   // Its unanswered commands are asked after every session moved (rehome).
   if (host_) {
     host_->join(who, s.name, s.role);
-    if (s.profile) host_->subscribe(who, *s.profile, 0, true, s.withCommands);
+    if (s.subscription) host_->subscribe(who, *s.subscription, 0, true);
     return;
   }
   forward(session, Forward::KIND_JOIN, [&](Forward& f) {
     f.set_name(s.name);
     f.set_role(s.role);
   });
-  if (s.profile) {
+  if (s.subscription) {
     forward(session, Forward::KIND_SUBSCRIBE, [&](Forward& f) {
-      *f.mutable_message()->mutable_subscribe()->mutable_profile() = *s.profile;
-      f.mutable_message()->mutable_subscribe()->set_with_commands(s.withCommands);
+      *f.mutable_message()->mutable_subscribe() = *s.subscription;
       f.set_resync(true);
     });
   }

@@ -45,8 +45,9 @@ class ClusterDocument : public server::DocumentEndpoint,
   void select(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
               wire::Selection selection) override;
   void resendPresence(uint64_t session) override;
-  void subscribe(std::shared_ptr<server::Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
-                 bool resync, bool withCommands = false) override;
+  void subscribe(std::shared_ptr<server::Subscriber> who, const wire::Subscribe& request, uint64_t clientSeq,
+                 bool resync) override;
+  void setView(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::View view) override;
   void unsubscribe(uint64_t session) override;
   void command(std::shared_ptr<server::Subscriber> author, std::string authorName,
                wire::ClientMessage message) override;
@@ -87,8 +88,7 @@ class ClusterDocument : public server::DocumentEndpoint,
     std::weak_ptr<server::Subscriber> who;
     std::string name;
     wire::Role role = wire::ROLE_VIEWER;
-    std::optional<wire::LodProfile> profile;
-    bool withCommands = false;
+    std::optional<wire::Subscribe> subscription;  // its latest view, if it has one
   };
   // Under mutex_: a Forward of `kind` for `session` to the owner.
   void forward(uint64_t session, Forward::Kind kind, const std::function<void(Forward&)>& fill);

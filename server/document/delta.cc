@@ -14,6 +14,7 @@ std::shared_ptr<const std::string> encodeDeltaFrame(const DeltaContent& delta, u
   d->set_author_session_id(delta.authorSession);
   d->set_edit_id(delta.editId);
   d->set_surface_hash(delta.surfaceHash);
+  d->set_view_complete(delta.viewComplete);
   for (const RegionPayload& payload : delta.regions) {
     wire::Region* r = d->add_regions();
     r->set_region_id(payload.id);

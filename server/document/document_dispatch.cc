@@ -29,7 +29,10 @@ bool dispatchToDocument(DocumentEndpoint& document, const std::shared_ptr<Subscr
   }
   switch (message.command_case()) {
     case C::kSubscribe:
-      document.subscribe(who, message.subscribe().profile(), seq, false, message.subscribe().with_commands());
+      document.subscribe(who, message.subscribe(), seq, false);
+      return true;
+    case C::kSetView:
+      document.setView(who, seq, message.set_view().view());
       return true;
     case C::kUnsubscribe:
       document.unsubscribe(who->sessionId());

@@ -25,9 +25,13 @@ class DocumentEndpoint {
   virtual void leave(uint64_t session) = 0;
   virtual void select(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::Selection selection) = 0;
   virtual void resendPresence(uint64_t session) = 0;
-  virtual void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
-                         bool resync, bool withCommands = false) = 0;
+  // `request`: its profile, or its view (a view-dependent subscription),
+  // and whether it records commands.
+  virtual void subscribe(std::shared_ptr<Subscriber> who, const wire::Subscribe& request, uint64_t clientSeq,
+                         bool resync) = 0;
   virtual void unsubscribe(uint64_t session) = 0;
+  // A view-dependent subscriber's camera moved (SetView).
+  virtual void setView(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::View view) = 0;
   virtual void command(std::shared_ptr<Subscriber> author, std::string authorName,
                        wire::ClientMessage message) = 0;
   virtual void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq,

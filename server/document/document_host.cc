@@ -21,6 +21,7 @@
 #include "server/document/morph_control.h"
 #include "server/document/morph_view.h"
 #include "server/document/replies.h"
+#include "server/document/view_request.h"
 
 namespace tessera::server {
 
@@ -74,7 +75,9 @@ DocumentHost::DocumentHost(store::DocumentId id, std::string name, KeyedDocument
       stats_(stats),
       views_(id, config.limits.maxTrianglesPerSubscriber, config.limits.maxFrameBytes),
       flushTimer_(workers),
-      commits_(id, version, config.limits.maxFrameBytes, stats) {
+      commits_(id, version, config.limits.maxFrameBytes, stats),
+      tileStreams_(id.value, config.limits.maxFrameBytes, stats),
+      viewTimer_(workers) {
   auto grid = documentGrid(doc_.key0());
   if (grid.isOk()) grid_ = *grid;
 }
@@ -87,8 +90,129 @@ DocumentHost::~DocumentHost() {
   logEvent(LogLevel::kInfo, "document_closed", {{"doc", id_.value}});
 }
 
-void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& requested,
-                             uint64_t clientSeq, bool resync, bool withCommands) {
+void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::Subscribe& request,
+                             uint64_t clientSeq, bool resync) {
+  if (!request.has_view())
+    return subscribeProfile(who, request.profile(), clientSeq, resync, request.with_commands());
+  // A bad view costs nothing: refused on the caller's thread.
+  auto view = viewFromWire(request.view());
+  if (!view.isOk()) {
+    who->send({frameOf(rejectFor(clientSeq, view.status()), config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
+  // Choosing and encoding the first tiles of a large document is bulk work.
+  const Lane lane = laneFor(static_cast<int64_t>(counts_.faces(0)) * 16, config_);
+  queue_.post(lane, [self = shared_from_this(), who, request, view = *view, clientSeq, resync] {
+    self->subscribeView(who, request, view, clientSeq, resync);
+  });
+}
+
+void DocumentHost::subscribeView(const std::shared_ptr<Subscriber>& who, const wire::Subscribe& request,
+                                 const View& view, uint64_t clientSeq, bool resync) {
+  // Tiles are chosen and encoded at version_: every edit before is flushed.
+  flush();
+  const int64_t budget = budgetOf(request.profile(), config_.limits);
+  auto target = tileCache().select(view, budget);
+  if (!target.isOk()) {
+    who->send({frameOf(rejectFor(clientSeq, target.status()), config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
+  if (target->triangles > budget) {
+    who->send({limitExceeded(clientSeq,
+                             "view: the coarsest tiles it needs have " + std::to_string(target->triangles) +
+                                 " triangles, above the budget of " + std::to_string(budget),
+                             config_.limits.maxFrameBytes),
+               nullptr});
+    return;
+  }
+  // One subscription per subscriber and document: a profile it had goes.
+  releaseViews(views_.leave(who->sessionId()));
+  if (!resync) {
+    wire::ServerMessage ack = ackFor(clientSeq, id_.value);
+    ack.mutable_ack()->set_version(version_);
+    who->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
+    if (request.with_commands()) {
+      commits_.record(who->sessionId(), who, version_);
+    } else {
+      commits_.stopRecording(who->sessionId());
+    }
+  }
+  Status sent =
+      tileStreams_.subscribe(*tileCache_, who, view, budget, *target, request.profile(), version_, resync);
+  if (!sent.isOk()) {
+    logEvent(LogLevel::kError, "view_failed", {{"doc", id_.value}, {"error", sent.message()}});
+    wire::ServerMessage error;
+    error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+    error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": view: " + sent.message());
+    who->send({frameOf(error, config_.limits.maxFrameBytes), nullptr});
+    tileStreams_.leave(who->sessionId());
+  }
+}
+
+TileCache& DocumentHost::tileCache() {
+  if (!tileCache_)
+    tileCache_ = std::make_unique<TileCache>(doc_.growableKey0(), grid_, config_.tileCacheBytes, stats_);
+  return *tileCache_;
+}
+
+void DocumentHost::setView(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::View requested) {
+  ++stats_.viewsReceived;
+  auto view = viewFromWire(requested);
+  if (!view.isOk()) {
+    ++stats_.rejects;
+    who->send({frameOf(rejectFor(clientSeq, view.status()), config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
+  queue_.post(Lane::kInteractive, [self = shared_from_this(), who, view = *view, clientSeq] {
+    if (!self->tileStreams_.has(who->sessionId())) {
+      ++self->stats_.rejects;
+      who->send({frameOf(rejectFor(clientSeq,
+                                   invalidArgument("set view: document " + std::to_string(self->id_.value) +
+                                                   " has no view-dependent subscription of this "
+                                                   "session; subscribe with a view first")),
+                         self->config_.limits.maxFrameBytes),
+                 nullptr});
+      return;
+    }
+    self->tileStreams_.setPending(who->sessionId(), view);
+    self->scheduleViews();
+  });
+}
+
+namespace {
+
+Clock::duration viewInterval(const ServerConfig& config) {
+  return std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double, std::milli>(config.viewIntervalMs));
+}
+
+}  // namespace
+
+void DocumentHost::scheduleViews() {
+  if (viewsScheduled_) return;
+  const auto due = tileStreams_.nextDue(viewInterval(config_));
+  if (!due) return;
+  viewsScheduled_ = true;
+  if (Clock::now() >= *due) {
+    queue_.post(Lane::kInteractive, [self = shared_from_this()] { self->applyViews(); });
+    return;
+  }
+  viewTimer_.expires_at(*due);
+  viewTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
+    if (ec != boost::asio::error::operation_aborted)
+      self->queue_.post(Lane::kInteractive, [self] { self->applyViews(); });
+  });
+}
+
+void DocumentHost::applyViews() {
+  viewsScheduled_ = false;
+  flush();  // tiles are chosen at version_
+  if (tileCache_) tileStreams_.applyDue(*tileCache_, Clock::now(), viewInterval(config_), version_);
+  scheduleViews();
+}
+
+void DocumentHost::subscribeProfile(const std::shared_ptr<Subscriber>& who, const wire::LodProfile& requested,
+                                    uint64_t clientSeq, bool resync, bool withCommands) {
   // Refused from the estimate before any work, on the caller's thread: a
   // profile whose base level alone is over its budget (docs/PROTOCOL.md §9).
   const int64_t least = minimumTriangles(counts_, requested);
@@ -106,6 +230,7 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::LodPro
   queue_.post(lane, [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
+    self->tileStreams_.leave(who->sessionId());  // a view it had goes
     const Limits& limits = self->config_.limits;
     auto checked = checkProfileRequest(requested, limits, self->id_, self->doc_.key0().options().maxLevel,
                                        self->doc_.isMorph());
@@ -190,6 +315,7 @@ void DocumentHost::unsubscribe(uint64_t session) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), session] {
     self->commits_.stopRecording(session);
     self->releaseViews(self->views_.leave(session));
+    self->tileStreams_.leave(session);
   });
 }
 
@@ -231,6 +357,7 @@ void DocumentHost::leave(uint64_t session) {
     self->presence_.leave(session);
     self->commits_.stopRecording(session);
     self->releaseViews(self->views_.leave(session));
+    self->tileStreams_.leave(session);
     self->presenceChanged();
   });
 }
@@ -385,6 +512,20 @@ void DocumentHost::flush() {
     batch.deltas[key] = std::move(delta);
     return Status::ok();
   });
+  // View-dependent subscribers: the tiles the edits reached are forgotten
+  // and each stream chooses again (tile_streams.h). A new key may have
+  // moved key 0 in memory: the cache starts again on it.
+  std::vector<TileKey> reached;
+  if (tileCache_ && keysChanged_) {
+    tileCache_.reset();
+    tileStreams_.forgetAllTiles();
+  } else if (tileCache_) {
+    reached = tileCache_->invalidate(changedLimits_);
+  }
+  if (last && tileStreams_.size() > 0) {
+    tileStreams_.afterEdit(tileCache(), reached, flushedVersion_, version_, last->authorSession,
+                           last->editId);
+  }
   changedLimits_.clear();
   keysChanged_ = false;
   flushedVersion_ = version_;

@@ -59,6 +59,8 @@
 #include "server/document/lod_view.h"
 #include "server/document/profile_request.h"
 #include "server/document/subscriber.h"
+#include "server/document/tile_cache.h"
+#include "server/document/tile_streams.h"
 #include "server/store/store.h"
 
 namespace tessera::server {
@@ -88,9 +90,14 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   void resendPresence(uint64_t session) override;
   // `withCommands`: also an AppliedCommand per command after the Ack's
   // version (docs/PROTOCOL.md, AppliedCommand); a later subscribe without it stops them.
-  void subscribe(std::shared_ptr<Subscriber> who, const wire::LodProfile& profile, uint64_t clientSeq,
-                 bool resync, bool withCommands = false) override;
+  // With a view, a view-dependent subscription (tile_streams.h); else the
+  // profile's view.
+  void subscribe(std::shared_ptr<Subscriber> who, const wire::Subscribe& request, uint64_t clientSeq,
+                 bool resync) override;
   void unsubscribe(uint64_t session) override;
+  // Checked on the caller's thread; applied at most once per
+  // --view-interval-ms per subscriber, a newer view replacing a waiting one.
+  void setView(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::View view) override;
   void command(std::shared_ptr<Subscriber> author, std::string authorName,
                wire::ClientMessage message) override;
   void exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::ExportDocument request) override;
@@ -141,6 +148,16 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // Releases what the commit log holds that is durable now.
   void release();
   void sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  void subscribeProfile(const std::shared_ptr<Subscriber>& who, const wire::LodProfile& requested,
+                        uint64_t clientSeq, bool resync, bool withCommands);
+  // On the strand: a view-dependent subscription (tile_streams.h).
+  void subscribeView(const std::shared_ptr<Subscriber>& who, const wire::Subscribe& request, const View& view,
+                     uint64_t clientSeq, bool resync);
+  // The tile cache, made on the first view (on key 0 as it is now).
+  TileCache& tileCache();
+  // Applies the views that are due, and waits for the next.
+  void scheduleViews();
+  void applyViews();
   // Presence changed: one broadcast within 100 ms carries every change.
   void presenceChanged();
   // Frees the views dropped from views_ on a bulk thread (bulk_release.h).
@@ -182,6 +199,12 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   std::chrono::steady_clock::time_point lastFlush_{};
   std::vector<VertexId> changedLimits_;  // by the edits applied since the last flush
   CommitLog commits_;  // applied, waiting for durability; Acks, recorders and outcome answers
+  // View-dependent subscribers (docs/VIEWS.md "The server"), their tiles and
+  // the timer that applies their cameras.
+  std::unique_ptr<TileCache> tileCache_;
+  TileStreams tileStreams_;
+  boost::asio::steady_timer viewTimer_;
+  bool viewsScheduled_ = false;
 };
 
 }  // namespace tessera::server

@@ -122,6 +122,14 @@ wire::ServerMessage serverStats(const ServerStats& stats, store::Store& store, c
   add("acknowledgement_syncs_each_write", sync == store::WriteSync::kEachWrite      ? 1.0
                                           : sync == store::WriteSync::kNotEachWrite ? 0.0
                                                                                     : -1.0);
+  add("tiles_built", static_cast<double>(s.tilesBuilt.load()));
+  add("tiles_encoded", static_cast<double>(s.tilesEncoded.load()));
+  add("tile_cache_hits", static_cast<double>(s.tileCacheHits.load()));
+  add("tile_cache_evictions", static_cast<double>(s.tileCacheEvictions.load()));
+  add("tile_cache_bytes", static_cast<double>(s.tileCacheBytes.load()));
+  add("views_received", static_cast<double>(s.viewsReceived.load()));
+  add("views_applied", static_cast<double>(s.viewsApplied.load()));
+  add("view_subscribers", static_cast<double>(s.viewSubscribers.load()));
   if (!config.cluster.empty()) {
     add("cluster_node", static_cast<double>(s.clusterNode.load()));
     add("documents_owned", static_cast<double>(s.documentsOwned.load()));

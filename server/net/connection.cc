@@ -224,7 +224,7 @@ void Connection::writeNext() {
       auto host = open_.find(doc);
       auto profile = subscriptions_.find(doc);
       if (host != open_.end() && profile != subscriptions_.end()) {
-        host->second->subscribe(shared_from_this(), profile->second, 0, true);
+        host->second->subscribe(shared_from_this(), profile->second, 0, true);  // with its latest view
       }
     }
     for (uint64_t doc : outbox_.takePresenceResyncs()) {
@@ -378,7 +378,12 @@ void Connection::handle(wire::ClientMessage message) {
                       "this session already subscribes " + std::to_string(subscriptions_.size()) +
                           " documents, the limit (--subscriptions-per-session)");
       }
-      subscriptions_[doc] = message.subscribe().profile();
+      subscriptions_[doc] = message.subscribe();
+      break;
+    case C::kSetView:
+      // A resync after dropped tiles resubscribes with the latest view.
+      if (auto s = subscriptions_.find(doc); s != subscriptions_.end() && s->second.has_view())
+        *s->second.mutable_view() = message.set_view().view();
       break;
     case C::kUnsubscribe:
       subscriptions_.erase(doc);

@@ -103,7 +103,7 @@ class Connection : public Subscriber, public std::enable_shared_from_this<Connec
   std::optional<store::Role> globalRole_;
   std::map<uint64_t, std::shared_ptr<DocumentEndpoint>> open_;
   std::map<uint64_t, store::Role> roles_;
-  std::map<uint64_t, wire::LodProfile> subscriptions_;
+  std::map<uint64_t, wire::Subscribe> subscriptions_;  // by document: what a resync asks again
   double bucket_ = 0;
   std::chrono::steady_clock::time_point refilled_;
 };

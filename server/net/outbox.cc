@@ -116,6 +116,7 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
     into.authorSession = d.authorSession;
     into.editId = d.editId;
     into.surfaceHash = d.surfaceHash;  // the state at the new toVersion
+    into.viewComplete = d.viewComplete;
     for (const RegionPayload& payload : d.regions) {
       const auto same = [&](const RegionPayload& e) { return e.id == payload.id; };
       if (payload.selfContained) {

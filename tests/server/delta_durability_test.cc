@@ -51,9 +51,12 @@ class DeltaDurability : public ::testing::TestWithParam<bool> {
     profile.set_max_level(3);
     profile.set_angle_threshold_degrees(15);
     host_->join(viewer_, "viewer", wire::ROLE_VIEWER);
-    host_->subscribe(viewer_, profile, 1, false);
+    wire::Subscribe request;
+    *request.mutable_profile() = profile;
+    host_->subscribe(viewer_, request, 1, false);
     host_->join(editor_, "editor", wire::ROLE_EDITOR);
-    host_->subscribe(editor_, profile, 1, false, /*withCommands=*/true);
+    request.set_with_commands(true);
+    host_->subscribe(editor_, request, 1, false);
     ASSERT_GE(viewer_->waitFor([](const auto& m) { return m.has_snapshot(); }, 10), 0);
     ASSERT_GE(editor_->waitFor([](const auto& m) { return m.has_snapshot(); }, 10), 0);
   }

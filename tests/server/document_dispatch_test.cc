@@ -21,10 +21,14 @@ class RecordingEndpoint final : public DocumentEndpoint {
     calls.push_back("select " + std::to_string(seq));
   }
   void resendPresence(uint64_t) override { calls.push_back("resendPresence"); }
-  void subscribe(std::shared_ptr<Subscriber>, const wire::LodProfile& profile, uint64_t seq, bool resync,
-                 bool withCommands) override {
+  void subscribe(std::shared_ptr<Subscriber>, const wire::Subscribe& request, uint64_t seq,
+                 bool resync) override {
     calls.push_back("subscribe " + std::to_string(seq) + (resync ? " resync" : "") +
-                    (withCommands ? " with_commands" : "") + " max " + std::to_string(profile.max_level()));
+                    (request.with_commands() ? " with_commands" : "") + " max " +
+                    std::to_string(request.profile().max_level()) + (request.has_view() ? " view" : ""));
+  }
+  void setView(std::shared_ptr<Subscriber>, uint64_t seq, wire::View view) override {
+    calls.push_back("setView " + std::to_string(seq) + " width " + std::to_string(view.width()));
   }
   void unsubscribe(uint64_t session) override { calls.push_back("unsubscribe " + std::to_string(session)); }
   void command(std::shared_ptr<Subscriber>, std::string author, wire::ClientMessage message) override {
@@ -72,16 +76,22 @@ TEST(DocumentDispatch, EachCommandReachesItsCall) {
   m.mutable_add_morph_key();
   EXPECT_TRUE(send(m, 8));
   m.Clear();
+  m.mutable_set_view()->mutable_view()->set_width(390);
+  EXPECT_TRUE(send(m, 11));
+  m.Clear();
+  m.mutable_subscribe()->mutable_view();
+  EXPECT_TRUE(send(m, 12));
+  m.Clear();
   m.mutable_ping();
   EXPECT_FALSE(send(m, 9)) << "not a document's command";
   m.Clear();
   m.mutable_open_document();
   EXPECT_FALSE(send(m, 10)) << "the catalogue's, not an open document's";
 
-  EXPECT_EQ(endpoint.calls,
-            (std::vector<std::string>{"subscribe 1 with_commands max 3", "unsubscribe 12", "select 3",
-                                      "export 4", "morphControl 5", "command 6 by ann", "command 7 by ann",
-                                      "command 8 by ann"}));
+  EXPECT_EQ(endpoint.calls, (std::vector<std::string>{
+                                "subscribe 1 with_commands max 3", "unsubscribe 12", "select 3", "export 4",
+                                "morphControl 5", "command 6 by ann", "command 7 by ann", "command 8 by ann",
+                                "setView 11 width 390", "subscribe 12 max 0 view"}));
 }
 
 TEST(DocumentDispatch, EditsAreEveryCommandThatChangesTheDocument) {

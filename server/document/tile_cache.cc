@@ -1,0 +1,83 @@
+#include "server/document/tile_cache.h"
+
+#include <chrono>
+
+namespace tessera::server {
+
+TileCache::TileCache(Document& doc, const QuantizationGrid& grid, uint64_t maxBytes, ServerStats& stats)
+    : catalogue_(doc), grid_(grid), maxBytes_(maxBytes), stats_(stats) {}
+
+TileCache::~TileCache() {
+  stats_.tileCacheBytes -= static_cast<int64_t>(bytes_);
+}
+
+void TileCache::countBuilt() {
+  const int64_t built = catalogue_.built() + catalogue_.rebuilt();
+  stats_.tilesBuilt += built - builtCounted_;
+  builtCounted_ = built;
+}
+
+Expected<TileSelection> TileCache::select(const View& view, int64_t budget) {
+  auto selection = selectTiles(view, catalogue_, budget);
+  countBuilt();
+  return selection;
+}
+
+Expected<EncodedTile> TileCache::encoded(const TileKey& key, uint64_t version) {
+  auto found = entries_.find(key);
+  if (found != entries_.end()) {
+    byUse_.erase(found->second.lastUse);
+    found->second.lastUse = ++useClock_;
+    byUse_.emplace(found->second.lastUse, key);
+    ++stats_.tileCacheHits;
+    return found->second.tile;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(key));
+  TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, encodeTile(catalogue_.document(), key, *mesh, grid_, version));
+  stats_.encodeLatency.addMicros(
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start)
+          .count());
+  // The encoding is what is kept: the mesh goes, the bounds stay for
+  // selecting (docs/VIEWS.md "The server").
+  catalogue_.releaseMesh(key);
+  countBuilt();
+  ++stats_.tilesEncoded;
+  const uint64_t size = tile.bytes->size();
+  evictBeyond(maxBytes_ > size ? maxBytes_ - size : 0);
+  entries_.emplace(key, Entry{tile, ++useClock_});
+  byUse_.emplace(useClock_, key);
+  bytes_ += size;
+  stats_.tileCacheBytes += static_cast<int64_t>(size);
+  return tile;
+}
+
+void TileCache::evictBeyond(uint64_t maxBytes) {
+  while (bytes_ > maxBytes && !byUse_.empty()) {
+    auto oldest = byUse_.begin();
+    auto entry = entries_.find(oldest->second);
+    const uint64_t size = entry->second.tile.bytes->size();
+    bytes_ -= size;
+    stats_.tileCacheBytes -= static_cast<int64_t>(size);
+    ++stats_.tileCacheEvictions;
+    entries_.erase(entry);
+    byUse_.erase(oldest);
+  }
+}
+
+std::vector<TileKey> TileCache::invalidate(std::span<const VertexId> changedLimits) {
+  const std::vector<TileKey> gone =
+      catalogue_.forget(TouchedTiles(catalogue_.document().hierarchy(), catalogue_.tree(), changedLimits));
+  for (const TileKey& key : gone) {
+    auto entry = entries_.find(key);
+    if (entry == entries_.end()) continue;
+    const uint64_t size = entry->second.tile.bytes->size();
+    bytes_ -= size;
+    stats_.tileCacheBytes -= static_cast<int64_t>(size);
+    byUse_.erase(entry->second.lastUse);
+    entries_.erase(entry);
+  }
+  return gone;
+}
+
+}  // namespace tessera::server

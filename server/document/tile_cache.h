@@ -1,0 +1,60 @@
+// One document's tiles for its view-dependent subscribers (docs/VIEWS.md
+// "The server"): each (tile, document state) tessellated and Draco-encoded
+// at most once, whoever asks and whatever their cameras, and kept encoded
+// up to a memory bound (--tile-cache-bytes; the least recently used go
+// first, and come back built again). An edit forgets the tiles it reached
+// (core/view/tile_invalidation.h); the others stay encoded.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/document/document.h"
+#include "core/tessellation/quantization_grid.h"
+#include "core/view/tile_catalogue.h"
+#include "core/view/tile_encoding.h"
+#include "core/view/tile_selection.h"
+#include "server/base/server_stats.h"
+
+namespace tessera::server {
+
+class TileCache {
+ public:
+  TileCache(Document& doc, const QuantizationGrid& grid, uint64_t maxBytes, ServerStats& stats);
+  ~TileCache();
+  TileCache(const TileCache&) = delete;
+  TileCache& operator=(const TileCache&) = delete;
+
+  const TileTree& tree() const { return catalogue_.tree(); }
+  // The tiles `view` needs (tile_selection.h), in sending order.
+  Expected<TileSelection> select(const View& view, int64_t budget);
+  // The tile encoded at the document's state: cached, or built (if its mesh
+  // was released) and encoded once now; `version` goes into its header.
+  Expected<EncodedTile> encoded(const TileKey& key, uint64_t version);
+  // An edit changed these limits: the tiles it reached are forgotten,
+  // encodings and bounds; returns them in key order.
+  std::vector<TileKey> invalidate(std::span<const VertexId> changedLimits);
+  uint64_t bytes() const { return bytes_; }
+
+ private:
+  void evictBeyond(uint64_t maxBytes);
+  void countBuilt();
+
+  TileCatalogue catalogue_;
+  const QuantizationGrid& grid_;
+  const uint64_t maxBytes_;
+  ServerStats& stats_;
+  struct Entry {
+    EncodedTile tile;
+    uint64_t lastUse = 0;
+  };
+  std::map<TileKey, Entry> entries_;
+  std::map<uint64_t, TileKey> byUse_;  // lastUse -> tile: the least recently used first
+  uint64_t useClock_ = 0, bytes_ = 0;
+  int64_t builtCounted_ = 0;
+};
+
+}  // namespace tessera::server

@@ -1,0 +1,238 @@
+#include "server/document/tile_streams.h"
+
+#include <set>
+
+#include "server/base/log.h"
+#include "server/document/replies.h"
+
+namespace tessera::server {
+
+namespace {
+
+// Tiles per delta: about this many bytes, so that the first tiles of a
+// large move reach the viewer while the server encodes the rest, and a
+// queue that falls behind merges or drops whole deltas (net/outbox.h).
+constexpr size_t kChunkBytes = 256u << 10;
+constexpr size_t kSnapshotPartBytes = 4u << 20;
+
+}  // namespace
+
+TileStreams::~TileStreams() {
+  stats_.viewSubscribers -= static_cast<int64_t>(streams_.size());
+}
+
+Status TileStreams::subscribe(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view,
+                              int64_t budget, const TileSelection& target, const wire::LodProfile& profile,
+                              uint64_t version, bool resync) {
+  Stream s;
+  s.who = who;
+  s.view = view;
+  s.budget = budget;
+  s.lastApplied = Clock::now();
+  // The first picture: the roots, the coarsest whole surface, in one snapshot.
+  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> roots;
+  for (const TileKey& key : tiles.tree().roots()) {
+    TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(key, version));
+    s.held[key] = {tile.hash, false};
+    s.surfaceHash += tile.hash;
+    roots.emplace_back(key.regionId(), tile.bytes);
+  }
+  std::vector<std::vector<size_t>> parts(1);
+  size_t bytes = 0;
+  for (size_t i = 0; i < roots.size(); ++i) {
+    if (bytes > 0 && bytes + roots[i].second->size() > kSnapshotPartBytes) parts.emplace_back(), bytes = 0;
+    parts.back().push_back(i);
+    bytes += roots[i].second->size() + 16;
+  }
+  for (size_t p = 0; p < parts.size(); ++p) {
+    wire::ServerMessage m;
+    wire::Snapshot* snapshot = m.mutable_snapshot();
+    snapshot->set_document_id(documentId_);
+    snapshot->set_version(version);
+    *snapshot->mutable_profile() = profile;
+    snapshot->set_remaining_parts(static_cast<uint32_t>(parts.size() - p - 1));
+    snapshot->set_resync(resync);
+    snapshot->set_surface_hash(s.surfaceHash);
+    for (size_t i : parts[p]) {
+      wire::Region* r = snapshot->add_regions();
+      r->set_region_id(roots[i].first);
+      r->set_draco(*roots[i].second);
+    }
+    who->send({frameOf(m, maxFrameBytes_), nullptr, documentId_});
+  }
+  if (!streams_.count(who->sessionId())) ++stats_.viewSubscribers;
+  Stream& stream = streams_[who->sessionId()] = std::move(s);
+  if (resync) ++stats_.resyncs;
+  return moveTo(tiles, stream, target, version, version, 0, 0, /*announce=*/true);
+}
+
+void TileStreams::leave(uint64_t session) {
+  if (streams_.erase(session)) --stats_.viewSubscribers;
+}
+
+void TileStreams::setPending(uint64_t session, const View& view) {
+  auto found = streams_.find(session);
+  if (found != streams_.end()) found->second.pending = view;
+}
+
+std::optional<TileStreams::Clock::time_point> TileStreams::nextDue(Clock::duration interval) const {
+  std::optional<Clock::time_point> due;
+  for (const auto& [session, s] : streams_) {
+    if (s.pending && (!due || s.lastApplied + interval < *due)) due = s.lastApplied + interval;
+  }
+  return due;
+}
+
+void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval,
+                           uint64_t version) {
+  for (auto it = streams_.begin(); it != streams_.end();) {
+    Stream& s = it->second;
+    if (s.who.expired()) {
+      it = streams_.erase(it);
+      --stats_.viewSubscribers;
+      continue;
+    }
+    if (s.pending && now >= s.lastApplied + interval) {
+      s.view = *s.pending;
+      s.pending.reset();
+      s.lastApplied = now;
+      ++stats_.viewsApplied;
+      auto target = tiles.select(s.view, s.budget);
+      Status moved = target.isOk() ? moveTo(tiles, s, *target, version, version, 0, 0) : target.status();
+      if (!moved.isOk()) {
+        logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", moved.message()}});
+      }
+    }
+    ++it;
+  }
+}
+
+void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion,
+                            uint64_t toVersion, uint64_t authorSession, uint64_t editId) {
+  for (auto it = streams_.begin(); it != streams_.end();) {
+    Stream& s = it->second;
+    if (s.who.expired()) {
+      it = streams_.erase(it);
+      --stats_.viewSubscribers;
+      continue;
+    }
+    for (const TileKey& key : reached) {
+      if (auto held = s.held.find(key); held != s.held.end()) held->second.stale = true;
+    }
+    auto target = tiles.select(s.view, s.budget);
+    Status moved = target.isOk() ? moveTo(tiles, s, *target, fromVersion, toVersion, authorSession, editId)
+                                 : target.status();
+    if (!moved.isOk()) {
+      logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", moved.message()}});
+    }
+    ++it;
+  }
+}
+
+void TileStreams::forgetAllTiles() {
+  for (auto& [session, s] : streams_) {
+    for (auto& [key, held] : s.held) held.stale = true;
+  }
+}
+
+Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
+                           uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce) {
+  const TileTree& tree = tiles.tree();
+  std::set<TileKey> wanted;
+  for (const SelectedTile& t : target.tiles) wanted.insert(t.key);
+  auto fresh = [&](const TileKey& k) {
+    auto it = s.held.find(k);
+    return it != s.held.end() && !it->second.stale;
+  };
+  // A held tile that is not wanted waits for the wanted tiles over it (an
+  // ancestor) or under it (descendants) that it does not hold fresh yet.
+  std::map<TileKey, int> waiting;
+  for (const auto& [key, held] : s.held)
+    if (!wanted.count(key)) waiting[key] = 0;
+  std::map<TileKey, std::vector<TileKey>> waiters;
+  auto depend = [&](const TileKey& leaving, const TileKey& want) {
+    if (fresh(want)) return;
+    ++waiting[leaving];
+    waiters[want].push_back(leaving);
+  };
+  for (auto& [leaving, count] : waiting) {
+    for (TileKey a = leaving; a.level > 0;) {
+      a = tree.parent(a);
+      if (wanted.count(a)) depend(leaving, a);
+    }
+  }
+  for (const TileKey& want : wanted) {
+    for (TileKey a = want; a.level > 0;) {
+      a = tree.parent(a);
+      if (waiting.count(a)) depend(a, want);
+    }
+  }
+
+  auto start = [&](uint64_t from) {
+    DeltaContent d;
+    d.documentId = documentId_;
+    d.fromVersion = from;
+    d.toVersion = toVersion;
+    d.authorSession = authorSession;
+    d.editId = editId;
+    return d;
+  };
+  DeltaContent delta = start(fromVersion);
+  bool sentAny = false;
+  size_t bytes = 0;
+  auto drop = [&](const TileKey& key) {
+    auto held = s.held.find(key);
+    if (held == s.held.end()) return;
+    s.surfaceHash -= held->second.hash;
+    s.held.erase(held);
+    delta.removed.push_back(key.regionId());
+  };
+  for (const auto& [leaving, count] : waiting)
+    if (count == 0) drop(leaving);
+  for (const SelectedTile& t : target.tiles) {
+    if (fresh(t.key)) continue;
+    TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(t.key, toVersion));
+    auto [held, added] = s.held.try_emplace(t.key);
+    if (!added) s.surfaceHash -= held->second.hash;
+    held->second = {tile.hash, false};
+    s.surfaceHash += tile.hash;
+    delta.regions.push_back({t.key.regionId(), tile.bytes, true});
+    bytes += tile.bytes->size();
+    if (auto w = waiters.find(t.key); w != waiters.end()) {
+      for (const TileKey& leaving : w->second)
+        if (--waiting[leaving] == 0) drop(leaving);
+    }
+    if (bytes >= kChunkBytes) {
+      delta.surfaceHash = s.surfaceHash;
+      send(s, std::move(delta));
+      sentAny = true;
+      delta = start(toVersion);
+      bytes = 0;
+    }
+  }
+  // Nothing should be left waiting: the wanted tiles cover the surface.
+  for (const auto& [leaving, count] : waiting)
+    if (count > 0) drop(leaving);
+  // The last delta says the view is complete; a move that changed nothing
+  // sends none, but a new subscription and an edit always end with one.
+  if (!delta.regions.empty() || !delta.removed.empty() || sentAny || fromVersion != toVersion || announce) {
+    delta.surfaceHash = s.surfaceHash;
+    delta.viewComplete = true;
+    send(s, std::move(delta));
+  }
+  return Status::ok();
+}
+
+void TileStreams::send(Stream& s, DeltaContent delta) {
+  auto who = s.who.lock();
+  if (!who) return;
+  auto content = std::make_shared<const DeltaContent>(std::move(delta));
+  auto frame = encodeDeltaFrame(*content, maxFrameBytes_);
+  if (!frame) {
+    logEvent(LogLevel::kError, "tile_delta_too_large", {{"doc", documentId_}});
+    return;
+  }
+  who->send({frame, content});
+}
+
+}  // namespace tessera::server

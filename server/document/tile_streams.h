@@ -1,0 +1,94 @@
+// The view-dependent subscribers of one document (docs/VIEWS.md "The
+// server", docs/PROTOCOL.md "Views"): each one's camera, the tiles it
+// holds, and the messages that move what it holds to what its camera
+// needs. A new subscriber gets the coarsest tiles as a snapshot (a whole
+// picture at once), then the rest as deltas in the selection's order:
+// visible before hidden, coarse before fine, near before far. A tile it
+// holds goes once every tile that replaces it has arrived, so the surface
+// it shows never has a hole. Each payload comes from the document's
+// TileCache, encoded once for everyone; only the frames are per
+// subscriber, since their tile sets differ.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/view/view.h"
+#include "protocol/tessera.pb.h"
+#include "server/base/server_stats.h"
+#include "server/document/delta.h"
+#include "server/document/subscriber.h"
+#include "server/document/tile_cache.h"
+
+namespace tessera::server {
+
+class TileStreams {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  TileStreams(uint64_t documentId, uint32_t maxFrameBytes, ServerStats& stats)
+      : documentId_(documentId), maxFrameBytes_(maxFrameBytes), stats_(stats) {}
+  ~TileStreams();
+
+  // `who` watches the document through `view` (whose tiles are `target`,
+  // within `budget`) from `version`, the document's, every tile current;
+  // its previous stream, if any, goes. `profile` is echoed in the
+  // snapshot. Errors: a tile that cannot be encoded.
+  Status subscribe(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view, int64_t budget,
+                   const TileSelection& target, const wire::LodProfile& profile, uint64_t version,
+                   bool resync);
+  bool has(uint64_t session) const { return streams_.count(session) > 0; }
+  size_t size() const { return streams_.size(); }
+  void leave(uint64_t session);
+
+  // A new camera for `session`'s stream, applied by applyDue once its
+  // interval has passed; a newer one replaces it meanwhile.
+  void setPending(uint64_t session, const View& view);
+  // When the earliest waiting view is due, if one waits.
+  std::optional<Clock::time_point> nextDue(Clock::duration interval) const;
+  // Applies every waiting view that is due at `now`: the tiles that changed
+  // go to its subscriber as deltas at `version`.
+  void applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval, uint64_t version);
+
+  // After edits from `fromVersion` to `toVersion` (the cache has forgotten
+  // the tiles `reached`): every stream chooses again, and gets the tiles
+  // it holds that changed and those its camera needs now.
+  void afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion, uint64_t toVersion,
+                 uint64_t authorSession, uint64_t editId);
+  // The cache was replaced (the document's keys changed): every held tile
+  // is sent again.
+  void forgetAllTiles();
+
+ private:
+  struct Held {
+    uint64_t hash = 0;
+    bool stale = false;  // an edit reached it after it was sent
+  };
+  struct Stream {
+    std::weak_ptr<Subscriber> who;
+    View view;
+    int64_t budget = 0;
+    std::map<TileKey, Held> held;
+    uint64_t surfaceHash = 0;  // the sum of held tiles' hashes (PROTOCOL 6.5)
+    std::optional<View> pending;
+    Clock::time_point lastApplied{};
+  };
+  // Moves `s` to `target`: deltas of at most about kChunkBytes of tiles,
+  // the first from `fromVersion`, all to `toVersion`, the last marked
+  // complete. `announce`: send that last one even if nothing changed.
+  Status moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
+                uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce = false);
+  void send(Stream& s, DeltaContent delta);
+
+  const uint64_t documentId_;
+  const uint32_t maxFrameBytes_;
+  ServerStats& stats_;
+  std::map<uint64_t, Stream> streams_;  // by session
+};
+
+}  // namespace tessera::server

@@ -1,0 +1,375 @@
+// View-dependent subscriptions against the real server (docs/VIEWS.md "The
+// server", docs/PROTOCOL.md "Views"): fifty viewers with distinct cameras
+// assemble watertight surfaces whose hash matches the server's, and every
+// tile is encoded once for all of them; an edit in view reaches a viewer,
+// one out of view sends it nothing it did not hold; a zoom in and back
+// ends on the picture it started from, each step sending only the tiles
+// it lacked; bad views are refused by name, and
+// a flood of views is absorbed while a bystander keeps its latency.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <future>
+#include <numbers>
+#include <random>
+#include <set>
+
+#include "client/lib/document_view.h"
+#include "client/lib/session.h"
+#include "client/lib/view_wire.h"
+#include "core/document/document.h"
+#include "core/io/mesh_import.h"
+#include "core/view/tile_tree.h"
+#include "integration/bystanded_server.h"
+#include "integration/messages.h"
+#include "integration/server_process.h"
+#include "integration/server_stat.h"
+#include "support/test_meshes.h"
+#include "support/tile_gaps.h"
+
+namespace tessera {
+namespace {
+
+using client::DocumentView;
+using client::Session;
+using testing::ServerProcess;
+
+struct Model {
+  Vec3 centre;
+  double radius = 0;
+};
+
+Model handModel() {
+  auto hand = importMesh(testing::cgalMeshPath("hand.off"));
+  EXPECT_TRUE(hand.isOk());
+  auto doc = Document::create(*hand, {.maxLevel = 1});
+  EXPECT_TRUE(doc.isOk());
+  Vec3 lo = doc->basePoints()[0], hi = lo;
+  for (const Vec3& p : doc->basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
+  return {0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
+}
+
+View lookAt(const Model& m, const Vec3& eye, const Vec3& target, int width, int height) {
+  View v;
+  v.eye = eye;
+  v.forward = target - eye;
+  v.up = std::abs(v.forward.normalized()[1]) > 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
+  v.fovYRadians = 50 * std::numbers::pi / 180;
+  v.nearDistance = m.radius * 1e-3;
+  v.width = width;
+  v.height = height;
+  v.tolerancePixels = 1;
+  return v;
+}
+
+View randomView(const Model& m, std::mt19937& rng) {
+  std::uniform_real_distribution<double> unit(-1, 1);
+  Vec3 dir(unit(rng), unit(rng), unit(rng));
+  while (dir.norm() < 0.1) dir = Vec3(unit(rng), unit(rng), unit(rng));
+  const double distance = m.radius * (0.8 + 3 * std::abs(unit(rng)));
+  return lookAt(m, m.centre + distance * dir.normalized(),
+                m.centre + 0.4 * m.radius * Vec3(unit(rng), unit(rng), unit(rng)), 390, 844);
+}
+
+// A viewer: its session and what it assembled.
+struct Viewer {
+  std::unique_ptr<Session> session;
+  std::unique_ptr<DocumentView> view;
+  std::set<uint64_t> received;  // every region id that came, over the run
+  // The bytes of the picture held now: what sending it afresh would take.
+  int64_t pictureBytes() const {
+    int64_t sum = 0;
+    for (const auto& [id, mesh] : view->regions()) sum += payloadBytes.at(id);
+    return sum;
+  }
+  std::map<uint64_t, int64_t> payloadBytes;  // region id -> its latest payload's bytes
+  int64_t payloads = 0, bytes = 0;
+  std::vector<wire::Delta> deltas;  // as they came since the last clear
+
+  // Applies messages until the view is complete (a delta says so), after
+  // `atLeast` deltas.
+  Status untilComplete(double seconds = 60) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    for (;;) {
+      const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+      if (left <= 0)
+        return timeoutError("the view was not complete within " + std::to_string(seconds) + " s");
+      TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage m, session->receive(left));
+      if (m.has_reject() || m.has_error()) return invalidArgument("refused: " + m.DebugString());
+      TESSERA_RETURN_IF_ERROR(view->apply(m));
+      const auto* regions = m.has_snapshot() ? &m.snapshot().regions()
+                            : m.has_delta()  ? &m.delta().regions()
+                                             : nullptr;
+      if (regions) {
+        for (const wire::Region& r : *regions) {
+          received.insert(r.region_id());
+          payloadBytes[r.region_id()] = static_cast<int64_t>(r.draco().size());
+          ++payloads;
+          bytes += static_cast<int64_t>(r.draco().size());
+        }
+      }
+      if (m.has_delta()) {
+        deltas.push_back(m.delta());
+        if (view->viewComplete()) return Status::ok();
+      }
+    }
+  }
+};
+
+Expected<Viewer> subscribeViewer(const ServerProcess& server, uint64_t doc, const View& camera,
+                                 const std::string& name) {
+  Viewer v;
+  TESSERA_ASSIGN_OR_RETURN(v.session, Session::connect(server.session(name, server.adminToken())));
+  auto opened = v.session->call(testing::openDocument(doc), 30);
+  if (!opened.isOk() || !opened->has_ack()) return ioError(name + ": cannot open the document");
+  v.view = std::make_unique<DocumentView>(doc);
+  auto subscribed = v.session->call(client::subscribeWithView(doc, camera), 60);
+  if (!subscribed.isOk()) return subscribed.status();
+  if (!subscribed->has_ack())
+    return invalidArgument(name + ": subscribe refused: " + subscribed->DebugString());
+  TESSERA_RETURN_IF_ERROR(v.untilComplete());
+  return v;
+}
+
+// The viewer's assembled surface: its hash is the server's, and its tiles,
+// cracks closed, leave no gap.
+void expectWatertight(const Viewer& v, const Model& m, const std::string& where) {
+  EXPECT_TRUE(v.view->verifySurface().isOk()) << where << ": " << v.view->verifySurface().message();
+  std::vector<const RegionMesh*> meshes;
+  std::vector<std::vector<Vec3>> closed;
+  for (auto& [id, positions] : v.view->closedTilePositions()) {
+    meshes.push_back(&v.view->regions().at(id));
+    closed.push_back(std::move(positions));
+  }
+  EXPECT_EQ(testing::unmatchedEdges(meshes, closed, m.radius), 0)
+      << where << ", " << meshes.size() << " tiles";
+}
+
+struct Served {
+  std::optional<ServerProcess> server;
+  std::unique_ptr<Session> admin;
+  uint64_t doc = 0;
+};
+
+void startWithHand(Served& s, const std::string& name, int maxLevel, std::vector<std::string> args = {}) {
+  auto server = ServerProcess::start(testing::makeTempDir(name) + "/data", args);
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  s.server.emplace(std::move(*server));
+  auto admin = Session::connect(s.server->session("admin", s.server->adminToken()));
+  ASSERT_TRUE(admin.isOk()) << admin.status().message();
+  s.admin = std::move(*admin);
+  wire::ClientMessage create;
+  auto* c = create.mutable_create_document();
+  c->set_name("hand");
+  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("hand.off")));
+  c->set_mesh_format(wire::MESH_FORMAT_OFF);
+  c->set_max_level(static_cast<uint32_t>(maxLevel));
+  auto created = s.admin->call(create, 60);
+  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
+  s.doc = created->ack().document_id();
+}
+
+TEST(ViewStream, FiftyCamerasGetWatertightSurfacesFromTilesEncodedOnce) {
+  Served s;
+  startWithHand(s, "tessera-view-fifty", 3);
+  if (::testing::Test::HasFatalFailure()) return;
+  const Model m = handModel();
+  std::mt19937 rng(32);
+  std::vector<Viewer> viewers;
+  std::set<uint64_t> distinct;
+  int64_t payloads = 0;
+  for (int i = 0; i < 50; ++i) {
+    auto v = subscribeViewer(*s.server, s.doc, randomView(m, rng), "viewer-" + std::to_string(i));
+    ASSERT_TRUE(v.isOk()) << "viewer " << i << ": " << v.status().message();
+    expectWatertight(*v, m, "viewer " + std::to_string(i));
+    distinct.insert(v->received.begin(), v->received.end());
+    payloads += v->payloads;
+    viewers.push_back(std::move(*v));
+  }
+  const double encoded = testing::serverStat(*s.admin, "tiles_encoded");
+  const double hits = testing::serverStat(*s.admin, "tile_cache_hits");
+  std::printf(
+      "[ measured ] 50 viewers: %lld tile payloads received, %zu distinct tiles, %.0f encodings, %.0f cache "
+      "hits\n",
+      static_cast<long long>(payloads), distinct.size(), encoded, hits);
+  // Every tile sent was encoded once: as many encodings as distinct tiles.
+  EXPECT_EQ(encoded, static_cast<double>(distinct.size()));
+  EXPECT_EQ(hits + encoded, static_cast<double>(payloads));
+  EXPECT_GT(payloads, 5 * static_cast<int64_t>(distinct.size())) << "the viewers shared their tiles";
+  EXPECT_EQ(testing::serverStat(*s.admin, "view_subscribers"), 50);
+}
+
+TEST(ViewStream, AnEditInViewArrivesAndOneOutOfViewSendsNothingNew) {
+  Served s;
+  startWithHand(s, "tessera-view-edit", 4);
+  if (::testing::Test::HasFatalFailure()) return;
+  const Model m = handModel();
+  auto hand = importMesh(testing::cgalMeshPath("hand.off"));
+  ASSERT_TRUE(hand.isOk());
+  auto local = Document::create(*hand, {.maxLevel = 1});
+  ASSERT_TRUE(local.isOk());
+  // Close on base vertex 0; the farthest base vertex is behind the eye.
+  const Vec3 near = local->basePoints()[0];
+  size_t far = 0;
+  for (size_t i = 0; i < local->basePoints().size(); ++i)
+    if ((local->basePoints()[i] - near).norm() > (local->basePoints()[far] - near).norm()) far = i;
+  const Vec3 outward = (near - m.centre).normalized();
+  const View camera = lookAt(m, near + 0.25 * m.radius * outward, near, 390, 844);
+  auto viewer = subscribeViewer(*s.server, s.doc, camera, "close");
+  ASSERT_TRUE(viewer.isOk()) << viewer.status().message();
+  std::set<TileKey> held;
+  int deepest = 0;
+  for (const auto& [id, mesh] : viewer->view->regions()) {
+    held.insert(TileKey::fromRegionId(id));
+    deepest = std::max(deepest, TileKey::fromRegionId(id).level);
+  }
+  EXPECT_EQ(deepest, 4) << "close up, the view needs the deepest level";
+
+  auto editor = Session::connect(s.server->session("editor", s.server->adminToken()));
+  ASSERT_TRUE(editor.isOk());
+  ASSERT_TRUE((*editor)->call(testing::openDocument(s.doc), 30)->has_ack());
+  // In view: the vertex it looks at moves towards the eye.
+  const Vec3 to = near + 0.02 * m.radius * outward;
+  auto moved = (*editor)->call(testing::moveVertex(s.doc, VertexId(0, 0).packed(), to[0], to[1], to[2]), 30);
+  ASSERT_TRUE(moved.isOk() && moved->has_ack()) << (moved.isOk() ? moved->DebugString() : "");
+  viewer->deltas.clear();
+  ASSERT_TRUE(viewer->untilComplete().isOk());
+  int64_t inView = 0;
+  for (const wire::Delta& d : viewer->deltas) inView += d.regions_size();
+  EXPECT_GT(inView, 0) << "the edit in view reached the viewer";
+  EXPECT_TRUE(viewer->view->verifySurface().isOk()) << viewer->view->verifySurface().message();
+
+  // Out of view: the far vertex moves; the viewer gets no tile it did not hold.
+  held.clear();
+  for (const auto& [id, mesh] : viewer->view->regions()) held.insert(TileKey::fromRegionId(id));
+  const Vec3 farPoint = local->basePoints()[far];
+  const Vec3 farTo = farPoint + 0.02 * m.radius * (farPoint - m.centre).normalized();
+  auto movedFar = (*editor)->call(
+      testing::moveVertex(s.doc, VertexId(0, far).packed(), farTo[0], farTo[1], farTo[2]), 30);
+  ASSERT_TRUE(movedFar.isOk() && movedFar->has_ack());
+  viewer->deltas.clear();
+  ASSERT_TRUE(viewer->untilComplete().isOk());
+  for (const wire::Delta& d : viewer->deltas) {
+    for (const wire::Region& r : d.regions()) {
+      const TileKey k = TileKey::fromRegionId(r.region_id());
+      EXPECT_TRUE(held.count(k)) << "an edit out of view sent " << k.toString()
+                                 << ", which the viewer did not show";
+    }
+  }
+  EXPECT_TRUE(viewer->view->verifySurface().isOk()) << viewer->view->verifySurface().message();
+  expectWatertight(*viewer, m, "after the edits");
+}
+
+TEST(ViewStream, AZoomInAndBackEndsOnThePictureItStartedFrom) {
+  Served s;
+  startWithHand(s, "tessera-view-zoom", 4, {"--view-interval-ms", "0"});
+  if (::testing::Test::HasFatalFailure()) return;
+  const Model m = handModel();
+  const Vec3 away = m.centre + Vec3(0, 0, 3 * m.radius);
+  const View start = lookAt(m, away, m.centre, 390, 844);
+  auto viewer = subscribeViewer(*s.server, s.doc, start, "zoomer");
+  ASSERT_TRUE(viewer.isOk()) << viewer.status().message();
+  const uint64_t startHash = viewer->view->surfaceHash();
+  const std::map<uint64_t, RegionMesh> startTiles = viewer->view->regions();
+  const int64_t startBytes = viewer->bytes;
+  // In to a tenth of the distance, in eight steps, then out the same way.
+  std::vector<double> path;
+  for (int k = 1; k <= 8; ++k) path.push_back(1.0 - 0.9 * k / 8);
+  for (int k = 7; k >= 0; --k) path.push_back(1.0 - 0.9 * k / 8);
+  int64_t stepBytes = 0, afresh = 0;
+  for (size_t i = 0; i < path.size(); ++i) {
+    const View step = lookAt(m, m.centre + path[i] * (away - m.centre), m.centre, 390, 844);
+    const int64_t before = viewer->bytes;
+    ASSERT_TRUE(viewer->session->send(client::setView(s.doc, step)).isOk());
+    Status done = viewer->untilComplete();
+    ASSERT_TRUE(done.isOk()) << "step " << i << ": " << done.message();
+    expectWatertight(*viewer, m, "step " + std::to_string(i));
+    stepBytes += viewer->bytes - before;
+    afresh += viewer->pictureBytes();
+  }
+  EXPECT_EQ(viewer->view->surfaceHash(), startHash) << "back where it started, the same picture";
+  EXPECT_EQ(viewer->view->regions().size(), startTiles.size());
+  std::printf(
+      "[ measured ] zoom path: %lld bytes for the first picture, %lld for 16 steps, %lld had each step's "
+      "picture been sent whole\n",
+      static_cast<long long>(startBytes), static_cast<long long>(stepBytes), static_cast<long long>(afresh));
+  // A step sends only the tiles its picture lacks: well under sending each picture whole.
+  EXPECT_LT(stepBytes, afresh / 2);
+}
+
+TEST(ViewStream, BadViewsAreRefusedByNameAndAFloodIsAbsorbed) {
+  testing::BystandedServer s;
+  testing::startBystanded(s, "tessera-view-abuse", {});
+  if (::testing::Test::HasFatalFailure()) return;
+  const Model m = handModel();
+  wire::ClientMessage create;
+  auto* c = create.mutable_create_document();
+  c->set_name("hand");
+  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("hand.off")));
+  c->set_mesh_format(wire::MESH_FORMAT_OFF);
+  c->set_max_level(3);
+  auto created = s.admin->call(create, 60);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+  auto options = s.server->session("abuser", s.server->adminToken());
+  options.localAddress = "127.0.0.1";
+  auto abuser = Session::connect(options);
+  ASSERT_TRUE(abuser.isOk());
+  ASSERT_TRUE((*abuser)->call(testing::openDocument(doc), 30)->has_ack());
+  const View good = lookAt(m, m.centre + Vec3(0, 0, 3 * m.radius), m.centre, 390, 844);
+  // Moving a view it has not subscribed.
+  auto early = (*abuser)->call(client::setView(doc, good), 10);
+  ASSERT_TRUE(early.isOk() && early->has_reject());
+  EXPECT_NE(early->reject().message().find("subscribe with a view first"), std::string::npos);
+  struct Bad {
+    std::string what, expect;
+    View view;
+  };
+  std::vector<Bad> bad;
+  bad.push_back({"NaN eye", "eye", good});
+  bad.back().view.eye = Vec3(std::nan(""), 0, 0);
+  bad.push_back({"infinite forward", "forward", good});
+  bad.back().view.forward = Vec3(HUGE_VAL, 0, 0);
+  bad.push_back({"zero viewport", "viewport", good});
+  bad.back().view.width = 0;
+  bad.push_back({"degenerate field of view", "field of view", good});
+  bad.back().view.fovYRadians = std::numbers::pi;
+  bad.push_back({"forward along up", "parallel", good});
+  bad.back().view.up = bad.back().view.forward;
+  bad.push_back({"tolerance zero", "tolerance", good});
+  bad.back().view.tolerancePixels = 0;
+  bad.push_back({"tolerance 1e9", "tolerance", good});
+  bad.back().view.tolerancePixels = 1e9;
+  for (const Bad& b : bad) {
+    auto r = (*abuser)->call(client::subscribeWithView(doc, b.view), 10);
+    ASSERT_TRUE(r.isOk()) << b.what;
+    ASSERT_TRUE(r->has_reject()) << b.what << ": " << r->DebugString();
+    EXPECT_NE(r->reject().message().find(b.expect), std::string::npos)
+        << b.what << ": " << r->reject().message();
+  }
+  // Subscribed, then 10,000 views in about a second while the bystander edits.
+  auto ok = (*abuser)->call(client::subscribeWithView(doc, good), 60);
+  ASSERT_TRUE(ok.isOk() && ok->has_ack()) << (ok.isOk() ? ok->DebugString() : ok.status().message());
+  auto flood = std::async(std::launch::async, [&] {
+    std::mt19937 rng(9);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int i = 0; i < 10000; ++i) {
+      if (!(*abuser)->send(client::setView(doc, randomView(m, rng))).isOk()) return false;
+      if (i % 10 == 9) std::this_thread::sleep_until(t0 + std::chrono::microseconds(100 * (i + 1)));
+    }
+    return true;
+  });
+  testing::expectServed(*s.bystander, s.bystander->run(20), "during the view flood");
+  EXPECT_TRUE(flood.get());
+  // The session is still served: a ping comes back behind the flood's replies.
+  auto pong = (*abuser)->call(testing::ping(), 60);
+  EXPECT_TRUE(pong.isOk() && pong->has_pong())
+      << (pong.isOk() ? pong->DebugString() : pong.status().message());
+  const double received = testing::serverStat(*s.admin, "views_received");
+  const double applied = testing::serverStat(*s.admin, "views_applied");
+  std::printf("[ measured ] view flood: %.0f views reached a document, %.0f applied\n", received, applied);
+  EXPECT_LT(applied, received / 10) << "views are applied at most once per interval";
+}
+
+}  // namespace
+}  // namespace tessera

@@ -41,6 +41,9 @@ std::optional<DeltaHeader> peekDelta(std::string_view payload) {
       case wire::Delta::kToVersionFieldNumber:
         into = &h.toVersion;
         break;
+      case wire::Delta::kRegionsFieldNumber:
+        ++h.regions;
+        break;
       default:
         break;
     }

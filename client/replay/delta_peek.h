@@ -11,6 +11,7 @@ namespace tessera::replay {
 
 struct DeltaHeader {
   uint64_t documentId = 0, fromVersion = 0, toVersion = 0;
+  int64_t regions = 0;  // region payloads it carries (counted, not read)
 };
 
 // The header if `payload` is a well-formed ServerMessage holding a Delta;

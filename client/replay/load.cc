@@ -155,9 +155,16 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
   auto connected = client::Session::connect(so);
   if (!connected.isOk()) return shared.error(so.name + ": " + connected.status().message()), done();
   client::Session& s = **connected;
-  if (Status st = openAndSubscribe(s, o.document, o.profile, nullptr, so.timeoutSeconds); !st.isOk()) {
+  if (Status st = openDocument(s, o.document, so.timeoutSeconds); !st.isOk()) {
     return shared.error(so.name + ": " + st.message()), done();
   }
+  if (auto subscribed = s.call(subscribeMessage(o, index, shared), so.timeoutSeconds);
+      !subscribed.isOk() || !subscribed->has_ack()) {
+    return shared.error(so.name + ": subscribe: " +
+                        (subscribed.isOk() ? subscribed->ShortDebugString() : subscribed.status().message())),
+           done();
+  }
+  Clock::time_point lastView = Clock::now();
   client::DocumentView view(o.document);
   out.decoded = decode;
   auto lastPing = Clock::now();
@@ -183,7 +190,10 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
     const auto arrival = Clock::now();
     const ViewerEvent event = trackViewerMessage(*m, arrival, o.document, out, shared);
     if (event == ViewerEvent::kReady) joined();
-    if (event == ViewerEvent::kGap) (void)s.send(subscribeMessage(o.document, o.profile));
+    if (event == ViewerEvent::kGap) (void)s.send(subscribeMessage(o, index, shared));
+    if (!shared.stopViewing && out.ready) {
+      if (auto view = viewIfDue(o, index, shared, lastView)) (void)s.send(std::move(*view));
+    }
     if (event == ViewerEvent::kFatal) {
       shared.error(so.name + ": server error: " + m->error().message());
       break;
@@ -193,7 +203,13 @@ void runViewer(const LoadOptions& o, int index, bool decode, Clock::time_point h
         shared.error(so.name + ": " + st.message());
     }
   }
-  if (decode && view.ready()) out.hash = view.surfaceHash();
+  if (decode && view.ready()) {
+    if (!o.cameras) {
+      out.hash = view.surfaceHash();  // every viewer of one profile holds the same surface
+    } else if (Status same = view.verifySurface(); !same.isOk()) {
+      shared.error(so.name + ": " + same.message());  // each camera's tiles: their own hash
+    }
+  }
   s.close();
   done();
 }

@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "client/lib/session.h"
+#include "client/replay/camera_path.h"
 #include "core/util/status.h"
 #include "protocol/tessera.pb.h"
 
@@ -35,6 +37,9 @@ struct LoadOptions {
   bool progress = true;          // one line per second on stderr
   double viewerPollSeconds = 1;  // a ready viewer's receive timeout (checks for the end)
   int poolThreads = 2;           // threads of the counting viewers' pool; 0: a thread per viewer
+  // Set: view-dependent viewers, each on its own camera path, sending
+  // SetView at cameras->viewsPerSecond (docs/REPLAY.md §3, docs/VIEWS.md).
+  std::optional<CameraPaths> cameras;
 };
 
 Expected<nlohmann::json> runLoad(const LoadOptions& options);

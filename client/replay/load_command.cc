@@ -53,6 +53,16 @@ CLI::App* addLoadCommand(CLI::App& app, LoadArgs& a) {
   load->add_option("--server-pid", a.serverPid, "sample this server process's CPU and RSS from /proc");
   load->add_option("--report", a.report, "write the JSON report to FILE");
   load->add_flag("--quiet", a.quiet, "no progress lines");
+  load->add_option("--cameras", a.cameras,
+                   "viewers subscribe with views that follow camera paths: orbit, zoom, fly or random (each "
+                   "viewer its own seed)");
+  load->add_option("--camera-target", a.cameraTarget, "the sphere the cameras look at: X Y Z RADIUS")
+      ->expected(4);
+  load->add_option("--camera-size", a.cameraSize, "the cameras' viewport, WIDTHxHEIGHT")
+      ->capture_default_str();
+  load->add_option("--camera-tolerance", a.cameraTolerance, "screen-space error in pixels")
+      ->capture_default_str();
+  load->add_option("--camera-rate", a.cameraRate, "SetViews per second per viewer")->capture_default_str();
   load->add_option("--threshold", a.thresholds,
                    "pass/fail rule, repeatable: 'p99<50ms', 'ack.p95<=10ms', 'mean<5ms', 'errors=0' (exit 4 "
                    "if one fails)")
@@ -94,6 +104,24 @@ int runLoadCommand(const LoadArgs& a) {
   // Viewers that only watch: regions without vertex ids (docs/PROTOCOL.md).
   o.profile.set_omit_vertex_ids(a.displayOnly);
   o.progress = !a.quiet;
+  if (!a.cameras.empty()) {
+    auto kind = cameraPathKind(a.cameras);
+    if (!kind.isOk()) return usage(kind.status().message(), "load");
+    if (a.cameraTarget.size() != 4 || !(a.cameraTarget[3] > 0))
+      return usage("--cameras needs --camera-target X Y Z RADIUS (a positive radius)", "load");
+    CameraPaths paths;
+    paths.kind = *kind;
+    paths.centre = Vec3(a.cameraTarget[0], a.cameraTarget[1], a.cameraTarget[2]);
+    paths.radius = a.cameraTarget[3];
+    char x = 0;
+    if (std::sscanf(a.cameraSize.c_str(), "%d%c%d", &paths.width, &x, &paths.height) != 3 || x != 'x')
+      return usage("--camera-size: expects WIDTHxHEIGHT, got '" + a.cameraSize + "'", "load");
+    paths.tolerancePixels = a.cameraTolerance;
+    paths.viewsPerSecond = a.cameraRate;
+    paths.seed = a.seed;
+    if (Status valid = cameraAt(paths, 0, 0).check(); !valid.isOk()) return usage(valid.message(), "load");
+    o.cameras = paths;
+  }
   auto ran = runLoad(o);
   if (!ran.isOk()) return fail(ran.status());
   nlohmann::json& report = *ran;

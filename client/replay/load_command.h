@@ -28,6 +28,11 @@ struct LoadArgs {
   bool displayOnly = false, quiet = false;
   std::string report;
   std::vector<std::string> thresholds;
+  // View-dependent viewers (docs/REPLAY.md §3): a camera path and its sphere.
+  std::string cameras;
+  std::vector<double> cameraTarget;  // x y z radius
+  std::string cameraSize = "390x844";
+  double cameraTolerance = 1, cameraRate = 5;
 };
 
 CLI::App* addLoadCommand(CLI::App& app, LoadArgs& args);

@@ -74,6 +74,11 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
   // against the arrival of the delta that brought the viewer to V (a delta
   // spans several versions when the server or a full queue batched edits).
   std::vector<double> toDelta;
+  // View-dependent viewers: edit to the delta that brought tiles, for the
+  // viewers whose view the edit reached (a delta without tiles only moves
+  // the version of a viewer that does not show it).
+  std::vector<double> toTiles;
+  int64_t tilesReceived = 0;
   int64_t deltaBytes = 0, snapshotBytes = 0, readyViewers = 0, presenceBytes = 0, presenceMessages = 0;
   uint64_t minVersion = UINT64_MAX, maxVersion = 0;
   std::set<uint64_t> hashes;
@@ -82,6 +87,7 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
   for (const ViewerResult& v : run.viewers) {
     if (v.version < shared.maxAckedVersion) ++behind;
     deltaBytes += v.deltaBytes;
+    tilesReceived += v.regionsReceived;
     presenceBytes += v.presenceBytes;
     presenceMessages += v.presenceMessages;
     snapshotBytes += v.snapshotBytes;
@@ -96,6 +102,7 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
         if (it == shared.sendTimeOfVersion.end()) continue;
         const double ms = msBetween(it->second, d.arrival);
         toDelta.push_back(ms);
+        if (o.cameras && d.regions > 0) toTiles.push_back(ms);
         series.delta(msBetween(run.start, it->second) / 1000, ms);
       }
     }
@@ -130,6 +137,16 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
                      {"rejected", shared.rejected.load()},
                      {"throughput_per_second", editSeconds > 0 ? shared.acked / editSeconds : 0.0}};
   report["latency_ms"] = {{"edit_to_ack", latencyJson(toAck)}, {"edit_to_delta", latencyJson(toDelta)}};
+  if (o.cameras) {
+    report["config"]["cameras"] = {
+        {"path", cameraPathName(o.cameras->kind)},
+        {"centre", {o.cameras->centre[0], o.cameras->centre[1], o.cameras->centre[2]}},
+        {"radius", o.cameras->radius},
+        {"size", {o.cameras->width, o.cameras->height}},
+        {"tolerance_pixels", o.cameras->tolerancePixels},
+        {"views_per_second", o.cameras->viewsPerSecond}};
+    report["latency_ms"]["edit_to_tiles"] = latencyJson(toTiles);
+  }
   report["histograms"] = {{"unit", "us"},
                           {"layout", "log-linear: [v, v+1) below 8 us, then 8 buckets per power of two"},
                           {"edit_to_ack", histogramJson(toAck)},
@@ -144,6 +161,8 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
       {"snapshot_bytes_per_viewer", viewers ? snapshotBytes / viewers : 0},
       {"delta_bytes_per_viewer", viewers ? deltaBytes / viewers : 0},
       {"bytes_per_second_per_viewer", viewers && editSeconds > 0 ? deltaBytes / viewers / editSeconds : 0.0},
+      {"delta_regions_per_second_per_viewer",
+       viewers && editSeconds > 0 ? static_cast<double>(tilesReceived) / viewers / editSeconds : 0.0},
       {"version_min", minVersion},
       {"version_max", maxVersion},
       {"behind_at_end", behind},
@@ -217,6 +236,8 @@ std::string summarize(const json& r) {
          "n\n";
   out << lat("edit -> ack", r["latency_ms"]["edit_to_ack"]);
   out << lat("edit -> delta", r["latency_ms"]["edit_to_delta"]);
+  if (r["latency_ms"].contains("edit_to_tiles"))
+    out << lat("edit -> tiles", r["latency_ms"]["edit_to_tiles"]);
   const json& v = r["viewers"];
   std::snprintf(line, sizeof line,
                 "  viewers: %lld ready, %lld behind the last acked version at the end, gaps %lld, resyncs "
@@ -249,6 +270,15 @@ std::string summarize(const json& r) {
       out << line;
     }
     out << "\n";
+    if (w.contains("tile_cache_hit_ratio")) {
+      std::snprintf(
+          line, sizeof line,
+          "  tiles over the run: %.0f encoded (%.1f/s), %.0f sent from the cache (hit ratio %.1f %%), "
+          "%.0f of %.0f views applied\n",
+          count("tiles_encoded"), count("tiles_encoded_per_second"), count("tile_cache_hits"),
+          100 * w["tile_cache_hit_ratio"].get<double>(), count("views_applied"), count("views_received"));
+      out << line;
+    }
   } else if (s.contains("window_error")) {
     out << "  server over the run: n/a (" << s["window_error"].get<std::string>() << ")\n";
   }

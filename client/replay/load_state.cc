@@ -1,5 +1,8 @@
 #include "client/replay/load_state.h"
 
+#include "client/lib/view_wire.h"
+#include "client/replay/load.h"
+
 namespace tessera::replay {
 
 ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point arrival, uint64_t document,
@@ -17,8 +20,8 @@ ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point a
   }
   if (m.has_delta()) {
     const auto& d = m.delta();
-    return trackDelta({d.document_id(), d.from_version(), d.to_version()}, bytes, arrival, document, out,
-                      shared);
+    return trackDelta({d.document_id(), d.from_version(), d.to_version(), d.regions_size()}, bytes, arrival,
+                      document, out, shared);
   }
   if (m.has_presence()) {
     shared.lastPresenceNs = arrival.time_since_epoch().count();
@@ -34,6 +37,7 @@ ViewerEvent trackDelta(const DeltaHeader& d, int64_t bytes, Clock::time_point ar
                        ViewerResult& out, Shared& shared) {
   if (d.documentId != document) return ViewerEvent::kNone;
   out.deltaBytes += bytes;
+  out.regionsReceived += d.regions;
   ++shared.deltas;
   if (!out.ready) return ViewerEvent::kNone;  // waiting for a resync snapshot
   if (d.fromVersion != out.version) {
@@ -44,15 +48,38 @@ ViewerEvent trackDelta(const DeltaHeader& d, int64_t bytes, Clock::time_point ar
     return ViewerEvent::kGap;
   }
   out.version = d.toVersion;
-  if (out.deltaTimes.size() < 1000000) out.deltaTimes.push_back({d.fromVersion, d.toVersion, arrival});
+  if (out.deltaTimes.size() < 1000000)
+    out.deltaTimes.push_back({d.fromVersion, d.toVersion, arrival, d.regions});
   return ViewerEvent::kNone;
 }
 
-wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile) {
+namespace {
+
+double cameraSeconds(const Shared& shared) {
+  return std::chrono::duration<double>(Clock::now() - shared.cameraEpoch).count();
+}
+
+}  // namespace
+
+wire::ClientMessage subscribeMessage(const LoadOptions& o, int viewer, const Shared& shared) {
   wire::ClientMessage sub;
-  sub.mutable_subscribe()->set_document_id(document);
-  *sub.mutable_subscribe()->mutable_profile() = profile;
+  if (o.cameras) {
+    sub = client::subscribeWithView(o.document, cameraAt(*o.cameras, viewer, cameraSeconds(shared)),
+                                    o.profile.triangle_budget());
+  } else {
+    sub.mutable_subscribe()->set_document_id(o.document);
+    *sub.mutable_subscribe()->mutable_profile() = o.profile;
+  }
   return sub;
+}
+
+std::optional<wire::ClientMessage> viewIfDue(const LoadOptions& o, int viewer, const Shared& shared,
+                                             Clock::time_point& last) {
+  if (!o.cameras || o.cameras->viewsPerSecond <= 0) return std::nullopt;
+  const auto now = Clock::now();
+  if (now - last < std::chrono::duration<double>(1.0 / o.cameras->viewsPerSecond)) return std::nullopt;
+  last = now;
+  return client::setView(o.document, cameraAt(*o.cameras, viewer, cameraSeconds(shared)));
 }
 
 }  // namespace tessera::replay

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <semaphore>
 #include <string>
 #include <unordered_map>
@@ -51,8 +52,9 @@ struct Shared {
   std::vector<double> rejectedAt;      // send times of rejected edits (seconds since the start)
   std::vector<int64_t> sentPerSecond;  // merged from every editor at its end
   std::vector<Clock::time_point> errorTimes;
-  std::vector<std::string> errorMessages;  // the first 20
-  std::string stopReason;                  // the first reason given to stop()
+  std::vector<std::string> errorMessages;              // the first 20
+  std::string stopReason;                              // the first reason given to stop()
+  const Clock::time_point cameraEpoch = Clock::now();  // second 0 of every camera path
   Clock::time_point stoppedAt{};
 
   void error(const std::string& message) {
@@ -83,7 +85,9 @@ struct ViewerResult {
   struct DeltaArrival {
     uint64_t fromVersion, toVersion;
     Clock::time_point arrival;
+    int64_t regions;
   };
+  int64_t regionsReceived = 0;  // region payloads in deltas (tiles, for view-dependent viewers)
   std::vector<DeltaArrival> deltaTimes;
 };
 
@@ -100,6 +104,13 @@ ViewerEvent trackViewerMessage(const wire::ServerMessage& m, Clock::time_point a
 ViewerEvent trackDelta(const DeltaHeader& d, int64_t bytes, Clock::time_point arrival, uint64_t document,
                        ViewerResult& out, Shared& shared);
 
-wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile);
+struct LoadOptions;
+// Viewer `viewer`'s Subscribe: the run's profile, or, with cameras, its
+// camera now (the profile's triangle budget kept).
+wire::ClientMessage subscribeMessage(const LoadOptions& o, int viewer, const Shared& shared);
+// Its SetView now, if the run has cameras and one is due since `last`
+// (updated then); nullopt otherwise.
+std::optional<wire::ClientMessage> viewIfDue(const LoadOptions& o, int viewer, const Shared& shared,
+                                             Clock::time_point& last);
 
 }  // namespace tessera::replay

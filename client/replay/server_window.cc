@@ -8,11 +8,13 @@ namespace {
 
 // Cumulative counters of StatsReply (server/connection.cc, Connection::stats).
 constexpr const char* kCounters[] = {
-    "connections_total", "edits",   "rejects", "bytes_sent",    "frames_sent",
-    "delta_merges",      "resyncs", "deltas",  "delta_regions", "delta_regions_layout_ids",
-    "store_batches"};
+    "connections_total", "edits",        "rejects",       "bytes_sent",      "frames_sent",
+    "delta_merges",      "resyncs",      "deltas",        "delta_regions",   "delta_regions_layout_ids",
+    "store_batches",     "tiles_built",  "tiles_encoded", "tile_cache_hits", "tile_cache_evictions",
+    "views_received",    "views_applied"};
 // Counters whose rate is worth reporting.
-constexpr const char* kRated[] = {"edits", "rejects", "bytes_sent", "frames_sent", "resyncs", "deltas"};
+constexpr const char* kRated[] = {"edits",   "rejects", "bytes_sent",    "frames_sent",
+                                  "resyncs", "deltas",  "tiles_encoded", "views_applied"};
 // Values that describe the moment, not a sum: the end's is reported.
 constexpr const char* kGauges[] = {"connections", "store_last_commit_ms"};
 
@@ -75,6 +77,12 @@ Expected<nlohmann::json> statsWindow(const ServerStatsSample& start, const Serve
     const double *n0 = find(start, avg.per), *n1 = find(end, avg.per);
     if (!a0 || !a1 || !n0 || !n1 || *n1 - *n0 <= 0) continue;
     w[avg.name] = round6((*a1 * *n1 - *a0 * *n0) / (*n1 - *n0));
+  }
+  // View-dependent subscriptions: the share of tile payloads sent from the
+  // cache rather than encoded for them.
+  if (w.contains("tile_cache_hits") && w.contains("tiles_encoded")) {
+    const double sent = w["tile_cache_hits"].get<double>() + w["tiles_encoded"].get<double>();
+    if (sent > 0) w["tile_cache_hit_ratio"] = round6(w["tile_cache_hits"].get<double>() / sent);
   }
   if (w.contains("edits") && w.contains("deltas") && w["deltas"].get<double>() > 0) {
     w["edits_per_delta"] = round6(w["edits"].get<double>() / w["deltas"].get<double>());

@@ -37,7 +37,8 @@ class PoolViewer : public std::enable_shared_from_this<PoolViewer> {
 
   // Takes one of the pool's joining places (given back by joined()).
   void start(const tcp::resolver::results_type& endpoints);
-  // From the pool's clock, on any thread: ping, or close when the run is over.
+  // From the pool's clock, on any thread: ping, move the camera, or close
+  // when the run is over.
   void tick(bool pingDue);
   void close();
 
@@ -63,6 +64,7 @@ class PoolViewer : public std::enable_shared_from_this<PoolViewer> {
   Stage stage_ = Stage::kHello;
   bool joining_ = false;  // holds one of the pool's joining places
   uint64_t nextSeq_ = 1, openSeq_ = 0, subscribeSeq_ = 0;
+  Clock::time_point lastView_ = Clock::now();  // the last SetView sent (camera paths)
   FrameDecoder decoder_;
   std::array<char, 16 * 1024> buffer_{};
   std::deque<std::string> outbox_;
@@ -126,7 +128,7 @@ class Pool {
                       (stopSeen_ && now - *stopSeen_ > std::chrono::duration<double>(o_.drainSeconds));
     const bool pingDue = now - lastPing_ > std::chrono::seconds(30);
     if (pingDue) lastPing_ = now;
-    if (over || pingDue || shared_.stopViewing) {
+    if (over || pingDue || shared_.stopViewing || o_.cameras) {
       for (auto& v : viewers_) over ? v->close() : v->tick(pingDue);
     }
     {
@@ -187,6 +189,11 @@ void PoolViewer::tick(bool pingDue) {
       wire::ClientMessage ping;
       ping.mutable_ping();
       self->send(std::move(ping));
+    }
+    // A camera path: the view now, at the path's rate, while the run lasts.
+    if (!shared.stopViewing && self->out_.ready) {
+      if (auto view = viewIfDue(self->pool_.options(), self->index_, shared, self->lastView_))
+        self->send(std::move(*view));
     }
   });
 }
@@ -262,7 +269,7 @@ void PoolViewer::handle(const std::string& payload, Clock::time_point arrival) {
       const int64_t bytes = static_cast<int64_t>(payload.size() + kFrameHeaderBytes);
       if (trackDelta(*delta, bytes, arrival, o.document, out_, pool_.shared()) == ViewerEvent::kGap) {
         subscribeSeq_ = nextSeq_;
-        send(subscribeMessage(o.document, o.profile));
+        send(subscribeMessage(o, index_, pool_.shared()));
       }
       return;
     }
@@ -290,7 +297,7 @@ void PoolViewer::handle(const wire::ServerMessage& m, Clock::time_point arrival)
   }
   if (stage_ == Stage::kOpen && reply == openSeq_) {
     subscribeSeq_ = nextSeq_;
-    send(subscribeMessage(o.document, o.profile));
+    send(subscribeMessage(o, index_, pool_.shared()));
     stage_ = Stage::kSubscribe;
     return;
   }
@@ -300,7 +307,7 @@ void PoolViewer::handle(const wire::ServerMessage& m, Clock::time_point arrival)
       joined();
       break;
     case ViewerEvent::kGap:
-      subscribeSeq_ = nextSeq_, send(subscribeMessage(o.document, o.profile));
+      subscribeSeq_ = nextSeq_, send(subscribeMessage(o, index_, pool_.shared()));
       break;
     case ViewerEvent::kFatal:
       fail("server error: " + m.error().message());

@@ -19,14 +19,21 @@ std::string TileKey::toString() const {
   return "tile L" + std::to_string(level) + " " + FaceId::fromPacked(face).toString();
 }
 
+namespace {
+
+constexpr uint64_t kClusterBit = uint64_t{1} << 63;
+constexpr uint64_t kIndexMask = (uint64_t{1} << 58) - 1;
+
+}  // namespace
+
 uint64_t TileKey::regionId() const {
-  return (static_cast<uint64_t>(level) << 58) | FaceId::fromPacked(face).index();
+  if (level >= kTileDepth) return face;
+  return kClusterBit | (static_cast<uint64_t>(level) << 58) | FaceId::fromPacked(face).index();
 }
 
 TileKey TileKey::fromRegionId(uint64_t id) {
-  const int level = static_cast<int>(id >> 58);
-  const uint64_t index = id & ((uint64_t{1} << 58) - 1);
-  return {level, FaceId(std::max(0, level - kTileDepth), index).packed()};
+  if (id & kClusterBit) return {static_cast<int>((id >> 58) & 31), FaceId(0, id & kIndexMask).packed()};
+  return {FaceId::fromPacked(id).level() + kTileDepth, id};
 }
 
 TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, int maxLevel) {

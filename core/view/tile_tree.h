@@ -35,9 +35,10 @@ struct TileKey {
 
   friend auto operator<=>(const TileKey&, const TileKey&) = default;
   std::string toString() const;
-  // The tile's region id on the wire (docs/PROTOCOL.md "Views"): the level
-  // in the high 6 bits, the face's index in the low 58; the face's own
-  // level follows from the tile's.
+  // The tile's region id on the wire (docs/PROTOCOL.md "Views"): for a
+  // one-face tile (level >= 5), its face's packed id, as a profile's region
+  // is named by its root face (and a lattice frame names it); for a cluster,
+  // bit 63 set, the level in bits 58..62 and the seed base face below.
   uint64_t regionId() const;
   static TileKey fromRegionId(uint64_t id);
 };

@@ -199,6 +199,30 @@ TEST(ViewStream, FiftyCamerasGetWatertightSurfacesFromTilesEncodedOnce) {
   EXPECT_EQ(testing::serverStat(*s.admin, "view_subscribers"), 50);
 }
 
+// Deep tiles: one face of level L - 5 each, their ids as lattice points.
+TEST(ViewStream, TilesBelowLevelFiveArriveWatertightOnTheCreasedCube) {
+  Served s;
+  auto server = ServerProcess::start(testing::makeTempDir("tessera-view-cube") + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  s.server.emplace(std::move(*server));
+  auto admin = Session::connect(s.server->session("admin", s.server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  auto created = (*admin)->call(
+      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
+                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 6),
+      30);
+  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
+  const Model m{Vec3(0.5, 0.5, 0.5), 0.87};
+  // Close on a crease corner: the view needs level 6 there.
+  View close = lookAt(m, Vec3(1.15, 1.1, 1.2), Vec3(1, 1, 1), 1920, 1080);
+  auto viewer = subscribeViewer(*s.server, created->ack().document_id(), close, "close");
+  ASSERT_TRUE(viewer.isOk()) << viewer.status().message();
+  std::map<int, int> levels;
+  for (const auto& [id, mesh] : viewer->view->regions()) ++levels[TileKey::fromRegionId(id).level];
+  EXPECT_TRUE(levels.count(6)) << "close on the corner the view shows level 6";
+  expectWatertight(*viewer, m, "creased cube");
+}
+
 TEST(ViewStream, AnEditInViewArrivesAndOneOutOfViewSendsNothingNew) {
   Served s;
   startWithHand(s, "tessera-view-edit", 4);

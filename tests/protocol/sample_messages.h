@@ -132,6 +132,28 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_with_topology(true);
   }
   {
+    // A camera, as a view-dependent subscription and a move of it.
+    auto fillView = [](wire::View* v) {
+      v->mutable_eye()->set_z(5);
+      v->mutable_forward()->set_z(-1);
+      v->mutable_up()->set_y(1);
+      v->set_fov_y_radians(0.8);
+      v->set_near_distance(0.01);
+      v->set_width(390);
+      v->set_height(844);
+      v->set_tolerance_pixels(1);
+    };
+    auto* s = add().mutable_subscribe();
+    s->set_document_id(42);
+    s->mutable_profile()->set_triangle_budget(500000);
+    fillView(s->mutable_view());
+    auto* m = add().mutable_set_view();
+    m->set_document_id(42);
+    fillView(m->mutable_view());
+    m->mutable_view()->set_orthographic(true);
+    m->mutable_view()->set_ortho_height(2);
+  }
+  {
     auto* m = add().mutable_undo();
     m->set_document_id(42);
     m->set_edit_id(17);
@@ -244,6 +266,7 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     m->add_removed_region_ids(5);
     m->set_author_session_id(77);
     m->set_edit_id(18);
+    m->set_view_complete(true);
   }
   {
     auto* m = add().mutable_presence();

@@ -147,6 +147,41 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   EXPECT_NE(out.find("edit -> delta"), std::string::npos) << out;
 }
 
+// View-dependent viewers on camera paths (docs/REPLAY.md §3): every viewer
+// follows its own orbit, the decoding ones check their tiles' hash against
+// the server's, and the report gives the tile cache's figures.
+TEST(ReplayLoad, ViewersOnCameraPathsGetTheirTilesWithoutGaps) {
+  ReplayServer s;
+  testing::startServer(s, "tessera-replay-cameras");
+  if (HasFatalFailure()) return;
+  const std::string report = testing::makeTempDir("tessera-replay-report") + "/report.json";
+  auto [out, code] = run(std::string(TESSERA_REPLAY_PATH) + " load" + s.connection() +
+                         " --editors 1 --viewers 6 --decode-viewers 2 --rate 5 --seconds 2 --drain-seconds 5"
+                         " --cameras orbit --camera-target 0.5 0.5 0.5 0.87 --camera-rate 10 --report " +
+                         report);
+  EXPECT_EQ(code, 0) << out;
+  std::ifstream in(report);
+  ASSERT_TRUE(in) << out;
+  nlohmann::json r = nlohmann::json::parse(in);
+  EXPECT_EQ(r["errors"]["count"], 0) << r["errors"].dump();
+  EXPECT_EQ(r["viewers"]["gaps"], 0);
+  EXPECT_EQ(r["viewers"]["ready_at_end"], 6);
+  EXPECT_EQ(r["viewers"]["behind_at_end"], 0);
+  EXPECT_EQ(r["config"]["cameras"]["path"], "orbit");
+  const auto& w = r["server"]["window"];
+  EXPECT_GT(w["views_applied"].get<double>(), 0) << w.dump();
+  EXPECT_GT(w["tile_cache_hit_ratio"].get<double>(), 0) << w.dump();
+  EXPECT_LE(w["tile_cache_hit_ratio"].get<double>(), 1) << w.dump();
+  EXPECT_GT(r["latency_ms"]["edit_to_tiles"]["count"].get<int64_t>(), 0);
+  EXPECT_GT(r["viewers"]["delta_regions_per_second_per_viewer"].get<double>(), 0);
+  EXPECT_NE(out.find("tiles over the run"), std::string::npos) << out;
+  // A camera path needs its sphere.
+  auto [bad, badCode] =
+      run(std::string(TESSERA_REPLAY_PATH) + " load" + s.connection() + " --cameras orbit", true);
+  EXPECT_EQ(badCode, 2) << bad;
+  EXPECT_NE(bad.find("--camera-target"), std::string::npos) << bad;
+}
+
 TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
   const std::string script = testing::makeTempDir("tessera-replay-script") + "/session.jsonl";
   auto [generated, code] = run(std::string(TESSERA_REPLAY_PATH) + " generate -o " + script +

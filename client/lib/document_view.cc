@@ -29,6 +29,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
       announced_ = s.surface_hash();
       ready_ = true;
       viewComplete_ = false;
+      viewSeq_ = 0;
     }
     return Status::ok();
   }
@@ -59,6 +60,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
   version_ = d.to_version();
   announced_ = d.surface_hash();
   viewComplete_ = d.view_complete();
+  viewSeq_ = d.view_seq();
   return Status::ok();
 }
 

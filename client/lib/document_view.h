@@ -38,6 +38,8 @@ class DocumentView {
   // The last delta applied said the view's tiles are all here
   // (Delta.view_complete); a snapshot starts a view's picture, not complete.
   bool viewComplete() const { return viewComplete_; }
+  // The SetView the last delta's tiles follow (Delta.view_seq; 0: the Subscribe's).
+  uint64_t viewSeq() const { return viewSeq_; }
   // The surface hash of docs/PROTOCOL.md 6.5 (core/tessellation/
   // surface_hash.h) of the regions held: equal for equal document states
   // and profiles, and comparable with the server's. Each region is hashed
@@ -67,6 +69,7 @@ class DocumentView {
   mutable std::map<uint64_t, uint64_t> regionHashes_;  // region -> its hash, dropped when it changes
   uint64_t announced_ = 0;
   bool viewComplete_ = false;
+  uint64_t viewSeq_ = 0;
   uint64_t gaps_ = 0, bytes_ = 0;
 };
 

@@ -93,8 +93,7 @@ Mat4 OrbitCamera::view() const {
 }
 
 Mat4 OrbitCamera::projection(float aspect) const {
-  return perspective(kFovY, aspect, std::max(distance_ - 4 * radius_, distance_ * 0.01f),
-                     distance_ + 4 * radius_);
+  return perspective(kFovY, aspect, nearDistance(), distance_ + 4 * radius_);
 }
 
 Ray OrbitCamera::rayThrough(float px, float py, int width, int height) const {

@@ -3,6 +3,7 @@
 // between window pixels (origin top-left, y down) and world space.
 #pragma once
 
+#include <algorithm>
 #include <optional>
 #include <span>
 
@@ -35,6 +36,9 @@ class OrbitCamera {
   V3 eye() const;
   V3 target() const { return target_; }
   float distance() const { return distance_; }
+  float fovY() const { return kFovY; }
+  // The projection's near plane (projection()).
+  float nearDistance() const { return std::max(distance_ - 4 * radius_, distance_ * 0.01f); }
   Mat4 view() const;
   Mat4 projection(float aspect) const;
   // Pixels covered by one world unit at view depth 1, for this viewport height.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "client/lib/view_wire.h"
 #include "protocol/commands.h"
 #include "protocol/morph_key.h"
 
@@ -22,23 +23,42 @@ Status expectAck(const Expected<wire::ServerMessage>& reply, const std::string& 
   return Status::ok();
 }
 
-wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile) {
+// With a camera, a view-dependent subscription (the profile then serves
+// only its triangle budget).
+wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile,
+                                     const std::optional<wire::View>& camera = std::nullopt) {
   wire::ClientMessage m;
   m.mutable_subscribe()->set_document_id(document);
   *m.mutable_subscribe()->mutable_profile() = profile;
+  if (camera) *m.mutable_subscribe()->mutable_view() = *camera;
   return m;
 }
 
-// Connect, open the document and subscribe with `profile`.
+// Before the model is framed: a camera far down +Z at the coarsest
+// tolerance. The first snapshot is the coarsest tiles whatever the camera;
+// the viewer frames them and sends its own.
+View placeholderView() {
+  View v;
+  v.eye = Vec3(0, 0, 1e3);
+  v.forward = Vec3(0, 0, -1);
+  v.width = 800;
+  v.height = 600;
+  v.tolerancePixels = kMaxTolerancePixels;
+  return v;
+}
+
+// Connect, open the document and subscribe with `profile` (and `camera`).
 Expected<std::unique_ptr<client::Session>> establish(const client::SessionOptions& s, uint64_t document,
-                                                     const wire::LodProfile& profile) {
+                                                     const wire::LodProfile& profile,
+                                                     const std::optional<wire::View>& camera = std::nullopt) {
   TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, client::Session::connect(s));
   wire::ClientMessage open;
   open.mutable_open_document()->set_document_id(document);
   TESSERA_RETURN_IF_ERROR(
       expectAck(session->call(open, s.timeoutSeconds), "open document " + std::to_string(document)));
-  TESSERA_RETURN_IF_ERROR(expectAck(session->call(subscribeMessage(document, profile), s.timeoutSeconds),
-                                    "subscribe to document " + std::to_string(document)));
+  TESSERA_RETURN_IF_ERROR(
+      expectAck(session->call(subscribeMessage(document, profile, camera), s.timeoutSeconds),
+                "subscribe to document " + std::to_string(document)));
   return session;
 }
 
@@ -56,7 +76,14 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   profile.set_max_level(options.maxLevel);
   profile.set_angle_threshold_degrees(options.angle);
   if (options.morphT) profile.set_morph_t(*options.morphT);
-  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, establish(s, options.document, profile));
+  std::optional<wire::View> camera;
+  if (options.views) {
+    View first = placeholderView();
+    first.tolerancePixels = std::max(first.tolerancePixels, options.tolerancePixels);
+    camera = client::viewToWire(first);
+  }
+  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session,
+                           establish(s, options.document, profile, camera));
   // Whether the document is a morph: only a morph document answers with
   // its control points (and its images, which come once, here).
   wire::ClientMessage probe;
@@ -88,6 +115,8 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     }
     c->keys_ = std::make_unique<MorphKeyFollower>(options.document, std::move(keySessions));
   }
+  c->viewDependent_ = options.views;
+  c->camera_ = camera;
   c->morphT_ = options.morphT;
   c->wanted_ = profile;
   c->wanted_.clear_morph_t();
@@ -120,10 +149,11 @@ bool Connection::reconnect() {
     const auto until = Clock::now() + std::chrono::duration<double>(delay);
     while (!stop_ && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     if (stop_) return false;
-    auto session = establish(s, document_, profile_);
+    auto session = establish(s, document_, profile_, cameraNow());
     if (session.isOk()) {
       session_ = std::move(*session);
       view_ = client::DocumentView(document_);
+      cameraSeq_ = 0;  // the new subscription carries the latest camera
       for (const auto& [seq, sent] : inFlight_) forget(sent);
       inFlight_.clear();
       latency_.reset();
@@ -363,7 +393,9 @@ void Connection::run() {
     for (auto it = out.begin(); it != out.end(); ++it) {
       Outgoing& o = *it;
       if (o.message.has_subscribe()) profile_ = o.message.subscribe().profile();
+      const bool isView = o.message.has_set_view();
       auto seq = session_->send(std::move(o.message));
+      if (seq.isOk() && isView) cameraSeq_ = *seq;
       if (!seq.isOk()) {
         lost(seq.status().message());
         for (; it != out.end(); ++it) forget(it->sent);  // dropped with the connection
@@ -411,6 +443,41 @@ std::shared_ptr<const KeyPositionMap> Connection::keyPositions() const {
   return keyPositions_;
 }
 
+std::optional<wire::View> Connection::cameraNow() const {
+  std::lock_guard lock(mutex_);
+  return camera_;
+}
+
+void Connection::setView(const View& view) {
+  wire::ClientMessage m = client::setView(document_, view);
+  {
+    std::lock_guard lock(mutex_);
+    camera_ = m.set_view().view();
+    stats_.viewComplete = false;  // until a delta names this SetView
+  }
+  enqueue(std::move(m), {});
+}
+
+void Connection::publishClosedTiles() {
+  coarseShown_ = false;
+  std::map<uint64_t, std::vector<Vec3>> closed = view_.closedTilePositions();
+  RegionMap next;
+  for (auto& [id, positions] : closed) {
+    const RegionMesh& tile = view_.regions().at(id);
+    auto held = published_.find(id);
+    if (held != published_.end() && held->second->positions == positions &&
+        held->second->normals == tile.normals && held->second->vertexIds == tile.vertexIds) {
+      next[id] = held->second;  // the same tile, closed the same way: no re-upload
+      continue;
+    }
+    RegionMesh mesh = tile;
+    mesh.positions = std::move(positions);
+    next[id] = std::make_shared<const RegionMesh>(std::move(mesh));
+  }
+  published_.swap(next);
+  ++stats_.regionUpdates;
+}
+
 void Connection::publishAll() {
   coarseShown_ = false;
   RegionMap all;
@@ -427,10 +494,27 @@ void Connection::handle(const wire::ServerMessage& m) {
     const Status applied = view_.apply(m);
     if (!applied.isOk()) {
       // A gap: ask for a fresh snapshot with the same profile.
-      auto resent = session_->send(subscribeMessage(document_, profile_));
+      auto resent = session_->send(subscribeMessage(document_, profile_, cameraNow()));
+      cameraSeq_ = 0;  // the new subscription carries the latest camera
       std::lock_guard lock(mutex_);
       stats_.lastError = applied.message();
       if (!resent.isOk()) stats_.connected = false;
+    } else if (viewDependent_ &&
+               ((m.has_snapshot() && m.snapshot().remaining_parts() == 0 &&
+                 m.snapshot().document_id() == document_) ||
+                (m.has_delta() && wasReady && view_.ready() && m.delta().document_id() == document_))) {
+      // Tiles: the cracks between levels are closed over every tile held.
+      if (m.has_delta()) {
+        const wire::Delta& d = m.delta();
+        latency_.delta(d.from_version(), d.to_version(), d.author_session_id() == session_->sessionId(), now);
+      }
+      std::lock_guard lock(mutex_);
+      if (m.has_delta()) publishLatency();
+      publishClosedTiles();
+      ++(m.has_snapshot() ? stats_.snapshots : stats_.deltas);
+      // Complete for the latest camera sent; a resubscription (gap,
+      // reconnect) carries that camera, so its deltas name no SetView.
+      stats_.viewComplete = view_.viewComplete() && view_.viewSeq() == cameraSeq_;
     } else if (m.has_snapshot() && m.snapshot().remaining_parts() == 0 &&
                m.snapshot().document_id() == document_) {
       publishAll();

@@ -34,6 +34,7 @@
 #include "client/view/pacer.h"
 #include "client/view/undo_history.h"
 #include "client/view/view_options.h"
+#include "core/view/view.h"
 
 namespace tessera::view {
 
@@ -63,6 +64,9 @@ struct ConnectionStats {
   // DocumentView::surfaceHash() after the latest snapshot or delta; only
   // with ViewOptions::hashSurfaces (a pass over every region per delta).
   uint64_t surfaceHash = 0;
+  // A view-dependent subscription: its tiles are all here (Delta.view_complete)
+  // for the latest camera sent (Delta.view_seq names its SetView).
+  bool viewComplete = false;
 };
 
 class Connection {
@@ -97,6 +101,12 @@ class Connection {
 
   // Unsubscribe and subscribe again with another profile.
   void changeProfile(uint32_t baseLevel, uint32_t maxLevel, double angle);
+
+  // A view-dependent subscription (--views): the camera moved. The regions
+  // published are then tiles, each with the cracks towards coarser
+  // neighbours closed (docs/VIEWS.md "Assembling tiles").
+  bool viewDependent() const { return viewDependent_; }
+  void setView(const View& view);
 
   // A morph document (docs/VIEWER.md, "Morph documents"; found out at open,
   // by asking for its control points): its images (empty for a 3D morph)
@@ -159,6 +169,13 @@ class Connection {
   bool coarseShown_ = false;                   // network thread only: the regions shown are a coarse frame
   void showCoarse(const wire::MorphControl& frame);
 
+  bool viewDependent_ = false;        // set at open, read-only after
+  std::optional<wire::View> camera_;  // guarded by mutex_: the latest view sent, for resubscribing
+  uint64_t cameraSeq_ = 0;            // network thread only: the client_seq of the latest SetView sent
+  std::optional<wire::View> cameraNow() const;
+  // Publishes every tile with its cracks closed; a tile whose positions did
+  // not change keeps its pointer (with mutex_ held).
+  void publishClosedTiles();
   bool morph_ = false;  // set at open, read-only after
   std::string imageFrom_, imageTo_;
   std::atomic<uint32_t> editKey_{0};

@@ -80,6 +80,20 @@ void drawToggles(const HudFacts& f, ViewToggles& t) {
   }
 }
 
+// A view-dependent subscription: its tolerance, its tiles and the keys
+// that show what was sent.
+void drawViews(const HudFacts& f, ViewToggles& t) {
+  if (!t.views) return;
+  ImGui::PushItemWidth(120);
+  ImGui::SliderFloat("tolerance px", &t.tolerance, 0.25f, 16.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+  ImGui::PopItemWidth();
+  ImGui::Text("%zu tiles, %s tris%s", f.regions, shortCount(static_cast<double>(f.triangles)).c_str(),
+              f.stats.viewComplete ? "" : " (loading)");
+  ImGui::Checkbox("freeze X", &t.frozen);
+  ImGui::SameLine();
+  ImGui::Checkbox("levels L", &t.levelColours);
+}
+
 // What is changed less often, folded away until asked for.
 void drawMore(const HudFacts& f, ViewToggles& t) {
   if (!ImGui::CollapsingHeader("more")) return;
@@ -140,6 +154,7 @@ void drawHud(const HudFacts& f, ViewToggles& t, int width, int height) {
   if (open) {
     drawStatus(f, t);
     drawMorph(f, t);
+    drawViews(f, t);
     drawToggles(f, t);
     drawMore(f, t);
     ImGui::TextDisabled("H fold  F fit  Q quit");

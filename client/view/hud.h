@@ -36,6 +36,13 @@ struct ViewToggles {
   float morphT = 0;
   bool morphShown = false;  // a time is shown (else key 0 live)
   bool playing = false;
+  // A view-dependent subscription (--views): the tolerance sent with the
+  // camera, a frozen view (X: the camera moves, the tiles stay as sent) and
+  // tiles coloured by level (L).
+  bool views = false;
+  float tolerance = 1;
+  bool frozen = false;
+  bool levelColours = false;
 };
 
 struct HudFacts {

@@ -25,6 +25,12 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_C:
       app.toggles.regionColours = !app.toggles.regionColours;
       break;
+    case GLFW_KEY_X:
+      app.toggles.frozen = !app.toggles.frozen;
+      break;
+    case GLFW_KEY_L:
+      app.toggles.levelColours = !app.toggles.levelColours;
+      break;
     case GLFW_KEY_R:
       app.toggles.refine = (app.toggles.refine + 1) % 3;
       break;

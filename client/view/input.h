@@ -38,7 +38,8 @@ struct App {
 // between interpolating (docs/INTERPOLATION.md, tension 1) and plain, and = and -
 // double and halve its tension; Ctrl+Z / Ctrl+Y (Ctrl+Shift+Z) undo and redo.
 // On a morph document, P plays and pauses it, and , and . step its time by
-// 0.05.
+// 0.05. With --views, X freezes the view (the camera moves, the tiles stay
+// as sent) and L colours tiles by level.
 void handleKey(App& app, int key, int mods);
 
 // Drops the pick, and the selection others see.

@@ -1,7 +1,9 @@
 #include "client/view/renderer.h"
 
 #include "client/view/shaders.h"
+#include "core/view/tile_tree.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -48,6 +50,20 @@ Expected<GLuint> link(const char* vertex, const char* fragment) {
     return internalError(std::string("shader program does not link: ") + log);
   }
   return program;
+}
+
+// Levels 0 to 8 from cool to warm, the same in every viewer.
+std::array<float, 3> levelColour(int level) {
+  static constexpr std::array<std::array<float, 3>, 9> kLevels{{{0.25f, 0.35f, 0.85f},
+                                                                {0.20f, 0.60f, 0.90f},
+                                                                {0.20f, 0.78f, 0.70f},
+                                                                {0.35f, 0.80f, 0.35f},
+                                                                {0.75f, 0.82f, 0.25f},
+                                                                {0.95f, 0.70f, 0.20f},
+                                                                {0.95f, 0.45f, 0.20f},
+                                                                {0.90f, 0.25f, 0.25f},
+                                                                {0.85f, 0.25f, 0.65f}}};
+  return kLevels[static_cast<size_t>(std::clamp(level, 0, 8))];
 }
 
 // A stable, well-spread colour for a region id.
@@ -139,6 +155,7 @@ Renderer::GpuRegion& Renderer::slot(uint64_t id) {
     glGenBuffers(1, &r.ibo);
     glGenBuffers(1, &r.uvbo);
     r.colour = regionColour(id);
+    r.levelColour = levelColour(TileKey::fromRegionId(id).level);
   }
   return r;
 }
@@ -266,7 +283,7 @@ void Renderer::drawSurface(const DrawOptions& o) {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.0f, 1.0f);
   glUniform1i(flat, 0);
-  const bool textured = textures_[0] != 0 && !o.regionColours;
+  const bool textured = textures_[0] != 0 && !o.regionColours && !o.levelColours;
   glUniform1i(glGetUniformLocation(meshProgram_, "uTextured"), textured ? 1 : 0);
   if (textured) {
     for (int k = 0; k < 2; ++k) {
@@ -279,7 +296,9 @@ void Renderer::drawSurface(const DrawOptions& o) {
     glUniform1f(glGetUniformLocation(meshProgram_, "uT"), o.morphT);
   }
   for (const auto& [id, r] : regions_) {
-    const std::array<float, 3> c = o.regionColours ? r.colour : std::array<float, 3>{0.72f, 0.74f, 0.78f};
+    const std::array<float, 3> c = o.levelColours    ? r.levelColour
+                                   : o.regionColours ? r.colour
+                                                     : std::array<float, 3>{0.72f, 0.74f, 0.78f};
     glUniform3fv(colour, 1, c.data());
     glBindVertexArray(r.vao);
     glDrawElements(GL_TRIANGLES, r.indices, GL_UNSIGNED_INT, nullptr);

@@ -26,6 +26,7 @@ struct DrawOptions {
   Mat4 view{}, projection{};
   bool wireframe = false;
   bool regionColours = false;
+  bool levelColours = false;  // tiles of a view (region ids are tile ids): one colour per level
   bool matcap = false;
   // Control vertices: their world diameter (controlPointDiameter) and the
   // pixels one world unit covers at depth 1 (viewport height / (2 tan(fovy / 2))).
@@ -75,7 +76,7 @@ class Renderer {
     GLuint vao = 0, vbo = 0, ibo = 0, uvbo = 0;
     const KeyPositionMap* uvFrom = nullptr;  // the key positions its texture coordinates came from
     GLsizei indices = 0;
-    std::array<float, 3> colour{};
+    std::array<float, 3> colour{}, levelColour{};
   };
   Renderer() = default;
   static void release(GpuRegion& r);

@@ -90,11 +90,19 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     viewer.draw(width, height);
     // With a self-test, frames count from when every edit has its delta.
     // Fresh counts: the mouse or a key may have queued an edit this frame.
-    const ConnectionStats after = scripted ? connection.stats() : stats;
+    const ConnectionStats after = scripted || options.views ? connection.stats() : stats;
     const bool scriptDone = script ? script->done() : (!keys || keys->done());
-    const bool waiting = scripted && (!scriptDone || after.editsPending > 0);
+    // With --views, frames count from when the tiles of the camera sent last
+    // are all here (the viewer sends it once it has framed the model).
+    const bool viewLoading = options.views && (!after.viewComplete || viewer.cameraPending());
+    const bool waiting = (scripted && (!scriptDone || after.editsPending > 0)) || viewLoading;
     if (scripted && scriptDone && after.editsPending == 0 && after.editsSent == 0) {
       std::fprintf(stderr, "tessera-view: the self-test sent no edit\n");
+      return 1;
+    }
+    if (viewLoading && now - start > timeout) {
+      std::fprintf(stderr, "tessera-view: the view's tiles were not complete after %g s\n",
+                   options.timeoutSeconds);
       return 1;
     }
     if (waiting && now - start > timeout) {

@@ -68,6 +68,15 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
   app->add_option("--name", o.name, "shown to collaborators (default tessera-view)")
       ->type_name("NAME")
       ->group(connection);
+  app->add_flag("--views", o.views,
+                "tiles chosen for the camera by screen-space error, sent again as it moves (docs/VIEWER.md "
+                "\"Views\")")
+      ->group(connection);
+  app->add_option("--tolerance", o.tolerancePixels,
+                  "with --views: the screen-space error in pixels (default 1)")
+      ->type_name("PX")
+      ->check(CLI::Range(0.25, 256.0))
+      ->group(connection);
   app->add_option("--base-level", o.baseLevel, "LOD profile: minimum level, 0 to 20 (default 1)")
       ->type_name("N")
       ->check(within(0u, 20u))
@@ -109,6 +118,9 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
   app->add_flag("--matcap", o.matcap, "matcap shading instead of key, fill and sky light (key M)")
       ->group(display);
   app->add_flag("--wireframe", o.wireframe, "wireframe overlay (key W)")->group(display);
+  app->add_flag("--level-colours,--level-colors", o.levelColours,
+                "with --views: tiles coloured by level (key L)")
+      ->group(display);
   app->add_flag("--region-colours,--region-colors", o.regionColours, "one colour per region (key C)")
       ->group(display);
   app->add_flag("--control-points", o.controlPoints, "show the control vertices (key V; off by default)")

@@ -39,6 +39,9 @@ Viewer::Viewer(const ViewOptions& options, Connection& connection)
   app_.toggles.maxLevel = static_cast<int>(options.maxLevel);
   app_.toggles.angle = static_cast<float>(options.angle);
   app_.toggles.morph = connection.isMorph();
+  app_.toggles.views = connection.viewDependent();
+  app_.toggles.tolerance = static_cast<float>(options.tolerancePixels);
+  app_.toggles.levelColours = options.levelColours;
   if (options.morphT) {
     app_.toggles.morphT = static_cast<float>(*options.morphT);
     app_.toggles.morphShown = true;
@@ -106,6 +109,7 @@ ConnectionStats Viewer::update(int width, int height) {
     framed_ = true;
     app_.frameRequested = false;
   }
+  if (app_.toggles.views && framed_ && !app_.toggles.frozen) sendView(width, height, now);
   if (app_.toggles.profileChanged) {
     app_.toggles.profileChanged = false;
     connection_.changeProfile(static_cast<uint32_t>(app_.toggles.baseLevel),
@@ -115,6 +119,35 @@ ConnectionStats Viewer::update(int width, int height) {
   if (app_.undo) connection_.undo(), app_.undo = false;
   if (app_.redo) connection_.redo(), app_.redo = false;
   return stats_;
+}
+
+// The camera as a view (docs/VIEWS.md "The view"), sent when it moved and
+// at most every kViewInterval: the server applies one per interval anyway.
+void Viewer::sendView(int width, int height, Clock::time_point now) {
+  constexpr auto kViewInterval = std::chrono::milliseconds(50);
+  const Mat4 m = app_.camera.view();
+  View v;
+  const V3 eye = app_.camera.eye(), target = app_.camera.target();
+  v.eye = Vec3(eye.x, eye.y, eye.z);
+  v.forward = Vec3(target.x - eye.x, target.y - eye.y, target.z - eye.z);
+  v.up = Vec3(m[1], m[5], m[9]);
+  v.fovYRadians = app_.camera.fovY();
+  v.nearDistance = app_.camera.nearDistance();
+  v.width = std::max(width, 1);
+  v.height = std::max(height, 1);
+  v.tolerancePixels = app_.toggles.tolerance;
+  if (!v.check().isOk()) return;
+  const double scale = std::max(1e-9, static_cast<double>(app_.camera.distance()));
+  const bool moved = !lastView_ || (lastView_->eye - v.eye).norm() > 1e-4 * scale ||
+                     (lastView_->forward.normalized() - v.forward.normalized()).norm() > 1e-5 ||
+                     (lastView_->up - v.up).norm() > 1e-5 || lastView_->width != v.width ||
+                     lastView_->height != v.height || lastView_->tolerancePixels != v.tolerancePixels;
+  cameraPending_ = moved;
+  if (!moved || now - lastViewSent_ < kViewInterval) return;
+  cameraPending_ = false;
+  connection_.setView(v);
+  lastView_ = v;
+  lastViewSent_ = now;
 }
 
 void Viewer::followMorph(double dt) {
@@ -181,6 +214,7 @@ void Viewer::draw(int width, int height) {
       app_.camera.projection(static_cast<float>(width) / static_cast<float>(std::max(height, 1)));
   draw.wireframe = app_.toggles.wireframe;
   draw.regionColours = app_.toggles.regionColours;
+  draw.levelColours = app_.toggles.views && app_.toggles.levelColours;
   draw.matcap = app_.toggles.matcap;
   draw.pointDiameter = pointDiameter_;
   draw.pixelsPerUnit = app_.camera.pixelsPerUnit(height);

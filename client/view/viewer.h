@@ -34,6 +34,9 @@ class Viewer {
   const RegionMap& regions() const { return regions_; }
   const std::vector<ControlPoint>& points() const { return points_; }
   int64_t triangles() const { return renderer_->triangles(); }
+  // A view-dependent subscription: the camera moved since the view last
+  // sent (it goes within the send interval), or none was sent yet.
+  bool cameraPending() const { return cameraPending_; }
 
  private:
   Viewer(const ViewOptions& options, Connection& connection);
@@ -42,6 +45,11 @@ class Viewer {
   // A morph document: advances a playing morph and asks for the frame at
   // the time shown once the previous one has arrived.
   void followMorph(double dt);
+  // A view-dependent subscription: sends the camera when it moved.
+  void sendView(int width, int height, std::chrono::steady_clock::time_point now);
+  std::optional<View> lastView_;
+  bool cameraPending_ = true;
+  std::chrono::steady_clock::time_point lastViewSent_{};
 
   const ViewOptions options_;
   Connection& connection_;

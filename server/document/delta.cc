@@ -15,6 +15,7 @@ std::shared_ptr<const std::string> encodeDeltaFrame(const DeltaContent& delta, u
   d->set_edit_id(delta.editId);
   d->set_surface_hash(delta.surfaceHash);
   d->set_view_complete(delta.viewComplete);
+  d->set_view_seq(delta.viewSeq);
   for (const RegionPayload& payload : delta.regions) {
     wire::Region* r = d->add_regions();
     r->set_region_id(payload.id);

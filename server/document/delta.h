@@ -29,6 +29,7 @@ struct DeltaContent {
   uint64_t documentId = 0, fromVersion = 0, toVersion = 0, authorSession = 0, editId = 0;
   uint64_t surfaceHash = 0;            // the profile's surface at toVersion (PROTOCOL 6.5); 0 = none
   bool viewComplete = false;           // a view's tiles are all held with it (Delta.view_complete)
+  uint64_t viewSeq = 0;                // the SetView its tiles follow (Delta.view_seq)
   std::vector<RegionPayload> regions;  // applied in order
   std::vector<uint64_t> removed;
 };

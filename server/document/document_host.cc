@@ -174,7 +174,7 @@ void DocumentHost::setView(std::shared_ptr<Subscriber> who, uint64_t clientSeq, 
                  nullptr});
       return;
     }
-    self->tileStreams_.setPending(who->sessionId(), view);
+    self->tileStreams_.setPending(who->sessionId(), view, clientSeq);
     self->scheduleViews();
   });
 }

@@ -70,9 +70,11 @@ void TileStreams::leave(uint64_t session) {
   if (streams_.erase(session)) --stats_.viewSubscribers;
 }
 
-void TileStreams::setPending(uint64_t session, const View& view) {
+void TileStreams::setPending(uint64_t session, const View& view, uint64_t clientSeq) {
   auto found = streams_.find(session);
-  if (found != streams_.end()) found->second.pending = view;
+  if (found == streams_.end()) return;
+  found->second.pending = view;
+  found->second.pendingSeq = clientSeq;
 }
 
 std::optional<TileStreams::Clock::time_point> TileStreams::nextDue(Clock::duration interval) const {
@@ -94,11 +96,13 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
     }
     if (s.pending && now >= s.lastApplied + interval) {
       s.view = *s.pending;
+      s.viewSeq = s.pendingSeq;
       s.pending.reset();
       s.lastApplied = now;
       ++stats_.viewsApplied;
       auto target = tiles.select(s.view, s.budget);
-      Status moved = target.isOk() ? moveTo(tiles, s, *target, version, version, 0, 0) : target.status();
+      Status moved = target.isOk() ? moveTo(tiles, s, *target, version, version, 0, 0, /*announce=*/true)
+                                   : target.status();
       if (!moved.isOk()) {
         logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", moved.message()}});
       }
@@ -171,6 +175,7 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
   auto start = [&](uint64_t from) {
     DeltaContent d;
     d.documentId = documentId_;
+    d.viewSeq = s.viewSeq;
     d.fromVersion = from;
     d.toVersion = toVersion;
     d.authorSession = authorSession;

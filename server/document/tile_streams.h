@@ -46,13 +46,15 @@ class TileStreams {
   size_t size() const { return streams_.size(); }
   void leave(uint64_t session);
 
-  // A new camera for `session`'s stream, applied by applyDue once its
-  // interval has passed; a newer one replaces it meanwhile.
-  void setPending(uint64_t session, const View& view);
+  // A new camera for `session`'s stream (SetView `clientSeq`), applied by
+  // applyDue once its interval has passed; a newer one replaces it meanwhile.
+  void setPending(uint64_t session, const View& view, uint64_t clientSeq);
   // When the earliest waiting view is due, if one waits.
   std::optional<Clock::time_point> nextDue(Clock::duration interval) const;
   // Applies every waiting view that is due at `now`: the tiles that changed
-  // go to its subscriber as deltas at `version`.
+  // go to its subscriber as deltas at `version`, the last complete and
+  // naming the SetView (even when nothing changed: the client learns its
+  // view was applied).
   void applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval, uint64_t version);
 
   // After edits from `fromVersion` to `toVersion` (the cache has forgotten
@@ -76,6 +78,7 @@ class TileStreams {
     std::map<TileKey, Held> held;
     uint64_t surfaceHash = 0;  // the sum of held tiles' hashes (PROTOCOL 6.5)
     std::optional<View> pending;
+    uint64_t pendingSeq = 0, viewSeq = 0;  // SetView client_seqs: waiting, and the view applied
     Clock::time_point lastApplied{};
   };
   // Moves `s` to `target`: deltas of at most about kChunkBytes of tiles,

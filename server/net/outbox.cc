@@ -117,6 +117,7 @@ void Outbox::mergeDeltas(uint32_t maxFrameBytes) {
     into.editId = d.editId;
     into.surfaceHash = d.surfaceHash;  // the state at the new toVersion
     into.viewComplete = d.viewComplete;
+    into.viewSeq = d.viewSeq;
     for (const RegionPayload& payload : d.regions) {
       const auto same = [&](const RegionPayload& e) { return e.id == payload.id; };
       if (payload.selfContained) {

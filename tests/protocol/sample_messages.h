@@ -267,6 +267,7 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     m->set_author_session_id(77);
     m->set_edit_id(18);
     m->set_view_complete(true);
+    m->set_view_seq(31);
   }
   {
     auto* m = add().mutable_presence();

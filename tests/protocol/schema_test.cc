@@ -225,6 +225,7 @@ Delta.author_session_id = 6 uint64
 Delta.edit_id = 7 uint64
 Delta.surface_hash = 8 uint64
 Delta.view_complete = 9 bool
+Delta.view_seq = 10 uint64
 Participant.session_id = 1 uint64
 Participant.name = 2 string
 Participant.role = 3 Role

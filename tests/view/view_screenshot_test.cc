@@ -7,7 +7,10 @@
 // fitted to the view.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -231,6 +234,61 @@ TEST_F(ViewScreenshot, FandiskWithItsCreasesIsFittedToTheView) {
     EXPECT_NEAR(model.box.x0, image.width - 1 - model.box.x1, image.width * 0.06) << f.name;
     EXPECT_NEAR(model.box.y0, image.height - 1 - model.box.y1, image.height * 0.06) << f.name;
   }
+}
+
+// The hue of a pixel, in degrees; -1 for a grey one.
+int hueOf(const Rgb& c) {
+  const int hi = std::max({c[0], c[1], c[2]}), lo = std::min({c[0], c[1], c[2]});
+  if (hi - lo < 24) return -1;
+  const double d = hi - lo;
+  double h = hi == c[0]   ? std::fmod((c[1] - c[2]) / d, 6.0)
+             : hi == c[1] ? (c[2] - c[0]) / d + 2
+                          : (c[0] - c[1]) / d + 4;
+  if (h < 0) h += 6;
+  return static_cast<int>(60 * h);
+}
+
+// A view-dependent subscription (--views, docs/VIEWER.md "Views"): the
+// viewer frames the coarsest tiles, sends its camera, and shows the tiles
+// that camera needs, several levels at once (coloured by level with
+// --level-colours), more triangles than the coarsest tiles had.
+TEST_F(ViewScreenshot, ViewsShowTheTilesTheCameraNeedsAtSeveralLevels) {
+  auto admin = client::Session::connect(server_->session("admin", server_->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  wire::ClientMessage create;
+  auto* c = create.mutable_create_document();
+  c->set_name("hand");
+  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("hand.off")));
+  c->set_mesh_format(wire::MESH_FORMAT_OFF);
+  c->set_max_level(4);
+  auto created = (*admin)->call(create, 60);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+  const Image levels = render(
+      doc, "views-levels", {"--no-hud", "--no-gizmo", "--views", "--level-colours", "--size", "390x844"}, {});
+  const std::string log = testing::fileBytes(dir_ + "/view.log");
+  ASSERT_GT(levels.width, 0);
+  const auto model = testing::foreground(levels, kBackground);
+  EXPECT_GT(static_cast<double>(model.pixels) / (levels.width * levels.height), 0.15)
+      << "the model is framed";
+  // Pixels by hue, in 30-degree bins: the levels' colours.
+  std::map<int, size_t> bins;
+  size_t coloured = 0;
+  for (int y = 0; y < levels.height; ++y)
+    for (int x = 0; x < levels.width; ++x) {
+      const int h = hueOf(levels.at(x, y));
+      if (h >= 0 && testing::differ(levels.at(x, y), kBackground)) ++bins[h / 30], ++coloured;
+    }
+  int shown = 0;
+  for (const auto& [bin, n] : bins) shown += n > coloured / 50 ? 1 : 0;
+  std::printf("views: %zu model pixels, %zu coloured, %d hues over 2%%\n", model.pixels, coloured, shown);
+  EXPECT_GE(shown, 2) << "several levels at once";
+  // The viewer reports the triangles drawn: more than the 2,390 of the coarsest tiles.
+  const size_t at = log.rfind(" triangles)");
+  ASSERT_NE(at, std::string::npos) << log;
+  const size_t from = log.rfind(", ", at);
+  const long long triangles = std::stoll(log.substr(from + 2, at - from - 2));
+  EXPECT_GT(triangles, 4 * 2390) << log;
 }
 
 }  // namespace

@@ -48,6 +48,9 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
   const bool scripted = script || keys;
   int framesReady = 0, framesCounted = 0;
   const auto start = Clock::now();
+  // When the first picture was drawn and when the picture was whole (the
+  // snapshot, or with --views the last camera's tiles): printed at the end.
+  std::optional<Clock::time_point> firstDrawn, wholeDrawn;
   auto last = start;
   const auto timeout = std::chrono::duration<double>(options.timeoutSeconds);
   for (;;) {
@@ -88,6 +91,7 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     }
     target.bind();
     viewer.draw(width, height);
+    if (!firstDrawn) firstDrawn = Clock::now();
     // With a self-test, frames count from when every edit has its delta.
     // Fresh counts: the mouse or a key may have queued an edit this frame.
     const ConnectionStats after = scripted || options.views ? connection.stats() : stats;
@@ -110,6 +114,7 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
       return 1;
     }
     ++framesReady;
+    if (!waiting && !wholeDrawn) wholeDrawn = Clock::now();
     if (waiting || ++framesCounted < options.frames) continue;
     if (script) {
       std::printf(
@@ -130,6 +135,11 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     std::printf("wrote %s (%dx%d, %d samples per pixel, document version %llu, %lld triangles)\n",
                 options.screenshot.c_str(), width, height, target.samples(),
                 static_cast<unsigned long long>(stats.version), static_cast<long long>(viewer.triangles()));
+    const auto ms = [&](Clock::time_point t) {
+      return std::chrono::duration<double, std::milli>(t - options.started).count();
+    };
+    std::printf("first picture %.0f ms, whole picture %.0f ms, %llu region bytes received\n", ms(*firstDrawn),
+                ms(wholeDrawn.value_or(Clock::now())), static_cast<unsigned long long>(after.bytesReceived));
     return 0;
   }
 }

@@ -5,6 +5,7 @@
 // control vertices, and draws the HUD and the axes gizmo. With --screenshot
 // it renders headless with no display at all (run_headless.cc), writes a
 // PNG and exits.
+#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 
 int main(int argc, char** argv) {
   using namespace tessera::view;
+  const auto started = std::chrono::steady_clock::now();
   auto options = parseViewOptions(std::vector<std::string>(argv + 1, argv + argc));
   if (!options.isOk()) {
     std::fprintf(stderr, "tessera-view: %s\nRun 'tessera-view --help' for the options.\n",
@@ -30,6 +32,7 @@ int main(int argc, char** argv) {
     std::printf("tessera-view %s\n", tessera::kVersion);
     return 0;
   }
+  options->started = started;
   auto connection = Connection::open(*options);
   if (!connection.isOk()) {
     std::fprintf(stderr, "tessera-view: %s\n", connection.status().toString().c_str());

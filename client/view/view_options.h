@@ -1,6 +1,7 @@
 // The command line of tessera-view (docs/VIEWER.md), parsed with CLI11.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -63,6 +64,9 @@ struct ViewOptions {
   // Keep ConnectionStats::surfaceHash (set by editKeys, and by tests).
   bool hashSurfaces = false;
   double timeoutSeconds = 30;  // to connect and receive the first snapshot
+  // When the process started: headless mode times its first and whole
+  // pictures from here (connecting and subscribing included).
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   bool help = false;
   bool version = false;
 };

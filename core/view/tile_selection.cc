@@ -9,50 +9,87 @@ namespace {
 constexpr double kBudgetStep = 1.25;
 constexpr int kBudgetSteps = 60;
 
-Expected<TileSelection> selectAt(const View& view, TileCatalogue& tiles, double tolerance) {
-  TileSelection out;
-  out.tolerancePixels = tolerance;
-  // Level by level, so that the hierarchy grows once per level for every
-  // tile of it (TileCatalogue::prepare).
-  std::vector<TileKey> frontier = tiles.tree().roots();
-  while (!frontier.empty()) {
-    tiles.prepare(frontier);
-    std::vector<TileKey> next;
-    for (const TileKey& key : frontier) {
-      TESSERA_ASSIGN_OR_RETURN(const Tile* tile, tiles.get(key));
-      SelectedTile s{key, !view.outside(tile->bounds.sphere), 0,
-                     dot(tile->bounds.sphere.centre - view.eye, view.forward.normalized())};
-      s.projectedError = view.projectedError(tile->bounds.error, tile->bounds.sphere);
-      if (s.visible && s.projectedError > tolerance) {
-        auto children = tiles.tree().children(key);
-        if (!children.empty()) {
-          next.insert(next.end(), children.begin(), children.end());
-          continue;
-        }
-      }
-      out.triangles += tile->triangles;
-      out.tiles.push_back(s);
-    }
-    frontier = std::move(next);
-  }
-  std::stable_sort(out.tiles.begin(), out.tiles.end(), [](const SelectedTile& a, const SelectedTile& b) {
+// Sending order: visible before hidden, coarse before fine, near before far.
+void sortForSending(TileSelection& s) {
+  std::stable_sort(s.tiles.begin(), s.tiles.end(), [](const SelectedTile& a, const SelectedTile& b) {
     if (a.visible != b.visible) return a.visible;
     if (a.key.level != b.key.level) return a.key.level < b.key.level;
     return a.depth < b.depth;
   });
+}
+
+Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, double tolerance,
+                                      const std::vector<TileKey>& frontier, TileSelection& out);
+
+// Several views at once, level by level, so that the hierarchy grows once
+// per level for every tile any of them needs there (TileCatalogue::prepare):
+// each growth rebuilds the levels below it.
+Expected<std::vector<TileSelection>> selectAt(std::span<const View> views, TileCatalogue& tiles,
+                                              std::span<const double> tolerances) {
+  std::vector<TileSelection> out(views.size());
+  std::vector<std::vector<TileKey>> frontiers(views.size(), tiles.tree().roots());
+  for (size_t v = 0; v < views.size(); ++v) out[v].tolerancePixels = tolerances[v];
+  for (;;) {
+    std::vector<TileKey> level;
+    for (const auto& f : frontiers) level.insert(level.end(), f.begin(), f.end());
+    if (level.empty()) break;
+    std::sort(level.begin(), level.end());
+    level.erase(std::unique(level.begin(), level.end()), level.end());
+    tiles.prepare(level);
+    for (size_t v = 0; v < views.size(); ++v) {
+      TESSERA_ASSIGN_OR_RETURN(frontiers[v], expand(views[v], tiles, tolerances[v], frontiers[v], out[v]));
+    }
+  }
+  for (TileSelection& s : out) sortForSending(s);
   return out;
+}
+
+// One level of one view's walk: the tiles of `frontier` it keeps go into
+// `out`, the children of those it refines are returned.
+Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, double tolerance,
+                                      const std::vector<TileKey>& frontier, TileSelection& out) {
+  std::vector<TileKey> next;
+  for (const TileKey& key : frontier) {
+    TESSERA_ASSIGN_OR_RETURN(const Tile* tile, tiles.get(key));
+    SelectedTile s{key, !view.outside(tile->bounds.sphere), 0,
+                   dot(tile->bounds.sphere.centre - view.eye, view.forward.normalized())};
+    s.projectedError = view.projectedError(tile->bounds.error, tile->bounds.sphere);
+    if (s.visible && s.projectedError > tolerance) {
+      auto children = tiles.tree().children(key);
+      if (!children.empty()) {
+        next.insert(next.end(), children.begin(), children.end());
+        continue;
+      }
+    }
+    out.triangles += tile->triangles;
+    out.tiles.push_back(s);
+  }
+  return next;
 }
 
 }  // namespace
 
 Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget) {
-  TESSERA_RETURN_IF_ERROR(view.check());
-  double tolerance = view.tolerancePixels;
-  for (int step = 0;; ++step) {
-    TESSERA_ASSIGN_OR_RETURN(TileSelection s, selectAt(view, tiles, tolerance));
-    if (budget <= 0 || s.triangles <= budget || step == kBudgetSteps) return s;
-    tolerance *= kBudgetStep;
+  const int64_t budgets[] = {budget};
+  TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> s, selectTilesForEach({&view, 1}, tiles, budgets));
+  return std::move(s.front());
+}
+
+Expected<std::vector<TileSelection>> selectTilesForEach(std::span<const View> views, TileCatalogue& tiles,
+                                                        std::span<const int64_t> budgets) {
+  for (const View& view : views) TESSERA_RETURN_IF_ERROR(view.check());
+  std::vector<double> tolerances;
+  for (const View& view : views) tolerances.push_back(view.tolerancePixels);
+  TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> out, selectAt(views, tiles, tolerances));
+  // Those over their budget again, with the tolerance raised, one by one.
+  for (size_t v = 0; v < views.size(); ++v) {
+    for (int step = 1; budgets[v] > 0 && out[v].triangles > budgets[v] && step <= kBudgetSteps; ++step) {
+      const double raised[] = {out[v].tolerancePixels * kBudgetStep};
+      TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> again, selectAt({&views[v], 1}, tiles, raised));
+      out[v] = std::move(again.front());
+    }
   }
+  return out;
 }
 
 }  // namespace tessera

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/util/status.h"
@@ -35,5 +36,10 @@ struct TileSelection {
 
 // `budget` <= 0: none. Errors: a bad view, a tile that cannot be built.
 Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget = 0);
+// The same for several views at once, equal to selecting each alone: the
+// hierarchy grows once per level for all of them (a server choosing again
+// for every viewer after an edit).
+Expected<std::vector<TileSelection>> selectTilesForEach(std::span<const View> views, TileCatalogue& tiles,
+                                                        std::span<const int64_t> budgets);
 
 }  // namespace tessera

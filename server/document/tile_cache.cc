@@ -23,6 +23,13 @@ Expected<TileSelection> TileCache::select(const View& view, int64_t budget) {
   return selection;
 }
 
+Expected<std::vector<TileSelection>> TileCache::selectForEach(std::span<const View> views,
+                                                              std::span<const int64_t> budgets) {
+  auto selections = selectTilesForEach(views, catalogue_, budgets);
+  countBuilt();
+  return selections;
+}
+
 Expected<EncodedTile> TileCache::encoded(const TileKey& key, uint64_t version) {
   auto found = entries_.find(key);
   if (found != entries_.end()) {

@@ -31,6 +31,10 @@ class TileCache {
   const TileTree& tree() const { return catalogue_.tree(); }
   // The tiles `view` needs (tile_selection.h), in sending order.
   Expected<TileSelection> select(const View& view, int64_t budget);
+  // The same for many views at once (selectTilesForEach): what a flush or a
+  // round of camera moves asks for every subscriber.
+  Expected<std::vector<TileSelection>> selectForEach(std::span<const View> views,
+                                                     std::span<const int64_t> budgets);
   // The tile encoded at the document's state: cached, or built (if its mesh
   // was released) and encoded once now; `version` goes into its header.
   Expected<EncodedTile> encoded(const TileKey& key, uint64_t version);

@@ -85,52 +85,62 @@ std::optional<TileStreams::Clock::time_point> TileStreams::nextDue(Clock::durati
   return due;
 }
 
-void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval,
-                           uint64_t version) {
+void TileStreams::dropGone() {
   for (auto it = streams_.begin(); it != streams_.end();) {
-    Stream& s = it->second;
-    if (s.who.expired()) {
+    if (it->second.who.expired()) {
       it = streams_.erase(it);
       --stats_.viewSubscribers;
-      continue;
+    } else {
+      ++it;
     }
-    if (s.pending && now >= s.lastApplied + interval) {
-      s.view = *s.pending;
-      s.viewSeq = s.pendingSeq;
-      s.pending.reset();
-      s.lastApplied = now;
-      ++stats_.viewsApplied;
-      auto target = tiles.select(s.view, s.budget);
-      Status moved = target.isOk() ? moveTo(tiles, s, *target, version, version, 0, 0, /*announce=*/true)
-                                   : target.status();
-      if (!moved.isOk()) {
-        logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", moved.message()}});
-      }
-    }
-    ++it;
   }
+}
+
+void TileStreams::moveEach(TileCache& tiles, const std::vector<Stream*>& moving, uint64_t fromVersion,
+                           uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce) {
+  if (moving.empty()) return;
+  std::vector<View> views;
+  std::vector<int64_t> budgets;
+  for (const Stream* s : moving) views.push_back(s->view), budgets.push_back(s->budget);
+  // One walk for every stream: the hierarchy grows once per level for all.
+  auto targets = tiles.selectForEach(views, budgets);
+  for (size_t i = 0; i < moving.size(); ++i) {
+    Status moved = targets.isOk() ? moveTo(tiles, *moving[i], (*targets)[i], fromVersion, toVersion,
+                                           authorSession, editId, announce)
+                                  : targets.status();
+    if (!moved.isOk()) {
+      logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", moved.message()}});
+    }
+  }
+}
+
+void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval,
+                           uint64_t version) {
+  dropGone();
+  std::vector<Stream*> due;
+  for (auto& [session, s] : streams_) {
+    if (!s.pending || now < s.lastApplied + interval) continue;
+    s.view = *s.pending;
+    s.viewSeq = s.pendingSeq;
+    s.pending.reset();
+    s.lastApplied = now;
+    ++stats_.viewsApplied;
+    due.push_back(&s);
+  }
+  moveEach(tiles, due, version, version, 0, 0, /*announce=*/true);
 }
 
 void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion,
                             uint64_t toVersion, uint64_t authorSession, uint64_t editId) {
-  for (auto it = streams_.begin(); it != streams_.end();) {
-    Stream& s = it->second;
-    if (s.who.expired()) {
-      it = streams_.erase(it);
-      --stats_.viewSubscribers;
-      continue;
-    }
+  dropGone();
+  std::vector<Stream*> all;
+  for (auto& [session, s] : streams_) {
     for (const TileKey& key : reached) {
       if (auto held = s.held.find(key); held != s.held.end()) held->second.stale = true;
     }
-    auto target = tiles.select(s.view, s.budget);
-    Status moved = target.isOk() ? moveTo(tiles, s, *target, fromVersion, toVersion, authorSession, editId)
-                                 : target.status();
-    if (!moved.isOk()) {
-      logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", moved.message()}});
-    }
-    ++it;
+    all.push_back(&s);
   }
+  moveEach(tiles, all, fromVersion, toVersion, authorSession, editId, false);
 }
 
 void TileStreams::forgetAllTiles() {

@@ -87,6 +87,11 @@ class TileStreams {
   Status moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
                 uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce = false);
   void send(Stream& s, DeltaContent delta);
+  // Chooses again for every stream of `moving` in one walk, then moves each.
+  void moveEach(TileCache& tiles, const std::vector<Stream*>& moving, uint64_t fromVersion,
+                uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce);
+  // Forgets the streams whose subscriber is gone.
+  void dropGone();
 
   const uint64_t documentId_;
   const uint32_t maxFrameBytes_;

@@ -125,6 +125,37 @@ TEST(TileSelection, RandomCamerasGetAWatertightSurfaceWithinTheirTolerance) {
   EXPECT_GT(hidden, 0) << "some cameras see part of the surface only";
 }
 
+// Many views in one walk (a server choosing for every viewer at once) choose
+// what each would alone, budgets included.
+TEST(TileSelection, ManyViewsAtOnceChooseWhatEachWouldAlone) {
+  auto hand = importMesh(testing::cgalMeshPath("hand.off"));
+  ASSERT_TRUE(hand.isOk());
+  auto doc = Document::create(*hand, {.maxLevel = 4});
+  ASSERT_TRUE(doc.isOk());
+  Model m = model("hand", std::move(*doc));
+  std::mt19937 rng(17);
+  std::vector<View> views;
+  std::vector<int64_t> budgets;
+  for (int i = 0; i < 10; ++i) {
+    views.push_back(randomView(m, rng, i % 2 ? 390 : 1920, i % 2 ? 844 : 1080));
+    budgets.push_back(i % 3 == 0 ? 60000 : 0);
+  }
+  TileCatalogue together(m.doc);
+  auto all = selectTilesForEach(views, together, budgets);
+  ASSERT_TRUE(all.isOk()) << all.status().message();
+  TileCatalogue alone(m.doc);
+  for (size_t i = 0; i < views.size(); ++i) {
+    auto one = selectTiles(views[i], alone, budgets[i]);
+    ASSERT_TRUE(one.isOk());
+    ASSERT_EQ((*all)[i].tiles.size(), one->tiles.size()) << "view " << i;
+    for (size_t k = 0; k < one->tiles.size(); ++k) EXPECT_EQ((*all)[i].tiles[k].key, one->tiles[k].key) << i;
+    EXPECT_EQ((*all)[i].tolerancePixels, one->tolerancePixels) << i;
+    if (budgets[i] > 0) {
+      EXPECT_LE((*all)[i].triangles, budgets[i]) << i;
+    }
+  }
+}
+
 TEST(TileSelection, ABudgetRaisesTheToleranceAndKeepsEveryVisibleTile) {
   auto hand = importMesh(testing::cgalMeshPath("hand.off"));
   ASSERT_TRUE(hand.isOk());

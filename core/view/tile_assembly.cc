@@ -68,6 +68,9 @@ std::vector<std::vector<Vec3>> closeCracks(const std::vector<const RegionMesh*>&
         run.push_back(at);
         const uint64_t a = run.front(), b = run.back();
         if (a > b) continue;  // each run once, from its lower end
+        // A tile shows one level: if it has the edge a-b itself, the run
+        // went the other way round it, not along a finer copy of a-b.
+        if (edges[i].count(edgeOf(a, b))) continue;
         // The other tile that has both ends and joins them by an edge.
         bool coarser = false;
         for (uint32_t j : owners[a]) {

@@ -21,6 +21,7 @@ import { readPageParams, webSocketUrl, addressWithDocument } from './ui/page_par
 import { installTestHook } from './test_hook.js';
 import { toBig } from './codec/uint64.js';
 import { PageState } from './page_state.js';
+import { viewOfCamera, ViewSender } from './session/view_camera.js';
 
 const HUD_INTERVAL_MS = 250;
 
@@ -39,7 +40,30 @@ async function main() {
   window.addEventListener('hashchange', () => window.location.reload());
   const params = readPageParams(window.location);
   const wire = createWire(protoText);
-  const view = new SceneView(document.getElementById('stage'));
+  const view = new SceneView(document.getElementById('stage'), params.views);
+  // A view-dependent subscription (?views=1): the camera goes to the server
+  // as it moves (session/view_camera.js); X freezes it.
+  const cameraView = (tolerance) => {
+    view.camera.updateMatrixWorld();
+    const canvas = view.renderer.domElement;
+    return viewOfCamera(view.camera, canvas.clientWidth || 1, canvas.clientHeight || 1, tolerance);
+  };
+  const sender = new ViewSender((v) => page.session?.setView(v) ?? false);
+  let offerTimer = null;
+  const offerView = () => {
+    if (!params.views || !view.fitted || !page.session) return;
+    if (sender.offer(cameraView(params.tolerance)) && !offerTimer) {
+      offerTimer = setTimeout(() => { offerTimer = null; offerView(); }, 60);
+    }
+  };
+  if (params.views) {
+    window.addEventListener('keydown', (e) => {
+      if (e.key !== 'x' && e.key !== 'X') return;
+      if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+      sender.frozen = !sender.frozen;
+      if (!sender.frozen) offerView();
+    });
+  }
   const vertices = new VertexIndex();
   const picker = new Picker(view, vertices);
   const controlPoints = new ControlPointsLayer(view.scene, () => view.invalidate());
@@ -84,6 +108,9 @@ async function main() {
   function openDocument(documentId, helloAck) {
     page.session = new DocumentSession({
       connection: page.connection, documentId, profile: page.profile,
+      // The first subscription: the coarsest tiles whatever the camera
+      // (PROTOCOL.md section 16); the page frames them, then sends its own.
+      view: params.views ? cameraView(256) : null,
       decode: (bytes) => decodeRegion(page.draco, bytes),
       onView: (change) => {
         view.apply(change, page.session.view.regions);
@@ -172,6 +199,7 @@ async function main() {
     page.frameAsked = false;
     const drew = view.renderIfNeeded();
     if (!drew) return;
+    offerView();
     ++page.fpsFrames;
     askFrame();
     if (page.session?.view.ready && page.session.view.version !== page.shownVersion) {
@@ -181,6 +209,7 @@ async function main() {
     }
     if (page.readyAfterRender) {
       page.readyAfterRender = false;
+      page.firstPicture ??= { ms: Math.round(performance.now()), triangles: view.triangles };
       page.ready = true;
       setBodyState('ready');
     }
@@ -205,6 +234,7 @@ async function main() {
       role: page.session?.role ?? page.connection?.helloAck?.role ?? 0, latencyMs: page.session?.latency.last ?? null,
       bytesPerSecond: page.bytesPerSecond, hash: page.session?.lastHash ?? null, preset: page.profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
       wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
+      views: params.views ? { complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance } : null,
       pick: editor.describe(), points: controlPoints.count ?? 0, pointsDrawn: controlPoints.drawn,
       people: page.session ? page.session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === page.session.sessionId })) : [],
       status: page.connection?.ready && page.session?.view.ready ? 'live' : page.status,

@@ -19,6 +19,9 @@ export class PageState {
     // drawn (ready, and <body data-state=ready>).
     this.readyAfterRender = false;
     this.ready = false;
+    // The first picture drawn: when (ms since the page started) and its
+    // triangles; with a view, the coarsest tiles, refined after.
+    this.firstPicture = null;
 
     // When each version was first drawn (Unix ms, Date.now()): the
     // benchmark times edit-to-pixels against the editor's clock with it

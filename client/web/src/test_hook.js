@@ -3,6 +3,16 @@
 // ("v2:123") and decimal strings, hashes as "0x" + 16 hex digits.
 import { idName, packId, parseIdName } from './codec/ids.js';
 import { hex64 } from './codec/uint64.js';
+import { tileLevel } from './scene/region_batches.js';
+
+function tileLevels(regions) {
+  const out = {};
+  for (const id of regions.keys()) {
+    const level = String(tileLevel(id));
+    out[level] = (out[level] ?? 0) + 1;
+  }
+  return out;
+}
 
 const ROLE_NAMES = ['ROLE_UNSPECIFIED', 'ROLE_VIEWER', 'ROLE_EDITOR', 'ROLE_ADMIN'];
 
@@ -25,6 +35,12 @@ export function installTestHook(app) {
         hashMatches: Boolean(hash?.matches),
         triangles: view ? view.triangles() : 0,
         regions: view ? view.regions.size : 0,
+        // A view-dependent subscription: whether the latest camera's tiles
+        // are all here, and the tiles held by level ("level": count).
+        viewComplete: session ? session.viewComplete() : false,
+        tileLevels: view ? tileLevels(view.regions) : {},
+        tiles: view ? [...view.regions.keys()].map(String).sort().join(' ') : '',
+        firstPicture: page.firstPicture,
         bytesReceived: connection ? connection.bytesReceived : 0,
         lastEditToDeltaMs: session?.latency.last ?? null,
         collaborators: session ? session.collaborators.list().map((c) => ({
@@ -51,6 +67,27 @@ export function installTestHook(app) {
       const vertex = id === null ? null : app.vertices.lookup(id);
       if (!vertex) return null;
       return app.picker.toScreen(vertex.position);
+    },
+
+    // Turns the camera round its target about the world's up axis, as an
+    // orbiting drag would (a view-dependent subscription then sends it).
+    orbitBy(radians) {
+      const { camera, controls } = app.view;
+      const offset = camera.position.clone().sub(controls.target);
+      offset.applyAxisAngle({ x: 0, y: 1, z: 0, isVector3: true }, radians);
+      camera.position.copy(controls.target).add(offset);
+      camera.lookAt(controls.target);
+      controls.update();
+      app.view.invalidate();
+    },
+
+    // Moves the camera along its line of sight to `factor` of its distance.
+    dolly(factor) {
+      const { camera, controls } = app.view;
+      const offset = camera.position.clone().sub(controls.target).multiplyScalar(factor);
+      camera.position.copy(controls.target).add(offset);
+      controls.update();
+      app.view.invalidate();
     },
 
     // A visible control vertex of the edit level near the middle of the

@@ -20,11 +20,25 @@ export function regionColour(regionId) {
   return new THREE.Color().setHSL(hue, 0.5, 0.6);
 }
 
+// A view's tiles (PROTOCOL.md section 16): one colour per level, cool to
+// warm. A cluster's id has bit 63 set and its level in bits 58..62; a
+// one-face tile's id is its face's, of level L - 5.
+const LEVEL_HUES = [0.63, 0.56, 0.47, 0.33, 0.18, 0.11, 0.05, 0.0, 0.88];
+export function tileLevel(regionId) {
+  const id = BigInt(regionId);
+  return Number(id >> 63n ? (id >> 58n) & 31n : ((id >> 58n) & 63n) + 5n);
+}
+export function levelColour(regionId) {
+  return new THREE.Color().setHSL(LEVEL_HUES[Math.min(tileLevel(regionId), LEVEL_HUES.length - 1)], 0.6, 0.55);
+}
+
 export class RegionBatches {
   // onBatch(batch) / onDrop(batch): the scene adds or removes its meshes.
-  constructor(onBatch, onDrop) {
+  // colourOf(id): a region's colour (regionColour, or levelColour for tiles).
+  constructor(onBatch, onDrop, colourOf = regionColour) {
     this.onBatch = onBatch;
     this.onDrop = onDrop;
+    this.colourOf = colourOf;
     this.batches = [];
     this.where = new Map(); // region id -> batch
     this.triangles = 0;
@@ -81,14 +95,14 @@ export class RegionBatches {
         batch.geometry = null;
       }
       if (batch.regions.size === 0) continue;
-      batch.geometry = build(batch);
+      batch.geometry = build(batch, this.colourOf);
       this.onBatch(batch);
     }
     this.batches = this.batches.filter((b) => b.regions.size > 0);
   }
 }
 
-function build(batch) {
+function build(batch, colourOf) {
   const positions = new Float32Array(batch.vertices * 3);
   const normals = new Float32Array(batch.vertices * 3);
   const colours = new Float32Array(batch.vertices * 3);
@@ -99,7 +113,7 @@ function build(batch) {
   for (const [id, r] of batch.regions) {
     positions.set(r.positions, v * 3);
     normals.set(r.normals, v * 3);
-    const c = regionColour(id);
+    const c = colourOf(id);
     const n = r.positions.length / 3;
     for (let k = 0; k < n; ++k) colours.set([c.r, c.g, c.b], (v + k) * 3);
     for (let k = 0; k < r.indices.length; ++k) indices[i + k] = r.indices[k] + v;

@@ -11,7 +11,8 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { RoomEnvironment } from 'three/examples/jsm/environments/RoomEnvironment.js';
 import { fitCamera } from './camera_fit.js';
-import { RegionBatches } from './region_batches.js';
+import { RegionBatches, regionColour, levelColour } from './region_batches.js';
+import { closeCracks } from './tile_assembly.js';
 
 const SURFACE_COLOUR = 0xa7b0bd;
 const WIRE_COLOUR = 0x161c24;
@@ -25,8 +26,12 @@ function softwareRenderer(renderer) {
 }
 
 export class SceneView {
-  constructor(container) {
+  // tiles: a view-dependent subscription's tiles, shown with their cracks
+  // closed and coloured by level with the region-colour toggle.
+  constructor(container, tiles = false) {
     this.container = container;
+    this.tiles = tiles;
+    this.shownPositions = new Map(); // tiles: region id -> the positions shown
     // Pixels at the top of the frame a panel covers: fit-to-view leaves them free.
     this.reservedTop = () => 0;
     this.renderer = new THREE.WebGLRenderer({ antialias: true, alpha: true, powerPreference: 'high-performance' });
@@ -61,7 +66,8 @@ export class SceneView {
     this.colouredMaterial = this.material.clone();
     this.colouredMaterial.color.set(0xffffff);
     this.colouredMaterial.vertexColors = true;
-    this.batches = new RegionBatches((batch) => this.addBatch(batch), (batch) => this.dropBatch(batch));
+    this.batches = new RegionBatches((batch) => this.addBatch(batch), (batch) => this.dropBatch(batch),
+      tiles ? levelColour : regionColour);
     this.wireMaterial = new THREE.MeshBasicMaterial({ color: WIRE_COLOUR, wireframe: true, transparent: true, opacity: 0.35 });
     this.wireframe = false;
     this.regionColours = false;
@@ -138,7 +144,9 @@ export class SceneView {
   // changed and removed. Geometry is rebuilt before the next frame.
   apply(change, regions) {
     this.batches.expectRegions(regions.size);
-    if (change.kind === 'snapshot') {
+    if (this.tiles && (change.kind === 'snapshot' || change.kind === 'delta')) {
+      this.applyTiles(regions);
+    } else if (change.kind === 'snapshot') {
       for (const id of this.batches.ids()) if (!regions.has(id)) this.batches.remove(id);
       for (const [id, region] of regions) this.batches.set(id, region);
     } else if (change.kind === 'delta') {
@@ -148,6 +156,24 @@ export class SceneView {
     this.batches.flush();
     this.invalidate();
     if (!this.fitted && this.batches.batches.length > 0) this.fit();
+  }
+
+  // Every tile held, its cracks towards coarser neighbours closed over the
+  // whole set (tile_assembly.js): a tile whose closed positions did not
+  // change keeps its buffer.
+  applyTiles(regions) {
+    for (const id of this.batches.ids()) {
+      if (!regions.has(id)) this.batches.remove(id), this.shownPositions.delete(id);
+    }
+    const { positions } = closeCracks(regions);
+    const same = (a, b) => a === b || (a && b && a.length === b.length && a.every((x, i) => x === b[i]));
+    for (const [id, region] of regions) {
+      const p = positions.get(id);
+      const shown = this.shownPositions.get(id);
+      if (shown && shown.region === region && same(shown.positions, p)) continue;
+      this.batches.set(id, p === region.positions ? region : { ...region, positions: p });
+      this.shownPositions.set(id, { region, positions: p });
+    }
   }
 
   bounds() {

@@ -17,13 +17,17 @@ import { shallower } from './lod_profiles.js';
 const EDGE_NAMED_BY_ENDS = (1n << 64n) - 1n;
 
 export class DocumentSession {
-  // options: {connection, decode, documentId, profile, onView(change),
-  // onPresence(), onStatus(text), onError(text), onHash(result)}.
+  // options: {connection, decode, documentId, profile, view (a View's
+  // fields: a view-dependent subscription, PROTOCOL.md section 16; null for
+  // a profile), onView(change), onPresence(), onStatus(text),
+  // onError(text), onHash(result)}.
   constructor(options) {
     this.o = options;
     this.connection = options.connection;
     this.documentId = BigInt(options.documentId);
     this.profile = options.profile;
+    this.camera = options.view ?? null; // the latest view sent, for (re)subscribing
+    this.cameraSeq = 0n; // the client_seq of the latest SetView sent
     this.view = new DocumentView(this.documentId, options.decode);
     this.history = new UndoHistory();
     this.latency = new LatencyTracker();
@@ -79,10 +83,30 @@ export class DocumentSession {
   // Subscribing again with another profile replaces the old one (6.1).
   async subscribe(profile) {
     this.profile = profile;
-    const reply = await this.connection.call({
-      subscribe: { document_id: toLong(this.documentId), profile: profileFields(profile) },
-    });
+    const subscribe = { document_id: toLong(this.documentId), profile: profileFields(profile) };
+    if (this.camera) subscribe.view = this.camera;
+    this.cameraSeq = 0n; // the subscription carries the latest camera
+    const reply = await this.connection.call({ subscribe });
     return toBig(reply.message.ack.version);
+  }
+
+  // A view-dependent subscription: the camera moved. No reply unless refused.
+  // False when it could not go now (not subscribed yet): offer it again.
+  setView(view) {
+    if (!this.opened || !this.view.ready) return false;
+    try {
+      this.cameraSeq = BigInt(this.connection.send({ set_view: { document_id: toLong(this.documentId), view } }));
+      this.camera = view;
+      return true;
+    } catch (error) {
+      this.o.onError?.(`set view: ${error.message}`);
+      return false;
+    }
+  }
+
+  // The tiles of the latest camera sent are all here.
+  viewComplete() {
+    return this.camera !== null && this.view.ready && this.view.viewComplete && this.view.viewSeq === this.cameraSeq;
   }
 
   resubscribe(reason) {

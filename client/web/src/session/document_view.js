@@ -28,6 +28,10 @@ export class DocumentView {
     this.gaps = 0;
     this.announcedHash = 0n; // the server's surface hash for `version`
     this.regionBytes = 0;
+    // A view-dependent subscription: the last delta said the tiles of the
+    // view it names (Delta.view_seq, the SetView's client_seq) are all here.
+    this.viewComplete = false;
+    this.viewSeq = 0n;
   }
 
   // Applies a Snapshot or Delta message body ({snapshot} or {delta} of the
@@ -68,6 +72,8 @@ export class DocumentView {
     this.version = version;
     this.announcedHash = toBig(s.surface_hash);
     this.ready = true;
+    this.viewComplete = false;
+    this.viewSeq = 0n;
     return { kind: 'snapshot', regions: this.regions, resync: s.resync };
   }
 
@@ -99,6 +105,8 @@ export class DocumentView {
     for (const id of removed) this.regions.delete(id);
     this.version = to;
     this.announcedHash = toBig(d.surface_hash);
+    this.viewComplete = Boolean(d.view_complete);
+    this.viewSeq = toBig(d.view_seq ?? 0);
     return { kind: 'delta', changed: [...new Set(changed)], removed, delta: d };
   }
 

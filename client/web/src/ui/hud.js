@@ -109,8 +109,13 @@ export class Hud {
   update(facts) {
     const f = this.f;
     setText(f.glance, `v${facts.version}  ${shortCount(facts.triangles)} tris  ${facts.fps >= 0.5 ? `${facts.fps.toFixed(0)} fps` : 'idle'}`);
+    // A view-dependent subscription counts tiles, says whether the camera's
+    // are all here, its tolerance, and whether the view is frozen (X).
+    const regions = facts.views
+      ? `${facts.regions} tiles${facts.views.complete ? '' : ' (loading)'} · ${facts.views.tolerance} px${facts.views.frozen ? ' · frozen' : ''}`
+      : `${facts.regions} regions`;
     setText(f.doc, facts.documentId
-      ? `doc ${facts.documentId}${facts.documentName ? ` “${facts.documentName}”` : ''} · ${facts.regions} regions · ${ROLE_NAMES[facts.role] ?? 'role ' + facts.role}`
+      ? `doc ${facts.documentId}${facts.documentName ? ` “${facts.documentName}”` : ''} · ${regions} · ${ROLE_NAMES[facts.role] ?? 'role ' + facts.role}`
       : 'no document');
     setText(f.latency, facts.latencyMs === null ? 'edit→delta –' : `edit→delta ${facts.latencyMs.toFixed(1)} ms`);
     setText(f.rate, bytesRate(facts.bytesPerSecond));

@@ -12,6 +12,10 @@ export function readPageParams(location) {
     token: fragment.get('token') ?? '',
     name: (query.get('name') ?? 'web viewer').slice(0, 128),
     lod: query.get('lod'),
+    // ?views=1: a view-dependent subscription (docs/WEB_VIEWER.md "Views"),
+    // ?tolerance=PX its screen-space error (0.25..256, default 1).
+    views: query.get('views') === '1',
+    tolerance: Math.min(256, Math.max(0.25, Number(query.get('tolerance') ?? 1) || 1)),
   };
 }
 

@@ -8,6 +8,7 @@
 //
 // The output is deterministic, so re-running it changes nothing unless an
 // encoder changed (then the corpus should follow, and be committed).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -291,6 +292,40 @@ void frames() {
   write("frame_decoder", "server_stream", std::string("\x25\x0c", 2) + server);
 }
 
+// Cameras around the creased cube (view_selection): a far and a near one,
+// an orthographic one, and refused ones (NaN, zero viewport, tolerance 0).
+void views() {
+  auto make = [](double ex, double ey, double ez, double tolerance, bool ortho) {
+    wire::View v;
+    v.mutable_eye()->set_x(ex), v.mutable_eye()->set_y(ey), v.mutable_eye()->set_z(ez);
+    v.mutable_forward()->set_x(0.5 - ex), v.mutable_forward()->set_y(0.5 - ey), v.mutable_forward()->set_z(0.5 - ez);
+    v.mutable_up()->set_y(1);
+    v.set_orthographic(ortho);
+    v.set_fov_y_radians(0.8);
+    v.set_ortho_height(2);
+    v.set_near_distance(0.001);
+    v.set_width(390);
+    v.set_height(844);
+    v.set_tolerance_pixels(tolerance);
+    return v.SerializeAsString();
+  };
+  auto prefixed = [](const std::vector<std::string>& views) {
+    std::string out;
+    for (const std::string& v : views) out += static_cast<char>(v.size()) + v;
+    return out;
+  };
+  write("view_selection", "far_and_near", prefixed({make(0.5, 0.5, 4, 1, false), make(1.2, 1.1, 1.3, 1, false)}));
+  write("view_selection", "orthographic", prefixed({make(3, 2, 1, 2, true)}));
+  wire::View nan;
+  nan.ParseFromString(make(0.5, 0.5, 4, 1, false));
+  nan.mutable_eye()->set_x(std::nan(""));
+  wire::View zero;
+  zero.ParseFromString(make(0.5, 0.5, 4, 1, false));
+  zero.set_width(0);
+  write("view_selection", "refused",
+        prefixed({nan.SerializeAsString(), zero.SerializeAsString(), make(0.5, 0.5, 4, 0, false)}));
+}
+
 }  // namespace
 }  // namespace tessera::fuzz
 
@@ -305,5 +340,6 @@ int main(int argc, char** argv) {
   tessera::fuzz::regions();
   tessera::fuzz::hostSessions();
   tessera::fuzz::frames();
+  tessera::fuzz::views();
   return 0;
 }

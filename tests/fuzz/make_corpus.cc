@@ -298,7 +298,8 @@ void views() {
   auto make = [](double ex, double ey, double ez, double tolerance, bool ortho) {
     wire::View v;
     v.mutable_eye()->set_x(ex), v.mutable_eye()->set_y(ey), v.mutable_eye()->set_z(ez);
-    v.mutable_forward()->set_x(0.5 - ex), v.mutable_forward()->set_y(0.5 - ey), v.mutable_forward()->set_z(0.5 - ez);
+    v.mutable_forward()->set_x(0.5 - ex), v.mutable_forward()->set_y(0.5 - ey),
+        v.mutable_forward()->set_z(0.5 - ez);
     v.mutable_up()->set_y(1);
     v.set_orthographic(ortho);
     v.set_fov_y_radians(0.8);
@@ -314,7 +315,8 @@ void views() {
     for (const std::string& v : views) out += static_cast<char>(v.size()) + v;
     return out;
   };
-  write("view_selection", "far_and_near", prefixed({make(0.5, 0.5, 4, 1, false), make(1.2, 1.1, 1.3, 1, false)}));
+  write("view_selection", "far_and_near",
+        prefixed({make(0.5, 0.5, 4, 1, false), make(1.2, 1.1, 1.3, 1, false)}));
   write("view_selection", "orthographic", prefixed({make(3, 2, 1, 2, true)}));
   wire::View nan;
   nan.ParseFromString(make(0.5, 0.5, 4, 1, false));

@@ -33,7 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     auto view = server::viewFromWire(wireView);
     if (!view.isOk()) {
       checkError(view.status(), "viewFromWire");
-      require(view.status().message().rfind("view: ", 0) == 0, "a refused view's message does not start 'view: '");
+      require(view.status().message().rfind("view: ", 0) == 0,
+              "a refused view's message does not start 'view: '");
       continue;
     }
     const int64_t budget = (views % 3 == 0) ? 20000 : 0;
@@ -54,7 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         require(t.projectedError <= selection->tolerancePixels, "a visible tile is over the tolerance");
     }
     require(area.size() == doc.counts().faces(0), "the tiles do not cover every base face");
-    for (const auto& [face, a] : area) require(std::abs(a - 1.0) < 1e-9, "a base face is covered twice or in part");
+    for (const auto& [face, a] : area)
+      require(std::abs(a - 1.0) < 1e-9, "a base face is covered twice or in part");
     const auto closed = closeCracks(meshes);
     require(closed.size() == meshes.size(), "crack closing lost a tile");
   }

@@ -244,11 +244,19 @@ TEST(ClusterFailover, APausedOwnerWakesUpAndCannotAppend) {
     }
   }
   EXPECT_TRUE(answered) << "the edit sent to the paused owner got no answer";
-  // Moved to node 1, node 0's editor edits again.
+  // Moved to node 1, node 0's editor edits again. Until node 0's monitor
+  // has seen the lost lease and moved the session (a lease period, longer
+  // on a loaded machine), its stale host refuses at once: the attempts are
+  // bounded in time, not in count, which 20 instant refusals once used up.
   std::optional<uint64_t> againVersion;
-  for (int i = 0; i < 20 && !againVersion; ++i) {
+  const auto handover = Clock::now() + std::chrono::seconds(20);
+  while (!againVersion && Clock::now() < handover) {
     auto r = (*stale)->call(testing::smallMove(*doc, rng), 3);
-    if (r.isOk() && r->has_ack()) againVersion = r->ack().version();
+    if (r.isOk() && r->has_ack()) {
+      againVersion = r->ack().version();
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
   }
   ASSERT_TRUE(againVersion.has_value()) << "node 0's editor was not handed over";
   log.ack(*againVersion, "editor@node0");

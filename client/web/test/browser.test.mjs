@@ -48,6 +48,14 @@ after(async () => {
 
 const docUrl = (token, extra = '') => `${base}/?doc=${documentId}${extra}#token=${token}`;
 const ready = (page) => page.waitForSelector('body[data-state=ready]', { timeout: 30000 });
+// Ready and knowing its role on the document: a token granted on one
+// document learns it from its own Presence entry, which may come after the
+// first picture (the HelloAck's role covers all documents only). Editing
+// waits for it, so tests that edit do too.
+async function readyWithRole(page) {
+  await ready(page);
+  await page.waitForFunction(() => window.tesseraViewer.state().role !== 'ROLE_UNSPECIFIED', { timeout: 10000 });
+}
 
 async function screenshot(page) {
   return decodePng(await page.screenshot({ type: 'png' }));
@@ -68,10 +76,7 @@ function differing(png, x0, y0, x1, y1, reference = png.pixel(png.width - 2, png
 
 test('the cube shows, anti-aliased, hashed like the server, with the HUD in its corner', { skip }, async () => {
   const page = await openPage(browser, docUrl(VIEWER));
-  await ready(page);
-  // On a loaded machine the page was once ready before its state carried
-  // the session's role: wait for it.
-  await page.waitForFunction(() => window.tesseraViewer.state().role !== 'ROLE_UNSPECIFIED', { timeout: 10000 });
+  await readyWithRole(page);
   const s = await state(page);
   assert.equal(s.connected, true);
   assert.equal(s.ready, true);
@@ -144,7 +149,7 @@ test('on a phone-sized page the panel starts folded, never covers the model, and
 
 test('a drag edits the document as one undo step; undo and redo come back to the hashes', { skip }, async () => {
   const page = await openPage(browser, docUrl(EDITOR, '&name=dragger'));
-  await ready(page);
+  await readyWithRole(page);
   const s0 = await state(page);
   assert.equal(s0.role, 'ROLE_EDITOR');
   const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
@@ -205,7 +210,7 @@ test('picks travel both ways through presence', { skip }, async () => {
 
 test('C creases the edge of the last two picks, V makes a corner, W and R redraw, the LOD selector resubscribes', { skip }, async () => {
   const page = await openPage(browser, docUrl(EDITOR, '&name=keys'));
-  await ready(page);
+  await readyWithRole(page);
   const click = async (id) => {
     const p = await page.evaluate((i) => window.tesseraViewer.screenPointOfVertex(i), id);
     await page.mouse.click(p.x, p.y);

@@ -9,7 +9,10 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "protocol/tessera.pb.h"
 
 namespace tessera::server {
 
@@ -46,6 +49,25 @@ struct Outgoing {
   uint64_t presenceOf = 0;
   bool presenceFull = false;
 };
+
+// Snapshot parts stay well under any client's frame limit.
+inline constexpr size_t kSnapshotPartBytes = 4u << 20;
+
+// What every part of one snapshot says besides its regions (tessera.proto
+// Snapshot): a profile's, or a view-dependent subscription's first picture.
+struct SnapshotHeader {
+  uint64_t documentId = 0, version = 0;
+  const wire::LodProfile& profile;
+  bool resync = false;
+  uint64_t surfaceHash = 0;  // of every region, all parts applied
+};
+
+// The snapshot's frames: its regions (id and shared encoding, in order) in
+// parts of at most about `partBytes` each, remaining_parts counting down.
+std::vector<std::shared_ptr<const std::string>> encodeSnapshotFrames(
+    const SnapshotHeader& header,
+    const std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>>& regions, size_t partBytes,
+    uint32_t maxFrameBytes);
 
 // The frame of a delta (also used after merging); null when the delta does
 // not fit in `maxFrameBytes`.

@@ -29,9 +29,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Snapshot parts stay well under any client's frame limit.
-constexpr size_t kSnapshotPartBytes = 4u << 20;
-
 }  // namespace
 
 void DocumentHost::onUndecided(std::function<void(Undecided)> handler) {

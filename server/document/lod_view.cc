@@ -98,31 +98,8 @@ std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, ui
     }
     regions.emplace_back(region, cached);
   }
-  std::vector<std::vector<size_t>> parts(1);
-  size_t bytes = 0;
-  for (size_t i = 0; i < regions.size(); ++i) {
-    if (bytes > 0 && bytes + regions[i].second->size() > partBytes) parts.emplace_back(), bytes = 0;
-    parts.back().push_back(i);
-    bytes += regions[i].second->size() + 16;
-  }
-  std::vector<std::shared_ptr<const std::string>> frames;
-  for (size_t p = 0; p < parts.size(); ++p) {
-    wire::ServerMessage m;
-    wire::Snapshot* s = m.mutable_snapshot();
-    s->set_document_id(documentId);
-    s->set_version(context.version);
-    *s->mutable_profile() = view.wireProfile;
-    s->set_remaining_parts(static_cast<uint32_t>(parts.size() - p - 1));
-    s->set_resync(resync);
-    s->set_surface_hash(view.surfaceHash);
-    for (size_t i : parts[p]) {
-      wire::Region* r = s->add_regions();
-      r->set_region_id(regions[i].first);
-      r->set_draco(*regions[i].second);
-    }
-    frames.push_back(frameOf(m, maxFrameBytes));
-  }
-  return frames;
+  return encodeSnapshotFrames({documentId, context.version, view.wireProfile, resync, view.surfaceHash},
+                              regions, partBytes, maxFrameBytes);
 }
 
 }  // namespace tessera::server

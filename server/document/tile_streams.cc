@@ -13,7 +13,6 @@ namespace {
 // large move reach the viewer while the server encodes the rest, and a
 // queue that falls behind merges or drops whole deltas (net/outbox.h).
 constexpr size_t kChunkBytes = 256u << 10;
-constexpr size_t kSnapshotPartBytes = 4u << 20;
 
 }  // namespace
 
@@ -37,28 +36,9 @@ Status TileStreams::subscribe(TileCache& tiles, const std::shared_ptr<Subscriber
     s.surfaceHash += tile.hash;
     roots.emplace_back(key.regionId(), tile.bytes);
   }
-  std::vector<std::vector<size_t>> parts(1);
-  size_t bytes = 0;
-  for (size_t i = 0; i < roots.size(); ++i) {
-    if (bytes > 0 && bytes + roots[i].second->size() > kSnapshotPartBytes) parts.emplace_back(), bytes = 0;
-    parts.back().push_back(i);
-    bytes += roots[i].second->size() + 16;
-  }
-  for (size_t p = 0; p < parts.size(); ++p) {
-    wire::ServerMessage m;
-    wire::Snapshot* snapshot = m.mutable_snapshot();
-    snapshot->set_document_id(documentId_);
-    snapshot->set_version(version);
-    *snapshot->mutable_profile() = profile;
-    snapshot->set_remaining_parts(static_cast<uint32_t>(parts.size() - p - 1));
-    snapshot->set_resync(resync);
-    snapshot->set_surface_hash(s.surfaceHash);
-    for (size_t i : parts[p]) {
-      wire::Region* r = snapshot->add_regions();
-      r->set_region_id(roots[i].first);
-      r->set_draco(*roots[i].second);
-    }
-    who->send({frameOf(m, maxFrameBytes_), nullptr, documentId_});
+  for (auto& frame : encodeSnapshotFrames({documentId_, version, profile, resync, s.surfaceHash}, roots,
+                                          kSnapshotPartBytes, maxFrameBytes_)) {
+    who->send({frame, nullptr, documentId_});
   }
   if (!streams_.count(who->sessionId())) ++stats_.viewSubscribers;
   Stream& stream = streams_[who->sessionId()] = std::move(s);

@@ -297,6 +297,22 @@ bool SparseHierarchy::isGhosted(int l, Index v) const {
   return applies(ends[0]) || applies(ends[1]);
 }
 
+bool SparseHierarchy::edgeChildIsPredicted(int l, Index e) const {
+  const LevelState& state = levels_[l];
+  const Level& m = state.topo.mesh;
+  if (!state.interpolationTags.empty()) {
+    for (Index f : m.edgeFaces[e]) {
+      if (f < 0) continue;
+      for (Index v : m.triangleVertices(f)) {
+        if (state.interpolationTags.count(v) != 0) return false;
+      }
+    }
+  }
+  if (l + 1 >= numLevels()) return true;
+  const Index child = state.topo.childOfEdge.empty() ? kNoIndex : state.topo.childOfEdge[e];
+  return child < 0 || !isReachedByEdit(l + 1, child);
+}
+
 std::vector<Index> SparseHierarchy::ghostRingChildren(int l, Index v) const {
   std::vector<Index> children;
   if (l + 1 >= numLevels() || v < 0) return children;

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <span>
 #include <unordered_map>
@@ -119,6 +120,29 @@ class SparseHierarchy {
   // edits reach a vertex, and past its semi-sharp features, are exact
   // (core/tessellation/tessellation.h).
   bool isReachedByEdit(int l, Index vertex) const { return levels_[l].reached[vertex] != 0; }
+
+  // Whether level l+1's points and rules around the vertex it puts on edge
+  // e of level l are what level l's stencils predict, so that its limit can
+  // be read from level l (core/loop/edge_child_limit.h): no interpolating
+  // vertex among the corners of e's faces (its ghost ring would move that
+  // vertex or its ring) and no edit at level l+1 reaching it. An edit's node
+  // holds every vertex the edit reaches, so a vertex the hierarchy does not
+  // hold is reached by none. The ends of e must be complete.
+  bool edgeChildIsPredicted(int l, Index e) const;
+  const LoopOptions& options() const { return options_; }
+  // The vertices of level l that active edits at level l touch:
+  // `visit(vertex, offset)` with the summed local offset of a moved vertex,
+  // nullopt for a tagged one (its sharpness, an edge's at its first end, or
+  // an interpolating vertex, which shapes level l+1).
+  template <typename Visit>
+  void forEachEditedVertex(int l, Visit&& visit) const {
+    const LevelState& state = levels_[l];
+    for (const auto& [v, offset] : state.offsets) visit(v, std::optional<Vec3>(offset));
+    for (const auto& [v, s] : state.vertexTags) visit(v, std::optional<Vec3>());
+    for (const auto& [v, t] : state.interpolationTags) visit(v, std::optional<Vec3>());
+    for (const auto& [e, s] : state.edgeTags)
+      visit(state.topo.mesh.edgeVertices[e][0], std::optional<Vec3>());
+  }
 
   // The local index of a vertex with a complete ring, or a clear error.
   Expected<Index> completeVertex(VertexId id) const;

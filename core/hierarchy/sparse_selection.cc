@@ -6,20 +6,38 @@
 namespace tessera {
 namespace {
 
-// Faces sharing a vertex with a flagged face, added to the flags. Every
-// vertex of a flagged face must be complete (the nesting in the header).
-void growByOneRing(const SparseLevel& level, Buffer<uint8_t>& faces) {
-  const Level& m = level.mesh;
-  Buffer<uint8_t> grown = faces;
-  for (Index f = 0; f < m.numFaces(); ++f) {
-    if (!faces[f]) continue;
+// Flags the faces sharing a vertex with the faces of `from` (all flagged
+// already) and appends those newly flagged to `added`. Every vertex of a
+// face in `from` must be complete (the nesting in the header).
+void flagRings(const Level& m, const std::vector<Index>& from, Buffer<uint8_t>& faces,
+               std::vector<Index>& added) {
+  for (Index f : from) {
     for (Index v : m.triangleVertices(f)) {
       for (Index g : m.ringFacesOf(v)) {
-        if (g >= 0) grown[g] = 1;
+        if (g >= 0 && !faces[g]) faces[g] = 1, added.push_back(g);
       }
     }
   }
-  faces.swap(grown);
+}
+
+// The local indices of the faces of `level` whose canonical indices are in
+// `ids` (ascending), by one pass over both sorted lists, or by searching
+// when `ids` is much the shorter.
+std::vector<Index> localFaces(const SparseLevel& level, const std::vector<uint64_t>& ids) {
+  std::vector<Index> out;
+  const auto& faceIds = level.faceIds;
+  auto at = faceIds.begin();
+  const bool search = ids.size() * 16 < faceIds.size();
+  for (uint64_t id : ids) {
+    if (search) {
+      at = std::lower_bound(at, faceIds.end(), id);
+    } else {
+      while (at != faceIds.end() && *at < id) ++at;
+    }
+    if (at == faceIds.end()) break;
+    if (*at == id) out.push_back(static_cast<Index>(at - faceIds.begin()));
+  }
+  return out;
 }
 
 // The local index of the ancestor of `face` at `level`, kNoIndex if the
@@ -36,28 +54,47 @@ bool SparseSelection::replaceEditDemand(std::set<FaceId> faces) {
   return true;
 }
 
-int SparseSelection::deepestDemand() const {
-  int deepest = 0;
-  for (FaceId f : demand_) deepest = std::max(deepest, f.level());
-  for (FaceId f : extraDemand_) deepest = std::max(deepest, f.level());
-  return deepest;
+void SparseSelection::hold(FaceId face) {
+  const int l = face.level();
+  deepest_ = std::max(deepest_, l);
+  if (static_cast<int>(held_.size()) < l) held_.resize(l);
+  // Once a level holds the ancestor, every level above holds its own.
+  for (int k = l - 1; k >= 0; --k) {
+    const uint64_t ancestor = face.index() >> (2 * (l - k));
+    const auto& sorted = held_[k].sorted;
+    if (std::binary_search(sorted.begin(), sorted.end(), ancestor)) break;
+    held_[k].pending.push_back(ancestor);
+  }
+}
+
+const std::vector<uint64_t>& SparseSelection::ancestorsAt(int level) const {
+  static const std::vector<uint64_t> kNone;
+  if (level >= static_cast<int>(held_.size())) return kNone;
+  Ancestors& a = held_[level];
+  if (!a.pending.empty()) {
+    std::sort(a.pending.begin(), a.pending.end());
+    const auto middle = static_cast<std::ptrdiff_t>(a.sorted.size());
+    a.sorted.insert(a.sorted.end(), a.pending.begin(), a.pending.end());
+    std::inplace_merge(a.sorted.begin(), a.sorted.begin() + middle, a.sorted.end());
+    a.sorted.erase(std::unique(a.sorted.begin(), a.sorted.end()), a.sorted.end());
+    a.pending.clear();
+  }
+  return a.sorted;
 }
 
 void SparseSelection::select(const SparseLevel& level, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined,
                              Buffer<uint8_t>* editSelected) const {
   const int l = level.depth;
   const Index numFaces = level.mesh.numFaces();
-  auto mark = [&](const std::set<FaceId>& demand, Buffer<uint8_t>& faces) {
-    for (FaceId face : demand) {
-      if (face.level() <= l) continue;
-      const Index a = ancestorAt(level, face);
-      if (a != kNoIndex) faces[a] = 1;
-    }
-  };
   if (editSelected != nullptr) {
     editSelected->assign(numFaces, 0);
-    mark(editDemand_, *editSelected);
-    growByOneRing(level, *editSelected);
+    std::vector<Index> seeds, ring;
+    for (FaceId face : editDemand_) {
+      if (face.level() <= l) continue;
+      const Index a = ancestorAt(level, face);
+      if (a != kNoIndex && !(*editSelected)[a]) (*editSelected)[a] = 1, seeds.push_back(a);
+    }
+    flagRings(level.mesh, seeds, *editSelected, ring);
   }
   if (l < uniformLevel_) {
     selected.assign(numFaces, 1);
@@ -65,11 +102,14 @@ void SparseSelection::select(const SparseLevel& level, Buffer<uint8_t>& selected
     return;
   }
   selected.assign(numFaces, 0);
-  mark(demand_, selected);
-  mark(extraDemand_, selected);
-  growByOneRing(level, selected);
+  std::vector<Index> seeds = localFaces(level, ancestorsAt(l));
+  for (Index f : seeds) selected[f] = 1;
+  std::vector<Index> ring;
+  flagRings(level.mesh, seeds, selected, ring);
   refined = selected;
-  growByOneRing(level, refined);
+  std::vector<Index> outer;
+  seeds.insert(seeds.end(), ring.begin(), ring.end());
+  flagRings(level.mesh, seeds, refined, outer);
 }
 
 bool SparseSelection::ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected,

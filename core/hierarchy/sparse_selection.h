@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <set>
+#include <vector>
 
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_level.h"
@@ -38,18 +39,18 @@ class SparseSelection {
   // A face an edit addresses: held from now on, and an edit node's reason
   // while the edit lasts. Returns whether it was not an edit's demand yet.
   bool demandForEdit(FaceId face) {
-    demand_.insert(face);
+    hold(face);
     return editDemand_.insert(face).second;
   }
   // A face a tessellation refines.
-  void demandForTessellation(FaceId face) { extraDemand_.insert(face); }
+  void demandForTessellation(FaceId face) { hold(face); }
   // The faces the current edits address, after an edit left for good: what
   // the structure grew for the others stays. Returns whether that changed
   // the edits' demand.
   bool replaceEditDemand(std::set<FaceId> faces);
 
   // The deepest level a face is demanded at (0 when none is).
-  int deepestDemand() const;
+  int deepestDemand() const { return deepest_; }
 
   // The selection of `level` (its depth is the level's number): `selected`
   // per face, a node with children; `refined` per face, one the next level
@@ -69,10 +70,23 @@ class SparseSelection {
   static Index markAncestorRing(const SparseLevel& level, FaceId face, Buffer<uint8_t>& editSelected);
 
  private:
+  // What the structure holds is kept per level, as the ancestors there of
+  // every face held deeper: a level's selection is read from its own list,
+  // whose length is at most the level's faces, however many faces below it
+  // were demanded (a view asks for hundreds of thousands).
+  struct Ancestors {
+    std::vector<uint64_t> sorted;   // canonical face indices, ascending, unique
+    std::vector<uint64_t> pending;  // added since, merged into `sorted` when read
+  };
+  void hold(FaceId face);
+  const std::vector<uint64_t>& ancestorsAt(int level) const;
+
   int uniformLevel_ = 0;
-  std::set<FaceId> demand_;       // faces edits address or addressed: what the structure holds
-  std::set<FaceId> editDemand_;   // faces the current edits address: what makes edit nodes
-  std::set<FaceId> extraDemand_;  // faces tessellations refine
+  int deepest_ = 0;
+  // Faces edits address or addressed and faces tessellations refine: what
+  // the structure holds. Mutable: reading a level merges what is pending.
+  mutable std::vector<Ancestors> held_;
+  std::set<FaceId> editDemand_;  // faces the current edits address: what makes edit nodes
 };
 
 }  // namespace tessera

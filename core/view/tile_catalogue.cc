@@ -10,11 +10,10 @@ void TileCatalogue::prepare(std::span<const TileKey> keys) {
   std::vector<FaceId> faces;
   for (const TileKey& key : keys) {
     if (tiles_.count(key) || !tree_.contains(key)) continue;
-    for (const FaceId& f : tree_.facesShown(key)) {
-      faces.push_back(f);
-      // tileBounds reads the next level under each face.
-      if (key.level < doc_.counts().maxLevel()) faces.push_back(FaceId(f.level() + 1, 4 * f.index()));
-    }
+    // tileBounds reads the next level from this one where it can (and
+    // grows the hierarchy itself where it cannot: near edits).
+    const auto shown = tree_.facesShown(key);
+    faces.insert(faces.end(), shown.begin(), shown.end());
   }
   if (!faces.empty()) doc_.refineHierarchy(faces);
 }

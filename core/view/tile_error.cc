@@ -1,7 +1,11 @@
 #include "core/view/tile_error.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <span>
 
+#include "core/loop/edge_child_limit.h"
 #include "core/tessellation/displayed_vertices.h"
 
 namespace tessera {
@@ -18,6 +22,50 @@ BoundingSphere sphereOf(const RegionMesh& mesh) {
   return s;
 }
 
+struct DeepEdits {
+  double offsets = 0;  // summed L1 norms of the local offsets
+  bool tags = false;
+};
+
+// The edits more than one level below level l whose support reaches the
+// faces shown. A vertex of level k >= l + 2 moves the limit surface only
+// within its 2-ring there, which lies inside the faces of level l that share
+// a vertex with the level-l ancestor of a face around it: so an edit counts
+// when that ancestor shares a vertex with a face shown.
+DeepEdits deepEditsNear(const SparseHierarchy& h, int l, std::span<const FaceId> faces) {
+  DeepEdits out;
+  if (l + 2 >= h.numLevels()) return out;
+  const SparseLevel& level = h.level(l);
+  std::vector<uint64_t> near;
+  for (const FaceId& f : faces) {
+    const Index local = level.findFace(f.index());
+    if (local == kNoIndex) continue;
+    for (Index v : level.mesh.triangleVertices(local)) {
+      for (Index g : level.mesh.ringFacesOf(v)) {
+        if (g >= 0) near.push_back(level.faceIds[g]);
+      }
+    }
+  }
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  for (int k = l + 2; k < h.numLevels(); ++k) {
+    const SparseLevel& deep = h.level(k);
+    h.forEachEditedVertex(k, [&](Index v, const std::optional<Vec3>& offset) {
+      for (Index g : deep.mesh.ringFacesOf(v)) {
+        if (g < 0) continue;
+        if (!std::binary_search(near.begin(), near.end(), deep.faceIds[g] >> (2 * (k - l)))) return;
+        if (offset) {
+          out.offsets += std::abs((*offset)[0]) + std::abs((*offset)[1]) + std::abs((*offset)[2]);
+        } else {
+          out.tags = true;
+        }
+        return;
+      }
+    });
+  }
+  return out;
+}
+
 }  // namespace
 
 Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileKey& tile,
@@ -32,14 +80,10 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
     return b;
   }
   const std::vector<FaceId> faces = tree.facesShown(tile);
-  // A face is refined once a face below it is demanded: one child each.
-  std::vector<FaceId> children;
-  children.reserve(faces.size());
-  for (const FaceId& f : faces) children.push_back(FaceId(l + 1, 4 * f.index()));
-  doc.refineHierarchy(children);
   for (int round = 0; round <= kMaxDocumentLevel + 1; ++round) {
     const SparseHierarchy& h = doc.hierarchy();
     const SparseLevel& level = h.level(l);
+    EdgeChildLimits predicted(level.mesh, h.options());
     std::vector<FaceId> growth;
     double worst = 0;
     auto limit = [&](int at, Index v) -> std::optional<Vec3> {
@@ -47,22 +91,39 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
       if (!source) return std::nullopt;
       return h.limitPosition(source->level, source->local);
     };
+    // The next level's vertex on an edge: from this level's points where
+    // they predict it (edge_child_limit.h), from the next level otherwise,
+    // which is then grown under the face (a face refined once one child is
+    // demanded). The choice depends on the document alone, so a tile's
+    // bounds do not depend on what the hierarchy happened to hold.
+    auto middle = [&](const FaceId& f, Index e) -> std::optional<Vec3> {
+      if (h.edgeChildIsPredicted(l, e)) {
+        if (auto p = predicted.limit(e, h.points(l))) return p;
+      }
+      const Index m = l + 1 < h.numLevels() ? level.childOfEdge[e] : kNoIndex;
+      if (m == kNoIndex) {
+        growth.push_back(FaceId(l + 1, 4 * f.index()));
+        return std::nullopt;
+      }
+      return limit(l + 1, m);
+    };
     for (const FaceId& f : faces) {
       const Index local = level.findFace(f.index());
       if (local == kNoIndex)
         return internalError(tile.toString() + ": the hierarchy does not hold " + f.toString());
       for (Index e : level.mesh.triangleEdges(local)) {
-        const Index m = level.childOfEdge[e];
-        if (m == kNoIndex) return internalError(tile.toString() + ": " + f.toString() + " is not refined");
         const auto a = limit(l, level.mesh.edgeVertices[e][0]), c = limit(l, level.mesh.edgeVertices[e][1]);
-        const auto mid = limit(l + 1, m);
+        const auto mid = middle(f, e);
         if (!a || !c || !mid) continue;
         worst = std::max(worst, (*mid - 0.5 * (*a + *c)).norm());
       }
     }
     if (growth.empty()) {
+      const DeepEdits deep = deepEditsNear(h, l, faces);
       b.midpoints = worst;
-      b.error = worst * 4.0 / 3.0;
+      b.deepOffsets = deep.offsets;
+      b.deepTags = deep.tags;
+      b.error = worst * 4.0 / 3.0 + deep.offsets * 14.0 / 3.0;
       b.sphere.radius += b.error;
       return b;
     }

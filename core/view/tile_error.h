@@ -14,6 +14,16 @@
 // there is no next level: the error is that of the tile's parent over 4, the
 // quadratic rate, an estimate (and no view can refine it anyway).
 //
+// Edits more than one level below the tile shape detail that the next level
+// does not show. Let S be the limit surface, S' the one without those moves
+// and D the sum of their offsets' sizes (L1 norms of local offsets, whose
+// frames are orthonormal). Loop's basis functions are non-negative and sum
+// to one, so |S - S'| <= D; the flat tile and its midpoints move by at most
+// D too. So the error is 4/3 (m + 2D) + 2D = 4/3 m + 14/3 D, with m the
+// midpoint departure measured on S. Tags that deep change the rules, not
+// the points: no such bound, and a view refines the tile instead
+// (docs/VIEWS.md "The error of a tile").
+//
 // The sphere holds the tile's vertices, grown by its error.
 #pragma once
 
@@ -28,10 +38,19 @@ struct TileBounds {
   BoundingSphere sphere;
   double error = 0;      // world units, as stated above
   double midpoints = 0;  // the largest midpoint departure itself
+  // Edits more than one level below the tile, near it: the summed size of
+  // their offsets, in the error as stated above; and whether a tag is among
+  // them, whose effect has no such bound (a view refines the tile while it
+  // is visible).
+  double deepOffsets = 0;
+  bool deepTags = false;
 };
 
-// `mesh` is the tile's (buildTile). Grows the hierarchy to the next level
-// under the tile. `parentError` serves the deepest level only.
+// `mesh` is the tile's (buildTile). The next level's vertices are read from
+// the tile's level where its stencils predict them (no edit, tag or ghost
+// ring reaches them, no semi-sharp edge: core/loop/edge_child_limit.h);
+// elsewhere the hierarchy grows to the next level under the tile.
+// `parentError` serves the deepest level only.
 Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileKey& tile,
                                 const RegionMesh& mesh, double parentError = 0);
 

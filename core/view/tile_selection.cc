@@ -54,7 +54,8 @@ Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, do
     SelectedTile s{key, !view.outside(tile->bounds.sphere), 0,
                    dot(tile->bounds.sphere.centre - view.eye, view.forward.normalized())};
     s.projectedError = view.projectedError(tile->bounds.error, tile->bounds.sphere);
-    if (s.visible && s.projectedError > tolerance) {
+    // A tag deep under a visible tile has no error bound: refine.
+    if (s.visible && (s.projectedError > tolerance || tile->bounds.deepTags)) {
       auto children = tiles.tree().children(key);
       if (!children.empty()) {
         next.insert(next.end(), children.begin(), children.end());

@@ -54,8 +54,7 @@ Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, do
     SelectedTile s{key, !view.outside(tile->bounds.sphere), 0,
                    dot(tile->bounds.sphere.centre - view.eye, view.forward.normalized())};
     s.projectedError = view.projectedError(tile->bounds.error, tile->bounds.sphere);
-    // A tag deep under a visible tile has no error bound: refine.
-    if (s.visible && (s.projectedError > tolerance || tile->bounds.deepTags)) {
+    if (refinesTile(view, tile->bounds, tolerance)) {
       auto children = tiles.tree().children(key);
       if (!children.empty()) {
         next.insert(next.end(), children.begin(), children.end());
@@ -69,6 +68,12 @@ Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, do
 }
 
 }  // namespace
+
+bool refinesTile(const View& view, const TileBounds& bounds, double tolerancePixels) {
+  if (view.outside(bounds.sphere)) return false;
+  // A tag deep under a visible tile has no error bound (tile_error.h).
+  return bounds.deepTags || view.projectedError(bounds.error, bounds.sphere) > tolerancePixels;
+}
 
 Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget) {
   const int64_t budgets[] = {budget};

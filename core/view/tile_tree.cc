@@ -44,6 +44,16 @@ TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, in
     t.clusters_.push_back(l == 0 ? BaseFaceClusters::build(base, clusterSize(0))
                                  : BaseFaceClusters::buildWithin(base, clusterSize(l), t.clusters_.back()));
   }
+  for (size_t l = 0; l + 1 < t.clusters_.size(); ++l) {
+    const BaseFaceClusters& here = t.clusters_[l];
+    const BaseFaceClusters& there = t.clusters_[l + 1];
+    auto& seeds = t.childSeeds_.emplace_back(here.numClusters());
+    for (uint32_t c = 0; c < static_cast<uint32_t>(here.numClusters()); ++c) {
+      for (int f : here.facesOf(c)) {
+        if (there.seedOf(there.clusterOf(f)) == f) seeds[c].push_back(f);
+      }
+    }
+  }
   return t;
 }
 
@@ -61,13 +71,8 @@ std::vector<TileKey> TileTree::children(const TileKey& tile) const {
   const int next = tile.level + 1;
   if (next <= kClusterLevels) {
     // The clusters of the next level inside this one: those of its faces.
-    const BaseFaceClusters& here = clusters_[tile.level];
-    const BaseFaceClusters& there = clusters_[next];
-    const uint32_t mine = here.clusterOf(static_cast<int>(FaceId::fromPacked(tile.face).index()));
-    for (int f : here.facesOf(mine)) {
-      const uint32_t c = there.clusterOf(f);
-      if (there.seedOf(c) == f) out.push_back({next, FaceId(0, static_cast<uint64_t>(f)).packed()});
-    }
+    const uint32_t mine = clusters_[tile.level].clusterOf(static_cast<int>(FaceId::fromPacked(tile.face).index()));
+    for (int f : childSeeds_[tile.level][mine]) out.push_back({next, FaceId(0, static_cast<uint64_t>(f)).packed()});
     return out;
   }
   for (const FaceId& f : rootFaces(tile)) {

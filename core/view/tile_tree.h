@@ -68,6 +68,9 @@ class TileTree {
   int maxLevel_ = 0;
   LevelCounts counts_{0, 0, 0, 0};
   std::vector<BaseFaceClusters> clusters_;  // levels 0..min(4, maxLevel)
+  // Per cluster level below the deepest, per cluster: its children's seed
+  // faces (a selection asks for them at every step of every view).
+  std::vector<std::vector<std::vector<int>>> childSeeds_;
 };
 
 }  // namespace tessera

@@ -50,6 +50,9 @@ struct ServerStats {
   std::atomic<int64_t> tileCacheBytes{0};
   std::atomic<int64_t> viewsReceived{0};
   std::atomic<int64_t> viewsApplied{0};
+  // View subscribers an edit reached no tile of: sent the new version
+  // without choosing their tiles again.
+  std::atomic<int64_t> viewsUnchangedByEdits{0};
   std::atomic<int64_t> viewSubscribers{0};
   // Latencies (histograms for /metrics): an edit from being applied to its
   // durable ack (the journal commit), a view's tessellation build or

@@ -30,6 +30,13 @@ Expected<std::vector<TileSelection>> TileCache::selectForEach(std::span<const Vi
   return selections;
 }
 
+Expected<TileBounds> TileCache::bounds(const TileKey& key) {
+  auto tile = catalogue_.get(key);
+  countBuilt();
+  if (!tile.isOk()) return tile.status();
+  return (*tile)->bounds;
+}
+
 Expected<EncodedTile> TileCache::encoded(const TileKey& key, uint64_t version) {
   auto found = entries_.find(key);
   if (found != entries_.end()) {

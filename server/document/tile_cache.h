@@ -35,6 +35,8 @@ class TileCache {
   // round of camera moves asks for every subscriber.
   Expected<std::vector<TileSelection>> selectForEach(std::span<const View> views,
                                                      std::span<const int64_t> budgets);
+  // A tile's bounds at the document's state, built if an edit forgot them.
+  Expected<TileBounds> bounds(const TileKey& key);
   // The tile encoded at the document's state: cached, or built (if its mesh
   // was released) and encoded once now; `version` goes into its header.
   Expected<EncodedTile> encoded(const TileKey& key, uint64_t version);

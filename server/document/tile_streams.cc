@@ -1,5 +1,6 @@
 #include "server/document/tile_streams.h"
 
+#include <algorithm>
 #include <set>
 
 #include "server/base/log.h"
@@ -13,6 +14,11 @@ namespace {
 // large move reach the viewer while the server encodes the rest, and a
 // queue that falls behind merges or drops whole deltas (net/outbox.h).
 constexpr size_t kChunkBytes = 256u << 10;
+
+// Views applied in one turn of the document's queue: a round of a hundred
+// moving cameras would otherwise hold it for tens of milliseconds while
+// edits wait behind (docs/VIEWS.md "The server").
+constexpr size_t kViewsPerTurn = 8;
 
 }  // namespace
 
@@ -97,9 +103,18 @@ void TileStreams::moveEach(TileCache& tiles, const std::vector<Stream*>& moving,
 void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval,
                            uint64_t version) {
   dropGone();
-  std::vector<Stream*> due;
+  std::vector<Stream*> candidates;
   for (auto& [session, s] : streams_) {
-    if (!s.pending || now < s.lastApplied + interval) continue;
+    if (s.pending && now >= s.lastApplied + interval) candidates.push_back(&s);
+  }
+  // The longest waiting first, at most kViewsPerTurn of them: the rest go
+  // in the next turn, after the edits that came meanwhile.
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Stream* a, const Stream* b) { return a->lastApplied < b->lastApplied; });
+  if (candidates.size() > kViewsPerTurn) candidates.resize(kViewsPerTurn);
+  std::vector<Stream*> due;
+  for (Stream* stream : candidates) {
+    Stream& s = *stream;
     s.view = *s.pending;
     s.viewSeq = s.pendingSeq;
     s.pending.reset();
@@ -113,14 +128,75 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
 void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion,
                             uint64_t toVersion, uint64_t authorSession, uint64_t editId) {
   dropGone();
-  std::vector<Stream*> all;
+  // A camera whose choice the edits do not change gets only its held tiles
+  // they reached; the others choose again, in one walk. A walk whose budget
+  // raised the tolerance read more (each raised tolerance walks again):
+  // those always choose. (Tiles' triangle counts do not change with edits,
+  // so a selection within its budget stays within it.)
+  std::vector<Stream*> moving, unchanged;
   for (auto& [session, s] : streams_) {
     for (const TileKey& key : reached) {
       if (auto held = s.held.find(key); held != s.held.end()) held->second.stale = true;
     }
-    all.push_back(&s);
+    auto keeps = s.toleranceRaised ? Expected<bool>(false) : keepsSelection(tiles, s, reached);
+    (keeps.isOk() && *keeps ? unchanged : moving).push_back(&s);
   }
-  moveEach(tiles, all, fromVersion, toVersion, authorSession, editId, false);
+  moveEach(tiles, moving, fromVersion, toVersion, authorSession, editId, false);
+  for (Stream* s : unchanged) {
+    if (Status sent = resendStale(tiles, *s, reached, fromVersion, toVersion, authorSession, editId);
+        !sent.isOk()) {
+      logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", sent.message()}});
+    }
+  }
+  stats_.viewsUnchangedByEdits += static_cast<int64_t>(unchanged.size());
+}
+
+Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s, std::span<const TileKey> reached) {
+  for (const TileKey& key : reached) {
+    const bool shown = s.held.count(key) != 0;
+    const bool refined = !shown && std::binary_search(s.refined.begin(), s.refined.end(), key);
+    if (!shown && !refined) continue;  // the walk did not read it
+    TESSERA_ASSIGN_OR_RETURN(TileBounds bounds, tiles.bounds(key));
+    const bool refines = refinesTile(s.view, bounds, s.view.tolerancePixels) && !tiles.tree().children(key).empty();
+    if (refines != refined) return false;
+  }
+  return true;
+}
+
+Status TileStreams::resendStale(TileCache& tiles, Stream& s, std::span<const TileKey> reached,
+                                uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession, uint64_t editId) {
+  auto start = [&](uint64_t from) {
+    DeltaContent d;
+    d.documentId = documentId_;
+    d.viewSeq = s.viewSeq;
+    d.fromVersion = from;
+    d.toVersion = toVersion;
+    d.authorSession = authorSession;
+    d.editId = editId;
+    return d;
+  };
+  DeltaContent delta = start(fromVersion);
+  size_t bytes = 0;
+  for (const TileKey& key : reached) {
+    auto found = s.held.find(key);
+    if (found == s.held.end() || !found->second.stale) continue;
+    Held& held = found->second;
+    TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(key, toVersion));
+    s.surfaceHash += tile.hash - held.hash;
+    held = {tile.hash, false};
+    delta.regions.push_back({key.regionId(), tile.bytes, true});
+    bytes += tile.bytes->size();
+    if (bytes >= kChunkBytes) {
+      delta.surfaceHash = s.surfaceHash;
+      send(s, std::move(delta));
+      delta = start(toVersion);
+      bytes = 0;
+    }
+  }
+  delta.surfaceHash = s.surfaceHash;
+  delta.viewComplete = true;
+  send(s, std::move(delta));
+  return Status::ok();
 }
 
 void TileStreams::forgetAllTiles() {
@@ -208,6 +284,14 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
   // Nothing should be left waiting: the wanted tiles cover the surface.
   for (const auto& [leaving, count] : waiting)
     if (count > 0) drop(leaving);
+  std::vector<TileKey> refined;
+  for (const SelectedTile& t : target.tiles) {
+    for (TileKey a = t.key; a.level > 0;) refined.push_back(a = tree.parent(a));
+  }
+  std::sort(refined.begin(), refined.end());
+  refined.erase(std::unique(refined.begin(), refined.end()), refined.end());
+  s.refined = std::move(refined);
+  s.toleranceRaised = target.tolerancePixels > s.view.tolerancePixels;
   // The last delta says the view is complete; a move that changed nothing
   // sends none, but a new subscription and an edit always end with one.
   if (!delta.regions.empty() || !delta.removed.empty() || sentAny || fromVersion != toVersion || announce) {

@@ -51,7 +51,9 @@ class TileStreams {
   void setPending(uint64_t session, const View& view, uint64_t clientSeq);
   // When the earliest waiting view is due, if one waits.
   std::optional<Clock::time_point> nextDue(Clock::duration interval) const;
-  // Applies every waiting view that is due at `now`: the tiles that changed
+  // Applies the waiting views that are due at `now`, the longest waiting
+  // first and a few per call (the caller calls again while nextDue says
+  // one is due, letting other work in between): the tiles that changed
   // go to its subscriber as deltas at `version`, the last complete and
   // naming the SetView (even when nothing changed: the client learns its
   // view was applied).
@@ -76,6 +78,11 @@ class TileStreams {
     View view;
     int64_t budget = 0;
     std::map<TileKey, Held> held;
+    // The ancestors of the tiles it selected last, sorted: with those, every
+    // tile its camera's walk read (tile_selection.h).
+    std::vector<TileKey> refined;
+    // Its budget raised the tolerance (tile_selection.h): the walk read more.
+    bool toleranceRaised = false;
     uint64_t surfaceHash = 0;  // the sum of held tiles' hashes (PROTOCOL 6.5)
     std::optional<View> pending;
     uint64_t pendingSeq = 0, viewSeq = 0;  // SetView client_seqs: waiting, and the view applied
@@ -87,6 +94,14 @@ class TileStreams {
   Status moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
                 uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce = false);
   void send(Stream& s, DeltaContent delta);
+  // Whether the edits that reached `reached` leave `s`'s choice of tiles as
+  // it was: every reached tile its walk read keeps its decision under its
+  // new bounds (it stays refined, or stays shown).
+  Expected<bool> keepsSelection(TileCache& tiles, const Stream& s, std::span<const TileKey> reached);
+  // Sends `s` its held tiles that the edits reached (`reached`), again, in
+  // deltas from `fromVersion` to `toVersion`, the last complete.
+  Status resendStale(TileCache& tiles, Stream& s, std::span<const TileKey> reached, uint64_t fromVersion,
+                     uint64_t toVersion, uint64_t authorSession, uint64_t editId);
   // Chooses again for every stream of `moving` in one walk, then moves each.
   void moveEach(TileCache& tiles, const std::vector<Stream*>& moving, uint64_t fromVersion,
                 uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce);

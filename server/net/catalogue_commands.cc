@@ -129,6 +129,7 @@ wire::ServerMessage serverStats(const ServerStats& stats, store::Store& store, c
   add("tile_cache_bytes", static_cast<double>(s.tileCacheBytes.load()));
   add("views_received", static_cast<double>(s.viewsReceived.load()));
   add("views_applied", static_cast<double>(s.viewsApplied.load()));
+  add("views_unchanged_by_edits", static_cast<double>(s.viewsUnchangedByEdits.load()));
   add("view_subscribers", static_cast<double>(s.viewSubscribers.load()));
   if (!config.cluster.empty()) {
     add("cluster_node", static_cast<double>(s.clusterNode.load()));

@@ -71,8 +71,10 @@ std::vector<TileKey> TileTree::children(const TileKey& tile) const {
   const int next = tile.level + 1;
   if (next <= kClusterLevels) {
     // The clusters of the next level inside this one: those of its faces.
-    const uint32_t mine = clusters_[tile.level].clusterOf(static_cast<int>(FaceId::fromPacked(tile.face).index()));
-    for (int f : childSeeds_[tile.level][mine]) out.push_back({next, FaceId(0, static_cast<uint64_t>(f)).packed()});
+    const uint32_t mine =
+        clusters_[tile.level].clusterOf(static_cast<int>(FaceId::fromPacked(tile.face).index()));
+    for (int f : childSeeds_[tile.level][mine])
+      out.push_back({next, FaceId(0, static_cast<uint64_t>(f)).packed()});
     return out;
   }
   for (const FaceId& f : rootFaces(tile)) {

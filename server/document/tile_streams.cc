@@ -151,20 +151,23 @@ void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, 
   stats_.viewsUnchangedByEdits += static_cast<int64_t>(unchanged.size());
 }
 
-Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s, std::span<const TileKey> reached) {
+Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,
+                                           std::span<const TileKey> reached) {
   for (const TileKey& key : reached) {
     const bool shown = s.held.count(key) != 0;
     const bool refined = !shown && std::binary_search(s.refined.begin(), s.refined.end(), key);
     if (!shown && !refined) continue;  // the walk did not read it
     TESSERA_ASSIGN_OR_RETURN(TileBounds bounds, tiles.bounds(key));
-    const bool refines = refinesTile(s.view, bounds, s.view.tolerancePixels) && !tiles.tree().children(key).empty();
+    const bool refines =
+        refinesTile(s.view, bounds, s.view.tolerancePixels) && !tiles.tree().children(key).empty();
     if (refines != refined) return false;
   }
   return true;
 }
 
 Status TileStreams::resendStale(TileCache& tiles, Stream& s, std::span<const TileKey> reached,
-                                uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession, uint64_t editId) {
+                                uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession,
+                                uint64_t editId) {
   auto start = [&](uint64_t from) {
     DeltaContent d;
     d.documentId = documentId_;

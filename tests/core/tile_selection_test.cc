@@ -19,6 +19,7 @@
 #include "core/io/mesh_import.h"
 #include "core/view/tile_assembly.h"
 #include "core/view/tile_selection.h"
+#include "support/procedural_meshes.h"
 #include "support/test_meshes.h"
 #include "support/tile_gaps.h"
 
@@ -123,6 +124,96 @@ TEST(TileSelection, RandomCamerasGetAWatertightSurfaceWithinTheirTolerance) {
   EXPECT_GT(mixedLevels, 6) << "most cameras see several levels at once";
   EXPECT_GT(crackedWithoutClosing, 0);
   EXPECT_GT(hidden, 0) << "some cameras see part of the surface only";
+}
+
+// Whether the edge between two vertices of level l (packed ids) lies on the
+// surface's boundary: it is a half of a half ... of a boundary base edge
+// (canonical edge numbering, core/hierarchy/ids.h: a level's first 2 E
+// edges are the halves of the parent's E edges).
+bool onSurfaceBoundary(const Document& doc, int l, uint64_t a, uint64_t b) {
+  auto edge = doc.edgeBetween(VertexId(l, VertexId::fromPacked(a).index()),
+                              VertexId(l, VertexId::fromPacked(b).index()));
+  if (!edge.isOk()) return false;
+  uint64_t e = edge->index();
+  for (int k = l; k > 0; --k) {
+    if (e >= 2 * doc.counts().edges(k - 1)) return false;  // inside a parent face
+    e /= 2;
+  }
+  return doc.hierarchy().level(0).mesh.edgeFaces[static_cast<Index>(e)][1] == kNoIndex;
+}
+
+// On open surfaces the assembled tiles leave no gap but the surface's own
+// boundary, and closing the cracks never moves a vertex on that boundary:
+// a run of boundary vertices between two a neighbour shares is not a finer
+// copy of the neighbour's edge (docs/VIEWS.md "Assembling tiles").
+TEST(TileSelection, OpenSurfacesAssembleWithoutGapsAndKeepTheirBoundary) {
+  std::vector<Model> models;
+  for (const testing::TestMesh& mesh : {testing::withJitter(testing::openGrid(16, 12), 0.05, 3),
+                                        testing::withJitter(testing::diskWithPole(9), 0.03, 4)}) {
+    auto doc = Document::create(mesh.topology, mesh.points, {.maxLevel = 6});
+    ASSERT_TRUE(doc.isOk());
+    models.push_back(model(mesh.name, std::move(*doc)));
+  }
+  std::mt19937 rng(23);
+  int64_t boundaryEdges = 0, mixedLevels = 0, closedCracks = 0;
+  for (Model& m : models) {
+    TileCatalogue catalogue(m.doc);
+    for (int camera = 0; camera < 16; ++camera) {
+      View view = camera % 2 ? randomView(m, rng, 390, 844) : randomView(m, rng, 1920, 1080);
+      view.tolerancePixels = camera % 4 < 2 ? 1 : 4;
+      const std::string where = m.name + " camera " + std::to_string(camera);
+      auto s = selectTiles(view, catalogue);
+      ASSERT_TRUE(s.isOk()) << where << ": " << s.status().message();
+      std::vector<const RegionMesh*> meshes;
+      std::vector<int> levels;
+      for (const SelectedTile& t : s->tiles) {
+        auto tile = catalogue.get(t.key);
+        ASSERT_TRUE(tile.isOk());
+        meshes.push_back(&(*tile)->mesh);
+        levels.push_back(t.key.level);
+      }
+      if (std::set<int>(levels.begin(), levels.end()).size() > 1) ++mixedLevels;
+      int64_t moved = 0;
+      const auto closed = closeCracks(meshes, &moved);
+      closedCracks += moved;
+      // Per tile, the edges on the surface's boundary, and none of their
+      // vertices moved.
+      for (size_t i = 0; i < meshes.size(); ++i) {
+        const RegionMesh& mesh = *meshes[i];
+        for (const auto& t : mesh.triangles) {
+          for (int k = 0; k < 3; ++k) {
+            const int p = t[k], q = t[(k + 1) % 3];
+            if (!onSurfaceBoundary(m.doc, levels[i], mesh.vertexIds[p], mesh.vertexIds[q])) continue;
+            ++boundaryEdges;
+            EXPECT_EQ(closed[i][p], mesh.positions[p]) << where << ": a boundary vertex moved";
+            EXPECT_EQ(closed[i][q], mesh.positions[q]) << where << ": a boundary vertex moved";
+          }
+        }
+      }
+      // One boundary test per tile: tile i's edges are of level levels[i].
+      std::map<std::pair<uint64_t, uint64_t>, bool> boundary;
+      for (size_t i = 0; i < meshes.size(); ++i) {
+        for (const auto& t : meshes[i]->triangles) {
+          for (int k = 0; k < 3; ++k) {
+            uint64_t a = meshes[i]->vertexIds[t[k]], b = meshes[i]->vertexIds[t[(k + 1) % 3]];
+            if (a > b) std::swap(a, b);
+            boundary.emplace(std::pair(a, b), onSurfaceBoundary(m.doc, levels[i], a, b));
+          }
+        }
+      }
+      const auto isBoundary = [&](uint64_t a, uint64_t b) {
+        return boundary.at({std::min(a, b), std::max(a, b)});
+      };
+      EXPECT_EQ(testing::unmatchedEdges(meshes, closed, m.radius, isBoundary), 0)
+          << where << ", " << s->tiles.size() << " tiles";
+    }
+  }
+  std::printf(
+      "[ measured ] open surfaces: %lld tile edges on the boundary, %lld vertices moved onto coarser edges\n",
+      static_cast<long long>(boundaryEdges), static_cast<long long>(closedCracks));
+  EXPECT_GT(boundaryEdges, 100);
+  EXPECT_GT(mixedLevels, 8) << "most cameras see several levels at once";
+  EXPECT_GT(closedCracks, 0);
 }
 
 // Many views in one walk (a server choosing for every viewer at once) choose

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -23,8 +24,12 @@ inline Vec3 max(const Vec3& a, const Vec3& b) {
 
 // Boundary edges of the assembled tiles that lie on no other tile's
 // boundary edge: gaps. Segments are indexed in a grid of cells.
+// `onSurfaceBoundary(a, b)`, when given, names the tile edges (by their
+// vertices' packed ids) that lie on the surface's own boundary: those have
+// no other tile to meet and are not gaps.
 inline int64_t unmatchedEdges(const std::vector<const RegionMesh*>& tiles,
-                              const std::vector<std::vector<Vec3>>& positions, double scale) {
+                              const std::vector<std::vector<Vec3>>& positions, double scale,
+                              const std::function<bool(uint64_t, uint64_t)>& onSurfaceBoundary = nullptr) {
   struct Segment {
     Vec3 a, b;
     size_t tile;
@@ -43,8 +48,10 @@ inline int64_t unmatchedEdges(const std::vector<const RegionMesh*>& tiles,
         u.second = {p, q};
       }
     }
-    for (const auto& [e, u] : uses)
-      if (u.first == 1) segments.push_back({positions[i][u.second[0]], positions[i][u.second[1]], i});
+    for (const auto& [e, u] : uses) {
+      if (u.first != 1 || (onSurfaceBoundary && onSurfaceBoundary(e.first, e.second))) continue;
+      segments.push_back({positions[i][u.second[0]], positions[i][u.second[1]], i});
+    }
   }
   const double cell = scale / 64;
   auto key = [&](const Vec3& p) {

@@ -87,6 +87,8 @@ async function main() {
     onWireframe: (on) => view.setWireframe(on),
     onRegionColours: (on) => view.setRegionColours(on),
     onLevel: (delta) => { editor.setLevel(editor.level + delta); refreshMarkers(); },
+    // A new tolerance is a new view: sent like a camera move.
+    onTolerance: (px) => { params.tolerance = px; offerView(); },
   });
   view.reservedTop = () => hud.coveredTop() + 8;
 

@@ -309,6 +309,27 @@ test('with ?views=1 the page loads coarse first, then the tiles its camera needs
   await page.waitForFunction((t) => window.tesseraViewer.state().tiles === t, { timeout: 30000 }, whole.tiles);
   await complete(page);
   assert.equal((await state(page)).surfaceHash, whole.surfaceHash);
+  // The panel's tolerance: from 1 to 8 pixels (the slider's log2 is 3),
+  // fewer triangles, and the server's hash again; back to 1, the first set.
+  const setTolerance = (log2) => page.evaluate((v) => {
+    const slider = document.querySelector('[data-f="tolerance"]');
+    slider.value = String(v);
+    slider.dispatchEvent(new Event('input'));
+  }, log2);
+  assert.equal(await page.$eval('[data-f="toleranceRow"]', (e) => e.hidden), false, 'the panel has the tolerance');
+  await setTolerance(3);
+  await page.waitForFunction((t) => window.tesseraViewer.state().tiles !== t, { timeout: 30000 }, whole.tiles);
+  await complete(page);
+  const coarser = await state(page);
+  console.log(`views: at 8 px ${coarser.triangles} triangles ${JSON.stringify(coarser.tileLevels)}`);
+  assert.ok(coarser.triangles < whole.triangles, 'a larger tolerance shows fewer triangles');
+  // The panel refreshes four times a second.
+  await page.waitForFunction(() => document.querySelector('[data-f="toleranceValue"]').textContent === '8 px',
+    { timeout: 5000 });
+  await setTolerance(0);
+  await page.waitForFunction((t) => window.tesseraViewer.state().tiles === t, { timeout: 30000 }, whole.tiles);
+  await complete(page);
+  assert.equal((await state(page)).surfaceHash, whole.surfaceHash);
   assert.deepEqual(page.problems, []);
   await page.close();
 });

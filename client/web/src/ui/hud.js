@@ -45,7 +45,7 @@ function setClass(element, name) {
 }
 
 export class Hud {
-  // handlers: {onPreset(name), onWireframe(on), onRegionColours(on), onLevel(delta)}
+  // handlers: {onPreset(name), onWireframe(on), onRegionColours(on), onLevel(delta), onTolerance(px)}
   constructor(root, handlers) {
     this.root = root;
     this.h = handlers;
@@ -60,6 +60,10 @@ export class Hud {
         <div class="hud-row hud-controls">
           <label>LOD <select data-f="preset"></select></label>
           <span class="hud-level">level <button data-f="down" aria-label="coarser edit level">−</button><b data-f="level"></b><button data-f="up" aria-label="finer edit level">+</button></span>
+        </div>
+        <div class="hud-row hud-controls" data-f="toleranceRow" hidden>
+          <label>tolerance <input type="range" data-f="tolerance" min="-2" max="5" step="0.25" aria-label="screen-space error in pixels"></label>
+          <span data-f="toleranceValue"></span>
         </div>
         <div class="hud-row hud-controls">
           <label><input type="checkbox" data-f="wire"> wire <kbd>W</kbd></label>
@@ -85,6 +89,9 @@ export class Hud {
     this.f.preset.addEventListener('change', () => this.h.onPreset(this.f.preset.value));
     this.f.wire.addEventListener('change', () => this.h.onWireframe(this.f.wire.checked));
     this.f.colours.addEventListener('change', () => this.h.onRegionColours(this.f.colours.checked));
+    // A view's tolerance on a log scale, 0.25 to 32 pixels (the server
+    // accepts 0.25 to 256; past 32 a phone's whole model is one tile).
+    this.f.tolerance.addEventListener('input', () => this.h.onTolerance(2 ** Number(this.f.tolerance.value)));
     this.f.down.addEventListener('click', () => this.h.onLevel(-1));
     this.f.up.addEventListener('click', () => this.h.onLevel(1));
     root.querySelector('.hud-fold').addEventListener('click', () => this.toggle());
@@ -130,6 +137,14 @@ export class Hud {
       setClass(f.hash, `hud-row ${facts.hash.matches ? 'hud-good' : 'hud-bad'}`);
     }
     if (f.preset.value !== facts.preset && document.activeElement !== f.preset) f.preset.value = facts.preset;
+    // A view-dependent subscription has a tolerance, not a preset.
+    if (f.toleranceRow.hidden !== !facts.views) f.toleranceRow.hidden = !facts.views;
+    if (f.preset.disabled !== Boolean(facts.views)) f.preset.disabled = Boolean(facts.views);
+    if (facts.views) {
+      const slider = String(Math.log2(facts.views.tolerance));
+      if (f.tolerance.value !== slider && document.activeElement !== f.tolerance) f.tolerance.value = slider;
+      setText(f.toleranceValue, `${facts.views.tolerance} px`);
+    }
     if (f.wire.checked !== facts.wireframe) f.wire.checked = facts.wireframe;
     if (f.colours.checked !== facts.regionColours) f.colours.checked = facts.regionColours;
     setText(f.level, String(facts.level));

@@ -165,10 +165,5 @@ int main(int argc, char** argv) {
   printMemory("uniform display", in.doc->hierarchy().stats());
   reportAdaptiveMemory(in);
 
-  benchmark::Initialize(&argc, argv);
-  tessera::bench::RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.printRatios();
-  benchmark::Shutdown();
-  return 0;
+  return tessera::bench::runWithRatios(argc, argv);
 }

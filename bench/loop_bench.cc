@@ -184,10 +184,5 @@ int main(int argc, char** argv) {
   }
   in.osdTagged = std::make_unique<oracle::OsdInput>(in.tagged);
 
-  benchmark::Initialize(&argc, argv);
-  tessera::bench::RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.printRatios();
-  benchmark::Shutdown();
-  return 0;
+  return tessera::bench::runWithRatios(argc, argv);
 }

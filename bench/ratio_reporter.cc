@@ -34,4 +34,13 @@ int RatioReporter::printRatios() const {
   return pairs;
 }
 
+int runWithRatios(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  RatioReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  reporter.printRatios();
+  benchmark::Shutdown();
+  return 0;
+}
+
 }  // namespace tessera::bench

@@ -20,4 +20,8 @@ class RatioReporter : public benchmark::ConsoleReporter {
   std::map<std::string, double> realTimeNs_;
 };
 
+// Runs the registered benchmarks with a RatioReporter (Google Benchmark's
+// flags from argv), prints the ratios, and returns main()'s exit code.
+int runWithRatios(int argc, char** argv);
+
 }  // namespace tessera::bench

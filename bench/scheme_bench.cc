@@ -123,10 +123,5 @@ int main(int argc, char** argv) {
   for (const auto& p : in.mesh.points) in.osdPoints.push_back(OsdPoint::from(p));
   in.osd = std::make_unique<oracle::OsdPolyInput>(in.mesh.topology);
 
-  benchmark::Initialize(&argc, argv);
-  tessera::bench::RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.printRatios();
-  benchmark::Shutdown();
-  return 0;
+  return tessera::bench::runWithRatios(argc, argv);
 }

@@ -153,10 +153,5 @@ int main(int argc, char** argv) {
   in.osd = std::make_unique<oracle::OsdInput>(BaseTopology::fromBaseMesh(*mesh));
   for (const Vec3& p : mesh->positions()) in.osdPoints.push_back(oracle::OsdPoint::from(p));
 
-  benchmark::Initialize(&argc, argv);
-  tessera::bench::RatioReporter reporter;
-  benchmark::RunSpecifiedBenchmarks(&reporter);
-  reporter.printRatios();
-  benchmark::Shutdown();
-  return 0;
+  return tessera::bench::runWithRatios(argc, argv);
 }

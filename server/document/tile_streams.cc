@@ -168,16 +168,7 @@ Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,
 Status TileStreams::resendStale(TileCache& tiles, Stream& s, std::span<const TileKey> reached,
                                 uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession,
                                 uint64_t editId) {
-  auto start = [&](uint64_t from) {
-    DeltaContent d;
-    d.documentId = documentId_;
-    d.viewSeq = s.viewSeq;
-    d.fromVersion = from;
-    d.toVersion = toVersion;
-    d.authorSession = authorSession;
-    d.editId = editId;
-    return d;
-  };
+  auto start = [&](uint64_t from) { return deltaFor(s, from, toVersion, authorSession, editId); };
   DeltaContent delta = start(fromVersion);
   size_t bytes = 0;
   for (const TileKey& key : reached) {
@@ -241,16 +232,7 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
     }
   }
 
-  auto start = [&](uint64_t from) {
-    DeltaContent d;
-    d.documentId = documentId_;
-    d.viewSeq = s.viewSeq;
-    d.fromVersion = from;
-    d.toVersion = toVersion;
-    d.authorSession = authorSession;
-    d.editId = editId;
-    return d;
-  };
+  auto start = [&](uint64_t from) { return deltaFor(s, from, toVersion, authorSession, editId); };
   DeltaContent delta = start(fromVersion);
   bool sentAny = false;
   size_t bytes = 0;
@@ -303,6 +285,18 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
     send(s, std::move(delta));
   }
   return Status::ok();
+}
+
+DeltaContent TileStreams::deltaFor(const Stream& s, uint64_t fromVersion, uint64_t toVersion,
+                                   uint64_t authorSession, uint64_t editId) const {
+  DeltaContent d;
+  d.documentId = documentId_;
+  d.viewSeq = s.viewSeq;
+  d.fromVersion = fromVersion;
+  d.toVersion = toVersion;
+  d.authorSession = authorSession;
+  d.editId = editId;
+  return d;
 }
 
 void TileStreams::send(Stream& s, DeltaContent delta) {

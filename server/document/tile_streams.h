@@ -94,6 +94,9 @@ class TileStreams {
   Status moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
                 uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce = false);
   void send(Stream& s, DeltaContent delta);
+  // An empty delta of `s`'s stream (its view_seq) between these versions.
+  DeltaContent deltaFor(const Stream& s, uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession,
+                        uint64_t editId) const;
   // Whether the edits that reached `reached` leave `s`'s choice of tiles as
   // it was: every reached tile its walk read keeps its decision under its
   // new bounds (it stays refined, or stays shown).

@@ -138,9 +138,11 @@ void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, 
     for (const TileKey& key : reached) {
       if (auto held = s.held.find(key); held != s.held.end()) held->second.stale = true;
     }
-    auto keeps = s.toleranceRaised ? Expected<bool>(false) : keepsSelection(tiles, s, reached);
+    auto keeps =
+        s.toleranceRaised || cacheReplaced_ ? Expected<bool>(false) : keepsSelection(tiles, s, reached);
     (keeps.isOk() && *keeps ? unchanged : moving).push_back(&s);
   }
+  cacheReplaced_ = false;
   moveEach(tiles, moving, fromVersion, toVersion, authorSession, editId, false);
   for (Stream* s : unchanged) {
     if (Status sent = resendStale(tiles, *s, reached, fromVersion, toVersion, authorSession, editId);
@@ -197,6 +199,7 @@ void TileStreams::forgetAllTiles() {
   for (auto& [session, s] : streams_) {
     for (auto& [key, held] : s.held) held.stale = true;
   }
+  cacheReplaced_ = true;
 }
 
 Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,

@@ -115,6 +115,9 @@ class TileStreams {
   const uint32_t maxFrameBytes_;
   ServerStats& stats_;
   std::map<uint64_t, Stream> streams_;  // by session
+  // forgetAllTiles since the last afterEdit: every held tile is stale, not
+  // only those an edit reached, so every stream chooses again.
+  bool cacheReplaced_ = false;
 };
 
 }  // namespace tessera::server

@@ -22,18 +22,9 @@ const { values: opts } = parseArgs({
 const SOURCE = resolve(new URL('..', import.meta.url).pathname);
 const BUILD = resolve(opts.build);
 const { launchBrowser } = await import(join(SOURCE, 'client/web/test/support/browser.mjs'));
+const { until } = await import(join(SOURCE, 'client/web/test/support/client.mjs'));
 const ADMIN = 'bench-admin-token-0123456789';
 
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(what, predicate, ms = 300000) {
-  const deadline = Date.now() + ms;
-  for (;;) {
-    const v = await predicate();
-    if (v) return v;
-    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
-    await sleep(20);
-  }
-}
 
 const dir = mkdtempSync(join(tmpdir(), 'tessera-views-page-'));
 writeFileSync(join(dir, 'admin.token'), `${ADMIN}\n`);
@@ -43,7 +34,7 @@ const server = spawn(join(BUILD, 'server/tessera-server'), ['--data', join(dir, 
   '--port', '0', '--port-file', portFile, '--ws-port', '0', '--ws-port-file', wsPortFile, '--max-level', '4'], { stdio: 'ignore' });
 let browser;
 try {
-  await until('the server', () => existsSync(wsPortFile) && readFileSync(wsPortFile, 'utf8').trim());
+  await until(() => existsSync(wsPortFile) && readFileSync(wsPortFile, 'utf8').trim(), 'the server', 300000);
   const tcp = Number(readFileSync(portFile, 'utf8')), web = Number(readFileSync(wsPortFile, 'utf8'));
   const created = spawnSync(join(BUILD, 'client/cli/tessera'), ['remote', '--port', String(tcp), '--token', ADMIN, 'create',
     join(dir, 'data/meshes/armadillo.off'), '--max-level', '4'], { encoding: 'utf8' });
@@ -64,10 +55,10 @@ try {
     await page.goto(`http://127.0.0.1:${web}/?doc=${doc}${query}#token=${ADMIN}`);
     await page.waitForSelector('body[data-state=ready]', { timeout: 300000 });
     const views = query.includes('views');
-    const s = await until('the whole picture', () => page.evaluate((v) => {
+    const s = await until(() => page.evaluate((v) => {
       const st = window.tesseraViewer.state();
       return (v ? st.viewComplete : st.ready) && st.hashMatches ? st : null;
-    }, views));
+    }, views), 'the whole picture', 300000);
     const whole = Date.now() - t0;
     if (opts.screenshots) await page.screenshot({ path: join(opts.screenshots, `${name.replace(/[^a-z0-9]+/g, '-')}.png`) });
     console.log(`${name}: first picture ${s.firstPicture.ms} ms (${s.firstPicture.triangles} triangles), ` +

@@ -34,18 +34,10 @@ const { values: opts } = parseArgs({
 const SOURCE = resolve(new URL('..', import.meta.url).pathname);
 const BUILD = resolve(opts.build);
 const { launchBrowser } = await import(join(SOURCE, 'client/web/test/support/browser.mjs'));
+const { until } = await import(join(SOURCE, 'client/web/test/support/client.mjs'));
 const ADMIN = 'bench-admin-token-0123456789';
 
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-async function until(what, predicate, ms = 60000) {
-  const deadline = Date.now() + ms;
-  for (;;) {
-    const v = await predicate();
-    if (v) return v;
-    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
-    await sleep(20);
-  }
-}
 const quantile = (xs, q) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.min(s.length - 1, Math.floor(q * (s.length - 1) + 0.5))] : NaN;
@@ -58,7 +50,7 @@ const server = spawn(join(BUILD, 'server/tessera-server'), ['--data', join(dir, 
   '--port', '0', '--port-file', portFile, '--ws-port', '0', '--ws-port-file', wsPortFile], { stdio: 'ignore' });
 let browser;
 try {
-  await until('the server', () => existsSync(portFile) && readFileSync(portFile, 'utf8').trim());
+  await until(() => existsSync(portFile) && readFileSync(portFile, 'utf8').trim(), 'the server', 60000);
   const tcp = Number(readFileSync(portFile, 'utf8')), web = Number(readFileSync(wsPortFile, 'utf8'));
   const cli = (...args) => {
     const r = spawnSync(join(BUILD, 'client/cli/tessera'), ['remote', '--port', String(tcp), '--token', ADMIN, ...args], { encoding: 'utf8' });
@@ -92,7 +84,7 @@ try {
       const t0 = Date.now();
       await page.goto(url(doc, lod));
       await page.waitForSelector('body[data-state=ready]', { timeout: 120000 });
-      const shown = await until('the first picture', () => page.evaluate(() => window.tesseraViewer.versionsShown()[0]?.[1]));
+      const shown = await until(() => page.evaluate(() => window.tesseraViewer.versionsShown()[0]?.[1]), 'the first picture', 60000);
       times.push(shown - t0);
       const s = await page.evaluate(() => window.tesseraViewer.state());
       if (!s.hashMatches) throw new Error(`${name}: the page's hash differs from the server's`);
@@ -129,7 +121,7 @@ try {
     const last = Math.max(...sent.keys());
     const latencies = [];
     for (const page of pages) {
-      await until('the last edit in every tab', () => page.evaluate((v) => window.tesseraViewer.state().version >= v, last));
+      await until(() => page.evaluate((v) => window.tesseraViewer.state().version >= v, last), 'the last edit in every tab', 60000);
     }
     await sleep(300);
     for (const page of pages) {

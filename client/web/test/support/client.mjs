@@ -13,9 +13,13 @@ import { tcpSocketFactory } from './tcp_socket.mjs';
 export const wire = createWire(readFileSync(new URL('../../../../protocol/tessera.proto', import.meta.url), 'utf8'));
 const repo = (path) => new URL(`../../../../${path}`, import.meta.url);
 
+// Polls `condition` (which may return a promise) until it gives a truthy
+// value, and returns that value; throws naming `what` after `timeoutMs`.
 export async function until(condition, what, timeoutMs = 15000) {
   const start = Date.now();
-  while (!condition()) {
+  for (;;) {
+    const value = await condition();
+    if (value) return value;
     if (Date.now() - start > timeoutMs) throw new Error(`timed out waiting for ${what}`);
     await new Promise((r) => setTimeout(r, 10));
   }

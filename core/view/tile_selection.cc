@@ -51,10 +51,8 @@ Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, do
   std::vector<TileKey> next;
   for (const TileKey& key : frontier) {
     TESSERA_ASSIGN_OR_RETURN(const Tile* tile, tiles.get(key));
-    SelectedTile s{key, !view.outside(tile->bounds.sphere), 0,
-                   dot(tile->bounds.sphere.centre - view.eye, view.forward.normalized())};
-    s.projectedError = view.projectedError(tile->bounds.error, tile->bounds.sphere);
-    if (refinesTile(view, tile->bounds, tolerance)) {
+    const SelectedTile s = judgeTile(view, key, tile->bounds);
+    if (refinesTile(s, tile->bounds, tolerance)) {
       auto children = tiles.tree().children(key);
       if (!children.empty()) {
         next.insert(next.end(), children.begin(), children.end());
@@ -69,10 +67,14 @@ Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, do
 
 }  // namespace
 
-bool refinesTile(const View& view, const TileBounds& bounds, double tolerancePixels) {
-  if (view.outside(bounds.sphere)) return false;
+SelectedTile judgeTile(const View& view, const TileKey& key, const TileBounds& bounds) {
+  return {key, !view.outside(bounds.sphere), view.projectedError(bounds.error, bounds.sphere),
+          dot(bounds.sphere.centre - view.eye, view.forward.normalized())};
+}
+
+bool refinesTile(const SelectedTile& judged, const TileBounds& bounds, double tolerancePixels) {
   // A tag deep under a visible tile has no error bound (tile_error.h).
-  return bounds.deepTags || view.projectedError(bounds.error, bounds.sphere) > tolerancePixels;
+  return judged.visible && (bounds.deepTags || judged.projectedError > tolerancePixels);
 }
 
 Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget) {

@@ -34,10 +34,13 @@ struct TileSelection {
   double tolerancePixels = 0;  // the view's, or what the budget raised it to
 };
 
-// The walk's rule for one tile: whether a view replaces it by its children
-// (it is in the frustum, and its error projects above the tolerance or a
-// tag deep under it has no bound), given that it has children.
-bool refinesTile(const View& view, const TileBounds& bounds, double tolerancePixels);
+// What a view sees of one tile: whether it is in the frustum, its error in
+// pixels and its depth.
+SelectedTile judgeTile(const View& view, const TileKey& key, const TileBounds& bounds);
+// The walk's rule for one tile so judged: whether the view replaces it by
+// its children (it is in the frustum, and its error projects above the
+// tolerance or a tag deep under it has no bound), given that it has children.
+bool refinesTile(const SelectedTile& judged, const TileBounds& bounds, double tolerancePixels);
 
 // `budget` <= 0: none. Errors: a bad view, a tile that cannot be built.
 Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget = 0);

@@ -52,6 +52,8 @@ class TileTree {
   std::vector<TileKey> roots() const;
   // Empty at maxLevel.
   std::vector<TileKey> children(const TileKey& tile) const;
+  // Whether children(tile) is not empty: every tile above maxLevel has some.
+  bool hasChildren(const TileKey& tile) const { return tile.level < maxLevel_; }
   // The tile one level coarser that covers this one; a root's is itself.
   TileKey parent(const TileKey& tile) const;
   // The faces the tile covers: base faces (level <= 5) or its one face.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <utility>
 
 #include "server/base/log.h"
 #include "server/document/replies.h"
@@ -160,8 +161,8 @@ Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,
     const bool refined = !shown && std::binary_search(s.refined.begin(), s.refined.end(), key);
     if (!shown && !refined) continue;  // the walk did not read it
     TESSERA_ASSIGN_OR_RETURN(TileBounds bounds, tiles.bounds(key));
-    const bool refines =
-        refinesTile(s.view, bounds, s.view.tolerancePixels) && !tiles.tree().children(key).empty();
+    const bool refines = tiles.tree().hasChildren(key) &&
+                         refinesTile(judgeTile(s.view, key, bounds), bounds, s.view.tolerancePixels);
     if (refines != refined) return false;
   }
   return true;
@@ -170,29 +171,38 @@ Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,
 Status TileStreams::resendStale(TileCache& tiles, Stream& s, std::span<const TileKey> reached,
                                 uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession,
                                 uint64_t editId) {
-  auto start = [&](uint64_t from) { return deltaFor(s, from, toVersion, authorSession, editId); };
-  DeltaContent delta = start(fromVersion);
-  size_t bytes = 0;
+  Chunks c{deltaFor(s, fromVersion, toVersion, authorSession, editId)};
   for (const TileKey& key : reached) {
     auto found = s.held.find(key);
     if (found == s.held.end() || !found->second.stale) continue;
-    Held& held = found->second;
-    TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(key, toVersion));
-    s.surfaceHash += tile.hash - held.hash;
-    held = {tile.hash, false};
-    delta.regions.push_back({key.regionId(), tile.bytes, true});
-    bytes += tile.bytes->size();
-    if (bytes >= kChunkBytes) {
-      delta.surfaceHash = s.surfaceHash;
-      send(s, std::move(delta));
-      delta = start(toVersion);
-      bytes = 0;
-    }
+    TESSERA_RETURN_IF_ERROR(putTile(tiles, s, key, c));
+    sendIfFull(s, c);
   }
-  delta.surfaceHash = s.surfaceHash;
-  delta.viewComplete = true;
-  send(s, std::move(delta));
+  c.delta.surfaceHash = s.surfaceHash;
+  c.delta.viewComplete = true;
+  send(s, std::move(c.delta));
   return Status::ok();
+}
+
+Status TileStreams::putTile(TileCache& tiles, Stream& s, const TileKey& key, Chunks& c) {
+  TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(key, c.delta.toVersion));
+  auto [held, added] = s.held.try_emplace(key);
+  if (!added) s.surfaceHash -= held->second.hash;
+  held->second = {tile.hash, false};
+  s.surfaceHash += tile.hash;
+  c.delta.regions.push_back({key.regionId(), tile.bytes, true});
+  c.bytes += tile.bytes->size();
+  return Status::ok();
+}
+
+void TileStreams::sendIfFull(Stream& s, Chunks& c) {
+  if (c.bytes < kChunkBytes) return;
+  DeltaContent next =
+      deltaFor(s, c.delta.toVersion, c.delta.toVersion, c.delta.authorSession, c.delta.editId);
+  c.delta.surfaceHash = s.surfaceHash;
+  send(s, std::exchange(c.delta, std::move(next)));
+  c.sentAny = true;
+  c.bytes = 0;
 }
 
 void TileStreams::forgetAllTiles() {
@@ -235,39 +245,24 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
     }
   }
 
-  auto start = [&](uint64_t from) { return deltaFor(s, from, toVersion, authorSession, editId); };
-  DeltaContent delta = start(fromVersion);
-  bool sentAny = false;
-  size_t bytes = 0;
+  Chunks c{deltaFor(s, fromVersion, toVersion, authorSession, editId)};
   auto drop = [&](const TileKey& key) {
     auto held = s.held.find(key);
     if (held == s.held.end()) return;
     s.surfaceHash -= held->second.hash;
     s.held.erase(held);
-    delta.removed.push_back(key.regionId());
+    c.delta.removed.push_back(key.regionId());
   };
   for (const auto& [leaving, count] : waiting)
     if (count == 0) drop(leaving);
   for (const SelectedTile& t : target.tiles) {
     if (fresh(t.key)) continue;
-    TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(t.key, toVersion));
-    auto [held, added] = s.held.try_emplace(t.key);
-    if (!added) s.surfaceHash -= held->second.hash;
-    held->second = {tile.hash, false};
-    s.surfaceHash += tile.hash;
-    delta.regions.push_back({t.key.regionId(), tile.bytes, true});
-    bytes += tile.bytes->size();
+    TESSERA_RETURN_IF_ERROR(putTile(tiles, s, t.key, c));
     if (auto w = waiters.find(t.key); w != waiters.end()) {
       for (const TileKey& leaving : w->second)
         if (--waiting[leaving] == 0) drop(leaving);
     }
-    if (bytes >= kChunkBytes) {
-      delta.surfaceHash = s.surfaceHash;
-      send(s, std::move(delta));
-      sentAny = true;
-      delta = start(toVersion);
-      bytes = 0;
-    }
+    sendIfFull(s, c);
   }
   // Nothing should be left waiting: the wanted tiles cover the surface.
   for (const auto& [leaving, count] : waiting)
@@ -282,10 +277,11 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
   s.toleranceRaised = target.tolerancePixels > s.view.tolerancePixels;
   // The last delta says the view is complete; a move that changed nothing
   // sends none, but a new subscription and an edit always end with one.
-  if (!delta.regions.empty() || !delta.removed.empty() || sentAny || fromVersion != toVersion || announce) {
-    delta.surfaceHash = s.surfaceHash;
-    delta.viewComplete = true;
-    send(s, std::move(delta));
+  if (!c.delta.regions.empty() || !c.delta.removed.empty() || c.sentAny || fromVersion != toVersion ||
+      announce) {
+    c.delta.surfaceHash = s.surfaceHash;
+    c.delta.viewComplete = true;
+    send(s, std::move(c.delta));
   }
   return Status::ok();
 }

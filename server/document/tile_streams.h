@@ -94,6 +94,19 @@ class TileStreams {
   Status moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
                 uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce = false);
   void send(Stream& s, DeltaContent delta);
+  // One move's deltas, cut at about kChunkBytes of tiles: the first from the
+  // move's first version, the others from its last.
+  struct Chunks {
+    DeltaContent delta;
+    size_t bytes = 0;
+    bool sentAny = false;
+  };
+  // Puts `key`'s tile, encoded at the delta's version, into the current
+  // delta as what `s` holds under `key` from now on.
+  Status putTile(TileCache& tiles, Stream& s, const TileKey& key, Chunks& c);
+  // Sends the current delta once it holds kChunkBytes of tiles, and starts
+  // the next.
+  void sendIfFull(Stream& s, Chunks& c);
   // An empty delta of `s`'s stream (its view_seq) between these versions.
   DeltaContent deltaFor(const Stream& s, uint64_t fromVersion, uint64_t toVersion, uint64_t authorSession,
                         uint64_t editId) const;

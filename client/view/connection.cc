@@ -98,6 +98,15 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     auto base = coarseMorphBase(control->morph_control());
     if (base.isOk()) c->coarseBase_ = std::move(*base);
   }
+  // A morph's time is a field of the profile (PROTOCOL.md section 14): a
+  // morph document is shown with the profile, whatever the command line.
+  const bool views = options.views && !c->morph_;
+  if (options.views && c->morph_ && c->imageFrom_.empty()) {
+    TESSERA_RETURN_IF_ERROR(
+        expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
+                  "subscribe to document " + std::to_string(options.document)));
+    camera.reset();
+  }
   if (!c->imageFrom_.empty()) {
     // A 2D morph is shown uniformly at the max level, so that every frame
     // has the same vertices as the key views (their ids find their
@@ -115,8 +124,8 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     }
     c->keys_ = std::make_unique<MorphKeyFollower>(options.document, std::move(keySessions));
   }
-  c->viewDependent_ = options.views;
-  c->camera_ = camera;
+  c->viewDependent_ = views;
+  c->camera_ = views ? camera : std::nullopt;
   c->morphT_ = options.morphT;
   c->wanted_ = profile;
   c->wanted_.clear_morph_t();

@@ -94,11 +94,11 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     if (!firstDrawn) firstDrawn = Clock::now();
     // With a self-test, frames count from when every edit has its delta.
     // Fresh counts: the mouse or a key may have queued an edit this frame.
-    const ConnectionStats after = scripted || options.views ? connection.stats() : stats;
+    const ConnectionStats after = scripted || connection.viewDependent() ? connection.stats() : stats;
     const bool scriptDone = script ? script->done() : (!keys || keys->done());
     // With --views, frames count from when the tiles of the camera sent last
     // are all here (the viewer sends it once it has framed the model).
-    const bool viewLoading = options.views && (!after.viewComplete || viewer.cameraPending());
+    const bool viewLoading = connection.viewDependent() && (!after.viewComplete || viewer.cameraPending());
     const bool waiting = (scripted && (!scriptDone || after.editsPending > 0)) || viewLoading;
     if (scripted && scriptDone && after.editsPending == 0 && after.editsSent == 0) {
       std::fprintf(stderr, "tessera-view: the self-test sent no edit\n");

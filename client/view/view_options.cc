@@ -16,6 +16,7 @@ namespace {
 // Options whose text is split after parsing (HOST:PORT, WxH, DX,DY, a file).
 struct RawOptions {
   std::string connect, size, drag, tokenFile;
+  bool profile = false;
 };
 
 template <typename T>
@@ -68,14 +69,20 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
   app->add_option("--name", o.name, "shown to collaborators (default tessera-view)")
       ->type_name("NAME")
       ->group(connection);
-  app->add_flag("--views", o.views,
-                "tiles chosen for the camera by screen-space error, sent again as it moves (docs/VIEWER.md "
-                "\"Views\")")
-      ->group(connection);
-  app->add_option("--tolerance", o.tolerancePixels,
-                  "with --views: the screen-space error in pixels (default 1)")
+  auto* views = app->add_flag("--views", o.views,
+                              "the default: tiles chosen for the camera by screen-space error, sent again "
+                              "as it moves (docs/VIEWER.md \"Views\")")
+                    ->group(connection);
+  auto* profile =
+      app->add_flag("--profile", raw.profile,
+                    "subscribe with the LOD profile instead of a view (implied by --base-level, --max-level, "
+                    "--angle and the --morph options)")
+          ->excludes(views)
+          ->group(connection);
+  app->add_option("--tolerance", o.tolerancePixels, "views: the screen-space error in pixels (default 1)")
       ->type_name("PX")
       ->check(CLI::Range(0.25, 256.0))
+      ->excludes(profile)
       ->group(connection);
   app->add_option("--base-level", o.baseLevel, "LOD profile: minimum level, 0 to 20 (default 1)")
       ->type_name("N")
@@ -118,8 +125,7 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
   app->add_flag("--matcap", o.matcap, "matcap shading instead of key, fill and sky light (key M)")
       ->group(display);
   app->add_flag("--wireframe", o.wireframe, "wireframe overlay (key W)")->group(display);
-  app->add_flag("--level-colours,--level-colors", o.levelColours,
-                "with --views: tiles coloured by level (key L)")
+  app->add_flag("--level-colours,--level-colors", o.levelColours, "views: tiles coloured by level (key L)")
       ->group(display);
   app->add_flag("--region-colours,--region-colors", o.regionColours, "one colour per region (key C)")
       ->group(display);
@@ -193,6 +199,16 @@ Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
   }
   o.hud = !noHud;
   o.gizmo = !noGizmo;
+  // A view is the default (docs/VIEWER.md "Views"); naming any of the
+  // profile's fields asks for the profile, as --profile does.
+  const bool profileNamed = raw.profile || app->count("--base-level") || app->count("--max-level") ||
+                            app->count("--angle") || app->count("--morph-t") ||
+                            app->count("--morph-coarse") || app->count("--morph-rate");
+  if (o.views && profileNamed)
+    return invalidArgument(
+        "--views: the LOD profile options (--base-level, --max-level, --angle, --morph-*) "
+        "choose a profile; give one or the other");
+  o.views = !profileNamed;
   if (raw.connect.empty()) return invalidArgument("--connect HOST:PORT is required");
   const size_t colon = raw.connect.rfind(':');
   if (colon == std::string::npos || colon == 0)

@@ -17,13 +17,14 @@ struct ViewOptions {
   std::string token;
   std::string name = "tessera-view";
   uint64_t document = 0;
-  // The LOD profile to subscribe with.
   // A view-dependent subscription (docs/VIEWER.md "Views"): tiles chosen
   // for the camera, sent again as it moves; the profile's levels are not
-  // used then.
+  // used then. The command line's default (parseViewOptions); options
+  // built in code choose it themselves.
   bool views = false;
   double tolerancePixels = 1;
   bool levelColours = false;  // with views: tiles coloured by level (key L)
+  // The LOD profile to subscribe with when not `views`.
   uint32_t baseLevel = 1;
   uint32_t maxLevel = 3;
   double angle = 15;

@@ -55,6 +55,27 @@ TEST(ViewOptions, ParsesTheConnectionProfileAndHeadlessMode) {
   EXPECT_EQ(parseViewOptions({"--connect", "h:1", "--document", "1"})->refine, 0);
 }
 
+TEST(ViewOptions, AViewIsTheDefaultAndTheProfileIsAskedForByNamingIt) {
+  const std::vector<std::string> base = {"--connect", "h:1", "--document", "1"};
+  auto with = [&](std::vector<std::string> extra) {
+    extra.insert(extra.begin(), base.begin(), base.end());
+    return parseViewOptions(extra);
+  };
+  EXPECT_TRUE(with({})->views);
+  EXPECT_TRUE(with({"--views", "--tolerance", "4"})->views);
+  EXPECT_DOUBLE_EQ(with({"--tolerance", "4"})->tolerancePixels, 4);
+  EXPECT_FALSE(with({"--profile"})->views);
+  for (const char* option : {"--base-level", "--max-level", "--angle", "--morph-t"})
+    EXPECT_FALSE(with({option, "1"})->views) << option;
+  EXPECT_FALSE(with({"--morph-coarse"})->views);
+  // Asking for both is an error that names them.
+  auto both = with({"--views", "--max-level", "2"});
+  ASSERT_FALSE(both.isOk());
+  EXPECT_NE(both.status().message().find("--views"), std::string::npos) << both.status().message();
+  EXPECT_FALSE(with({"--views", "--profile"}).isOk());
+  EXPECT_FALSE(with({"--profile", "--tolerance", "2"}).isOk());
+}
+
 TEST(ViewOptions, RejectsMissingAndMalformedValuesNamingTheOption) {
   EXPECT_FALSE(parseViewOptions({"--document", "1"}).isOk());   // no --connect
   EXPECT_FALSE(parseViewOptions({"--connect", "h:1"}).isOk());  // no --document

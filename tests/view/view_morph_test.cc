@@ -157,5 +157,63 @@ TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   EXPECT_EQ(server->stop(), 0);
 }
 
+// Views are the viewer's default, but a morph's time is a profile field
+// (docs/VIEWER.md "Views"): a 3D morph opened with no profile option is
+// shown with the profile, the same picture as with --profile.
+TEST(ViewMorph, AMorphDocumentOpenedWithTheDefaultsIsShownWithTheProfile) {
+  const std::string dir = testing::makeTempDir("tessera-view-morph-default");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = client::Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  auto created = (*admin)->call(
+      testing::createDocument("annulus", testing::fileBytes(samplePath("mesh_a.obj")), "", 4), 30);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10).isOk());
+  wire::ClientMessage add;
+  add.mutable_add_morph_key()->set_document_id(doc);
+  add.mutable_add_morph_key()->set_mesh(testing::fileBytes(samplePath("mesh_b.obj")));
+  add.mutable_add_morph_key()->set_mesh_format(wire::MESH_FORMAT_OBJ);
+  auto added = (*admin)->call(add, 30);
+  ASSERT_TRUE(added.isOk() && added->has_ack()) << added->DebugString();
+
+  auto render = [&](const std::string& name, std::vector<std::string> extra) {
+    const std::string png = dir + "/" + name + ".png";
+    std::vector<std::string> args = {TESSERA_VIEW_PATH,
+                                     "--connect",
+                                     "127.0.0.1:" + std::to_string(server->port()),
+                                     "--token",
+                                     server->adminToken(),
+                                     "--document",
+                                     std::to_string(doc),
+                                     "--no-hud",
+                                     "--screenshot",
+                                     png,
+                                     "--frames",
+                                     "3",
+                                     "--timeout",
+                                     "60"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const int rc = testing::runBounded(args, testing::headlessEnvironment(), dir + "/" + name + ".log", 120);
+    EXPECT_EQ(rc, 0) << testing::fileBytes(dir + "/" + name + ".log");
+    return testing::fileBytes(dir + "/" + name + ".log");
+  };
+  const std::string byDefault = render("default", {}), profile = render("profile", {"--profile"});
+  // "wrote X.png (800x600, 4 samples per pixel, document version V, N triangles)"
+  auto triangles = [](const std::string& log) {
+    const size_t at = log.rfind(" triangles)");
+    return at == std::string::npos ? std::string()
+                                   : log.substr(log.rfind(", ", at) + 2, at - log.rfind(", ", at) - 2);
+  };
+  ASSERT_FALSE(triangles(profile).empty()) << profile;
+  EXPECT_EQ(triangles(byDefault), triangles(profile)) << byDefault;
+  EXPECT_EQ(byDefault.find("tiles were not complete"), std::string::npos) << byDefault;
+  const auto a = testing::readPng(dir + "/default.png"), b = testing::readPng(dir + "/profile.png");
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(testing::difference(*a, *b, 8).pixels, 0u);
+  EXPECT_EQ(server->stop(), 0);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -248,8 +248,8 @@ int hueOf(const Rgb& c) {
   return static_cast<int>(60 * h);
 }
 
-// A view-dependent subscription (--views, docs/VIEWER.md "Views"): the
-// viewer frames the coarsest tiles, sends its camera, and shows the tiles
+// A view-dependent subscription (the default without profile options,
+// docs/VIEWER.md "Views"): the viewer frames the coarsest tiles, sends its camera, and shows the tiles
 // that camera needs, several levels at once (coloured by level with
 // --level-colours), more triangles than the coarsest tiles had.
 TEST_F(ViewScreenshot, ViewsShowTheTilesTheCameraNeedsAtSeveralLevels) {
@@ -264,8 +264,8 @@ TEST_F(ViewScreenshot, ViewsShowTheTilesTheCameraNeedsAtSeveralLevels) {
   auto created = (*admin)->call(create, 60);
   ASSERT_TRUE(created.isOk() && created->has_ack());
   const uint64_t doc = created->ack().document_id();
-  const Image levels = render(
-      doc, "views-levels", {"--no-hud", "--no-gizmo", "--views", "--level-colours", "--size", "390x844"}, {});
+  const Image levels =
+      render(doc, "views-levels", {"--no-hud", "--no-gizmo", "--level-colours", "--size", "390x844"}, {});
   const std::string log = testing::fileBytes(dir_ + "/view.log");
   ASSERT_GT(levels.width, 0);
   const auto model = testing::foreground(levels, kBackground);

@@ -8,7 +8,12 @@
 // a flood of views is absorbed while a bystander keeps its latency.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <future>
 #include <numbers>
 #include <random>
@@ -167,6 +172,81 @@ void startWithHand(Served& s, const std::string& name, int maxLevel, std::vector
   auto created = s.admin->call(create, 60);
   ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
   s.doc = created->ack().document_id();
+}
+
+// Sparse evaluation (docs/VIEWS.md "Sparse evaluation"): fandisk held to
+// level 8 is 848 million limit triangles evaluated whole, far more than the
+// 2 GiB of address space the server may add to what it had at start. A
+// camera close to the surface still gets level-8 tiles where it looks,
+// watertight and hashed as the server's; a whole-document profile at that
+// level is refused by the triangle limit, not attempted.
+TEST(ViewStream, ADocumentTooLargeToEvaluateWholeIsShownAtItsFinestLevelWhereACameraLooks) {
+  auto server =
+      ServerProcess::start(testing::makeTempDir("tessera-view-sparse") + "/data", {"--max-level", "8"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  const auto statusKiB = [&](const std::string& field) {
+    std::ifstream in("/proc/" + std::to_string(server->pid()) + "/status");
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind(field + ":", 0) == 0) return std::stoll(line.substr(field.size() + 1));
+    return -1LL;
+  };
+  const long long startKiB = statusKiB("VmSize");
+  ASSERT_GT(startKiB, 0);
+  const rlimit cap{.rlim_cur = static_cast<rlim_t>(startKiB + (2LL << 20)) * 1024,
+                   .rlim_max = static_cast<rlim_t>(startKiB + (2LL << 20)) * 1024};
+  ASSERT_EQ(::prlimit(server->pid(), RLIMIT_AS, &cap, nullptr), 0) << std::strerror(errno);
+
+  auto admin = Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk()) << admin.status().message();
+  wire::ClientMessage create;
+  auto* c = create.mutable_create_document();
+  c->set_name("fandisk");
+  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("fandisk.off")));
+  c->set_mesh_format(wire::MESH_FORMAT_OFF);
+  c->set_max_level(8);
+  auto created = (*admin)->call(create, 60);
+  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
+  const uint64_t doc = created->ack().document_id();
+
+  auto fandisk = importMesh(testing::cgalMeshPath("fandisk.off"));
+  ASSERT_TRUE(fandisk.isOk());
+  auto local = Document::create(*fandisk, {.maxLevel = 8});
+  ASSERT_TRUE(local.isOk());
+  const int64_t whole = static_cast<int64_t>(local->counts().faces(8));
+  EXPECT_EQ(whole, 12946LL << 16);
+  Vec3 lo = local->basePoints()[0], hi = lo;
+  for (const Vec3& p : local->basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
+  const Model m{0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
+  // Three thousandths of the model's size from base vertex 0, looking at it.
+  const Vec3 target = local->basePoints()[0];
+  View close = lookAt(m, target + 0.003 * (target - m.centre).normalized(), target, 390, 844);
+  close.nearDistance = 1e-5;
+  auto v = subscribeViewer(*server, doc, close, "close");
+  ASSERT_TRUE(v.isOk()) << v.status().message();
+  expectWatertight(*v, m, "close to fandisk");
+  std::map<int, int> tilesByLevel;
+  int64_t triangles = 0;
+  for (const auto& [id, mesh] : v->view->regions()) {
+    ++tilesByLevel[TileKey::fromRegionId(id).level];
+    triangles += static_cast<int64_t>(mesh.triangles.size());
+  }
+  const long long peakKiB = statusKiB("VmHWM");
+  std::printf(
+      "[ measured ] level 8 held whole: %lld triangles; the view: %lld triangles in %zu tiles (%d at level "
+      "8), "
+      "server peak RSS %lld MiB, address space capped at %lld MiB\n",
+      static_cast<long long>(whole), static_cast<long long>(triangles), v->view->regions().size(),
+      tilesByLevel[8], peakKiB / 1024, (startKiB + (2LL << 20)) / 1024);
+  EXPECT_GT(tilesByLevel[8], 0) << "the finest level where the camera looks";
+  EXPECT_LT(triangles * 100, whole) << "a small part of the whole";
+  // The server is alive and answers; a whole profile at level 8 is refused.
+  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 30).isOk());
+  auto refused = (*admin)->call(testing::subscribe(doc, 8, 8), 30);
+  ASSERT_TRUE(refused.isOk()) << refused.status().message();
+  ASSERT_TRUE(refused->has_reject()) << refused->DebugString();
+  EXPECT_EQ(refused->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED) << refused->DebugString();
+  EXPECT_TRUE(server->running());
+  EXPECT_EQ(server->stop(), 0);
 }
 
 TEST(ViewStream, FiftyCamerasGetWatertightSurfacesFromTilesEncodedOnce) {

@@ -26,7 +26,9 @@ const REPLAY = join(BUILD, 'client/replay/tessera-replay');
 const WEB = process.env.TESSERA_WEB_DIR ?? join(BUILD, 'web');
 const ADMIN = 'e2e-admin-token-0123456789';
 const EDITOR = 'e2e-editor-token-0123456789';
-// The page's default LOD profile ("balanced", client/web/src/session/lod_profiles.js).
+// The LOD profile the page is opened with (?lod=balanced,
+// client/web/src/session/lod_profiles.js): tessera-replay assembles the
+// same surface. Without ?lod= (or ?views=0) the page would show a view.
 const PROFILE = '1,3,15';
 
 let dir, server, ports, browser, documentId;
@@ -118,7 +120,7 @@ function changedPixels(a, b) {
   return n;
 }
 
-const pageUrl = (token, doc = documentId) => `http://127.0.0.1:${server.web}/?doc=${doc}#token=${token}`;
+const pageUrl = (token, doc = documentId) => `http://127.0.0.1:${server.web}/?doc=${doc}&lod=balanced#token=${token}`;
 const ready = (page) => page.waitForSelector('body[data-state=ready]', { timeout: 60000 });
 
 before(async () => {

@@ -41,8 +41,9 @@ async function main() {
   const params = readPageParams(window.location);
   const wire = createWire(protoText);
   const view = new SceneView(document.getElementById('stage'), params.views);
-  // A view-dependent subscription (?views=1): the camera goes to the server
-  // as it moves (session/view_camera.js); X freezes it.
+  // A view-dependent subscription (the default, docs/WEB_VIEWER.md "Views"):
+  // the camera goes to the server as it moves (session/view_camera.js); X
+  // freezes it.
   const cameraView = (tolerance) => {
     view.camera.updateMatrixWorld();
     const canvas = view.renderer.domElement;
@@ -51,19 +52,17 @@ async function main() {
   const sender = new ViewSender((v) => page.session?.setView(v) ?? false);
   let offerTimer = null;
   const offerView = () => {
-    if (!params.views || !view.fitted || !page.session) return;
+    if (!page.views || !view.fitted || !page.session) return;
     if (sender.offer(cameraView(params.tolerance)) && !offerTimer) {
       offerTimer = setTimeout(() => { offerTimer = null; offerView(); }, 60);
     }
   };
-  if (params.views) {
-    window.addEventListener('keydown', (e) => {
-      if (e.key !== 'x' && e.key !== 'X') return;
-      if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
-      sender.frozen = !sender.frozen;
-      if (!sender.frozen) offerView();
-    });
-  }
+  window.addEventListener('keydown', (e) => {
+    if (!page.views || (e.key !== 'x' && e.key !== 'X')) return;
+    if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+    sender.frozen = !sender.frozen;
+    if (!sender.frozen) offerView();
+  });
   const vertices = new VertexIndex();
   const picker = new Picker(view, vertices);
   const controlPoints = new ControlPointsLayer(view.scene, () => view.invalidate());
@@ -71,6 +70,7 @@ async function main() {
   const start = new StartPanel(document.getElementById('start'));
 
   const page = new PageState({ ...presetNamed(params.lod ?? DEFAULT_PRESET) }, performance.now());
+  page.views = params.views;
   const showError = (text) => { page.lastError = text; };
 
   const refreshMarkers = () => {
@@ -112,7 +112,7 @@ async function main() {
       connection: page.connection, documentId, profile: page.profile,
       // The first subscription: the coarsest tiles whatever the camera
       // (PROTOCOL.md section 16); the page frames them, then sends its own.
-      view: params.views ? cameraView(256) : null,
+      view: page.views ? cameraView(256) : null,
       decode: (bytes) => decodeRegion(page.draco, bytes),
       onView: (change) => {
         view.apply(change, page.session.view.regions);
@@ -123,6 +123,9 @@ async function main() {
       },
       onPresence: refreshMarkers,
       onProfile: (p) => { page.profile = p; editor.clampLevel(); },
+      // Before the first subscription: the page shows regions, and the
+      // panel the LOD preset.
+      onMorph: () => { page.views = false; view.useTiles(false); },
       onStatus: (s) => { page.status = s; },
       onError: showError,
     });
@@ -236,7 +239,7 @@ async function main() {
       role: page.session?.role ?? page.connection?.helloAck?.role ?? 0, latencyMs: page.session?.latency.last ?? null,
       bytesPerSecond: page.bytesPerSecond, hash: page.session?.lastHash ?? null, preset: page.profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
       wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
-      views: params.views ? { complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance } : null,
+      views: page.views ? { complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance } : null,
       pick: editor.describe(), points: controlPoints.count ?? 0, pointsDrawn: controlPoints.drawn,
       people: page.session ? page.session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === page.session.sessionId })) : [],
       status: page.connection?.ready && page.session?.view.ready ? 'live' : page.status,

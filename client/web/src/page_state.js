@@ -9,6 +9,9 @@ export class PageState {
     this.session = null; // DocumentSession, once a document is chosen
     this.draco = null; // the Draco decoder module, once loaded
     this.profile = profile; // the LOD profile asked for (or stepped down to)
+    // Whether the page subscribes with a view (tiles for its camera) rather
+    // than the profile: the address's choice, off for a morph document.
+    this.views = false;
     this.documentName = '';
 
     // What the panel says.

@@ -35,8 +35,10 @@ export function installTestHook(app) {
         hashMatches: Boolean(hash?.matches),
         triangles: view ? view.triangles() : 0,
         regions: view ? view.regions.size : 0,
-        // A view-dependent subscription: whether the latest camera's tiles
-        // are all here, and the tiles held by level ("level": count).
+        // Whether the page subscribes with a view (main.js); then whether
+        // the latest camera's tiles are all here, and the tiles held by
+        // level ("level": count).
+        views: page.views,
         viewComplete: session ? session.viewComplete() : false,
         tileLevels: view ? tileLevels(view.regions) : {},
         tiles: view ? [...view.regions.keys()].map(String).sort().join(' ') : '',

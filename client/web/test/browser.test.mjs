@@ -1,19 +1,21 @@
 // The page itself in headless Chromium against a real tessera-server, served
 // by the server's own --ws-port from a fresh build (with the test hook,
 // build.mjs --test-hook). What a person would check:
-// the cube shows, anti-aliased, with the HUD in its corner; the hash
-// matches the server's; a drag edits and undo takes it back; collaborators'
-// picks show both ways; the keys and the LOD selector work; the start
-// panel asks for a token and lists documents. Skipped without a server
-// build that has --ws-port, or without /usr/bin/chromium.
+// the cube shows, anti-aliased, with the HUD in its corner, through a view
+// unless the address asks for a profile; the hash matches the server's; a
+// drag edits and undo takes it back; collaborators' picks show both ways;
+// the keys and the LOD selector work; the start panel asks for a token and
+// lists documents; a morph document is shown with the profile. Skipped
+// without a server build that has --ws-port, or without /usr/bin/chromium.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { startServer, serverHasWebSocket } from './support/server.mjs';
 import { connect, createCube, grant, openSession, until } from './support/client.mjs';
+import { toLong } from '../src/codec/uint64.js';
 import { chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
 import { decodePng } from './support/png.mjs';
 
@@ -74,10 +76,18 @@ function differing(png, x0, y0, x1, y1, reference = png.pixel(png.width - 2, png
   return n / ((x1 - x0) * (y1 - y0));
 }
 
-test('the cube shows, anti-aliased, hashed like the server, with the HUD in its corner', { skip }, async () => {
+test('the cube shows through a view by default, anti-aliased, hashed like the server, with the HUD in its corner', { skip }, async () => {
+  // No ?views= and no ?lod=: a view-dependent subscription (docs/WEB_VIEWER.md
+  // "Views"), which the server says is complete for the page's camera.
   const page = await openPage(browser, docUrl(VIEWER));
   await readyWithRole(page);
+  await page.waitForFunction(() => window.tesseraViewer.state().viewComplete, { timeout: 30000 });
   const s = await state(page);
+  assert.equal(s.views, true, 'a view by default');
+  assert.ok(s.firstPicture.triangles < s.triangles, `the coarsest tiles first: ${JSON.stringify(s.firstPicture)}, then ${s.triangles}`);
+  // The panel (refreshed four times a second) has the tolerance, not the LOD preset.
+  await page.waitForFunction(() => document.querySelector('select[data-f=preset]').disabled &&
+    !document.querySelector('[data-f="toleranceRow"]').hidden, { timeout: 5000 });
   assert.equal(s.connected, true);
   assert.equal(s.ready, true);
   assert.equal(s.role, 'ROLE_VIEWER');
@@ -209,7 +219,8 @@ test('picks travel both ways through presence', { skip }, async () => {
 });
 
 test('C creases the edge of the last two picks, V makes a corner, W and R redraw, the LOD selector resubscribes', { skip }, async () => {
-  const page = await openPage(browser, docUrl(EDITOR, '&name=keys'));
+  // A profile: the LOD selector is disabled with a view.
+  const page = await openPage(browser, docUrl(EDITOR, '&name=keys&lod=balanced'));
   await readyWithRole(page);
   const click = async (id) => {
     const p = await page.evaluate((i) => window.tesseraViewer.screenPointOfVertex(i), id);
@@ -275,7 +286,8 @@ test('without a token the page asks for one; a refused one is shown and not retr
   await list.close();
 });
 
-// A view-dependent subscription (?views=1, docs/WEB_VIEWER.md "Views"): the
+// A view-dependent subscription (the default, asked for here with
+// ?views=1, which still works; docs/WEB_VIEWER.md "Views"): the
 // first picture is the coarsest tiles, refined once the page has framed
 // them and sent its camera; turning the camera changes which tiles are
 // held, turning it back restores them, and every picture's hash is the
@@ -330,6 +342,35 @@ test('with ?views=1 the page loads coarse first, then the tiles its camera needs
   await page.waitForFunction((t) => window.tesseraViewer.state().tiles === t, { timeout: 30000 }, whole.tiles);
   await complete(page);
   assert.equal((await state(page)).surfaceHash, whole.surfaceHash);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
+// A morph document (PROTOCOL.md section 14) is shown with the profile even
+// by default: its time, morph_t, is a profile field. The page finds it out
+// before it subscribes (docs/WEB_VIEWER.md "Views").
+test('a morph document opened without ?views= or ?lod= is shown with the profile', { skip }, async () => {
+  const morph = await createCube(admin, 4);
+  // Key 1: the cube with its corner (1, 1, 1) pulled in.
+  const cube = readFileSync(new URL('../../../deploy/samples/cube.obj', import.meta.url), 'utf8');
+  const key1 = cube.replace(/^v 1 1 1$/m, 'v 0.8 0.8 0.8');
+  assert.notEqual(key1, cube);
+  await admin.call({ open_document: { document_id: toLong(morph) } });
+  await admin.call({ add_morph_key: { document_id: toLong(morph), mesh: Buffer.from(key1), mesh_format: 1, file_name: 'key1.obj' } });
+  await grant(admin, VIEWER, 1, morph);
+  const page = await openPage(browser, `${base}/?doc=${morph}#token=${VIEWER}`);
+  await ready(page);
+  const s = await state(page);
+  assert.equal(s.views, false, 'a morph document is not shown with a view');
+  assert.equal(s.hashMatches, true);
+  // The surface of the page's default profile ("balanced"), as a session
+  // subscribed with it assembles it.
+  const other = await openSession(server.port, VIEWER, morph, { baseLevel: 1, maxLevel: 3, angle: 15 }, 'balanced');
+  assert.equal(BigInt(s.surfaceHash), other.session.lastHash.ours);
+  other.connection.stop();
+  // The panel offers the LOD preset, not the tolerance.
+  await page.waitForFunction(() => document.querySelector('[data-f="toleranceRow"]').hidden &&
+    !document.querySelector('select[data-f=preset]').disabled, { timeout: 5000 });
   assert.deepEqual(page.problems, []);
   await page.close();
 });

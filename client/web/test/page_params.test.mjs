@@ -1,5 +1,6 @@
 // The page's address: the token from the fragment only, the document from
-// the query, the WebSocket URL from the page's own scheme and host.
+// the query, the WebSocket URL from the page's own scheme and host, and a
+// view unless a profile is asked for.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readPageParams, webSocketUrl, addressWithDocument } from '../src/ui/page_params.js';
@@ -26,4 +27,15 @@ test('ws beside http, wss beside https, path /ws', () => {
 
 test('choosing a document keeps the fragment', () => {
   assert.equal(addressWithDocument(at('http://h:1/?name=al#token=t'), 7n), '/?name=al&doc=7#token=t');
+});
+
+test('a view by default; ?views=0 or a ?lod preset asks for a profile; ?views=1 still means a view', () => {
+  const views = (query) => readPageParams(at(`http://h/?doc=1${query}#token=t`)).views;
+  assert.equal(views(''), true);
+  assert.equal(views('&views=0'), false);
+  assert.equal(views('&lod=fine'), false);
+  assert.equal(views('&lod=coarse&tolerance=4'), false);
+  assert.equal(views('&views=1'), true);
+  assert.equal(views('&views=1&lod=fine'), true, '?views=1 wins over ?lod');
+  assert.equal(readPageParams(at('http://h/?views=0&lod=fine')).lod, 'fine');
 });

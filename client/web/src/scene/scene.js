@@ -140,6 +140,14 @@ export class SceneView {
     this.root.remove(batch.mesh, batch.wire);
   }
 
+  // Tiles or regions from now on: set before the subscription's first
+  // picture (a morph document falls back to a profile, main.js).
+  useTiles(on) {
+    this.tiles = on;
+    this.batches.colourOf = on ? levelColour : regionColour;
+    this.shownPositions.clear();
+  }
+
   // A change of session/document_view.js: the whole set, or the regions a delta
   // changed and removed. Geometry is rebuilt before the next frame.
   apply(change, regions) {

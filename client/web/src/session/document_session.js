@@ -12,6 +12,7 @@ import { Collaborators } from './presence.js';
 import { Pacer } from './pacer.js';
 import { toBig, toLong, hex64 } from '../codec/uint64.js';
 import { shallower } from './lod_profiles.js';
+import { RejectError } from './connection.js';
 
 // SetEdgeSharpness.edge_id when end_vertex_ids name the edge (7.2).
 const EDGE_NAMED_BY_ENDS = (1n << 64n) - 1n;
@@ -20,7 +21,8 @@ export class DocumentSession {
   // options: {connection, decode, documentId, profile, view (a View's
   // fields: a view-dependent subscription, PROTOCOL.md section 16; null for
   // a profile), onView(change), onPresence(), onStatus(text),
-  // onError(text), onHash(result)}.
+  // onError(text), onHash(result), onMorph() (a view was asked for but the
+  // document is a morph: it is subscribed with the profile)}.
   constructor(options) {
     this.o = options;
     this.connection = options.connection;
@@ -55,10 +57,29 @@ export class DocumentSession {
     try {
       await this.connection.call({ open_document: { document_id: toLong(this.documentId) } });
       this.opened = true;
+      // A morph document is shown with the profile: its time, morph_t, is a
+      // profile field (PROTOCOL.md section 14; docs/WEB_VIEWER.md "Views").
+      if (this.camera && await this.isMorph()) {
+        this.camera = null;
+        this.o.onMorph?.();
+      }
       this.o.onStatus?.('subscribing');
       await this.subscribeOrShallower(this.profile);
     } catch (error) {
       this.o.onError?.(`document ${this.documentId}: ${error.message}`);
+    }
+  }
+
+  // Only a morph document answers GetMorphControl with its control points;
+  // one with a single key is refused (PROTOCOL.md section 14). Without
+  // with_topology the answer is the base points at t = 0.
+  async isMorph() {
+    try {
+      const reply = await this.connection.call({ get_morph_control: { document_id: toLong(this.documentId) } });
+      return Boolean(reply.message.morph_control);
+    } catch (error) {
+      if (!(error instanceof RejectError)) throw error; // the connection was lost
+      return false;
     }
   }
 

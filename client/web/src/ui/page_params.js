@@ -12,9 +12,11 @@ export function readPageParams(location) {
     token: fragment.get('token') ?? '',
     name: (query.get('name') ?? 'web viewer').slice(0, 128),
     lod: query.get('lod'),
-    // ?views=1: a view-dependent subscription (docs/WEB_VIEWER.md "Views"),
-    // ?tolerance=PX its screen-space error (0.25..256, default 1).
-    views: query.get('views') === '1',
+    // A view-dependent subscription unless the address asks for a profile
+    // with ?views=0 or ?lod=PRESET (docs/WEB_VIEWER.md "Views"); ?views=1
+    // wins over ?lod. ?tolerance=PX is its screen-space error (0.25..256,
+    // default 1).
+    views: query.has('views') ? query.get('views') !== '0' : !query.has('lod'),
     tolerance: Math.min(256, Math.max(0.25, Number(query.get('tolerance') ?? 1) || 1)),
   };
 }

@@ -12,6 +12,8 @@ build_packages=(
   build-essential cmake pkg-config
   # core: base mesh, mesh I/O, glTF, compression
   libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev zlib1g-dev
+  # a view's first picture: tiles simplified by edge collapses (docs/VIEWS.md)
+  libmeshoptimizer-dev
   # protocol and server
   libboost-dev libboost-system-dev libprotobuf-dev protobuf-compiler libsqlite3-dev libssl-dev
   # command lines (one options library for every binary)

@@ -6,6 +6,7 @@
 #include "core/tessellation/region_merge.h"
 #include "core/tessellation/surface_hash.h"
 #include "core/view/tile_assembly.h"
+#include "core/view/tile_tree.h"
 
 namespace tessera::client {
 
@@ -86,6 +87,10 @@ SurfaceMesh DocumentView::surface() const {
 }
 
 std::map<uint64_t, std::vector<Vec3>> DocumentView::closedTilePositions(int64_t* moved) const {
+  if (auto preview = regions_.find(TileKey::preview().regionId()); preview != regions_.end()) {
+    if (moved) *moved = 0;
+    return {{preview->first, preview->second.positions}};
+  }
   std::vector<const RegionMesh*> meshes;
   for (const auto& [id, mesh] : regions_) meshes.push_back(&mesh);
   std::vector<std::vector<Vec3>> closed = closeCracks(meshes, moved);

@@ -31,9 +31,11 @@ class DocumentView {
   int64_t numTriangles() const;
   // Everything decoded, merged by vertex id and normal (for export and tests).
   SurfaceMesh surface() const;
-  // A view-dependent subscription's tiles (docs/VIEWS.md "Assembling
-  // tiles"): each tile's positions with the cracks towards coarser
-  // neighbours closed (core/view/tile_assembly.h), by region id.
+  // A view-dependent subscription's tiles as they are shown (docs/VIEWS.md
+  // "Assembling tiles"): each tile's positions with the cracks towards
+  // coarser neighbours closed (core/view/tile_assembly.h), by region id.
+  // While the surface's preview is held, it alone, as it came (VIEWS.md
+  // "The first picture").
   std::map<uint64_t, std::vector<Vec3>> closedTilePositions(int64_t* moved = nullptr) const;
   // The last delta applied said the view's tiles are all here
   // (Delta.view_complete); a snapshot starts a view's picture, not complete.

@@ -155,7 +155,8 @@ Renderer::GpuRegion& Renderer::slot(uint64_t id) {
     glGenBuffers(1, &r.ibo);
     glGenBuffers(1, &r.uvbo);
     r.colour = regionColour(id);
-    r.levelColour = levelColour(TileKey::fromRegionId(id).level);
+    // The surface's preview (docs/VIEWS.md "The first picture") is level-0 points.
+    r.levelColour = levelColour(std::max(TileKey::fromRegionId(id).level, 0));
   }
   return r;
 }

@@ -11,7 +11,9 @@ Expected<EncodedTile> encodeTile(const Document& doc, const TileKey& key, const 
   RegionHeader header;
   header.regionId = key.regionId();
   header.documentVersion = header.layoutVersion = version;
-  header.profile = {.baseLevel = key.level, .maxLevel = key.level, .vertexIds = withIds};
+  // A preview (tile_preview.h) shows level-0 vertices, as its root does.
+  const int level = key.isPreview() ? 0 : key.level;
+  header.profile = {.baseLevel = level, .maxLevel = level, .vertexIds = withIds};
   header.grid = grid;
   if (withIds && key.level >= kTileDepth) {
     // One face's tile: its ids travel as points of that face's lattice.

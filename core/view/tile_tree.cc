@@ -16,6 +16,7 @@ int clusterSize(int level) {
 }  // namespace
 
 std::string TileKey::toString() const {
+  if (isPreview()) return "the surface's preview";
   return "tile L" + std::to_string(level) + " " + FaceId::fromPacked(face).toString();
 }
 
@@ -23,16 +24,22 @@ namespace {
 
 constexpr uint64_t kClusterBit = uint64_t{1} << 63;
 constexpr uint64_t kIndexMask = (uint64_t{1} << 58) - 1;
+constexpr uint64_t kPreviewLevelBits = 31;  // never a cluster level (at most 4)
 
 }  // namespace
 
 uint64_t TileKey::regionId() const {
   if (level >= kTileDepth) return face;
-  return kClusterBit | (static_cast<uint64_t>(level) << 58) | FaceId::fromPacked(face).index();
+  const uint64_t levelBits = isPreview() ? kPreviewLevelBits : static_cast<uint64_t>(level);
+  return kClusterBit | (levelBits << 58) | FaceId::fromPacked(face).index();
 }
 
 TileKey TileKey::fromRegionId(uint64_t id) {
-  if (id & kClusterBit) return {static_cast<int>((id >> 58) & 31), FaceId(0, id & kIndexMask).packed()};
+  if (id & kClusterBit) {
+    const uint64_t levelBits = (id >> 58) & 31;
+    return {levelBits == kPreviewLevelBits ? kPreviewLevel : static_cast<int>(levelBits),
+            FaceId(0, id & kIndexMask).packed()};
+  }
   return {FaceId::fromPacked(id).level() + kTileDepth, id};
 }
 

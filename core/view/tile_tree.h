@@ -28,6 +28,9 @@
 namespace tessera {
 
 inline constexpr int kTileDepth = 5;  // a full tile: 4^5 triangles
+// The surface's preview (tile_preview.h) has this level: not a tile of the
+// tree, never selected, only the first picture's placeholder.
+inline constexpr int kPreviewLevel = -1;
 
 struct TileKey {
   int level = 0;
@@ -41,6 +44,10 @@ struct TileKey {
   // bit 63 set, the level in bits 58..62 and the seed base face below.
   uint64_t regionId() const;
   static TileKey fromRegionId(uint64_t id);
+  // The surface's preview, and whether a key is it: its region id is the
+  // cluster form with level bits 31 and index 0.
+  static TileKey preview() { return {kPreviewLevel, 0}; }
+  bool isPreview() const { return level == kPreviewLevel; }
 };
 
 class TileTree {

@@ -2,10 +2,16 @@
 
 #include <chrono>
 
+#include "core/view/tile_preview.h"
+
 namespace tessera::server {
 
 TileCache::TileCache(Document& doc, const QuantizationGrid& grid, uint64_t maxBytes, ServerStats& stats)
-    : catalogue_(doc), grid_(grid), maxBytes_(maxBytes), stats_(stats) {}
+    : catalogue_(doc),
+      grid_(grid),
+      maxBytes_(maxBytes),
+      stats_(stats),
+      hasPreview_(previewPays(static_cast<int64_t>(doc.counts().faces(0)))) {}
 
 TileCache::~TileCache() {
   stats_.tileCacheBytes -= static_cast<int64_t>(bytes_);
@@ -47,14 +53,20 @@ Expected<EncodedTile> TileCache::encoded(const TileKey& key, uint64_t version) {
     return found->second.tile;
   }
   const auto start = std::chrono::steady_clock::now();
-  TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(key));
-  TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, encodeTile(catalogue_.document(), key, *mesh, grid_, version));
+  EncodedTile tile;
+  if (key.isPreview()) {
+    TESSERA_ASSIGN_OR_RETURN(RegionMesh preview, buildPreview());
+    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, preview, grid_, version));
+  } else {
+    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(key));
+    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, *mesh, grid_, version));
+    // The encoding is what is kept: the mesh goes, the bounds stay for
+    // selecting (docs/VIEWS.md "The server").
+    catalogue_.releaseMesh(key);
+  }
   stats_.encodeLatency.addMicros(
       std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start)
           .count());
-  // The encoding is what is kept: the mesh goes, the bounds stay for
-  // selecting (docs/VIEWS.md "The server").
-  catalogue_.releaseMesh(key);
   countBuilt();
   ++stats_.tilesEncoded;
   const uint64_t size = tile.bytes->size();
@@ -79,17 +91,33 @@ void TileCache::evictBeyond(uint64_t maxBytes) {
   }
 }
 
+Expected<RegionMesh> TileCache::buildPreview() {
+  std::vector<const RegionMesh*> roots;
+  for (const TileKey& root : catalogue_.tree().roots()) {
+    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(root));
+    roots.push_back(mesh);
+  }
+  countBuilt();
+  return surfacePreview(roots);
+}
+
+void TileCache::forgetEncoding(const TileKey& key) {
+  auto entry = entries_.find(key);
+  if (entry == entries_.end()) return;
+  const uint64_t size = entry->second.tile.bytes->size();
+  bytes_ -= size;
+  stats_.tileCacheBytes -= static_cast<int64_t>(size);
+  byUse_.erase(entry->second.lastUse);
+  entries_.erase(entry);
+}
+
 std::vector<TileKey> TileCache::invalidate(std::span<const VertexId> changedLimits) {
   const std::vector<TileKey> gone =
       catalogue_.forget(TouchedTiles(catalogue_.document().hierarchy(), catalogue_.tree(), changedLimits));
   for (const TileKey& key : gone) {
-    auto entry = entries_.find(key);
-    if (entry == entries_.end()) continue;
-    const uint64_t size = entry->second.tile.bytes->size();
-    bytes_ -= size;
-    stats_.tileCacheBytes -= static_cast<int64_t>(size);
-    byUse_.erase(entry->second.lastUse);
-    entries_.erase(entry);
+    forgetEncoding(key);
+    // The preview is made of every root: a root that changed changes it.
+    if (key.level == 0) forgetEncoding(TileKey::preview());
   }
   return gone;
 }

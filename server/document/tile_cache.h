@@ -39,7 +39,11 @@ class TileCache {
   Expected<TileBounds> bounds(const TileKey& key);
   // The tile encoded at the document's state: cached, or built (if its mesh
   // was released) and encoded once now; `version` goes into its header.
+  // TileKey::preview() is the surface's preview (core/view/tile_preview.h),
+  // cached the same way and forgotten with any root.
   Expected<EncodedTile> encoded(const TileKey& key, uint64_t version);
+  // Whether a new viewer's first picture is the preview (previewPays).
+  bool hasPreview() const { return hasPreview_; }
   // An edit changed these limits: the tiles it reached are forgotten,
   // encodings and bounds; returns them in key order.
   std::vector<TileKey> invalidate(std::span<const VertexId> changedLimits);
@@ -48,6 +52,10 @@ class TileCache {
  private:
   void evictBeyond(uint64_t maxBytes);
   void countBuilt();
+  // Forgets one encoding, if cached.
+  void forgetEncoding(const TileKey& key);
+  // The preview's mesh, from every root's.
+  Expected<RegionMesh> buildPreview();
 
   TileCatalogue catalogue_;
   const QuantizationGrid& grid_;
@@ -61,6 +69,7 @@ class TileCache {
   std::map<uint64_t, TileKey> byUse_;  // lastUse -> tile: the least recently used first
   uint64_t useClock_ = 0, bytes_ = 0;
   int64_t builtCounted_ = 0;
+  bool hasPreview_ = false;
 };
 
 }  // namespace tessera::server

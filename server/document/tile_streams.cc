@@ -35,15 +35,19 @@ Status TileStreams::subscribe(TileCache& tiles, const std::shared_ptr<Subscriber
   s.view = view;
   s.budget = budget;
   s.lastApplied = Clock::now();
-  // The first picture: the roots, the coarsest whole surface, in one snapshot.
-  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> roots;
-  for (const TileKey& key : tiles.tree().roots()) {
+  // The first picture, in one snapshot: the surface's preview, a few
+  // kilobytes, where it pays; the roots, the coarsest whole surface, where
+  // they are as small (docs/VIEWS.md "The first picture").
+  std::vector<TileKey> first =
+      tiles.hasPreview() ? std::vector<TileKey>{TileKey::preview()} : tiles.tree().roots();
+  std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> payloads;
+  for (const TileKey& key : first) {
     TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(key, version));
     s.held[key] = {tile.hash, false};
     s.surfaceHash += tile.hash;
-    roots.emplace_back(key.regionId(), tile.bytes);
+    payloads.emplace_back(key.regionId(), tile.bytes);
   }
-  for (auto& frame : encodeSnapshotFrames({documentId_, version, profile, resync, s.surfaceHash}, roots,
+  for (auto& frame : encodeSnapshotFrames({documentId_, version, profile, resync, s.surfaceHash}, payloads,
                                           kSnapshotPartBytes, maxFrameBytes_)) {
     who->send({frame, nullptr, documentId_});
   }
@@ -243,6 +247,12 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
       a = tree.parent(a);
       if (waiting.count(a)) depend(a, want);
     }
+  }
+  // The preview, shown alone while held, waits for the visible tiles only
+  // (they come first): the picture then changes once, to the view's.
+  if (waiting.count(TileKey::preview())) {
+    for (const SelectedTile& t : target.tiles)
+      if (t.visible) depend(TileKey::preview(), t.key);
   }
 
   Chunks c{deltaFor(s, fromVersion, toVersion, authorSession, editId)};

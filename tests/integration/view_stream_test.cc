@@ -90,6 +90,9 @@ struct Viewer {
   std::map<uint64_t, int64_t> payloadBytes;  // region id -> its latest payload's bytes
   int64_t payloads = 0, bytes = 0;
   std::vector<wire::Delta> deltas;  // as they came since the last clear
+  // The first picture: the snapshot's regions and their bytes.
+  std::vector<uint64_t> snapshotIds;
+  int64_t snapshotBytes = 0;
 
   // Applies messages until the view is complete (a delta says so), after
   // `atLeast` deltas.
@@ -105,6 +108,12 @@ struct Viewer {
       const auto* regions = m.has_snapshot() ? &m.snapshot().regions()
                             : m.has_delta()  ? &m.delta().regions()
                                              : nullptr;
+      if (m.has_snapshot()) {
+        for (const wire::Region& r : m.snapshot().regions()) {
+          snapshotIds.push_back(r.region_id());
+          snapshotBytes += static_cast<int64_t>(r.draco().size());
+        }
+      }
       if (regions) {
         for (const wire::Region& r : *regions) {
           received.insert(r.region_id());
@@ -246,6 +255,54 @@ TEST(ViewStream, ADocumentTooLargeToEvaluateWholeIsShownAtItsFinestLevelWhereACa
   ASSERT_TRUE(refused->has_reject()) << refused->DebugString();
   EXPECT_EQ(refused->reject().reason(), wire::REJECT_REASON_LIMIT_EXCEEDED) << refused->DebugString();
   EXPECT_TRUE(server->running());
+  EXPECT_EQ(server->stop(), 0);
+}
+
+// The first picture of a large document (docs/VIEWS.md "The first
+// picture"): fandisk's 12,946 level-0 triangles come as the surface's
+// preview, one region of a few kilobytes; the view's tiles follow and the
+// preview goes, leaving the watertight picture the camera needs.
+TEST(ViewStream, ALargeDocumentsFirstPictureIsAPreviewOfAFewKilobytesThenItsTiles) {
+  auto server = ServerProcess::start(testing::makeTempDir("tessera-view-preview") + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  wire::ClientMessage create;
+  auto* c = create.mutable_create_document();
+  c->set_name("fandisk");
+  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("fandisk.off")));
+  c->set_mesh_format(wire::MESH_FORMAT_OFF);
+  c->set_max_level(4);
+  auto created = (*admin)->call(create, 60);
+  ASSERT_TRUE(created.isOk() && created->has_ack());
+  const uint64_t doc = created->ack().document_id();
+  auto fandisk = importMesh(testing::cgalMeshPath("fandisk.off"));
+  ASSERT_TRUE(fandisk.isOk());
+  auto local = Document::create(*fandisk, {.maxLevel = 1});
+  ASSERT_TRUE(local.isOk());
+  Vec3 lo = local->basePoints()[0], hi = lo;
+  for (const Vec3& p : local->basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
+  const Model m{0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
+  std::mt19937 rng(7);
+  for (int camera = 0; camera < 3; ++camera) {
+    const std::string where = "camera " + std::to_string(camera);
+    auto v = subscribeViewer(*server, doc, randomView(m, rng), "viewer-" + std::to_string(camera));
+    ASSERT_TRUE(v.isOk()) << where << ": " << v.status().message();
+    std::printf(
+        "[ measured ] %s: first picture %lld bytes in %zu region(s); then %lld bytes in %lld payloads\n",
+        where.c_str(), static_cast<long long>(v->snapshotBytes), v->snapshotIds.size(),
+        static_cast<long long>(v->bytes - v->snapshotBytes),
+        static_cast<long long>(v->payloads - static_cast<int64_t>(v->snapshotIds.size())));
+    ASSERT_EQ(v->snapshotIds, std::vector<uint64_t>{TileKey::preview().regionId()}) << where;
+    EXPECT_LT(v->snapshotBytes, 16 << 10) << where;
+    bool removed = false;
+    for (const wire::Delta& d : v->deltas)
+      for (uint64_t id : d.removed_region_ids()) removed |= id == TileKey::preview().regionId();
+    EXPECT_TRUE(removed) << where;
+    EXPECT_FALSE(v->view->regions().count(TileKey::preview().regionId())) << where;
+    EXPECT_GT(v->view->regions().size(), 1u) << where;
+    expectWatertight(*v, m, where);
+  }
   EXPECT_EQ(server->stop(), 0);
 }
 

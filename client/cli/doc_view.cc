@@ -15,6 +15,7 @@
 #include "core/document/document_file.h"
 #include "core/tessellation/document_grid.h"
 #include "core/view/tile_encoding.h"
+#include "core/view/tile_preview.h"
 #include "core/view/tile_selection.h"
 
 namespace tessera::cli {
@@ -112,6 +113,30 @@ int runDocView(const DocViewArgs& args) {
   std::printf("the whole document at level %d, the finest this view shows: %s triangles (%.1f times these)\n",
               finestVisible, formatCount(uniform).c_str(),
               static_cast<double>(uniform) / std::max<int64_t>(selection->triangles, 1));
+  // The first picture a server sends before these (docs/VIEWS.md "The
+  // first picture"): the surface's preview where it pays, else the roots.
+  std::vector<const RegionMesh*> roots;
+  int64_t rootTriangles = 0;
+  size_t rootBytes = 0;
+  for (const TileKey& root : catalogue.tree().roots()) {
+    auto tile = catalogue.get(root);
+    if (!tile.isOk()) return fail("doc view", tile.status());
+    roots.push_back(&(*tile)->mesh);
+    rootTriangles += (*tile)->triangles;
+    rootBytes += encodedBytes(*doc, root, (*tile)->mesh, *grid, true);
+  }
+  if (previewPays(rootTriangles)) {
+    auto preview = surfacePreview(roots);
+    if (!preview.isOk()) return fail("doc view", preview.status());
+    std::printf(
+        "first picture: the surface's preview, %s triangles, %s with ids (the level-0 tiles: %s, %s)\n",
+        formatCount(preview->triangles.size()).c_str(),
+        formatBytes(encodedBytes(*doc, TileKey::preview(), *preview, *grid, true)).c_str(),
+        formatCount(rootTriangles).c_str(), formatBytes(rootBytes).c_str());
+  } else {
+    std::printf("first picture: the level-0 tiles, %s triangles, %s with ids\n",
+                formatCount(rootTriangles).c_str(), formatBytes(rootBytes).c_str());
+  }
   std::printf("tiles built: %s\n", formatCount(catalogue.built()).c_str());
   return 0;
 }

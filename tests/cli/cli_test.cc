@@ -288,6 +288,17 @@ TEST(CliDoc, ViewPrintsTheTilesACameraNeeds) {
   ASSERT_EQ(far.exitCode, 0) << far.err;
   EXPECT_NE(far.out.find("view 390x844 px, tolerance 1 px;"), std::string::npos) << far.out;
   EXPECT_NE(far.out.find("level  tiles (hidden)"), std::string::npos) << far.out;
+  // The cube is small: its first picture is its level-0 tiles. Fandisk's
+  // 12,946 level-0 triangles get the surface's preview (docs/VIEWS.md).
+  EXPECT_NE(far.out.find("first picture: the level-0 tiles, 12 triangles"), std::string::npos) << far.out;
+  const std::string fandisk = dir + "/fandisk.tsd";
+  ASSERT_EQ(
+      runCli("doc new " + testing::cgalMeshPath("fandisk.off") + " --max-level 2 -o " + fandisk).exitCode, 0);
+  CliRun large = runCli("doc view " + fandisk + " --eye 0 0 3 --target 0 0 0");
+  ASSERT_EQ(large.exitCode, 0) << large.err;
+  EXPECT_NE(large.out.find("first picture: the surface's preview, 2,048 triangles"), std::string::npos)
+      << large.out;
+  EXPECT_NE(large.out.find("(the level-0 tiles: 12,946,"), std::string::npos) << large.out;
   CliRun near = runCli("doc view " + doc + " --eye 0 0 1.6 --target 0 0 0 --size 1920x1080 --tolerance 0.5");
   ASSERT_EQ(near.exitCode, 0) << near.err;
   auto finest = [](const std::string& out) {

@@ -22,6 +22,7 @@ import { installTestHook } from './test_hook.js';
 import { toBig } from './codec/uint64.js';
 import { PageState } from './page_state.js';
 import { viewOfCamera, ViewSender } from './session/view_camera.js';
+import { PREVIEW_ID } from './scene/tile_assembly.js';
 
 const HUD_INTERVAL_MS = 250;
 
@@ -214,7 +215,14 @@ async function main() {
     }
     if (page.readyAfterRender) {
       page.readyAfterRender = false;
-      page.firstPicture ??= { ms: Math.round(performance.now()), triangles: view.triangles };
+      if (!page.firstPicture) {
+        const shown = view.shownIds();
+        const regions = page.session.view.regions;
+        page.firstPicture = {
+          ms: Math.round(performance.now()), triangles: view.triangles, shown: shown.map(String).sort(),
+          bytes: shown.reduce((n, id) => n + (regions.get(id)?.bytes ?? 0), 0),
+        };
+      }
       page.ready = true;
       setBodyState('ready');
     }
@@ -239,7 +247,10 @@ async function main() {
       role: page.session?.role ?? page.connection?.helloAck?.role ?? 0, latencyMs: page.session?.latency.last ?? null,
       bytesPerSecond: page.bytesPerSecond, hash: page.session?.lastHash ?? null, preset: page.profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
       wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
-      views: page.views ? { complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance } : null,
+      views: page.views ? {
+        complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance,
+        preview: page.session?.view.regions.has(PREVIEW_ID) ?? false,
+      } : null,
       pick: editor.describe(), points: controlPoints.count ?? 0, pointsDrawn: controlPoints.drawn,
       people: page.session ? page.session.collaborators.list().map((c) => ({ ...c, self: c.sessionId === page.session.sessionId })) : [],
       status: page.connection?.ready && page.session?.view.ready ? 'live' : page.status,

@@ -22,8 +22,10 @@ export class PageState {
     // drawn (ready, and <body data-state=ready>).
     this.readyAfterRender = false;
     this.ready = false;
-    // The first picture drawn: when (ms since the page started) and its
-    // triangles; with a view, the coarsest tiles, refined after.
+    // The first picture drawn: when (ms since the page started), its
+    // triangles, the ids of the regions it draws (decimal strings) and their
+    // payloads' bytes; with a view, the surface's preview or the coarsest
+    // tiles, refined after.
     this.firstPicture = null;
 
     // When each version was first drawn (Unix ms, Date.now()): the

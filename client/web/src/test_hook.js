@@ -4,11 +4,13 @@
 import { idName, packId, parseIdName } from './codec/ids.js';
 import { hex64 } from './codec/uint64.js';
 import { tileLevel } from './scene/region_batches.js';
+import { isPreview } from './scene/tile_assembly.js';
 
-function tileLevels(regions) {
+// The surface's preview counts as "preview", not as a level.
+export function tileLevels(regions) {
   const out = {};
   for (const id of regions.keys()) {
-    const level = String(tileLevel(id));
+    const level = isPreview(id) ? 'preview' : String(tileLevel(id));
     out[level] = (out[level] ?? 0) + 1;
   }
   return out;
@@ -36,12 +38,14 @@ export function installTestHook(app) {
         triangles: view ? view.triangles() : 0,
         regions: view ? view.regions.size : 0,
         // Whether the page subscribes with a view (main.js); then whether
-        // the latest camera's tiles are all here, and the tiles held by
-        // level ("level": count).
+        // the latest camera's tiles are all here, the tiles held by level
+        // ("level": count, the preview as "preview"), their ids, and the
+        // ids of the regions drawn (the preview alone while it is held).
         views: page.views,
         viewComplete: session ? session.viewComplete() : false,
         tileLevels: view ? tileLevels(view.regions) : {},
         tiles: view ? [...view.regions.keys()].map(String).sort().join(' ') : '',
+        shown: app.view.shownIds().map(String).sort().join(' '),
         firstPicture: page.firstPicture,
         bytesReceived: connection ? connection.bytesReceived : 0,
         lastEditToDeltaMs: session?.latency.last ?? null,

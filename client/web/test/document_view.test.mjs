@@ -6,6 +6,7 @@ import assert from 'node:assert/strict';
 import Long from 'long';
 import { DocumentView } from '../src/session/document_view.js';
 import { LatencyTracker } from '../src/session/latency.js';
+import { PREVIEW_ID, shownTiles } from '../src/scene/tile_assembly.js';
 
 const L = (n) => Long.fromValue(n, true);
 // A payload here is [flags, layoutVersion, ...indices]; decoding gives a
@@ -82,4 +83,19 @@ test('latency: from sending to the delta that brings the acked version, whicheve
   t.acked(7n, 20, 7n);
   assert.equal(t.last, 30, 'arrival 50 - sent 20');
   assert.equal(t.samples, 2);
+});
+
+test('a view\'s first snapshot may be the surface\'s preview: drawn alone until a delta removes it', () => {
+  // docs/VIEWS.md "The server": the tiles come as deltas meanwhile, and are
+  // held and decoded, but not drawn.
+  const view = new DocumentView(1n, decode);
+  const preview = region(PREVIEW_ID, 0, 1, 0, 1, 2, 0, 2, 3);
+  assert.equal(view.apply('snapshot', snapshot(4, [preview])).kind, 'snapshot');
+  assert.equal(view.regions.get(PREVIEW_ID).bytes, preview.draco.length, 'each region keeps its payload\'s size');
+  assert.deepEqual([...shownTiles(view.regions).keys()], [PREVIEW_ID]);
+  view.apply('delta', delta(4, 4, [region(10, 0, 1, 0, 1, 2)]));
+  assert.equal(view.regions.size, 2);
+  assert.deepEqual([...shownTiles(view.regions).keys()], [PREVIEW_ID], 'a tile arrived: the preview still alone');
+  view.apply('delta', delta(4, 4, [region(11, 0, 1, 0, 1, 2)], [PREVIEW_ID]));
+  assert.deepEqual([...shownTiles(view.regions).keys()], [10n, 11n]);
 });

@@ -1,9 +1,12 @@
 // RegionBatches: a GPU buffer per region for documents of up to 2,048
 // regions, so that a delta replaces exactly the changed regions' buffers;
-// shared buffers for documents of many small regions.
+// shared buffers for documents of many small regions. A view's tiles'
+// levels and colours.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { RegionBatches } from '../src/scene/region_batches.js';
+import { RegionBatches, levelColour, tileLevel } from '../src/scene/region_batches.js';
+import { PREVIEW_ID } from '../src/scene/tile_assembly.js';
+import { tileLevels } from '../src/test_hook.js';
 
 function region(seed) {
   // One triangle; positions differ per seed so that buffers can be told apart.
@@ -50,4 +53,15 @@ test('a document of many regions shares buffers', () => {
   batches.flush();
   assert.equal(batches.batches.length, 1);
   assert.equal(batches.triangles, 5000);
+});
+
+test('tiles are coloured by level; the surface\'s preview like level 0, and counted apart by the test hook', () => {
+  const cluster = (level, index) => (1n << 63n) | (BigInt(level) << 58n) | BigInt(index);
+  assert.equal(tileLevel(cluster(3, 7)), 3);
+  assert.equal(tileLevel((1n << 58n) | 9n), 6, 'a one-face tile: its face\'s level + 5');
+  assert.equal(tileLevel(PREVIEW_ID), 0);
+  assert.equal(levelColour(PREVIEW_ID).getHex(), levelColour(cluster(0, 2)).getHex());
+  assert.notEqual(levelColour(PREVIEW_ID).getHex(), levelColour(cluster(8, 0)).getHex());
+  const held = new Map([[PREVIEW_ID, {}], [cluster(0, 1), {}], [cluster(0, 2), {}], [cluster(2, 0), {}]]);
+  assert.deepEqual(tileLevels(held), { preview: 1, 0: 2, 2: 1 });
 });

@@ -4,7 +4,7 @@
 // coarser neighbour stay.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { closeCracks } from '../src/scene/tile_assembly.js';
+import { closeCracks, isPreview, PREVIEW_ID, shownTiles } from '../src/scene/tile_assembly.js';
 
 function tile(vertices, triangles) {
   return {
@@ -38,4 +38,29 @@ test('tiles at one level, and tiles without ids, are left as they are', () => {
   assert.equal(moved, 0);
   assert.equal(positions.get(1n), left.positions);
   assert.equal(positions.get(3n), bare.positions);
+});
+
+test('the surface\'s preview is no tile: crack closing leaves it, and the tiles, as they are', () => {
+  // A fine tile alone has nothing to close. The preview holds its end ids 1
+  // and 2 and joins them by an edge: taken for a coarser tile, it would pull
+  // id 4 onto that edge.
+  const fine = tile([{ id: 1, p: [0, 0, 0] }, { id: 4, p: [1, 0.1, 0] }, { id: 2, p: [2, 0, 0] }, { id: 5, p: [1, 1, 0] }],
+    [[0, 1, 3], [1, 2, 3]]);
+  const preview = tile([{ id: 1, p: [0, 0, 0] }, { id: 2, p: [2, 0, 0] }, { id: 3, p: [1, -1, 0] }], [[0, 1, 2]]);
+  assert.equal(PREVIEW_ID, 0xfc00000000000000n, 'bit 63, level bits 31, index 0');
+  const { positions, moved } = closeCracks(new Map([[2n, fine], [PREVIEW_ID, preview]]));
+  assert.equal(moved, 0);
+  assert.equal(positions.get(2n), fine.positions);
+  assert.equal(positions.get(PREVIEW_ID), preview.positions, 'the preview is drawn as it came');
+});
+
+test('while the preview is held the page draws it alone; once removed, the tiles', () => {
+  const a = tile([{ id: 1, p: [0, 0, 0] }, { id: 2, p: [1, 0, 0] }, { id: 3, p: [0, 1, 0] }], [[0, 1, 2]]);
+  const preview = tile([{ id: 1, p: [0, 0, 0] }, { id: 2, p: [1, 0, 0] }, { id: 3, p: [0, 1, 0] }], [[0, 1, 2]]);
+  const held = new Map([[PREVIEW_ID, preview], [1n, a], [2n, a]]);
+  assert.deepEqual([...shownTiles(held)], [[PREVIEW_ID, preview]]);
+  held.delete(PREVIEW_ID);
+  assert.equal(shownTiles(held), held);
+  assert.equal(isPreview(PREVIEW_ID), true);
+  assert.equal(isPreview(PREVIEW_ID - 1n), false);
 });

@@ -9,6 +9,7 @@
 // again) once before the next frame. Each vertex also carries its region's
 // colour, for the region-colour toggle.
 import * as THREE from 'three';
+import { isPreview } from './tile_assembly.js';
 
 const BATCH_VERTICES = 65536;
 const SEPARATE_REGIONS = 2048;
@@ -22,9 +23,11 @@ export function regionColour(regionId) {
 
 // A view's tiles (PROTOCOL.md section 16): one colour per level, cool to
 // warm. A cluster's id has bit 63 set and its level in bits 58..62; a
-// one-face tile's id is its face's, of level L - 5.
+// one-face tile's id is its face's, of level L - 5. The surface's preview
+// (level bits 31) is the level-0 surface simplified: level 0.
 const LEVEL_HUES = [0.63, 0.56, 0.47, 0.33, 0.18, 0.11, 0.05, 0.0, 0.88];
 export function tileLevel(regionId) {
+  if (isPreview(regionId)) return 0;
   const id = BigInt(regionId);
   return Number(id >> 63n ? (id >> 58n) & 31n : ((id >> 58n) & 63n) + 5n);
 }

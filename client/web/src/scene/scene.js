@@ -12,7 +12,7 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { RoomEnvironment } from 'three/examples/jsm/environments/RoomEnvironment.js';
 import { fitCamera } from './camera_fit.js';
 import { RegionBatches, regionColour, levelColour } from './region_batches.js';
-import { closeCracks } from './tile_assembly.js';
+import { closeCracks, shownTiles } from './tile_assembly.js';
 
 const SURFACE_COLOUR = 0xa7b0bd;
 const WIRE_COLOUR = 0x161c24;
@@ -168,8 +168,10 @@ export class SceneView {
 
   // Every tile held, its cracks towards coarser neighbours closed over the
   // whole set (tile_assembly.js): a tile whose closed positions did not
-  // change keeps its buffer.
-  applyTiles(regions) {
+  // change keeps its buffer. While the surface's preview is held, it alone
+  // (docs/WEB_VIEWER.md "Views").
+  applyTiles(held) {
+    const regions = shownTiles(held);
     for (const id of this.batches.ids()) {
       if (!regions.has(id)) this.batches.remove(id), this.shownPositions.delete(id);
     }
@@ -182,6 +184,11 @@ export class SceneView {
       this.batches.set(id, p === region.positions ? region : { ...region, positions: p });
       this.shownPositions.set(id, { region, positions: p });
     }
+  }
+
+  // The ids of the regions drawn (with a view, the preview alone while held).
+  shownIds() {
+    return this.batches.ids();
   }
 
   bounds() {

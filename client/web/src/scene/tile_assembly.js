@@ -6,6 +6,25 @@
 // has and joins by an edge, is put on that edge at its dyadic places.
 // Vertices are matched across tiles by id (the same id is the same limit
 // point in every tile).
+//
+// The surface's preview (docs/VIEWS.md "The server") is no tile: while it
+// is held the page draws it alone, and it never takes part in crack
+// closing.
+
+// The preview's region id: the cluster form (bit 63) at level 31, index 0.
+export const PREVIEW_ID = (1n << 63n) | (31n << 58n);
+
+export function isPreview(regionId) {
+  return BigInt(regionId) === PREVIEW_ID;
+}
+
+// What a view's page draws out of the regions it holds: the preview alone
+// while it is held (the tiles keep arriving and are kept meanwhile), the
+// tiles once the server has removed it.
+export function shownTiles(regions) {
+  const preview = regions.get(PREVIEW_ID);
+  return preview ? new Map([[PREVIEW_ID, preview]]) : regions;
+}
 
 function idOf(region, v) {
   return `${region.idHi[v]}:${region.idLo[v]}`;
@@ -31,9 +50,12 @@ function edgesOf(region) {
 
 // regions: Map id -> decoded region (positions, indices, idHi, idLo).
 // Returns Map id -> positions (a new Float32Array for the tiles with moved
-// vertices, the region's own array otherwise) and the count moved.
+// vertices, the region's own array otherwise; the preview's own, always)
+// and the count moved. The cracks are closed over the tiles only: the
+// preview covers the whole surface with level-0 vertex ids, and taken for a
+// tile its simplified edges would pull the tiles' vertices onto them.
 export function closeCracks(regions) {
-  const ids = [...regions.keys()];
+  const ids = [...regions.keys()].filter((id) => !isPreview(id));
   const edges = new Map();
   const owners = new Map(); // vertex id -> tile ids having it
   for (const id of ids) {
@@ -52,6 +74,7 @@ export function closeCracks(regions) {
   }
   const shared = (vid) => (owners.get(vid)?.length ?? 0) > 1;
   const out = new Map();
+  if (regions.has(PREVIEW_ID)) out.set(PREVIEW_ID, regions.get(PREVIEW_ID).positions);
   let moved = 0;
   for (const id of ids) {
     const r = regions.get(id);

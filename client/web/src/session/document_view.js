@@ -54,8 +54,7 @@ export class DocumentView {
       this.stagingVersion = version;
     }
     for (const r of s.regions) {
-      this.regionBytes += r.draco.length;
-      const decoded = this.decode(r.draco);
+      const decoded = this.decodePayload(r);
       if (!decoded.header.idsInline && decoded.header.hasIds) {
         // Snapshots always carry ids (6.2): one without them cannot be
         // assembled, so ask for another.
@@ -87,8 +86,7 @@ export class DocumentView {
     const updates = new Map();
     for (const r of d.regions) {
       const id = toBig(r.region_id);
-      this.regionBytes += r.draco.length;
-      const decoded = this.decode(r.draco);
+      const decoded = this.decodePayload(r);
       if (!decoded.header.idsInline && decoded.header.hasIds) {
         const held = updates.get(id) ?? this.regions.get(id);
         try {
@@ -108,6 +106,15 @@ export class DocumentView {
     this.viewComplete = Boolean(d.view_complete);
     this.viewSeq = toBig(d.view_seq ?? 0);
     return { kind: 'delta', changed: [...new Set(changed)], removed, delta: d };
+  }
+
+  // A region of a Snapshot or Delta, decoded; it keeps its payload's size
+  // (`bytes`: what the page's first picture cost, for the test hook).
+  decodePayload(r) {
+    this.regionBytes += r.draco.length;
+    const decoded = this.decode(r.draco);
+    decoded.bytes = r.draco.length;
+    return decoded;
   }
 
   gap(reason) {

@@ -112,14 +112,18 @@ export class Hud {
   // facts: {fps, triangles, regions, version, documentName, documentId,
   // role, latencyMs, bytesPerSecond, hash: {ours, server, matches} | null,
   // preset, wireframe, regionColours, level, pick, points, pointsDrawn, people: [{sessionId,
-  // name, role, selection, self}], status, error}
+  // name, role, selection, self}], views: {complete, frozen, tolerance,
+  // preview} | null, status, error}
   update(facts) {
     const f = this.f;
     setText(f.glance, `v${facts.version}  ${shortCount(facts.triangles)} tris  ${facts.fps >= 0.5 ? `${facts.fps.toFixed(0)} fps` : 'idle'}`);
-    // A view-dependent subscription counts tiles, says whether the camera's
+    // A view-dependent subscription counts tiles, says whether the surface's
+    // preview is shown instead (counted apart), whether the camera's tiles
     // are all here, its tolerance, and whether the view is frozen (X).
-    const regions = facts.views
-      ? `${facts.regions} tiles${facts.views.complete ? '' : ' (loading)'} · ${facts.views.tolerance} px${facts.views.frozen ? ' · frozen' : ''}`
+    const views = facts.views;
+    const regions = views
+      ? `${views.preview ? `preview · ${facts.regions - 1}` : facts.regions} tiles${views.complete ? '' : ' (loading)'} · ` +
+        `${views.tolerance} px${views.frozen ? ' · frozen' : ''}`
       : `${facts.regions} regions`;
     setText(f.doc, facts.documentId
       ? `doc ${facts.documentId}${facts.documentName ? ` “${facts.documentName}”` : ''} · ${regions} · ${ROLE_NAMES[facts.role] ?? 'role ' + facts.role}`

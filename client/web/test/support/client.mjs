@@ -2,6 +2,7 @@
 // transport, plus the admin steps a test needs (create a document, grant a
 // token) and waiting for a condition.
 import { readFileSync } from 'node:fs';
+import { basename } from 'node:path';
 import { createWire } from '../../src/codec/wire.js';
 import { Connection } from '../../src/session/connection.js';
 import { DocumentSession } from '../../src/session/document_session.js';
@@ -45,6 +46,17 @@ export async function createCube(admin, maxLevel = 5) {
     create_document: {
       name: 'web viewer test cube', mesh: readFileSync(repo('deploy/samples/cube.obj')), mesh_format: 1,
       tags: readFileSync(repo('deploy/samples/cube.tags'), 'utf8'), max_level: maxLevel, file_name: 'cube.obj',
+    },
+  });
+  return toBig(reply.message.ack.document_id);
+}
+
+// A mesh file (OBJ or OFF, by its extension) as a new document.
+export async function createMesh(admin, path, maxLevel) {
+  const reply = await admin.call({
+    create_document: {
+      name: basename(path), mesh: readFileSync(path), mesh_format: path.endsWith('.off') ? 2 : 1,
+      max_level: maxLevel, file_name: basename(path),
     },
   });
   return toBig(reply.message.ack.document_id);

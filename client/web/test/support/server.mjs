@@ -4,11 +4,16 @@
 import { spawn, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, writeFileSync, existsSync, openSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
+import { dirname, join, resolve } from 'node:path';
 import { randomBytes } from 'node:crypto';
 
 export const SERVER_BINARY = process.env.TESSERA_SERVER ??
   new URL('../../../../build/release/server/tessera-server', import.meta.url).pathname;
+
+// The build's extracted test data (CGAL's meshes under testdata/cgal): in
+// the build directory whose server the tests run.
+export const BUILD_DIR = process.env.TESSERA_BUILD_DIR ?? resolve(dirname(SERVER_BINARY), '..');
+export const testData = (path) => join(BUILD_DIR, 'testdata', path);
 
 export function serverAvailable() {
   return existsSync(SERVER_BINARY);

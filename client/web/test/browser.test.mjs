@@ -351,7 +351,7 @@ test('with ?views=1 the page loads coarse first, then the tiles its camera needs
 
 // A document whose level-0 surface has more than 8,192 triangles (CGAL's
 // fandisk: 12,946) starts with the surface's preview, simplified to at most
-// 2,048 (docs/VIEWS.md "The server"). The page draws it alone while it is
+// 2,048 (docs/VIEWS.md "The first picture"). The page draws it alone while it is
 // held, whatever tiles arrive meanwhile, and the tiles once the server has
 // removed it (docs/WEB_VIEWER.md "Views").
 test('a large document\'s first picture is its preview, alone and a few kilobytes; the whole view is tiles without it', { skip }, async () => {

@@ -86,7 +86,7 @@ test('latency: from sending to the delta that brings the acked version, whicheve
 });
 
 test('a view\'s first snapshot may be the surface\'s preview: drawn alone until a delta removes it', () => {
-  // docs/VIEWS.md "The server": the tiles come as deltas meanwhile, and are
+  // docs/VIEWS.md "The first picture": the tiles come as deltas meanwhile, and are
   // held and decoded, but not drawn.
   const view = new DocumentView(1n, decode);
   const preview = region(PREVIEW_ID, 0, 1, 0, 1, 2, 0, 2, 3);

@@ -7,7 +7,7 @@
 // Vertices are matched across tiles by id (the same id is the same limit
 // point in every tile).
 //
-// The surface's preview (docs/VIEWS.md "The server") is no tile: while it
+// The surface's preview (docs/VIEWS.md "The first picture") is no tile: while it
 // is held the page draws it alone, and it never takes part in crack
 // closing.
 

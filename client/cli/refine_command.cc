@@ -35,9 +35,12 @@ Status writeSurface(const RefineArgs& args, const SurfaceMesh& surface) {
   ExportOptions exportOptions;
   exportOptions.draco = args.draco;
   TESSERA_RETURN_IF_ERROR(exportMesh(surface, args.output, exportOptions));
-  std::printf("wrote %s: %s vertices, %s triangles (level %d%s)\n", args.output.c_str(),
-              formatCount(surface.positions.size()).c_str(), formatCount(surface.triangles.size()).c_str(),
-              args.level, args.limit ? ", limit surface" : "");
+  // The polygon formats keep a polygon surface's faces (mesh_export.h).
+  const bool polygons = surface.numPolygons() > 0 && exportKeepsPolygons(args.output);
+  std::printf("wrote %s: %s vertices, %s %s (level %d%s)\n", args.output.c_str(),
+              formatCount(surface.positions.size()).c_str(),
+              formatCount(polygons ? surface.numPolygons() : surface.triangles.size()).c_str(),
+              polygons ? "polygons" : "triangles", args.level, args.limit ? ", limit surface" : "");
   return Status::ok();
 }
 
@@ -131,13 +134,14 @@ void addRefineCommand(CLI::App& app, Action& action) {
       "Refines IN N times with Loop's scheme and its sharp features (creases,\n"
       "corners, darts, cusps; OpenSubdiv 3.5 semantics) and writes OUT.\n"
       "--scheme catmull-clark (OpenSubdiv's creases too) and bilinear refine the\n"
-      "polygons of an OBJ or OFF file as they are; doo-sabin too; butterfly and\n"
-      "sqrt3 (closed meshes) refine triangles. --limit: loop, catmull-clark,\n"
-      "sqrt3 (positions only).");
+      "polygons of an OBJ, OFF or PLY file as they are; doo-sabin too; butterfly\n"
+      "and sqrt3 (closed meshes) refine triangles. The polygon schemes' faces\n"
+      "(quads; Doo-Sabin's n-gons) stay polygons in OBJ, OFF and PLY; STL and\n"
+      "GLB take triangles. --limit: loop, catmull-clark, sqrt3 (positions only).");
   auto args = std::make_shared<RefineArgs>();
   addMeshInputOptions(*refine, args->mesh);
   refine->add_option("--level", args->level, "refinement level, 0 or more")->required()->check(wholeNumber());
-  refine->add_option("-o,--output", args->output, ".obj, .ply or .glb (chosen by extension)")
+  refine->add_option("-o,--output", args->output, ".obj, .off, .ply, .stl or .glb (chosen by extension)")
       ->required()
       ->type_name("OUT");
   refine->add_flag("--limit", args->limit,

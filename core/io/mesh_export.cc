@@ -67,6 +67,12 @@ Status writeFileBytes(const std::string& path, const char* data, std::size_t siz
 
 }  // namespace io_detail
 
+bool exportKeepsPolygons(const std::string& path) {
+  const Expected<ExportFormat> format = formatFor(path);
+  return format.isOk() &&
+         (*format == ExportFormat::kObj || *format == ExportFormat::kOff || *format == ExportFormat::kPly);
+}
+
 const std::vector<std::string>& supportedExportExtensions() {
   static const std::vector<std::string> kExtensions = {".obj", ".off", ".ply", ".stl", ".glb"};
   return kExtensions;
@@ -91,6 +97,26 @@ Status validateSurfaceMesh(const SurfaceMesh& surface) {
       return invalidMesh("normal " + std::to_string(i) + " is not finite " + formatVec(normal));
     // Zero normals cannot be made unit length, which glTF requires.
     if (normal.sqrnorm() == 0.0) return invalidMesh("normal " + std::to_string(i) + " is zero");
+  }
+  if (!surface.polygonOffsets.empty()) {
+    const auto& offsets = surface.polygonOffsets;
+    if (offsets.front() != 0 || static_cast<std::size_t>(offsets.back()) != surface.polygonCorners.size())
+      return invalidMesh("polygon offsets do not span the " + std::to_string(surface.polygonCorners.size()) +
+                         " polygon corners");
+    for (std::size_t f = 0; f + 1 < offsets.size(); ++f) {
+      const int corners = offsets[f + 1] - offsets[f];
+      // PLY counts a face's corners in one byte.
+      if (corners < 3 || corners > 255)
+        return invalidMesh("polygon " + std::to_string(f) + " has " + std::to_string(corners) +
+                           " corners (3 to 255)");
+      for (int c = offsets[f]; c < offsets[f + 1]; ++c) {
+        const int v = surface.polygonCorners[static_cast<std::size_t>(c)];
+        if (v < 0 || static_cast<std::size_t>(v) >= n)
+          return invalidMesh("polygon " + std::to_string(f) + " corner " + std::to_string(c - offsets[f]) +
+                             ": vertex index " + std::to_string(v) + " outside [0, " + std::to_string(n) +
+                             ")");
+      }
+    }
   }
   for (std::size_t f = 0; f < surface.triangles.size(); ++f) {
     for (int c = 0; c < 3; ++c) {

@@ -3,6 +3,9 @@
 // Every format is streamed to its file (mesh_writers.h): memory stays that
 // of the surface, whatever the file's size.
 // The format follows the extension of the output path, case-insensitively:
+// OBJ, OFF and PLY write a surface's polygons where it has them (a quad
+// scheme's refinement: quads), its triangles otherwise; STL and GLB always
+// write triangles, as their formats require.
 //   .obj  text; `v`, `vn` when normals are present, faces `f a//a b//b c//c`.
 //         Coordinates are printed as the shortest decimal that reads back to
 //         the same double, so OBJ (and OFF) are the lossless formats.
@@ -24,8 +27,10 @@
 //                    for a format other than .glb;
 //   invalidArgument  Draco options out of range;
 //   invalidMesh      no triangles, an index out of range, a non-finite
-//                    position or normal, a zero normal, or a normals count
-//                    that is neither 0 nor the positions count;
+//                    position or normal, a zero normal, a normals count
+//                    that is neither 0 nor the positions count, or polygons
+//                    whose offsets do not span their corners or that have
+//                    fewer than 3 or more than 255 corners;
 //   ioError          the file cannot be written.
 // Nothing is written unless the input is valid.
 #pragma once
@@ -55,6 +60,10 @@ Status exportMesh(const SurfaceMesh& surface, const std::string& path, const Exp
 
 // Checks what exportMesh checks before writing (see above), for any format.
 Status validateSurfaceMesh(const SurfaceMesh& surface);
+
+// Whether exportMesh() writes a polygon surface's polygons to `path` (OBJ,
+// OFF, PLY) rather than its triangles.
+bool exportKeepsPolygons(const std::string& path);
 
 // Extensions exportMesh() accepts, lower case with the dot: ".obj", ...
 const std::vector<std::string>& supportedExportExtensions();

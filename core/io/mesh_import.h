@@ -60,12 +60,12 @@ Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, con
                                                      const std::string& displayName,
                                                      const ImportOptions& options = {});
 
-// The polygons of an OBJ or OFF file in memory exactly as the file states
+// The polygons of an OBJ, OFF or PLY file in memory exactly as the file states
 // them, for the schemes that refine polygons as they are
 // (core/schemes/polygon_reader.h): the readers importMesh uses, and since no
 // buildBaseMesh follows, every face index is checked against the vertices at
 // its line and a file without vertices or faces is refused. `extension`
-// chooses the reader (".obj" or "off", any case); other formats are
+// chooses the reader (".obj", "off" or ".ply", any case); other formats are
 // unsupported here.
 Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
                                         const std::string& displayName);

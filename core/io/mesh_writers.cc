@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <span>
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +25,23 @@ void appendFloat3(FileWriter& out, const std::array<float, 3>& v) {
   for (float c : v) out.appendBytes(c);
 }
 
+// The faces the polygon formats (OBJ, OFF, PLY) write: the surface's
+// polygons where it has them, its triangles otherwise.
+size_t numFaces(const SurfaceMesh& s) {
+  return s.polygonOffsets.empty() ? s.triangles.size() : s.numPolygons();
+}
+
+template <typename Visit>
+void forEachFace(const SurfaceMesh& s, Visit&& visit) {
+  if (s.polygonOffsets.empty()) {
+    for (const auto& t : s.triangles) visit(std::span<const int>(t.data(), 3));
+    return;
+  }
+  for (size_t f = 0; f + 1 < s.polygonOffsets.size(); ++f)
+    visit(std::span<const int>(s.polygonCorners.data() + s.polygonOffsets[f],
+                               static_cast<size_t>(s.polygonOffsets[f + 1] - s.polygonOffsets[f])));
+}
+
 }  // namespace
 
 void writeObj(const SurfaceMesh& surface, FileWriter& out) {
@@ -31,9 +49,9 @@ void writeObj(const SurfaceMesh& surface, FileWriter& out) {
   for (const Vec3& p : surface.positions) appendTriple(out, "v", p);
   for (const Vec3& n : surface.normals) appendTriple(out, "vn", n);
   const bool withNormals = !surface.normals.empty();
-  for (const auto& t : surface.triangles) {
+  forEachFace(surface, [&](std::span<const int> face) {
     out.append('f');
-    for (int v : t) {
+    for (int v : face) {
       // OBJ indices are 1-based; `a//a` names position a and normal a.
       out.append(' ');
       out.appendNumber(static_cast<long long>(v) + 1);
@@ -43,14 +61,14 @@ void writeObj(const SurfaceMesh& surface, FileWriter& out) {
       }
     }
     out.append('\n');
-  }
+  });
 }
 
 void writeOff(const SurfaceMesh& surface, FileWriter& out) {
   out.append("OFF\n");
   out.appendNumber(static_cast<long long>(surface.positions.size()));
   out.append(' ');
-  out.appendNumber(static_cast<long long>(surface.triangles.size()));
+  out.appendNumber(static_cast<long long>(numFaces(surface)));
   out.append(" 0\n");
   for (const Vec3& p : surface.positions) {
     out.appendNumber(p[0]);
@@ -60,14 +78,14 @@ void writeOff(const SurfaceMesh& surface, FileWriter& out) {
     out.appendNumber(p[2]);
     out.append('\n');
   }
-  for (const auto& t : surface.triangles) {
-    out.append('3');
-    for (int v : t) {
+  forEachFace(surface, [&](std::span<const int> face) {
+    out.appendNumber(static_cast<long long>(face.size()));
+    for (int v : face) {
       out.append(' ');
       out.appendNumber(static_cast<long long>(v));
     }
     out.append('\n');
-  }
+  });
 }
 
 void writePly(const SurfaceMesh& surface, FileWriter& out) {
@@ -76,16 +94,16 @@ void writePly(const SurfaceMesh& surface, FileWriter& out) {
   out.append("element vertex " + std::to_string(surface.positions.size()) + "\n");
   out.append("property float x\nproperty float y\nproperty float z\n");
   if (withNormals) out.append("property float nx\nproperty float ny\nproperty float nz\n");
-  out.append("element face " + std::to_string(surface.triangles.size()) + "\n");
+  out.append("element face " + std::to_string(numFaces(surface)) + "\n");
   out.append("property list uchar int vertex_indices\nend_header\n");
   for (std::size_t i = 0; i < surface.positions.size(); ++i) {
     appendFloat3(out, toFloat3(surface.positions[i]));
     if (withNormals) appendFloat3(out, toFloat3(surface.normals[i]));
   }
-  for (const auto& t : surface.triangles) {
-    out.append(static_cast<char>(3));
-    for (int v : t) out.appendBytes(static_cast<std::int32_t>(v));
-  }
+  forEachFace(surface, [&](std::span<const int> face) {
+    out.append(static_cast<char>(face.size()));  // at most 255 (validateSurfaceMesh)
+    for (int v : face) out.appendBytes(static_cast<std::int32_t>(v));
+  });
 }
 
 void writeStl(const SurfaceMesh& surface, FileWriter& out) {

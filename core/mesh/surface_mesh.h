@@ -5,6 +5,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <span>
 #include <vector>
 
 #include "core/util/vec3.h"
@@ -15,6 +17,22 @@ struct SurfaceMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;                  // empty, or one unit normal per position
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise
+  // A surface of polygons (a quad scheme's or Doo-Sabin's refinement) also
+  // keeps its faces: face f's corners, counter-clockwise, are
+  // polygonCorners[polygonOffsets[f] .. polygonOffsets[f + 1]). `triangles`
+  // is then their fan triangulation, for the formats and consumers that take
+  // triangles only. Both empty for a surface of triangles.
+  std::vector<int> polygonOffsets, polygonCorners;
+
+  size_t numPolygons() const { return polygonOffsets.empty() ? 0 : polygonOffsets.size() - 1; }
+  // Appends a polygon and its fan of triangles.
+  void addPolygon(std::span<const int> corners) {
+    if (polygonOffsets.empty()) polygonOffsets.push_back(0);
+    polygonCorners.insert(polygonCorners.end(), corners.begin(), corners.end());
+    polygonOffsets.push_back(static_cast<int>(polygonCorners.size()));
+    for (size_t k = 1; k + 1 < corners.size(); ++k)
+      triangles.push_back({corners[0], corners[k], corners[k + 1]});
+  }
 };
 
 }  // namespace tessera

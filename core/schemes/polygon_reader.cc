@@ -64,7 +64,7 @@ Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::stri
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   PolygonMesh mesh;
-  if (ext == ".obj" || ext == ".off") {
+  if (ext == ".obj" || ext == ".off" || ext == ".ply") {
     TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
     TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(text, ext, path));
     mesh.topology = PolyTopology::fromSoup(soup);

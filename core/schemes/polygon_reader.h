@@ -1,4 +1,4 @@
-// Polygon input for the quad schemes: OBJ and OFF read as polygons by the
+// Polygon input for the quad schemes: OBJ, OFF and PLY read as polygons by the
 // readers every import uses (core/io/mesh_import.h, importPolygonSoup: full
 // double precision, strict, every error naming the file and the line),
 // other formats through the triangle importer, arriving as triangles.
@@ -27,7 +27,7 @@ struct PolygonMesh {
 Expected<PolygonSoup> readObjPolygons(std::string_view text, const std::string& name);
 Expected<PolygonSoup> readOffPolygons(std::string_view text, const std::string& name);
 
-// Reads `path` (polygons for .obj and .off, the triangle importer otherwise),
+// Reads `path` (polygons for .obj, .off and .ply, the triangle importer otherwise),
 // then applies the tag file `tagsPath` unless it is empty. The topology is
 // validated when a refiner builds it.
 Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath);

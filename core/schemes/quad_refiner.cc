@@ -70,11 +70,14 @@ std::vector<std::vector<Vec3>> QuadRefiner::refinePointsPerLevel(std::span<const
 
 namespace {
 
-void addTriangles(const Level& level, SurfaceMesh& surface) {
+// The level's faces as polygons (quads from level 1 on), with their fans.
+void addPolygons(const Level& level, SurfaceMesh& surface) {
   surface.triangles.reserve(level.faceVertices.size() - 2 * static_cast<size_t>(level.numFaces()));
+  surface.polygonOffsets.reserve(static_cast<size_t>(level.numFaces()) + 1);
+  surface.polygonCorners.reserve(level.faceVertices.size());
   for (Index f = 0; f < level.numFaces(); ++f) {
     auto fv = level.faceVerticesOf(f);
-    for (size_t k = 1; k + 1 < fv.size(); ++k) surface.triangles.push_back({fv[0], fv[k], fv[k + 1]});
+    surface.addPolygon(std::span<const int>(fv.data(), fv.size()));
   }
 }
 
@@ -83,7 +86,7 @@ void addTriangles(const Level& level, SurfaceMesh& surface) {
 SurfaceMesh QuadRefiner::controlSurface(std::span<const Vec3> finestPoints) const {
   SurfaceMesh surface;
   surface.positions.assign(finestPoints.begin(), finestPoints.end());
-  addTriangles(finestLevel(), surface);
+  addPolygons(finestLevel(), surface);
   return surface;
 }
 
@@ -96,7 +99,7 @@ Expected<SurfaceMesh> QuadRefiner::limitSurface(std::span<const Vec3> finestPoin
   surface.positions.resize(level.numVertices);
   surface.normals.resize(level.numVertices);
   TESSERA_RETURN_IF_ERROR(computeCatmarkLimit(level, finestPoints, surface.positions, surface.normals));
-  addTriangles(level, surface);
+  addPolygons(level, surface);
   return surface;
 }
 

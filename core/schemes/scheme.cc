@@ -50,13 +50,12 @@ std::string limitUnavailableReason(Scheme scheme) {
 
 namespace {
 
-SurfaceMesh fanPolygons(const PolyTopology& t, std::vector<Vec3> points) {
+SurfaceMesh polygonSurface(const PolyTopology& t, std::vector<Vec3> points) {
   SurfaceMesh s;
   s.positions = std::move(points);
   for (int f = 0; f < t.numFaces(); ++f) {
     const int from = t.faceOffsets[f], to = t.faceOffsets[f + 1];
-    for (int k = from + 1; k + 1 < to; ++k)
-      s.triangles.push_back({t.indices[from], t.indices[k], t.indices[k + 1]});
+    s.addPolygon(std::span<const int>(t.indices.data() + from, static_cast<size_t>(to - from)));
   }
   return s;
 }
@@ -85,7 +84,7 @@ Expected<SurfaceMesh> refinePolygons(const PolygonMesh& mesh, const SchemeReques
     case Scheme::kDooSabin: {
       TESSERA_ASSIGN_OR_RETURN(PolygonRefinement refined,
                                refineDooSabin(mesh.topology, mesh.points, request.levels, request.maxFaces));
-      return fanPolygons(refined.topology, std::move(refined.points));
+      return polygonSurface(refined.topology, std::move(refined.points));
     }
     default:
       return invalidArgument(std::string(schemeName(request.scheme)) + " does not refine polygons here");

@@ -3,7 +3,10 @@
 // option) where a scheme has no creases or no limit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include "cli/cli_run.h"
 #include "support/test_meshes.h"
@@ -22,8 +25,21 @@ std::string writeQuadCube(const std::string& dir) {
 TEST(CliScheme, CatmullClarkRefinesQuadsAsQuads) {
   const std::string dir = testing::makeTempDir("cli-scheme");
   const std::string cube = writeQuadCube(dir);
-  // Level 1: 8 + 6 + 12 vertices, 24 quads written as 48 triangles.
+  // Level 1: 8 + 6 + 12 vertices, 24 quads, written as quads.
   CliRun run = runCli("refine " + cube + " --scheme catmull-clark --level 1 -o " + dir + "/cc1.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("26 vertices, 24 polygons (level 1)"), std::string::npos) << run.out;
+  const std::string obj = readAll(dir + "/cc1.obj");
+  size_t quads = 0, faces = 0;
+  for (size_t at = obj.find("\nf "); at != std::string::npos; at = obj.find("\nf ", at + 1)) {
+    const std::string line = obj.substr(at + 1, obj.find('\n', at + 1) - at - 1);
+    ++faces;
+    quads += std::count(line.begin(), line.end(), ' ') == 4;
+  }
+  EXPECT_EQ(faces, 24u);
+  EXPECT_EQ(quads, 24u);
+  // STL and GLB take triangles: two per quad.
+  run = runCli("refine " + cube + " --scheme catmull-clark --level 1 -o " + dir + "/cc1.stl");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_NE(run.out.find("26 vertices, 48 triangles (level 1)"), std::string::npos) << run.out;
   // The corner (1, 1, 1) moves to 5/9 of itself (the shortest round-trip decimal).
@@ -31,19 +47,39 @@ TEST(CliScheme, CatmullClarkRefinesQuadsAsQuads) {
             std::string::npos);
   run = runCli("refine " + cube + " --scheme=catmull-clark --level 2 --limit -o " + dir + "/cc2.ply");
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  EXPECT_NE(run.out.find("98 vertices, 192 triangles (level 2, limit surface)"), std::string::npos)
-      << run.out;
+  EXPECT_NE(run.out.find("98 vertices, 96 polygons (level 2, limit surface)"), std::string::npos) << run.out;
 }
 
 TEST(CliScheme, EveryOtherSchemeWritesItsCounts) {
   const std::string dir = testing::makeTempDir("cli-scheme");
   const std::string cube = writeQuadCube(dir);
   // Bilinear: as Catmull-Clark's topology. Doo-Sabin: one face per face,
-  // edge and vertex (6 quads, 12 quads, 8 triangles: 6*2 + 12*2 + 8 = 44).
+  // edge and vertex (6 quads, 12 quads, 8 triangles: 26 polygons, or
+  // 6*2 + 12*2 + 8 = 44 triangles).
   CliRun run = runCli("refine " + cube + " --scheme bilinear --level 1 -o " + dir + "/b.obj");
   ASSERT_EQ(run.exitCode, 0) << run.err;
-  EXPECT_NE(run.out.find("26 vertices, 48 triangles"), std::string::npos) << run.out;
-  run = runCli("refine " + cube + " --scheme doo-sabin --level 1 -o " + dir + "/d.obj");
+  EXPECT_NE(run.out.find("26 vertices, 24 polygons"), std::string::npos) << run.out;
+  run = runCli("refine " + cube + " --scheme doo-sabin --level 1 -o " + dir + "/d.off");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("24 vertices, 26 polygons"), std::string::npos) << run.out;
+  {
+    std::istringstream off(readAll(dir + "/d.off"));
+    std::string magic;
+    int vertices = 0, faces = 0, edges = 0;
+    off >> magic >> vertices >> faces >> edges;
+    ASSERT_EQ(faces, 26);
+    double coordinate = 0;
+    for (int k = 0; k < 3 * vertices; ++k) off >> coordinate;
+    std::map<int, int> bySize;
+    for (int f = 0; f < faces; ++f) {
+      int n = 0, v = 0;
+      off >> n;
+      for (int k = 0; k < n; ++k) off >> v;
+      ++bySize[n];
+    }
+    EXPECT_EQ(bySize, (std::map<int, int>{{3, 8}, {4, 18}}));
+  }
+  run = runCli("refine " + cube + " --scheme doo-sabin --level 1 -o " + dir + "/d.glb");
   ASSERT_EQ(run.exitCode, 0) << run.err;
   EXPECT_NE(run.out.find("24 vertices, 44 triangles"), std::string::npos) << run.out;
   // Triangle schemes on the triangulated cube (12 triangles, 18 edges).

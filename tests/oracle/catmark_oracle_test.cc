@@ -7,10 +7,14 @@
 // crease methods and both boundary rules.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <string>
 
+#include "core/io/mesh_export.h"
 #include "core/io/mesh_import.h"
 #include "core/schemes/catmark_limit.h"
 #include "core/schemes/polygon_reader.h"
@@ -159,6 +163,111 @@ TEST(BilinearOracle, MatchesOpenSubdivOnPolygons) {
   Totals totals;
   for (const auto& mesh : shapes()) checkAgainstOsd(mesh, QuadScheme::kBilinear, {}, 3, totals);
   EXPECT_GT(totals.points, 0);
+}
+
+// Written polygons (`tessera refine --scheme catmull-clark|bilinear` to OBJ,
+// OFF and PLY, core/io/mesh_export.h) are OpenSubdiv's faces of the finest
+// level: as many, each the same cycle of vertices, read back from the file.
+// Vertices are matched by position (ours and OpenSubdiv's agree to 1e-12 of
+// the diagonal, PLY's float32 to 1e-6 of it; the closest two vertices of
+// these meshes are far apart), so neither numbering is assumed.
+class NearestVertex {
+ public:
+  NearestVertex(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
+    for (size_t v = 0; v < points.size(); ++v) cells_[keyOf(points[v])].push_back(static_cast<int>(v));
+  }
+  // The vertex within `tolerance` of p, or -1.
+  int find(const Vec3& p, double tolerance) const {
+    const auto k = keyOf(p);
+    int best = -1;
+    double bestDistance = tolerance;
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          auto it = cells_.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == cells_.end()) continue;
+          for (int v : it->second) {
+            const double d = (points_[v] - p).norm();
+            if (d <= bestDistance) best = v, bestDistance = d;
+          }
+        }
+    return best;
+  }
+
+ private:
+  std::array<long long, 3> keyOf(const Vec3& p) const {
+    return {std::llround(p[0] / cell_), std::llround(p[1] / cell_), std::llround(p[2] / cell_)};
+  }
+  const std::vector<Vec3>& points_;
+  double cell_;
+  std::map<std::array<long long, 3>, std::vector<int>> cells_;
+};
+
+// A face as its cycle of vertices from the lowest.
+std::vector<int> cycleFromLowest(std::vector<int> corners) {
+  std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+  return corners;
+}
+
+TEST(CatmarkOracle, WrittenPolygonsAreOpenSubdivsFacesOfTheFinestLevel) {
+  const std::string dir = testing::makeTempDir("catmark-polygons");
+  auto real = schemes::importPolygonMesh(testing::cgalMeshPath("double-torus-example.off"), "");
+  ASSERT_TRUE(real.isOk());
+  std::vector<PolyTestMesh> meshes = shapes();
+  meshes.push_back({"double-torus-example", real->topology, real->points});
+  int compared = 0;
+  for (const PolyTestMesh& mesh : meshes) {
+    const double diag = diagonal(mesh.points);
+    for (QuadScheme scheme : {QuadScheme::kCatmullClark, QuadScheme::kBilinear}) {
+      for (int levels : {1, 2}) {
+        const std::string where = mesh.name +
+                                  (scheme == QuadScheme::kBilinear ? " bilinear" : " catmull-clark") +
+                                  " level " + std::to_string(levels);
+        auto refiner = QuadRefiner::create(mesh.topology, scheme, {}, {.levels = levels});
+        ASSERT_TRUE(refiner.isOk()) << where;
+        const SurfaceMesh surface = refiner->controlSurface(refiner->refinePoints(mesh.points));
+        const NearestVertex ours(surface.positions, 1e-6 * diag);
+        // OpenSubdiv's faces of the finest level, in our vertices.
+        oracle::OsdPolyInput input(mesh.topology);
+        auto osd = oracle::createOsdQuadRefiner(input, scheme, {}, levels, false);
+        std::vector<oracle::OsdDoublePoint> base;
+        for (const Vec3& p : mesh.points) base.push_back({p[0], p[1], p[2]});
+        const auto points = oracle::interpolateOsdDouble(*osd, base, levels);
+        const auto& level = osd->GetLevel(levels);
+        std::multiset<std::vector<int>> expected;
+        for (int f = 0; f < level.GetNumFaces(); ++f) {
+          std::vector<int> corners;
+          for (int v : level.GetFaceVertices(f)) {
+            corners.push_back(ours.find({points[v].x, points[v].y, points[v].z}, 1e-12 * diag));
+            ASSERT_GE(corners.back(), 0) << where << ": OpenSubdiv's vertex " << v << " is none of ours";
+          }
+          expected.insert(cycleFromLowest(corners));
+        }
+        for (const std::string ext : {".obj", ".off", ".ply"}) {
+          const std::string path = dir + "/refined" + ext;
+          ASSERT_TRUE(exportMesh(surface, path).isOk()) << where << ext;
+          auto back = schemes::importPolygonMesh(path, "");
+          ASSERT_TRUE(back.isOk()) << where << ext << ": " << back.status().toString();
+          ASSERT_EQ(back->topology.numFaces(), level.GetNumFaces()) << where << ext;
+          // OBJ and OFF print each coordinate so that it reads back exactly;
+          // PLY stores float32.
+          const double tolerance = ext == std::string(".ply") ? 1e-6 * diag : 0;
+          std::multiset<std::vector<int>> written;
+          for (int f = 0; f < back->topology.numFaces(); ++f) {
+            std::vector<int> corners;
+            for (int k = back->topology.faceOffsets[f]; k < back->topology.faceOffsets[f + 1]; ++k) {
+              corners.push_back(ours.find(back->points[back->topology.indices[k]], tolerance));
+              ASSERT_GE(corners.back(), 0) << where << ext << ": face " << f;
+            }
+            written.insert(cycleFromLowest(corners));
+          }
+          EXPECT_EQ(written, expected) << where << ext;
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(compared, 6 * 2 * 2 * 3);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@
 # test starts no cycle after it (and then fails with the cycles it ran), and
 # `timeout` kills the test and its server (one process group) 120 s later.
 # Prints the test's "soak:" line (cycles, acknowledged and refused edits,
-# losses) and exits with the test's status.
+# losses) and exits with the test's status; its log is removed unless it failed.
 set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=${BUILD:-$ROOT/build/release}
@@ -38,4 +38,6 @@ STATUS=$?
 grep '^soak:' "$LOG" || echo "soak: no summary (status $STATUS; killed by timeout?)"
 grep -B2 -A6 'Failure' "$LOG" | head -40
 echo "status $STATUS after $(( $(date +%s) - START )) s"
+# The log is kept, and named, only when the soak failed.
+if [ $STATUS -eq 0 ]; then rm -f "$LOG"; else echo "kept the log: $LOG"; fi
 exit $STATUS

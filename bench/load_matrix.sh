@@ -7,6 +7,9 @@
 set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 B=$ROOT/build/release
+# An interrupted row removes its server and directory too.
+D= S=
+trap '[ -n "$S" ] && kill -TERM $S 2>/dev/null; [ -n "$D" ] && rm -rf "$D"' EXIT
 while read -r V E R K; do
   DECODE=${K:+--decode-viewers $K}
   D=$(mktemp -d /tmp/load-XXXX)
@@ -25,4 +28,5 @@ while read -r V E R K; do
   kill -TERM $S; wait $S 2>/dev/null
   cp $D/report.json /tmp/load-report-$V-$E-$R.json 2>/dev/null
   rm -rf $D   # the report is kept above; the server's data and logs go
+  D= S=
 done

@@ -11,6 +11,9 @@ B=$ROOT/build/release
 VIEWERS=${VIEWERS:-100}
 SECONDS_PER_ROW=${SECONDS_PER_ROW:-20}
 M=$(mktemp -d /tmp/views-mesh-XXXX)
+# An interrupted run removes its server and directories too.
+D= S=
+trap '[ -n "$S" ] && kill -TERM $S 2>/dev/null; rm -rf "$M" ${D:+"$D"}' EXIT
 tar xzf /usr/share/doc/libcgal-dev/data.tar.gz -C $M data/meshes/armadillo.off
 # The armadillo's bounding sphere (bounding box centre, half its diagonal).
 read -r CX CY CZ R < <(awk 'NR==2 {n=$1} NR>2 && NR<=2+n {
@@ -40,5 +43,5 @@ for MODE in views profile; do
   echo "  (server RSS at the end: $(( $(awk '/VmRSS/ {print $2}' /proc/$S/status) / 1024 )) MiB)"
   kill -TERM $S; wait $S 2>/dev/null
   rm -rf $D
+  D= S=
 done
-rm -rf $M

@@ -14,14 +14,26 @@ cmake --build --preset release -j "$(nproc)"
 # Runs ctest with a temporary directory of its own ($TMPDIR), which must be
 # empty afterwards: a test removes what it made, and keeps it only when it
 # fails (tests/support/test_meshes.h makeTempDir). What is left is listed
-# and kept, and the run fails.
+# and kept, and the run fails. /tmp itself is compared before and after too,
+# for anything that ignored $TMPDIR (the X servers' socket directories,
+# /tmp/.X11-unix and the like, are the system's and not counted).
+tmp_entries() {
+  find /tmp -mindepth 1 -maxdepth 1 -printf '%f\n' 2>/dev/null | grep -Ev '^\.[A-Za-z0-9]+-unix$' | sort
+}
 run_suite() {
-  local tmp status=0
+  local tmp status=0 before left
   tmp=$(mktemp -d "${TMPDIR:-/tmp}/tessera-suite-XXXXXX")
+  before=$(tmp_entries)
   TMPDIR=$tmp ctest --preset "$1" || status=$?
   if ! rmdir "$tmp" 2>/dev/null; then
     echo "the $1 suite left files in its temporary directory $tmp:" >&2
     find "$tmp" -mindepth 1 -maxdepth 2 >&2
+    [[ $status -ne 0 ]] || status=1
+  fi
+  left=$(comm -13 <(echo "$before") <(tmp_entries))
+  if [[ -n $left ]]; then
+    echo "the $1 suite left these in /tmp, outside its temporary directory:" >&2
+    echo "$left" | sed 's|^|  /tmp/|' >&2
     [[ $status -ne 0 ]] || status=1
   fi
   return "$status"

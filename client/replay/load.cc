@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -13,10 +14,12 @@
 #include <unordered_map>
 
 #include "client/lib/document_view.h"
+#include "client/replay/hgrm.h"
 #include "client/replay/load_report.h"
 #include "client/replay/load_state.h"
 #include "client/replay/proc_sample.h"
 #include "client/replay/replay.h"
+#include "client/replay/send_schedule.h"
 #include "client/replay/server_window.h"
 #include "client/replay/viewer_pool.h"
 
@@ -25,6 +28,10 @@ namespace tessera::replay {
 namespace {
 
 using nlohmann::json;
+
+// How long before a send is due an editor stops reading replies and
+// sleeps until it (editorLoop).
+constexpr double kPreciseSleepSeconds = 0.002;
 
 double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
@@ -39,7 +46,7 @@ bool refusesTheRun(wire::RejectReason reason) {
 }
 
 void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline, Shared& shared,
-                std::vector<int64_t>& sentPerSecond) {
+                std::vector<int64_t>& sentPerSecond, std::vector<double>& lateness) {
   client::SessionOptions so = o.session;
   so.name = "editor-" + std::to_string(index + 1);
   auto connected = client::Session::connect(so);
@@ -59,14 +66,20 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
   std::mt19937_64 rng(o.seed * 1000003u + static_cast<uint64_t>(index));
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<uint64_t> vertex(0, o.vertexCount == 0 ? 0 : o.vertexCount - 1);
-  const auto period = secondsOf(1.0 / o.rate);
-  auto next = start + period * index / std::max(o.editors, 1);
+  // Every send's due time is fixed from the start (send_schedule.h); an
+  // edit's latency counts from it, and a send that goes out after it is
+  // late by the difference: a tester that falls behind shows as latency.
+  SendSchedule schedule(o.arrivals, o.rate, start, static_cast<double>(index) / std::max(o.editors, 1),
+                        o.seed * 7919u + static_cast<uint64_t>(index));
+  const auto editEnd = start + secondsOf(o.seconds);
   std::unordered_map<uint64_t, Clock::time_point> outstanding;
   int64_t sentHere = 0;
   for (;;) {
     if (shared.stopped) return s.close();  // the outstanding edits no longer matter
     auto now = Clock::now();
-    const bool editing = !shared.stopEditing && sentHere < o.maxEdits;
+    const auto next = schedule.due();
+    // The schedule, not the clock of the main thread, ends the editing.
+    const bool editing = sentHere < o.maxEdits && next < editEnd;
     if (editing && now >= next) {
       wire::ClientMessage m;
       auto* move = m.mutable_move_vertex();
@@ -79,19 +92,26 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
       now = Clock::now();
       auto seq = s.send(std::move(m));
       if (!seq.isOk()) return shared.error(so.name + ": " + seq.status().message());
-      outstanding[*seq] = now;
+      outstanding[*seq] = next;
+      lateness.push_back(msBetween(next, now));
       const auto second =
-          static_cast<size_t>(std::max(0.0, std::chrono::duration<double>(now - start).count()));
+          static_cast<size_t>(std::max(0.0, std::chrono::duration<double>(next - start).count()));
       if (sentPerSecond.size() <= second) sentPerSecond.resize(second + 1);
       ++sentPerSecond[second];
       ++sentHere;
       ++shared.sent;
-      next += period;
-      if (next < now - period) next = now;  // fell behind: do not burst to catch up
+      schedule.advance();  // never skipped: a late tester sends its backlog, each send late
     }
     if (!editing && (outstanding.empty() || now > drainDeadline)) break;
-    const double wait =
-        editing ? std::clamp(std::chrono::duration<double>(next - now).count(), 0.0005, 0.05) : 0.05;
+    // Replies are read until shortly before the next send is due; the last
+    // stretch is slept precisely (a receive's timeout oversleeps by up to a
+    // millisecond, which would make every send late).
+    const double untilDue = std::chrono::duration<double>(next - now).count();
+    if (editing && untilDue > 0 && untilDue <= kPreciseSleepSeconds) {
+      std::this_thread::sleep_until(next);
+      continue;
+    }
+    const double wait = editing ? std::clamp(untilDue - kPreciseSleepSeconds, 0.0, 0.05) : 0.05;
     auto reply = s.receive(wait);
     if (!reply.isOk()) {
       if (client::isReceiveTimeout(reply.status())) continue;
@@ -123,6 +143,10 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
       return shared.error(so.name + ": server error: " + reply->error().message());
     }
   }
+  // What was due before the end and never went out (the run stopped while
+  // the tester was behind) is dropped; --max-edits ends the offer instead.
+  if (sentHere < o.maxEdits)
+    for (; schedule.due() < editEnd; schedule.advance()) ++shared.dropped;
   if (!outstanding.empty())
     shared.error(so.name + ": " + std::to_string(outstanding.size()) + " edits never acknowledged");
   s.close();
@@ -130,8 +154,10 @@ void editorLoop(const LoadOptions& o, int index, Clock::time_point hardDeadline,
 
 void runEditor(const LoadOptions& o, int index, Clock::time_point hardDeadline, Shared& shared) {
   std::vector<int64_t> sentPerSecond;
-  editorLoop(o, index, hardDeadline, shared, sentPerSecond);
+  std::vector<double> lateness;
+  editorLoop(o, index, hardDeadline, shared, sentPerSecond, lateness);
   std::lock_guard lock(shared.mu);
+  shared.lateness.insert(shared.lateness.end(), lateness.begin(), lateness.end());
   if (shared.sentPerSecond.size() < sentPerSecond.size()) shared.sentPerSecond.resize(sentPerSecond.size());
   for (size_t i = 0; i < sentPerSecond.size(); ++i) shared.sentPerSecond[i] += sentPerSecond[i];
 }
@@ -303,7 +329,10 @@ void runConnections(const LoadOptions& o, Shared& shared, LoadRunData& run) {
     }
     run.cpuBefore = sampleProcess(o.serverPid);
     run.rssPeak = run.cpuBefore.rssBytes;
-    run.start = Clock::now();
+    // The schedule starts a little ahead, so that editors waiting for the
+    // start (in 50 ms receives) are ready before their first send is due.
+    run.start = Clock::now() + std::chrono::milliseconds(100);
+    run.testerCpuBefore = processCpuSeconds();
     run.started = true;
     const auto editEnd = run.start + secondsOf(o.seconds);
     shared.startNs = run.start.time_since_epoch().count();
@@ -320,6 +349,7 @@ void runConnections(const LoadOptions& o, Shared& shared, LoadRunData& run) {
   shared.stopEditing = true;
   for (auto& t : editorThreads) t.join();
   run.editsDone = Clock::now();
+  run.testerCpuAfter = processCpuSeconds();
   run.cpuAfter = sampleProcess(o.serverPid);
   run.rssPeak = std::max(run.rssPeak, run.cpuAfter.rssBytes);
   shared.stopViewing = true;
@@ -355,7 +385,25 @@ Expected<json> runLoad(const LoadOptions& o) {
   } else {
     runConnections(o, shared, run);
   }
-  return buildLoadReport(o, shared, run);
+  LoadLatencies latencies;
+  json report = buildLoadReport(o, shared, run, &latencies);
+  if (!o.hgrmPrefix.empty()) {
+    // The latency samples for HdrHistogram's tools (hgrm.h).
+    json files = json::array();
+    auto write = [&](const char* name, const std::vector<double>& samples) -> Status {
+      const std::string path = o.hgrmPrefix + "-" + name + ".hgrm";
+      std::ofstream out(path);
+      out << percentileDistribution(samples);
+      if (!out.flush()) return ioError(path + ": cannot write");
+      files.push_back(path);
+      return Status::ok();
+    };
+    TESSERA_RETURN_IF_ERROR(write("edit_to_ack", latencies.toAck));
+    TESSERA_RETURN_IF_ERROR(write("edit_to_delta", latencies.toDelta));
+    if (o.cameras) TESSERA_RETURN_IF_ERROR(write("edit_to_tiles", latencies.toTiles));
+    report["hgrm_files"] = files;
+  }
+  return report;
 }
 
 }  // namespace tessera::replay

@@ -11,6 +11,7 @@
 
 #include "client/lib/session.h"
 #include "client/replay/camera_path.h"
+#include "client/replay/send_schedule.h"
 #include "core/util/status.h"
 #include "protocol/tessera.pb.h"
 
@@ -22,7 +23,14 @@ struct LoadOptions {
   uint64_t document = 0;
   int editors = 1;
   int viewers = 10;
-  double rate = 10;           // edits per second per editor
+  double rate = 10;  // edits per second per editor
+  // When editors send (send_schedule.h): a schedule fixed before the run.
+  Arrivals arrivals = Arrivals::kConstant;
+  // Edits due in the first seconds of editing are sent and counted, but
+  // left out of the latency figures (docs/REPLAY.md §3.3).
+  double warmupSeconds = 0;
+  // Set: the latency samples also go to PREFIX-edit_to_ack.hgrm, ... (hgrm.h).
+  std::string hgrmPrefix;
   double seconds = 5;         // editing time
   int64_t maxEdits = 100000;  // per editor
   wire::LodProfile profile;   // the viewers' profile

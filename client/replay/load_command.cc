@@ -29,6 +29,18 @@ CLI::App* addLoadCommand(CLI::App& app, LoadArgs& a) {
   load->add_option("--seconds", a.seconds, "editing time, (0, 3600]")
       ->check(within(0, 3600, true))
       ->capture_default_str();
+  load->add_option("--arrivals", a.arrivals,
+                   "when editors send: constant or poisson, on a schedule fixed before the run; latency "
+                   "counts from each send's due time")
+      ->capture_default_str();
+  load->add_option("--warmup", a.warmupSeconds,
+                   "seconds of editing at the start whose edits are left out of the latencies")
+      ->check(within(0, 3600))
+      ->capture_default_str();
+  load->add_option("--hgrm", a.hgrmPrefix,
+                   "also write the latencies as PREFIX-edit_to_ack.hgrm, PREFIX-edit_to_delta.hgrm "
+                   "(HdrHistogram's percentile format)")
+      ->type_name("PREFIX");
   load->add_option("--max-edits", a.maxEdits, "edits per editor at most")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -91,6 +103,13 @@ int runLoadCommand(const LoadArgs& a) {
   o.viewers = a.viewers;
   o.rate = a.rate;
   o.seconds = a.seconds;
+  auto arrivals = parseArrivals(a.arrivals);
+  if (!arrivals.isOk()) return usage(arrivals.status().message(), "load");
+  o.arrivals = *arrivals;
+  if (!(a.warmupSeconds < a.seconds))
+    return usage("--warmup must be shorter than --seconds (" + std::to_string(a.seconds) + ")", "load");
+  o.warmupSeconds = a.warmupSeconds;
+  o.hgrmPrefix = a.hgrmPrefix;
   o.maxEdits = a.maxEdits;
   o.decodeViewers = a.decodeViewers;
   o.vertexLevel = a.vertexLevel;

@@ -23,6 +23,9 @@ struct LoadArgs {
   uint64_t document = 0;
   int editors = 1, viewers = 10, decodeViewers = -1, vertexLevel = 0, serverPid = 0, poolThreads = 2;
   double rate = 10, seconds = 5, step = 0.01, drainSeconds = 10;
+  std::string arrivals = "constant";
+  double warmupSeconds = 0;
+  std::string hgrmPrefix;
   int64_t maxEdits = 100000;
   uint64_t vertexCount = 8, seed = 1;
   bool displayOnly = false, quiet = false;

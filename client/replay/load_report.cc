@@ -1,16 +1,21 @@
 #include "client/replay/load_report.h"
 
 #include <sys/resource.h>
+#include <sys/utsname.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "client/replay/latency_histogram.h"
 #include "client/replay/latency_stats.h"
 #include "client/replay/load_series.h"
+#include "client/replay/send_schedule.h"
+#include "tessera/version.h"
 
 namespace tessera::replay {
 
@@ -59,14 +64,54 @@ json latencyJson(const std::vector<double>& samples) {
   return j;
 }
 
-json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& run) {
+double processCpuSeconds() {
+  rusage self{};
+  getrusage(RUSAGE_SELF, &self);
+  return static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
+         static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec) / 1e6;
+}
+
+namespace {
+
+// The machine the run measured on, for the report (docs/REPLAY.md §3.3).
+json machineJson() {
+  json m = {{"cpus", std::thread::hardware_concurrency()}};
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0 && line.find(':') != std::string::npos) {
+      m["cpu_model"] = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  utsname u{};
+  if (uname(&u) == 0) m["kernel"] = std::string(u.sysname) + " " + u.release;
+  return m;
+}
+
+// A send later than this after its due time counts as late.
+constexpr double kLateMs = 1.0;
+
+}  // namespace
+
+json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& run, LoadLatencies* latencies) {
   const double editSeconds =
       run.started ? std::chrono::duration<double>(run.editsDone - run.start).count() : 0.0;
   LoadSeries series(seriesSeconds(o, shared, run));
   for (size_t i = 0; i < shared.sentPerSecond.size(); ++i) series.sent(i, shared.sentPerSecond[i]);
+  // Edits due in the warm-up are in the series and counts, not in the
+  // latency figures.
+  auto warm = [&](double dueSeconds) { return dueSeconds >= o.warmupSeconds; };
+  int64_t warmupAcks = 0, warmupDeltas = 0;
   std::vector<double> toAck;
   toAck.reserve(shared.ackSamples.size());
-  for (const TimedSample& s : shared.ackSamples) toAck.push_back(s.ms), series.acked(s.sentSeconds, s.ms);
+  for (const TimedSample& s : shared.ackSamples) {
+    series.acked(s.sentSeconds, s.ms);
+    if (warm(s.sentSeconds)) {
+      toAck.push_back(s.ms);
+    } else {
+      ++warmupAcks;
+    }
+  }
   for (double t : shared.rejectedAt) series.rejected(t);
   for (Clock::time_point t : shared.errorTimes) series.error(shared.secondsSinceStart(t));
 
@@ -101,9 +146,14 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
         auto it = shared.sendTimeOfVersion.find(version);
         if (it == shared.sendTimeOfVersion.end()) continue;
         const double ms = msBetween(it->second, d.arrival);
+        const double due = msBetween(run.start, it->second) / 1000;
+        series.delta(due, ms);
+        if (!warm(due)) {
+          ++warmupDeltas;
+          continue;
+        }
         toDelta.push_back(ms);
         if (o.cameras && d.regions > 0) toTiles.push_back(ms);
-        series.delta(msBetween(run.start, it->second) / 1000, ms);
       }
     }
   }
@@ -112,12 +162,16 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
 
   json report;
   report["format"] = "tessera-replay-report";
-  report["version"] = 1;
+  // Version 2: latencies and the series count from each edit's due time
+  // (send_schedule.h), not from when it went out.
+  report["version"] = 2;
   report["config"] = {
       {"document", o.document},
       {"editors", o.editors},
       {"viewers", o.viewers},
       {"rate_per_editor", o.rate},
+      {"arrivals", arrivalsName(o.arrivals)},
+      {"warmup_seconds", o.warmupSeconds},
       {"seconds", o.seconds},
       {"max_edits_per_editor", o.maxEdits},
       {"profile", {o.profile.base_level(), o.profile.max_level(), o.profile.angle_threshold_degrees()}},
@@ -132,11 +186,27 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
   report["connect_ms"] = std::round(run.connectMs);
   report["settle_ms"] = std::round(run.settleMs);
   report["edit_seconds"] = editSeconds;
-  report["edits"] = {{"sent", shared.sent.load()},
+  // The open model's account (send_schedule.h): offered is what the
+  // schedule made due, achieved what went out; late sends went out more
+  // than kLateMs after they were due, dropped ones never.
+  const int64_t sent = shared.sent.load(), dropped = shared.dropped.load();
+  const int64_t late =
+      std::count_if(shared.lateness.begin(), shared.lateness.end(), [](double ms) { return ms > kLateMs; });
+  const bool testerBehind = dropped > 0 || 100 * late > sent;
+  report["edits"] = {{"sent", sent},
                      {"acked", shared.acked.load()},
                      {"rejected", shared.rejected.load()},
-                     {"throughput_per_second", editSeconds > 0 ? shared.acked / editSeconds : 0.0}};
+                     {"throughput_per_second", editSeconds > 0 ? shared.acked / editSeconds : 0.0},
+                     {"offered", sent + dropped},
+                     {"offered_per_second", run.started ? (sent + dropped) / o.seconds : 0.0},
+                     {"achieved_per_second", run.started ? sent / o.seconds : 0.0},
+                     {"late", late},
+                     {"late_threshold_ms", kLateMs},
+                     {"dropped", dropped},
+                     {"lateness_ms", latencyJson(shared.lateness)},
+                     {"tester_behind", testerBehind}};
   report["latency_ms"] = {{"edit_to_ack", latencyJson(toAck)}, {"edit_to_delta", latencyJson(toDelta)}};
+  report["warmup_excluded"] = {{"edit_to_ack", warmupAcks}, {"edit_to_delta", warmupDeltas}};
   if (o.cameras) {
     report["config"]["cameras"] = {
         {"path", cameraPathName(o.cameras->kind)},
@@ -192,14 +262,19 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
     server["window_error"] = run.statsError;
   }
   report["server"] = server;
-  rusage self{};
-  getrusage(RUSAGE_SELF, &self);
-  const double cpu = static_cast<double>(self.ru_utime.tv_sec + self.ru_stime.tv_sec) +
-                     static_cast<double>(self.ru_utime.tv_usec + self.ru_stime.tv_usec) / 1e6;
+  const double cpu = processCpuSeconds();
   report["client"] = {
       {"cpu_seconds", std::round(cpu * 100) / 100},
       {"threads", o.editors + run.threadedViewers + (o.viewers > run.threadedViewers ? run.poolThreads : 0)},
       {"pooled_viewers", o.viewers - run.threadedViewers}};
+  if (run.started && editSeconds > 0) {
+    // Beside the server's: the tester's own CPU over the same window.
+    report["client"]["cpu_percent"] =
+        std::round(1000 * (run.testerCpuAfter - run.testerCpuBefore) / editSeconds) / 10;
+  }
+  report["machine"] = machineJson();
+  report["versions"] = {{"tessera_replay", kVersion}};
+  if (latencies) *latencies = {std::move(toAck), std::move(toDelta), std::move(toTiles)};
   return report;
 }
 
@@ -232,6 +307,31 @@ std::string summarize(const json& r) {
                 e["acked"].get<long long>(), e["sent"].get<long long>(), e["rejected"].get<long long>(),
                 e["throughput_per_second"].get<double>());
   out << line;
+  if (e.contains("offered")) {
+    std::snprintf(line, sizeof line,
+                  "  schedule (%s): offered %.2f/s, achieved %.2f/s; %lld late by more than %g ms, %lld "
+                  "dropped\n",
+                  c["arrivals"].get<std::string>().c_str(), e["offered_per_second"].get<double>(),
+                  e["achieved_per_second"].get<double>(), e["late"].get<long long>(),
+                  e["late_threshold_ms"].get<double>(), e["dropped"].get<long long>());
+    out << line;
+    if (e["tester_behind"].get<bool>()) {
+      const json& l = e["lateness_ms"];
+      std::snprintf(line, sizeof line,
+                    "  WARNING: the tester fell behind its schedule (lateness p99 %.2f ms, max %.2f ms): its "
+                    "own delay is in these latencies; use fewer connections or a second machine\n",
+                    l.value("p99", 0.0), l.value("max", 0.0));
+      out << line;
+    }
+  }
+  if (c.contains("warmup_seconds") && c["warmup_seconds"].get<double>() > 0) {
+    std::snprintf(
+        line, sizeof line,
+        "  warm-up: the first %g s of edits are left out of the latencies (%lld acks, %lld deltas)\n",
+        c["warmup_seconds"].get<double>(), r["warmup_excluded"]["edit_to_ack"].get<long long>(),
+        r["warmup_excluded"]["edit_to_delta"].get<long long>());
+    out << line;
+  }
   out << "  latency (ms)        mean   stddev      p50      p90      p95      p99    p99.9      max        "
          "n\n";
   out << lat("edit -> ack", r["latency_ms"]["edit_to_ack"]);
@@ -252,7 +352,11 @@ std::string summarize(const json& r) {
   const json& s = r["server"];
   if (s.contains("cpu_percent")) {
     out << "  server: cpu " << s["cpu_percent"] << " %, rss " << (s["rss_bytes"].get<int64_t>() >> 20)
-        << " MiB (peak " << (s["rss_peak_bytes"].get<int64_t>() >> 20) << " MiB)\n";
+        << " MiB (peak " << (s["rss_peak_bytes"].get<int64_t>() >> 20) << " MiB)";
+    if (r["client"].contains("cpu_percent")) out << "; tester: cpu " << r["client"]["cpu_percent"] << " %";
+    out << "\n";
+  } else if (r["client"].contains("cpu_percent")) {
+    out << "  tester: cpu " << r["client"]["cpu_percent"] << " %\n";
   }
   if (s.contains("window")) {
     const json& w = s["window"];

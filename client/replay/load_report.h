@@ -23,13 +23,24 @@ struct LoadRunData {
   int decodingViewers = 0, threadedViewers = 0, poolThreads = 0;
   std::vector<ViewerResult> viewers;
   ProcSample cpuBefore, cpuAfter;
+  double testerCpuBefore = 0, testerCpuAfter = 0;  // this process's CPU seconds over the editing
   int64_t rssPeak = 0;
   std::optional<ServerStatsSample> statsStart, statsEnd;
   std::string statsError;  // why there is no window
 };
 
-// Reads `shared` after every connection thread has ended.
-nlohmann::json buildLoadReport(const LoadOptions& options, Shared& shared, const LoadRunData& run);
+// The latency samples the report summarizes (milliseconds, warm-up left out).
+struct LoadLatencies {
+  std::vector<double> toAck, toDelta, toTiles;
+};
+
+// Reads `shared` after every connection thread has ended; the samples go
+// to `latencies` when given.
+nlohmann::json buildLoadReport(const LoadOptions& options, Shared& shared, const LoadRunData& run,
+                               LoadLatencies* latencies = nullptr);
+
+// This process's CPU time so far, user and system, in seconds.
+double processCpuSeconds();
 
 // The "latency_ms" entry of some samples (milliseconds): count, mean, stddev,
 // min, p50, p90, p95, p99, p99_9, max, to the microsecond.

@@ -33,6 +33,8 @@ struct Shared {
   std::atomic<bool> stopViewing{false};
   std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0},
       viewersReady{0}, viewersDone{0};
+  // Sends due before the end of editing that never went out (send_schedule.h).
+  std::atomic<int64_t> dropped{0};
   std::atomic<uint64_t> maxAckedVersion{0};
   // Editors connect and open first, then wait for the start: joins make
   // Presence messages to every participant, and the edits should not queue
@@ -51,6 +53,7 @@ struct Shared {
   std::vector<TimedSample> ackSamples;
   std::vector<double> rejectedAt;      // send times of rejected edits (seconds since the start)
   std::vector<int64_t> sentPerSecond;  // merged from every editor at its end
+  std::vector<double> lateness;        // ms each send went out after it was due, merged likewise
   std::vector<Clock::time_point> errorTimes;
   std::vector<std::string> errorMessages;              // the first 20
   std::string stopReason;                              // the first reason given to stop()

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "replay/replay_support.h"
 
@@ -93,6 +94,12 @@ TEST(LoadReport, StatisticsSeriesAndPassingThresholds) {
   ASSERT_TRUE(r.is_object()) << out;
   const int64_t sent = r["edits"]["sent"];
   ASSERT_GE(sent, 30) << out;
+  // The schedule is fixed before the run: 2 editors x 10/s x 2 s due, and
+  // every due send accounted for, sent or dropped.
+  EXPECT_EQ(r["edits"]["offered"], 40) << out;
+  EXPECT_EQ(r["edits"]["offered"].get<int64_t>(), sent + r["edits"]["dropped"].get<int64_t>());
+  EXPECT_EQ(r["edits"]["lateness_ms"]["count"], sent);
+  EXPECT_EQ(r["config"]["arrivals"], "constant");
   EXPECT_EQ(r["edits"]["acked"], sent);
   EXPECT_EQ(r["latency_ms"]["edit_to_ack"]["count"], sent);
   EXPECT_EQ(r["latency_ms"]["edit_to_delta"]["count"], 3 * sent);
@@ -123,6 +130,63 @@ TEST(LoadReport, StatisticsSeriesAndPassingThresholds) {
   EXPECT_NE(out.find("p99.9"), std::string::npos) << out;
   EXPECT_NE(out.find("stddev"), std::string::npos) << out;
   EXPECT_NE(out.find("p99<60s: edit_to_delta p99 "), std::string::npos) << out;
+}
+
+// The open model's account (docs/REPLAY.md §3.4): Poisson arrivals, a
+// warm-up left out of the latencies and said so, offered against achieved
+// rates, the tester's CPU beside the server's, the machine and versions,
+// and the latencies in HdrHistogram's format, one row per percentile.
+TEST(LoadReport, AnOpenScheduleAccountsForEverySendAndWritesHgrm) {
+  ReplayServer s;
+  testing::startServer(s, "tessera-load-open");
+  if (HasFatalFailure()) return;
+  const std::string path = reportPath("open.json");
+  const std::string prefix = path.substr(0, path.rfind('/')) + "/open";
+  auto [out, code] = run(kReplay + " load" + s.connection() +
+                         " --editors 2 --viewers 2 --rate 20 --seconds 3 --arrivals poisson --warmup 1"
+                         " --drain-seconds 5 --quiet --report " +
+                         path + " --hgrm " + prefix);
+  EXPECT_EQ(code, 0) << out;
+  const json r = readReport(path);
+  ASSERT_TRUE(r.is_object()) << out;
+  const json& e = r["edits"];
+  const int64_t sent = e["sent"], offered = e["offered"], dropped = e["dropped"];
+  EXPECT_EQ(offered, sent + dropped);
+  // Poisson: 120 due on average over the run; a 4-sigma band.
+  EXPECT_GT(offered, 120 - 4 * 11);
+  EXPECT_LT(offered, 120 + 4 * 11);
+  EXPECT_NEAR(e["offered_per_second"].get<double>(), offered / 3.0, 1e-9);
+  EXPECT_NEAR(e["achieved_per_second"].get<double>(), sent / 3.0, 1e-9);
+  EXPECT_EQ(r["config"]["arrivals"], "poisson");
+  EXPECT_EQ(r["config"]["warmup_seconds"], 1);
+  // Every ack is either in the latencies or in the warm-up, which had some.
+  const int64_t warmupAcks = r["warmup_excluded"]["edit_to_ack"];
+  EXPECT_GT(warmupAcks, 0);
+  EXPECT_EQ(r["latency_ms"]["edit_to_ack"]["count"].get<int64_t>() + warmupAcks, e["acked"].get<int64_t>());
+  EXPECT_EQ(r["latency_ms"]["edit_to_delta"]["count"].get<int64_t>() +
+                r["warmup_excluded"]["edit_to_delta"].get<int64_t>(),
+            2 * e["acked"].get<int64_t>());
+  EXPECT_TRUE(r["client"].contains("cpu_percent")) << r["client"].dump();
+  EXPECT_GT(r["machine"]["cpus"].get<int>(), 0);
+  EXPECT_TRUE(r["versions"].contains("tessera_replay"));
+  EXPECT_NE(out.find("schedule (poisson): offered "), std::string::npos) << out;
+  EXPECT_NE(out.find("warm-up: the first 1 s of edits are left out"), std::string::npos) << out;
+  // The .hgrm files: the last row counts every sample of the report.
+  ASSERT_EQ(r["hgrm_files"].size(), 2u) << r.dump();
+  for (const char* which : {"edit_to_ack", "edit_to_delta"}) {
+    std::ifstream in(prefix + "-" + which + ".hgrm");
+    ASSERT_TRUE(in) << which;
+    std::string line, lastRow;
+    while (std::getline(in, line))
+      if (!line.empty() && line[0] != '#' && line.find("Value") == std::string::npos) lastRow = line;
+    std::istringstream fields(lastRow);
+    double value = 0, percentile = 0;
+    long long count = 0;
+    fields >> value >> percentile >> count;
+    EXPECT_EQ(percentile, 1.0) << which << ": " << lastRow;
+    EXPECT_EQ(count, r["latency_ms"][which]["count"].get<long long>()) << which;
+    EXPECT_NEAR(value, r["latency_ms"][which]["max"].get<double>(), 1e-3) << which;
+  }
 }
 
 TEST(LoadReport, AFailingThresholdExitsWith4AndNamesItsValue) {

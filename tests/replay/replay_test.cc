@@ -118,7 +118,7 @@ TEST(ReplayLoad, ShortBoundedRunAcksEveryEditWithoutGaps) {
   ASSERT_TRUE(in) << out;
   nlohmann::json r = nlohmann::json::parse(in);
   EXPECT_EQ(r["format"], "tessera-replay-report");
-  EXPECT_EQ(r["version"], 1);
+  EXPECT_EQ(r["version"], 2);
   const int64_t sent = r["edits"]["sent"];
   EXPECT_GE(sent, 30);  // 2 editors x 10/s x 2 s = 40, paced
   EXPECT_LE(sent, 42);

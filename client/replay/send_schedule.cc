@@ -16,8 +16,7 @@ SendSchedule::SendSchedule(Arrivals arrivals, double ratePerSecond, Clock::time_
                            uint64_t seed)
     : arrivals_(arrivals), rate_(ratePerSecond), start_(start), phase_(phase), rng_(seed) {
   due_ = arrivals_ == Arrivals::kConstant
-             ? start_ +
-                   std::chrono::round<Clock::duration>(std::chrono::duration<double>(phase_ / rate_))
+             ? start_ + std::chrono::round<Clock::duration>(std::chrono::duration<double>(phase_ / rate_))
              : start_ + gap();
 }
 

@@ -42,9 +42,14 @@ int runNew(const NewArgs& args) {
   if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
     return usage("doc new", same.message());
   }
-  const DocumentOptions options = documentOptions(args.document);
-  auto mesh = loadMesh(args.mesh);
+  ImportReport report;
+  auto mesh = loadMesh(args.mesh, &report);
   if (!mesh.isOk()) return fail("doc new", mesh.status());
+  DocumentArgs stated = args.document;
+  if (Status s = withFileScheme(stated.scheme, report.boundary, report.creaseMethod, args.mesh.input);
+      !s.isOk())
+    return usage("doc new", s.message());
+  const DocumentOptions options = documentOptions(stated);
   auto doc = Document::create(*mesh, options);
   if (!doc.isOk()) return fail("doc new", doc.status().withContext(args.mesh.input));
   Status saved = saveDocument(*doc, args.output);

@@ -65,7 +65,23 @@ ImportOptions importOptions(const MeshInputArgs& args) {
   return options;
 }
 
-Expected<BaseMesh> loadMesh(const MeshInputArgs& args) {
+Status withFileScheme(SchemeArgs& args, const std::string& boundary, const std::string& creaseMethod,
+                      const std::string& file) {
+  auto adopt = [&](std::string& given, const std::string& stated, const char* option, const char* tag) {
+    if (stated.empty()) return Status::ok();
+    if (given.empty()) {
+      given = stated;
+      return Status::ok();
+    }
+    if (given == stated) return Status::ok();
+    return invalidArgument(std::string(option) + " " + given + ": " + file + " says " + stated + " (" + tag +
+                           "); give the same, or none");
+  };
+  TESSERA_RETURN_IF_ERROR(adopt(args.boundary, boundary, "--boundary", "t interpolateboundary"));
+  return adopt(args.creaseMethod, creaseMethod, "--crease-method", "t creasemethod");
+}
+
+Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report) {
   const ImportOptions options = importOptions(args);
   TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshWithReport(args.input, options));
   // Tags name the file's vertices: renumbered like the mesh.
@@ -74,6 +90,7 @@ Expected<BaseMesh> loadMesh(const MeshInputArgs& args) {
   const std::string note = describeImport(imported.report, options);
   if (!note.empty())
     std::fprintf(stderr, "tessera %s: %s: %s\n", args.command.c_str(), args.input.c_str(), note.c_str());
+  if (report) *report = std::move(imported.report);
   return std::move(imported.mesh);
 }
 

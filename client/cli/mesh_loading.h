@@ -51,6 +51,14 @@ ImportOptions importOptions(const MeshInputArgs& args);
 // What the import changed (vertices dropped, edges creased by angle) is
 // said on stderr: "tessera refine: bunny.ply: dropped 1 unused vertex
 // (--drop-unused)".
-Expected<BaseMesh> loadMesh(const MeshInputArgs& args);
+// `report`, when given, receives what the import did (and the options the
+// file states, for withFileScheme).
+Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report = nullptr);
+
+// The scheme options a mesh file states (OBJ's `t interpolateboundary`,
+// `t creasemethod`) where the command line gives none; a command line
+// that says otherwise is refused, naming both (`file` names the mesh).
+Status withFileScheme(SchemeArgs& args, const std::string& boundary, const std::string& creaseMethod,
+                      const std::string& file);
 
 }  // namespace tessera::cli

@@ -65,7 +65,6 @@ int runOtherScheme(const RefineArgs& args) {
   request.scheme = scheme;
   request.levels = args.level;
   request.limit = args.limit;
-  request.crease = loopOptions(args.scheme);
   Expected<SurfaceMesh> surface = invalidArgument("no input");
   if (schemeTakesPolygons(scheme)) {
     if (!args.polygonUnsupported.empty()) {
@@ -74,10 +73,17 @@ int runOtherScheme(const RefineArgs& args) {
     }
     auto mesh = importPolygonMesh(args.mesh.input, args.mesh.tags);
     if (!mesh.isOk()) return fail("refine", mesh.status());
+    SchemeArgs stated = args.scheme;
+    if (schemeHasCreases(scheme)) {
+      if (Status s = withFileScheme(stated, mesh->boundary, mesh->creaseMethod, args.mesh.input); !s.isOk())
+        return usage("refine", s.message());
+    }
+    request.crease = loopOptions(stated);
     surface = refinePolygons(*mesh, request);
   } else {
     auto mesh = loadMesh(args.mesh);
     if (!mesh.isOk()) return fail("refine", mesh.status());
+    request.crease = loopOptions(args.scheme);
     surface = refineTriangles(BaseTopology::fromBaseMesh(*mesh), mesh->positions(), request);
   }
   if (!surface.isOk()) return fail("refine", surface.status().withContext(args.mesh.input));
@@ -90,8 +96,12 @@ int runRefine(const RefineArgs& args) {
     return usage("refine", same.message());
   }
   if (args.schemeName != "loop") return runOtherScheme(args);
-  auto mesh = loadMesh(args.mesh);
+  ImportReport report;
+  auto mesh = loadMesh(args.mesh, &report);
   if (!mesh.isOk()) return fail("refine", mesh.status());
+  SchemeArgs stated = args.scheme;
+  if (Status s = withFileScheme(stated, report.boundary, report.creaseMethod, args.mesh.input); !s.isOk())
+    return usage("refine", s.message());
 
   LoopRefiner::Uniform uniform;
   uniform.levels = args.level;
@@ -106,7 +116,7 @@ int runRefine(const RefineArgs& args) {
       std::fprintf(stderr, "tessera refine: topology level %d/%d\n", done, total);
     };
   }
-  auto refiner = LoopRefiner::create(*mesh, loopOptions(args.scheme), uniform);
+  auto refiner = LoopRefiner::create(*mesh, loopOptions(stated), uniform);
   if (!refiner.isOk()) return fail("refine", refiner.status().withContext(args.mesh.input));
   if (showProgress) std::fprintf(stderr, "tessera refine: positions\n");
   auto points = refiner->refinePoints(mesh->positions());

@@ -63,6 +63,12 @@ Expected<ImportedMesh> importText(std::string_view text, const std::string& ext,
   }
   // Tags in the file itself win over the crease angle: they are explicit.
   if (isGltf) TESSERA_RETURN_IF_ERROR(applyTags(gltf.tags, gltf.locate, mesh, report.renumbering));
+  if (!soup.tags.empty()) {
+    TESSERA_RETURN_IF_ERROR(applyTags(featureTagsOf(soup.tags), name, mesh, report.renumbering));
+    report.tagsInFile = static_cast<int>(soup.tags.size());
+  }
+  report.boundary = soup.boundary;
+  report.creaseMethod = soup.creaseMethod;
   return ImportedMesh{std::move(mesh), std::move(report)};
 }
 
@@ -80,6 +86,8 @@ std::string describeImport(const ImportReport& report, const ImportOptions& opti
     add("creased " + plural(report.edgesCreasedByAngle, "edge") + " sharper than " + degrees +
         " degrees (--crease-angle)");
   }
+  if (report.tagsInFile > 0)
+    add("applied " + plural(report.tagsInFile, "tag") + " the file states (t crease, t corner)");
   return text;
 }
 

@@ -32,6 +32,10 @@ struct ImportOptions {
 struct ImportReport {
   VertexRenumbering renumbering;  // the file's vertex numbers -> the mesh's
   int edgesCreasedByAngle = 0;
+  int tagsInFile = 0;  // OBJ's `t crease` and `t corner` pairs and vertices, applied
+  // The subdivision options the file states (OBJ's `t interpolateboundary`,
+  // `t creasemethod`; polygon_soup.h), empty where it does not.
+  std::string boundary, creaseMethod;
 };
 
 struct ImportedMesh {

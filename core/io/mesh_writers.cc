@@ -62,6 +62,30 @@ void writeObj(const SurfaceMesh& surface, FileWriter& out) {
     }
     out.append('\n');
   });
+  // A cage's tags in OpenSubdiv's dialect (docs/FORMATS.md "Tags in OBJ"):
+  // `t NAME I/F/S` and the values, vertices 0-based.
+  if (!surface.boundary.empty())
+    out.append(surface.boundary == "edge-and-corner" ? "t interpolateboundary 1/0/0 1\n"
+                                                     : "t interpolateboundary 1/0/0 2\n");
+  if (!surface.creaseMethod.empty())
+    out.append(surface.creaseMethod == "chaikin" ? "t creasemethod 0/0/1 chaikin\n"
+                                                 : "t creasemethod 0/0/1 normal\n");
+  for (const SurfaceMesh::Crease& c : surface.creases) {
+    out.append("t crease 2/1/0 ");
+    out.appendNumber(static_cast<long long>(c.v0));
+    out.append(' ');
+    out.appendNumber(static_cast<long long>(c.v1));
+    out.append(' ');
+    out.appendNumber(static_cast<double>(c.sharpness));
+    out.append('\n');
+  }
+  for (const SurfaceMesh::Corner& c : surface.corners) {
+    out.append("t corner 1/1/0 ");
+    out.appendNumber(static_cast<long long>(c.v));
+    out.append(' ');
+    out.appendNumber(static_cast<double>(c.sharpness));
+    out.append('\n');
+  }
 }
 
 void writeOff(const SurfaceMesh& surface, FileWriter& out) {

@@ -62,6 +62,87 @@ Status parseObjCorner(std::string_view token, int vertexCount, const std::string
   return Status::ok();
 }
 
+// `t NAME I/F/S` then I integers, F floats and S strings: a subdivision tag
+// in OpenSubdiv's dialect (its regression shapes; docs/FORMATS.md "Tags in
+// OBJ"). Creases and corners become soup tags; the boundary rule and the
+// crease method become the soup's options; any other tag is refused by
+// name, since dropping it would change the surface unsaid.
+Status readObjTag(const std::vector<std::string_view>& tokens, const std::string& where, int line,
+                  PolygonSoup& soup) {
+  if (tokens.size() < 3) return parseError(where + "t: expected a tag name and its counts I/F/S");
+  const std::string name(tokens[1]);
+  const std::string what = where + "t " + clip(tokens[1]) + ": ";
+  int counts[3] = {0, 0, 0};
+  {
+    const std::string_view c = tokens[2];
+    const size_t a = c.find('/'), b = a == std::string_view::npos ? a : c.find('/', a + 1);
+    if (b == std::string_view::npos || !parseInt(c.substr(0, a), counts[0]) ||
+        !parseInt(c.substr(a + 1, b - a - 1), counts[1]) || !parseInt(c.substr(b + 1), counts[2]) ||
+        counts[0] < 0 || counts[1] < 0 || counts[2] < 0)
+      return parseError(what + "expected counts I/F/S, found '" + clip(c) + "'");
+  }
+  const size_t given = tokens.size() - 3, wanted = static_cast<size_t>(counts[0] + counts[1] + counts[2]);
+  if (given != wanted)
+    return parseError(what + std::to_string(wanted) + " values announced, " + std::to_string(given) +
+                      " given");
+  std::vector<int> ints(static_cast<size_t>(counts[0]));
+  for (int k = 0; k < counts[0]; ++k) {
+    if (!parseInt(tokens[3 + k], ints[k]) || ints[k] < 0)
+      return parseError(what + "integer " + std::to_string(k + 1) + " is not a vertex number: '" +
+                        clip(tokens[3 + k]) + "'");
+  }
+  std::vector<float> floats(static_cast<size_t>(counts[1]));
+  for (int k = 0; k < counts[1]; ++k) {
+    const std::string_view t = tokens[3 + counts[0] + k];
+    double value = 0;
+    if (!parseNumber(t, value) || !(value >= 0))
+      return parseError(what + "sharpness " + std::to_string(k + 1) + " is not a number >= 0: '" + clip(t) +
+                        "'");
+    floats[k] = static_cast<float>(value);
+  }
+  const std::string_view text = counts[2] == 1 ? tokens[3 + counts[0] + counts[1]] : std::string_view();
+  if (name == "crease") {
+    // Pairs of vertices: one sharpness for all, or one per pair.
+    const int pairs = counts[0] / 2;
+    if (counts[0] < 2 || counts[0] % 2 != 0 || counts[2] != 0 || (counts[1] != 1 && counts[1] != pairs))
+      return parseError(what + "expected pairs of vertices and 1 sharpness or one per pair (2/1/0)");
+    for (int k = 0; k < pairs; ++k)
+      soup.tags.push_back({true, ints[2 * k], ints[2 * k + 1], floats[counts[1] == 1 ? 0 : k], line});
+  } else if (name == "corner") {
+    if (counts[0] < 1 || counts[2] != 0 || (counts[1] != 1 && counts[1] != counts[0]))
+      return parseError(what + "expected vertices and 1 sharpness or one per vertex (1/1/0)");
+    for (int k = 0; k < counts[0]; ++k)
+      soup.tags.push_back({false, ints[k], -1, floats[counts[1] == 1 ? 0 : k], line});
+  } else if (name == "interpolateboundary") {
+    if (counts[0] != 1 || counts[1] != 0 || counts[2] != 0)
+      return parseError(what + "expected one integer (1/0/0)");
+    // OpenSubdiv's numbers: 0 none, 1 edge and corner, 2 edge only.
+    if (ints[0] == 1) {
+      soup.boundary = "edge-and-corner";
+    } else if (ints[0] == 2) {
+      soup.boundary = "edge-only";
+    } else {
+      return unsupported(what + std::to_string(ints[0]) +
+                         ": only 1 (edge and corner) and 2 (edge only) are supported");
+    }
+  } else if (name == "creasemethod") {
+    if (counts[0] != 0 || counts[1] != 0 || counts[2] != 1)
+      return parseError(what + "expected one string (0/0/1)");
+    if (text == "normal") {
+      soup.creaseMethod = "uniform";
+    } else if (text == "chaikin") {
+      soup.creaseMethod = "chaikin";
+    } else {
+      return parseError(what + "expected normal or chaikin, found '" + clip(text) + "'");
+    }
+  } else {
+    return unsupported(what +
+                       "this tag is not supported (crease, corner, interpolateboundary and "
+                       "creasemethod are)");
+  }
+  return Status::ok();
+}
+
 }  // namespace
 
 Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup,
@@ -112,6 +193,8 @@ Status readObj(std::string_view text, const std::string& src, PolygonSoup& soup,
       }
       TESSERA_RETURN_IF_ERROR(checkRepeats(face, where, element));
       soup.addFace(face);
+    } else if (key == "t") {
+      TESSERA_RETURN_IF_ERROR(readObjTag(tokens, at(src, cursor.lineNumber()), cursor.lineNumber(), soup));
     } else if (!isKeyword(key)) {
       return parseError(at(src, cursor.lineNumber()) + "unexpected '" + clip(key) +
                         "' (not an OBJ statement)");

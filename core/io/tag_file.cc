@@ -179,6 +179,15 @@ Status applyTags(const std::vector<FeatureTag>& tags, const std::string& sourceN
       renumbering);
 }
 
+std::vector<FeatureTag> featureTagsOf(const std::vector<SoupTag>& tags) {
+  std::vector<FeatureTag> out;
+  out.reserve(tags.size());
+  for (const SoupTag& t : tags)
+    out.push_back(
+        {t.crease ? FeatureTag::Kind::kCrease : FeatureTag::Kind::kCorner, t.v0, t.v1, t.sharpness, t.line});
+  return out;
+}
+
 Status applyTagFile(const std::string& path, BaseMesh& mesh, const VertexRenumbering& renumbering) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return notFound(path + ": cannot open tag file");

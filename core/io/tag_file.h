@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/mesh/base_mesh.h"
+#include "core/mesh/polygon_soup.h"
 #include "core/mesh/unused_vertices.h"
 #include "core/util/status.h"
 
@@ -28,6 +29,10 @@ struct FeatureTag {
 };
 
 Expected<std::vector<FeatureTag>> parseTags(const std::string& text, const std::string& sourceName);
+
+// The tags a mesh file states itself (OBJ's `t crease` and `t corner`,
+// core/mesh/polygon_soup.h), as tags to apply, with their lines.
+std::vector<FeatureTag> featureTagsOf(const std::vector<SoupTag>& tags);
 
 // Applies tags to the mesh; a tag naming a missing edge or vertex is an error
 // with its line number, and leaves the mesh unchanged. Tags name vertices by

@@ -3,11 +3,22 @@
 // (mesh_validation.h) is the only way from a soup to a BaseMesh.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/util/vec3.h"
 
 namespace tessera {
+
+// A sharp feature the file states with its mesh (OBJ's `t crease` and
+// `t corner` in OpenSubdiv's dialect, docs/FORMATS.md): a crease on the
+// edge v0-v1, or a corner on v0, by the file's 0-based vertex numbers.
+struct SoupTag {
+  bool crease = true;
+  int v0 = -1, v1 = -1;
+  float sharpness = 0;
+  int line = 0;  // 1-based, for messages
+};
 
 struct PolygonSoup {
   std::vector<Vec3> points;
@@ -15,6 +26,13 @@ struct PolygonSoup {
   // numFaces()+1 entries (a single 0 when there are no faces).
   std::vector<int> faceOffsets{0};
   std::vector<int> indices;
+
+  // Subdivision tags the file states, and its options (OBJ's
+  // `t interpolateboundary` and `t creasemethod`, named as the command line
+  // names them: "edge-only" or "edge-and-corner", "uniform" or "chaikin";
+  // empty when the file does not say).
+  std::vector<SoupTag> tags;
+  std::string boundary, creaseMethod;
 
   int numFaces() const { return static_cast<int>(faceOffsets.size()) - 1; }
   void addFace(const std::vector<int>& face) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/util/vec3.h"
@@ -23,6 +24,23 @@ struct SurfaceMesh {
   // is then their fan triangulation, for the formats and consumers that take
   // triangles only. Both empty for a surface of triangles.
   std::vector<int> polygonOffsets, polygonCorners;
+
+  // A subdivision cage's sharp features, for the formats that carry them
+  // (OBJ's `t` lines in OpenSubdiv's dialect, docs/FORMATS.md): creases by
+  // their two vertices and corners by theirs, with their sharpness; and the
+  // cage's options ("edge-only" or "edge-and-corner", "uniform" or
+  // "chaikin"). Empty for a surface that is no cage (a limit surface).
+  struct Crease {
+    int v0 = 0, v1 = 0;
+    float sharpness = 0;
+  };
+  struct Corner {
+    int v = 0;
+    float sharpness = 0;
+  };
+  std::vector<Crease> creases;
+  std::vector<Corner> corners;
+  std::string boundary, creaseMethod;
 
   size_t numPolygons() const { return polygonOffsets.empty() ? 0 : polygonOffsets.size() - 1; }
   // Appends a polygon and its fan of triangles.

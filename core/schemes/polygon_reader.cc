@@ -34,8 +34,12 @@ Expected<PolygonSoup> readOffPolygons(std::string_view text, const std::string& 
   return importPolygonSoup(text, ".off", name);
 }
 
-Status applyPolygonTags(const std::string& text, const std::string& tagsName, PolygonMesh& mesh) {
-  TESSERA_ASSIGN_OR_RETURN(const std::vector<FeatureTag> tags, parseTags(text, tagsName));
+namespace {
+
+// Tags from `source` (a tag file, or the mesh file's own `t` lines) onto
+// the polygons: errors name the source and the tag's line.
+Status applyPolygonFeatureTags(const std::vector<FeatureTag>& tags, const std::string& tagsName,
+                               PolygonMesh& mesh) {
   PolyTopology& topology = mesh.topology;
   const int n = topology.numVertices;
   if (topology.vertexSharpness.empty()) topology.vertexSharpness.assign(n, 0.0f);
@@ -60,6 +64,13 @@ Status applyPolygonTags(const std::string& text, const std::string& tagsName, Po
   return applyTags(tags, naming, target);
 }
 
+}  // namespace
+
+Status applyPolygonTags(const std::string& text, const std::string& tagsName, PolygonMesh& mesh) {
+  TESSERA_ASSIGN_OR_RETURN(const std::vector<FeatureTag> tags, parseTags(text, tagsName));
+  return applyPolygonFeatureTags(tags, tagsName, mesh);
+}
+
 Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -69,6 +80,10 @@ Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::stri
     TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(text, ext, path));
     mesh.topology = PolyTopology::fromSoup(soup);
     mesh.points = std::move(soup.points);
+    mesh.boundary = soup.boundary;
+    mesh.creaseMethod = soup.creaseMethod;
+    if (!soup.tags.empty())
+      TESSERA_RETURN_IF_ERROR(applyPolygonFeatureTags(featureTagsOf(soup.tags), path, mesh));
   } else {
     TESSERA_ASSIGN_OR_RETURN(BaseMesh base, importMesh(path));
     mesh.topology = PolyTopology::fromBaseMesh(base);

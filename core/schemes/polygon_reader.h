@@ -20,6 +20,9 @@ namespace tessera::schemes {
 struct PolygonMesh {
   PolyTopology topology;
   std::vector<Vec3> points;
+  // The options the file states (OBJ's `t interpolateboundary`,
+  // `t creasemethod`), named as on the command line; empty where it does not.
+  std::string boundary, creaseMethod;
 };
 
 // OBJ and OFF as core/io reads them (text_mesh_readers.h), each face index
@@ -28,8 +31,9 @@ Expected<PolygonSoup> readObjPolygons(std::string_view text, const std::string& 
 Expected<PolygonSoup> readOffPolygons(std::string_view text, const std::string& name);
 
 // Reads `path` (polygons for .obj, .off and .ply, the triangle importer otherwise),
-// then applies the tag file `tagsPath` unless it is empty. The topology is
-// validated when a refiner builds it.
+// applies the tags an OBJ states (`t crease`, `t corner`), then the tag file
+// `tagsPath` unless it is empty. The topology is validated when a refiner
+// builds it.
 Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath);
 
 // Applies parsed tags; errors name the tag's line in `tagsName`.

@@ -1,5 +1,7 @@
 #include "core/schemes/quad_refiner.h"
 
+#include "core/mesh/sharpness.h"
+
 #include <string>
 
 #include "core/schemes/bilinear_masks.h"
@@ -15,6 +17,7 @@ Expected<QuadRefiner> QuadRefiner::create(const PolyTopology& topology, QuadSche
     return invalidArgument("level must be 0 or more, got " + std::to_string(uniform.levels));
   QuadRefiner refiner;
   refiner.scheme_ = scheme;
+  refiner.options_ = options;
   // Bilinear has no creases: its base level ignores them (and boundary rules).
   TESSERA_ASSIGN_OR_RETURN(Level base, buildPolyLevel(topology, options));
   long long faces = static_cast<long long>(base.faceVertices.size());
@@ -86,7 +89,21 @@ void addPolygons(const Level& level, SurfaceMesh& surface) {
 SurfaceMesh QuadRefiner::controlSurface(std::span<const Vec3> finestPoints) const {
   SurfaceMesh surface;
   surface.positions.assign(finestPoints.begin(), finestPoints.end());
-  addPolygons(finestLevel(), surface);
+  const Level& level = finestLevel();
+  addPolygons(level, surface);
+  if (scheme_ != QuadScheme::kCatmullClark) return surface;  // bilinear has no sharp features
+  // The cage's tags at this level (decayed from the base's): refined again
+  // with them, by OpenSubdiv or by Tessera, it gives the same surface.
+  for (Index e = 0; e < static_cast<Index>(level.edgeVertices.size()); ++e) {
+    if (!isSmooth(level.edgeSharpness[e]))
+      surface.creases.push_back({level.edgeVertices[e][0], level.edgeVertices[e][1], level.edgeSharpness[e]});
+  }
+  for (Index v = 0; v < level.numVertices; ++v) {
+    if (!isSmooth(level.vertexSharpness[v])) surface.corners.push_back({v, level.vertexSharpness[v]});
+  }
+  surface.boundary =
+      options_.boundary == BoundaryInterpolation::kEdgeAndCorner ? "edge-and-corner" : "edge-only";
+  surface.creaseMethod = options_.creaseMethod == CreaseMethod::kChaikin ? "chaikin" : "uniform";
   return surface;
 }
 

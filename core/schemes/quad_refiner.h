@@ -63,6 +63,7 @@ class QuadRefiner {
   void interpolate(int level, std::span<const Vec3> parent, std::span<Vec3> child) const;
 
   QuadScheme scheme_ = QuadScheme::kCatmullClark;
+  CreaseOptions options_;
   std::vector<Level> levels_;
 };
 

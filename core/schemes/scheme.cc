@@ -73,7 +73,9 @@ Expected<SurfaceMesh> refinePolygons(const PolygonMesh& mesh, const SchemeReques
           request.scheme == Scheme::kBilinear ? QuadScheme::kBilinear : QuadScheme::kCatmullClark;
       QuadRefiner::Uniform uniform;
       uniform.levels = request.levels;
-      uniform.fullTopologyInLastLevel = request.limit;
+      // Limits need the last level's rings; a Catmull-Clark cage's written
+      // tags need its edges (QuadRefiner::controlSurface).
+      uniform.fullTopologyInLastLevel = request.limit || quad == QuadScheme::kCatmullClark;
       uniform.maxFaces = request.maxFaces;
       TESSERA_ASSIGN_OR_RETURN(QuadRefiner refiner,
                                QuadRefiner::create(mesh.topology, quad, request.crease, uniform));

@@ -50,6 +50,35 @@ TEST(CliScheme, CatmullClarkRefinesQuadsAsQuads) {
   EXPECT_NE(run.out.find("98 vertices, 96 polygons (level 2, limit surface)"), std::string::npos) << run.out;
 }
 
+// Tags in the OBJ itself (OpenSubdiv's `t` dialect, docs/FORMATS.md): the
+// cage's options apply unless the command line says otherwise, which is
+// refused naming both; the refined cage is written with its tags.
+TEST(CliScheme, AnObjsOwnTagsAndOptionsAreReadAndTheRefinedCageKeepsThem) {
+  const std::string dir = testing::makeTempDir("cli-scheme");
+  const std::string tagged = dir + "/tagged.obj";
+  std::ofstream(tagged) << readAll(writeQuadCube(dir))
+                        << "t crease 2/1/0 0 1 2\nt corner 1/1/0 6 inf\nt interpolateboundary 1/0/0 1\n";
+  CliRun run = runCli("refine " + tagged + " --scheme catmull-clark --level 1 -o " + dir + "/cage.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const std::string cage = readAll(dir + "/cage.obj");
+  EXPECT_NE(cage.find("t interpolateboundary 1/0/0 1\n"), std::string::npos) << cage;
+  EXPECT_NE(cage.find("t creasemethod 0/0/1 normal\n"), std::string::npos) << cage;
+  // The crease's two halves at level 1, sharpness 2 - 1 = 1; the corner
+  // stays infinitely sharp (10, OpenSubdiv's infinite sharpness).
+  size_t creases = 0;
+  for (size_t at = cage.find("t crease 2/1/0 "); at != std::string::npos;
+       at = cage.find("t crease 2/1/0 ", at + 1))
+    creases += cage.compare(cage.find('\n', at) - 2, 2, " 1") == 0;
+  EXPECT_EQ(creases, 2u) << cage;
+  EXPECT_NE(cage.find("t corner 1/1/0 6 10\n"), std::string::npos) << cage;
+  run = runCli("refine " + tagged + " --scheme catmull-clark --level 1 --boundary edge-only -o " + dir +
+               "/x.obj");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("--boundary edge-only: " + tagged + " says edge-and-corner (t interpolateboundary)"),
+            std::string::npos)
+      << run.err;
+}
+
 TEST(CliScheme, EveryOtherSchemeWritesItsCounts) {
   const std::string dir = testing::makeTempDir("cli-scheme");
   const std::string cube = writeQuadCube(dir);

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 
@@ -268,6 +269,76 @@ TEST(CatmarkOracle, WrittenPolygonsAreOpenSubdivsFacesOfTheFinestLevel) {
     }
   }
   EXPECT_EQ(compared, 6 * 2 * 2 * 3);
+}
+
+// A refined cage written to OBJ with its tags (OpenSubdiv's `t` dialect,
+// docs/FORMATS.md "Tags in OBJ") is the same subdivision surface: read back,
+// its creases and corners are the refined level's (decayed semi-sharp values
+// included) and its options the run's; refined once more by OpenSubdiv, it
+// gives Tessera's next level of the original to 1e-12 of the diagonal.
+TEST(CatmarkOracle, AWrittenCageWithItsTagsRefinesToTheNextLevel) {
+  const std::string dir = testing::makeTempDir("catmark-cage");
+  PolyTestMesh tagged =
+      testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(7, 5), 0.05, 3), 0.3, 0.1, 17);
+  int checked = 0;
+  for (const CreaseOptions& options : allOptions()) {
+    SCOPED_TRACE(std::string(options.creaseMethod == CreaseMethod::kChaikin ? "chaikin" : "uniform") +
+                 (options.boundary == BoundaryInterpolation::kEdgeOnly ? " edge-only" : " edge-and-corner"));
+    for (int level : {1, 2}) {
+      auto refiner =
+          QuadRefiner::create(tagged.topology, QuadScheme::kCatmullClark, options, {.levels = level + 1});
+      ASSERT_TRUE(refiner.isOk());
+      const auto ours = refiner->refinePointsPerLevel(tagged.points);
+      auto atLevel =
+          QuadRefiner::create(tagged.topology, QuadScheme::kCatmullClark, options, {.levels = level});
+      ASSERT_TRUE(atLevel.isOk());
+      const SurfaceMesh cage = atLevel->controlSurface(ours[level]);
+      const std::string path = dir + "/cage.obj";
+      ASSERT_TRUE(exportMesh(cage, path).isOk());
+      auto back = schemes::importPolygonMesh(path, "");
+      ASSERT_TRUE(back.isOk()) << back.status().toString();
+      EXPECT_EQ(back->boundary,
+                options.boundary == BoundaryInterpolation::kEdgeOnly ? "edge-only" : "edge-and-corner");
+      EXPECT_EQ(back->creaseMethod, options.creaseMethod == CreaseMethod::kChaikin ? "chaikin" : "uniform");
+      // The tags read back are the level's, value for value.
+      const Level& l = refiner->level(level);
+      std::map<std::pair<int, int>, float> wanted, read;
+      for (Index e = 0; e < static_cast<Index>(l.edgeVertices.size()); ++e)
+        if (l.edgeSharpness[e] > 0)
+          wanted[std::minmax(l.edgeVertices[e][0], l.edgeVertices[e][1])] = l.edgeSharpness[e];
+      for (const auto& c : back->topology.creases) read[std::minmax(c.v0, c.v1)] = c.sharpness;
+      EXPECT_EQ(read, wanted);
+      EXPECT_FALSE(wanted.empty());
+      for (Index v = 0; v < l.numVertices; ++v)
+        EXPECT_EQ(back->topology.vertexSharpness.empty() ? 0.0f : back->topology.vertexSharpness[v],
+                  l.vertexSharpness[v] > 0 ? l.vertexSharpness[v] : 0.0f)
+            << v;
+      // OpenSubdiv refines the cage as read back, with the options it states.
+      CreaseOptions stated;
+      stated.boundary = back->boundary == "edge-only" ? BoundaryInterpolation::kEdgeOnly
+                                                      : BoundaryInterpolation::kEdgeAndCorner;
+      stated.creaseMethod = back->creaseMethod == "chaikin" ? CreaseMethod::kChaikin : CreaseMethod::kUniform;
+      oracle::OsdPolyInput input(back->topology);
+      auto osd = oracle::createOsdQuadRefiner(input, QuadScheme::kCatmullClark, stated, 1, false);
+      std::vector<oracle::OsdDoublePoint> base;
+      for (const Vec3& p : back->points) base.push_back({p[0], p[1], p[2]});
+      const auto next = oracle::interpolateOsdDouble(*osd, base, 1);
+      // Matched by position (neither numbering assumed): every point of
+      // OpenSubdiv's is one of our next level's, each a different one.
+      ASSERT_EQ(next.size(), ours[level + 1].size());
+      const double diag = diagonal(tagged.points);
+      const NearestVertex nearest(ours[level + 1], 1e-6 * diag);
+      std::set<int> matched;
+      for (size_t v = 0; v < next.size(); ++v) {
+        const int found = nearest.find(Vec3(next[v].x, next[v].y, next[v].z), 1e-12 * diag);
+        ASSERT_GE(found, 0) << "OpenSubdiv's vertex " << v << " is none of ours within 1e-12 of the diagonal";
+        matched.insert(found);
+      }
+      EXPECT_EQ(matched.size(), next.size());
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 8);
 }
 
 }  // namespace

@@ -44,14 +44,37 @@ struct Model {
   double radius = 0;
 };
 
-Model handModel() {
-  auto hand = importMesh(testing::cgalMeshPath("hand.off"));
-  EXPECT_TRUE(hand.isOk());
-  auto doc = Document::create(*hand, {.maxLevel = 1});
-  EXPECT_TRUE(doc.isOk());
-  Vec3 lo = doc->basePoints()[0], hi = lo;
-  for (const Vec3& p : doc->basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
+// The bounding sphere of a document's base points.
+Model modelOf(const Document& doc) {
+  Vec3 lo = doc.basePoints()[0], hi = lo;
+  for (const Vec3& p : doc.basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
   return {0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
+}
+
+// One of CGAL's meshes as a local document, for its points and counts.
+Document cgalDocument(const std::string& file, int maxLevel) {
+  auto mesh = importMesh(testing::cgalMeshPath(file));
+  EXPECT_TRUE(mesh.isOk()) << file;
+  auto doc = Document::create(*mesh, {.maxLevel = maxLevel});
+  EXPECT_TRUE(doc.isOk()) << file;
+  return std::move(*doc);
+}
+
+Model handModel() {
+  return modelOf(cgalDocument("hand.off", 1));
+}
+
+// One of CGAL's meshes as a document of the server (CreateDocument).
+Expected<uint64_t> createFromCgal(Session& admin, const std::string& file, int maxLevel) {
+  wire::ClientMessage create;
+  auto* c = create.mutable_create_document();
+  c->set_name(file);
+  c->set_mesh(testing::fileBytes(testing::cgalMeshPath(file)));
+  c->set_mesh_format(wire::MESH_FORMAT_OFF);
+  c->set_max_level(static_cast<uint32_t>(maxLevel));
+  TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage created, admin.call(create, 60));
+  if (!created.has_ack()) return invalidArgument("create " + file + ": " + created.DebugString());
+  return created.ack().document_id();
 }
 
 View lookAt(const Model& m, const Vec3& eye, const Vec3& target, int width, int height) {
@@ -172,15 +195,9 @@ void startWithHand(Served& s, const std::string& name, int maxLevel, std::vector
   auto admin = Session::connect(s.server->session("admin", s.server->adminToken()));
   ASSERT_TRUE(admin.isOk()) << admin.status().message();
   s.admin = std::move(*admin);
-  wire::ClientMessage create;
-  auto* c = create.mutable_create_document();
-  c->set_name("hand");
-  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("hand.off")));
-  c->set_mesh_format(wire::MESH_FORMAT_OFF);
-  c->set_max_level(static_cast<uint32_t>(maxLevel));
-  auto created = s.admin->call(create, 60);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
-  s.doc = created->ack().document_id();
+  auto created = createFromCgal(*s.admin, "hand.off", maxLevel);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  s.doc = *created;
 }
 
 // Sparse evaluation (docs/VIEWS.md "Sparse evaluation"): fandisk held to
@@ -207,27 +224,16 @@ TEST(ViewStream, ADocumentTooLargeToEvaluateWholeIsShownAtItsFinestLevelWhereACa
 
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  wire::ClientMessage create;
-  auto* c = create.mutable_create_document();
-  c->set_name("fandisk");
-  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("fandisk.off")));
-  c->set_mesh_format(wire::MESH_FORMAT_OFF);
-  c->set_max_level(8);
-  auto created = (*admin)->call(create, 60);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
-  const uint64_t doc = created->ack().document_id();
+  auto created = createFromCgal(**admin, "fandisk.off", 8);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  const uint64_t doc = *created;
 
-  auto fandisk = importMesh(testing::cgalMeshPath("fandisk.off"));
-  ASSERT_TRUE(fandisk.isOk());
-  auto local = Document::create(*fandisk, {.maxLevel = 8});
-  ASSERT_TRUE(local.isOk());
-  const int64_t whole = static_cast<int64_t>(local->counts().faces(8));
+  const Document local = cgalDocument("fandisk.off", 8);
+  const int64_t whole = static_cast<int64_t>(local.counts().faces(8));
   EXPECT_EQ(whole, 12946LL << 16);
-  Vec3 lo = local->basePoints()[0], hi = lo;
-  for (const Vec3& p : local->basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
-  const Model m{0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
+  const Model m = modelOf(local);
   // Three thousandths of the model's size from base vertex 0, looking at it.
-  const Vec3 target = local->basePoints()[0];
+  const Vec3 target = local.basePoints()[0];
   View close = lookAt(m, target + 0.003 * (target - m.centre).normalized(), target, 390, 844);
   close.nearDistance = 1e-5;
   auto v = subscribeViewer(*server, doc, close, "close");
@@ -267,22 +273,10 @@ TEST(ViewStream, ALargeDocumentsFirstPictureIsAPreviewOfAFewKilobytesThenItsTile
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  wire::ClientMessage create;
-  auto* c = create.mutable_create_document();
-  c->set_name("fandisk");
-  c->set_mesh(testing::fileBytes(testing::cgalMeshPath("fandisk.off")));
-  c->set_mesh_format(wire::MESH_FORMAT_OFF);
-  c->set_max_level(4);
-  auto created = (*admin)->call(create, 60);
-  ASSERT_TRUE(created.isOk() && created->has_ack());
-  const uint64_t doc = created->ack().document_id();
-  auto fandisk = importMesh(testing::cgalMeshPath("fandisk.off"));
-  ASSERT_TRUE(fandisk.isOk());
-  auto local = Document::create(*fandisk, {.maxLevel = 1});
-  ASSERT_TRUE(local.isOk());
-  Vec3 lo = local->basePoints()[0], hi = lo;
-  for (const Vec3& p : local->basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
-  const Model m{0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
+  auto created = createFromCgal(**admin, "fandisk.off", 4);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  const uint64_t doc = *created;
+  const Model m = modelOf(cgalDocument("fandisk.off", 1));
   std::mt19937 rng(7);
   for (int camera = 0; camera < 3; ++camera) {
     const std::string where = "camera " + std::to_string(camera);
@@ -364,16 +358,13 @@ TEST(ViewStream, AnEditInViewArrivesAndOneOutOfViewSendsNothingNew) {
   Served s;
   startWithHand(s, "tessera-view-edit", 4);
   if (::testing::Test::HasFatalFailure()) return;
-  const Model m = handModel();
-  auto hand = importMesh(testing::cgalMeshPath("hand.off"));
-  ASSERT_TRUE(hand.isOk());
-  auto local = Document::create(*hand, {.maxLevel = 1});
-  ASSERT_TRUE(local.isOk());
+  const Document local = cgalDocument("hand.off", 1);
+  const Model m = modelOf(local);
   // Close on base vertex 0; the farthest base vertex is behind the eye.
-  const Vec3 near = local->basePoints()[0];
+  const Vec3 near = local.basePoints()[0];
   size_t far = 0;
-  for (size_t i = 0; i < local->basePoints().size(); ++i)
-    if ((local->basePoints()[i] - near).norm() > (local->basePoints()[far] - near).norm()) far = i;
+  for (size_t i = 0; i < local.basePoints().size(); ++i)
+    if ((local.basePoints()[i] - near).norm() > (local.basePoints()[far] - near).norm()) far = i;
   const Vec3 outward = (near - m.centre).normalized();
   const View camera = lookAt(m, near + 0.25 * m.radius * outward, near, 390, 844);
   auto viewer = subscribeViewer(*s.server, s.doc, camera, "close");
@@ -403,7 +394,7 @@ TEST(ViewStream, AnEditInViewArrivesAndOneOutOfViewSendsNothingNew) {
   // Out of view: the far vertex moves; the viewer gets no tile it did not hold.
   held.clear();
   for (const auto& [id, mesh] : viewer->view->regions()) held.insert(TileKey::fromRegionId(id));
-  const Vec3 farPoint = local->basePoints()[far];
+  const Vec3 farPoint = local.basePoints()[far];
   const Vec3 farTo = farPoint + 0.02 * m.radius * (farPoint - m.centre).normalized();
   auto movedFar = (*editor)->call(
       testing::moveVertex(s.doc, VertexId(0, far).packed(), farTo[0], farTo[1], farTo[2]), 30);

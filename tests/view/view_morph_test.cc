@@ -60,25 +60,37 @@ double gap(const std::array<double, 3>& a, const std::array<double, 3>& b) {
   return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
 }
 
+// The sample's morph (make_morph_sample.sh) as a server document: key 0
+// created, key 1 added over the protocol, with the two images for a 2D
+// morph. Fails the test and returns 0 if the server refuses.
+uint64_t createMorphDocument(client::Session& admin, bool withImages) {
+  auto created =
+      admin.call(testing::createDocument("annulus", testing::fileBytes(samplePath("mesh_a.obj")), "", 4), 30);
+  EXPECT_TRUE(created.isOk() && created->has_ack()) << (created.isOk() ? created->DebugString() : "");
+  if (!created.isOk() || !created->has_ack()) return 0;
+  const uint64_t doc = created->ack().document_id();
+  EXPECT_TRUE(admin.call(testing::openDocument(doc), 10).isOk());
+  wire::ClientMessage add;
+  add.mutable_add_morph_key()->set_document_id(doc);
+  add.mutable_add_morph_key()->set_mesh(testing::fileBytes(samplePath("mesh_b.obj")));
+  add.mutable_add_morph_key()->set_mesh_format(wire::MESH_FORMAT_OBJ);
+  if (withImages) {
+    add.mutable_add_morph_key()->set_image_from(testing::fileBytes(samplePath("a.png")));
+    add.mutable_add_morph_key()->set_image_to(testing::fileBytes(samplePath("b.png")));
+  }
+  auto added = admin.call(add, 30);
+  EXPECT_TRUE(added.isOk() && added->has_ack()) << (added.isOk() ? added->DebugString() : "");
+  return added.isOk() && added->has_ack() ? doc : 0;
+}
+
 TEST(ViewMorph, TheImagesOfA2DMorphFollowTheTimeShown) {
   const std::string dir = testing::makeTempDir("tessera-view-morph");
   auto server = testing::ServerProcess::start(dir + "/data");
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = client::Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(
-      testing::createDocument("annulus", testing::fileBytes(samplePath("mesh_a.obj")), "", 4), 30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
-  const uint64_t doc = created->ack().document_id();
-  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10).isOk());
-  wire::ClientMessage add;
-  add.mutable_add_morph_key()->set_document_id(doc);
-  add.mutable_add_morph_key()->set_mesh(testing::fileBytes(samplePath("mesh_b.obj")));
-  add.mutable_add_morph_key()->set_mesh_format(wire::MESH_FORMAT_OBJ);
-  add.mutable_add_morph_key()->set_image_from(testing::fileBytes(samplePath("a.png")));
-  add.mutable_add_morph_key()->set_image_to(testing::fileBytes(samplePath("b.png")));
-  auto added = (*admin)->call(add, 30);
-  ASSERT_TRUE(added.isOk() && added->has_ack()) << added->DebugString();
+  const uint64_t doc = createMorphDocument(**admin, /*withImages=*/true);
+  ASSERT_NE(doc, 0u);
 
   auto render = [&](const std::string& t, std::vector<std::string> extra = {}) -> Image {
     const std::string png = dir + "/t" + t + (extra.empty() ? "" : "-coarse") + ".png";
@@ -166,17 +178,8 @@ TEST(ViewMorph, AMorphDocumentOpenedWithTheDefaultsIsShownWithTheProfile) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = client::Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  auto created = (*admin)->call(
-      testing::createDocument("annulus", testing::fileBytes(samplePath("mesh_a.obj")), "", 4), 30);
-  ASSERT_TRUE(created.isOk() && created->has_ack());
-  const uint64_t doc = created->ack().document_id();
-  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 10).isOk());
-  wire::ClientMessage add;
-  add.mutable_add_morph_key()->set_document_id(doc);
-  add.mutable_add_morph_key()->set_mesh(testing::fileBytes(samplePath("mesh_b.obj")));
-  add.mutable_add_morph_key()->set_mesh_format(wire::MESH_FORMAT_OBJ);
-  auto added = (*admin)->call(add, 30);
-  ASSERT_TRUE(added.isOk() && added->has_ack()) << added->DebugString();
+  const uint64_t doc = createMorphDocument(**admin, /*withImages=*/false);
+  ASSERT_NE(doc, 0u);
 
   auto render = [&](const std::string& name, std::vector<std::string> extra) {
     const std::string png = dir + "/" + name + ".png";

@@ -37,6 +37,10 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
+double secondsBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
 // Rejections that no later edit can escape: the token or the document will
 // not do, so the run stops rather than collecting the same refusal for its
 // whole duration.
@@ -338,10 +342,21 @@ void runConnections(const LoadOptions& o, Shared& shared, LoadRunData& run) {
     shared.startNs = run.start.time_since_epoch().count();
     shared.startEditing = true;
     int64_t lastAcked = 0;
+    sleepUnlessStopped(run.start, shared);
+    // Each second's CPU, the tester's and the server's, from the start.
+    auto lastAt = Clock::now();
+    double lastTester = processCpuSeconds();
+    ProcSample lastServer = sampleProcess(o.serverPid);
     for (int second = 1; Clock::now() < editEnd && !shared.stopped; ++second) {
       sleepUnlessStopped(std::min(editEnd, run.start + std::chrono::seconds(second)), shared);
       if (shared.stopped) break;
       const ProcSample now = sampleProcess(o.serverPid);
+      const auto at = Clock::now();
+      const double tester = processCpuSeconds(), elapsed = std::max(1e-3, secondsBetween(lastAt, at));
+      std::optional<double> server;
+      if (now.ok && lastServer.ok) server = 100 * (now.cpuSeconds - lastServer.cpuSeconds) / elapsed;
+      run.cpuPerSecond.push_back({100 * (tester - lastTester) / elapsed, server});
+      lastAt = at, lastTester = tester, lastServer = now;
       run.rssPeak = std::max(run.rssPeak, now.rssBytes);
       if (o.progress) printProgress(second, o.viewers, shared, lastAcked, now);
     }

@@ -98,6 +98,8 @@ json buildLoadReport(const LoadOptions& o, Shared& shared, const LoadRunData& ru
       run.started ? std::chrono::duration<double>(run.editsDone - run.start).count() : 0.0;
   LoadSeries series(seriesSeconds(o, shared, run));
   for (size_t i = 0; i < shared.sentPerSecond.size(); ++i) series.sent(i, shared.sentPerSecond[i]);
+  for (size_t i = 0; i < run.cpuPerSecond.size(); ++i)
+    series.cpu(i, run.cpuPerSecond[i].tester, run.cpuPerSecond[i].server);
   // Edits due in the warm-up are in the series and counts, not in the
   // latency figures.
   auto warm = [&](double dueSeconds) { return dueSeconds >= o.warmupSeconds; };

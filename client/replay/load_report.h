@@ -24,6 +24,12 @@ struct LoadRunData {
   std::vector<ViewerResult> viewers;
   ProcSample cpuBefore, cpuAfter;
   double testerCpuBefore = 0, testerCpuAfter = 0;  // this process's CPU seconds over the editing
+  // Per second of editing: the tester's CPU percent, and the server's when sampled.
+  struct CpuSecond {
+    double tester = 0;
+    std::optional<double> server;
+  };
+  std::vector<CpuSecond> cpuPerSecond;
   int64_t rssPeak = 0;
   std::optional<ServerStatsSample> statsStart, statsEnd;
   std::string statsError;  // why there is no window

@@ -51,6 +51,12 @@ void LoadSeries::rejected(double sentSeconds) {
 void LoadSeries::error(double atSeconds) {
   if (seconds_ > 0) ++at(indexOf(atSeconds)).errors;
 }
+void LoadSeries::cpu(size_t second, double testerPercent, std::optional<double> serverPercent) {
+  if (second >= seconds_) return;
+  Second& s = at(second);
+  s.testerCpu = round3(testerPercent);
+  if (serverPercent) s.serverCpu = round3(*serverPercent);
+}
 
 nlohmann::json LoadSeries::toJson() const {
   nlohmann::json out = nlohmann::json::array();
@@ -64,6 +70,8 @@ nlohmann::json LoadSeries::toJson() const {
                    {"errors", s.errors},
                    {"edit_to_ack", brief(s.ack)},
                    {"edit_to_delta", brief(s.delta)}});
+    if (s.testerCpu) out.back()["tester_cpu_percent"] = *s.testerCpu;
+    if (s.serverCpu) out.back()["server_cpu_percent"] = *s.serverCpu;
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 namespace tessera::replay {
@@ -23,15 +24,20 @@ class LoadSeries {
   void delta(double sentSeconds, double ms);
   void rejected(double sentSeconds);
   void error(double atSeconds);
+  // The tester's CPU over that second, and the server's when sampled
+  // (percent of one core), so that a late tester shows where it was late.
+  void cpu(size_t second, double testerPercent, std::optional<double> serverPercent);
 
   // [{"second": 0, "sent": .., "acked": .., "rejected": .., "errors": ..,
-  //   "edit_to_ack": {"count", "mean", "p50", "p99", "max"}, "edit_to_delta": {...}}, ...]
+  //   "edit_to_ack": {"count", "mean", "p50", "p99", "max"}, "edit_to_delta": {...},
+  //   "tester_cpu_percent", "server_cpu_percent" (when sampled)}, ...]
   nlohmann::json toJson() const;
 
  private:
   struct Second {
     int64_t sent = 0, rejected = 0, errors = 0;
     std::vector<double> ack, delta;
+    std::optional<double> testerCpu, serverCpu;
   };
   size_t indexOf(double seconds) const;
   Second& at(size_t index);

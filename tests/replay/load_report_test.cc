@@ -167,6 +167,12 @@ TEST(LoadReport, AnOpenScheduleAccountsForEverySendAndWritesHgrm) {
                 r["warmup_excluded"]["edit_to_delta"].get<int64_t>(),
             2 * e["acked"].get<int64_t>());
   EXPECT_TRUE(r["client"].contains("cpu_percent")) << r["client"].dump();
+  // The tester's CPU second by second, beside each second's edits.
+  ASSERT_EQ(r["series"].size(), 3u);
+  for (const json& second : r["series"]) {
+    ASSERT_TRUE(second.contains("tester_cpu_percent")) << second.dump();
+    EXPECT_GE(second["tester_cpu_percent"].get<double>(), 0);
+  }
   EXPECT_GT(r["machine"]["cpus"].get<int>(), 0);
   EXPECT_TRUE(r["versions"].contains("tessera_replay"));
   EXPECT_NE(out.find("schedule (poisson): offered "), std::string::npos) << out;

@@ -125,17 +125,7 @@ Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::strin
   } else if (ext == ".off") {
     TESSERA_RETURN_IF_ERROR(io_detail::readOff(bytes, displayName, soup, checked));
   } else if (ext == ".ply") {
-    TESSERA_RETURN_IF_ERROR(io_detail::readPly(bytes, displayName, soup));
-    // The reader leaves indices to the mesh builder; here nothing follows.
-    for (int f = 0; f < soup.numFaces(); ++f) {
-      for (int k = soup.faceOffsets[f]; k < soup.faceOffsets[f + 1]; ++k) {
-        const int v = soup.indices[static_cast<size_t>(k)];
-        if (v < 0 || static_cast<size_t>(v) >= soup.points.size())
-          return invalidMesh(displayName + ": face " + std::to_string(f) + ": vertex index " +
-                             std::to_string(v) + " names no vertex (" + std::to_string(soup.points.size()) +
-                             " vertices)");
-      }
-    }
+    TESSERA_RETURN_IF_ERROR(io_detail::readPly(bytes, displayName, soup, checked));
   } else {
     return unsupported(displayName + ": polygons are read from .obj, .off and .ply files, not '" + ext + "'");
   }

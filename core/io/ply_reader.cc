@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include "core/io/text_mesh_readers.h"
 #include "core/io/text_scan.h"
@@ -231,8 +232,11 @@ Status findRoles(const PlyHeader& header, const std::string& src, PlyRoles& role
 // and face indices.
 class SoupBuilder {
  public:
-  SoupBuilder(const PlyRoles& roles, const std::string& src, PolygonSoup& soup)
-      : roles_(roles), src_(src), soup_(soup) {}
+  // `vertices`: the declared vertex count every face index is checked
+  // against (TextReadOptions::checkIndices), or none.
+  SoupBuilder(const PlyRoles& roles, const std::string& src, PolygonSoup& soup,
+              std::optional<size_t> vertices)
+      : roles_(roles), src_(src), soup_(soup), vertices_(vertices) {}
 
   void beginElement(const PlyElement& element, size_t index) {
     element_ = &element;
@@ -255,6 +259,11 @@ class SoupBuilder {
       if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max()) {
         return invalidMesh(src_ + ": face " + std::to_string(index_) + ": vertex index " + std::to_string(v) +
                            " is out of range");
+      }
+      if (vertices_ && (v < 0 || v >= static_cast<double>(*vertices_))) {
+        return invalidMesh(src_ + ": face " + std::to_string(index_) + ": vertex index " +
+                           std::to_string(static_cast<int>(v)) + " names no vertex (" +
+                           std::to_string(*vertices_) + " vertices)");
       }
       face_.push_back(static_cast<int>(v));
     }
@@ -280,6 +289,7 @@ class SoupBuilder {
   const PlyRoles& roles_;
   const std::string& src_;
   PolygonSoup& soup_;
+  std::optional<size_t> vertices_;
   const PlyElement* element_ = nullptr;
   size_t index_ = 0;
   double xyz_[3] = {0, 0, 0};
@@ -365,12 +375,21 @@ Status readBinaryBody(std::string_view text, const PlyHeader& header, const std:
 
 }  // namespace
 
-Status readPly(std::string_view text, const std::string& src, PolygonSoup& soup) {
+Status readPly(std::string_view text, const std::string& src, PolygonSoup& soup,
+               const TextReadOptions& options) {
   PlyHeader header;
   TESSERA_RETURN_IF_ERROR(parseHeader(text, src, header));
   PlyRoles roles;
   TESSERA_RETURN_IF_ERROR(findRoles(header, src, roles));
-  SoupBuilder out(roles, src, soup);
+  // The header declares every element's count, so a face may be checked
+  // before the vertices it names are read.
+  std::optional<size_t> vertices;
+  if (options.checkIndices) {
+    vertices = 0;
+    for (const PlyElement& e : header.elements)
+      if (e.name == "vertex") vertices = e.count;
+  }
+  SoupBuilder out(roles, src, soup, vertices);
   if (header.format == "ascii") return readAsciiBody(text.substr(header.bodyStart), header, src, out);
   return readBinaryBody(text, header, src, out);
 }

@@ -26,7 +26,7 @@ namespace tessera::io_detail {
 
 struct TextReadOptions {
   // Refuse, at its line, a face index that names no vertex (in OBJ, no
-  // vertex read so far). The triangle import leaves indices to
+  // vertex read so far; in PLY, none of those the header declares). The triangle import leaves indices to
   // buildBaseMesh, which names the whole face; the polygon import
   // (importPolygonSoup) uses the soup as the file states it.
   bool checkIndices = false;
@@ -46,7 +46,9 @@ Status readOff(std::string_view text, const std::string& src, PolygonSoup& soup,
 // PLY 1.0 (ascii, binary_little_endian, binary_big_endian): element vertex
 // with x, y, z of any numeric type, element face with a list property
 // vertex_indices (or vertex_index); other elements and properties are skipped.
-Status readPly(std::string_view text, const std::string& src, PolygonSoup& soup);
+// With checkIndices, a face index is checked against the declared vertex count.
+Status readPly(std::string_view text, const std::string& src, PolygonSoup& soup,
+               const TextReadOptions& options = {});
 
 // STL: binary when the size is exactly 84 + 50 * (the declared facet count),
 // else ASCII (starting with 'solid'). STL stores float: ASCII coordinates are

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <random>
 
+#include "core/io/mesh_import.h"
 #include "core/schemes/bilinear_masks.h"
 #include "core/schemes/catmark_limit.h"
 #include "core/schemes/catmark_masks.h"
@@ -285,6 +286,21 @@ TEST(SchemePolygonReader, OffPolygonsCommentsColoursAndTruncation) {
   auto badIndex = readOffPolygons("OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 3\n", "i.off");
   ASSERT_FALSE(badIndex.isOk());
   EXPECT_NE(badIndex.status().message().find("i.off:6: bad vertex index '3'"), std::string::npos);
+}
+
+TEST(SchemePolygonReader, PlyPolygonsAndIndicesCheckedAgainstTheDeclaredVertices) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+  auto quad = importPolygonSoup(header + "4 0 1 2 3\n", ".ply", "q.ply");
+  ASSERT_TRUE(quad.isOk()) << quad.status().toString();
+  EXPECT_EQ(quad->numFaces(), 1);
+  EXPECT_EQ(quad->indices.size(), 4u);
+  auto badIndex = importPolygonSoup(header + "4 0 1 2 4\n", ".ply", "i.ply");
+  ASSERT_FALSE(badIndex.isOk());
+  EXPECT_NE(badIndex.status().message().find("i.ply: face 0: vertex index 4 names no vertex (4 vertices)"),
+            std::string::npos)
+      << badIndex.status().toString();
 }
 
 TEST(SchemePolygonReader, TagFilesApplyToPolygonsWithLineNumbers) {

@@ -115,18 +115,16 @@ int runDocView(const DocViewArgs& args) {
               static_cast<double>(uniform) / std::max<int64_t>(selection->triangles, 1));
   // The first picture a server sends before these (docs/VIEWS.md "The
   // first picture"): the surface's preview where it pays, else the roots.
-  std::vector<const RegionMesh*> roots;
   int64_t rootTriangles = 0;
   size_t rootBytes = 0;
   for (const TileKey& root : catalogue.tree().roots()) {
     auto tile = catalogue.get(root);
     if (!tile.isOk()) return fail("doc view", tile.status());
-    roots.push_back(&(*tile)->mesh);
     rootTriangles += (*tile)->triangles;
     rootBytes += encodedBytes(*doc, root, (*tile)->mesh, *grid, true);
   }
   if (previewPays(rootTriangles)) {
-    auto preview = surfacePreview(roots);
+    auto preview = surfacePreview(catalogue);
     if (!preview.isOk()) return fail("doc view", preview.status());
     std::printf(
         "first picture: the surface's preview, %s triangles, %s with ids (the level-0 tiles: %s, %s)\n",

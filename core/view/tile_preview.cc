@@ -85,4 +85,13 @@ Expected<RegionMesh> surfacePreview(const std::vector<const RegionMesh*>& roots)
   return out;
 }
 
+Expected<RegionMesh> surfacePreview(TileCatalogue& catalogue) {
+  std::vector<const RegionMesh*> roots;
+  for (const TileKey& root : catalogue.tree().roots()) {
+    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue.mesh(root));
+    roots.push_back(mesh);
+  }
+  return surfacePreview(roots);
+}
+
 }  // namespace tessera

@@ -13,6 +13,7 @@
 
 #include "core/tessellation/region_codec.h"
 #include "core/util/status.h"
+#include "core/view/tile_catalogue.h"
 
 namespace tessera {
 
@@ -29,5 +30,8 @@ inline bool previewPays(int64_t levelZeroTriangles) {
 // vertices are level-0 limit points, each with a root's position, normal
 // and id. Errors: more vertices than 32-bit indices hold.
 Expected<RegionMesh> surfacePreview(const std::vector<const RegionMesh*>& roots);
+
+// The same from a catalogue's roots, built (or built again) where needed.
+Expected<RegionMesh> surfacePreview(TileCatalogue& catalogue);
 
 }  // namespace tessera

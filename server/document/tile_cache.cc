@@ -55,8 +55,10 @@ Expected<EncodedTile> TileCache::encoded(const TileKey& key, uint64_t version) {
   const auto start = std::chrono::steady_clock::now();
   EncodedTile tile;
   if (key.isPreview()) {
-    TESSERA_ASSIGN_OR_RETURN(RegionMesh preview, buildPreview());
-    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, preview, grid_, version));
+    auto preview = surfacePreview(catalogue_);
+    countBuilt();  // the roots it built
+    if (!preview.isOk()) return preview.status();
+    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, *preview, grid_, version));
   } else {
     TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(key));
     TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, *mesh, grid_, version));
@@ -89,16 +91,6 @@ void TileCache::evictBeyond(uint64_t maxBytes) {
     entries_.erase(entry);
     byUse_.erase(oldest);
   }
-}
-
-Expected<RegionMesh> TileCache::buildPreview() {
-  std::vector<const RegionMesh*> roots;
-  for (const TileKey& root : catalogue_.tree().roots()) {
-    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(root));
-    roots.push_back(mesh);
-  }
-  countBuilt();
-  return surfacePreview(roots);
 }
 
 void TileCache::forgetEncoding(const TileKey& key) {

@@ -54,8 +54,6 @@ class TileCache {
   void countBuilt();
   // Forgets one encoding, if cached.
   void forgetEncoding(const TileKey& key);
-  // The preview's mesh, from every root's.
-  Expected<RegionMesh> buildPreview();
 
   TileCatalogue catalogue_;
   const QuantizationGrid& grid_;

@@ -331,22 +331,23 @@ void runConnections(const LoadOptions& o, Shared& shared, LoadRunData& run) {
     } else {
       run.statsError = stats.status().message();
     }
-    run.cpuBefore = sampleProcess(o.serverPid);
-    run.rssPeak = run.cpuBefore.rssBytes;
     // The schedule starts a little ahead, so that editors waiting for the
     // start (in 50 ms receives) are ready before their first send is due.
     run.start = Clock::now() + std::chrono::milliseconds(100);
-    run.testerCpuBefore = processCpuSeconds();
     run.started = true;
     const auto editEnd = run.start + secondsOf(o.seconds);
     shared.startNs = run.start.time_since_epoch().count();
     shared.startEditing = true;
     int64_t lastAcked = 0;
     sleepUnlessStopped(run.start, shared);
-    // Each second's CPU, the tester's and the server's, from the start.
+    // CPU from the start: over the window (edit_seconds) and each second,
+    // the tester's and the server's.
+    run.cpuBefore = sampleProcess(o.serverPid);
+    run.rssPeak = run.cpuBefore.rssBytes;
+    run.testerCpuBefore = processCpuSeconds();
     auto lastAt = Clock::now();
-    double lastTester = processCpuSeconds();
-    ProcSample lastServer = sampleProcess(o.serverPid);
+    double lastTester = run.testerCpuBefore;
+    ProcSample lastServer = run.cpuBefore;
     for (int second = 1; Clock::now() < editEnd && !shared.stopped; ++second) {
       sleepUnlessStopped(std::min(editEnd, run.start + std::chrono::seconds(second)), shared);
       if (shared.stopped) break;
@@ -361,7 +362,6 @@ void runConnections(const LoadOptions& o, Shared& shared, LoadRunData& run) {
       if (o.progress) printProgress(second, o.viewers, shared, lastAcked, now);
     }
   }
-  shared.stopEditing = true;
   for (auto& t : editorThreads) t.join();
   run.editsDone = Clock::now();
   run.testerCpuAfter = processCpuSeconds();

@@ -29,7 +29,6 @@ struct TimedSample {
 
 // Counters every connection thread adds to; the rest is merged at the end.
 struct Shared {
-  std::atomic<bool> stopEditing{false};
   std::atomic<bool> stopViewing{false};
   std::atomic<int64_t> sent{0}, acked{0}, rejected{0}, errors{0}, gaps{0}, resyncs{0}, deltas{0},
       viewersReady{0}, viewersDone{0};

@@ -98,4 +98,8 @@ test('a view\'s first snapshot may be the surface\'s preview: drawn alone until 
   assert.deepEqual([...shownTiles(view.regions).keys()], [PREVIEW_ID], 'a tile arrived: the preview still alone');
   view.apply('delta', delta(4, 4, [region(11, 0, 1, 0, 1, 2)], [PREVIEW_ID]));
   assert.deepEqual([...shownTiles(view.regions).keys()], [10n, 11n]);
+  // The first snapshot stays as it came, for the test hook.
+  assert.deepEqual(view.firstSnapshot, { ids: [String(PREVIEW_ID)], bytes: preview.draco.length, triangles: 2 });
+  view.apply('snapshot', snapshot(5, [region(12, 0, 1, 0, 1, 2)]));
+  assert.deepEqual(view.firstSnapshot.ids, [String(PREVIEW_ID)], 'a later snapshot leaves it');
 });

@@ -32,6 +32,9 @@ export class DocumentView {
     // view it names (Delta.view_seq, the SetView's client_seq) are all here.
     this.viewComplete = false;
     this.viewSeq = 0n;
+    // The first whole snapshot, as it came (the test hook's): its region ids
+    // (decimal strings, sorted), their payloads' bytes and triangles.
+    this.firstSnapshot = null;
   }
 
   // Applies a Snapshot or Delta message body ({snapshot} or {delta} of the
@@ -65,6 +68,11 @@ export class DocumentView {
       this.staging.set(toBig(r.region_id), decoded);
     }
     if (s.remaining_parts !== 0) return { kind: 'part' };
+    this.firstSnapshot ??= {
+      ids: [...this.staging.keys()].map(String).sort(),
+      bytes: [...this.staging.values()].reduce((n, r) => n + r.bytes, 0),
+      triangles: [...this.staging.values()].reduce((n, r) => n + r.indices.length / 3, 0),
+    };
     this.regions = this.staging;
     this.staging = new Map();
     this.stagingVersion = null;

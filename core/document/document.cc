@@ -239,9 +239,10 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   // An interpolating vertex's limit is its control point (ghost_ring.h).
   const bool interpolates = interpolationOf(vertices[0]).has_value() &&
                             ghostRuleOf(sparse_->level(level).mesh, v) != GhostRule::kNone;
+  const SparseFarRings far = sparse_->farRings(level);
   const Vec3 solved = interpolates ? target
                                    : solveControlPoint(sparse_->level(level).mesh, v, points, target,
-                                                       options_.loop.creaseMethod);
+                                                       options_.loop.creaseMethod, &far);
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v]));
   return add(Edit{{}, true, std::move(move)});
 }

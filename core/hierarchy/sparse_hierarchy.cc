@@ -27,6 +27,19 @@ void forEachElement(const Edit& edit, Visit&& visit) {
   }
 }
 
+// For each vertex of `now`, its local index in `was` (the same level before
+// a growth), kNoIndex where `was` did not hold it: one pass over both
+// ascending id lists.
+std::vector<Index> heldBefore(const SparseLevel& now, const SparseLevel& was) {
+  std::vector<Index> held(now.vertexIds.size(), kNoIndex);
+  size_t o = 0;
+  for (size_t v = 0; v < held.size(); ++v) {
+    while (o < was.vertexIds.size() && was.vertexIds[o] < now.vertexIds[v]) ++o;
+    if (o < was.vertexIds.size() && was.vertexIds[o] == now.vertexIds[v]) held[v] = static_cast<Index>(o);
+  }
+  return held;
+}
+
 }  // namespace
 
 SparseHierarchy::SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
@@ -73,10 +86,20 @@ bool SparseHierarchy::demandCovered(FaceId face) const {
   return true;
 }
 
+// Growth adds faces and changes no value: a canonical vertex's prediction
+// reads its parent's ring, and its limit its own complete ring, whatever
+// else is present, and every caller grows for the edits the levels already
+// reflect. So a rebuilt level takes both over from the level it replaces
+// for the vertices that level held, and computes only the new ones; the old
+// level is freed once the new one is evaluated (one level more at the peak).
 void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
   const int deepest = std::max(selection_.uniformLevel(), selection_.deepestDemand());
   std::vector<uint64_t> generations;
   for (const LevelState& state : levels_) generations.push_back(state.generation);
+  std::vector<LevelState> before;
+  if (static_cast<int>(levels_.size()) > l + 1) {
+    before.assign(std::make_move_iterator(levels_.begin() + l + 1), std::make_move_iterator(levels_.end()));
+  }
   levels_.resize(l + 1);
   for (int k = l; k <= deepest; ++k) {
     Buffer<uint8_t> refined;
@@ -94,7 +117,9 @@ void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
     levels_.emplace_back();
     levels_[k + 1].generation = k + 1 < static_cast<int>(generations.size()) ? generations[k + 1] : 0;
     levels_[k + 1].topo = std::move(child);
-    evaluateLevel(k + 1, edits);
+    const size_t old = static_cast<size_t>(k - l);
+    evaluateLevel(k + 1, edits, old < before.size() ? &before[old] : nullptr);
+    if (old < before.size()) before[old] = LevelState{};
   }
   for (int k = l; k < numLevels(); ++k) markLeaves(k, k > l);
 }
@@ -114,14 +139,18 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel) {
   if (!freshLevel && !state.limitPosition.empty()) return;
   state.limitPosition.resize(m.numVertices);
   state.limitNormal.resize(m.numVertices);
-  const LimitEvaluator limits(m, options_.creaseMethod);
+  const SparseFarRings far = farRings(l);
+  const LimitEvaluator limits(m, options_.creaseMethod, &far);
+  const bool anyTaken = !state.limitTaken.empty();
   for (Index v = 0; v < m.numVertices; ++v) {
-    if (state.topo.isComplete(v)) refreshLimit(l, v, limits);
+    if (state.topo.isComplete(v) && !(anyTaken && state.limitTaken[v])) refreshLimit(l, v, limits);
   }
+  Buffer<uint8_t>().swap(state.limitTaken);
 }
 
 LimitFrame SparseHierarchy::limitFrameOf(int l, Index v) const {
-  return limitFrame(levels_[l].topo.mesh, v, levels_[l].points, options_.creaseMethod);
+  const SparseFarRings far = farRings(l);
+  return limitFrame(levels_[l].topo.mesh, v, levels_[l].points, options_.creaseMethod, &far);
 }
 
 void SparseHierarchy::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
@@ -133,7 +162,7 @@ void SparseHierarchy::refreshLimit(int l, Index v, const LimitEvaluator& limits)
 
 // ---- One level's points and tags -------------------------------------
 
-void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits) {
+void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const LevelState* before) {
   LevelState& state = levels_[l];
   const SparseLevel& topo = state.topo;
   resolveTags(l, edits);
@@ -149,10 +178,27 @@ void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits) {
     // predicted: the stencils read only the parent (interpolate.h).
     const LevelState& parent = levels_[l - 1];
     LoopStencils stencils(parent.topo.mesh, options_);
-    for (Index v = 0; v < topo.numVertexChildren; ++v)
-      state.predicted[v] = stencils.vertexChild(topo.origin[v], parent.points);
-    for (Index v = topo.numVertexChildren; v < n; ++v)
-      state.predicted[v] = stencils.edgeChild(topo.origin[v], parent.points);
+    const std::vector<Index> held = before != nullptr ? heldBefore(topo, before->topo) : std::vector<Index>{};
+    if (before != nullptr) {
+      state.limitPosition.resize(n);
+      state.limitNormal.resize(n);
+      state.limitTaken.assign(n, 0);
+    }
+    for (Index v = 0; v < n; ++v) {
+      const Index o = held.empty() ? kNoIndex : held[v];
+      if (o != kNoIndex) {
+        state.predicted[v] = before->predicted[o];
+        if (before->topo.isComplete(o) && topo.isComplete(v)) {
+          state.limitPosition[v] = before->limitPosition[o];
+          state.limitNormal[v] = before->limitNormal[o];
+          state.limitTaken[v] = 1;
+        }
+      } else {
+        state.predicted[v] = v < topo.numVertexChildren ? stencils.vertexChild(topo.origin[v], parent.points)
+                                                        : stencils.edgeChild(topo.origin[v], parent.points);
+      }
+    }
+    // Ghost rings read only the parent: written again, they are what they were.
     for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
   }
   state.points = state.predicted;
@@ -426,7 +472,8 @@ void SparseHierarchy::markEditNodes(FaceId face, DirtySet& dirty) {
     const Level& m = state.topo.mesh;
     const Index a = SparseSelection::markAncestorRing(state.topo, face, state.editSelected);
     if (a == kNoIndex) continue;
-    const LimitEvaluator limits(m, options_.creaseMethod);
+    const SparseFarRings far = farRings(k);
+    const LimitEvaluator limits(m, options_.creaseMethod, &far);
     for (Index v : m.triangleVertices(a)) {
       if (!state.topo.isComplete(v)) continue;
       refreshLimit(k, v, limits);

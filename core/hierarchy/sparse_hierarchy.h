@@ -30,6 +30,7 @@
 
 #include "core/hierarchy/edit.h"
 #include "core/hierarchy/ids.h"
+#include "core/hierarchy/sparse_far_rings.h"
 #include "core/hierarchy/sparse_level.h"
 #include "core/hierarchy/sparse_selection.h"
 #include "core/loop/ghost_ring.h"
@@ -130,6 +131,11 @@ class SparseHierarchy {
   // hold is reached by none. The ends of e must be complete.
   bool edgeChildIsPredicted(int l, Index e) const;
   const LoopOptions& options() const { return options_; }
+  // The far rings Chaikin's decay reads at level l (sparse_far_rings.h):
+  // pass it wherever a limit is taken on this hierarchy's levels.
+  SparseFarRings farRings(int l) const {
+    return SparseFarRings(levels_[l].topo, l > 0 ? &levels_[l - 1].topo : nullptr, options_);
+  }
   // The vertices of level l that active edits at level l touch:
   // `visit(vertex, offset)` with the summed local offset of a moved vertex,
   // nullopt for a tagged one (its sharpness, an edge's at its first end, or
@@ -169,6 +175,9 @@ class SparseHierarchy {
     Buffer<uint8_t> reached;  // per vertex: isReachedByEdit
     // Scratch for the incremental update: all zero between updates.
     std::vector<uint8_t> vertexMarks, faceMarks;
+    // Between evaluateLevel and markLeaves of a rebuilt level: per vertex,
+    // whose limit was taken over from the level before the growth.
+    Buffer<uint8_t> limitTaken;
   };
 
   SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
@@ -182,9 +191,12 @@ class SparseHierarchy {
   bool demandCovered(FaceId face) const;
   int firstChangedSelection() const;
   void rebuildFrom(int l, std::span<const Edit> edits);
-  void evaluateLevel(int l, std::span<const Edit> edits);
+  // Points and tags of level l. `before`, when given, is the same level as
+  // it was before a growth rebuilt it: its predictions and limits are taken
+  // for the vertices it held (see rebuildFrom).
+  void evaluateLevel(int l, std::span<const Edit> edits, const LevelState* before = nullptr);
   // Leaves and displayed vertices of level l; on a freshly built level, the
-  // limits of every complete vertex.
+  // limits of every complete vertex that evaluateLevel did not take over.
   void markLeaves(int l, bool freshLevel);
   void refreshLimit(int l, Index vertex, const LimitEvaluator& limits);
 

@@ -247,7 +247,8 @@ void SparseHierarchy::refreshLimitsNear(int l, const std::vector<Index>& changed
                                         const std::vector<Index>& candidates, DirtySet& dirty) {
   const LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
-  const LimitEvaluator limits(m, options_.creaseMethod);
+  const SparseFarRings far = farRings(l);
+  const LimitEvaluator limits(m, options_.creaseMethod, &far);
   Marked changedSet(levels_[l].vertexMarks);
   for (Index v : changed) changedSet.add(v);
   for (Index w : candidates) {

@@ -26,7 +26,8 @@ void appendFloat(std::string& key, float value) {
 // The same bytes read from the level, so that a cache hit gathers nothing
 // but the ring's points (gatherLocalRing fills the far rings for semi-sharp
 // edges only, and so does this).
-void configurationKey(const Level& level, Index v, CreaseMethod method, std::string& key) {
+void configurationKey(const Level& level, Index v, CreaseMethod method, const FarRingSharpness* farRings,
+                      std::string& key) {
   const int n = level.valence(v);
   key.clear();
   appendWord(key, static_cast<uint32_t>(n) | (level.isBoundaryVertex(v) ? 1u << 16 : 0u) |
@@ -44,8 +45,7 @@ void configurationKey(const Level& level, Index v, CreaseMethod method, std::str
       appendWord(key, 0);
       continue;
     }
-    far.resize(level.valence(ringV[k]));
-    level.ringSharpness(ringV[k], far.data());
+    farRingSharpness(level, ringV[k], farRings, far);
     appendWord(key, static_cast<uint32_t>(far.size()));
     for (float s : far) appendFloat(key, s);
   }
@@ -124,16 +124,16 @@ DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method) {
 }
 
 const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<const Vec3> points,
-                                     CreaseMethod method) {
+                                     CreaseMethod method, const FarRingSharpness* far) {
   // Per thread, so a lookup takes no lock; entries are never evicted, so
   // the pointers stay valid for the thread's life.
   thread_local std::unordered_map<std::string, DecayMatrix> cache;
   thread_local std::string key;
-  configurationKey(level, v, method, key);
+  configurationKey(level, v, method, far, key);
   auto it = cache.find(key);
   if (it != cache.end()) return &it->second;
   if (cache.size() >= kDecayMatrixCacheEntries) return nullptr;
-  const LocalRing ring = gatherLocalRing(level, v, points, method);
+  const LocalRing ring = gatherLocalRing(level, v, points, method, far);
   return &cache.emplace(key, computeDecayMatrix(ring, method)).first->second;
 }
 

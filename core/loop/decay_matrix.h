@@ -55,7 +55,7 @@ struct DecayMatrix {
 // refines the ring itself, so a document with unboundedly many distinct
 // sharpness values costs time, never unbounded memory.
 const DecayMatrix* cachedDecayMatrix(const Level& level, Index v, std::span<const Vec3> points,
-                                     CreaseMethod method);
+                                     CreaseMethod method, const FarRingSharpness* far = nullptr);
 
 // Uncached: the ring's semi-sharp features refined away on unit points.
 DecayMatrix computeDecayMatrix(const LocalRing& ring, CreaseMethod method);

@@ -14,15 +14,21 @@
 #include "core/util/vec3.h"
 
 namespace tessera {
+class FarRingSharpness;  // local_ring.h
+}
+
+namespace tessera {
 
 // Weight of the vertex itself in its exact limit mask at this level (limit.h):
 // 1 - n w(n) for a smooth vertex, 2/3 on an infinitely sharp crease, 1 at a
 // corner, the dart's eigenvector weight at a dart, and through the decay
 // of a semi-sharp feature otherwise. Always > 0.
-double selfLimitWeight(const Level& level, Index v, CreaseMethod method);
+// `far` as for exactVertexLimit (exact_limit.h).
+double selfLimitWeight(const Level& level, Index v, CreaseMethod method,
+                       const FarRingSharpness* far = nullptr);
 
 // The control point for v whose limit position is `target`.
 Vec3 solveControlPoint(const Level& level, Index v, std::span<const Vec3> points, const Vec3& target,
-                       CreaseMethod method);
+                       CreaseMethod method, const FarRingSharpness* far = nullptr);
 
 }  // namespace tessera

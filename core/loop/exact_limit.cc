@@ -151,7 +151,8 @@ struct RingLimit {
   const SectorMasks* primarySector = nullptr;
 };
 
-RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
+RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                    const FarRingSharpness* far) {
   const int n = level.valence(v);
   thread_local std::vector<bool> sharpEdges;
   thread_local std::vector<Vec3> ringPoints;
@@ -175,7 +176,7 @@ RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, C
     auto ringE = level.ringEdgesOf(v);
     for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(level.edgeSharpness[ringE[k]]);
     masks = &masksFor(n, level.isBoundaryVertex(v), level.vertexRules[v], sharpEdges);
-  } else if (const DecayMatrix* decay = cachedDecayMatrix(level, v, points, method)) {
+  } else if (const DecayMatrix* decay = cachedDecayMatrix(level, v, points, method, far)) {
     // Semi-sharp features left: the ring's steps until they decay, as one
     // cached matrix (decay_matrix.h).
     gatherLevelRing();
@@ -195,7 +196,7 @@ RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, C
     // The cache is full: refine the ring here until its features decay.
     weighsLevelRing = false;
     thread_local LocalRing rings[2];
-    gatherLocalRing(level, v, points, method, rings[0]);
+    gatherLocalRing(level, v, points, method, rings[0], far);
     const LocalRing& ring = rings[refineUntilStationary(rings, method) % 2];
     for (int k = 0; k < n; ++k) sharpEdges[k] = isSharp(ring.edgeSharpness[k]);
     ringPoints.assign(ring.points.begin(), ring.points.end());
@@ -231,8 +232,8 @@ RingLimit ringLimit(const Level& level, Index v, std::span<const Vec3> points, C
 }  // namespace
 
 VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                             bool withOtherSides) {
-  const RingLimit ring = ringLimit(level, v, points, method);
+                             bool withOtherSides, const FarRingSharpness* far) {
+  const RingLimit ring = ringLimit(level, v, points, method, far);
   const StationaryMasks& masks = *ring.masks;
   const std::span<const Vec3> p = ring.points;
   const std::span<const int> sharp = ring.sharp;
@@ -269,7 +270,8 @@ VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> 
 }
 
 void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points,
-                                 CreaseMethod method, Vec3& position, Vec3& normal) {
+                                 CreaseMethod method, Vec3& position, Vec3& normal,
+                                 const FarRingSharpness* far) {
   LimitStencilKey key;
   const bool keyed = method == CreaseMethod::kUniform && limitStencilKey(level, v, key);
   const LimitStencil* stencil = keyed ? findLimitStencil(key) : nullptr;
@@ -289,7 +291,7 @@ void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Ve
     normal = unit(t1 % t2);
     return;
   }
-  const RingLimit ring = ringLimit(level, v, points, method);
+  const RingLimit ring = ringLimit(level, v, points, method, far);
   position = apply(ring.masks->position, ring.points);
   normal = sectorNormal(*ring.primarySector, ring.points, ring.valence);
   // Done unless the configuration is keyable and new (an empty stencil

@@ -20,6 +20,8 @@
 
 namespace tessera {
 
+class FarRingSharpness;  // local_ring.h
+
 struct VertexLimit {
   Vec3 position;
   // d position / d points[v], for direct manipulation's one-step solve.
@@ -36,13 +38,16 @@ std::vector<int> sharpRingEdges(const Level& level, Index v);
 
 // `withOtherSides` false leaves VertexLimit::others empty (limitFrame() does
 // not need them).
+// `far` supplies the far rings Chaikin's decay reads where the level does
+// not hold them (local_ring.h).
 VertexLimit exactVertexLimit(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                             bool withOtherSides = true);
+                             bool withOtherSides = true, const FarRingSharpness* far = nullptr);
 
 // The position and the primary sector's unit normal only (what
 // computeLimit writes): the same values as exactVertexLimit's frame.position
 // and frame.normal(), without building the frame.
 void exactLimitPositionAndNormal(const Level& level, Index v, std::span<const Vec3> points,
-                                 CreaseMethod method, Vec3& position, Vec3& normal);
+                                 CreaseMethod method, Vec3& position, Vec3& normal,
+                                 const FarRingSharpness* far = nullptr);
 
 }  // namespace tessera

@@ -73,19 +73,19 @@ LimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3> p, con
 }
 
 LimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points, const SmoothTables& tables,
-                     CreaseMethod method) {
+                     CreaseMethod method, const FarRingSharpness* far) {
   // A smooth vertex's ring has no sharp edge, so its closed-form masks are
   // exact; every other rule goes through its ring's eigenstructure.
   if (level.vertexRules[v] == VertexRule::kSmooth) return smoothFrame(level, v, points, tables);
-  return exactVertexLimit(level, v, points, method, false).frame;
+  return exactVertexLimit(level, v, points, method, false, far).frame;
 }
 
 }  // namespace
 
 std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::span<const Vec3> points,
-                                           CreaseMethod method) {
+                                           CreaseMethod method, const FarRingSharpness* far) {
   if (isSmoothLike(level.vertexRules[v])) return {};
-  return exactVertexLimit(level, v, points, method).others;
+  return exactVertexLimit(level, v, points, method, true, far).others;
 }
 
 int limitSideOfRingFace(const Level& level, Index v, int ringFace) {
@@ -104,18 +104,22 @@ int limitSideOfRingFace(const Level& level, Index v, int ringFace) {
   return sector < primary ? sector + 1 : sector;
 }
 
-LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
+LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                      const FarRingSharpness* far) {
   SmoothTables tables(level.valence(v));
-  return frameWith(level, v, points, tables, method);
+  return frameWith(level, v, points, tables, method, far);
 }
 
-LimitEvaluator::LimitEvaluator(const Level& level, CreaseMethod method)
-    : level_(level), method_(method), tables_(std::make_unique<const SmoothTables>(level.maxValence)) {}
+LimitEvaluator::LimitEvaluator(const Level& level, CreaseMethod method, const FarRingSharpness* far)
+    : level_(level),
+      method_(method),
+      far_(far),
+      tables_(std::make_unique<const SmoothTables>(level.maxValence)) {}
 
 LimitEvaluator::~LimitEvaluator() = default;
 
 LimitFrame LimitEvaluator::frame(Index v, std::span<const Vec3> points) const {
-  return frameWith(level_, v, points, *tables_, method_);
+  return frameWith(level_, v, points, *tables_, method_, far_);
 }
 
 void computeLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,

@@ -37,8 +37,12 @@ struct LimitFrame {
   }
 };
 
+class FarRingSharpness;  // local_ring.h
+
+// `far` supplies the far rings Chaikin's decay reads where the level does
+// not hold them (a sparse level, local_ring.h).
 LimitFrame limitFrame(const Level& level, Index v, std::span<const Vec3> points,
-                      CreaseMethod method = CreaseMethod::kUniform);
+                      CreaseMethod method = CreaseMethod::kUniform, const FarRingSharpness* far = nullptr);
 
 namespace detail {
 class SmoothTables;
@@ -48,13 +52,15 @@ class SmoothTables;
 // per-valence tables built once (the incremental hierarchy's use).
 class LimitEvaluator {
  public:
-  explicit LimitEvaluator(const Level& level, CreaseMethod method = CreaseMethod::kUniform);
+  explicit LimitEvaluator(const Level& level, CreaseMethod method = CreaseMethod::kUniform,
+                          const FarRingSharpness* far = nullptr);
   ~LimitEvaluator();
   LimitFrame frame(Index v, std::span<const Vec3> points) const;
 
  private:
   const Level& level_;
   CreaseMethod method_;
+  const FarRingSharpness* far_;
   std::unique_ptr<const detail::SmoothTables> tables_;
 };
 
@@ -73,7 +79,8 @@ struct LimitSector {
 // mesh can split vertices along creases and shade each side correctly.
 // Smooth, dart and cusp vertices, and boundary creases, have none.
 std::vector<LimitSector> otherLimitSectors(const Level& level, Index v, std::span<const Vec3> points,
-                                           CreaseMethod method = CreaseMethod::kUniform);
+                                           CreaseMethod method = CreaseMethod::kUniform,
+                                           const FarRingSharpness* far = nullptr);
 
 // The side of v that ring face `ringFace` (its position in v's ring) lies
 // on, numbered as a mesh splits the vertex: 0 for the sector limitFrame()

@@ -98,14 +98,21 @@ bool LocalRing::isStationary() const {
   return true;
 }
 
-LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method) {
+void farRingSharpness(const Level& level, Index u, const FarRingSharpness* far, std::vector<float>& out) {
+  if (far != nullptr) return far->edgesAt(u, out);
+  out.resize(level.valence(u));
+  level.ringSharpness(u, out.data());
+}
+
+LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                          const FarRingSharpness* far) {
   LocalRing ring;
-  gatherLocalRing(level, v, points, method, ring);
+  gatherLocalRing(level, v, points, method, ring, far);
   return ring;
 }
 
 void gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                     LocalRing& ring) {
+                     LocalRing& ring, const FarRingSharpness* farRings) {
   ring.valence = level.valence(v);
   ring.boundary = level.isBoundaryVertex(v);
   ring.rule = level.vertexRules[v];
@@ -121,9 +128,7 @@ void gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, 
     ring.points.push_back(points[ringV[k]]);
     ring.centreWeight.push_back(0.0);
     if (method == CreaseMethod::kChaikin && isSemiSharp(level.edgeSharpness[ringE[k]])) {
-      auto& far = ring.farRingSharpness[k];
-      far.resize(level.valence(ringV[k]));
-      level.ringSharpness(ringV[k], far.data());
+      farRingSharpness(level, ringV[k], farRings, ring.farRingSharpness[k]);
     }
   }
 }

@@ -25,6 +25,22 @@
 
 namespace tessera {
 
+// The sharpness of every edge at vertex u of a level, in ring order where
+// the order is known: what Chaikin's decay at the far end of a semi-sharp
+// ring edge reads (Sdc CREASE_CHAIKIN). A whole level knows it
+// (Level::ringSharpness); a level that does not hold every edge at u -- a
+// sparse level's incomplete vertex (core/hierarchy/sparse_level.h) -- needs
+// its owner to supply it, since the decay reads one ring further than the
+// Loop stencils.
+class FarRingSharpness {
+ public:
+  virtual ~FarRingSharpness() = default;
+  virtual void edgesAt(Index u, std::vector<float>& out) const = 0;
+};
+
+// The far ring of u: `far`'s where given, the level's own otherwise.
+void farRingSharpness(const Level& level, Index u, const FarRingSharpness* far, std::vector<float>& out);
+
 struct LocalRing {
   int valence = 0;
   bool boundary = false;  // ring edges 0 and valence-1 are boundary edges
@@ -45,10 +61,11 @@ struct LocalRing {
 };
 
 // The ring of v at this level, its points and sharpness.
-LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method);
+LocalRing gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
+                          const FarRingSharpness* far = nullptr);
 // The same into `out`, reusing its storage.
 void gatherLocalRing(const Level& level, Index v, std::span<const Vec3> points, CreaseMethod method,
-                     LocalRing& out);
+                     LocalRing& out, const FarRingSharpness* far = nullptr);
 
 // One Loop step: the centre's child and the children of its ring edges,
 // which form the centre's ring at the next level, in the same ring order.

@@ -18,7 +18,8 @@ Vec3 sideNormal(const SparseHierarchy& h, int l, Index v, Index f) {
   auto faces = m.ringFacesOf(v);
   const int n = static_cast<int>(faces.size());
   const int k = static_cast<int>(std::find(faces.begin(), faces.end(), f) - faces.begin());
-  for (const LimitSector& sector : otherLimitSectors(m, v, h.points(l), h.creaseMethod())) {
+  const SparseFarRings far = h.farRings(l);
+  for (const LimitSector& sector : otherLimitSectors(m, v, h.points(l), h.creaseMethod(), &far)) {
     if ((k - sector.firstFace + n) % n < sector.faceCount) return sector.normal;
   }
   return h.limitNormal(l, v);

@@ -68,7 +68,9 @@ namespace {
 // The limit normal of side `side` > 0 of a crease or corner vertex
 // (limitSideOfRingFace's numbering; side 0's is its limit normal).
 Vec3 sideNormal(const SparseHierarchy& h, VertexRef v, int side) {
-  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod())[side - 1]
+  const SparseFarRings far = h.farRings(v.level);
+  return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod(),
+                           &far)[side - 1]
       .normal;
 }
 

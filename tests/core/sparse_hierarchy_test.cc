@@ -129,6 +129,9 @@ struct PropertyCase {
   LoopOptions options;
   int uniformLevel;
   int steps;
+  // When > 0: before every this many steps, a tessellation's growth (as a
+  // view's) at a few random faces of a random level, checked as a step.
+  int growEvery = 0;
 };
 
 void runRandomHistory(const PropertyCase& c, uint32_t seed) {
@@ -142,6 +145,24 @@ void runRandomHistory(const PropertyCase& c, uint32_t seed) {
   // Edits stay near a few spots, so that later edits land on refined areas.
   std::vector<EditId> made;
   for (int step = 0; step < c.steps; ++step) {
+    if (c.growEvery > 0 && step % c.growEvery == 0) {
+      const int at = 1 + static_cast<int>(pick(maxLevel));
+      std::vector<FaceId> faces;
+      for (int k = 0; k < 3; ++k) faces.push_back(FaceId(at, pick(doc->counts().faces(at))));
+      const auto limitsBefore = completeLimits(doc->hierarchy());
+      doc->refineHierarchy(faces);
+      const std::string where =
+          c.mesh.name + " step " + std::to_string(step) + " (growth at level " + std::to_string(at) + ")";
+      expectMatchesDense(*doc, where);
+      // Growth changes no value: every limit held before is held after, equal.
+      for (const auto& [key, limit] : completeLimits(doc->hierarchy())) {
+        auto was = limitsBefore.find(key);
+        if (was == limitsBefore.end()) continue;
+        ASSERT_EQ(was->second.first, limit.first) << where << " v" << key.first << ":" << key.second;
+        ASSERT_EQ(was->second.second, limit.second) << where << " v" << key.first << ":" << key.second;
+      }
+      if (::testing::Test::HasFailure()) return;
+    }
     const int level = static_cast<int>(pick(maxLevel + 1));
     const uint64_t spot = pick(std::min<uint64_t>(doc->counts().vertices(0), 3));
     // A vertex descended from one of the few spots, or on an edge near one.
@@ -215,6 +236,27 @@ TEST(SparseHierarchy, RandomHistoriesMatchTheDenseReferenceAtEveryStep) {
       {testing::withRandomFlips(testing::bipyramid(7), 3, 5), {}, 2, 300},
   };
   uint32_t seed = 1;
+  for (const PropertyCase& c : cases) {
+    SCOPED_TRACE(c.mesh.name);
+    runRandomHistory(c, seed++);
+    if (HasFailure()) return;
+  }
+}
+
+// A view grows the hierarchy wherever its camera needs tiles, between
+// edits; a rebuilt level takes over the points and limits of the vertices
+// it held (sparse_hierarchy.cc, rebuildFrom). After every growth and every
+// edit the state equals the dense reference, and no limit held before a
+// growth moved.
+TEST(SparseHierarchy, GrowthBetweenEditsKeepsEveryValue) {
+  LoopOptions chaikin;
+  chaikin.creaseMethod = CreaseMethod::kChaikin;
+  const std::vector<PropertyCase> cases = {
+      {testing::withRandomTags(testing::torus(6, 4), 0.2, 0.1, 17), chaikin, 0, 200, 3},
+      {testing::withRandomTags(testing::diskWithPole(9), 0.3, 0.2, 19), {}, 1, 200, 2},
+      {testing::openGrid(5, 4), {}, 0, 150, 2},
+  };
+  uint32_t seed = 101;
   for (const PropertyCase& c : cases) {
     SCOPED_TRACE(c.mesh.name);
     runRandomHistory(c, seed++);

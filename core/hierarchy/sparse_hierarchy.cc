@@ -27,15 +27,15 @@ void forEachElement(const Edit& edit, Visit&& visit) {
   }
 }
 
-// For each vertex of `now`, its local index in `was` (the same level before
-// a growth), kNoIndex where `was` did not hold it: one pass over both
+// For each vertex of `now`, its index in `was` (the ids of the same level
+// before a growth), kNoIndex where it was not held: one pass over both
 // ascending id lists.
-std::vector<Index> heldBefore(const SparseLevel& now, const SparseLevel& was) {
+std::vector<Index> heldBefore(const SparseLevel& now, const Buffer<uint64_t>& was) {
   std::vector<Index> held(now.vertexIds.size(), kNoIndex);
   size_t o = 0;
   for (size_t v = 0; v < held.size(); ++v) {
-    while (o < was.vertexIds.size() && was.vertexIds[o] < now.vertexIds[v]) ++o;
-    if (o < was.vertexIds.size() && was.vertexIds[o] == now.vertexIds[v]) held[v] = static_cast<Index>(o);
+    while (o < was.size() && was[o] < now.vertexIds[v]) ++o;
+    if (o < was.size() && was[o] == now.vertexIds[v]) held[v] = static_cast<Index>(o);
   }
   return held;
 }
@@ -96,9 +96,12 @@ void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
   const int deepest = std::max(selection_.uniformLevel(), selection_.deepestDemand());
   std::vector<uint64_t> generations;
   for (const LevelState& state : levels_) generations.push_back(state.generation);
-  std::vector<LevelState> before;
-  if (static_cast<int>(levels_.size()) > l + 1) {
-    before.assign(std::make_move_iterator(levels_.begin() + l + 1), std::make_move_iterator(levels_.end()));
+  // The old levels' topology goes now; their values stay until taken over.
+  std::vector<HeldValues> before;
+  for (size_t k = l + 1; k < levels_.size(); ++k) {
+    LevelState& old = levels_[k];
+    before.push_back({std::move(old.topo.vertexIds), std::move(old.topo.complete), std::move(old.predicted),
+                      std::move(old.limitPosition), std::move(old.limitNormal)});
   }
   levels_.resize(l + 1);
   for (int k = l; k <= deepest; ++k) {
@@ -119,7 +122,7 @@ void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
     levels_[k + 1].topo = std::move(child);
     const size_t old = static_cast<size_t>(k - l);
     evaluateLevel(k + 1, edits, old < before.size() ? &before[old] : nullptr);
-    if (old < before.size()) before[old] = LevelState{};
+    if (old < before.size()) before[old] = HeldValues{};
   }
   for (int k = l; k < numLevels(); ++k) markLeaves(k, k > l);
 }
@@ -162,7 +165,7 @@ void SparseHierarchy::refreshLimit(int l, Index v, const LimitEvaluator& limits)
 
 // ---- One level's points and tags -------------------------------------
 
-void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const LevelState* before) {
+void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const HeldValues* before) {
   LevelState& state = levels_[l];
   const SparseLevel& topo = state.topo;
   resolveTags(l, edits);
@@ -178,7 +181,8 @@ void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const Le
     // predicted: the stencils read only the parent (interpolate.h).
     const LevelState& parent = levels_[l - 1];
     LoopStencils stencils(parent.topo.mesh, options_);
-    const std::vector<Index> held = before != nullptr ? heldBefore(topo, before->topo) : std::vector<Index>{};
+    const std::vector<Index> held =
+        before != nullptr ? heldBefore(topo, before->vertexIds) : std::vector<Index>{};
     if (before != nullptr) {
       state.limitPosition.resize(n);
       state.limitNormal.resize(n);
@@ -188,7 +192,7 @@ void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const Le
       const Index o = held.empty() ? kNoIndex : held[v];
       if (o != kNoIndex) {
         state.predicted[v] = before->predicted[o];
-        if (before->topo.isComplete(o) && topo.isComplete(v)) {
+        if (before->complete[o] != 0 && topo.isComplete(v)) {
           state.limitPosition[v] = before->limitPosition[o];
           state.limitNormal[v] = before->limitNormal[o];
           state.limitTaken[v] = 1;

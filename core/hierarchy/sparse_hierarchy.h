@@ -158,6 +158,13 @@ class SparseHierarchy {
   HierarchyStats stats() const;
 
  private:
+  // What a growth keeps of a level it rebuilds, for the new level to take
+  // over (rebuildFrom): the values, without the topology.
+  struct HeldValues {
+    Buffer<uint64_t> vertexIds;
+    Buffer<uint8_t> complete;
+    std::vector<Vec3> predicted, limitPosition, limitNormal;
+  };
   struct LevelState {
     SparseLevel topo;
     Buffer<uint8_t> selected;      // per face: a node with children
@@ -194,7 +201,7 @@ class SparseHierarchy {
   // Points and tags of level l. `before`, when given, is the same level as
   // it was before a growth rebuilt it: its predictions and limits are taken
   // for the vertices it held (see rebuildFrom).
-  void evaluateLevel(int l, std::span<const Edit> edits, const LevelState* before = nullptr);
+  void evaluateLevel(int l, std::span<const Edit> edits, const HeldValues* before = nullptr);
   // Leaves and displayed vertices of level l; on a freshly built level, the
   // limits of every complete vertex that evaluateLevel did not take over.
   void markLeaves(int l, bool freshLevel);

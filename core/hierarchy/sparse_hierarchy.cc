@@ -90,8 +90,9 @@ bool SparseHierarchy::demandCovered(FaceId face) const {
 // reads its parent's ring, and its limit its own complete ring, whatever
 // else is present, and every caller grows for the edits the levels already
 // reflect. So a rebuilt level takes both over from the level it replaces
-// for the vertices that level held, and computes only the new ones; the old
-// level is freed once the new one is evaluated (one level more at the peak).
+// for the vertices that level held, and computes only the new ones. The
+// old levels' topology is freed first, and each old level's values once the
+// new level has taken them over.
 void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
   const int deepest = std::max(selection_.uniformLevel(), selection_.deepestDemand());
   std::vector<uint64_t> generations;

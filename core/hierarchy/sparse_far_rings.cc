@@ -16,7 +16,7 @@ void SparseFarRings::edgesAt(Index u, std::vector<float>& out) const {
   const SparseLevel& p = *parent_;
   out.clear();
   const Index origin = level_.origin[u];
-  if (u < level_.numVertexChildren) {
+  if (level_.isVertexChild(u)) {
     // In the parent's ring order, which is the child's.
     SharpnessInheritance inherit(p.mesh, options_);
     for (Index e : p.mesh.ringEdgesOf(origin)) {
@@ -37,7 +37,9 @@ void SparseFarRings::edgesAt(Index u, std::vector<float>& out) const {
       if ((ends[0] == u || ends[1] == u) && e != half && e != half + 1) interior.push_back(e);
     }
   }
-  std::sort(interior.begin(), interior.end());
+  // In canonical order, whatever the local one (a level grown in place).
+  std::sort(interior.begin(), interior.end(),
+            [&](Index a, Index b) { return level_.edgeIds[a] < level_.edgeIds[b]; });
   interior.erase(std::unique(interior.begin(), interior.end()), interior.end());
   for (Index e : interior) out.push_back(m.edgeSharpness[e]);
 }

@@ -27,19 +27,6 @@ void forEachElement(const Edit& edit, Visit&& visit) {
   }
 }
 
-// For each vertex of `now`, its index in `was` (the ids of the same level
-// before a growth), kNoIndex where it was not held: one pass over both
-// ascending id lists.
-std::vector<Index> heldBefore(const SparseLevel& now, const Buffer<uint64_t>& was) {
-  std::vector<Index> held(now.vertexIds.size(), kNoIndex);
-  size_t o = 0;
-  for (size_t v = 0; v < held.size(); ++v) {
-    while (o < was.size() && was[o] < now.vertexIds[v]) ++o;
-    if (o < was.size() && was[o] == now.vertexIds[v]) held[v] = static_cast<Index>(o);
-  }
-  return held;
-}
-
 }  // namespace
 
 SparseHierarchy::SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
@@ -58,7 +45,7 @@ Expected<SparseHierarchy> SparseHierarchy::create(const BaseTopology& base, std:
   eval.levels_[0].topo = sparseBaseLevel(std::move(level0));
   for (const Edit& edit : edits) eval.addDemand(edit);
   eval.evaluateLevel(0, edits);
-  eval.rebuildFrom(0, edits);
+  eval.growFrom(0, edits);
   return eval;
 }
 
@@ -89,46 +76,68 @@ bool SparseHierarchy::demandCovered(FaceId face) const {
 // Growth adds faces and changes no value: a canonical vertex's prediction
 // reads its parent's ring, and its limit its own complete ring, whatever
 // else is present, and every caller grows for the edits the levels already
-// reflect. So a rebuilt level takes both over from the level it replaces
-// for the vertices that level held, and computes only the new ones. The
-// old levels' topology is freed first, and each old level's values once the
-// new level has taken them over.
-void SparseHierarchy::rebuildFrom(int l, std::span<const Edit> edits) {
+// reflect. So levels grow in place (extendSparse): what they held keeps its
+// local index, prediction, point and limit, and only what is new is
+// computed: the new vertices' predictions, and the limits of the vertices
+// whose rings the growth completed. The selection only grows (a demand is
+// never taken back), so no level ever loses a face.
+void SparseHierarchy::growFrom(int l, std::span<const Edit> edits) {
   const int deepest = std::max(selection_.uniformLevel(), selection_.deepestDemand());
-  std::vector<uint64_t> generations;
-  for (const LevelState& state : levels_) generations.push_back(state.generation);
-  // The old levels' topology goes now; their values stay until taken over.
-  std::vector<HeldValues> before;
-  for (size_t k = l + 1; k < levels_.size(); ++k) {
-    LevelState& old = levels_[k];
-    before.push_back({std::move(old.topo.vertexIds), std::move(old.topo.complete), std::move(old.predicted),
-                      std::move(old.limitPosition), std::move(old.limitNormal)});
-  }
-  levels_.resize(l + 1);
+  std::vector<std::vector<Index>> completed(deepest + 1);
+  std::vector<uint8_t> fresh(deepest + 1, 0);
   for (int k = l; k <= deepest; ++k) {
     Buffer<uint8_t> refined;
     selection_.select(levels_[k].topo, levels_[k].selected, refined, &levels_[k].editSelected);
     ++levels_[k].generation;
     if (k == deepest) {
       SparseLevel& last = levels_[k].topo;
-      last.firstChildFace.assign(last.mesh.numFaces(), kNoIndex);
-      last.childOfVertex.assign(last.mesh.numVertices, kNoIndex);
-      last.childOfEdge.assign(last.mesh.numEdges(), kNoIndex);
-      last.halvesOfEdge.assign(last.mesh.numEdges(), kNoIndex);
+      last.firstChildFace.resize(last.mesh.numFaces(), kNoIndex);
+      last.childOfVertex.resize(last.mesh.numVertices, kNoIndex);
+      last.childOfEdge.resize(last.mesh.numEdges(), kNoIndex);
+      last.halvesOfEdge.resize(last.mesh.numEdges(), kNoIndex);
       break;
+    }
+    if (k + 1 < numLevels()) {
+      LevelExtension grown = extendSparse(levels_[k].topo, levels_[k + 1].topo, refined, counts_, options_);
+      evaluateNewVertices(k + 1, grown);
+      completed[k + 1] = std::move(grown.completed);
+      continue;
     }
     SparseLevel child = refineSparse(levels_[k].topo, refined, counts_, options_);
     levels_.emplace_back();
-    levels_[k + 1].generation = k + 1 < static_cast<int>(generations.size()) ? generations[k + 1] : 0;
     levels_[k + 1].topo = std::move(child);
-    const size_t old = static_cast<size_t>(k - l);
-    evaluateLevel(k + 1, edits, old < before.size() ? &before[old] : nullptr);
-    if (old < before.size()) before[old] = HeldValues{};
+    evaluateLevel(k + 1, edits);
+    fresh[k + 1] = 1;
   }
-  for (int k = l; k < numLevels(); ++k) markLeaves(k, k > l);
+  for (int k = l; k <= deepest; ++k) markLeaves(k, fresh[k] != 0, completed[k]);
 }
 
-void SparseHierarchy::markLeaves(int l, bool freshLevel) {
+void SparseHierarchy::evaluateNewVertices(int l, const LevelExtension& grown) {
+  LevelState& state = levels_[l];
+  const SparseLevel& topo = state.topo;
+  const Index n = topo.mesh.numVertices;
+  state.vertexMarks.resize(n, 0);
+  state.faceMarks.resize(topo.mesh.numFaces(), 0);
+  state.predicted.resize(n);
+  state.points.resize(n);
+  state.limitPosition.resize(n);
+  state.limitNormal.resize(n);
+  state.reached.resize(n, 0);
+  const LevelState& parent = levels_[l - 1];
+  LoopStencils stencils(parent.topo.mesh, options_);
+  for (Index v = grown.firstNewVertex; v < n; ++v) {
+    state.predicted[v] = topo.isVertexChild(v) ? stencils.vertexChild(topo.origin[v], parent.points)
+                                               : stencils.edgeChild(topo.origin[v], parent.points);
+  }
+  // Ghost rings read only the parent: written again, they are what they
+  // were where they were held, and set the new vertices they reach.
+  for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
+  // No edit addresses a vertex the level did not hold (its node holds it).
+  for (Index v = grown.firstNewVertex; v < n; ++v) state.points[v] = state.predicted[v];
+  refreshReached(l, grown.completed);
+}
+
+void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index>& newLimits) {
   LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
   state.leaf.assign(m.numFaces(), 0);
@@ -139,17 +148,19 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel) {
     state.leaf[f] = 1;
     for (Index v : m.triangleVertices(f)) state.displayed[v] = 1;
   }
-  // Above a rebuild, points and completeness are unchanged: limits hold.
-  if (!freshLevel && !state.limitPosition.empty()) return;
+  freshLevel = freshLevel || state.limitPosition.empty();  // level 0, first marked
+  if (!freshLevel && newLimits.empty()) return;
   state.limitPosition.resize(m.numVertices);
   state.limitNormal.resize(m.numVertices);
   const SparseFarRings far = farRings(l);
   const LimitEvaluator limits(m, options_.creaseMethod, &far);
-  const bool anyTaken = !state.limitTaken.empty();
-  for (Index v = 0; v < m.numVertices; ++v) {
-    if (state.topo.isComplete(v) && !(anyTaken && state.limitTaken[v])) refreshLimit(l, v, limits);
+  if (!freshLevel) {
+    for (Index v : newLimits) refreshLimit(l, v, limits);
+    return;
   }
-  Buffer<uint8_t>().swap(state.limitTaken);
+  for (Index v = 0; v < m.numVertices; ++v) {
+    if (state.topo.isComplete(v)) refreshLimit(l, v, limits);
+  }
 }
 
 LimitFrame SparseHierarchy::limitFrameOf(int l, Index v) const {
@@ -166,7 +177,7 @@ void SparseHierarchy::refreshLimit(int l, Index v, const LimitEvaluator& limits)
 
 // ---- One level's points and tags -------------------------------------
 
-void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const HeldValues* before) {
+void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits) {
   LevelState& state = levels_[l];
   const SparseLevel& topo = state.topo;
   resolveTags(l, edits);
@@ -182,28 +193,10 @@ void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits, const He
     // predicted: the stencils read only the parent (interpolate.h).
     const LevelState& parent = levels_[l - 1];
     LoopStencils stencils(parent.topo.mesh, options_);
-    const std::vector<Index> held =
-        before != nullptr ? heldBefore(topo, before->vertexIds) : std::vector<Index>{};
-    if (before != nullptr) {
-      state.limitPosition.resize(n);
-      state.limitNormal.resize(n);
-      state.limitTaken.assign(n, 0);
-    }
     for (Index v = 0; v < n; ++v) {
-      const Index o = held.empty() ? kNoIndex : held[v];
-      if (o != kNoIndex) {
-        state.predicted[v] = before->predicted[o];
-        if (before->complete[o] != 0 && topo.isComplete(v)) {
-          state.limitPosition[v] = before->limitPosition[o];
-          state.limitNormal[v] = before->limitNormal[o];
-          state.limitTaken[v] = 1;
-        }
-      } else {
-        state.predicted[v] = v < topo.numVertexChildren ? stencils.vertexChild(topo.origin[v], parent.points)
-                                                        : stencils.edgeChild(topo.origin[v], parent.points);
-      }
+      state.predicted[v] = topo.isVertexChild(v) ? stencils.vertexChild(topo.origin[v], parent.points)
+                                                 : stencils.edgeChild(topo.origin[v], parent.points);
     }
-    // Ghost rings read only the parent: written again, they are what they were.
     for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
   }
   state.points = state.predicted;
@@ -284,7 +277,7 @@ void SparseHierarchy::applyTags(int l) {
 float SparseHierarchy::inheritedVertexSharpness(int l, Index v) const {
   if (l == 0) return baseVertexSharpness_[v];
   const SparseLevel& topo = levels_[l].topo;
-  if (v >= topo.numVertexChildren) return kSharpnessSmooth;
+  if (!topo.isVertexChild(v)) return kSharpnessSmooth;
   return decrementSharpness(levels_[l - 1].topo.mesh.vertexSharpness[topo.origin[v]]);
 }
 
@@ -309,8 +302,8 @@ void SparseHierarchy::recomputeRule(int l, Index v) {
     return;
   }
   SharpnessInheritance inherit(levels_[l - 1].topo.mesh, options_);
-  m.vertexRules[v] = v < topo.numVertexChildren ? inherit.vertexChildRule(topo.origin[v])
-                                                : inherit.edgeChildRule(topo.origin[v]);
+  m.vertexRules[v] =
+      topo.isVertexChild(v) ? inherit.vertexChildRule(topo.origin[v]) : inherit.edgeChildRule(topo.origin[v]);
 }
 
 void SparseHierarchy::applyOffset(int l, Index v) {
@@ -343,7 +336,7 @@ bool SparseHierarchy::isGhosted(int l, Index v) const {
     return parent.interpolationTags.count(u) != 0 && parent.topo.isComplete(u) &&
            ghostRuleOf(parent.topo.mesh, u) != GhostRule::kNone;
   };
-  if (v < topo.numVertexChildren) return applies(topo.origin[v]);
+  if (topo.isVertexChild(v)) return applies(topo.origin[v]);
   const auto& ends = parent.topo.mesh.edgeVertices[topo.origin[v]];
   return applies(ends[0]) || applies(ends[1]);
 }
@@ -436,7 +429,7 @@ DirtySet SparseHierarchy::reserve(const Edit& edit, std::span<const Edit> edits)
   }
   addDemand(edit);
   const int first = firstChangedSelection();
-  rebuildFrom(first, edits);
+  growFrom(first, edits);
   dirty.grownFromLevel = first;
   return dirty;
 }
@@ -510,7 +503,7 @@ int SparseHierarchy::reserveFaces(std::span<const FaceId> faces, std::span<const
   }
   if (covered) return -1;
   const int first = firstChangedSelection();
-  rebuildFrom(first, edits);
+  growFrom(first, edits);
   return first;
 }
 
@@ -519,7 +512,7 @@ void SparseHierarchy::raiseUniformLevel(int level, std::span<const Edit> edits) 
   if (level <= selection_.uniformLevel()) return;
   const int first = selection_.uniformLevel();
   selection_.raiseUniformLevel(level);
-  rebuildFrom(first, edits);
+  growFrom(first, edits);
 }
 
 }  // namespace tessera

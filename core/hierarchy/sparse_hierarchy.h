@@ -102,7 +102,7 @@ class SparseHierarchy {
   // A node with children because of an edit (not a tessellation's request).
   bool isEditNode(int l, Index face) const { return levels_[l].editSelected[face] != 0; }
   bool isNodeWithChildren(int l, Index face) const { return levels_[l].selected[face] != 0; }
-  // Bumped whenever level l is rebuilt (its local indices change).
+  // Bumped whenever level l grows (what it held keeps its local index).
   uint64_t generation(int l) const { return levels_[l].generation; }
   // Limit position and unit normal of a complete vertex, and its limit
   // tangents (for crease tangents, §3.1.2).
@@ -158,13 +158,6 @@ class SparseHierarchy {
   HierarchyStats stats() const;
 
  private:
-  // What a growth keeps of a level it rebuilds, for the new level to take
-  // over (rebuildFrom): the values, without the topology.
-  struct HeldValues {
-    Buffer<uint64_t> vertexIds;
-    Buffer<uint8_t> complete;
-    std::vector<Vec3> predicted, limitPosition, limitNormal;
-  };
   struct LevelState {
     SparseLevel topo;
     Buffer<uint8_t> selected;      // per face: a node with children
@@ -182,9 +175,6 @@ class SparseHierarchy {
     Buffer<uint8_t> reached;  // per vertex: isReachedByEdit
     // Scratch for the incremental update: all zero between updates.
     std::vector<uint8_t> vertexMarks, faceMarks;
-    // Between evaluateLevel and markLeaves of a rebuilt level: per vertex,
-    // whose limit was taken over from the level before the growth.
-    Buffer<uint8_t> limitTaken;
   };
 
   SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel);
@@ -197,14 +187,17 @@ class SparseHierarchy {
   void markEditNodes(FaceId face, DirtySet& dirty);
   bool demandCovered(FaceId face) const;
   int firstChangedSelection() const;
-  void rebuildFrom(int l, std::span<const Edit> edits);
-  // Points and tags of level l. `before`, when given, is the same level as
-  // it was before a growth rebuilt it: its predictions and limits are taken
-  // for the vertices it held (see rebuildFrom).
-  void evaluateLevel(int l, std::span<const Edit> edits, const HeldValues* before = nullptr);
-  // Leaves and displayed vertices of level l; on a freshly built level, the
-  // limits of every complete vertex that evaluateLevel did not take over.
-  void markLeaves(int l, bool freshLevel);
+  // Grows every level from l on in place to the selection (growFrom in
+  // sparse_hierarchy.cc); levels it adds are built and evaluated whole.
+  void growFrom(int l, std::span<const Edit> edits);
+  // Points and tags of a level built whole.
+  void evaluateLevel(int l, std::span<const Edit> edits);
+  // The predictions and points of the vertices level l just gained.
+  void evaluateNewVertices(int l, const LevelExtension& grown);
+  // Leaves and displayed vertices of level l; the limits of every complete
+  // vertex of a level built whole, or else of `newLimits` (the vertices a
+  // growth completed).
+  void markLeaves(int l, bool freshLevel, const std::vector<Index>& newLimits);
   void refreshLimit(int l, Index vertex, const LimitEvaluator& limits);
 
   // Edits at one level (sparse_hierarchy.cc).

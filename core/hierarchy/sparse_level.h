@@ -7,21 +7,26 @@
 // A vertex is *complete* when its whole ring of faces is present; only
 // complete vertices carry an ordered ring, and only they may be refined,
 // evaluated at the limit or given a frame. The ring of an incomplete vertex
-// lists just its present faces (ringFaces, ringFaceLocal; its ring edges
-// and vertices are kNoIndex), which is what the incremental update
-// needs to find the stencils a changed vertex enters. An edge whose face
+// lists its present faces (ringFaces, ringFaceLocal; its ring edges and
+// vertices are kNoIndex), which is what the incremental update needs to
+// find the stencils a changed vertex enters, then kAbsentFace up to the
+// size of its whole ring: every row is as long as the ring it will hold,
+// so growth in place fills rows where they are. An edge whose face
 // exists in the uniform level but not here has kAbsentFace in edgeFaces, so
 // it is never mistaken for a boundary.
 //
-// Local numbering follows the uniform one restricted to what is present
+// A freshly built level numbers what is present as the uniform level does
 // (children of parent vertices first, then vertices on parent edges; edge
-// halves before interior edges; faces four per refined parent face), so the
-// canonical ids of every kind come out ascending and lookups are binary
-// searches.
+// halves before interior edges; faces four per refined parent face), so
+// its canonical ids come out ascending. Growth in place (extendSparse)
+// appends what its newly refined parents add, so a grown level's ids are
+// ascending only through its order arrays, which lookups search; local
+// indices, once given, never change while the level lives.
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/hierarchy/ids.h"
 #include "core/loop/loop_options.h"
@@ -35,13 +40,17 @@ inline constexpr Index kAbsentFace = -2;
 struct SparseLevel {
   int depth = 0;  // the subdivision level
   Level mesh;
-  Buffer<uint64_t> vertexIds, edgeIds, faceIds;  // canonical indices, ascending
-  Buffer<uint8_t> complete;                      // per vertex
+  Buffer<uint64_t> vertexIds, edgeIds, faceIds;  // canonical indices
+  // Local indices by ascending canonical id; empty while the ids themselves
+  // ascend (a level as built, before it grew in place).
+  Buffer<Index> vertexOrder, edgeOrder, faceOrder;
+  Buffer<uint8_t> complete;  // per vertex
 
-  // Where each vertex came from: vertices [0, numVertexChildren) are the
-  // children of parent vertex origin[v], the rest lie on parent edge origin[v].
-  Index numVertexChildren = 0;
+  // Where each vertex came from: the child of parent vertex origin[v], or
+  // (onParentEdge[v]) the vertex on parent edge origin[v]. Level 0 has
+  // neither.
   Buffer<Index> origin;
+  Buffer<uint8_t> onParentEdge;
   Buffer<Index> faceParent;  // per group of four child faces: the parent face
   // Set when the next level is built, kNoIndex where there is no child:
   Buffer<Index> firstChildFace;  // per face: the first of its 4 consecutive children
@@ -53,6 +62,8 @@ struct SparseLevel {
   Index findEdge(uint64_t canonical) const;
   Index findFace(uint64_t canonical) const;
   bool isComplete(Index v) const { return complete[v] != 0; }
+  // Whether vertex v (depth > 0) is the child of a parent vertex.
+  bool isVertexChild(Index v) const { return onParentEdge[v] == 0; }
   bool isRefined(Index f) const { return firstChildFace[f] != kNoIndex; }
 
   size_t memoryBytes() const;
@@ -67,5 +78,23 @@ SparseLevel sparseBaseLevel(Level base);
 // level are applied by the caller. Sets parent.firstChildFace.
 SparseLevel refineSparse(SparseLevel& parent, std::span<const uint8_t> refine, const LevelCounts& counts,
                          const LoopOptions& options);
+
+// What growing a level in place added: its vertices from firstNewVertex on
+// are new, and `completed` lists every vertex that is complete now and was
+// not before (the new complete ones included), ascending.
+struct LevelExtension {
+  Index firstNewVertex = 0;
+  std::vector<Index> completed;
+};
+
+// Grows `child`, the level refineSparse made of `parent`, in place by the
+// children of the parent faces flagged in `refine` that have none yet
+// (every vertex of such a face must be complete): their vertices, edges and
+// faces are appended, the edges and rings they touch are completed, and
+// nothing present changes its local index or value. Updates parent's child
+// links. The same level refineSparse would build with every flagged face,
+// but in another local order.
+LevelExtension extendSparse(SparseLevel& parent, SparseLevel& child, std::span<const uint8_t> refine,
+                            const LevelCounts& counts, const LoopOptions& options);
 
 }  // namespace tessera

@@ -26,20 +26,32 @@ void flagRings(const Level& m, const std::vector<Index>& from, Buffer<uint8_t>& 
 
 // The local indices of the faces of `level` whose canonical indices are in
 // `ids` (ascending), by one pass over both sorted lists, or by searching
-// when `ids` is much the shorter.
+// when `ids` is much the shorter; through the level's face order once it
+// grew in place.
 std::vector<Index> localFaces(const SparseLevel& level, const std::vector<uint64_t>& ids) {
   std::vector<Index> out;
   const auto& faceIds = level.faceIds;
-  auto at = faceIds.begin();
-  const bool search = ids.size() * 16 < faceIds.size();
+  const auto& order = level.faceOrder;
+  const size_t n = faceIds.size();
+  auto idAt = [&](size_t i) { return faceIds[order.empty() ? i : static_cast<size_t>(order[i])]; };
+  const bool search = ids.size() * 16 < n;
+  size_t at = 0;
   for (uint64_t id : ids) {
     if (search) {
-      at = std::lower_bound(at, faceIds.end(), id);
+      size_t lo = at, hi = n;
+      while (lo < hi) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (idAt(mid) < id)
+          lo = mid + 1;
+        else
+          hi = mid;
+      }
+      at = lo;
     } else {
-      while (at != faceIds.end() && *at < id) ++at;
+      while (at < n && idAt(at) < id) ++at;
     }
-    if (at == faceIds.end()) break;
-    if (*at == id) out.push_back(static_cast<Index>(at - faceIds.begin()));
+    if (at == n) break;
+    if (idAt(at) == id) out.push_back(order.empty() ? static_cast<Index>(at) : order[at]);
   }
   return out;
 }

@@ -232,8 +232,8 @@ std::vector<Index> SparseHierarchy::refreshChildren(int l, const std::vector<Ind
   for (Index v : vertices.items()) recomputeRule(l + 1, v);
   LoopStencils stencils(p.mesh, options_);
   for (Index v : vertices.items()) {
-    state.predicted[v] = v < c.numVertexChildren ? stencils.vertexChild(c.origin[v], parent.points)
-                                                 : stencils.edgeChild(c.origin[v], parent.points);
+    state.predicted[v] = c.isVertexChild(v) ? stencils.vertexChild(c.origin[v], parent.points)
+                                            : stencils.edgeChild(c.origin[v], parent.points);
   }
   for (const auto& [v0, tag] : parent.interpolationTags) {
     if (const Index child = p.childOfVertex[v0]; child >= 0 && vertices.has(child)) applyGhostRing(l + 1, v0);

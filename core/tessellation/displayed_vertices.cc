@@ -38,7 +38,7 @@ bool maskInexact(const Level& m, Index v) {
 
 std::optional<VertexRef> limitSource(const SparseHierarchy& h, const LevelCounts& counts, VertexRef v,
                                      std::vector<FaceId>& growth) {
-  while (v.level > 0 && v.local < h.level(v.level).numVertexChildren) {
+  while (v.level > 0 && h.level(v.level).isVertexChild(v.local)) {
     v = {v.level - 1, h.level(v.level).origin[v.local]};
   }
   VertexRef at = v;

@@ -244,10 +244,10 @@ TEST(SparseHierarchy, RandomHistoriesMatchTheDenseReferenceAtEveryStep) {
 }
 
 // A view grows the hierarchy wherever its camera needs tiles, between
-// edits; a rebuilt level takes over the points and limits of the vertices
-// it held (sparse_hierarchy.cc, rebuildFrom). After every growth and every
-// edit the state equals the dense reference, and no limit held before a
-// growth moved.
+// edits; levels grow in place, keeping the points and limits of the
+// vertices they held (sparse_hierarchy.cc, growFrom). After every growth
+// and every edit the state equals the dense reference, and no limit held
+// before a growth moved.
 TEST(SparseHierarchy, GrowthBetweenEditsKeepsEveryValue) {
   LoopOptions chaikin;
   chaikin.creaseMethod = CreaseMethod::kChaikin;

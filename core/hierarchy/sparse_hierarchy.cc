@@ -86,8 +86,8 @@ void SparseHierarchy::growFrom(int l, std::span<const Edit> edits) {
   std::vector<std::vector<Index>> completed(deepest + 1);
   std::vector<uint8_t> fresh(deepest + 1, 0);
   for (int k = l; k <= deepest; ++k) {
-    Buffer<uint8_t> refined;
-    selection_.select(levels_[k].topo, levels_[k].selected, refined, &levels_[k].editSelected);
+    const std::vector<Index> toRefine =
+        selection_.growSelection(levels_[k].topo, levels_[k].selected, levels_[k].editSelected);
     ++levels_[k].generation;
     if (k == deepest) {
       SparseLevel& last = levels_[k].topo;
@@ -98,11 +98,14 @@ void SparseHierarchy::growFrom(int l, std::span<const Edit> edits) {
       break;
     }
     if (k + 1 < numLevels()) {
-      LevelExtension grown = extendSparse(levels_[k].topo, levels_[k + 1].topo, refined, counts_, options_);
+      if (toRefine.empty()) continue;
+      LevelExtension grown = extendSparse(levels_[k].topo, levels_[k + 1].topo, toRefine, counts_, options_);
       evaluateNewVertices(k + 1, grown);
       completed[k + 1] = std::move(grown.completed);
       continue;
     }
+    Buffer<uint8_t> refined(levels_[k].topo.mesh.numFaces(), 0);
+    for (Index f : toRefine) refined[f] = 1;
     SparseLevel child = refineSparse(levels_[k].topo, refined, counts_, options_);
     levels_.emplace_back();
     levels_[k + 1].topo = std::move(child);
@@ -443,8 +446,8 @@ DirtySet SparseHierarchy::forgetEditNodes(std::span<const Edit> edits) {
   if (!selection_.replaceEditDemand(std::move(now))) return dirty;
   for (int k = 0; k < numLevels(); ++k) {
     LevelState& state = levels_[k];
-    Buffer<uint8_t> selected, refined, editSelected;
-    selection_.select(state.topo, selected, refined, &editSelected);
+    Buffer<uint8_t> editSelected;
+    selection_.selectEdits(state.topo, editSelected);
     const Level& m = state.topo.mesh;
     for (Index f = 0; f < static_cast<Index>(editSelected.size()); ++f) {
       if (editSelected[f] == state.editSelected[f]) continue;
@@ -481,25 +484,42 @@ void SparseHierarchy::markEditNodes(FaceId face, DirtySet& dirty) {
   }
 }
 
-// Rebuild below the first level whose selection changes: levels above keep
-// their topology, points and limits.
+// Growth starts at the first level where new demand waits or the edit
+// nodes change: levels above keep their topology, points and limits.
 int SparseHierarchy::firstChangedSelection() const {
   for (int k = 0; k < numLevels(); ++k) {
-    Buffer<uint8_t> selected, refined, editSelected;
-    selection_.select(levels_[k].topo, selected, refined, &editSelected);
-    const auto& was = levels_[k].topo.firstChildFace;
-    bool same = selected == levels_[k].selected && editSelected == levels_[k].editSelected;
-    for (Index f = 0; same && f < static_cast<Index>(refined.size()); ++f)
-      same = (refined[f] != 0) == (was[f] >= 0);
-    if (!same) return k;
+    if (k >= selection_.uniformLevel() && selection_.hasFresh(k)) return k;
+    Buffer<uint8_t> editSelected;
+    selection_.selectEdits(levels_[k].topo, editSelected);
+    if (editSelected != levels_[k].editSelected) return k;
   }
   return numLevels() - 1;
 }
 
 int SparseHierarchy::reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits) {
+  // A view asks for many faces with common ancestors: in (level, index)
+  // order, siblings are neighbours, and each ancestor is judged once.
+  std::vector<FaceId> sorted(faces.begin(), faces.end());
+  std::sort(sorted.begin(), sorted.end(), [](FaceId a, FaceId b) {
+    return std::pair(a.level(), a.index()) < std::pair(b.level(), b.index());
+  });
+  std::vector<std::pair<uint64_t, bool>> judged(numLevels(), {~uint64_t{0}, false});
   bool covered = true;
-  for (FaceId face : faces) {
-    if (face.level() > 0 && !demandCovered(face)) covered = false, selection_.demandForTessellation(face);
+  for (FaceId face : sorted) {
+    if (face.level() <= 0) continue;
+    bool held = true;
+    for (int k = selection_.uniformLevel(); held && k < face.level(); ++k) {
+      const uint64_t ancestor = face.index() >> (2 * (face.level() - k));
+      if (k + 1 >= numLevels()) {
+        held = false;
+      } else if (judged[k].first == ancestor) {
+        held = judged[k].second;
+      } else {
+        held = SparseSelection::ancestorRingSelected(levels_[k].topo, levels_[k].selected, face);
+        judged[k] = {ancestor, held};
+      }
+    }
+    if (!held) covered = false, selection_.demandForTessellation(face);
   }
   if (covered) return -1;
   const int first = firstChangedSelection();

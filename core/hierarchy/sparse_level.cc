@@ -393,17 +393,13 @@ struct ParentLinks {
 
 }  // namespace
 
-LevelExtension extendSparse(SparseLevel& parent, SparseLevel& child, std::span<const uint8_t> refine,
+LevelExtension extendSparse(SparseLevel& parent, SparseLevel& child, std::span<const Index> faces,
                             const LevelCounts& counts, const LoopOptions& options) {
   const Level& p = parent.mesh;
   Level& c = child.mesh;
   LevelExtension ext;
   const Index oldVertices = c.numVertices, oldEdges = c.numEdges(), oldFaces = c.numFaces();
   ext.firstNewVertex = oldVertices;
-  std::vector<Index> faces;  // the parent faces refined now, ascending
-  for (Index f = 0; f < p.numFaces(); ++f) {
-    if (refine[f] && parent.firstChildFace[f] == kNoIndex) faces.push_back(f);
-  }
   if (faces.empty()) return ext;
 
   // Number what the new faces add: vertices, then halves and interior

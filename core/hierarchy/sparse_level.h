@@ -88,13 +88,13 @@ struct LevelExtension {
 };
 
 // Grows `child`, the level refineSparse made of `parent`, in place by the
-// children of the parent faces flagged in `refine` that have none yet
-// (every vertex of such a face must be complete): their vertices, edges and
+// children of parent faces `faces` (ascending, none refined yet, every
+// vertex of each complete): their vertices, edges and
 // faces are appended, the edges and rings they touch are completed, and
 // nothing present changes its local index or value. Updates parent's child
 // links. The same level refineSparse would build with every flagged face,
 // but in another local order.
-LevelExtension extendSparse(SparseLevel& parent, SparseLevel& child, std::span<const uint8_t> refine,
+LevelExtension extendSparse(SparseLevel& parent, SparseLevel& child, std::span<const Index> faces,
                             const LevelCounts& counts, const LoopOptions& options);
 
 }  // namespace tessera

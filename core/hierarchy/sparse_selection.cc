@@ -74,8 +74,9 @@ void SparseSelection::hold(FaceId face) {
   const int l = face.level();
   deepest_ = std::max(deepest_, l);
   if (static_cast<int>(held_.size()) < l) held_.resize(l);
-  // Once a level holds the ancestor, every level above holds its own.
-  for (int k = l - 1; k >= 0; --k) {
+  // Once a level holds the ancestor, every level above holds its own;
+  // levels above the uniform one are whole, whatever is demanded.
+  for (int k = l - 1; k >= uniformLevel_; --k) {
     const uint64_t ancestor = face.index() >> (2 * (l - k));
     const auto& sorted = held_[k].sorted;
     if (std::binary_search(sorted.begin(), sorted.end(), ancestor)) break;
@@ -83,49 +84,82 @@ void SparseSelection::hold(FaceId face) {
   }
 }
 
-const std::vector<uint64_t>& SparseSelection::ancestorsAt(int level) const {
-  static const std::vector<uint64_t> kNone;
-  if (level >= static_cast<int>(held_.size())) return kNone;
-  Ancestors& a = held_[level];
-  if (!a.pending.empty()) {
-    std::sort(a.pending.begin(), a.pending.end());
-    const auto middle = static_cast<std::ptrdiff_t>(a.sorted.size());
-    a.sorted.insert(a.sorted.end(), a.pending.begin(), a.pending.end());
-    std::inplace_merge(a.sorted.begin(), a.sorted.begin() + middle, a.sorted.end());
-    a.sorted.erase(std::unique(a.sorted.begin(), a.sorted.end()), a.sorted.end());
-    a.pending.clear();
-  }
-  return a.sorted;
+void SparseSelection::mergePending(Ancestors& a) {
+  if (a.pending.empty()) return;
+  std::sort(a.pending.begin(), a.pending.end());
+  a.pending.erase(std::unique(a.pending.begin(), a.pending.end()), a.pending.end());
+  std::vector<uint64_t> added;
+  std::set_difference(a.pending.begin(), a.pending.end(), a.sorted.begin(), a.sorted.end(),
+                      std::back_inserter(added));
+  a.pending.clear();
+  a.fresh.insert(a.fresh.end(), added.begin(), added.end());
+  const auto middle = static_cast<std::ptrdiff_t>(a.sorted.size());
+  a.sorted.insert(a.sorted.end(), added.begin(), added.end());
+  std::inplace_merge(a.sorted.begin(), a.sorted.begin() + middle, a.sorted.end());
 }
 
-void SparseSelection::select(const SparseLevel& level, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined,
-                             Buffer<uint8_t>* editSelected) const {
+bool SparseSelection::hasFresh(int level) const {
+  if (level >= static_cast<int>(held_.size())) return false;
+  mergePending(held_[level]);
+  return !held_[level].fresh.empty();
+}
+
+void SparseSelection::selectEdits(const SparseLevel& level, Buffer<uint8_t>& editSelected) const {
+  const int l = level.depth;
+  editSelected.assign(level.mesh.numFaces(), 0);
+  std::vector<Index> seeds, ring;
+  for (FaceId face : editDemand_) {
+    if (face.level() <= l) continue;
+    const Index a = ancestorAt(level, face);
+    if (a != kNoIndex && !editSelected[a]) editSelected[a] = 1, seeds.push_back(a);
+  }
+  flagRings(level.mesh, seeds, editSelected, ring);
+}
+
+std::vector<Index> SparseSelection::growSelection(const SparseLevel& level, Buffer<uint8_t>& selected,
+                                                  Buffer<uint8_t>& editSelected) {
   const int l = level.depth;
   const Index numFaces = level.mesh.numFaces();
-  if (editSelected != nullptr) {
-    editSelected->assign(numFaces, 0);
-    std::vector<Index> seeds, ring;
-    for (FaceId face : editDemand_) {
-      if (face.level() <= l) continue;
-      const Index a = ancestorAt(level, face);
-      if (a != kNoIndex && !(*editSelected)[a]) (*editSelected)[a] = 1, seeds.push_back(a);
-    }
-    flagRings(level.mesh, seeds, *editSelected, ring);
-  }
+  selectEdits(level, editSelected);
+  auto unrefined = [&](Index f) {
+    return level.firstChildFace.empty() || level.firstChildFace[f] == kNoIndex;
+  };
+  std::vector<Index> toRefine;
   if (l < uniformLevel_) {
+    if (l < static_cast<int>(held_.size())) mergePending(held_[l]), held_[l].fresh.clear();
     selected.assign(numFaces, 1);
-    refined.assign(numFaces, 1);
-    return;
+    for (Index f = 0; f < numFaces; ++f) {
+      if (unrefined(f)) toRefine.push_back(f);
+    }
+    return toRefine;
   }
-  selected.assign(numFaces, 0);
-  std::vector<Index> seeds = localFaces(level, ancestorsAt(l));
-  for (Index f : seeds) selected[f] = 1;
-  std::vector<Index> ring;
+  selected.resize(numFaces, 0);
+  if (l >= static_cast<int>(held_.size())) return toRefine;
+  Ancestors& a = held_[l];
+  mergePending(a);
+  if (a.fresh.empty()) return toRefine;
+  std::sort(a.fresh.begin(), a.fresh.end());
+  std::vector<Index> seeds = localFaces(level, a.fresh);
+  a.fresh.clear();
+  // Sel grows by N1 of the new ancestors, R by N1 of what Sel gained (the
+  // header's nesting); a face selected or refined before keeps its flag.
+  std::vector<Index> ring, fresh;
+  for (Index f : seeds) {
+    if (!selected[f]) selected[f] = 1, fresh.push_back(f);
+  }
   flagRings(level.mesh, seeds, selected, ring);
-  refined = selected;
+  fresh.insert(fresh.end(), ring.begin(), ring.end());
+  Buffer<uint8_t> refined(numFaces, 0);
+  for (Index f : fresh) refined[f] = 1;
   std::vector<Index> outer;
-  seeds.insert(seeds.end(), ring.begin(), ring.end());
-  flagRings(level.mesh, seeds, refined, outer);
+  flagRings(level.mesh, fresh, refined, outer);
+  fresh.insert(fresh.end(), outer.begin(), outer.end());
+  for (Index f : fresh) {
+    if (unrefined(f)) toRefine.push_back(f);
+  }
+  std::sort(toRefine.begin(), toRefine.end());
+  toRefine.erase(std::unique(toRefine.begin(), toRefine.end()), toRefine.end());
+  return toRefine;
 }
 
 bool SparseSelection::ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected,

@@ -52,12 +52,19 @@ class SparseSelection {
   // The deepest level a face is demanded at (0 when none is).
   int deepestDemand() const { return deepest_; }
 
-  // The selection of `level` (its depth is the level's number): `selected`
-  // per face, a node with children; `refined` per face, one the next level
-  // refines; and, unless null, `editSelected` per face, a node with children
-  // because of an edit.
-  void select(const SparseLevel& level, Buffer<uint8_t>& selected, Buffer<uint8_t>& refined,
-              Buffer<uint8_t>* editSelected) const;
+  // The selection of `level` grown by the demand held since it was last
+  // grown (a level's demand is only ever added to, so its selection only
+  // grows): flags what it adds in `selected` (resized to the level's faces),
+  // sets `editSelected` (selectEdits), and returns the faces the next
+  // level must refine that it does not refine yet, ascending. The cost
+  // follows the new demand, not the level.
+  std::vector<Index> growSelection(const SparseLevel& level, Buffer<uint8_t>& selected,
+                                   Buffer<uint8_t>& editSelected);
+  // Whether demand held since `level` was last grown waits there.
+  bool hasFresh(int level) const;
+  // `editSelected` of `level`, per face: a node with children because of
+  // an edit (N1 of the ancestors there of the current edits' faces).
+  void selectEdits(const SparseLevel& level, Buffer<uint8_t>& editSelected) const;
 
   // Whether the ancestor of `face` at `level` is present and every face of
   // its 1-ring is flagged in `selected` (what a demanded face adds to the
@@ -77,14 +84,15 @@ class SparseSelection {
   struct Ancestors {
     std::vector<uint64_t> sorted;   // canonical face indices, ascending, unique
     std::vector<uint64_t> pending;  // added since, merged into `sorted` when read
+    std::vector<uint64_t> fresh;    // merged into `sorted` since growSelection last read them
   };
+  static void mergePending(Ancestors& a);
   void hold(FaceId face);
-  const std::vector<uint64_t>& ancestorsAt(int level) const;
 
   int uniformLevel_ = 0;
   int deepest_ = 0;
   // Faces edits address or addressed and faces tessellations refine: what
-  // the structure holds. Mutable: reading a level merges what is pending.
+  // the structure holds. Mutable: asking a level merges what is pending.
   mutable std::vector<Ancestors> held_;
   std::set<FaceId> editDemand_;  // faces the current edits address: what makes edit nodes
 };

@@ -98,7 +98,7 @@ class Document {
   // split per side) at `level` <= maxLevel.
   Expected<SurfaceMesh> surface(int level, SurfaceKind kind) const;
   // Grows the hierarchy so that these faces are nodes (a tessellation
-  // refining there); changes no surface. Returns the first rebuilt level, or -1.
+  // refining there); changes no surface. Returns the level it grew from, or -1.
   int refineHierarchy(std::span<const FaceId> faces) { return sparse_->reserveFaces(faces, edits_); }
   // Holds levels 0..level whole (a profile's base level); changes no surface.
   void holdWhole(int level) { sparse_->raiseUniformLevel(std::min(level, options_.maxLevel), edits_); }

@@ -50,7 +50,7 @@ struct DirtySet {
   std::vector<uint64_t> baseFaces;  // the quadtree roots holding those leaves, sorted
   int64_t pointsRecomputed = 0;     // control points, over all levels
   int64_t limitsRecomputed = 0;
-  int grownFromLevel = -1;  // >= 0: the hierarchy grew; levels below this one were rebuilt
+  int grownFromLevel = -1;  // >= 0: the hierarchy grew; levels below this one gained faces
 };
 
 struct HierarchyStats {
@@ -76,7 +76,7 @@ class SparseHierarchy {
   // edit nodes are reported (a tessellation's cut changes there).
   DirtySet reserve(const Edit& edit, std::span<const Edit> edits);
   // Grows it so that each face is a node whose vertices are complete (a
-  // tessellation refining there). Returns the first rebuilt level or -1.
+  // tessellation refining there). Returns the first level it grew from, or -1.
   int reserveFaces(std::span<const FaceId> faces, std::span<const Edit> edits);
   // Holds levels 0..level whole from now on.
   void raiseUniformLevel(int level, std::span<const Edit> edits);

@@ -50,8 +50,9 @@ Expected<AdaptiveCut> AdaptiveCut::build(Document& doc, const LodProfile& profil
   cut.cosThreshold_ = std::cos(profile.angleThresholdDegrees * std::numbers::pi / 180.0);
   doc.holdWhole(cut.profile_.baseLevel);
   // Top-down: a level's decisions need the nodes of that level, which the
-  // decisions above it create. Growth rebuilds the hierarchy below the
-  // first level whose selection changed; restart from there.
+  // decisions above it create. Growth adds faces to the levels below the
+  // first whose selection changed, whose decisions are then sized for
+  // fewer faces; restart from there.
   if (cut.profile_.fidelity) cut.markEditedVertices(doc);
   for (int l = 0; l < doc.hierarchy().numLevels(); ++l) {
     const SparseHierarchy& h = doc.hierarchy();

@@ -52,8 +52,8 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
                            " triangles (its base level " + std::to_string(profile.baseLevel) +
                            "), above its budget of " + std::to_string(profile.triangleBudget));
   }
-  // Growing the hierarchy for the limits' levels rebuilds levels (new local
-  // indices), so the cut is made again over the grown hierarchy; its
+  // Growing the hierarchy for the limits' levels adds faces to levels, so
+  // the cut is made again over the grown hierarchy; its
   // decisions do not change, and the second round needs no growth.
   for (int round = 0;; ++round) {
     TESSERA_ASSIGN_OR_RETURN(AdaptiveCut cut, AdaptiveCut::build(doc, profile));

@@ -12,8 +12,9 @@ Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKe
   }
   const std::vector<FaceId> faces = tree.facesShown(tile);
   doc.refineHierarchy(faces);
-  // Growing for the limits' levels rebuilds levels (new local indices):
-  // the triangles are gathered again until nothing more is needed.
+  // Growing for the limits' levels adds faces and vertices the gathering
+  // may need: the triangles are gathered again until nothing more is
+  // needed.
   for (int round = 0; round <= kMaxDocumentLevel + 1; ++round) {
     const SparseHierarchy& h = doc.hierarchy();
     std::vector<RefTriangle> triangles;

@@ -23,7 +23,7 @@ Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, do
 
 // Several views at once, level by level, so that the hierarchy grows once
 // per level for every tile any of them needs there (TileCatalogue::prepare):
-// each growth rebuilds the levels below it.
+// each growth selects again at every level below it.
 Expected<std::vector<TileSelection>> selectAt(std::span<const View> views, TileCatalogue& tiles,
                                               std::span<const double> tolerances) {
   std::vector<TileSelection> out(views.size());

@@ -25,16 +25,6 @@ Index findIn(const Buffer<uint64_t>& ids, const Buffer<Index>& order, uint64_t c
   return it != order.end() && ids[*it] == canonical ? *it : kNoIndex;
 }
 
-// `order` for ids built in a parent's local order, which ascend only while
-// the parent's do: empty if they ascend, else their ascending order.
-void orderIfUnsorted(const Buffer<uint64_t>& ids, Buffer<Index>& order) {
-  order.clear();
-  if (std::is_sorted(ids.begin(), ids.end())) return;
-  order.resize(ids.size());
-  for (size_t i = 0; i < ids.size(); ++i) order[i] = static_cast<Index>(i);
-  std::sort(order.begin(), order.end(), [&](Index a, Index b) { return ids[a] < ids[b]; });
-}
-
 // Brings `order` (local indices by ascending id; empty: the identity) over
 // the ids appended from `first` on.
 void mergeOrder(const Buffer<uint64_t>& ids, Index first, Buffer<Index>& order) {
@@ -49,6 +39,13 @@ void mergeOrder(const Buffer<uint64_t>& ids, Index first, Buffer<Index>& order) 
   for (Index i = first; i < n; ++i) order.push_back(i);
   std::sort(order.begin() + static_cast<std::ptrdiff_t>(middle), order.end(), byId);
   std::inplace_merge(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(middle), order.end(), byId);
+}
+
+// `order` for ids built in a parent's local order, which ascend only while
+// the parent's do: empty if they ascend, else their ascending order.
+void orderIfUnsorted(const Buffer<uint64_t>& ids, Buffer<Index>& order) {
+  order.clear();
+  if (!std::is_sorted(ids.begin(), ids.end())) mergeOrder(ids, 0, order);
 }
 
 // Local indices of everything the refined faces of a parent produce.

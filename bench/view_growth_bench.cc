@@ -14,16 +14,15 @@
 //
 //   tar xzf /usr/share/doc/libcgal-dev/data.tar.gz -C /tmp data/meshes/armadillo.off
 //   build/release/bench/tessera_bench_view_growth --mesh /tmp/data/meshes/armadillo.off
-#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <numbers>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_mesh.h"
+#include "bench/orbit_cameras.h"
 #include "bench/ratio_reporter.h"
 #include "core/document/document.h"
 #include "core/view/tile_selection.h"
@@ -39,8 +38,7 @@ constexpr int kSteps = 10;
 
 struct Input {
   BaseMesh mesh;
-  Vec3 centre;
-  double radius = 0;
+  bench::OrbitCentre around;
   std::unique_ptr<oracle::OsdInput> osd;
   std::vector<oracle::OsdPoint> osdPoints;
   std::map<int, int> deepestRead;  // per camera count: one below the finest tile a sweep showed
@@ -49,25 +47,6 @@ struct Input {
 Input& input() {
   static Input in;
   return in;
-}
-
-// Camera c of n at step s: its own orbit (a tilted circle), radius from
-// 0.7 to 3 bounding radii, a twentieth of a turn per step.
-View camera(int c, int n, int s) {
-  const Input& in = input();
-  const double phase = 2 * std::numbers::pi * c / n + s * 2 * std::numbers::pi / 20;
-  const double tilt = 0.6 * std::sin(3.0 * c);
-  const double distance = in.radius * (0.7 + 2.3 * ((c * 37) % n) / static_cast<double>(n));
-  const Vec3 dir(std::cos(phase) * std::cos(tilt), std::sin(tilt), std::sin(phase) * std::cos(tilt));
-  View v;
-  v.eye = in.centre + distance * dir;
-  v.forward = in.centre - v.eye;
-  v.fovYRadians = 50 * std::numbers::pi / 180;
-  v.nearDistance = in.radius * 1e-3;
-  v.width = 390;
-  v.height = 844;
-  v.tolerancePixels = 1;
-  return v;
 }
 
 void sweepTessera(benchmark::State& state) {
@@ -83,7 +62,7 @@ void sweepTessera(benchmark::State& state) {
     tiles = 0;
     for (int s = 0; s < kSteps; ++s) {
       std::vector<View> views;
-      for (int c = 0; c < n; ++c) views.push_back(camera(c, n, s));
+      for (int c = 0; c < n; ++c) views.push_back(bench::orbitCamera(input().around, c, n, s));
       const std::vector<int64_t> budgets(views.size(), 0);
       auto selections = selectTilesForEach(views, *catalogue, budgets);
       if (!selections.isOk()) return state.SkipWithError(selections.status().toString().c_str());
@@ -144,12 +123,7 @@ int main(int argc, char** argv) {
   if (!mesh.isOk()) return 1;
   Input& in = input();
   in.mesh = *mesh;
-  Vec3 lo = mesh->positions()[0], hi = lo;
-  for (const Vec3& p : mesh->positions()) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  }
-  in.centre = 0.5 * (lo + hi);
-  in.radius = 0.5 * (hi - lo).norm();
+  in.around = bench::orbitCentreOf(*mesh);
   in.osd = std::make_unique<oracle::OsdInput>(BaseTopology::fromBaseMesh(*mesh));
   for (const Vec3& p : mesh->positions()) in.osdPoints.push_back(oracle::OsdPoint::from(p));
 

@@ -21,6 +21,7 @@
 
 #include <optional>
 #include <span>
+#include <unordered_map>
 
 #include "core/loop/interpolate.h"
 #include "core/loop/loop_options.h"
@@ -29,17 +30,25 @@
 
 namespace tessera {
 
+// Over one level's points. The stencils it evaluates are kept: neighbouring
+// edges share them (a smooth edge's limit reads five edge children and two
+// vertex children), so a tile's edges cost about one stencil each.
 class EdgeChildLimits {
  public:
-  EdgeChildLimits(const Level& level, const LoopOptions& options)
-      : level_(level), stencils_(level, options) {}
+  EdgeChildLimits(const Level& level, std::span<const Vec3> points, const LoopOptions& options)
+      : level_(level), points_(points), stencils_(level, options) {}
 
   // nullopt for a semi-sharp edge. Both ends of e must be complete.
-  std::optional<Vec3> limit(Index e, std::span<const Vec3> points);
+  std::optional<Vec3> limit(Index e);
 
  private:
+  const Vec3& edgeChild(Index e);
+  const Vec3& vertexChild(Index v);
+
   const Level& level_;
+  const std::span<const Vec3> points_;
   LoopStencils stencils_;
+  std::unordered_map<Index, Vec3> edgeChildren_, vertexChildren_;
 };
 
 }  // namespace tessera

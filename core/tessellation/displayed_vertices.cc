@@ -112,12 +112,22 @@ RegionMesh meshOfTriangles(const SparseHierarchy& h, const LevelCounts& counts,
                            std::vector<FaceId>& growth) {
   RegionMesh mesh;
   std::unordered_map<uint64_t, int> index;  // (canonical vertex, side) -> region vertex
+  // Each corner's limit source once: a vertex is a corner of about six
+  // triangles. Keyed by (level, local index).
+  std::unordered_map<uint64_t, std::optional<VertexRef>> sources;
+  sources.reserve(triangles.size());
+  auto sourceOf = [&](VertexRef v) -> const std::optional<VertexRef>& {
+    const uint64_t key = (static_cast<uint64_t>(v.level) << 32) | static_cast<uint32_t>(v.local);
+    auto [it, fresh] = sources.try_emplace(key);
+    if (fresh) it->second = limitSource(h, counts, v, growth);
+    return it->second;
+  };
   for (size_t i = 0; i < triangles.size(); ++i) {
     const RefTriangle& t = triangles[i];
     VertexRef at[3];
     bool held = true;
     for (int k = 0; k < 3; ++k) {
-      const std::optional<VertexRef> source = limitSource(h, counts, t[k], growth);
+      const std::optional<VertexRef>& source = sourceOf(t[k]);
       held = held && source.has_value();
       if (source) at[k] = *source;
     }

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <optional>
 #include <span>
+#include <unordered_map>
+#include <utility>
+#include <vector>
 
 #include "core/loop/edge_child_limit.h"
 #include "core/tessellation/displayed_vertices.h"
@@ -34,7 +37,20 @@ struct DeepEdits {
 // when that ancestor shares a vertex with a face shown.
 DeepEdits deepEditsNear(const SparseHierarchy& h, int l, std::span<const FaceId> faces) {
   DeepEdits out;
-  if (l + 2 >= h.numLevels()) return out;
+  // The deep edits first: without any (the common case) the faces'
+  // neighbourhood is not needed.
+  struct Edited {
+    int level;
+    Index vertex;
+    std::optional<Vec3> offset;
+  };
+  std::vector<Edited> edited;
+  for (int k = l + 2; k < h.numLevels(); ++k) {
+    h.forEachEditedVertex(k, [&](Index v, const std::optional<Vec3>& offset) {
+      edited.push_back({k, v, offset});
+    });
+  }
+  if (edited.empty()) return out;
   const SparseLevel& level = h.level(l);
   std::vector<uint64_t> near;
   for (const FaceId& f : faces) {
@@ -48,20 +64,18 @@ DeepEdits deepEditsNear(const SparseHierarchy& h, int l, std::span<const FaceId>
   }
   std::sort(near.begin(), near.end());
   near.erase(std::unique(near.begin(), near.end()), near.end());
-  for (int k = l + 2; k < h.numLevels(); ++k) {
-    const SparseLevel& deep = h.level(k);
-    h.forEachEditedVertex(k, [&](Index v, const std::optional<Vec3>& offset) {
-      for (Index g : deep.mesh.ringFacesOf(v)) {
-        if (g < 0) continue;
-        if (!std::binary_search(near.begin(), near.end(), deep.faceIds[g] >> (2 * (k - l)))) return;
-        if (offset) {
-          out.offsets += std::abs((*offset)[0]) + std::abs((*offset)[1]) + std::abs((*offset)[2]);
-        } else {
-          out.tags = true;
-        }
-        return;
+  for (const Edited& e : edited) {
+    const SparseLevel& deep = h.level(e.level);
+    for (Index g : deep.mesh.ringFacesOf(e.vertex)) {
+      if (g < 0) continue;
+      if (!std::binary_search(near.begin(), near.end(), deep.faceIds[g] >> (2 * (e.level - l)))) break;
+      if (e.offset) {
+        out.offsets += std::abs((*e.offset)[0]) + std::abs((*e.offset)[1]) + std::abs((*e.offset)[2]);
+      } else {
+        out.tags = true;
       }
-    });
+      break;
+    }
   }
   return out;
 }
@@ -83,7 +97,7 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
   for (int round = 0; round <= kMaxDocumentLevel + 1; ++round) {
     const SparseHierarchy& h = doc.hierarchy();
     const SparseLevel& level = h.level(l);
-    EdgeChildLimits predicted(level.mesh, h.options());
+    EdgeChildLimits predicted(level.mesh, h.points(l), h.options());
     std::vector<FaceId> growth;
     double worst = 0;
     auto limit = [&](int at, Index v) -> std::optional<Vec3> {
@@ -91,32 +105,50 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
       if (!source) return std::nullopt;
       return h.limitPosition(source->level, source->local);
     };
+    // Each end's limit once: a vertex ends about six of the tile's edges.
+    std::unordered_map<Index, std::optional<Vec3>> ends;
+    ends.reserve(faces.size());
+    auto endLimit = [&](Index v) -> const std::optional<Vec3>& {
+      auto [it, fresh] = ends.try_emplace(v);
+      if (fresh) it->second = limit(l, v);
+      return it->second;
+    };
     // The next level's vertex on an edge: from this level's points where
     // they predict it (edge_child_limit.h), from the next level otherwise,
     // which is then grown under the face (a face refined once one child is
     // demanded). The choice depends on the document alone, so a tile's
     // bounds do not depend on what the hierarchy happened to hold.
-    auto middle = [&](const FaceId& f, Index e) -> std::optional<Vec3> {
+    auto middle = [&](uint64_t face, Index e) -> std::optional<Vec3> {
       if (h.edgeChildIsPredicted(l, e)) {
-        if (auto p = predicted.limit(e, h.points(l))) return p;
+        if (auto p = predicted.limit(e)) return p;
       }
       const Index m = l + 1 < h.numLevels() ? level.childOfEdge[e] : kNoIndex;
       if (m == kNoIndex) {
-        growth.push_back(FaceId(l + 1, 4 * f.index()));
+        growth.push_back(FaceId(l + 1, 4 * face));
         return std::nullopt;
       }
       return limit(l + 1, m);
     };
+    // Each edge once, with the first face of the tile on it (where its
+    // child is grown if it must be).
+    std::vector<std::pair<Index, uint64_t>> edges;
+    edges.reserve(3 * faces.size());
     for (const FaceId& f : faces) {
       const Index local = level.findFace(f.index());
       if (local == kNoIndex)
         return internalError(tile.toString() + ": the hierarchy does not hold " + f.toString());
-      for (Index e : level.mesh.triangleEdges(local)) {
-        const auto a = limit(l, level.mesh.edgeVertices[e][0]), c = limit(l, level.mesh.edgeVertices[e][1]);
-        const auto mid = middle(f, e);
-        if (!a || !c || !mid) continue;
-        worst = std::max(worst, (*mid - 0.5 * (*a + *c)).norm());
-      }
+      for (Index e : level.mesh.triangleEdges(local)) edges.emplace_back(e, f.index());
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end(),
+                            [](const auto& x, const auto& y) { return x.first == y.first; }),
+                edges.end());
+    for (const auto& [e, face] : edges) {
+      const auto& a = endLimit(level.mesh.edgeVertices[e][0]);
+      const auto& c = endLimit(level.mesh.edgeVertices[e][1]);
+      const auto mid = middle(face, e);
+      if (!a || !c || !mid) continue;
+      worst = std::max(worst, (*mid - 0.5 * (*a + *c)).norm());
     }
     if (growth.empty()) {
       const DeepEdits deep = deepEditsNear(h, l, faces);

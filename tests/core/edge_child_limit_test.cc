@@ -34,10 +34,10 @@ void check(const std::string& name, const BaseTopology& topology, std::span<cons
     computeLimit(next, points[l + 1], positions, normals);
     double scale = 0;
     for (const Vec3& p : points[l]) scale = std::max(scale, p.norm());
-    EdgeChildLimits limits(level, options);
+    EdgeChildLimits limits(level, points[l], options);
     for (Index e = 0; e < level.numEdges(); ++e) {
       const float s = level.edgeSharpness[e];
-      const auto got = limits.limit(e, points[l]);
+      const auto got = limits.limit(e);
       if (isSharp(s) && !isInfinite(s)) {
         EXPECT_FALSE(got.has_value())
             << name << " level " << l << " edge " << e << " (sharpness " << s << ")";

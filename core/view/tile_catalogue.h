@@ -33,6 +33,8 @@ class TileCatalogue {
   const Document& document() const { return doc_; }
   // The tile, built (and measured) the first time it is asked for.
   Expected<const Tile*> get(const TileKey& key);
+  // Whether get would find it built (an edit forgets what it reached).
+  bool isBuilt(const TileKey& key) const { return tiles_.count(key) != 0; }
   // Grows the hierarchy once for all these tiles (those not built yet), so
   // that building them one by one grows it no more: each growth rebuilds
   // the levels below it, and a selection asks for hundreds of tiles.

@@ -1,6 +1,7 @@
 #include "core/view/tile_selection.h"
 
 #include <algorithm>
+#include <set>
 
 namespace tessera {
 
@@ -18,14 +19,39 @@ void sortForSending(TileSelection& s) {
   });
 }
 
+// A walk's allowance of tiles to build (tile_selection.h).
+class Allowance {
+ public:
+  explicit Allowance(int64_t tiles) : left_(tiles) {}
+  // Whether the walk may refine into `children`; counts those not built yet
+  // (each once) against the allowance if so. The first refinement that
+  // builds anything is always admitted, so that every walk makes progress.
+  bool admits(const TileCatalogue& tiles, std::span<const TileKey> children) {
+    if (left_ < 0) return true;
+    int64_t fresh = 0;
+    for (const TileKey& c : children) fresh += !tiles.isBuilt(c) && !counted_.count(c);
+    if (fresh == 0) return true;
+    if (fresh > left_ && !counted_.empty()) return false;
+    left_ = std::max<int64_t>(0, left_ - fresh);
+    for (const TileKey& c : children)
+      if (!tiles.isBuilt(c)) counted_.insert(c);
+    return true;
+  }
+
+ private:
+  int64_t left_;  // negative: no limit
+  std::set<TileKey> counted_;
+};
+
 Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, double tolerance,
-                                      const std::vector<TileKey>& frontier, TileSelection& out);
+                                      const std::vector<TileKey>& frontier, Allowance& allowance,
+                                      TileSelection& out);
 
 // Several views at once, level by level, so that the hierarchy grows once
 // per level for every tile any of them needs there (TileCatalogue::prepare):
 // each growth selects again at every level below it.
 Expected<std::vector<TileSelection>> selectAt(std::span<const View> views, TileCatalogue& tiles,
-                                              std::span<const double> tolerances) {
+                                              std::span<const double> tolerances, Allowance& allowance) {
   std::vector<TileSelection> out(views.size());
   std::vector<std::vector<TileKey>> frontiers(views.size(), tiles.tree().roots());
   for (size_t v = 0; v < views.size(); ++v) out[v].tolerancePixels = tolerances[v];
@@ -37,7 +63,8 @@ Expected<std::vector<TileSelection>> selectAt(std::span<const View> views, TileC
     level.erase(std::unique(level.begin(), level.end()), level.end());
     tiles.prepare(level);
     for (size_t v = 0; v < views.size(); ++v) {
-      TESSERA_ASSIGN_OR_RETURN(frontiers[v], expand(views[v], tiles, tolerances[v], frontiers[v], out[v]));
+      TESSERA_ASSIGN_OR_RETURN(frontiers[v],
+                               expand(views[v], tiles, tolerances[v], frontiers[v], allowance, out[v]));
     }
   }
   for (TileSelection& s : out) sortForSending(s);
@@ -47,17 +74,19 @@ Expected<std::vector<TileSelection>> selectAt(std::span<const View> views, TileC
 // One level of one view's walk: the tiles of `frontier` it keeps go into
 // `out`, the children of those it refines are returned.
 Expected<std::vector<TileKey>> expand(const View& view, TileCatalogue& tiles, double tolerance,
-                                      const std::vector<TileKey>& frontier, TileSelection& out) {
+                                      const std::vector<TileKey>& frontier, Allowance& allowance,
+                                      TileSelection& out) {
   std::vector<TileKey> next;
   for (const TileKey& key : frontier) {
     TESSERA_ASSIGN_OR_RETURN(const Tile* tile, tiles.get(key));
     const SelectedTile s = judgeTile(view, key, tile->bounds);
     if (refinesTile(s, tile->bounds, tolerance)) {
       auto children = tiles.tree().children(key);
-      if (!children.empty()) {
+      if (!children.empty() && allowance.admits(tiles, children)) {
         next.insert(next.end(), children.begin(), children.end());
         continue;
       }
+      if (!children.empty()) out.complete = false;
     }
     out.triangles += tile->triangles;
     out.tiles.push_back(s);
@@ -84,16 +113,18 @@ Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int6
 }
 
 Expected<std::vector<TileSelection>> selectTilesForEach(std::span<const View> views, TileCatalogue& tiles,
-                                                        std::span<const int64_t> budgets) {
+                                                        std::span<const int64_t> budgets, int64_t newTiles) {
   for (const View& view : views) TESSERA_RETURN_IF_ERROR(view.check());
   std::vector<double> tolerances;
   for (const View& view : views) tolerances.push_back(view.tolerancePixels);
-  TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> out, selectAt(views, tiles, tolerances));
+  Allowance allowance(newTiles);
+  TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> out, selectAt(views, tiles, tolerances, allowance));
   // Those over their budget again, with the tolerance raised, one by one.
   for (size_t v = 0; v < views.size(); ++v) {
     for (int step = 1; budgets[v] > 0 && out[v].triangles > budgets[v] && step <= kBudgetSteps; ++step) {
       const double raised[] = {out[v].tolerancePixels * kBudgetStep};
-      TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> again, selectAt({&views[v], 1}, tiles, raised));
+      TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> again,
+                               selectAt({&views[v], 1}, tiles, raised, allowance));
       out[v] = std::move(again.front());
     }
   }

@@ -9,6 +9,15 @@
 //
 // The result comes in the order it should be sent: visible before hidden,
 // coarse before fine, near before far.
+//
+// A walk may be given an allowance of tiles to build (those the catalogue
+// does not hold, shared by all its views): a tile it would refine whose
+// children the allowance has no room for is kept as it is, a coarser cut of
+// the same surface, and its selection is marked incomplete. Selecting again
+// goes on where it stopped, since the tiles built meanwhile are held; so a
+// camera that reaches new parts of a large document gets its picture in
+// steps of bounded work (docs/VIEWS.md "The server"). A walk always refines
+// at least one tile that needs it, whatever its allowance.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +41,7 @@ struct TileSelection {
   std::vector<SelectedTile> tiles;
   int64_t triangles = 0;
   double tolerancePixels = 0;  // the view's, or what the budget raised it to
+  bool complete = true;        // false: the walk's allowance held some tiles back
 };
 
 // What a view sees of one tile: whether it is in the frustum, its error in
@@ -46,8 +56,10 @@ bool refinesTile(const SelectedTile& judged, const TileBounds& bounds, double to
 Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int64_t budget = 0);
 // The same for several views at once, equal to selecting each alone: the
 // hierarchy grows once per level for all of them (a server choosing again
-// for every viewer after an edit).
+// for every viewer after an edit). `newTiles` >= 0: the walk's allowance of
+// tiles to build, as above; negative: none.
 Expected<std::vector<TileSelection>> selectTilesForEach(std::span<const View> views, TileCatalogue& tiles,
-                                                        std::span<const int64_t> budgets);
+                                                        std::span<const int64_t> budgets,
+                                                        int64_t newTiles = -1);
 
 }  // namespace tessera

@@ -5,26 +5,37 @@
 namespace tessera::server {
 
 void SerialQueue::post(Lane lane, std::function<void()> task) {
+  enqueue(tasks_, {lane, std::move(task)});
+}
+
+void SerialQueue::postWhenIdle(std::function<void()> task) {
+  enqueue(idle_, {Lane::kInteractive, std::move(task)});
+}
+
+void SerialQueue::enqueue(std::deque<Task>& into, Task task) {
   {
     std::lock_guard lock(mutex_);
-    tasks_.push_back({lane, std::move(task)});
+    into.push_back(std::move(task));
     if (running_) return;
     running_ = true;
   }
-  dispatchFront();
+  dispatchNext();
 }
 
 // The mutex orders every task after the one before it, whichever threads
 // they run on, so a task sees all its predecessors' writes.
-void SerialQueue::dispatchFront() {
-  Task* front = nullptr;
+void SerialQueue::dispatchNext() {
+  Lane lane;
   {
     std::lock_guard lock(mutex_);
-    front = &tasks_.front();  // stays put: deque push_back keeps references
+    std::deque<Task>& from = tasks_.empty() ? idle_ : tasks_;
+    current_ = std::move(from.front());
+    from.pop_front();
+    lane = current_->lane;
   }
-  const auto& executor = front->lane == Lane::kBulk ? bulk_ : interactive_;
-  boost::asio::post(executor, [this, front] {
-    front->run();
+  const auto& executor = lane == Lane::kBulk ? bulk_ : interactive_;
+  boost::asio::post(executor, [this] {
+    current_->run();  // only the running task's thread touches current_
     finished();
   });
 }
@@ -34,12 +45,12 @@ void SerialQueue::finished() {
   bool more = false;
   {
     std::lock_guard lock(mutex_);
-    done = std::move(tasks_.front().run);
-    tasks_.pop_front();
-    more = !tasks_.empty();
+    done = std::move(current_->run);
+    current_.reset();
+    more = !tasks_.empty() || !idle_.empty();
     running_ = more;
   }
-  if (more) dispatchFront();
+  if (more) dispatchNext();
   // Past this point `this` may be gone (the last task dropped its owner).
 }
 

@@ -53,6 +53,9 @@ struct ServerStats {
   // View subscribers an edit reached no tile of: sent the new version
   // without choosing their tiles again.
   std::atomic<int64_t> viewsUnchangedByEdits{0};
+  // Turns that went on with a view a turn's allowance of new tiles had left
+  // incomplete (server/document/tile_streams.h).
+  std::atomic<int64_t> viewContinuations{0};
   std::atomic<int64_t> viewSubscribers{0};
   // Latencies (histograms for /metrics): an edit from being applied to its
   // durable ack (the journal commit), a view's tessellation build or

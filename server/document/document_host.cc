@@ -191,13 +191,13 @@ void DocumentHost::scheduleViews() {
   if (!due) return;
   viewsScheduled_ = true;
   if (Clock::now() >= *due) {
-    queue_.post(Lane::kInteractive, [self = shared_from_this()] { self->applyViews(); });
+    queue_.postWhenIdle([self = shared_from_this()] { self->applyViews(); });
     return;
   }
   viewTimer_.expires_at(*due);
   viewTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
     if (ec != boost::asio::error::operation_aborted)
-      self->queue_.post(Lane::kInteractive, [self] { self->applyViews(); });
+      self->queue_.postWhenIdle([self] { self->applyViews(); });
   });
 }
 

@@ -30,8 +30,9 @@ Expected<TileSelection> TileCache::select(const View& view, int64_t budget) {
 }
 
 Expected<std::vector<TileSelection>> TileCache::selectForEach(std::span<const View> views,
-                                                              std::span<const int64_t> budgets) {
-  auto selections = selectTilesForEach(views, catalogue_, budgets);
+                                                              std::span<const int64_t> budgets,
+                                                              int64_t newTiles) {
+  auto selections = selectTilesForEach(views, catalogue_, budgets, newTiles);
   countBuilt();
   return selections;
 }

@@ -32,9 +32,10 @@ class TileCache {
   // The tiles `view` needs (tile_selection.h), in sending order.
   Expected<TileSelection> select(const View& view, int64_t budget);
   // The same for many views at once (selectTilesForEach): what a flush or a
-  // round of camera moves asks for every subscriber.
+  // round of camera moves asks for every subscriber; `newTiles` >= 0 bounds
+  // the tiles the walk builds (its selections may then be incomplete).
   Expected<std::vector<TileSelection>> selectForEach(std::span<const View> views,
-                                                     std::span<const int64_t> budgets);
+                                                     std::span<const int64_t> budgets, int64_t newTiles = -1);
   // A tile's bounds at the document's state, built if an edit forgot them.
   Expected<TileBounds> bounds(const TileKey& key);
   // The tile encoded at the document's state: cached, or built (if its mesh

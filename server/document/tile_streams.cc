@@ -21,6 +21,12 @@ constexpr size_t kChunkBytes = 256u << 10;
 // edits wait behind (docs/VIEWS.md "The server").
 constexpr size_t kViewsPerTurn = 8;
 
+// Tiles one turn of views may build (tile_selection.h): a camera that
+// reaches new parts of the document, or its first walk, would otherwise
+// hold the queue for as long as growing the hierarchy there takes, and an
+// edit that comes meanwhile with it (docs/VIEWS.md "The server").
+constexpr int64_t kNewTilesPerTurn = 4;
+
 }  // namespace
 
 TileStreams::~TileStreams() {
@@ -66,6 +72,7 @@ void TileStreams::setPending(uint64_t session, const View& view, uint64_t client
   if (found == streams_.end()) return;
   found->second.pending = view;
   found->second.pendingSeq = clientSeq;
+  found->second.continuing = false;
 }
 
 std::optional<TileStreams::Clock::time_point> TileStreams::nextDue(Clock::duration interval) const {
@@ -88,13 +95,14 @@ void TileStreams::dropGone() {
 }
 
 void TileStreams::moveEach(TileCache& tiles, const std::vector<Stream*>& moving, uint64_t fromVersion,
-                           uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce) {
+                           uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce,
+                           int64_t newTiles) {
   if (moving.empty()) return;
   std::vector<View> views;
   std::vector<int64_t> budgets;
   for (const Stream* s : moving) views.push_back(s->view), budgets.push_back(s->budget);
   // One walk for every stream: the hierarchy grows once per level for all.
-  auto targets = tiles.selectForEach(views, budgets);
+  auto targets = tiles.selectForEach(views, budgets, newTiles);
   for (size_t i = 0; i < moving.size(); ++i) {
     Status moved = targets.isOk() ? moveTo(tiles, *moving[i], (*targets)[i], fromVersion, toVersion,
                                            authorSession, editId, announce)
@@ -124,10 +132,21 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
     s.viewSeq = s.pendingSeq;
     s.pending.reset();
     s.lastApplied = now;
-    ++stats_.viewsApplied;
+    if (!s.continuing) ++stats_.viewsApplied;
+    s.continuing = false;
     due.push_back(&s);
   }
-  moveEach(tiles, due, version, version, 0, 0, /*announce=*/true);
+  moveEach(tiles, due, version, version, 0, 0, /*announce=*/true, kNewTilesPerTurn);
+  // A view the allowance held back goes on in a later turn, due at once,
+  // unless a newer one came meanwhile.
+  for (Stream* s : due) {
+    if (s->complete || s->pending) continue;
+    s->pending = s->view;
+    s->pendingSeq = s->viewSeq;
+    s->continuing = true;
+    s->lastApplied = now - interval;
+    ++stats_.viewContinuations;
+  }
 }
 
 void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion,
@@ -183,7 +202,7 @@ Status TileStreams::resendStale(TileCache& tiles, Stream& s, std::span<const Til
     sendIfFull(s, c);
   }
   c.delta.surfaceHash = s.surfaceHash;
-  c.delta.viewComplete = true;
+  c.delta.viewComplete = s.complete;
   send(s, std::move(c.delta));
   return Status::ok();
 }
@@ -285,12 +304,13 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
   refined.erase(std::unique(refined.begin(), refined.end()), refined.end());
   s.refined = std::move(refined);
   s.toleranceRaised = target.tolerancePixels > s.view.tolerancePixels;
+  s.complete = target.complete;
   // The last delta says the view is complete; a move that changed nothing
   // sends none, but a new subscription and an edit always end with one.
   if (!c.delta.regions.empty() || !c.delta.removed.empty() || c.sentAny || fromVersion != toVersion ||
       announce) {
     c.delta.surfaceHash = s.surfaceHash;
-    c.delta.viewComplete = true;
+    c.delta.viewComplete = s.complete;
     send(s, std::move(c.delta));
   }
   return Status::ok();

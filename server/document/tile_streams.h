@@ -54,9 +54,11 @@ class TileStreams {
   // Applies the waiting views that are due at `now`, the longest waiting
   // first and a few per call (the caller calls again while nextDue says
   // one is due, letting other work in between): the tiles that changed
-  // go to its subscriber as deltas at `version`, the last complete and
-  // naming the SetView (even when nothing changed: the client learns its
-  // view was applied).
+  // go to its subscriber as deltas at `version`, the last naming the
+  // SetView (even when nothing changed: the client learns its view was
+  // applied). A call builds at most kNewTilesPerTurn tiles: a view that
+  // needs more gets a coarser picture now, its last delta not complete, and
+  // waits again, due at once, for the next call to go on.
   void applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval, uint64_t version);
 
   // After edits from `fromVersion` to `toVersion` (the cache has forgotten
@@ -83,6 +85,9 @@ class TileStreams {
     std::vector<TileKey> refined;
     // Its budget raised the tolerance (tile_selection.h): the walk read more.
     bool toleranceRaised = false;
+    // Its last selection was whole; not when a turn's allowance of new
+    // tiles held some back (its view then waits to go on, `continuing`).
+    bool complete = true, continuing = false;
     uint64_t surfaceHash = 0;  // the sum of held tiles' hashes (PROTOCOL 6.5)
     std::optional<View> pending;
     uint64_t pendingSeq = 0, viewSeq = 0;  // SetView client_seqs: waiting, and the view applied
@@ -118,9 +123,11 @@ class TileStreams {
   // deltas from `fromVersion` to `toVersion`, the last complete.
   Status resendStale(TileCache& tiles, Stream& s, std::span<const TileKey> reached, uint64_t fromVersion,
                      uint64_t toVersion, uint64_t authorSession, uint64_t editId);
-  // Chooses again for every stream of `moving` in one walk, then moves each.
+  // Chooses again for every stream of `moving` in one walk (building at
+  // most `newTiles` tiles if that is >= 0), then moves each.
   void moveEach(TileCache& tiles, const std::vector<Stream*>& moving, uint64_t fromVersion,
-                uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce);
+                uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce,
+                int64_t newTiles = -1);
   // Forgets the streams whose subscriber is gone.
   void dropGone();
 

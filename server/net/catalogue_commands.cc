@@ -130,6 +130,7 @@ wire::ServerMessage serverStats(const ServerStats& stats, store::Store& store, c
   add("views_received", static_cast<double>(s.viewsReceived.load()));
   add("views_applied", static_cast<double>(s.viewsApplied.load()));
   add("views_unchanged_by_edits", static_cast<double>(s.viewsUnchangedByEdits.load()));
+  add("view_continuations", static_cast<double>(s.viewContinuations.load()));
   add("view_subscribers", static_cast<double>(s.viewSubscribers.load()));
   if (!config.cluster.empty()) {
     add("cluster_node", static_cast<double>(s.clusterNode.load()));

@@ -3,11 +3,13 @@
 // visible tile's error projects within the tolerance (or the tile is the
 // deepest there is); tiles wholly outside the frustum are not refined; each
 // tile is built once however many views ask; the budget raises the
-// tolerance instead of dropping tiles; and the assembled surface, cracks
+// tolerance instead of dropping tiles; a walk with an allowance of new
+// tiles shows coarser whole cuts and then the same tiles; and the assembled surface, cracks
 // closed, has no gaps: every boundary edge of every tile lies on a boundary
 // edge of another. Without closing the cracks the same check fails.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -245,6 +247,73 @@ TEST(TileSelection, ManyViewsAtOnceChooseWhatEachWouldAlone) {
       EXPECT_LE((*all)[i].triangles, budgets[i]) << i;
     }
   }
+}
+
+// A walk with an allowance of new tiles (tile_selection.h): each step builds
+// at most that many (or one tile's children, the progress every walk makes),
+// shows a coarser cut of the whole surface meanwhile, and the steps end on
+// what one walk without allowance selects.
+TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSelection) {
+  auto hand = importMesh(testing::cgalMeshPath("hand.off"));
+  ASSERT_TRUE(hand.isOk());
+  auto doc = Document::create(*hand, {.maxLevel = 4});
+  ASSERT_TRUE(doc.isOk());
+  Model m = model("hand", std::move(*doc));
+  std::mt19937 rng(29);
+  std::vector<View> views;
+  for (int i = 0; i < 3; ++i) views.push_back(randomView(m, rng, 390, 844));
+  views.push_back(randomView(m, rng, 1920, 1080));
+  const std::vector<int64_t> budgets(views.size(), 0);
+  TileCatalogue whole(m.doc);
+  auto expected = selectTilesForEach(views, whole, budgets);
+  ASSERT_TRUE(expected.isOk()) << expected.status().message();
+  for (const TileSelection& s : *expected) EXPECT_TRUE(s.complete);
+  size_t mostChildren = 0;
+  for (const TileSelection& s : *expected) {
+    for (const SelectedTile& t : s.tiles) {
+      for (TileKey a = t.key; a.level > 0;) {
+        a = whole.tree().parent(a);
+        mostChildren = std::max(mostChildren, whole.tree().children(a).size());
+      }
+    }
+  }
+  constexpr int64_t kAllowance = 3;
+  TileCatalogue stepwise(m.doc);
+  // The roots are built by the first walk whatever its allowance.
+  (void)selectTilesForEach(views, stepwise, budgets, 0);
+  int steps = 0, incompleteSteps = 0;
+  for (;; ++steps) {
+    ASSERT_LT(steps, 10000) << "the steps never end";
+    const int64_t before = stepwise.built();
+    auto got = selectTilesForEach(views, stepwise, budgets, kAllowance);
+    ASSERT_TRUE(got.isOk()) << got.status().message();
+    EXPECT_LE(stepwise.built() - before, std::max<int64_t>(kAllowance, static_cast<int64_t>(mostChildren)))
+        << "step " << steps;
+    bool complete = true;
+    for (const TileSelection& s : *got) {
+      complete = complete && s.complete;
+      // Every step covers every base face once.
+      std::map<uint64_t, double> area;
+      for (const SelectedTile& t : s.tiles)
+        for (const FaceId& f : stepwise.tree().facesShown(t.key))
+          area[f.index() >> (2 * f.level())] += std::ldexp(1.0, -2 * f.level());
+      ASSERT_EQ(area.size(), m.doc.counts().faces(0)) << "step " << steps;
+      for (const auto& [face, a] : area) ASSERT_NEAR(a, 1.0, 1e-12) << "step " << steps << " face " << face;
+    }
+    if (complete) {
+      for (size_t v = 0; v < views.size(); ++v) {
+        ASSERT_EQ((*got)[v].tiles.size(), (*expected)[v].tiles.size()) << "view " << v;
+        for (size_t k = 0; k < (*got)[v].tiles.size(); ++k)
+          EXPECT_EQ((*got)[v].tiles[k].key, (*expected)[v].tiles[k].key) << "view " << v;
+      }
+      break;
+    }
+    ++incompleteSteps;
+  }
+  std::printf("[ measured ] %d incomplete steps of at most %lld new tiles before the whole selection\n",
+              incompleteSteps, static_cast<long long>(kAllowance));
+  EXPECT_GT(incompleteSteps, 3) << "the allowance held tiles back";
+  EXPECT_EQ(stepwise.built(), whole.built()) << "no tile built twice";
 }
 
 TEST(TileSelection, ABudgetRaisesTheToleranceAndKeepsEveryVisibleTile) {

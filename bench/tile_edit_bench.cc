@@ -59,15 +59,16 @@ Input& input() {
   return in;
 }
 
-// The i-th edit of a run: the same in both benchmarks.
-struct EditOf {
-  explicit EditOf(uint32_t seed) : rng(seed) {}
-  std::pair<VertexId, Vec3> next() {
+// The edits of a run, the same in both benchmarks: each moves a random one
+// of the first kEditedVertices level-0 vertices by up to kStep per axis.
+struct Edits {
+  explicit Edits(uint32_t seed) : rng(seed) {}
+  Status applyNext(Document& doc) {
     std::uniform_int_distribution<uint64_t> vertex(0, kEditedVertices - 1);
     std::uniform_real_distribution<double> offset(-kStep, kStep);
     const VertexId v(0, vertex(rng));
     const Vec3 by(offset(rng), offset(rng), offset(rng));
-    return {v, by};
+    return doc.moveBy(std::span(&v, 1), by).status();
   }
   std::mt19937 rng;
 };
@@ -103,14 +104,12 @@ void editUnderCameras(benchmark::State& bm) {
   for (const TileKey& key : selected) {
     if (Status s = encode(key); !s.isOk()) return failed(bm, s);
   }
-  EditOf edits(11);
+  Edits edits(11);
   std::vector<double> samples, rebuild, encodeTimes;
   double reached = 0, encoded = 0, triangles = 0;
   for (auto _ : bm) {
-    const auto [v, by] = edits.next();
     const auto start = Clock::now();
-    auto id = doc->moveBy(std::span(&v, 1), by);
-    if (!id.isOk()) return failed(bm, id.status());
+    if (Status moved = edits.applyNext(*doc); !moved.isOk()) return failed(bm, moved);
     ++version;
     const auto gone =
         catalogue.forget(TouchedTiles(doc->hierarchy(), catalogue.tree(), doc->lastUpdate().limits));
@@ -153,15 +152,13 @@ void editUnderProfile(benchmark::State& bm) {
   if (!grid.isOk()) return failed(bm, grid.status());
   auto tessellation = Tessellation::build(*doc, kProfile);
   if (!tessellation.isOk()) return failed(bm, tessellation.status());
-  EditOf edits(11);
+  Edits edits(11);
   uint64_t version = 1;
   std::vector<double> samples;
   double regions = 0;
   for (auto _ : bm) {
-    const auto [v, by] = edits.next();
     const auto start = Clock::now();
-    auto id = doc->moveBy(std::span(&v, 1), by);
-    if (!id.isOk()) return failed(bm, id.status());
+    if (Status moved = edits.applyNext(*doc); !moved.isOk()) return failed(bm, moved);
     ++version;
     auto changes = tessellation->update(*doc);
     if (!changes.isOk()) return failed(bm, changes.status());

@@ -20,27 +20,52 @@ void TileCatalogue::prepare(std::span<const TileKey> keys) {
 
 Expected<const Tile*> TileCatalogue::get(const TileKey& key) {
   auto found = tiles_.find(key);
-  if (found != tiles_.end()) return found->second.get();
-  // The deepest level's error follows from its parent's (tile_error.h).
-  double parentError = 0;
-  if (key.level >= doc_.counts().maxLevel() && key.level > 0) {
-    TESSERA_ASSIGN_OR_RETURN(const Tile* p, get(tree_.parent(key)));
-    parentError = p->bounds.error;
+  if (found != tiles_.end()) {
+    if (!found->second->measured) TESSERA_RETURN_IF_ERROR(measure(key, *found->second));
+    return found->second.get();
   }
   TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, buildTile(doc_, tree_, key));
-  TESSERA_ASSIGN_OR_RETURN(TileBounds bounds, tileBounds(doc_, tree_, key, mesh, parentError));
   const auto triangles = static_cast<int64_t>(mesh.triangles.size());
-  auto tile = std::make_unique<Tile>(Tile{std::move(mesh), bounds, triangles});
+  auto tile = std::make_unique<Tile>(Tile{std::move(mesh), {}, triangles});
+  TESSERA_RETURN_IF_ERROR(measure(key, *tile));
   const Tile* out = tile.get();
   tiles_.emplace(key, std::move(tile));
   ++built_;
   return out;
 }
 
+Status TileCatalogue::measure(const TileKey& key, Tile& tile) {
+  // The deepest level's error follows from its parent's (tile_error.h).
+  double parentError = 0;
+  if (key.level >= doc_.counts().maxLevel() && key.level > 0) {
+    TESSERA_ASSIGN_OR_RETURN(const Tile* p, get(tree_.parent(key)));
+    parentError = p->bounds.error;
+  }
+  if (tile.meshReleased) {
+    TESSERA_ASSIGN_OR_RETURN(tile.mesh, buildTile(doc_, tree_, key));
+    tile.meshReleased = false;
+    ++rebuilt_;
+  }
+  TESSERA_ASSIGN_OR_RETURN(tile.bounds, tileBounds(doc_, tree_, key, tile.mesh, parentError));
+  tile.measured = true;
+  if (tile.releaseWhenMeasured) {
+    tile.releaseWhenMeasured = false;
+    tile.mesh = RegionMesh{};
+    tile.meshReleased = true;
+  }
+  return Status::ok();
+}
+
 Expected<const RegionMesh*> TileCatalogue::mesh(const TileKey& key) {
-  TESSERA_ASSIGN_OR_RETURN(const Tile* found, get(key));
-  if (!found->meshReleased) return &found->mesh;
-  Tile& tile = *tiles_.at(key);
+  auto found = tiles_.find(key);
+  if (found == tiles_.end()) {
+    TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, buildTile(doc_, tree_, key));
+    const auto triangles = static_cast<int64_t>(mesh.triangles.size());
+    found = tiles_.emplace(key, std::make_unique<Tile>(Tile{std::move(mesh), {}, triangles})).first;
+    ++built_;
+  }
+  Tile& tile = *found->second;
+  if (!tile.meshReleased) return &tile.mesh;
   TESSERA_ASSIGN_OR_RETURN(tile.mesh, buildTile(doc_, tree_, key));
   tile.meshReleased = false;
   ++rebuilt_;
@@ -50,6 +75,11 @@ Expected<const RegionMesh*> TileCatalogue::mesh(const TileKey& key) {
 void TileCatalogue::releaseMesh(const TileKey& key) {
   auto found = tiles_.find(key);
   if (found == tiles_.end() || found->second->meshReleased) return;
+  // Its bounds are measured from its mesh: kept until then.
+  if (!found->second->measured) {
+    found->second->releaseWhenMeasured = true;
+    return;
+  }
   found->second->mesh = RegionMesh{};
   found->second->meshReleased = true;
 }

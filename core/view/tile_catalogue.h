@@ -18,10 +18,14 @@
 namespace tessera {
 
 struct Tile {
-  RegionMesh mesh;  // empty once released (releaseMesh)
-  TileBounds bounds;
+  RegionMesh mesh;    // empty once released (releaseMesh)
+  TileBounds bounds;  // once measured
   int64_t triangles = 0;
   bool meshReleased = false;
+  // A tile built for its mesh alone (TileCatalogue::mesh) is measured when
+  // its bounds are first asked for; its mesh stays until then, released
+  // after if releaseMesh came meanwhile.
+  bool measured = false, releaseWhenMeasured = false;
 };
 
 class TileCatalogue {
@@ -31,18 +35,25 @@ class TileCatalogue {
 
   const TileTree& tree() const { return tree_; }
   const Document& document() const { return doc_; }
-  // The tile, built (and measured) the first time it is asked for.
+  // The tile, built and measured the first time it is asked for.
   Expected<const Tile*> get(const TileKey& key);
-  // Whether get would find it built (an edit forgets what it reached).
-  bool isBuilt(const TileKey& key) const { return tiles_.count(key) != 0; }
+  // Whether get would find it built and measured (an edit forgets what it
+  // reached).
+  bool isBuilt(const TileKey& key) const {
+    auto found = tiles_.find(key);
+    return found != tiles_.end() && found->second->measured;
+  }
   // Grows the hierarchy once for all these tiles (those not built yet), so
   // that building them one by one grows it no more: each growth rebuilds
   // the levels below it, and a selection asks for hundreds of tiles.
   void prepare(std::span<const TileKey> keys);
-  // The tile's mesh, built again if it was released.
+  // The tile's mesh, built again if it was released. A tile not built yet
+  // is built without its bounds: a server re-sends the tiles an edit
+  // reached before it measures them (docs/VIEWS.md "The server").
   Expected<const RegionMesh*> mesh(const TileKey& key);
-  // Frees a tile's mesh and keeps its bounds: a server that holds the
-  // tile's encoding needs only those to select (docs/VIEWS.md "The tile cache").
+  // Frees a tile's mesh and keeps its bounds (once measured): a server that
+  // holds the tile's encoding needs only those to select (docs/VIEWS.md
+  // "The tile cache").
   void releaseMesh(const TileKey& key);
   // Tiles built so far, and meshes built again after a release (statistics).
   int64_t built() const { return built_; }
@@ -56,6 +67,9 @@ class TileCatalogue {
   std::vector<TileKey> forget(const TouchedTiles& touched);
 
  private:
+  // Measures `tile` (key's), built before without its bounds.
+  Status measure(const TileKey& key, Tile& tile);
+
   Document& doc_;
   TileTree tree_;
   std::map<TileKey, std::unique_ptr<Tile>> tiles_;

@@ -208,6 +208,19 @@ void DocumentHost::applyViews() {
   scheduleViews();
 }
 
+void DocumentHost::scheduleSettle() {
+  if (settleScheduled_ || !tileStreams_.unsettled()) return;
+  settleScheduled_ = true;
+  queue_.postWhenIdle([self = shared_from_this()] { self->settleViews(); });
+}
+
+void DocumentHost::settleViews() {
+  flush();  // tiles are chosen at version_; its edits settle now too
+  settleScheduled_ = false;
+  if (tileCache_) tileStreams_.settle(*tileCache_, Clock::now(), viewInterval(config_), version_);
+  scheduleViews();  // the views settle left incomplete go on
+}
+
 void DocumentHost::subscribeProfile(const std::shared_ptr<Subscriber>& who, const wire::LodProfile& requested,
                                     uint64_t clientSeq, bool resync, bool withCommands) {
   // Refused from the estimate before any work, on the caller's thread: a
@@ -522,6 +535,7 @@ void DocumentHost::flush() {
   if (last && tileStreams_.size() > 0) {
     tileStreams_.afterEdit(tileCache(), reached, flushedVersion_, version_, last->authorSession,
                            last->editId);
+    scheduleSettle();
   }
   changedLimits_.clear();
   keysChanged_ = false;

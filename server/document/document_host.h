@@ -158,6 +158,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // Applies the views that are due, and waits for the next.
   void scheduleViews();
   void applyViews();
+  // After a flush sent the tiles edits reached: the streams whose camera
+  // read them choose again, in a turn behind any waiting edit
+  // (TileStreams::settle).
+  void scheduleSettle();
+  void settleViews();
   // Presence changed: one broadcast within 100 ms carries every change.
   void presenceChanged();
   // Frees the views dropped from views_ on a bulk thread (bulk_release.h).
@@ -204,7 +209,7 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   std::unique_ptr<TileCache> tileCache_;
   TileStreams tileStreams_;
   boost::asio::steady_timer viewTimer_;
-  bool viewsScheduled_ = false;
+  bool viewsScheduled_ = false, settleScheduled_ = false;
 };
 
 }  // namespace tessera::server

@@ -137,9 +137,14 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
     due.push_back(&s);
   }
   moveEach(tiles, due, version, version, 0, 0, /*announce=*/true, kNewTilesPerTurn);
+  continueIncomplete(due, now, interval);
+}
+
+void TileStreams::continueIncomplete(const std::vector<Stream*>& moved, Clock::time_point now,
+                                     Clock::duration interval) {
   // A view the allowance held back goes on in a later turn, due at once,
   // unless a newer one came meanwhile.
-  for (Stream* s : due) {
+  for (Stream* s : moved) {
     if (s->complete || s->pending) continue;
     s->pending = s->view;
     s->pendingSeq = s->viewSeq;
@@ -152,29 +157,74 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
 void TileStreams::afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion,
                             uint64_t toVersion, uint64_t authorSession, uint64_t editId) {
   dropGone();
-  // A camera whose choice the edits do not change gets only its held tiles
-  // they reached; the others choose again, in one walk. A walk whose budget
-  // raised the tolerance read more (each raised tolerance walks again):
-  // those always choose. (Tiles' triangle counts do not change with edits,
-  // so a selection within its budget stays within it.)
-  std::vector<Stream*> moving, unchanged;
-  for (auto& [session, s] : streams_) {
-    for (const TileKey& key : reached) {
-      if (auto held = s.held.find(key); held != s.held.end()) held->second.stale = true;
-    }
-    auto keeps =
-        s.toleranceRaised || cacheReplaced_ ? Expected<bool>(false) : keepsSelection(tiles, s, reached);
-    (keeps.isOk() && *keeps ? unchanged : moving).push_back(&s);
+  if (cacheReplaced_) {
+    // Every held tile is stale: every stream chooses again, now.
+    cacheReplaced_ = false;
+    unsettledTiles_.clear();
+    std::vector<Stream*> all;
+    for (auto& [session, s] : streams_) all.push_back(&s);
+    moveEach(tiles, all, fromVersion, toVersion, authorSession, editId, false);
+    return;
   }
-  cacheReplaced_ = false;
-  moveEach(tiles, moving, fromVersion, toVersion, authorSession, editId, false);
-  for (Stream* s : unchanged) {
-    if (Status sent = resendStale(tiles, *s, reached, fromVersion, toVersion, authorSession, editId);
+  // Every stream gets the held tiles the edits reached, again, at once:
+  // building their meshes and encoding them is all an edit waits for. A
+  // stream whose camera's walk read one of them (showed it, or refined it)
+  // may choose otherwise under its new bounds; measuring them is left to
+  // settle, and its delta is not complete meanwhile. A walk whose budget
+  // raised the tolerance read more (each raised tolerance walks again): it
+  // always chooses again. (Tiles' triangle counts do not change with edits,
+  // so a selection within its budget stays within it.)
+  for (auto& [session, s] : streams_) {
+    bool read = s.toleranceRaised;
+    for (const TileKey& key : reached) {
+      if (auto held = s.held.find(key); held != s.held.end()) {
+        held->second.stale = true;
+        read = true;
+      } else if (std::binary_search(s.refined.begin(), s.refined.end(), key)) {
+        read = true;
+      }
+    }
+    if (read) {
+      s.unsettled = true;
+    } else if (!s.unsettled) {
+      ++stats_.viewsUnchangedByEdits;
+    }
+    if (Status sent = resendStale(tiles, s, reached, fromVersion, toVersion, authorSession, editId);
         !sent.isOk()) {
       logEvent(LogLevel::kError, "view_failed", {{"doc", documentId_}, {"error", sent.message()}});
     }
   }
-  stats_.viewsUnchangedByEdits += static_cast<int64_t>(unchanged.size());
+  unsettledTiles_.insert(reached.begin(), reached.end());
+}
+
+bool TileStreams::unsettled() const {
+  for (const auto& [session, s] : streams_)
+    if (s.unsettled) return true;
+  return false;
+}
+
+void TileStreams::settle(TileCache& tiles, Clock::time_point now, Clock::duration interval,
+                         uint64_t version) {
+  dropGone();
+  const std::vector<TileKey> reached(unsettledTiles_.begin(), unsettledTiles_.end());
+  unsettledTiles_.clear();
+  std::vector<Stream*> moving;
+  for (auto& [session, s] : streams_) {
+    if (!s.unsettled || s.pending) continue;  // a waiting camera chooses again anyway
+    auto keeps = s.toleranceRaised ? Expected<bool>(false) : keepsSelection(tiles, s, reached);
+    if (!keeps.isOk() || !*keeps) {
+      moving.push_back(&s);
+      continue;
+    }
+    s.unsettled = false;
+    ++stats_.viewsUnchangedByEdits;
+    DeltaContent done = deltaFor(s, version, version, 0, 0);
+    done.surfaceHash = s.surfaceHash;
+    done.viewComplete = s.complete;
+    send(s, std::move(done));
+  }
+  moveEach(tiles, moving, version, version, 0, 0, /*announce=*/true, kNewTilesPerTurn);
+  continueIncomplete(moving, now, interval);
 }
 
 Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,
@@ -202,7 +252,7 @@ Status TileStreams::resendStale(TileCache& tiles, Stream& s, std::span<const Til
     sendIfFull(s, c);
   }
   c.delta.surfaceHash = s.surfaceHash;
-  c.delta.viewComplete = s.complete;
+  c.delta.viewComplete = s.complete && !s.unsettled;
   send(s, std::move(c.delta));
   return Status::ok();
 }
@@ -305,6 +355,7 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
   s.refined = std::move(refined);
   s.toleranceRaised = target.tolerancePixels > s.view.tolerancePixels;
   s.complete = target.complete;
+  s.unsettled = false;  // chosen at the tiles' current bounds
   // The last delta says the view is complete; a move that changed nothing
   // sends none, but a new subscription and an edit always end with one.
   if (!c.delta.regions.empty() || !c.delta.removed.empty() || c.sentAny || fromVersion != toVersion ||

@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <span>
 #include <vector>
 
@@ -62,10 +63,19 @@ class TileStreams {
   void applyDue(TileCache& tiles, Clock::time_point now, Clock::duration interval, uint64_t version);
 
   // After edits from `fromVersion` to `toVersion` (the cache has forgotten
-  // the tiles `reached`): every stream chooses again, and gets the tiles
-  // it holds that changed and those its camera needs now.
+  // the tiles `reached`): every stream gets the tiles it holds that changed,
+  // at once. A stream whose camera's walk read a reached tile may need
+  // other tiles now: its delta is not complete, and settle decides.
   void afterEdit(TileCache& tiles, std::span<const TileKey> reached, uint64_t fromVersion, uint64_t toVersion,
                  uint64_t authorSession, uint64_t editId);
+  // Whether some stream waits for settle.
+  bool unsettled() const;
+  // Measures the tiles the edits since the last call reached, and moves
+  // each stream waiting for it to what its camera needs now, at `version`
+  // (as applyDue: at most kNewTilesPerTurn new tiles, the rest in later
+  // turns); a stream whose choice stays gets an empty complete delta
+  // (docs/VIEWS.md "The server").
+  void settle(TileCache& tiles, Clock::time_point now, Clock::duration interval, uint64_t version);
   // The cache was replaced (the document's keys changed): every held tile
   // is sent again.
   void forgetAllTiles();
@@ -88,6 +98,9 @@ class TileStreams {
     // Its last selection was whole; not when a turn's allowance of new
     // tiles held some back (its view then waits to go on, `continuing`).
     bool complete = true, continuing = false;
+    // An edit reached a tile its walk read since it last chose: settle
+    // decides whether it keeps its choice.
+    bool unsettled = false;
     uint64_t surfaceHash = 0;  // the sum of held tiles' hashes (PROTOCOL 6.5)
     std::optional<View> pending;
     uint64_t pendingSeq = 0, viewSeq = 0;  // SetView client_seqs: waiting, and the view applied
@@ -128,6 +141,9 @@ class TileStreams {
   void moveEach(TileCache& tiles, const std::vector<Stream*>& moving, uint64_t fromVersion,
                 uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce,
                 int64_t newTiles = -1);
+  // Makes the views of `moved` the allowance left incomplete wait again,
+  // due at once.
+  void continueIncomplete(const std::vector<Stream*>& moved, Clock::time_point now, Clock::duration interval);
   // Forgets the streams whose subscriber is gone.
   void dropGone();
 
@@ -138,6 +154,8 @@ class TileStreams {
   // forgetAllTiles since the last afterEdit: every held tile is stale, not
   // only those an edit reached, so every stream chooses again.
   bool cacheReplaced_ = false;
+  // The tiles edits reached since the last settle.
+  std::set<TileKey> unsettledTiles_;
 };
 
 }  // namespace tessera::server

@@ -389,6 +389,17 @@ TEST(ViewStream, AnEditInViewArrivesAndOneOutOfViewSendsNothingNew) {
   int64_t inView = 0;
   for (const wire::Delta& d : viewer->deltas) inView += d.regions_size();
   EXPECT_GT(inView, 0) << "the edit in view reached the viewer";
+  // The held tiles the edit reached come first, in the delta that spans the
+  // versions, before the server measures them; it is not complete, since
+  // the camera's walk read those tiles. A later delta completes the view at
+  // the new version (docs/VIEWS.md "The server").
+  ASSERT_GE(viewer->deltas.size(), 2u);
+  const wire::Delta& first = viewer->deltas.front();
+  EXPECT_LT(first.from_version(), first.to_version());
+  EXPECT_GT(first.regions_size(), 0) << "the reached tiles come with the edit's delta";
+  EXPECT_FALSE(first.view_complete()) << "complete before the reached tiles were measured";
+  EXPECT_EQ(viewer->deltas.back().from_version(), first.to_version());
+  EXPECT_EQ(viewer->deltas.back().to_version(), first.to_version());
   EXPECT_TRUE(viewer->view->verifySurface().isOk()) << viewer->view->verifySurface().message();
 
   // Out of view: the far vertex moves; the viewer gets no tile it did not hold.

@@ -288,33 +288,50 @@ void TileStreams::forgetAllTiles() {
 Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& target, uint64_t fromVersion,
                            uint64_t toVersion, uint64_t authorSession, uint64_t editId, bool announce) {
   const TileTree& tree = tiles.tree();
-  std::set<TileKey> wanted;
-  for (const SelectedTile& t : target.tiles) wanted.insert(t.key);
+  // Sorted vectors, not sets: a camera turn moves a stream of hundreds of
+  // tiles, most of them held already, and this is its bookkeeping.
+  std::vector<TileKey> wanted;
+  wanted.reserve(target.tiles.size());
+  for (const SelectedTile& t : target.tiles) wanted.push_back(t.key);
+  std::sort(wanted.begin(), wanted.end());
+  auto isWanted = [&](const TileKey& k) { return std::binary_search(wanted.begin(), wanted.end(), k); };
   auto fresh = [&](const TileKey& k) {
     auto it = s.held.find(k);
     return it != s.held.end() && !it->second.stale;
   };
+  // The held tiles that are not wanted, in key order (both are sorted).
+  std::vector<TileKey> leaving;
+  {
+    auto w = wanted.begin();
+    for (const auto& [key, held] : s.held) {
+      while (w != wanted.end() && *w < key) ++w;
+      if (w == wanted.end() || *w != key) leaving.push_back(key);
+    }
+  }
+  // The walk read the same tiles as before if it shows the same ones.
+  const bool sameTiles = leaving.empty() && wanted.size() == s.held.size();
   // A held tile that is not wanted waits for the wanted tiles over it (an
   // ancestor) or under it (descendants) that it does not hold fresh yet.
   std::map<TileKey, int> waiting;
-  for (const auto& [key, held] : s.held)
-    if (!wanted.count(key)) waiting[key] = 0;
+  for (const TileKey& key : leaving) waiting[key] = 0;
   std::map<TileKey, std::vector<TileKey>> waiters;
-  auto depend = [&](const TileKey& leaving, const TileKey& want) {
+  auto depend = [&](const TileKey& waiter, const TileKey& want) {
     if (fresh(want)) return;
-    ++waiting[leaving];
-    waiters[want].push_back(leaving);
+    ++waiting[waiter];
+    waiters[want].push_back(waiter);
   };
-  for (auto& [leaving, count] : waiting) {
-    for (TileKey a = leaving; a.level > 0;) {
+  for (const TileKey& key : leaving) {
+    for (TileKey a = key; a.level > 0;) {
       a = tree.parent(a);
-      if (wanted.count(a)) depend(leaving, a);
+      if (isWanted(a)) depend(key, a);
     }
   }
-  for (const TileKey& want : wanted) {
-    for (TileKey a = want; a.level > 0;) {
-      a = tree.parent(a);
-      if (waiting.count(a)) depend(a, want);
+  if (!leaving.empty()) {
+    for (const TileKey& want : wanted) {
+      for (TileKey a = want; a.level > 0;) {
+        a = tree.parent(a);
+        if (std::binary_search(leaving.begin(), leaving.end(), a)) depend(a, want);
+      }
     }
   }
   // The preview, shown alone while held, waits for the visible tiles only
@@ -346,13 +363,15 @@ Status TileStreams::moveTo(TileCache& tiles, Stream& s, const TileSelection& tar
   // Nothing should be left waiting: the wanted tiles cover the surface.
   for (const auto& [leaving, count] : waiting)
     if (count > 0) drop(leaving);
-  std::vector<TileKey> refined;
-  for (const SelectedTile& t : target.tiles) {
-    for (TileKey a = t.key; a.level > 0;) refined.push_back(a = tree.parent(a));
+  if (!sameTiles) {
+    std::vector<TileKey> refined;
+    for (const SelectedTile& t : target.tiles) {
+      for (TileKey a = t.key; a.level > 0;) refined.push_back(a = tree.parent(a));
+    }
+    std::sort(refined.begin(), refined.end());
+    refined.erase(std::unique(refined.begin(), refined.end()), refined.end());
+    s.refined = std::move(refined);
   }
-  std::sort(refined.begin(), refined.end());
-  refined.erase(std::unique(refined.begin(), refined.end()), refined.end());
-  s.refined = std::move(refined);
   s.toleranceRaised = target.tolerancePixels > s.view.tolerancePixels;
   s.complete = target.complete;
   s.unsettled = false;  // chosen at the tiles' current bounds

@@ -5,6 +5,9 @@
 # one whole-document profile. Fresh release server per row; prints the
 # load tester's summary; reports go to /tmp/views-load-{views,profile}.json.
 #   bash bench/views_load.sh
+# MODES=views (or profile) runs one row; SERVER_BIN=path runs another
+# build's server (to alternate two builds); PERF=path records the server
+# with perf into path.views / path.profile.
 set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 B=$ROOT/build/release
@@ -20,10 +23,10 @@ read -r CX CY CZ R < <(awk 'NR==2 {n=$1} NR>2 && NR<=2+n {
   for (i = 1; i <= 3; i++) { if (NR==3 || $i<lo[i]) lo[i]=$i; if (NR==3 || $i>hi[i]) hi[i]=$i } }
   END { print (lo[1]+hi[1])/2, (lo[2]+hi[2])/2, (lo[3]+hi[3])/2,
         sqrt((hi[1]-lo[1])^2+(hi[2]-lo[2])^2+(hi[3]-lo[3])^2)/2 }' $M/data/meshes/armadillo.off)
-for MODE in views profile; do
+for MODE in ${MODES:-views profile}; do
   D=$(mktemp -d /tmp/views-load-XXXX)
   echo admin-token-for-views-0123456789 > $D/admin.tok
-  $B/server/tessera-server --data $D/data --port 0 --port-file $D/port --admin-token-file $D/admin.tok \
+  ${SERVER_BIN:-$B/server/tessera-server} --data $D/data --port 0 --port-file $D/port --admin-token-file $D/admin.tok \
     --max-level 4 ${SERVER_OPTIONS:-} 2>$D/server.log &
   S=$!
   for _ in $(seq 100); do [ -s $D/port ] && break; sleep 0.05; done
@@ -37,9 +40,11 @@ for MODE in views profile; do
   else
     WHAT="--profile 1,1,10"  # level 1 everywhere: the finest a whole-model phone view shows
   fi
+  [ -n "${PERF:-}" ] && { perf record -F 149 --call-graph dwarf,16384 -p $S -o "$PERF.$MODE" >/dev/null 2>&1 & PP=$!; }
   timeout 600 $B/client/replay/tessera-replay load --port $P --token replay-editor-token-0123456789 --document 1 \
     --editors 10 --viewers $VIEWERS --rate 2 --seconds $SECONDS_PER_ROW --vertex-level 0 --vertex-count 2000 \
     --step 0.2 $WHAT --server-pid $S --report /tmp/views-load-$MODE.json --quiet 2>&1 | head -20
+  [ -n "${PERF:-}" ] && { kill -INT $PP; wait $PP; }
   echo "  (server RSS at the end: $(( $(awk '/VmRSS/ {print $2}' /proc/$S/status) / 1024 )) MiB)"
   kill -TERM $S; wait $S 2>/dev/null
   rm -rf $D

@@ -28,13 +28,14 @@ class Allowance {
   // builds anything is always admitted, so that every walk makes progress.
   bool admits(const TileCatalogue& tiles, std::span<const TileKey> children) {
     if (left_ < 0) return true;
-    int64_t fresh = 0;
-    for (const TileKey& c : children) fresh += !tiles.isBuilt(c) && !counted_.count(c);
-    if (fresh == 0) return true;
-    if (fresh > left_ && !counted_.empty()) return false;
-    left_ = std::max<int64_t>(0, left_ - fresh);
+    std::vector<TileKey> fresh;
     for (const TileKey& c : children)
-      if (!tiles.isBuilt(c)) counted_.insert(c);
+      if (!tiles.isBuilt(c) && !counted_.count(c)) fresh.push_back(c);
+    if (fresh.empty()) return true;
+    const auto cost = static_cast<int64_t>(fresh.size());
+    if (cost > left_ && !counted_.empty()) return false;
+    left_ = std::max<int64_t>(0, left_ - cost);
+    counted_.insert(fresh.begin(), fresh.end());
     return true;
   }
 

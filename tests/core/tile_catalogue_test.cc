@@ -10,6 +10,7 @@
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
 #include "core/view/tile_catalogue.h"
+#include "support/same_tile.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -23,18 +24,6 @@ std::vector<TileKey> upperTiles(const TileTree& tree) {
     for (const TileKey& c : tree.children(all[i])) all.push_back(c);
   }
   return all;
-}
-
-void expectSameTile(const Tile& late, const Tile& fresh, const std::string& where) {
-  ASSERT_EQ(late.mesh.positions.size(), fresh.mesh.positions.size()) << where;
-  for (size_t i = 0; i < late.mesh.positions.size(); ++i) {
-    ASSERT_EQ(late.mesh.positions[i], fresh.mesh.positions[i]) << where << " vertex " << i;
-    ASSERT_EQ(late.mesh.normals[i], fresh.mesh.normals[i]) << where << " vertex " << i;
-  }
-  EXPECT_EQ(late.triangles, fresh.triangles) << where;
-  EXPECT_EQ(late.bounds.error, fresh.bounds.error) << where;
-  EXPECT_EQ(late.bounds.sphere.centre, fresh.bounds.sphere.centre) << where;
-  EXPECT_EQ(late.bounds.sphere.radius, fresh.bounds.sphere.radius) << where;
 }
 
 TEST(TileCatalogue, TilesMeasuredAfterTheirMeshEqualTilesBuiltAtOnce) {
@@ -78,10 +67,10 @@ TEST(TileCatalogue, TilesMeasuredAfterTheirMeshEqualTilesBuiltAtOnce) {
       auto mesh = late.mesh(k);
       ASSERT_TRUE(mesh.isOk());
       Tile rebuilt{**mesh, (*a)->bounds, (*a)->triangles};
-      expectSameTile(rebuilt, **b, k.toString());
+      testing::expectSameTile(rebuilt, **b, k.toString());
     } else {
       EXPECT_FALSE((*a)->meshReleased) << k.toString();
-      expectSameTile(**a, **b, k.toString());
+      testing::expectSameTile(**a, **b, k.toString());
     }
   }
   EXPECT_GT(kept, 0);

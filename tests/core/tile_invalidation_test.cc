@@ -10,6 +10,7 @@
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
 #include "core/view/tile_catalogue.h"
+#include "support/same_tile.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -26,17 +27,6 @@ std::vector<TileKey> everyTile(const TileTree& tree) {
     frontier = std::move(next);
   }
   return all;
-}
-
-void expectSameTile(const Tile& kept, const Tile& fresh, const std::string& where) {
-  ASSERT_EQ(kept.mesh.positions.size(), fresh.mesh.positions.size()) << where;
-  for (size_t i = 0; i < kept.mesh.positions.size(); ++i) {
-    ASSERT_EQ(kept.mesh.positions[i], fresh.mesh.positions[i]) << where << " vertex " << i;
-    ASSERT_EQ(kept.mesh.normals[i], fresh.mesh.normals[i]) << where << " vertex " << i;
-  }
-  EXPECT_EQ(kept.bounds.error, fresh.bounds.error) << where;
-  EXPECT_EQ(kept.bounds.sphere.centre, fresh.bounds.sphere.centre) << where;
-  EXPECT_EQ(kept.bounds.sphere.radius, fresh.bounds.sphere.radius) << where;
 }
 
 // `local`: a model of many base faces, where an edit reaches few of them.
@@ -71,7 +61,7 @@ void checkEdits(Document& doc, const std::string& name, uint32_t seed, bool loca
       auto a = held.get(k);
       auto b = fresh.get(k);
       ASSERT_TRUE(a.isOk() && b.isOk()) << where;
-      expectSameTile(**a, **b, where + " " + k.toString());
+      testing::expectSameTile(**a, **b, where + " " + k.toString());
     }
     held.prepare(all);
     for (const TileKey& k : all) ASSERT_TRUE(held.get(k).isOk());

@@ -81,6 +81,18 @@ uint16_t readPortFile(const std::string& path) {
   return 0;
 }
 
+// The HTTP port file is written before the server serves, and /healthz
+// answers 503 until it does (docs/OPERATIONS.md "Health and metrics"): a
+// loaded machine can take a moment. Waits for a 200, at most 10 s.
+bool waitServing(uint16_t httpPort) {
+  for (int i = 0; i < 100; ++i) {
+    auto health = testing::httpGet(httpPort, "/healthz", 10);
+    if (health.isOk() && health->status == 200) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
 // name{labels} value  ->  value, for one metric line of the text format.
 std::map<std::string, double> parseMetrics(const std::string& body) {
   std::map<std::string, double> values;
@@ -149,6 +161,7 @@ TEST(Operations, HealthAndPrometheusMetricsOverHttp) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   const uint16_t httpPort = readPortFile(dir + "/http-port");
   ASSERT_GT(httpPort, 0);
+  ASSERT_TRUE(waitServing(httpPort)) << "the server did not start serving";
   auto get = [&](const std::string& target) { return testing::httpGet(httpPort, target, 10); };
 
   auto health = get("/healthz");
@@ -235,6 +248,7 @@ TEST(Operations, HttpEndpointAnswersSmallGetsOnly) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   const uint16_t httpPort = readPortFile(dir + "/http-port");
   ASSERT_GT(httpPort, 0);
+  ASSERT_TRUE(waitServing(httpPort)) << "the server did not start serving";
   using testing::httpExchange;
   using testing::httpStatus;
 
@@ -300,6 +314,7 @@ TEST(Operations, SlowHttpClientsDoNotHoldTheEndpoint) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   const uint16_t httpPort = readPortFile(dir + "/http-port");
   ASSERT_GT(httpPort, 0);
+  ASSERT_TRUE(waitServing(httpPort)) << "the server did not start serving";
 
   namespace asio = boost::asio;
   constexpr int kSlow = 6;  // more than the endpoint's two threads, fewer than its 32 connections
@@ -391,6 +406,7 @@ TEST(Operations, HealthCommandAsksTheEndpoint) {
   ASSERT_TRUE(server.isOk()) << server.status().message();
   const uint16_t httpPort = readPortFile(dir + "/http-port");
   ASSERT_GT(httpPort, 0);
+  ASSERT_TRUE(waitServing(httpPort)) << "the server did not start serving";
 
   const std::string url = "http://127.0.0.1:" + std::to_string(httpPort) + "/healthz";
   ProgramRun healthy = runServerBinary("health --url " + url);

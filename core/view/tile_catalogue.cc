@@ -19,19 +19,12 @@ void TileCatalogue::prepare(std::span<const TileKey> keys) {
 }
 
 Expected<const Tile*> TileCatalogue::get(const TileKey& key) {
-  auto found = tiles_.find(key);
-  if (found != tiles_.end()) {
-    if (!found->second->measured) TESSERA_RETURN_IF_ERROR(measure(key, *found->second));
-    return found->second.get();
-  }
-  TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh, buildTile(doc_, tree_, key));
-  const auto triangles = static_cast<int64_t>(mesh.triangles.size());
-  auto tile = std::make_unique<Tile>(Tile{std::move(mesh), {}, triangles});
-  TESSERA_RETURN_IF_ERROR(measure(key, *tile));
-  const Tile* out = tile.get();
-  tiles_.emplace(key, std::move(tile));
-  ++built_;
-  return out;
+  // A tile not built yet is built by mesh(), as for a server's re-send,
+  // then measured.
+  if (!tiles_.count(key)) TESSERA_RETURN_IF_ERROR(mesh(key).status());
+  Tile& tile = *tiles_.at(key);
+  if (!tile.measured) TESSERA_RETURN_IF_ERROR(measure(key, tile));
+  return &tile;
 }
 
 Status TileCatalogue::measure(const TileKey& key, Tile& tile) {

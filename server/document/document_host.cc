@@ -217,7 +217,7 @@ void DocumentHost::scheduleSettle() {
 void DocumentHost::settleViews() {
   flush();  // tiles are chosen at version_; its edits settle now too
   settleScheduled_ = false;
-  if (tileCache_) tileStreams_.settle(*tileCache_, Clock::now(), viewInterval(config_), version_);
+  if (tileCache_) tileStreams_.settle(*tileCache_, version_);
   scheduleViews();  // the views settle left incomplete go on
 }
 

@@ -78,7 +78,10 @@ void TileStreams::setPending(uint64_t session, const View& view, uint64_t client
 std::optional<TileStreams::Clock::time_point> TileStreams::nextDue(Clock::duration interval) const {
   std::optional<Clock::time_point> due;
   for (const auto& [session, s] : streams_) {
-    if (s.pending && (!due || s.lastApplied + interval < *due)) due = s.lastApplied + interval;
+    if (!s.pending) continue;
+    // A view the allowance held back goes on at once (continueIncomplete).
+    const Clock::time_point at = s.continuing ? Clock::time_point{} : s.lastApplied + interval;
+    if (!due || at < *due) due = at;
   }
   return due;
 }
@@ -118,7 +121,7 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
   dropGone();
   std::vector<Stream*> candidates;
   for (auto& [session, s] : streams_) {
-    if (s.pending && now >= s.lastApplied + interval) candidates.push_back(&s);
+    if (s.pending && (s.continuing || now >= s.lastApplied + interval)) candidates.push_back(&s);
   }
   // The longest waiting first, at most kViewsPerTurn of them: the rest go
   // in the next turn, after the edits that came meanwhile.
@@ -131,25 +134,28 @@ void TileStreams::applyDue(TileCache& tiles, Clock::time_point now, Clock::durat
     s.view = *s.pending;
     s.viewSeq = s.pendingSeq;
     s.pending.reset();
-    s.lastApplied = now;
-    if (!s.continuing) ++stats_.viewsApplied;
+    // The interval between a subscriber's views counts from its last new
+    // one: a continuation is the server's, not the client's, and a view the
+    // client sends meanwhile still waits its interval.
+    if (!s.continuing) {
+      s.lastApplied = now;
+      ++stats_.viewsApplied;
+    }
     s.continuing = false;
     due.push_back(&s);
   }
   moveEach(tiles, due, version, version, 0, 0, /*announce=*/true, kNewTilesPerTurn);
-  continueIncomplete(due, now, interval);
+  continueIncomplete(due);
 }
 
-void TileStreams::continueIncomplete(const std::vector<Stream*>& moved, Clock::time_point now,
-                                     Clock::duration interval) {
+void TileStreams::continueIncomplete(const std::vector<Stream*>& moved) {
   // A view the allowance held back goes on in a later turn, due at once,
-  // unless a newer one came meanwhile.
+  // unless a newer one came meanwhile (which waits for its interval).
   for (Stream* s : moved) {
     if (s->complete || s->pending) continue;
     s->pending = s->view;
     s->pendingSeq = s->viewSeq;
     s->continuing = true;
-    s->lastApplied = now - interval;
     ++stats_.viewContinuations;
   }
 }
@@ -203,8 +209,7 @@ bool TileStreams::unsettled() const {
   return false;
 }
 
-void TileStreams::settle(TileCache& tiles, Clock::time_point now, Clock::duration interval,
-                         uint64_t version) {
+void TileStreams::settle(TileCache& tiles, uint64_t version) {
   dropGone();
   const std::vector<TileKey> reached(unsettledTiles_.begin(), unsettledTiles_.end());
   unsettledTiles_.clear();
@@ -224,7 +229,7 @@ void TileStreams::settle(TileCache& tiles, Clock::time_point now, Clock::duratio
     send(s, std::move(done));
   }
   moveEach(tiles, moving, version, version, 0, 0, /*announce=*/true, kNewTilesPerTurn);
-  continueIncomplete(moving, now, interval);
+  continueIncomplete(moving);
 }
 
 Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,

@@ -75,7 +75,7 @@ class TileStreams {
   // (as applyDue: at most kNewTilesPerTurn new tiles, the rest in later
   // turns); a stream whose choice stays gets an empty complete delta
   // (docs/VIEWS.md "The server").
-  void settle(TileCache& tiles, Clock::time_point now, Clock::duration interval, uint64_t version);
+  void settle(TileCache& tiles, uint64_t version);
   // The cache was replaced (the document's keys changed): every held tile
   // is sent again.
   void forgetAllTiles();
@@ -143,7 +143,7 @@ class TileStreams {
                 int64_t newTiles = -1);
   // Makes the views of `moved` the allowance left incomplete wait again,
   // due at once.
-  void continueIncomplete(const std::vector<Stream*>& moved, Clock::time_point now, Clock::duration interval);
+  void continueIncomplete(const std::vector<Stream*>& moved);
   // Forgets the streams whose subscriber is gone.
   void dropGone();
 

@@ -1,6 +1,7 @@
 #include "core/view/tile_selection.h"
 
 #include <algorithm>
+#include <functional>
 #include <set>
 
 namespace tessera {
@@ -22,25 +23,26 @@ void sortForSending(TileSelection& s) {
 // A walk's allowance of tiles to build (tile_selection.h).
 class Allowance {
  public:
-  explicit Allowance(int64_t tiles) : left_(tiles) {}
+  Allowance(int64_t tiles, const std::function<bool()>& stop) : left_(tiles), stop_(stop) {}
   // Whether the walk may refine into `children`; counts those not built yet
   // (each once) against the allowance if so. The first refinement that
   // builds anything is always admitted, so that every walk makes progress.
   bool admits(const TileCatalogue& tiles, std::span<const TileKey> children) {
-    if (left_ < 0) return true;
+    if (left_ < 0 && !stop_) return true;
     std::vector<TileKey> fresh;
     for (const TileKey& c : children)
       if (!tiles.isBuilt(c) && !counted_.count(c)) fresh.push_back(c);
     if (fresh.empty()) return true;
     const auto cost = static_cast<int64_t>(fresh.size());
-    if (cost > left_ && !counted_.empty()) return false;
-    left_ = std::max<int64_t>(0, left_ - cost);
+    if (!counted_.empty() && ((left_ >= 0 && cost > left_) || (stop_ && stop_()))) return false;
+    if (left_ >= 0) left_ = std::max<int64_t>(0, left_ - cost);
     counted_.insert(fresh.begin(), fresh.end());
     return true;
   }
 
  private:
   int64_t left_;  // negative: no limit
+  const std::function<bool()>& stop_;
   std::set<TileKey> counted_;
 };
 
@@ -114,11 +116,12 @@ Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int6
 }
 
 Expected<std::vector<TileSelection>> selectTilesForEach(std::span<const View> views, TileCatalogue& tiles,
-                                                        std::span<const int64_t> budgets, int64_t newTiles) {
+                                                        std::span<const int64_t> budgets, int64_t newTiles,
+                                                        const std::function<bool()>& stopBuilding) {
   for (const View& view : views) TESSERA_RETURN_IF_ERROR(view.check());
   std::vector<double> tolerances;
   for (const View& view : views) tolerances.push_back(view.tolerancePixels);
-  Allowance allowance(newTiles);
+  Allowance allowance(newTiles, stopBuilding);
   TESSERA_ASSIGN_OR_RETURN(std::vector<TileSelection> out, selectAt(views, tiles, tolerances, allowance));
   // Those over their budget again, with the tolerance raised, one by one.
   for (size_t v = 0; v < views.size(); ++v) {

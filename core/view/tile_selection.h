@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -57,9 +58,13 @@ Expected<TileSelection> selectTiles(const View& view, TileCatalogue& tiles, int6
 // The same for several views at once, equal to selecting each alone: the
 // hierarchy grows once per level for all of them (a server choosing again
 // for every viewer after an edit). `newTiles` >= 0: the walk's allowance of
-// tiles to build, as above; negative: none.
+// tiles to build, as above; negative: none. `stopBuilding`, if given, is
+// asked before each further refinement that would build tiles (the first
+// is always made): true ends the building as a spent allowance does, for
+// a caller whose other work has come to wait.
 Expected<std::vector<TileSelection>> selectTilesForEach(std::span<const View> views, TileCatalogue& tiles,
                                                         std::span<const int64_t> budgets,
-                                                        int64_t newTiles = -1);
+                                                        int64_t newTiles = -1,
+                                                        const std::function<bool()>& stopBuilding = {});
 
 }  // namespace tessera

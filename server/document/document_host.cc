@@ -73,7 +73,8 @@ DocumentHost::DocumentHost(store::DocumentId id, std::string name, KeyedDocument
       views_(id, config.limits.maxTrianglesPerSubscriber, config.limits.maxFrameBytes),
       flushTimer_(workers),
       commits_(id, version, config.limits.maxFrameBytes, stats),
-      tileStreams_(id.value, config.limits.maxFrameBytes, stats),
+      tileStreams_(id.value, config.limits.maxFrameBytes, stats,
+                   [this] { return editTasksWaiting_.load(std::memory_order_relaxed) > 0; }),
       viewTimer_(workers) {
   auto grid = documentGrid(doc_.key0());
   if (grid.isOk()) grid_ = *grid;
@@ -217,7 +218,7 @@ void DocumentHost::scheduleSettle() {
 void DocumentHost::settleViews() {
   flush();  // tiles are chosen at version_; its edits settle now too
   settleScheduled_ = false;
-  if (tileCache_) tileStreams_.settle(*tileCache_, version_);
+  if (tileCache_ && !tileStreams_.settle(*tileCache_, version_)) scheduleSettle();  // after the edit
   scheduleViews();  // the views settle left incomplete go on
 }
 
@@ -401,8 +402,8 @@ void DocumentHost::command(std::shared_ptr<Subscriber> author, std::string autho
   const Lane lane = message.has_add_morph_key() && message.add_morph_key().mesh().size() > (1u << 20)
                         ? Lane::kBulk
                         : Lane::kInteractive;
-  queue_.post(lane, [self = shared_from_this(), author, authorName = std::move(authorName),
-                     message = std::move(message)] {
+  postEditTask(lane, [self = shared_from_this(), author, authorName = std::move(authorName),
+                      message = std::move(message)] {
     const uint64_t seq = message.client_seq();
     if (self->failed_) {
       author->send({frameOf(rejectFor(seq, internalError("the document's journal failed (" +
@@ -454,9 +455,17 @@ void DocumentHost::afterApply(const std::shared_ptr<Subscriber>& author, uint64_
   scheduleFlush();
   store_.appendFrom(id_, version_ - 1, authorName, author->sessionId(), clientSeq, encodeJournalEntry(entry),
                     [self = shared_from_this(), version = version_](Status status) {
-                      self->queue_.post(Lane::kInteractive,
-                                        [self, version, status] { self->committed(version, status); });
+                      self->postEditTask(Lane::kInteractive,
+                                         [self, version, status] { self->committed(version, status); });
                     });
+}
+
+void DocumentHost::postEditTask(Lane lane, std::function<void()> task) {
+  editTasksWaiting_.fetch_add(1, std::memory_order_relaxed);
+  queue_.post(lane, [this, task = std::move(task)] {
+    editTasksWaiting_.fetch_sub(1, std::memory_order_relaxed);
+    task();  // it holds the host
+  });
 }
 
 // A flush waits until the pacing interval after the last one has passed:
@@ -479,13 +488,13 @@ void DocumentHost::scheduleFlush() {
   flushScheduled_ = true;
   const auto due = lastFlush_ + flushInterval();
   if (Clock::now() >= due) {
-    queue_.post(Lane::kInteractive, [self = shared_from_this()] { self->flush(); });
+    postEditTask(Lane::kInteractive, [self = shared_from_this()] { self->flush(); });
     return;
   }
   flushTimer_.expires_at(due);
   flushTimer_.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
     if (ec != boost::asio::error::operation_aborted)
-      self->queue_.post(Lane::kInteractive, [self] { self->flush(); });
+      self->postEditTask(Lane::kInteractive, [self] { self->flush(); });
   });
 }
 

@@ -141,6 +141,10 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
                   const std::string& authorName, const wire::ClientMessage& command);
   void scheduleFlush();
   std::chrono::steady_clock::duration flushInterval() const;
+  // Posts a task an edit's Ack or delta waits for (the command, its
+  // commit, a flush), counted while it waits: a turn of camera moves that
+  // runs meanwhile builds no further tiles (docs/VIEWS.md "The server").
+  void postEditTask(Lane lane, std::function<void()> task);
   // Updates every view from the limits changed since the last flush,
   // encodes the changed regions once and queues them as one batch.
   void flush();
@@ -186,8 +190,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   bool flushScheduled_ = false;
   bool failed_ = false;
   std::atomic<bool> journalFailed_{false};  // failed_, readable off the strand
-  Status journalFailure_;                   // why, for later commands' Rejects
-  std::mutex undecidedMutex_;               // the handler is set off the strand
+  // Edits' tasks posted and not started (postEditTask): read by a running
+  // turn of camera moves, off the posting threads.
+  std::atomic<int> editTasksWaiting_{0};
+  Status journalFailure_;      // why, for later commands' Rejects
+  std::mutex undecidedMutex_;  // the handler is set off the strand
   std::function<void(Undecided)> undecidedHandler_;
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
   boost::asio::any_io_executor bulk_;

@@ -31,8 +31,9 @@ Expected<TileSelection> TileCache::select(const View& view, int64_t budget) {
 
 Expected<std::vector<TileSelection>> TileCache::selectForEach(std::span<const View> views,
                                                               std::span<const int64_t> budgets,
-                                                              int64_t newTiles) {
-  auto selections = selectTilesForEach(views, catalogue_, budgets, newTiles);
+                                                              int64_t newTiles,
+                                                              const std::function<bool()>& stopBuilding) {
+  auto selections = selectTilesForEach(views, catalogue_, budgets, newTiles, stopBuilding);
   countBuilt();
   return selections;
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <span>
@@ -32,12 +33,16 @@ class TileCache {
   // The tiles `view` needs (tile_selection.h), in sending order.
   Expected<TileSelection> select(const View& view, int64_t budget);
   // The same for many views at once (selectTilesForEach): what a flush or a
-  // round of camera moves asks for every subscriber; `newTiles` >= 0 bounds
-  // the tiles the walk builds (its selections may then be incomplete).
+  // round of camera moves asks for every subscriber; `newTiles` >= 0 and
+  // `stopBuilding` bound the tiles the walk builds (its selections may then
+  // be incomplete).
   Expected<std::vector<TileSelection>> selectForEach(std::span<const View> views,
-                                                     std::span<const int64_t> budgets, int64_t newTiles = -1);
+                                                     std::span<const int64_t> budgets, int64_t newTiles = -1,
+                                                     const std::function<bool()>& stopBuilding = {});
   // A tile's bounds at the document's state, built if an edit forgot them.
   Expected<TileBounds> bounds(const TileKey& key);
+  // Whether bounds() has them without building.
+  bool hasBounds(const TileKey& key) const { return catalogue_.isBuilt(key); }
   // The tile encoded at the document's state: cached, or built (if its mesh
   // was released) and encoded once now; `version` goes into its header.
   // TileKey::preview() is the surface's preview (core/view/tile_preview.h),

@@ -105,7 +105,10 @@ void TileStreams::moveEach(TileCache& tiles, const std::vector<Stream*>& moving,
   std::vector<int64_t> budgets;
   for (const Stream* s : moving) views.push_back(s->view), budgets.push_back(s->budget);
   // One walk for every stream: the hierarchy grows once per level for all.
-  auto targets = tiles.selectForEach(views, budgets, newTiles);
+  // A walk with an allowance is a turn of its own: it also stops building
+  // once an edit waits behind it. A flush's walk is the edit's own work.
+  auto targets =
+      tiles.selectForEach(views, budgets, newTiles, newTiles >= 0 ? editsWait_ : std::function<bool()>{});
   for (size_t i = 0; i < moving.size(); ++i) {
     Status moved = targets.isOk() ? moveTo(tiles, *moving[i], (*targets)[i], fromVersion, toVersion,
                                            authorSession, editId, announce)
@@ -209,8 +212,26 @@ bool TileStreams::unsettled() const {
   return false;
 }
 
-void TileStreams::settle(TileCache& tiles, uint64_t version) {
+bool TileStreams::settle(TileCache& tiles, uint64_t version) {
   dropGone();
+  // Measuring the reached tiles that waiting streams read is most of the
+  // work: one tile at a time, so that an edit that comes meanwhile waits
+  // for one tile, not for all of them.
+  auto readByAWaitingStream = [&](const TileKey& key) {
+    for (const auto& [session, s] : streams_) {
+      if (s.unsettled && !s.pending && !s.toleranceRaised &&
+          (s.held.count(key) || std::binary_search(s.refined.begin(), s.refined.end(), key)))
+        return true;
+    }
+    return false;
+  };
+  bool measuredAny = false;
+  for (const TileKey& key : unsettledTiles_) {
+    if (tiles.hasBounds(key) || !readByAWaitingStream(key)) continue;
+    if (measuredAny && editsWait_ && editsWait_()) return false;
+    (void)tiles.bounds(key);  // on an error, keepsSelection fails below and the stream moves
+    measuredAny = true;
+  }
   const std::vector<TileKey> reached(unsettledTiles_.begin(), unsettledTiles_.end());
   unsettledTiles_.clear();
   std::vector<Stream*> moving;
@@ -230,6 +251,7 @@ void TileStreams::settle(TileCache& tiles, uint64_t version) {
   }
   moveEach(tiles, moving, version, version, 0, 0, /*announce=*/true, kNewTilesPerTurn);
   continueIncomplete(moving);
+  return true;
 }
 
 Expected<bool> TileStreams::keepsSelection(TileCache& tiles, const Stream& s,

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -32,8 +33,16 @@ class TileStreams {
  public:
   using Clock = std::chrono::steady_clock;
 
-  TileStreams(uint64_t documentId, uint32_t maxFrameBytes, ServerStats& stats)
-      : documentId_(documentId), maxFrameBytes_(maxFrameBytes), stats_(stats) {}
+  // `editsWait`, if given, says whether an edit of the document waits
+  // (to be applied, committed or flushed) behind the running turn: a turn
+  // of camera moves or settling then builds no further tiles, and its views
+  // go on after the edit (docs/VIEWS.md "The server").
+  TileStreams(uint64_t documentId, uint32_t maxFrameBytes, ServerStats& stats,
+              std::function<bool()> editsWait = {})
+      : documentId_(documentId),
+        maxFrameBytes_(maxFrameBytes),
+        stats_(stats),
+        editsWait_(std::move(editsWait)) {}
   ~TileStreams();
 
   // `who` watches the document through `view` (whose tiles are `target`,
@@ -74,8 +83,9 @@ class TileStreams {
   // each stream waiting for it to what its camera needs now, at `version`
   // (as applyDue: at most kNewTilesPerTurn new tiles, the rest in later
   // turns); a stream whose choice stays gets an empty complete delta
-  // (docs/VIEWS.md "The server").
-  void settle(TileCache& tiles, uint64_t version);
+  // (docs/VIEWS.md "The server"). False: it stopped measuring because an
+  // edit waits (editsWait), and must be called again.
+  bool settle(TileCache& tiles, uint64_t version);
   // The cache was replaced (the document's keys changed): every held tile
   // is sent again.
   void forgetAllTiles();
@@ -150,6 +160,7 @@ class TileStreams {
   const uint64_t documentId_;
   const uint32_t maxFrameBytes_;
   ServerStats& stats_;
+  const std::function<bool()> editsWait_;
   std::map<uint64_t, Stream> streams_;  // by session
   // forgetAllTiles since the last afterEdit: every held tile is stale, not
   // only those an edit reached, so every stream chooses again.

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <random>
@@ -249,15 +250,19 @@ TEST(TileSelection, ManyViewsAtOnceChooseWhatEachWouldAlone) {
   }
 }
 
-// A walk with an allowance of new tiles (tile_selection.h): each step builds
-// at most that many (or one tile's children, the progress every walk makes),
-// shows a coarser cut of the whole surface meanwhile, and the steps end on
-// what one walk without allowance selects.
-TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSelection) {
+// Walks of four cameras over the hand, step after step, each with
+// `allowance` new tiles and `stopBuilding`: each step builds at most
+// `mostNew` (or one tile's children, the progress every walk makes), shows a
+// coarser cut of the whole surface meanwhile, and the steps end on what one
+// walk without allowance selects. Returns the incomplete steps.
+int expectStepsEndOnTheWholeSelection(int64_t allowance, const std::function<bool()>& stopBuilding,
+                                      int64_t mostNew) {
   auto hand = importMesh(testing::cgalMeshPath("hand.off"));
-  ASSERT_TRUE(hand.isOk());
+  EXPECT_TRUE(hand.isOk());
+  if (!hand.isOk()) return 0;
   auto doc = Document::create(*hand, {.maxLevel = 4});
-  ASSERT_TRUE(doc.isOk());
+  EXPECT_TRUE(doc.isOk());
+  if (!doc.isOk()) return 0;
   Model m = model("hand", std::move(*doc));
   std::mt19937 rng(29);
   std::vector<View> views;
@@ -266,7 +271,8 @@ TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSele
   const std::vector<int64_t> budgets(views.size(), 0);
   TileCatalogue whole(m.doc);
   auto expected = selectTilesForEach(views, whole, budgets);
-  ASSERT_TRUE(expected.isOk()) << expected.status().message();
+  EXPECT_TRUE(expected.isOk()) << expected.status().message();
+  if (!expected.isOk()) return 0;
   for (const TileSelection& s : *expected) EXPECT_TRUE(s.complete);
   size_t mostChildren = 0;
   for (const TileSelection& s : *expected) {
@@ -277,18 +283,19 @@ TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSele
       }
     }
   }
-  constexpr int64_t kAllowance = 3;
+  const int64_t mostPerStep = std::max<int64_t>(mostNew, static_cast<int64_t>(mostChildren));
   TileCatalogue stepwise(m.doc);
   // The roots are built by the first walk whatever its allowance.
   (void)selectTilesForEach(views, stepwise, budgets, 0);
-  int steps = 0, incompleteSteps = 0;
-  for (;; ++steps) {
-    ASSERT_LT(steps, 10000) << "the steps never end";
+  int incompleteSteps = 0;
+  for (int steps = 0;; ++steps) {
+    EXPECT_LT(steps, 10000) << "the steps never end";
+    if (steps >= 10000) return incompleteSteps;
     const int64_t before = stepwise.built();
-    auto got = selectTilesForEach(views, stepwise, budgets, kAllowance);
-    ASSERT_TRUE(got.isOk()) << got.status().message();
-    EXPECT_LE(stepwise.built() - before, std::max<int64_t>(kAllowance, static_cast<int64_t>(mostChildren)))
-        << "step " << steps;
+    auto got = selectTilesForEach(views, stepwise, budgets, allowance, stopBuilding);
+    EXPECT_TRUE(got.isOk()) << got.status().message();
+    if (!got.isOk()) return incompleteSteps;
+    EXPECT_LE(stepwise.built() - before, mostPerStep) << "step " << steps;
     bool complete = true;
     for (const TileSelection& s : *got) {
       complete = complete && s.complete;
@@ -297,12 +304,13 @@ TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSele
       for (const SelectedTile& t : s.tiles)
         for (const FaceId& f : stepwise.tree().facesShown(t.key))
           area[f.index() >> (2 * f.level())] += std::ldexp(1.0, -2 * f.level());
-      ASSERT_EQ(area.size(), m.doc.counts().faces(0)) << "step " << steps;
-      for (const auto& [face, a] : area) ASSERT_NEAR(a, 1.0, 1e-12) << "step " << steps << " face " << face;
+      EXPECT_EQ(area.size(), m.doc.counts().faces(0)) << "step " << steps;
+      for (const auto& [face, a] : area) EXPECT_NEAR(a, 1.0, 1e-12) << "step " << steps << " face " << face;
     }
     if (complete) {
       for (size_t v = 0; v < views.size(); ++v) {
-        ASSERT_EQ((*got)[v].tiles.size(), (*expected)[v].tiles.size()) << "view " << v;
+        EXPECT_EQ((*got)[v].tiles.size(), (*expected)[v].tiles.size()) << "view " << v;
+        if ((*got)[v].tiles.size() != (*expected)[v].tiles.size()) continue;
         for (size_t k = 0; k < (*got)[v].tiles.size(); ++k)
           EXPECT_EQ((*got)[v].tiles[k].key, (*expected)[v].tiles[k].key) << "view " << v;
       }
@@ -310,10 +318,34 @@ TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSele
     }
     ++incompleteSteps;
   }
+  EXPECT_EQ(stepwise.built(), whole.built()) << "no tile built twice";
+  return incompleteSteps;
+}
+
+// A walk with an allowance of new tiles (tile_selection.h).
+TEST(TileSelection, AnAllowanceOfNewTilesGivesCoarserCompleteCutsThenTheSameSelection) {
+  constexpr int64_t kAllowance = 3;
+  const int incompleteSteps = expectStepsEndOnTheWholeSelection(kAllowance, {}, kAllowance);
   std::printf("[ measured ] %d incomplete steps of at most %lld new tiles before the whole selection\n",
               incompleteSteps, static_cast<long long>(kAllowance));
   EXPECT_GT(incompleteSteps, 3) << "the allowance held tiles back";
-  EXPECT_EQ(stepwise.built(), whole.built()) << "no tile built twice";
+}
+
+// A walk told to stop building (a server's turn of camera moves once an
+// edit waits behind it) makes its first refinement and no other, whatever
+// its allowance of tiles; it asks before each refinement that builds.
+TEST(TileSelection, AWalkToldToStopBuildingMakesOneRefinementPerStepThenTheSameSelection) {
+  int asked = 0;
+  const std::function<bool()> editWaits = [&] { return ++asked, true; };
+  const int incompleteSteps = expectStepsEndOnTheWholeSelection(1000, editWaits, 0);
+  std::printf("[ measured ] %d incomplete steps of one refinement, asked %d times\n", incompleteSteps, asked);
+  EXPECT_GT(incompleteSteps, 3) << "the walk stopped building when told";
+  EXPECT_GE(asked, incompleteSteps) << "each incomplete step asked";
+  int never = 0;
+  const std::function<bool()> nothingWaits = [&] { return ++never, false; };
+  EXPECT_EQ(expectStepsEndOnTheWholeSelection(-1, nothingWaits, 1 << 30), 0)
+      << "a walk never told to stop is whole";
+  EXPECT_GT(never, 0) << "it asked";
 }
 
 TEST(TileSelection, ABudgetRaisesTheToleranceAndKeepsEveryVisibleTile) {

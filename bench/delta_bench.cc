@@ -17,6 +17,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -27,6 +28,7 @@
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/surface_hash.h"
 #include "core/tessellation/tessellation.h"
+#include "core/util/parallel_for.h"
 
 namespace {
 
@@ -48,25 +50,33 @@ State& state() {
   return s;
 }
 
-// Encodes the listed regions; returns the bytes.
-size_t encodeRegions(const std::vector<uint64_t>& ids) {
+// Encodes the listed regions on `threads` threads, as a server's flush does
+// (parallel_for.h); returns the bytes.
+size_t encodeRegions(const std::vector<uint64_t>& ids, unsigned threads) {
   State& s = state();
+  std::vector<Expected<std::string>> encoded(ids.size(), internalError("not encoded"));
+  parallelFor(ids.size(), threads, [&](size_t i) {
+    const RegionHeader header{.regionId = ids[i],
+                              .documentVersion = s.version,
+                              .profile = s.tessellation->profile(),
+                              .grid = s.grid};
+    encoded[i] = encodeRegion(header, s.tessellation->regions().at(ids[i]));
+  });
   size_t bytes = 0;
-  for (uint64_t id : ids) {
-    const RegionHeader header{
-        .regionId = id, .documentVersion = s.version, .profile = s.tessellation->profile(), .grid = s.grid};
-    auto encoded = encodeRegion(header, s.tessellation->regions().at(id));
-    if (!encoded.isOk()) {
-      std::fprintf(stderr, "encode: %s\n", encoded.status().toString().c_str());
+  for (const auto& e : encoded) {
+    if (!e.isOk()) {
+      std::fprintf(stderr, "encode: %s\n", e.status().toString().c_str());
       std::exit(1);
     }
-    bytes += encoded->size();
+    bytes += e->size();
   }
   return bytes;
 }
 
 void editToDelta(benchmark::State& bm) {
   const int level = static_cast<int>(bm.range(0));
+  const auto threads = static_cast<unsigned>(bm.range(1));
+  setWorkThreads(threads);  // the re-tessellation's too
   State& s = state();
   Document& doc = *s.doc;
   std::mt19937 rng(7 + level);
@@ -90,7 +100,7 @@ void editToDelta(benchmark::State& bm) {
     benchmark::DoNotOptimize(sum);
     const auto hashed = Clock::now();
     ++s.version;
-    const size_t delta = encodeRegions(changes->changed);
+    const size_t delta = encodeRegions(changes->changed, threads);
     const auto end = Clock::now();
     const double seconds = std::chrono::duration<double>(end - start).count();
     evaluate.push_back(std::chrono::duration<double>(evaluated - start).count());
@@ -120,9 +130,12 @@ void editToDelta(benchmark::State& bm) {
   bm.counters["delta_bytes"] = bytes / n;
   bm.counters["regions"] = regions / n;
   bm.counters["rebuilds"] = rebuilds;
+  setWorkThreads(0);
 }
 
 void fullTessellateAndEncode(benchmark::State& bm) {
+  const auto threads = static_cast<unsigned>(bm.range(0));
+  setWorkThreads(threads);
   State& s = state();
   size_t bytes = 0;
   for (auto _ : bm) {
@@ -130,27 +143,31 @@ void fullTessellateAndEncode(benchmark::State& bm) {
     std::vector<uint64_t> ids;
     for (const auto& [id, mesh] : fresh->regions()) ids.push_back(id);
     s.tessellation.emplace(std::move(*fresh));
-    bytes = encodeRegions(ids);
+    bytes = encodeRegions(ids, threads);
   }
   bm.counters["bytes"] = static_cast<double>(bytes);
   bm.counters["triangles"] = static_cast<double>(s.tessellation->numTriangles());
   bm.counters["regions"] = static_cast<double>(s.tessellation->regions().size());
+  setWorkThreads(0);
 }
 
+// The second argument is the threads that re-tessellate and encode: one,
+// the reference, against what a server uses (workThreads), in the same run.
 BENCHMARK(editToDelta)
     ->Name("EditToDelta")
-    ->DenseRange(0, 1)
+    ->ArgsProduct({{0, 1}, {1, static_cast<int64_t>(workThreads())}})
     ->Iterations(100)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(editToDelta)
     ->Name("EditToDelta")
-    ->DenseRange(2, 4)
+    ->ArgsProduct({{2, 3, 4}, {1, static_cast<int64_t>(workThreads())}})
     ->Iterations(1000)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(fullTessellateAndEncode)
     ->Name("FullTessellateAndEncode")
+    ->ArgsProduct({{1, static_cast<int64_t>(workThreads())}})
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond);
 

@@ -12,6 +12,7 @@
 #include "core/tessellation/displayed_vertices.h"
 #include "core/tessellation/leaf_triangulation.h"
 #include "core/tessellation/region_merge.h"
+#include "core/util/parallel_for.h"
 
 namespace tessera {
 
@@ -62,10 +63,17 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
     const SparseHierarchy& h = doc.hierarchy();
     std::vector<uint64_t> ids;
     for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
+    // The regions read the hierarchy alone: built on several cores.
+    std::vector<RegionMesh> meshes(ids.size());
+    std::vector<std::vector<FaceId>> growths(ids.size());
+    parallelFor(ids.size(), workThreads(), [&](size_t i) {
+      meshes[i] = tessellation.buildRegion(h, FaceId::fromPacked(ids[i]), growths[i]);
+    });
     std::vector<FaceId> growth;
-    for (uint64_t id : ids) {
-      RegionMesh& mesh = tessellation.fine_[id] = tessellation.buildRegion(h, FaceId::fromPacked(id), growth);
-      tessellation.triangles_ += static_cast<int64_t>(mesh.triangles.size());
+    for (size_t i = 0; i < ids.size(); ++i) {
+      growth.insert(growth.end(), growths[i].begin(), growths[i].end());
+      tessellation.triangles_ += static_cast<int64_t>(meshes[i].triangles.size());
+      tessellation.fine_[ids[i]] = std::move(meshes[i]);
     }
     if (growth.empty()) {
       TESSERA_RETURN_IF_ERROR(tessellation.checkBudget());
@@ -266,9 +274,14 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   // Every candidate is built before any is stored: when a limit needs a
   // level the hierarchy does not hold, it grows and everything is rebuilt
   // (and diffed against the regions as they were).
+  // Each candidate reads the hierarchy alone: they are built on several
+  // cores (parallel_for.h), their growth gathered in candidate order.
+  std::vector<RegionMesh> meshes(candidates.size());
+  std::vector<std::vector<FaceId>> growths(candidates.size());
+  parallelFor(candidates.size(), workThreads(),
+              [&](size_t i) { meshes[i] = buildRegion(h, FaceId::fromPacked(candidates[i]), growths[i]); });
   std::vector<FaceId> growth;
-  std::vector<RegionMesh> meshes;
-  for (uint64_t id : candidates) meshes.push_back(buildRegion(h, FaceId::fromPacked(id), growth));
+  for (const auto& g : growths) growth.insert(growth.end(), g.begin(), g.end());
   if (!growth.empty()) {
     doc.refineHierarchy(growth);
     return rebuildAll(doc);

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "core/tessellation/document_bounds.h"
 #include "core/tessellation/region_lattice.h"
 #include "core/tessellation/surface_hash.h"
+#include "core/util/parallel_for.h"
 #include "server/base/log.h"
 #include "server/document/replies.h"
 
@@ -56,11 +58,25 @@ void buildDelta(LodView& view, const Tessellation::Changes& changes, const Encod
   for (uint64_t region : changes.changed) rehashRegion(view, region, context.grid);
   for (uint64_t region : changes.removed) rehashRegion(view, region, context.grid, /*removed=*/true);
   delta.surfaceHash = view.surfaceHash;
-  for (uint64_t region : changes.changed) {
+  std::vector<char> idsInlineOf(changes.changed.size());
+  for (size_t i = 0; i < changes.changed.size(); ++i) {
+    const uint64_t region = changes.changed[i];
     const bool relaid = std::binary_search(changes.relaid.begin(), changes.relaid.end(), region);
     if (relaid) view.layout[region] = context.version;
-    const bool idsInline = relaid || !withIds;
-    auto encoded = encodeViewRegion(view, region, idsInline, context);
+    idsInlineOf[i] = relaid || !withIds;
+  }
+  // The regions are encoded on several cores (each is independent and takes
+  // about a hundred microseconds; docs/PERFORMANCE.md "Edit to encoded
+  // region deltas"), then kept and listed in order.
+  std::vector<Expected<std::shared_ptr<const std::string>>> encodings(changes.changed.size(),
+                                                                      internalError("not encoded"));
+  parallelFor(changes.changed.size(), workThreads(), [&](size_t i) {
+    encodings[i] = encodeViewRegion(view, changes.changed[i], idsInlineOf[i], context);
+  });
+  for (size_t i = 0; i < changes.changed.size(); ++i) {
+    const uint64_t region = changes.changed[i];
+    const bool idsInline = idsInlineOf[i];
+    auto& encoded = encodings[i];
     if (!encoded.isOk()) {
       logEvent(LogLevel::kError, "encode_failed",
                {{"doc", documentId}, {"error", encoded.status().message()}});
@@ -84,19 +100,29 @@ std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, ui
                                                                bool resync, const EncodeContext& context,
                                                                size_t partBytes, uint32_t maxFrameBytes) {
   // Encoded once per region and version; later subscribers share the bytes.
+  // Those not encoded yet are encoded on several cores.
+  std::vector<uint64_t> missing;
+  for (const auto& [region, mesh] : view.tessellation->regions()) {
+    auto found = view.encoded.find(region);
+    if (found == view.encoded.end() || !found->second) missing.push_back(region);
+  }
+  std::vector<Expected<std::shared_ptr<const std::string>>> encodings(missing.size(),
+                                                                      internalError("not encoded"));
+  parallelFor(missing.size(), workThreads(), [&](size_t i) {
+    encodings[i] = encodeViewRegion(view, missing[i], /*idsInline=*/true, context);
+  });
+  for (size_t i = 0; i < missing.size(); ++i) {
+    if (encodings[i].isOk()) {
+      view.encoded[missing[i]] = *encodings[i];
+    } else {
+      logEvent(LogLevel::kError, "encode_failed",
+               {{"doc", documentId}, {"error", encodings[i].status().message()}});
+    }
+  }
   std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;
   for (const auto& [region, mesh] : view.tessellation->regions()) {
-    auto& cached = view.encoded[region];
-    if (!cached) {
-      auto encoded = encodeViewRegion(view, region, /*idsInline=*/true, context);
-      if (!encoded.isOk()) {
-        logEvent(LogLevel::kError, "encode_failed",
-                 {{"doc", documentId}, {"error", encoded.status().message()}});
-        continue;
-      }
-      cached = *encoded;
-    }
-    regions.emplace_back(region, cached);
+    auto found = view.encoded.find(region);
+    if (found != view.encoded.end() && found->second) regions.emplace_back(region, found->second);
   }
   return encodeSnapshotFrames({documentId, context.version, view.wireProfile, resync, view.surfaceHash},
                               regions, partBytes, maxFrameBytes);

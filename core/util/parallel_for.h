@@ -1,0 +1,27 @@
+// Independent items of work spread over the machine's cores: the calling
+// thread and up to `threads - 1` more each take the next item until none
+// is left. Threads are started per call (tens of microseconds each), so it
+// pays for items of about a hundred microseconds and more, such as building
+// or Draco-encoding a region (docs/PERFORMANCE.md "Edit to encoded region
+// deltas"). `body` must not throw; items report failure through what they
+// write.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace tessera {
+
+// The threads parallelFor is given by the steps that use it: the
+// hardware's count, at most 4, unless setWorkThreads chose another.
+unsigned workThreads();
+// 0: the default again. For a process's options and for benchmarks that
+// measure one thread against several in the same run.
+void setWorkThreads(unsigned threads);
+
+// Calls body(i) once for every i in [0, n), in no particular order, and
+// returns when every call has returned. With n < 2 or threads < 2 it runs
+// on the calling thread alone.
+void parallelFor(size_t n, unsigned threads, const std::function<void(size_t)>& body);
+
+}  // namespace tessera

@@ -63,15 +63,9 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
     const SparseHierarchy& h = doc.hierarchy();
     std::vector<uint64_t> ids;
     for (Index f = 0; f < h.level(0).mesh.numFaces(); ++f) tessellation.regionsUnder(h, 0, f, ids);
-    // The regions read the hierarchy alone: built on several cores.
-    std::vector<RegionMesh> meshes(ids.size());
-    std::vector<std::vector<FaceId>> growths(ids.size());
-    parallelFor(ids.size(), workThreads(), [&](size_t i) {
-      meshes[i] = tessellation.buildRegion(h, FaceId::fromPacked(ids[i]), growths[i]);
-    });
     std::vector<FaceId> growth;
+    std::vector<RegionMesh> meshes = tessellation.buildRegions(h, ids, growth);
     for (size_t i = 0; i < ids.size(); ++i) {
-      growth.insert(growth.end(), growths[i].begin(), growths[i].end());
       tessellation.triangles_ += static_cast<int64_t>(meshes[i].triangles.size());
       tessellation.fine_[ids[i]] = std::move(meshes[i]);
     }
@@ -134,6 +128,16 @@ RegionMesh Tessellation::buildRegion(const SparseHierarchy& h, FaceId region,
     for (int k = 3; k >= 0; --k) stack.push_back({node.level + 1, first + k});
   }
   return meshOfTriangles(h, counts_, triangles, leaves, growth);
+}
+
+std::vector<RegionMesh> Tessellation::buildRegions(const SparseHierarchy& h, std::span<const uint64_t> ids,
+                                                   std::vector<FaceId>& growth) const {
+  std::vector<RegionMesh> meshes(ids.size());
+  std::vector<std::vector<FaceId>> growths(ids.size());
+  parallelFor(ids.size(), workThreads(),
+              [&](size_t i) { meshes[i] = buildRegion(h, FaceId::fromPacked(ids[i]), growths[i]); });
+  for (const auto& g : growths) growth.insert(growth.end(), g.begin(), g.end());
+  return meshes;
 }
 
 SurfaceMesh Tessellation::surface() const {
@@ -274,14 +278,8 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   // Every candidate is built before any is stored: when a limit needs a
   // level the hierarchy does not hold, it grows and everything is rebuilt
   // (and diffed against the regions as they were).
-  // Each candidate reads the hierarchy alone: they are built on several
-  // cores (parallel_for.h), their growth gathered in candidate order.
-  std::vector<RegionMesh> meshes(candidates.size());
-  std::vector<std::vector<FaceId>> growths(candidates.size());
-  parallelFor(candidates.size(), workThreads(),
-              [&](size_t i) { meshes[i] = buildRegion(h, FaceId::fromPacked(candidates[i]), growths[i]); });
   std::vector<FaceId> growth;
-  for (const auto& g : growths) growth.insert(growth.end(), g.begin(), g.end());
+  std::vector<RegionMesh> meshes = buildRegions(h, candidates, growth);
   if (!growth.empty()) {
     doc.refineHierarchy(growth);
     return rebuildAll(doc);

@@ -108,6 +108,11 @@ class Tessellation {
   // Appends to `growth` the faces the hierarchy must hold for the limits
   // the region shows (the mesh is then incomplete).
   RegionMesh buildRegion(const SparseHierarchy& h, FaceId region, std::vector<FaceId>& growth) const;
+  // buildRegion for each of `ids` (packed FaceIds), in order, on several
+  // cores (each reads the hierarchy alone); their growth is appended to
+  // `growth` in the same order.
+  std::vector<RegionMesh> buildRegions(const SparseHierarchy& h, std::span<const uint64_t> ids,
+                                       std::vector<FaceId>& growth) const;
   Expected<Changes> rebuildAll(Document& doc);
   // The group of every base face's region, merged (vertices shared by id
   // and normal, region_merge.h).

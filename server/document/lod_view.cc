@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+#include <span>
 #include <vector>
 
 #include "core/tessellation/document_bounds.h"
@@ -36,6 +38,24 @@ Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& vie
   return std::make_shared<const std::string>(std::move(bytes));
 }
 
+namespace {
+
+// encodeViewRegion for each of `regions`, in order, on several cores (each
+// is independent and takes about a hundred microseconds; docs/
+// PERFORMANCE.md "Edit to encoded region deltas"); `idsInline(i)` for the
+// i-th.
+std::vector<Expected<std::shared_ptr<const std::string>>> encodeViewRegions(
+    const LodView& view, std::span<const uint64_t> regions, const std::function<bool(size_t)>& idsInline,
+    const EncodeContext& context) {
+  std::vector<Expected<std::shared_ptr<const std::string>>> encodings(regions.size(),
+                                                                      internalError("not encoded"));
+  parallelFor(regions.size(), workThreads(),
+              [&](size_t i) { encodings[i] = encodeViewRegion(view, regions[i], idsInline(i), context); });
+  return encodings;
+}
+
+}  // namespace
+
 void rehashRegion(LodView& view, uint64_t region, const QuantizationGrid& grid, bool removed) {
   auto [it, fresh] = view.regionHashes.try_emplace(region, 0);
   view.surfaceHash -= it->second;
@@ -65,14 +85,8 @@ void buildDelta(LodView& view, const Tessellation::Changes& changes, const Encod
     if (relaid) view.layout[region] = context.version;
     idsInlineOf[i] = relaid || !withIds;
   }
-  // The regions are encoded on several cores (each is independent and takes
-  // about a hundred microseconds; docs/PERFORMANCE.md "Edit to encoded
-  // region deltas"), then kept and listed in order.
-  std::vector<Expected<std::shared_ptr<const std::string>>> encodings(changes.changed.size(),
-                                                                      internalError("not encoded"));
-  parallelFor(changes.changed.size(), workThreads(), [&](size_t i) {
-    encodings[i] = encodeViewRegion(view, changes.changed[i], idsInlineOf[i], context);
-  });
+  auto encodings = encodeViewRegions(
+      view, changes.changed, [&](size_t i) { return idsInlineOf[i] != 0; }, context);
   for (size_t i = 0; i < changes.changed.size(); ++i) {
     const uint64_t region = changes.changed[i];
     const bool idsInline = idsInlineOf[i];
@@ -106,11 +120,8 @@ std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, ui
     auto found = view.encoded.find(region);
     if (found == view.encoded.end() || !found->second) missing.push_back(region);
   }
-  std::vector<Expected<std::shared_ptr<const std::string>>> encodings(missing.size(),
-                                                                      internalError("not encoded"));
-  parallelFor(missing.size(), workThreads(), [&](size_t i) {
-    encodings[i] = encodeViewRegion(view, missing[i], /*idsInline=*/true, context);
-  });
+  auto encodings = encodeViewRegions(
+      view, missing, [](size_t) { return true; }, context);
   for (size_t i = 0; i < missing.size(); ++i) {
     if (encodings[i].isOk()) {
       view.encoded[missing[i]] = *encodings[i];

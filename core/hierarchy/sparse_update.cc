@@ -251,6 +251,8 @@ void SparseHierarchy::refreshLimitsNear(int l, const std::vector<Index>& changed
   const LimitEvaluator limits(m, options_.creaseMethod, &far);
   Marked changedSet(levels_[l].vertexMarks);
   for (Index v : changed) changedSet.add(v);
+  // A leaf is around about three of the refreshed vertices: listed once.
+  Marked leaves(levels_[l].faceMarks);
   for (Index w : candidates) {
     if (!state.topo.isComplete(w) || !touches(m, w, changedSet)) continue;
     refreshLimit(l, w, limits);
@@ -258,9 +260,10 @@ void SparseHierarchy::refreshLimitsNear(int l, const std::vector<Index>& changed
     dirty.limits.push_back(VertexId(l, state.topo.vertexIds[w]));
     if (!state.displayed[w]) continue;
     for (Index f : m.ringFacesOf(w)) {
-      if (f >= 0 && state.leaf[f]) dirty.leaves.push_back(FaceId(l, state.topo.faceIds[f]));
+      if (f >= 0 && state.leaf[f]) leaves.add(f);
     }
   }
+  for (Index f : leaves.items()) dirty.leaves.push_back(FaceId(l, state.topo.faceIds[f]));
 }
 
 }  // namespace tessera

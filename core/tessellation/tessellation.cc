@@ -6,6 +6,7 @@
 #include <optional>
 #include <tuple>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/hierarchy/incidence.h"
 #include "core/loop/limit.h"
@@ -222,15 +223,22 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   // the corners of every node whose decision flipped (its neighbours' fans).
   // Below the region level only the ancestor there matters (regions and
   // their cut nodes all lie at or above it), so areas collapse onto it.
+  // A deep edit changes thousands of limits whose ring faces collapse onto
+  // a few areas: each is kept once as it comes, and only the distinct ones
+  // are sorted.
   std::vector<std::pair<int, uint64_t>> areas;
+  std::unordered_set<uint64_t> seen;
+  auto add = [&](int l, uint64_t canonical) {
+    if (seen.insert(FaceId(l, canonical).packed()).second) areas.emplace_back(l, canonical);
+  };
   auto addAround = [&](int l, Index v) {
     for (Index f : h.level(l).mesh.ringFacesOf(v)) {
       if (f < 0) continue;
       const uint64_t canonical = h.level(l).faceIds[f];
       if (l <= regionLevel_) {
-        areas.emplace_back(l, canonical);
+        add(l, canonical);
       } else {
-        areas.emplace_back(regionLevel_, canonical >> (2 * (l - regionLevel_)));
+        add(regionLevel_, canonical >> (2 * (l - regionLevel_)));
       }
     }
   };

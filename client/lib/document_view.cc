@@ -26,6 +26,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
       staging_.clear();
       stagingLayouts_.clear();
       regionHashes_.clear();
+      boundaries_.clear();
       version_ = s.version();
       announced_ = s.surface_hash();
       ready_ = true;
@@ -55,9 +56,9 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
     }
     regions_[r.region_id()] = std::move(decoded.second);
     layouts_[r.region_id()] = decoded.first.layoutVersion;
-    regionHashes_.erase(r.region_id());
+    forgetDerived(r.region_id());
   }
-  for (uint64_t id : d.removed_region_ids()) regions_.erase(id), layouts_.erase(id), regionHashes_.erase(id);
+  for (uint64_t id : d.removed_region_ids()) regions_.erase(id), layouts_.erase(id), forgetDerived(id);
   version_ = d.to_version();
   announced_ = d.surface_hash();
   viewComplete_ = d.view_complete();
@@ -92,12 +93,23 @@ std::map<uint64_t, std::vector<Vec3>> DocumentView::closedTilePositions(int64_t*
     return {{preview->first, preview->second.positions}};
   }
   std::vector<const RegionMesh*> meshes;
-  for (const auto& [id, mesh] : regions_) meshes.push_back(&mesh);
-  std::vector<std::vector<Vec3>> closed = closeCracks(meshes, moved);
+  std::vector<const TileBoundary*> boundaries;
+  for (const auto& [id, mesh] : regions_) {
+    auto [it, fresh] = boundaries_.try_emplace(id);
+    if (fresh) it->second = tileBoundary(mesh);
+    meshes.push_back(&mesh);
+    boundaries.push_back(&it->second);
+  }
+  std::vector<std::vector<Vec3>> closed = closeCracks(meshes, boundaries, moved);
   std::map<uint64_t, std::vector<Vec3>> out;
   size_t i = 0;
   for (const auto& [id, mesh] : regions_) out.emplace(id, std::move(closed[i++]));
   return out;
+}
+
+void DocumentView::forgetDerived(uint64_t region) const {
+  regionHashes_.erase(region);
+  boundaries_.erase(region);
 }
 
 uint64_t DocumentView::surfaceHash() const {

@@ -9,6 +9,7 @@
 
 #include "core/mesh/surface_mesh.h"
 #include "core/tessellation/region_codec.h"
+#include "core/view/tile_assembly.h"
 #include "protocol/tessera.pb.h"
 
 namespace tessera::client {
@@ -34,6 +35,8 @@ class DocumentView {
   // A view-dependent subscription's tiles as they are shown (docs/VIEWS.md
   // "Assembling tiles"): each tile's positions with the cracks towards
   // coarser neighbours closed (core/view/tile_assembly.h), by region id.
+  // Each tile's boundary is summarised once, when first asked after it
+  // arrived, so a call costs the tiles' boundaries, not their triangles.
   // While the surface's preview is held, it alone, as it came (VIEWS.md
   // "The first picture").
   std::map<uint64_t, std::vector<Vec3>> closedTilePositions(int64_t* moved = nullptr) const;
@@ -68,7 +71,10 @@ class DocumentView {
   std::map<uint64_t, uint64_t> layouts_;    // region -> layout version of the held copy
   std::map<uint64_t, RegionMesh> staging_;  // snapshot parts still arriving
   std::map<uint64_t, uint64_t> stagingLayouts_;
-  mutable std::map<uint64_t, uint64_t> regionHashes_;  // region -> its hash, dropped when it changes
+  // What is derived from a held region, dropped when it changes or goes.
+  void forgetDerived(uint64_t region) const;
+  mutable std::map<uint64_t, uint64_t> regionHashes_;    // region -> its hash
+  mutable std::map<uint64_t, TileBoundary> boundaries_;  // region -> its boundary (tile_assembly.h)
   uint64_t announced_ = 0;
   bool viewComplete_ = false;
   uint64_t viewSeq_ = 0;

@@ -30,6 +30,24 @@ test('a finer tile\'s vertex on a coarser neighbour\'s edge goes onto it', () =>
   assert.deepEqual([...positions.get(2n)], [0, 0, 0, 1, 0, 0, 2, 0, 0, 1, 1, 0]);
 });
 
+// Each tile's boundary is summarised once per region object; a tile a
+// delta changed arrives as a new object, and the coarse tile's ends moving
+// move the fine tile's vertex with them.
+test('after a delta replaces the coarse tile, the fine one closes onto where it is now', () => {
+  const coarse = tile([{ id: 1, p: [0, 0, 0] }, { id: 2, p: [2, 0, 0] }, { id: 3, p: [1, -1, 0] }], [[0, 1, 2]]);
+  const fine = tile([{ id: 1, p: [0, 0, 0] }, { id: 4, p: [1, 0.1, 0] }, { id: 2, p: [2, 0, 0] }, { id: 5, p: [1, 1, 0] }],
+    [[0, 1, 3], [1, 2, 3]]);
+  const rest = tile([{ id: 1, p: [0, 0, 0] }, { id: 5, p: [1, 1, 0] }, { id: 2, p: [2, 0, 0] }], [[0, 1, 2]]);
+  const held = new Map([[1n, coarse], [2n, fine], [3n, rest]]);
+  assert.deepEqual([...closeCracks(held).positions.get(2n)], [0, 0, 0, 1, 0, 0, 2, 0, 0, 1, 1, 0]);
+  // The edit raised vertex 2 to z = 2 in every tile that has it.
+  const raise = (t) => ({ ...t, positions: Float32Array.from(t.positions, (x, i) => (i === 3 * [...t.idLo].indexOf(2) + 2 ? 2 : x)) });
+  held.set(1n, raise(coarse)).set(2n, raise(fine)).set(3n, raise(rest));
+  const { positions, moved } = closeCracks(held);
+  assert.equal(moved, 1);
+  assert.deepEqual([...positions.get(2n)], [0, 0, 0, 1, 0, 1, 2, 0, 2, 1, 1, 0]);
+});
+
 test('tiles at one level, and tiles without ids, are left as they are', () => {
   const left = tile([{ id: 1, p: [0, 0, 0] }, { id: 2, p: [1, 0, 0] }, { id: 3, p: [0, 1, 0] }], [[0, 1, 2]]);
   const right = tile([{ id: 2, p: [1, 0, 0] }, { id: 4, p: [1, 1, 0] }, { id: 3, p: [0, 1, 0] }], [[0, 1, 2]]);

@@ -34,18 +34,58 @@ function edgeKey(a, b) {
   return a < b ? `${a}|${b}` : `${b}|${a}`;
 }
 
-// Edge key -> how many triangles use it (crease sides split a vertex into
-// copies with one id).
-function edgesOf(region) {
-  const out = new Map();
+// A tile's boundary, summarised once per decoded region object (a changed
+// tile arrives as a new one), as core/view/tile_assembly.h's TileBoundary:
+// only boundaries take part in closing cracks (an edge two tiles share is
+// on both, and so is a vertex both have), so a delta costs the boundaries
+// of the tiles shown, not their triangles.
+//   next:     boundary edges (used by one triangle; crease sides split a
+//             vertex into copies with one id) as a graph over ids;
+//   chords:   the tile's edges, boundary or not, between boundary vertices;
+//   position: a boundary vertex's position; copies: its vertex indices.
+const boundaries = new WeakMap();
+
+function boundaryOf(region) {
+  const known = boundaries.get(region);
+  if (known) return known;
+  const count = region.positions.length / 3;
+  const vid = new Array(count);
+  for (let v = 0; v < count; ++v) vid[v] = idOf(region, v);
+  const uses = new Map(); // edge key -> triangles using it
+  const ends = new Map(); // edge key -> its two ids
   const ix = region.indices;
   for (let t = 0; t < ix.length; t += 3) {
     for (let k = 0; k < 3; ++k) {
-      const key = edgeKey(idOf(region, ix[t + k]), idOf(region, ix[t + ((k + 1) % 3)]));
-      out.set(key, (out.get(key) ?? 0) + 1);
+      const a = vid[ix[t + k]], b = vid[ix[t + ((k + 1) % 3)]];
+      const key = edgeKey(a, b);
+      const n = uses.get(key);
+      uses.set(key, (n ?? 0) + 1);
+      if (n === undefined) ends.set(key, [a, b]);
     }
   }
-  return out;
+  const next = new Map();
+  for (const [key, n] of uses) {
+    if (n !== 1) continue;
+    const [a, b] = ends.get(key);
+    if (!next.has(a)) next.set(a, []);
+    if (!next.has(b)) next.set(b, []);
+    next.get(a).push(b);
+    next.get(b).push(a);
+  }
+  const chords = new Set();
+  for (const [key, [a, b]] of ends) if (next.has(a) && next.has(b)) chords.add(key);
+  const position = new Map(), copies = new Map();
+  for (let v = 0; v < count; ++v) {
+    if (!next.has(vid[v])) continue;
+    if (!position.has(vid[v])) {
+      position.set(vid[v], [region.positions[3 * v], region.positions[3 * v + 1], region.positions[3 * v + 2]]);
+      copies.set(vid[v], []);
+    }
+    copies.get(vid[v]).push(v);
+  }
+  const summary = { next, chords, position, copies };
+  boundaries.set(region, summary);
+  return summary;
 }
 
 // regions: Map id -> decoded region (positions, indices, idHi, idLo).
@@ -56,17 +96,14 @@ function edgesOf(region) {
 // tile its simplified edges would pull the tiles' vertices onto them.
 export function closeCracks(regions) {
   const ids = [...regions.keys()].filter((id) => !isPreview(id));
-  const edges = new Map();
-  const owners = new Map(); // vertex id -> tile ids having it
+  const summaries = new Map();
+  const owners = new Map(); // boundary vertex id -> tile ids having it
   for (const id of ids) {
     const r = regions.get(id);
     if (!r.idHi) continue; // no vertex ids: nothing to match
-    edges.set(id, edgesOf(r));
-    const seen = new Set();
-    for (let v = 0; v < r.positions.length / 3; ++v) {
-      const vid = idOf(r, v);
-      if (seen.has(vid)) continue;
-      seen.add(vid);
+    const b = boundaryOf(r);
+    summaries.set(id, b);
+    for (const vid of b.next.keys()) {
       let list = owners.get(vid);
       if (!list) owners.set(vid, (list = []));
       list.push(id);
@@ -79,20 +116,9 @@ export function closeCracks(regions) {
   for (const id of ids) {
     const r = regions.get(id);
     out.set(id, r.positions);
-    if (!r.idHi) continue;
-    const next = new Map(); // boundary graph over ids
-    for (const [key, uses] of edges.get(id)) {
-      if (uses !== 1) continue;
-      const [a, b] = key.split('|');
-      if (!next.has(a)) next.set(a, []);
-      if (!next.has(b)) next.set(b, []);
-      next.get(a).push(b);
-      next.get(b).push(a);
-    }
-    const position = new Map();
-    for (let v = 0; v < r.positions.length / 3; ++v) {
-      position.set(idOf(r, v), [r.positions[3 * v], r.positions[3 * v + 1], r.positions[3 * v + 2]]);
-    }
+    const b = summaries.get(id);
+    if (!b) continue;
+    const { next } = b;
     const target = new Map();
     for (const [start, around] of next) {
       if (!shared(start)) continue;
@@ -109,18 +135,18 @@ export function closeCracks(regions) {
         }
         if (!shared(at)) continue;
         run.push(at);
-        const a = run[0], b = run[run.length - 1];
-        if (a > b) continue; // each run once, from its lower end
-        // A tile shows one level: if it has the edge a-b itself, the run
-        // went the other way round it, not along a finer copy of a-b.
-        if (edges.get(id).has(edgeKey(a, b))) continue;
+        const a = run[0], z = run[run.length - 1];
+        if (a > z) continue; // each run once, from its lower end
+        // A tile shows one level: if it has the edge a-z itself, the run
+        // went the other way round it, not along a finer copy of a-z.
+        if (b.chords.has(edgeKey(a, z))) continue;
         let coarser = false;
         for (const j of owners.get(a)) {
-          if (j === id || !owners.get(b).includes(j)) continue;
-          if (edges.get(j).has(edgeKey(a, b))) coarser = true;
+          if (j === id || !owners.get(z).includes(j)) continue;
+          if (summaries.get(j).chords.has(edgeKey(a, z))) coarser = true;
         }
         if (!coarser) continue;
-        const pa = position.get(a), pb = position.get(b);
+        const pa = b.position.get(a), pb = b.position.get(z);
         const segments = run.length - 1;
         for (let k = 1; k + 1 < run.length; ++k) {
           const t = k / segments;
@@ -130,11 +156,11 @@ export function closeCracks(regions) {
     }
     if (target.size === 0) continue;
     const closed = Float32Array.from(r.positions);
-    for (let v = 0; v < r.positions.length / 3; ++v) {
-      const p = target.get(idOf(r, v));
-      if (!p) continue;
-      closed.set(p, 3 * v);
-      ++moved;
+    for (const [vid, p] of target) {
+      for (const v of b.copies.get(vid)) {
+        closed.set(p, 3 * v);
+        ++moved;
+      }
     }
     out.set(id, closed);
   }

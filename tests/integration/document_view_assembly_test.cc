@@ -8,7 +8,6 @@
 // applied to the client's DocumentView.
 #include <gtest/gtest.h>
 
-#include <numbers>
 #include <set>
 
 #include "client/lib/document_view.h"
@@ -19,6 +18,7 @@
 #include "core/view/tile_catalogue.h"
 #include "core/view/tile_encoding.h"
 #include "core/view/tile_selection.h"
+#include "support/cameras.h"
 #include "support/test_meshes.h"
 #include "support/tile_gaps.h"
 
@@ -26,19 +26,6 @@ namespace tessera {
 namespace {
 
 constexpr uint64_t kDoc = 1;
-
-View lookAt(const Vec3& eye, const Vec3& target) {
-  View v;
-  v.eye = eye;
-  v.forward = target - eye;
-  v.up = std::abs(v.forward.normalized()[1]) > 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  v.fovYRadians = 50 * std::numbers::pi / 180;
-  v.nearDistance = 1e-4;
-  v.width = 1920;
-  v.height = 1080;
-  v.tolerancePixels = 1;
-  return v;
-}
 
 // The tiles `keys` of `doc` as it is now, encoded as a server encodes them.
 std::vector<wire::Region> encodeTiles(Document& doc, const std::vector<TileKey>& keys,
@@ -97,7 +84,7 @@ TEST(DocumentViewAssembly, ATileAnEditMovesClosesItsNeighboursCracksWhereItIsNow
   std::vector<TileKey> keys;
   {
     TileCatalogue catalogue(doc);
-    auto selection = selectTiles(lookAt(near + 0.3 * radius * out, near), catalogue);
+    auto selection = selectTiles(testing::lookAt(near + 0.3 * radius * out, near, 1920, 1080), catalogue);
     ASSERT_TRUE(selection.isOk()) << selection.status().message();
     for (const SelectedTile& t : selection->tiles) keys.push_back(t.key);
   }

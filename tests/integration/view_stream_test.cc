@@ -29,6 +29,7 @@
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "integration/server_stat.h"
+#include "support/cameras.h"
 #include "support/test_meshes.h"
 #include "support/tile_gaps.h"
 
@@ -78,16 +79,7 @@ Expected<uint64_t> createFromCgal(Session& admin, const std::string& file, int m
 }
 
 View lookAt(const Model& m, const Vec3& eye, const Vec3& target, int width, int height) {
-  View v;
-  v.eye = eye;
-  v.forward = target - eye;
-  v.up = std::abs(v.forward.normalized()[1]) > 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  v.fovYRadians = 50 * std::numbers::pi / 180;
-  v.nearDistance = m.radius * 1e-3;
-  v.width = width;
-  v.height = height;
-  v.tolerancePixels = 1;
-  return v;
+  return testing::lookAt(eye, target, width, height, m.radius * 1e-3);
 }
 
 View randomView(const Model& m, std::mt19937& rng) {

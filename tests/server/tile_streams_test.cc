@@ -9,13 +9,13 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <numbers>
 
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
 #include "core/tessellation/document_grid.h"
 #include "server/document/tile_cache.h"
 #include "server/document/tile_streams.h"
+#include "support/cameras.h"
 #include "support/decoding_inbox.h"
 #include "support/test_meshes.h"
 #include "support/tile_gaps.h"
@@ -28,19 +28,7 @@ using namespace std::chrono_literals;
 
 constexpr int64_t kBudget = 4'000'000;
 
-// A perspective camera at `eye` looking at `target`, one pixel's tolerance.
-View lookAt(const Vec3& eye, const Vec3& target, int width, int height) {
-  View v;
-  v.eye = eye;
-  v.forward = target - eye;
-  v.up = std::abs(v.forward.normalized()[1]) > 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  v.fovYRadians = 50 * std::numbers::pi / 180;
-  v.nearDistance = 1e-4;
-  v.width = width;
-  v.height = height;
-  v.tolerancePixels = 1;
-  return v;
-}
+using testing::lookAt;
 
 class TileStreamsTest : public ::testing::Test {
  protected:

@@ -1,10 +1,12 @@
 // Independent items of work spread over the machine's cores: the calling
 // thread and up to `threads - 1` more each take the next item until none
-// is left. Threads are started per call (tens of microseconds each), so it
-// pays for items of about a hundred microseconds and more, such as building
-// or Draco-encoding a region (docs/PERFORMANCE.md "Edit to encoded region
-// deltas"). `body` must not throw; items report failure through what they
-// write.
+// is left. The helpers are threads kept waiting between calls (starting one
+// costs tens of microseconds), so it pays for items of tens of microseconds
+// and more, such as building or Draco-encoding a region (docs/PERFORMANCE.md
+// "Edit to encoded region deltas"). A call never waits for a helper busy
+// elsewhere: calls from several threads, and calls nested in an item, work
+// on with the threads they have. `body` must not throw; items report
+// failure through what they write.
 #pragma once
 
 #include <cstddef>

@@ -41,6 +41,27 @@ TEST(ParallelFor, EveryItemRunsOnceWhateverTheThreads) {
   }
 }
 
+// The helpers are shared: calls from several threads at once, and calls
+// nested in an item, each finish with every item run once (a call works on
+// with the threads it has, and never waits for a helper busy elsewhere).
+TEST(ParallelFor, CallsFromSeveralThreadsAndNestedCallsAllFinish) {
+  constexpr int kCallers = 4, kCalls = 200;
+  std::atomic<int64_t> total{0};
+  std::vector<std::jthread> callers;
+  for (int c = 0; c < kCallers; ++c) {
+    callers.emplace_back([&] {
+      for (int k = 0; k < kCalls; ++k) {
+        parallelFor(6, 3, [&](size_t i) {
+          parallelFor(4, 2, [&](size_t j) { total.fetch_add(static_cast<int64_t>(10 * i + j)); });
+        });
+      }
+    });
+  }
+  callers.clear();  // joined
+  // Per outer call: sum over i < 6, j < 4 of 10 i + j = 4 * 10 * 15 + 6 * 6.
+  EXPECT_EQ(total.load(), int64_t{kCallers} * kCalls * (4 * 10 * 15 + 6 * 6));
+}
+
 TEST(ParallelFor, WorkThreadsAreTheHardwaresUnlessChosen) {
   const unsigned hardware = workThreads();
   EXPECT_GE(hardware, 1u);

@@ -71,7 +71,8 @@ void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, 
     auto reply = (*session)->call(testing::smallMove(doc, rng), 15);
     if (!reply.isOk()) {
       std::lock_guard<std::mutex> lock(log.mutex);
-      ++log.unknown[author];
+      if (log.unknown[author]++ < 2)
+        std::printf("%s: no answer: %s\n", author.c_str(), reply.status().message().c_str());
       continue;
     }
     if (reply->has_ack()) {
@@ -79,7 +80,9 @@ void editLoop(ClusterRun& run, int node, uint64_t doc, int seed, StormLog& log, 
     } else if (reply->reject().message().find("may be lost") != std::string::npos) {
       // An answer that does not decide: counted as unknown.
       std::lock_guard<std::mutex> lock(log.mutex);
-      ++log.unknown[author];
+      if (log.unknown[author]++ < 2)
+        std::printf("%s: an answer that does not decide: %s\n", author.c_str(),
+                    reply->ShortDebugString().c_str());
     } else {
       std::lock_guard<std::mutex> lock(log.mutex);
       if (log.refused[author]++ < 2)

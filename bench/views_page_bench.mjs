@@ -50,6 +50,15 @@ try {
     // in a small part. The camera moves to a fifth of its distance.
     ['phone, views 1 px, then close up', 390, 844, '&views=1', 0.2],
   ];
+  // The page's state once its picture is whole (a view: every tile it
+  // needs) and its surface hash matches the server's.
+  const complete = (page, views, what) => until(() => page.evaluate((v) => {
+    const st = window.tesseraViewer.state();
+    return (v ? st.viewComplete : st.ready) && st.hashMatches ? st : null;
+  }, views), what, 300000);
+  const shoot = async (page, name) => {
+    if (opts.screenshots) await page.screenshot({ path: join(opts.screenshots, `${name.replace(/[^a-z0-9]+/g, '-')}.png`) });
+  };
   for (const [name, width, height, query, closeUp] of rows) {
     const context = await browser.createBrowserContext();
     const page = await context.newPage();
@@ -58,10 +67,7 @@ try {
     await page.goto(`http://127.0.0.1:${web}/?doc=${doc}${query}#token=${ADMIN}`);
     await page.waitForSelector('body[data-state=ready]', { timeout: 300000 });
     const views = query.includes('views');
-    const s = await until(() => page.evaluate((v) => {
-      const st = window.tesseraViewer.state();
-      return (v ? st.viewComplete : st.ready) && st.hashMatches ? st : null;
-    }, views), 'the whole picture', 300000);
+    const s = await complete(page, views, 'the whole picture');
     const whole = Date.now() - t0;
     if (closeUp) {
       console.log(`${name}: before moving: ${(s.bytesReceived / 1048576).toFixed(2)} MiB received, ` +
@@ -69,18 +75,15 @@ try {
       const t1 = Date.now();
       await page.evaluate((f) => window.tesseraViewer.dolly(f), closeUp);
       await page.waitForFunction((t) => window.tesseraViewer.state().tiles !== t, { timeout: 300000 }, s.tiles);
-      const c = await until(() => page.evaluate(() => {
-        const st = window.tesseraViewer.state();
-        return st.viewComplete && st.hashMatches ? st : null;
-      }), 'the close-up picture', 300000);
-      if (opts.screenshots) await page.screenshot({ path: join(opts.screenshots, `${name.replace(/[^a-z0-9]+/g, '-')}.png`) });
+      const c = await complete(page, true, 'the close-up picture');
+      await shoot(page, name);
       console.log(`${name}: close up complete ${Date.now() - t1} ms after moving, ` +
         `${(c.bytesReceived / 1048576).toFixed(2)} MiB received in all, ${c.triangles} triangles, ` +
         `${(c.triangles / (width * height)).toFixed(2)} per pixel, tiles by level ${JSON.stringify(c.tileLevels)}`);
       await context.close();
       continue;
     }
-    if (opts.screenshots) await page.screenshot({ path: join(opts.screenshots, `${name.replace(/[^a-z0-9]+/g, '-')}.png`) });
+    await shoot(page, name);
     console.log(`${name}: first picture ${s.firstPicture.ms} ms (${s.firstPicture.triangles} triangles), ` +
       `whole ${whole} ms, ${(s.bytesReceived / 1048576).toFixed(2)} MiB received, ${s.triangles} triangles, ` +
       `${(s.triangles / (width * height)).toFixed(2)} per pixel${views ? `, tiles by level ${JSON.stringify(s.tileLevels)}` : ''}`);

@@ -246,8 +246,7 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
   for (auto [l, f] : *flipped) {
     for (Index v : h.level(l).mesh.triangleVertices(f)) addAround(l, v);
   }
-  std::sort(areas.begin(), areas.end());
-  areas.erase(std::unique(areas.begin(), areas.end()), areas.end());
+  std::sort(areas.begin(), areas.end());  // each is listed once already (seen)
 
   std::vector<uint64_t> candidates, gone;
   for (auto [l, canonical] : areas) {

@@ -1,5 +1,6 @@
 #include "core/hierarchy/ids.h"
 
+#include <algorithm>
 #include <charconv>
 
 namespace tessera {
@@ -45,11 +46,66 @@ Expected<FaceId> parseFaceId(const std::string& text) {
 }
 
 LevelCounts::LevelCounts(uint64_t vertices, uint64_t edges, uint64_t faces, int maxLevel) {
-  counts_.push_back({vertices, edges, faces});
+  counts_.push_back({vertices, edges, faces, 3 * faces});
   for (int l = 0; l < maxLevel; ++l) {
     const auto& c = counts_.back();
-    counts_.push_back({c[0] + c[1], 2 * c[1] + 3 * c[2], 4 * c[2]});
+    counts_.push_back({c[0] + c[1], 2 * c[1] + 3 * c[2], 4 * c[2], 12 * c[2]});
   }
+}
+
+LevelCounts LevelCounts::quads(uint64_t vertices, uint64_t edges, std::span<const int> faceSizes,
+                               int maxLevel) {
+  auto begin = std::make_shared<std::vector<uint64_t>>(faceSizes.size() + 1, 0);
+  for (size_t f = 0; f < faceSizes.size(); ++f)
+    (*begin)[f + 1] = (*begin)[f] + static_cast<uint64_t>(faceSizes[f]);
+  LevelCounts counts(0, 0, 0, 0);
+  counts.split_ = SplitKind::kQuads;
+  counts.counts_ = {{vertices, edges, faceSizes.size(), begin->back()}};
+  for (int l = 0; l < maxLevel; ++l) {
+    const auto& c = counts.counts_.back();
+    counts.counts_.push_back({c[0] + c[2] + c[1], 2 * c[1] + c[3], c[3], 4 * c[3]});
+  }
+  counts.baseFaceBegin_ = std::move(begin);
+  return counts;
+}
+
+LevelCounts::Origin LevelCounts::originOf(VertexId id) const {
+  const uint64_t parentVertices = vertices(id.level() - 1);
+  if (id.index() < parentVertices) return Origin::kVertex;
+  if (quads() && id.index() < parentVertices + faces(id.level() - 1)) return Origin::kFace;
+  return Origin::kEdge;
+}
+
+uint64_t LevelCounts::firstChildFace(FaceId id) const {
+  if (quads() && id.level() == 0) return (*baseFaceBegin_)[id.index()];
+  return 4 * id.index();
+}
+
+int LevelCounts::faceSize(FaceId id) const {
+  if (!quads()) return 3;
+  if (id.level() > 0) return 4;
+  return static_cast<int>((*baseFaceBegin_)[id.index() + 1] - (*baseFaceBegin_)[id.index()]);
+}
+
+namespace {
+
+// The base face whose corner row holds `corner`.
+uint64_t baseFaceOfCorner(const std::vector<uint64_t>& begin, uint64_t corner) {
+  const auto it = std::upper_bound(begin.begin(), begin.end(), corner);
+  return static_cast<uint64_t>(it - begin.begin()) - 1;
+}
+
+}  // namespace
+
+FaceId LevelCounts::parentFace(FaceId id) const {
+  if (quads() && id.level() == 1) return {0, baseFaceOfCorner(*baseFaceBegin_, id.index())};
+  return {id.level() - 1, id.index() / 4};
+}
+
+FaceId LevelCounts::baseFace(FaceId id) const {
+  if (!quads()) return {0, id.index() >> (2 * id.level())};
+  if (id.level() == 0) return id;
+  return {0, baseFaceOfCorner(*baseFaceBegin_, id.index() >> (2 * (id.level() - 1)))};
 }
 
 namespace {

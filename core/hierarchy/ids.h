@@ -19,6 +19,8 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -67,41 +69,76 @@ Expected<VertexId> parseVertexId(const std::string& text);
 Expected<EdgeId> parseEdgeId(const std::string& text);
 Expected<FaceId> parseFaceId(const std::string& text);
 
+// How each level splits its faces: Loop's 1-to-4 triangle split, or the
+// quad split of Catmull-Clark (core/schemes/quad_split.h), where a base face
+// of n corners has n children and every face below is a quad.
+enum class SplitKind { kTriangles, kQuads };
+
 // Element counts of the uniform refinement at each level, from the base
-// counts: V' = V + E, E' = 2E + 3F, F' = 4F. Knowing them makes parent and
-// child relations pure arithmetic, and validates ids.
+// counts. Triangles: V' = V + E, E' = 2E + 3F, F' = 4F. Quads: V' = V + F + E,
+// E' = 2E + C, F' = C, with C the level's corners (the sum of its face
+// sizes; 4F below the base). Knowing them makes parent and child relations
+// pure arithmetic, and validates ids (docs/ARCHITECTURE.md "Numbering").
 class LevelCounts {
  public:
+  // Triangles, split by Loop's rules.
   LevelCounts(uint64_t vertices, uint64_t edges, uint64_t faces, int maxLevel);
+  // Polygons, split into quads: base face f has faceSizes[f] corners.
+  static LevelCounts quads(uint64_t vertices, uint64_t edges, std::span<const int> faceSizes, int maxLevel);
 
+  SplitKind split() const { return split_; }
+  bool quads() const { return split_ == SplitKind::kQuads; }
   int maxLevel() const { return static_cast<int>(counts_.size()) - 1; }
   uint64_t vertices(int level) const { return counts_[level][0]; }
   uint64_t edges(int level) const { return counts_[level][1]; }
   uint64_t faces(int level) const { return counts_[level][2]; }
+  // The sum of the level's face sizes.
+  uint64_t corners(int level) const { return counts_[level][3]; }
 
   // Ok if the id's level is within the hierarchy and its index exists there.
   Status check(VertexId id) const;
   Status check(EdgeId id) const;
   Status check(FaceId id) const;
 
-  // The level-0 vertex a vertex descends from unchanged, or the parent edge
-  // that created it (level > 0 only).
+  // Where a vertex of a level > 0 comes from: the child of a parent vertex
+  // (same index), the vertex on a parent edge, or (quads) the vertex in a
+  // parent face.
+  enum class Origin { kVertex, kEdge, kFace };
+  Origin originOf(VertexId id) const;
   bool isVertexChild(VertexId id) const { return id.index() < vertices(id.level() - 1); }
   VertexId parentVertex(VertexId id) const { return {id.level() - 1, id.index()}; }
-  EdgeId parentEdge(VertexId id) const { return {id.level() - 1, id.index() - vertices(id.level() - 1)}; }
+  EdgeId parentEdge(VertexId id) const {
+    return {id.level() - 1, id.index() - firstEdgeChild(id.level() - 1)};
+  }
+  FaceId parentFaceOfVertex(VertexId id) const {
+    return {id.level() - 1, id.index() - vertices(id.level() - 1)};
+  }
   // The level at which a vertex first exists (0 for base vertices).
   int birthLevel(VertexId id) const;
 
   VertexId childOf(VertexId id) const { return {id.level() + 1, id.index()}; }
-  VertexId childOf(EdgeId id) const { return {id.level() + 1, vertices(id.level()) + id.index()}; }
-  FaceId parentFace(FaceId id) const { return {id.level() - 1, id.index() / 4}; }
+  VertexId childOf(EdgeId id) const { return {id.level() + 1, firstEdgeChild(id.level()) + id.index()}; }
+  // The vertex a quad split puts in face `id`.
+  VertexId faceVertexOf(FaceId id) const { return {id.level() + 1, vertices(id.level()) + id.index()}; }
+  // The index of face `id`'s first child face: 4f, or for a base face of
+  // a quad split its first corner (its children are numbered by corner).
+  // Under a quad split it is also the face's first interior child edge.
+  uint64_t firstChildFace(FaceId id) const;
+  int faceSize(FaceId id) const;
+  FaceId parentFace(FaceId id) const;
   FaceId childFace(FaceId id, int k) const {
-    return {id.level() + 1, 4 * id.index() + static_cast<uint64_t>(k)};
+    return {id.level() + 1, firstChildFace(id) + static_cast<uint64_t>(k)};
   }
-  FaceId baseFace(FaceId id) const { return {0, id.index() >> (2 * id.level())}; }
+  FaceId baseFace(FaceId id) const;
 
  private:
-  std::vector<std::array<uint64_t, 3>> counts_;
+  // The index of the first vertex a split puts on an edge of `level`.
+  uint64_t firstEdgeChild(int level) const { return vertices(level) + (quads() ? faces(level) : 0); }
+
+  SplitKind split_ = SplitKind::kTriangles;
+  // Quads: base face f's first corner, per face and one past the last.
+  std::shared_ptr<const std::vector<uint64_t>> baseFaceBegin_;
+  std::vector<std::array<uint64_t, 4>> counts_;  // vertices, edges, faces, corners
 };
 
 }  // namespace tessera

@@ -146,7 +146,7 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
   state.leaf.assign(m.numFaces(), 0);
   state.displayed.assign(m.numVertices, 0);
   for (Index f = 0; f < m.numFaces(); ++f) {
-    const bool node = l == 0 || levels_[l - 1].selected[state.topo.faceParent[f / 4]];
+    const bool node = l == 0 || levels_[l - 1].selected[state.topo.parentOfFace(f)];
     if (!node || state.selected[f]) continue;
     state.leaf[f] = 1;
     for (Index v : m.triangleVertices(f)) state.displayed[v] = 1;

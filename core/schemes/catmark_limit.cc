@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/schemes/catmark_masks.h"
+#include "core/catmark/masks.h"
 
 namespace tessera::schemes {
 

@@ -4,98 +4,58 @@
 #include <vector>
 
 #include "core/loop/crease.h"
+#include "core/topology/quad_split_parts.h"
 
 namespace tessera::schemes {
 
 namespace {
 
-// Child face j of a face: its corner vertex, the vertex of the edge leaving
-// it, the face vertex, the vertex of the edge arriving. A quad's children are
-// rotated so that the corner vertex keeps its position j (as Vtr does).
-inline int childSlot(int size, int j, int k) {
-  return size == 4 ? (j + k) & 3 : k;
+using topology::quadEdgeVertexValence;
+using topology::splitQuadEdge;
+using topology::splitQuadFace;
+using topology::splitQuadFaceEdges;
+using topology::writeQuadEdgeVertexRing;
+using topology::writeQuadFaceVertexRing;
+using topology::writeQuadVertexChildRing;
+
+// The uniform numbering of quad_split.h, arithmetic.
+struct UniformQuadLinks {
+  Index numVertices, numFaces, corners;
+  const Level& parent;
+  Index vertexChild(Index v) const { return v; }
+  Index faceVertex(Index f) const { return numVertices + f; }
+  Index edgeVertex(Index e) const { return numVertices + numFaces + e; }
+  Index halves(Index e) const { return corners + 2 * e; }
+  Index firstFace(Index f) const { return parent.faceBegin(f); }
+  Index interior(Index f) const { return parent.faceBegin(f); }
+};
+
+UniformQuadLinks uniformLinks(const Level& parent) {
+  return {parent.numVertices, parent.numFaces(), static_cast<Index>(parent.faceVertices.size()), parent};
 }
 
 void splitFaces(const Level& parent, Level& child, bool withEdges) {
-  const Index nV = parent.numVertices;
-  const Index nF = parent.numFaces();
-  const Index corners = static_cast<Index>(parent.faceVertices.size());
-  const Index firstEdgeVertex = nV + nF;
-  child.faceVertices.resize(4 * corners);
-  if (withEdges) child.faceEdges.resize(4 * corners);
-  for (Index f = 0; f < nF; ++f) {
-    const Index o = parent.faceBegin(f);
-    const int n = parent.faceSize(f);
-    const Index* fv = parent.faceVertices.data() + o;
-    const Index* fe = parent.faceEdges.data() + o;
-    for (int j = 0; j < n; ++j) {
-      const int jPrev = j ? j - 1 : n - 1;
-      Index* cv = child.faceVertices.data() + 4 * (o + j);
-      cv[childSlot(n, j, 0)] = fv[j];
-      cv[childSlot(n, j, 1)] = firstEdgeVertex + fe[j];
-      cv[childSlot(n, j, 2)] = nV + f;
-      cv[childSlot(n, j, 3)] = firstEdgeVertex + fe[jPrev];
-      if (!withEdges) continue;
-      Index* ce = child.faceEdges.data() + 4 * (o + j);
-      const int nextEnd = parent.edgeVertices[fe[j]][0] == fv[j] ? 0 : 1;
-      const int prevEnd = parent.edgeVertices[fe[jPrev]][0] == fv[j] ? 0 : 1;
-      ce[childSlot(n, j, 0)] = corners + 2 * fe[j] + nextEnd;
-      ce[childSlot(n, j, 1)] = o + j;
-      ce[childSlot(n, j, 2)] = o + jPrev;
-      ce[childSlot(n, j, 3)] = corners + 2 * fe[jPrev] + prevEnd;
-    }
-  }
+  const UniformQuadLinks links = uniformLinks(parent);
+  child.faceVertices.resize(4 * static_cast<size_t>(links.corners));
+  if (withEdges) child.faceEdges.resize(4 * static_cast<size_t>(links.corners));
+  for (Index f = 0; f < links.numFaces; ++f) splitQuadFace(parent, f, links, withEdges, child);
 }
 
 void splitEdges(const Level& parent, Level& child) {
-  const Index nV = parent.numVertices;
-  const Index nF = parent.numFaces();
+  const UniformQuadLinks links = uniformLinks(parent);
   const Index nE = parent.numEdges();
-  const Index corners = static_cast<Index>(parent.faceVertices.size());
-  const Index firstEdgeVertex = nV + nF;
-  child.edgeVertices.resize(corners + 2 * nE);
-  child.edgeFaces.resize(corners + 2 * nE);
-  child.edgeFaceLocal.resize(corners + 2 * nE);
-  // Edges inside a face: between child j and child j+1.
-  for (Index f = 0; f < nF; ++f) {
-    const Index o = parent.faceBegin(f);
-    const int n = parent.faceSize(f);
-    for (int j = 0; j < n; ++j) {
-      const int jNext = j + 1 < n ? j + 1 : 0;
-      child.edgeVertices[o + j] = {nV + f, firstEdgeVertex + parent.faceEdges[o + j]};
-      child.edgeFaces[o + j] = {o + j, o + jNext};
-      child.edgeFaceLocal[o + j] = {static_cast<LocalIndex>(n == 4 ? jNext : 1),
-                                    static_cast<LocalIndex>(n == 4 ? (jNext + 2) & 3 : 2)};
-    }
-  }
-  // Halves of parent edges: the child face at each parent face's end corner.
-  for (Index e = 0; e < nE; ++e) {
-    const auto& ev = parent.edgeVertices[e];
-    const auto& ef = parent.edgeFaces[e];
-    const auto& el = parent.edgeFaceLocal[e];
-    for (int end = 0; end < 2; ++end) {
-      const Index c = corners + 2 * e + end;
-      child.edgeVertices[c] = {firstEdgeVertex + e, ev[end]};
-      child.edgeFaces[c] = {kNoIndex, kNoIndex};
-      for (int i = 0; i < 2 && ef[i] != kNoIndex; ++i) {
-        const Index o = parent.faceBegin(ef[i]);
-        const int n = parent.faceSize(ef[i]);
-        const int edgeInFace = el[i];
-        const int childOfEdge = parent.faceVertices[o + edgeInFace] != ev[end] ? 1 : 0;
-        int childInFace = edgeInFace + childOfEdge;
-        if (childInFace == n) childInFace = 0;
-        child.edgeFaces[c][i] = o + childInFace;
-        child.edgeFaceLocal[c][i] = static_cast<LocalIndex>(n == 4 ? edgeInFace : (childOfEdge ? 3 : 0));
-      }
-    }
-  }
+  child.edgeVertices.resize(links.corners + 2 * nE);
+  child.edgeFaces.resize(links.corners + 2 * nE);
+  child.edgeFaceLocal.resize(links.corners + 2 * nE);
+  for (Index f = 0; f < links.numFaces; ++f) splitQuadFaceEdges(parent, f, links, child);
+  for (Index e = 0; e < nE; ++e) splitQuadEdge(parent, e, links, kNoIndex, child);
 }
 
 void splitRings(const Level& parent, Level& child) {
+  const UniformQuadLinks links = uniformLinks(parent);
   const Index nV = parent.numVertices;
   const Index nF = parent.numFaces();
   const Index nE = parent.numEdges();
-  const Index corners = static_cast<Index>(parent.faceVertices.size());
   const Index firstEdgeVertex = nV + nF;
 
   child.ringOffsets.resize(child.numVertices + 1);
@@ -104,7 +64,7 @@ void splitRings(const Level& parent, Level& child) {
   for (Index v = 0; v < nV; ++v) offsets[v + 1] = offsets[v] + parent.valence(v);
   for (Index f = 0; f < nF; ++f) offsets[nV + f + 1] = offsets[nV + f] + parent.faceSize(f);
   for (Index e = 0; e < nE; ++e) {
-    offsets[firstEdgeVertex + e + 1] = offsets[firstEdgeVertex + e] + (parent.isBoundaryEdge(e) ? 3 : 4);
+    offsets[firstEdgeVertex + e + 1] = offsets[firstEdgeVertex + e] + quadEdgeVertexValence(parent, e);
   }
   const Index total = offsets[child.numVertices];
   child.ringEdges.resize(total);
@@ -115,74 +75,17 @@ void splitRings(const Level& parent, Level& child) {
   Index* rV = child.ringVertices.data();
   Index* rF = child.ringFaces.data();
   LocalIndex* rL = child.ringFaceLocal.data();
-
-  // A vertex keeps its ring order: the halves at v and v's corner children.
   for (Index v = 0; v < nV; ++v) {
-    const Index from = parent.ringOffsets[v], to = parent.ringOffsets[v + 1];
-    const Index out = offsets[v] - from;
-    for (Index k = from; k < to; ++k) {
-      const Index e = parent.ringEdges[k];
-      rE[out + k] = corners + 2 * e + (parent.edgeVertices[e][0] == v ? 0 : 1);
-      rV[out + k] = firstEdgeVertex + e;
-      const Index f = parent.ringFaces[k];
-      if (f == kNoIndex) {
-        rF[out + k] = kNoIndex, rL[out + k] = 0;
-      } else {
-        const int c = parent.ringFaceLocal[k];
-        rF[out + k] = parent.faceBegin(f) + c;
-        rL[out + k] = static_cast<LocalIndex>(parent.faceSize(f) == 4 ? c : 0);
-      }
-    }
+    const Index at = offsets[v];
+    writeQuadVertexChildRing(parent, v, links, rE + at, rV + at, rF + at, rL + at);
   }
-  // A face vertex: child k lies between the edges to edge k-1's and edge k's vertices.
   for (Index f = 0; f < nF; ++f) {
-    const Index o = parent.faceBegin(f);
-    const int n = parent.faceSize(f);
-    const Index out = offsets[nV + f];
-    for (int k = 0; k < n; ++k) {
-      const int kPrev = k ? k - 1 : n - 1;
-      rE[out + k] = o + kPrev;
-      rV[out + k] = firstEdgeVertex + parent.faceEdges[o + kPrev];
-      rF[out + k] = o + k;
-      rL[out + k] = static_cast<LocalIndex>(n == 4 ? (k + 2) & 3 : 2);
-    }
+    const Index at = offsets[nV + f];
+    writeQuadFaceVertexRing(parent, f, links, rE + at, rV + at, rF + at, rL + at);
   }
-  // An edge vertex: face 0 runs the edge from a to b; the ring starts with
-  // the half towards b, crosses face 0's two children, then face 1's.
   for (Index e = 0; e < nE; ++e) {
-    const Index out = offsets[firstEdgeVertex + e];
-    const auto& ev = parent.edgeVertices[e];
-    const auto& ef = parent.edgeFaces[e];
-    const auto& el = parent.edgeFaceLocal[e];
-    const Index o0 = parent.faceBegin(ef[0]);
-    const int n0 = parent.faceSize(ef[0]);
-    const int j0 = el[0];
-    const int j0Next = j0 + 1 < n0 ? j0 + 1 : 0;
-    const int b = parent.faceVertices[o0 + j0] == ev[0] ? 1 : 0;  // end of the edge face 0 runs to
-    rE[out + 0] = corners + 2 * e + b;
-    rV[out + 0] = ev[b];
-    rF[out + 0] = o0 + j0Next;
-    rL[out + 0] = static_cast<LocalIndex>(n0 == 4 ? j0 : 3);
-    rE[out + 1] = o0 + j0;
-    rV[out + 1] = nV + ef[0];
-    rF[out + 1] = o0 + j0;
-    rL[out + 1] = static_cast<LocalIndex>(n0 == 4 ? j0Next : 1);
-    rE[out + 2] = corners + 2 * e + (1 - b);
-    rV[out + 2] = ev[1 - b];
-    if (ef[1] == kNoIndex) {
-      rF[out + 2] = kNoIndex, rL[out + 2] = 0;
-      continue;
-    }
-    const Index o1 = parent.faceBegin(ef[1]);
-    const int n1 = parent.faceSize(ef[1]);
-    const int j1 = el[1];
-    const int j1Next = j1 + 1 < n1 ? j1 + 1 : 0;
-    rF[out + 2] = o1 + j1Next;
-    rL[out + 2] = static_cast<LocalIndex>(n1 == 4 ? j1 : 3);
-    rE[out + 3] = o1 + j1;
-    rV[out + 3] = nV + ef[1];
-    rF[out + 3] = o1 + j1;
-    rL[out + 3] = static_cast<LocalIndex>(n1 == 4 ? j1Next : 1);
+    const Index at = offsets[firstEdgeVertex + e];
+    writeQuadEdgeVertexRing(parent, e, links, rE + at, rV + at, rF + at, rL + at);
   }
 }
 

@@ -41,7 +41,7 @@ class AdaptiveCut {
 
   int numLevels() const { return static_cast<int>(split_.size()); }
   bool isNode(const SparseHierarchy& h, int l, Index f) const {
-    return l == 0 || split_[l - 1][h.level(l).faceParent[f / 4]] != 0;
+    return l == 0 || split_[l - 1][h.level(l).parentOfFace(f)] != 0;
   }
   bool isSplit(int l, Index f) const { return split_[l][f] != 0; }
   const LodProfile& profile() const { return profile_; }

@@ -36,9 +36,13 @@ const std::vector<FolderRule>& includeRules() {
         // topology: the one Level of every scheme, under the schemes that use it.
         {"core/topology", {"core/util", "core/mesh"}, kServiceHeaders},
         {"core/loop", {"core/util", "core/mesh", "core/topology"}, kServiceHeaders},
-        {"core/hierarchy", {"core/util", "core/mesh", "core/topology", "core/loop"}, kServiceHeaders},
+        // Catmull-Clark's rules, which the sparse hierarchy and the one-shot schemes share.
+        {"core/catmark", {"core/util", "core/mesh", "core/topology", "core/loop"}, kServiceHeaders},
+        {"core/hierarchy",
+         {"core/util", "core/mesh", "core/topology", "core/loop", "core/catmark"},
+         kServiceHeaders},
         {"core/schemes",
-         {"core/util", "core/mesh", "core/topology", "core/loop", "core/io"},
+         {"core/util", "core/mesh", "core/topology", "core/loop", "core/catmark", "core/io"},
          kServiceHeaders},
         {"core/document",
          {"core/util", "core/mesh", "core/topology", "core/loop", "core/hierarchy"},

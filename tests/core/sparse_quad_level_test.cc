@@ -14,6 +14,7 @@
 #include "core/hierarchy/sparse_level.h"
 #include "core/schemes/quad_split.h"
 #include "support/polygon_meshes.h"
+#include "support/sparse_levels.h"
 
 namespace tessera {
 namespace {
@@ -119,19 +120,6 @@ void expectMatchesUniform(const SparseLevel& s, const Level& u, const std::strin
   EXPECT_GT(complete, 0) << where;
 }
 
-// Faces of `level` whose corners are all complete, each kept with
-// probability `fraction`.
-std::vector<Index> refinable(const SparseLevel& level, double fraction, std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  std::vector<Index> faces;
-  for (Index f = 0; f < level.mesh.numFaces(); ++f) {
-    bool ok = !level.isRefined(f);
-    for (Index v : level.mesh.faceVerticesOf(f)) ok = ok && level.isComplete(v);
-    if (ok && unit(rng) < fraction) faces.push_back(f);
-  }
-  return faces;
-}
-
 Buffer<uint8_t> flags(const SparseLevel& level, const std::vector<Index>& faces) {
   Buffer<uint8_t> out(level.mesh.numFaces(), 0);
   for (Index f : faces) out[f] = 1;
@@ -224,8 +212,8 @@ TEST(SparseQuadLevel, SparseLevelsHoldTheUniformRelationsBuiltAtOnceOrGrown) {
       grown.push_back(sparseBaseLevel(u.levels[0]));
       for (int l = 0; l < 3; ++l) {
         const double fraction = l == 0 ? 0.5 : 0.6;
-        std::vector<Index> first = refinable(once[l], fraction, rng);
-        std::vector<Index> second = refinable(once[l], fraction, rng);
+        std::vector<Index> first = testing::refinableFaces(once[l], fraction, rng);
+        std::vector<Index> second = testing::refinableFaces(once[l], fraction, rng);
         std::set<Index> both(first.begin(), first.end());
         both.insert(second.begin(), second.end());
         if (both.empty()) break;

@@ -20,6 +20,7 @@
 #include "core/schemes/catmark_limit.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
+#include "oracle/catmark_cases.h"
 #include "oracle/osd_catmark_reference.h"
 #include "support/polygon_meshes.h"
 #include "support/test_meshes.h"
@@ -35,14 +36,6 @@ using testing::PolyTestMesh;
 constexpr double kPointTolerance = 1e-12;    // times the bounding-box diagonal
 constexpr double kPositionTolerance = 1e-9;  // times the bounding-box diagonal
 constexpr double kNormalTolerance = 1e-6;    // radians
-
-double diagonal(const std::vector<Vec3>& points) {
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  }
-  return (hi - lo).norm();
-}
 
 double angleBetween(const Vec3& a, const Vec3& b) {
   return std::atan2((a % b).norm(), a | b);
@@ -64,7 +57,7 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
   const int firstLimitLevel = refiner->level(0).allQuads() ? 0 : 1;
   const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, limit,
                                                      firstLimitLevel);
-  const double diag = diagonal(mesh.points);
+  const double diag = oracle::boundingDiagonal(mesh.points);
   for (int l = 0; l <= levels; ++l) {
     const int n = refiner->level(l).numVertices;
     ASSERT_EQ(static_cast<int>(ours[l].size()), n);
@@ -99,20 +92,10 @@ std::vector<PolyTestMesh> shapes() {
           withPolyJitter(mixedPrism(5, false), 0.05, 11), withPolyJitter(mixedPrism(7, true), 0.05, 12)};
 }
 
-std::vector<CreaseOptions> allOptions() {
-  std::vector<CreaseOptions> all;
-  for (auto method : {CreaseMethod::kUniform, CreaseMethod::kChaikin}) {
-    for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner}) {
-      all.push_back({method, boundary});
-    }
-  }
-  return all;
-}
-
 TEST(CatmarkOracle, ProceduralShapesWithoutTags) {
   Totals totals;
   for (const auto& mesh : shapes()) {
-    for (const auto& options : allOptions())
+    for (const auto& options : oracle::allCreaseOptions())
       checkAgainstOsd(mesh, QuadScheme::kCatmullClark, options, 3, totals);
   }
   EXPECT_GT(totals.normals, 0);
@@ -125,7 +108,7 @@ TEST(CatmarkOracle, RandomTagsFromFixedSeeds) {
   for (const auto& mesh : shapes()) {
     for (uint32_t seed : {1u, 2u, 3u}) {
       const PolyTestMesh tagged = testing::withRandomPolyTags(mesh, 0.3, 0.1, seed);
-      for (const auto& options : allOptions())
+      for (const auto& options : oracle::allCreaseOptions())
         checkAgainstOsd(tagged, QuadScheme::kCatmullClark, options, 3, totals);
     }
   }
@@ -218,7 +201,7 @@ TEST(CatmarkOracle, WrittenPolygonsAreOpenSubdivsFacesOfTheFinestLevel) {
   meshes.push_back({"double-torus-example", real->topology, real->points});
   int compared = 0;
   for (const PolyTestMesh& mesh : meshes) {
-    const double diag = diagonal(mesh.points);
+    const double diag = oracle::boundingDiagonal(mesh.points);
     for (QuadScheme scheme : {QuadScheme::kCatmullClark, QuadScheme::kBilinear}) {
       for (int levels : {1, 2}) {
         const std::string where = mesh.name +
@@ -281,7 +264,7 @@ TEST(CatmarkOracle, AWrittenCageWithItsTagsRefinesToTheNextLevel) {
   PolyTestMesh tagged =
       testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(7, 5), 0.05, 3), 0.3, 0.1, 17);
   int checked = 0;
-  for (const CreaseOptions& options : allOptions()) {
+  for (const CreaseOptions& options : oracle::allCreaseOptions()) {
     SCOPED_TRACE(std::string(options.creaseMethod == CreaseMethod::kChaikin ? "chaikin" : "uniform") +
                  (options.boundary == BoundaryInterpolation::kEdgeOnly ? " edge-only" : " edge-and-corner"));
     for (int level : {1, 2}) {
@@ -326,7 +309,7 @@ TEST(CatmarkOracle, AWrittenCageWithItsTagsRefinesToTheNextLevel) {
       // Matched by position (neither numbering assumed): every point of
       // OpenSubdiv's is one of our next level's, each a different one.
       ASSERT_EQ(next.size(), ours[level + 1].size());
-      const double diag = diagonal(tagged.points);
+      const double diag = oracle::boundingDiagonal(tagged.points);
       const NearestVertex nearest(ours[level + 1], 1e-6 * diag);
       std::set<int> matched;
       for (size_t v = 0; v < next.size(); ++v) {

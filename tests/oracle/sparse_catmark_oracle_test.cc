@@ -15,8 +15,10 @@
 #include "core/hierarchy/sparse_level.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
+#include "oracle/catmark_cases.h"
 #include "oracle/osd_catmark_reference.h"
 #include "support/polygon_meshes.h"
+#include "support/sparse_levels.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -26,27 +28,6 @@ using schemes::CreaseOptions;
 using testing::PolyTestMesh;
 
 constexpr double kPointTolerance = 1e-12;  // times the bounding-box diagonal
-
-double diagonal(const std::vector<Vec3>& points) {
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  }
-  return (hi - lo).norm();
-}
-
-// Unrefined faces of `level` whose corners are all complete, each kept
-// with probability `fraction`.
-std::vector<Index> refinable(const SparseLevel& level, double fraction, std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  std::vector<Index> faces;
-  for (Index f = 0; f < level.mesh.numFaces(); ++f) {
-    bool ok = !level.isRefined(f);
-    for (Index v : level.mesh.faceVerticesOf(f)) ok = ok && level.isComplete(v);
-    if (ok && unit(rng) < fraction) faces.push_back(f);
-  }
-  return faces;
-}
 
 // The points of every vertex of `child`, from its parent's.
 std::vector<Vec3> childPoints(const SparseLevel& parent, const SparseLevel& child,
@@ -78,7 +59,7 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
                                               {.levels = levels});
   ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
   const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, false, 0);
-  const double diag = diagonal(mesh.points);
+  const double diag = oracle::boundingDiagonal(mesh.points);
   std::vector<int> sizes;
   for (Index f = 0; f < refiner->level(0).numFaces(); ++f) sizes.push_back(refiner->level(0).faceSize(f));
   const LevelCounts counts =
@@ -90,12 +71,12 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
   std::vector<Vec3> points = mesh.points;
   for (int l = 0; l < levels; ++l) {
     // Built from one random selection, then grown by a second.
-    const std::vector<Index> first = refinable(sparse[l], 0.5, rng);
+    const std::vector<Index> first = testing::refinableFaces(sparse[l], 0.5, rng);
     if (first.empty()) break;
     Buffer<uint8_t> flags(sparse[l].mesh.numFaces(), 0);
     for (Index f : first) flags[f] = 1;
     sparse.push_back(refineSparse(sparse[l], flags, counts, options));
-    const std::vector<Index> second = refinable(sparse[l], 0.5, rng);
+    const std::vector<Index> second = testing::refinableFaces(sparse[l], 0.5, rng);
     extendSparse(sparse[l], sparse[l + 1], second, counts, options);
     const SparseLevel& child = sparse[l + 1];
     std::vector<Vec3> next = childPoints(sparse[l], child, points, options);
@@ -112,16 +93,6 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
   }
 }
 
-std::vector<CreaseOptions> allOptions() {
-  std::vector<CreaseOptions> all;
-  for (auto method : {CreaseMethod::kUniform, CreaseMethod::kChaikin}) {
-    for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner}) {
-      all.push_back({method, boundary});
-    }
-  }
-  return all;
-}
-
 TEST(SparseCatmarkOracle, SparseLevelsEqualFarOnPolygonMeshesWithRandomTags) {
   using namespace testing;
   const std::vector<PolyTestMesh> shapes = {
@@ -132,7 +103,7 @@ TEST(SparseCatmarkOracle, SparseLevelsEqualFarOnPolygonMeshesWithRandomTags) {
   for (const PolyTestMesh& shape : shapes) {
     for (uint32_t tags : {0u, 1u, 2u}) {
       const PolyTestMesh mesh = tags == 0 ? shape : withRandomPolyTags(shape, 0.3, 0.1, tags);
-      for (const CreaseOptions& options : allOptions())
+      for (const CreaseOptions& options : oracle::allCreaseOptions())
         checkSparseAgainstOsd(mesh, options, 3, seed++, counted);
     }
   }

@@ -16,7 +16,7 @@
 #include <opensubdiv/far/primvarRefiner.h>
 
 #include "bench/ratio_reporter.h"
-#include "core/schemes/catmark_limit.h"
+#include "core/catmark/limit.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/osd_adapter.h"

@@ -6,7 +6,7 @@
 
 #include "core/schemes/bilinear_masks.h"
 #include "core/schemes/catmark_interpolate.h"
-#include "core/schemes/catmark_limit.h"
+#include "core/catmark/limit.h"
 #include "core/schemes/quad_split.h"
 
 namespace tessera::schemes {

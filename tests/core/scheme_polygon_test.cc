@@ -12,7 +12,7 @@
 #include "core/catmark/masks.h"
 #include "core/io/mesh_import.h"
 #include "core/schemes/bilinear_masks.h"
-#include "core/schemes/catmark_limit.h"
+#include "core/catmark/limit.h"
 #include "core/schemes/doo_sabin.h"
 #include "core/schemes/doo_sabin_masks.h"
 #include "core/schemes/polygon_reader.h"

@@ -17,7 +17,7 @@
 
 #include "core/io/mesh_export.h"
 #include "core/io/mesh_import.h"
-#include "core/schemes/catmark_limit.h"
+#include "core/catmark/limit.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/catmark_cases.h"
@@ -68,7 +68,7 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
     totals.points += n;
     if (!limit || l < firstLimitLevel) continue;
     std::vector<Vec3> positions(n), normals(n);
-    ASSERT_TRUE(schemes::computeCatmarkLimit(refiner->level(l), ours[l], positions, normals).isOk());
+    ASSERT_TRUE(computeCatmarkLimit(refiner->level(l), ours[l], positions, normals).isOk());
     for (int v = 0; v < n; ++v) {
       ASSERT_LE((positions[v] - osd[l].limitPositions[v]).norm(), kPositionTolerance * diag)
           << "limit at level " << l << " vertex " << v;

@@ -3,14 +3,18 @@
 // place (core/hierarchy/sparse_level.h), their points computed from the
 // parent level alone (core/catmark/stencils.h), must equal Far's refined
 // points (PrimvarRefinerReal<double>) at the vertex of the same canonical
-// id, within 1e-12 of the bounding-box diagonal: on quads, triangles and
+// id, within 1e-12 of the bounding-box diagonal, and the limit position and
+// normal of every complete vertex (core/catmark/limit.h) must equal Far's
+// Limit() there, within 1e-9 of the diagonal and 1e-6 rad: on quads, triangles and
 // n-gons, closed and open, a real polygon mesh from CGAL, random
 // semi-sharp and infinitely sharp tags from fixed seeds, both crease
 // methods and both boundary rules.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
+#include "core/catmark/limit.h"
 #include "core/catmark/stencils.h"
 #include "core/hierarchy/sparse_level.h"
 #include "core/schemes/polygon_reader.h"
@@ -27,7 +31,9 @@ namespace {
 using schemes::CreaseOptions;
 using testing::PolyTestMesh;
 
-constexpr double kPointTolerance = 1e-12;  // times the bounding-box diagonal
+constexpr double kPointTolerance = 1e-12;    // times the bounding-box diagonal
+constexpr double kPositionTolerance = 1e-9;  // times the bounding-box diagonal
+constexpr double kNormalTolerance = 1e-6;    // radians
 
 // The points of every vertex of `child`, from its parent's.
 std::vector<Vec3> childPoints(const SparseLevel& parent, const SparseLevel& child,
@@ -48,7 +54,7 @@ std::vector<Vec3> childPoints(const SparseLevel& parent, const SparseLevel& chil
 }
 
 struct Counted {
-  long long points = 0, sparseLevels = 0, absentVertices = 0;
+  long long points = 0, sparseLevels = 0, absentVertices = 0, limits = 0, normals = 0, degenerateNormals = 0;
 };
 
 void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& options, int levels, uint32_t seed,
@@ -58,7 +64,8 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
   auto refiner = schemes::QuadRefiner::create(mesh.topology, schemes::QuadScheme::kCatmullClark, options,
                                               {.levels = levels});
   ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
-  const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, false, 0);
+  // Limits from level 1 on, where every face is a quad.
+  const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, true, 1);
   const double diag = oracle::boundingDiagonal(mesh.points);
   std::vector<int> sizes;
   for (Index f = 0; f < refiner->level(0).numFaces(); ++f) sizes.push_back(refiner->level(0).faceSize(f));
@@ -86,6 +93,24 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
       ASSERT_LE((next[v] - osd[l + 1].points[id]).norm(), kPointTolerance * diag)
           << "level " << l + 1 << " vertex v" << l + 1 << ":" << id;
     }
+    for (Index v = 0; v < child.mesh.numVertices; ++v) {
+      if (!child.isComplete(v)) continue;
+      const uint64_t id = child.vertexIds[v];
+      const CatmarkLimitFrame frame = catmarkLimitFrame(child.mesh, v, next);
+      ASSERT_LE((frame.position - osd[l + 1].limitPositions[id]).norm(), kPositionTolerance * diag)
+          << "limit at v" << l + 1 << ":" << id;
+      ++counted.limits;
+      const Vec3 osdNormal = osd[l + 1].limitTangent1[id] % osd[l + 1].limitTangent2[id];
+      const double scale = osd[l + 1].limitTangent1[id].norm() * osd[l + 1].limitTangent2[id].norm();
+      if (!(osdNormal.norm() > 1e-12 * scale)) {
+        ++counted.degenerateNormals;  // parallel tangents: Limit() gives no normal
+        continue;
+      }
+      const Vec3 normal = frame.tangent1 % frame.tangent2;
+      ASSERT_LE(std::atan2((normal % osdNormal).norm(), normal | osdNormal), kNormalTolerance)
+          << "normal at v" << l + 1 << ":" << id;
+      ++counted.normals;
+    }
     counted.points += child.mesh.numVertices;
     counted.absentVertices += refiner->level(l + 1).numVertices - child.mesh.numVertices;
     ++counted.sparseLevels;
@@ -110,8 +135,12 @@ TEST(SparseCatmarkOracle, SparseLevelsEqualFarOnPolygonMeshesWithRandomTags) {
   // Sparse, not whole: the selections left vertices out at every level.
   EXPECT_GT(counted.absentVertices, 0);
   EXPECT_GE(counted.sparseLevels, 100);
-  std::printf("sparse levels %lld, points compared %lld, vertices not held %lld\n", counted.sparseLevels,
-              counted.points, counted.absentVertices);
+  EXPECT_GT(counted.normals, 0);
+  std::printf(
+      "sparse levels %lld, points compared %lld, vertices not held %lld, limits %lld, normals %lld "
+      "(parallel OpenSubdiv tangents skipped: %lld)\n",
+      counted.sparseLevels, counted.points, counted.absentVertices, counted.limits, counted.normals,
+      counted.degenerateNormals);
 }
 
 TEST(SparseCatmarkOracle, RealPolygonMeshDoubleTorus) {

@@ -12,7 +12,7 @@
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 struct CatmarkLimitFrame {
   Vec3 position;
@@ -20,7 +20,9 @@ struct CatmarkLimitFrame {
   Vec3 tangent2;
 };
 
-// One vertex of an all-quad level with full topology.
+// One vertex of an all-quad level with full topology, or a complete vertex
+// of a sparse level (core/hierarchy/sparse_level.h): it reads the vertex's
+// ring, its ring faces' corners and its rules only.
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points);
 
 // Every vertex; `normals` may be empty. A level with a face that is not a
@@ -30,4 +32,4 @@ CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const
 Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                            std::span<Vec3> normals);
 
-}  // namespace tessera::schemes
+}  // namespace tessera

@@ -1,11 +1,11 @@
-#include "core/schemes/catmark_limit.h"
+#include "core/catmark/limit.h"
 
 #include <cmath>
 #include <vector>
 
 #include "core/catmark/masks.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 namespace {
 
@@ -163,4 +163,4 @@ Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std
   return Status::ok();
 }
 
-}  // namespace tessera::schemes
+}  // namespace tessera

@@ -4,9 +4,9 @@
 
 #include <string>
 
+#include "core/catmark/limit.h"
 #include "core/schemes/bilinear_masks.h"
 #include "core/schemes/catmark_interpolate.h"
-#include "core/catmark/limit.h"
 #include "core/schemes/quad_split.h"
 
 namespace tessera::schemes {

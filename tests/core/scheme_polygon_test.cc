@@ -9,10 +9,10 @@
 #include <fstream>
 #include <random>
 
+#include "core/catmark/limit.h"
 #include "core/catmark/masks.h"
 #include "core/io/mesh_import.h"
 #include "core/schemes/bilinear_masks.h"
-#include "core/catmark/limit.h"
 #include "core/schemes/doo_sabin.h"
 #include "core/schemes/doo_sabin_masks.h"
 #include "core/schemes/polygon_reader.h"

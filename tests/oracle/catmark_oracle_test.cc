@@ -15,9 +15,9 @@
 #include <set>
 #include <string>
 
+#include "core/catmark/limit.h"
 #include "core/io/mesh_export.h"
 #include "core/io/mesh_import.h"
-#include "core/catmark/limit.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/catmark_cases.h"

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "core/hierarchy/quad_incidence.h"
+
 namespace tessera {
 
 namespace {
@@ -137,14 +139,17 @@ std::array<uint64_t, 2> endsOf(const Level& base, const LevelCounts& counts, int
 }  // namespace
 
 FaceId incidentFace(const Level& base, const LevelCounts& counts, VertexId vertex) {
+  if (counts.quads()) return quad_incidence::incidentFace(base, counts, vertex);
   return {vertex.level(), ofVertex(base, counts, vertex.level(), vertex.index()).face};
 }
 
 FaceId incidentFace(const Level& base, const LevelCounts& counts, EdgeId edge) {
+  if (counts.quads()) return quad_incidence::incidentFace(base, counts, edge);
   return {edge.level(), ofEdge(base, counts, edge.level(), edge.index()).face};
 }
 
 std::array<VertexId, 2> edgeEnds(const Level& base, const LevelCounts& counts, EdgeId edge) {
+  if (counts.quads()) return quad_incidence::edgeEnds(base, counts, edge);
   const auto ends = endsOf(base, counts, edge.level(), edge.index());
   return {VertexId(edge.level(), ends[0]), VertexId(edge.level(), ends[1])};
 }
@@ -166,6 +171,7 @@ Expected<EdgeId> edgeBetween(const Level& base, const LevelCounts& counts, Verte
     }
     return apart;
   }
+  if (counts.quads()) return quad_incidence::edgeBetween(base, counts, a, b, apart);
   // Vertices of the parent level are joined only to vertices on parent edges.
   const uint64_t nV = counts.vertices(level - 1);
   const bool aOld = a.index() < nV, bOld = b.index() < nV;

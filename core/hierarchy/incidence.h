@@ -7,7 +7,9 @@
 // way, so that a client holding only vertex ids (a tessera-view pick) can
 // name an edge: an edge of level l > 0 is either a half of a parent edge,
 // joining a parent vertex to the vertex on that edge, or interior to a parent
-// face, joining the vertices on two of its edges (refinement.h).
+// face, joining the vertices on two of its edges (refinement.h) or, under
+// the quad split, the face's vertex to the vertex on one of its edges
+// (quad_incidence.h).
 #pragma once
 
 #include <array>

@@ -11,6 +11,7 @@
 #include <random>
 #include <set>
 
+#include "core/hierarchy/incidence.h"
 #include "core/hierarchy/sparse_level.h"
 #include "core/schemes/quad_split.h"
 #include "support/polygon_meshes.h"
@@ -161,6 +162,48 @@ TEST(SparseQuadLevel, CountsAndParentsAreTheUniformSplits) {
         // The vertex on edge e is on both halves of it.
         ASSERT_EQ(u.levels[l + 1].edgeVertices[u.counts.corners(l) + 2 * e][0],
                   static_cast<Index>(mid.index()));
+      }
+    }
+  }
+}
+
+// Ids resolve by arithmetic from the base level alone (incidence.h), as
+// the hierarchy needs before it holds a part of a level: a face holding
+// every vertex and edge, the ends of every edge, and the edge between two
+// vertices, all as the uniform split has them.
+TEST(SparseQuadLevel, IdsResolveToTheirFacesEndsAndEdgesByArithmetic) {
+  for (const PolyTestMesh& mesh : meshes()) {
+    const Uniform u = uniformLevels(mesh, {}, 3);
+    const Level& base = u.levels[0];
+    for (int l = 0; l <= 3; ++l) {
+      const Level& w = u.levels[l];
+      const std::string where = mesh.name + " level " + std::to_string(l);
+      for (Index v = 0; v < w.numVertices; ++v) {
+        const FaceId f = incidentFace(base, u.counts, VertexId(l, static_cast<uint64_t>(v)));
+        ASSERT_EQ(f.level(), l);
+        ASSERT_GE(w.vertexInFace(static_cast<Index>(f.index()), v), 0) << where << " vertex " << v;
+      }
+      for (Index e = 0; e < w.numEdges(); ++e) {
+        const EdgeId id(l, static_cast<uint64_t>(e));
+        const auto fe = w.faceEdgesOf(static_cast<Index>(incidentFace(base, u.counts, id).index()));
+        ASSERT_NE(std::find(fe.begin(), fe.end(), e), fe.end()) << where << " edge " << e;
+        const auto ends = edgeEnds(base, u.counts, id);
+        ASSERT_EQ(ends[0].index(), static_cast<uint64_t>(w.edgeVertices[e][0])) << where << " edge " << e;
+        ASSERT_EQ(ends[1].index(), static_cast<uint64_t>(w.edgeVertices[e][1])) << where << " edge " << e;
+        for (const auto& [a, b] : {std::pair(ends[0], ends[1]), std::pair(ends[1], ends[0])}) {
+          const auto between = edgeBetween(base, u.counts, a, b);
+          ASSERT_TRUE(between.isOk()) << where << " " << between.status().toString();
+          ASSERT_EQ(*between, id) << where;
+        }
+      }
+      // Opposite corners of a quad are joined by no edge.
+      if (l > 0) {
+        const auto fv = w.faceVerticesOf(0);
+        const auto apart = edgeBetween(base, u.counts, VertexId(l, static_cast<uint64_t>(fv[0])),
+                                       VertexId(l, static_cast<uint64_t>(fv[2])));
+        ASSERT_FALSE(apart.isOk()) << where;
+        EXPECT_NE(apart.status().message().find("are not joined by an edge of level"), std::string::npos)
+            << apart.status().toString();
       }
     }
   }

@@ -32,7 +32,7 @@ struct QuadChildMap {
   Index faceVertex(Index f) const { return faceVertexOf[f]; }
   Index edgeVertex(Index e) const { return edgeVertexOf[e]; }
   Index halves(Index e) const { return edgeHalves[e]; }
-  Index firstFace(Index f) const { return f < 0 ? f : (firstFaceOf[f] < 0 ? kAbsentFace : firstFaceOf[f]); }
+  Index firstFace(Index f) const { return sparse_split::firstChildOrAbsent(firstFaceOf, f); }
   Index interior(Index f) const { return interiorOf[f]; }
 };
 
@@ -44,9 +44,7 @@ struct QuadParentLinks {
   Index faceVertex(Index f) const { return parent.childOfFace[f]; }
   Index edgeVertex(Index e) const { return parent.childOfEdge[e]; }
   Index halves(Index e) const { return parent.halvesOfEdge[e]; }
-  Index firstFace(Index f) const {
-    return f < 0 ? f : (parent.firstChildFace[f] < 0 ? kAbsentFace : parent.firstChildFace[f]);
-  }
+  Index firstFace(Index f) const { return sparse_split::firstChildOrAbsent(parent.firstChildFace, f); }
   // Interior edge 0 of a refined face is its child 0's edge at slot 1.
   Index interior(Index f) const {
     const Index first = parent.firstChildFace[f];

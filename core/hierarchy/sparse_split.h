@@ -20,6 +20,15 @@
 
 namespace tessera::sparse_split {
 
+// The first child of parent face f as the child level's edges and rings
+// record it, from a parent-face-to-first-child table: a face the uniform
+// level lacks (f < 0) stays what it is; a present face without children
+// yet is kAbsentFace, never taken for a boundary (sparse_level.h).
+template <typename FirstChildren>
+Index firstChildOrAbsent(const FirstChildren& firstChild, Index f) {
+  return f < 0 ? f : (firstChild[f] < 0 ? kAbsentFace : firstChild[f]);
+}
+
 // Brings `order` (local indices by ascending id; empty: the identity) over
 // the ids appended from `first` on.
 void mergeOrder(const Buffer<uint64_t>& ids, Index first, Buffer<Index>& order);

@@ -18,7 +18,7 @@ struct ChildMap {
   std::vector<Index> edgeHalves;     // parent edge -> first of its two halves
   std::vector<Index> interiorOf;     // parent face -> first of its 3 interior edges
   std::vector<Index> firstFaceOf;    // parent face -> first of its 4 children
-  Index faceChild(Index f) const { return f < 0 ? f : (firstFaceOf[f] < 0 ? kAbsentFace : firstFaceOf[f]); }
+  Index faceChild(Index f) const { return sparse_split::firstChildOrAbsent(firstFaceOf, f); }
   // The child numbering, as writeCompleteRing reads it.
   Index vertexChild(Index v) const { return vertexChildOf[v]; }
   Index onEdge(Index e) const { return edgeVertex[e]; }
@@ -260,9 +260,7 @@ struct ParentLinks {
   // Interior edge 0 of a refined face is the second edge of its middle
   // child (refinement.h, splitFace).
   Index interior(Index f) const { return child.faceEdges[3 * (parent.firstChildFace[f] + 3) + 1]; }
-  Index faceChild(Index f) const {
-    return f < 0 ? f : (parent.firstChildFace[f] < 0 ? kAbsentFace : parent.firstChildFace[f]);
-  }
+  Index faceChild(Index f) const { return sparse_split::firstChildOrAbsent(parent.firstChildFace, f); }
 };
 
 }  // namespace

@@ -66,7 +66,7 @@ struct Level {
 
   Buffer<std::array<Index, 2>> edgeVertices;
   Buffer<std::array<Index, 2>> edgeFaces;           // [1] is kNoIndex on a boundary
-  Buffer<std::array<LocalIndex, 2>> edgeFaceLocal;  // position of the edge in each face
+  Buffer<std::array<LocalIndex, 2>> edgeFaceLocal;  // position of the edge in each face; 0 where no face
 
   // Rings in compressed rows: ringOffsets[v] .. ringOffsets[v+1].
   // ringVertices[k] is the far end of ringEdges[k], stored because the

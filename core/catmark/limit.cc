@@ -140,6 +140,19 @@ CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const
   return frameWith(level, v, points, TangentTables(level.valence(v)));
 }
 
+double catmarkSelfLimitWeight(const Level& level, Index v) {
+  switch (level.vertexRules[v]) {
+    case VertexRule::kSmooth:
+    case VertexRule::kDart:
+      return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
+    case VertexRule::kCrease:
+      return catmark::kCreaseLimitVertexWeight;
+    case VertexRule::kCorner:
+      return 1.0;
+  }
+  return 1.0;
+}
+
 Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
                            std::span<Vec3> normals) {
   if (!level.allQuads()) {

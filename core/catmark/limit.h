@@ -25,6 +25,13 @@ struct CatmarkLimitFrame {
 // ring, its ring faces' corners and its rules only.
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points);
 
+// The weight of vertex v's own control point in the limit mask
+// catmarkLimitFrame uses (n/(n+5) smooth or dart, 2/3 on a crease, 1 at a
+// corner or a boundary vertex of one face): the limit position is affine
+// in that point, so direct manipulation (Pulli & Lounsbery §2.2) solves
+// for it in one step. Always > 0.
+double catmarkSelfLimitWeight(const Level& level, Index v);
+
 // Every vertex; `normals` may be empty. A level with a face that is not a
 // quad is refused (refine it once first): the masks read each face's
 // opposite corner. Where the tangents are parallel (a degenerate control

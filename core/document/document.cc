@@ -7,7 +7,6 @@
 
 #include "core/hierarchy/incidence.h"
 #include "core/hierarchy/interpolation_conflicts.h"
-#include "core/loop/direct_manipulation.h"
 #include "core/loop/local_frame.h"
 #include "core/loop/surfaces.h"
 
@@ -239,10 +238,7 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   // An interpolating vertex's limit is its control point (ghost_ring.h).
   const bool interpolates = interpolationOf(vertices[0]).has_value() &&
                             ghostRuleOf(sparse_->level(level).mesh, v) != GhostRule::kNone;
-  const SparseFarRings far = sparse_->farRings(level);
-  const Vec3 solved = interpolates ? target
-                                   : solveControlPoint(sparse_->level(level).mesh, v, points, target,
-                                                       options_.loop.creaseMethod, &far);
+  const Vec3 solved = interpolates ? target : sparse_->solveControlPoint(level, v, target);
   TESSERA_ASSIGN_OR_RETURN(MoveEdit move, offsetsFor(vertices, solved - points[v]));
   return add(Edit{{}, true, std::move(move)});
 }

@@ -4,6 +4,7 @@
 #include "core/loop/interpolate.h"
 #include "core/loop/local_frame.h"
 #include "core/loop/refinement.h"
+#include "core/topology/tags.h"
 
 namespace tessera {
 
@@ -22,7 +23,8 @@ int Edit::level() const {
 namespace {
 
 // Later edits win: they are applied in edit order.
-void applySharpnessEdits(std::span<const Edit> edits, int level, Level& topology) {
+void applySharpnessEdits(std::span<const Edit> edits, int level, BoundaryInterpolation boundary,
+                         Level& topology) {
   bool changed = false;
   for (const Edit& edit : edits) {
     if (!edit.active || edit.level() != level) continue;
@@ -30,7 +32,8 @@ void applySharpnessEdits(std::span<const Edit> edits, int level, Level& topology
       topology.edgeSharpness[e->edge.index()] = canonicalSharpness(e->sharpness);
       changed = true;
     } else if (const auto* v = std::get_if<VertexSharpnessEdit>(&edit.change)) {
-      topology.vertexSharpness[v->vertex.index()] = canonicalSharpness(v->sharpness);
+      const auto at = static_cast<Index>(v->vertex.index());
+      topology.vertexSharpness[at] = topology::heldVertexSharpness(topology, at, v->sharpness, boundary);
       changed = true;
     }
   }
@@ -78,7 +81,7 @@ Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const 
   Evaluation eval;
   TESSERA_ASSIGN_OR_RETURN(Level base0, buildBaseLevel(base, options));
   eval.levels.push_back(std::move(base0));
-  applySharpnessEdits(edits, 0, eval.levels[0]);
+  applySharpnessEdits(edits, 0, options.boundary, eval.levels[0]);
   eval.predicted.emplace_back(basePoints.begin(), basePoints.end());
   eval.points.push_back(eval.predicted[0]);
   applyOffsets(edits, 0, eval.levels[0], eval.predicted[0], eval.points[0]);
@@ -90,7 +93,7 @@ Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const 
     std::vector<Vec3> predicted(eval.levels[l].numVertices);
     interpolateLevel(eval.levels[l - 1], options, eval.points[l - 1], predicted);
     applyGhostRings(edits, l - 1, eval.levels[l - 1], eval.points[l - 1], options, predicted);
-    applySharpnessEdits(edits, l, eval.levels[l]);
+    applySharpnessEdits(edits, l, options.boundary, eval.levels[l]);
     eval.points.push_back(predicted);
     applyOffsets(edits, l, eval.levels[l], predicted, eval.points[l]);
     eval.predicted.push_back(std::move(predicted));

@@ -102,6 +102,11 @@ FaceId LevelCounts::parentFace(FaceId id) const {
   return {id.level() - 1, id.index() / 4};
 }
 
+FaceId LevelCounts::ancestorAt(FaceId id, int level) const {
+  if (level == 0) return baseFace(id);
+  return {level, id.index() >> (2 * (id.level() - level))};
+}
+
 FaceId LevelCounts::baseFace(FaceId id) const {
   if (!quads()) return {0, id.index() >> (2 * id.level())};
   if (id.level() == 0) return id;

@@ -130,6 +130,9 @@ class LevelCounts {
     return {id.level() + 1, firstChildFace(id) + static_cast<uint64_t>(k)};
   }
   FaceId baseFace(FaceId id) const;
+  // The ancestor of face `id` at `level` (0 <= level <= id's level): the
+  // face it lies in there.
+  FaceId ancestorAt(FaceId id, int level) const;
 
  private:
   // The index of the first vertex a split puts on an edge of `level`.

@@ -32,7 +32,7 @@ void SparseFarRings::edgesAt(Index u, std::vector<float>& out) const {
   std::vector<Index> interior;
   for (Index f : m.ringFacesOf(u)) {
     if (f < 0) continue;
-    for (Index e : m.triangleEdges(f)) {
+    for (Index e : m.faceEdgesOf(f)) {
       const auto& ends = m.edgeVertices[e];
       if ((ends[0] == u || ends[1] == u) && e != half && e != half + 1) interior.push_back(e);
     }

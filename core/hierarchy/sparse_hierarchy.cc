@@ -2,10 +2,12 @@
 
 #include <algorithm>
 
+#include "core/hierarchy/child_stencils.h"
 #include "core/hierarchy/incidence.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/limit.h"
 #include "core/loop/sharpness_inheritance.h"
+#include "core/topology/tags.h"
 
 namespace tessera {
 
@@ -30,13 +32,37 @@ void forEachElement(const Edit& edit, Visit&& visit) {
 }  // namespace
 
 SparseHierarchy::SparseHierarchy(const LoopOptions& options, const LevelCounts& counts, int uniformLevel)
-    : options_(options), counts_(counts), selection_(std::min(uniformLevel, counts.maxLevel())) {}
+    : options_(options), counts_(counts), selection_(counts, std::min(uniformLevel, counts.maxLevel())) {}
 
 Expected<SparseHierarchy> SparseHierarchy::create(const BaseTopology& base, std::span<const Vec3> basePoints,
                                                   const LoopOptions& options, const LevelCounts& counts,
                                                   int uniformLevel, std::span<const Edit> edits) {
   if (uniformLevel < 0) return invalidArgument("the uniform level must be >= 0");
   TESSERA_ASSIGN_OR_RETURN(Level level0, buildBaseLevel(base, options));
+  return create(std::move(level0), basePoints, options, counts, uniformLevel, edits);
+}
+
+Expected<SparseHierarchy> SparseHierarchy::create(Level level0, std::span<const Vec3> basePoints,
+                                                  const LoopOptions& options, const LevelCounts& counts,
+                                                  int uniformLevel, std::span<const Edit> edits) {
+  if (uniformLevel < 0) return invalidArgument("the uniform level must be >= 0");
+  if (level0.numVertices != static_cast<Index>(basePoints.size()) ||
+      counts.vertices(0) != static_cast<uint64_t>(level0.numVertices) ||
+      counts.faces(0) != static_cast<uint64_t>(level0.numFaces())) {
+    return invalidArgument(
+        "the base level, its points and the level counts disagree: " + std::to_string(level0.numVertices) +
+        " vertices, " + std::to_string(basePoints.size()) + " points, counts for " +
+        std::to_string(counts.vertices(0)) + " vertices and " + std::to_string(counts.faces(0)) + " faces");
+  }
+  if (counts.quads()) {
+    for (const Edit& edit : edits) {
+      if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
+        return invalidArgument(edit.id.toString() + " makes " + t->vertex.toString() +
+                               " interpolating, which Catmull-Clark documents do not support: interpolating "
+                               "vertices are defined with Loop's ghost rings (docs/INTERPOLATION.md)");
+      }
+    }
+  }
   SparseHierarchy eval(options, counts, uniformLevel);
   eval.baseEdgeSharpness_.assign(level0.edgeSharpness.begin(), level0.edgeSharpness.end());
   eval.baseVertexSharpness_.assign(level0.vertexSharpness.begin(), level0.vertexSharpness.end());
@@ -68,7 +94,7 @@ void SparseHierarchy::addDemand(const Edit& edit) {
 bool SparseHierarchy::demandCovered(FaceId face) const {
   for (int k = selection_.uniformLevel(); k < face.level(); ++k) {
     if (k + 1 >= numLevels()) return false;
-    if (!SparseSelection::ancestorRingSelected(levels_[k].topo, levels_[k].selected, face)) return false;
+    if (!selection_.ancestorRingSelected(levels_[k].topo, levels_[k].selected, face)) return false;
   }
   return true;
 }
@@ -95,6 +121,7 @@ void SparseHierarchy::growFrom(int l, std::span<const Edit> edits) {
       last.childOfVertex.resize(last.mesh.numVertices, kNoIndex);
       last.childOfEdge.resize(last.mesh.numEdges(), kNoIndex);
       last.halvesOfEdge.resize(last.mesh.numEdges(), kNoIndex);
+      if (counts_.quads()) last.childOfFace.resize(last.mesh.numFaces(), kNoIndex);
       break;
     }
     if (k + 1 < numLevels()) {
@@ -127,11 +154,9 @@ void SparseHierarchy::evaluateNewVertices(int l, const LevelExtension& grown) {
   state.limitNormal.resize(n);
   state.reached.resize(n, 0);
   const LevelState& parent = levels_[l - 1];
-  LoopStencils stencils(parent.topo.mesh, options_);
-  for (Index v = grown.firstNewVertex; v < n; ++v) {
-    state.predicted[v] = topo.isVertexChild(v) ? stencils.vertexChild(topo.origin[v], parent.points)
-                                               : stencils.edgeChild(topo.origin[v], parent.points);
-  }
+  ChildStencils stencils(parent.topo, options_, counts_.split());
+  for (Index v = grown.firstNewVertex; v < n; ++v)
+    state.predicted[v] = stencils.predict(topo, v, parent.points);
   // Ghost rings read only the parent: written again, they are what they
   // were where they were held, and set the new vertices they reach.
   for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
@@ -149,14 +174,13 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
     const bool node = l == 0 || levels_[l - 1].selected[state.topo.parentOfFace(f)];
     if (!node || state.selected[f]) continue;
     state.leaf[f] = 1;
-    for (Index v : m.triangleVertices(f)) state.displayed[v] = 1;
+    for (Index v : m.faceVerticesOf(f)) state.displayed[v] = 1;
   }
   freshLevel = freshLevel || state.limitPosition.empty();  // level 0, first marked
   if (!freshLevel && newLimits.empty()) return;
   state.limitPosition.resize(m.numVertices);
   state.limitNormal.resize(m.numVertices);
-  const SparseFarRings far = farRings(l);
-  const LimitEvaluator limits(m, options_.creaseMethod, &far);
+  const LevelLimits limits = limitsOf(l);
   if (!freshLevel) {
     for (Index v : newLimits) refreshLimit(l, v, limits);
     return;
@@ -167,12 +191,26 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
 }
 
 LimitFrame SparseHierarchy::limitFrameOf(int l, Index v) const {
-  const SparseFarRings far = farRings(l);
-  return limitFrame(levels_[l].topo.mesh, v, levels_[l].points, options_.creaseMethod, &far);
+  return limitsOf(l).frame(v, levels_[l].points);
 }
 
-void SparseHierarchy::refreshLimit(int l, Index v, const LimitEvaluator& limits) {
+Vec3 SparseHierarchy::solveControlPoint(int l, Index v, const Vec3& target) const {
+  return limitsOf(l).solveControlPoint(v, levels_[l].points, target);
+}
+
+LevelLimits SparseHierarchy::limitsOf(int l) const {
+  return LevelLimits(levels_[l].topo, l > 0 ? &levels_[l - 1].topo : nullptr, options_, counts_.split());
+}
+
+// A level without limits under the scheme (a Catmull-Clark base of other
+// polygons, level_limits.h) keeps its control points and zero normals.
+void SparseHierarchy::refreshLimit(int l, Index v, const LevelLimits& limits) {
   LevelState& state = levels_[l];
+  if (!limits.hasLimit()) {
+    state.limitPosition[v] = state.points[v];
+    state.limitNormal[v] = Vec3(0, 0, 0);
+    return;
+  }
   const LimitFrame frame = limits.frame(v, state.points);
   state.limitPosition[v] = frame.position;
   state.limitNormal[v] = frame.normal();
@@ -195,11 +233,8 @@ void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits) {
     // A tag set on this level changes how it refines, not how it was
     // predicted: the stencils read only the parent (interpolate.h).
     const LevelState& parent = levels_[l - 1];
-    LoopStencils stencils(parent.topo.mesh, options_);
-    for (Index v = 0; v < n; ++v) {
-      state.predicted[v] = topo.isVertexChild(v) ? stencils.vertexChild(topo.origin[v], parent.points)
-                                                 : stencils.edgeChild(topo.origin[v], parent.points);
-    }
+    ChildStencils stencils(parent.topo, options_, counts_.split());
+    for (Index v = 0; v < n; ++v) state.predicted[v] = stencils.predict(topo, v, parent.points);
     for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
   }
   state.points = state.predicted;
@@ -237,6 +272,11 @@ void SparseHierarchy::refreshReached(int l, const std::vector<Index>& vertices) 
       reached = moved(v);
       for (Index u : topo.mesh.ringVerticesOf(v)) reached = reached || moved(u);
       for (Index e : topo.mesh.ringEdgesOf(v)) reached = reached || state.edgeTags.count(e) != 0;
+      // Catmull-Clark's limit masks read the far corners of the ring's quads too.
+      for (Index f : counts_.quads() ? topo.mesh.ringFacesOf(v) : std::span<const Index>()) {
+        if (f < 0) continue;
+        for (Index u : topo.mesh.faceVerticesOf(f)) reached = reached || moved(u);
+      }
     }
     state.reached[v] = reached ? 1 : 0;
   }
@@ -269,7 +309,8 @@ void SparseHierarchy::applyTags(int l) {
   LevelState& state = levels_[l];
   Level& m = state.topo.mesh;
   for (const auto& [e, s] : state.edgeTags) m.edgeSharpness[e] = s;
-  for (const auto& [v, s] : state.vertexTags) m.vertexSharpness[v] = s;
+  for (const auto& [v, s] : state.vertexTags)
+    m.vertexSharpness[v] = topology::heldVertexSharpness(m, v, s, options_.boundary);
   for (const auto& [e, s] : state.edgeTags) {
     recomputeRule(l, m.edgeVertices[e][0]);
     recomputeRule(l, m.edgeVertices[e][1]);
@@ -286,11 +327,14 @@ float SparseHierarchy::inheritedVertexSharpness(int l, Index v) const {
 
 float SparseHierarchy::inheritedEdgeSharpness(int l, Index e) const {
   if (l == 0) return baseEdgeSharpness_[e];
+  // Halves of parent edges are numbered 2e + end, after the interior edges
+  // under a quad split, before them under Loop's (docs/ARCHITECTURE.md "Numbering").
+  const uint64_t firstHalf = counts_.quads() ? counts_.corners(l - 1) : 0;
   const uint64_t id = levels_[l].topo.edgeIds[e];
-  if (id >= 2 * counts_.edges(l - 1)) return kSharpnessSmooth;  // interior to a parent face
+  if (id < firstHalf || id - firstHalf >= 2 * counts_.edges(l - 1)) return kSharpnessSmooth;  // interior
   const SparseLevel& parent = levels_[l - 1].topo;
   SharpnessInheritance inherit(parent.mesh, options_);
-  return inherit.halfSharpness(parent.findEdge(id / 2), static_cast<int>(id % 2));
+  return inherit.halfSharpness(parent.findEdge((id - firstHalf) / 2), static_cast<int>((id - firstHalf) % 2));
 }
 
 // Complete vertices read their own ring (tags on this level count); the
@@ -302,6 +346,10 @@ void SparseHierarchy::recomputeRule(int l, Index v) {
     int sharp = 0;
     for (Index e : m.ringEdgesOf(v)) sharp += isSharp(m.edgeSharpness[e]) ? 1 : 0;
     m.vertexRules[v] = vertexRule(m.vertexSharpness[v], sharp);
+    return;
+  }
+  if (topo.isFaceChild(v)) {
+    m.vertexRules[v] = VertexRule::kSmooth;  // a vertex in a parent face has smooth edges only
     return;
   }
   SharpnessInheritance inherit(levels_[l - 1].topo.mesh, options_);
@@ -335,6 +383,7 @@ bool SparseHierarchy::isGhosted(int l, Index v) const {
   const LevelState& parent = levels_[l - 1];
   if (parent.interpolationTags.empty()) return false;
   const SparseLevel& topo = levels_[l].topo;
+  if (topo.isFaceChild(v)) return false;  // ghost rings are Loop's (core/loop/ghost_ring.h)
   auto applies = [&](Index u) {
     return parent.interpolationTags.count(u) != 0 && parent.topo.isComplete(u) &&
            ghostRuleOf(parent.topo.mesh, u) != GhostRule::kNone;
@@ -350,7 +399,7 @@ bool SparseHierarchy::edgeChildIsPredicted(int l, Index e) const {
   if (!state.interpolationTags.empty()) {
     for (Index f : m.edgeFaces[e]) {
       if (f < 0) continue;
-      for (Index v : m.triangleVertices(f)) {
+      for (Index v : m.faceVerticesOf(f)) {
         if (state.interpolationTags.count(v) != 0) return false;
       }
     }
@@ -451,7 +500,7 @@ DirtySet SparseHierarchy::forgetEditNodes(std::span<const Edit> edits) {
     const Level& m = state.topo.mesh;
     for (Index f = 0; f < static_cast<Index>(editSelected.size()); ++f) {
       if (editSelected[f] == state.editSelected[f]) continue;
-      for (Index v : m.triangleVertices(f)) {
+      for (Index v : m.faceVerticesOf(f)) {
         if (state.topo.isComplete(v)) dirty.limits.push_back(VertexId(k, state.topo.vertexIds[v]));
       }
     }
@@ -471,11 +520,10 @@ void SparseHierarchy::markEditNodes(FaceId face, DirtySet& dirty) {
   for (int k = 0; k < face.level() && k < numLevels(); ++k) {
     LevelState& state = levels_[k];
     const Level& m = state.topo.mesh;
-    const Index a = SparseSelection::markAncestorRing(state.topo, face, state.editSelected);
+    const Index a = selection_.markAncestorRing(state.topo, face, state.editSelected);
     if (a == kNoIndex) continue;
-    const SparseFarRings far = farRings(k);
-    const LimitEvaluator limits(m, options_.creaseMethod, &far);
-    for (Index v : m.triangleVertices(a)) {
+    const LevelLimits limits = limitsOf(k);
+    for (Index v : m.faceVerticesOf(a)) {
       if (!state.topo.isComplete(v)) continue;
       refreshLimit(k, v, limits);
       ++dirty.limitsRecomputed;
@@ -509,13 +557,13 @@ int SparseHierarchy::reserveFaces(std::span<const FaceId> faces, std::span<const
     if (face.level() <= 0) continue;
     bool held = true;
     for (int k = selection_.uniformLevel(); held && k < face.level(); ++k) {
-      const uint64_t ancestor = face.index() >> (2 * (face.level() - k));
+      const uint64_t ancestor = counts_.ancestorAt(face, k).index();
       if (k + 1 >= numLevels()) {
         held = false;
       } else if (judged[k].first == ancestor) {
         held = judged[k].second;
       } else {
-        held = SparseSelection::ancestorRingSelected(levels_[k].topo, levels_[k].selected, face);
+        held = selection_.ancestorRingSelected(levels_[k].topo, levels_[k].selected, face);
         judged[k] = {ancestor, held};
       }
     }

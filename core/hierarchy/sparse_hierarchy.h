@@ -1,6 +1,9 @@
-// The document's working state: a sparse forest of triangle quadtrees, one
-// per base face (Pulli & Lounsbery, "Hierarchical Editing and Rendering of
-// Subdivision Surfaces" §4.1), evaluated incrementally (§4.2, Fig. 7).
+// The document's working state: a sparse forest of quadtrees, one per base
+// face (Pulli & Lounsbery, "Hierarchical Editing and Rendering of
+// Subdivision Surfaces" §4.1), evaluated incrementally (§4.2, Fig. 7). The
+// faces split by Loop's triangle split or by Catmull-Clark's quad split, as
+// the level counts say (ids.h); the scheme enters through the stencils that
+// predict a child (child_stencils.h) and the limits (level_limits.h).
 //
 // Which faces exist: every level up to `uniformLevel` is whole; below it a
 // face is a quadtree node only where it is demanded -- an edit addresses an
@@ -18,7 +21,10 @@
 // the nodes by their LOD profiles, core/tessellation).
 //
 // Semantics are those of core/document/document_evaluator.h, the dense reference: the
-// property tests require agreement to 1e-9 at every present vertex.
+// property tests require agreement to 1e-9 at every present vertex. On the
+// quad split the reference is OpenSubdiv Far with each level's edits added
+// before the next level (tests/oracle/catmark_hierarchy_oracle_test.cc);
+// interpolating vertices are Loop's (docs/INTERPOLATION.md) and refused there.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +36,7 @@
 
 #include "core/hierarchy/edit.h"
 #include "core/hierarchy/ids.h"
+#include "core/hierarchy/level_limits.h"
 #include "core/hierarchy/sparse_far_rings.h"
 #include "core/hierarchy/sparse_level.h"
 #include "core/hierarchy/sparse_selection.h"
@@ -67,6 +74,11 @@ struct HierarchyStats {
 class SparseHierarchy {
  public:
   static Expected<SparseHierarchy> create(const BaseTopology& base, std::span<const Vec3> basePoints,
+                                          const LoopOptions& options, const LevelCounts& counts,
+                                          int uniformLevel, std::span<const Edit> edits);
+  // From a built base level (buildBaseLevel for Loop, schemes::buildPolyLevel
+  // for Catmull-Clark's polygons); `counts` names the split.
+  static Expected<SparseHierarchy> create(Level level0, std::span<const Vec3> basePoints,
                                           const LoopOptions& options, const LevelCounts& counts,
                                           int uniformLevel, std::span<const Edit> edits);
 
@@ -109,6 +121,9 @@ class SparseHierarchy {
   const Vec3& limitPosition(int l, Index vertex) const { return levels_[l].limitPosition[vertex]; }
   const Vec3& limitNormal(int l, Index vertex) const { return levels_[l].limitNormal[vertex]; }
   LimitFrame limitFrameOf(int l, Index vertex) const;
+  // The control point of a complete vertex whose limit is `target`
+  // (level_limits.h: direct manipulation by the document's scheme).
+  Vec3 solveControlPoint(int l, Index vertex, const Vec3& target) const;
   // The crease decay the limits follow (limit.h needs it for semi-sharp features).
   CreaseMethod creaseMethod() const { return options_.creaseMethod; }
   // Whether an active edit at level l reaches the limit of this vertex (as
@@ -198,7 +213,8 @@ class SparseHierarchy {
   // vertex of a level built whole, or else of `newLimits` (the vertices a
   // growth completed).
   void markLeaves(int l, bool freshLevel, const std::vector<Index>& newLimits);
-  void refreshLimit(int l, Index vertex, const LimitEvaluator& limits);
+  void refreshLimit(int l, Index vertex, const LevelLimits& limits);
+  LevelLimits limitsOf(int l) const;
 
   // Edits at one level (sparse_hierarchy.cc).
   void resolveTags(int l, std::span<const Edit> edits);

@@ -14,7 +14,7 @@ void flagRings(const Level& m, const std::vector<Index>& from, Buffer<uint8_t>& 
                std::vector<Index>& added) {
   std::vector<uint8_t> seen(m.numVertices, 0);
   for (Index f : from) {
-    for (Index v : m.triangleVertices(f)) {
+    for (Index v : m.faceVerticesOf(f)) {
       if (seen[v]) continue;
       seen[v] = 1;
       for (Index g : m.ringFacesOf(v)) {
@@ -56,13 +56,11 @@ std::vector<Index> localFaces(const SparseLevel& level, const std::vector<uint64
   return out;
 }
 
-// The local index of the ancestor of `face` at `level`, kNoIndex if the
-// level does not hold it.
-Index ancestorAt(const SparseLevel& level, FaceId face) {
-  return level.findFace(face.index() >> (2 * (face.level() - level.depth)));
-}
-
 }  // namespace
+
+Index SparseSelection::ancestorAt(const SparseLevel& level, FaceId face) const {
+  return level.findFace(counts_.ancestorAt(face, level.depth).index());
+}
 
 bool SparseSelection::replaceEditDemand(std::set<FaceId> faces) {
   if (faces == editDemand_) return false;
@@ -77,7 +75,7 @@ void SparseSelection::hold(FaceId face) {
   // Once a level holds the ancestor, every level above holds its own;
   // levels above the uniform one are whole, whatever is demanded.
   for (int k = l - 1; k >= uniformLevel_; --k) {
-    const uint64_t ancestor = face.index() >> (2 * (l - k));
+    const uint64_t ancestor = counts_.ancestorAt(face, k).index();
     const auto& sorted = held_[k].sorted;
     if (std::binary_search(sorted.begin(), sorted.end(), ancestor)) break;
     held_[k].pending.push_back(ancestor);
@@ -163,10 +161,10 @@ std::vector<Index> SparseSelection::growSelection(const SparseLevel& level, Buff
 }
 
 bool SparseSelection::ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected,
-                                           FaceId face) {
+                                           FaceId face) const {
   const Index a = ancestorAt(level, face);
   if (a == kNoIndex) return false;
-  for (Index v : level.mesh.triangleVertices(a)) {
+  for (Index v : level.mesh.faceVerticesOf(a)) {
     for (Index g : level.mesh.ringFacesOf(v)) {
       if (g >= 0 && !selected[g]) return false;
     }
@@ -175,11 +173,11 @@ bool SparseSelection::ancestorRingSelected(const SparseLevel& level, const Buffe
 }
 
 Index SparseSelection::markAncestorRing(const SparseLevel& level, FaceId face,
-                                        Buffer<uint8_t>& editSelected) {
+                                        Buffer<uint8_t>& editSelected) const {
   const Index a = ancestorAt(level, face);
   if (a == kNoIndex) return kNoIndex;
   bool marked = false;
-  for (Index v : level.mesh.triangleVertices(a)) {
+  for (Index v : level.mesh.faceVerticesOf(a)) {
     for (Index g : level.mesh.ringFacesOf(v)) {
       if (g < 0 || editSelected[g]) continue;
       editSelected[g] = 1;

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "core/hierarchy/ids.h"
@@ -31,7 +32,9 @@ namespace tessera {
 
 class SparseSelection {
  public:
-  explicit SparseSelection(int uniformLevel) : uniformLevel_(uniformLevel) {}
+  // Ancestors are found by `counts`' split (hierarchy/ids.h).
+  SparseSelection(LevelCounts counts, int uniformLevel)
+      : counts_(std::move(counts)), uniformLevel_(uniformLevel) {}
 
   int uniformLevel() const { return uniformLevel_; }
   void raiseUniformLevel(int level) { uniformLevel_ = level; }
@@ -69,12 +72,12 @@ class SparseSelection {
   // Whether the ancestor of `face` at `level` is present and every face of
   // its 1-ring is flagged in `selected` (what a demanded face adds to the
   // level's selection).
-  static bool ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected, FaceId face);
+  bool ancestorRingSelected(const SparseLevel& level, const Buffer<uint8_t>& selected, FaceId face) const;
   // Flags the 1-ring of the ancestor of `face` at `level` in `editSelected`
   // in place (what select adds to editSelected for one more demanded face).
   // Returns the ancestor when that flagged a face that was not flagged yet,
   // kNoIndex otherwise.
-  static Index markAncestorRing(const SparseLevel& level, FaceId face, Buffer<uint8_t>& editSelected);
+  Index markAncestorRing(const SparseLevel& level, FaceId face, Buffer<uint8_t>& editSelected) const;
 
  private:
   // What the structure holds is kept per level, as the ancestors there of
@@ -88,7 +91,11 @@ class SparseSelection {
   };
   static void mergePending(Ancestors& a);
   void hold(FaceId face);
+  // The local index of the ancestor of `face` at `level`, kNoIndex if the
+  // level does not hold it.
+  Index ancestorAt(const SparseLevel& level, FaceId face) const;
 
+  LevelCounts counts_;
   int uniformLevel_ = 0;
   int deepest_ = 0;
   // Faces edits address or addressed and faces tessellations refine: what

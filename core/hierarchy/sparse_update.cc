@@ -6,10 +6,12 @@
 // limits are refreshed where a displayed vertex or a ring neighbour changed.
 #include <algorithm>
 
+#include "core/hierarchy/child_stencils.h"
 #include "core/hierarchy/interpolation_conflicts.h"
 #include "core/hierarchy/sparse_hierarchy.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/sharpness_inheritance.h"
+#include "core/topology/tags.h"
 
 namespace tessera {
 
@@ -45,6 +47,21 @@ bool touches(const Level& m, Index v, const Marked& set) {
   if (set.has(v)) return true;
   for (Index u : m.ringVerticesOf(v)) {
     if (set.has(u)) return true;
+  }
+  return false;
+}
+
+// Whether the limit of complete vertex w reads a marked vertex: its ring's,
+// and under a quad split the far corners of its ring faces as well
+// (Catmull-Clark's limit masks, core/catmark/limit.h).
+bool limitReads(const Level& m, Index w, const Marked& set, bool quads) {
+  if (!quads) return touches(m, w, set);
+  if (set.has(w)) return true;
+  for (Index f : m.ringFacesOf(w)) {
+    if (f < 0) continue;
+    for (Index u : m.faceVerticesOf(f)) {
+      if (set.has(u)) return true;
+    }
   }
   return false;
 }
@@ -128,7 +145,9 @@ std::vector<Index> SparseHierarchy::applyEditAtItsLevel(const Edit& edit, std::s
         state.vertexTags[v] = canonicalSharpness(t->sharpness);
     }
     auto it = state.vertexTags.find(v);
-    m.vertexSharpness[v] = it != state.vertexTags.end() ? it->second : inheritedVertexSharpness(l, v);
+    m.vertexSharpness[v] = it != state.vertexTags.end()
+                               ? topology::heldVertexSharpness(m, v, it->second, options_.boundary)
+                               : inheritedVertexSharpness(l, v);
     recomputeRule(l, v);
     sources = {v};
   }
@@ -144,7 +163,7 @@ std::vector<Index> SparseHierarchy::verticesAround(int l, const std::vector<Inde
   for (Index v : vertices) {
     for (Index f : m.ringFacesOf(v)) {
       if (f < 0) continue;
-      for (Index x : m.triangleVertices(f)) out.add(x);
+      for (Index x : m.faceVerticesOf(f)) out.add(x);
     }
   }
   return out.toVector();
@@ -210,10 +229,13 @@ std::vector<Index> SparseHierarchy::refreshChildren(int l, const std::vector<Ind
   SharpnessInheritance inherit(p.mesh, options_);
   Marked vertices(state.vertexMarks);
   for (Index f : parentFaces) {
-    for (Index u : p.mesh.triangleVertices(f)) {
+    for (Index u : p.mesh.faceVerticesOf(f)) {
       if (const Index child = p.childOfVertex[u]; child >= 0) vertices.add(child);
     }
-    for (Index e : p.mesh.triangleEdges(f)) {
+    if (!p.childOfFace.empty()) {
+      if (const Index child = p.childOfFace[f]; child >= 0) vertices.add(child);
+    }
+    for (Index e : p.mesh.faceEdgesOf(f)) {
       if (const Index child = p.childOfEdge[e]; child >= 0) vertices.add(child);
       const Index half = p.halvesOfEdge[e];
       if (half < 0) continue;
@@ -226,15 +248,13 @@ std::vector<Index> SparseHierarchy::refreshChildren(int l, const std::vector<Ind
   }
   for (Index v : vertices.items()) {
     auto tag = state.vertexTags.find(v);
-    c.mesh.vertexSharpness[v] =
-        tag != state.vertexTags.end() ? tag->second : inheritedVertexSharpness(l + 1, v);
+    c.mesh.vertexSharpness[v] = tag != state.vertexTags.end()
+                                    ? topology::heldVertexSharpness(c.mesh, v, tag->second, options_.boundary)
+                                    : inheritedVertexSharpness(l + 1, v);
   }
   for (Index v : vertices.items()) recomputeRule(l + 1, v);
-  LoopStencils stencils(p.mesh, options_);
-  for (Index v : vertices.items()) {
-    state.predicted[v] = c.isVertexChild(v) ? stencils.vertexChild(c.origin[v], parent.points)
-                                            : stencils.edgeChild(c.origin[v], parent.points);
-  }
+  ChildStencils stencils(p, options_, counts_.split());
+  for (Index v : vertices.items()) state.predicted[v] = stencils.predict(c, v, parent.points);
   for (const auto& [v0, tag] : parent.interpolationTags) {
     if (const Index child = p.childOfVertex[v0]; child >= 0 && vertices.has(child)) applyGhostRing(l + 1, v0);
   }
@@ -247,14 +267,13 @@ void SparseHierarchy::refreshLimitsNear(int l, const std::vector<Index>& changed
                                         const std::vector<Index>& candidates, DirtySet& dirty) {
   const LevelState& state = levels_[l];
   const Level& m = state.topo.mesh;
-  const SparseFarRings far = farRings(l);
-  const LimitEvaluator limits(m, options_.creaseMethod, &far);
+  const LevelLimits limits = limitsOf(l);
   Marked changedSet(levels_[l].vertexMarks);
   for (Index v : changed) changedSet.add(v);
   // A leaf is around about three of the refreshed vertices: listed once.
   Marked leaves(levels_[l].faceMarks);
   for (Index w : candidates) {
-    if (!state.topo.isComplete(w) || !touches(m, w, changedSet)) continue;
+    if (!state.topo.isComplete(w) || !limitReads(m, w, changedSet, counts_.quads())) continue;
     refreshLimit(l, w, limits);
     ++dirty.limitsRecomputed;
     dirty.limits.push_back(VertexId(l, state.topo.vertexIds[w]));

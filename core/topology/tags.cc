@@ -19,6 +19,12 @@ Index findEdge(const Level& level, Index a, Index b) {
 
 }  // namespace
 
+float heldVertexSharpness(const Level& level, Index v, float tagged, BoundaryInterpolation boundary) {
+  const bool topologicalCorner = level.isBoundaryVertex(v) && level.valence(v) == 2;
+  if (boundary == BoundaryInterpolation::kEdgeAndCorner && topologicalCorner) return kSharpnessInfinite;
+  return canonicalSharpness(tagged);
+}
+
 Status applyTags(std::span<const Crease> creases, std::span<const float> vertexSharpness,
                  BoundaryInterpolation boundary, Level& level) {
   const int nV = level.numVertices;
@@ -43,16 +49,13 @@ Status applyTags(std::span<const Crease> creases, std::span<const float> vertexS
       return invalidArgument("vertex sharpness given for " + std::to_string(vertexSharpness.size()) +
                              " vertices, the mesh has " + std::to_string(nV));
     }
-    for (Index v = 0; v < nV; ++v) level.vertexSharpness[v] = canonicalSharpness(vertexSharpness[v]);
+  }
+  for (Index v = 0; v < nV; ++v) {
+    level.vertexSharpness[v] = heldVertexSharpness(
+        level, v, vertexSharpness.empty() ? kSharpnessSmooth : vertexSharpness[v], boundary);
   }
   for (Index e = 0; e < level.numEdges(); ++e) {
     if (level.isBoundaryEdge(e)) level.edgeSharpness[e] = kSharpnessInfinite;
-  }
-  if (boundary == BoundaryInterpolation::kEdgeAndCorner) {
-    for (Index v = 0; v < nV; ++v) {
-      const bool topologicalCorner = level.isBoundaryVertex(v) && level.valence(v) == 2;
-      if (topologicalCorner) level.vertexSharpness[v] = kSharpnessInfinite;
-    }
   }
   level.recomputeVertexRules();
   return Status::ok();

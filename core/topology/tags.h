@@ -19,6 +19,12 @@ struct Crease {
   float sharpness;
 };
 
+// The sharpness vertex v of `level` holds when tagged `tagged`: a
+// topological corner (a boundary vertex with two edges) stays infinitely
+// sharp under the edge-and-corner boundary rule, whatever its tag, as Sdc
+// sharpens it (OpenSubdiv, Sdc::Options VTX_BOUNDARY_EDGE_AND_CORNER).
+float heldVertexSharpness(const Level& level, Index v, float tagged, BoundaryInterpolation boundary);
+
 // Sets edgeSharpness, vertexSharpness and vertexRules of `level`.
 // vertexSharpness is empty or one value per vertex. Errors name the crease
 // and the edge it names when a vertex is out of range or the edge does not

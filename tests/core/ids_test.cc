@@ -77,6 +77,14 @@ TEST(ElementIds, ParentAndChildRelationsMatchTheRefinedTopology) {
       }
     }
   }
+  // A face's ancestor at each level is its parent's parent and so on.
+  for (int f = 0; f < refiner->level(3).numFaces(); ++f) {
+    FaceId up(3, static_cast<uint64_t>(f));
+    for (int k = 3; k >= 0; --k) {
+      EXPECT_EQ(counts.ancestorAt(FaceId(3, static_cast<uint64_t>(f)), k), up);
+      if (k > 0) up = counts.parentFace(up);
+    }
+  }
 }
 
 TEST(ElementIds, CheckNamesTheProblem) {

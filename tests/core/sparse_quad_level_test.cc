@@ -38,9 +38,7 @@ struct Uniform {
 Uniform uniformLevels(const PolyTestMesh& mesh, const LoopOptions& options, int depth) {
   auto base = schemes::buildPolyLevel(mesh.topology, options);
   EXPECT_TRUE(base.isOk()) << base.status().toString();
-  std::vector<int> sizes;
-  for (Index f = 0; f < base->numFaces(); ++f) sizes.push_back(base->faceSize(f));
-  Uniform u{{}, LevelCounts::quads(base->numVertices, base->numEdges(), sizes, depth)};
+  Uniform u{{}, testing::quadCountsOf(*base, depth)};
   u.levels.push_back(std::move(*base));
   for (int l = 0; l < depth; ++l)
     u.levels.push_back(schemes::splitToQuads(u.levels.back(), options, schemes::SplitDetail::kFull));
@@ -162,6 +160,15 @@ TEST(SparseQuadLevel, CountsAndParentsAreTheUniformSplits) {
         // The vertex on edge e is on both halves of it.
         ASSERT_EQ(u.levels[l + 1].edgeVertices[u.counts.corners(l) + 2 * e][0],
                   static_cast<Index>(mid.index()));
+      }
+    }
+    // A face's ancestor at each level is its parent's parent and so on.
+    for (Index f = 0; f < u.levels[3].numFaces(); ++f) {
+      FaceId up(3, static_cast<uint64_t>(f));
+      for (int k = 3; k >= 0; --k) {
+        ASSERT_EQ(u.counts.ancestorAt(FaceId(3, static_cast<uint64_t>(f)), k), up)
+            << mesh.name << " level " << k;
+        if (k > 0) up = u.counts.parentFace(up);
       }
     }
   }

@@ -87,9 +87,7 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
 }
 
 std::vector<PolyTestMesh> shapes() {
-  using namespace testing;
-  return {quadCube(), withPolyJitter(quadGrid(5, 4), 0.05, 7), withPolyJitter(quadTorus(7, 5), 0.05, 3),
-          withPolyJitter(mixedPrism(5, false), 0.05, 11), withPolyJitter(mixedPrism(7, true), 0.05, 12)};
+  return testing::catmarkShapes();
 }
 
 TEST(CatmarkOracle, ProceduralShapesWithoutTags) {

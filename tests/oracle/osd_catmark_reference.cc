@@ -136,35 +136,42 @@ std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const schemes::PolyTopology&
                                                     std::span<const Vec3> basePoints,
                                                     const schemes::CreaseOptions& options,
                                                     const schemes::QuadRefiner& ours, bool withLimit,
-                                                    int firstLimitLevel) {
+                                                    int firstLimitLevel, const OsdLevelEdit& edit) {
   const int levels = ours.maxLevel();
   const OsdPolyInput input(topology);
   auto refiner = createOsdQuadRefiner(input, ours.scheme(), options, levels, true);
   const auto maps = vertexMaps(*refiner, ours, levels);
-  std::vector<OsdDoublePoint> base;
-  for (const Vec3& p : basePoints) base.push_back({p[0], p[1], p[2]});
+  const Far::PrimvarRefinerReal<double> primvar(*refiner);
+  std::vector<OsdDoublePoint> current, next;  // OpenSubdiv's numbering
+  for (const Vec3& p : basePoints) current.push_back({p[0], p[1], p[2]});
 
   std::vector<OsdQuadLevel> results(levels + 1);
   for (int l = 0; l <= levels; ++l) {
-    // Limit() applies to the last level only: one refiner per level (vertex
-    // numbering up to level l does not depend on deeper levels).
-    const bool limitHere = withLimit && l >= firstLimitLevel;
-    std::unique_ptr<Far::TopologyRefiner> owned =
-        l == levels ? nullptr : createOsdQuadRefiner(input, ours.scheme(), options, l, true);
-    const Far::TopologyRefiner& levelRefiner = l == levels ? *refiner : *owned;
-    std::vector<OsdDoublePoint> points = interpolateOsdDouble(levelRefiner, base, l);
-    const int count = levelRefiner.GetLevel(l).GetNumVertices();
-    std::vector<OsdDoublePoint> pos(count), t1(count), t2(count);
-    if (limitHere) {
-      OsdDoublePoint *posOut = pos.data(), *t1Out = t1.data(), *t2Out = t2.data();
-      Far::PrimvarRefinerReal<double>(levelRefiner).Limit(points.data(), posOut, t1Out, t2Out);
+    if (l > 0) {
+      next.assign(refiner->GetLevel(l).GetNumVertices(), OsdDoublePoint{});
+      OsdDoublePoint* dst = next.data();
+      primvar.Interpolate(l, current.data(), dst);
+      current.swap(next);
     }
+    const int count = refiner->GetLevel(l).GetNumVertices();
     const int n = ours.level(l).numVertices;
     if (count != n) throw std::runtime_error("vertex counts differ at level " + std::to_string(l));
     auto& r = results[l];
     r.points.resize(n);
-    for (int v = 0; v < n; ++v) r.points[v] = toVec3(points[maps[l][v]]);
-    if (!limitHere) continue;
+    for (int v = 0; v < n; ++v) r.points[v] = toVec3(current[maps[l][v]]);
+    if (edit) {
+      edit(l, r.points);
+      for (int v = 0; v < n; ++v) current[maps[l][v]] = {r.points[v][0], r.points[v][1], r.points[v][2]};
+    }
+    if (!withLimit || l < firstLimitLevel) continue;
+    // Limit() applies to the last level only: a refiner that stops at l
+    // (vertex numbering up to level l does not depend on deeper levels).
+    std::unique_ptr<Far::TopologyRefiner> owned =
+        l == levels ? nullptr : createOsdQuadRefiner(input, ours.scheme(), options, l, true);
+    const Far::TopologyRefiner& levelRefiner = l == levels ? *refiner : *owned;
+    std::vector<OsdDoublePoint> pos(count), t1(count), t2(count);
+    OsdDoublePoint *posOut = pos.data(), *t1Out = t1.data(), *t2Out = t2.data();
+    Far::PrimvarRefinerReal<double>(levelRefiner).Limit(current.data(), posOut, t1Out, t2Out);
     r.limitPositions.resize(n);
     r.limitTangent1.resize(n);
     r.limitTangent2.resize(n);

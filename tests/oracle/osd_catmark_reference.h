@@ -6,6 +6,7 @@
 // by level (never by assuming both number vertices alike).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -59,12 +60,18 @@ struct OsdDoublePoint {
 std::vector<OsdDoublePoint> interpolateOsdDouble(const OpenSubdiv::Far::TopologyRefiner& refiner,
                                                  std::span<const OsdDoublePoint> basePoints, int level);
 
+// Changes the points of one level, in Tessera's numbering, before the next
+// level is interpolated from them (an edit's offsets at that level).
+using OsdLevelEdit = std::function<void(int level, std::vector<Vec3>& points)>;
+
 // Results for levels 0..ours.maxLevel(); limit data for every level from
-// `firstLimitLevel` on when withLimit (a level must be all quads for Limit()).
+// `firstLimitLevel` on when withLimit (a level must be all quads for
+// Limit()). With `edit`, each level's points are Far's interpolation of the
+// edited level above, and `points` holds them after the level's own edit.
 std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const schemes::PolyTopology& topology,
                                                     std::span<const Vec3> basePoints,
                                                     const schemes::CreaseOptions& options,
                                                     const schemes::QuadRefiner& ours, bool withLimit,
-                                                    int firstLimitLevel);
+                                                    int firstLimitLevel, const OsdLevelEdit& edit = {});
 
 }  // namespace tessera::oracle

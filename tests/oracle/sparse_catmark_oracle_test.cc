@@ -67,10 +67,7 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
   // Limits from level 1 on, where every face is a quad.
   const auto osd = oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, true, 1);
   const double diag = oracle::boundingDiagonal(mesh.points);
-  std::vector<int> sizes;
-  for (Index f = 0; f < refiner->level(0).numFaces(); ++f) sizes.push_back(refiner->level(0).faceSize(f));
-  const LevelCounts counts =
-      LevelCounts::quads(refiner->level(0).numVertices, refiner->level(0).numEdges(), sizes, levels);
+  const LevelCounts counts = testing::quadCountsOf(refiner->level(0), levels);
 
   std::mt19937 rng(seed);
   std::vector<SparseLevel> sparse;
@@ -120,9 +117,7 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
 
 TEST(SparseCatmarkOracle, SparseLevelsEqualFarOnPolygonMeshesWithRandomTags) {
   using namespace testing;
-  const std::vector<PolyTestMesh> shapes = {
-      quadCube(), withPolyJitter(quadGrid(5, 4), 0.05, 7), withPolyJitter(quadTorus(7, 5), 0.05, 3),
-      withPolyJitter(mixedPrism(5, false), 0.05, 11), withPolyJitter(mixedPrism(7, true), 0.05, 12)};
+  const std::vector<PolyTestMesh> shapes = catmarkShapes();
   Counted counted;
   uint32_t seed = 1;
   for (const PolyTestMesh& shape : shapes) {

@@ -157,4 +157,12 @@ inline PolyTestMesh withPolyJitter(const PolyTestMesh& mesh, double amount, uint
   return out;
 }
 
+// The shapes the Catmull-Clark oracle tests share: quads closed and open,
+// a torus, and prisms of triangles, quads and n-gons, jittered from fixed
+// seeds so that no symmetry hides an error.
+inline std::vector<PolyTestMesh> catmarkShapes() {
+  return {quadCube(), withPolyJitter(quadGrid(5, 4), 0.05, 7), withPolyJitter(quadTorus(7, 5), 0.05, 3),
+          withPolyJitter(mixedPrism(5, false), 0.05, 11), withPolyJitter(mixedPrism(7, true), 0.05, 12)};
+}
+
 }  // namespace tessera::testing

@@ -1,9 +1,11 @@
-// Random sparse selections for the sparse level tests (header only).
+// Random sparse selections and quad-split counts for the sparse level
+// tests (header only).
 #pragma once
 
 #include <random>
 #include <vector>
 
+#include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_level.h"
 
 namespace tessera::testing {
@@ -19,6 +21,13 @@ inline std::vector<Index> refinableFaces(const SparseLevel& level, double fracti
     if (ok && unit(rng) < fraction) faces.push_back(f);
   }
   return faces;
+}
+
+// The counts of `level`'s quad split (Catmull-Clark) down to `maxLevel`.
+inline LevelCounts quadCountsOf(const Level& level, int maxLevel) {
+  std::vector<int> sizes;
+  for (Index f = 0; f < level.numFaces(); ++f) sizes.push_back(level.faceSize(f));
+  return LevelCounts::quads(level.numVertices, level.numEdges(), sizes, maxLevel);
 }
 
 }  // namespace tessera::testing

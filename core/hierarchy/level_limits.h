@@ -1,0 +1,50 @@
+// Limit positions and tangents of the complete vertices of one sparse level
+// by the document's scheme: Loop's eigenanalysis (core/loop/limit.h, with
+// the far rings Chaikin's decay reads, sparse_far_rings.h) under a triangle
+// split, Catmull-Clark's limit masks (core/catmark/limit.h) under a quad
+// split. Catmull-Clark's masks read each ring face's opposite corner from
+// a level of quads: a base level with other polygons has no limits (its
+// vertices have theirs one level down, after the first split).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+
+#include "core/hierarchy/ids.h"
+#include "core/hierarchy/sparse_far_rings.h"
+#include "core/hierarchy/sparse_level.h"
+#include "core/loop/limit.h"
+#include "core/loop/loop_options.h"
+#include "core/util/vec3.h"
+
+namespace tessera {
+
+class LevelLimits {
+ public:
+  // `parent` is the level `level` was split from (null at level 0).
+  LevelLimits(const SparseLevel& level, const SparseLevel* parent, const LoopOptions& options,
+              SplitKind split);
+  LevelLimits(const LevelLimits&) = delete;
+  LevelLimits& operator=(const LevelLimits&) = delete;
+
+  // Whether the level's complete vertices have limits under the scheme.
+  bool hasLimit() const;
+  // The limit frame of complete vertex v (hasLimit) from the level's points.
+  LimitFrame frame(Index v, std::span<const Vec3> points) const;
+  // The control point of complete vertex v whose limit position is
+  // `target`, the others fixed (direct manipulation, Pulli & Lounsbery,
+  // "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.2):
+  // Loop's exact limit (core/loop/direct_manipulation.h), or the
+  // Catmull-Clark mask frame() takes, whose semi-sharp features count as
+  // sharp (docs/LIMITS.md).
+  Vec3 solveControlPoint(Index v, std::span<const Vec3> points, const Vec3& target) const;
+
+ private:
+  const SparseLevel& level_;
+  CreaseMethod method_;
+  SparseFarRings far_;
+  std::optional<LimitEvaluator> loop_;  // empty under a quad split
+};
+
+}  // namespace tessera

@@ -1,5 +1,6 @@
-// Catmull-Clark uniform refinement (topology + positions) and limit
-// evaluation of a real mesh, Tessera against OpenSubdiv Far in the same run.
+// Catmull-Clark uniform refinement (topology + positions), limit evaluation
+// and the sparse hierarchy held whole of a real mesh, Tessera against
+// OpenSubdiv Far in the same run.
 //
 //   build/release/bench/tessera_bench_scheme [--mesh PATH] [benchmark flags]
 //
@@ -17,10 +18,13 @@
 
 #include "bench/ratio_reporter.h"
 #include "core/catmark/limit.h"
+#include "core/hierarchy/sparse_hierarchy.h"
+#include "core/schemes/poly_builder.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/osd_adapter.h"
 #include "oracle/osd_catmark_reference.h"
+#include "support/sparse_levels.h"
 
 namespace {
 
@@ -91,6 +95,35 @@ void limitOpenSubdiv(benchmark::State& state) {
   }
 }
 
+// The sparse hierarchy held whole to `level` (core/hierarchy/sparse_hierarchy.h,
+// the working state of a document): every level's points and the limits of
+// every level of quads, against OpenSubdiv's refinement, interpolation and
+// Limit() of the finest level alone.
+void hierarchyTessera(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto level0 = buildPolyLevel(input().mesh.topology, CreaseOptions{});
+    if (!level0.isOk()) return state.SkipWithError(level0.status().toString().c_str());
+    const LevelCounts counts = tessera::testing::quadCountsOf(*level0, level);
+    auto h =
+        SparseHierarchy::create(std::move(*level0), input().mesh.points, CreaseOptions{}, counts, level, {});
+    if (!h.isOk()) return state.SkipWithError(h.status().toString().c_str());
+    benchmark::DoNotOptimize(h->points(level).data());
+  }
+}
+
+void hierarchyOpenSubdiv(benchmark::State& state) {
+  const int level = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto refiner = osdRefiner(level, true);
+    auto points = oracle::interpolateOsd(*refiner, input().osdPoints, level);
+    std::vector<OsdPoint> positions(points.size()), t1(points.size()), t2(points.size());
+    OsdPoint *p = positions.data(), *a = t1.data(), *b = t2.data();
+    Far::PrimvarRefiner(*refiner).Limit(points.data(), p, a, b);
+    benchmark::DoNotOptimize(positions.data());
+  }
+}
+
 BENCHMARK(refineTessera)->Name("CatmarkRefine/Tessera")->DenseRange(1, 4)->Unit(benchmark::kMillisecond);
 BENCHMARK(refineOpenSubdiv)
     ->Name("CatmarkRefine/OpenSubdiv")
@@ -98,6 +131,14 @@ BENCHMARK(refineOpenSubdiv)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(limitTessera)->Name("CatmarkLimit/Tessera")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
 BENCHMARK(limitOpenSubdiv)->Name("CatmarkLimit/OpenSubdiv")->DenseRange(1, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(hierarchyTessera)
+    ->Name("CatmarkHierarchy/Tessera")
+    ->DenseRange(1, 3)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(hierarchyOpenSubdiv)
+    ->Name("CatmarkHierarchy/OpenSubdiv")
+    ->DenseRange(1, 3)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -7,13 +7,13 @@
 
 namespace tessera {
 
-namespace {
+namespace detail {
 
 // Smooth tangent weights per valence, computed once per evaluation: ring
 // neighbour k and face k of valence n at offsets[n] + k.
-class TangentTables {
+class CatmarkTangentTables {
  public:
-  explicit TangentTables(int maxValence) : offsets_(maxValence + 2, 0) {
+  explicit CatmarkTangentTables(int maxValence) : offsets_(maxValence + 2, 0) {
     for (int n = 0; n <= maxValence; ++n) offsets_[n + 1] = offsets_[n] + n;
     edge_.resize(offsets_.back());
     face_.resize(offsets_.back());
@@ -31,6 +31,12 @@ class TangentTables {
   std::vector<int> offsets_;
   std::vector<double> edge_, face_;
 };
+
+}  // namespace detail
+
+namespace {
+
+using TangentTables = detail::CatmarkTangentTables;
 
 // Opposite corner of v in quad f, v being at corner c.
 inline Index opposite(const Level& level, Index f, int c) {
@@ -138,6 +144,15 @@ CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> p
 
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points) {
   return frameWith(level, v, points, TangentTables(level.valence(v)));
+}
+
+CatmarkLimitEvaluator::CatmarkLimitEvaluator(const Level& level)
+    : level_(level), tables_(std::make_unique<const TangentTables>(level.maxValence)) {}
+
+CatmarkLimitEvaluator::~CatmarkLimitEvaluator() = default;
+
+CatmarkLimitFrame CatmarkLimitEvaluator::frame(Index v, std::span<const Vec3> points) const {
+  return frameWith(level_, v, points, *tables_);
 }
 
 double catmarkSelfLimitWeight(const Level& level, Index v) {

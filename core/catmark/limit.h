@@ -6,6 +6,7 @@
 // two edges. Semi-sharp features count as sharp, as in Limit().
 #pragma once
 
+#include <memory>
 #include <span>
 
 #include "core/topology/level.h"
@@ -18,6 +19,24 @@ struct CatmarkLimitFrame {
   Vec3 position;
   Vec3 tangent1;
   Vec3 tangent2;
+};
+
+namespace detail {
+class CatmarkTangentTables;
+}
+
+// catmarkLimitFrame for many vertices of one level, one at a time, with
+// the tangent weights built once for the level's largest valence (the
+// sparse hierarchy's use; one call builds them per vertex).
+class CatmarkLimitEvaluator {
+ public:
+  explicit CatmarkLimitEvaluator(const Level& level);
+  ~CatmarkLimitEvaluator();
+  CatmarkLimitFrame frame(Index v, std::span<const Vec3> points) const;
+
+ private:
+  const Level& level_;
+  std::unique_ptr<const detail::CatmarkTangentTables> tables_;
 };
 
 // One vertex of an all-quad level with full topology, or a complete vertex

@@ -16,15 +16,4 @@ std::variant<LoopStencils, CatmarkStencils> stencilsFor(const Level& parent, con
 ChildStencils::ChildStencils(const SparseLevel& parent, const LoopOptions& options, SplitKind split)
     : stencils_(stencilsFor(parent.mesh, options, split)) {}
 
-Vec3 ChildStencils::predict(const SparseLevel& child, Index v, std::span<const Vec3> parentPoints) {
-  const Index o = child.origin[v];
-  if (auto* loop = std::get_if<LoopStencils>(&stencils_)) {
-    return child.isVertexChild(v) ? loop->vertexChild(o, parentPoints) : loop->edgeChild(o, parentPoints);
-  }
-  auto& catmark = std::get<CatmarkStencils>(stencils_);
-  if (child.isVertexChild(v)) return catmark.vertexChild(o, parentPoints);
-  if (child.isFaceChild(v)) return catmark.faceChild(o, parentPoints);
-  return catmark.edgeChild(o, parentPoints);
-}
-
 }  // namespace tessera

@@ -22,8 +22,19 @@ class ChildStencils {
   ChildStencils(const SparseLevel& parent, const LoopOptions& options, SplitKind split);
 
   // The point of vertex v of `child`, the level split from the parent,
-  // from the parent's points.
-  Vec3 predict(const SparseLevel& child, Index v, std::span<const Vec3> parentPoints);
+  // from the parent's points. Inline: the incremental update predicts
+  // vertex after vertex, and a call per vertex cost Loop edits instructions
+  // (docs/PERFORMANCE.md "Catmull-Clark in the hierarchy").
+  Vec3 predict(const SparseLevel& child, Index v, std::span<const Vec3> parentPoints) {
+    const Index o = child.origin[v];
+    if (auto* loop = std::get_if<LoopStencils>(&stencils_)) {
+      return child.isVertexChild(v) ? loop->vertexChild(o, parentPoints) : loop->edgeChild(o, parentPoints);
+    }
+    auto& catmark = std::get<CatmarkStencils>(stencils_);
+    if (child.isVertexChild(v)) return catmark.vertexChild(o, parentPoints);
+    if (child.isFaceChild(v)) return catmark.faceChild(o, parentPoints);
+    return catmark.edgeChild(o, parentPoints);
+  }
 
  private:
   std::variant<LoopStencils, CatmarkStencils> stencils_;

@@ -8,22 +8,17 @@ namespace tessera {
 LevelLimits::LevelLimits(const SparseLevel& level, const SparseLevel* parent, const LoopOptions& options,
                          SplitKind split)
     : level_(level), method_(options.creaseMethod), far_(level, parent, options) {
-  if (split == SplitKind::kTriangles) loop_.emplace(level.mesh, options.creaseMethod, &far_);
-}
-
-bool LevelLimits::hasLimit() const {
-  return loop_ || level_.mesh.regularFaceSize == 4;
-}
-
-LimitFrame LevelLimits::frame(Index v, std::span<const Vec3> points) const {
-  if (loop_) return loop_->frame(v, points);
-  const CatmarkLimitFrame f = catmarkLimitFrame(level_.mesh, v, points);
-  return {f.position, f.tangent1, f.tangent2};
+  if (split == SplitKind::kTriangles) {
+    loop_.emplace(level.mesh, options.creaseMethod, &far_);
+  } else if (hasLimit()) {
+    catmark_.emplace(level.mesh);
+  }
 }
 
 Vec3 LevelLimits::solveControlPoint(Index v, std::span<const Vec3> points, const Vec3& target) const {
   if (loop_) return tessera::solveControlPoint(level_.mesh, v, points, target, method_, &far_);
-  const Vec3 limit = catmarkLimitFrame(level_.mesh, v, points).position;
+  if (!catmark_) return target;  // no limit: the control point is what is shown
+  const Vec3 limit = catmark_->frame(v, points).position;
   return points[v] + (1.0 / catmarkSelfLimitWeight(level_.mesh, v)) * (target - limit);
 }
 

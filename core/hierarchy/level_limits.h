@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 
+#include "core/catmark/limit.h"
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_far_rings.h"
 #include "core/hierarchy/sparse_level.h"
@@ -29,9 +30,17 @@ class LevelLimits {
   LevelLimits& operator=(const LevelLimits&) = delete;
 
   // Whether the level's complete vertices have limits under the scheme.
-  bool hasLimit() const;
-  // The limit frame of complete vertex v (hasLimit) from the level's points.
-  LimitFrame frame(Index v, std::span<const Vec3> points) const;
+  bool hasLimit() const { return loop_.has_value() || level_.mesh.regularFaceSize == 4; }
+  // The limit frame of complete vertex v from the level's points. Inline,
+  // as ChildStencils::predict, for the update's loops.
+  // Without limits (a Catmull-Clark base of other polygons): the control
+  // point and no tangents, so a zero normal.
+  LimitFrame frame(Index v, std::span<const Vec3> points) const {
+    if (loop_) return loop_->frame(v, points);
+    if (!catmark_) return {points[v], Vec3(0, 0, 0), Vec3(0, 0, 0)};
+    const CatmarkLimitFrame f = catmark_->frame(v, points);
+    return {f.position, f.tangent1, f.tangent2};
+  }
   // The control point of complete vertex v whose limit position is
   // `target`, the others fixed (direct manipulation, Pulli & Lounsbery,
   // "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.2):
@@ -44,7 +53,8 @@ class LevelLimits {
   const SparseLevel& level_;
   CreaseMethod method_;
   SparseFarRings far_;
-  std::optional<LimitEvaluator> loop_;  // empty under a quad split
+  std::optional<LimitEvaluator> loop_;            // under a triangle split
+  std::optional<CatmarkLimitEvaluator> catmark_;  // under a quad split
 };
 
 }  // namespace tessera

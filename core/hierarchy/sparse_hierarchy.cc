@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/hierarchy/child_stencils.h"
+#include "core/hierarchy/face_corners.h"
 #include "core/hierarchy/incidence.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/limit.h"
@@ -174,7 +175,7 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
     const bool node = l == 0 || levels_[l - 1].selected[state.topo.parentOfFace(f)];
     if (!node || state.selected[f]) continue;
     state.leaf[f] = 1;
-    for (Index v : m.faceVerticesOf(f)) state.displayed[v] = 1;
+    forEachFaceVertex(m, f, [&](Index v) { state.displayed[v] = 1; });
   }
   freshLevel = freshLevel || state.limitPosition.empty();  // level 0, first marked
   if (!freshLevel && newLimits.empty()) return;
@@ -202,15 +203,8 @@ LevelLimits SparseHierarchy::limitsOf(int l) const {
   return LevelLimits(levels_[l].topo, l > 0 ? &levels_[l - 1].topo : nullptr, options_, counts_.split());
 }
 
-// A level without limits under the scheme (a Catmull-Clark base of other
-// polygons, level_limits.h) keeps its control points and zero normals.
 void SparseHierarchy::refreshLimit(int l, Index v, const LevelLimits& limits) {
   LevelState& state = levels_[l];
-  if (!limits.hasLimit()) {
-    state.limitPosition[v] = state.points[v];
-    state.limitNormal[v] = Vec3(0, 0, 0);
-    return;
-  }
   const LimitFrame frame = limits.frame(v, state.points);
   state.limitPosition[v] = frame.position;
   state.limitNormal[v] = frame.normal();

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "core/hierarchy/child_stencils.h"
+#include "core/hierarchy/face_corners.h"
 #include "core/hierarchy/interpolation_conflicts.h"
 #include "core/hierarchy/sparse_hierarchy.h"
 #include "core/loop/interpolate.h"
@@ -163,7 +164,7 @@ std::vector<Index> SparseHierarchy::verticesAround(int l, const std::vector<Inde
   for (Index v : vertices) {
     for (Index f : m.ringFacesOf(v)) {
       if (f < 0) continue;
-      for (Index x : m.faceVerticesOf(f)) out.add(x);
+      forEachFaceVertex(m, f, [&](Index x) { out.add(x); });
     }
   }
   return out.toVector();

@@ -31,10 +31,10 @@ class LevelLimits {
 
   // Whether the level's complete vertices have limits under the scheme.
   bool hasLimit() const { return loop_.has_value() || level_.mesh.regularFaceSize == 4; }
-  // The limit frame of complete vertex v from the level's points. Inline,
-  // as ChildStencils::predict, for the update's loops.
-  // Without limits (a Catmull-Clark base of other polygons): the control
-  // point and no tangents, so a zero normal.
+  // The limit frame of complete vertex v from the level's points; without
+  // limits (a Catmull-Clark base of other polygons), the control point and
+  // no tangents, so a zero normal. Inline, as ChildStencils::predict, for
+  // the update's loops.
   LimitFrame frame(Index v, std::span<const Vec3> points) const {
     if (loop_) return loop_->frame(v, points);
     if (!catmark_) return {points[v], Vec3(0, 0, 0), Vec3(0, 0, 0)};

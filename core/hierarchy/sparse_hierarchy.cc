@@ -5,6 +5,7 @@
 #include "core/hierarchy/child_stencils.h"
 #include "core/hierarchy/face_corners.h"
 #include "core/hierarchy/incidence.h"
+#include "core/hierarchy/limit_reads.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/limit.h"
 #include "core/loop/sharpness_inheritance.h"
@@ -38,7 +39,6 @@ SparseHierarchy::SparseHierarchy(const LoopOptions& options, const LevelCounts& 
 Expected<SparseHierarchy> SparseHierarchy::create(const BaseTopology& base, std::span<const Vec3> basePoints,
                                                   const LoopOptions& options, const LevelCounts& counts,
                                                   int uniformLevel, std::span<const Edit> edits) {
-  if (uniformLevel < 0) return invalidArgument("the uniform level must be >= 0");
   TESSERA_ASSIGN_OR_RETURN(Level level0, buildBaseLevel(base, options));
   return create(std::move(level0), basePoints, options, counts, uniformLevel, edits);
 }
@@ -263,14 +263,8 @@ void SparseHierarchy::refreshReached(int l, const std::vector<Index>& vertices) 
   for (Index v : vertices) {
     bool reached = false;
     if (topo.isComplete(v)) {
-      reached = moved(v);
-      for (Index u : topo.mesh.ringVerticesOf(v)) reached = reached || moved(u);
+      reached = limitReadsAny(topo.mesh, v, counts_.quads(), moved);
       for (Index e : topo.mesh.ringEdgesOf(v)) reached = reached || state.edgeTags.count(e) != 0;
-      // Catmull-Clark's limit masks read the far corners of the ring's quads too.
-      for (Index f : counts_.quads() ? topo.mesh.ringFacesOf(v) : std::span<const Index>()) {
-        if (f < 0) continue;
-        for (Index u : topo.mesh.faceVerticesOf(f)) reached = reached || moved(u);
-      }
     }
     state.reached[v] = reached ? 1 : 0;
   }

@@ -9,6 +9,7 @@
 #include "core/hierarchy/child_stencils.h"
 #include "core/hierarchy/face_corners.h"
 #include "core/hierarchy/interpolation_conflicts.h"
+#include "core/hierarchy/limit_reads.h"
 #include "core/hierarchy/sparse_hierarchy.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/sharpness_inheritance.h"
@@ -48,21 +49,6 @@ bool touches(const Level& m, Index v, const Marked& set) {
   if (set.has(v)) return true;
   for (Index u : m.ringVerticesOf(v)) {
     if (set.has(u)) return true;
-  }
-  return false;
-}
-
-// Whether the limit of complete vertex w reads a marked vertex: its ring's,
-// and under a quad split the far corners of its ring faces as well
-// (Catmull-Clark's limit masks, core/catmark/limit.h).
-bool limitReads(const Level& m, Index w, const Marked& set, bool quads) {
-  if (!quads) return touches(m, w, set);
-  if (set.has(w)) return true;
-  for (Index f : m.ringFacesOf(w)) {
-    if (f < 0) continue;
-    for (Index u : m.faceVerticesOf(f)) {
-      if (set.has(u)) return true;
-    }
   }
   return false;
 }
@@ -274,7 +260,10 @@ void SparseHierarchy::refreshLimitsNear(int l, const std::vector<Index>& changed
   // A leaf is around about three of the refreshed vertices: listed once.
   Marked leaves(levels_[l].faceMarks);
   for (Index w : candidates) {
-    if (!state.topo.isComplete(w) || !limitReads(m, w, changedSet, counts_.quads())) continue;
+    if (!state.topo.isComplete(w) ||
+        !limitReadsAny(m, w, counts_.quads(), [&](Index u) { return changedSet.has(u); })) {
+      continue;
+    }
     refreshLimit(l, w, limits);
     ++dirty.limitsRecomputed;
     dirty.limits.push_back(VertexId(l, state.topo.vertexIds[w]));

@@ -171,18 +171,15 @@ void checkHierarchy(const PolyTestMesh& mesh, const CreaseOptions& options, bool
                " seed " + std::to_string(seed));
   std::optional<Case> c = makeCase(mesh, options);
   ASSERT_TRUE(c.has_value());
-  const schemes::QuadRefiner& ours = c->ours;
-  const LevelCounts& counts = c->counts;
-  const double diag = c->diag;
-  SparseHierarchy* h = &c->h;
+  auto& [ours, counts, diag, h] = *c;
 
   std::mt19937 rng(seed);
   const std::vector<Edit> planned = randomEdits(counts, ours.level(0), diag, withTags, rng);
   std::vector<Edit> edits;
   for (const Edit& edit : planned) {
-    h->reserve(edit, edits);
+    h.reserve(edit, edits);
     edits.push_back(edit);
-    h->update(edits.back(), edits);
+    h.update(edits.back(), edits);
     counted.moves += std::holds_alternative<MoveEdit>(edit.change) ? 1 : 0;
     counted.tags += std::holds_alternative<MoveEdit>(edit.change) ? 0 : 1;
   }
@@ -193,8 +190,8 @@ void checkHierarchy(const PolyTestMesh& mesh, const CreaseOptions& options, bool
     faces.push_back(
         FaceId(kLevels, static_cast<uint64_t>(unit(rng) * static_cast<double>(counts.faces(kLevels)))));
   }
-  h->reserveFaces(faces, edits);
-  expectHierarchyIsFar(*h, farWithEdits(mesh, options, ours, edits), diag, "after every edit", counted);
+  h.reserveFaces(faces, edits);
+  expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), diag, "after every edit", counted);
   if (::testing::Test::HasFatalFailure()) return;
 
   // Undo a coarse move and a fine one.
@@ -204,8 +201,8 @@ void checkHierarchy(const PolyTestMesh& mesh, const CreaseOptions& options, bool
     });
     ASSERT_NE(it, edits.end());
     it->active = false;
-    h->update(*it, edits);
-    expectHierarchyIsFar(*h, farWithEdits(mesh, options, ours, edits), diag,
+    h.update(*it, edits);
+    expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), diag,
                          "after undoing " + it->id.toString() + " at level " + std::to_string(level),
                          counted);
     if (::testing::Test::HasFatalFailure()) return;
@@ -242,36 +239,33 @@ void checkDirectManipulation(const PolyTestMesh& mesh, const CreaseOptions& opti
   SCOPED_TRACE(mesh.name + " seed " + std::to_string(seed));
   std::optional<Case> c = makeCase(mesh, options);
   ASSERT_TRUE(c.has_value());
-  const schemes::QuadRefiner& ours = c->ours;
-  const LevelCounts& counts = c->counts;
-  const double diag = c->diag;
-  SparseHierarchy* h = &c->h;
+  auto& [ours, counts, diag, h] = *c;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0, 1);
   std::vector<Edit> edits;
   for (int k = 0; k < 9; ++k) {
     const int l = 1 + k % kLevels;
     const VertexId id(l, static_cast<uint64_t>(unit(rng) * static_cast<double>(counts.vertices(l))));
-    const FaceId around = incidentFace(h->level(0).mesh, counts, id);
-    h->reserveFaces(std::span(&around, 1), edits);
-    auto v = h->completeVertex(id);
+    const FaceId around = incidentFace(h.level(0).mesh, counts, id);
+    h.reserveFaces(std::span(&around, 1), edits);
+    auto v = h.completeVertex(id);
     ASSERT_TRUE(v.isOk()) << v.status().toString();
     const Vec3 target =
-        h->limitPosition(l, *v) + Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5) * (0.1 * diag);
-    const Vec3 solved = h->solveControlPoint(l, *v, target);
+        h.limitPosition(l, *v) + Vec3(unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5) * (0.1 * diag);
+    const Vec3 solved = h.solveControlPoint(l, *v, target);
     const Edit edit{EditId{edits.size() + 1}, true,
-                    MoveEdit{{{id, h->frameOf(l, *v).toLocal(solved - h->points(l)[*v])}}}};
-    h->reserve(edit, edits);
+                    MoveEdit{{{id, h.frameOf(l, *v).toLocal(solved - h.points(l)[*v])}}}};
+    h.reserve(edit, edits);
     edits.push_back(edit);
-    h->update(edits.back(), edits);
+    h.update(edits.back(), edits);
     const auto far = farWithEdits(mesh, options, ours, edits);
     ASSERT_LE((far[l].limitPositions[id.index()] - target).norm(), kPositionTolerance * diag)
         << "Far's limit of " << id.toString() << " after its move";
-    ASSERT_LE((h->limitPosition(l, *v) - target).norm(), kPositionTolerance * diag)
+    ASSERT_LE((h.limitPosition(l, *v) - target).norm(), kPositionTolerance * diag)
         << "the hierarchy's limit of " << id.toString() << " after its move";
     ++counted.moves;
   }
-  expectHierarchyIsFar(*h, farWithEdits(mesh, options, ours, edits), diag, "after the moves", counted);
+  expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), diag, "after the moves", counted);
 }
 
 TEST(CatmarkHierarchyOracle, DirectManipulationPutsFarsLimitAtTheTarget) {

@@ -18,8 +18,8 @@
 
 #include "bench/ratio_reporter.h"
 #include "core/catmark/limit.h"
+#include "core/catmark/polygon_level.h"
 #include "core/hierarchy/sparse_hierarchy.h"
-#include "core/schemes/poly_builder.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/osd_adapter.h"

@@ -2,7 +2,10 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "client/cli/command_line.h"
 #include "client/cli/commands.h"
 #include "client/cli/doc_edit.h"
 #include "client/cli/doc_view.h"
@@ -10,6 +13,7 @@
 #include "client/cli/mesh_loading.h"
 #include "core/document/document_file.h"
 #include "core/io/mesh_export.h"
+#include "core/schemes/polygon_reader.h"
 #include "core/tessellation/tessellation.h"
 
 namespace tessera::cli {
@@ -28,6 +32,9 @@ struct NewArgs {
   MeshInputArgs mesh;
   DocumentArgs document;
   std::string output;
+  std::string scheme;  // empty: from the faces
+  // Import options given that the polygon reader does not apply.
+  std::vector<std::string> polygonUnsupported;
 };
 
 struct ExportArgs {
@@ -38,9 +45,58 @@ struct ExportArgs {
   double angle = 10;
 };
 
+int reportNew(const NewArgs& args, const Document& doc) {
+  Status saved = saveDocument(doc, args.output);
+  if (!saved.isOk()) return fail("doc new", saved);
+  std::printf("wrote %s: %s vertices, %s faces, %s, max level %d\n", args.output.c_str(),
+              formatCount(doc.counts().vertices(0)).c_str(), formatCount(doc.counts().faces(0)).c_str(),
+              documentSchemeName(doc.scheme()), doc.options().maxLevel);
+  return 0;
+}
+
+// The polygons of the file as they are, for a Catmull-Clark document.
+int runNewCatmark(const NewArgs& args, schemes::PolygonMesh mesh) {
+  if (!args.polygonUnsupported.empty()) {
+    return usage("doc new", args.polygonUnsupported.front() +
+                                ": not available for a catmull-clark document, which reads the file's "
+                                "polygons as they are");
+  }
+  DocumentArgs stated = args.document;
+  if (Status s = withFileScheme(stated.scheme, mesh.boundary, mesh.creaseMethod, args.mesh.input); !s.isOk())
+    return usage("doc new", s.message());
+  DocumentOptions options = documentOptions(stated);
+  options.scheme = DocumentScheme::kCatmullClark;
+  auto doc = Document::create(std::move(mesh.topology), std::move(mesh.points), options);
+  if (!doc.isOk()) return fail("doc new", doc.status().withContext(args.mesh.input));
+  return reportNew(args, *doc);
+}
+
 int runNew(const NewArgs& args) {
   if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
     return usage("doc new", same.message());
+  }
+  // Without --scheme, a file with faces that are not triangles becomes a
+  // Catmull-Clark document (as OpenSubdiv and USD subdivide it), unless
+  // --triangulate asks for Loop's triangles.
+  if (args.scheme == "catmull-clark" || (args.scheme.empty() && !args.mesh.triangulate)) {
+    auto polygons = schemes::importPolygonMesh(args.mesh.input, args.mesh.tags);
+    if (args.scheme == "catmull-clark") {
+      if (!polygons.isOk()) return fail("doc new", polygons.status());
+      return runNewCatmark(args, std::move(*polygons));
+    }
+    if (polygons.isOk()) {
+      const PolyTopology& faces = polygons->topology;
+      int others = 0;
+      for (int f = 0; f < faces.numFaces(); ++f)
+        others += faces.faceOffsets[f + 1] - faces.faceOffsets[f] != 3;
+      if (others > 0) {
+        std::fprintf(stderr,
+                     "tessera doc new: %s: %d of %d faces are not triangles: a catmull-clark document "
+                     "(--scheme loop --triangulate for Loop's triangles)\n",
+                     args.mesh.input.c_str(), others, faces.numFaces());
+        return runNewCatmark(args, std::move(*polygons));
+      }
+    }
   }
   ImportReport report;
   auto mesh = loadMesh(args.mesh, &report);
@@ -52,12 +108,7 @@ int runNew(const NewArgs& args) {
   const DocumentOptions options = documentOptions(stated);
   auto doc = Document::create(*mesh, options);
   if (!doc.isOk()) return fail("doc new", doc.status().withContext(args.mesh.input));
-  Status saved = saveDocument(*doc, args.output);
-  if (!saved.isOk()) return fail("doc new", saved);
-  std::printf("wrote %s: %s vertices, %s faces, max level %d\n", args.output.c_str(),
-              formatCount(doc->baseTopology().numVertices).c_str(),
-              formatCount(doc->baseTopology().triangles.size()).c_str(), options.maxLevel);
-  return 0;
+  return reportNew(args, *doc);
 }
 
 const char* kindName(const Edit& e) {
@@ -73,10 +124,9 @@ int runInfo(const std::string& path) {
   const auto& o = doc->options();
   std::printf("document        %s\n", path.c_str());
   std::printf("base            %s vertices, %s edges, %s faces\n",
-              formatCount(doc->baseTopology().numVertices).c_str(),
-              formatCount(doc->counts().edges(0)).c_str(),
-              formatCount(doc->baseTopology().triangles.size()).c_str());
-  std::printf("scheme          loop, %s creases, %s boundary\n",
+              formatCount(doc->counts().vertices(0)).c_str(), formatCount(doc->counts().edges(0)).c_str(),
+              formatCount(doc->counts().faces(0)).c_str());
+  std::printf("scheme          %s, %s creases, %s boundary\n", documentSchemeName(doc->scheme()),
               o.loop.creaseMethod == CreaseMethod::kUniform ? "uniform" : "chaikin",
               o.loop.boundary == BoundaryInterpolation::kEdgeOnly ? "edge-only" : "edge-and-corner");
   std::printf("max level       %d (%s faces there)\n", o.maxLevel,
@@ -144,9 +194,12 @@ int runExport(const ExportArgs& args) {
   exportOptions.draco = args.draco;
   Status written = exportMesh(*surface, args.output, exportOptions);
   if (!written.isOk()) return fail("doc export", written);
-  std::printf("wrote %s: %s vertices, %s triangles (level %d)\n", args.output.c_str(),
-              formatCount(surface->positions.size()).c_str(), formatCount(surface->triangles.size()).c_str(),
-              args.level);
+  // The polygon formats keep a Catmull-Clark document's faces (mesh_export.h).
+  const bool polygons = surface->numPolygons() > 0 && exportKeepsPolygons(args.output);
+  std::printf("wrote %s: %s vertices, %s %s (level %d)\n", args.output.c_str(),
+              formatCount(surface->positions.size()).c_str(),
+              formatCount(polygons ? surface->numPolygons() : surface->triangles.size()).c_str(),
+              polygons ? "polygons" : "triangles", args.level);
   return 0;
 }
 
@@ -155,8 +208,19 @@ void addNew(CLI::App& doc, Action& action) {
   auto args = std::make_shared<NewArgs>();
   addMeshInputOptions(*sub, args->mesh);
   addDocumentOptions(*sub, args->document);
+  sub->add_option("--scheme", args->scheme,
+                  "loop (triangles) or catmull-clark (any polygons); default: catmull-clark when a face "
+                  "is not a triangle, otherwise loop")
+      ->check(oneOf({"loop", "catmull-clark"}))
+      ->type_name("S");
   sub->add_option("-o,--output", args->output, "the document file to write")->required()->type_name("DOC");
-  onChosen(*sub, action, [args] { return runNew(*args); });
+  onChosen(*sub, action, [args, sub] {
+    for (const char* name : {"--triangulate", "--drop-unused", "--crease-angle"}) {
+      const CLI::Option* option = sub->get_option_no_throw(name);
+      if (option != nullptr && option->count() > 0) args->polygonUnsupported.push_back(name);
+    }
+    return runNew(*args);
+  });
 }
 
 void addEdit(CLI::App& doc, Action& action) {

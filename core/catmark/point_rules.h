@@ -1,7 +1,7 @@
 // Catmull-Clark's new points one at a time, with OpenSubdiv's Sdc rules for
 // sharp and semi-sharp features (DeRose, Kass & Truong, "Subdivision
 // Surfaces in Character Animation"): the uniform refinement
-// (core/schemes/catmark_interpolate.cc) and the sparse hierarchy's stencils
+// (core/catmark/interpolate.cc) and the sparse hierarchy's stencils
 // (stencils.h) both compute their points here, each supplying the face
 // points and the child's rules and sharpness its own way. Forced inline:
 // the uniform refinement runs them for every vertex and edge of a level,

@@ -5,7 +5,7 @@
 // parent's by Sdc's inheritance (core/loop/sharpness_inheritance.h), never
 // from the child: tags set on a child level change how it refines, not how
 // it was predicted. Each point equals the uniform refinement's
-// (core/schemes/catmark_interpolate.h; both compute through point_rules.h).
+// (core/catmark/interpolate.h; both compute through point_rules.h).
 #pragma once
 
 #include <span>

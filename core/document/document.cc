@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "core/catmark/surfaces.h"
 #include "core/hierarchy/incidence.h"
 #include "core/hierarchy/interpolation_conflicts.h"
 #include "core/loop/local_frame.h"
@@ -24,6 +25,12 @@ Status checkSharpness(float sharpness, const std::string& what) {
   return Status::ok();
 }
 
+std::vector<int> faceSizes(const Level& level) {
+  std::vector<int> sizes(level.numFaces());
+  for (Index f = 0; f < level.numFaces(); ++f) sizes[f] = level.faceSize(f);
+  return sizes;
+}
+
 Status checkFinite(const Vec3& p, const std::string& what) {
   if (!isFinite(p)) return invalidArgument(what + " must be finite");
   return Status::ok();
@@ -31,7 +38,7 @@ Status checkFinite(const Vec3& p, const std::string& what) {
 
 }  // namespace
 
-Document::Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options,
+Document::Document(DocumentBase base, std::vector<Vec3> points, const DocumentOptions& options,
                    LevelCounts counts)
     : base_(std::move(base)), basePoints_(std::move(points)), options_(options), counts_(std::move(counts)) {}
 
@@ -41,35 +48,73 @@ Expected<Document> Document::create(const BaseMesh& mesh, const DocumentOptions&
 
 Expected<Document> Document::create(BaseTopology topology, std::vector<Vec3> points,
                                     const DocumentOptions& options) {
+  if (options.scheme == DocumentScheme::kLoop)
+    return createFrom(std::move(topology), std::move(points), options);
+  return createFrom(PolyTopology::fromTriangles(std::move(topology)), std::move(points), options);
+}
+
+Expected<Document> Document::create(PolyTopology topology, std::vector<Vec3> points,
+                                    const DocumentOptions& options) {
+  if (options.scheme == DocumentScheme::kCatmullClark)
+    return createFrom(std::move(topology), std::move(points), options);
+  BaseTopology triangles;
+  triangles.numVertices = topology.numVertices;
+  for (int f = 0; f < topology.numFaces(); ++f) {
+    const int size = topology.faceOffsets[f + 1] - topology.faceOffsets[f];
+    if (size != 3) {
+      return invalidArgument("face " + std::to_string(f) + " has " + std::to_string(size) +
+                             " corners: a Loop document takes triangles only (choose catmull-clark)");
+    }
+    const int* corners = topology.indices.data() + topology.faceOffsets[f];
+    triangles.triangles.push_back({corners[0], corners[1], corners[2]});
+  }
+  triangles.creases = std::move(topology.creases);
+  triangles.vertexSharpness = std::move(topology.vertexSharpness);
+  return createFrom(std::move(triangles), std::move(points), options);
+}
+
+Expected<Document> Document::createFrom(DocumentBase base, std::vector<Vec3> points,
+                                        const DocumentOptions& options) {
   if (options.maxLevel < 0 || options.maxLevel > kMaxDocumentLevel) {
     return invalidArgument("maximum level must be 0.." + std::to_string(kMaxDocumentLevel) + ", got " +
                            std::to_string(options.maxLevel));
   }
-  if (static_cast<int>(points.size()) != topology.numVertices) {
-    return invalidArgument("the base mesh has " + std::to_string(topology.numVertices) + " vertices but " +
+  const int numVertices = std::visit([](const auto& t) { return t.numVertices; }, base);
+  if (static_cast<int>(points.size()) != numVertices) {
+    return invalidArgument("the base mesh has " + std::to_string(numVertices) + " vertices but " +
                            std::to_string(points.size()) + " points");
   }
   for (size_t v = 0; v < points.size(); ++v) {
     TESSERA_RETURN_IF_ERROR(checkFinite(points[v], "base vertex " + std::to_string(v)));
   }
-  // Building level 0 validates the topology and the base tags.
-  TESSERA_ASSIGN_OR_RETURN(Level base, buildBaseLevel(topology, options.loop));
-  LevelCounts counts(base.numVertices, base.numEdges(), base.numFaces(), options.maxLevel);
-  Document doc(std::move(topology), std::move(points), options, std::move(counts));
-  doc.baseBoundaryEdges_.resize(base.numEdges());
-  for (Index e = 0; e < base.numEdges(); ++e) doc.baseBoundaryEdges_[e] = base.isBoundaryEdge(e);
   if (options.uniformLevel < 0 || options.uniformLevel > options.maxLevel) {
     return invalidArgument("uniform level must be 0.." + std::to_string(options.maxLevel) + ", got " +
                            std::to_string(options.uniformLevel));
   }
+  // Building level 0 validates the topology and the base tags.
+  Expected<Level> level0 = options.scheme == DocumentScheme::kLoop
+                               ? buildBaseLevel(std::get<BaseTopology>(base), options.loop)
+                               : buildPolyLevel(std::get<PolyTopology>(base), options.loop);
+  if (!level0.isOk()) return level0.status();
+  const Level& built = *level0;
+  LevelCounts counts =
+      options.scheme == DocumentScheme::kLoop
+          ? LevelCounts(built.numVertices, built.numEdges(), built.numFaces(), options.maxLevel)
+          : LevelCounts::quads(built.numVertices, built.numEdges(), faceSizes(built), options.maxLevel);
+  Document doc(std::move(base), std::move(points), options, std::move(counts));
+  doc.baseBoundaryEdges_.resize(built.numEdges());
+  for (Index e = 0; e < built.numEdges(); ++e) doc.baseBoundaryEdges_[e] = built.isBoundaryEdge(e);
   TESSERA_RETURN_IF_ERROR(doc.rebuildHierarchy());
   return doc;
 }
 
-Expected<Document> Document::restore(BaseTopology topology, std::vector<Vec3> points,
+Expected<Document> Document::restore(DocumentBase base, std::vector<Vec3> points,
                                      const DocumentOptions& options, std::vector<Edit> edits,
                                      uint64_t nextEditId) {
-  TESSERA_ASSIGN_OR_RETURN(Document doc, create(std::move(topology), std::move(points), options));
+  TESSERA_ASSIGN_OR_RETURN(
+      Document doc,
+      std::visit([&](auto& topology) { return create(std::move(topology), std::move(points), options); },
+                 base));
   uint64_t last = 0;
   for (const Edit& edit : edits) {
     if (edit.id.value <= last) return invalidArgument(edit.id.toString() + ": edit ids must increase");
@@ -85,10 +130,16 @@ Expected<Document> Document::restore(BaseTopology topology, std::vector<Vec3> po
 
 bool Document::isBoundaryEdge(EdgeId edge) const {
   // Halves of a parent edge share its boundary status; edges inside a parent
-  // face never lie on the boundary.
+  // face never lie on the boundary. Loop numbers the halves first, the quad
+  // split the edges inside faces first (docs/ARCHITECTURE.md "Numbering").
   uint64_t index = edge.index();
   for (int l = edge.level(); l > 0; --l) {
-    if (index >= 2 * counts_.edges(l - 1)) return false;
+    if (counts_.quads()) {
+      if (index < counts_.corners(l - 1)) return false;
+      index -= counts_.corners(l - 1);
+    } else if (index >= 2 * counts_.edges(l - 1)) {
+      return false;
+    }
     index /= 2;
   }
   return baseBoundaryEdges_[index] != 0;
@@ -133,6 +184,11 @@ Status Document::checkEdit(const Edit& edit) const {
     return Status::ok();
   }
   if (const auto* t = std::get_if<InterpolationEdit>(&edit.change)) {
+    if (options_.scheme != DocumentScheme::kLoop) {
+      return invalidArgument(t->vertex.toString() +
+                             ": interpolating vertices are defined for Loop documents only "
+                             "(docs/INTERPOLATION.md); this document is catmull-clark");
+    }
     TESSERA_RETURN_IF_ERROR(counts_.check(t->vertex));
     if (t->vertex.level() >= options_.maxLevel) {
       return invalidArgument(t->vertex.toString() +
@@ -150,9 +206,16 @@ Status Document::checkEdit(const Edit& edit) const {
 }
 
 Status Document::rebuildHierarchy() {
-  TESSERA_ASSIGN_OR_RETURN(
-      SparseHierarchy sparse,
-      SparseHierarchy::create(base_, basePoints_, options_.loop, counts_, options_.uniformLevel, edits_));
+  Expected<SparseHierarchy> created = [&]() -> Expected<SparseHierarchy> {
+    if (const auto* triangles = std::get_if<BaseTopology>(&base_)) {
+      return SparseHierarchy::create(*triangles, basePoints_, options_.loop, counts_, options_.uniformLevel,
+                                     edits_);
+    }
+    TESSERA_ASSIGN_OR_RETURN(Level level0, buildPolyLevel(std::get<PolyTopology>(base_), options_.loop));
+    return SparseHierarchy::create(std::move(level0), basePoints_, options_.loop, counts_,
+                                   options_.uniformLevel, edits_);
+  }();
+  TESSERA_ASSIGN_OR_RETURN(SparseHierarchy sparse, std::move(created));
   sparse_.emplace(std::move(sparse));
   return Status::ok();
 }
@@ -391,17 +454,28 @@ Expected<std::shared_ptr<const Evaluation>> Document::evaluate(int level) const 
   }
   if (counts_.faces(level) > kMaxEvaluatedFaces) {
     return invalidArgument("level " + std::to_string(level) + " has " + std::to_string(counts_.faces(level)) +
-                           " triangles, above the evaluation limit of " + std::to_string(kMaxEvaluatedFaces));
+                           " faces, above the evaluation limit of " + std::to_string(kMaxEvaluatedFaces));
   }
   if (cache_ && static_cast<int>(cache_->levels.size()) > level) return cache_;
-  TESSERA_ASSIGN_OR_RETURN(Evaluation eval,
-                           evaluateDocument(base_, basePoints_, options_.loop, edits_, level));
+  TESSERA_ASSIGN_OR_RETURN(
+      Evaluation eval,
+      options_.scheme == DocumentScheme::kLoop
+          ? evaluateDocument(std::get<BaseTopology>(base_), basePoints_, options_.loop, edits_, level)
+          : evaluateCatmarkDocument(std::get<PolyTopology>(base_), basePoints_, options_.loop, edits_,
+                                    level));
   cache_ = std::make_shared<const Evaluation>(std::move(eval));
   return cache_;
 }
 
 Expected<SurfaceMesh> Document::surface(int level, SurfaceKind kind) const {
   TESSERA_ASSIGN_OR_RETURN(auto eval, evaluate(level));
+  const Level& topology = eval->levels[level];
+  if (options_.scheme == DocumentScheme::kCatmullClark) {
+    if (kind == SurfaceKind::kControl) return polygonControlSurfaceOf(topology, eval->points[level]);
+    auto limit = catmarkLimitSurfaceOf(topology, eval->points[level]);
+    if (!limit.isOk()) return limit.status().withContext("level " + std::to_string(level));
+    return limit;
+  }
   if (kind == SurfaceKind::kControl) return controlSurfaceOf(eval->levels[level], eval->points[level]);
   return limitSurfaceOf(eval->levels[level], eval->points[level], options_.loop.creaseMethod);
 }

@@ -17,9 +17,12 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <variant>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/document/document_evaluator.h"
+#include "core/document/document_scheme.h"
 #include "core/hierarchy/edit.h"
 #include "core/hierarchy/ids.h"
 #include "core/hierarchy/sparse_hierarchy.h"
@@ -33,12 +36,18 @@
 namespace tessera {
 
 struct DocumentOptions {
+  // The crease options (OpenSubdiv's Sdc options), under either scheme.
   LoopOptions loop{};
   int maxLevel = 6;  // deepest level an edit may address (at most kMaxDocumentLevel)
   // Levels 0..uniformLevel are held whole (the coarsest display); deeper
   // levels only where edits are. Not part of the saved document.
   int uniformLevel = 0;
+  DocumentScheme scheme = DocumentScheme::kLoop;
 };
+
+// A document's base mesh: triangles under Loop, polygons under
+// Catmull-Clark.
+using DocumentBase = std::variant<BaseTopology, PolyTopology>;
 
 inline constexpr int kMaxDocumentLevel = 12;
 
@@ -46,11 +55,20 @@ enum class SurfaceKind { kControl, kLimit };
 
 class Document {
  public:
+  // Under options.scheme; a Loop document refuses a polygon that is not a
+  // triangle, naming the face.
   static Expected<Document> create(const BaseMesh& mesh, const DocumentOptions& options);
   static Expected<Document> create(BaseTopology topology, std::vector<Vec3> points,
                                    const DocumentOptions& options);
+  static Expected<Document> create(PolyTopology topology, std::vector<Vec3> points,
+                                   const DocumentOptions& options);
 
-  const BaseTopology& baseTopology() const { return base_; }
+  DocumentScheme scheme() const { return options_.scheme; }
+  const DocumentBase& base() const { return base_; }
+  // Loop documents only (check scheme() first): the base triangles.
+  const BaseTopology& baseTopology() const { return std::get<BaseTopology>(base_); }
+  // Catmull-Clark documents only: the base polygons.
+  const PolyTopology& polygonTopology() const { return std::get<PolyTopology>(base_); }
   const std::vector<Vec3>& basePoints() const { return basePoints_; }
   const DocumentOptions& options() const { return options_; }
   const LevelCounts& counts() const { return counts_; }
@@ -68,7 +86,8 @@ class Document {
   // through this vertex's control point (core/loop/ghost_ring.h), with this
   // tension; `tangent` (boundary and crease vertices only) sets the tangent
   // line. Refused where no ghost ring applies (ghostRuleOf says why), at the
-  // deepest level, and where finer edits conflict (interpolation_conflicts.h).
+  // deepest level, where finer edits conflict (interpolation_conflicts.h),
+  // and in Catmull-Clark documents (ghost rings are Loop's).
   // interpolating = false ends it.
   Expected<EditId> setInterpolation(VertexId vertex, bool interpolating, double tension = 1.0,
                                     const Vec3& tangent = Vec3(0, 0, 0));
@@ -94,8 +113,10 @@ class Document {
   Status reinstate(EditId id);
   Status remove(EditId id);  // gone for good; error if unknown
 
-  // Control points or limit surface (limit positions and normals, creases
-  // split per side) at `level` <= maxLevel.
+  // Control points or limit surface at `level` <= maxLevel. Loop: triangles,
+  // limit normals split per side at creases. Catmull-Clark: the level's
+  // polygons kept (core/catmark/surfaces.h); the limit of level 0 needs a
+  // base of quads only.
   Expected<SurfaceMesh> surface(int level, SurfaceKind kind) const;
   // Grows the hierarchy so that these faces are nodes (a tessellation
   // refining there); changes no surface. Returns the level it grew from, or -1.
@@ -112,12 +133,14 @@ class Document {
 
   // Restores a document from its parts (document_file.cc); every edit is
   // validated as if it had just been made.
-  static Expected<Document> restore(BaseTopology topology, std::vector<Vec3> points,
+  static Expected<Document> restore(DocumentBase base, std::vector<Vec3> points,
                                     const DocumentOptions& options, std::vector<Edit> edits,
                                     uint64_t nextEditId);
 
  private:
-  Document(BaseTopology base, std::vector<Vec3> points, const DocumentOptions& options, LevelCounts counts);
+  Document(DocumentBase base, std::vector<Vec3> points, const DocumentOptions& options, LevelCounts counts);
+  static Expected<Document> createFrom(DocumentBase base, std::vector<Vec3> points,
+                                       const DocumentOptions& options);
 
   bool isBoundaryEdge(EdgeId edge) const;
   Status checkVertices(std::span<const VertexId> vertices) const;
@@ -141,7 +164,7 @@ class Document {
   // Adds `limits` to lastUpdate()'s, which stay sorted and unique.
   void addChangedLimits(std::span<const VertexId> limits);
 
-  BaseTopology base_;
+  DocumentBase base_;
   std::vector<Vec3> basePoints_;
   DocumentOptions options_;
   LevelCounts counts_;

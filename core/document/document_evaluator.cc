@@ -1,5 +1,7 @@
 #include "core/document/document_evaluator.h"
 
+#include "core/catmark/interpolate.h"
+#include "core/catmark/quad_split.h"
 #include "core/loop/ghost_ring.h"
 #include "core/loop/interpolate.h"
 #include "core/loop/local_frame.h"
@@ -74,31 +76,62 @@ void applyGhostRings(std::span<const Edit> edits, int level, const Level& topolo
   }
 }
 
-}  // namespace
-
-Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const Vec3> basePoints,
-                                      const LoopOptions& options, std::span<const Edit> edits, int level) {
+// Level l from level l-1: `refine` builds its topology, `interpolate`
+// its predicted points from level l-1's points.
+template <class Refine, class Interpolate>
+Evaluation evaluateLevels(Level base0, std::span<const Vec3> basePoints, BoundaryInterpolation boundary,
+                          std::span<const Edit> edits, int level, Refine refine, Interpolate interpolate) {
   Evaluation eval;
-  TESSERA_ASSIGN_OR_RETURN(Level base0, buildBaseLevel(base, options));
   eval.levels.push_back(std::move(base0));
-  applySharpnessEdits(edits, 0, options.boundary, eval.levels[0]);
+  applySharpnessEdits(edits, 0, boundary, eval.levels[0]);
   eval.predicted.emplace_back(basePoints.begin(), basePoints.end());
   eval.points.push_back(eval.predicted[0]);
   applyOffsets(edits, 0, eval.levels[0], eval.predicted[0], eval.points[0]);
 
   for (int l = 1; l <= level; ++l) {
-    eval.levels.push_back(refineLevel(eval.levels[l - 1], options));
+    eval.levels.push_back(refine(eval.levels[l - 1]));
     // Points of level l come from level l-1 under the rules it passes down;
     // a tag set at level l changes how level l refines, so it applies after.
     std::vector<Vec3> predicted(eval.levels[l].numVertices);
-    interpolateLevel(eval.levels[l - 1], options, eval.points[l - 1], predicted);
-    applyGhostRings(edits, l - 1, eval.levels[l - 1], eval.points[l - 1], options, predicted);
-    applySharpnessEdits(edits, l, options.boundary, eval.levels[l]);
+    interpolate(l - 1, eval.levels[l - 1], eval.levels[l], eval.points[l - 1], predicted);
+    applySharpnessEdits(edits, l, boundary, eval.levels[l]);
     eval.points.push_back(predicted);
     applyOffsets(edits, l, eval.levels[l], predicted, eval.points[l]);
     eval.predicted.push_back(std::move(predicted));
   }
   return eval;
+}
+
+}  // namespace
+
+Expected<Evaluation> evaluateDocument(const BaseTopology& base, std::span<const Vec3> basePoints,
+                                      const LoopOptions& options, std::span<const Edit> edits, int level) {
+  TESSERA_ASSIGN_OR_RETURN(Level base0, buildBaseLevel(base, options));
+  return evaluateLevels(
+      std::move(base0), basePoints, options.boundary, edits, level,
+      [&](const Level& parent) { return refineLevel(parent, options); },
+      [&](int parentLevel, const Level& parent, const Level&, std::span<const Vec3> parentPoints,
+          std::vector<Vec3>& predicted) {
+        interpolateLevel(parent, options, parentPoints, predicted);
+        applyGhostRings(edits, parentLevel, parent, parentPoints, options, predicted);
+      });
+}
+
+Expected<Evaluation> evaluateCatmarkDocument(const PolyTopology& base, std::span<const Vec3> basePoints,
+                                             const CreaseOptions& options, std::span<const Edit> edits,
+                                             int level) {
+  for (const Edit& edit : edits) {
+    if (std::holds_alternative<InterpolationEdit>(edit.change)) {
+      return invalidArgument(edit.id.toString() +
+                             ": interpolating vertices are defined for Loop documents only");
+    }
+  }
+  TESSERA_ASSIGN_OR_RETURN(Level base0, buildPolyLevel(base, options));
+  return evaluateLevels(
+      std::move(base0), basePoints, options.boundary, edits, level,
+      [&](const Level& parent) { return splitToQuads(parent, options, SplitDetail::kFull); },
+      [](int, const Level& parent, const Level& child, std::span<const Vec3> parentPoints,
+         std::vector<Vec3>& predicted) { interpolateCatmark(parent, child, parentPoints, predicted); });
 }
 
 }  // namespace tessera

@@ -19,22 +19,30 @@ constexpr char kMagic[8] = {'T', 'S', 'R', 'D', 'O', 'C', '\r', '\n'};
 constexpr size_t kHeaderSize = 8 + 4 + 4 + 8;  // magic, version, reserved, payload size
 constexpr size_t kTrailerSize = 4;             // CRC-32 of the payload
 
-void writePayload(const Document& doc, ByteWriter& w) {
-  const auto& options = doc.options();
-  w.put<uint8_t>(options.loop.creaseMethod == CreaseMethod::kUniform ? 0 : 1);
-  w.put<uint8_t>(options.loop.boundary == BoundaryInterpolation::kEdgeOnly ? 0 : 1);
-  w.put<uint8_t>(static_cast<uint8_t>(options.maxLevel));
-  w.put<uint8_t>(0);
+// The oldest version that holds the document: Loop documents stay readable
+// by builds that know no other scheme.
+uint32_t versionFor(const Document& doc) {
+  return doc.scheme() == DocumentScheme::kLoop ? 2 : 3;
+}
 
-  const BaseTopology& base = doc.baseTopology();
-  w.put<uint32_t>(static_cast<uint32_t>(doc.basePoints().size()));
-  for (const Vec3& p : doc.basePoints()) {
-    for (int k = 0; k < 3; ++k) w.put<double>(p[k]);
-  }
+void writeFaces(const BaseTopology& base, ByteWriter& w) {
   w.put<uint32_t>(static_cast<uint32_t>(base.triangles.size()));
   for (const auto& t : base.triangles) {
     for (int k = 0; k < 3; ++k) w.put<uint32_t>(static_cast<uint32_t>(t[k]));
   }
+}
+
+void writeFaces(const PolyTopology& base, ByteWriter& w) {
+  w.put<uint32_t>(static_cast<uint32_t>(base.numFaces()));
+  for (int f = 0; f < base.numFaces(); ++f) {
+    w.put<uint32_t>(static_cast<uint32_t>(base.faceOffsets[f + 1] - base.faceOffsets[f]));
+    for (int i = base.faceOffsets[f]; i < base.faceOffsets[f + 1]; ++i)
+      w.put<uint32_t>(static_cast<uint32_t>(base.indices[i]));
+  }
+}
+
+template <class Topology>
+void writeTags(const Topology& base, ByteWriter& w) {
   w.put<uint32_t>(static_cast<uint32_t>(base.creases.size()));
   for (const auto& c : base.creases) {
     w.put<uint32_t>(static_cast<uint32_t>(c.v0));
@@ -49,26 +57,72 @@ void writePayload(const Document& doc, ByteWriter& w) {
     w.put<uint32_t>(static_cast<uint32_t>(v));
     w.put<float>(base.vertexSharpness[v]);
   }
+}
+
+void writePayload(const Document& doc, ByteWriter& w) {
+  const auto& options = doc.options();
+  w.put<uint8_t>(options.loop.creaseMethod == CreaseMethod::kUniform ? 0 : 1);
+  w.put<uint8_t>(options.loop.boundary == BoundaryInterpolation::kEdgeOnly ? 0 : 1);
+  w.put<uint8_t>(static_cast<uint8_t>(options.maxLevel));
+  w.put<uint8_t>(static_cast<uint8_t>(options.scheme));
+
+  w.put<uint32_t>(static_cast<uint32_t>(doc.basePoints().size()));
+  for (const Vec3& p : doc.basePoints()) {
+    for (int k = 0; k < 3; ++k) w.put<double>(p[k]);
+  }
+  std::visit(
+      [&](const auto& base) {
+        writeFaces(base, w);
+        writeTags(base, w);
+      },
+      doc.base());
 
   w.put<uint64_t>(doc.nextEditId());
   w.put<uint32_t>(static_cast<uint32_t>(doc.edits().size()));
   for (const Edit& edit : doc.edits()) writeEdit(edit, w);
 }
 
-Expected<Document> readPayload(ByteReader& r) {
-  uint8_t crease = 0, boundary = 0, maxLevel = 0, reserved = 0;
+// Version 3 names each face's corner count; earlier versions hold triangles.
+Status readFaces(ByteReader& r, uint32_t version, size_t numPoints, PolyTopology& faces) {
+  uint32_t count = 0;
+  TESSERA_RETURN_IF_ERROR(r.getCount(count, version >= 3 ? 16 : 12, "face count"));
+  for (uint32_t f = 0; f < count; ++f) {
+    uint32_t size = 3;
+    if (version >= 3) {
+      TESSERA_RETURN_IF_ERROR(r.get(size, "a face"));
+      if (size < 3 || size > r.remaining() / 4) {
+        return parseError(r.source() + ": face " + std::to_string(f) + " has " + std::to_string(size) +
+                          " corners");
+      }
+    }
+    for (uint32_t k = 0; k < size; ++k) {
+      uint32_t v = 0;
+      TESSERA_RETURN_IF_ERROR(r.get(v, "a face"));
+      if (v >= numPoints) return parseError(r.source() + ": a face names vertex " + std::to_string(v));
+      faces.indices.push_back(static_cast<int>(v));
+    }
+    faces.faceOffsets.push_back(static_cast<int>(faces.indices.size()));
+  }
+  return Status::ok();
+}
+
+Expected<Document> readPayload(ByteReader& r, uint32_t version) {
+  uint8_t crease = 0, boundary = 0, maxLevel = 0, scheme = 0;
   TESSERA_RETURN_IF_ERROR(r.get(crease, "options"));
   TESSERA_RETURN_IF_ERROR(r.get(boundary, "options"));
   TESSERA_RETURN_IF_ERROR(r.get(maxLevel, "options"));
-  TESSERA_RETURN_IF_ERROR(r.get(reserved, "options"));
-  if (crease > 1 || boundary > 1 || reserved != 0) return parseError(r.source() + ": bad options");
+  TESSERA_RETURN_IF_ERROR(r.get(scheme, "options"));
+  // Before version 3 this byte was reserved: every such document is Loop.
+  if (crease > 1 || boundary > 1 || scheme > (version >= 3 ? 1 : 0))
+    return parseError(r.source() + ": bad options");
   DocumentOptions options;
   options.loop.creaseMethod = crease == 0 ? CreaseMethod::kUniform : CreaseMethod::kChaikin;
   options.loop.boundary =
       boundary == 0 ? BoundaryInterpolation::kEdgeOnly : BoundaryInterpolation::kEdgeAndCorner;
   options.maxLevel = maxLevel;
+  options.scheme = static_cast<DocumentScheme>(scheme);
 
-  BaseTopology base;
+  PolyTopology base;
   uint32_t count = 0;
   TESSERA_RETURN_IF_ERROR(r.getCount(count, 24, "vertex count"));
   std::vector<Vec3> points(count);
@@ -76,16 +130,7 @@ Expected<Document> readPayload(ByteReader& r) {
     for (int k = 0; k < 3; ++k) TESSERA_RETURN_IF_ERROR(r.get(p[k], "a vertex"));
   }
   base.numVertices = static_cast<int>(count);
-  TESSERA_RETURN_IF_ERROR(r.getCount(count, 12, "face count"));
-  base.triangles.resize(count);
-  for (auto& t : base.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      uint32_t v = 0;
-      TESSERA_RETURN_IF_ERROR(r.get(v, "a face"));
-      if (v >= points.size()) return parseError(r.source() + ": a face names vertex " + std::to_string(v));
-      t[k] = static_cast<int>(v);
-    }
-  }
+  TESSERA_RETURN_IF_ERROR(readFaces(r, version, points.size(), base));
   TESSERA_RETURN_IF_ERROR(r.getCount(count, 12, "crease count"));
   for (uint32_t i = 0; i < count; ++i) {
     uint32_t v0 = 0, v1 = 0;
@@ -121,6 +166,7 @@ Expected<Document> readPayload(ByteReader& r) {
   if (r.remaining() != 0)
     return parseError(r.source() + ": " + std::to_string(r.remaining()) +
                       " unexpected bytes after the edits");
+  // A Loop document's faces are checked to be triangles on the way.
   auto doc = Document::restore(std::move(base), std::move(points), options, std::move(edits), nextEditId);
   if (!doc.isOk()) return doc.status().withContext(r.source());
   return doc;
@@ -133,7 +179,7 @@ std::string serializeDocument(const Document& document) {
   writePayload(document, payload);
   ByteWriter out;
   out.putBytes(std::string(kMagic, sizeof(kMagic)));
-  out.put<uint32_t>(kDocumentFormatVersion);
+  out.put<uint32_t>(versionFor(document));
   out.put<uint32_t>(0);
   out.put<uint64_t>(payload.bytes().size());
   out.putBytes(payload.bytes());
@@ -168,7 +214,7 @@ Expected<Document> deserializeDocument(const std::string& bytes, const std::stri
     return parseError(source + ": corrupted (payload checksum mismatch)");
   }
   ByteReader payload(bytes.data() + kHeaderSize, payloadSize, source);
-  return readPayload(payload);
+  return readPayload(payload, version);
 }
 
 Status saveDocument(const Document& document, const std::string& path) {

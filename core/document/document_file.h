@@ -12,8 +12,9 @@
 namespace tessera {
 
 // 1: moves and sharpness tags. 2: also interpolation tags (docs/INTERPOLATION.md,
-// edit kind 4). Every version up to this one reads.
-inline constexpr uint32_t kDocumentFormatVersion = 2;
+// edit kind 4). 3: a scheme, and faces of any size (Catmull-Clark). Every
+// version up to this one reads; a Loop document is written as version 2.
+inline constexpr uint32_t kDocumentFormatVersion = 3;
 
 std::string serializeDocument(const Document& document);
 // `source` names the data in error messages (usually the file path).

@@ -70,7 +70,7 @@ Expected<EdgeId> parseEdgeId(const std::string& text);
 Expected<FaceId> parseFaceId(const std::string& text);
 
 // How each level splits its faces: Loop's 1-to-4 triangle split, or the
-// quad split of Catmull-Clark (core/schemes/quad_split.h), where a base face
+// quad split of Catmull-Clark (core/catmark/quad_split.h), where a base face
 // of n corners has n children and every face below is a quad.
 enum class SplitKind { kTriangles, kQuads };
 

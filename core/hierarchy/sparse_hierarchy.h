@@ -76,7 +76,7 @@ class SparseHierarchy {
   static Expected<SparseHierarchy> create(const BaseTopology& base, std::span<const Vec3> basePoints,
                                           const LoopOptions& options, const LevelCounts& counts,
                                           int uniformLevel, std::span<const Edit> edits);
-  // From a built base level (buildBaseLevel for Loop, schemes::buildPolyLevel
+  // From a built base level (buildBaseLevel for Loop, buildPolyLevel
   // for Catmull-Clark's polygons); `counts` names the split.
   static Expected<SparseHierarchy> create(Level level0, std::span<const Vec3> basePoints,
                                           const LoopOptions& options, const LevelCounts& counts,

@@ -1,5 +1,5 @@
 // Catmull-Clark's quad split of a sparse level (sparse_level.h), in the
-// numbering of core/schemes/quad_split.h restricted to what is present:
+// numbering of core/catmark/quad_split.h restricted to what is present:
 // a refined face of n corners has n children, one per corner, around the
 // vertex put in it; every vertex and edge it touches is split.
 #include <algorithm>

@@ -15,6 +15,7 @@ Expected<Document*> KeyedDocument::editKey(uint32_t k) {
 }
 
 Status KeyedDocument::addKey(std::vector<Vec3> points, MorphImages images) {
+  TESSERA_RETURN_IF_ERROR(checkMorphScheme(keys_[0], "key 0"));
   if (keys_.size() >= kMaxMorphKeys) {
     return invalidArgument("the document already has " + std::to_string(keys_.size()) +
                            " keys, the most a morph document holds");
@@ -39,6 +40,8 @@ Status KeyedDocument::addKey(std::vector<Vec3> points, MorphImages images) {
 
 Status KeyedDocument::restoreKey(Document key1, MorphImages images) {
   if (keys_.size() >= kMaxMorphKeys) return invalidArgument("the document already has two keys");
+  TESSERA_RETURN_IF_ERROR(checkMorphScheme(keys_[0], "key 0"));
+  TESSERA_RETURN_IF_ERROR(checkMorphScheme(key1, "key 1"));
   TESSERA_RETURN_IF_ERROR(
       checkSameConnectivity(keys_[0].baseTopology(), key1.baseTopology(), "key 0", "key 1"));
   keys_.push_back(std::move(key1));

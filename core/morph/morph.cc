@@ -83,6 +83,12 @@ Status sameKeys(const std::map<uint64_t, Value>& a, const std::map<uint64_t, Val
 
 }  // namespace
 
+Status checkMorphScheme(const Document& key, const std::string& name) {
+  if (key.scheme() == DocumentScheme::kLoop) return Status::ok();
+  return invalidArgument(name + " is a " + documentSchemeName(key.scheme()) +
+                         " document: morph keys are Loop documents");
+}
+
 Status checkSameConnectivity(const BaseTopology& a, const BaseTopology& b, const std::string& nameA,
                              const std::string& nameB) {
   if (a.numVertices != b.numVertices) {
@@ -123,6 +129,8 @@ Expected<Morph> Morph::create(std::vector<Document> keys, std::vector<double> ti
                              ")");
     }
   }
+  for (size_t k = 0; k < keys.size(); ++k)
+    TESSERA_RETURN_IF_ERROR(checkMorphScheme(keys[k], "key " + std::to_string(k)));
   const Document& first = keys[0];
   for (size_t k = 1; k < keys.size(); ++k) {
     const std::string name = "key " + std::to_string(k);

@@ -39,6 +39,10 @@ struct TcbParams {
   double tension = 0, continuity = 0, bias = 0;
 };
 
+// Morph keys are Loop documents (docs/INTERPOLATION.md "Morph documents in
+// the service"): an error naming the key otherwise.
+Status checkMorphScheme(const Document& key, const std::string& name);
+
 // An error naming the first difference if two documents do not share their
 // base triangles (the same faces, vertex for vertex, in the same order).
 Status checkSameConnectivity(const BaseTopology& a, const BaseTopology& b, const std::string& nameA,

@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "core/schemes/poly_builder.h"
+#include "core/catmark/polygon_level.h"
 #include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"

@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/mesh/polygon_soup.h"
-#include "core/schemes/poly_builder.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
 

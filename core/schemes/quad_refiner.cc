@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "core/catmark/limit.h"
+#include "core/catmark/interpolate.h"
+#include "core/catmark/quad_split.h"
+#include "core/catmark/surfaces.h"
 #include "core/schemes/bilinear_masks.h"
-#include "core/schemes/catmark_interpolate.h"
-#include "core/schemes/quad_split.h"
 
 namespace tessera::schemes {
 
@@ -71,26 +71,9 @@ std::vector<std::vector<Vec3>> QuadRefiner::refinePointsPerLevel(std::span<const
   return points;
 }
 
-namespace {
-
-// The level's faces as polygons (quads from level 1 on), with their fans.
-void addPolygons(const Level& level, SurfaceMesh& surface) {
-  surface.triangles.reserve(level.faceVertices.size() - 2 * static_cast<size_t>(level.numFaces()));
-  surface.polygonOffsets.reserve(static_cast<size_t>(level.numFaces()) + 1);
-  surface.polygonCorners.reserve(level.faceVertices.size());
-  for (Index f = 0; f < level.numFaces(); ++f) {
-    auto fv = level.faceVerticesOf(f);
-    surface.addPolygon(std::span<const int>(fv.data(), fv.size()));
-  }
-}
-
-}  // namespace
-
 SurfaceMesh QuadRefiner::controlSurface(std::span<const Vec3> finestPoints) const {
-  SurfaceMesh surface;
-  surface.positions.assign(finestPoints.begin(), finestPoints.end());
   const Level& level = finestLevel();
-  addPolygons(level, surface);
+  SurfaceMesh surface = polygonSurfaceOf(level, finestPoints);
   if (scheme_ != QuadScheme::kCatmullClark) return surface;  // bilinear has no sharp features
   // The cage's tags at this level (decayed from the base's): refined again
   // with them, by OpenSubdiv or by Tessera, it gives the same surface.
@@ -111,13 +94,7 @@ Expected<SurfaceMesh> QuadRefiner::limitSurface(std::span<const Vec3> finestPoin
   if (scheme_ != QuadScheme::kCatmullClark) {
     return unsupported("bilinear subdivision has no limit to evaluate: its limit is its own control mesh");
   }
-  const Level& level = finestLevel();
-  SurfaceMesh surface;
-  surface.positions.resize(level.numVertices);
-  surface.normals.resize(level.numVertices);
-  TESSERA_RETURN_IF_ERROR(computeCatmarkLimit(level, finestPoints, surface.positions, surface.normals));
-  addPolygons(level, surface);
-  return surface;
+  return catmarkLimitSurfaceOf(finestLevel(), finestPoints);
 }
 
 void interpolateBilinear(const Level& parent, std::span<const Vec3> p, std::span<Vec3> c) {

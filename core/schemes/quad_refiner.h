@@ -14,8 +14,8 @@
 #include <span>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/mesh/surface_mesh.h"
-#include "core/schemes/poly_builder.h"
 #include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/loop/level_builder.h"
 #include "core/mesh/surface_mesh.h"
-#include "core/schemes/poly_builder.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/util/status.h"
 

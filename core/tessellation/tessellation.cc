@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include <optional>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 #include <unordered_set>
@@ -45,6 +46,10 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile,
                                            std::shared_ptr<const BaseFaceClusters> clusters) {
+  if (doc.scheme() != DocumentScheme::kLoop) {
+    return unsupported(std::string("adaptive tessellation of ") + documentSchemeName(doc.scheme()) +
+                       " documents is not available yet (docs/LIMITS.md); a uniform level exports");
+  }
   // The base level is held whole, so its face count is a lower bound on the
   // triangles: refuse before growing the hierarchy to it.
   if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&

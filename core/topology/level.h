@@ -25,7 +25,7 @@
 //  * An interior ring of a base vertex starts at its lowest-numbered face.
 //  * Edge faces are listed in face order at level 0; the refinements keep
 //    the order OpenSubdiv gives the children (core/loop/refinement.h,
-//    core/schemes/quad_split.h).
+//    core/catmark/quad_split.h).
 #pragma once
 
 #include <array>
@@ -52,7 +52,7 @@ struct Level {
   // then holds numFaces() + 1 row starts).
   int regularFaceSize = 0;
   // False for a last level refined faces-only (core/loop/refinement.h
-  // RefineDetail, core/schemes/quad_split.h SplitDetail): only faceVertices,
+  // RefineDetail, core/catmark/quad_split.h SplitDetail): only faceVertices,
   // sharpness and rules are present.
   bool fullTopology = true;
 

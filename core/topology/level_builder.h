@@ -3,7 +3,7 @@
 // OpenSubdiv's Vtr::Level::completeTopologyFromFaceVertices and
 // orderVertexFacesAndEdges do for every scheme. The Loop base level
 // (core/loop/level_builder.h) and the polygon base level
-// (core/schemes/poly_builder.h) are both built here; tags and the boundary
+// (core/catmark/polygon_level.h) are both built here; tags and the boundary
 // rules come after, from applyTags (tags.h).
 #pragma once
 

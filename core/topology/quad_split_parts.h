@@ -1,4 +1,4 @@
-// One element at a time, the quad split of core/schemes/quad_split.h
+// One element at a time, the quad split of core/catmark/quad_split.h
 // (Catmull-Clark and bilinear topology): the
 // child faces of a parent face, its interior child edges, the halves of a
 // parent edge, and the rings of the three kinds of child vertex. The uniform

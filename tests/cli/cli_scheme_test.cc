@@ -7,8 +7,10 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <vector>
 
 #include "cli/cli_run.h"
+#include "core/util/vec3.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -157,6 +159,64 @@ TEST(CliScheme, RefusalsNameTheOption) {
   run = runCli("refine " + dir + "/tri.obj --scheme catmull-clark --level 0 --limit -o " + dir + "/x.obj");
   EXPECT_EQ(run.exitCode, 1) << run.err;
   EXPECT_NE(run.err.find("tri.obj"), std::string::npos) << run.err;
+}
+
+// `tessera doc new` on quads: a Catmull-Clark document by default (said on
+// stderr), kept in the file; --scheme loop refuses a quad by name; edits by
+// script and exports keep the quads; what the service cannot do yet for
+// such a document (adaptive export) is refused, not guessed.
+TEST(CliScheme, DocNewMakesACatmullClarkDocumentOfQuads) {
+  const std::string dir = testing::makeTempDir("cli-scheme");
+  const std::string cube = writeQuadCube(dir);
+  CliRun run = runCli("doc new " + cube + " --max-level 3 -o " + dir + "/cc.tsd");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.err.find(cube + ": 6 of 6 faces are not triangles: a catmull-clark document"),
+            std::string::npos)
+      << run.err;
+  EXPECT_NE(run.out.find("8 vertices, 6 faces, catmull-clark, max level 3"), std::string::npos) << run.out;
+  run = runCli("doc info " + dir + "/cc.tsd");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("scheme          catmull-clark, uniform creases, edge-only boundary"),
+            std::string::npos)
+      << run.out;
+
+  run = runCli("doc new " + cube + " --scheme loop -o " + dir + "/loop.tsd");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("only triangles"), std::string::npos) << run.err;
+  run = runCli("doc new " + cube + " --triangulate -o " + dir + "/tri.tsd");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("12 faces, loop"), std::string::npos) << run.out;
+  run = runCli("doc new " + cube + " --scheme catmull-clark --drop-unused -o " + dir + "/x.tsd");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.err.find("--drop-unused: not available for a catmull-clark document"), std::string::npos)
+      << run.err;
+
+  std::ofstream(dir + "/edits.txt") << "move v1:7 to 0.6 0.6 0.7\ncrease e0:0 2\noffset v2:30 by 0 0 0.05\n";
+  run = runCli("doc edit " + dir + "/cc.tsd --script " + dir + "/edits.txt");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  run = runCli("doc export " + dir + "/cc.tsd --level 2 -o " + dir + "/cc2.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("98 vertices, 96 polygons (level 2)"), std::string::npos) << run.out;
+  run = runCli("doc export " + dir + "/cc.tsd --level 1 --limit -o " + dir + "/limit1.obj");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  // v1:7 (the child of the cube's eighth corner keeps its index): its
+  // limit went where it was dragged.
+  std::istringstream limit(readAll(dir + "/limit1.obj"));
+  std::vector<Vec3> positions;
+  for (std::string line; std::getline(limit, line);) {
+    if (line.rfind("v ", 0) != 0) continue;
+    std::istringstream xyz(line.substr(2));
+    Vec3 p;
+    xyz >> p[0] >> p[1] >> p[2];
+    positions.push_back(p);
+  }
+  ASSERT_GT(positions.size(), 7u);
+  EXPECT_LE((positions[7] - Vec3(0.6, 0.6, 0.7)).norm(), 1e-9);
+  run = runCli("doc export " + dir + "/cc.tsd --adaptive -o " + dir + "/a.glb");
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.err.find("adaptive tessellation of catmull-clark documents is not available yet"),
+            std::string::npos)
+      << run.err;
 }
 
 }  // namespace

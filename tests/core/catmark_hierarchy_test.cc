@@ -5,8 +5,8 @@
 // (tests/oracle/catmark_hierarchy_oracle_test.cc).
 #include <gtest/gtest.h>
 
+#include "core/catmark/polygon_level.h"
 #include "core/hierarchy/sparse_hierarchy.h"
-#include "core/schemes/poly_builder.h"
 #include "support/polygon_meshes.h"
 #include "support/sparse_levels.h"
 
@@ -15,7 +15,7 @@ namespace {
 
 TEST(CatmarkHierarchy, RefusesInterpolatingVerticesNamingTheEdit) {
   const auto cube = testing::quadCube();
-  auto level0 = schemes::buildPolyLevel(cube.topology, {});
+  auto level0 = buildPolyLevel(cube.topology, {});
   ASSERT_TRUE(level0.isOk());
   const LevelCounts counts = testing::quadCountsOf(*level0, 3);
   const std::vector<Edit> edits = {{EditId{7}, true, InterpolationEdit{VertexId(1, 2)}}};
@@ -29,8 +29,8 @@ TEST(CatmarkHierarchy, RefusesInterpolatingVerticesNamingTheEdit) {
 TEST(CatmarkHierarchy, RefusesCountsOfAnotherBase) {
   const auto cube = testing::quadCube();
   const auto grid = testing::quadGrid(3, 3);
-  auto cubeLevel = schemes::buildPolyLevel(cube.topology, {});
-  auto gridLevel = schemes::buildPolyLevel(grid.topology, {});
+  auto cubeLevel = buildPolyLevel(cube.topology, {});
+  auto gridLevel = buildPolyLevel(grid.topology, {});
   ASSERT_TRUE(cubeLevel.isOk() && gridLevel.isOk());
   const LevelCounts gridCounts = testing::quadCountsOf(*gridLevel, 2);
   auto h = SparseHierarchy::create(std::move(*cubeLevel), cube.points, {}, gridCounts, 1, {});

@@ -74,7 +74,7 @@ TEST(DocumentFile, RejectsForeignTruncatedAndCorruptedFiles) {
   std::string flipped = bytes;
   flipped[bytes.size() / 2] ^= 0x40;
   std::string newer = bytes;
-  newer[8] = 3;
+  newer[8] = 4;
   std::vector<Case> cases = {
       {"", "not a Tessera document"},
       {"solid cube\nendsolid\n", "not a Tessera document"},
@@ -82,7 +82,7 @@ TEST(DocumentFile, RejectsForeignTruncatedAndCorruptedFiles) {
       {bytes.substr(0, bytes.size() - 1), "truncated or padded"},
       {bytes + "x", "truncated or padded"},
       {flipped, "corrupted (payload checksum mismatch)"},
-      {newer, "format version 3 is not supported"},
+      {newer, "format version 4 is not supported"},
   };
   for (const auto& c : cases) {
     auto doc = deserializeDocument(c.data, "doc.tsd");

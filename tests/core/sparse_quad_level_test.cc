@@ -1,6 +1,6 @@
 // The sparse hierarchy's levels under Catmull-Clark's quad split
 // (core/hierarchy/sparse_level.h, sparse_quad_split.cc), against the
-// uniform quad split (core/schemes/quad_split.h), whose points the oracle
+// uniform quad split (core/catmark/quad_split.h), whose points the oracle
 // tests hold to OpenSubdiv Far: a level refined whole must be the uniform
 // level element for element, and any sparse level, built at once or grown
 // in place, must hold each present element with the uniform level's
@@ -11,9 +11,9 @@
 #include <random>
 #include <set>
 
+#include "core/catmark/quad_split.h"
 #include "core/hierarchy/incidence.h"
 #include "core/hierarchy/sparse_level.h"
-#include "core/schemes/quad_split.h"
 #include "support/polygon_meshes.h"
 #include "support/sparse_levels.h"
 
@@ -36,12 +36,12 @@ struct Uniform {
 };
 
 Uniform uniformLevels(const PolyTestMesh& mesh, const LoopOptions& options, int depth) {
-  auto base = schemes::buildPolyLevel(mesh.topology, options);
+  auto base = buildPolyLevel(mesh.topology, options);
   EXPECT_TRUE(base.isOk()) << base.status().toString();
   Uniform u{{}, testing::quadCountsOf(*base, depth)};
   u.levels.push_back(std::move(*base));
   for (int l = 0; l < depth; ++l)
-    u.levels.push_back(schemes::splitToQuads(u.levels.back(), options, schemes::SplitDetail::kFull));
+    u.levels.push_back(splitToQuads(u.levels.back(), options, SplitDetail::kFull));
   return u;
 }
 

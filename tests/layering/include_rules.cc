@@ -45,7 +45,7 @@ const std::vector<FolderRule>& includeRules() {
          {"core/util", "core/mesh", "core/topology", "core/loop", "core/catmark", "core/io"},
          kServiceHeaders},
         {"core/document",
-         {"core/util", "core/mesh", "core/topology", "core/loop", "core/hierarchy"},
+         {"core/util", "core/mesh", "core/topology", "core/loop", "core/catmark", "core/hierarchy"},
          kServiceHeaders},
         {"core/tessellation",
          {"core/util", "core/mesh", "core/topology", "core/loop", "core/hierarchy", "core/document"},

@@ -33,7 +33,7 @@ TEST(IncludeRules, RefuseTheDirectionsTheTreeForbids) {
   EXPECT_TRUE(violation("client/lib/session.cc", "client/view/camera.h"));
   // The one topology lies under every scheme: it names none of them.
   EXPECT_TRUE(violation("core/topology/level.h", "core/loop/crease.h"));
-  EXPECT_TRUE(violation("core/topology/level_builder.cc", "core/schemes/quad_split.h"));
+  EXPECT_TRUE(violation("core/topology/level_builder.cc", "core/catmark/quad_split.h"));
   EXPECT_TRUE(violation("core/topology/tags.cc", "core/io/tag_file.h"));
 }
 
@@ -41,7 +41,7 @@ TEST(IncludeRules, AllowTheDirectionsTheTreeUses) {
   EXPECT_FALSE(violation("core/loop/crease.cc", "core/loop/crease.h"));
   EXPECT_FALSE(violation("core/loop/surfaces.h", "core/mesh/surface_mesh.h"));
   EXPECT_FALSE(violation("core/loop/refinement.h", "core/topology/level.h"));
-  EXPECT_FALSE(violation("core/schemes/quad_split.h", "core/topology/level.h"));
+  EXPECT_FALSE(violation("core/catmark/quad_split.h", "core/topology/level.h"));
   EXPECT_FALSE(violation("core/topology/level.h", "core/mesh/sharpness.h"));
   EXPECT_FALSE(violation("core/tessellation/tessellation.h", "core/document/document.h"));
   EXPECT_FALSE(violation("protocol/framing.h", "core/util/status.h"));

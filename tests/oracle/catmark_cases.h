@@ -5,14 +5,20 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/schemes/poly_builder.h"
+#include "core/catmark/polygon_level.h"
 #include "core/util/vec3.h"
 
 namespace tessera::oracle {
 
+// Against Far: refined points within this much of the bounding-box
+// diagonal, Limit() positions too, limit normals within this many radians.
+inline constexpr double kPointTolerance = 1e-12;
+inline constexpr double kPositionTolerance = 1e-9;
+inline constexpr double kNormalTolerance = 1e-6;
+
 // Both crease methods under both boundary rules.
-inline std::vector<schemes::CreaseOptions> allCreaseOptions() {
-  std::vector<schemes::CreaseOptions> all;
+inline std::vector<CreaseOptions> allCreaseOptions() {
+  std::vector<CreaseOptions> all;
   for (auto method : {CreaseMethod::kUniform, CreaseMethod::kChaikin}) {
     for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner}) {
       all.push_back({method, boundary});

@@ -17,10 +17,9 @@
 #include <random>
 #include <set>
 
+#include "core/catmark/polygon_level.h"
 #include "core/hierarchy/incidence.h"
 #include "core/hierarchy/sparse_hierarchy.h"
-#include "core/loop/local_frame.h"
-#include "core/schemes/poly_builder.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/catmark_cases.h"
@@ -32,51 +31,21 @@
 namespace tessera {
 namespace {
 
-using schemes::CreaseOptions;
 using testing::PolyTestMesh;
 
 constexpr int kLevels = 3;
-constexpr double kPointTolerance = 1e-12;    // times the bounding-box diagonal
-constexpr double kPositionTolerance = 1e-9;  // times the bounding-box diagonal
-constexpr double kNormalTolerance = 1e-6;    // radians
+using oracle::kNormalTolerance;
+using oracle::kPointTolerance;
+using oracle::kPositionTolerance;
 
 struct Counted {
   long long points = 0, limits = 0, normals = 0, absentVertices = 0, moves = 0, tags = 0;
 };
 
-// Far's levels for the base mesh with `edits` (the active ones): level-0
-// sharpness edits become tags of the base mesh, moves are added at their
-// level in the frame of the level's interpolated points.
 std::vector<oracle::OsdQuadLevel> farWithEdits(const PolyTestMesh& mesh, const CreaseOptions& options,
                                                const schemes::QuadRefiner& ours,
                                                const std::vector<Edit>& edits) {
-  schemes::PolyTopology topology = mesh.topology;
-  const Level& base = ours.level(0);
-  topology.vertexSharpness.resize(mesh.points.size(), 0.0f);
-  for (const Edit& edit : edits) {
-    if (!edit.active) continue;
-    if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
-      const auto& ends = base.edgeVertices[static_cast<Index>(e->edge.index())];
-      topology.creases.push_back({ends[0], ends[1], e->sharpness});
-    } else if (const auto* v = std::get_if<VertexSharpnessEdit>(&edit.change)) {
-      topology.vertexSharpness[v->vertex.index()] = v->sharpness;
-    }
-  }
-  auto moveLevel = [&](int l, std::vector<Vec3>& points) {
-    const std::vector<Vec3> predicted = points;
-    for (const Edit& edit : edits) {
-      const auto* move = std::get_if<MoveEdit>(&edit.change);
-      if (move == nullptr || !edit.active || edit.level() != l) continue;
-      for (const VertexOffset& o : move->offsets) {
-        const auto v = static_cast<Index>(o.vertex.index());
-        points[v] += localFrame(ours.level(l), v, predicted).toWorld(o.localOffset);
-      }
-    }
-  };
-  // Far's Limit() needs a level of quads: level 0 only where the base is one.
-  const int firstLimitLevel = base.regularFaceSize == 4 ? 0 : 1;
-  return oracle::refineQuadsWithOpenSubdiv(topology, mesh.points, options, ours, true, firstLimitLevel,
-                                           moveLevel);
+  return oracle::refineEditedQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, ours, edits);
 }
 
 void expectHierarchyIsFar(const SparseHierarchy& h, const std::vector<oracle::OsdQuadLevel>& far, double diag,
@@ -150,7 +119,7 @@ struct Case {
 std::optional<Case> makeCase(const PolyTestMesh& mesh, const CreaseOptions& options) {
   auto ours = schemes::QuadRefiner::create(mesh.topology, schemes::QuadScheme::kCatmullClark, options,
                                            {.levels = kLevels});
-  auto level0 = schemes::buildPolyLevel(mesh.topology, options);
+  auto level0 = buildPolyLevel(mesh.topology, options);
   if (!ours.isOk() || !level0.isOk()) {
     ADD_FAILURE() << mesh.name << ": " << ours.status().toString() << " " << level0.status().toString();
     return std::nullopt;

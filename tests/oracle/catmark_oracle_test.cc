@@ -28,14 +28,13 @@
 namespace tessera {
 namespace {
 
-using schemes::CreaseOptions;
 using schemes::QuadRefiner;
 using schemes::QuadScheme;
 using testing::PolyTestMesh;
 
-constexpr double kPointTolerance = 1e-12;    // times the bounding-box diagonal
-constexpr double kPositionTolerance = 1e-9;  // times the bounding-box diagonal
-constexpr double kNormalTolerance = 1e-6;    // radians
+using oracle::kNormalTolerance;
+using oracle::kPointTolerance;
+using oracle::kPositionTolerance;
 
 double angleBetween(const Vec3& a, const Vec3& b) {
   return std::atan2((a % b).norm(), a | b);
@@ -135,7 +134,7 @@ TEST(CatmarkOracle, RealPolygonMeshDoubleTorus) {
 TEST(CatmarkOracle, RealTriangleMeshFandiskWithRandomTags) {
   auto base = importMesh(testing::cgalMeshPath("fandisk.off"));
   ASSERT_TRUE(base.isOk()) << base.status().toString();
-  PolyTestMesh real{"fandisk", schemes::PolyTopology::fromBaseMesh(*base), base->positions()};
+  PolyTestMesh real{"fandisk", PolyTopology::fromBaseMesh(*base), base->positions()};
   Totals totals;
   checkAgainstOsd(testing::withRandomPolyTags(real, 0.05, 0.01, 9), QuadScheme::kCatmullClark, {}, 2, totals);
   EXPECT_GT(totals.normals, 0);

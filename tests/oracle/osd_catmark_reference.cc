@@ -1,19 +1,21 @@
 #include "oracle/osd_catmark_reference.h"
 
+#include <set>
 #include <stdexcept>
 #include <string>
 
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
-#include "core/schemes/quad_split.h"
+#include "core/catmark/quad_split.h"
+#include "core/loop/local_frame.h"
 
 namespace tessera::oracle {
 
 namespace Far = OpenSubdiv::Far;
 namespace Sdc = OpenSubdiv::Sdc;
 
-OsdPolyInput::OsdPolyInput(const schemes::PolyTopology& topology) {
+OsdPolyInput::OsdPolyInput(const PolyTopology& topology) {
   for (int f = 0; f < topology.numFaces(); ++f) {
     vertsPerFace_.push_back(topology.faceOffsets[f + 1] - topology.faceOffsets[f]);
   }
@@ -66,7 +68,7 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
     for (int v = 0; v < parent.numVertices; ++v) next[v] = osdParent.GetVertexChildVertex(maps[l][v]);
     for (int f = 0; f < parent.numFaces(); ++f) {
       const int of = faceMap[f];
-      next[schemes::faceChildVertex(parent, f)] = osdParent.GetFaceChildVertex(of);
+      next[faceChildVertex(parent, f)] = osdParent.GetFaceChildVertex(of);
       auto ourCorners = parent.faceVerticesOf(f);
       auto osdCorners = osdParent.GetFaceVertices(of);
       auto children = osdParent.GetFaceChildFaces(of);
@@ -83,7 +85,7 @@ std::vector<std::vector<int>> vertexMaps(const Far::TopologyRefiner& osd, const 
       const int osdEdge =
           osdParent.FindEdge(maps[l][parent.edgeVertices[e][0]], maps[l][parent.edgeVertices[e][1]]);
       if (osdEdge < 0) throw std::runtime_error("edge missing in OpenSubdiv at level " + std::to_string(l));
-      next[schemes::edgeChildVertex(parent, e)] = osdParent.GetEdgeChildVertex(osdEdge);
+      next[edgeChildVertex(parent, e)] = osdParent.GetEdgeChildVertex(osdEdge);
     }
     faceMap.swap(nextFaceMap);
   }
@@ -98,7 +100,7 @@ Vec3 toVec3(const OsdDoublePoint& p) {
 
 std::unique_ptr<Far::TopologyRefiner> createOsdQuadRefiner(const OsdPolyInput& input,
                                                            schemes::QuadScheme scheme,
-                                                           const schemes::CreaseOptions& options, int levels,
+                                                           const CreaseOptions& options, int levels,
                                                            bool fullTopologyInLastLevel) {
   Sdc::Options sdc;
   sdc.SetVtxBoundaryInterpolation(options.boundary == BoundaryInterpolation::kEdgeOnly
@@ -132,9 +134,9 @@ std::vector<OsdDoublePoint> interpolateOsdDouble(const Far::TopologyRefiner& ref
   return current;
 }
 
-std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const schemes::PolyTopology& topology,
+std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const PolyTopology& topology,
                                                     std::span<const Vec3> basePoints,
-                                                    const schemes::CreaseOptions& options,
+                                                    const CreaseOptions& options,
                                                     const schemes::QuadRefiner& ours, bool withLimit,
                                                     int firstLimitLevel, const OsdLevelEdit& edit) {
   const int levels = ours.maxLevel();
@@ -182,6 +184,47 @@ std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const schemes::PolyTopology&
     }
   }
   return results;
+}
+
+std::vector<OsdQuadLevel> refineEditedQuadsWithOpenSubdiv(const PolyTopology& baseTopology,
+                                                          std::span<const Vec3> basePoints,
+                                                          const CreaseOptions& options,
+                                                          const schemes::QuadRefiner& ours,
+                                                          std::span<const Edit> edits) {
+  PolyTopology topology = baseTopology;
+  const Level& base = ours.level(0);
+  topology.vertexSharpness.resize(basePoints.size(), 0.0f);
+  std::set<Index> taggedEdges, taggedVertices;
+  for (const Edit& edit : edits) {
+    if (!edit.active || std::holds_alternative<MoveEdit>(edit.change)) continue;
+    if (edit.level() != 0) throw std::invalid_argument("a sharpness edit below the base level");
+    if (const auto* e = std::get_if<EdgeSharpnessEdit>(&edit.change)) {
+      const auto at = static_cast<Index>(e->edge.index());
+      if (!taggedEdges.insert(at).second) throw std::invalid_argument("a second tag of one edge");
+      const auto& ends = base.edgeVertices[at];
+      topology.creases.push_back({ends[0], ends[1], e->sharpness});
+    } else if (const auto* v = std::get_if<VertexSharpnessEdit>(&edit.change)) {
+      if (!taggedVertices.insert(static_cast<Index>(v->vertex.index())).second)
+        throw std::invalid_argument("a second tag of one vertex");
+      topology.vertexSharpness[v->vertex.index()] = v->sharpness;
+    } else {
+      throw std::invalid_argument("an edit Far cannot state");
+    }
+  }
+  auto moveLevel = [&](int l, std::vector<Vec3>& points) {
+    const std::vector<Vec3> predicted = points;
+    for (const Edit& edit : edits) {
+      const auto* move = std::get_if<MoveEdit>(&edit.change);
+      if (move == nullptr || !edit.active || edit.level() != l) continue;
+      for (const VertexOffset& o : move->offsets) {
+        const auto v = static_cast<Index>(o.vertex.index());
+        points[v] += localFrame(ours.level(l), v, predicted).toWorld(o.localOffset);
+      }
+    }
+  };
+  // Far's Limit() needs a level of quads: level 0 only where the base is one.
+  const int firstLimitLevel = base.regularFaceSize == 4 ? 0 : 1;
+  return refineQuadsWithOpenSubdiv(topology, basePoints, options, ours, true, firstLimitLevel, moveLevel);
 }
 
 }  // namespace tessera::oracle

@@ -14,7 +14,8 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefiner.h>
 
-#include "core/schemes/poly_builder.h"
+#include "core/catmark/polygon_level.h"
+#include "core/hierarchy/edit.h"
 #include "core/schemes/quad_refiner.h"
 #include "core/util/vec3.h"
 
@@ -31,7 +32,7 @@ struct OsdQuadLevel {
 // that benchmarks time only OpenSubdiv's own work.
 class OsdPolyInput {
  public:
-  explicit OsdPolyInput(const schemes::PolyTopology& topology);
+  explicit OsdPolyInput(const PolyTopology& topology);
   const OpenSubdiv::Far::TopologyDescriptor& descriptor() const { return descriptor_; }
 
  private:
@@ -43,7 +44,7 @@ class OsdPolyInput {
 // Throws std::runtime_error on any OpenSubdiv error.
 std::unique_ptr<OpenSubdiv::Far::TopologyRefiner> createOsdQuadRefiner(const OsdPolyInput& input,
                                                                        schemes::QuadScheme scheme,
-                                                                       const schemes::CreaseOptions& options,
+                                                                       const CreaseOptions& options,
                                                                        int levels,
                                                                        bool fullTopologyInLastLevel);
 
@@ -68,10 +69,23 @@ using OsdLevelEdit = std::function<void(int level, std::vector<Vec3>& points)>;
 // `firstLimitLevel` on when withLimit (a level must be all quads for
 // Limit()). With `edit`, each level's points are Far's interpolation of the
 // edited level above, and `points` holds them after the level's own edit.
-std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const schemes::PolyTopology& topology,
+std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const PolyTopology& topology,
                                                     std::span<const Vec3> basePoints,
-                                                    const schemes::CreaseOptions& options,
+                                                    const CreaseOptions& options,
                                                     const schemes::QuadRefiner& ours, bool withLimit,
                                                     int firstLimitLevel, const OsdLevelEdit& edit = {});
+
+// Far's levels for a document's base mesh with its `edits` (the active
+// ones, Pulli & Lounsbery's semantics): base-level sharpness edits become
+// tags of the base mesh (each edge and vertex tagged once), moves are added
+// at their level in the local frame (core/loop/local_frame.h) of the
+// level's interpolated points, before the next level is interpolated.
+// Throws std::invalid_argument for what Far's tags cannot state: a
+// sharpness edit below the base level, or a second tag of one element.
+std::vector<OsdQuadLevel> refineEditedQuadsWithOpenSubdiv(const PolyTopology& topology,
+                                                          std::span<const Vec3> basePoints,
+                                                          const CreaseOptions& options,
+                                                          const schemes::QuadRefiner& ours,
+                                                          std::span<const Edit> edits);
 
 }  // namespace tessera::oracle

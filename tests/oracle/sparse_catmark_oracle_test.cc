@@ -28,12 +28,11 @@
 namespace tessera {
 namespace {
 
-using schemes::CreaseOptions;
 using testing::PolyTestMesh;
 
-constexpr double kPointTolerance = 1e-12;    // times the bounding-box diagonal
-constexpr double kPositionTolerance = 1e-9;  // times the bounding-box diagonal
-constexpr double kNormalTolerance = 1e-6;    // radians
+using oracle::kNormalTolerance;
+using oracle::kPointTolerance;
+using oracle::kPositionTolerance;
 
 // The points of every vertex of `child`, from its parent's.
 std::vector<Vec3> childPoints(const SparseLevel& parent, const SparseLevel& child,

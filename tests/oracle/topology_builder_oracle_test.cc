@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/loop/level_builder.h"
-#include "core/schemes/poly_builder.h"
 #include "oracle/osd_adapter.h"
 #include "oracle/osd_catmark_reference.h"
 #include "support/polygon_meshes.h"
@@ -85,7 +85,7 @@ TEST(TopologyBuilderOracle, PolygonMeshesHaveOpenSubdivsCatmarkLevel) {
   const std::vector<testing::PolyTestMesh> meshes = {testing::quadCube(), testing::mixedPrism(6, false),
                                                      testing::mixedPrism(7, true), testing::quadGrid(4, 3)};
   for (const auto& mesh : meshes) {
-    auto ours = schemes::buildPolyLevel(mesh.topology, {});
+    auto ours = buildPolyLevel(mesh.topology, {});
     ASSERT_TRUE(ours.isOk()) << mesh.name << ": " << ours.status().message();
     const OsdPolyInput input(mesh.topology);
     auto far = createOsdQuadRefiner(input, schemes::QuadScheme::kCatmullClark, {}, 0, true);

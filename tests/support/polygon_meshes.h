@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "core/schemes/poly_builder.h"
+#include "core/catmark/polygon_level.h"
 #include "core/util/vec3.h"
 
 namespace tessera::testing {
 
 struct PolyTestMesh {
   std::string name;
-  schemes::PolyTopology topology;
+  PolyTopology topology;
   std::vector<Vec3> points;
 };
 

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "core/loop/level_builder.h"
 #include "core/loop/loop_options.h"
 #include "core/mesh/base_mesh.h"
 #include "core/mesh/polygon_soup.h"
@@ -13,7 +14,7 @@
 #include "core/topology/tags.h"
 #include "core/util/status.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 // OpenSubdiv's Sdc options that the crease rules of every scheme share; the
 // Loop options are exactly these.
@@ -36,6 +37,8 @@ struct PolyTopology {
 
   // Triangles and tags of a validated base mesh.
   static PolyTopology fromBaseMesh(const BaseMesh& mesh);
+  // The same triangles and tags as polygons.
+  static PolyTopology fromTriangles(BaseTopology triangles);
   // Faces of a soup as they are (no tags); buildPolyLevel validates them.
   static PolyTopology fromSoup(const PolygonSoup& soup);
 };
@@ -46,4 +49,4 @@ struct PolyTopology {
 // and tags on missing edges or vertices.
 Expected<Level> buildPolyLevel(const PolyTopology& topology, const CreaseOptions& options);
 
-}  // namespace tessera::schemes
+}  // namespace tessera

@@ -1,4 +1,4 @@
-#include "core/schemes/quad_split.h"
+#include "core/catmark/quad_split.h"
 
 #include <algorithm>
 #include <vector>
@@ -6,7 +6,7 @@
 #include "core/loop/crease.h"
 #include "core/topology/quad_split_parts.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 namespace {
 
@@ -165,4 +165,4 @@ Level splitToQuads(const Level& parent, const CreaseOptions& options, SplitDetai
   return child;
 }
 
-}  // namespace tessera::schemes
+}  // namespace tessera

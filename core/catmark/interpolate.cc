@@ -1,11 +1,11 @@
-#include "core/schemes/catmark_interpolate.h"
+#include "core/catmark/interpolate.h"
 
 #include <cassert>
 #include <vector>
 
 #include "core/catmark/point_rules.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 namespace {
 
@@ -72,4 +72,4 @@ void interpolateCatmark(const Level& parent, const Level& child, std::span<const
   stencils.vertexPoints();
 }
 
-}  // namespace tessera::schemes
+}  // namespace tessera

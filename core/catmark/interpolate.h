@@ -8,10 +8,10 @@
 #include "core/topology/level.h"
 #include "core/util/vec3.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 // `childPoints` holds child.numVertices points (quad_split.h numbering).
 void interpolateCatmark(const Level& parent, const Level& child, std::span<const Vec3> parentPoints,
                         std::span<Vec3> childPoints);
 
-}  // namespace tessera::schemes
+}  // namespace tessera

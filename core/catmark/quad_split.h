@@ -10,10 +10,10 @@
 // Sharpness decays by the crease method (Sdc semantics, core/loop/crease.h).
 #pragma once
 
-#include "core/schemes/poly_builder.h"
+#include "core/catmark/polygon_level.h"
 #include "core/topology/level.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 enum class SplitDetail {
   kFull,       // every relation: the level can be refined again, or limits taken
@@ -30,4 +30,4 @@ inline Index edgeChildVertex(const Level& parent, Index e) {
   return parent.numVertices + parent.numFaces() + e;
 }
 
-}  // namespace tessera::schemes
+}  // namespace tessera

@@ -1,13 +1,15 @@
-#include "core/schemes/poly_builder.h"
+#include "core/catmark/polygon_level.h"
 
-#include "core/loop/level_builder.h"
 #include "core/topology/level_builder.h"
 
-namespace tessera::schemes {
+namespace tessera {
 
 PolyTopology PolyTopology::fromBaseMesh(const BaseMesh& mesh) {
   // The same triangles and tags as the Loop scheme reads (BaseTopology).
-  BaseTopology base = BaseTopology::fromBaseMesh(mesh);
+  return fromTriangles(BaseTopology::fromBaseMesh(mesh));
+}
+
+PolyTopology PolyTopology::fromTriangles(BaseTopology base) {
   PolyTopology topology;
   topology.numVertices = base.numVertices;
   for (const auto& t : base.triangles) topology.addFace(t);
@@ -35,4 +37,4 @@ Expected<Level> buildPolyLevel(const PolyTopology& topology, const CreaseOptions
   return level;
 }
 
-}  // namespace tessera::schemes
+}  // namespace tessera

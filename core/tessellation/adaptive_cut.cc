@@ -14,7 +14,9 @@ namespace {
 // has one per sector between sharp edges (limit.h).
 Vec3 sideNormal(const SparseHierarchy& h, int l, Index v, Index f) {
   const Level& m = h.level(l).mesh;
-  if (isSmoothLike(m.vertexRules[v])) return h.limitNormal(l, v);
+  // Catmull-Clark's Limit() masks give one normal per vertex
+  // (core/catmark/limit.h): a crease counts as a disagreement there.
+  if (isSmoothLike(m.vertexRules[v]) || h.quads()) return h.limitNormal(l, v);
   auto faces = m.ringFacesOf(v);
   const int n = static_cast<int>(faces.size());
   const int k = static_cast<int>(std::find(faces.begin(), faces.end(), f) - faces.begin());
@@ -23,6 +25,11 @@ Vec3 sideNormal(const SparseHierarchy& h, int l, Index v, Index f) {
     if ((k - sector.firstFace + n) % n < sector.faceCount) return sector.normal;
   }
   return h.limitNormal(l, v);
+}
+
+// Loop splits a triangle in four; the quad split makes one quad per corner.
+int childCount(const SparseHierarchy& h, int l, Index f) {
+  return h.quads() ? h.level(l).mesh.faceSize(f) : 4;
 }
 
 double cosAngle(const Vec3& a, const Vec3& b) {
@@ -62,7 +69,8 @@ Expected<AdaptiveCut> AdaptiveCut::build(Document& doc, const LodProfile& profil
     for (Index f = 0; f < h.level(l).mesh.numFaces(); ++f) {
       if (!cut.isNode(h, l, f) || !cut.wantsSplit(h, l, f)) continue;
       cut.split_[l][f] = 1;
-      if (!h.isNodeWithChildren(l, f)) requests.push_back(FaceId(l + 1, 4 * h.level(l).faceIds[f] + 3));
+      if (!h.isNodeWithChildren(l, f))
+        requests.push_back(doc.counts().childFace(FaceId(l, h.level(l).faceIds[f]), 0));
     }
     if (requests.empty()) continue;
     const int first = doc.refineHierarchy(requests);
@@ -98,12 +106,15 @@ bool AdaptiveCut::isCurrent(const SparseHierarchy& h) const {
 bool AdaptiveCut::wantsSplit(const SparseHierarchy& h, int l, Index f) const {
   if (l >= profile_.maxLevel) return false;
   if (l < profile_.baseLevel || h.isEditNode(l, f)) return true;
+  // A level without limits (a Catmull-Clark base of other polygons than
+  // quads) is never shown.
+  if (!h.hasLimits(l)) return true;
   if (profile_.fidelity && aroundEditedVertex(h, l, f)) return true;
   return normalsDisagree(h, l, f) || creaseTangentsDisagree(h, l, f);
 }
 
 bool AdaptiveCut::aroundEditedVertex(const SparseHierarchy& h, int l, Index f) const {
-  for (Index v : h.level(l).mesh.triangleVertices(f)) {
+  for (Index v : h.level(l).mesh.faceVerticesOf(f)) {
     const uint64_t id = VertexId(l, h.level(l).vertexIds[v]).packed();
     if (std::binary_search(editedVertices_.begin(), editedVertices_.end(), id)) return true;
   }
@@ -111,9 +122,10 @@ bool AdaptiveCut::aroundEditedVertex(const SparseHierarchy& h, int l, Index f) c
 }
 
 bool AdaptiveCut::normalsDisagree(const SparseHierarchy& h, int l, Index f) const {
-  const auto fv = h.level(l).mesh.triangleVertices(f);
-  for (int j = 0; j < 3; ++j) {
-    if (cosAngle(sideNormal(h, l, fv[j], f), sideNormal(h, l, fv[(j + 1) % 3], f)) < cosThreshold_)
+  const auto fv = h.level(l).mesh.faceVerticesOf(f);
+  const size_t n = fv.size();
+  for (size_t j = 0; j < n; ++j) {
+    if (cosAngle(sideNormal(h, l, fv[j], f), sideNormal(h, l, fv[(j + 1) % n], f)) < cosThreshold_)
       return true;
   }
   return false;
@@ -121,9 +133,12 @@ bool AdaptiveCut::normalsDisagree(const SparseHierarchy& h, int l, Index f) cons
 
 bool AdaptiveCut::creaseTangentsDisagree(const SparseHierarchy& h, int l, Index f) const {
   const Level& m = h.level(l).mesh;
-  for (int j = 0; j < 3; ++j) {
-    if (!isSharp(m.edgeSharpness[m.triangleEdges(f)[j]])) continue;
-    const Index a = m.triangleVertices(f)[j], b = m.triangleVertices(f)[(j + 1) % 3];
+  const auto fv = m.faceVerticesOf(f);
+  const auto fe = m.faceEdgesOf(f);
+  const size_t n = fv.size();
+  for (size_t j = 0; j < n; ++j) {
+    if (!isSharp(m.edgeSharpness[fe[j]])) continue;
+    const Index a = fv[j], b = fv[(j + 1) % n];
     const Vec3 ta = creaseTangent(h, l, a, b);
     const Vec3 tb = -1.0 * creaseTangent(h, l, b, a);
     if (cosAngle(ta, tb) < cosThreshold_) return true;
@@ -136,14 +151,16 @@ void AdaptiveCut::clearSubtree(const SparseHierarchy& h, int l, Index f) {
   split_[l][f] = 0;
   const Index first = h.level(l).firstChildFace[f];
   if (first < 0 || l + 1 >= numLevels()) return;
-  for (int k = 0; k < 4; ++k) clearSubtree(h, l + 1, first + k);
+  const int children = childCount(h, l, f);
+  for (int k = 0; k < children; ++k) clearSubtree(h, l + 1, first + k);
 }
 
 bool AdaptiveCut::decideSubtree(Document& doc, int l, Index f, std::vector<std::pair<int, Index>>& flipped) {
   const SparseHierarchy& h = doc.hierarchy();
   if (!h.isNodeWithChildren(l, f)) return false;  // needs growth
   const Index first = h.level(l).firstChildFace[f];
-  for (int k = 0; k < 4; ++k) {
+  const int children = childCount(h, l, f);
+  for (int k = 0; k < children; ++k) {
     const Index c = first + k;
     if (!wantsSplit(h, l + 1, c)) continue;
     split_[l + 1][c] = 1;

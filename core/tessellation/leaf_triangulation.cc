@@ -1,6 +1,8 @@
 #include "core/tessellation/leaf_triangulation.h"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 
 namespace tessera {
 
@@ -70,11 +72,67 @@ void cover(VertexRef a, VertexRef b, VertexRef c, const Points& ab, const Points
   out.push_back({s1.mid, s2.mid, s0.mid});
 }
 
+// A quad leaf with the finer points on its sides (side j from corner j to
+// corner j + 1). A corner whose two sides hold no points covers the quad
+// with one fan over the other sides; otherwise two opposite sides both hold
+// points (a corner on no such side would be free), and the quad is split
+// at their midpoints into two quads, each with fewer points and a bare
+// new side. No triangle has three points on one side of the leaf.
+void coverQuad(const std::array<VertexRef, 4>& c, const std::array<Points, 4>& s,
+               std::vector<RefTriangle>& out) {
+  if (s[0].empty() && s[1].empty() && s[2].empty() && s[3].empty()) {
+    // The first diagonal, as the quad split's control polygons are drawn.
+    out.push_back({c[0], c[1], c[2]});
+    out.push_back({c[0], c[2], c[3]});
+    return;
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (!s[k].empty() || !s[(k + 3) % 4].empty()) continue;
+    std::vector<VertexRef> chain{c[(k + 1) % 4]};
+    for (int step = 1; step <= 2; ++step) {
+      const int side = (k + step) % 4;
+      chain.insert(chain.end(), s[side].begin(), s[side].end());
+      chain.push_back(c[(side + 1) % 4]);
+    }
+    for (size_t i = 0; i + 1 < chain.size(); ++i) out.push_back({c[k], chain[i], chain[i + 1]});
+    return;
+  }
+  const int j = !s[0].empty() && !s[2].empty() ? 0 : 1;
+  const Split near = splitAtMidpoint(s[j]), far = splitAtMidpoint(s[j + 2]);
+  coverQuad({c[j], near.mid, far.mid, c[(j + 3) % 4]}, {near.before, Points{}, far.after, s[(j + 3) % 4]},
+            out);
+  coverQuad({near.mid, c[j + 1], c[j + 2], far.mid}, {near.after, s[j + 1], far.before, Points{}}, out);
+}
+
+void triangulateQuadLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int l, Index f,
+                         std::vector<RefTriangle>& out) {
+  const Level& m = h.level(l).mesh;
+  const auto fv = m.faceVerticesOf(f);
+  const auto fe = m.faceEdgesOf(f);
+  if (fv.size() != 4) {
+    // A base n-gon is a leaf only where a profile stops at level 0, with
+    // no finer neighbour: a fan.
+    for (size_t k = 1; k + 1 < fv.size(); ++k)
+      out.push_back({VertexRef{l, fv[0]}, {l, fv[k]}, {l, fv[k + 1]}});
+    return;
+  }
+  std::array<VertexRef, 4> corners;
+  std::array<Points, 4> sides;
+  for (int j = 0; j < 4; ++j) {
+    corners[j] = {l, fv[j]};
+    const auto& ef = m.edgeFaces[fe[j]];
+    const Index far = ef[0] == f ? ef[1] : ef[0];
+    collectEdge(h, cut, l, fe[j], far, fv[j], fv[(j + 1) % 4], sides[j]);
+  }
+  coverQuad(corners, sides, out);
+}
+
 }  // namespace
 
 void triangulateLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int l, Index f,
                      std::vector<RefTriangle>& out) {
   const Level& m = h.level(l).mesh;
+  if (h.quads()) return triangulateQuadLeaf(h, cut, l, f, out);
   const auto fv = m.triangleVertices(f);
   std::array<Points, 3> edges;
   for (int j = 0; j < 3; ++j) {

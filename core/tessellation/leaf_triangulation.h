@@ -7,7 +7,11 @@
 // vertex on a shared edge is its midpoint), and each part is covered the
 // same way -- the paper's two fans generalised so that no triangle ever
 // has three points on one line of the parent triangle. No T-vertices, no
-// degenerate triangles, and the leaf's orientation is kept.
+// degenerate triangles, and the leaf's orientation is kept. A quad leaf of
+// Catmull-Clark's split is two triangles on its first diagonal; with finer
+// points on its sides, a fan from a corner whose sides hold none, or else
+// two quads split at the midpoints of two opposite sides, covered the same
+// way, with the same guarantees.
 #pragma once
 
 #include <array>

@@ -10,11 +10,27 @@
 #include <zlib.h>
 
 #include "core/document/document_file.h"
+#include "support/polygon_meshes.h"
 #include "support/procedural_meshes.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
 namespace {
+
+// Catmull-Clark on quads, triangles and a pentagon, with each edit kind
+// it takes.
+Document editedPolygonDocument() {
+  const auto mesh = testing::withRandomPolyTags(testing::mixedPrism(5, false), 0.3, 0.2, 3);
+  auto doc =
+      Document::create(mesh.topology, mesh.points, {.maxLevel = 4, .scheme = DocumentScheme::kCatmullClark});
+  if (!doc.isOk()) throw std::runtime_error(doc.status().toString());
+  auto a = doc->moveToLimit(std::vector<VertexId>{VertexId(2, 40)}, Vec3(0.3, 0.1, 0.4));
+  auto b = doc->moveBy(std::vector<VertexId>{VertexId(1, 7)}, Vec3(1e-3, 2e-3, -0.1));
+  auto c = doc->setEdgeSharpness(EdgeId(1, 5), 1.5f);
+  auto d = doc->setVertexSharpness(VertexId(3, 100), kSharpnessInfinite);
+  if (!a.isOk() || !b.isOk() || !c.isOk() || !d.isOk()) throw std::runtime_error("edit failed");
+  return std::move(doc).value();
+}
 
 Document editedDocument() {
   auto mesh = testing::withRandomTags(testing::withJitter(testing::torus(8, 6), 0.02, 8), 0.1, 0.05, 8);
@@ -112,8 +128,7 @@ TEST(DocumentFile, FormatOneFilesStillLoad) {
 
 // Mutations with a valid checksum reach the payload parser and the document
 // validation: each must yield a valid document or a clear error.
-TEST(DocumentFile, MutatedPayloadsNeverCrash) {
-  const std::string bytes = serializeDocument(editedDocument());
+void expectMutationsAreSafe(const std::string& bytes) {
   std::mt19937 rng(12);
   int rejected = 0;
   for (int i = 0; i < 400; ++i) {
@@ -128,6 +143,14 @@ TEST(DocumentFile, MutatedPayloadsNeverCrash) {
     }
   }
   EXPECT_GT(rejected, 0);
+}
+
+// Both schemes: a Loop document (format 2) and a Catmull-Clark one (format
+// 3, faces of any size).
+TEST(DocumentFile, MutatedPayloadsNeverCrash) {
+  for (const std::string& bytes :
+       {serializeDocument(editedDocument()), serializeDocument(editedPolygonDocument())})
+    expectMutationsAreSafe(bytes);
 }
 
 }  // namespace

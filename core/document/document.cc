@@ -25,6 +25,13 @@ Status checkSharpness(float sharpness, const std::string& what) {
   return Status::ok();
 }
 
+// The base level under the document's scheme: Loop's triangles or the
+// polygons of Catmull-Clark.
+Expected<Level> buildLevel0(const DocumentBase& base, const LoopOptions& options) {
+  if (const auto* triangles = std::get_if<BaseTopology>(&base)) return buildBaseLevel(*triangles, options);
+  return buildPolyLevel(std::get<PolyTopology>(base), options);
+}
+
 std::vector<int> faceSizes(const Level& level) {
   std::vector<int> sizes(level.numFaces());
   for (Index f = 0; f < level.numFaces(); ++f) sizes[f] = level.faceSize(f);
@@ -91,12 +98,9 @@ Expected<Document> Document::createFrom(DocumentBase base, std::vector<Vec3> poi
     return invalidArgument("uniform level must be 0.." + std::to_string(options.maxLevel) + ", got " +
                            std::to_string(options.uniformLevel));
   }
-  // Building level 0 validates the topology and the base tags.
-  Expected<Level> level0 = options.scheme == DocumentScheme::kLoop
-                               ? buildBaseLevel(std::get<BaseTopology>(base), options.loop)
-                               : buildPolyLevel(std::get<PolyTopology>(base), options.loop);
-  if (!level0.isOk()) return level0.status();
-  const Level& built = *level0;
+  // Building level 0 validates the topology and the base tags; the first
+  // hierarchy takes it.
+  TESSERA_ASSIGN_OR_RETURN(Level built, buildLevel0(base, options.loop));
   LevelCounts counts =
       options.scheme == DocumentScheme::kLoop
           ? LevelCounts(built.numVertices, built.numEdges(), built.numFaces(), options.maxLevel)
@@ -104,7 +108,7 @@ Expected<Document> Document::createFrom(DocumentBase base, std::vector<Vec3> poi
   Document doc(std::move(base), std::move(points), options, std::move(counts));
   doc.baseBoundaryEdges_.resize(built.numEdges());
   for (Index e = 0; e < built.numEdges(); ++e) doc.baseBoundaryEdges_[e] = built.isBoundaryEdge(e);
-  TESSERA_RETURN_IF_ERROR(doc.rebuildHierarchy());
+  TESSERA_RETURN_IF_ERROR(doc.rebuildHierarchy(std::move(built)));
   return doc;
 }
 
@@ -206,16 +210,14 @@ Status Document::checkEdit(const Edit& edit) const {
 }
 
 Status Document::rebuildHierarchy() {
-  Expected<SparseHierarchy> created = [&]() -> Expected<SparseHierarchy> {
-    if (const auto* triangles = std::get_if<BaseTopology>(&base_)) {
-      return SparseHierarchy::create(*triangles, basePoints_, options_.loop, counts_, options_.uniformLevel,
-                                     edits_);
-    }
-    TESSERA_ASSIGN_OR_RETURN(Level level0, buildPolyLevel(std::get<PolyTopology>(base_), options_.loop));
-    return SparseHierarchy::create(std::move(level0), basePoints_, options_.loop, counts_,
-                                   options_.uniformLevel, edits_);
-  }();
-  TESSERA_ASSIGN_OR_RETURN(SparseHierarchy sparse, std::move(created));
+  TESSERA_ASSIGN_OR_RETURN(Level level0, buildLevel0(base_, options_.loop));
+  return rebuildHierarchy(std::move(level0));
+}
+
+Status Document::rebuildHierarchy(Level level0) {
+  TESSERA_ASSIGN_OR_RETURN(SparseHierarchy sparse,
+                           SparseHierarchy::create(std::move(level0), basePoints_, options_.loop, counts_,
+                                                   options_.uniformLevel, edits_));
   sparse_.emplace(std::move(sparse));
   return Status::ok();
 }

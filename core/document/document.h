@@ -156,6 +156,7 @@ class Document {
   Status setActive(EditId id, bool active, bool checked = true);
   Expected<MoveEdit> offsetsFor(std::span<const VertexId> vertices, const Vec3& world);
   Status rebuildHierarchy();
+  Status rebuildHierarchy(Level level0);  // from a base level already built
   // Grows the hierarchy for an edit about to be made; remembers the growth
   // for lastUpdate().
   void reserve(const Edit& edit);

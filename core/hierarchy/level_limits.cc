@@ -10,7 +10,7 @@ LevelLimits::LevelLimits(const SparseLevel& level, const SparseLevel* parent, co
     : level_(level), method_(options.creaseMethod), far_(level, parent, options) {
   if (split == SplitKind::kTriangles) {
     loop_.emplace(level.mesh, options.creaseMethod, &far_);
-  } else if (hasLimit()) {
+  } else if (hasLimits(level.mesh, split)) {
     catmark_.emplace(level.mesh);
   }
 }

@@ -29,8 +29,11 @@ class LevelLimits {
   LevelLimits(const LevelLimits&) = delete;
   LevelLimits& operator=(const LevelLimits&) = delete;
 
-  // Whether the level's complete vertices have limits under the scheme.
-  bool hasLimit() const { return loop_.has_value() || level_.mesh.regularFaceSize == 4; }
+  // Whether a level's complete vertices have limits under the split: every
+  // level of Loop's, and of the quad split every all-quad level.
+  static bool hasLimits(const Level& mesh, SplitKind split) {
+    return split == SplitKind::kTriangles || mesh.allQuads();
+  }
   // The limit frame of complete vertex v from the level's points; without
   // limits (a Catmull-Clark base of other polygons), the control point and
   // no tangents, so a zero normal. Inline, as ChildStencils::predict, for

@@ -107,10 +107,9 @@ class SparseHierarchy {
   int numLevels() const { return static_cast<int>(levels_.size()); }
   // Loop's triangle split or Catmull-Clark's quad split.
   bool quads() const { return counts_.quads(); }
-  // Whether level l's vertices have limits: every level of Loop's split,
-  // and of the quad split all but a base with other polygons than quads
-  // (level_limits.h).
-  bool hasLimits(int l) const { return !quads() || levels_[l].topo.mesh.allQuads(); }
+  // Whether level l's vertices have limits (level_limits.h): all but a
+  // Catmull-Clark base with other polygons than quads.
+  bool hasLimits(int l) const { return LevelLimits::hasLimits(levels_[l].topo.mesh, counts_.split()); }
   int uniformLevel() const { return selection_.uniformLevel(); }
   const SparseLevel& level(int l) const { return levels_[l].topo; }
   std::span<const Vec3> points(int l) const { return levels_[l].points; }

@@ -215,10 +215,7 @@ void addNew(CLI::App& doc, Action& action) {
       ->type_name("S");
   sub->add_option("-o,--output", args->output, "the document file to write")->required()->type_name("DOC");
   onChosen(*sub, action, [args, sub] {
-    for (const char* name : {"--triangulate", "--drop-unused", "--crease-angle"}) {
-      const CLI::Option* option = sub->get_option_no_throw(name);
-      if (option != nullptr && option->count() > 0) args->polygonUnsupported.push_back(name);
-    }
+    args->polygonUnsupported = givenTriangleImportOptions(*sub);
     return runNew(*args);
   });
 }

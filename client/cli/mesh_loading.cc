@@ -27,6 +27,15 @@ void addMeshInputOptions(CLI::App& app, MeshInputArgs& args) {
       (parent != nullptr && parent->get_parent() != nullptr ? parent->get_name() + " " : "") + app.get_name();
 }
 
+std::vector<std::string> givenTriangleImportOptions(const CLI::App& app) {
+  std::vector<std::string> given;
+  for (const char* name : {"--triangulate", "--drop-unused", "--crease-angle"}) {
+    const CLI::Option* option = app.get_option_no_throw(name);
+    if (option != nullptr && option->count() > 0) given.push_back(name);
+  }
+  return given;
+}
+
 void addSchemeOptions(CLI::App& app, SchemeArgs& args) {
   app.add_option("--crease-method", args.creaseMethod, "semi-sharp crease rule: uniform (default) or chaikin")
       ->check(oneOf({"uniform", "chaikin"}))

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
@@ -36,6 +37,10 @@ struct DocumentArgs {
 
 // IN (required), --tags FILE, --triangulate, --drop-unused, --crease-angle DEG.
 void addMeshInputOptions(CLI::App& app, MeshInputArgs& args);
+// Of the import options, those given on `app`'s command line that a
+// polygon reader, which reads a file's polygons as they are, does not apply
+// (--triangulate, --drop-unused, --crease-angle).
+std::vector<std::string> givenTriangleImportOptions(const CLI::App& app);
 // --crease-method M, --boundary B.
 void addSchemeOptions(CLI::App& app, SchemeArgs& args);
 // The scheme options and --max-level N.

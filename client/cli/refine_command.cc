@@ -164,10 +164,7 @@ void addRefineCommand(CLI::App& app, Action& action) {
       ->check(oneOf(schemes::schemeNames()))
       ->type_name("S");
   onChosen(*refine, action, [args, refine] {
-    for (const char* name : {"--triangulate", "--drop-unused", "--crease-angle"}) {
-      const CLI::Option* option = refine->get_option_no_throw(name);
-      if (option != nullptr && option->count() > 0) args->polygonUnsupported.push_back(name);
-    }
+    args->polygonUnsupported = givenTriangleImportOptions(*refine);
     return runRefine(*args);
   });
 }

@@ -86,9 +86,7 @@ int runNew(const NewArgs& args) {
     }
     if (polygons.isOk()) {
       const PolyTopology& faces = polygons->topology;
-      int others = 0;
-      for (int f = 0; f < faces.numFaces(); ++f)
-        others += faces.faceOffsets[f + 1] - faces.faceOffsets[f] != 3;
+      const int others = faces.numFacesNotTriangles();
       if (others > 0) {
         std::fprintf(stderr,
                      "tessera doc new: %s: %d of %d faces are not triangles: a catmull-clark document "
@@ -208,11 +206,7 @@ void addNew(CLI::App& doc, Action& action) {
   auto args = std::make_shared<NewArgs>();
   addMeshInputOptions(*sub, args->mesh);
   addDocumentOptions(*sub, args->document);
-  sub->add_option("--scheme", args->scheme,
-                  "loop (triangles) or catmull-clark (any polygons); default: catmull-clark when a face "
-                  "is not a triangle, otherwise loop")
-      ->check(oneOf({"loop", "catmull-clark"}))
-      ->type_name("S");
+  addDocumentSchemeOption(*sub, args->scheme);
   sub->add_option("-o,--output", args->output, "the document file to write")->required()->type_name("DOC");
   onChosen(*sub, action, [args, sub] {
     args->polygonUnsupported = givenTriangleImportOptions(*sub);

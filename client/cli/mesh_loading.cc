@@ -103,4 +103,12 @@ Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report) {
   return std::move(imported.mesh);
 }
 
+void addDocumentSchemeOption(CLI::App& app, std::string& scheme) {
+  app.add_option("--scheme", scheme,
+                 "loop (triangles) or catmull-clark (any polygons); default: catmull-clark when a face "
+                 "is not a triangle, otherwise loop")
+      ->check(oneOf({"loop", "catmull-clark"}))
+      ->type_name("S");
+}
+
 }  // namespace tessera::cli

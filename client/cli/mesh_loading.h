@@ -41,6 +41,9 @@ void addMeshInputOptions(CLI::App& app, MeshInputArgs& args);
 // polygon reader, which reads a file's polygons as they are, does not apply
 // (--triangulate, --drop-unused, --crease-angle).
 std::vector<std::string> givenTriangleImportOptions(const CLI::App& app);
+// --scheme S: loop or catmull-clark; left empty when not given (the scheme
+// then follows the faces).
+void addDocumentSchemeOption(CLI::App& app, std::string& scheme);
 // --crease-method M, --boundary B.
 void addSchemeOptions(CLI::App& app, SchemeArgs& args);
 // The scheme options and --max-level N.

@@ -19,6 +19,7 @@ struct CreateArgs {
   MeshInputArgs mesh;
   DocumentArgs document;
   std::string documentName;
+  std::string scheme;  // empty: the server chooses from the faces
 };
 
 int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
@@ -45,6 +46,8 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
     c->set_tags(std::move(*text));
     c->set_tags_file_name(args.mesh.tags);
   }
+  if (args.scheme == "loop") c->set_scheme(wire::SUBDIVISION_SCHEME_LOOP);
+  if (args.scheme == "catmull-clark") c->set_scheme(wire::SUBDIVISION_SCHEME_CATMULL_CLARK);
   if (args.document.maxLevel >= 0) c->set_max_level(static_cast<uint32_t>(args.document.maxLevel));
   const LoopOptions loop = loopOptions(args.document.scheme);
   c->set_crease_method(loop.creaseMethod == CreaseMethod::kChaikin ? wire::CREASE_METHOD_CHAIKIN
@@ -63,6 +66,12 @@ int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
   const std::string note = describeImport(report, importOptions(args.mesh));
   if (!note.empty())
     std::fprintf(stderr, "tessera remote create: %s: %s\n", args.mesh.input.c_str(), note.c_str());
+  if (args.scheme.empty() && reply->ack().scheme() == wire::SUBDIVISION_SCHEME_CATMULL_CLARK) {
+    std::fprintf(stderr,
+                 "tessera remote create: %s: faces that are not triangles: a catmull-clark document "
+                 "(--scheme loop --triangulate for Loop's triangles)\n",
+                 args.mesh.input.c_str());
+  }
   std::printf("%llu\n", static_cast<unsigned long long>(reply->ack().document_id()));
   return 0;
 }
@@ -75,6 +84,7 @@ void addRemoteCreate(CLI::App& remote, std::shared_ptr<ConnectionArgs> connectio
   auto args = std::make_shared<CreateArgs>();
   addMeshInputOptions(*create, args->mesh);
   addDocumentOptions(*create, args->document);
+  addDocumentSchemeOption(*create, args->scheme);
   create->add_option("--doc-name", args->documentName, "the document's name (default: the file's name)")
       ->type_name("NAME");
   onChosen(*create, action, [connection, args] { return runCreate(*connection, *args); });

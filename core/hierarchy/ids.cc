@@ -107,6 +107,16 @@ FaceId LevelCounts::ancestorAt(FaceId id, int level) const {
   return {level, id.index() >> (2 * (id.level() - level))};
 }
 
+std::pair<uint64_t, uint64_t> LevelCounts::descendantsAt(FaceId id, int level) const {
+  if (level == id.level()) return {id.index(), id.index() + 1};
+  if (quads() && id.level() == 0) {
+    const int shift = 2 * (level - 1);
+    return {(*baseFaceBegin_)[id.index()] << shift, (*baseFaceBegin_)[id.index() + 1] << shift};
+  }
+  const int shift = 2 * (level - id.level());
+  return {id.index() << shift, (id.index() + 1) << shift};
+}
+
 FaceId LevelCounts::baseFace(FaceId id) const {
   if (!quads()) return {0, id.index() >> (2 * id.level())};
   if (id.level() == 0) return id;

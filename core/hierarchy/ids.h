@@ -22,6 +22,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/util/status.h"
@@ -133,6 +134,9 @@ class LevelCounts {
   // The ancestor of face `id` at `level` (0 <= level <= id's level): the
   // face it lies in there.
   FaceId ancestorAt(FaceId id, int level) const;
+  // The faces of `level` (>= id's level) inside face `id`: the indices
+  // [first, second), contiguous under both splits.
+  std::pair<uint64_t, uint64_t> descendantsAt(FaceId id, int level) const;
 
  private:
   // The index of the first vertex a split puts on an edge of `level`.

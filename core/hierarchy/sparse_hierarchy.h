@@ -107,6 +107,9 @@ class SparseHierarchy {
   int numLevels() const { return static_cast<int>(levels_.size()); }
   // Loop's triangle split or Catmull-Clark's quad split.
   bool quads() const { return counts_.quads(); }
+  // How many children face f of level l has (firstChildFace onwards): four
+  // triangles, or a quad per corner.
+  int numChildFaces(int l, Index f) const { return quads() ? levels_[l].topo.mesh.faceSize(f) : 4; }
   // Whether level l's vertices have limits (level_limits.h): all but a
   // Catmull-Clark base with other polygons than quads.
   bool hasLimits(int l) const { return LevelLimits::hasLimits(levels_[l].topo.mesh, counts_.split()); }

@@ -71,19 +71,26 @@ Status applyPolygonTags(const std::string& text, const std::string& tagsName, Po
   return applyPolygonFeatureTags(tags, tagsName, mesh);
 }
 
+Expected<PolygonMesh> importPolygonMeshFromBytes(std::string_view bytes, const std::string& extension,
+                                                 const std::string& displayName) {
+  TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(bytes, extension, displayName));
+  PolygonMesh mesh;
+  mesh.topology = PolyTopology::fromSoup(soup);
+  mesh.points = std::move(soup.points);
+  mesh.boundary = soup.boundary;
+  mesh.creaseMethod = soup.creaseMethod;
+  if (!soup.tags.empty())
+    TESSERA_RETURN_IF_ERROR(applyPolygonFeatureTags(featureTagsOf(soup.tags), displayName, mesh));
+  return mesh;
+}
+
 Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   PolygonMesh mesh;
   if (ext == ".obj" || ext == ".off" || ext == ".ply") {
     TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
-    TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(text, ext, path));
-    mesh.topology = PolyTopology::fromSoup(soup);
-    mesh.points = std::move(soup.points);
-    mesh.boundary = soup.boundary;
-    mesh.creaseMethod = soup.creaseMethod;
-    if (!soup.tags.empty())
-      TESSERA_RETURN_IF_ERROR(applyPolygonFeatureTags(featureTagsOf(soup.tags), path, mesh));
+    TESSERA_ASSIGN_OR_RETURN(mesh, importPolygonMeshFromBytes(text, ext, path));
   } else {
     TESSERA_ASSIGN_OR_RETURN(BaseMesh base, importMesh(path));
     mesh.topology = PolyTopology::fromBaseMesh(base);

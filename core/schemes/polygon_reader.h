@@ -35,6 +35,11 @@ Expected<PolygonSoup> readOffPolygons(std::string_view text, const std::string& 
 // `tagsPath` unless it is empty. The topology is validated when a refiner
 // builds it.
 Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath);
+// The same for an OBJ, OFF or PLY file in memory (`extension` as
+// importPolygonSoup takes it), named `displayName` in errors, without a
+// tag file (applyPolygonTags applies one).
+Expected<PolygonMesh> importPolygonMeshFromBytes(std::string_view bytes, const std::string& extension,
+                                                 const std::string& displayName);
 
 // Applies parsed tags; errors name the tag's line in `tagsName`.
 Status applyPolygonTags(const std::string& text, const std::string& tagsName, PolygonMesh& mesh);

@@ -27,11 +27,6 @@ Vec3 sideNormal(const SparseHierarchy& h, int l, Index v, Index f) {
   return h.limitNormal(l, v);
 }
 
-// Loop splits a triangle in four; the quad split makes one quad per corner.
-int childCount(const SparseHierarchy& h, int l, Index f) {
-  return h.quads() ? h.level(l).mesh.faceSize(f) : 4;
-}
-
 double cosAngle(const Vec3& a, const Vec3& b) {
   const double la = a.norm(), lb = b.norm();
   return la > 0 && lb > 0 ? dot(a, b) / (la * lb) : 1.0;
@@ -151,7 +146,7 @@ void AdaptiveCut::clearSubtree(const SparseHierarchy& h, int l, Index f) {
   split_[l][f] = 0;
   const Index first = h.level(l).firstChildFace[f];
   if (first < 0 || l + 1 >= numLevels()) return;
-  const int children = childCount(h, l, f);
+  const int children = h.numChildFaces(l, f);
   for (int k = 0; k < children; ++k) clearSubtree(h, l + 1, first + k);
 }
 
@@ -159,7 +154,7 @@ bool AdaptiveCut::decideSubtree(Document& doc, int l, Index f, std::vector<std::
   const SparseHierarchy& h = doc.hierarchy();
   if (!h.isNodeWithChildren(l, f)) return false;  // needs growth
   const Index first = h.level(l).firstChildFace[f];
-  const int children = childCount(h, l, f);
+  const int children = h.numChildFaces(l, f);
   for (int k = 0; k < children; ++k) {
     const Index c = first + k;
     if (!wantsSplit(h, l + 1, c)) continue;

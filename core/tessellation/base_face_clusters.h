@@ -6,6 +6,9 @@
 // face; one region per base face then costs several times the bytes of one
 // Draco mesh of the same surface.
 //
+// Base faces are triangles (a Loop document) or polygons (Catmull-Clark);
+// clusters count faces either way.
+//
 // Clusters are a function of the base topology and the cluster size alone:
 // the same in every process, across edits, undos and restarts, so a
 // region's id and extent never change while a document lives. Each is
@@ -19,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/loop/level_builder.h"
 
 namespace tessera {
@@ -26,10 +30,10 @@ class BaseFaceClusters;
 }
 
 namespace tessera::cluster_detail {
-// Grows the clusters; `sameParent(f, g)` says whether g may join f's.
-template <typename SameParent>
-BaseFaceClusters grow(const BaseTopology& base, int size, SameParent sameParent,
-                      std::function<int(int)> limitOf);
+// Grows the clusters over the faces `corners(f)` gives (f < numFaces);
+// `sameParent(f, g)` says whether g may join f's.
+template <typename Corners, typename SameParent>
+BaseFaceClusters grow(int numFaces, Corners corners, int size, SameParent sameParent);
 }  // namespace tessera::cluster_detail
 
 namespace tessera {
@@ -38,9 +42,11 @@ class BaseFaceClusters {
  public:
   // size >= 1; size 1 puts every face in a cluster of its own.
   static BaseFaceClusters build(const BaseTopology& base, int size);
+  static BaseFaceClusters build(const PolyTopology& base, int size);
   // The same, each cluster grown only over faces of one cluster of
   // `within`: the clusters nest in those (a view's tiles, tile_tree.h).
   static BaseFaceClusters buildWithin(const BaseTopology& base, int size, const BaseFaceClusters& within);
+  static BaseFaceClusters buildWithin(const PolyTopology& base, int size, const BaseFaceClusters& within);
 
   int size() const { return size_; }
   int numClusters() const { return static_cast<int>(seeds_.size()); }
@@ -54,8 +60,8 @@ class BaseFaceClusters {
   }
 
  private:
-  template <typename SameParent>
-  friend BaseFaceClusters cluster_detail::grow(const BaseTopology&, int, SameParent, std::function<int(int)>);
+  template <typename Corners, typename SameParent>
+  friend BaseFaceClusters cluster_detail::grow(int, Corners, int, SameParent);
 
   int size_ = 1;
   std::vector<uint32_t> clusterOf_;  // per face

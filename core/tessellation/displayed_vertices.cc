@@ -41,9 +41,12 @@ std::optional<VertexRef> limitSource(const SparseHierarchy& h, const LevelCounts
   while (v.level > 0 && h.level(v.level).isVertexChild(v.local)) {
     v = {v.level - 1, h.level(v.level).origin[v.local]};
   }
+  // A Catmull-Clark base of other polygons than quads has no limits
+  // (level_limits.h): its vertices take theirs from level 1 at the earliest.
+  const int earliest = h.hasLimits(v.level) ? v.level : v.level + 1;
   VertexRef at = v;
   for (VertexRef w = v;;) {
-    if (h.isReachedByEdit(w.level, w.local)) at = w;
+    if (w.level <= earliest || h.isReachedByEdit(w.level, w.local)) at = w;
     if (w.level + 1 >= h.numLevels()) break;
     const Index child = h.level(w.level).childOfVertex[w.local];
     if (child < 0) break;
@@ -54,6 +57,7 @@ std::optional<VertexRef> limitSource(const SparseHierarchy& h, const LevelCounts
     growth.push_back(incidentFace(h.level(0).mesh, counts, VertexId(l, canonical)));
     return std::nullopt;
   };
+  if (at.level < earliest) return grow(earliest, h.level(at.level).vertexIds[at.local]);
   if (!held(at.level, at.local)) return grow(at.level, h.level(at.level).vertexIds[at.local]);
   while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local)) {
     const Index child = at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kNoIndex;
@@ -87,9 +91,13 @@ Vec3 sideNormal(const SparseHierarchy& h, VertexRef v, int side) {
 // limit's level, deeper than the display, a semi-sharp edge may have
 // decayed and merged two displayed sectors into one whose normal is far
 // from (even perpendicular to) the faces in it.
+//
+// Catmull-Clark's limit masks give one normal per vertex (core/catmark/
+// limit.h), so a quad document's vertices have one side (docs/LIMITS.md
+// "Catmull-Clark documents").
 int sideOf(const SparseHierarchy& h, VertexRef at, int l, Index f) {
   const SparseLevel& level = h.level(at.level);
-  if (isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
+  if (h.quads() || isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
   const uint64_t leaf = h.level(l).faceIds[f];
   auto ring = level.mesh.ringFacesOf(at.local);
   const int n = static_cast<int>(ring.size());

@@ -36,6 +36,10 @@ Expected<RegionFrame> readFrame(ByteReader& r) {
 }
 
 Expected<RegionFrame> regionFrame(const SparseHierarchy& h, const LevelCounts& counts, FaceId region) {
+  // The lattice is the triangle's (Loop's 1-to-4 split); a quad face's
+  // region carries its ids as labels (docs/REGION_ENCODING.md "Lattice ids").
+  if (counts.quads())
+    return unsupported("region " + region.toString() + ": lattice ids are defined for triangle faces only");
   const int r = region.level();
   if (r >= h.numLevels())
     return notFound("region " + region.toString() + ": the hierarchy holds no level " + std::to_string(r));

@@ -46,10 +46,6 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
 
 Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& profile,
                                            std::shared_ptr<const BaseFaceClusters> clusters) {
-  if (doc.scheme() != DocumentScheme::kLoop) {
-    return unsupported(std::string("adaptive tessellation of ") + documentSchemeName(doc.scheme()) +
-                       " documents is not available yet (docs/LIMITS.md); a uniform level exports");
-  }
   // The base level is held whole, so its face count is a lower bound on the
   // triangles: refuse before growing the hierarchy to it.
   if (profile.baseLevel >= 0 && profile.baseLevel <= doc.counts().maxLevel() &&
@@ -80,9 +76,10 @@ Expected<Tessellation> Tessellation::build(Document& doc, const LodProfile& prof
       const int maxLevel = tessellation.profile().maxLevel;
       if (maxLevel <= kMaxGroupedLevel) {
         const int size = 1 << (2 * (kGroupDepth - maxLevel));
-        if (!clusters || clusters->size() != size)
-          clusters =
-              std::make_shared<const BaseFaceClusters>(BaseFaceClusters::build(doc.baseTopology(), size));
+        if (!clusters || clusters->size() != size) {
+          clusters = std::make_shared<const BaseFaceClusters>(std::visit(
+              [size](const auto& base) { return BaseFaceClusters::build(base, size); }, doc.base()));
+        }
         tessellation.clusters_ = clusters;
         for (uint32_t c = 0; c < static_cast<uint32_t>(clusters->numClusters()); ++c)
           tessellation.groups_[FaceId(0, clusters->seedOf(c)).packed()] = tessellation.buildGroup(c);
@@ -114,7 +111,7 @@ void Tessellation::regionsUnder(const SparseHierarchy& h, int l, Index f, std::v
     return;
   }
   const Index first = h.level(l).firstChildFace[f];
-  for (int k = 0; k < 4; ++k) regionsUnder(h, l + 1, first + k, out);
+  for (int k = 0; k < h.numChildFaces(l, f); ++k) regionsUnder(h, l + 1, first + k, out);
 }
 
 RegionMesh Tessellation::buildRegion(const SparseHierarchy& h, FaceId region,
@@ -131,7 +128,8 @@ RegionMesh Tessellation::buildRegion(const SparseHierarchy& h, FaceId region,
       continue;
     }
     const Index first = h.level(node.level).firstChildFace[node.local];
-    for (int k = 3; k >= 0; --k) stack.push_back({node.level + 1, first + k});
+    for (int k = h.numChildFaces(node.level, node.local) - 1; k >= 0; --k)
+      stack.push_back({node.level + 1, first + k});
   }
   return meshOfTriangles(h, counts_, triangles, leaves, growth);
 }
@@ -180,7 +178,7 @@ Tessellation::Changes Tessellation::regroup(const Changes& fine) {
   for (const auto* ids : {&fine.changed, &fine.removed}) {
     for (uint64_t id : *ids) {
       const FaceId face = FaceId::fromPacked(id);
-      touched.push_back(clusters_->clusterOf(static_cast<int>(face.index() >> (2 * face.level()))));
+      touched.push_back(clusters_->clusterOf(static_cast<int>(counts_.baseFace(face).index())));
     }
   }
   std::sort(touched.begin(), touched.end());
@@ -243,21 +241,22 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
       if (l <= regionLevel_) {
         add(l, canonical);
       } else {
-        add(regionLevel_, canonical >> (2 * (l - regionLevel_)));
+        add(regionLevel_, counts_.ancestorAt(FaceId(l, canonical), regionLevel_).index());
       }
     }
   };
   for (VertexId id : changedLimits) addAround(id.level(), h.level(id.level()).findVertex(id.index()));
   for (auto [l, f] : *flipped) {
-    for (Index v : h.level(l).mesh.triangleVertices(f)) addAround(l, v);
+    for (Index v : h.level(l).mesh.faceVerticesOf(f)) addAround(l, v);
   }
   std::sort(areas.begin(), areas.end());  // each is listed once already (seen)
 
   std::vector<uint64_t> candidates, gone;
   for (auto [l, canonical] : areas) {
     // New regions overlapping the area: walk down its ancestors in the cut.
+    const FaceId area(l, canonical);
     for (int j = 0; j <= l; ++j) {
-      const uint64_t a = canonical >> (2 * (l - j));
+      const uint64_t a = counts_.ancestorAt(area, j).index();
       if (j == regionLevel_) {
         candidates.push_back(FaceId(j, a).packed());
         break;
@@ -272,13 +271,13 @@ Expected<Tessellation::Changes> Tessellation::update(Document& doc, std::span<co
     // Old regions overlapping it: an ancestor, or descendants down to the
     // region level.
     for (int j = 0; j <= l; ++j) {
-      const uint64_t id = FaceId(j, canonical >> (2 * (l - j))).packed();
+      const uint64_t id = counts_.ancestorAt(area, j).packed();
       if (fine_.count(id)) gone.push_back(id);
     }
     for (int j = l + 1; j <= regionLevel_; ++j) {
-      const int shift = 2 * (j - l);
-      auto it = fine_.lower_bound(FaceId(j, canonical << shift).packed());
-      const auto end = fine_.lower_bound(FaceId(j, (canonical + 1) << shift).packed());
+      const auto [first, last] = counts_.descendantsAt(area, j);
+      auto it = fine_.lower_bound(FaceId(j, first).packed());
+      const auto end = fine_.lower_bound(FaceId(j, last).packed());
       for (; it != end; ++it) gone.push_back(it->first);
     }
   }

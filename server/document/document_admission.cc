@@ -4,15 +4,28 @@
 
 namespace tessera::server {
 
+namespace {
+
+// The triangles of uniform level `level` (<= the counts' deepest): Loop's
+// faces, or each quad's two (a polygon of n corners at a Catmull-Clark
+// base, n - 2).
+int64_t trianglesAt(const LevelCounts& counts, int level) {
+  const int64_t faces = static_cast<int64_t>(counts.faces(level));
+  if (!counts.quads()) return faces;
+  return level == 0 ? static_cast<int64_t>(counts.corners(0)) - 2 * faces : 2 * faces;
+}
+
+}  // namespace
+
 int64_t uniformTriangles(const LevelCounts& counts, uint32_t level) {
   if (level > static_cast<uint32_t>(counts.maxLevel())) {
     // Beyond the counts: four times per level, saturating.
-    int64_t t = static_cast<int64_t>(counts.faces(counts.maxLevel()));
+    int64_t t = trianglesAt(counts, counts.maxLevel());
     for (uint32_t l = static_cast<uint32_t>(counts.maxLevel()); l < level && t < (INT64_MAX >> 2); ++l)
       t *= 4;
     return t;
   }
-  return static_cast<int64_t>(counts.faces(static_cast<int>(level)));
+  return trianglesAt(counts, static_cast<int>(level));
 }
 
 int64_t minimumTriangles(const LevelCounts& counts, const wire::LodProfile& profile) {

@@ -50,12 +50,6 @@ Expected<std::shared_ptr<DocumentHost>> DocumentRegistry::open(store::DocumentId
   auto loaded = deserializeKeyedDocument(fromSnapshot ? stored.snapshot->bytes : stored.baseBytes, source);
   if (!loaded.isOk()) return unreadable(loaded.status());
   KeyedDocument doc = std::move(*loaded);
-  // The service tessellates and streams Loop documents; a Catmull-Clark
-  // document file is edited and exported offline (docs/LIMITS.md).
-  if (doc.key0().scheme() != DocumentScheme::kLoop) {
-    return unreadable(invalidArgument(source + " is a " + documentSchemeName(doc.key0().scheme()) +
-                                      " document, which this server does not serve yet"));
-  }
   uint64_t entries = fromSnapshot ? stored.snapshot->version : 0;
   const uint64_t loadedFrom = documentVersionAfter(entries);
   // Which client command made each replayed entry, where the store kept it

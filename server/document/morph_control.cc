@@ -3,12 +3,15 @@
 #include <string>
 
 #include "core/loop/level_builder.h"
+#include "core/morph/morph.h"
 
 namespace tessera::server {
 
 Expected<wire::ServerMessage> morphControlMessage(const KeyedDocument& doc, uint64_t documentId,
                                                   uint64_t version, uint64_t clientSeq,
                                                   const wire::GetMorphControl& request) {
+  TESSERA_RETURN_IF_ERROR(
+      checkMorphScheme(doc.key0(), "morph control of document " + std::to_string(documentId)));
   const double t = request.t();
   auto points = doc.pointsAt(t);
   if (!points.isOk())

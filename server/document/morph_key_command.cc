@@ -4,6 +4,7 @@
 
 #include "core/io/mesh_import.h"
 #include "core/loop/level_builder.h"
+#include "core/morph/morph.h"
 #include "server/document/mesh_format.h"
 
 namespace tessera::server {
@@ -42,6 +43,7 @@ Status applyAddMorphKey(KeyedDocument& keyed, store::DocumentId id, const wire::
   const std::string name = request.file_name().empty() ? "the second key's mesh" : request.file_name();
   TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported,
                            importMeshFromBytesWithReport(request.mesh(), extension, name, ImportOptions{}));
+  TESSERA_RETURN_IF_ERROR(checkMorphScheme(keyed.key0(), "add morph key: key 0 (" + doc + ")"));
   TESSERA_RETURN_IF_ERROR(checkSameConnectivity(
       keyed.key0().baseTopology(), BaseTopology::fromBaseMesh(imported.mesh), "key 0 (" + doc + ")", name));
   entry.kind = JournalEntry::Kind::kAddKey;

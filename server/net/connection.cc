@@ -515,17 +515,22 @@ void Connection::createDocument(uint64_t seq, const wire::CreateDocument& reques
     Expected<store::DocumentId> id =
         doc.isOk() ? self->context_.store.createDocument(request.name(), serializeDocument(*doc))
                    : Expected<store::DocumentId>(doc.status());
+    const wire::SubdivisionScheme scheme = !doc.isOk() ? wire::SUBDIVISION_SCHEME_UNSPECIFIED
+                                           : doc->scheme() == DocumentScheme::kCatmullClark
+                                               ? wire::SUBDIVISION_SCHEME_CATMULL_CLARK
+                                               : wire::SUBDIVISION_SCHEME_LOOP;
     doc = invalidArgument("released");
     ::malloc_trim(0);  // an import of millions of triangles leaves its memory in the heap otherwise
     const uint32_t dropped = static_cast<uint32_t>(report.renumbering.dropped);
     const uint32_t creased = static_cast<uint32_t>(report.edgesCreasedByAngle);
-    asio::post(self->strand_, [self, seq, id, dropped, creased] {
+    asio::post(self->strand_, [self, seq, id, dropped, creased, scheme] {
       if (!id.isOk()) return self->answer(rejectFor(seq, id.status()));
       logEvent(LogLevel::kInfo, "document_created", {{"doc", id->value}, {"session", self->sessionId_}});
       wire::ServerMessage ack = ackFor(seq, id->value);
       ack.mutable_ack()->set_version(1);
       ack.mutable_ack()->set_dropped_vertices(dropped);
       ack.mutable_ack()->set_creased_edges(creased);
+      ack.mutable_ack()->set_scheme(scheme);
       self->reply(ack);
     });
   });

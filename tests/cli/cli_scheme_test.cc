@@ -163,8 +163,7 @@ TEST(CliScheme, RefusalsNameTheOption) {
 
 // `tessera doc new` on quads: a Catmull-Clark document by default (said on
 // stderr), kept in the file; --scheme loop refuses a quad by name; edits by
-// script and exports keep the quads; what the service cannot do yet for
-// such a document (adaptive export) is refused, not guessed.
+// script and exports keep the quads; the adaptive export triangulates.
 TEST(CliScheme, DocNewMakesACatmullClarkDocumentOfQuads) {
   const std::string dir = testing::makeTempDir("cli-scheme");
   const std::string cube = writeQuadCube(dir);
@@ -212,11 +211,12 @@ TEST(CliScheme, DocNewMakesACatmullClarkDocumentOfQuads) {
   }
   ASSERT_GT(positions.size(), 7u);
   EXPECT_LE((positions[7] - Vec3(0.6, 0.6, 0.7)).norm(), 1e-9);
-  run = runCli("doc export " + dir + "/cc.tsd --adaptive -o " + dir + "/a.glb");
-  EXPECT_EQ(run.exitCode, 1);
-  EXPECT_NE(run.err.find("adaptive tessellation of catmull-clark documents is not available yet"),
-            std::string::npos)
-      << run.err;
+  // The adaptive tessellation, capped at the document's level 3: at this
+  // threshold every leaf is a quad of level 3 (64 per base face, two
+  // triangles each), and the six base faces make one region group.
+  run = runCli("doc export " + dir + "/cc.tsd --adaptive --max-level 4 --angle 5 -o " + dir + "/a.glb");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  EXPECT_NE(run.out.find("768 triangles in 1 regions"), std::string::npos) << run.out;
 }
 
 }  // namespace

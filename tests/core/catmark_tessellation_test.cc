@@ -1,0 +1,183 @@
+// Regions of Catmull-Clark documents (core/tessellation/tessellation.h on
+// the quad split): what a profile shows is a closed, consistently oriented
+// surface after random edits, and a function of the document alone -- a
+// document edited step by step, its tessellations kept up to date through
+// undo, redo and removal, shows bit for bit what a fresh document given the
+// same edit list shows. Profiles cover grouped base faces (deepest level 3),
+// a region per base face, and regions below the base (deepest level 6,
+// regions at level 1), whose ids and extents follow the quad numbering
+// (docs/ARCHITECTURE.md "Numbering").
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <set>
+#include <string>
+
+#include "core/document/document.h"
+#include "core/document/document_file.h"
+#include "core/tessellation/tessellation.h"
+#include "support/polygon_meshes.h"
+#include "support/region_checks.h"
+
+namespace tessera {
+namespace {
+
+using testing::PolyTestMesh;
+
+const LodProfile kGrouped{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 10};
+const LodProfile kPerBaseFace{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 10};
+const LodProfile kBelowBase{.baseLevel = 1, .maxLevel = 6, .angleThresholdDegrees = 20};
+
+// Every directed edge of the merged surface once and its reverse once (so
+// no crack, no T-vertex, one orientation), no degenerate triangle, and
+// every vertex's limit finite.
+void expectClosedAndOriented(const Tessellation& t, const std::string& when) {
+  const SurfaceMesh s = t.surface();
+  ASSERT_GT(s.triangles.size(), 0u) << when;
+  std::map<std::pair<int, int>, int> directed;
+  for (const auto& tri : s.triangles) {
+    ASSERT_TRUE(tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0])
+        << when << ": a degenerate triangle";
+    for (int k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
+  }
+  for (const auto& [edge, count] : directed) {
+    ASSERT_EQ(count, 1) << when << ": directed edge " << edge.first << " -> " << edge.second << " used "
+                        << count << " times";
+    ASSERT_EQ(directed.count({edge.second, edge.first}), 1u)
+        << when << ": a crack at " << edge.first << " -> " << edge.second;
+  }
+  for (const Vec3& p : s.positions) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2])) << when;
+}
+
+// One random edit of a Catmull-Clark document: mostly moves at levels 0..3
+// (plain and to a limit position), sometimes a semi-sharp or sharp crease
+// or a vertex sharpness at level 1 or 2. False when the document refused
+// it (a tag on the boundary), which is fine.
+bool randomEdit(Document& doc, std::mt19937& rng) {
+  auto pick = [&](uint64_t n) { return std::uniform_int_distribution<uint64_t>(0, n - 1)(rng); };
+  auto uniform = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  const int op = static_cast<int>(pick(10));
+  if (op < 7) {
+    const int level = static_cast<int>(pick(4));
+    const VertexId v(level, pick(doc.counts().vertices(level)));
+    const Vec3 d(uniform(-.08, .08), uniform(-.08, .08), uniform(-.08, .08));
+    if (op < 5 || level == 0) return doc.moveBy(std::span(&v, 1), d).isOk();
+    const SparseHierarchy& h = doc.hierarchy();
+    Vec3 target = d;
+    if (v.level() < h.numLevels()) {
+      const Index local = h.level(v.level()).findVertex(v.index());
+      if (local >= 0 && h.level(v.level()).isComplete(local)) target += h.limitPosition(v.level(), local);
+    }
+    return doc.moveToLimit(std::span(&v, 1), target).isOk();
+  }
+  const int level = 1 + static_cast<int>(pick(2));
+  if (op < 9) {
+    const float sharpness = pick(3) == 0 ? kSharpnessInfinite : (pick(2) ? 1.5f : 2.0f);
+    return doc.setEdgeSharpness(EdgeId(level, pick(doc.counts().edges(level))), sharpness).isOk();
+  }
+  return doc.setVertexSharpness(VertexId(level, pick(doc.counts().vertices(level))), pick(2) ? 1.0f : 0.0f)
+      .isOk();
+}
+
+Expected<Document> catmarkDocument(const PolyTestMesh& mesh) {
+  return Document::create(mesh.topology, mesh.points,
+                          {.maxLevel = 6, .scheme = DocumentScheme::kCatmullClark});
+}
+
+TEST(CatmarkTessellation, RegionsFormAClosedOrientedSurfaceAfterEdits) {
+  using namespace testing;
+  long long triangles = 0;
+  uint32_t seed = 11;
+  for (const PolyTestMesh& mesh :
+       {quadCube(), withPolyJitter(quadTorus(7, 5), 0.05, 3),
+        withRandomPolyTags(withPolyJitter(mixedPrism(6, false), 0.05, 5), 0.3, 0.1, 6)}) {
+    SCOPED_TRACE(mesh.name);
+    auto doc = catmarkDocument(mesh);
+    ASSERT_TRUE(doc.isOk()) << doc.status().toString();
+    for (const LodProfile& profile : {kGrouped, kPerBaseFace, kBelowBase}) {
+      auto t = Tessellation::build(*doc, profile);
+      ASSERT_TRUE(t.isOk()) << profile.describe() << ": " << t.status().toString();
+      EXPECT_EQ(t->regionsAreGroups(), profile.maxLevel <= kMaxGroupedLevel);
+      expectClosedAndOriented(*t, profile.describe() + " without edits");
+      if (HasFatalFailure()) return;
+    }
+    auto t = Tessellation::build(*doc, kBelowBase);
+    ASSERT_TRUE(t.isOk());
+    EXPECT_EQ(t->regionLevel(), 1);
+    std::mt19937 rng(seed++);
+    for (int step = 0; step < 12; ++step) {
+      if (!randomEdit(*doc, rng)) continue;
+      auto changes = t->update(*doc);
+      ASSERT_TRUE(changes.isOk()) << changes.status().toString();
+      expectClosedAndOriented(*t, "after step " + std::to_string(step));
+      if (HasFatalFailure()) return;
+    }
+    triangles += t->numTriangles();
+  }
+  std::printf("%lld triangles at the end, profile %s\n", triangles, kBelowBase.describe().c_str());
+}
+
+void expectHistoryIndependent(const PolyTestMesh& mesh, uint32_t seed) {
+  SCOPED_TRACE(mesh.name + " seed " + std::to_string(seed));
+  auto a = catmarkDocument(mesh);
+  ASSERT_TRUE(a.isOk()) << a.status().toString();
+  std::vector<Tessellation> kept;
+  for (const LodProfile& profile : {kGrouped, kPerBaseFace, kBelowBase}) {
+    auto t = Tessellation::build(*a, profile);
+    ASSERT_TRUE(t.isOk()) << t.status().toString();
+    kept.push_back(std::move(*t));
+  }
+  auto updateAll = [&](const std::string& when) {
+    for (Tessellation& t : kept) {
+      auto changes = t.update(*a);
+      ASSERT_TRUE(changes.isOk()) << when << ": " << changes.status().toString();
+    }
+  };
+  std::mt19937 rng(seed);
+  constexpr int kEdits = 16;
+  int applied = 0;
+  for (int i = 0; i < kEdits; ++i) {
+    if (!randomEdit(*a, rng)) continue;
+    ++applied;
+    updateAll("edit " + std::to_string(i));
+    if (::testing::Test::HasFatalFailure()) return;
+    if (i == kEdits / 2) {
+      const EditId undone = a->edits()[a->edits().size() / 2].id;
+      ASSERT_TRUE(a->undo(undone).isOk());
+      updateAll("undo");
+      ASSERT_TRUE(a->redo(undone).isOk());
+      updateAll("redo");
+      ASSERT_TRUE(a->remove(a->edits()[a->edits().size() / 3].id).isOk());
+      updateAll("remove");
+      if (::testing::Test::HasFatalFailure()) return;
+    }
+  }
+  ASSERT_GE(applied, 8);
+  // The same edit list through the file format, tessellated once.
+  auto b = deserializeDocument(serializeDocument(*a), mesh.name);
+  ASSERT_TRUE(b.isOk()) << b.status().toString();
+  for (const Tessellation& t : kept) {
+    auto fresh = Tessellation::build(*b, t.profile());
+    ASSERT_TRUE(fresh.isOk()) << fresh.status().toString();
+    testing::expectSameRegions(t, *fresh, "updated vs fresh, " + t.profile().describe());
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+}
+
+TEST(CatmarkTessellation, UpdatedRegionsEqualAFreshDocumentsBitForBit) {
+  using namespace testing;
+  uint32_t seed = 21;
+  for (const PolyTestMesh& mesh :
+       {quadCube(), withPolyJitter(quadTorus(6, 5), 0.05, 4),
+        withRandomPolyTags(withPolyJitter(mixedPrism(5, false), 0.05, 7), 0.3, 0.1, 8),
+        withPolyJitter(quadGrid(4, 3), 0.05, 9)}) {
+    for (int run = 0; run < 2; ++run) {
+      expectHistoryIndependent(mesh, seed++);
+      if (HasFatalFailure()) return;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera

@@ -10,6 +10,10 @@
 // The document holds fandisk whole to level 4; the profile shows level 3
 // everywhere and level 4 where limit normals differ by more than 5 degrees,
 // so no edit makes the hierarchy grow (growth is measured apart, below).
+// Each case runs on a Loop document and on a Catmull-Clark document of the
+// same mesh (its triangles as polygons: three quads each at level 1), the
+// third argument (0 Loop, 1 Catmull-Clark), so the two schemes are timed in
+// the same run.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -45,15 +49,16 @@ struct State {
   uint64_t version = 1;
 };
 
-State& state() {
-  static State s;
-  return s;
+constexpr int kSchemes = 2;  // Loop, Catmull-Clark
+
+State& state(int scheme) {
+  static State s[kSchemes];
+  return s[scheme];
 }
 
 // Encodes the listed regions on `threads` threads, as a server's flush does
 // (parallel_for.h); returns the bytes.
-size_t encodeRegions(const std::vector<uint64_t>& ids, unsigned threads) {
-  State& s = state();
+size_t encodeRegions(State& s, const std::vector<uint64_t>& ids, unsigned threads) {
   std::vector<Expected<std::string>> encoded(ids.size(), internalError("not encoded"));
   parallelFor(ids.size(), threads, [&](size_t i) {
     const RegionHeader header{.regionId = ids[i],
@@ -77,7 +82,7 @@ void editToDelta(benchmark::State& bm) {
   const int level = static_cast<int>(bm.range(0));
   const auto threads = static_cast<unsigned>(bm.range(1));
   setWorkThreads(threads);  // the re-tessellation's too
-  State& s = state();
+  State& s = state(static_cast<int>(bm.range(2)));
   Document& doc = *s.doc;
   std::mt19937 rng(7 + level);
   std::vector<double> samples, evaluate, tessellate, hash, encode;  // the stages, seconds
@@ -100,7 +105,7 @@ void editToDelta(benchmark::State& bm) {
     benchmark::DoNotOptimize(sum);
     const auto hashed = Clock::now();
     ++s.version;
-    const size_t delta = encodeRegions(changes->changed, threads);
+    const size_t delta = encodeRegions(s, changes->changed, threads);
     const auto end = Clock::now();
     const double seconds = std::chrono::duration<double>(end - start).count();
     evaluate.push_back(std::chrono::duration<double>(evaluated - start).count());
@@ -136,14 +141,14 @@ void editToDelta(benchmark::State& bm) {
 void fullTessellateAndEncode(benchmark::State& bm) {
   const auto threads = static_cast<unsigned>(bm.range(0));
   setWorkThreads(threads);
-  State& s = state();
+  State& s = state(static_cast<int>(bm.range(1)));
   size_t bytes = 0;
   for (auto _ : bm) {
     auto fresh = Tessellation::build(*s.doc, kProfile);
     std::vector<uint64_t> ids;
     for (const auto& [id, mesh] : fresh->regions()) ids.push_back(id);
     s.tessellation.emplace(std::move(*fresh));
-    bytes = encodeRegions(ids, threads);
+    bytes = encodeRegions(s, ids, threads);
   }
   bm.counters["bytes"] = static_cast<double>(bytes);
   bm.counters["triangles"] = static_cast<double>(s.tessellation->numTriangles());
@@ -155,47 +160,65 @@ void fullTessellateAndEncode(benchmark::State& bm) {
 // the reference, against what a server uses (workThreads), in the same run.
 BENCHMARK(editToDelta)
     ->Name("EditToDelta")
-    ->ArgsProduct({{0, 1}, {1, static_cast<int64_t>(workThreads())}})
+    ->ArgsProduct({{0, 1}, {1, static_cast<int64_t>(workThreads())}, {0, 1}})
     ->Iterations(100)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(editToDelta)
     ->Name("EditToDelta")
-    ->ArgsProduct({{2, 3, 4}, {1, static_cast<int64_t>(workThreads())}})
+    ->ArgsProduct({{2, 3, 4}, {1, static_cast<int64_t>(workThreads())}, {0, 1}})
     ->Iterations(1000)
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(fullTessellateAndEncode)
     ->Name("FullTessellateAndEncode")
-    ->ArgsProduct({{1, static_cast<int64_t>(workThreads())}})
+    ->ArgsProduct({{1, static_cast<int64_t>(workThreads())}, {0, 1}})
     ->Iterations(2)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
+// The document of `scheme`, tessellated; false (said on stderr) if it
+// cannot be made.
+bool prepare(int scheme, const BaseMesh& mesh, const QuantizationGrid& grid) {
+  State& s = state(scheme);
+  const DocumentOptions options{
+      .maxLevel = 6,
+      .uniformLevel = 4,
+      .scheme = scheme == 0 ? DocumentScheme::kLoop : DocumentScheme::kCatmullClark};
+  auto doc = scheme == 0 ? Document::create(mesh, options)
+                         : Document::create(PolyTopology::fromBaseMesh(mesh), mesh.positions(), options);
+  if (!doc.isOk()) {
+    std::fprintf(stderr, "tessera_bench_delta: %s\n", doc.status().toString().c_str());
+    return false;
+  }
+  s.doc.emplace(std::move(*doc));
+  s.grid = grid;
+  auto t = Tessellation::build(*s.doc, kProfile);
+  if (!t.isOk()) {
+    std::fprintf(stderr, "tessera_bench_delta: %s\n", t.status().toString().c_str());
+    return false;
+  }
+  s.tessellation.emplace(std::move(*t));
+  std::printf("%s document, displayed (%s): %lld triangles in %zu regions; grid %d position bits\n",
+              documentSchemeName(s.doc->scheme()), kProfile.key().c_str(),
+              static_cast<long long>(s.tessellation->numTriangles()), s.tessellation->regions().size(),
+              s.grid.positionBits);
+  return true;
+}
+
 int main(int argc, char** argv) {
   auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_delta");
   if (!mesh.isOk()) return 1;
-  State& s = state();
-  auto doc = Document::create(*mesh, {.maxLevel = 6, .uniformLevel = 4});
-  if (!doc.isOk()) return 1;
-  s.doc.emplace(std::move(*doc));
   Vec3 lo = mesh->positions()[0], hi = lo;
   for (const Vec3& p : mesh->positions()) {
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
   }
   auto grid = gridFor(lo, hi);
   if (!grid.isOk()) return 1;
-  s.grid = *grid;
-  auto t = Tessellation::build(*s.doc, kProfile);
-  if (!t.isOk()) {
-    std::fprintf(stderr, "tessera_bench_delta: %s\n", t.status().toString().c_str());
-    return 1;
+  for (int scheme = 0; scheme < kSchemes; ++scheme) {
+    if (!prepare(scheme, *mesh, *grid)) return 1;
   }
-  s.tessellation.emplace(std::move(*t));
-  std::printf("displayed (%s): %lld triangles in %zu regions; grid %d position bits\n",
-              kProfile.key().c_str(), static_cast<long long>(s.tessellation->numTriangles()),
-              s.tessellation->regions().size(), s.grid.positionBits);
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -11,12 +11,21 @@
 # script prints the address that opens the sample document.
 #
 # Settings: TESSERA_DATA (default tessera-data), TESSERA_PORT (default 7878),
-# TESSERA_WEB_PORT (default 7879).
+# TESSERA_WEB_PORT (default 7879), TESSERA_SAMPLE: cube (the default: the
+# creased cube of triangles, a Loop document) or quads (the same cube as six
+# quads, a Catmull-Clark document, shown by profile: views are Loop's only).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data="${TESSERA_DATA:-tessera-data}"
 port="${TESSERA_PORT:-7878}"
 web_port="${TESSERA_WEB_PORT:-7879}"
+sample="${TESSERA_SAMPLE:-cube}"
+case "$sample" in
+  cube) sample_args=(deploy/samples/cube.obj --scheme loop); session=deploy/samples/session.txt; shown=() ;;
+  quads) sample_args=(deploy/samples/quad_cube.obj --scheme catmull-clark); session=deploy/samples/session_quads.txt
+         shown=(--profile) ;;
+  *) echo "TESSERA_SAMPLE: cube or quads, not '$sample'" >&2; exit 2 ;;
+esac
 
 bash deploy/install-deps.sh
 cmake --preset release >/dev/null
@@ -42,16 +51,16 @@ viewer=build/release/client/view/tessera-view
 doc=$("${remote[@]}" list | awk 'NR==1 {print $1}')
 fresh=0
 if [ -z "$doc" ]; then
-  doc=$("${remote[@]}" create deploy/samples/cube.obj --tags deploy/samples/cube.tags --max-level 5 --doc-name "sample cube")
+  doc=$("${remote[@]}" create "${sample_args[@]}" --tags deploy/samples/cube.tags --max-level 5 --doc-name "sample $sample")
   echo "created document $doc"
   fresh=1
 fi
-view=("$viewer" --connect "127.0.0.1:$port" --token-file "$token_file" --document "$doc")
+view=("$viewer" --connect "127.0.0.1:$port" --token-file "$token_file" --document "$doc" "${shown[@]}")
 if [ -n "${DISPLAY:-}" ] && [ "${TESSERA_DEMO_ONLY:-0}" != 1 ]; then
   "${view[@]}" &  # watch the session's edits stream in
   sleep 2
 fi
-if [ "$fresh" = 1 ]; then "${remote[@]}" edit "$doc" --script deploy/samples/session.txt; fi
+if [ "$fresh" = 1 ]; then "${remote[@]}" edit "$doc" --script "$session"; fi
 if [ -z "${DISPLAY:-}" ] || [ "${TESSERA_DEMO_ONLY:-0}" = 1 ]; then
   # Headless: EGL on Mesa's surfaceless platform, no X server needed.
   "${view[@]}" --screenshot tessera-demo.png --frames 20 && echo "rendered tessera-demo.png"

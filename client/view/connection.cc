@@ -1,6 +1,7 @@
 #include "client/view/connection.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "client/lib/view_wire.h"
 #include "protocol/commands.h"
@@ -82,8 +83,17 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     first.tolerancePixels = std::max(first.tolerancePixels, options.tolerancePixels);
     camera = client::viewToWire(first);
   }
-  TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session,
-                           establish(s, options.document, profile, camera));
+  auto established = establish(s, options.document, profile, camera);
+  if (!established.isOk() && camera) {
+    // A document that takes no views (a Catmull-Clark document,
+    // docs/LIMITS.md) is shown by its profile; the reason is said.
+    std::fprintf(stderr, "tessera-view: %s; showing the LOD profile instead\n",
+                 established.status().message().c_str());
+    camera.reset();
+    established = establish(s, options.document, profile);
+  }
+  if (!established.isOk()) return established.status();
+  std::unique_ptr<client::Session> session = std::move(*established);
   // Whether the document is a morph: only a morph document answers with
   // its control points (and its images, which come once, here).
   wire::ClientMessage probe;
@@ -100,8 +110,8 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   }
   // A morph's time is a field of the profile (PROTOCOL.md section 14): a
   // morph document is shown with the profile, whatever the command line.
-  const bool views = options.views && !c->morph_;
-  if (options.views && c->morph_ && c->imageFrom_.empty()) {
+  const bool views = camera.has_value() && !c->morph_;
+  if (camera && c->morph_ && c->imageFrom_.empty()) {
     TESSERA_RETURN_IF_ERROR(
         expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
                   "subscribe to document " + std::to_string(options.document)));

@@ -227,12 +227,17 @@ TEST(CliRemote, BatchSizeIsBounded) {
   EXPECT_EQ(f.listed(doc), "version 2");
 }
 
-// remote create has doc new's import options, and its errors name the
-// user's file, never a server path.
+// remote create has doc new's import options and scheme choice, and its
+// errors name the user's file, never a server path.
 TEST(CliRemote, CreateTakesImportOptionsAndNamesTheUsersFile) {
   RemoteCli f("tessera-cli-create");
   const std::string quads = testing::sourceTestDataPath("good/cube_quads.obj");
-  CliRun refused = f.run("create " + quads);
+  CliRun catmark = f.run("create " + quads + " --doc-name cc");
+  ASSERT_EQ(catmark.exitCode, 0) << catmark.err;
+  EXPECT_NE(catmark.err.find(quads + ": faces that are not triangles: a catmull-clark document"),
+            std::string::npos)
+      << catmark.err;
+  CliRun refused = f.run("create " + quads + " --scheme loop");
   EXPECT_EQ(refused.exitCode, 1);
   EXPECT_NE(refused.err.find(quads), std::string::npos) << refused.err;
   EXPECT_NE(refused.err.find("--triangulate"), std::string::npos) << refused.err;

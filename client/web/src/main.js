@@ -126,7 +126,7 @@ async function main() {
       onProfile: (p) => { page.profile = p; editor.clampLevel(); },
       // Before the first subscription: the page shows regions, and the
       // panel the LOD preset.
-      onMorph: () => { page.views = false; view.useTiles(false); },
+      onProfileOnly: () => { page.views = false; view.useTiles(false); },
       onStatus: (s) => { page.status = s; },
       onError: showError,
     });

@@ -6,7 +6,7 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { startServer, serverAvailable } from './support/server.mjs';
-import { connect, createCube, grant, openSession, until } from './support/client.mjs';
+import { connect, createCube, createMesh, grant, openSession, until } from './support/client.mjs';
 import { hex64 } from '../src/codec/uint64.js';
 import { idLevel, idName } from '../src/codec/ids.js';
 
@@ -160,4 +160,21 @@ test('a refused token stops the retrying and says why', { skip }, async () => {
   await until(() => status === 'refused', 'the refusal', 40000);
   assert.match(errors[0], /ERROR_CODE_AUTH_FAILED/);
   assert.equal(c.stopped, true);
+});
+
+test('a catmull-clark document asked for a view is shown by its profile, hashing to the server\'s', { skip }, async () => {
+  const quads = await createMesh(admin, new URL('../../../deploy/samples/quad_cube.obj', import.meta.url).pathname, 4);
+  const view = {
+    eye: { x: 3, y: 3, z: 3 }, forward: { x: -1, y: -1, z: -1 }, up: { x: 0, y: 0, z: 1 },
+    fov_y_radians: 0.8, near_distance: 0.01, width: 640, height: 480, tolerance_pixels: 1,
+  };
+  const profile = { baseLevel: 1, maxLevel: 4, angle: 15 };
+  const { session, connection, events } = await openSession(server.port, server.token, quads, profile, 'viewer', view);
+  assert.equal(events.errors.length, 1, events.errors.join('; '));
+  assert.match(events.errors[0], /view refused .*is a catmull-clark document: views are available for loop documents only/);
+  assert.equal(session.camera, null);
+  assert.ok(session.view.triangles() > 0);
+  assert.equal(hex64(session.view.surfaceHash()), hex64(session.view.announcedHash));
+  console.log(`catmull-clark quad cube by profile: ${session.view.regions.size} regions, ${session.view.triangles()} triangles`);
+  connection.stop();
 });

@@ -21,8 +21,9 @@ export class DocumentSession {
   // options: {connection, decode, documentId, profile, view (a View's
   // fields: a view-dependent subscription, PROTOCOL.md section 16; null for
   // a profile), onView(change), onPresence(), onStatus(text),
-  // onError(text), onHash(result), onMorph() (a view was asked for but the
-  // document is a morph: it is subscribed with the profile)}.
+  // onError(text), onHash(result), onProfileOnly() (a view was asked for
+  // but the document takes none -- a morph, or a Catmull-Clark document,
+  // docs/LIMITS.md -- so it is subscribed with the profile)}.
   constructor(options) {
     this.o = options;
     this.connection = options.connection;
@@ -61,7 +62,7 @@ export class DocumentSession {
       // profile field (PROTOCOL.md section 14; docs/WEB_VIEWER.md "Views").
       if (this.camera && await this.isMorph()) {
         this.camera = null;
-        this.o.onMorph?.();
+        this.o.onProfileOnly?.();
       }
       this.o.onStatus?.('subscribing');
       await this.subscribeOrShallower(this.profile);
@@ -93,6 +94,13 @@ export class DocumentSession {
         this.o.onProfile?.(p);
         return version;
       } catch (error) {
+        if (this.camera && error instanceof RejectError) {
+          // A view refused (a document that takes none): the profile.
+          this.camera = null;
+          this.o.onError?.(`view refused (${error.message}); showing the LOD profile`);
+          this.o.onProfileOnly?.();
+          continue;
+        }
         const next = error.reason === 1 || error.reason === 7 ? shallower(p) : null; // INVALID_ARGUMENT, LIMIT_EXCEEDED
         if (!next) throw error;
         this.o.onError?.(`LOD ${p.name ?? ''} refused (${error.message}); trying max level ${next.maxLevel}`);

@@ -66,8 +66,9 @@ export async function grant(admin, token, role, documentId = 0n) {
   await admin.call({ grant_token: { document_id: toLong(documentId), role, token } });
 }
 
-// A DocumentSession like the page's, with the events it saw recorded.
-export async function openSession(port, token, documentId, profile, name = 'viewer') {
+// A DocumentSession like the page's, with the events it saw recorded; with
+// `view` (a View's wire fields), a view-dependent one.
+export async function openSession(port, token, documentId, profile, name = 'viewer', view = null) {
   const draco = await dracoDecoder();
   const events = { views: [], errors: [], presence: 0 };
   let session = null;
@@ -78,12 +79,12 @@ export async function openSession(port, token, documentId, profile, name = 'view
     onError: (text) => events.errors.push(text),
   });
   session = new DocumentSession({
-    connection, documentId, profile, decode: (bytes) => decodeRegion(draco, bytes),
+    connection, documentId, profile, view, decode: (bytes) => decodeRegion(draco, bytes),
     onView: (change) => events.views.push(change),
     onError: (text) => events.errors.push(text),
     onPresence: () => ++events.presence,
   });
   connection.start();
-  await until(() => session.view.ready || events.errors.length > 0, 'the first snapshot');
+  await until(() => session.view.ready || (events.errors.length > 0 && !view), 'the first snapshot');
   return { session, connection, events };
 }

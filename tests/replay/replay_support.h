@@ -53,15 +53,19 @@ struct ReplayServer {
   }
 };
 
-inline void startServer(ReplayServer& s, const std::string& name) {
+// The server with one document: the creased cube of triangles, or `mesh`
+// (a test data path) without tags, under the scheme its faces call for.
+inline void startServer(ReplayServer& s, const std::string& name, const std::string& mesh = "") {
   auto server = ServerProcess::start(makeTempDir(name) + "/data");
   ASSERT_TRUE(server.isOk()) << server.status().message();
   s.process.emplace(std::move(*server));
   auto admin = client::Session::connect(s.process->session("admin", s.process->adminToken()));
   ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  auto created = (*admin)->call(createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
-                                               fileBytes(sourceTestDataPath("cube.tags")), 5),
-                                30);
+  auto created =
+      (*admin)->call(mesh.empty() ? createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
+                                                   fileBytes(sourceTestDataPath("cube.tags")), 5)
+                                  : createDocument(mesh, fileBytes(sourceTestDataPath(mesh)), "", 5),
+                     30);
   ASSERT_TRUE(created.isOk() && created->has_ack())
       << (created.isOk() ? created->DebugString() : created.status().message());
   s.doc = created->ack().document_id();

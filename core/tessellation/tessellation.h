@@ -15,6 +15,12 @@
 // of the sector the triangle lies in, so shading breaks only along sharp
 // features.
 //
+// On a Catmull-Clark document (the quad split) the same holds with a node's
+// children one per corner: a region holds at most 4^5 leaf quads (a base
+// n-gon's, n 4^4), each quad leaf at least two triangles, and every vertex
+// one normal (Catmull-Clark's limit masks
+// give one: docs/LIMITS.md "Catmull-Clark documents").
+//
 // Every region is a function of the document (base mesh, tags, active
 // edits) and the profile alone, never of how far the hierarchy happens to
 // be held (earlier profiles, undone or earlier edits): replaying a journal

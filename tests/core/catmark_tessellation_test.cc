@@ -1,6 +1,6 @@
 // Regions of Catmull-Clark documents (core/tessellation/tessellation.h on
 // the quad split): what a profile shows is a closed, consistently oriented
-// surface after random edits, and a function of the document alone -- a
+// surface at the document's limit positions after random edits, and a function of the document alone -- a
 // document edited step by step, its tessellations kept up to date through
 // undo, redo and removal, shows bit for bit what a fresh document given the
 // same edit list shows. Profiles cover grouped base faces (deepest level 3),
@@ -48,6 +48,28 @@ void expectClosedAndOriented(const Tessellation& t, const std::string& when) {
         << when << ": a crack at " << edge.first << " -> " << edge.second;
   }
   for (const Vec3& p : s.positions) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2])) << when;
+}
+
+// Every displayed vertex lies at its limit: the limit position of the
+// uniform limit surface at the document's deepest level (Document::surface,
+// held to OpenSubdiv's Limit() by CatmarkDocumentOracle), where a vertex
+// keeps its index (ids.h). Every level from the one an edit reaches on
+// gives the same limit up to rounding, so 1e-9 holds wherever the
+// tessellation took it.
+void expectDisplayedLimits(const Document& doc, const Tessellation& t, const std::string& when) {
+  auto limit = doc.surface(doc.options().maxLevel, SurfaceKind::kLimit);
+  ASSERT_TRUE(limit.isOk()) << limit.status().toString();
+  double worst = 0;
+  size_t checked = 0;
+  for (const auto& [id, region] : t.regions()) {
+    for (size_t v = 0; v < region.positions.size(); ++v) {
+      const uint64_t index = VertexId::fromPacked(region.vertexIds[v]).index();
+      ASSERT_LT(index, limit->positions.size()) << when;
+      worst = std::max(worst, (region.positions[v] - limit->positions[index]).norm());
+      ++checked;
+    }
+  }
+  EXPECT_LE(worst, 1e-9) << when << ": " << checked << " displayed vertices";
 }
 
 // One random edit of a Catmull-Clark document: mostly moves at levels 0..3
@@ -100,6 +122,7 @@ TEST(CatmarkTessellation, RegionsFormAClosedOrientedSurfaceAfterEdits) {
       ASSERT_TRUE(t.isOk()) << profile.describe() << ": " << t.status().toString();
       EXPECT_EQ(t->regionsAreGroups(), profile.maxLevel <= kMaxGroupedLevel);
       expectClosedAndOriented(*t, profile.describe() + " without edits");
+      expectDisplayedLimits(*doc, *t, profile.describe() + " without edits");
       if (HasFatalFailure()) return;
     }
     auto t = Tessellation::build(*doc, kBelowBase);
@@ -113,6 +136,7 @@ TEST(CatmarkTessellation, RegionsFormAClosedOrientedSurfaceAfterEdits) {
       expectClosedAndOriented(*t, "after step " + std::to_string(step));
       if (HasFatalFailure()) return;
     }
+    expectDisplayedLimits(*doc, *t, "after the edits");
     triangles += t->numTriangles();
   }
   std::printf("%lld triangles at the end, profile %s\n", triangles, kBelowBase.describe().c_str());

@@ -1,5 +1,6 @@
 // tessera doc: hierarchical documents -- create, edit by script, inspect, export.
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +16,7 @@
 #include "core/io/mesh_export.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/tessellation/tessellation.h"
+#include "core/util/file_io.h"
 
 namespace tessera::cli {
 
@@ -71,42 +73,57 @@ int runNewCatmark(const NewArgs& args, schemes::PolygonMesh mesh) {
   return reportNew(args, *doc);
 }
 
+// Loop's triangles, as the triangle import built them.
+int runNewLoop(const NewArgs& args, Expected<BaseMesh> mesh, const ImportReport& report) {
+  if (!mesh.isOk()) return fail("doc new", mesh.status());
+  DocumentArgs stated = args.document;
+  if (Status s = withFileScheme(stated.scheme, report.boundary, report.creaseMethod, args.mesh.input);
+      !s.isOk())
+    return usage("doc new", s.message());
+  auto doc = Document::create(*mesh, documentOptions(stated));
+  if (!doc.isOk()) return fail("doc new", doc.status().withContext(args.mesh.input));
+  return reportNew(args, *doc);
+}
+
 int runNew(const NewArgs& args) {
   if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
     return usage("doc new", same.message());
   }
   // Without --scheme, a file with faces that are not triangles becomes a
   // Catmull-Clark document (as OpenSubdiv and USD subdivide it), unless
-  // --triangulate asks for Loop's triangles.
-  if (args.scheme == "catmull-clark" || (args.scheme.empty() && !args.mesh.triangulate)) {
+  // --triangulate asks for Loop's triangles. An OBJ, OFF or PLY file is read
+  // once, as polygons, and built into either.
+  const bool catmark = args.scheme == "catmull-clark";
+  const std::string extension = std::filesystem::path(args.mesh.input).extension().string();
+  if (catmark && !readsPolygonSoup(extension)) {
     auto polygons = schemes::importPolygonMesh(args.mesh.input, args.mesh.tags);
-    if (args.scheme == "catmull-clark") {
-      if (!polygons.isOk()) return fail("doc new", polygons.status());
-      return runNewCatmark(args, std::move(*polygons));
-    }
-    if (polygons.isOk()) {
-      const PolyTopology& faces = polygons->topology;
-      const int others = faces.numFacesNotTriangles();
-      if (others > 0) {
+    if (!polygons.isOk()) return fail("doc new", polygons.status());
+    return runNewCatmark(args, std::move(*polygons));
+  }
+  if (catmark || (args.scheme.empty() && !args.mesh.triangulate && readsPolygonSoup(extension))) {
+    auto text = readFile(args.mesh.input);
+    if (!text.isOk()) return fail("doc new", text.status());
+    auto soup = importPolygonSoup(*text, extension, args.mesh.input);
+    if (!soup.isOk()) return fail("doc new", soup.status());
+    const int others = countFacesNotTriangles(soup->faceOffsets);
+    if (catmark || others > 0) {
+      if (!catmark) {
         std::fprintf(stderr,
                      "tessera doc new: %s: %d of %d faces are not triangles: a catmull-clark document "
                      "(--scheme loop --triangulate for Loop's triangles)\n",
-                     args.mesh.input.c_str(), others, faces.numFaces());
-        return runNewCatmark(args, std::move(*polygons));
+                     args.mesh.input.c_str(), others, soup->numFaces());
       }
+      auto polygons = schemes::polygonMeshOf(std::move(*soup), args.mesh.input, args.mesh.tags);
+      if (!polygons.isOk()) return fail("doc new", polygons.status());
+      return runNewCatmark(args, std::move(*polygons));
     }
+    ImportReport report;
+    auto mesh = loadMeshFromSoup(args.mesh, std::move(*soup), &report);
+    return runNewLoop(args, std::move(mesh), report);
   }
   ImportReport report;
   auto mesh = loadMesh(args.mesh, &report);
-  if (!mesh.isOk()) return fail("doc new", mesh.status());
-  DocumentArgs stated = args.document;
-  if (Status s = withFileScheme(stated.scheme, report.boundary, report.creaseMethod, args.mesh.input);
-      !s.isOk())
-    return usage("doc new", s.message());
-  const DocumentOptions options = documentOptions(stated);
-  auto doc = Document::create(*mesh, options);
-  if (!doc.isOk()) return fail("doc new", doc.status().withContext(args.mesh.input));
-  return reportNew(args, *doc);
+  return runNewLoop(args, std::move(mesh), report);
 }
 
 const char* kindName(const Edit& e) {

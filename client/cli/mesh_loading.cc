@@ -90,9 +90,12 @@ Status withFileScheme(SchemeArgs& args, const std::string& boundary, const std::
   return adopt(args.creaseMethod, creaseMethod, "--crease-method", "t creasemethod");
 }
 
-Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report) {
-  const ImportOptions options = importOptions(args);
-  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, importMeshWithReport(args.input, options));
+namespace {
+
+// The tag file and the note on what the import did, after either reading.
+Expected<BaseMesh> finishLoad(const MeshInputArgs& args, const ImportOptions& options,
+                              Expected<ImportedMesh> read, ImportReport* report) {
+  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported, std::move(read));
   // Tags name the file's vertices: renumbered like the mesh.
   if (!args.tags.empty())
     TESSERA_RETURN_IF_ERROR(applyTagFile(args.tags, imported.mesh, imported.report.renumbering));
@@ -101,6 +104,18 @@ Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report) {
     std::fprintf(stderr, "tessera %s: %s: %s\n", args.command.c_str(), args.input.c_str(), note.c_str());
   if (report) *report = std::move(imported.report);
   return std::move(imported.mesh);
+}
+
+}  // namespace
+
+Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report) {
+  const ImportOptions options = importOptions(args);
+  return finishLoad(args, options, importMeshWithReport(args.input, options), report);
+}
+
+Expected<BaseMesh> loadMeshFromSoup(const MeshInputArgs& args, PolygonSoup soup, ImportReport* report) {
+  const ImportOptions options = importOptions(args);
+  return finishLoad(args, options, importSoupWithReport(std::move(soup), args.input, options), report);
 }
 
 void addDocumentSchemeOption(CLI::App& app, std::string& scheme) {

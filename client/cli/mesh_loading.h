@@ -62,6 +62,8 @@ ImportOptions importOptions(const MeshInputArgs& args);
 // `report`, when given, receives what the import did (and the options the
 // file states, for withFileScheme).
 Expected<BaseMesh> loadMesh(const MeshInputArgs& args, ImportReport* report = nullptr);
+// The same on the polygons of `args.input`, already read (importPolygonSoup).
+Expected<BaseMesh> loadMeshFromSoup(const MeshInputArgs& args, PolygonSoup soup, ImportReport* report);
 
 // The scheme options a mesh file states (OBJ's `t interpolateboundary`,
 // `t creasemethod`) where the command line gives none; a command line

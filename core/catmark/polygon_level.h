@@ -30,14 +30,7 @@ struct PolyTopology {
   std::vector<float> vertexSharpness;  // empty, or one per vertex
 
   int numFaces() const { return static_cast<int>(faceOffsets.size()) - 1; }
-  // How many faces have other than three corners: a mesh with any is a
-  // Catmull-Clark document unless asked otherwise (docs/ARCHITECTURE.md,
-  // "Catmull-Clark documents").
-  int numFacesNotTriangles() const {
-    int n = 0;
-    for (int f = 0; f < numFaces(); ++f) n += faceOffsets[f + 1] - faceOffsets[f] != 3;
-    return n;
-  }
+  int numFacesNotTriangles() const { return countFacesNotTriangles(faceOffsets); }
   void addFace(std::span<const int> face) {
     indices.insert(indices.end(), face.begin(), face.end());
     faceOffsets.push_back(static_cast<int>(indices.size()));

@@ -21,6 +21,13 @@ std::string lowerCase(std::string text) {
   return text;
 }
 
+// ".obj" from "obj", ".OBJ" or ".obj".
+std::string dottedLowerCase(const std::string& extension) {
+  std::string ext = lowerCase(extension);
+  if (!ext.empty() && ext[0] != '.') ext.insert(0, ".");
+  return ext;
+}
+
 Status checkExtension(const std::string& name, const std::string& ext) {
   const auto& supported = supportedImportExtensions();
   if (std::find(supported.begin(), supported.end(), ext) != supported.end()) return Status::ok();
@@ -35,24 +42,10 @@ std::string plural(int n, std::string word) {
   return std::to_string(n) + " " + word;
 }
 
-Expected<ImportedMesh> importText(std::string_view text, const std::string& ext, const std::string& name,
-                                  const ImportOptions& options, const std::string* gltfBaseDir) {
-  PolygonSoup soup;
-  GltfContent gltf;
-  const bool isGltf = ext == ".gltf" || ext == ".glb";
-  if (isGltf) {
-    TESSERA_ASSIGN_OR_RETURN(gltf, readGltf(name, std::string(text), gltfBaseDir));
-    soup = std::move(gltf.soup);
-  } else if (ext == ".obj") {
-    TESSERA_RETURN_IF_ERROR(io_detail::readObj(text, name, soup));
-  } else if (ext == ".off") {
-    TESSERA_RETURN_IF_ERROR(io_detail::readOff(text, name, soup));
-  } else if (ext == ".ply") {
-    TESSERA_RETURN_IF_ERROR(io_detail::readPly(text, name, soup));
-  } else {
-    TESSERA_RETURN_IF_ERROR(io_detail::readStl(text, name, soup));
-  }
-
+// The steps after reading, in the order mesh_import.h gives; `gltfTags`
+// are the tags a glTF states in `extras`, or null.
+Expected<ImportedMesh> importRead(PolygonSoup soup, const std::string& name, const ImportOptions& options,
+                                  const GltfContent* gltfTags) {
   ImportReport report;
   if (options.dropUnused) report.renumbering = dropUnusedVertices(soup);
   TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, buildBaseMesh(soup, BuildOptions{options.triangulate}, name));
@@ -62,7 +55,8 @@ Expected<ImportedMesh> importText(std::string_view text, const std::string& ext,
     report.edgesCreasedByAngle = *creased;
   }
   // Tags in the file itself win over the crease angle: they are explicit.
-  if (isGltf) TESSERA_RETURN_IF_ERROR(applyTags(gltf.tags, gltf.locate, mesh, report.renumbering));
+  if (gltfTags)
+    TESSERA_RETURN_IF_ERROR(applyTags(gltfTags->tags, gltfTags->locate, mesh, report.renumbering));
   if (!soup.tags.empty()) {
     TESSERA_RETURN_IF_ERROR(applyTags(featureTagsOf(soup.tags), name, mesh, report.renumbering));
     report.tagsInFile = static_cast<int>(soup.tags.size());
@@ -70,6 +64,25 @@ Expected<ImportedMesh> importText(std::string_view text, const std::string& ext,
   report.boundary = soup.boundary;
   report.creaseMethod = soup.creaseMethod;
   return ImportedMesh{std::move(mesh), std::move(report)};
+}
+
+Expected<ImportedMesh> importText(std::string_view text, const std::string& ext, const std::string& name,
+                                  const ImportOptions& options, const std::string* gltfBaseDir) {
+  PolygonSoup soup;
+  if (ext == ".gltf" || ext == ".glb") {
+    TESSERA_ASSIGN_OR_RETURN(GltfContent gltf, readGltf(name, std::string(text), gltfBaseDir));
+    return importRead(std::move(gltf.soup), name, options, &gltf);
+  }
+  if (ext == ".obj") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readObj(text, name, soup));
+  } else if (ext == ".off") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readOff(text, name, soup));
+  } else if (ext == ".ply") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readPly(text, name, soup));
+  } else {
+    TESSERA_RETURN_IF_ERROR(io_detail::readStl(text, name, soup));
+  }
+  return importRead(std::move(soup), name, options, nullptr);
 }
 
 }  // namespace
@@ -108,16 +121,24 @@ Expected<ImportedMesh> importMeshWithReport(const std::string& path, const Impor
 Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, const std::string& extension,
                                                      const std::string& displayName,
                                                      const ImportOptions& options) {
-  std::string ext = lowerCase(extension);
-  if (!ext.empty() && ext[0] != '.') ext.insert(0, ".");
+  const std::string ext = dottedLowerCase(extension);
   TESSERA_RETURN_IF_ERROR(checkExtension(displayName, ext));
   return importText(bytes, ext, displayName, options, nullptr);
 }
 
+bool readsPolygonSoup(const std::string& extension) {
+  const std::string ext = dottedLowerCase(extension);
+  return ext == ".obj" || ext == ".off" || ext == ".ply";
+}
+
+Expected<ImportedMesh> importSoupWithReport(PolygonSoup soup, const std::string& displayName,
+                                            const ImportOptions& options) {
+  return importRead(std::move(soup), displayName, options, nullptr);
+}
+
 Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
                                         const std::string& displayName) {
-  std::string ext = lowerCase(extension);
-  if (!ext.empty() && ext[0] != '.') ext.insert(0, ".");
+  const std::string ext = dottedLowerCase(extension);
   const io_detail::TextReadOptions checked{.checkIndices = true};
   PolygonSoup soup;
   if (ext == ".obj") {

@@ -74,6 +74,15 @@ Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, con
 Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
                                         const std::string& displayName);
 
+// Whether importPolygonSoup reads `extension` (".obj", "off", ".PLY", ...).
+bool readsPolygonSoup(const std::string& extension);
+
+// The import's steps after reading (--drop-unused, validation, the crease
+// angle, the file's own tags) on a soup importPolygonSoup read, so that a
+// caller choosing between polygons and triangles reads the file once.
+Expected<ImportedMesh> importSoupWithReport(PolygonSoup soup, const std::string& displayName,
+                                            const ImportOptions& options = {});
+
 // Extensions importMesh() accepts, lower case with the dot: ".obj", ...
 const std::vector<std::string>& supportedImportExtensions();
 

@@ -3,6 +3,7 @@
 // (mesh_validation.h) is the only way from a soup to a BaseMesh.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,15 @@ struct SoupTag {
   float sharpness = 0;
   int line = 0;  // 1-based, for messages
 };
+
+// How many of the faces `faceOffsets` delimits have other than three
+// corners: a mesh with any is a Catmull-Clark document unless asked otherwise
+// (docs/ARCHITECTURE.md, "Catmull-Clark documents").
+inline int countFacesNotTriangles(std::span<const int> faceOffsets) {
+  int n = 0;
+  for (std::size_t f = 0; f + 1 < faceOffsets.size(); ++f) n += faceOffsets[f + 1] - faceOffsets[f] != 3;
+  return n;
+}
 
 struct PolygonSoup {
   std::vector<Vec3> points;

@@ -64,6 +64,12 @@ Status applyPolygonFeatureTags(const std::vector<FeatureTag>& tags, const std::s
   return applyTags(tags, naming, target);
 }
 
+Status applyTagFile(const std::string& tagsPath, PolygonMesh& mesh) {
+  if (tagsPath.empty()) return Status::ok();
+  TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(tagsPath));
+  return applyPolygonTags(text, tagsPath, mesh);
+}
+
 }  // namespace
 
 Status applyPolygonTags(const std::string& text, const std::string& tagsName, PolygonMesh& mesh) {
@@ -71,9 +77,8 @@ Status applyPolygonTags(const std::string& text, const std::string& tagsName, Po
   return applyPolygonFeatureTags(tags, tagsName, mesh);
 }
 
-Expected<PolygonMesh> importPolygonMeshFromBytes(std::string_view bytes, const std::string& extension,
-                                                 const std::string& displayName) {
-  TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(bytes, extension, displayName));
+Expected<PolygonMesh> polygonMeshOf(PolygonSoup soup, const std::string& displayName,
+                                    const std::string& tagsPath) {
   PolygonMesh mesh;
   mesh.topology = PolyTopology::fromSoup(soup);
   mesh.points = std::move(soup.points);
@@ -81,25 +86,28 @@ Expected<PolygonMesh> importPolygonMeshFromBytes(std::string_view bytes, const s
   mesh.creaseMethod = soup.creaseMethod;
   if (!soup.tags.empty())
     TESSERA_RETURN_IF_ERROR(applyPolygonFeatureTags(featureTagsOf(soup.tags), displayName, mesh));
+  TESSERA_RETURN_IF_ERROR(applyTagFile(tagsPath, mesh));
   return mesh;
 }
 
+Expected<PolygonMesh> importPolygonMeshFromBytes(std::string_view bytes, const std::string& extension,
+                                                 const std::string& displayName) {
+  TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(bytes, extension, displayName));
+  return polygonMeshOf(std::move(soup), displayName, "");
+}
+
 Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  PolygonMesh mesh;
-  if (ext == ".obj" || ext == ".off" || ext == ".ply") {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (readsPolygonSoup(ext)) {
     TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
-    TESSERA_ASSIGN_OR_RETURN(mesh, importPolygonMeshFromBytes(text, ext, path));
-  } else {
-    TESSERA_ASSIGN_OR_RETURN(BaseMesh base, importMesh(path));
-    mesh.topology = PolyTopology::fromBaseMesh(base);
-    mesh.points = base.positions();
+    TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(text, ext, path));
+    return polygonMeshOf(std::move(soup), path, tagsPath);
   }
-  if (!tagsPath.empty()) {
-    TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(tagsPath));
-    TESSERA_RETURN_IF_ERROR(applyPolygonTags(text, tagsPath, mesh));
-  }
+  TESSERA_ASSIGN_OR_RETURN(BaseMesh base, importMesh(path));
+  PolygonMesh mesh;
+  mesh.topology = PolyTopology::fromBaseMesh(base);
+  mesh.points = base.positions();
+  TESSERA_RETURN_IF_ERROR(applyTagFile(tagsPath, mesh));
   return mesh;
 }
 

@@ -30,6 +30,12 @@ struct PolygonMesh {
 Expected<PolygonSoup> readObjPolygons(std::string_view text, const std::string& name);
 Expected<PolygonSoup> readOffPolygons(std::string_view text, const std::string& name);
 
+// The polygons of a soup importPolygonSoup read (core/io/mesh_import.h),
+// with the tags the file states and then the tag file `tagsPath` unless it
+// is empty; errors name `displayName`.
+Expected<PolygonMesh> polygonMeshOf(PolygonSoup soup, const std::string& displayName,
+                                    const std::string& tagsPath);
+
 // Reads `path` (polygons for .obj, .off and .ply, the triangle importer otherwise),
 // applies the tags an OBJ states (`t crease`, `t corner`), then the tag file
 // `tagsPath` unless it is empty. The topology is validated when a refiner

@@ -58,37 +58,7 @@ Expected<Document> catmarkDocument(const wire::CreateDocument& request, schemes:
   return doc;
 }
 
-bool readsPolygons(const char* extension) {
-  const std::string e = extension;
-  return e == ".obj" || e == ".off" || e == ".ply";
-}
-
-}  // namespace
-
-Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, ImportReport& report) {
-  const char* extension = meshExtensionOf(request.mesh_format());
-  if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
-  const Names names = namesOf(request);
-  TESSERA_ASSIGN_OR_RETURN(const DocumentOptions options, optionsOf(request, maxLevel));
-  // The scheme, as `tessera doc new` chooses it: asked for, or Catmull-Clark
-  // for a file with faces that are not triangles unless triangulated.
-  const wire::SubdivisionScheme scheme = request.scheme();
-  if (scheme == wire::SUBDIVISION_SCHEME_CATMULL_CLARK ||
-      (scheme == wire::SUBDIVISION_SCHEME_UNSPECIFIED && !request.triangulate() &&
-       readsPolygons(extension))) {
-    if (scheme == wire::SUBDIVISION_SCHEME_CATMULL_CLARK && !readsPolygons(extension)) {
-      return invalidArgument(
-          std::string("create: a catmull-clark document reads OBJ, OFF or PLY polygons, not ") + extension +
-          " (" + names.mesh + ")");
-    }
-    auto polygons = schemes::importPolygonMeshFromBytes(request.mesh(), extension, names.mesh);
-    if (scheme == wire::SUBDIVISION_SCHEME_CATMULL_CLARK) {
-      if (!polygons.isOk()) return polygons.status();
-      return catmarkDocument(request, std::move(*polygons), options);
-    }
-    if (polygons.isOk() && polygons->topology.numFacesNotTriangles() > 0)
-      return catmarkDocument(request, std::move(*polygons), options);
-  }
+Expected<ImportOptions> importOptionsOf(const wire::CreateDocument& request) {
   ImportOptions import;
   import.triangulate = request.triangulate();
   import.dropUnused = request.drop_unused();
@@ -99,10 +69,15 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
     }
     import.creaseAngle = request.crease_angle();
   }
-  TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported,
-                           importMeshFromBytesWithReport(request.mesh(), extension, names.mesh, import));
-  BaseMesh& mesh = imported.mesh;
-  report = imported.report;
+  return import;
+}
+
+Expected<Document> loopDocument(const wire::CreateDocument& request, Expected<ImportedMesh> imported,
+                                const DocumentOptions& options, ImportReport& report) {
+  const Names names = namesOf(request);
+  if (!imported.isOk()) return imported.status();
+  BaseMesh& mesh = imported->mesh;
+  report = imported->report;
   if (!request.tags().empty()) {
     TESSERA_ASSIGN_OR_RETURN(auto tags, parseTags(request.tags(), names.tags));
     // Tags name the file's vertices, renumbered like the mesh (drop_unused).
@@ -111,6 +86,38 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
   auto doc = Document::create(mesh, options);
   if (!doc.isOk()) return doc.status().withContext(names.mesh);
   return doc;
+}
+
+}  // namespace
+
+Expected<Document> importDocument(const wire::CreateDocument& request, int maxLevel, ImportReport& report) {
+  const char* extension = meshExtensionOf(request.mesh_format());
+  if (extension == nullptr) return invalidArgument("create: mesh_format is not set");
+  const Names names = namesOf(request);
+  TESSERA_ASSIGN_OR_RETURN(const DocumentOptions options, optionsOf(request, maxLevel));
+  TESSERA_ASSIGN_OR_RETURN(const ImportOptions import, importOptionsOf(request));
+  // The scheme, as `tessera doc new` chooses it: asked for, or Catmull-Clark
+  // for a file with faces that are not triangles unless triangulated. The
+  // file is read once, as polygons, and then built into either.
+  const wire::SubdivisionScheme scheme = request.scheme();
+  const bool catmark = scheme == wire::SUBDIVISION_SCHEME_CATMULL_CLARK;
+  if (catmark && !readsPolygonSoup(extension)) {
+    return invalidArgument(
+        std::string("create: a catmull-clark document reads OBJ, OFF or PLY polygons, not ") + extension +
+        " (" + names.mesh + ")");
+  }
+  if (catmark || (scheme == wire::SUBDIVISION_SCHEME_UNSPECIFIED && !request.triangulate() &&
+                  readsPolygonSoup(extension))) {
+    TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(request.mesh(), extension, names.mesh));
+    if (catmark || countFacesNotTriangles(soup.faceOffsets) > 0) {
+      TESSERA_ASSIGN_OR_RETURN(schemes::PolygonMesh polygons,
+                               schemes::polygonMeshOf(std::move(soup), names.mesh, ""));
+      return catmarkDocument(request, std::move(polygons), options);
+    }
+    return loopDocument(request, importSoupWithReport(std::move(soup), names.mesh, import), options, report);
+  }
+  return loopDocument(request, importMeshFromBytesWithReport(request.mesh(), extension, names.mesh, import),
+                      options, report);
 }
 
 }  // namespace tessera::server

@@ -25,6 +25,8 @@ Status applyAddMorphKey(KeyedDocument& keyed, store::DocumentId id, const wire::
                         JournalEntry& entry) {
   const std::string doc = "document " + std::to_string(id.value);
   if (keyed.isMorph()) return invalidArgument("add morph key: " + doc + " already has two keys");
+  // Refused before the mesh is read: no work for a key that cannot be added.
+  TESSERA_RETURN_IF_ERROR(checkMorphScheme(keyed.key0(), "add morph key: key 0 (" + doc + ")"));
   const char* extension = meshExtensionOf(request.mesh_format());
   if (extension == nullptr) return invalidArgument("add morph key: mesh_format is not set");
   for (const auto* image : {&request.image_from(), &request.image_to()}) {
@@ -43,7 +45,6 @@ Status applyAddMorphKey(KeyedDocument& keyed, store::DocumentId id, const wire::
   const std::string name = request.file_name().empty() ? "the second key's mesh" : request.file_name();
   TESSERA_ASSIGN_OR_RETURN(ImportedMesh imported,
                            importMeshFromBytesWithReport(request.mesh(), extension, name, ImportOptions{}));
-  TESSERA_RETURN_IF_ERROR(checkMorphScheme(keyed.key0(), "add morph key: key 0 (" + doc + ")"));
   TESSERA_RETURN_IF_ERROR(checkSameConnectivity(
       keyed.key0().baseTopology(), BaseTopology::fromBaseMesh(imported.mesh), "key 0 (" + doc + ")", name));
   entry.kind = JournalEntry::Kind::kAddKey;

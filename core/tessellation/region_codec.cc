@@ -26,7 +26,9 @@ constexpr uint16_t kFlagNoVertexIds = 1;
 constexpr uint16_t kFlagLayoutIds = 2;
 // Bit 2: ids as points of the region's lattice (region_lattice.h), two
 // bytes that Draco predicts from the neighbours instead of eight per id.
+// Bit 3: the same on a quad's lattice (a quad split's region).
 constexpr uint16_t kFlagLatticeIds = 4;
+constexpr uint16_t kFlagQuadLatticeIds = 8;
 
 Status checkMesh(const RegionMesh& mesh, const QuantizationGrid& grid) {
   const size_t n = mesh.positions.size();
@@ -90,8 +92,9 @@ void writeHeader(ByteWriter& w, const RegionHeader& header, IdCoding coding, uin
   w.put<uint16_t>(kRegionFormatVersion);
   w.put<uint16_t>(!header.profile.vertexIds      ? kFlagNoVertexIds
                   : !header.idsInline            ? kFlagLayoutIds
-                  : coding == IdCoding::kLattice ? kFlagLatticeIds
-                                                 : 0);
+                  : coding != IdCoding::kLattice ? 0
+                  : header.frame->sides == 4     ? kFlagQuadLatticeIds
+                                                 : kFlagLatticeIds);
   w.put<uint64_t>(header.regionId);
   w.put<uint64_t>(header.documentVersion);
   w.put<uint64_t>(header.layoutVersion);
@@ -225,10 +228,10 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
                        " is not supported (this build reads " + std::to_string(kRegionFormatVersion) + ")");
   }
   TESSERA_RETURN_IF_ERROR(r.get(flags, "the flags"));
-  if ((flags & ~(kFlagNoVertexIds | kFlagLayoutIds | kFlagLatticeIds)) != 0) {
-    return parseError(
-        source + ": unknown flags " + std::to_string(flags) +
-        " (bit 0, no vertex ids, bit 1, the layout's ids, and bit 2, lattice ids, are defined)");
+  if ((flags & ~(kFlagNoVertexIds | kFlagLayoutIds | kFlagLatticeIds | kFlagQuadLatticeIds)) != 0) {
+    return parseError(source + ": unknown flags " + std::to_string(flags) +
+                      " (bit 0, no vertex ids, bit 1, the layout's ids, bit 2, lattice ids, and bit 3, "
+                      "quad lattice ids, are defined)");
   }
   if ((flags & (flags - 1)) != 0) {
     return parseError(source + ": flags " + std::to_string(flags) +
@@ -241,8 +244,8 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   header.idsInline = (flags & kFlagLayoutIds) == 0;
   if (r.offset() != kRegionHeaderBytes)
     return internalError(source + ": header layout and kRegionHeaderBytes disagree");
-  if ((flags & kFlagLatticeIds) != 0) {
-    TESSERA_ASSIGN_OR_RETURN(header.frame, readFrame(r));
+  if ((flags & (kFlagLatticeIds | kFlagQuadLatticeIds)) != 0) {
+    TESSERA_ASSIGN_OR_RETURN(header.frame, readFrame(r, (flags & kFlagQuadLatticeIds) != 0 ? 4 : 3));
   }
   const size_t payloadAt = r.offset();
   const uint64_t expected = static_cast<uint64_t>(counts.payloadBytes) + kRegionTrailerBytes;
@@ -282,9 +285,8 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   std::optional<RegionLattice> lattice;
   if (header.frame) {
     const int depth = latticeDepth(*header.frame, header.profile);
-    if (header.frame->face != header.regionId || header.frame->forward > 7) {
-      return parseError(where + ": the frame names region " + std::to_string(header.frame->face) +
-                        " with edge directions " + std::to_string(header.frame->forward));
+    if (header.frame->face != header.regionId) {
+      return parseError(where + ": the frame names region " + std::to_string(header.frame->face));
     }
     auto built = RegionLattice::build(*header.frame, depth);
     if (!built.isOk()) return parseError(where + ": " + built.status().message());

@@ -17,7 +17,8 @@
 //                         the receiver holds the same layout and keeps its
 //                         ids, adoptLayoutIds); bit 2 = lattice ids (a
 //                         frame follows the header and GENERIC holds each
-//                         vertex's lattice point (u, v) as 2 x uint8)
+//                         vertex's lattice point (u, v) as 2 x uint8);
+//                         bit 3 = the same on a quad's lattice
 //                8     8  region id
 //               16     8  document version
 //               24     8  layout version: the document version since which
@@ -29,14 +30,16 @@
 //                         normalBits u8
 //               91     4  triangle count
 //               95     4  Draco payload size n
-//               99     k  with bit 2 only, the frame: root face level u8 and
-//                         index, corner vertex indices x 3, edge indices x 3,
-//                         edge directions u8, base counts x 3 (V, E, F), the
-//                         numbers as LEB128 varints (k is 12 bytes for a cube)
+//               99     k  with bit 2 or 3 only, the frame: root face level
+//                         u8 and index, (bit 3) its first child, corner
+//                         vertex indices x 3 (4), edge indices x 3 (4), edge
+//                         directions u8, base counts x 3, V, E, F (x 4, and C),
+//                         the numbers as LEB128 varints (k is 12 bytes for a
+//                         cube; region_lattice.h)
 //           99 (+k)   n  Draco mesh (bitstream 2.2): POSITION quantized on
 //                         the grid, NORMAL octahedral, GENERIC ids as 8 x
 //                         uint8, least significant byte first (or lattice
-//                         points, bit 2)
+//                         points, bits 2 and 3)
 //              ... + n 4  CRC-32 (zlib) of every byte before it
 //
 // Why layouts: an edit moves vertices but rarely changes which triangles a
@@ -104,7 +107,7 @@ struct RegionHeader {
 
 inline constexpr uint16_t kRegionFormatVersion = 2;
 inline constexpr size_t kRegionHeaderBytes = 99;  // everything before the Draco payload, but a frame
-inline constexpr size_t kMaxRegionFrameBytes = 2 + 10 * 10;  // level, forward and ten varints
+inline constexpr size_t kMaxRegionFrameBytes = 2 + 14 * 10;  // level, forward and (quads) 14 varints
 inline constexpr size_t kRegionTrailerBytes = 4;             // the CRC-32
 inline constexpr uint32_t kMaxRegionTriangles = 1u << 24;    // LoopRefiner's default face cap
 inline constexpr size_t kMaxRegionBytes = size_t{1} << 28;

@@ -16,6 +16,7 @@
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/region_lattice.h"
 #include "core/tessellation/tessellation.h"
+#include "support/polygon_meshes.h"
 #include "support/procedural_meshes.h"
 #include "support/region_checks.h"
 #include "support/test_meshes.h"
@@ -90,6 +91,96 @@ TEST(RegionLattice, IdsEqualTheHierarchysOnUniformLevels) {
       }
     }
   }
+}
+
+// The corner points of child j of a quad with corners `at` (quad_split.h:
+// child j at corner j keeps it at position j; then the vertex on edge j, the
+// face vertex and the vertex on edge j - 1), as docs/PROTOCOL.md 6.2 states.
+std::array<Point, 4> quadChildCorners(const std::array<Point, 4>& at, int j) {
+  auto mid = [](const Point& a, const Point& b) { return Point{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2}; };
+  const int prev = (j + 3) & 3;
+  const std::array<Point, 4> byKind{at[j], mid(at[j], at[(j + 1) & 3]), mid(at[0], at[2]),
+                                    mid(at[prev], at[j])};
+  std::array<Point, 4> child;
+  for (int k = 0; k < 4; ++k) child[(j + k) & 3] = byKind[k];
+  return child;
+}
+
+// The same on Catmull-Clark documents: every quad root face of a level, its
+// every descendant at the deepest level by its path of child numbers, each
+// corner's lattice id against the hierarchy's id of that corner. Returns the
+// number of points checked.
+int expectQuadLatticeMatchesHierarchy(const testing::PolyTestMesh& mesh, int rootLevel, int depth) {
+  const int deepest = rootLevel + depth;
+  auto doc = Document::create(
+      mesh.topology, mesh.points,
+      {.maxLevel = deepest, .uniformLevel = deepest, .scheme = DocumentScheme::kCatmullClark});
+  EXPECT_TRUE(doc.isOk()) << doc.status().message();
+  if (!doc.isOk()) return 0;
+  const SparseHierarchy& h = doc->hierarchy();
+  const LevelCounts& counts = doc->counts();
+  const int n = 1 << depth;
+  int checked = 0;
+  for (uint64_t root = 0; root < counts.faces(rootLevel); ++root) {
+    const FaceId face(rootLevel, root);
+    auto frame = regionFrame(h, counts, face);
+    if (counts.faceSize(face) != 4) {
+      EXPECT_EQ(frame.status().code(), ErrorCode::kUnsupported) << face.toString();
+      continue;
+    }
+    EXPECT_TRUE(frame.isOk()) << frame.status().message();
+    if (!frame.isOk()) return checked;
+    EXPECT_EQ(frame->sides, 4);
+    auto lattice = RegionLattice::build(*frame, depth);
+    EXPECT_TRUE(lattice.isOk()) << lattice.status().message();
+    if (!lattice.isOk()) return checked;
+    for (uint64_t path = 0; path < (uint64_t{1} << (2 * depth)); ++path) {
+      std::array<Point, 4> at{Point{0, 0}, Point{n, 0}, Point{n, n}, Point{0, n}};
+      FaceId f = face;
+      for (int d = depth - 1; d >= 0; --d) {
+        const int j = static_cast<int>((path >> (2 * d)) & 3);
+        at = quadChildCorners(at, j);
+        f = counts.childFace(f, j);
+      }
+      const SparseLevel& level = h.level(deepest);
+      const Index local = level.findFace(f.index());
+      EXPECT_GE(local, 0) << f.toString();
+      if (local < 0) return checked;
+      for (int k = 0; k < 4; ++k) {
+        const uint64_t index = level.vertexIds[level.mesh.faceVerticesOf(local)[k]];
+        const auto id = lattice->idAt(at[k][0], at[k][1]);
+        EXPECT_TRUE(id.has_value());
+        if (!id) return checked;
+        EXPECT_EQ(id->index(), index)
+            << mesh.name << " root " << face.toString() << " point (" << at[k][0] << ", " << at[k][1] << ")";
+        EXPECT_EQ(id->level(), counts.birthLevel(*id));
+        EXPECT_EQ(lattice->pointOf(*id), at[k]);
+        if (id->index() != index) return checked;
+        ++checked;
+      }
+    }
+    EXPECT_FALSE(lattice->idAt(n + 1, 0).has_value());
+    EXPECT_TRUE(lattice->idAt(n, n).has_value());
+  }
+  return checked;
+}
+
+TEST(RegionLattice, QuadIdsEqualTheHierarchysOnUniformLevels) {
+  using namespace testing;
+  int checked = 0;
+  // Quads, a closed mesh of triangles, quads and an n-gon (a prism), an open
+  // one, and a jittered torus; root faces at levels 0 (the base quads) and
+  // 1 and 2 (every face a quad).
+  for (const PolyTestMesh& mesh : {quadCube(), mixedPrism(5, false), mixedPrism(6, true), quadGrid(3, 2),
+                                   withPolyJitter(quadTorus(5, 4), 0.05, 3)}) {
+    for (int rootLevel : {0, 1, 2}) {
+      for (int depth : {0, 1, 2, 3}) {
+        checked += expectQuadLatticeMatchesHierarchy(mesh, rootLevel, depth);
+        if (::testing::Test::HasFailure()) return;
+      }
+    }
+  }
+  EXPECT_GT(checked, 100000);
 }
 
 TEST(RegionLattice, RefusesBadDepthsAndFrames) {
@@ -191,6 +282,64 @@ TEST(RegionLattice, RegionsCarryTheirIdsAsLatticePoints) {
     std::printf(
         "[ measured ] %zu regions, %lld triangles: %zu bytes with 8-byte ids, %zu with lattice points\n",
         t->regions().size(), static_cast<long long>(t->numTriangles()), bytesAsIds, bytesAsPoints);
+  }
+}
+
+// The regions of Catmull-Clark documents carry their ids as points of their
+// quad's lattice (flag 8) and decode to the same triangles over the same ids;
+// a region rooted at a base face that is not a quad keeps 8-byte labels.
+TEST(RegionLattice, CatmarkRegionsCarryTheirIdsAsQuadLatticePoints) {
+  using namespace testing;
+  for (const PolyTestMesh& mesh : {withPolyJitter(quadTorus(6, 4), 0.05, 7), mixedPrism(5, true)}) {
+    auto doc = Document::create(mesh.topology, mesh.points,
+                                {.maxLevel = 6, .scheme = DocumentScheme::kCatmullClark});
+    ASSERT_TRUE(doc.isOk()) << doc.status().message();
+    for (int i = 0; i < 5; ++i) {
+      const VertexId v(1 + i % 2, static_cast<uint64_t>(i * 7 % doc->counts().vertices(1)));
+      ASSERT_TRUE(doc->moveBy(std::span(&v, 1), Vec3(0.02 * i, -0.03, 0.01)).isOk());
+    }
+    auto grid = documentGrid(*doc);
+    ASSERT_TRUE(grid.isOk());
+    // Regions at level 1 (max level 6) and at the base faces (max level 5).
+    for (const LodProfile& profile :
+         {LodProfile{.baseLevel = 2, .maxLevel = 6, .angleThresholdDegrees = 5},
+          LodProfile{.baseLevel = 1, .maxLevel = 5, .angleThresholdDegrees = 5}}) {
+      auto t = Tessellation::build(*doc, profile);
+      ASSERT_TRUE(t.isOk()) << t.status().message();
+      ASSERT_FALSE(t->regionsAreGroups());
+      size_t bytesAsIds = 0, bytesAsPoints = 0;
+      int framed = 0, labelled = 0;
+      for (const auto& [id, region] : t->regions()) {
+        RegionHeader header{
+            .regionId = id, .documentVersion = 3, .layoutVersion = 2, .profile = profile, .grid = *grid};
+        auto plain = encodeRegion(header, region);
+        ASSERT_TRUE(plain.isOk()) << plain.status().message();
+        auto frame = regionFrame(doc->hierarchy(), doc->counts(), FaceId::fromPacked(id));
+        if (!frame.isOk()) {
+          EXPECT_NE(doc->counts().faceSize(FaceId::fromPacked(id)), 4) << frame.status().message();
+          ++labelled;
+          continue;
+        }
+        header.frame = *frame;
+        auto lattice = encodeRegion(header, region);
+        ASSERT_TRUE(lattice.isOk()) << lattice.status().message();
+        EXPECT_EQ(static_cast<uint8_t>((*lattice)[6]), 8) << "flags";
+        bytesAsIds += plain->size();
+        bytesAsPoints += lattice->size();
+        auto decoded = decodeRegion(*lattice);
+        ASSERT_TRUE(decoded.isOk()) << decoded.status().message();
+        EXPECT_EQ(decoded->first, header);
+        EXPECT_EQ(trianglesOverIds(decoded->second), trianglesOverIds(region))
+            << FaceId::fromPacked(id).toString();
+        ++framed;
+      }
+      EXPECT_GT(framed, 0);
+      EXPECT_LT(bytesAsPoints, bytesAsIds);
+      std::printf(
+          "[ measured ] %s, profile %s: %d regions on quad lattices (%zu bytes, %zu with 8-byte ids), %d "
+          "with labels\n",
+          mesh.name.c_str(), profile.describe().c_str(), framed, bytesAsPoints, bytesAsIds, labelled);
+    }
   }
 }
 

@@ -41,22 +41,40 @@ export function atLevel(packed, level) {
   return packId(level, idIndex(packed));
 }
 
-// V_l, E_l, F_l for levels 0..deepest: V' = V + E, E' = 2E + 3F, F' = 4F.
+// V_l, E_l, F_l and C_l (corners: the sum of the face sizes) for levels
+// 0..deepest. Loop's triangle split: V' = V + E, E' = 2E + 3F, F' = 4F,
+// C = 3F. The quad split of Catmull-Clark (LevelCounts.quads; docs/
+// ARCHITECTURE.md "The quad split"): V' = V + F + E (a vertex per face, then
+// one per edge), E' = C + 2E (an interior edge per corner, then two halves
+// per edge), F' = C (a child per corner), and C = 4F below the base level,
+// where every face is a quad; C0 comes with the base counts, since base faces
+// may have any number of corners.
 export class LevelCounts {
-  constructor(vertices, edges, faces, deepest) {
+  // Triangles. `corners` is for LevelCounts.quads alone.
+  constructor(vertices, edges, faces, deepest, corners = null) {
+    this.quads = corners !== null;
     this.v = [vertices];
     this.e = [edges];
     this.f = [faces];
+    this.c = [this.quads ? corners : 3 * faces];
     for (let l = 0; l < deepest; ++l) {
-      this.v.push(this.v[l] + this.e[l]);
-      this.e.push(2 * this.e[l] + 3 * this.f[l]);
-      this.f.push(4 * this.f[l]);
+      const V = this.v[l], E = this.e[l], F = this.f[l], C = this.c[l];
+      this.v.push(this.quads ? V + F + E : V + E);
+      this.e.push(this.quads ? C + 2 * E : 2 * E + 3 * F);
+      this.f.push(this.quads ? C : 4 * F);
+      this.c.push((this.quads ? 4 : 3) * this.f[l + 1]);
     }
     for (let l = 0; l <= deepest; ++l) {
-      if (!Number.isSafeInteger(this.v[l]) || !Number.isSafeInteger(this.e[l]) || !Number.isSafeInteger(this.f[l])) {
-        throw new RangeError(`level counts from (${vertices}, ${edges}, ${faces}) exceed 2^53 at level ${l}`);
+      if (![this.v[l], this.e[l], this.f[l], this.c[l]].every(Number.isSafeInteger)) {
+        const base = this.quads ? `${vertices}, ${edges}, ${faces}, ${corners}` : `${vertices}, ${edges}, ${faces}`;
+        throw new RangeError(`level counts from (${base}) exceed 2^53 at level ${l}`);
       }
     }
+  }
+
+  // Polygons split into quads: V0, E0, F0 and C0 of the base mesh.
+  static quads(vertices, edges, faces, corners, deepest) {
+    return new LevelCounts(vertices, edges, faces, deepest, corners);
   }
 
   get deepest() {
@@ -73,6 +91,10 @@ export class LevelCounts {
 
   faces(level) {
     return this.f[level];
+  }
+
+  corners(level) {
+    return this.c[level];
   }
 
   // The smallest level l with index < V_l; -1 when not even the deepest

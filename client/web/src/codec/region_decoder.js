@@ -1,9 +1,9 @@
 // One region payload (docs/PROTOCOL.md 6.2) to the arrays the scene and the
 // hash use: float32 positions exactly as Draco dequantizes them, unit
 // normals, triangle indices, and the vertex ids as uint32 halves (8-byte ids
-// under flag 0, lattice points turned into ids under flag 4, none under
-// flags 1 and 2). The reference decoder is decodeRegion() in
-// core/tessellation/region_codec.cc.
+// under flag 0, lattice points turned into ids under flag 4 for a triangle's
+// lattice and flag 8 for a quad's, none under flags 1 and 2). The reference
+// decoder is decodeRegion() in core/tessellation/region_codec.cc.
 import { parseRegion } from './region_header.js';
 import { RegionLattice } from './region_lattice.js';
 
@@ -38,6 +38,7 @@ function findAttribute(decoder, mesh, type, name, components, where) {
 export function decodeRegion(draco, bytes) {
   const header = parseRegion(bytes);
   const where = `region ${header.regionId} (document version ${header.documentVersion})`;
+  // The frame says whether the lattice is a triangle's or a quad's.
   const lattice = header.frame ? new RegionLattice(header.frame, header.latticeDepth) : null;
   const decoder = new draco.Decoder();
   const mesh = new draco.Mesh();
@@ -72,9 +73,11 @@ export function decodeRegion(draco, bytes) {
       idLo = new Uint32Array(points);
       for (let p = 0; p < points; ++p) {
         if (lattice) {
-          const [hi, lo] = lattice.idHalvesAt(raw[2 * p], raw[2 * p + 1]);
-          idHi[p] = hi;
-          idLo[p] = lo;
+          try {
+            [idHi[p], idLo[p]] = lattice.idHalvesAt(raw[2 * p], raw[2 * p + 1]);
+          } catch (error) {
+            throw new Error(`${where}: point ${p}: ${error.message}`);
+          }
         } else {
           const b = 8 * p;
           idLo[p] = (raw[b] | (raw[b + 1] << 8) | (raw[b + 2] << 16) | (raw[b + 3] << 24)) >>> 0;

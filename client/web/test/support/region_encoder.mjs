@@ -17,7 +17,8 @@ function varint(out, n) {
 // mesh: {positions: number[] (3 per point), normals, faces: number[] (3 per
 // face), ids: BigInt[] or null, lattice: [u, v][] or null}; header: {flags,
 // regionId, documentVersion, layoutVersion, maxLevel, grid: {origin, range,
-// positionBits, normalBits}, frame}.
+// positionBits, normalBits}, frame}; a frame with sides 4 is a quad's
+// (flag 8), which carries its first child after the face.
 export function encodeTestRegion(enc, header, mesh) {
   const encoder = new enc.Encoder();
   const builder = new enc.MeshBuilder();
@@ -67,6 +68,7 @@ export function encodeTestRegion(enc, header, mesh) {
     const f = header.frame;
     frame.push(f.level);
     varint(frame, f.index);
+    if (f.sides === 4) varint(frame, f.firstChild);
     f.corners.forEach((c) => varint(frame, c));
     f.edges.forEach((e) => varint(frame, e));
     frame.push(f.forward);

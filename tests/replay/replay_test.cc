@@ -211,23 +211,28 @@ TEST(ReplayLoad, ViewersOnCameraPathsGetTheirTilesWithoutGaps) {
   EXPECT_NE(bad.find("--camera-target"), std::string::npos) << bad;
 }
 
-TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
+// Replays the script that `generateOptions` makes on two fresh servers
+// with `mesh` (the default cube when empty): every command accepted, the
+// same final version and surface hash on both, and one that differs from
+// the unedited document's.
+void expectSameSurfaceOnTwoFreshServers(const std::string& generateOptions, const std::string& mesh,
+                                        const std::string& commands) {
   const std::string script = testing::makeTempDir("tessera-replay-script") + "/session.jsonl";
-  auto [generated, code] = run(std::string(TESSERA_REPLAY_PATH) + " generate -o " + script +
-                               " --editors 3 --rate 20 --seconds 1 --seed 42 --profile 2,5,10");
+  auto [generated, code] =
+      run(std::string(TESSERA_REPLAY_PATH) + " generate -o " + script + " " + generateOptions);
   ASSERT_EQ(code, 0) << generated;
   std::string hashes[2], versions[2];
   for (int i = 0; i < 2; ++i) {
     ReplayServer s;
-    testing::startServer(s, "tessera-replay-twice");
-    if (HasFatalFailure()) return;
+    testing::startServer(s, "tessera-replay-twice", mesh);
+    if (::testing::Test::HasFatalFailure()) return;
     auto [before, beforeCode] =
         run(std::string(TESSERA_REPLAY_PATH) + " surface" + s.connection() + " --profile 2,5,10");
     ASSERT_EQ(beforeCode, 0) << before;
     auto [out, replayCode] =
         run(std::string(TESSERA_REPLAY_PATH) + " replay " + script + s.connection() + " --speed 4");
     ASSERT_EQ(replayCode, 0) << out;
-    EXPECT_EQ(field(out, "commands"), "60") << out;
+    EXPECT_EQ(field(out, "commands"), commands) << out;
     EXPECT_EQ(field(out, "rejected"), "0") << out;
     versions[i] = field(out, "version");
     hashes[i] = field(out, "surface_hash");
@@ -236,6 +241,19 @@ TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
   }
   EXPECT_EQ(versions[0], versions[1]);
   EXPECT_EQ(hashes[0], hashes[1]);
+}
+
+TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
+  expectSameSurfaceOnTwoFreshServers("--editors 3 --rate 20 --seconds 1 --seed 42 --profile 2,5,10", "", "60");
+}
+
+// The same on a Catmull-Clark document (the cube as six quads; its level 1
+// has 8 corners, 6 face points and 12 edge points): offsets, undos and redos
+// of a script replay to the same surface on two fresh servers.
+TEST(ReplayRun, ACatmullClarkScriptReplaysToTheSameSurfaceOnTwoFreshServers) {
+  expectSameSurfaceOnTwoFreshServers(
+      "--editors 3 --rate 20 --seconds 1 --seed 7 --profile 2,5,10 --vertex-level 1 --vertex-count 26",
+      "good/cube_quads.obj", "60");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // viewer's tests.
 #pragma once
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -13,17 +14,25 @@
 
 namespace tessera::testing {
 
-// Creates cube.obj (with cube.tags when `tags`) through an admin session:
+// Creates `mesh` of tests/data (with the tag file `tags` unless empty)
+// through an admin session, the scheme chosen by the server from the faces:
 // the document id, or an error saying what failed.
-inline Expected<uint64_t> createCube(const ServerProcess& server, bool tags, int maxLevel) {
+inline Expected<uint64_t> createFromTestData(const ServerProcess& server, const std::string& mesh,
+                                             const std::string& tags, int maxLevel) {
   TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> admin,
                            client::Session::connect(server.session("admin", server.adminToken())));
-  auto created = admin->call(createDocument("cube", fileBytes(sourceTestDataPath("cube.obj")),
-                                            tags ? fileBytes(sourceTestDataPath("cube.tags")) : "", maxLevel),
-                             30);
+  auto created = admin->call(
+      createDocument(std::filesystem::path(mesh).stem().string(), fileBytes(sourceTestDataPath(mesh)),
+                     tags.empty() ? "" : fileBytes(sourceTestDataPath(tags)), maxLevel),
+      30);
   if (!created.isOk()) return created.status();
-  if (!created->has_ack()) return internalError("creating the cube: " + created->DebugString());
+  if (!created->has_ack()) return internalError("creating " + mesh + ": " + created->DebugString());
   return created->ack().document_id();
+}
+
+// Creates cube.obj (with cube.tags when `tags`).
+inline Expected<uint64_t> createCube(const ServerProcess& server, bool tags, int maxLevel) {
+  return createFromTestData(server, "cube.obj", tags ? "cube.tags" : "", maxLevel);
 }
 
 // A viewer connection's options for `document` on `server`, with the admin

@@ -332,5 +332,103 @@ TEST(View, ExitsWithAnErrorWhenTheDocumentDoesNotExist) {
   EXPECT_EQ(runBounded({TESSERA_VIEW_PATH, "--document", "1"}, {}, dir + "/usage.log", 30), 2);
 }
 
+// The viewer on a Catmull-Clark document (the cube as six quads): its own
+// pick and keys crease an edge (E, 2) and make a corner (K), undo and redo
+// step through them; the interpolation keys (I, =), which are Loop's, are
+// refused by the server and change nothing; a drag of a level-1 control
+// vertex becomes accepted MoveVertex edits. The picture shows the surface.
+TEST(View, HeadlessPickCreaseCornerAndDragOnACatmullClarkDocument) {
+  const std::string dir = testing::makeTempDir("tessera-view-catmark");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto created = testing::createFromTestData(*server, "good/cube_quads.obj", "", 4);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  const std::string doc = std::to_string(*created);
+  const std::string connect = "127.0.0.1:" + std::to_string(server->port());
+  int rc = runBounded({TESSERA_VIEW_PATH,
+                       "--connect",
+                       connect,
+                       "--token",
+                       server->adminToken(),
+                       "--document",
+                       doc,
+                       "--base-level",
+                       "2",
+                       "--max-level",
+                       "2",
+                       "--level",
+                       "1",
+                       "--edit-keys",
+                       "--screenshot",
+                       dir + "/keys.png",
+                       "--frames",
+                       "3",
+                       "--no-hud",
+                       "--timeout",
+                       "30"},
+                      headlessEnvironment(), dir + "/keys.log", 60);
+  std::string log = testing::fileBytes(dir + "/keys.log");
+  ASSERT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;
+  EXPECT_NE(log.find("10 edits sent, 3 rejected"), std::string::npos) << log;
+  auto h = surfaceHashes(log);
+  const std::vector<std::string> names = {"start", "I",    "tighter", "I-off", "E",   "2",
+                                          "K",     "undo", "undo",    "undo",  "redo"};
+  ASSERT_EQ(h.size(), names.size()) << log;
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
+  for (size_t i : {1, 2, 3})
+    EXPECT_EQ(h[i].second, h[0].second) << h[i].first << " changed the surface: " << log;
+  EXPECT_NE(h[4].second, h[0].second) << "E did not change the surface: " << log;
+  EXPECT_NE(h[5].second, h[4].second) << "2 gave the same surface as E (+inf): " << log;
+  EXPECT_NE(h[6].second, h[5].second) << "K did not change the surface: " << log;
+  EXPECT_EQ(h[7].second, h[5].second) << "the first undo did not take back K alone: " << log;
+  EXPECT_EQ(h[8].second, h[4].second) << "the second undo did not take back 2: " << log;
+  EXPECT_EQ(h[9].second, h[0].second) << "the third undo did not restore the surface: " << log;
+  EXPECT_EQ(h[10].second, h[4].second) << "redo did not bring the sharp edge back: " << log;
+  EXPECT_NE(log.find("document version 8,"), std::string::npos) << "seven accepted keys: " << log;
+
+  rc = runBounded({TESSERA_VIEW_PATH,
+                   "--connect",
+                   connect,
+                   "--token",
+                   server->adminToken(),
+                   "--document",
+                   doc,
+                   "--base-level",
+                   "1",
+                   "--max-level",
+                   "4",
+                   "--level",
+                   "1",
+                   "--control-points",
+                   "--drag",
+                   "80,-80",
+                   "--screenshot",
+                   dir + "/drag.png",
+                   "--frames",
+                   "3",
+                   "--no-hud",
+                   "--size",
+                   "640x480",
+                   "--timeout",
+                   "30"},
+                  headlessEnvironment(), dir + "/drag.log", 60);
+  log = testing::fileBytes(dir + "/drag.log");
+  ASSERT_EQ(rc, 0) << log;
+  EXPECT_NE(log.find("dragged v1:"), std::string::npos) << log;
+  EXPECT_NE(log.find(" 0 rejected"), std::string::npos) << log;
+  const size_t version = log.find("document version ");
+  ASSERT_NE(version, std::string::npos) << log;
+  EXPECT_GT(std::stoi(log.substr(version + 17)), 8) << "the drag made no edit: " << log;
+  auto picture = readPng(dir + "/drag.png");
+  ASSERT_TRUE(picture.has_value());
+  const auto background = picture->at(0, 0);
+  size_t covered = 0;
+  for (int y = 0; y < picture->height; ++y)
+    for (int x = 0; x < picture->width; ++x) covered += differ(picture->at(x, y), background);
+  EXPECT_GT(covered, static_cast<size_t>(picture->width * picture->height / 20))
+      << "the surface is not visible";
+}
+
 }  // namespace
 }  // namespace tessera

@@ -388,6 +388,62 @@ test('a large document\'s first picture is its preview, alone and a few kilobyte
 // A morph document (PROTOCOL.md section 14) is shown with the profile even
 // by default: its time, morph_t, is a profile field. The page finds it out
 // before it subscribes (docs/WEB_VIEWER.md "Views").
+test('a catmull-clark document is shown with quad lattice ids, hashed like the server; C, V and a drag edit it', { skip }, async () => {
+  // The cube as six quads at "fine" (max level 4): one region per base quad,
+  // each carrying quad lattice ids (docs/PROTOCOL.md 6.2), which the
+  // surface hash covers.
+  const quads = await createMesh(admin, new URL('../../../deploy/samples/quad_cube.obj', import.meta.url).pathname, 4);
+  await grant(admin, EDITOR, 2, quads);
+  const page = await openPage(browser, `${base}/?doc=${quads}&name=quads&lod=fine#token=${EDITOR}`);
+  await readyWithRole(page);
+  const s0 = await state(page);
+  assert.equal(s0.views, false);
+  assert.equal(s0.hashMatches, true);
+  assert.ok(s0.triangles > 100 && s0.regions === 6, JSON.stringify(s0));
+  const click = async (id) => {
+    const p = await page.evaluate((i) => window.tesseraViewer.screenPointOfVertex(i), id);
+    await page.mouse.click(p.x, p.y);
+  };
+  // Faces (0 3 2 1) then (4 5 6 7) number the base edges (0,3), (3,2),
+  // (2,1), (1,0), (4,5), (5,6): e5 joins the top corners 5 and 6, its
+  // vertex is v1:(V + F + 5) = v1:19, and its half at vertex 6 joins v1:6
+  // and v1:19 (docs/ARCHITECTURE.md "The quad split").
+  await click('v1:6');
+  await click('v1:19');
+  await page.waitForFunction(() => window.tesseraViewer.state().picked.length === 2);
+  assert.deepEqual((await state(page)).picked, ['v1:6', 'v1:19']);
+  await page.keyboard.press('c');
+  await page.waitForFunction((n) => { const s = window.tesseraViewer.state(); return s.version > n || s.error !== ''; }, { timeout: 15000 }, s0.version);
+  const afterC = await state(page);
+  assert.equal(afterC.error, '');
+  assert.equal(afterC.version, s0.version + 1);
+  await page.keyboard.press('v');
+  await page.waitForFunction((n) => window.tesseraViewer.state().version > n, { timeout: 15000 }, afterC.version);
+  await page.waitForFunction(() => window.tesseraViewer.state().hashMatches, { timeout: 15000 });
+  const afterV = await state(page);
+  assert.notEqual(afterV.surfaceHash, s0.surfaceHash);
+
+  const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
+  await page.mouse.move(v.x, v.y);
+  await page.mouse.down();
+  for (let i = 1; i <= 6; ++i) {
+    await page.mouse.move(v.x + 3 * i, v.y - 5 * i);
+    await new Promise((r) => setTimeout(r, 45));
+  }
+  await page.mouse.up();
+  await page.waitForFunction((n) => {
+    const s = window.tesseraViewer.state();
+    return s.editsSent > 2 && s.version > n && s.awaitingAnswers === 0 && s.hashMatches;
+  }, { timeout: 20000 }, afterV.version);
+  const dragged = await state(page);
+  console.log(`catmull-clark quad cube: ${s0.triangles} triangles, ${s0.regions} regions; ${dragged.editsSent} edits, v${s0.version} -> v${dragged.version}`);
+  assert.equal(dragged.editsRejected, 0);
+  assert.notEqual(dragged.surfaceHash, afterV.surfaceHash);
+  assert.equal(dragged.surfaceHash, dragged.serverSurfaceHash);
+  assert.deepEqual(page.problems, []);
+  await page.close();
+});
+
 test('a morph document opened without ?views= or ?lod= is shown with the profile', { skip }, async () => {
   const morph = await createCube(admin, 4);
   // Key 1: the cube with its corner (1, 1, 1) pulled in.

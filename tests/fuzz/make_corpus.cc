@@ -8,6 +8,7 @@
 //
 // The output is deterministic, so re-running it changes nothing unless an
 // encoder changed (then the corpus should follow, and be committed).
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -297,6 +298,33 @@ void frames() {
   write("frame_decoder", "server_stream", std::string("\x25\x0c", 2) + server);
 }
 
+// Regions of a Catmull-Clark document (the cube as six quads, a level-1
+// vertex moved): one per base quad at max level 4, their ids on the quad's
+// lattice (flag 8, region_lattice.h).
+void quadRegions() {
+  PolyTopology quads;
+  quads.numVertices = 8;
+  for (const auto& face : {std::array{0, 3, 2, 1}, std::array{4, 5, 6, 7}, std::array{0, 1, 5, 4},
+                           std::array{1, 2, 6, 5}, std::array{2, 3, 7, 6}, std::array{3, 0, 4, 7}})
+    quads.addFace(face);
+  const std::vector<Vec3> points = creasedCube().positions();
+  Document doc = value(
+      Document::create(std::move(quads), points, {.maxLevel = 4, .scheme = DocumentScheme::kCatmullClark}),
+      "catmull-clark cube");
+  const VertexId moved(1, 9);
+  value(doc.moveBy(std::span(&moved, 1), Vec3(0.05, 0.1, -0.02)), "offset");
+  const QuantizationGrid grid = value(documentGrid(doc), "grid");
+  const LodProfile profile{.baseLevel = 1, .maxLevel = 4, .angleThresholdDegrees = 15};
+  Tessellation t = value(Tessellation::build(doc, profile), "tessellation");
+  int n = 0;
+  for (const auto& [id, mesh] : t.regions()) {
+    if (n++ == 2) break;
+    RegionHeader header{id, 2, 2, profile, grid, true};
+    header.frame = value(regionFrame(doc.hierarchy(), doc.counts(), FaceId::fromPacked(id)), "quad frame");
+    write("region_decoder", "quad_lattice_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+  }
+}
+
 // Cameras around the creased cube (view_selection): a far and a near one,
 // an orthographic one, and refused ones (NaN, zero viewport, tolerance 0).
 void views() {
@@ -345,6 +373,7 @@ int main(int argc, char** argv) {
   tessera::fuzz::documents();
   tessera::fuzz::journals();
   tessera::fuzz::regions();
+  tessera::fuzz::quadRegions();
   tessera::fuzz::hostSessions();
   tessera::fuzz::frames();
   tessera::fuzz::views();

@@ -244,7 +244,8 @@ void expectSameSurfaceOnTwoFreshServers(const std::string& generateOptions, cons
 }
 
 TEST(ReplayRun, ReplayingOnTwoFreshServersGivesTheSameSurfaceHash) {
-  expectSameSurfaceOnTwoFreshServers("--editors 3 --rate 20 --seconds 1 --seed 42 --profile 2,5,10", "", "60");
+  expectSameSurfaceOnTwoFreshServers("--editors 3 --rate 20 --seconds 1 --seed 42 --profile 2,5,10", "",
+                                     "60");
 }
 
 // The same on a Catmull-Clark document (the cube as six quads; its level 1

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <map>
 #include <random>
@@ -16,6 +17,7 @@
 #include "core/document/document.h"
 #include "core/document/document_file.h"
 #include "core/morph/keyed_document.h"
+#include "core/schemes/polygon_reader.h"
 #include "support/polygon_meshes.h"
 #include "support/procedural_meshes.h"
 
@@ -293,6 +295,68 @@ TEST(CatmarkDocument, WhatOnlyLoopDefinesIsRefusedByName) {
             std::string::npos)
       << limit.status().message();
   EXPECT_TRUE(mixed->surface(1, SurfaceKind::kLimit).isOk());
+}
+
+// A polygon file as a client sends it, mutated (digits changed, lines
+// dropped or repeated, a face's index replaced): the polygon import and a
+// Catmull-Clark document of what it lets through either refuse with an error
+// that is not internal, or give a document whose limit surface at level 2
+// evaluates. The same path as a CreateDocument with faces that are not
+// triangles (server/document/mesh_intake.cc).
+TEST(CatmarkDocument, MutatedPolygonFilesAreRefusedOrBecomeDocuments) {
+  std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\nv 0.5 0.5 1.4\n"
+      "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\nf 5 6 9\nf 6 7 9\nf 7 8 9\nf 8 5 9\n"
+      "t crease 2/1/0 5 6 1.5\nt corner 1/1/0 0 2\n";
+  std::mt19937 rng(5);
+  int documents = 0, refused = 0;
+  for (int i = 0; i < 3000; ++i) {
+    std::vector<std::string> lines;
+    for (size_t at = 0, next; at < obj.size(); at = next + 1) {
+      next = obj.find('\n', at);
+      lines.push_back(obj.substr(at, next - at));
+    }
+    for (int k = 0; k < 1 + static_cast<int>(rng() % 3); ++k) {
+      std::string& line = lines[rng() % lines.size()];
+      switch (rng() % 4) {
+        case 0:  // a digit changed
+          for (char& c : line)
+            if (std::isdigit(static_cast<unsigned char>(c)) && rng() % 3 == 0)
+              c = static_cast<char>('0' + rng() % 10);
+          break;
+        case 1:  // a line dropped
+          line.clear();
+          break;
+        case 2:  // a line repeated
+          lines.push_back(line);
+          break;
+        default:  // a face's corner repeated or a vertex index out of range
+          if (line.starts_with("f ")) line += rng() % 2 ? " 1" : " 12";
+      }
+    }
+    std::string text;
+    for (const std::string& line : lines) text += line + "\n";
+    auto mesh = schemes::importPolygonMeshFromBytes(text, ".obj", "mutated.obj");
+    if (!mesh.isOk()) {
+      EXPECT_NE(mesh.status().code(), ErrorCode::kInternal) << mesh.status().toString();
+      EXPECT_NE(mesh.status().message().find("mutated.obj"), std::string::npos) << mesh.status().message();
+      ++refused;
+      continue;
+    }
+    auto doc = Document::create(std::move(mesh->topology), std::move(mesh->points), catmark({}, 0));
+    if (!doc.isOk()) {
+      EXPECT_NE(doc.status().code(), ErrorCode::kInternal) << doc.status().toString() << "\n" << text;
+      ++refused;
+      continue;
+    }
+    auto limit = doc->surface(2, SurfaceKind::kLimit);
+    EXPECT_TRUE(limit.isOk() || limit.status().code() != ErrorCode::kInternal) << limit.status().toString();
+    ++documents;
+  }
+  EXPECT_GT(documents, 300);
+  EXPECT_GT(refused, 300);
+  std::printf("[ measured ] 3000 mutated polygon files: %d documents, %d refused by name\n", documents,
+              refused);
 }
 
 }  // namespace

@@ -6,6 +6,11 @@ namespace tessera {
 
 Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKey& tile) {
   if (!tree.contains(tile)) return notFound(tile.toString() + " is not a tile of this document");
+  // The tree follows the quad split, but a tile's triangles and its error
+  // bound (tile_error.h) are Loop's (docs/LIMITS.md, "Catmull-Clark
+  // documents").
+  if (doc.counts().quads())
+    return unsupported(tile.toString() + ": tiles of catmull-clark documents are not built");
   if (tile.level > doc.counts().maxLevel()) {
     return invalidArgument(tile.toString() + " is deeper than the document's level " +
                            std::to_string(doc.counts().maxLevel()));

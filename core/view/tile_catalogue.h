@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <span>
+#include <variant>
 
 #include "core/document/document.h"
 #include "core/tessellation/region_codec.h"
@@ -31,7 +32,10 @@ struct Tile {
 class TileCatalogue {
  public:
   explicit TileCatalogue(Document& doc)
-      : doc_(doc), tree_(TileTree::build(doc.baseTopology(), doc.counts(), doc.counts().maxLevel())) {}
+      : doc_(doc),
+        tree_(std::visit(
+            [&](const auto& base) { return TileTree::build(base, doc.counts(), doc.counts().maxLevel()); },
+            doc.base())) {}
 
   const TileTree& tree() const { return tree_; }
   const Document& document() const { return doc_; }

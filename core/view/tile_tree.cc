@@ -43,7 +43,8 @@ TileKey TileKey::fromRegionId(uint64_t id) {
   return {FaceId::fromPacked(id).level() + kTileDepth, id};
 }
 
-TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, int maxLevel) {
+template <typename Base>
+TileTree TileTree::buildOver(const Base& base, const LevelCounts& counts, int maxLevel) {
   TileTree t;
   t.maxLevel_ = maxLevel;
   t.counts_ = counts;
@@ -62,6 +63,14 @@ TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, in
     }
   }
   return t;
+}
+
+TileTree TileTree::build(const BaseTopology& base, const LevelCounts& counts, int maxLevel) {
+  return buildOver(base, counts, maxLevel);
+}
+
+TileTree TileTree::build(const PolyTopology& base, const LevelCounts& counts, int maxLevel) {
+  return buildOver(base, counts, maxLevel);
 }
 
 std::vector<TileKey> TileTree::roots() const {
@@ -88,8 +97,8 @@ std::vector<TileKey> TileTree::children(const TileKey& tile) const {
     if (next == kTileDepth) {
       out.push_back({next, f.packed()});  // the cluster's faces, each a tile
     } else {
-      for (uint64_t k = 0; k < 4; ++k)
-        out.push_back({next, FaceId(f.level() + 1, 4 * f.index() + k).packed()});
+      const auto [first, last] = counts_.descendantsAt(f, f.level() + 1);
+      for (uint64_t k = first; k < last; ++k) out.push_back({next, FaceId(f.level() + 1, k).packed()});
     }
   }
   return out;
@@ -102,7 +111,7 @@ TileKey TileTree::parent(const TileKey& tile) const {
   // level above that holds its seed face; a deeper face's, its parent face.
   if (tile.level <= kTileDepth)
     return {tile.level - 1, clusterSeed(tile.level - 1, static_cast<int>(f.index()))};
-  return {tile.level - 1, FaceId(f.level() - 1, f.index() >> 2).packed()};
+  return {tile.level - 1, counts_.parentFace(f).packed()};
 }
 
 std::vector<FaceId> TileTree::rootFaces(const TileKey& tile) const {
@@ -117,9 +126,8 @@ std::vector<FaceId> TileTree::rootFaces(const TileKey& tile) const {
 std::vector<FaceId> TileTree::facesShown(const TileKey& tile) const {
   std::vector<FaceId> out;
   for (const FaceId& root : rootFaces(tile)) {
-    const int depth = tile.level - root.level();
-    const uint64_t n = uint64_t{1} << (2 * depth);
-    for (uint64_t k = 0; k < n; ++k) out.push_back(FaceId(tile.level, (root.index() << (2 * depth)) + k));
+    const auto [first, last] = counts_.descendantsAt(root, tile.level);
+    for (uint64_t k = first; k < last; ++k) out.push_back(FaceId(tile.level, k));
   }
   return out;
 }

@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/hierarchy/ids.h"
 #include "core/tessellation/base_face_clusters.h"
 
@@ -52,8 +53,11 @@ struct TileKey {
 
 class TileTree {
  public:
-  // Tiles of levels 0..maxLevel over `base`.
+  // Tiles of levels 0..maxLevel over `base`: triangles of Loop's split, or
+  // polygons of the quad split (a face's children and descendants follow
+  // `counts`, docs/ARCHITECTURE.md "The quad split").
   static TileTree build(const BaseTopology& base, const LevelCounts& counts, int maxLevel);
+  static TileTree build(const PolyTopology& base, const LevelCounts& counts, int maxLevel);
 
   int maxLevel() const { return maxLevel_; }
   std::vector<TileKey> roots() const;
@@ -74,6 +78,9 @@ class TileTree {
   uint64_t clusterSeed(int level, int face) const;
 
  private:
+  template <typename Base>
+  static TileTree buildOver(const Base& base, const LevelCounts& counts, int maxLevel);
+
   int maxLevel_ = 0;
   LevelCounts counts_{0, 0, 0, 0};
   std::vector<BaseFaceClusters> clusters_;  // levels 0..min(4, maxLevel)

@@ -16,6 +16,7 @@
 #include "core/tessellation/tessellation.h"
 #include "core/view/tile_builder.h"
 #include "core/view/tile_tree.h"
+#include "support/polygon_meshes.h"
 #include "support/procedural_meshes.h"
 #include "support/test_meshes.h"
 
@@ -78,6 +79,55 @@ TEST(TileTree, EveryLevelCoversTheSurfaceOnceAndChildrenCoverTheirParent) {
   EXPECT_TRUE(tree.children({7, FaceId(2, 0).packed()}).empty()) << "no children at the deepest level";
   EXPECT_FALSE(tree.contains({0, FaceId(0, 1).packed()})) << "face 1 is no cluster's seed at level 0";
   EXPECT_FALSE(tree.contains({8, FaceId(3, 0).packed()}));
+}
+
+// The same tree on the quad split (a Catmull-Clark document of triangles,
+// quads and n-gons, closed and open): every level's tiles show every face of
+// that level exactly once, a tile's children show exactly its faces' child
+// faces (n for a base n-gon, 4 below), and each child's parent is the tile.
+// Tiles of such documents are not built yet, and say so.
+TEST(TileTree, OnTheQuadSplitEveryLevelCoversEveryFaceOnceAndChildrenTheirParent) {
+  for (const testing::PolyTestMesh& mesh : {testing::mixedPrism(6, false), testing::mixedPrism(5, true),
+                                            testing::withPolyJitter(testing::quadTorus(12, 8), 0.05, 3)}) {
+    constexpr int kDeepest = 6;
+    auto doc = Document::create(mesh.topology, mesh.points,
+                                {.maxLevel = kDeepest, .scheme = DocumentScheme::kCatmullClark});
+    ASSERT_TRUE(doc.isOk()) << doc.status().message();
+    const LevelCounts& counts = doc->counts();
+    const TileTree tree = TileTree::build(std::get<PolyTopology>(doc->base()), counts, kDeepest);
+    std::vector<TileKey> level = tree.roots();
+    for (int l = 0; l <= kDeepest; ++l) {
+      std::vector<int> shownTimes(counts.faces(l), 0);
+      std::vector<TileKey> next;
+      for (const TileKey& t : level) {
+        ASSERT_TRUE(tree.contains(t)) << mesh.name << " " << t.toString();
+        ASSERT_EQ(t.level, l);
+        const auto shown = tree.facesShown(t);
+        for (const FaceId& f : shown) {
+          ASSERT_EQ(f.level(), l);
+          ++shownTimes.at(f.index());
+        }
+        if (l == kDeepest) continue;
+        std::set<uint64_t> oneFiner;
+        for (const FaceId& f : shown)
+          for (int k = 0; k < (l == 0 ? counts.faceSize(f) : 4); ++k)
+            oneFiner.insert(counts.childFace(f, k).packed());
+        std::set<uint64_t> childrenShown;
+        for (const TileKey& c : tree.children(t)) {
+          EXPECT_EQ(tree.parent(c), t) << mesh.name << " " << c.toString();
+          for (const FaceId& f : tree.facesShown(c)) EXPECT_TRUE(childrenShown.insert(f.packed()).second);
+          next.push_back(c);
+        }
+        ASSERT_EQ(childrenShown, oneFiner) << mesh.name << " " << t.toString();
+      }
+      for (uint64_t f = 0; f < counts.faces(l); ++f)
+        ASSERT_EQ(shownTimes[f], 1) << mesh.name << " face " << FaceId(l, f).toString();
+      if (l < kDeepest) level = std::move(next);
+    }
+    auto built = buildTile(*doc, tree, tree.roots().front());
+    EXPECT_EQ(built.status().code(), ErrorCode::kUnsupported);
+    EXPECT_NE(built.status().message().find("catmull-clark"), std::string::npos) << built.status().message();
+  }
 }
 
 // (vertex ids of the corners, in order) -> positions and normals, bitwise.

@@ -252,6 +252,52 @@ std::vector<std::pair<std::string, std::string>> surfaceHashes(const std::string
   return out;
 }
 
+// tessera-view --edit-keys on `doc`: level-1 control vertices over a
+// uniform level-2 tessellation, a bounded run writing dir/keys.png; its exit
+// code and log.
+std::pair<int, std::string> runEditKeys(const testing::ServerProcess& server, uint64_t doc,
+                                        const std::string& dir) {
+  const int rc = runBounded({TESSERA_VIEW_PATH,
+                             "--connect",
+                             "127.0.0.1:" + std::to_string(server.port()),
+                             "--token",
+                             server.adminToken(),
+                             "--document",
+                             std::to_string(doc),
+                             "--base-level",
+                             "2",
+                             "--max-level",
+                             "2",
+                             "--level",
+                             "1",
+                             "--edit-keys",
+                             "--screenshot",
+                             dir + "/keys.png",
+                             "--frames",
+                             "3",
+                             "--no-hud",
+                             "--timeout",
+                             "30"},
+                            headlessEnvironment(), dir + "/keys.log", 60);
+  return {rc, testing::fileBytes(dir + "/keys.log")};
+}
+
+// The sharpness keys' hashes, "start" first: E, 2 and K each change the
+// surface, three undos step back exactly, redo brings the sharp edge back.
+void expectSharpnessKeys(const std::vector<std::pair<std::string, std::string>>& h, const std::string& log) {
+  const std::vector<std::string> names = {"start", "E", "2", "K", "undo", "undo", "undo", "redo"};
+  ASSERT_EQ(h.size(), names.size()) << log;
+  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
+  EXPECT_NE(h[1].second, h[0].second) << "E did not change the surface: " << log;
+  EXPECT_NE(h[2].second, h[1].second) << "2 gave the same surface as E (+inf): " << log;
+  EXPECT_NE(h[2].second, h[0].second) << "2 gave the smooth surface: " << log;
+  EXPECT_NE(h[3].second, h[2].second) << "K did not change the surface: " << log;
+  EXPECT_EQ(h[4].second, h[2].second) << "the first undo did not take back K alone: " << log;
+  EXPECT_EQ(h[5].second, h[1].second) << "the second undo did not take back 2: " << log;
+  EXPECT_EQ(h[6].second, h[0].second) << "the third undo did not restore the surface: " << log;
+  EXPECT_EQ(h[7].second, h[1].second) << "redo did not bring the sharp edge back: " << log;
+}
+
 // --edit-keys: the I, =, E, 2, K, Ctrl+Z and Ctrl+Y keys go through the
 // viewer's own key handling. I makes the vertex picked by click interpolating
 // (docs/INTERPOLATION.md) and = doubles its tension, each changing the surface; I again
@@ -269,29 +315,7 @@ TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   // Level-1 control vertices over a uniform level-2 tessellation: a sharp
   // level-1 edge changes the level-2 vertex on it. (At the displayed level a
   // lone sharp edge changes no limit position: both its ends are darts.)
-  const int rc = runBounded({TESSERA_VIEW_PATH,
-                             "--connect",
-                             "127.0.0.1:" + std::to_string(server->port()),
-                             "--token",
-                             server->adminToken(),
-                             "--document",
-                             std::to_string(doc),
-                             "--base-level",
-                             "2",
-                             "--max-level",
-                             "2",
-                             "--level",
-                             "1",
-                             "--edit-keys",
-                             "--screenshot",
-                             dir + "/keys.png",
-                             "--frames",
-                             "3",
-                             "--no-hud",
-                             "--timeout",
-                             "30"},
-                            headlessEnvironment(), dir + "/view.log", 60);
-  const std::string log = testing::fileBytes(dir + "/view.log");
+  const auto [rc, log] = runEditKeys(*server, doc, dir);
   ASSERT_EQ(rc, 0) << log;
   EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;
   EXPECT_NE(log.find("10 edits sent, 0 rejected"), std::string::npos) << log;
@@ -302,19 +326,10 @@ TEST(View, HeadlessEditKeysSharpenAnEdgeAndUndoRestoresTheSurface) {
   EXPECT_NE(all[1].second, all[0].second) << "I did not change the surface: " << log;
   EXPECT_NE(all[2].second, all[1].second) << "= did not change the surface: " << log;
   EXPECT_EQ(all[3].second, all[0].second) << "I again did not bring plain Loop back: " << log;
-  // From here on, the sharpness keys as before ("start" is plain Loop again).
+  // From here on, the sharpness keys ("start" is plain Loop again).
   std::vector<std::pair<std::string, std::string>> h = {all[0]};
   h.insert(h.end(), all.begin() + 4, all.end());
-  const std::vector<std::string> names = {"start", "E", "2", "K", "undo", "undo", "undo", "redo"};
-  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
-  EXPECT_NE(h[1].second, h[0].second) << "E did not change the surface: " << log;
-  EXPECT_NE(h[2].second, h[1].second) << "2 gave the same surface as E (+inf): " << log;
-  EXPECT_NE(h[2].second, h[0].second) << "2 gave the smooth surface: " << log;
-  EXPECT_NE(h[3].second, h[2].second) << "K did not change the surface: " << log;
-  EXPECT_EQ(h[4].second, h[2].second) << "the first undo did not take back K alone: " << log;
-  EXPECT_EQ(h[5].second, h[1].second) << "the second undo did not take back 2: " << log;
-  EXPECT_EQ(h[6].second, h[0].second) << "the third undo did not restore the surface: " << log;
-  EXPECT_EQ(h[7].second, h[1].second) << "redo did not bring the sharp edge back: " << log;
+  expectSharpnessKeys(h, log);
   EXPECT_NE(log.find("document version 11,"), std::string::npos) << "ten keys, ten versions: " << log;
 }
 
@@ -345,46 +360,19 @@ TEST(View, HeadlessPickCreaseCornerAndDragOnACatmullClarkDocument) {
   ASSERT_TRUE(created.isOk()) << created.status().message();
   const std::string doc = std::to_string(*created);
   const std::string connect = "127.0.0.1:" + std::to_string(server->port());
-  int rc = runBounded({TESSERA_VIEW_PATH,
-                       "--connect",
-                       connect,
-                       "--token",
-                       server->adminToken(),
-                       "--document",
-                       doc,
-                       "--base-level",
-                       "2",
-                       "--max-level",
-                       "2",
-                       "--level",
-                       "1",
-                       "--edit-keys",
-                       "--screenshot",
-                       dir + "/keys.png",
-                       "--frames",
-                       "3",
-                       "--no-hud",
-                       "--timeout",
-                       "30"},
-                      headlessEnvironment(), dir + "/keys.log", 60);
-  std::string log = testing::fileBytes(dir + "/keys.log");
+  auto [rc, log] = runEditKeys(*server, *created, dir);
   ASSERT_EQ(rc, 0) << log;
   EXPECT_NE(log.find("keys: edge v1:"), std::string::npos) << log;
   EXPECT_NE(log.find("10 edits sent, 3 rejected"), std::string::npos) << log;
-  auto h = surfaceHashes(log);
-  const std::vector<std::string> names = {"start", "I",    "tighter", "I-off", "E",   "2",
-                                          "K",     "undo", "undo",    "undo",  "redo"};
-  ASSERT_EQ(h.size(), names.size()) << log;
-  for (size_t i = 0; i < names.size(); ++i) EXPECT_EQ(h[i].first, names[i]) << log;
+  auto all = surfaceHashes(log);
+  ASSERT_EQ(all.size(), 11u) << log;
+  const std::vector<std::string> first = {"start", "I", "tighter", "I-off"};
+  for (size_t i = 0; i < first.size(); ++i) EXPECT_EQ(all[i].first, first[i]) << log;
   for (size_t i : {1, 2, 3})
-    EXPECT_EQ(h[i].second, h[0].second) << h[i].first << " changed the surface: " << log;
-  EXPECT_NE(h[4].second, h[0].second) << "E did not change the surface: " << log;
-  EXPECT_NE(h[5].second, h[4].second) << "2 gave the same surface as E (+inf): " << log;
-  EXPECT_NE(h[6].second, h[5].second) << "K did not change the surface: " << log;
-  EXPECT_EQ(h[7].second, h[5].second) << "the first undo did not take back K alone: " << log;
-  EXPECT_EQ(h[8].second, h[4].second) << "the second undo did not take back 2: " << log;
-  EXPECT_EQ(h[9].second, h[0].second) << "the third undo did not restore the surface: " << log;
-  EXPECT_EQ(h[10].second, h[4].second) << "redo did not bring the sharp edge back: " << log;
+    EXPECT_EQ(all[i].second, all[0].second) << all[i].first << " changed the surface: " << log;
+  std::vector<std::pair<std::string, std::string>> h = {all[0]};
+  h.insert(h.end(), all.begin() + 4, all.end());
+  expectSharpnessKeys(h, log);
   EXPECT_NE(log.find("document version 8,"), std::string::npos) << "seven accepted keys: " << log;
 
   rc = runBounded({TESSERA_VIEW_PATH,

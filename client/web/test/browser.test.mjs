@@ -221,23 +221,17 @@ test('picks travel both ways through presence', { skip }, async () => {
   await page.close();
 });
 
-test('C creases the edge of the last two picks, V makes a corner, W and R redraw, the LOD selector resubscribes', { skip }, async () => {
-  // A profile: the LOD selector is disabled with a view.
-  const page = await openPage(browser, docUrl(EDITOR, '&name=keys&lod=balanced'));
-  await readyWithRole(page);
-  const click = async (id) => {
+// Picks vertices a and b by clicking where the page draws them, C creases
+// the edge they name (one new version, no error), then V makes the last
+// pick a corner (another version).
+async function creaseThenCorner(page, a, b) {
+  const s0 = await state(page);
+  for (const id of [a, b]) {
     const p = await page.evaluate((i) => window.tesseraViewer.screenPointOfVertex(i), id);
     await page.mouse.click(p.x, p.y);
-  };
-  const s0 = await state(page);
-  // Base edge (5, 6) of the cube (the top rim's edge from (1, 0, 1) to
-  // (1, 1, 1)) is e6 in the scan of 3.2 (triangles (0 2 1), (0 3 2),
-  // (4 5 6): e0..e6), so its midpoint is v1:(8 + 6) and its half at vertex 6
-  // joins v1:6 and v1:14 at level 1.
-  await click('v1:6');
-  await click('v1:14');
+  }
   await page.waitForFunction(() => window.tesseraViewer.state().picked.length === 2);
-  assert.deepEqual((await state(page)).picked, ['v1:6', 'v1:14']);
+  assert.deepEqual((await state(page)).picked, [a, b]);
   await page.keyboard.press('c');
   await page.waitForFunction((n) => { const s = window.tesseraViewer.state(); return s.version > n || s.error !== ''; }, { timeout: 15000 }, s0.version);
   const afterC = await state(page);
@@ -245,6 +239,17 @@ test('C creases the edge of the last two picks, V makes a corner, W and R redraw
   assert.equal(afterC.version, s0.version + 1);
   await page.keyboard.press('v');
   await page.waitForFunction((n) => window.tesseraViewer.state().version > n, { timeout: 15000 }, afterC.version);
+}
+
+test('C creases the edge of the last two picks, V makes a corner, W and R redraw, the LOD selector resubscribes', { skip }, async () => {
+  // A profile: the LOD selector is disabled with a view.
+  const page = await openPage(browser, docUrl(EDITOR, '&name=keys&lod=balanced'));
+  await readyWithRole(page);
+  // Base edge (5, 6) of the cube (the top rim's edge from (1, 0, 1) to
+  // (1, 1, 1)) is e6 in the scan of 3.2 (triangles (0 2 1), (0 3 2),
+  // (4 5 6): e0..e6), so its midpoint is v1:(8 + 6) and its half at vertex 6
+  // joins v1:6 and v1:14 at level 1.
+  await creaseThenCorner(page, 'v1:6', 'v1:14');
   assert.equal((await state(page)).hashMatches, true);
 
   const plain = await screenshot(page);
@@ -400,25 +405,11 @@ test('a catmull-clark document is shown with quad lattice ids, hashed like the s
   assert.equal(s0.views, false);
   assert.equal(s0.hashMatches, true);
   assert.ok(s0.triangles > 100 && s0.regions === 6, JSON.stringify(s0));
-  const click = async (id) => {
-    const p = await page.evaluate((i) => window.tesseraViewer.screenPointOfVertex(i), id);
-    await page.mouse.click(p.x, p.y);
-  };
   // Faces (0 3 2 1) then (4 5 6 7) number the base edges (0,3), (3,2),
   // (2,1), (1,0), (4,5), (5,6): e5 joins the top corners 5 and 6, its
   // vertex is v1:(V + F + 5) = v1:19, and its half at vertex 6 joins v1:6
   // and v1:19 (docs/ARCHITECTURE.md "The quad split").
-  await click('v1:6');
-  await click('v1:19');
-  await page.waitForFunction(() => window.tesseraViewer.state().picked.length === 2);
-  assert.deepEqual((await state(page)).picked, ['v1:6', 'v1:19']);
-  await page.keyboard.press('c');
-  await page.waitForFunction((n) => { const s = window.tesseraViewer.state(); return s.version > n || s.error !== ''; }, { timeout: 15000 }, s0.version);
-  const afterC = await state(page);
-  assert.equal(afterC.error, '');
-  assert.equal(afterC.version, s0.version + 1);
-  await page.keyboard.press('v');
-  await page.waitForFunction((n) => window.tesseraViewer.state().version > n, { timeout: 15000 }, afterC.version);
+  await creaseThenCorner(page, 'v1:6', 'v1:19');
   await page.waitForFunction(() => window.tesseraViewer.state().hashMatches, { timeout: 15000 });
   const afterV = await state(page);
   assert.notEqual(afterV.surfaceHash, s0.surfaceHash);

@@ -13,7 +13,7 @@
 # Settings: TESSERA_DATA (default tessera-data), TESSERA_PORT (default 7878),
 # TESSERA_WEB_PORT (default 7879), TESSERA_SAMPLE: cube (the default: the
 # creased cube of triangles, a Loop document) or quads (the same cube as six
-# quads, a Catmull-Clark document, shown by profile: views are Loop's only).
+# quads, a Catmull-Clark document).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 data="${TESSERA_DATA:-tessera-data}"
@@ -21,9 +21,8 @@ port="${TESSERA_PORT:-7878}"
 web_port="${TESSERA_WEB_PORT:-7879}"
 sample="${TESSERA_SAMPLE:-cube}"
 case "$sample" in
-  cube) sample_args=(deploy/samples/cube.obj --scheme loop); session=deploy/samples/session.txt; shown=() ;;
-  quads) sample_args=(deploy/samples/quad_cube.obj --scheme catmull-clark); session=deploy/samples/session_quads.txt
-         shown=(--profile) ;;
+  cube) sample_args=(deploy/samples/cube.obj --scheme loop); session=deploy/samples/session.txt ;;
+  quads) sample_args=(deploy/samples/quad_cube.obj --scheme catmull-clark); session=deploy/samples/session_quads.txt ;;
   *) echo "TESSERA_SAMPLE: cube or quads, not '$sample'" >&2; exit 2 ;;
 esac
 
@@ -55,7 +54,7 @@ if [ -z "$doc" ]; then
   echo "created document $doc"
   fresh=1
 fi
-view=("$viewer" --connect "127.0.0.1:$port" --token-file "$token_file" --document "$doc" "${shown[@]}")
+view=("$viewer" --connect "127.0.0.1:$port" --token-file "$token_file" --document "$doc")
 if [ -n "${DISPLAY:-}" ] && [ "${TESSERA_DEMO_ONLY:-0}" != 1 ]; then
   "${view[@]}" &  # watch the session's edits stream in
   sleep 2

@@ -56,11 +56,6 @@ int runDocView(const DocViewArgs& args) {
   }
   auto doc = loadDocument(args.document);
   if (!doc.isOk()) return fail("doc view", doc.status());
-  if (doc->scheme() != DocumentScheme::kLoop) {
-    return fail("doc view",
-                unsupported(args.document + ": view-dependent tiles of " + documentSchemeName(doc->scheme()) +
-                            " documents are not available yet"));
-  }
   Vec3 lo = doc->basePoints()[0], hi = lo;
   for (const Vec3& p : doc->basePoints())
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);

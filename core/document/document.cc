@@ -299,6 +299,18 @@ Expected<EditId> Document::moveToLimit(std::span<const VertexId> vertices, const
   const int level = vertices[0].level();
   TESSERA_RETURN_IF_ERROR(reserveVertices(vertices));
   TESSERA_ASSIGN_OR_RETURN(Index v, sparse_->completeVertex(vertices[0]));
+  if (!sparse_->hasLimits(level) && level < counts_.maxLevel()) {
+    // Its limit is its child's (SparseHierarchy::solveControlPoint): the
+    // hierarchy grows the children of the faces around it, as a view's
+    // growth would.
+    std::vector<FaceId> around;
+    for (Index f : sparse_->level(level).mesh.ringFacesOf(v)) {
+      if (f < 0) continue;
+      const FaceId face(level, sparse_->level(level).faceIds[f]);
+      for (int k = 0; k < counts_.faceSize(face); ++k) around.push_back(counts_.childFace(face, k));
+    }
+    sparse_->reserveFaces(around, edits_);
+  }
   const auto points = sparse_->points(level);
   // An interpolating vertex's limit is its control point (ghost_ring.h).
   const bool interpolates = interpolationOf(vertices[0]).has_value() &&

@@ -196,7 +196,28 @@ LimitFrame SparseHierarchy::limitFrameOf(int l, Index v) const {
 }
 
 Vec3 SparseHierarchy::solveControlPoint(int l, Index v, const Vec3& target) const {
-  return limitsOf(l).solveControlPoint(v, levels_[l].points, target);
+  const SparseLevel& parent = levels_[l].topo;
+  const Index c = hasLimits(l) || l + 1 >= numLevels() ? kNoIndex : parent.childOfVertex[v];
+  if (c == kNoIndex || !levels_[l + 1].topo.isComplete(c))
+    return limitsOf(l).solveControlPoint(v, levels_[l].points, target);
+  // The limit shown is the child's (displayed_vertices.h), read from level
+  // l + 1's points, each of which the split's stencils make affine in this
+  // control point: the limit moves by alpha times its displacement, with
+  // alpha the child's limit mask applied to the stencils' weights of it
+  // (both linear, so computed by applying them to a unit point). Exact
+  // while no offset of level l + 1 near the child turns with its frame
+  // (Pulli & Lounsbery §2.2 solve on the vertex's own level the same way).
+  const SparseLevel& child = levels_[l + 1].topo;
+  std::vector<Vec3> unit(static_cast<size_t>(parent.mesh.numVertices), Vec3(0, 0, 0));
+  unit[v] = Vec3(1, 0, 0);
+  ChildStencils stencils(parent, options_, counts_.split());
+  std::vector<Vec3> weights(static_cast<size_t>(child.mesh.numVertices), Vec3(0, 0, 0));
+  for (Index f : child.mesh.ringFacesOf(c)) {
+    if (f < 0) continue;
+    for (Index j : child.mesh.faceVerticesOf(f)) weights[j] = stencils.predict(child, j, unit);
+  }
+  const double alpha = limitsOf(l + 1).frame(c, weights).position[0];
+  return levels_[l].points[v] + (1.0 / alpha) * (target - levels_[l + 1].limitPosition[c]);
 }
 
 LevelLimits SparseHierarchy::limitsOf(int l) const {

@@ -107,6 +107,7 @@ class SparseHierarchy {
   int numLevels() const { return static_cast<int>(levels_.size()); }
   // Loop's triangle split or Catmull-Clark's quad split.
   bool quads() const { return counts_.quads(); }
+  const LevelCounts& counts() const { return counts_; }
   // How many children face f of level l has (firstChildFace onwards): four
   // triangles, or a quad per corner.
   int numChildFaces(int l, Index f) const { return quads() ? levels_[l].topo.mesh.faceSize(f) : 4; }
@@ -130,7 +131,10 @@ class SparseHierarchy {
   const Vec3& limitNormal(int l, Index vertex) const { return levels_[l].limitNormal[vertex]; }
   LimitFrame limitFrameOf(int l, Index vertex) const;
   // The control point of a complete vertex whose limit is `target`
-  // (level_limits.h: direct manipulation by the document's scheme).
+  // (level_limits.h: direct manipulation by the document's scheme). On a
+  // level without limits (a Catmull-Clark base with other polygons than
+  // quads) the vertex's limit is its child's on level l + 1, which must
+  // hold the child's ring (the document grows it there first).
   Vec3 solveControlPoint(int l, Index vertex, const Vec3& target) const;
   // The crease decay the limits follow (limit.h needs it for semi-sharp features).
   CreaseMethod creaseMethod() const { return options_.creaseMethod; }

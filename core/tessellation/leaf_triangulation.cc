@@ -109,13 +109,9 @@ void triangulateQuadLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int l
   const Level& m = h.level(l).mesh;
   const auto fv = m.faceVerticesOf(f);
   const auto fe = m.faceEdgesOf(f);
-  if (fv.size() != 4) {
-    // A base n-gon is a leaf only where a profile stops at level 0, with
-    // no finer neighbour: a fan.
-    for (size_t k = 1; k + 1 < fv.size(); ++k)
-      out.push_back({VertexRef{l, fv[0]}, {l, fv[k]}, {l, fv[k + 1]}});
-    return;
-  }
+  // A base n-gon is a leaf only where a profile stops at level 0, with no
+  // finer neighbour: shown whole.
+  if (fv.size() != 4) return triangulateFace(h, l, f, out);
   std::array<VertexRef, 4> corners;
   std::array<Points, 4> sides;
   for (int j = 0; j < 4; ++j) {
@@ -128,6 +124,12 @@ void triangulateQuadLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int l
 }
 
 }  // namespace
+
+void triangulateFace(const SparseHierarchy& h, int l, Index f, std::vector<RefTriangle>& out) {
+  const auto fv = h.level(l).mesh.faceVerticesOf(f);
+  // A quad's fan from corner 0 is its first diagonal (coverQuad).
+  for (size_t k = 1; k + 1 < fv.size(); ++k) out.push_back({VertexRef{l, fv[0]}, {l, fv[k]}, {l, fv[k + 1]}});
+}
 
 void triangulateLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int l, Index f,
                      std::vector<RefTriangle>& out) {

@@ -32,4 +32,10 @@ using RefTriangle = std::array<VertexRef, 3>;
 void triangulateLeaf(const SparseHierarchy& h, const AdaptiveCut& cut, int level, Index face,
                      std::vector<RefTriangle>& out);
 
+// A face shown whole, with no finer point on its sides (a tile's faces,
+// core/view/tile_builder.h): the triangle itself; a quad's two triangles on
+// its first diagonal, corners 0, 1, 2 and 0, 2, 3, as a leaf's; a base
+// n-gon's fan from its first corner.
+void triangulateFace(const SparseHierarchy& h, int level, Index face, std::vector<RefTriangle>& out);
+
 }  // namespace tessera

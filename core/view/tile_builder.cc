@@ -1,16 +1,12 @@
 #include "core/view/tile_builder.h"
 
 #include "core/tessellation/displayed_vertices.h"
+#include "core/tessellation/leaf_triangulation.h"
 
 namespace tessera {
 
 Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKey& tile) {
   if (!tree.contains(tile)) return notFound(tile.toString() + " is not a tile of this document");
-  // The tree follows the quad split, but a tile's triangles and its error
-  // bound (tile_error.h) are Loop's (docs/LIMITS.md, "Catmull-Clark
-  // documents").
-  if (doc.counts().quads())
-    return unsupported(tile.toString() + ": tiles of catmull-clark documents are not built");
   if (tile.level > doc.counts().maxLevel()) {
     return invalidArgument(tile.toString() + " is deeper than the document's level " +
                            std::to_string(doc.counts().maxLevel()));
@@ -29,10 +25,8 @@ Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKe
       const Index local = h.level(tile.level).findFace(f.index());
       if (local == kNoIndex)
         return internalError(tile.toString() + ": the hierarchy does not hold " + f.toString());
-      const auto corners = h.level(tile.level).mesh.triangleVertices(local);
-      triangles.push_back({VertexRef{tile.level, corners[0]}, VertexRef{tile.level, corners[1]},
-                           VertexRef{tile.level, corners[2]}});
-      leaves.push_back({tile.level, local});
+      triangulateFace(h, tile.level, local, triangles);
+      leaves.resize(triangles.size(), VertexRef{tile.level, local});
     }
     std::vector<FaceId> growth;
     RegionMesh mesh = meshOfTriangles(h, doc.counts(), triangles, leaves, growth);

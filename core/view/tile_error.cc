@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 #include <unordered_map>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "core/loop/edge_child_limit.h"
+#include "core/render/surface_distance.h"
 #include "core/tessellation/displayed_vertices.h"
 
 namespace tessera {
@@ -35,7 +37,8 @@ struct DeepEdits {
 // within its 2-ring there, which lies inside the faces of level l that share
 // a vertex with the level-l ancestor of a face around it: so an edit counts
 // when that ancestor shares a vertex with a face shown.
-DeepEdits deepEditsNear(const SparseHierarchy& h, int l, std::span<const FaceId> faces) {
+DeepEdits deepEditsNear(const SparseHierarchy& h, const LevelCounts& counts, int l,
+                        std::span<const FaceId> faces) {
   DeepEdits out;
   // The deep edits first: without any (the common case) the faces'
   // neighbourhood is not needed.
@@ -56,7 +59,7 @@ DeepEdits deepEditsNear(const SparseHierarchy& h, int l, std::span<const FaceId>
   for (const FaceId& f : faces) {
     const Index local = level.findFace(f.index());
     if (local == kNoIndex) continue;
-    for (Index v : level.mesh.triangleVertices(local)) {
+    for (Index v : level.mesh.faceVerticesOf(local)) {
       for (Index g : level.mesh.ringFacesOf(v)) {
         if (g >= 0) near.push_back(level.faceIds[g]);
       }
@@ -68,7 +71,8 @@ DeepEdits deepEditsNear(const SparseHierarchy& h, int l, std::span<const FaceId>
     const SparseLevel& deep = h.level(e.level);
     for (Index g : deep.mesh.ringFacesOf(e.vertex)) {
       if (g < 0) continue;
-      if (!std::binary_search(near.begin(), near.end(), deep.faceIds[g] >> (2 * (e.level - l)))) break;
+      const uint64_t above = counts.ancestorAt(FaceId(e.level, deep.faceIds[g]), l).index();
+      if (!std::binary_search(near.begin(), near.end(), above)) break;
       if (e.offset) {
         out.offsets += std::abs((*e.offset)[0]) + std::abs((*e.offset)[1]) + std::abs((*e.offset)[2]);
       } else {
@@ -97,7 +101,9 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
   for (int round = 0; round <= kMaxDocumentLevel + 1; ++round) {
     const SparseHierarchy& h = doc.hierarchy();
     const SparseLevel& level = h.level(l);
-    EdgeChildLimits predicted(level.mesh, h.points(l), h.options());
+    // Loop's stencils predict the next level; the quad split's is read.
+    std::optional<EdgeChildLimits> predicted;
+    if (!h.quads()) predicted.emplace(level.mesh, h.points(l), h.options());
     std::vector<FaceId> growth;
     double worst = 0;
     auto limit = [&](int at, Index v) -> std::optional<Vec3> {
@@ -118,16 +124,18 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
     // which is then grown under the face (a face refined once one child is
     // demanded). The choice depends on the document alone, so a tile's
     // bounds do not depend on what the hierarchy happened to hold.
-    auto middle = [&](uint64_t face, Index e) -> std::optional<Vec3> {
-      if (h.edgeChildIsPredicted(l, e)) {
-        if (auto p = predicted.limit(e)) return p;
-      }
-      const Index m = l + 1 < h.numLevels() ? level.childOfEdge[e] : kNoIndex;
+    auto grownUnder = [&](uint64_t face, Index m) -> std::optional<Vec3> {
       if (m == kNoIndex) {
-        growth.push_back(FaceId(l + 1, 4 * face));
+        growth.push_back(doc.counts().childFace(FaceId(l, face), 0));
         return std::nullopt;
       }
       return limit(l + 1, m);
+    };
+    auto middle = [&](uint64_t face, Index e) -> std::optional<Vec3> {
+      if (predicted && h.edgeChildIsPredicted(l, e)) {
+        if (auto p = predicted->limit(e)) return p;
+      }
+      return grownUnder(face, l + 1 < h.numLevels() ? level.childOfEdge[e] : kNoIndex);
     };
     // Each edge once, with the first face of the tile on it (where its
     // child is grown if it must be).
@@ -137,7 +145,28 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
       const Index local = level.findFace(f.index());
       if (local == kNoIndex)
         return internalError(tile.toString() + ": the hierarchy does not hold " + f.toString());
-      for (Index e : level.mesh.triangleEdges(local)) edges.emplace_back(e, f.index());
+      for (Index e : level.mesh.faceEdgesOf(local)) edges.emplace_back(e, f.index());
+      if (!h.quads()) continue;
+      // The quad split's vertex in the face, against the flat face at the
+      // same place: a quad's diagonal midpoint (its triangles meet on the
+      // first diagonal, leaf_triangulation.h); a base n-gon's fan, which
+      // has no such place, at its nearest point.
+      const auto centre = grownUnder(f.index(), l + 1 < h.numLevels() ? level.childOfFace[local] : kNoIndex);
+      if (!centre) continue;
+      const auto corners = level.mesh.faceVerticesOf(local);
+      std::vector<Vec3> at;
+      for (Index v : corners) {
+        if (const auto& p = endLimit(v)) at.push_back(*p);
+      }
+      if (at.size() != corners.size()) continue;
+      if (at.size() == 4) {
+        worst = std::max(worst, (*centre - 0.5 * (at[0] + at[2])).norm());
+        continue;
+      }
+      double nearest = std::numeric_limits<double>::infinity();
+      for (size_t k = 1; k + 1 < at.size(); ++k)
+        nearest = std::min(nearest, (*centre - closestOnTriangle(*centre, at[0], at[k], at[k + 1])).norm());
+      worst = std::max(worst, nearest);
     }
     std::sort(edges.begin(), edges.end());
     edges.erase(std::unique(edges.begin(), edges.end(),
@@ -151,7 +180,7 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
       worst = std::max(worst, (*mid - 0.5 * (*a + *c)).norm());
     }
     if (growth.empty()) {
-      const DeepEdits deep = deepEditsNear(h, l, faces);
+      const DeepEdits deep = deepEditsNear(h, doc.counts(), l, faces);
       b.midpoints = worst;
       b.deepOffsets = deep.offsets;
       b.deepTags = deep.tags;

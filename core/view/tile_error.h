@@ -14,12 +14,22 @@
 // there is no next level: the error is that of the tile's parent over 4, the
 // quadratic rate, an estimate (and no view can refine it anyway).
 //
+// On the quad split (Catmull-Clark) a quad is shown as two triangles on its
+// first diagonal, whose midpoint stands for the face's centre: the vertex
+// the next level puts in the face is measured against it, so each triangle
+// has its three edge midpoints measured and the same 4/3 holds. A base
+// n-gon of other than four corners, shown as a fan, has no such place: its
+// face vertex is measured against the nearest point of the fan, which
+// bounds nothing under the argument above; tile_error_test measures the
+// true error of such faces against the fan's nearest points too.
+//
 // Edits more than one level below the tile shape detail that the next level
 // does not show. Let S be the limit surface, S' the one without those moves
 // and D the sum of their offsets' sizes (L1 norms of local offsets, whose
 // frames are orthonormal). Loop's basis functions are non-negative and sum
 // to one, so |S - S'| <= D; the flat tile and its midpoints move by at most
-// D too. So the error is 4/3 (m + 2D) + 2D = 4/3 m + 14/3 D, with m the
+// D too (Catmull-Clark's are non-negative and sum to one as well, creases
+// included). So the error is 4/3 (m + 2D) + 2D = 4/3 m + 14/3 D, with m the
 // midpoint departure measured on S. Tags that deep change the rules, not
 // the points: no such bound, and a view refines the tile instead
 // (docs/VIEWS.md "The error of a tile").
@@ -47,9 +57,10 @@ struct TileBounds {
 };
 
 // `mesh` is the tile's (buildTile). The next level's vertices are read from
-// the tile's level where its stencils predict them (no edit, tag or ghost
-// ring reaches them, no semi-sharp edge: core/loop/edge_child_limit.h);
-// elsewhere the hierarchy grows to the next level under the tile.
+// the tile's level where Loop's stencils predict them (no edit, tag or
+// ghost ring reaches them, no semi-sharp edge: core/loop/edge_child_limit.h);
+// elsewhere, and on every Catmull-Clark document, the hierarchy grows to the
+// next level under the tile.
 // `parentError` serves the deepest level only.
 Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileKey& tile,
                                 const RegionMesh& mesh, double parentError = 0);

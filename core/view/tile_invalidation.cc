@@ -5,7 +5,8 @@
 namespace tessera {
 
 TouchedTiles::TouchedTiles(const SparseHierarchy& h, const TileTree& tree,
-                           std::span<const VertexId> changedLimits) {
+                           std::span<const VertexId> changedLimits)
+    : counts_(h.counts()) {
   for (VertexId id : changedLimits) {
     const int l = id.level();
     if (l >= h.numLevels()) continue;
@@ -21,9 +22,9 @@ TouchedTiles::TouchedTiles(const SparseHierarchy& h, const TileTree& tree,
   for (uint64_t packed : rings_) {
     const FaceId f = FaceId::fromPacked(packed);
     for (int j = f.level(); j >= 0; --j) {
-      if (!ancestors_.insert(FaceId(j, f.index() >> (2 * (f.level() - j))).packed()).second) break;
+      if (!ancestors_.insert(counts_.ancestorAt(f, j).packed()).second) break;
     }
-    baseFaces.insert(static_cast<int>(f.index() >> (2 * f.level())));
+    baseFaces.insert(static_cast<int>(counts_.baseFace(f).index()));
   }
   for (int l = 0; l < kTileDepth && l <= tree.maxLevel(); ++l) {
     for (int b : baseFaces) clusters_.insert({l, tree.clusterSeed(l, b)});
@@ -36,7 +37,7 @@ bool TouchedTiles::touches(const TileKey& tile) const {
   const FaceId f = FaceId::fromPacked(tile.face);
   if (ancestors_.count(f.packed())) return true;
   for (int j = f.level() - 1; j >= 0; --j) {
-    if (rings_.count(FaceId(j, f.index() >> (2 * (f.level() - j))).packed())) return true;
+    if (rings_.count(counts_.ancestorAt(f, j).packed())) return true;
   }
   return false;
 }

@@ -30,6 +30,7 @@ class TouchedTiles {
   std::set<uint64_t> rings_;      // packed FaceIds: the faces around each changed vertex
   std::set<uint64_t> ancestors_;  // packed FaceIds: those faces and every face above one
   std::set<TileKey> clusters_;    // cluster tiles holding a base face under a ring
+  LevelCounts counts_;            // the split, for a face's ancestors
 };
 
 }  // namespace tessera

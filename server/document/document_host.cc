@@ -63,7 +63,6 @@ DocumentHost::DocumentHost(store::DocumentId id, std::string name, KeyedDocument
       lastSnapshot_(version),
       flushedVersion_(version),
       counts_(doc_.key0().counts()),
-      scheme_(doc_.key0().scheme()),
       bulk_(bulk),
       queue_(workers, bulk),
       presenceTimer_(workers),
@@ -97,18 +96,6 @@ void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::Subscr
   auto view = viewFromWire(request.view());
   if (!view.isOk()) {
     who->send({frameOf(rejectFor(clientSeq, view.status()), config_.limits.maxFrameBytes), nullptr});
-    return;
-  }
-  // The tile tree is built on Loop's triangle numbering (core/view/
-  // tile_tree.h); a Catmull-Clark document streams by profile
-  // (docs/LIMITS.md "Catmull-Clark documents").
-  if (scheme_ != DocumentScheme::kLoop) {
-    who->send({frameOf(rejectFor(clientSeq, unsupported("subscribe: document " + std::to_string(id_.value) +
-                                                        " is a " + documentSchemeName(scheme_) +
-                                                        " document: views are available for loop "
-                                                        "documents only; subscribe with a profile")),
-                       config_.limits.maxFrameBytes),
-               nullptr});
     return;
   }
   // Choosing and encoding the first tiles of a large document is bulk work.

@@ -197,7 +197,6 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   std::mutex undecidedMutex_;  // the handler is set off the strand
   std::function<void(Undecided)> undecidedHandler_;
   const LevelCounts counts_;  // the document's uniform level sizes, for estimates
-  const DocumentScheme scheme_;
   boost::asio::any_io_executor bulk_;
   SerialQueue queue_;  // the single writer; every member below is touched only in its tasks
   boost::asio::steady_timer presenceTimer_;

@@ -219,5 +219,25 @@ TEST(CliScheme, DocNewMakesACatmullClarkDocumentOfQuads) {
   EXPECT_NE(run.out.find("768 triangles in 1 regions"), std::string::npos) << run.out;
 }
 
+// `doc view` on a Catmull-Clark document: the quad split's tiles, a near
+// camera finer than a far one (docs/VIEWS.md "Catmull-Clark documents").
+TEST(CliScheme, DocViewShowsTheQuadSplitsTiles) {
+  const std::string dir = testing::makeTempDir("cli-scheme");
+  const std::string cube = writeQuadCube(dir);
+  ASSERT_EQ(runCli("doc new " + cube + " --max-level 6 -o " + dir + "/cc.tsd").exitCode, 0);
+  CliRun far = runCli("doc view " + dir + "/cc.tsd --eye 0 0 40 --target 0 0 0 --size 390x844");
+  ASSERT_EQ(far.exitCode, 0) << far.err;
+  // Six quads, two triangles each.
+  EXPECT_NE(far.out.find("first picture: the level-0 tiles, 12 triangles"), std::string::npos) << far.out;
+  CliRun near = runCli("doc view " + dir + "/cc.tsd --eye 0.2 0.3 1.3 --target 0 0 1 --size 1920x1080");
+  ASSERT_EQ(near.exitCode, 0) << near.err;
+  auto finest = [](const std::string& out) {
+    const size_t at = out.find("the whole document at level ");
+    return at == std::string::npos ? -1 : std::stoi(out.substr(at + 28));
+  };
+  EXPECT_GT(finest(near.out), finest(far.out)) << far.out << near.out;
+  EXPECT_GE(finest(near.out), 5) << near.out;
+}
+
 }  // namespace
 }  // namespace tessera

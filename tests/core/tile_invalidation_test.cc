@@ -2,14 +2,16 @@
 // moves and crease edits at random levels, every tile the catalogue kept
 // equals, bit for bit in its mesh and bounds, the tile built afresh from
 // the edited document; and on a model of many base faces an edit forgets
-// only the tiles around it.
+// only the tiles around it. The same on Catmull-Clark documents.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "core/document/document.h"
 #include "core/io/mesh_import.h"
+#include "core/schemes/polygon_reader.h"
 #include "core/view/tile_catalogue.h"
+#include "support/polygon_meshes.h"
 #include "support/same_tile.h"
 #include "support/test_meshes.h"
 
@@ -86,6 +88,22 @@ TEST(TileInvalidation, TilesAnEditDidNotReachEqualTilesBuiltAfresh) {
   auto handDoc = Document::create(*hand, {.maxLevel = 3});
   ASSERT_TRUE(handDoc.isOk());
   checkEdits(*handDoc, "hand", 7, true);
+}
+
+// The same on the quad split: a face's ancestors and base face follow the
+// split's counts (n children under a base n-gon), not Loop's 4^k.
+TEST(TileInvalidation, OnTheQuadSplitTilesAnEditDidNotReachEqualTilesBuiltAfresh) {
+  const testing::PolyTestMesh prism = testing::mixedPrism(6, false);
+  auto prismDoc = Document::create(prism.topology, prism.points,
+                                   {.maxLevel = 6, .scheme = DocumentScheme::kCatmullClark});
+  ASSERT_TRUE(prismDoc.isOk()) << prismDoc.status().message();
+  checkEdits(*prismDoc, "mixed prism", 4, false);
+  auto torus = schemes::importPolygonMesh(testing::cgalMeshPath("double-torus-example.off"), "");
+  ASSERT_TRUE(torus.isOk()) << torus.status().message();
+  auto torusDoc = Document::create(torus->topology, torus->points,
+                                   {.maxLevel = 3, .scheme = DocumentScheme::kCatmullClark});
+  ASSERT_TRUE(torusDoc.isOk()) << torusDoc.status().message();
+  checkEdits(*torusDoc, "double torus", 8, false);
 }
 
 TEST(TileInvalidation, RegionIdsNameTilesBothWays) {

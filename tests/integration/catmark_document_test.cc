@@ -139,26 +139,6 @@ TEST(ServerCatmark, AQuadModelIsServedAsACatmullClarkDocument) {
   ASSERT_TRUE((*viewer)->call(testing::openDocument(doc), 10)->has_ack());
   ASSERT_TRUE((*editor)->call(testing::openDocument(doc), 10)->has_ack());
 
-  // A view-dependent subscription is refused by name; a profile is served.
-  wire::ClientMessage viewSub = testing::subscribe(doc, 1, kMaxLevel);
-  auto* view = viewSub.mutable_subscribe()->mutable_view();
-  view->mutable_eye()->set_x(3);
-  view->mutable_eye()->set_y(3);
-  view->mutable_eye()->set_z(3);
-  view->mutable_forward()->set_x(-1);
-  view->mutable_forward()->set_y(-1);
-  view->mutable_forward()->set_z(-1);
-  view->mutable_up()->set_z(1);
-  view->set_fov_y_radians(0.8);
-  view->set_near_distance(0.01);
-  view->set_width(640);
-  view->set_height(480);
-  view->set_tolerance_pixels(1);
-  auto refusedView = (*viewer)->call(viewSub, 10);
-  ASSERT_TRUE(refusedView.isOk() && refusedView->has_reject()) << refusedView->DebugString();
-  EXPECT_NE(refusedView->reject().message().find("is a catmull-clark document: views are available for loop"),
-            std::string::npos)
-      << refusedView->reject().message();
   ASSERT_TRUE((*viewer)->call(testing::subscribe(doc, 1, kMaxLevel), 30)->has_ack());
   DocumentView seen(doc);
   readUntil(**viewer, seen, 1);

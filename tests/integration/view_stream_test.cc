@@ -29,6 +29,7 @@
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "integration/server_stat.h"
+#include "integration/view_subscriber.h"
 #include "support/cameras.h"
 #include "support/test_meshes.h"
 #include "support/tile_gaps.h"
@@ -38,19 +39,14 @@ namespace {
 
 using client::DocumentView;
 using client::Session;
+using testing::expectWatertight;
+using testing::lookAt;
+using testing::Model;
+using testing::modelOf;
+using testing::randomView;
 using testing::ServerProcess;
-
-struct Model {
-  Vec3 centre;
-  double radius = 0;
-};
-
-// The bounding sphere of a document's base points.
-Model modelOf(const Document& doc) {
-  Vec3 lo = doc.basePoints()[0], hi = lo;
-  for (const Vec3& p : doc.basePoints()) lo = testing::min(lo, p), hi = testing::max(hi, p);
-  return {0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
-}
+using testing::subscribeViewer;
+using testing::Viewer;
 
 // One of CGAL's meshes as a local document, for its points and counts.
 Document cgalDocument(const std::string& file, int maxLevel) {
@@ -76,102 +72,6 @@ Expected<uint64_t> createFromCgal(Session& admin, const std::string& file, int m
   TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage created, admin.call(create, 60));
   if (!created.has_ack()) return invalidArgument("create " + file + ": " + created.DebugString());
   return created.ack().document_id();
-}
-
-View lookAt(const Model& m, const Vec3& eye, const Vec3& target, int width, int height) {
-  return testing::lookAt(eye, target, width, height, m.radius * 1e-3);
-}
-
-View randomView(const Model& m, std::mt19937& rng) {
-  std::uniform_real_distribution<double> unit(-1, 1);
-  Vec3 dir(unit(rng), unit(rng), unit(rng));
-  while (dir.norm() < 0.1) dir = Vec3(unit(rng), unit(rng), unit(rng));
-  const double distance = m.radius * (0.8 + 3 * std::abs(unit(rng)));
-  return lookAt(m, m.centre + distance * dir.normalized(),
-                m.centre + 0.4 * m.radius * Vec3(unit(rng), unit(rng), unit(rng)), 390, 844);
-}
-
-// A viewer: its session and what it assembled.
-struct Viewer {
-  std::unique_ptr<Session> session;
-  std::unique_ptr<DocumentView> view;
-  std::set<uint64_t> received;  // every region id that came, over the run
-  // The bytes of the picture held now: what sending it afresh would take.
-  int64_t pictureBytes() const {
-    int64_t sum = 0;
-    for (const auto& [id, mesh] : view->regions()) sum += payloadBytes.at(id);
-    return sum;
-  }
-  std::map<uint64_t, int64_t> payloadBytes;  // region id -> its latest payload's bytes
-  int64_t payloads = 0, bytes = 0;
-  std::vector<wire::Delta> deltas;  // as they came since the last clear
-  // The first picture: the snapshot's regions and their bytes.
-  std::vector<uint64_t> snapshotIds;
-  int64_t snapshotBytes = 0;
-
-  // Applies messages until the view is complete (a delta says so), after
-  // `atLeast` deltas.
-  Status untilComplete(double seconds = 60) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    for (;;) {
-      const double left = std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-      if (left <= 0)
-        return timeoutError("the view was not complete within " + std::to_string(seconds) + " s");
-      TESSERA_ASSIGN_OR_RETURN(wire::ServerMessage m, session->receive(left));
-      if (m.has_reject() || m.has_error()) return invalidArgument("refused: " + m.DebugString());
-      TESSERA_RETURN_IF_ERROR(view->apply(m));
-      const auto* regions = m.has_snapshot() ? &m.snapshot().regions()
-                            : m.has_delta()  ? &m.delta().regions()
-                                             : nullptr;
-      if (m.has_snapshot()) {
-        for (const wire::Region& r : m.snapshot().regions()) {
-          snapshotIds.push_back(r.region_id());
-          snapshotBytes += static_cast<int64_t>(r.draco().size());
-        }
-      }
-      if (regions) {
-        for (const wire::Region& r : *regions) {
-          received.insert(r.region_id());
-          payloadBytes[r.region_id()] = static_cast<int64_t>(r.draco().size());
-          ++payloads;
-          bytes += static_cast<int64_t>(r.draco().size());
-        }
-      }
-      if (m.has_delta()) {
-        deltas.push_back(m.delta());
-        if (view->viewComplete()) return Status::ok();
-      }
-    }
-  }
-};
-
-Expected<Viewer> subscribeViewer(const ServerProcess& server, uint64_t doc, const View& camera,
-                                 const std::string& name) {
-  Viewer v;
-  TESSERA_ASSIGN_OR_RETURN(v.session, Session::connect(server.session(name, server.adminToken())));
-  auto opened = v.session->call(testing::openDocument(doc), 30);
-  if (!opened.isOk() || !opened->has_ack()) return ioError(name + ": cannot open the document");
-  v.view = std::make_unique<DocumentView>(doc);
-  auto subscribed = v.session->call(client::subscribeWithView(doc, camera), 60);
-  if (!subscribed.isOk()) return subscribed.status();
-  if (!subscribed->has_ack())
-    return invalidArgument(name + ": subscribe refused: " + subscribed->DebugString());
-  TESSERA_RETURN_IF_ERROR(v.untilComplete());
-  return v;
-}
-
-// The viewer's assembled surface: its hash is the server's, and its tiles,
-// cracks closed, leave no gap.
-void expectWatertight(const Viewer& v, const Model& m, const std::string& where) {
-  EXPECT_TRUE(v.view->verifySurface().isOk()) << where << ": " << v.view->verifySurface().message();
-  std::vector<const RegionMesh*> meshes;
-  std::vector<std::vector<Vec3>> closed;
-  for (auto& [id, positions] : v.view->closedTilePositions()) {
-    meshes.push_back(&v.view->regions().at(id));
-    closed.push_back(std::move(positions));
-  }
-  EXPECT_EQ(testing::unmatchedEdges(meshes, closed, m.radius), 0)
-      << where << ", " << meshes.size() << " tiles";
 }
 
 struct Served {

@@ -202,5 +202,49 @@ TEST(CatmarkDocumentOracle, RealPolygonMeshDoubleTorus) {
   EXPECT_GT(counted.limits, 0);
 }
 
+// A base with other polygons than quads has no limits on level 0: a base
+// vertex shows its child's limit on level 1, and dragging it must put that
+// limit at the target (SparseHierarchy::solveControlPoint). Each drag
+// follows moves of other base vertices (no finer offset, which would turn
+// with its frame); OpenSubdiv's level-1 limit is the judge.
+TEST(CatmarkDocumentOracle, DraggedBaseVerticesOfPolygonBasesLandOnFarsLevelOneLimit) {
+  auto torus = schemes::importPolygonMesh(testing::cgalMeshPath("double-torus-example.off"), "");
+  ASSERT_TRUE(torus.isOk()) << torus.status().toString();
+  int drags = 0;
+  uint32_t seed = 60;
+  for (const PolyTestMesh& mesh :
+       {testing::withPolyJitter(testing::mixedPrism(5, false), 0.05, 11),
+        testing::withRandomPolyTags(testing::withPolyJitter(testing::mixedPrism(7, true), 0.05, 12), 0.3, 0.1,
+                                    13),
+        PolyTestMesh{"double-torus-example", torus->topology, torus->points}}) {
+    SCOPED_TRACE(mesh.name);
+    const CreaseOptions options{};
+    auto doc =
+        Document::create(mesh.topology, mesh.points,
+                         {.loop = options, .maxLevel = kLevels, .scheme = DocumentScheme::kCatmullClark});
+    ASSERT_TRUE(doc.isOk()) << doc.status().toString();
+    ASSERT_FALSE(doc->hierarchy().hasLimits(0)) << "the base has other polygons than quads";
+    auto ours = schemes::QuadRefiner::create(mesh.topology, schemes::QuadScheme::kCatmullClark, options,
+                                             {.levels = kLevels});
+    ASSERT_TRUE(ours.isOk()) << ours.status().toString();
+    const double diag = oracle::boundingDiagonal(mesh.points);
+    std::mt19937 rng(seed++);
+    std::uniform_real_distribution<double> unit(-0.5, 0.5);
+    for (int k = 0; k < 6; ++k) {
+      const VertexId v(0, rng() % doc->counts().vertices(0));
+      auto before = doc->surface(1, SurfaceKind::kLimit);
+      ASSERT_TRUE(before.isOk()) << before.status().toString();
+      const Vec3 target = before->positions[v.index()] + Vec3(unit(rng), unit(rng), unit(rng)) * (0.1 * diag);
+      ASSERT_TRUE(doc->moveToLimit(std::span(&v, 1), target).isOk());
+      const auto far =
+          oracle::refineEditedQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *ours, doc->edits());
+      EXPECT_LE((far[1].limitPositions[v.index()] - target).norm(), kPositionTolerance * diag)
+          << "Far's level-1 limit of " << v.toString() << " after drag " << k;
+      ++drags;
+    }
+  }
+  EXPECT_EQ(drags, 18);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/catmark/masks.h"
+#include "core/loop/exact_limit.h"
 
 namespace tessera {
 
@@ -90,6 +91,33 @@ CatmarkLimitFrame smoothFrame(const Level& level, Index v, std::span<const Vec3>
   return frame;
 }
 
+// The crease's limit, with its tangent along the crease and the one across
+// into the sector of ring faces from sharp ring edge `from` to `to`
+// (exclusive, modulo the valence: the other sector of a closed ring is
+// from ends[1] to ends[0] + n).
+CatmarkLimitFrame creaseSectorFrame(const Level& level, Index v, std::span<const Vec3> p, int from, int to) {
+  const int n = level.valence(v);
+  const Index o = level.ringOffsets[v];
+  auto at = [&](int k) { return o + k % n; };
+  const Vec3& a = p[level.ringVertices[at(from)]];
+  const Vec3& b = p[level.ringVertices[at(to)]];
+  CatmarkLimitFrame frame;
+  frame.position = catmark::kCreaseLimitNeighbourWeight * (a + b) + catmark::kCreaseLimitVertexWeight * p[v];
+  frame.tangent1 = 0.5 * (a - b);
+  const int interior = to - from - 1;
+  const catmark::CreaseTangentWeights w = catmark::creaseTangentWeights(interior);
+  Vec3 t2 = w.vertex * p[v] + w.creaseNeighbour * (a + b);
+  for (int i = 1; i <= interior; ++i) t2 += w.interiorNeighbour(i) * p[level.ringVertices[at(from + i)]];
+  if (interior > 0) {
+    for (int i = 0; i <= interior; ++i) {
+      const Index k = at(from + i);
+      t2 += w.face(i) * p[opposite(level, level.ringFaces[k], level.ringFaceLocal[k])];
+    }
+  }
+  frame.tangent2 = t2;
+  return frame;
+}
+
 CatmarkLimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3> p) {
   const int n = level.valence(v);
   const Index o = level.ringOffsets[v];
@@ -97,23 +125,7 @@ CatmarkLimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3>
   for (int k = 0, found = 0; k < n && found < 2; ++k) {
     if (isSharp(level.edgeSharpness[level.ringEdges[o + k]])) ends[found++] = k;
   }
-  const Vec3& a = p[level.ringVertices[o + ends[0]]];
-  const Vec3& b = p[level.ringVertices[o + ends[1]]];
-  CatmarkLimitFrame frame;
-  frame.position = catmark::kCreaseLimitNeighbourWeight * (a + b) + catmark::kCreaseLimitVertexWeight * p[v];
-  frame.tangent1 = 0.5 * (a - b);
-  const int interior = ends[1] - ends[0] - 1;
-  const catmark::CreaseTangentWeights w = catmark::creaseTangentWeights(interior);
-  Vec3 t2 = w.vertex * p[v] + w.creaseNeighbour * (a + b);
-  for (int i = 1; i <= interior; ++i) t2 += w.interiorNeighbour(i) * p[level.ringVertices[o + ends[0] + i]];
-  if (interior > 0) {
-    for (int i = 0; i <= interior; ++i) {
-      const Index k = o + ends[0] + i;
-      t2 += w.face(i) * p[opposite(level, level.ringFaces[k], level.ringFaceLocal[k])];
-    }
-  }
-  frame.tangent2 = t2;
-  return frame;
+  return creaseSectorFrame(level, v, p, ends[0], ends[1]);
 }
 
 Vec3 faceNormals(const Level& level, Index v, std::span<const Vec3> p) {
@@ -140,7 +152,65 @@ CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> p
   return cornerFrame(level, v, points);
 }
 
+// A frame's unit normal; where its tangents are parallel (a degenerate
+// control net), the area-weighted normal of `faces`.
+Vec3 unitNormal(const CatmarkLimitFrame& frame, const Level& level, std::span<const Vec3> p,
+                std::span<const Index> faces) {
+  Vec3 n = frame.tangent1 % frame.tangent2;
+  const double scale = std::sqrt(frame.tangent1.sqrnorm() * frame.tangent2.sqrnorm());
+  if (!(n.norm() > 1e-12 * scale)) {
+    n = Vec3(0, 0, 0);
+    for (Index f : faces) {
+      const Index* q = level.faceVertices.data() + 4 * f;
+      n += (p[q[2]] - p[q[0]]) % (p[q[3]] - p[q[1]]);
+    }
+  }
+  const double len = n.norm();
+  return len > 0.0 ? (1.0 / len) * n : Vec3(0, 0, 0);
+}
+
 }  // namespace
+
+std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points) {
+  std::vector<LimitSector> out;
+  const VertexRule rule = level.vertexRules[v];
+  if (rule != VertexRule::kCrease && rule != VertexRule::kCorner) return out;
+  const std::vector<int> sharp = sharpRingEdges(level, v);
+  const int m = static_cast<int>(sharp.size());
+  if (m < 2) return out;
+  const int n = level.valence(v);
+  const Index o = level.ringOffsets[v];
+  // As limitSideOfRingFace numbers them (core/loop/limit.h): sector i from
+  // sharp edge i to i + 1, the primary one (catmarkLimitFrame's) left out.
+  const int primary = (rule == VertexRule::kCrease || sharp[0] == 0) ? 0 : m - 1;
+  for (int i = 0; i < m; ++i) {
+    if (i == primary) continue;
+    const int from = sharp[i], to = i + 1 < m ? sharp[i + 1] : sharp[0] + n;
+    LimitSector sector{from, to - from, Vec3(0, 0, 0)};
+    std::vector<Index> faces;
+    for (int k = from; k < to; ++k) {
+      if (level.ringFaces[o + k % n] != kNoIndex) faces.push_back(level.ringFaces[o + k % n]);
+    }
+    if (faces.empty()) {
+      // A boundary's wrap: no face lies in it.
+      out.push_back(sector);
+      continue;
+    }
+    // A crease's other side: the same tangent across it, into this side.
+    // A corner's side: the tangents along its first face's edges, which
+    // are the limit curves' (the edges are sharp) where the side has one
+    // face; a wider side is a cone without a tangent plane, and this is
+    // its first face's choice, as catmarkLimitFrame's corner makes.
+    const CatmarkLimitFrame frame =
+        rule == VertexRule::kCrease
+            ? creaseSectorFrame(level, v, points, from, to)
+            : CatmarkLimitFrame{points[v], points[level.ringVertices[o + from % n]] - points[v],
+                                points[level.ringVertices[o + (from + 1) % n]] - points[v]};
+    sector.normal = unitNormal(frame, level, points, faces);
+    out.push_back(sector);
+  }
+  return out;
+}
 
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points) {
   return frameWith(level, v, points, TangentTables(level.valence(v)));

@@ -8,7 +8,9 @@
 
 #include <memory>
 #include <span>
+#include <vector>
 
+#include "core/loop/limit.h"
 #include "core/topology/level.h"
 #include "core/util/status.h"
 #include "core/util/vec3.h"
@@ -50,6 +52,17 @@ CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const
 // in that point, so direct manipulation (Pulli & Lounsbery §2.2) solves
 // for it in one step. Always > 0.
 double catmarkSelfLimitWeight(const Level& level, Index v);
+
+// The sectors of a crease or corner vertex other than the one whose
+// normal catmarkLimitFrame's tangents give (the ring faces after its first
+// sharp edge, or for a corner the side holding ring face 0), numbered as
+// limitSideOfRingFace (core/loop/limit.h) numbers a vertex's sides, each
+// with its limit normal: a crease's other side by the same tangent across
+// it, into that side; a corner's one-face side by its edges' limit curves.
+// So a mesh splits the vertex along its sharp edges and shades each side as
+// OpenSubdiv's Bfr evaluates that side's faces. Smooth and dart vertices,
+// and boundary creases, have none.
+std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points);
 
 // Every vertex; `normals` may be empty. A level with a face that is not a
 // quad is refused (refine it once first): the masks read each face's

@@ -2,6 +2,7 @@
 
 #include <unordered_map>
 
+#include "core/catmark/limit.h"
 #include "core/hierarchy/incidence.h"
 #include "core/loop/limit.h"
 
@@ -72,6 +73,8 @@ namespace {
 // The limit normal of side `side` > 0 of a crease or corner vertex
 // (limitSideOfRingFace's numbering; side 0's is its limit normal).
 Vec3 sideNormal(const SparseHierarchy& h, VertexRef v, int side) {
+  if (h.quads())
+    return catmarkOtherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level))[side - 1].normal;
   const SparseFarRings far = h.farRings(v.level);
   return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod(),
                            &far)[side - 1]
@@ -91,20 +94,19 @@ Vec3 sideNormal(const SparseHierarchy& h, VertexRef v, int side) {
 // limit's level, deeper than the display, a semi-sharp edge may have
 // decayed and merged two displayed sectors into one whose normal is far
 // from (even perpendicular to) the faces in it.
-//
-// Catmull-Clark's limit masks give one normal per vertex (core/catmark/
-// limit.h), so a quad document's vertices have one side (docs/LIMITS.md
-// "Catmull-Clark documents").
-int sideOf(const SparseHierarchy& h, VertexRef at, int l, Index f) {
+// On the quad split the same holds with the split's ancestors, and the
+// sides of core/catmark/limit.h.
+int sideOf(const SparseHierarchy& h, const LevelCounts& counts, VertexRef at, int l, Index f) {
   const SparseLevel& level = h.level(at.level);
-  if (h.quads() || isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
+  if (isSmoothLike(level.mesh.vertexRules[at.local])) return 0;
   const uint64_t leaf = h.level(l).faceIds[f];
   auto ring = level.mesh.ringFacesOf(at.local);
   const int n = static_cast<int>(ring.size());
   auto inLeaf = [&](int k) {
     if (ring[k] < 0) return false;
     const uint64_t g = level.faceIds[ring[k]];
-    return at.level >= l ? (g >> (2 * (at.level - l))) == leaf : (leaf >> (2 * (l - at.level))) == g;
+    return at.level >= l ? counts.ancestorAt(FaceId(at.level, g), l).index() == leaf
+                         : counts.ancestorAt(FaceId(l, leaf), at.level).index() == g;
   };
   int k = 0;
   while (k < n && !inLeaf(k)) ++k;
@@ -142,7 +144,7 @@ RegionMesh meshOfTriangles(const SparseHierarchy& h, const LevelCounts& counts,
     if (!held) continue;  // the caller grows the hierarchy and starts again
     std::array<int, 3> tri;
     for (int k = 0; k < 3; ++k) {
-      const int side = sideOf(h, at[k], leaves[i].level, leaves[i].local);
+      const int side = sideOf(h, counts, at[k], leaves[i].level, leaves[i].local);
       const uint64_t canonical = h.level(at[k].level).vertexIds[at[k].local];
       const uint64_t key = canonical * 64 + static_cast<uint64_t>(side);
       auto [it, fresh] = index.emplace(key, static_cast<int>(mesh.positions.size()));

@@ -6,7 +6,8 @@
 // same edit list shows. Profiles cover grouped base faces (deepest level 3),
 // a region per base face, and regions below the base (deepest level 6,
 // regions at level 1), whose ids and extents follow the quad numbering
-// (docs/ARCHITECTURE.md "Numbering").
+// (docs/ARCHITECTURE.md "Numbering"). A crease or corner vertex is shown
+// once per side, each with its side's normal.
 #include <gtest/gtest.h>
 
 #include <map>
@@ -31,23 +32,26 @@ const LodProfile kBelowBase{.baseLevel = 1, .maxLevel = 6, .angleThresholdDegree
 
 // Every directed edge of the merged surface once and its reverse once (so
 // no crack, no T-vertex, one orientation), no degenerate triangle, and
-// every vertex's limit finite.
+// every vertex's limit finite. Vertices are welded by id: a crease or
+// corner vertex has a copy per side (docs/LIMITS.md), which share it.
 void expectClosedAndOriented(const Tessellation& t, const std::string& when) {
-  const SurfaceMesh s = t.surface();
-  ASSERT_GT(s.triangles.size(), 0u) << when;
-  std::map<std::pair<int, int>, int> directed;
-  for (const auto& tri : s.triangles) {
-    ASSERT_TRUE(tri[0] != tri[1] && tri[1] != tri[2] && tri[2] != tri[0])
-        << when << ": a degenerate triangle";
-    for (int k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
+  std::map<std::pair<uint64_t, uint64_t>, int> directed;
+  for (const auto& [id, region] : t.regions()) {
+    for (const auto& tri : region.triangles) {
+      const uint64_t a = region.vertexIds[tri[0]], b = region.vertexIds[tri[1]], c = region.vertexIds[tri[2]];
+      ASSERT_TRUE(a != b && b != c && c != a) << when << ": a degenerate triangle";
+      ++directed[{a, b}], ++directed[{b, c}], ++directed[{c, a}];
+    }
+    for (const Vec3& p : region.positions) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2])) << when;
   }
+  ASSERT_GT(directed.size(), 0u) << when;
   for (const auto& [edge, count] : directed) {
-    ASSERT_EQ(count, 1) << when << ": directed edge " << edge.first << " -> " << edge.second << " used "
-                        << count << " times";
+    ASSERT_EQ(count, 1) << when << ": directed edge " << VertexId::fromPacked(edge.first).toString() << " -> "
+                        << VertexId::fromPacked(edge.second).toString() << " used " << count << " times";
     ASSERT_EQ(directed.count({edge.second, edge.first}), 1u)
-        << when << ": a crack at " << edge.first << " -> " << edge.second;
+        << when << ": a crack at " << VertexId::fromPacked(edge.first).toString() << " -> "
+        << VertexId::fromPacked(edge.second).toString();
   }
-  for (const Vec3& p : s.positions) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2])) << when;
 }
 
 // Every displayed vertex lies at its limit: the limit position of the
@@ -187,6 +191,47 @@ void expectHistoryIndependent(const PolyTestMesh& mesh, uint32_t seed) {
     testing::expectSameRegions(t, *fresh, "updated vs fresh, " + t.profile().describe());
     if (::testing::Test::HasFatalFailure()) return;
   }
+}
+
+// The quad cube with its twelve edges infinitely sharp is its own limit:
+// six flat squares, each edge a straight crease, each corner meeting three
+// one-face sides. So every displayed triangle is flat on a face of the cube
+// and each of its vertices carries that face's normal exactly -- a crease
+// vertex once per side, a corner three times.
+TEST(CatmarkTessellation, EachSideOfASharpEdgeShowsItsOwnNormal) {
+  PolyTestMesh cube = testing::quadCube();
+  for (int f = 0; f < cube.topology.numFaces(); ++f) {
+    const int from = cube.topology.faceOffsets[f], n = cube.topology.faceOffsets[f + 1] - from;
+    for (int j = 0; j < n; ++j) {
+      const int a = cube.topology.indices[from + j], b = cube.topology.indices[from + (j + 1) % n];
+      if (a < b) cube.topology.creases.push_back({a, b, 10.0f});
+    }
+  }
+  auto doc =
+      Document::create(cube.topology, cube.points, {.maxLevel = 3, .scheme = DocumentScheme::kCatmullClark});
+  ASSERT_TRUE(doc.isOk()) << doc.status().message();
+  auto t = Tessellation::build(*doc, kGrouped);
+  ASSERT_TRUE(t.isOk()) << t.status().message();
+  std::map<uint64_t, std::set<std::array<double, 3>>> normalsOf;
+  int triangles = 0;
+  for (const auto& [id, region] : t->regions()) {
+    for (const auto& tri : region.triangles) {
+      const Vec3 face = ((region.positions[tri[1]] - region.positions[tri[0]]) %
+                         (region.positions[tri[2]] - region.positions[tri[0]]))
+                            .normalized();
+      ++triangles;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& normal = region.normals[tri[k]];
+        EXPECT_LE((normal - face).norm(), 1e-12) << VertexId::fromPacked(region.vertexIds[tri[k]]).toString();
+        normalsOf[region.vertexIds[tri[k]]].insert({normal[0], normal[1], normal[2]});
+      }
+    }
+  }
+  std::map<size_t, int> vertices;  // by how many sides they show
+  for (const auto& [id, normals] : normalsOf) ++vertices[normals.size()];
+  EXPECT_GT(triangles, 100);
+  EXPECT_EQ(vertices[3], 8) << "each corner of the cube shows three sides";
+  EXPECT_GT(vertices[2], 12) << "crease vertices show two";
 }
 
 TEST(CatmarkTessellation, UpdatedRegionsEqualAFreshDocumentsBitForBit) {

@@ -17,9 +17,6 @@
 // which have no tangent plane.
 #include <gtest/gtest.h>
 
-#include <opensubdiv/bfr/refinerSurfaceFactory.h>
-#include <opensubdiv/bfr/surface.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -29,13 +26,13 @@
 #include "core/loop/exact_limit.h"
 #include "core/loop/limit.h"
 #include "core/schemes/quad_refiner.h"
+#include "oracle/bfr_surfaces.h"
 #include "oracle/osd_catmark_reference.h"
 #include "support/polygon_meshes.h"
 
 namespace tessera {
 namespace {
 
-using namespace OpenSubdiv;
 using testing::PolyTestMesh;
 using Param = std::array<double, 2>;
 
@@ -184,50 +181,6 @@ std::vector<Corner> tesseraCorners(const PolyTestMesh& mesh, const CreaseOptions
   return corners;
 }
 
-struct BfrValue {
-  Vec3 position, normal;
-  bool degenerate = false;  // Du x Dv vanishes: no normal from the derivatives
-};
-
-class BfrEvaluator {
- public:
-  BfrEvaluator(const PolyTestMesh& mesh, const CreaseOptions& options, int approxLevel)
-      : input_(mesh.topology),
-        refiner_(oracle::createOsdQuadRefiner(input_, schemes::QuadScheme::kCatmullClark, options, 0, true)) {
-    Bfr::SurfaceFactory::Options o;
-    o.SetApproxLevelSharp(approxLevel).SetApproxLevelSmooth(approxLevel);
-    factory_ = std::make_unique<Bfr::RefinerSurfaceFactory<>>(*refiner_, o);
-    for (const Vec3& p : mesh.points) meshPoints_.insert(meshPoints_.end(), {p[0], p[1], p[2]});
-  }
-
-  BfrValue at(int face, const Param& uv) {
-    auto& s = surfaces_[face];
-    if (!s.surface.IsValid()) {
-      if (!factory_->InitVertexSurface(face, &s.surface))
-        throw std::runtime_error("Bfr: no surface for a face");
-      s.patch.resize(3 * s.surface.GetNumPatchPoints());
-      s.surface.PreparePatchPoints(meshPoints_.data(), 3, s.patch.data(), 3);
-    }
-    double p[3], du[3], dv[3];
-    s.surface.Evaluate(uv.data(), s.patch.data(), 3, p, du, dv);
-    const Vec3 u(du[0], du[1], du[2]), v(dv[0], dv[1], dv[2]);
-    const Vec3 n = u % v;
-    const double scale = std::max(u.norm(), v.norm());
-    return {Vec3(p[0], p[1], p[2]), n, n.norm() <= 1e-6 * scale * scale};
-  }
-
- private:
-  struct FaceSurface {
-    Bfr::Surface<double> surface;
-    std::vector<double> patch;
-  };
-  oracle::OsdPolyInput input_;
-  std::unique_ptr<Far::TopologyRefiner> refiner_;
-  std::unique_ptr<Bfr::RefinerSurfaceFactory<>> factory_;
-  std::vector<double> meshPoints_;
-  std::map<int, FaceSurface> surfaces_;
-};
-
 struct Worst {
   double position = 0, normal = 0;
   int count = 0, noNormal = 0, otherSides = 0;
@@ -235,13 +188,16 @@ struct Worst {
 
 std::map<Side, Worst> compare(const PolyTestMesh& mesh, const CreaseOptions& options,
                               const std::vector<Corner>& corners, int approxLevel) {
-  BfrEvaluator bfr(mesh, options, approxLevel);
+  const oracle::OsdPolyInput input(mesh.topology);
+  oracle::BfrSurfaces bfr(
+      oracle::createOsdQuadRefiner(input, schemes::QuadScheme::kCatmullClark, options, 0, true), mesh.points,
+      approxLevel);
   Vec3 lo = mesh.points[0], hi = lo;
   for (const Vec3& p : mesh.points) lo.minimize(p), hi.maximize(p);
   const double diagonal = (hi - lo).norm();
   std::map<Side, Worst> worst;
   for (const Corner& c : corners) {
-    const BfrValue b = bfr.at(c.baseFace, c.uv);
+    const oracle::BfrValue b = bfr.at(c.baseFace, c.uv);
     Worst& w = worst[c.side];
     w.position = std::max(w.position, (b.position - c.position).norm() / diagonal);
     ++w.count;

@@ -14,9 +14,6 @@
 // as its approximation level rises, and records the figures.
 #include <gtest/gtest.h>
 
-#include <opensubdiv/bfr/refinerSurfaceFactory.h>
-#include <opensubdiv/bfr/surface.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -26,6 +23,7 @@
 #include "core/loop/limit_masks.h"
 #include "core/loop/local_ring.h"
 #include "core/loop/loop_refiner.h"
+#include "oracle/bfr_surfaces.h"
 #include "oracle/limit_categories.h"
 #include "oracle/osd_adapter.h"
 #include "oracle/osd_reference.h"
@@ -34,7 +32,6 @@
 namespace tessera {
 namespace {
 
-using namespace OpenSubdiv;
 using testing::TestMesh;
 
 using Param = std::array<double, 2>;
@@ -143,51 +140,11 @@ std::vector<Corner> tesseraCorners(const TestMesh& mesh, const LoopOptions& opti
   return corners;
 }
 
-struct BfrValue {
-  Vec3 position, normal;
-  bool degenerate = false;  // Du x Dv vanishes: no normal from the derivatives
-};
-
-class BfrEvaluator {
- public:
-  BfrEvaluator(const TestMesh& mesh, const LoopOptions& options, int approxLevel)
-      : input_(mesh.topology), refiner_(oracle::createOsdRefiner(input_, options, 0, true)) {
-    Bfr::SurfaceFactory::Options o;
-    o.SetApproxLevelSharp(approxLevel).SetApproxLevelSmooth(approxLevel);
-    factory_ = std::make_unique<Bfr::RefinerSurfaceFactory<>>(*refiner_, o);
-    for (const Vec3& p : mesh.points) meshPoints_.insert(meshPoints_.end(), {p[0], p[1], p[2]});
-  }
-
-  BfrValue at(int face, const Param& uv) {
-    auto& s = surfaces_[face];
-    if (!s.surface.IsValid()) {
-      if (!factory_->InitVertexSurface(face, &s.surface))
-        throw std::runtime_error("Bfr: no surface for a face");
-      s.patch.resize(3 * s.surface.GetNumPatchPoints());
-      s.surface.PreparePatchPoints(meshPoints_.data(), 3, s.patch.data(), 3);
-    }
-    double p[3], du[3], dv[3];
-    s.surface.Evaluate(uv.data(), s.patch.data(), 3, p, du, dv);
-    const Vec3 u(du[0], du[1], du[2]), v(dv[0], dv[1], dv[2]);
-    const Vec3 n = u % v;
-    // At a corner whose sector has one face, the surface leaves the vertex
-    // quadratically across it (its second tangent has eigenvalue 1/4), so the
-    // parameterization's derivatives there are parallel or zero.
-    const double scale = std::max(u.norm(), v.norm());
-    return {Vec3(p[0], p[1], p[2]), n, n.norm() <= 1e-6 * scale * scale};
-  }
-
- private:
-  struct FaceSurface {
-    Bfr::Surface<double> surface;
-    std::vector<double> patch;
-  };
-  oracle::OsdInput input_;
-  std::unique_ptr<Far::TopologyRefiner> refiner_;
-  std::unique_ptr<Bfr::RefinerSurfaceFactory<>> factory_;
-  std::vector<double> meshPoints_;
-  std::map<int, FaceSurface> surfaces_;
-};
+// Bfr on the base mesh with Loop's rules and the mesh's tags.
+oracle::BfrSurfaces bfrOf(const TestMesh& mesh, const LoopOptions& options, int approxLevel) {
+  const oracle::OsdInput input(mesh.topology);
+  return oracle::BfrSurfaces(oracle::createOsdRefiner(input, options, 0, true), mesh.points, approxLevel);
+}
 
 double diagonalOf(const std::vector<Vec3>& points) {
   Vec3 lo = points[0], hi = points[0];
@@ -204,11 +161,11 @@ struct Worst {
 // Per category, the worst difference from Bfr at one approximation level.
 std::map<oracle::LimitCategory, Worst> compare(const TestMesh& mesh, const LoopOptions& options,
                                                const std::vector<Corner>& corners, int approxLevel) {
-  BfrEvaluator bfr(mesh, options, approxLevel);
+  oracle::BfrSurfaces bfr = bfrOf(mesh, options, approxLevel);
   const double diagonal = diagonalOf(mesh.points);
   std::map<oracle::LimitCategory, Worst> worst;
   for (const Corner& c : corners) {
-    const BfrValue b = bfr.at(c.baseFace, c.uv);
+    const oracle::BfrValue b = bfr.at(c.baseFace, c.uv);
     Worst& w = worst[c.category];
     w.position = std::max(w.position, (b.position - c.position).norm() / diagonal);
     ++w.count;
@@ -276,7 +233,7 @@ TEST(BfrLimit, ChaikinReferenceIsFarNotBfr) {
   auto refiner = LoopRefiner::create(mesh.topology, chaikin, {.levels = 2});
   ASSERT_TRUE(refiner.isOk());
   const auto far = oracle::refineWithOpenSubdiv(mesh.topology, mesh.points, chaikin, *refiner, true);
-  BfrEvaluator bfr(mesh, chaikin, 10);
+  oracle::BfrSurfaces bfr = bfrOf(mesh, chaikin, 10);
   const double diagonal = diagonalOf(mesh.points);
   double bfrVsFar = 0, oursVsFar = 0;
   for (const Corner& c : tesseraCorners(mesh, chaikin, 2)) {

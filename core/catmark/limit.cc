@@ -128,14 +128,29 @@ CatmarkLimitFrame creaseFrame(const Level& level, Index v, std::span<const Vec3>
   return creaseSectorFrame(level, v, p, ends[0], ends[1]);
 }
 
+// Twice the area-weighted normal of quad f (its diagonals' cross product).
+Vec3 quadNormal(const Level& level, Index f, std::span<const Vec3> p) {
+  const Index* q = level.faceVertices.data() + 4 * f;
+  return (p[q[2]] - p[q[0]]) % (p[q[3]] - p[q[1]]);
+}
+
 Vec3 faceNormals(const Level& level, Index v, std::span<const Vec3> p) {
   Vec3 sum(0, 0, 0);
   for (Index f : level.ringFacesOf(v)) {
-    if (f == kNoIndex) continue;
-    const Index* q = level.faceVertices.data() + 4 * f;
-    sum += (p[q[2]] - p[q[0]]) % (p[q[3]] - p[q[1]]);
+    if (f != kNoIndex) sum += quadNormal(level, f, p);
   }
   return sum;
+}
+
+// A frame's unit normal; where its tangents are parallel (a degenerate
+// control net), that of `fallback()`, an area-weighted sum of face normals.
+template <typename Fallback>
+Vec3 unitNormal(const CatmarkLimitFrame& frame, Fallback fallback) {
+  Vec3 n = frame.tangent1 % frame.tangent2;
+  const double scale = std::sqrt(frame.tangent1.sqrnorm() * frame.tangent2.sqrnorm());
+  if (!(n.norm() > 1e-12 * scale)) n = fallback();
+  const double len = n.norm();
+  return len > 0.0 ? (1.0 / len) * n : Vec3(0, 0, 0);
 }
 
 CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points,
@@ -150,23 +165,6 @@ CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> p
       return cornerFrame(level, v, points);
   }
   return cornerFrame(level, v, points);
-}
-
-// A frame's unit normal; where its tangents are parallel (a degenerate
-// control net), the area-weighted normal of `faces`.
-Vec3 unitNormal(const CatmarkLimitFrame& frame, const Level& level, std::span<const Vec3> p,
-                std::span<const Index> faces) {
-  Vec3 n = frame.tangent1 % frame.tangent2;
-  const double scale = std::sqrt(frame.tangent1.sqrnorm() * frame.tangent2.sqrnorm());
-  if (!(n.norm() > 1e-12 * scale)) {
-    n = Vec3(0, 0, 0);
-    for (Index f : faces) {
-      const Index* q = level.faceVertices.data() + 4 * f;
-      n += (p[q[2]] - p[q[0]]) % (p[q[3]] - p[q[1]]);
-    }
-  }
-  const double len = n.norm();
-  return len > 0.0 ? (1.0 / len) * n : Vec3(0, 0, 0);
 }
 
 }  // namespace
@@ -206,7 +204,11 @@ std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, s
             ? creaseSectorFrame(level, v, points, from, to)
             : CatmarkLimitFrame{points[v], points[level.ringVertices[o + from % n]] - points[v],
                                 points[level.ringVertices[o + (from + 1) % n]] - points[v]};
-    sector.normal = unitNormal(frame, level, points, faces);
+    sector.normal = unitNormal(frame, [&] {
+      Vec3 sum(0, 0, 0);
+      for (Index f : faces) sum += quadNormal(level, f, points);
+      return sum;
+    });
     out.push_back(sector);
   }
   return out;
@@ -251,12 +253,7 @@ Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std
   for (Index v = 0; v < level.numVertices; ++v) {
     const CatmarkLimitFrame frame = frameWith(level, v, points, tables);
     positions[v] = frame.position;
-    if (!wantNormals) continue;
-    Vec3 n = frame.tangent1 % frame.tangent2;
-    const double scale = std::sqrt(frame.tangent1.sqrnorm() * frame.tangent2.sqrnorm());
-    if (!(n.norm() > 1e-12 * scale)) n = faceNormals(level, v, points);
-    const double len = n.norm();
-    normals[v] = len > 0.0 ? (1.0 / len) * n : Vec3(0, 0, 0);
+    if (wantNormals) normals[v] = unitNormal(frame, [&] { return faceNormals(level, v, points); });
   }
   return Status::ok();
 }

@@ -141,6 +141,7 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
     // child is grown if it must be).
     std::vector<std::pair<Index, uint64_t>> edges;
     edges.reserve(3 * faces.size());
+    std::vector<Vec3> at;  // a face's corners' limits, quad split only
     for (const FaceId& f : faces) {
       const Index local = level.findFace(f.index());
       if (local == kNoIndex)
@@ -154,7 +155,7 @@ Expected<TileBounds> tileBounds(Document& doc, const TileTree& tree, const TileK
       const auto centre = grownUnder(f.index(), l + 1 < h.numLevels() ? level.childOfFace[local] : kNoIndex);
       if (!centre) continue;
       const auto corners = level.mesh.faceVerticesOf(local);
-      std::vector<Vec3> at;
+      at.clear();
       for (Index v : corners) {
         if (const auto& p = endLimit(v)) at.push_back(*p);
       }

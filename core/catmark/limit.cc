@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/catmark/crease_span_tangent.h"
 #include "core/catmark/masks.h"
 #include "core/loop/exact_limit.h"
 
@@ -105,14 +106,22 @@ CatmarkLimitFrame creaseSectorFrame(const Level& level, Index v, std::span<const
   frame.position = catmark::kCreaseLimitNeighbourWeight * (a + b) + catmark::kCreaseLimitVertexWeight * p[v];
   frame.tangent1 = 0.5 * (a - b);
   const int interior = to - from - 1;
-  const catmark::CreaseTangentWeights w = catmark::creaseTangentWeights(interior);
-  Vec3 t2 = w.vertex * p[v] + w.creaseNeighbour * (a + b);
-  for (int i = 1; i <= interior; ++i) t2 += w.interiorNeighbour(i) * p[level.ringVertices[at(from + i)]];
-  if (interior > 0) {
-    for (int i = 0; i <= interior; ++i) {
-      const Index k = at(from + i);
-      t2 += w.face(i) * p[opposite(level, level.ringFaces[k], level.ringFaceLocal[k])];
-    }
+  auto corner = [&](int i) {
+    const Index k = at(from + i);
+    return p[opposite(level, level.ringFaces[k], level.ringFaceLocal[k])];
+  };
+  Vec3 t2;
+  if (interior >= 2) {  // three faces or more: the span's own eigenvector
+    const catmark::CreaseSpanTangent& w = catmark::creaseSpanTangent(interior + 1);
+    t2 = w.vertex * p[v] + w.creaseNeighbour * (a + b);
+    for (int i = 1; i <= interior; ++i)
+      t2 += w.interiorNeighbours[i - 1] * p[level.ringVertices[at(from + i)]];
+    for (int i = 0; i <= interior; ++i) t2 += w.faceCorners[i] * corner(i);
+  } else {
+    const catmark::CreaseTangentWeights w = catmark::creaseTangentWeights(interior);
+    t2 = w.vertex * p[v] + w.creaseNeighbour * (a + b);
+    for (int i = 1; i <= interior; ++i) t2 += w.interiorNeighbour(i) * p[level.ringVertices[at(from + i)]];
+    for (int i = 0; interior > 0 && i <= interior; ++i) t2 += w.face(i) * corner(i);
   }
   frame.tangent2 = t2;
   return frame;

@@ -2,8 +2,11 @@
 // level, with the masks of OpenSubdiv's PrimvarRefiner::Limit() (Sdc's
 // catmarkScheme.h): smooth and dart vertices by the eigenvector masks, crease
 // vertices by the B-spline along the crease and Biermann et al.'s tangent
-// across it, corners at their control point with the plane of their first
-// two edges. Semi-sharp features count as sharp, as in Limit().
+// across it into a span of one or two faces, corners at their control point
+// with the plane of their first two edges. Into a span of three faces or
+// more the tangent across is the span's own eigenvector
+// (core/catmark/crease_span_tangent.h), where Limit()'s is not exact.
+// Semi-sharp features count as sharp, as in Limit().
 #pragma once
 
 #include <memory>

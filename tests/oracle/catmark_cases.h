@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "core/catmark/polygon_level.h"
+#include "core/loop/exact_limit.h"
+#include "core/topology/level.h"
 #include "core/util/vec3.h"
 
 namespace tessera::oracle {
@@ -34,6 +36,19 @@ inline double boundingDiagonal(const std::vector<Vec3>& points) {
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
   }
   return (hi - lo).norm();
+}
+
+// A crease vertex (a boundary one too) whose first side, the one
+// catmarkLimitFrame's tangents give, spans three faces or more. There
+// Tessera takes the span's own eigenvector across the crease
+// (core/catmark/crease_span_tangent.h) and Far's Limit() Biermann et al.'s
+// mask, which is not the surface's: their normals differ by about 1e-2 rad.
+// The tests against Limit() leave these normals to bfr_catmark_limit_test.cc,
+// which holds them to Bfr.
+inline bool spansThreeFacesOrMore(const Level& level, Index v) {
+  if (level.vertexRules[v] != VertexRule::kCrease) return false;
+  const std::vector<int> sharp = sharpRingEdges(level, v);
+  return sharp.size() >= 2 && sharp[1] - sharp[0] >= 3;
 }
 
 }  // namespace tessera::oracle

@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 
+#include "core/catmark/left_eigenvector.h"
 #include "core/catmark/masks.h"
 
 namespace tessera::catmark {
@@ -28,16 +29,11 @@ struct SpanIndex {
   }
 };
 
-struct Entry {
-  int row, column;
-  double weight;
-};
-
 // One step of subdivision on the span: new point `row` = sum of weight x
 // old point `column` (Sdc's crease vertex and edge rules on the crease,
 // Catmull-Clark's face and edge points elsewhere).
-std::vector<Entry> spanSubdivision(const SpanIndex& s) {
-  std::vector<Entry> m;
+std::vector<MatrixEntry> spanSubdivision(const SpanIndex& s) {
+  std::vector<MatrixEntry> m;
   const int k = s.k;
   m.push_back({s.vertex(), s.vertex(), kCreaseVertexWeight});
   m.push_back({s.vertex(), s.edge(0), kCreaseNeighbourWeight});
@@ -68,7 +64,7 @@ double dotOf(const std::vector<double>& x, const std::vector<double>& y) {
 
 CreaseSpanTangent compute(int k) {
   const SpanIndex s{k};
-  const std::vector<Entry> matrix = spanSubdivision(s);
+  const std::vector<MatrixEntry> matrix = spanSubdivision(s);
   const int n = s.size();
 
   // Limit()'s mask: the start of the iteration, and the length and sign to
@@ -86,33 +82,16 @@ CreaseSpanTangent compute(int k) {
   limit[s.vertex()] = kCreaseLimitVertexWeight;
   limit[s.edge(0)] = limit[s.edge(k)] = kCreaseLimitNeighbourWeight;
 
-  auto normalized = [](std::vector<double> x) {
-    double largest = 0;
-    for (double v : x) largest = std::max(largest, std::abs(v));
-    for (double& v : x) v /= largest;
-    return x;
-  };
-  std::vector<double> x = normalized(start), y(n);
-  double eigenvalue = 0;
-  bool converged = false;
-  for (int step = 0; step < 1000000 && !converged; ++step) {
-    std::fill(y.begin(), y.end(), 0.0);
-    for (const Entry& e : matrix) y[e.column] += x[e.row] * e.weight;
+  const LeftEigenvector found = dominantLeftEigenvector(matrix, start, [&](std::vector<double>& y) {
     double constant = 0;
     for (double v : y) constant += v;
     for (int j = 0; j < n; ++j) y[j] -= constant * limit[j];
     std::vector<double> mirrored(n);
     for (int j = 0; j < n; ++j) mirrored[j] = 0.5 * (y[j] + y[s.mirror(j)]);
-    eigenvalue = dotOf(mirrored, x) / dotOf(x, x);
-    std::vector<double> next = normalized(mirrored);
-    double change = 0;
-    for (int j = 0; j < n; ++j) change = std::max(change, std::abs(next[j] - x[j]));
-    x = std::move(next);
-    converged = change < 1e-14;
-  }
-  // The gap below the eigenvalue narrows as k grows (the next symmetric
-  // one is 0.60 against 0.65 at k = 11), so the steps grow with k; the
-  // tests hold the residual of x S = lambda x for k up to 40.
+    y = std::move(mirrored);
+  });
+  const std::vector<double>& x = found.vector;
+  const double eigenvalue = found.eigenvalue;
 
   const double scale = dotOf(start, start) / dotOf(x, start);
   CreaseSpanTangent t;

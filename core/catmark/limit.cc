@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/catmark/crease_span_tangent.h"
+#include "core/catmark/dart_masks.h"
 #include "core/catmark/masks.h"
 #include "core/loop/exact_limit.h"
 
@@ -162,12 +163,34 @@ Vec3 unitNormal(const CatmarkLimitFrame& frame, Fallback fallback) {
   return len > 0.0 ? (1.0 / len) * n : Vec3(0, 0, 0);
 }
 
+// A dart's limit and tangents by its own ring's eigenvectors
+// (core/catmark/dart_masks.h), where Limit() takes the smooth masks.
+CatmarkLimitFrame dartFrame(const Level& level, Index v, std::span<const Vec3> p) {
+  const int n = level.valence(v);
+  if (n == 2) return cornerFrame(level, v, p);
+  const Index o = level.ringOffsets[v];
+  int dart = 0;
+  while (dart < n && !isSharp(level.edgeSharpness[level.ringEdges[o + dart]])) ++dart;
+  const catmark::DartMasks& m = catmark::dartMasks(n);
+  CatmarkLimitFrame frame{m.limit.vertex * p[v], m.along.vertex * p[v], m.across.vertex * p[v]};
+  for (int i = 0; i < n; ++i) {
+    const Index k = o + (dart + i) % n;
+    const Vec3& q = p[level.ringVertices[k]];
+    const Vec3& r = p[opposite(level, level.ringFaces[k], level.ringFaceLocal[k])];
+    frame.position += m.limit.neighbours[i] * q + m.limit.faceCorners[i] * r;
+    frame.tangent1 += m.along.neighbours[i] * q + m.along.faceCorners[i] * r;
+    frame.tangent2 += m.across.neighbours[i] * q + m.across.faceCorners[i] * r;
+  }
+  return frame;
+}
+
 CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points,
                             const TangentTables& tables) {
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
-    case VertexRule::kDart:
       return smoothFrame(level, v, points, tables);
+    case VertexRule::kDart:
+      return dartFrame(level, v, points);
     case VertexRule::kCrease:
       return creaseFrame(level, v, points);
     case VertexRule::kCorner:
@@ -239,8 +262,9 @@ CatmarkLimitFrame CatmarkLimitEvaluator::frame(Index v, std::span<const Vec3> po
 double catmarkSelfLimitWeight(const Level& level, Index v) {
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
-    case VertexRule::kDart:
       return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
+    case VertexRule::kDart:
+      return level.valence(v) == 2 ? 1.0 : catmark::dartMasks(level.valence(v)).limit.vertex;
     case VertexRule::kCrease:
       return catmark::kCreaseLimitVertexWeight;
     case VertexRule::kCorner:

@@ -1,11 +1,12 @@
 // Limit positions and normals of Catmull-Clark at every vertex of an all-quad
 // level, with the masks of OpenSubdiv's PrimvarRefiner::Limit() (Sdc's
-// catmarkScheme.h): smooth and dart vertices by the eigenvector masks, crease
+// catmarkScheme.h): smooth vertices by the eigenvector masks, crease
 // vertices by the B-spline along the crease and Biermann et al.'s tangent
 // across it into a span of one or two faces, corners at their control point
-// with the plane of their first two edges. Into a span of three faces or
-// more the tangent across is the span's own eigenvector
-// (core/catmark/crease_span_tangent.h), where Limit()'s is not exact.
+// with the plane of their first two edges. Where Limit()'s masks are not the
+// surface's, its own neighbourhood's eigenvectors instead: a dart's limit
+// and tangents (core/catmark/dart_masks.h), and the tangent across a crease
+// into three faces or more (core/catmark/crease_span_tangent.h).
 // Semi-sharp features count as sharp, as in Limit().
 #pragma once
 
@@ -50,10 +51,10 @@ class CatmarkLimitEvaluator {
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points);
 
 // The weight of vertex v's own control point in the limit mask
-// catmarkLimitFrame uses (n/(n+5) smooth or dart, 2/3 on a crease, 1 at a
-// corner or a boundary vertex of one face): the limit position is affine
-// in that point, so direct manipulation (Pulli & Lounsbery §2.2) solves
-// for it in one step. Always > 0.
+// catmarkLimitFrame uses (n/(n+5) smooth, the dart mask's at a dart, 2/3
+// on a crease, 1 at a corner or a boundary vertex of one face): the limit
+// position is affine in that point, so direct manipulation (Pulli &
+// Lounsbery §2.2) solves for it in one step. Always > 0.
 double catmarkSelfLimitWeight(const Level& level, Index v);
 
 // The sectors of a crease or corner vertex other than the one whose

@@ -14,11 +14,13 @@ namespace {
 // from its true limit: a semi-sharp edge or vertex sharpness still acts on
 // it (its own sharpness or one of its edges' is finite and not yet decayed:
 // the mask counts it as sharp, ARCHITECTURE "Semi-sharp limits"), or it is
-// a dart, whose mask is the smooth one (limit.cc, as OpenSubdiv's) although
-// its sharp edge refines by the crease rule: a dart's mask only converges
-// towards its limit level by level.
-bool maskInexact(const Level& m, Index v) {
-  if (m.vertexRules[v] == VertexRule::kDart || isSemiSharp(m.vertexSharpness[v])) return true;
+// a Loop dart, whose mask is the smooth one (core/loop/limit.cc, as
+// OpenSubdiv's) although its sharp edge refines by the crease rule: a
+// dart's mask only converges towards its limit level by level. A
+// Catmull-Clark dart's masks are its own ring's (core/catmark/dart_masks.h):
+// exact.
+bool maskInexact(const Level& m, Index v, bool quads) {
+  if ((m.vertexRules[v] == VertexRule::kDart && !quads) || isSemiSharp(m.vertexSharpness[v])) return true;
   for (Index e : m.ringEdgesOf(v)) {
     if (isSemiSharp(m.edgeSharpness[e])) return true;
   }
@@ -29,7 +31,7 @@ bool maskInexact(const Level& m, Index v) {
 // alone (the rule and its reasons are in tessellation.h): from the level
 // the vertex was born at, down to the deepest level whose active edits
 // reach its limit, then further while its limit mask is inexact (semi-sharp
-// features, darts), up to the document's deepest level. Vertex children keep
+// features, Loop's darts), up to the document's deepest level. Vertex children keep
 // their canonical index, so whichever leaf reaches the vertex (any `v` of
 // it) gives the same answer, and regions sharing a border agree bit for
 // bit. When the hierarchy does not hold the vertex's ring at the chosen
@@ -60,7 +62,7 @@ std::optional<VertexRef> limitSource(const SparseHierarchy& h, const LevelCounts
   };
   if (at.level < earliest) return grow(earliest, h.level(at.level).vertexIds[at.local]);
   if (!held(at.level, at.local)) return grow(at.level, h.level(at.level).vertexIds[at.local]);
-  while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local)) {
+  while (at.level < counts.maxLevel() && maskInexact(h.level(at.level).mesh, at.local, h.quads())) {
     const Index child = at.level + 1 < h.numLevels() ? h.level(at.level).childOfVertex[at.local] : kNoIndex;
     if (!held(at.level + 1, child)) return grow(at.level + 1, h.level(at.level).vertexIds[at.local]);
     at = {at.level + 1, child};

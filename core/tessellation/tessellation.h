@@ -39,10 +39,11 @@
 //     semi-sharp edge or vertex sharpness still acts on it (OpenSubdiv's
 //     masks count a not yet decayed sharpness as sharp; refined ceil(s)
 //     levels it has decayed and the mask is exact, ARCHITECTURE "Semi-sharp
-//     limits") and at darts (the smooth mask, which a dart's sharp edge
-//     makes only converge level by level), but never past the document's
+//     limits") and at Loop's darts (the smooth mask, which a dart's sharp
+//     edge makes only converge level by level; a Catmull-Clark dart's masks
+//     are exact, core/catmark/dart_masks.h), but never past the document's
 //     maximum level, a fixed cap: a sharpness still acting there, and every
-//     infinitely sharp dart, shows the limit mask of that level.
+//     infinitely sharp Loop dart, shows the limit mask of that level.
 // The hierarchy is grown (Document::refineHierarchy) where it does not
 // hold the vertex's ring at that level.
 #pragma once

@@ -25,12 +25,15 @@
 #include <cstdio>
 #include <map>
 #include <optional>
+#include <random>
 
 #include "core/catmark/limit.h"
+#include "core/document/document.h"
 #include "core/loop/exact_limit.h"
 #include "core/loop/limit.h"
 #include "core/schemes/quad_refiner.h"
 #include "oracle/bfr_surfaces.h"
+#include "oracle/catmark_cases.h"
 #include "oracle/osd_catmark_reference.h"
 #include "support/polygon_meshes.h"
 
@@ -44,6 +47,7 @@ using Param = std::array<double, 2>;
 // vertex's rule, and for a crease or corner the size of the face's side.
 enum class Side {
   kSmooth,
+  kDartOfValence4,
   kDart,
   kCreaseOneOrTwoFaces,
   kCreaseThreeFaces,
@@ -58,8 +62,10 @@ std::string nameOf(Side s) {
   switch (s) {
     case Side::kSmooth:
       return "smooth";
+    case Side::kDartOfValence4:
+      return "dart, valence 4";
     case Side::kDart:
-      return "dart";
+      return "dart, other valence";
     case Side::kCreaseOneOrTwoFaces:
       return "crease side 1-2 faces";
     case Side::kCreaseThreeFaces:
@@ -93,7 +99,7 @@ Side sideOf(const Level& level, Index v, int ringFace) {
     case VertexRule::kSmooth:
       return Side::kSmooth;
     case VertexRule::kDart:
-      return Side::kDart;
+      return n == 4 ? Side::kDartOfValence4 : Side::kDart;
     case VertexRule::kCrease:
     case VertexRule::kCorner: {
       if (m < 2) return Side::kCusp;
@@ -225,6 +231,7 @@ std::map<Side, Worst> compare(const PolyTestMesh& mesh, const CreaseOptions& opt
 struct Exact {
   int corners = 0, otherSides = 0;  // compared where Bfr is exact; of them, normals of other sides
   int threeFaceCreaseSides = 0;     // held to Bfr's convergence
+  int darts = 0;                    // of valence 4, held to Bfr's convergence
 };
 
 // Across a crease into three faces or more Bfr approximates: it refines
@@ -255,6 +262,34 @@ void checkConvergence(const PolyTestMesh& mesh, const CreaseOptions& options,
   if (side == Side::kCreaseThreeFaces) EXPECT_LE(previous, 1e-4);
 }
 
+// At a dart Bfr approximates too (Limit()'s smooth masks at its last
+// level), and Tessera takes the dart's own eigenvectors
+// (core/catmark/dart_masks.h). Bfr's position then approaches ours by the
+// ratio of the dart ring's next eigenvalue to 1, and its normal by that of
+// the next to the smaller of the tangents' (numpy, docs/LIMITS.md): at
+// valence 4, 0.3197 / 0.5 per level, 2.45 times every two levels. The
+// position must come closer by at least 4 times and the normal by at least
+// 2 times every two levels, the position within 1e-6 of the diagonal at
+// level 10. Limit()'s smooth masks stay 4.3e-3 of the diagonal and 0.56 rad
+// away at every level. Darts of other valences are reported.
+void checkDartConvergence(const PolyTestMesh& mesh, const CreaseOptions& options,
+                          const std::vector<Corner>& corners, Side side, int count) {
+  Worst previous;
+  for (int level : {6, 8, 10}) {
+    const Worst w = compare(mesh, options, corners, level, side).at(side);
+    std::printf("  %-28s %-22s corners %6d  Bfr level %d: %.2e diag %.2e rad\n", mesh.name.c_str(),
+                nameOf(side).c_str(), count, level, w.position, w.normal);
+    if (side != Side::kDartOfValence4) continue;
+    EXPECT_EQ(w.noNormal, 0);
+    if (level > 6) {
+      EXPECT_LE(w.position, previous.position / 4) << "Bfr level " << level;
+      EXPECT_LE(w.normal, previous.normal / 2) << "Bfr level " << level;
+    }
+    previous = w;
+  }
+  if (side == Side::kDartOfValence4) EXPECT_LE(previous.position, 1e-6);
+}
+
 Exact checkAgainstBfr(const PolyTestMesh& mesh, const CreaseOptions& options, int levels) {
   SCOPED_TRACE(mesh.name);
   const std::vector<Corner> corners = tesseraCorners(mesh, options, levels);
@@ -268,6 +303,11 @@ Exact checkAgainstBfr(const PolyTestMesh& mesh, const CreaseOptions& options, in
         "%.2e diag %.2e rad\n",
         mesh.name.c_str(), nameOf(side).c_str(), w.count, w.noNormal, w.position, w.normal, deep.position,
         deep.normal);
+    if (side == Side::kDartOfValence4 || side == Side::kDart) {
+      checkDartConvergence(mesh, options, corners, side, w.count);
+      if (side == Side::kDartOfValence4) exact.darts += w.count;
+      continue;
+    }
     if (side == Side::kCreaseThreeFaces || side == Side::kCreaseWider) {
       checkConvergence(mesh, options, corners, side, w.count);
       if (side == Side::kCreaseThreeFaces) exact.threeFaceCreaseSides += w.count;
@@ -306,7 +346,7 @@ TEST(BfrCatmarkLimit, SharpCreasesAndCornersGiveEachSideItsNormal) {
   Exact all;
   auto add = [&](const Exact& e) {
     all.corners += e.corners, all.otherSides += e.otherSides,
-        all.threeFaceCreaseSides += e.threeFaceCreaseSides;
+        all.threeFaceCreaseSides += e.threeFaceCreaseSides, all.darts += e.darts;
   };
   for (uint32_t seed = 1; seed <= 3; ++seed) {
     add(checkAgainstBfr(
@@ -318,17 +358,61 @@ TEST(BfrCatmarkLimit, SharpCreasesAndCornersGiveEachSideItsNormal) {
   std::printf(
       "[ measured ] %d corners where Bfr is exact, %d of them on a crease's or corner's other side; %d "
       "crease "
-      "sides of 3 faces held to Bfr's convergence\n",
-      all.corners, all.otherSides, all.threeFaceCreaseSides);
+      "sides of 3 faces and %d dart corners held to Bfr's convergence\n",
+      all.corners, all.otherSides, all.threeFaceCreaseSides, all.darts);
   EXPECT_GT(all.corners, 1000);
   EXPECT_GT(all.otherSides, 100);
   EXPECT_GT(all.threeFaceCreaseSides, 50);
+  EXPECT_GT(all.darts, 500);
 }
 
 TEST(BfrCatmarkLimit, SemiSharpTagsAreReportedWhereTheyHaveNotDecayed) {
   checkAgainstBfr(
       testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 4), 0.2, 0.1, 40),
       {}, 2);
+}
+
+// Direct manipulation at darts (Pulli & Lounsbery, "Hierarchical Editing
+// and Rendering of Subdivision Surfaces" §2.2): one infinitely sharp edge
+// makes both its ends darts; each is dragged, and Bfr's limit of the edited
+// cage at the vertex must approach the target as at every dart above (at
+// least 4 times closer every two levels) and lie within 1e-6 of the
+// diagonal at level 10. With Limit()'s smooth masks the drag solved for
+// lands about 4e-3 of the diagonal away.
+TEST(BfrCatmarkLimit, DraggedDartsLandOnTheLimitSurface) {
+  PolyTestMesh mesh = testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 5);
+  const int a = mesh.topology.indices[0], b = mesh.topology.indices[1];
+  mesh.topology.creases.push_back({a, b, 10.0f});
+  auto doc = Document::create(mesh.topology, mesh.points,
+                              {.loop = {}, .maxLevel = 2, .scheme = DocumentScheme::kCatmullClark});
+  ASSERT_TRUE(doc.isOk()) << doc.status().toString();
+  const double diagonal = oracle::boundingDiagonal(mesh.points);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  const oracle::OsdPolyInput input(mesh.topology);
+  for (int v : {a, b}) {  // b is a's neighbour: each is checked right after its own drag
+    auto before = doc->surface(0, SurfaceKind::kLimit);
+    ASSERT_TRUE(before.isOk()) << before.status().toString();
+    const Vec3 target = before->positions[v] + Vec3(unit(rng), unit(rng), unit(rng)) * (0.1 * diagonal);
+    const VertexId id(0, static_cast<uint64_t>(v));
+    ASSERT_TRUE(doc->moveToLimit(std::span(&id, 1), target).isOk());
+    auto cage = doc->surface(0, SurfaceKind::kControl);
+    ASSERT_TRUE(cage.isOk()) << cage.status().toString();
+    // Face 0 holds a at its corner 0 and b at its corner 1.
+    const Param uv = v == a ? Param{0, 0} : Param{1, 0};
+    double previous = 0;
+    for (int level : {6, 8, 10}) {
+      oracle::BfrSurfaces bfr(
+          oracle::createOsdQuadRefiner(input, schemes::QuadScheme::kCatmullClark, {}, 0, true),
+          cage->positions, level);
+      const double off = (bfr.at(0, uv).position - target).norm() / diagonal;
+      std::printf("  dart v0:%d dragged: Bfr level %d's limit %.2e of the diagonal from the target\n", v,
+                  level, off);
+      if (level > 6) EXPECT_LE(off, previous / 4) << "v0:" << v << ", Bfr level " << level;
+      previous = off;
+    }
+    EXPECT_LE(previous, 1e-6) << "v0:" << v;
+  }
 }
 
 }  // namespace

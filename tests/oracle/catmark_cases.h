@@ -38,14 +38,21 @@ inline double boundingDiagonal(const std::vector<Vec3>& points) {
   return (hi - lo).norm();
 }
 
-// A crease vertex (a boundary one too) whose first side, the one
-// catmarkLimitFrame's tangents give, spans three faces or more. There
-// Tessera takes the span's own eigenvector across the crease
-// (core/catmark/crease_span_tangent.h) and Far's Limit() Biermann et al.'s
-// mask, which is not the surface's: their normals differ by about 1e-2 rad.
-// The tests against Limit() leave these normals to bfr_catmark_limit_test.cc,
-// which holds them to Bfr.
-inline bool spansThreeFacesOrMore(const Level& level, Index v) {
+// Where Far's Limit() is not the Catmull-Clark surface's limit and Tessera's
+// is, so the tests against Limit() leave them to bfr_catmark_limit_test.cc,
+// which holds them to Bfr's convergence (docs/LIMITS.md "Catmull-Clark
+// limits"):
+// - a dart's position and normal: Limit() takes the smooth masks there,
+//   Tessera the dart ring's own eigenvectors (core/catmark/dart_masks.h);
+inline bool limitPositionDiffersFromFar(const Level& level, Index v) {
+  return level.vertexRules[v] == VertexRule::kDart && level.valence(v) > 2;
+}
+// - and the normal of a crease vertex (a boundary one too) whose first
+//   side, the one catmarkLimitFrame's tangents give, spans three faces or
+//   more: Limit() takes Biermann et al.'s tangent across, Tessera the side's
+//   own eigenvector (core/catmark/crease_span_tangent.h).
+inline bool limitNormalDiffersFromFar(const Level& level, Index v) {
+  if (limitPositionDiffersFromFar(level, v)) return true;
   if (level.vertexRules[v] != VertexRule::kCrease) return false;
   const std::vector<int> sharp = sharpRingEdges(level, v);
   return sharp.size() >= 2 && sharp[1] - sharp[0] >= 3;

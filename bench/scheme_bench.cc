@@ -22,6 +22,7 @@
 #include "core/hierarchy/sparse_hierarchy.h"
 #include "core/schemes/polygon_reader.h"
 #include "core/schemes/quad_refiner.h"
+#include "core/util/heap_policy.h"
 #include "oracle/osd_adapter.h"
 #include "oracle/osd_catmark_reference.h"
 #include "support/sparse_levels.h"
@@ -144,6 +145,22 @@ BENCHMARK(hierarchyOpenSubdiv)
 
 int main(int argc, char** argv) {
   std::string path = std::string(TESSERA_TESTDATA_DIR) + "/cgal/fandisk.off";
+  // The server's heap policy (core/util/heap_policy.h) for both rows, as
+  // the server runs them; --default-heap measures glibc's defaults instead.
+  bool serverHeap = true;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--default-heap") == 0) {
+      serverHeap = false;
+      for (int j = i; j + 1 <= argc; ++j) argv[j] = argv[j + 1];
+      --argc;
+      break;
+    }
+  }
+  if (serverHeap && !tessera::keepFreedMemoryForReuse()) {
+    std::fprintf(stderr, "tessera_bench_scheme: the C library refused the server's heap policy\n");
+    return 1;
+  }
+  std::printf("heap: %s\n", serverHeap ? "the server's (freed memory kept for reuse)" : "glibc's defaults");
   for (int i = 1; i + 1 < argc; ++i) {
     if (std::strcmp(argv[i], "--mesh") == 0) {
       path = argv[i + 1];

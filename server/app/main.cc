@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/util/heap_policy.h"
 #include "server/app/command_line.h"
 #include "server/app/operator_commands.h"
 #include "server/app/server.h"
@@ -41,6 +42,10 @@ int main(int argc, char** argv) {
     case ServerAction::kServe:
       break;
   }
+  // Levels are rebuilt and grown over and over: freed memory stays for reuse
+  // rather than being faulted in again, and the bulk work trims the heap
+  // (core/util/heap_policy.h).
+  if (!tessera::keepFreedMemoryForReuse()) logEvent(LogLevel::kWarn, "heap_policy_refused", {});
   auto server = Server::create(config);
   if (!server.isOk()) {
     logEvent(LogLevel::kError, "startup_failed", {{"error", server.status().toString()}});

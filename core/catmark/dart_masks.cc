@@ -123,7 +123,7 @@ DartMasks compute(int n) {
 }  // namespace
 
 const DartMasks& dartMasks(int valence) {
-  assert(valence >= 3);
+  assert(hasExactDartMasks(valence));
   static std::mutex mutex;
   static std::map<int, std::unique_ptr<const DartMasks>> computed;
   const std::lock_guard lock(mutex);

@@ -34,8 +34,19 @@ struct DartMasks {
   double alongEigenvalue = 0, acrossEigenvalue = 0;
 };
 
-// Computed once per valence >= 3 (power iteration on the ring's matrix,
-// core/catmark/left_eigenvector.h) and kept. Thread-safe.
+// Up to this valence a dart takes these masks; above it, Limit()'s smooth
+// ones. The power iteration's steps grow with the valence as the ring's
+// eigenvalues crowd together below 0.6545 (18 ms at valence 64 on the
+// 2-core machine of docs/PERFORMANCE.md, 3.9 s at 400), and a mesh may hold
+// a vertex of any valence: a bound keeps a hostile mesh from holding the
+// evaluation for minutes (docs/LIMITS.md "Catmull-Clark limits").
+inline constexpr int kMaxExactDartValence = 64;
+inline bool hasExactDartMasks(int valence) {
+  return valence >= 3 && valence <= kMaxExactDartValence;
+}
+
+// Computed once per valence (3 to kMaxExactDartValence; power iteration on
+// the ring's matrix, core/catmark/left_eigenvector.h) and kept. Thread-safe.
 const DartMasks& dartMasks(int valence);
 
 }  // namespace tessera::catmark

@@ -164,10 +164,12 @@ Vec3 unitNormal(const CatmarkLimitFrame& frame, Fallback fallback) {
 }
 
 // A dart's limit and tangents by its own ring's eigenvectors
-// (core/catmark/dart_masks.h), where Limit() takes the smooth masks.
-CatmarkLimitFrame dartFrame(const Level& level, Index v, std::span<const Vec3> p) {
+// (core/catmark/dart_masks.h), where Limit() takes the smooth masks; the
+// smooth masks too above kMaxExactDartValence.
+CatmarkLimitFrame dartFrame(const Level& level, Index v, std::span<const Vec3> p,
+                            const TangentTables& tables) {
   const int n = level.valence(v);
-  if (n == 2) return cornerFrame(level, v, p);
+  if (!catmark::hasExactDartMasks(n)) return smoothFrame(level, v, p, tables);
   const Index o = level.ringOffsets[v];
   int dart = 0;
   while (dart < n && !isSharp(level.edgeSharpness[level.ringEdges[o + dart]])) ++dart;
@@ -190,7 +192,7 @@ CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> p
     case VertexRule::kSmooth:
       return smoothFrame(level, v, points, tables);
     case VertexRule::kDart:
-      return dartFrame(level, v, points);
+      return dartFrame(level, v, points, tables);
     case VertexRule::kCrease:
       return creaseFrame(level, v, points);
     case VertexRule::kCorner:
@@ -264,7 +266,9 @@ double catmarkSelfLimitWeight(const Level& level, Index v) {
     case VertexRule::kSmooth:
       return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
     case VertexRule::kDart:
-      return level.valence(v) == 2 ? 1.0 : catmark::dartMasks(level.valence(v)).limit.vertex;
+      if (!catmark::hasExactDartMasks(level.valence(v)))
+        return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
+      return catmark::dartMasks(level.valence(v)).limit.vertex;
     case VertexRule::kCrease:
       return catmark::kCreaseLimitVertexWeight;
     case VertexRule::kCorner:

@@ -2,6 +2,7 @@
 
 #include <unordered_map>
 
+#include "core/catmark/dart_masks.h"
 #include "core/catmark/limit.h"
 #include "core/hierarchy/incidence.h"
 #include "core/loop/limit.h"
@@ -17,10 +18,12 @@ namespace {
 // a Loop dart, whose mask is the smooth one (core/loop/limit.cc, as
 // OpenSubdiv's) although its sharp edge refines by the crease rule: a
 // dart's mask only converges towards its limit level by level. A
-// Catmull-Clark dart's masks are its own ring's (core/catmark/dart_masks.h):
-// exact.
+// Catmull-Clark dart's masks are its own ring's (core/catmark/dart_masks.h),
+// exact up to kMaxExactDartValence.
 bool maskInexact(const Level& m, Index v, bool quads) {
-  if ((m.vertexRules[v] == VertexRule::kDart && !quads) || isSemiSharp(m.vertexSharpness[v])) return true;
+  if (m.vertexRules[v] == VertexRule::kDart && !(quads && catmark::hasExactDartMasks(m.valence(v))))
+    return true;
+  if (isSemiSharp(m.vertexSharpness[v])) return true;
   for (Index e : m.ringEdgesOf(v)) {
     if (isSemiSharp(m.edgeSharpness[e])) return true;
   }

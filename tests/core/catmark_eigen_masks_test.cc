@@ -12,12 +12,16 @@
 // dart edge); and the masks must have the symmetry and the sums they claim.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "core/catmark/crease_span_tangent.h"
 #include "core/catmark/dart_masks.h"
+#include "core/catmark/limit.h"
 #include "core/catmark/masks.h"
+#include "core/schemes/quad_refiner.h"
 
 namespace tessera {
 namespace {
@@ -199,6 +203,57 @@ TEST(DartMasks, EigenvaluesAndTheLimitWeightAreNumpys) {
     EXPECT_NEAR(d.alongEigenvalue, e.along, 1e-11) << e.n;
     EXPECT_NEAR(d.acrossEigenvalue, e.across, 1e-11) << e.n;
     EXPECT_NEAR(d.limit.vertex, e.vertex, 1e-11) << e.n;
+  }
+}
+
+// A fan of n quads around one vertex whose first edge is infinitely sharp:
+// a dart of valence n.
+struct Fan {
+  PolyTopology topology;
+  std::vector<Vec3> points;
+};
+Fan dartFan(int n) {
+  Fan fan;
+  fan.topology.numVertices = 1 + 2 * n;
+  fan.points.push_back(Vec3(0, 0, 0.2));
+  for (int j = 0; j < 2 * n; ++j) {
+    const double angle = std::numbers::pi * j / n, radius = j % 2 ? 1.3 : 1.0;
+    fan.points.push_back(Vec3(radius * std::cos(angle), radius * std::sin(angle), 0.05 * std::sin(3.0 * j)));
+  }
+  auto ring = [&](int j) { return 1 + j % (2 * n); };
+  for (int i = 0; i < n; ++i) {
+    const std::array<int, 4> quad = {0, ring(2 * i), ring(2 * i + 1), ring(2 * i + 2)};
+    fan.topology.addFace(quad);
+  }
+  fan.topology.creases.push_back({0, ring(0), 10.0f});
+  return fan;
+}
+
+// Limit()'s smooth position mask, written out.
+Vec3 smoothLimit(const Fan& fan, int n) {
+  Vec3 edges(0, 0, 0), corners(0, 0, 0);
+  for (int i = 0; i < n; ++i) edges += fan.points[1 + 2 * i], corners += fan.points[2 + 2 * i];
+  const double w = 1.0 / (n * (n + 5.0));
+  return (n / (n + 5.0)) * fan.points[0] + 4.0 * w * edges + w * corners;
+}
+
+TEST(DartMasks, AboveTheirLargestValenceDartsTakeLimitsSmoothMasks) {
+  for (int n : {catmark::kMaxExactDartValence, catmark::kMaxExactDartValence + 1, 500}) {
+    SCOPED_TRACE("valence " + std::to_string(n));
+    const Fan fan = dartFan(n);
+    auto refiner =
+        schemes::QuadRefiner::create(fan.topology, schemes::QuadScheme::kCatmullClark, {}, {.levels = 1});
+    ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
+    const Level& level = refiner->level(0);
+    ASSERT_EQ(level.vertexRules[0], VertexRule::kDart);
+    ASSERT_EQ(level.valence(0), n);
+    const double off = (catmarkLimitFrame(level, 0, fan.points).position - smoothLimit(fan, n)).norm();
+    if (catmark::hasExactDartMasks(n)) {
+      EXPECT_GT(off, 1e-6) << "the dart's own limit";
+    } else {
+      EXPECT_LE(off, 1e-12) << "Limit()'s smooth mask";
+      EXPECT_NEAR(catmarkSelfLimitWeight(level, 0), n / (n + 5.0), 1e-15);
+    }
   }
 }
 

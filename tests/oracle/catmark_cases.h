@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/catmark/dart_masks.h"
 #include "core/catmark/polygon_level.h"
 #include "core/loop/exact_limit.h"
 #include "core/topology/level.h"
@@ -45,7 +46,7 @@ inline double boundingDiagonal(const std::vector<Vec3>& points) {
 // - a dart's position and normal: Limit() takes the smooth masks there,
 //   Tessera the dart ring's own eigenvectors (core/catmark/dart_masks.h);
 inline bool limitPositionDiffersFromFar(const Level& level, Index v) {
-  return level.vertexRules[v] == VertexRule::kDart && level.valence(v) > 2;
+  return level.vertexRules[v] == VertexRule::kDart && catmark::hasExactDartMasks(level.valence(v));
 }
 // - and the normal of a crease vertex (a boundary one too) whose first
 //   side, the one catmarkLimitFrame's tangents give, spans three faces or

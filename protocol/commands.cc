@@ -33,6 +33,8 @@ uint64_t documentOf(const wire::ClientMessage& m) {
       return m.get_morph_control().document_id();
     case C::kSetView:
       return m.set_view().document_id();
+    case C::kGetCage:
+      return m.get_cage().document_id();
     default:
       return 0;
   }
@@ -57,6 +59,8 @@ uint64_t replyTo(const wire::ServerMessage& m) {
       return m.stats_reply().client_seq();
     case S::kMorphControl:
       return m.morph_control().client_seq();
+    case S::kCage:
+      return m.cage().client_seq();
     default:
       return 0;
   }

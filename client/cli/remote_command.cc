@@ -124,6 +124,7 @@ void addRemoteCommand(CLI::App& app, Action& action) {
 
   addRemoteEdit(*remote, connection, action);
   addRemoteMorphKey(*remote, connection, action);
+  addRemoteCage(*remote, connection, action);
 
   CLI::App* exporter = remote->add_subcommand("export", "write a document's surface at a level as GLB");
   auto exportArgs = std::make_shared<ExportArgs>();

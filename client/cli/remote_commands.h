@@ -17,5 +17,7 @@ void addRemoteCreate(CLI::App& remote, std::shared_ptr<ConnectionArgs> connectio
 void addRemoteEdit(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
 // remote morph-key DOC MESH [--images A.png B.png]: the second key (AddMorphKey).
 void addRemoteMorphKey(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
+// remote cage DOC [--level N] [--list]: one level's polygons (GetCage).
+void addRemoteCage(CLI::App& remote, std::shared_ptr<ConnectionArgs> connection, Action& action);
 
 }  // namespace tessera::cli

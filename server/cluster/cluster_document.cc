@@ -187,6 +187,16 @@ void ClusterDocument::morphControl(std::shared_ptr<server::Subscriber> who, uint
   });
 }
 
+void ClusterDocument::cage(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
+                           wire::GetCage request) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (host_) return host_->cage(std::move(who), clientSeq, std::move(request));
+  forward(who->sessionId(), Forward::KIND_CAGE, [&](Forward& f) {
+    f.mutable_message()->set_client_seq(clientSeq);
+    *f.mutable_message()->mutable_get_cage() = std::move(request);
+  });
+}
+
 bool ClusterDocument::serveRemote(const Forward& request) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (!host_) return false;
@@ -235,6 +245,9 @@ bool ClusterDocument::serveRemote(const Forward& request) {
       break;
     case F::KIND_MORPH_CONTROL:
       host_->morphControl(who, m.client_seq(), m.get_morph_control());
+      break;
+    case F::KIND_CAGE:
+      host_->cage(who, m.client_seq(), m.get_cage());
       break;
     case F::KIND_OUTCOMES:
       host_->answerOutcomes(

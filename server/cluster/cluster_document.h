@@ -55,6 +55,7 @@ class ClusterDocument : public server::DocumentEndpoint,
                  wire::ExportDocument request) override;
   void morphControl(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq,
                     wire::GetMorphControl request) override;
+  void cage(std::shared_ptr<server::Subscriber> who, uint64_t clientSeq, wire::GetCage request) override;
 
   // The owner's side: a request of another node's session. False when this
   // node does not own the document (the sender is told NotOwner).

@@ -46,6 +46,9 @@ bool dispatchToDocument(DocumentEndpoint& document, const std::shared_ptr<Subscr
     case C::kGetMorphControl:
       document.morphControl(who, seq, message.get_morph_control());
       return true;
+    case C::kGetCage:
+      document.cage(who, seq, message.get_cage());
+      return true;
     default:
       return false;
   }

@@ -38,6 +38,8 @@ class DocumentEndpoint {
                          wire::ExportDocument request) = 0;
   virtual void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
                             wire::GetMorphControl request) = 0;
+  // The polygons of one level of the control mesh (Cage).
+  virtual void cage(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetCage request) = 0;
 };
 
 // Opens documents for connections: the registry of hosts on a single node,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/document/control_cage.h"
 #include "core/io/mesh_export.h"
 #include "core/morph/keyed_document_file.h"
 #include "core/tessellation/document_bounds.h"
@@ -675,6 +676,61 @@ void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t client
       return;
     }
     who->send({frame, nullptr});
+  });
+}
+
+void DocumentHost::cage(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetCage request) {
+  const uint32_t maxFrame = config_.limits.maxFrameBytes;
+  const uint32_t level = request.level();
+  const int maxLevel = doc_.key0().options().maxLevel;
+  if (level > static_cast<uint32_t>(maxLevel)) {
+    who->send({frameOf(rejectFor(clientSeq,
+                                 invalidArgument("control cage of document " + std::to_string(id_.value) +
+                                                 ": level " + std::to_string(level) + " is outside 0.." +
+                                                 std::to_string(maxLevel))),
+                       maxFrame),
+               nullptr});
+    return;
+  }
+  // A cage has a face for each of the level's faces: the export's bound.
+  const int64_t faces = static_cast<int64_t>(counts_.faces(static_cast<int>(level)));
+  if (faces > config_.limits.maxTrianglesPerSubscriber) {
+    who->send({limitExceeded(clientSeq,
+                             "control cage: level " + std::to_string(level) + " has " +
+                                 std::to_string(faces) + " faces, above the limit of " +
+                                 std::to_string(config_.limits.maxTrianglesPerSubscriber) +
+                                 " (--max-triangles); ask for a coarser level",
+                             maxFrame),
+               nullptr});
+    return;
+  }
+  const Lane lane = laneFor(faces, config_);
+  queue_.post(lane, [self = shared_from_this(), who, clientSeq, level, lane] {
+    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
+    auto cage = controlCage(self->doc_.key0(), static_cast<int>(level));
+    if (!cage.isOk()) {
+      who->send({frameOf(rejectFor(clientSeq, cage.status()), maxFrame), nullptr});
+      return;
+    }
+    wire::ServerMessage m;
+    wire::Cage* c = m.mutable_cage();
+    c->set_client_seq(clientSeq);
+    c->set_document_id(self->id_.value);
+    c->set_version(self->version_);
+    c->set_level(level);
+    c->mutable_face_sizes()->Add(cage->faceSizes.begin(), cage->faceSizes.end());
+    c->mutable_vertices()->Add(cage->vertices.begin(), cage->vertices.end());
+    auto frame = frameOf(m, maxFrame);
+    if (!frame) {
+      who->send(
+          {frameOf(rejectFor(clientSeq, invalidArgument("control cage of level " + std::to_string(level) +
+                                                        " exceeds the frame limit; ask for a coarser level")),
+                   maxFrame),
+           nullptr});
+      return;
+    }
+    who->send({frame, nullptr});
+    if (lane == Lane::kBulk) trimHeapOnBulk(self->bulk_);
   });
 }
 

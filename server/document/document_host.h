@@ -104,6 +104,9 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // The coarse morph stream: the control points at t (MorphControl).
   void morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
                     wire::GetMorphControl request) override;
+  // Refused from the level's face count (--max-triangles, as an export)
+  // before anything is evaluated.
+  void cage(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wire::GetCage request) override;
 
   // In a cluster, the journal entries loaded with the document that name
   // the client command they came from (session, client_seq) -> its Ack.

@@ -235,6 +235,11 @@ std::vector<wire::ClientMessage> session(uint64_t seq, int maxLevel) {
     control->set_t(0.25);
     control->set_with_topology(true);
   }
+  for (uint32_t level : {0u, 2u, 9u}) {
+    auto* cage = add().mutable_get_cage();
+    cage->set_document_id(1);
+    cage->set_level(level);
+  }
   auto* undo = add().mutable_undo();
   undo->set_document_id(1);
   undo->set_edit_id(2);

@@ -132,6 +132,11 @@ inline std::vector<wire::ClientMessage> sampleClientMessages() {
     m->set_with_topology(true);
   }
   {
+    auto* m = add().mutable_get_cage();
+    m->set_document_id(42);
+    m->set_level(1);
+  }
+  {
     // A camera, as a view-dependent subscription and a move of it.
     auto fillView = [](wire::View* v) {
       v->mutable_eye()->set_z(5);
@@ -316,6 +321,16 @@ inline std::vector<wire::ServerMessage> sampleServerMessages() {
     m->set_crease_method(wire::CREASE_METHOD_UNIFORM);
     m->set_boundary(wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
     m->set_max_level(5);
+  }
+  {
+    // A quad and a triangle sharing an edge, at level 1.
+    auto* m = add().mutable_cage();
+    m->set_client_seq(16);
+    m->set_document_id(42);
+    m->set_version(18);
+    m->set_level(1);
+    for (uint32_t n : {4u, 3u}) m->add_face_sizes(n);
+    for (uint64_t v : {0u, 1u, 2u, 3u, 2u, 1u, 9u}) m->add_vertices(v);
   }
   {
     auto* m = add().mutable_pong();

@@ -40,6 +40,9 @@ class RecordingEndpoint final : public DocumentEndpoint {
   void morphControl(std::shared_ptr<Subscriber>, uint64_t seq, wire::GetMorphControl) override {
     calls.push_back("morphControl " + std::to_string(seq));
   }
+  void cage(std::shared_ptr<Subscriber>, uint64_t seq, wire::GetCage request) override {
+    calls.push_back("cage " + std::to_string(seq) + " level " + std::to_string(request.level()));
+  }
   std::vector<std::string> calls;
 };
 
@@ -82,6 +85,9 @@ TEST(DocumentDispatch, EachCommandReachesItsCall) {
   m.mutable_subscribe()->mutable_view();
   EXPECT_TRUE(send(m, 12));
   m.Clear();
+  m.mutable_get_cage()->set_level(2);
+  EXPECT_TRUE(send(m, 13));
+  m.Clear();
   m.mutable_ping();
   EXPECT_FALSE(send(m, 9)) << "not a document's command";
   m.Clear();
@@ -91,7 +97,7 @@ TEST(DocumentDispatch, EachCommandReachesItsCall) {
   EXPECT_EQ(endpoint.calls, (std::vector<std::string>{
                                 "subscribe 1 with_commands max 3", "unsubscribe 12", "select 3", "export 4",
                                 "morphControl 5", "command 6 by ann", "command 7 by ann", "command 8 by ann",
-                                "setView 11 width 390", "subscribe 12 max 0 view"}));
+                                "setView 11 width 390", "subscribe 12 max 0 view", "cage 13 level 2"}));
 }
 
 TEST(DocumentDispatch, EditsAreEveryCommandThatChangesTheDocument) {
@@ -108,7 +114,7 @@ TEST(DocumentDispatch, EditsAreEveryCommandThatChangesTheDocument) {
   for (auto set : std::vector<std::function<void(wire::ClientMessage&)>>{
            [](auto& x) { x.mutable_subscribe(); }, [](auto& x) { x.mutable_select(); },
            [](auto& x) { x.mutable_export_document(); }, [](auto& x) { x.mutable_get_morph_control(); },
-           [](auto& x) { x.mutable_delete_document(); }}) {
+           [](auto& x) { x.mutable_get_cage(); }, [](auto& x) { x.mutable_delete_document(); }}) {
     m.Clear();
     set(m);
     EXPECT_FALSE(isEditCommand(m)) << m.command_case();

@@ -1,5 +1,7 @@
 #include "client/view/connection.h"
 
+#include "client/view/control_cage.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -380,6 +382,18 @@ void Connection::playMorphTime(double t) {
   enqueue(std::move(m), {});
 }
 
+void Connection::requestCage(int level) {
+  wire::ClientMessage m;
+  m.mutable_get_cage()->set_document_id(document_);
+  m.mutable_get_cage()->set_level(static_cast<uint32_t>(std::max(level, 0)));
+  enqueue(std::move(m), {});
+}
+
+std::shared_ptr<const ControlCage> Connection::cage() const {
+  std::lock_guard lock(mutex_);
+  return cage_;
+}
+
 void Connection::showCoarse(const wire::MorphControl& frame) {
   if (!coarseBase_) return;
   auto mesh = refineCoarseMorph(*coarseBase_, frame, static_cast<int>(profile_.max_level()));
@@ -568,6 +582,16 @@ void Connection::handle(const wire::ServerMessage& m) {
   }
   if (m.has_morph_control() && m.morph_control().document_id() == document_)
     return showCoarse(m.morph_control());
+  if (m.has_cage() && m.cage().document_id() == document_) {
+    auto cage = controlCageOf(m.cage());
+    std::lock_guard lock(mutex_);
+    if (!cage.isOk()) {
+      stats_.lastError = cage.status().message();
+      return;
+    }
+    cage_ = std::make_shared<const ControlCage>(std::move(*cage));
+    return;
+  }
   if (m.has_ack() || m.has_reject()) {
     const uint64_t seq = client::replyTo(m);
     auto it = inFlight_.find(seq);

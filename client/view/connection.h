@@ -38,6 +38,8 @@
 
 namespace tessera::view {
 
+struct ControlCage;  // control_cage.h
+
 // Region id -> decoded mesh. A changed region gets a new pointer, so the
 // renderer re-uploads exactly the regions whose pointer changed.
 using RegionMap = std::map<uint64_t, std::shared_ptr<const RegionMesh>>;
@@ -130,6 +132,11 @@ class Connection {
   void setEditKey(uint32_t key) { editKey_ = key; }
   uint32_t editKey() const { return editKey_; }
 
+  // The control cage of `level` (control_cage.h): asks the server for the
+  // level's faces; cage() holds the latest that arrived, nothing before.
+  void requestCage(int level);
+  std::shared_ptr<const ControlCage> cage() const;
+
  private:
   struct Sent {
     std::chrono::steady_clock::time_point at;
@@ -194,6 +201,7 @@ class Connection {
   mutable std::mutex mutex_;  // guards everything below
   std::deque<Outgoing> outbox_;
   RegionMap published_;
+  std::shared_ptr<const ControlCage> cage_;
   ConnectionStats stats_;
   Collaborators collaborators_;
   UndoHistory history_;

@@ -63,6 +63,15 @@ void drawToggles(const HudFacts& f, ViewToggles& t) {
   ImGui::Checkbox("matcap M", &t.matcap);
   ImGui::SameLine();
   ImGui::Checkbox("points V", &t.showControls);
+  ImGui::SameLine();
+  ImGui::Checkbox("cage O", &t.showCage);
+  if (t.showCage) {
+    std::string faces;
+    for (const auto& [corners, count] : f.cageFacesBySize)
+      faces += (faces.empty() ? "" : ", ") + std::to_string(count) + " of " + std::to_string(corners);
+    ImGui::Text("cage: %s; %zu of %zu edges shown", faces.empty() ? "asked for" : faces.c_str(),
+                f.cageEdgesDrawn, f.cageEdges);
+  }
   if (!t.showControls) return;
   if (f.pickedVertex && f.pickedEdgeEnd) {
     ImGui::Text("edge %s - %s", vertexName(*f.pickedVertex).c_str(), vertexName(*f.pickedEdgeEnd).c_str());

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@ struct ViewToggles {
   bool wireframe = false;
   bool regionColours = false;
   bool showControls = false;  // control vertices; off by default (--control-points, V)
+  bool showCage = false;      // their level's polygons (--cage, O)
   bool matcap = false;        // M
   bool showGizmo = true;      // G
   bool hudCollapsed = false;  // H
@@ -53,6 +55,10 @@ struct HudFacts {
   size_t regions = 0;
   double bytesPerSecond = 0;
   size_t controlPoints = 0;
+  // The cage of the points' level: faces by corner count, edges, and the
+  // edges drawn (both ends shown and facing the eye); none until it arrives.
+  std::map<uint32_t, size_t> cageFacesBySize;
+  size_t cageEdges = 0, cageEdgesDrawn = 0;
   std::optional<uint64_t> pickedVertex;
   std::optional<uint64_t> pickedEdgeEnd;  // with pickedVertex: the picked edge's other end
   std::optional<double> pickedTension;    // the picked vertex interpolates, with this tension

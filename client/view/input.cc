@@ -37,6 +37,9 @@ void handleKey(App& app, int key, int mods) {
     case GLFW_KEY_V:
       app.toggles.showControls = !app.toggles.showControls;
       break;
+    case GLFW_KEY_O:
+      app.toggles.showCage = !app.toggles.showCage;
+      break;
     case GLFW_KEY_M:
       app.toggles.matcap = !app.toggles.matcap;
       break;

@@ -108,6 +108,7 @@ Expected<std::unique_ptr<Renderer>> Renderer::create() {
   std::unique_ptr<Renderer> r(new Renderer());
   TESSERA_ASSIGN_OR_RETURN(r->meshProgram_, link(kMeshVertex, kMeshFragment));
   TESSERA_ASSIGN_OR_RETURN(r->pointProgram_, link(kPointVertex, kPointFragment));
+  TESSERA_ASSIGN_OR_RETURN(r->lineProgram_, link(kLineVertex, kLineFragment));
   glGenVertexArrays(1, &r->pointVao_);
   glGenBuffers(1, &r->pointVbo_);
   glBindVertexArray(r->pointVao_);
@@ -124,6 +125,7 @@ Renderer::~Renderer() {
   glDeleteVertexArrays(1, &pointVao_);
   glDeleteProgram(meshProgram_);
   glDeleteProgram(pointProgram_);
+  glDeleteProgram(lineProgram_);
   glDeleteTextures(2, textures_);
 }
 
@@ -335,6 +337,21 @@ void Renderer::drawPoints(const std::vector<V3>& points, const PointStyle& style
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(V3)), points.data(),
                GL_STREAM_DRAW);
   glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(points.size()));
+  glBindVertexArray(0);
+  glEnable(GL_DEPTH_TEST);
+}
+
+void Renderer::drawLines(const std::vector<V3>& ends, std::array<float, 3> colour, const DrawOptions& o) {
+  if (ends.size() < 2) return;
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(lineProgram_);
+  setMatrices(lineProgram_, o);
+  glUniform3fv(glGetUniformLocation(lineProgram_, "uColour"), 1, colour.data());
+  glBindVertexArray(pointVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, pointVbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(ends.size() * sizeof(V3)), ends.data(),
+               GL_STREAM_DRAW);
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(ends.size() / 2 * 2));
   glBindVertexArray(0);
   glEnable(GL_DEPTH_TEST);
 }

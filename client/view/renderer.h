@@ -65,6 +65,9 @@ class Renderer {
   void drawSurface(const DrawOptions& options);
   // Points are drawn over the surface; callers pass only the visible ones.
   void drawPoints(const std::vector<V3>& points, const PointStyle& style, const DrawOptions& options);
+  // Line segments (two points each) in one colour, over the surface like the
+  // points: callers pass only the visible ones (control_cage.h).
+  void drawLines(const std::vector<V3>& segmentEnds, std::array<float, 3> colour, const DrawOptions& options);
 
   int64_t triangles() const { return triangles_; }
   size_t regionCount() const { return regions_.size(); }
@@ -95,6 +98,7 @@ class Renderer {
   GLuint meshProgram_ = 0, pointProgram_ = 0;
   GLuint textures_[2] = {0, 0};
   float imageSize_[2][2] = {{1, 1}, {1, 1}};
+  GLuint lineProgram_ = 0;  // plain colour; shares the points' buffer
   GLuint pointVao_ = 0, pointVbo_ = 0;
   std::map<uint64_t, GpuRegion> regions_;
   int64_t triangles_ = 0;

@@ -99,7 +99,9 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     // With --views, frames count from when the tiles of the camera sent last
     // are all here (the viewer sends it once it has framed the model).
     const bool viewLoading = connection.viewDependent() && (!after.viewComplete || viewer.cameraPending());
-    const bool waiting = (scripted && (!scriptDone || after.editsPending > 0)) || viewLoading;
+    // With --cage, frames count from when the cage of the level shown is here.
+    const bool cageLoading = app.toggles.showCage && !viewer.cage();
+    const bool waiting = (scripted && (!scriptDone || after.editsPending > 0)) || viewLoading || cageLoading;
     if (scripted && scriptDone && after.editsPending == 0 && after.editsSent == 0) {
       std::fprintf(stderr, "tessera-view: the self-test sent no edit\n");
       return 1;
@@ -107,6 +109,12 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     if (viewLoading && now - start > timeout) {
       std::fprintf(stderr, "tessera-view: the view's tiles were not complete after %g s\n",
                    options.timeoutSeconds);
+      return 1;
+    }
+    if (cageLoading && now - start > timeout) {
+      std::fprintf(stderr, "tessera-view: the cage of level %d did not arrive after %g s: %s\n",
+                   app.toggles.controlLevel, options.timeoutSeconds,
+                   after.lastError.empty() ? "no answer" : after.lastError.c_str());
       return 1;
     }
     if (waiting && now - start > timeout) {
@@ -135,6 +143,14 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     std::printf("wrote %s (%dx%d, %d samples per pixel, document version %llu, %lld triangles)\n",
                 options.screenshot.c_str(), width, height, target.samples(),
                 static_cast<unsigned long long>(stats.version), static_cast<long long>(viewer.triangles()));
+    if (const ControlCage* cage = viewer.cage(); cage && app.toggles.showCage) {
+      std::string faces;
+      for (const auto& [corners, count] : cage->facesBySize)
+        faces += (faces.empty() ? "" : ", ") + std::to_string(count) + " of " + std::to_string(corners) +
+                 " corners";
+      std::printf("cage of level %d: %zu faces (%s), %zu edges, %zu drawn\n", cage->level, cage->faces(),
+                  faces.c_str(), cage->edges.size(), viewer.cageEdgesDrawn());
+    }
     const auto ms = [&](Clock::time_point t) {
       return std::chrono::duration<double, std::milli>(t - options.started).count();
     };

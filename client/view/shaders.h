@@ -114,4 +114,18 @@ void main() {
 }
 )";
 
+// Lines of one colour (the control cage).
+inline constexpr const char* kLineVertex = R"(#version 330 core
+layout(location = 0) in vec3 aPosition;
+uniform mat4 uView;
+uniform mat4 uProjection;
+void main() { gl_Position = uProjection * uView * vec4(aPosition, 1.0); }
+)";
+
+inline constexpr const char* kLineFragment = R"(#version 330 core
+uniform vec3 uColour;
+out vec4 fragColour;
+void main() { fragColour = vec4(uColour, 1.0); }
+)";
+
 }  // namespace tessera::view::shaders

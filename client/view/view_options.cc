@@ -131,6 +131,9 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
       ->group(display);
   app->add_flag("--control-points", o.controlPoints, "show the control vertices (key V; off by default)")
       ->group(display);
+  app->add_flag("--cage", o.cage,
+                "draw the control cage of --level as polygons between its control vertices (key O)")
+      ->group(display);
   app->add_option("--level", o.controlLevel, "level whose control vertices are shown and dragged (default 0)")
       ->type_name("N")
       ->check(within(0, 20))

@@ -44,6 +44,7 @@ struct ViewOptions {
   bool hud = true;
   bool hudCollapsed = false;   // one line instead of the full HUD (key H)
   bool controlPoints = false;  // draw the control vertices (key V)
+  bool cage = false;           // draw the control cage of that level as polygons (key O)
   bool gizmo = true;           // the axes in the bottom-left corner (key G)
   bool matcap = false;         // matcap shading instead of the three lights (key M)
   // Multisample anti-aliasing: samples per pixel, 0 for none (capped by the driver).

@@ -30,6 +30,7 @@ Viewer::Viewer(const ViewOptions& options, Connection& connection)
   app_.toggles.wireframe = options.wireframe;
   app_.toggles.regionColours = options.regionColours;
   app_.toggles.showControls = options.controlPoints;
+  app_.toggles.showCage = options.cage;
   app_.toggles.matcap = options.matcap;
   app_.toggles.showGizmo = options.gizmo;
   app_.toggles.hudCollapsed = options.hudCollapsed;
@@ -98,6 +99,13 @@ ConnectionStats Viewer::update(int width, int height) {
     pointsLevel_ = app_.toggles.controlLevel;
     if (haveBounds) pointDiameter_ = controlPointDiameter(lo, hi, points_.size());
   }
+  // The cage's faces are asked for once per level shown (they never change).
+  if (app_.toggles.showCage && requestedCageLevel_ != app_.toggles.controlLevel) {
+    connection_.requestCage(app_.toggles.controlLevel);
+    requestedCageLevel_ = app_.toggles.controlLevel;
+  }
+  if (auto cage = connection_.cage(); cage && cage->level == app_.toggles.controlLevel)
+    cage_ = std::move(cage);
   // Fit to view on the first snapshot and on F: to the surface's vertices,
   // whose projection can be much smaller than their bounding box's.
   if ((!framed_ || app_.frameRequested) && haveBounds) {
@@ -220,6 +228,13 @@ void Viewer::draw(int width, int height) {
   draw.pixelsPerUnit = app_.camera.pixelsPerUnit(height);
   draw.morphT = static_cast<float>(shownT_);
   renderer_->drawSurface(draw);
+  cageEdgesDrawn_ = 0;
+  const bool cageShown = app_.toggles.showCage && cage_ && cage_->level == app_.toggles.controlLevel;
+  if (cageShown) {
+    const std::vector<V3> segments = cageSegments(*cage_, points_, app_.camera.eye());
+    cageEdgesDrawn_ = segments.size() / 2;
+    renderer_->drawLines(segments, {1.0f, 0.25f, 0.82f}, draw);  // the browser page's magenta
+  }
   if (app_.toggles.showControls) {
     renderer_->drawPoints(visible(points_, app_.camera.eye()), PointStyle{}, draw);
     drawSelections(draw);
@@ -234,6 +249,9 @@ void Viewer::draw(int width, int height) {
                    .regions = renderer_->regionCount(),
                    .bytesPerSecond = bytesPerSecond_,
                    .controlPoints = points_.size(),
+                   .cageFacesBySize = cageShown ? cage_->facesBySize : std::map<uint32_t, size_t>{},
+                   .cageEdges = cageShown ? cage_->edges.size() : 0,
+                   .cageEdgesDrawn = cageEdgesDrawn_,
                    .pickedVertex = app_.picked,
                    .pickedEdgeEnd = app_.edgeEnd,
                    .pickedTension = tensionOfPicked(),

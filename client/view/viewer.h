@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "client/view/connection.h"
+#include "client/view/control_cage.h"
 #include "client/view/control_points.h"
 #include "client/view/input.h"
 #include "client/view/refinement.h"
@@ -33,6 +34,10 @@ class Viewer {
   App& app() { return app_; }
   const RegionMap& regions() const { return regions_; }
   const std::vector<ControlPoint>& points() const { return points_; }
+  // The cage of the points' level once it arrived (--cage, key O).
+  const ControlCage* cage() const { return cage_.get(); }
+  // Its edges drawn in the last frame: both ends shown and facing the eye.
+  size_t cageEdgesDrawn() const { return cageEdgesDrawn_; }
   int64_t triangles() const { return renderer_->triangles(); }
   // A view-dependent subscription: the camera moved since the view last
   // sent (it goes within the send interval), or none was sent yet.
@@ -61,6 +66,9 @@ class Viewer {
   uint64_t seenUpdates_ = 0;
   bool synced_ = false, framed_ = false;
   int pointsLevel_ = -1;
+  std::shared_ptr<const ControlCage> cage_;
+  int requestedCageLevel_ = -1;
+  size_t cageEdgesDrawn_ = 0;
   std::shared_ptr<const KeyPositionMap> keyPositions_;  // a 2D morph's texture coordinates
   double shownT_ = 0;                                   // the time of the frame on screen
   float pointDiameter_ = 0.01f;

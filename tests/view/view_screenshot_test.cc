@@ -145,6 +145,69 @@ TEST_F(ViewScreenshot, TheCubeIsAntiAliasedLitAndShowsItsControlPointsOnlyWhenAs
   EXPECT_LT(yellow, 8u * 20 * 20) << "control points are too big";
 }
 
+// The cage's magenta, (1.0, 0.25, 0.82) in 8 bits: neither the surface's
+// grey, the background's blue, the points' yellow nor a pick's red.
+size_t magentaPixels(const Image& a) {
+  size_t n = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const Rgb c = a.at(x, y);
+      n += c[0] > 200 && c[1] < 130 && c[2] > 150;
+    }
+  return n;
+}
+
+// A Catmull-Clark document's control cage (--cage) is its polygons: the quad
+// cube's six quads and twelve edges at level 0, its 24 quads and 48 edges at
+// level 1 (triangles would be 12 and 18, or 48 and 72), the edges of the
+// quads facing the camera drawn in the cage's colour only when asked for; a
+// level the document lacks is refused by name.
+TEST_F(ViewScreenshot, ACatmullClarkCageIsDrawnAsItsQuads) {
+  auto cube = testing::createFromTestData(*server_, "good/cube_quads.obj", "", 3);
+  ASSERT_TRUE(cube.isOk()) << cube.status().message();
+  const std::vector<std::string> profile = {"--base-level", "1", "--max-level", "3"};
+  const Image plain = render(*cube, "cage-none", {"--no-hud", "--no-gizmo", "--control-points"}, profile);
+  EXPECT_EQ(magentaPixels(plain), 0u) << "a cage drawn without --cage";
+  const Image base =
+      render(*cube, "cage-0", {"--no-hud", "--no-gizmo", "--control-points", "--cage"}, profile);
+  std::string log = testing::fileBytes(dir_ + "/view.log");
+  EXPECT_NE(log.find("cage of level 0: 6 faces (6 of 4 corners), 12 edges"), std::string::npos) << log;
+  const size_t baseMagenta = magentaPixels(base);
+  const Image one = render(*cube, "cage-1", {"--no-hud", "--no-gizmo", "--cage", "--level", "1"}, profile);
+  log = testing::fileBytes(dir_ + "/view.log");
+  EXPECT_NE(log.find("cage of level 1: 24 faces (24 of 4 corners), 48 edges"), std::string::npos) << log;
+  const size_t oneMagenta = magentaPixels(one);
+  std::printf("cage pixels: %zu at level 0, %zu at level 1\n", baseMagenta, oneMagenta);
+  std::fflush(stdout);
+  EXPECT_GT(baseMagenta, 300u) << "the level-0 cage is not drawn";
+  EXPECT_GT(oneMagenta, baseMagenta) << "level 1's cage has more edges in view";
+
+  const int rc = testing::runBounded({TESSERA_VIEW_PATH,
+                                      "--connect",
+                                      "127.0.0.1:" + std::to_string(server_->port()),
+                                      "--token",
+                                      server_->adminToken(),
+                                      "--document",
+                                      std::to_string(*cube),
+                                      "--screenshot",
+                                      dir_ + "/cage-5.png",
+                                      "--frames",
+                                      "2",
+                                      "--timeout",
+                                      "5",
+                                      "--cage",
+                                      "--level",
+                                      "5",
+                                      "--base-level",
+                                      "1",
+                                      "--max-level",
+                                      "3"},
+                                     testing::headlessEnvironment(), dir_ + "/view.log", 60);
+  EXPECT_NE(rc, 0) << "a cage of a level the document lacks was shown";
+  log = testing::fileBytes(dir_ + "/view.log");
+  EXPECT_NE(log.find("level 5 is outside 0..3"), std::string::npos) << log;
+}
+
 TEST_F(ViewScreenshot, TheHudKeepsOutOfTheMiddleAndTheGizmoSitsInItsCorner) {
   auto cube = testing::createCube(*server_, true, 5);
   ASSERT_TRUE(cube.isOk()) << cube.status().message();

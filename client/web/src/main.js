@@ -1,7 +1,8 @@
 // The page: reads ?doc= and #token=, connects to /ws, opens the document
 // and shows it, and wires the parts together: Connection -> DocumentSession
-// -> SceneView (+ VertexIndex, markers) -> Hud; Editor turns input into
-// commands; in a test build, the test hook exposes the state.
+// -> SceneView (+ VertexIndex, markers, the control cage) -> Hud; Editor
+// turns input into commands; in a test build, the test hook exposes the
+// state.
 import protoText from './codec/proto_text.js';
 import { createWire } from './codec/wire.js';
 import { Connection } from './session/connection.js';
@@ -12,8 +13,10 @@ import { SceneView } from './scene/scene.js';
 import { VertexIndex } from './scene/vertex_index.js';
 import { Picker } from './scene/picking.js';
 import { ControlPointsLayer } from './scene/control_points.js';
+import { CageLayer } from './scene/cage_layer.js';
 import { PresenceLayer } from './scene/presence_layer.js';
 import { Editor } from './ui/editing.js';
+import { CageControl } from './ui/cage_control.js';
 import { Hud } from './ui/hud.js';
 import { StartPanel } from './ui/start_panel.js';
 import { presetNamed, DEFAULT_PRESET } from './session/lod_profiles.js';
@@ -68,16 +71,23 @@ async function main() {
   const picker = new Picker(view, vertices);
   const controlPoints = new ControlPointsLayer(view.scene, () => view.invalidate());
   const presence = new PresenceLayer(view.scene, () => view.invalidate());
+  const cageLayer = new CageLayer(view.scene, () => view.invalidate());
+  // Which cage edges show depends on the camera: laid out before every frame.
+  view.beforeRender = () => cageLayer.update((id) => vertices.lookup(id), view.camera.position.toArray());
   const start = new StartPanel(document.getElementById('start'));
 
   const page = new PageState({ ...presetNamed(params.lod ?? DEFAULT_PRESET) }, performance.now());
   page.views = params.views;
   const showError = (text) => { page.lastError = text; };
+  // The control cage (docs/WEB_VIEWER.md "The control cage"), of the
+  // level the dots show.
+  const cage = new CageControl({ layer: cageLayer, session: () => page.session, level: () => editor.level, onError: showError });
 
   const refreshMarkers = () => {
     controlPoints.setVertices(vertices.atLevel(editor.level));
     const others = page.session ? page.session.collaborators.list().filter((c) => c.sessionId !== page.session.sessionId) : [];
     presence.update(others, editor.picks, (id) => vertices.lookup(id)?.position ?? null);
+    cage.sync();
   };
 
   const hud = new Hud(document.getElementById('hud'), {
@@ -87,6 +97,7 @@ async function main() {
     },
     onWireframe: (on) => view.setWireframe(on),
     onRegionColours: (on) => view.setRegionColours(on),
+    onCage: (on) => cage.setOn(on),
     onLevel: (delta) => { editor.setLevel(editor.level + delta); refreshMarkers(); },
     // A new tolerance is a new view: sent like a camera move.
     onTolerance: (px) => { params.tolerance = px; offerView(); },
@@ -97,16 +108,19 @@ async function main() {
     element: view.renderer.domElement, view, picker, vertices, controlPoints,
     session: () => page.session,
     maxLevel: () => page.profile.maxLevel,
+    level: params.level ?? 1,
     onChange: refreshMarkers,
     onError: showError,
     toggleHud: () => hud.toggle(),
+    toggleCage: () => cage.toggle(),
   });
   editor.clampLevel();
+  cage.setOn(params.cage);
 
   // TESSERA_TEST_HOOK is replaced by build.mjs: true only in a test build
   // (--test-hook). Otherwise the branch, and with it test_hook.js, is left
   // out of the bundle.
-  if (TESSERA_TEST_HOOK) installTestHook({ page, view, picker, vertices, editor });
+  if (TESSERA_TEST_HOOK) installTestHook({ page, view, picker, vertices, editor, cage });
 
   function openDocument(documentId, helloAck) {
     page.session = new DocumentSession({
@@ -246,7 +260,7 @@ async function main() {
       version: page.session?.view.version ?? 0n, documentId: page.session?.documentId ?? null, documentName: page.documentName,
       role: page.session?.role ?? page.connection?.helloAck?.role ?? 0, latencyMs: page.session?.latency.last ?? null,
       bytesPerSecond: page.bytesPerSecond, hash: page.session?.lastHash ?? null, preset: page.profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
-      wireframe: view.wireframe, regionColours: view.regionColours, level: editor.level,
+      wireframe: view.wireframe, regionColours: view.regionColours, cage: cage.facts(), level: editor.level,
       views: page.views ? {
         complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance,
         preview: page.session?.view.regions.has(PREVIEW_ID) ?? false,

@@ -18,7 +18,7 @@ export function tileLevels(regions) {
 
 const ROLE_NAMES = ['ROLE_UNSPECIFIED', 'ROLE_VIEWER', 'ROLE_EDITOR', 'ROLE_ADMIN'];
 
-// app: {page (PageState), view (SceneView), picker, vertices, editor}
+// app: {page (PageState), view (SceneView), picker, vertices, editor, cage (CageControl)}
 export function installTestHook(app) {
   const { page } = app;
   const hook = {
@@ -64,6 +64,11 @@ export function installTestHook(app) {
         awaitingAnswers: session?.history.awaitingAnswers() ?? 0,
         editLevel: app.editor.level,
         picked: app.editor.picks.map((id) => idName(id)),
+        // The control cage (docs/WEB_VIEWER.md "The control cage"):
+        // {on, level, status, faces, edges (unique), faceSizes ({"4": 6}:
+        // faces by corners), segments (drawn in the last frame), requests
+        // (GetCage sent)}.
+        cage: app.cage.facts(),
       };
     },
 

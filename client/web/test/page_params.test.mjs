@@ -39,3 +39,12 @@ test('a view by default; ?views=0 or a ?lod preset asks for a profile; ?views=1 
   assert.equal(views('&views=1&lod=fine'), true, '?views=1 wins over ?lod');
   assert.equal(readPageParams(at('http://h/?views=0&lod=fine')).lod, 'fine');
 });
+
+test('?level=N starts at that control level and ?cage=1 with the cage; anything else is the default', () => {
+  const params = (query) => readPageParams(at(`http://h/?doc=1${query}#token=t`));
+  assert.deepEqual([params('').level, params('').cage], [null, false]);
+  assert.deepEqual([params('&level=0&cage=1').level, params('&level=0&cage=1').cage], [0, true]);
+  assert.equal(params('&level=12').level, 12);
+  for (const bad of ['&level=', '&level=-1', '&level=1.5', '&level=x', '&level=123']) assert.equal(params(bad).level, null, bad);
+  for (const off of ['&cage=0', '&cage=yes', '&cage=']) assert.equal(params(off).cage, false, off);
+});

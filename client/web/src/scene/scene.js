@@ -52,6 +52,9 @@ export class SceneView {
     // asks for frames too; while damping, each drawn frame asks for the next.
     this.onInvalidate = () => {};
     this.controls.addEventListener('change', () => this.invalidate());
+    // Called before each frame is drawn, the camera placed: for what depends
+    // on the camera (main.js lays out the control cage's lines).
+    this.beforeRender = () => {};
     this.controls.dampingFactor = 0.12;
     this.controls.screenSpacePanning = true;
     this.addLights();
@@ -225,6 +228,7 @@ export class SceneView {
     const moved = this.controls.update();
     if (!moved && !this.dirty) return false;
     this.dirty = false;
+    this.beforeRender();
     this.renderer.render(this.scene, this.camera);
     ++this.frames;
     return true;

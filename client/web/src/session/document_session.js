@@ -257,6 +257,15 @@ export class DocumentSession {
     }
   }
 
+  // The polygons of `level`'s control mesh (GetCage; docs/WEB_VIEWER.md
+  // "The control cage"): resolves with the Cage message, or rejects with a
+  // RejectError (a level beyond the document's max, too many faces) or a
+  // lost connection.
+  async cage(level) {
+    const reply = await this.connection.call({ get_cage: { document_id: toLong(this.documentId), level } });
+    return reply.message.cage;
+  }
+
   // Undo (or redo) this viewer's newest step: one Undo per edit, newest
   // first (redo: oldest first). False with the reason shown when nothing can.
   step(undo) {

@@ -10,7 +10,7 @@
 //     (SetEdgeSharpness by its end vertices, +inf or 0);
 //   - V the last picked vertex: corner, or smooth again (SetVertexType);
 //   - W wireframe, R region colours, F fit, [ ] edit level, P control
-//     points, H fold the HUD, Esc drop the picks.
+//     points, O the control cage, H fold the HUD, Esc drop the picks.
 import { packId, idName } from '../codec/ids.js';
 
 const SEND_INTERVAL_MS = 33; // ~30 edits a second while dragging
@@ -19,10 +19,11 @@ const CORNER = 3, SMOOTH = 1; // VertexType
 export class Editor {
   // options: {element, view (SceneView), picker, vertices, controlPoints,
   // session(): DocumentSession or null, maxLevel(): profile max level,
-  // onChange(), onError(text), toggleHud()}
+  // level: the first edit level (default 1), onChange(), onError(text),
+  // toggleHud(), toggleCage()}
   constructor(options) {
     this.o = options;
-    this.level = 1; // the control level edited
+    this.level = options.level ?? 1; // the control level edited
     this.picks = []; // the last two picked vertex ids (BigInt, at this.level)
     this.hover = null;
     this.drag = null;
@@ -138,6 +139,8 @@ export class Editor {
       this.o.toggleHud();
     } else if (k === 'p') {
       this.o.controlPoints.visible = !this.o.controlPoints.visible;
+    } else if (k === 'o') {
+      this.o.toggleCage();
     } else if (k === '[' || k === ']') {
       this.setLevel(this.level + (k === ']' ? 1 : -1));
     } else if (k === 'escape') {

@@ -3,10 +3,10 @@
 // that it never covers the middle of the frame where fit-to-view puts the
 // model. Its first line carries what one wants at a glance (version,
 // triangles, frame rate); then latency, bytes per second, the surface hash
-// check, the LOD profile and the display toggles, the pick, the
-// collaborators, and a status and an error line. H folds it to its first
-// line, and on a phone-sized page it starts so. It only reads facts handed
-// to it; it owns no state of the document.
+// check, the LOD profile and the display toggles, the control cage's
+// counts, the pick, the collaborators, and a status and an error line. H
+// folds it to its first line, and on a phone-sized page it starts so. It
+// only reads facts handed to it; it owns no state of the document.
 import { LOD_PRESETS } from '../session/lod_profiles.js';
 import { idName } from '../codec/ids.js';
 import { hex64 } from '../codec/uint64.js';
@@ -45,7 +45,8 @@ function setClass(element, name) {
 }
 
 export class Hud {
-  // handlers: {onPreset(name), onWireframe(on), onRegionColours(on), onLevel(delta), onTolerance(px)}
+  // handlers: {onPreset(name), onWireframe(on), onRegionColours(on),
+  // onCage(on), onLevel(delta), onTolerance(px)}
   constructor(root, handlers) {
     this.root = root;
     this.h = handlers;
@@ -68,7 +69,9 @@ export class Hud {
         <div class="hud-row hud-controls">
           <label><input type="checkbox" data-f="wire"> wire <kbd>W</kbd></label>
           <label><input type="checkbox" data-f="colours"> regions <kbd>R</kbd></label>
+          <label><input type="checkbox" data-f="cageOn"> cage <kbd>O</kbd></label>
         </div>
+        <div class="hud-row" data-f="cage" hidden></div>
         <div class="hud-row" data-f="pick"></div>
         <ul class="hud-people" data-f="people"></ul>
         <div class="hud-row hud-status" data-f="status"></div>
@@ -76,7 +79,7 @@ export class Hud {
         <details class="hud-keys"><summary>keys</summary>
           drag a dot: move it · <kbd>Ctrl</kbd>+<kbd>Z</kbd>/<kbd>Y</kbd> undo/redo ·
           <kbd>C</kbd> crease the edge of the last two picks · <kbd>V</kbd> corner/smooth ·
-          <kbd>[</kbd> <kbd>]</kbd> edit level · <kbd>P</kbd> dots · <kbd>F</kbd> fit · <kbd>Esc</kbd> unpick · <kbd>H</kbd> fold
+          <kbd>[</kbd> <kbd>]</kbd> edit level · <kbd>P</kbd> dots · <kbd>O</kbd> cage · <kbd>F</kbd> fit · <kbd>Esc</kbd> unpick · <kbd>H</kbd> fold
         </details>
       </div>`;
     this.f = {};
@@ -89,6 +92,7 @@ export class Hud {
     this.f.preset.addEventListener('change', () => this.h.onPreset(this.f.preset.value));
     this.f.wire.addEventListener('change', () => this.h.onWireframe(this.f.wire.checked));
     this.f.colours.addEventListener('change', () => this.h.onRegionColours(this.f.colours.checked));
+    this.f.cageOn.addEventListener('change', () => this.h.onCage(this.f.cageOn.checked));
     // A view's tolerance on a log scale, 0.25 to 32 pixels (the server
     // accepts 0.25 to 256; past 32 a phone's whole model is one tile).
     this.f.tolerance.addEventListener('input', () => this.h.onTolerance(2 ** Number(this.f.tolerance.value)));
@@ -111,9 +115,10 @@ export class Hud {
 
   // facts: {fps, triangles, regions, version, documentName, documentId,
   // role, latencyMs, bytesPerSecond, hash: {ours, server, matches} | null,
-  // preset, wireframe, regionColours, level, pick, points, pointsDrawn, people: [{sessionId,
-  // name, role, selection, self}], views: {complete, frozen, tolerance,
-  // preview} | null, status, error}
+  // preset, wireframe, regionColours, cage (CageControl.facts()), level,
+  // pick, points, pointsDrawn, people: [{sessionId, name, role, selection,
+  // self}], views: {complete, frozen, tolerance, preview} | null, status,
+  // error}
   update(facts) {
     const f = this.f;
     setText(f.glance, `v${facts.version}  ${shortCount(facts.triangles)} tris  ${facts.fps >= 0.5 ? `${facts.fps.toFixed(0)} fps` : 'idle'}`);
@@ -151,12 +156,30 @@ export class Hud {
     }
     if (f.wire.checked !== facts.wireframe) f.wire.checked = facts.wireframe;
     if (f.colours.checked !== facts.regionColours) f.colours.checked = facts.regionColours;
+    this.cage(facts.cage);
     setText(f.level, String(facts.level));
     setText(f.pick, `${facts.pick} · ${shortCount(facts.points)} ${facts.pointsDrawn || facts.points === 0 ? 'dots' : 'vertices, no dots'}`);
     this.people(facts.people);
     setText(f.status, facts.status);
     setText(f.error, facts.error);
     if (f.error.hidden !== !facts.error) f.error.hidden = !facts.error;
+  }
+
+  // The cage's counts while it is on (docs/WEB_VIEWER.md "The control cage").
+  cage(c) {
+    const f = this.f;
+    if (f.cageOn.checked !== c.on) f.cageOn.checked = c.on;
+    if (f.cage.hidden !== !c.on) f.cage.hidden = !c.on;
+    if (!c.on) return;
+    const counts = `${shortCount(c.faces)} faces · ${shortCount(c.edges)} edges`;
+    const what = {
+      shown: `${counts} · ${shortCount(c.segments)} drawn`,
+      'too large': `${counts}: too many to draw`,
+      asking: 'asking the server…',
+      refused: 'refused (below)',
+      waiting: 'waiting for the document',
+    }[c.status];
+    setText(f.cage, `cage of level ${c.level}: ${what}`);
   }
 
   people(list) {

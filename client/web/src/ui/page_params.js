@@ -1,8 +1,9 @@
 // What the page's address says: http://HOST:PORT/?doc=ID#token=TOKEN. The
 // token travels in the fragment, which browsers never send to a server or
 // put in a Referer, never in the query. `name` (query) is the name others
-// see in presence. The WebSocket is on the same host, path /ws, wss when the
-// page came over https.
+// see in presence; `level` and `cage` what the page starts showing. The
+// WebSocket is on the same host, path /ws, wss when the page came over
+// https.
 export function readPageParams(location) {
   const query = new URLSearchParams(location.search);
   const fragment = new URLSearchParams(location.hash.replace(/^#/, ''));
@@ -18,6 +19,11 @@ export function readPageParams(location) {
     // default 1).
     views: query.has('views') ? query.get('views') !== '0' : !query.has('lod'),
     tolerance: Math.min(256, Math.max(0.25, Number(query.get('tolerance') ?? 1) || 1)),
+    // ?level=N starts the dots (and the cage) at control level N instead of
+    // 1; the page keeps it within its profile's levels. ?cage=1 starts with
+    // the control cage drawn (docs/WEB_VIEWER.md "The control cage").
+    level: /^\d{1,2}$/.test(query.get('level') ?? '') ? Number(query.get('level')) : null,
+    cage: query.get('cage') === '1',
   };
 }
 

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <mutex>
 
+#include "core/catmark/computed_per_size.h"
 #include "core/catmark/left_eigenvector.h"
 #include "core/catmark/masks.h"
 
@@ -56,12 +54,6 @@ std::vector<MatrixEntry> spanSubdivision(const SpanIndex& s) {
   return m;
 }
 
-double dotOf(const std::vector<double>& x, const std::vector<double>& y) {
-  double sum = 0;
-  for (size_t j = 0; j < x.size(); ++j) sum += x[j] * y[j];
-  return sum;
-}
-
 CreaseSpanTangent compute(int k) {
   const SpanIndex s{k};
   const std::vector<MatrixEntry> matrix = spanSubdivision(s);
@@ -108,12 +100,8 @@ CreaseSpanTangent compute(int k) {
 
 const CreaseSpanTangent& creaseSpanTangent(int faces) {
   assert(faces >= 3);
-  static std::mutex mutex;
-  static std::map<int, std::unique_ptr<const CreaseSpanTangent>> computed;
-  const std::lock_guard lock(mutex);
-  auto& slot = computed[faces];
-  if (!slot) slot = std::make_unique<const CreaseSpanTangent>(compute(faces));
-  return *slot;
+  static const ComputedPerSize<CreaseSpanTangent> computed(compute);
+  return computed(faces);
 }
 
 }  // namespace tessera::catmark

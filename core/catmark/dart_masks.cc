@@ -2,11 +2,9 @@
 
 #include <cassert>
 #include <cmath>
-#include <map>
-#include <memory>
-#include <mutex>
 #include <numbers>
 
+#include "core/catmark/computed_per_size.h"
 #include "core/catmark/left_eigenvector.h"
 #include "core/catmark/masks.h"
 
@@ -124,12 +122,8 @@ DartMasks compute(int n) {
 
 const DartMasks& dartMasks(int valence) {
   assert(hasExactDartMasks(valence));
-  static std::mutex mutex;
-  static std::map<int, std::unique_ptr<const DartMasks>> computed;
-  const std::lock_guard lock(mutex);
-  auto& slot = computed[valence];
-  if (!slot) slot = std::make_unique<const DartMasks>(compute(valence));
-  return *slot;
+  static const ComputedPerSize<DartMasks> computed(compute);
+  return computed(valence);
 }
 
 }  // namespace tessera::catmark

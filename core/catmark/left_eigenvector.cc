@@ -12,13 +12,13 @@ void normalize(std::vector<double>& x) {
   for (double& v : x) v /= largest;
 }
 
+}  // namespace
+
 double dotOf(const std::vector<double>& x, const std::vector<double>& y) {
   double sum = 0;
   for (size_t j = 0; j < x.size(); ++j) sum += x[j] * y[j];
   return sum;
 }
-
-}  // namespace
 
 LeftEigenvector dominantLeftEigenvector(const std::vector<MatrixEntry>& matrix, std::vector<double> start,
                                         const std::function<void(std::vector<double>&)>& project) {

@@ -16,6 +16,9 @@ struct MatrixEntry {
   double weight;
 };
 
+// Sum of x[j] y[j].
+double dotOf(const std::vector<double>& x, const std::vector<double>& y);
+
 struct LeftEigenvector {
   std::vector<double> vector;  // largest component of magnitude 1
   double eigenvalue = 0;

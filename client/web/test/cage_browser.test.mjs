@@ -81,11 +81,13 @@ async function cageAt(page, level) {
   }, { timeout: 20000 }, level).catch(async (e) => { throw new Error(`${e.message}: ${JSON.stringify(await state(page))}`); });
   return cageOf(page);
 }
-// The panel's cage row once it names `level` (the panel is refreshed four
-// times a second).
+// The panel's cage row once it names `level` with its answer (the panel is
+// refreshed four times a second, so it may still say it is asking).
 async function cageRow(page, level) {
-  await page.waitForFunction((l) => document.querySelector('[data-f="cage"]').textContent.startsWith(`cage of level ${l}:`),
-    { timeout: 5000 }, level);
+  await page.waitForFunction((l) => {
+    const row = document.querySelector('[data-f="cage"]').textContent;
+    return row.startsWith(`cage of level ${l}:`) && !row.includes('asking');
+  }, { timeout: 5000 }, level);
   return page.$eval('[data-f="cage"]', (e) => e.textContent);
 }
 

@@ -77,7 +77,7 @@ void limitTessera(benchmark::State& state) {
   auto points = refiner->refinePoints(input().mesh.points);
   std::vector<Vec3> positions(points.size()), normals(points.size());
   for (auto _ : state) {
-    auto status = computeCatmarkLimit(refiner->finestLevel(), points, positions, normals);
+    auto status = computeCatmarkLimit(refiner->finestLevel(), CreaseOptions{}, points, positions, normals);
     benchmark::DoNotOptimize(positions.data());
     if (!status.isOk()) state.SkipWithError(status.toString().c_str());
   }

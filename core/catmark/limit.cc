@@ -6,6 +6,7 @@
 #include "core/catmark/crease_span_tangent.h"
 #include "core/catmark/dart_masks.h"
 #include "core/catmark/masks.h"
+#include "core/catmark/semi_sharp_limit.h"
 #include "core/loop/exact_limit.h"
 
 namespace tessera {
@@ -187,7 +188,10 @@ CatmarkLimitFrame dartFrame(const Level& level, Index v, std::span<const Vec3> p
 }
 
 CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points,
-                            const TangentTables& tables) {
+                            const TangentTables& tables, const CreaseOptions& options) {
+  if (takesDecayedLimit(level, v, options)) {
+    if (auto decayed = decayedLimitFrame(level, v, points, options)) return *decayed;
+  }
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
       return smoothFrame(level, v, points, tables);
@@ -248,20 +252,24 @@ std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, s
   return out;
 }
 
-CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points) {
-  return frameWith(level, v, points, TangentTables(level.valence(v)));
+CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points,
+                                    const CreaseOptions& options) {
+  return frameWith(level, v, points, TangentTables(level.valence(v)), options);
 }
 
-CatmarkLimitEvaluator::CatmarkLimitEvaluator(const Level& level)
-    : level_(level), tables_(std::make_unique<const TangentTables>(level.maxValence)) {}
+CatmarkLimitEvaluator::CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options)
+    : level_(level), options_(options), tables_(std::make_unique<const TangentTables>(level.maxValence)) {}
 
 CatmarkLimitEvaluator::~CatmarkLimitEvaluator() = default;
 
 CatmarkLimitFrame CatmarkLimitEvaluator::frame(Index v, std::span<const Vec3> points) const {
-  return frameWith(level_, v, points, *tables_);
+  return frameWith(level_, v, points, *tables_, options_);
 }
 
-double catmarkSelfLimitWeight(const Level& level, Index v) {
+double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options) {
+  if (takesDecayedLimit(level, v, options)) {
+    if (auto weight = decayedSelfLimitWeight(level, v, options)) return *weight;
+  }
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
       return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
@@ -277,8 +285,8 @@ double catmarkSelfLimitWeight(const Level& level, Index v) {
   return 1.0;
 }
 
-Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
-                           std::span<Vec3> normals) {
+Status computeCatmarkLimit(const Level& level, const CreaseOptions& options, std::span<const Vec3> points,
+                           std::span<Vec3> positions, std::span<Vec3> normals) {
   if (!level.allQuads()) {
     return invalidArgument(
         "the Catmull-Clark limit needs a level of quads: this one has other polygons (refine once)");
@@ -288,7 +296,7 @@ Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std
   const bool wantNormals = !normals.empty();
   const TangentTables tables(level.maxValence);
   for (Index v = 0; v < level.numVertices; ++v) {
-    const CatmarkLimitFrame frame = frameWith(level, v, points, tables);
+    const CatmarkLimitFrame frame = frameWith(level, v, points, tables, options);
     positions[v] = frame.position;
     if (wantNormals) normals[v] = unitNormal(frame, [&] { return faceNormals(level, v, points); });
   }

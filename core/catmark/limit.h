@@ -7,13 +7,18 @@
 // surface's, its own neighbourhood's eigenvectors instead: a dart's limit
 // and tangents (core/catmark/dart_masks.h), and the tangent across a crease
 // into three faces or more (core/catmark/crease_span_tangent.h).
-// Semi-sharp features count as sharp, as in Limit().
+// Where a semi-sharp feature has not decayed, Limit()'s masks count it as
+// sharp; under uniform decay the vertex's ring is refined until it has and
+// the masks are taken there instead (core/catmark/semi_sharp_limit.h),
+// which needs the document's crease options. Chaikin's still counts it as
+// sharp.
 #pragma once
 
 #include <memory>
 #include <span>
 #include <vector>
 
+#include "core/catmark/polygon_level.h"
 #include "core/loop/limit.h"
 #include "core/topology/level.h"
 #include "core/util/status.h"
@@ -36,26 +41,29 @@ class CatmarkTangentTables;
 // sparse hierarchy's use; one call builds them per vertex).
 class CatmarkLimitEvaluator {
  public:
-  explicit CatmarkLimitEvaluator(const Level& level);
+  CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options);
   ~CatmarkLimitEvaluator();
   CatmarkLimitFrame frame(Index v, std::span<const Vec3> points) const;
 
  private:
   const Level& level_;
+  CreaseOptions options_;
   std::unique_ptr<const detail::CatmarkTangentTables> tables_;
 };
 
 // One vertex of an all-quad level with full topology, or a complete vertex
 // of a sparse level (core/hierarchy/sparse_level.h): it reads the vertex's
 // ring, its ring faces' corners and its rules only.
-CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points);
+CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points,
+                                    const CreaseOptions& options);
 
 // The weight of vertex v's own control point in the limit mask
 // catmarkLimitFrame uses (n/(n+5) smooth, the dart mask's at a dart, 2/3
-// on a crease, 1 at a corner or a boundary vertex of one face): the limit
-// position is affine in that point, so direct manipulation (Pulli &
-// Lounsbery §2.2) solves for it in one step. Always > 0.
-double catmarkSelfLimitWeight(const Level& level, Index v);
+// on a crease, 1 at a corner or a boundary vertex of one face, the decayed
+// ring's where a semi-sharp feature acts): the limit position is affine in
+// that point, so direct manipulation (Pulli & Lounsbery §2.2) solves for it
+// in one step. Always > 0.
+double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options);
 
 // The sectors of a crease or corner vertex other than the one whose
 // normal catmarkLimitFrame's tangents give (the ring faces after its first
@@ -72,7 +80,7 @@ std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, s
 // quad is refused (refine it once first): the masks read each face's
 // opposite corner. Where the tangents are parallel (a degenerate control
 // net), the normal is the area-weighted normal of the adjacent faces.
-Status computeCatmarkLimit(const Level& level, std::span<const Vec3> points, std::span<Vec3> positions,
-                           std::span<Vec3> normals);
+Status computeCatmarkLimit(const Level& level, const CreaseOptions& options, std::span<const Vec3> points,
+                           std::span<Vec3> positions, std::span<Vec3> normals);
 
 }  // namespace tessera

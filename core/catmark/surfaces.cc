@@ -32,11 +32,12 @@ SurfaceMesh polygonControlSurfaceOf(const Level& level, std::span<const Vec3> po
   return surface;
 }
 
-Expected<SurfaceMesh> catmarkLimitSurfaceOf(const Level& level, std::span<const Vec3> points) {
+Expected<SurfaceMesh> catmarkLimitSurfaceOf(const Level& level, const CreaseOptions& options,
+                                            std::span<const Vec3> points) {
   SurfaceMesh surface;
   surface.positions.resize(level.numVertices);
   surface.normals.resize(level.numVertices);
-  TESSERA_RETURN_IF_ERROR(computeCatmarkLimit(level, points, surface.positions, surface.normals));
+  TESSERA_RETURN_IF_ERROR(computeCatmarkLimit(level, options, points, surface.positions, surface.normals));
   addPolygons(level, surface);
   return surface;
 }

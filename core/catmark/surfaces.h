@@ -6,6 +6,7 @@
 
 #include <span>
 
+#include "core/catmark/polygon_level.h"
 #include "core/mesh/surface_mesh.h"
 #include "core/topology/level.h"
 #include "core/util/status.h"
@@ -18,6 +19,7 @@ SurfaceMesh polygonSurfaceOf(const Level& level, std::span<const Vec3> points);
 SurfaceMesh polygonControlSurfaceOf(const Level& level, std::span<const Vec3> points);
 // Needs an all-quad level with its full topology (core/catmark/limit.h);
 // otherwise an error that says to refine once.
-Expected<SurfaceMesh> catmarkLimitSurfaceOf(const Level& level, std::span<const Vec3> points);
+Expected<SurfaceMesh> catmarkLimitSurfaceOf(const Level& level, const CreaseOptions& options,
+                                            std::span<const Vec3> points);
 
 }  // namespace tessera

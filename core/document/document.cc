@@ -486,7 +486,7 @@ Expected<SurfaceMesh> Document::surface(int level, SurfaceKind kind) const {
   const Level& topology = eval->levels[level];
   if (options_.scheme == DocumentScheme::kCatmullClark) {
     if (kind == SurfaceKind::kControl) return polygonControlSurfaceOf(topology, eval->points[level]);
-    auto limit = catmarkLimitSurfaceOf(topology, eval->points[level]);
+    auto limit = catmarkLimitSurfaceOf(topology, options_.loop, eval->points[level]);
     if (!limit.isOk()) return limit.status().withContext("level " + std::to_string(level));
     return limit;
   }

@@ -7,19 +7,19 @@ namespace tessera {
 
 LevelLimits::LevelLimits(const SparseLevel& level, const SparseLevel* parent, const LoopOptions& options,
                          SplitKind split)
-    : level_(level), method_(options.creaseMethod), far_(level, parent, options) {
+    : level_(level), options_(options), far_(level, parent, options) {
   if (split == SplitKind::kTriangles) {
     loop_.emplace(level.mesh, options.creaseMethod, &far_);
   } else if (hasLimits(level.mesh, split)) {
-    catmark_.emplace(level.mesh);
+    catmark_.emplace(level.mesh, options);
   }
 }
 
 Vec3 LevelLimits::solveControlPoint(Index v, std::span<const Vec3> points, const Vec3& target) const {
-  if (loop_) return tessera::solveControlPoint(level_.mesh, v, points, target, method_, &far_);
+  if (loop_) return tessera::solveControlPoint(level_.mesh, v, points, target, options_.creaseMethod, &far_);
   if (!catmark_) return target;  // no limit: the control point is what is shown
   const Vec3 limit = catmark_->frame(v, points).position;
-  return points[v] + (1.0 / catmarkSelfLimitWeight(level_.mesh, v)) * (target - limit);
+  return points[v] + (1.0 / catmarkSelfLimitWeight(level_.mesh, v, options_)) * (target - limit);
 }
 
 }  // namespace tessera

@@ -48,13 +48,13 @@ class LevelLimits {
   // `target`, the others fixed (direct manipulation, Pulli & Lounsbery,
   // "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.2):
   // Loop's exact limit (core/loop/direct_manipulation.h), or the
-  // Catmull-Clark mask frame() takes, whose semi-sharp features count as
-  // sharp (docs/LIMITS.md).
+  // Catmull-Clark mask frame() takes (with a semi-sharp feature under
+  // uniform decay, the decayed ring's: core/catmark/semi_sharp_limit.h).
   Vec3 solveControlPoint(Index v, std::span<const Vec3> points, const Vec3& target) const;
 
  private:
   const SparseLevel& level_;
-  CreaseMethod method_;
+  LoopOptions options_;
   SparseFarRings far_;
   std::optional<LimitEvaluator> loop_;            // under a triangle split
   std::optional<CatmarkLimitEvaluator> catmark_;  // under a quad split

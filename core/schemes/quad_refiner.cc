@@ -94,7 +94,7 @@ Expected<SurfaceMesh> QuadRefiner::limitSurface(std::span<const Vec3> finestPoin
   if (scheme_ != QuadScheme::kCatmullClark) {
     return unsupported("bilinear subdivision has no limit to evaluate: its limit is its own control mesh");
   }
-  return catmarkLimitSurfaceOf(finestLevel(), finestPoints);
+  return catmarkLimitSurfaceOf(finestLevel(), options_, finestPoints);
 }
 
 void interpolateBilinear(const Level& parent, std::span<const Vec3> p, std::span<Vec3> c) {

@@ -51,7 +51,8 @@ void expectMatchesDense(const Document& doc, const std::string& where) {
       const uint64_t id = level.vertexIds[v];
       worstPoint = std::max(worstPoint, (points[v] - (*dense)->points[l][id]).norm());
       if (!level.isComplete(v) || !full.allQuads()) continue;
-      const CatmarkLimitFrame ref = catmarkLimitFrame(full, static_cast<Index>(id), (*dense)->points[l]);
+      const CatmarkLimitFrame ref =
+          catmarkLimitFrame(full, static_cast<Index>(id), (*dense)->points[l], doc.options().loop);
       worstLimit = std::max(worstLimit, (sparse.limitPosition(l, v) - ref.position).norm());
       const Vec3 n = ref.tangent1 % ref.tangent2;
       if (n.norm() > 1e-12 * ref.tangent1.norm() * ref.tangent2.norm())

@@ -247,12 +247,12 @@ TEST(DartMasks, AboveTheirLargestValenceDartsTakeLimitsSmoothMasks) {
     const Level& level = refiner->level(0);
     ASSERT_EQ(level.vertexRules[0], VertexRule::kDart);
     ASSERT_EQ(level.valence(0), n);
-    const double off = (catmarkLimitFrame(level, 0, fan.points).position - smoothLimit(fan, n)).norm();
+    const double off = (catmarkLimitFrame(level, 0, fan.points, {}).position - smoothLimit(fan, n)).norm();
     if (catmark::hasExactDartMasks(n)) {
       EXPECT_GT(off, 1e-6) << "the dart's own limit";
     } else {
       EXPECT_LE(off, 1e-12) << "Limit()'s smooth mask";
-      EXPECT_NEAR(catmarkSelfLimitWeight(level, 0), n / (n + 5.0), 1e-15);
+      EXPECT_NEAR(catmarkSelfLimitWeight(level, 0, {}), n / (n + 5.0), 1e-15);
     }
   }
 }

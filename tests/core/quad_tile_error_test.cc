@@ -54,7 +54,7 @@ void measure(Document& doc, const PolyTopology& base, const std::string& name, i
     const Level& fine = (*dense)->levels[l + kDepth];
     const auto finePoints = (*dense)->points[l + kDepth];
     auto exactAt = [&](VertexId id) {
-      return catmarkLimitFrame(fine, static_cast<Index>(id.index()), finePoints).position;
+      return catmarkLimitFrame(fine, static_cast<Index>(id.index()), finePoints, doc.options().loop).position;
     };
     for (const TileKey& t : level) {
       auto mesh = buildTile(doc, tree, t);

@@ -83,7 +83,7 @@ TEST(SchemeCatmark, LimitIsWhereRefinementConverges) {
   auto coarse = QuadRefiner::create(cube.topology, QuadScheme::kCatmullClark, {}, {.levels = 0});
   ASSERT_TRUE(coarse.isOk());
   std::vector<Vec3> pos(8), nrm(8);
-  ASSERT_TRUE(computeCatmarkLimit(coarse->level(0), cube.points, pos, nrm).isOk());
+  ASSERT_TRUE(computeCatmarkLimit(coarse->level(0), {}, cube.points, pos, nrm).isOk());
   expectNear(pos[6], Vec3(0.5, 0.5, 0.5), 1e-15);
   expectNear(nrm[6], (1.0 / std::sqrt(3.0)) * Vec3(1, 1, 1), 1e-15);
 
@@ -95,7 +95,7 @@ TEST(SchemeCatmark, LimitIsWhereRefinementConverges) {
   const auto p1 = one->refinePoints(mesh.points);
   const auto p8 = fine->refinePoints(mesh.points);
   std::vector<Vec3> limit(p1.size()), normals(p1.size());
-  ASSERT_TRUE(computeCatmarkLimit(one->finestLevel(), p1, limit, normals).isOk());
+  ASSERT_TRUE(computeCatmarkLimit(one->finestLevel(), {}, p1, limit, normals).isOk());
   double worst = 0;
   // Vertices of level 1 keep their numbers at every finer level.
   for (size_t v = 0; v < p1.size(); ++v) worst = std::max(worst, (p8[v] - limit[v]).norm());
@@ -103,7 +103,7 @@ TEST(SchemeCatmark, LimitIsWhereRefinementConverges) {
   // Level 0 of a mesh with pentagons and triangles has no limit masks.
   auto zero = QuadRefiner::create(mesh.topology, QuadScheme::kCatmullClark, {}, {.levels = 0});
   std::vector<Vec3> p0(mesh.points.size()), n0(mesh.points.size());
-  const Status refused = computeCatmarkLimit(zero->level(0), mesh.points, p0, n0);
+  const Status refused = computeCatmarkLimit(zero->level(0), {}, mesh.points, p0, n0);
   EXPECT_FALSE(refused.isOk());
   EXPECT_NE(refused.message().find("refine once"), std::string::npos) << refused.toString();
 }

@@ -7,6 +7,7 @@
 
 #include "core/catmark/dart_masks.h"
 #include "core/catmark/polygon_level.h"
+#include "core/catmark/semi_sharp_limit.h"
 #include "core/loop/exact_limit.h"
 #include "core/topology/level.h"
 #include "core/util/vec3.h"
@@ -45,15 +46,19 @@ inline double boundingDiagonal(const std::vector<Vec3>& points) {
 // limits"):
 // - a dart's position and normal: Limit() takes the smooth masks there,
 //   Tessera the dart ring's own eigenvectors (core/catmark/dart_masks.h);
-inline bool limitPositionDiffersFromFar(const Level& level, Index v) {
+// - a vertex where a semi-sharp feature has not decayed, under uniform
+//   decay: Limit() counts it as sharp, Tessera refines the ring until it
+//   has decayed (core/catmark/semi_sharp_limit.h);
+inline bool limitPositionDiffersFromFar(const Level& level, Index v, const CreaseOptions& options) {
+  if (takesDecayedLimit(level, v, options)) return true;
   return level.vertexRules[v] == VertexRule::kDart && catmark::hasExactDartMasks(level.valence(v));
 }
 // - and the normal of a crease vertex (a boundary one too) whose first
 //   side, the one catmarkLimitFrame's tangents give, spans three faces or
 //   more: Limit() takes Biermann et al.'s tangent across, Tessera the side's
 //   own eigenvector (core/catmark/crease_span_tangent.h).
-inline bool limitNormalDiffersFromFar(const Level& level, Index v) {
-  if (limitPositionDiffersFromFar(level, v)) return true;
+inline bool limitNormalDiffersFromFar(const Level& level, Index v, const CreaseOptions& options) {
+  if (limitPositionDiffersFromFar(level, v, options)) return true;
   if (level.vertexRules[v] != VertexRule::kCrease) return false;
   const std::vector<int> sharp = sharpRingEdges(level, v);
   return sharp.size() >= 2 && sharp[1] - sharp[0] >= 3;

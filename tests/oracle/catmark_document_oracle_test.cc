@@ -85,12 +85,13 @@ void expectDocumentIsFar(const Document& doc, const PolyTestMesh& mesh, const sc
     ASSERT_TRUE(evaluation.isOk()) << when << ": " << evaluation.status().toString();
     const Level& topology = (*evaluation)->levels[l];
     for (size_t v = 0; v < far[l].limitPositions.size(); ++v) {
-      if (oracle::limitPositionDiffersFromFar(topology, static_cast<Index>(v))) continue;
+      if (oracle::limitPositionDiffersFromFar(topology, static_cast<Index>(v), doc.options().loop)) continue;
       ASSERT_LE((limit->positions[v] - far[l].limitPositions[v]).norm(), kPositionTolerance * diag)
           << when << ": limit of v" << l << ":" << v;
       ++counted.limits;
       const auto n = farNormal(far[l], v);
-      if (!n || oracle::limitNormalDiffersFromFar(topology, static_cast<Index>(v))) continue;
+      if (!n || oracle::limitNormalDiffersFromFar(topology, static_cast<Index>(v), doc.options().loop))
+        continue;
       ASSERT_LE(angleBetween(limit->normals[v], *n), kNormalTolerance)
           << when << ": normal of v" << l << ":" << v;
       ++counted.normals;
@@ -140,7 +141,7 @@ void checkDocument(const PolyTestMesh& mesh, const CreaseOptions& options, uint3
           oracle::refineEditedQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *ours, doc->edits());
       auto after = doc->evaluate(l);
       ASSERT_TRUE(after.isOk()) << after.status().toString();
-      if (!oracle::limitPositionDiffersFromFar((*after)->levels[l], static_cast<Index>(v.index()))) {
+      if (!oracle::limitPositionDiffersFromFar((*after)->levels[l], static_cast<Index>(v.index()), options)) {
         ASSERT_LE((far[l].limitPositions[v.index()] - target).norm(), kPositionTolerance * diag)
             << "Far's limit of " << v.toString() << " after it was dragged";
       }  // at a dart, its own limit goes to the target, not Limit()'s
@@ -250,7 +251,7 @@ TEST(CatmarkDocumentOracle, DraggedBaseVerticesOfPolygonBasesLandOnFarsLevelOneL
           oracle::refineEditedQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *ours, doc->edits());
       auto after = doc->evaluate(1);
       ASSERT_TRUE(after.isOk()) << after.status().toString();
-      if (oracle::limitPositionDiffersFromFar((*after)->levels[1], static_cast<Index>(v.index()))) {
+      if (oracle::limitPositionDiffersFromFar((*after)->levels[1], static_cast<Index>(v.index()), options)) {
         ++dartDrags;  // its own limit goes to the target, not Limit()'s
       } else {
         EXPECT_LE((far[1].limitPositions[v.index()] - target).norm(), kPositionTolerance * diag)

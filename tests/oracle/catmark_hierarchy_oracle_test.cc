@@ -61,14 +61,14 @@ void expectHierarchyIsFar(const SparseHierarchy& h, const std::vector<oracle::Os
           << when << ": point of v" << l << ":" << id;
       ++counted.points;
       if (far[l].limitPositions.empty() || !topo.isComplete(v)) continue;
-      if (oracle::limitNormalDiffersFromFar(topo.mesh, v)) {  // Limit() is not the surface here
+      if (oracle::limitNormalDiffersFromFar(topo.mesh, v, h.options())) {  // Limit() is not the surface here
         ++counted.notLimits;
-        if (oracle::limitPositionDiffersFromFar(topo.mesh, v)) continue;
+        if (oracle::limitPositionDiffersFromFar(topo.mesh, v, h.options())) continue;
       }
       ASSERT_LE((h.limitPosition(l, v) - far[l].limitPositions[id]).norm(), kPositionTolerance * diag)
           << when << ": limit of v" << l << ":" << id;
       ++counted.limits;
-      if (oracle::limitNormalDiffersFromFar(topo.mesh, v)) continue;
+      if (oracle::limitNormalDiffersFromFar(topo.mesh, v, h.options())) continue;
       const Vec3 farNormal = far[l].limitTangent1[id] % far[l].limitTangent2[id];
       const double scale = far[l].limitTangent1[id].norm() * far[l].limitTangent2[id].norm();
       if (!(farNormal.norm() > 1e-12 * scale)) continue;  // parallel tangents: Limit() gives no normal
@@ -238,7 +238,7 @@ void checkDirectManipulation(const PolyTestMesh& mesh, const CreaseOptions& opti
     edits.push_back(edit);
     h.update(edits.back(), edits);
     const auto far = farWithEdits(mesh, options, ours, edits);
-    if (oracle::limitPositionDiffersFromFar(h.level(l).mesh, *v)) {
+    if (oracle::limitPositionDiffersFromFar(h.level(l).mesh, *v, h.options())) {
       ++counted.dartMoves;  // the dart's own limit, not Limit()'s, goes to the target
     } else {
       ASSERT_LE((far[l].limitPositions[id.index()] - target).norm(), kPositionTolerance * diag)

@@ -74,9 +74,9 @@ void checkAgainstOsd(const PolyTestMesh& mesh, QuadScheme scheme, const CreaseOp
     totals.points += n;
     if (!limit || l < firstLimitLevel) continue;
     std::vector<Vec3> positions(n), normals(n);
-    ASSERT_TRUE(computeCatmarkLimit(refiner->level(l), ours[l], positions, normals).isOk());
+    ASSERT_TRUE(computeCatmarkLimit(refiner->level(l), options, ours[l], positions, normals).isOk());
     for (int v = 0; v < n; ++v) {
-      if (oracle::limitNormalDiffersFromFar(refiner->level(l), v)) {
+      if (oracle::limitNormalDiffersFromFar(refiner->level(l), v, options)) {
         ++totals.notLimits;  // Limit() is not the surface here
         continue;
       }

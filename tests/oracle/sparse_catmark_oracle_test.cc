@@ -93,8 +93,8 @@ void checkSparseAgainstOsd(const PolyTestMesh& mesh, const CreaseOptions& option
     for (Index v = 0; v < child.mesh.numVertices; ++v) {
       if (!child.isComplete(v)) continue;
       const uint64_t id = child.vertexIds[v];
-      const CatmarkLimitFrame frame = catmarkLimitFrame(child.mesh, v, next);
-      if (oracle::limitNormalDiffersFromFar(child.mesh, v)) {
+      const CatmarkLimitFrame frame = catmarkLimitFrame(child.mesh, v, next, options);
+      if (oracle::limitNormalDiffersFromFar(child.mesh, v, options)) {
         ++counted.notLimits;  // Limit() is not the surface here
         continue;
       }

@@ -1,8 +1,12 @@
-// Builds the page into one directory of exactly four files, the ones
-// tessera-server --ws-port serves: index.html, viewer.css, viewer.js (every
-// module and library in one minified bundle, protocol/tessera.proto inside
-// as text) and draco_decoder.wasm (copied from the draco3d package, never
-// kept in the repository). Offline once `npm ci` has run.
+// Builds the page into one directory of exactly five files, the ones
+// tessera-server --ws-port serves (server/net/static_files.h): index.html,
+// viewer.css, viewer.js (the page's modules and libraries in one minified
+// bundle, protocol/tessera.proto inside as text), decode_worker.js (the Web
+// Worker that decodes region payloads with Draco, a bundle of its own: the
+// page's main thread never loads Draco, docs/WEB_VIEWER.md "Decoding in a
+// worker") and draco_decoder.wasm (copied from the draco3d package, never
+// kept in the repository; the worker fetches it). Offline once `npm ci` has
+// run.
 //
 //   node client/web/build.mjs --out DIR [--test-hook]
 //
@@ -23,7 +27,7 @@ import { gzipSync } from 'node:zlib';
 
 const here = dirname(fileURLToPath(import.meta.url));
 const require = createRequire(import.meta.url);
-const OUTPUTS = ['index.html', 'viewer.css', 'viewer.js', 'draco_decoder.wasm'];
+const OUTPUTS = ['index.html', 'viewer.css', 'viewer.js', 'decode_worker.js', 'draco_decoder.wasm'];
 
 function outDirectory(argv) {
   const at = argv.indexOf('--out');
@@ -40,21 +44,30 @@ const out = outDirectory(argv);
 const testHook = argv.includes('--test-hook');
 mkdirSync(out, { recursive: true });
 
-await build({
-  entryPoints: [join(here, 'src/main.js')],
-  outfile: join(out, 'viewer.js'),
+const common = {
   bundle: true,
   minify: true,
   format: 'iife',
   platform: 'browser',
   target: 'es2020',
-  loader: { '.proto': 'text' },
   define: { TESSERA_TEST_HOOK: String(testHook) },
-  // draco3d's wrapper reads its .wasm with node:fs only under Node; the
-  // page hands it the bytes instead, so the branch never runs in a browser.
-  external: ['node:fs'],
   legalComments: 'none',
   logLevel: 'warning',
+};
+await build({
+  ...common,
+  entryPoints: [join(here, 'src/main.js')],
+  outfile: join(out, 'viewer.js'),
+  loader: { '.proto': 'text' },
+});
+// A classic worker script (format iife), which every browser runs.
+await build({
+  ...common,
+  entryPoints: [join(here, 'src/codec/decode_worker.js')],
+  outfile: join(out, 'decode_worker.js'),
+  // draco3d's wrapper reads its .wasm with node:fs only under Node; the
+  // worker hands it the bytes instead, so the branch never runs in a browser.
+  external: ['node:fs'],
 });
 copyFileSync(join(here, 'index.html'), join(out, 'index.html'));
 copyFileSync(join(here, 'viewer.css'), join(out, 'viewer.css'));

@@ -23,8 +23,11 @@ struct StaticFile {
 
 class StaticFiles {
  public:
-  // The files every build of client/web writes.
-  static constexpr const char* kNames[] = {"index.html", "viewer.js", "viewer.css", "draco_decoder.wasm"};
+  // The files every build of client/web writes (decode_worker.js: the Web
+  // Worker that decodes region payloads, docs/WEB_VIEWER.md "Decoding in a
+  // worker").
+  static constexpr const char* kNames[] = {"index.html", "viewer.js", "viewer.css", "decode_worker.js",
+                                           "draco_decoder.wasm"};
 
   // Reads every file of kNames from `root`; a missing or unreadable one is
   // an error naming it (the server does not start half a viewer).

@@ -7,8 +7,7 @@ import protoText from './codec/proto_text.js';
 import { createWire } from './codec/wire.js';
 import { Connection } from './session/connection.js';
 import { DocumentSession } from './session/document_session.js';
-import { decodeRegion } from './codec/region_decoder.js';
-import { loadDracoFrom } from './codec/draco.js';
+import { DecodePool } from './codec/decode_pool.js';
 import { SceneView } from './scene/scene.js';
 import { VertexIndex } from './scene/vertex_index.js';
 import { Picker } from './scene/picking.js';
@@ -28,6 +27,10 @@ import { viewOfCamera, ViewSender } from './session/view_camera.js';
 import { PREVIEW_ID } from './scene/tile_assembly.js';
 
 const HUD_INTERVAL_MS = 250;
+// Region payloads decode in one Web Worker (docs/WEB_VIEWER.md "Decoding in
+// a worker"): it keeps the main thread free for input and drawing, and one
+// per page keeps many open tabs from holding a Draco module per core each.
+const DECODE_WORKERS = 1;
 
 function setBodyState(state) {
   document.body.dataset.state = state;
@@ -128,7 +131,7 @@ async function main() {
       // The first subscription: the coarsest tiles whatever the camera
       // (PROTOCOL.md section 16); the page frames them, then sends its own.
       view: page.views ? cameraView(256) : null,
-      decode: (bytes) => decodeRegion(page.draco, bytes),
+      decode: (bytes) => page.decoder.decode(bytes),
       onView: (change) => {
         view.apply(change, page.session.view.regions);
         vertices.apply(change, page.session.view.regions);
@@ -273,8 +276,20 @@ async function main() {
   };
   setInterval(hudTick, HUD_INTERVAL_MS);
 
+  // The worker fetches draco_decoder.wasm and instantiates it; this thread
+  // never does.
+  page.decoder = new DecodePool({
+    createWorker: () => new Worker('decode_worker.js', { name: 'tessera region decoder' }),
+    size: DECODE_WORKERS,
+    onFailure: (error) => {
+      // Nothing more can decode: stop rather than resubscribe for ever.
+      showError(error.message);
+      page.connection?.stop();
+      setBodyState('error');
+    },
+  });
   try {
-    page.draco = (await loadDracoFrom('draco_decoder.wasm')).draco;
+    await page.decoder.ready;
   } catch (error) {
     showError(error.message);
     setBodyState('error');

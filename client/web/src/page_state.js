@@ -7,7 +7,7 @@ export class PageState {
     // The link and the document.
     this.connection = null; // Connection, once a token is known
     this.session = null; // DocumentSession, once a document is chosen
-    this.draco = null; // the Draco decoder module, once loaded
+    this.decoder = null; // the DecodePool: region payloads decode in a Web Worker
     this.profile = profile; // the LOD profile asked for (or stepped down to)
     // Whether the page subscribes with a view (tiles for its camera) rather
     // than the profile: the address's choice, off for a morph document.

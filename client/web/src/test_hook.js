@@ -5,6 +5,7 @@ import { idName, packId, parseIdName } from './codec/ids.js';
 import { hex64 } from './codec/uint64.js';
 import { tileLevel } from './scene/region_batches.js';
 import { isPreview } from './scene/tile_assembly.js';
+import { DRACO_LOADED_MARK } from './codec/decode_messages.js';
 
 // The surface's preview counts as "preview", not as a level.
 export function tileLevels(regions) {
@@ -69,6 +70,17 @@ export function installTestHook(app) {
         // faces by corners), segments (drawn in the last frame), requests
         // (GetCage sent)}.
         cage: app.cage.facts(),
+        // Region payloads decode in a Web Worker (docs/WEB_VIEWER.md
+        // "Decoding in a worker"): {workers, decoded, failed, waiting,
+        // meanMs, p99Ms, workerDraco, mainThreadDraco, messagesApplied,
+        // messagesWaiting}; mainThreadDraco is whether this thread ever
+        // created a Draco module (it should not).
+        decoding: {
+          ...(page.decoder ? page.decoder.facts() : {}),
+          mainThreadDraco: globalThis[DRACO_LOADED_MARK] === true,
+          messagesApplied: session?.updates.applied ?? 0,
+          messagesWaiting: session?.updates.pending ?? 0,
+        },
       };
     },
 

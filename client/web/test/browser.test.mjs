@@ -6,7 +6,8 @@
 // drag edits and undo takes it back; collaborators' picks show both ways;
 // the keys and the LOD selector work; the start panel asks for a token and
 // lists documents; a large document shows its preview first, then its
-// tiles; a morph document is shown with the profile. Skipped
+// tiles; a morph document is shown with the profile. Every region is
+// decoded in the page's Web Worker, never on its main thread. Skipped
 // without a server build that has --ws-port, or without /usr/bin/chromium.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -18,7 +19,7 @@ import { startServer, serverHasWebSocket, testData } from './support/server.mjs'
 import { connect, createCube, createMesh, grant, openSession, until } from './support/client.mjs';
 import { toLong } from '../src/codec/uint64.js';
 import { PREVIEW_ID } from '../src/scene/tile_assembly.js';
-import { chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
+import { assertDecodedInWorker, chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
 import { decodePng } from './support/png.mjs';
 
 const skip = !serverHasWebSocket() ? 'no build/release/server/tessera-server with --ws-port'
@@ -101,6 +102,8 @@ test('the cube shows through a view by default, anti-aliased, hashed like the se
   assert.equal(s.hashMatches, true);
   assert.ok(s.triangles > 100 && s.regions > 0 && s.bytesReceived > 1000 && s.frames > 2, JSON.stringify(s));
   assert.equal(s.error, '');
+  const decoding = await assertDecodedInWorker(page);
+  console.log(`decoded in the worker: ${decoding.decoded} regions, ${decoding.meanMs.toFixed(2)} ms mean, ${decoding.p99Ms.toFixed(2)} ms p99`);
   const antialias = await page.evaluate(() => document.querySelector('#stage canvas').getContext('webgl2').getContextAttributes().antialias);
   assert.equal(antialias, true);
   const frames = await page.evaluate(() => window.tesseraViewer.renderedFrames());
@@ -198,6 +201,8 @@ test('a drag edits the document as one undo step; undo and redo come back to the
   const s2 = await state(page);
   assert.equal(s2.hashMatches, true);
   assert.equal(s2.version, s1.version + 2 * s1.editsSent, 'one Undo and one Redo per edit of the step');
+  const decoding = await assertDecodedInWorker(page);
+  assert.ok(decoding.decoded > s1.decoding.decoded, 'the deltas of undo and redo were decoded in the worker');
   assert.deepEqual(page.problems, []);
   await page.close();
 });
@@ -350,6 +355,7 @@ test('with ?views=1 the page loads coarse first, then the tiles its camera needs
   await page.waitForFunction((t) => window.tesseraViewer.state().tiles === t, { timeout: 30000 }, whole.tiles);
   await complete(page);
   assert.equal((await state(page)).surfaceHash, whole.surfaceHash);
+  await assertDecodedInWorker(page);
   assert.deepEqual(page.problems, []);
   await page.close();
 });
@@ -386,6 +392,7 @@ test('a large document\'s first picture is its preview, alone and a few kilobyte
   assert.equal(whole.shown, whole.tiles, 'every tile held is drawn');
   assert.ok(whole.triangles > 12946);
   assert.equal(whole.surfaceHash, whole.serverSurfaceHash);
+  await assertDecodedInWorker(page);
   assert.deepEqual(page.problems, []);
   await page.close();
 });
@@ -431,6 +438,7 @@ test('a catmull-clark document is shown with quad lattice ids, hashed like the s
   assert.equal(dragged.editsRejected, 0);
   assert.notEqual(dragged.surfaceHash, afterV.surfaceHash);
   assert.equal(dragged.surfaceHash, dragged.serverSurfaceHash);
+  await assertDecodedInWorker(page);
   assert.deepEqual(page.problems, []);
   await page.close();
 });

@@ -18,7 +18,7 @@ import { startServer, serverHasWebSocket } from './support/server.mjs';
 import { connect, createCube, grant } from './support/client.mjs';
 import { toBig } from '../src/codec/uint64.js';
 import { CAGE_COLOUR } from '../src/scene/cage_layer.js';
-import { chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
+import { assertDecodedInWorker, chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
 import { decodePng } from './support/png.mjs';
 
 const skip = !serverHasWebSocket() ? 'no build/release/server/tessera-server with --ws-port'
@@ -175,6 +175,7 @@ test('a catmull-clark cube\'s cage: 6 quads and 12 edges at level 0, 24 and 48 a
   assert.equal(again.edges, 12);
   assert.equal(again.requests, 2, 'each level asked for once');
   assert.equal((await state(page)).error, '');
+  await assertDecodedInWorker(page); // the quads' lattice ids too
   assert.deepEqual(page.problems, []);
   await page.close();
 });

@@ -5,7 +5,8 @@
 // checks the surface hash against the server's, keeps the collaborators
 // from Presence, sends this viewer's edits (paced, each in an undo step)
 // and measures edit-to-delta latency.
-import { DocumentView } from './document_view.js';
+import { DocumentView, regionPayloads } from './document_view.js';
+import { OrderedUpdates } from './ordered_updates.js';
 import { UndoHistory } from './undo_history.js';
 import { LatencyTracker } from './latency.js';
 import { Collaborators } from './presence.js';
@@ -18,7 +19,8 @@ import { RejectError } from './connection.js';
 const EDGE_NAMED_BY_ENDS = (1n << 64n) - 1n;
 
 export class DocumentSession {
-  // options: {connection, decode, documentId, profile, view (a View's
+  // options: {connection, decode (bytes -> a decoded region, or a Promise
+  // of one: the page's Web Worker), documentId, profile, view (a View's
   // fields: a view-dependent subscription, PROTOCOL.md section 16; null for
   // a profile), onView(change), onPresence(), onStatus(text),
   // onError(text), onHash(result), onProfileOnly() (a view was asked for
@@ -31,7 +33,15 @@ export class DocumentSession {
     this.profile = options.profile;
     this.camera = options.view ?? null; // the latest view sent, for (re)subscribing
     this.cameraSeq = 0n; // the client_seq of the latest SetView sent
-    this.view = new DocumentView(this.documentId, options.decode);
+    this.view = new DocumentView(this.documentId);
+    // Snapshots and deltas in arrival order, whenever their regions decode
+    // (docs/WEB_VIEWER.md "Decoding in a worker").
+    this.updates = new OrderedUpdates({
+      decode: options.decode,
+      payloads: regionPayloads,
+      needsRegions: (body, message) => this.view.needsRegions(body, message),
+      apply: (body, message, decoded) => this.update(body, message, decoded),
+    });
     this.history = new UndoHistory();
     this.latency = new LatencyTracker();
     this.collaborators = new Collaborators();
@@ -51,7 +61,8 @@ export class DocumentSession {
     this.sessionId = toBig(helloAck.session_id);
     this.role = helloAck.role;
     this.pacer.clear(); // commands for the lost connection's session
-    this.view = new DocumentView(this.documentId, this.o.decode);
+    this.updates.reset(); // the lost connection's messages: not for the new view
+    this.view = new DocumentView(this.documentId);
     this.latency.reset();
     this.collaborators.clear();
     this.opened = false;
@@ -145,7 +156,7 @@ export class DocumentSession {
 
   // Server messages that are not replies.
   message(body, message) {
-    if (body === 'snapshot' || body === 'delta') return this.update(body, message);
+    if (body === 'snapshot' || body === 'delta') return this.updates.push(body, message);
     if (body === 'presence' && toBig(message.presence.document_id) === this.documentId) {
       this.collaborators.apply(message.presence);
       const self = this.collaborators.bySession.get(this.sessionId);
@@ -154,10 +165,12 @@ export class DocumentSession {
     }
   }
 
-  update(body, message) {
+  // One message, its turn come; decoded: its regions' results (one {region}
+  // or {error} each), or null when the view does not read them.
+  update(body, message, decoded) {
     let change;
     try {
-      change = this.view.apply(body, message);
+      change = this.view.apply(body, message, decoded);
     } catch (error) {
       // A region that does not decode: the view cannot be trusted.
       this.view.gap(error.message);

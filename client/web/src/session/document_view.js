@@ -11,13 +11,29 @@
 //   - Any other delta, or a flag-2 region whose layout the view does not
 //     hold, is a gap: the view stops until the next snapshot, and apply()
 //     says so, so that the caller subscribes again.
+//
+// The regions may come decoded already (the page decodes them in a Web
+// Worker, session/ordered_updates.js): apply() then takes one settled result
+// per payload and meets a decoding error at the same point, with the same
+// message, as it would decoding here (docs/WEB_VIEWER.md "Decoding in a
+// worker").
 import { adoptLayoutIds } from '../codec/region_decoder.js';
 import { regionHash, sumHashes } from '../codec/surface_hash.js';
 import { toBig } from '../codec/uint64.js';
 
+const IGNORED = Object.freeze({ kind: 'ignored' });
+
+// The region payloads (Uint8Arrays) of a Snapshot or Delta message, in order.
+export function regionPayloads(body, message) {
+  if (body === 'snapshot') return message.snapshot.regions.map((r) => r.draco);
+  if (body === 'delta') return message.delta.regions.map((r) => r.draco);
+  return [];
+}
+
 export class DocumentView {
-  // decode(bytes) -> decoded region (codec/region_decoder.js, bound to Draco).
-  constructor(documentId, decode) {
+  // decode(bytes) -> decoded region (codec/region_decoder.js, bound to
+  // Draco); used only when apply() is not given the regions decoded.
+  constructor(documentId, decode = null) {
     this.documentId = BigInt(documentId);
     this.decode = decode;
     this.regions = new Map(); // region id (BigInt) -> decoded region
@@ -42,22 +58,53 @@ export class DocumentView {
   // still waiting for the rest, {kind: 'snapshot', regions} when the whole
   // set was replaced, {kind: 'delta', changed, removed, delta}, {kind:
   // 'ignored'}, or {kind: 'gap', reason}.
-  apply(body, message) {
-    if (body === 'snapshot') return this.applySnapshot(message.snapshot);
-    if (body === 'delta') return this.applyDelta(message.delta);
-    return { kind: 'ignored' };
+  //
+  // decoded: null to decode here, or one settled result per payload of
+  // regionPayloads(), {region} or {error}; an error is thrown where the
+  // decoder would have thrown it.
+  apply(body, message, decoded = null) {
+    const take = (r, index) => {
+      if (!decoded) return this.decode(r.draco);
+      const result = decoded[index];
+      if (result.error) throw result.error;
+      return result.region;
+    };
+    if (body === 'snapshot') return this.applySnapshot(message.snapshot, take);
+    if (body === 'delta') return this.applyDelta(message.delta, take);
+    return IGNORED;
   }
 
-  applySnapshot(s) {
-    if (toBig(s.document_id) !== this.documentId) return { kind: 'ignored' };
+  // What apply() decides before it looks at any region: IGNORED, a gap
+  // ({kind: 'gap', reason}, not yet counted), or null when it needs the
+  // regions. Against the view as it is now: a message queued behind others
+  // is asked when its turn comes.
+  verdictBeforeRegions(body, message) {
+    if (body === 'snapshot') return toBig(message.snapshot.document_id) === this.documentId ? null : IGNORED;
+    if (body !== 'delta') return IGNORED;
+    const d = message.delta;
+    if (toBig(d.document_id) !== this.documentId || !this.ready) return IGNORED;
+    const from = toBig(d.from_version), to = toBig(d.to_version);
+    if (from !== this.version) {
+      return { kind: 'gap', reason: `document ${this.documentId}: delta ${from}->${to} does not follow version ${this.version}` };
+    }
+    return null;
+  }
+
+  // Whether apply() will read this message's regions, now.
+  needsRegions(body, message) {
+    return this.verdictBeforeRegions(body, message) === null;
+  }
+
+  applySnapshot(s, take) {
+    if (toBig(s.document_id) !== this.documentId) return IGNORED;
     const version = toBig(s.version);
     // Parts of one snapshot share its version; a part of another starts over.
     if (this.stagingVersion !== version) {
       this.staging = new Map();
       this.stagingVersion = version;
     }
-    for (const r of s.regions) {
-      const decoded = this.decodePayload(r);
+    for (const [index, r] of s.regions.entries()) {
+      const decoded = this.decodePayload(r, index, take);
       if (!decoded.header.idsInline && decoded.header.hasIds) {
         // Snapshots always carry ids (6.2): one without them cannot be
         // assembled, so ask for another.
@@ -84,17 +131,15 @@ export class DocumentView {
     return { kind: 'snapshot', regions: this.regions, resync: s.resync };
   }
 
-  applyDelta(d) {
-    if (toBig(d.document_id) !== this.documentId || !this.ready) return { kind: 'ignored' };
-    const from = toBig(d.from_version), to = toBig(d.to_version);
-    if (from !== this.version) {
-      return this.gap(`document ${this.documentId}: delta ${from}->${to} does not follow version ${this.version}`);
-    }
+  applyDelta(d, take) {
+    const verdict = this.verdictBeforeRegions('delta', { delta: d });
+    if (verdict) return verdict.kind === 'gap' ? this.gap(verdict.reason) : verdict;
+    const to = toBig(d.to_version);
     const changed = [];
     const updates = new Map();
-    for (const r of d.regions) {
+    for (const [index, r] of d.regions.entries()) {
       const id = toBig(r.region_id);
-      const decoded = this.decodePayload(r);
+      const decoded = this.decodePayload(r, index, take);
       if (!decoded.header.idsInline && decoded.header.hasIds) {
         const held = updates.get(id) ?? this.regions.get(id);
         try {
@@ -118,9 +163,9 @@ export class DocumentView {
 
   // A region of a Snapshot or Delta, decoded; it keeps its payload's size
   // (`bytes`: what the page's first picture cost, for the test hook).
-  decodePayload(r) {
+  decodePayload(r, index, take) {
     this.regionBytes += r.draco.length;
-    const decoded = this.decode(r.draco);
+    const decoded = take(r, index);
     decoded.bytes = r.draco.length;
     return decoded;
   }

@@ -3,6 +3,7 @@
 import { existsSync, mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import assert from 'node:assert/strict';
 import puppeteer from 'puppeteer-core';
 
 export const CHROMIUM = process.env.CHROMIUM ?? '/usr/bin/chromium';
@@ -43,3 +44,21 @@ export async function openPage(browser, url, size = { width: 1000, height: 680 }
 }
 
 export const state = (page) => page.evaluate(() => window.tesseraViewer.state());
+
+// The page decoded every region it holds in its Web Worker, and its main
+// thread neither created a Draco module nor fetched draco_decoder.wasm
+// (docs/WEB_VIEWER.md "Decoding in a worker"). Returns the test hook's
+// decoding facts.
+export async function assertDecodedInWorker(page) {
+  const s = await state(page);
+  const d = s.decoding;
+  assert.equal(d.workers, 1, JSON.stringify(d));
+  assert.equal(d.workerDraco, true, `the worker has its Draco module: ${JSON.stringify(d)}`);
+  assert.equal(d.mainThreadDraco, false, 'the main thread created a Draco module');
+  assert.ok(d.decoded >= s.regions && d.decoded > 0, `every region held came from the worker: ${JSON.stringify(d)}, ${s.regions} regions`);
+  assert.equal(d.failed, 0, JSON.stringify(d));
+  const fetched = await page.evaluate(() => performance.getEntriesByType('resource').map((e) => new URL(e.name).pathname));
+  assert.ok(fetched.includes('/decode_worker.js'), `the page started its worker: ${fetched.join(' ')}`);
+  assert.ok(!fetched.includes('/draco_decoder.wasm'), 'the main thread fetched draco_decoder.wasm');
+  return d;
+}

@@ -1,0 +1,35 @@
+// The decode worker: bundled by build.mjs as decode_worker.js, the page
+// starts it (codec/decode_pool.js). It instantiates the Draco module here,
+// off the page's main thread, and decodes each region payload it is sent
+// with decodeRegion(): header, checksum, Draco, ids and lattice ids, exactly
+// as the page did before (docs/WEB_VIEWER.md "Decoding in a worker"). The
+// arrays go back transferred, not copied; an error goes back as its message.
+// Messages: decode_messages.js.
+import { loadDracoFrom } from './draco.js';
+import { decodeRegion } from './region_decoder.js';
+import { DRACO_LOADED_MARK, transferablesOf } from './decode_messages.js';
+
+// Beside this file, as build.mjs writes them.
+const loaded = loadDracoFrom(new URL('draco_decoder.wasm', self.location.href).href);
+loaded.then(
+  () => self.postMessage({ ready: true, dracoLoaded: globalThis[DRACO_LOADED_MARK] === true }),
+  (error) => self.postMessage({ loadFailed: error?.message ?? String(error) }));
+
+// Requests are answered in the order they came (each waits on the same
+// promise); the page does not rely on it (session/ordered_updates.js).
+self.onmessage = (event) => {
+  const { id, bytes } = event.data;
+  loaded.then(({ draco }) => {
+    const started = performance.now();
+    let region;
+    try {
+      region = decodeRegion(draco, bytes);
+    } catch (error) {
+      self.postMessage({ id, error: error?.message ?? String(error), ms: performance.now() - started });
+      return;
+    }
+    self.postMessage({ id, region, ms: performance.now() - started }, transferablesOf(region));
+  }, (error) => {
+    self.postMessage({ id, error: `the Draco decoder did not load: ${error.message}`, ms: 0 });
+  });
+};

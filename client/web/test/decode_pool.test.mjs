@@ -1,0 +1,84 @@
+// The page's side of its decode worker (src/codec/decode_pool.js) with a
+// stand-in worker: regions come back as decodeRegion() makes them, their
+// arrays transferred (the worker's copies detached); an answer may come in
+// any order and finds its own request; a bad payload rejects with the
+// synchronous decoder's own message; a worker that stops fails everything
+// waiting and everything after, once.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { DecodePool } from '../src/codec/decode_pool.js';
+import { decodeRegion } from '../src/codec/region_decoder.js';
+import { dracoDecoder, dracoEncoder } from './support/draco_node.mjs';
+import { encodeTestRegion } from './support/region_encoder.mjs';
+import { FakeDecodeWorker } from './support/fake_decode_worker.mjs';
+import { testRegion } from './support/test_regions.mjs';
+
+test('regions come back decoded as on the main thread, their arrays transferred, each to its own request', async () => {
+  const [draco, enc] = await Promise.all([dracoDecoder(), dracoEncoder()]);
+  const worker = new FakeDecodeWorker(draco);
+  const pool = new DecodePool({ createWorker: () => worker });
+  worker.start();
+  await pool.ready;
+  const a = testRegion(enc, 10n, 1n), b = testRegion(enc, 11n, 1n);
+  const frame = new Uint8Array(a.length + b.length);
+  frame.set(a);
+  frame.set(b, a.length);
+  // Views into one frame, as the wire's regions are: the frame stays whole.
+  const pa = pool.decode(frame.subarray(0, a.length)), pb = pool.decode(frame.subarray(a.length));
+  assert.equal(frame.byteLength, a.length + b.length, 'the frame is not detached');
+  worker.answer(1);
+  worker.answer(0);
+  const [ra, rb] = await Promise.all([pa, pb]);
+  assert.equal(ra.header.regionId, 10n);
+  assert.equal(rb.header.regionId, 11n);
+  const expected = decodeRegion(draco, a);
+  for (const key of ['positions', 'normals', 'indices', 'idHi', 'idLo']) assert.deepEqual(ra[key], expected[key], key);
+  for (const sent of worker.sentRegions) {
+    assert.equal(sent.positions.byteLength, 0, 'the worker\'s positions were transferred, not copied');
+    assert.equal(sent.idLo.byteLength, 0, 'and its ids');
+  }
+  const facts = pool.facts();
+  assert.equal(facts.decoded, 2);
+  assert.equal(facts.waiting, 0);
+  assert.equal(facts.workerDraco, true);
+  assert.equal(facts.meanMs, 1);
+});
+
+test('a corrupted payload rejects with the message the synchronous decoder throws', async () => {
+  const [draco, enc] = await Promise.all([dracoDecoder(), dracoEncoder()]);
+  const worker = new FakeDecodeWorker(draco);
+  const pool = new DecodePool({ createWorker: () => worker });
+  worker.start();
+  const bytes = testRegion(enc, 10n, 2n);
+  bytes[bytes.length - 9] ^= 0x40; // inside the Draco bytes: the checksum no longer holds
+  let expected;
+  assert.throws(() => decodeRegion(draco, bytes), (error) => { expected = error.message; return true; });
+  assert.match(expected, /checksum mismatch/);
+  const decoding = pool.decode(bytes);
+  worker.answer();
+  await assert.rejects(decoding, (error) => error instanceof Error && error.message === expected);
+  assert.equal(pool.facts().failed, 1);
+});
+
+test('a worker that stops fails what waits and what comes after, and says so once', async () => {
+  const [draco, enc] = await Promise.all([dracoDecoder(), dracoEncoder()]);
+  const workers = [new FakeDecodeWorker(draco), new FakeDecodeWorker(draco)];
+  const failures = [];
+  let next = 0;
+  const pool = new DecodePool({ createWorker: () => workers[next++], size: 2, onFailure: (e) => failures.push(e.message) });
+  const waiting = [pool.decode(testRegion(enc, 10n, 1n)), pool.decode(testRegion(enc, 11n, 1n))];
+  assert.deepEqual(workers.map((w) => w.requests.length), [1, 1], 'the fewest waiting gets the next');
+  workers[1].crash('out of memory');
+  workers[0].crash('out of memory');
+  for (const p of waiting) await assert.rejects(p, /the decode worker stopped: out of memory/);
+  await assert.rejects(pool.ready, /the decode worker stopped/);
+  await assert.rejects(pool.decode(testRegion(enc, 12n, 1n)), /the decode worker stopped/);
+  assert.deepEqual(failures, ['the decode worker stopped: out of memory']);
+});
+
+test('a worker whose Draco module does not load fails its start', async () => {
+  const worker = new FakeDecodeWorker(null);
+  const pool = new DecodePool({ createWorker: () => worker });
+  worker.deliver({ loadFailed: 'the Draco decoder draco_decoder.wasm: HTTP 404' });
+  await assert.rejects(pool.ready, /HTTP 404/);
+});

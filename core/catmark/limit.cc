@@ -188,9 +188,10 @@ CatmarkLimitFrame dartFrame(const Level& level, Index v, std::span<const Vec3> p
 }
 
 CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points,
-                            const TangentTables& tables, const CreaseOptions& options) {
+                            const TangentTables& tables, const CreaseOptions& options,
+                            const FarRingSharpness* far) {
   if (takesDecayedLimit(level, v, options)) {
-    if (auto decayed = decayedLimitFrame(level, v, points, options)) return *decayed;
+    if (auto decayed = decayedLimitFrame(level, v, points, options, far)) return *decayed;
   }
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
@@ -253,22 +254,27 @@ std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, s
 }
 
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points,
-                                    const CreaseOptions& options) {
-  return frameWith(level, v, points, TangentTables(level.valence(v)), options);
+                                    const CreaseOptions& options, const FarRingSharpness* far) {
+  return frameWith(level, v, points, TangentTables(level.valence(v)), options, far);
 }
 
-CatmarkLimitEvaluator::CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options)
-    : level_(level), options_(options), tables_(std::make_unique<const TangentTables>(level.maxValence)) {}
+CatmarkLimitEvaluator::CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options,
+                                             const FarRingSharpness* far)
+    : level_(level),
+      options_(options),
+      far_(far),
+      tables_(std::make_unique<const TangentTables>(level.maxValence)) {}
 
 CatmarkLimitEvaluator::~CatmarkLimitEvaluator() = default;
 
 CatmarkLimitFrame CatmarkLimitEvaluator::frame(Index v, std::span<const Vec3> points) const {
-  return frameWith(level_, v, points, *tables_, options_);
+  return frameWith(level_, v, points, *tables_, options_, far_);
 }
 
-double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options) {
+double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options,
+                              const FarRingSharpness* far) {
   if (takesDecayedLimit(level, v, options)) {
-    if (auto weight = decayedSelfLimitWeight(level, v, options)) return *weight;
+    if (auto weight = decayedSelfLimitWeight(level, v, options, far)) return *weight;
   }
   switch (level.vertexRules[v]) {
     case VertexRule::kSmooth:
@@ -296,7 +302,7 @@ Status computeCatmarkLimit(const Level& level, const CreaseOptions& options, std
   const bool wantNormals = !normals.empty();
   const TangentTables tables(level.maxValence);
   for (Index v = 0; v < level.numVertices; ++v) {
-    const CatmarkLimitFrame frame = frameWith(level, v, points, tables, options);
+    const CatmarkLimitFrame frame = frameWith(level, v, points, tables, options, nullptr);
     positions[v] = frame.position;
     if (wantNormals) normals[v] = unitNormal(frame, [&] { return faceNormals(level, v, points); });
   }

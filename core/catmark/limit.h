@@ -8,10 +8,10 @@
 // and tangents (core/catmark/dart_masks.h), and the tangent across a crease
 // into three faces or more (core/catmark/crease_span_tangent.h).
 // Where a semi-sharp feature has not decayed, Limit()'s masks count it as
-// sharp; under uniform decay the vertex's ring is refined until it has and
-// the masks are taken there instead (core/catmark/semi_sharp_limit.h),
-// which needs the document's crease options. Chaikin's still counts it as
-// sharp.
+// sharp; the vertex's ring is refined until it has and the masks are taken
+// there instead (core/catmark/semi_sharp_limit.h), which needs the
+// document's crease options and, under Chaikin's decay on a sparse level,
+// the far rings the level does not hold whole (FarRingSharpness).
 #pragma once
 
 #include <memory>
@@ -35,19 +35,23 @@ struct CatmarkLimitFrame {
 namespace detail {
 class CatmarkTangentTables;
 }
+class FarRingSharpness;  // core/loop/local_ring.h
 
 // catmarkLimitFrame for many vertices of one level, one at a time, with
 // the tangent weights built once for the level's largest valence (the
 // sparse hierarchy's use; one call builds them per vertex).
 class CatmarkLimitEvaluator {
  public:
-  CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options);
+  // `far`, if given, outlives the evaluator.
+  CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options,
+                        const FarRingSharpness* far = nullptr);
   ~CatmarkLimitEvaluator();
   CatmarkLimitFrame frame(Index v, std::span<const Vec3> points) const;
 
  private:
   const Level& level_;
   CreaseOptions options_;
+  const FarRingSharpness* far_;
   std::unique_ptr<const detail::CatmarkTangentTables> tables_;
 };
 
@@ -55,7 +59,7 @@ class CatmarkLimitEvaluator {
 // of a sparse level (core/hierarchy/sparse_level.h): it reads the vertex's
 // ring, its ring faces' corners and its rules only.
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points,
-                                    const CreaseOptions& options);
+                                    const CreaseOptions& options, const FarRingSharpness* far = nullptr);
 
 // The weight of vertex v's own control point in the limit mask
 // catmarkLimitFrame uses (n/(n+5) smooth, the dart mask's at a dart, 2/3
@@ -63,7 +67,8 @@ CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const
 // ring's where a semi-sharp feature acts): the limit position is affine in
 // that point, so direct manipulation (Pulli & Lounsbery §2.2) solves for it
 // in one step. Always > 0.
-double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options);
+double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options,
+                              const FarRingSharpness* far = nullptr);
 
 // The sectors of a crease or corner vertex other than the one whose
 // normal catmarkLimitFrame's tangents give (the ring faces after its first

@@ -11,7 +11,7 @@ LevelLimits::LevelLimits(const SparseLevel& level, const SparseLevel* parent, co
   if (split == SplitKind::kTriangles) {
     loop_.emplace(level.mesh, options.creaseMethod, &far_);
   } else if (hasLimits(level.mesh, split)) {
-    catmark_.emplace(level.mesh, options);
+    catmark_.emplace(level.mesh, options, &far_);
   }
 }
 
@@ -19,7 +19,7 @@ Vec3 LevelLimits::solveControlPoint(Index v, std::span<const Vec3> points, const
   if (loop_) return tessera::solveControlPoint(level_.mesh, v, points, target, options_.creaseMethod, &far_);
   if (!catmark_) return target;  // no limit: the control point is what is shown
   const Vec3 limit = catmark_->frame(v, points).position;
-  return points[v] + (1.0 / catmarkSelfLimitWeight(level_.mesh, v, options_)) * (target - limit);
+  return points[v] + (1.0 / catmarkSelfLimitWeight(level_.mesh, v, options_, &far_)) * (target - limit);
 }
 
 }  // namespace tessera

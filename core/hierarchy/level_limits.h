@@ -1,8 +1,8 @@
 // Limit positions and tangents of the complete vertices of one sparse level
 // by the document's scheme: Loop's eigenanalysis (core/loop/limit.h, with
 // the far rings Chaikin's decay reads, sparse_far_rings.h) under a triangle
-// split, Catmull-Clark's limit masks (core/catmark/limit.h) under a quad
-// split. Catmull-Clark's masks read each ring face's opposite corner from
+// split, Catmull-Clark's limit masks (core/catmark/limit.h, with the same
+// far rings) under a quad split. Catmull-Clark's masks read each ring face's opposite corner from
 // a level of quads: a base level with other polygons has no limits (its
 // vertices have theirs one level down, after the first split).
 #pragma once
@@ -48,8 +48,8 @@ class LevelLimits {
   // `target`, the others fixed (direct manipulation, Pulli & Lounsbery,
   // "Hierarchical Editing and Rendering of Subdivision Surfaces" §2.2):
   // Loop's exact limit (core/loop/direct_manipulation.h), or the
-  // Catmull-Clark mask frame() takes (with a semi-sharp feature under
-  // uniform decay, the decayed ring's: core/catmark/semi_sharp_limit.h).
+  // Catmull-Clark mask frame() takes (with a semi-sharp feature, the
+  // decayed ring's: core/catmark/semi_sharp_limit.h).
   Vec3 solveControlPoint(Index v, std::span<const Vec3> points, const Vec3& target) const;
 
  private:

@@ -26,15 +26,20 @@ void SparseFarRings::edgesAt(Index u, std::vector<float>& out) const {
     }
     return;
   }
-  const Index half = p.halvesOfEdge[origin];
-  out.push_back(m.edgeSharpness[half]);
-  out.push_back(m.edgeSharpness[half + 1]);
+  // A vertex on a parent edge has the edge's two halves; one in a parent
+  // face (quads) has none. Its other edges lie inside the parent's faces.
+  const Index half = level_.isFaceChild(u) ? kNoIndex : p.halvesOfEdge[origin];
+  if (half != kNoIndex) {
+    out.push_back(m.edgeSharpness[half]);
+    out.push_back(m.edgeSharpness[half + 1]);
+  }
   std::vector<Index> interior;
   for (Index f : m.ringFacesOf(u)) {
     if (f < 0) continue;
     for (Index e : m.faceEdgesOf(f)) {
       const auto& ends = m.edgeVertices[e];
-      if ((ends[0] == u || ends[1] == u) && e != half && e != half + 1) interior.push_back(e);
+      if ((ends[0] == u || ends[1] == u) && (half == kNoIndex || (e != half && e != half + 1)))
+        interior.push_back(e);
     }
   }
   // In canonical order, whatever the local one (a level grown in place).

@@ -8,7 +8,9 @@
 // missing half inherits its parent edge's sharpness at that end, and no
 // missing edge carries a tag, since a tag's edit node holds its edge); a
 // vertex on a parent edge has the edge's two halves and interior edges of
-// the parent's faces, smooth unless a tag is on them, and then present.
+// the parent's faces, and a vertex in a parent face (quads) interior edges
+// only, smooth unless a tag is on them, and then present. Catmull-Clark's
+// semi-sharp limits read them the same way (core/catmark/semi_sharp_limit.h).
 #pragma once
 
 #include <vector>

@@ -8,11 +8,17 @@
 // boundaries, triangles and n-gons, and random creases from fixed seeds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <random>
 #include <set>
 
+#include "core/catmark/limit.h"
 #include "core/catmark/quad_split.h"
+#include "core/catmark/semi_sharp_limit.h"
 #include "core/hierarchy/incidence.h"
+#include "core/hierarchy/level_limits.h"
+#include "core/hierarchy/sparse_far_rings.h"
 #include "core/hierarchy/sparse_level.h"
 #include "support/polygon_meshes.h"
 #include "support/sparse_levels.h"
@@ -301,6 +307,87 @@ TEST(SparseQuadLevel, SparseLevelsHoldTheUniformRelationsBuiltAtOnceOrGrown) {
       }
     }
   }
+}
+
+// Chaikin's decay reads the sharpness of every edge at the far end of a
+// semi-sharp edge, which a sparse level holds whole only at its complete
+// vertices; SparseFarRings derives the rest from the parent
+// (core/hierarchy/sparse_far_rings.h). On random sparse levels, the edges it
+// gives at every present vertex (their non-smooth sharpness, which is all
+// the decay reads) are the uniform level's, and the limit of every complete
+// vertex with an undecayed semi-sharp feature, and its own weight, are the
+// ones the uniform level gives from the same points
+// (core/catmark/semi_sharp_limit.h).
+TEST(SparseQuadLevel, FarRingsAndSemiSharpLimitsAreTheUniformLevels) {
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int derived = 0, semiSharpLimits = 0, acrossIncomplete = 0;
+  auto nonSmooth = [](std::vector<float> s) {
+    s.erase(std::remove(s.begin(), s.end(), kSharpnessSmooth), s.end());
+    std::sort(s.begin(), s.end());
+    return s;
+  };
+  for (const PolyTestMesh& mesh : meshes()) {
+    const LoopOptions options{.creaseMethod = CreaseMethod::kChaikin};
+    const Uniform u = uniformLevels(mesh, options, 3);
+    for (int trial = 0; trial < 16; ++trial) {
+      std::vector<SparseLevel> levels;
+      levels.push_back(sparseBaseLevel(u.levels[0]));
+      for (int l = 0; l < 3; ++l) {
+        const std::vector<Index> faces = testing::refinableFaces(levels[l], l == 0 ? 0.5 : 0.6, rng);
+        if (faces.empty()) break;
+        levels.push_back(refineSparse(levels[l], flags(levels[l], faces), u.counts, options));
+        const SparseLevel& s = levels.back();
+        const Level& w = u.levels[l + 1];
+        const std::string where =
+            mesh.name + " trial " + std::to_string(trial) + " level " + std::to_string(l + 1);
+        const SparseFarRings far(s, &levels[l], options);
+        std::vector<float> got;
+        std::vector<bool> complete(static_cast<size_t>(s.mesh.numVertices));
+        for (Index v = 0; v < s.mesh.numVertices; ++v) {
+          const auto id = static_cast<Index>(s.vertexIds[v]);
+          complete[static_cast<size_t>(v)] = s.isComplete(v);
+          far.edgesAt(v, got);
+          std::vector<float> whole(static_cast<size_t>(w.valence(id)));
+          w.ringSharpness(id, whole.data());
+          ASSERT_EQ(nonSmooth(got), nonSmooth(whole)) << where << " edges at v" << l + 1 << ":" << id;
+          derived += s.isComplete(v) ? 0 : 1;
+        }
+        if (!LevelLimits::hasLimits(s.mesh, SplitKind::kQuads)) continue;
+        std::vector<Vec3> wholePoints(static_cast<size_t>(w.numVertices));
+        for (Vec3& p : wholePoints) p = Vec3(unit(rng), unit(rng), unit(rng));
+        std::vector<Vec3> points(static_cast<size_t>(s.mesh.numVertices));
+        for (Index v = 0; v < s.mesh.numVertices; ++v)
+          points[static_cast<size_t>(v)] = wholePoints[static_cast<size_t>(s.vertexIds[v])];
+        const LevelLimits limits(s, &levels[l], options, SplitKind::kQuads);
+        for (Index v = 0; v < s.mesh.numVertices; ++v) {
+          if (!s.isComplete(v) || !takesDecayedLimit(s.mesh, v, options)) continue;
+          const auto id = static_cast<Index>(s.vertexIds[v]);
+          const LimitFrame sparse = limits.frame(v, points);
+          const CatmarkLimitFrame dense = catmarkLimitFrame(w, id, wholePoints, options);
+          ASSERT_LE((sparse.position - dense.position).norm(), 1e-12)
+              << where << " limit of v" << l + 1 << ":" << id;
+          ASSERT_LE((sparse.tangent1 - dense.tangent1).norm(), 1e-12)
+              << where << " tangent of v" << l + 1 << ":" << id;
+          ASSERT_LE((sparse.tangent2 - dense.tangent2).norm(), 1e-12)
+              << where << " tangent of v" << l + 1 << ":" << id;
+          const SparseFarRings farOfV(s, &levels[l], options);
+          ASSERT_NEAR(catmarkSelfLimitWeight(s.mesh, v, options, &farOfV),
+                      catmarkSelfLimitWeight(w, id, options), 1e-14)
+              << where << " own weight of v" << l + 1 << ":" << id;
+          ++semiSharpLimits;
+          for (Index x : s.mesh.ringVerticesOf(v))
+            acrossIncomplete += complete[static_cast<size_t>(x)] ? 0 : 1;
+        }
+      }
+    }
+  }
+  std::printf(
+      "edges derived at %d incomplete vertices; %d semi-sharp limits, %d of their neighbours incomplete\n",
+      derived, semiSharpLimits, acrossIncomplete);
+  EXPECT_GT(derived, 100);
+  EXPECT_GT(semiSharpLimits, 50);
+  EXPECT_GT(acrossIncomplete, 50);
 }
 
 }  // namespace

@@ -14,12 +14,12 @@
 // convergence as its approximation level rises (checkConvergence); wider
 // ones are reported with theirs.
 // Darts are held to Bfr's convergence too (checkDartConvergence), and
-// vertices whose semi-sharp features decay to smooth, under uniform decay,
-// are asserted with the exact ones (core/catmark/semi_sharp_limit.h). The
-// rest is reported with its figures, not asserted: semi-sharp vertices with
-// an infinitely sharp feature as well, Chaikin's semi-sharp vertices, which
-// still count as sharp (docs/LIMITS.md "Catmull-Clark limits"), and the
-// cones (a corner's wider side, a cusp), which have no tangent plane.
+// vertices whose semi-sharp features decay to smooth, under uniform or
+// Chaikin's decay, are asserted with the exact ones
+// (core/catmark/semi_sharp_limit.h). The rest is reported with its figures,
+// not asserted: semi-sharp vertices with an infinitely sharp feature as
+// well (docs/LIMITS.md "Catmull-Clark limits"), and the cones (a corner's
+// wider side, a cusp), which have no tangent plane.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -96,7 +96,6 @@ bool bfrIsExact(Side s) {
 
 // A vertex with a semi-sharp feature and no infinitely sharp one (nor on
 // the boundary): smooth once its features decay, one normal on every side.
-// Under uniform decay (Chaikin's is counted as sharp: semi_sharp_limit.h).
 bool decaysToSmooth(const Level& level, Index v, const CreaseOptions& options) {
   if (!takesDecayedLimit(level, v, options) || isInfinite(level.vertexSharpness[v])) return false;
   for (Index e : level.ringEdgesOf(v)) {
@@ -385,13 +384,13 @@ TEST(BfrCatmarkLimit, SharpCreasesAndCornersGiveEachSideItsNormal) {
 }
 
 // Semi-sharp features that have not decayed (core/catmark/semi_sharp_limit.h),
-// under uniform decay: where none of a vertex's features is infinitely
-// sharp, it is smooth once they decay (at most 4 levels here, sharpness up
-// to 3.8), and Bfr, which refines them away before its approximation level,
-// is exact there: such corners are asserted with the exact ones. Counted as
-// sharp, Limit()'s masks, they were 3.8e-2 of the diagonal and 1.39 rad
-// away. Vertices with an infinitely sharp feature as well, and Chaikin's
-// decay (still counted as sharp), are reported.
+// under uniform and Chaikin's decay: where none of a vertex's features is
+// infinitely sharp, it is smooth once they decay (at most 4 levels here,
+// sharpness up to 3.8), and Bfr, which refines them away before its
+// approximation level, is exact there: such corners are asserted with the
+// exact ones. Counted as sharp, Limit()'s masks, they were 3.8e-2 of the
+// diagonal and 1.39 rad away. Vertices with an infinitely sharp feature as
+// well are reported.
 TEST(BfrCatmarkLimit, UndecayedSemiSharpFeaturesAreTheSurfacesLimit) {
   int exact = 0;
   for (const CreaseOptions& options : oracle::allCreaseOptions()) {

@@ -46,9 +46,9 @@ inline double boundingDiagonal(const std::vector<Vec3>& points) {
 // limits"):
 // - a dart's position and normal: Limit() takes the smooth masks there,
 //   Tessera the dart ring's own eigenvectors (core/catmark/dart_masks.h);
-// - a vertex where a semi-sharp feature has not decayed, under uniform
-//   decay: Limit() counts it as sharp, Tessera refines the ring until it
-//   has decayed (core/catmark/semi_sharp_limit.h);
+// - a vertex where a semi-sharp feature has not decayed: Limit() counts it
+//   as sharp, Tessera refines the ring until it has decayed
+//   (core/catmark/semi_sharp_limit.h);
 inline bool limitPositionDiffersFromFar(const Level& level, Index v, const CreaseOptions& options) {
   if (takesDecayedLimit(level, v, options)) return true;
   return level.vertexRules[v] == VertexRule::kDart && catmark::hasExactDartMasks(level.valence(v));

@@ -17,8 +17,11 @@
 #include <optional>
 #include <random>
 #include <set>
+#include <stdexcept>
 
+#include "core/catmark/limit.h"
 #include "core/catmark/polygon_level.h"
+#include "core/catmark/semi_sharp_limit.h"
 #include "core/hierarchy/incidence.h"
 #include "core/hierarchy/sparse_hierarchy.h"
 #include "core/schemes/polygon_reader.h"
@@ -41,8 +44,17 @@ using oracle::kPositionTolerance;
 
 struct Counted {
   long long points = 0, limits = 0, normals = 0, notLimits = 0, absentVertices = 0, moves = 0, dartMoves = 0,
-            tags = 0;
+            tags = 0, semiSharp = 0;
 };
+
+// The whole levels of the base with the edits' tags.
+schemes::QuadRefiner denseWith(const PolyTestMesh& mesh, const CreaseOptions& options,
+                               const schemes::QuadRefiner& ours, const std::vector<Edit>& edits) {
+  auto dense = schemes::QuadRefiner::create(oracle::taggedTopology(mesh.topology, ours.level(0), edits),
+                                            schemes::QuadScheme::kCatmullClark, options, {.levels = kLevels});
+  if (!dense.isOk()) throw std::runtime_error(dense.status().toString());
+  return std::move(*dense);
+}
 
 std::vector<oracle::OsdQuadLevel> farWithEdits(const PolyTestMesh& mesh, const CreaseOptions& options,
                                                const schemes::QuadRefiner& ours,
@@ -50,8 +62,29 @@ std::vector<oracle::OsdQuadLevel> farWithEdits(const PolyTestMesh& mesh, const C
   return oracle::refineEditedQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, ours, edits);
 }
 
-void expectHierarchyIsFar(const SparseHierarchy& h, const std::vector<oracle::OsdQuadLevel>& far, double diag,
-                          const std::string& when, Counted& counted) {
+// A complete vertex whose semi-sharp feature has not decayed: the limit the
+// sparse level gives (its far rings derived from the parent where it does
+// not hold them, core/hierarchy/sparse_far_rings.h) is the one the whole
+// level, `dense` (tagged as the edits tag the base), gives from Far's
+// points (semi_sharp_limit_test.cc holds that one to Far's refinement past
+// the decay).
+void expectSemiSharpLimitIsTheWholeLevels(const SparseHierarchy& h, int l, Index v,
+                                          const oracle::OsdQuadLevel& far, const schemes::QuadRefiner& dense,
+                                          double diag, const std::string& when) {
+  const uint64_t id = h.level(l).vertexIds[v];
+  const Index whole = static_cast<Index>(id);
+  const CatmarkLimitFrame frame = catmarkLimitFrame(dense.level(l), whole, far.points, h.options());
+  ASSERT_LE((h.limitPosition(l, v) - frame.position).norm(), kPositionTolerance * diag)
+      << when << ": semi-sharp limit of v" << l << ":" << id;
+  const Vec3 normal = (frame.tangent1 % frame.tangent2).normalized();
+  const Vec3 held = h.limitNormal(l, v);
+  ASSERT_LE(std::atan2((held % normal).norm(), held | normal), kNormalTolerance)
+      << when << ": semi-sharp normal of v" << l << ":" << id;
+}
+
+void expectHierarchyIsFar(const SparseHierarchy& h, const std::vector<oracle::OsdQuadLevel>& far,
+                          const schemes::QuadRefiner& dense, double diag, const std::string& when,
+                          Counted& counted) {
   ASSERT_EQ(h.numLevels(), kLevels + 1) << when;
   for (int l = 0; l < h.numLevels(); ++l) {
     const SparseLevel& topo = h.level(l);
@@ -61,6 +94,11 @@ void expectHierarchyIsFar(const SparseHierarchy& h, const std::vector<oracle::Os
           << when << ": point of v" << l << ":" << id;
       ++counted.points;
       if (far[l].limitPositions.empty() || !topo.isComplete(v)) continue;
+      if (takesDecayedLimit(topo.mesh, v, h.options())) {
+        expectSemiSharpLimitIsTheWholeLevels(h, l, v, far[l], dense, diag, when);
+        if (::testing::Test::HasFatalFailure()) return;
+        ++counted.semiSharp;
+      }
       if (oracle::limitNormalDiffersFromFar(topo.mesh, v, h.options())) {  // Limit() is not the surface here
         ++counted.notLimits;
         if (oracle::limitPositionDiffersFromFar(topo.mesh, v, h.options())) continue;
@@ -167,7 +205,8 @@ void checkHierarchy(const PolyTestMesh& mesh, const CreaseOptions& options, bool
         FaceId(kLevels, static_cast<uint64_t>(unit(rng) * static_cast<double>(counts.faces(kLevels)))));
   }
   h.reserveFaces(faces, edits);
-  expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), diag, "after every edit", counted);
+  expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), denseWith(mesh, options, ours, edits),
+                       diag, "after every edit", counted);
   if (::testing::Test::HasFatalFailure()) return;
 
   // Undo a coarse move and a fine one.
@@ -178,8 +217,8 @@ void checkHierarchy(const PolyTestMesh& mesh, const CreaseOptions& options, bool
     ASSERT_NE(it, edits.end());
     it->active = false;
     h.update(*it, edits);
-    expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), diag,
-                         "after undoing " + it->id.toString() + " at level " + std::to_string(level),
+    expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), denseWith(mesh, options, ours, edits),
+                         diag, "after undoing " + it->id.toString() + " at level " + std::to_string(level),
                          counted);
     if (::testing::Test::HasFatalFailure()) return;
   }
@@ -202,12 +241,14 @@ TEST(CatmarkHierarchyOracle, EditedSparseHierarchiesHoldFarsPointsAndLimits) {
   // Sparse, not whole: the deepest levels held a part of the uniform ones.
   EXPECT_GT(counted.absentVertices, 0);
   EXPECT_GT(counted.normals, 0);
+  EXPECT_GT(counted.semiSharp, 0);
   std::printf(
       "points compared %lld, limits %lld, normals %lld (and %lld darts and crease spans of 3+ faces, left to "
       "the "
-      "Bfr test), vertices not held %lld, moves %lld (%lld of darts), tags %lld\n",
-      counted.points, counted.limits, counted.normals, counted.notLimits, counted.absentVertices,
-      counted.moves, counted.dartMoves, counted.tags);
+      "Bfr test), semi-sharp limits held to the whole level's %lld, vertices not held %lld, moves %lld (%lld "
+      "of darts), tags %lld\n",
+      counted.points, counted.limits, counted.normals, counted.notLimits, counted.semiSharp,
+      counted.absentVertices, counted.moves, counted.dartMoves, counted.tags);
 }
 
 // Direct manipulation (Pulli & Lounsbery §2.2) on the quad split: a move
@@ -248,7 +289,8 @@ void checkDirectManipulation(const PolyTestMesh& mesh, const CreaseOptions& opti
         << "the hierarchy's limit of " << id.toString() << " after its move";
     ++counted.moves;
   }
-  expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), diag, "after the moves", counted);
+  expectHierarchyIsFar(h, farWithEdits(mesh, options, ours, edits), denseWith(mesh, options, ours, edits),
+                       diag, "after the moves", counted);
 }
 
 TEST(CatmarkHierarchyOracle, DirectManipulationPutsFarsLimitAtTheTarget) {

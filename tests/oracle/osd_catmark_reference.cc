@@ -186,14 +186,10 @@ std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const PolyTopology& topology
   return results;
 }
 
-std::vector<OsdQuadLevel> refineEditedQuadsWithOpenSubdiv(const PolyTopology& baseTopology,
-                                                          std::span<const Vec3> basePoints,
-                                                          const CreaseOptions& options,
-                                                          const schemes::QuadRefiner& ours,
-                                                          std::span<const Edit> edits) {
+PolyTopology taggedTopology(const PolyTopology& baseTopology, const Level& base,
+                            std::span<const Edit> edits) {
   PolyTopology topology = baseTopology;
-  const Level& base = ours.level(0);
-  topology.vertexSharpness.resize(basePoints.size(), 0.0f);
+  topology.vertexSharpness.resize(static_cast<size_t>(base.numVertices), 0.0f);
   std::set<Index> taggedEdges, taggedVertices;
   for (const Edit& edit : edits) {
     if (!edit.active || std::holds_alternative<MoveEdit>(edit.change)) continue;
@@ -211,6 +207,16 @@ std::vector<OsdQuadLevel> refineEditedQuadsWithOpenSubdiv(const PolyTopology& ba
       throw std::invalid_argument("an edit Far cannot state");
     }
   }
+  return topology;
+}
+
+std::vector<OsdQuadLevel> refineEditedQuadsWithOpenSubdiv(const PolyTopology& baseTopology,
+                                                          std::span<const Vec3> basePoints,
+                                                          const CreaseOptions& options,
+                                                          const schemes::QuadRefiner& ours,
+                                                          std::span<const Edit> edits) {
+  const Level& base = ours.level(0);
+  const PolyTopology topology = taggedTopology(baseTopology, base, edits);
   auto moveLevel = [&](int l, std::vector<Vec3>& points) {
     const std::vector<Vec3> predicted = points;
     for (const Edit& edit : edits) {

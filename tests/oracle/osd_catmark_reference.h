@@ -75,6 +75,11 @@ std::vector<OsdQuadLevel> refineQuadsWithOpenSubdiv(const PolyTopology& topology
                                                     const schemes::QuadRefiner& ours, bool withLimit,
                                                     int firstLimitLevel, const OsdLevelEdit& edit = {});
 
+// The base topology with the active base-level sharpness edits as its tags
+// (each edge and vertex tagged once); `base` is its level 0. Throws
+// std::invalid_argument as below.
+PolyTopology taggedTopology(const PolyTopology& baseTopology, const Level& base, std::span<const Edit> edits);
+
 // Far's levels for a document's base mesh with its `edits` (the active
 // ones, Pulli & Lounsbery's semantics): base-level sharpness edits become
 // tags of the base mesh (each edge and vertex tagged once), moves are added

@@ -1,11 +1,10 @@
 // Catmull-Clark limits at semi-sharp features that have not decayed
-// (core/catmark/semi_sharp_limit.h) against their definition: refine the
-// whole mesh (the refinement that equals OpenSubdiv Far's,
-// catmark_oracle_test.cc) until every feature has decayed, and take the
-// limit masks of the vertex there; a vertex keeps its index on every finer
-// level. Under uniform decay the vertex's ring alone gives the same limit;
-// under Chaikin's it would not (the far ends of its edges decay their halves),
-// so it is not taken there.
+// (core/catmark/semi_sharp_limit.h) against their definition: OpenSubdiv
+// Far refines the whole mesh until every feature has decayed, and the limit
+// masks of the vertex are taken there (exact once the rules no longer
+// change); a vertex keeps its index on every finer level. The vertex's ring
+// alone, with the far halves of its Chaikin edges decayed from their far
+// vertices' edges, must give the same limit under both decays.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -13,6 +12,7 @@
 #include "core/catmark/limit.h"
 #include "core/catmark/semi_sharp_limit.h"
 #include "core/schemes/quad_refiner.h"
+#include "oracle/osd_catmark_reference.h"
 #include "support/polygon_meshes.h"
 
 namespace tessera {
@@ -21,14 +21,20 @@ namespace {
 constexpr int kDeep = 6;  // below every feature's decay: sharpness < 3.8 from level 2
 
 void checkAgainstWholeMesh(const testing::PolyTestMesh& mesh, const CreaseOptions& options) {
-  SCOPED_TRACE(mesh.name);
+  SCOPED_TRACE(mesh.name + (options.creaseMethod == CreaseMethod::kChaikin ? " chaikin" : " uniform"));
   auto refiner = schemes::QuadRefiner::create(mesh.topology, schemes::QuadScheme::kCatmullClark, options,
                                               {.levels = kDeep});
   ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
-  const auto points = refiner->refinePointsPerLevel(mesh.points);
+  auto farPoints = [&](const std::vector<Vec3>& base) {
+    std::vector<std::vector<Vec3>> points;
+    for (auto& level : oracle::refineQuadsWithOpenSubdiv(mesh.topology, base, options, *refiner, false, 0))
+      points.push_back(std::move(level.points));
+    return points;
+  };
+  const auto points = farPoints(mesh.points);
   const Level& deep = refiner->level(kDeep);
   double worst = 0, worstWeight = 0;
-  int checked = 0;
+  int checked = 0, weighed = 0;
   for (int l = 0; l <= 2; ++l) {
     const Level& level = refiner->level(l);
     for (Index v = 0; v < level.numVertices; ++v) {
@@ -41,54 +47,50 @@ void checkAgainstWholeMesh(const testing::PolyTestMesh& mesh, const CreaseOption
       worst = std::max(worst, (ring->position - whole.position).norm());
       // The weight of the vertex's own point: the limit moves by it when
       // the point alone moves.
-      std::vector<Vec3> moved = mesh.points;
-      if (l == 0 && checked < 8) {  // a whole refinement each
+      if (l == 0 && weighed < 6) {  // a whole refinement each
+        std::vector<Vec3> moved = mesh.points;
         moved[static_cast<size_t>(v)] += Vec3(1, 0, 0);
-        const auto shifted = refiner->refinePointsPerLevel(moved);
+        const auto shifted = farPoints(moved);
         const double weight =
             catmarkLimitFrame(deep, v, shifted[kDeep], options).position[0] - whole.position[0];
         worstWeight = std::max(worstWeight, std::abs(weight - catmarkSelfLimitWeight(level, v, options)));
+        ++weighed;
       }
       ++checked;
     }
   }
   std::printf(
-      "  %-24s %d semi-sharp vertices at levels 0-2: limits within %.2e of the whole mesh's, "
+      "  %-24s %s: %d semi-sharp vertices at levels 0-2: limits within %.2e of the whole mesh's, "
       "own weights within %.2e\n",
-      mesh.name.c_str(), checked, worst, worstWeight);
+      mesh.name.c_str(), options.creaseMethod == CreaseMethod::kChaikin ? "chaikin" : "uniform", checked,
+      worst, worstWeight);
   EXPECT_GT(checked, 20);
+  EXPECT_GT(weighed, 3);
   EXPECT_LE(worst, 1e-12);
   EXPECT_LE(worstWeight, 1e-12);
 }
 
-TEST(SemiSharpLimit, TheRingAloneGivesTheWholeMeshsLimitUnderUniformDecay) {
-  for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner}) {
-    const CreaseOptions options{CreaseMethod::kUniform, boundary};
-    checkAgainstWholeMesh(
-        testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 4), 0.2, 0.1, 40),
-        options);
-    checkAgainstWholeMesh(
-        testing::withRandomPolyTags(testing::withPolyJitter(testing::quadGrid(6, 5), 0.05, 6), 0.3, 0.1, 41),
-        options);
-  }
+void checkBothShapes(const CreaseOptions& options) {
+  checkAgainstWholeMesh(
+      testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 4), 0.2, 0.1, 40),
+      options);
+  checkAgainstWholeMesh(
+      testing::withRandomPolyTags(testing::withPolyJitter(testing::quadGrid(6, 5), 0.05, 6), 0.3, 0.1, 41),
+      options);
 }
 
-TEST(SemiSharpLimit, ChaikinsDecayKeepsLimitsMasks) {
-  const auto mesh =
-      testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 4), 0.2, 0.1, 40);
-  const CreaseOptions options{CreaseMethod::kChaikin, BoundaryInterpolation::kEdgeOnly};
-  auto refiner =
-      schemes::QuadRefiner::create(mesh.topology, schemes::QuadScheme::kCatmullClark, options, {.levels = 1});
-  ASSERT_TRUE(refiner.isOk());
-  int semiSharp = 0;
-  for (Index v = 0; v < refiner->level(0).numVertices; ++v) {
-    if (!hasUndecayedSemiSharpness(refiner->level(0), v)) continue;
-    ++semiSharp;
-    EXPECT_FALSE(takesDecayedLimit(refiner->level(0), v, options));
-    EXPECT_FALSE(
-        decayedLimitFrame(refiner->level(0), v, refiner->refinePointsPerLevel(mesh.points)[0], options));
-  }
-  EXPECT_GT(semiSharp, 10);
+TEST(SemiSharpLimit, TheRingAloneGivesTheWholeMeshsLimitUnderUniformDecay) {
+  for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner})
+    checkBothShapes({CreaseMethod::kUniform, boundary});
+}
+
+// Chaikin's decay of an edge's far half averages in the far vertex's other
+// semi-sharp edges; with the patch's far vertices seeing only their patch
+// edges the limits were 8.5e-4 away (measured once, with the far halves left
+// to the patch).
+TEST(SemiSharpLimit, TheRingWithItsFarHalvesGivesTheWholeMeshsLimitUnderChaikinsDecay) {
+  for (auto boundary : {BoundaryInterpolation::kEdgeOnly, BoundaryInterpolation::kEdgeAndCorner})
+    checkBothShapes({CreaseMethod::kChaikin, boundary});
 }
 
 }  // namespace

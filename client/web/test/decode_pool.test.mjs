@@ -3,7 +3,8 @@
 // arrays transferred (the worker's copies detached); an answer may come in
 // any order and finds its own request; a bad payload rejects with the
 // synchronous decoder's own message; a worker that stops fails everything
-// waiting and everything after, once.
+// waiting and everything after, once. What is asked in one task goes to a
+// worker as one message.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { DecodePool } from '../src/codec/decode_pool.js';
@@ -12,6 +13,8 @@ import { dracoDecoder, dracoEncoder } from './support/draco_node.mjs';
 import { encodeTestRegion } from './support/region_encoder.mjs';
 import { FakeDecodeWorker } from './support/fake_decode_worker.mjs';
 import { testRegion } from './support/test_regions.mjs';
+
+const taskEnd = () => new Promise((resolve) => setImmediate(resolve));
 
 test('regions come back decoded as on the main thread, their arrays transferred, each to its own request', async () => {
   const [draco, enc] = await Promise.all([dracoDecoder(), dracoEncoder()]);
@@ -25,6 +28,10 @@ test('regions come back decoded as on the main thread, their arrays transferred,
   frame.set(b, a.length);
   // Views into one frame, as the wire's regions are: the frame stays whole.
   const pa = pool.decode(frame.subarray(0, a.length)), pb = pool.decode(frame.subarray(a.length));
+  assert.equal(worker.requests.length, 0, 'sent once the task ends');
+  await taskEnd();
+  assert.equal(worker.messages, 1, 'both in one message');
+  assert.equal(worker.requests.length, 2);
   assert.equal(frame.byteLength, a.length + b.length, 'the frame is not detached');
   worker.answer(1);
   worker.answer(0);
@@ -55,6 +62,7 @@ test('a corrupted payload rejects with the message the synchronous decoder throw
   assert.throws(() => decodeRegion(draco, bytes), (error) => { expected = error.message; return true; });
   assert.match(expected, /checksum mismatch/);
   const decoding = pool.decode(bytes);
+  await taskEnd();
   worker.answer();
   await assert.rejects(decoding, (error) => error instanceof Error && error.message === expected);
   assert.equal(pool.facts().failed, 1);
@@ -67,6 +75,7 @@ test('a worker that stops fails what waits and what comes after, and says so onc
   let next = 0;
   const pool = new DecodePool({ createWorker: () => workers[next++], size: 2, onFailure: (e) => failures.push(e.message) });
   const waiting = [pool.decode(testRegion(enc, 10n, 1n)), pool.decode(testRegion(enc, 11n, 1n))];
+  await taskEnd();
   assert.deepEqual(workers.map((w) => w.requests.length), [1, 1], 'the fewest waiting gets the next');
   workers[1].crash('out of memory');
   workers[0].crash('out of memory');

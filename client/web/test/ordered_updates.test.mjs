@@ -50,6 +50,7 @@ test('answers that come back newest first are applied in the order the messages 
   session.message('delta', delta(1, 2, [region(enc, 10, 2)]));
   session.message('delta', delta(2, 3, [region(enc, 10, 3), region(enc, 11, 3)]));
   assert.equal(session.updates.pending, 3, 'nothing applied before its regions are decoded');
+  await settle();
   assert.deepEqual(workers.map((w) => w.requests.length), [3, 2], 'the requests share the workers');
   // The last message's regions first, then the others, worker by worker.
   workers[1].answerAllBackwards();
@@ -75,6 +76,7 @@ test('a payload that fails its checksum is a gap with the synchronous decoder\'s
   session.message('delta', delta(1, 2, [bad]));
   session.message('delta', delta(2, 3, [region(enc, 10, 3)])); // behind the gap: ignored
   session.message('snapshot', snapshot(3, [region(enc, 10, 3)])); // the new subscription's
+  await settle();
   for (const w of workers) w.answerAllBackwards();
   await settle();
   assert.deepEqual(errors, [`${expected}; subscribing again`]);

@@ -1,9 +1,11 @@
 // The page's side of its decode workers (decode_worker.js; messages in
-// decode_messages.js): decode(bytes) posts one region payload and returns a
-// Promise of the decoded region, or of the Error decodeRegion() threw, with
-// the same message (docs/WEB_VIEWER.md "Decoding in a worker"). Answers may
-// come in any order; session/ordered_updates.js applies them in the order
-// the messages arrived.
+// decode_messages.js): decode(bytes) asks for one region payload and
+// returns a Promise of the decoded region, or of the Error decodeRegion()
+// threw, with the same message (docs/WEB_VIEWER.md "Decoding in a worker").
+// The payloads asked for in one task go to a worker as one message, sent
+// once the task ends. Answers may come in any order;
+// session/ordered_updates.js applies them in the order the messages
+// arrived.
 //
 // `ready` settles once every worker has its Draco module, or rejects with
 // why one could not load it. A worker that stops (its script not served,
@@ -26,9 +28,10 @@ export class DecodePool {
     this.totalMs = 0;
     this.samples = []; // the last KEEP_SAMPLES decode times, ms
     this.slots = [];
+    this.flushAsked = false;
     const started = [];
     for (let i = 0; i < size; ++i) {
-      const slot = { worker: createWorker(), outstanding: 0, dracoLoaded: false, started: null };
+      const slot = { worker: createWorker(), outstanding: 0, batch: [], dracoLoaded: false, started: null };
       started.push(new Promise((resolve, reject) => { slot.started = { resolve, reject }; }));
       slot.worker.onmessage = (event) => this.received(slot, event.data);
       slot.worker.onerror = (event) => {
@@ -47,10 +50,25 @@ export class DecodePool {
     const id = this.nextId++;
     const copy = new Uint8Array(bytes); // its own buffer, exactly the payload's bytes
     ++slot.outstanding;
+    slot.batch.push({ id, bytes: copy });
+    if (!this.flushAsked) {
+      this.flushAsked = true;
+      queueMicrotask(() => this.flush());
+    }
     return new Promise((resolve, reject) => {
       this.waiting.set(id, { resolve, reject, slot });
-      slot.worker.postMessage({ id, bytes: copy }, [copy.buffer]);
     });
+  }
+
+  // Sends each worker what was asked of it in this task, as one message.
+  flush() {
+    this.flushAsked = false;
+    for (const slot of this.slots) {
+      const requests = slot.batch;
+      slot.batch = [];
+      if (requests.length === 0 || this.failure) continue; // failed: rejected already
+      slot.worker.postMessage({ requests }, requests.map((r) => r.bytes.buffer));
+    }
   }
 
   received(slot, data) {
@@ -63,6 +81,10 @@ export class DecodePool {
       this.fail(new Error(data.loadFailed));
       return;
     }
+    for (const answer of data.answers ?? []) this.answered(slot, answer);
+  }
+
+  answered(slot, data) {
     const request = this.waiting.get(data.id);
     if (!request) return; // failed already
     this.waiting.delete(data.id);

@@ -15,21 +15,24 @@ loaded.then(
   () => self.postMessage({ ready: true, dracoLoaded: globalThis[DRACO_LOADED_MARK] === true }),
   (error) => self.postMessage({ loadFailed: error?.message ?? String(error) }));
 
-// Requests are answered in the order they came (each waits on the same
+function answer(draco, { id, bytes }) {
+  const started = performance.now();
+  try {
+    return { id, region: decodeRegion(draco, bytes), ms: performance.now() - started };
+  } catch (error) {
+    return { id, error: error?.message ?? String(error), ms: performance.now() - started };
+  }
+}
+
+// Messages are answered in the order they came (each waits on the same
 // promise); the page does not rely on it (session/ordered_updates.js).
 self.onmessage = (event) => {
-  const { id, bytes } = event.data;
+  const { requests } = event.data;
   loaded.then(({ draco }) => {
-    const started = performance.now();
-    let region;
-    try {
-      region = decodeRegion(draco, bytes);
-    } catch (error) {
-      self.postMessage({ id, error: error?.message ?? String(error), ms: performance.now() - started });
-      return;
-    }
-    self.postMessage({ id, region, ms: performance.now() - started }, transferablesOf(region));
+    const answers = requests.map((request) => answer(draco, request));
+    self.postMessage({ answers }, answers.flatMap((a) => (a.region ? transferablesOf(a.region) : [])));
   }, (error) => {
-    self.postMessage({ id, error: `the Draco decoder did not load: ${error.message}`, ms: 0 });
+    const message = `the Draco decoder did not load: ${error?.message ?? String(error)}`;
+    self.postMessage({ answers: requests.map(({ id }) => ({ id, error: message, ms: 0 })) });
   });
 };

@@ -11,13 +11,17 @@ export class FakeDecodeWorker {
   constructor(draco) {
     this.draco = draco;
     this.requests = []; // {id, bytes} not answered yet, oldest first
+    this.messages = 0; // messages of requests received
     this.onmessage = null;
     this.onerror = null;
     this.sentRegions = []; // the worker-side regions posted, to see them detached
   }
 
+  // One message of requests (sent once the page's task ends); each is
+  // kept to be answered on its own.
   postMessage(data, transfer = []) {
-    this.requests.push(structuredClone(data, { transfer }));
+    ++this.messages;
+    this.requests.push(...structuredClone(data, { transfer }).requests);
   }
 
   // Says it has its Draco module, as the worker does once loaded.
@@ -32,11 +36,11 @@ export class FakeDecodeWorker {
     try {
       region = decodeRegion(this.draco, bytes);
     } catch (error) {
-      this.deliver({ id, error: error.message, ms: 0.5 });
+      this.deliver({ answers: [{ id, error: error.message, ms: 0.5 }] });
       return;
     }
     this.sentRegions.push(region);
-    this.deliver({ id, region, ms: 1 }, transferablesOf(region));
+    this.deliver({ answers: [{ id, region, ms: 1 }] }, transferablesOf(region));
   }
 
   // Answers everything waiting, newest first.

@@ -8,6 +8,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { DecodePool } from '../src/codec/decode_pool.js';
+import { packAnswers } from '../src/codec/decode_messages.js';
 import { decodeRegion } from '../src/codec/region_decoder.js';
 import { dracoDecoder, dracoEncoder } from './support/draco_node.mjs';
 import { encodeTestRegion } from './support/region_encoder.mjs';
@@ -90,4 +91,24 @@ test('a worker whose Draco module does not load fails its start', async () => {
   const pool = new DecodePool({ createWorker: () => worker });
   worker.deliver({ loadFailed: 'the Draco decoder draco_decoder.wasm: HTTP 404' });
   await assert.rejects(pool.ready, /HTTP 404/);
+});
+
+test('a message\'s regions travel in one buffer: each array a view of it, with its own values', async () => {
+  const [draco, enc] = await Promise.all([dracoDecoder(), dracoEncoder()]);
+  const regions = [decodeRegion(draco, testRegion(enc, 10n, 1n)), decodeRegion(draco, testRegion(enc, 11n, 2n))];
+  const expected = regions.map((r) => ({ ...r, positions: r.positions.slice(), idLo: r.idLo.slice(), indices: r.indices.slice() }));
+  const answers = [{ id: 1, region: regions[0], ms: 1 }, { id: 2, error: 'region 12: checksum mismatch', ms: 1 }, { id: 3, region: regions[1], ms: 1 }];
+  const transfer = packAnswers(answers);
+  assert.equal(transfer.length, 1);
+  const arrived = structuredClone({ answers }, { transfer }).answers;
+  assert.equal(transfer[0].byteLength, 0, 'transferred, not copied');
+  const buffer = arrived[0].region.positions.buffer;
+  for (const i of [0, 2]) {
+    const r = arrived[i].region, e = expected[i / 2];
+    for (const key of ['positions', 'normals', 'indices', 'idHi', 'idLo']) assert.equal(r[key].buffer, buffer, key);
+    assert.deepEqual(r.positions, e.positions);
+    assert.deepEqual(r.indices, e.indices);
+    assert.deepEqual(r.idLo, e.idLo);
+  }
+  assert.equal(arrived[1].error, 'region 12: checksum mismatch');
 });

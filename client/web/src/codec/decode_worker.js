@@ -3,11 +3,12 @@
 // off the page's main thread, and decodes each region payload it is sent
 // with decodeRegion(): header, checksum, Draco, ids and lattice ids, exactly
 // as the page did before (docs/WEB_VIEWER.md "Decoding in a worker"). The
-// arrays go back transferred, not copied; an error goes back as its message.
+// arrays of a message's regions go back in one transferred buffer; an error
+// goes back as its message.
 // Messages: decode_messages.js.
 import { loadDracoFrom } from './draco.js';
 import { decodeRegion } from './region_decoder.js';
-import { DRACO_LOADED_MARK, transferablesOf } from './decode_messages.js';
+import { DRACO_LOADED_MARK, packAnswers } from './decode_messages.js';
 
 // Beside this file, as build.mjs writes them.
 const loaded = loadDracoFrom(new URL('draco_decoder.wasm', self.location.href).href);
@@ -30,7 +31,7 @@ self.onmessage = (event) => {
   const { requests } = event.data;
   loaded.then(({ draco }) => {
     const answers = requests.map((request) => answer(draco, request));
-    self.postMessage({ answers }, answers.flatMap((a) => (a.region ? transferablesOf(a.region) : [])));
+    self.postMessage({ answers }, packAnswers(answers));
   }, (error) => {
     const message = `the Draco decoder did not load: ${error?.message ?? String(error)}`;
     self.postMessage({ answers: requests.map(({ id }) => ({ id, error: message, ms: 0 })) });

@@ -5,7 +5,7 @@
 // structuredClone with the transfer list, so arrays that are not
 // transferable, or shared, fail here as they would there.
 import { decodeRegion } from '../../src/codec/region_decoder.js';
-import { transferablesOf } from '../../src/codec/decode_messages.js';
+import { packAnswers } from '../../src/codec/decode_messages.js';
 
 export class FakeDecodeWorker {
   constructor(draco) {
@@ -40,7 +40,8 @@ export class FakeDecodeWorker {
       return;
     }
     this.sentRegions.push(region);
-    this.deliver({ answers: [{ id, region, ms: 1 }] }, transferablesOf(region));
+    const answers = [{ id, region, ms: 1 }];
+    this.deliver({ answers }, packAnswers(answers));
   }
 
   // Answers everything waiting, newest first.

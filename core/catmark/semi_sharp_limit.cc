@@ -1,7 +1,10 @@
 #include "core/catmark/semi_sharp_limit.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <functional>
+#include <unordered_map>
 #include <vector>
 
 #include "core/catmark/interpolate.h"
@@ -88,9 +91,10 @@ FarEdges decayFarHalves(const Level& current, const FarEdges& far, Level& child)
   return next;
 }
 
-std::optional<CatmarkLimitFrame> decayed(const Level& level, Index v,
-                                         const std::function<Vec3(Index)>& pointOf,
-                                         const CreaseOptions& options, const FarRingSharpness* farSource) {
+std::optional<CatmarkLimitFrame> refineUntilDecayed(const Level& level, Index v,
+                                                    const std::function<Vec3(Index)>& pointOf,
+                                                    const CreaseOptions& options,
+                                                    const FarRingSharpness* farSource) {
   const bool chaikin = options.creaseMethod == CreaseMethod::kChaikin;
   RingPatch patch = ringPatch(level, v, pointOf);
   auto built = buildPolyLevel(patch.topology, options);
@@ -131,6 +135,123 @@ std::optional<CatmarkLimitFrame> decayed(const Level& level, Index v,
   return catmarkLimitFrame(current, 0, points, options);
 }
 
+// The decayed limit is linear in the ring's points (every step and the
+// masks are), so it is kept as weights over the patch's points (its slots,
+// ringPatch's order: v, then its faces' corners as they come), per
+// configuration: everything the refinement reads besides the points. A
+// vertex then costs a key, a lookup and three dot products over the ring, as
+// Loop's composed decay matrices do (core/loop/decay_matrix.h). Every call
+// goes through the weights, found or computed, so a limit never depends on
+// what the cache held.
+struct DecayedWeights {
+  bool exact = false;  // false: the ring could not be rebuilt, Limit()'s masks stay
+  std::vector<double> position, tangent1, tangent2;  // per slot
+};
+
+// v's slots in the level, as ringPatch numbers them.
+void patchSlots(const Level& level, Index v, std::vector<Index>& slots) {
+  slots.assign(1, v);
+  for (Index f : level.ringFacesOf(v)) {
+    if (f == kNoIndex) continue;
+    for (Index x : level.faceVerticesOf(f))
+      if (std::find(slots.begin(), slots.end(), x) == slots.end()) slots.push_back(x);
+  }
+}
+
+uint32_t bitsOf(float s) {
+  uint32_t b;
+  std::memcpy(&b, &s, sizeof b);
+  return b;
+}
+
+// What the refinement reads besides the points: the options, the ring's
+// faces (their corners, as slots), the sharpness of v and of its edges, and
+// under Chaikin's decay the far ends' edges, in the order the decay sums
+// them.
+void configurationKey(const Level& level, Index v, std::span<const Index> slots, const CreaseOptions& options,
+                      const FarRingSharpness* far, std::vector<uint32_t>& key) {
+  key.clear();
+  key.push_back(static_cast<uint32_t>(options.creaseMethod) * 16 + static_cast<uint32_t>(options.boundary));
+  key.push_back(bitsOf(level.vertexSharpness.empty() ? kSharpnessSmooth : level.vertexSharpness[v]));
+  auto slotOf = [&](Index x) {
+    return static_cast<uint32_t>(std::find(slots.begin(), slots.end(), x) - slots.begin());
+  };
+  for (Index f : level.ringFacesOf(v)) {
+    if (f == kNoIndex) {
+      key.push_back(0xffffffffu);
+      continue;
+    }
+    const auto corners = level.faceVerticesOf(f);
+    key.push_back(static_cast<uint32_t>(corners.size()));
+    for (Index x : corners) key.push_back(slotOf(x));
+  }
+  const auto ringVertices = level.ringVerticesOf(v);
+  const auto ringEdges = level.ringEdgesOf(v);
+  thread_local std::vector<float> farEdges;
+  for (size_t k = 0; k < ringEdges.size(); ++k) {
+    const Index e = ringEdges[k];
+    key.push_back(slotOf(ringVertices[k]));
+    key.push_back(level.edgeFaces[e][1] == kNoIndex ? 0xffffffffu : bitsOf(level.edgeSharpness[e]));
+    if (options.creaseMethod != CreaseMethod::kChaikin || !isSemiSharp(level.edgeSharpness[e])) continue;
+    farRingSharpness(level, ringVertices[k], far, farEdges);
+    key.push_back(static_cast<uint32_t>(farEdges.size()));
+    for (float x : farEdges) key.push_back(bitsOf(x));
+  }
+}
+
+struct KeyHash {
+  size_t operator()(const std::vector<uint32_t>& key) const {
+    uint64_t h = 1469598103934665603ull;  // FNV-1a over the words
+    for (uint32_t w : key) h = (h ^ w) * 1099511628211ull;
+    return static_cast<size_t>(h);
+  }
+};
+
+DecayedWeights computeWeights(const Level& level, Index v, std::span<const Index> slots,
+                              const CreaseOptions& options, const FarRingSharpness* far) {
+  DecayedWeights w;
+  const size_t n = slots.size();
+  w.position.assign(n, 0.0);
+  w.tangent1.assign(n, 0.0);
+  w.tangent2.assign(n, 0.0);
+  // Three slots at a time: slot `first + k` is the unit point along axis k.
+  for (size_t first = 0; first < n; first += 3) {
+    auto frame = refineUntilDecayed(
+        level, v,
+        [&](Index x) {
+          Vec3 p(0, 0, 0);
+          for (size_t k = 0; k < 3 && first + k < n; ++k)
+            if (slots[first + k] == x) p[static_cast<int>(k)] = 1.0;
+          return p;
+        },
+        options, far);
+    if (!frame) return DecayedWeights{};
+    for (size_t k = 0; k < 3 && first + k < n; ++k) {
+      w.position[first + k] = frame->position[static_cast<int>(k)];
+      w.tangent1[first + k] = frame->tangent1[static_cast<int>(k)];
+      w.tangent2[first + k] = frame->tangent2[static_cast<int>(k)];
+    }
+  }
+  w.exact = true;
+  return w;
+}
+
+// Per thread, so a lookup takes no lock. Cleared when it outgrows its
+// bound: a document's tags make few configurations, and a miss costs only
+// the refinement again.
+constexpr size_t kWeightsCacheEntries = 1 << 14;
+
+const DecayedWeights& decayedWeights(const Level& level, Index v, std::span<const Index> slots,
+                                     const CreaseOptions& options, const FarRingSharpness* far) {
+  thread_local std::unordered_map<std::vector<uint32_t>, DecayedWeights, KeyHash> cache;
+  thread_local std::vector<uint32_t> key;
+  configurationKey(level, v, slots, options, far, key);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  if (cache.size() >= kWeightsCacheEntries) cache.clear();
+  return cache.emplace(key, computeWeights(level, v, slots, options, far)).first->second;
+}
+
 }  // namespace
 
 bool hasUndecayedSemiSharpness(const Level& level, Index v) {
@@ -147,16 +268,27 @@ bool takesDecayedLimit(const Level& level, Index v, const CreaseOptions&) {
 std::optional<CatmarkLimitFrame> decayedLimitFrame(const Level& level, Index v, std::span<const Vec3> points,
                                                    const CreaseOptions& options,
                                                    const FarRingSharpness* far) {
-  return decayed(
-      level, v, [&](Index x) { return points[static_cast<size_t>(x)]; }, options, far);
+  thread_local std::vector<Index> slots;
+  patchSlots(level, v, slots);
+  const DecayedWeights& w = decayedWeights(level, v, slots, options, far);
+  if (!w.exact) return std::nullopt;
+  CatmarkLimitFrame frame{Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 0, 0)};
+  for (size_t k = 0; k < slots.size(); ++k) {
+    const Vec3& p = points[static_cast<size_t>(slots[k])];
+    frame.position += w.position[k] * p;
+    frame.tangent1 += w.tangent1[k] * p;
+    frame.tangent2 += w.tangent2[k] * p;
+  }
+  return frame;
 }
 
 std::optional<double> decayedSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options,
                                              const FarRingSharpness* far) {
-  auto frame = decayed(
-      level, v, [&](Index x) { return x == v ? Vec3(1, 0, 0) : Vec3(0, 0, 0); }, options, far);
-  if (!frame) return std::nullopt;
-  return frame->position[0];
+  thread_local std::vector<Index> slots;
+  patchSlots(level, v, slots);
+  const DecayedWeights& w = decayedWeights(level, v, slots, options, far);
+  if (!w.exact) return std::nullopt;
+  return w.position[0];  // slot 0 is v
 }
 
 }  // namespace tessera

@@ -20,8 +20,14 @@
 // until no feature at the vertex is semi-sharp; the limit masks are taken
 // there, where they are exact. After a step the far vertex of a ring edge
 // is the vertex on it, whose edges are the edge's two halves and smooth
-// ones inside faces, so the next step knows them. The counterpart of
-// Loop's decay matrices (core/loop/decay_matrix.h), under both decays.
+// ones inside faces, so the next step knows them.
+//
+// The result is linear in the ring's points, so it is kept, per thread, as
+// weights over them for each configuration of the ring (its faces, the
+// sharpness of the vertex and its edges, and under Chaikin's decay the far
+// ends' edges): a vertex then costs a lookup and three dot products. The
+// counterpart of Loop's decay matrices (core/loop/decay_matrix.h), under
+// both decays.
 #pragma once
 
 #include <optional>

@@ -93,5 +93,39 @@ TEST(SemiSharpLimit, TheRingWithItsFarHalvesGivesTheWholeMeshsLimitUnderChaikins
     checkBothShapes({CreaseMethod::kChaikin, boundary});
 }
 
+// The limits are kept as weights per configuration of the ring
+// (semi_sharp_limit.cc): under Chaikin's decay the far ends' edges are part
+// of it. Vertex v of a grid has one semi-sharp edge, to w (1.2); in the
+// second grid w's next edge along the line is semi-sharp too (0.2), so the
+// edge's far half decays to smooth a level before its near half (0.75 * 1.2
+// + 0.25 * 0.2 - 1 < 0), which changes the rule of the vertex on the edge
+// and so v's limit, though v's own ring is the same.
+// Asked in turn, each grid's v must give its own whole mesh's limit.
+TEST(SemiSharpLimit, RingsThatDifferOnlyInTheirFarEdgesHaveTheirOwnLimits) {
+  const CreaseOptions options{CreaseMethod::kChaikin, BoundaryInterpolation::kEdgeOnly};
+  const int v = 2 * 7 + 2, w = v + 1, x = v + 2;  // quadGrid(6, 5): rows of 7 vertices
+  std::vector<Vec3> limits;
+  for (bool farTagged : {false, true, false}) {
+    testing::PolyTestMesh mesh = testing::quadGrid(6, 5);
+    mesh.topology.creases.push_back({v, w, 1.2f});
+    if (farTagged) mesh.topology.creases.push_back({w, x, 0.2f});
+    SCOPED_TRACE(farTagged ? "far edge tagged" : "far edge smooth");
+    auto refiner = schemes::QuadRefiner::create(mesh.topology, schemes::QuadScheme::kCatmullClark, options,
+                                                {.levels = kDeep});
+    ASSERT_TRUE(refiner.isOk()) << refiner.status().toString();
+    const auto far =
+        oracle::refineQuadsWithOpenSubdiv(mesh.topology, mesh.points, options, *refiner, false, 0);
+    ASSERT_TRUE(takesDecayedLimit(refiner->level(0), v, options));
+    const auto ring = decayedLimitFrame(refiner->level(0), v, far[0].points, options);
+    ASSERT_TRUE(ring.has_value());
+    const CatmarkLimitFrame whole = catmarkLimitFrame(refiner->level(kDeep), v, far[kDeep].points, options);
+    EXPECT_LE((ring->position - whole.position).norm(), 1e-12);
+    limits.push_back(ring->position);
+  }
+  // The far edge matters: otherwise this test could not tell.
+  EXPECT_GT((limits[0] - limits[1]).norm(), 1e-6);
+  EXPECT_EQ(limits[0], limits[2]);
+}
+
 }  // namespace
 }  // namespace tessera

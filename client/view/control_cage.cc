@@ -1,9 +1,12 @@
 #include "client/view/control_cage.h"
 
 #include <algorithm>
+#include <numeric>
 #include <string>
 
 #include "core/hierarchy/ids.h"
+#include "core/mesh/polygon_triangulation.h"
+#include "core/util/vec3.h"
 
 namespace tessera::view {
 
@@ -69,22 +72,21 @@ std::vector<V3> cageSegments(const ControlCage& cage, const std::vector<ControlP
     return it != points.end() && it->id == id ? &*it : nullptr;
   };
   std::vector<uint8_t> front(cage.faces(), 0);
-  std::vector<V3> corners;
+  std::vector<Vec3> corners;
+  std::vector<int> order;
   for (size_t f = 0; f < cage.faces(); ++f) {
     corners.clear();
     for (uint32_t c = cage.faceStarts[f]; c < cage.faceStarts[f + 1]; ++c)
-      if (const ControlPoint* p = find(cage.corners[c])) corners.push_back(p->position);
+      if (const ControlPoint* p = find(cage.corners[c]))
+        corners.emplace_back(p->position.x, p->position.y, p->position.z);
     if (corners.size() < 3) continue;
-    V3 normal{0, 0, 0}, centre{0, 0, 0};
-    for (size_t i = 0; i < corners.size(); ++i) {
-      const V3 p = corners[i], q = corners[(i + 1) % corners.size()];
-      normal.x += (p.y - q.y) * (p.z + q.z);
-      normal.y += (p.z - q.z) * (p.x + q.x);
-      normal.z += (p.x - q.x) * (p.y + q.y);
-      centre = centre + p;
-    }
-    centre = centre * (1.0f / static_cast<float>(corners.size()));
-    front[f] = dot(normal, eye - centre) > 0;
+    order.resize(corners.size());
+    std::iota(order.begin(), order.end(), 0);
+    Vec3 centre(0, 0, 0);
+    for (const Vec3& p : corners) centre += p;
+    centre = centre * (1.0 / static_cast<double>(corners.size()));
+    const Vec3 toEye = Vec3(eye.x, eye.y, eye.z) - centre;
+    front[f] = (polygonNormal(corners, order) | toEye) > 0;
   }
   std::vector<V3> out;
   for (size_t i = 0; i < cage.edges.size(); ++i) {

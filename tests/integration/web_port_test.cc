@@ -87,7 +87,7 @@ TEST(WebPort, ServesTheViewersFilesAndNothingElse) {
   start(w, "tessera-web-files");
   if (::testing::Test::HasFatalFailure()) return;
 
-  // The page, with a query; the bundle; the decoder; the styles.
+  // The page, with a query; the bundle; the decoder; the styles; the worker.
   const std::string page = httpExchange(w.webPort, get("/?doc=1"));
   EXPECT_EQ(httpStatus(page), 200) << page.substr(0, 300);
   EXPECT_NE(page.find("Content-Type: text/html; charset=utf-8"), std::string::npos);
@@ -102,6 +102,11 @@ TEST(WebPort, ServesTheViewersFilesAndNothingElse) {
   EXPECT_NE(wasm.find("Content-Type: application/wasm"), std::string::npos);
   EXPECT_TRUE(wasm.ends_with(builtFile("draco_decoder.wasm")));
   EXPECT_EQ(httpStatus(httpExchange(w.webPort, get("/viewer.css"))), 200);
+  // The worker that decodes region payloads (docs/WEB_VIEWER.md).
+  const std::string worker = httpExchange(w.webPort, get("/decode_worker.js"));
+  EXPECT_EQ(httpStatus(worker), 200);
+  EXPECT_NE(worker.find("Content-Type: text/javascript"), std::string::npos);
+  EXPECT_TRUE(worker.ends_with(builtFile("decode_worker.js")));
   // Compressed for a browser that asks; HEAD has the headers only.
   const std::string gz = httpExchange(w.webPort, get("/viewer.js", "Accept-Encoding: gzip, br\r\n"));
   EXPECT_NE(gz.find("Content-Encoding: gzip"), std::string::npos);

@@ -26,16 +26,26 @@ struct RingPatch {
   std::vector<Index> global;  // patch vertex -> the level's; v is patch vertex 0
 };
 
-// The faces around v with their corners, v numbered 0; the sharpness of v
-// and of its edges. buildPolyLevel refuses it where a corner repeats.
+// The patch's numbering of v's ring: v, then its faces' corners as they
+// come. The cached weights are over these slots, so ringPatch numbers its
+// vertices by them too.
+void patchSlots(const Level& level, Index v, std::vector<Index>& slots) {
+  slots.assign(1, v);
+  for (Index f : level.ringFacesOf(v)) {
+    if (f == kNoIndex) continue;
+    for (Index x : level.faceVerticesOf(f))
+      if (std::find(slots.begin(), slots.end(), x) == slots.end()) slots.push_back(x);
+  }
+}
+
+// The faces around v with their corners, numbered as patchSlots (v is 0);
+// the sharpness of v and of its edges. buildPolyLevel refuses it where a
+// corner repeats.
 RingPatch ringPatch(const Level& level, Index v, const std::function<Vec3(Index)>& pointOf) {
   RingPatch patch;
-  patch.global.push_back(v);
+  patchSlots(level, v, patch.global);
   auto localOf = [&](Index x) {
-    auto it = std::find(patch.global.begin(), patch.global.end(), x);
-    if (it != patch.global.end()) return static_cast<int>(it - patch.global.begin());
-    patch.global.push_back(x);
-    return static_cast<int>(patch.global.size()) - 1;
+    return static_cast<int>(std::find(patch.global.begin(), patch.global.end(), x) - patch.global.begin());
   };
   std::vector<int> face;
   for (Index f : level.ringFacesOf(v)) {
@@ -147,16 +157,6 @@ struct DecayedWeights {
   bool exact = false;  // false: the ring could not be rebuilt, Limit()'s masks stay
   std::vector<double> position, tangent1, tangent2;  // per slot
 };
-
-// v's slots in the level, as ringPatch numbers them.
-void patchSlots(const Level& level, Index v, std::vector<Index>& slots) {
-  slots.assign(1, v);
-  for (Index f : level.ringFacesOf(v)) {
-    if (f == kNoIndex) continue;
-    for (Index x : level.faceVerticesOf(f))
-      if (std::find(slots.begin(), slots.end(), x) == slots.end()) slots.push_back(x);
-  }
-}
 
 uint32_t bitsOf(float s) {
   uint32_t b;

@@ -11,7 +11,8 @@
 # 127.0.0.1), LEASE_MS (2000), EDIT_RATE (commands per second per editor, 4),
 # TESSERA_BIN (the directory holding tessera-server, tessera, tessera-replay;
 # default: build/release's), SOAK_DIR (the run directory; default a new one
-# under /tmp), KEEP=1 (keep the run directory even when the check passes).
+# under /tmp), KINDS (a comma-separated subset of the fault kinds, e.g.
+# KINDS=kill-all-nats,partition-node), KEEP=1 (keep the run directory even when the check passes).
 #
 # Exit status: 0 the checker found nothing, 1 it found something (the run
 # directory is kept and named), 2 the run could not be set up.
@@ -35,7 +36,7 @@ echo "cluster soak: seed $seed, $faults faults over $duration s, run directory $
 status=0
 node "$repo/bench/cluster_soak/driver.mjs" --dir "$dir" --bin "$bin" --repo "$repo" --faults "$faults" \
   --duration "$duration" --seed "$seed" --base-port "$base" --lease-ms "${LEASE_MS:-2000}" \
-  --edit-rate "${EDIT_RATE:-4}" || status=$?
+  --edit-rate "${EDIT_RATE:-4}" ${KINDS:+--kinds "$KINDS"} || status=$?
 if [ "$status" -ne 0 ]; then
   echo "the driver failed (exit $status); its files are in $dir" >&2
   [ -n "${own_bin:-}" ] && rm -rf "$bin"

@@ -329,6 +329,12 @@ const KINDS = [
   ['kill-owner', 3], ['kill-other-node', 2], ['pause-within-lease', 2], ['pause-past-lease', 2],
   ['kill-one-nats', 2], ['kill-all-nats', 1], ['client-moves', 2], ['partition-node', 3],
 ];
+// --kinds a,b: only these kinds (equal weights), to try one kind of fault.
+if (args.kinds) {
+  const only = args.kinds.split(',');
+  for (const k of only) if (!KINDS.some(([name]) => name === k)) { console.error(`unknown fault kind ${k}`); process.exit(2); }
+  KINDS.splice(0, KINDS.length, ...only.map((k) => [k, 1]));
+}
 function chooseKind() {
   const total = KINDS.reduce((s, [, w]) => s + w, 0);
   let r = scheduleRandom() * total;

@@ -14,7 +14,12 @@
 //   6. every viewer ends at the version and surface hash fresh subscribers
 //      see on every node (the web client's own assembly and hash, and
 //      tessera-replay's surface), which is the journal's last version; no
-//      viewer ever saw a surface hash that differs from the server's.
+//      viewer ever saw a surface hash that differs from the server's;
+//   7. with offline.json (offline_replay.py): the journal replayed offline
+//      by a single-node server from the same base gives that same version
+//      and surface hash, and its base the cluster's hash at version 1.
+// It also measures, per kind of fault, how long after the fault was healed
+// the first edit was acknowledged again (any editor).
 // Prints a summary, writes summary.json, exits 1 on any finding.
 import { readFileSync, writeFileSync, readdirSync, existsSync } from 'node:fs';
 import { join } from 'node:path';
@@ -136,6 +141,41 @@ for (const v of final.viewers ?? []) {
   if (!v.ready || !ref || v.version !== ref.version || v.hash !== ref.hash) finding('a viewer did not converge to what a fresh subscriber sees', { viewer: v.name, version: v.version, hash: v.hash, ref: ref && { version: ref.version, hash: ref.hash } });
   if (v.hashMismatches > 0) finding('a viewer assembled a surface whose hash differs from the server\'s', { viewer: v.name, mismatches: v.hashMismatches });
 }
+// 7. The journal replayed offline.
+let offline = null;
+if (existsSync(join(dir, 'offline.json'))) {
+  offline = JSON.parse(readFileSync(join(dir, 'offline.json'), 'utf8'));
+  if (!offline.ok) finding('the offline replay of the journal failed', { error: offline.error, log: offline.log });
+  else {
+    if (ref && (offline.replayed.version !== ref.version || offline.replayed.hash !== ref.hash)) {
+      finding('the journal replayed offline differs from what the cluster serves', { offline: offline.replayed, cluster: { version: ref.version, hash: ref.hash } });
+    }
+    const v1 = viewerNames.flatMap((n) => lines(`${n}.jsonl`)).find((r) => r.kind === 'snapshot' && r.version === '1');
+    if (v1 && v1.hash !== offline.base.hash) finding('the offline base differs from the cluster\'s version 1', { offline: offline.base, cluster: v1.hash });
+  }
+}
+
+// Time from each fault's heal (or, for a client's move, the fault itself)
+// to the next acknowledgement of any editor.
+const ackTimes = editorNames.flatMap((n) => lines(`${n}.jsonl`)).filter((r) => r.kind === 'ack').map((r) => r.t).sort((a, b) => a - b);
+const nextAck = (t) => { let lo = 0, hi = ackTimes.length; while (lo < hi) { const m = (lo + hi) >> 1; if (ackTimes[m] < t) lo = m + 1; else hi = m; } return lo < ackTimes.length ? ackTimes[lo] - t : null; };
+const recovery = {};
+for (const e of events) {
+  const instant = e.what === 'fault' && e.kind === 'client-moves';
+  if (!(e.what === 'heal' || instant)) continue;
+  const d = nextAck(e.t);
+  (recovery[e.kind] ??= []).push(d === null ? Infinity : d);
+}
+const quantile = (xs, q) => xs[Math.min(xs.length - 1, Math.floor(q * xs.length))];
+// Infinity: no acknowledgement came after it (the last fault before the
+// editors stopped), counted apart.
+const recoverySummary = Object.fromEntries(Object.entries(recovery).map(([k, all]) => {
+  const xs = all.filter(Number.isFinite).sort((a, b) => a - b);
+  const r = { n: xs.length, noAckAfter: all.length - xs.length };
+  if (xs.length) Object.assign(r, { p50_s: Number(quantile(xs, 0.5).toFixed(2)), p90_s: Number(quantile(xs, 0.9).toFixed(2)), max_s: Number(xs[xs.length - 1].toFixed(2)) });
+  return [k, r];
+}));
+
 const viewerEvents = {};
 for (const name of viewerNames) {
   for (const r of lines(`${name}.jsonl`)) viewerEvents[r.kind] = (viewerEvents[r.kind] ?? 0) + 1;
@@ -149,6 +189,8 @@ const summary = {
   seed: final.seed, elapsed_s: Math.round(final.elapsed_s), faults, faultsTotal: Object.values(faults).reduce((a, b) => a + b, 0),
   commands: totals, journal: { messages: journal.length, entries: entries.length, fences, lastDocumentVersion: Number(journalVersion) },
   end: { fresh: fresh.map((f) => `node${f.node} v${f.version} ${f.hash}`), replaySurface: (final.replaySurface ?? []).map((r) => r.out.replace(/\n/g, ' ')) },
+  offlineReplay: offline ? (offline.ok ? { ...offline.replayed, entries: offline.entries, base: offline.base } : { error: offline.error }) : 'not run',
+  secondsFromHealToNextAck: recoverySummary,
   viewers: viewerSummary, viewerEvents, findingKinds, findings: findings.slice(0, 200),
 };
 writeFileSync(join(dir, 'summary.json'), JSON.stringify(summary, null, 2));

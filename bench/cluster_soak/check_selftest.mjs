@@ -1,5 +1,5 @@
 // The checker must be able to fail: takes a run directory the checker
-// passed, and for each kind of damage copies its logs, damages the copy the
+// passed (with its offline.json: offline_replay.py), and for each kind of damage copies its logs, damages the copy the
 // way a bug would, and expects check.mjs to exit 1 naming that finding.
 //
 //   node bench/cluster_soak/check_selftest.mjs RUN_DIR
@@ -64,6 +64,11 @@ const damages = [
     const f = JSON.parse(readFileSync(join(d, 'final.json'), 'utf8'));
     f.viewers[1].hash = '0x0000000000000001';
     writeFileSync(join(d, 'final.json'), JSON.stringify(f));
+  }],
+  ['the journal replayed offline differs from what the cluster serves', (d) => {
+    const o = JSON.parse(readFileSync(join(d, 'offline.json'), 'utf8'));
+    o.replayed.hash = '0x0000000000000002';
+    writeFileSync(join(d, 'offline.json'), JSON.stringify(o));
   }],
 ];
 

@@ -71,7 +71,7 @@ for (const name of editorNames) {
   for (const r of lines(`${name}.jsonl`)) {
     const k = `${r.session}/${r.seq}`;
     if (r.kind === 'session') ++totals.sessions;
-    else if (r.kind === 'send') { ++totals.sent; sent.set(k, { editor: name, outcomes: [] }); }
+    else if (r.kind === 'send') { ++totals.sent; sent.set(k, { editor: name, outcomes: [], t: r.t }); }
     else if (r.kind === 'notice') { ++totals.notices; for (const s of r.pending ?? []) noticed.add(`${r.session}/${s}`); }
     else if (['ack', 'reject', 'dup-ack', 'dup-reject', 'lost', 'unanswered-at-end'].includes(r.kind)) {
       const c = sent.get(k);
@@ -115,6 +115,21 @@ for (const [k, c] of sent) {
     }
   }
 }
+// How long commands waited for their answer (or, lost, for their
+// connection to close): an answer that comes only minutes later is no
+// finding by the rules above, so it is measured.
+const waits = { answered: [], lost: [] };
+for (const c of sent.values()) {
+  const first = c.outcomes[0];
+  if (!first) continue;
+  if (first.kind === 'ack' || first.kind === 'reject') waits.answered.push(first.t - c.t);
+  else if (first.kind === 'lost') waits.lost.push(first.t - c.t);
+}
+const spread = (xs) => {
+  xs.sort((a, b) => a - b);
+  const q = (p) => Number(xs[Math.min(xs.length - 1, Math.floor(p * xs.length))].toFixed(3));
+  return xs.length ? { n: xs.length, p50_s: q(0.5), p99_s: q(0.99), max_s: q(1), over10s: xs.filter((x) => x > 10).length } : { n: 0 };
+};
 for (const [k, list] of byCommand) {
   if (!sent.has(k)) finding('a journal entry no editor sent', { command: k, version: Number(list[0].version) + 1, author: list[0].author });
 }
@@ -187,7 +202,7 @@ const findingKinds = {};
 for (const f of findings) findingKinds[f.what] = (findingKinds[f.what] ?? 0) + 1;
 const summary = {
   seed: final.seed, elapsed_s: Math.round(final.elapsed_s), faults, faultsTotal: Object.values(faults).reduce((a, b) => a + b, 0),
-  commands: totals, journal: { messages: journal.length, entries: entries.length, fences, lastDocumentVersion: Number(journalVersion) },
+  commands: totals, secondsToAnswer: spread(waits.answered), secondsPendingBeforeLost: spread(waits.lost), journal: { messages: journal.length, entries: entries.length, fences, lastDocumentVersion: Number(journalVersion) },
   end: { fresh: fresh.map((f) => `node${f.node} v${f.version} ${f.hash}`), replaySurface: (final.replaySurface ?? []).map((r) => r.out.replace(/\n/g, ' ')) },
   offlineReplay: offline ? (offline.ok ? { ...offline.replayed, entries: offline.entries, base: offline.base } : { error: offline.error }) : 'not run',
   secondsFromHealToNextAck: recoverySummary,

@@ -206,9 +206,9 @@ CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> p
   return cornerFrame(level, v, points);
 }
 
-}  // namespace
-
-std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points) {
+// catmarkOtherLimitSectors with every sharp-counted edge a bound, as
+// Limit()'s masks count them.
+std::vector<LimitSector> countedOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points) {
   std::vector<LimitSector> out;
   const VertexRule rule = level.vertexRules[v];
   if (rule != VertexRule::kCrease && rule != VertexRule::kCorner) return out;
@@ -251,6 +251,24 @@ std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, s
     out.push_back(sector);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points,
+                                                  const CreaseOptions& options, const FarRingSharpness* far) {
+  if (takesDecayedLimit(level, v, options)) {
+    if (auto decayed = decayedOtherLimitSectors(level, v, points, options, far)) return std::move(*decayed);
+  }
+  return countedOtherLimitSectors(level, v, points);
+}
+
+int catmarkLimitSideOfRingFace(const Level& level, Index v, int ringFace, const CreaseOptions& options,
+                               const FarRingSharpness* far) {
+  if (takesDecayedLimit(level, v, options)) {
+    if (auto side = decayedSideOfRingFace(level, v, ringFace, options, far)) return *side;
+  }
+  return limitSideOfRingFace(level, v, ringFace);
 }
 
 CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const Vec3> points,

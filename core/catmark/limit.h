@@ -73,13 +73,24 @@ double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& 
 // The sectors of a crease or corner vertex other than the one whose
 // normal catmarkLimitFrame's tangents give (the ring faces after its first
 // sharp edge, or for a corner the side holding ring face 0), numbered as
-// limitSideOfRingFace (core/loop/limit.h) numbers a vertex's sides, each
-// with its limit normal: a crease's other side by the same tangent across
-// it, into that side; a corner's one-face side by its edges' limit curves.
-// So a mesh splits the vertex along its sharp edges and shades each side as
+// catmarkLimitSideOfRingFace numbers a vertex's sides, each with its limit
+// normal: a crease's other side by the same tangent across it, into that
+// side; a corner's one-face side by its edges' limit curves. So a mesh
+// splits the vertex along its sharp edges and shades each side as
 // OpenSubdiv's Bfr evaluates that side's faces. Smooth and dart vertices,
-// and boundary creases, have none.
-std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points);
+// and boundary creases, have none. Where a semi-sharp feature has not
+// decayed, the sides are those it leaves once it has
+// (core/catmark/semi_sharp_limit.h), which `options` and `far` decide as
+// for catmarkLimitFrame.
+std::vector<LimitSector> catmarkOtherLimitSectors(const Level& level, Index v, std::span<const Vec3> points,
+                                                  const CreaseOptions& options,
+                                                  const FarRingSharpness* far = nullptr);
+
+// The side of v that ring face `ringFace` (its position in v's ring) lies
+// on: limitSideOfRingFace (core/loop/limit.h), or where a semi-sharp
+// feature has not decayed, the side it lies on once it has. Topological.
+int catmarkLimitSideOfRingFace(const Level& level, Index v, int ringFace, const CreaseOptions& options,
+                               const FarRingSharpness* far = nullptr);
 
 // Every vertex; `normals` may be empty. A level with a face that is not a
 // quad is refused (refine it once first): the masks read each face's

@@ -101,16 +101,49 @@ FarEdges decayFarHalves(const Level& current, const FarEdges& far, Level& child)
   return next;
 }
 
-std::optional<CatmarkLimitFrame> refineUntilDecayed(const Level& level, Index v,
-                                                    const std::function<Vec3(Index)>& pointOf,
-                                                    const CreaseOptions& options,
-                                                    const FarRingSharpness* farSource) {
+// The ring once its features decayed: the last patch (v is its vertex 0)
+// and its points, and where v's ring faces went: per position k of v's
+// ring in the level, the position in the patch's ring of 0 of the face
+// that descends from ring face k at v (the boundary's gap to the gap).
+struct DecayedRing {
+  Level level;
+  std::vector<Vec3> points;
+  std::vector<int> ringPosition;
+};
+
+// Position of patch face `face` (kNoIndex: the boundary's gap) in the ring
+// of vertex 0.
+int ringPositionOf(const Level& patch, Index face) {
+  const auto ring = patch.ringFacesOf(0);
+  return static_cast<int>(std::find(ring.begin(), ring.end(), face) - ring.begin());
+}
+
+// The patch face (ringPatch numbers faces as the ring of 0 holds them,
+// skipping the gap) of child face `face` of `child`, or kNoIndex.
+Index patchFaceOf(const Level& child, Index face) {
+  if (face == kNoIndex) return kNoIndex;
+  Index patchFace = 0;
+  for (Index f : child.ringFacesOf(0)) {
+    if (f == face) return patchFace;
+    if (f != kNoIndex) ++patchFace;
+  }
+  return kNoIndex;
+}
+
+std::optional<DecayedRing> refineUntilDecayed(const Level& level, Index v,
+                                              const std::function<Vec3(Index)>& pointOf,
+                                              const CreaseOptions& options,
+                                              const FarRingSharpness* farSource) {
   const bool chaikin = options.creaseMethod == CreaseMethod::kChaikin;
   RingPatch patch = ringPatch(level, v, pointOf);
   auto built = buildPolyLevel(patch.topology, options);
   if (!built.isOk() || !built->allQuads()) return std::nullopt;
   Level current = std::move(*built);
   std::vector<Vec3> points = std::move(patch.points);
+  // Per position of v's ring, the patch face at v that descends from it.
+  std::vector<Index> tracked;
+  Index patchFace = 0;
+  for (Index f : level.ringFacesOf(v)) tracked.push_back(f == kNoIndex ? kNoIndex : patchFace++);
   FarEdges far(static_cast<size_t>(current.numVertices));
   if (chaikin) {
     const auto ringVertices = level.ringVerticesOf(v);
@@ -130,6 +163,13 @@ std::optional<CatmarkLimitFrame> refineUntilDecayed(const Level& level, Index v,
     if (chaikin) childFar = decayFarHalves(current, far, child);
     std::vector<Vec3> childPoints(static_cast<size_t>(child.numVertices));
     interpolateCatmark(current, child, points, childPoints);
+    // A face's child at corner j is faceBegin + j (quad_split.h).
+    for (Index& f : tracked) {
+      if (f == kNoIndex) continue;
+      const auto corners = current.faceVerticesOf(f);
+      const auto j = std::find(corners.begin(), corners.end(), Index{0}) - corners.begin();
+      f = patchFaceOf(child, current.faceBegin(f) + static_cast<Index>(j));
+    }
     RingPatch next = ringPatch(child, 0, [&](Index x) { return childPoints[static_cast<size_t>(x)]; });
     built = buildPolyLevel(next.topology, options);
     if (!built.isOk()) return std::nullopt;
@@ -142,7 +182,9 @@ std::optional<CatmarkLimitFrame> refineUntilDecayed(const Level& level, Index v,
     }
   }
   if (hasUndecayedSemiSharpness(current, 0)) return std::nullopt;
-  return catmarkLimitFrame(current, 0, points, options);
+  DecayedRing ring{std::move(current), std::move(points), {}};
+  for (Index f : tracked) ring.ringPosition.push_back(ringPositionOf(ring.level, f));
+  return ring;
 }
 
 // The decayed limit is linear in the ring's points (every step and the
@@ -156,6 +198,9 @@ std::optional<CatmarkLimitFrame> refineUntilDecayed(const Level& level, Index v,
 struct DecayedWeights {
   bool exact = false;  // false: the ring could not be rebuilt, Limit()'s masks stay
   std::vector<double> position, tangent1, tangent2;  // per slot
+  // Per position of v's ring, its side once decayed: limitSideOfRingFace
+  // of the decayed ring. Topological, so it is part of the configuration.
+  std::vector<int> sides;
 };
 
 uint32_t bitsOf(float s) {
@@ -216,7 +261,7 @@ DecayedWeights computeWeights(const Level& level, Index v, std::span<const Index
   w.tangent2.assign(n, 0.0);
   // Three slots at a time: slot `first + k` is the unit point along axis k.
   for (size_t first = 0; first < n; first += 3) {
-    auto frame = refineUntilDecayed(
+    auto ring = refineUntilDecayed(
         level, v,
         [&](Index x) {
           Vec3 p(0, 0, 0);
@@ -225,11 +270,16 @@ DecayedWeights computeWeights(const Level& level, Index v, std::span<const Index
           return p;
         },
         options, far);
-    if (!frame) return DecayedWeights{};
+    if (!ring) return DecayedWeights{};
+    const CatmarkLimitFrame frame = catmarkLimitFrame(ring->level, 0, ring->points, options);
+    if (first == 0) {
+      for (int position : ring->ringPosition)
+        w.sides.push_back(limitSideOfRingFace(ring->level, 0, position));
+    }
     for (size_t k = 0; k < 3 && first + k < n; ++k) {
-      w.position[first + k] = frame->position[static_cast<int>(k)];
-      w.tangent1[first + k] = frame->tangent1[static_cast<int>(k)];
-      w.tangent2[first + k] = frame->tangent2[static_cast<int>(k)];
+      w.position[first + k] = frame.position[static_cast<int>(k)];
+      w.tangent1[first + k] = frame.tangent1[static_cast<int>(k)];
+      w.tangent2[first + k] = frame.tangent2[static_cast<int>(k)];
     }
   }
   w.exact = true;
@@ -289,6 +339,41 @@ std::optional<double> decayedSelfLimitWeight(const Level& level, Index v, const 
   const DecayedWeights& w = decayedWeights(level, v, slots, options, far);
   if (!w.exact) return std::nullopt;
   return w.position[0];  // slot 0 is v
+}
+
+std::optional<int> decayedSideOfRingFace(const Level& level, Index v, int ringFace,
+                                         const CreaseOptions& options, const FarRingSharpness* far) {
+  thread_local std::vector<Index> slots;
+  patchSlots(level, v, slots);
+  const DecayedWeights& w = decayedWeights(level, v, slots, options, far);
+  if (!w.exact) return std::nullopt;
+  return w.sides[static_cast<size_t>(ringFace)];
+}
+
+std::optional<std::vector<LimitSector>> decayedOtherLimitSectors(const Level& level, Index v,
+                                                                 std::span<const Vec3> points,
+                                                                 const CreaseOptions& options,
+                                                                 const FarRingSharpness* far) {
+  auto ring = refineUntilDecayed(
+      level, v, [&](Index x) { return points[static_cast<size_t>(x)]; }, options, far);
+  if (!ring) return std::nullopt;
+  std::vector<LimitSector> sectors = catmarkOtherLimitSectors(ring->level, 0, ring->points, options);
+  // Renumber each side's faces into v's ring at this level: the run of
+  // positions that lie on it, which is contiguous (sides are bounded by
+  // sharp edges, and the decayed ring's are v's infinitely sharp ones).
+  const int n = static_cast<int>(ring->ringPosition.size());
+  std::vector<int> sides(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) sides[k] = limitSideOfRingFace(ring->level, 0, ring->ringPosition[k]);
+  for (size_t j = 0; j < sectors.size(); ++j) {
+    const int side = static_cast<int>(j) + 1;
+    LimitSector& sector = sectors[j];
+    sector.faceCount = static_cast<int>(std::count(sides.begin(), sides.end(), side));
+    sector.firstFace = 0;
+    for (int k = 0; k < n; ++k) {
+      if (sides[k] == side && sides[(k + n - 1) % n] != side) sector.firstFace = k;
+    }
+  }
+  return sectors;
 }
 
 }  // namespace tessera

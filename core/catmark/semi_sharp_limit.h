@@ -32,9 +32,11 @@
 
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "core/catmark/limit.h"
 #include "core/catmark/polygon_level.h"
+#include "core/loop/limit.h"
 #include "core/loop/local_ring.h"
 #include "core/topology/level.h"
 #include "core/util/vec3.h"
@@ -61,5 +63,22 @@ std::optional<CatmarkLimitFrame> decayedLimitFrame(const Level& level, Index v, 
 // direct manipulation (catmarkSelfLimitWeight). Nothing as above.
 std::optional<double> decayedSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options,
                                              const FarRingSharpness* far = nullptr);
+
+// The sides of v once its features decayed. Sharp edges bound a
+// vertex's sides, and a semi-sharp edge is no bound once it decayed: v's
+// sides are the decayed ring's (only its infinitely sharp edges and the
+// boundary bound them), numbered as limitSideOfRingFace numbers that
+// ring's, so side 0 is decayedLimitFrame's. The side of ring face
+// `ringFace` (its position in v's ring at this level); nothing as above.
+std::optional<int> decayedSideOfRingFace(const Level& level, Index v, int ringFace,
+                                         const CreaseOptions& options, const FarRingSharpness* far = nullptr);
+
+// Those sides other than side 0, each with its limit normal
+// (catmarkOtherLimitSectors of the decayed ring) and its faces as
+// positions of v's ring at this level. Nothing as above.
+std::optional<std::vector<LimitSector>> decayedOtherLimitSectors(const Level& level, Index v,
+                                                                 std::span<const Vec3> points,
+                                                                 const CreaseOptions& options,
+                                                                 const FarRingSharpness* far = nullptr);
 
 }  // namespace tessera

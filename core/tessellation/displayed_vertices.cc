@@ -78,9 +78,11 @@ namespace {
 // The limit normal of side `side` > 0 of a crease or corner vertex
 // (limitSideOfRingFace's numbering; side 0's is its limit normal).
 Vec3 sideNormal(const SparseHierarchy& h, VertexRef v, int side) {
-  if (h.quads())
-    return catmarkOtherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level))[side - 1].normal;
   const SparseFarRings far = h.farRings(v.level);
+  if (h.quads())
+    return catmarkOtherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.options(),
+                                    &far)[side - 1]
+        .normal;
   return otherLimitSectors(h.level(v.level).mesh, v.local, h.points(v.level), h.creaseMethod(),
                            &far)[side - 1]
       .normal;
@@ -117,7 +119,9 @@ int sideOf(const SparseHierarchy& h, const LevelCounts& counts, VertexRef at, in
   while (k < n && !inLeaf(k)) ++k;
   if (k == n) return 0;  // not reached: the leaf holds the vertex
   for (int steps = 1; steps < n && inLeaf((k + n - 1) % n); ++steps) k = (k + n - 1) % n;
-  return limitSideOfRingFace(level.mesh, at.local, k);
+  if (!h.quads()) return limitSideOfRingFace(level.mesh, at.local, k);
+  const SparseFarRings far = h.farRings(at.level);
+  return catmarkLimitSideOfRingFace(level.mesh, at.local, k, h.options(), &far);
 }
 
 }  // namespace

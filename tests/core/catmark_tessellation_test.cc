@@ -10,9 +10,13 @@
 // once per side, each with its side's normal.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <map>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "core/document/document.h"
@@ -232,6 +236,57 @@ TEST(CatmarkTessellation, EachSideOfASharpEdgeShowsItsOwnNormal) {
   EXPECT_GT(triangles, 100);
   EXPECT_EQ(vertices[3], 8) << "each corner of the cube shows three sides";
   EXPECT_GT(vertices[2], 12) << "crease vertices show two";
+}
+
+// Where a semi-sharp feature meets an infinitely sharp one and the document
+// stops before it decays, a vertex's limit and its sides come from its ring
+// refined until it has (core/catmark/semi_sharp_limit.h); where the document
+// is deep enough, from the level where it has decayed, whose masks and sides
+// are Limit()'s (both held to Bfr in bfr_catmark_limit_test.cc). So the same
+// level-1 surface, shown from a document held to level 1 and from one held
+// to level 4 (where sharpness up to 3.8 has decayed), carries at every
+// triangle corner the same side with the same normal. Counting the
+// semi-sharp edges as sharp at level 1, some corners took another side's
+// normal.
+TEST(CatmarkTessellation, UndecayedSemiSharpVerticesShowTheSidesTheyHaveOnceDecayed) {
+  PolyTestMesh mesh =
+      testing::withRandomPolyTags(testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 7), 0.35, 0.1, 50);
+  for (size_t i = 0; i < mesh.topology.creases.size(); i += 2) mesh.topology.creases[i].sharpness = 10.0f;
+  const LodProfile levelOne{.baseLevel = 1, .maxLevel = 1, .angleThresholdDegrees = 10};
+  for (CreaseMethod method : {CreaseMethod::kUniform, CreaseMethod::kChaikin}) {
+    SCOPED_TRACE(method == CreaseMethod::kChaikin ? "chaikin" : "uniform");
+    // Per triangle corner (its vertex and the triangle's ids), the normal.
+    auto cornerNormals = [&](int maxLevel) {
+      auto doc = Document::create(
+          mesh.topology, mesh.points,
+          {.loop = {.creaseMethod = method}, .maxLevel = maxLevel, .scheme = DocumentScheme::kCatmullClark});
+      if (!doc.isOk()) throw std::runtime_error(doc.status().toString());
+      auto t = Tessellation::build(*doc, levelOne);
+      if (!t.isOk()) throw std::runtime_error(t.status().toString());
+      std::map<std::array<uint64_t, 4>, Vec3> normals;
+      for (const auto& [id, region] : t->regions()) {
+        for (const auto& tri : region.triangles) {
+          std::array<uint64_t, 3> ids{region.vertexIds[tri[0]], region.vertexIds[tri[1]],
+                                      region.vertexIds[tri[2]]};
+          std::sort(ids.begin(), ids.end());
+          for (int k = 0; k < 3; ++k)
+            normals[{region.vertexIds[tri[k]], ids[0], ids[1], ids[2]}] = region.normals[tri[k]];
+        }
+      }
+      return normals;
+    };
+    const auto shallow = cornerNormals(1), deep = cornerNormals(4);
+    ASSERT_EQ(shallow.size(), deep.size());
+    int compared = 0;
+    for (const auto& [corner, normal] : shallow) {
+      auto other = deep.find(corner);
+      ASSERT_NE(other, deep.end()) << VertexId::fromPacked(corner[0]).toString();
+      const double angle = std::atan2((normal % other->second).norm(), dot(normal, other->second));
+      EXPECT_LE(angle, 1e-9) << VertexId::fromPacked(corner[0]).toString();
+      ++compared;
+    }
+    EXPECT_GT(compared, 1000);
+  }
 }
 
 TEST(CatmarkTessellation, UpdatedRegionsEqualAFreshDocumentsBitForBit) {

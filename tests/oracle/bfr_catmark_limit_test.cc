@@ -27,9 +27,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 #include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "core/catmark/limit.h"
 #include "core/document/document.h"
@@ -290,62 +293,59 @@ struct Exact {
   int semiSharpDarts = 0;           // decaying to darts of valence 4, held to Bfr's convergence
 };
 
-// Across a crease into three faces or more Bfr approximates: it refines
-// to its approximation level and takes Limit()'s masks there, whose tangent
-// across is not the surface's (core/catmark/crease_span_tangent.h). Its
-// error then shrinks with each level by the ratio of the span's next
-// symmetric eigenvalue to the tangent's: 0.25 / 0.5797 at three faces, so
-// 5.38 times every two levels. Bfr's normal must come closer to ours by at
-// least 4 times every two levels and end within 1e-4 rad at level 10 (the
-// deepest Bfr evaluates here: at 11 it crashes in evalIrregularDerivs). A
-// normal off the surface would stop the approach at its error: Limit()'s
-// own mask stays 0.17 rad away at every level. Wider spans converge more
-// slowly (2.8 times every two levels at four faces, 2.0 at five: numpy's
-// eigenvalues, docs/LIMITS.md) and are reported.
-void checkConvergence(const PolyTestMesh& mesh, const CreaseOptions& options,
-                      const std::vector<Corner>& corners, Side side, int count) {
-  double previous = 0;
-  for (int level : {6, 8, 10}) {
-    const Worst w = compare(mesh, options, corners, level, side).at(side);
-    std::printf("  %-28s %-22s corners %6d  Bfr level %d: %.2e diag %.2e rad\n", mesh.name.c_str(),
-                nameOf(side).c_str(), count, level, w.position, w.normal);
-    if (side.kind != Kind::kCreaseThreeFaces) continue;
-    EXPECT_EQ(w.noNormal, 0);
-    EXPECT_LE(w.position, 1e-9);
-    if (level > 6) EXPECT_LE(w.normal, previous / 4) << "Bfr level " << level;
-    previous = w.normal;
-  }
-  if (side.kind == Kind::kCreaseThreeFaces) EXPECT_LE(previous, 1e-4);
-}
+// Where Bfr approximates, it refines to its approximation level and takes
+// Limit()'s masks there; its error then shrinks level by level, and is held
+// to that approach: at least `position` and `normal` times closer every two
+// levels (a position factor of 0: the position is exact, within 1e-9 of
+// the diagonal, at every level), ending within `finalPosition` and
+// `finalNormal` at level 10 (the deepest Bfr evaluates here: at 11 it
+// crashes in evalIrregularDerivs). An answer off the surface would stop the
+// approach at its error.
+struct Approach {
+  double position, normal, finalPosition, finalNormal;
+};
 
-// At a dart Bfr approximates too (Limit()'s smooth masks at its last
-// level), and Tessera takes the dart's own eigenvectors
-// (core/catmark/dart_masks.h). Bfr's position then approaches ours by the
-// ratio of the dart ring's next eigenvalue to 1, and its normal by that of
-// the next to the smaller of the tangents' (numpy, docs/LIMITS.md): at
-// valence 4, 0.3197 / 0.5 per level, 2.45 times every two levels. The
-// position must come closer by at least 4 times and the normal by at least
-// 2 times every two levels, the position within 1e-6 of the diagonal at
-// level 10. Limit()'s smooth masks stay 4.3e-3 of the diagonal and 0.56 rad
-// away at every level. Darts of other valences are reported.
-void checkDartConvergence(const PolyTestMesh& mesh, const CreaseOptions& options,
-                          const std::vector<Corner>& corners, Side side, int count) {
+// Across a crease into three faces or more Limit()'s tangent across is not
+// the surface's (core/catmark/crease_span_tangent.h). Bfr's normal then
+// approaches ours by the ratio of the span's next symmetric eigenvalue to
+// the tangent's: 0.25 / 0.5797 at three faces, 5.38 times every two levels.
+// Limit()'s own mask stays 0.17 rad away at every level. Wider spans
+// converge more slowly (2.8 times every two levels at four faces, 2.0 at
+// five: numpy's eigenvalues, docs/LIMITS.md) and are reported.
+constexpr Approach kThreeFaceCreaseSide{0, 4, 1e-9, 1e-4};
+
+// At a dart Limit() takes the smooth masks and Tessera the dart's own
+// eigenvectors (core/catmark/dart_masks.h). Bfr's position approaches ours
+// by the ratio of the dart ring's next eigenvalue to 1, and its normal by
+// that of the next to the smaller of the tangents' (numpy, docs/LIMITS.md):
+// at valence 4, 0.3197 / 0.5 per level, 2.45 times every two levels.
+// Limit()'s smooth masks stay 4.3e-3 of the diagonal and 0.56 rad away at
+// every level. Darts of other valences are reported.
+constexpr Approach kDartOfValence4{4, 2, 1e-6, std::numeric_limits<double>::infinity()};
+
+// Bfr at levels 6, 8 and 10 on `side`'s corners, printed, and held to
+// `approach` if given.
+void checkConvergence(const PolyTestMesh& mesh, const CreaseOptions& options,
+                      const std::vector<Corner>& corners, Side side, int count,
+                      std::optional<Approach> approach) {
   Worst previous;
   for (int level : {6, 8, 10}) {
     const Worst w = compare(mesh, options, corners, level, side).at(side);
     std::printf("  %-28s %-22s corners %6d  Bfr level %d: %.2e diag %.2e rad\n", mesh.name.c_str(),
                 nameOf(side).c_str(), count, level, w.position, w.normal);
-    if (side.kind != Kind::kDartOfValence4) continue;
+    if (!approach) continue;
     EXPECT_EQ(w.noNormal, 0);
+    if (approach->position == 0) EXPECT_LE(w.position, 1e-9) << "Bfr level " << level;
     if (level > 6) {
-      EXPECT_LE(w.position, previous.position / 4) << "Bfr level " << level;
-      EXPECT_LE(w.normal, previous.normal / 2) << "Bfr level " << level;
+      if (approach->position > 0)
+        EXPECT_LE(w.position, previous.position / approach->position) << "Bfr level " << level;
+      EXPECT_LE(w.normal, previous.normal / approach->normal) << "Bfr level " << level;
     }
     previous = w;
   }
-  if (side.kind == Kind::kDartOfValence4) {
-    EXPECT_LE(previous.position, 1e-6);
-  }
+  if (!approach) return;
+  EXPECT_LE(previous.position, approach->finalPosition);
+  EXPECT_LE(previous.normal, approach->finalNormal);
 }
 
 Exact checkAgainstBfr(const PolyTestMesh& mesh, const CreaseOptions& options, int levels) {
@@ -362,14 +362,17 @@ Exact checkAgainstBfr(const PolyTestMesh& mesh, const CreaseOptions& options, in
         mesh.name.c_str(), nameOf(side).c_str(), w.count, w.noNormal, w.position, w.normal, deep.position,
         deep.normal);
     if (side.kind == Kind::kDartOfValence4 || side.kind == Kind::kDart) {
-      checkDartConvergence(mesh, options, corners, side, w.count);
-      if (side.kind == Kind::kDartOfValence4)
-        (side.semiSharp ? exact.semiSharpDarts : exact.darts) += w.count;
+      const bool held = side.kind == Kind::kDartOfValence4;
+      checkConvergence(mesh, options, corners, side, w.count,
+                       held ? std::optional(kDartOfValence4) : std::nullopt);
+      if (held) (side.semiSharp ? exact.semiSharpDarts : exact.darts) += w.count;
       continue;
     }
     if (side.kind == Kind::kCreaseThreeFaces || side.kind == Kind::kCreaseWider) {
-      checkConvergence(mesh, options, corners, side, w.count);
-      if (side.kind == Kind::kCreaseThreeFaces) exact.threeFaceCreaseSides += w.count;
+      const bool held = side.kind == Kind::kCreaseThreeFaces;
+      checkConvergence(mesh, options, corners, side, w.count,
+                       held ? std::optional(kThreeFaceCreaseSide) : std::nullopt);
+      if (held) exact.threeFaceCreaseSides += w.count;
       continue;
     }
     if (!bfrIsExact(side)) continue;  // reported: see the top of this file
@@ -499,6 +502,53 @@ TEST(BfrCatmarkLimit, SemiSharpFeaturesBesideInfinitelySharpOnesGiveEachDecayedS
   EXPECT_GT(all.semiSharpDarts, 20);
 }
 
+// One drag of direct manipulation: the vertex, where it lies in base face
+// 0, its target, and the cage right after the drag.
+struct EndDrag {
+  int vertex;
+  Param uv;
+  Vec3 target;
+  std::vector<Vec3> cage;
+};
+
+// A jittered torus whose edge from face 0's corner 0 (a) to its corner 1
+// (b) has `sharpness`, as a Catmull-Clark document; a, then b, dragged to
+// within a twentieth of the diagonal of their limits (random from `seed`).
+// b is a's neighbour, so each drag's cage is taken before the next drag.
+std::vector<EndDrag> dragBothEnds(float sharpness, uint32_t seed, PolyTestMesh& mesh) {
+  mesh = testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 5);
+  const int a = mesh.topology.indices[0], b = mesh.topology.indices[1];
+  mesh.topology.creases.push_back({a, b, sharpness});
+  auto doc = Document::create(mesh.topology, mesh.points,
+                              {.loop = {}, .maxLevel = 2, .scheme = DocumentScheme::kCatmullClark});
+  if (!doc.isOk()) throw std::runtime_error(doc.status().toString());
+  const double diagonal = oracle::boundingDiagonal(mesh.points);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-0.5, 0.5);
+  std::vector<EndDrag> drags;
+  for (int v : {a, b}) {
+    auto before = doc->surface(0, SurfaceKind::kLimit);
+    if (!before.isOk()) throw std::runtime_error(before.status().toString());
+    const Vec3 target = before->positions[v] + Vec3(unit(rng), unit(rng), unit(rng)) * (0.1 * diagonal);
+    const VertexId id(0, static_cast<uint64_t>(v));
+    auto moved = doc->moveToLimit(std::span(&id, 1), target);
+    if (!moved.isOk()) throw std::runtime_error(moved.status().toString());
+    auto cage = doc->surface(0, SurfaceKind::kControl);
+    if (!cage.isOk()) throw std::runtime_error(cage.status().toString());
+    drags.push_back({v, v == a ? Param{0, 0} : Param{1, 0}, target, std::move(cage->positions)});
+  }
+  return drags;
+}
+
+// Bfr's limit of a drag's cage at the dragged vertex, at approximation
+// level `level`, as a fraction of the diagonal from its target.
+double offTarget(const PolyTestMesh& mesh, const EndDrag& drag, int level) {
+  const oracle::OsdPolyInput input(mesh.topology);
+  oracle::BfrSurfaces bfr(
+      oracle::createOsdQuadRefiner(input, schemes::QuadScheme::kCatmullClark, {}, 0, true), drag.cage, level);
+  return (bfr.at(0, drag.uv).position - drag.target).norm() / oracle::boundingDiagonal(mesh.points);
+}
+
 // Direct manipulation at darts (Pulli & Lounsbery, "Hierarchical Editing
 // and Rendering of Subdivision Surfaces" §2.2): one infinitely sharp edge
 // makes both its ends darts; each is dragged, and Bfr's limit of the edited
@@ -507,38 +557,17 @@ TEST(BfrCatmarkLimit, SemiSharpFeaturesBesideInfinitelySharpOnesGiveEachDecayedS
 // diagonal at level 10. With Limit()'s smooth masks the drag solved for
 // lands about 4e-3 of the diagonal away.
 TEST(BfrCatmarkLimit, DraggedDartsLandOnTheLimitSurface) {
-  PolyTestMesh mesh = testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 5);
-  const int a = mesh.topology.indices[0], b = mesh.topology.indices[1];
-  mesh.topology.creases.push_back({a, b, 10.0f});
-  auto doc = Document::create(mesh.topology, mesh.points,
-                              {.loop = {}, .maxLevel = 2, .scheme = DocumentScheme::kCatmullClark});
-  ASSERT_TRUE(doc.isOk()) << doc.status().toString();
-  const double diagonal = oracle::boundingDiagonal(mesh.points);
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> unit(-0.5, 0.5);
-  const oracle::OsdPolyInput input(mesh.topology);
-  for (int v : {a, b}) {  // b is a's neighbour: each is checked right after its own drag
-    auto before = doc->surface(0, SurfaceKind::kLimit);
-    ASSERT_TRUE(before.isOk()) << before.status().toString();
-    const Vec3 target = before->positions[v] + Vec3(unit(rng), unit(rng), unit(rng)) * (0.1 * diagonal);
-    const VertexId id(0, static_cast<uint64_t>(v));
-    ASSERT_TRUE(doc->moveToLimit(std::span(&id, 1), target).isOk());
-    auto cage = doc->surface(0, SurfaceKind::kControl);
-    ASSERT_TRUE(cage.isOk()) << cage.status().toString();
-    // Face 0 holds a at its corner 0 and b at its corner 1.
-    const Param uv = v == a ? Param{0, 0} : Param{1, 0};
+  PolyTestMesh mesh;
+  for (const EndDrag& drag : dragBothEnds(10.0f, 11, mesh)) {
     double previous = 0;
     for (int level : {6, 8, 10}) {
-      oracle::BfrSurfaces bfr(
-          oracle::createOsdQuadRefiner(input, schemes::QuadScheme::kCatmullClark, {}, 0, true),
-          cage->positions, level);
-      const double off = (bfr.at(0, uv).position - target).norm() / diagonal;
-      std::printf("  dart v0:%d dragged: Bfr level %d's limit %.2e of the diagonal from the target\n", v,
-                  level, off);
-      if (level > 6) EXPECT_LE(off, previous / 4) << "v0:" << v << ", Bfr level " << level;
+      const double off = offTarget(mesh, drag, level);
+      std::printf("  dart v0:%d dragged: Bfr level %d's limit %.2e of the diagonal from the target\n",
+                  drag.vertex, level, off);
+      if (level > 6) EXPECT_LE(off, previous / 4) << "v0:" << drag.vertex << ", Bfr level " << level;
       previous = off;
     }
-    EXPECT_LE(previous, 1e-6) << "v0:" << v;
+    EXPECT_LE(previous, 1e-6) << "v0:" << drag.vertex;
   }
 }
 
@@ -550,32 +579,12 @@ TEST(BfrCatmarkLimit, DraggedDartsLandOnTheLimitSurface) {
 // crease as sharp (Limit()'s masks), the drags land 3.9e-4 and 4.6e-4 of
 // the diagonal away.
 TEST(BfrCatmarkLimit, DraggedSemiSharpVerticesLandOnTheLimitSurface) {
-  PolyTestMesh mesh = testing::withPolyJitter(testing::quadTorus(8, 6), 0.05, 5);
-  const int a = mesh.topology.indices[0], b = mesh.topology.indices[1];
-  mesh.topology.creases.push_back({a, b, 2.5f});
-  auto doc = Document::create(mesh.topology, mesh.points,
-                              {.loop = {}, .maxLevel = 2, .scheme = DocumentScheme::kCatmullClark});
-  ASSERT_TRUE(doc.isOk()) << doc.status().toString();
-  const double diagonal = oracle::boundingDiagonal(mesh.points);
-  std::mt19937 rng(13);
-  std::uniform_real_distribution<double> unit(-0.5, 0.5);
-  const oracle::OsdPolyInput input(mesh.topology);
-  for (int v : {a, b}) {
-    auto before = doc->surface(0, SurfaceKind::kLimit);
-    ASSERT_TRUE(before.isOk()) << before.status().toString();
-    const Vec3 target = before->positions[v] + Vec3(unit(rng), unit(rng), unit(rng)) * (0.1 * diagonal);
-    const VertexId id(0, static_cast<uint64_t>(v));
-    ASSERT_TRUE(doc->moveToLimit(std::span(&id, 1), target).isOk());
-    auto cage = doc->surface(0, SurfaceKind::kControl);
-    ASSERT_TRUE(cage.isOk()) << cage.status().toString();
-    // Face 0 holds a at its corner 0 and b at its corner 1.
-    const Param uv = v == a ? Param{0, 0} : Param{1, 0};
-    oracle::BfrSurfaces bfr(
-        oracle::createOsdQuadRefiner(input, schemes::QuadScheme::kCatmullClark, {}, 0, true), cage->positions,
-        10);
-    const double off = (bfr.at(0, uv).position - target).norm() / diagonal;
-    std::printf("  semi-sharp v0:%d dragged: Bfr's limit %.2e of the diagonal from the target\n", v, off);
-    EXPECT_LE(off, 1e-9) << "v0:" << v;
+  PolyTestMesh mesh;
+  for (const EndDrag& drag : dragBothEnds(2.5f, 13, mesh)) {
+    const double off = offTarget(mesh, drag, 10);
+    std::printf("  semi-sharp v0:%d dragged: Bfr's limit %.2e of the diagonal from the target\n", drag.vertex,
+                off);
+    EXPECT_LE(off, 1e-9) << "v0:" << drag.vertex;
   }
 }
 

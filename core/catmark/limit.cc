@@ -295,12 +295,12 @@ double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& 
     if (auto weight = decayedSelfLimitWeight(level, v, options, far)) return *weight;
   }
   switch (level.vertexRules[v]) {
+    case VertexRule::kDart:
+      if (catmark::hasExactDartMasks(level.valence(v)))
+        return catmark::dartMasks(level.valence(v)).limit.vertex;
+      [[fallthrough]];  // the smooth masks, as dartFrame takes them
     case VertexRule::kSmooth:
       return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
-    case VertexRule::kDart:
-      if (!catmark::hasExactDartMasks(level.valence(v)))
-        return level.valence(v) == 2 ? 1.0 : catmark::smoothLimitVertexWeight(level.valence(v));
-      return catmark::dartMasks(level.valence(v)).limit.vertex;
     case VertexRule::kCrease:
       return catmark::kCreaseLimitVertexWeight;
     case VertexRule::kCorner:

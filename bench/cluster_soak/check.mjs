@@ -108,7 +108,7 @@ for (const [k, c] of sent) {
   } else {
     // Unanswered with the connection still open at the end.
     if (inJournal.length) ++totals.unansweredInJournal;
-    if (c.outcomes.some((o) => o.kind === 'unanswered-at-end' && o.noticed)) ++totals.unansweredToldByNotice;
+    if (c.noticed) ++totals.unansweredToldByNotice;
     else {
       ++totals.unansweredNeverTold;
       finding('a command got no answer and its author was not told it may be lost', { command: k, editor: c.editor, inJournal: inJournal.length > 0 });

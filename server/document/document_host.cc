@@ -619,63 +619,47 @@ void DocumentHost::exportGlb(std::shared_ptr<Subscriber> who, uint64_t clientSeq
   }
   const Lane lane = laneFor(triangles, config_);
   queue_.post(lane, [self = shared_from_this(), who, clientSeq, request, lane] {
-    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
-    auto surface = self->doc_.key0().surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
-                                             request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
-    if (!surface.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, surface.status()), maxFrame), nullptr});
-      return;
-    }
-    // The GLB writer targets files: a private temporary one.
-    const std::string path = (std::filesystem::temp_directory_path() /
-                              ("tessera-export-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(clientSeq) + "-" + std::to_string(who->sessionId()) + ".glb"))
-                                 .string();
-    ExportOptions options;
-    options.draco = request.draco();
-    Status written = exportMesh(*surface, path, options);
-    Expected<std::string> bytes = written.isOk() ? readFile(path) : Expected<std::string>(written);
-    std::error_code ignored;
-    std::filesystem::remove(path, ignored);
-    if (!bytes.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, bytes.status()), maxFrame), nullptr});
-      return;
-    }
-    wire::ServerMessage m;
-    wire::ExportResult* r = m.mutable_export_result();
-    r->set_client_seq(clientSeq);
-    r->set_document_id(self->id_.value);
-    r->set_version(self->version_);
-    r->set_glb(std::move(*bytes));
-    auto frame = frameOf(m, maxFrame);
-    if (!frame) {
-      who->send(
-          {frameOf(rejectFor(clientSeq, invalidArgument("the export exceeds the frame limit")), maxFrame),
-           nullptr});
-      return;
-    }
-    who->send({frame, nullptr});
+    who->send({replyOrReject(clientSeq, self->exportMessage(clientSeq, who->sessionId(), request),
+                             self->config_.limits.maxFrameBytes, "the export exceeds the frame limit"),
+               nullptr});
     if (lane == Lane::kBulk) trimHeapOnBulk(self->bulk_);
   });
+}
+
+Expected<wire::ServerMessage> DocumentHost::exportMessage(uint64_t clientSeq, uint64_t sessionId,
+                                                          const wire::ExportDocument& request) const {
+  auto surface = doc_.key0().surface(static_cast<int>(std::min<uint32_t>(request.level(), 64)),
+                                     request.limit() ? SurfaceKind::kLimit : SurfaceKind::kControl);
+  if (!surface.isOk()) return surface.status();
+  // The GLB writer targets files: a private temporary one.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("tessera-export-" + std::to_string(::getpid()) + "-" +
+                             std::to_string(clientSeq) + "-" + std::to_string(sessionId) + ".glb"))
+                               .string();
+  ExportOptions options;
+  options.draco = request.draco();
+  Status written = exportMesh(*surface, path, options);
+  Expected<std::string> bytes = written.isOk() ? readFile(path) : Expected<std::string>(written);
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+  if (!bytes.isOk()) return bytes.status();
+  wire::ServerMessage m;
+  wire::ExportResult* r = m.mutable_export_result();
+  r->set_client_seq(clientSeq);
+  r->set_document_id(id_.value);
+  r->set_version(version_);
+  r->set_glb(std::move(*bytes));
+  return m;
 }
 
 void DocumentHost::morphControl(std::shared_ptr<Subscriber> who, uint64_t clientSeq,
                                 wire::GetMorphControl request) {
   queue_.post(Lane::kInteractive, [self = shared_from_this(), who, clientSeq, request] {
-    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
-    auto message = morphControlMessage(self->doc_, self->id_.value, self->version_, clientSeq, request);
-    if (!message.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, message.status()), maxFrame), nullptr});
-      return;
-    }
-    auto frame = frameOf(*message, maxFrame);
-    if (!frame) {
-      who->send({frameOf(rejectFor(clientSeq, invalidArgument("the morph control exceeds the frame limit")),
-                         maxFrame),
-                 nullptr});
-      return;
-    }
-    who->send({frame, nullptr});
+    who->send(
+        {replyOrReject(clientSeq,
+                       morphControlMessage(self->doc_, self->id_.value, self->version_, clientSeq, request),
+                       self->config_.limits.maxFrameBytes, "the morph control exceeds the frame limit"),
+         nullptr});
   });
 }
 
@@ -706,32 +690,27 @@ void DocumentHost::cage(std::shared_ptr<Subscriber> who, uint64_t clientSeq, wir
   }
   const Lane lane = laneFor(faces, config_);
   queue_.post(lane, [self = shared_from_this(), who, clientSeq, level, lane] {
-    const uint32_t maxFrame = self->config_.limits.maxFrameBytes;
-    auto cage = controlCage(self->doc_.key0(), static_cast<int>(level));
-    if (!cage.isOk()) {
-      who->send({frameOf(rejectFor(clientSeq, cage.status()), maxFrame), nullptr});
-      return;
-    }
-    wire::ServerMessage m;
-    wire::Cage* c = m.mutable_cage();
-    c->set_client_seq(clientSeq);
-    c->set_document_id(self->id_.value);
-    c->set_version(self->version_);
-    c->set_level(level);
-    c->mutable_face_sizes()->Add(cage->faceSizes.begin(), cage->faceSizes.end());
-    c->mutable_vertices()->Add(cage->vertices.begin(), cage->vertices.end());
-    auto frame = frameOf(m, maxFrame);
-    if (!frame) {
-      who->send(
-          {frameOf(rejectFor(clientSeq, invalidArgument("control cage of level " + std::to_string(level) +
-                                                        " exceeds the frame limit; ask for a coarser level")),
-                   maxFrame),
-           nullptr});
-      return;
-    }
-    who->send({frame, nullptr});
+    who->send(
+        {replyOrReject(clientSeq, self->cageMessage(clientSeq, level), self->config_.limits.maxFrameBytes,
+                       "control cage of level " + std::to_string(level) +
+                           " exceeds the frame limit; ask for a coarser level"),
+         nullptr});
     if (lane == Lane::kBulk) trimHeapOnBulk(self->bulk_);
   });
+}
+
+Expected<wire::ServerMessage> DocumentHost::cageMessage(uint64_t clientSeq, uint32_t level) const {
+  auto cage = controlCage(doc_.key0(), static_cast<int>(level));
+  if (!cage.isOk()) return cage.status();
+  wire::ServerMessage m;
+  wire::Cage* c = m.mutable_cage();
+  c->set_client_seq(clientSeq);
+  c->set_document_id(id_.value);
+  c->set_version(version_);
+  c->set_level(level);
+  c->mutable_face_sizes()->Add(cage->faceSizes.begin(), cage->faceSizes.end());
+  c->mutable_vertices()->Add(cage->vertices.begin(), cage->vertices.end());
+  return m;
 }
 
 }  // namespace tessera::server

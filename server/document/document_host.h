@@ -134,6 +134,11 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   bool journalFailed() const { return journalFailed_.load(); }
 
  private:
+  // The replies of exportGlb and cage at version_, built on the document's
+  // queue; replyOrReject (replies.h) frames them or says why not.
+  Expected<wire::ServerMessage> exportMessage(uint64_t clientSeq, uint64_t sessionId,
+                                              const wire::ExportDocument& request) const;
+  Expected<wire::ServerMessage> cageMessage(uint64_t clientSeq, uint32_t level) const;
   // The document a view's tessellation follows.
   const Document& sourceOf(const LodView& view) const { return view.source ? *view.source : doc_.key0(); }
   // The view a checked profile asks for, tessellated at version_ with its

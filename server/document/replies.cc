@@ -62,6 +62,14 @@ wire::ServerMessage rejectForCommand(uint64_t clientSeq, const wire::ClientMessa
   return reject;
 }
 
+std::shared_ptr<const std::string> replyOrReject(uint64_t clientSeq,
+                                                 const Expected<wire::ServerMessage>& reply,
+                                                 uint32_t maxFrameBytes, const std::string& tooLarge) {
+  if (!reply.isOk()) return frameOf(rejectFor(clientSeq, reply.status()), maxFrameBytes);
+  if (auto frame = frameOf(*reply, maxFrameBytes)) return frame;
+  return frameOf(rejectFor(clientSeq, invalidArgument(tooLarge)), maxFrameBytes);
+}
+
 std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message,
                                                  uint32_t maxFrameBytes) {
   return frameOf(rejectWith(clientSeq, wire::REJECT_REASON_LIMIT_EXCEEDED, message), maxFrameBytes);

@@ -30,6 +30,12 @@ wire::ServerMessage rejectFor(uint64_t clientSeq, const Status& status);
 // batch's Reject names its refused command (`failedIndex`, from 1).
 wire::ServerMessage rejectForCommand(uint64_t clientSeq, const wire::ClientMessage& command,
                                      uint32_t failedIndex, const Status& status);
+// The frame of a reply to `clientSeq` built on a document's queue: `reply`
+// framed, or a Reject saying why it cannot go -- its own failure, or
+// `tooLarge` when it does not fit in `maxFrameBytes`.
+std::shared_ptr<const std::string> replyOrReject(uint64_t clientSeq,
+                                                 const Expected<wire::ServerMessage>& reply,
+                                                 uint32_t maxFrameBytes, const std::string& tooLarge);
 // A Reject with REJECT_REASON_LIMIT_EXCEEDED, framed: a request over a
 // budget or cap (docs/PROTOCOL.md §9).
 std::shared_ptr<const std::string> limitExceeded(uint64_t clientSeq, const std::string& message,

@@ -137,5 +137,43 @@ TEST(ServerControlCage, LevelsArriveAsTheirPolygonsAndBadRequestsAreRefusedByNam
   expectClosedAndOriented(loopFaces);
 }
 
+// A reply built on the document's queue that would not fit in a frame (a
+// cage or an export of a fine level under a small --max-frame-bytes) is
+// refused with the reason and what to ask instead, and the session goes on:
+// a coarser level that fits still arrives.
+TEST(ServerControlCage, RepliesOverTheFrameLimitAreRefusedAndACoarserLevelStillArrives) {
+  const std::string dir = testing::makeTempDir("tessera-cage-frame");
+  auto server = ServerProcess::start(dir + "/data", {"--max-frame-bytes", "2048"});
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto admin = Session::connect(server->session("admin", server->adminToken()));
+  ASSERT_TRUE(admin.isOk());
+  wire::ClientMessage create = testing::createDocument(
+      "quads", testing::fileBytes(testing::sourceTestDataPath("good/cube_quads.obj")), "", 4);
+  create.mutable_create_document()->set_file_name("cube_quads.obj");
+  auto created = (*admin)->call(create, 30);
+  ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
+  const uint64_t doc = created->ack().document_id();
+  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 30)->has_ack());
+
+  // Level 3: 384 quads over 386 vertices, more than 2,048 bytes.
+  auto cage = (*admin)->call(getCage(doc, 3), 30);
+  ASSERT_TRUE(cage.isOk() && cage->has_reject()) << cage->DebugString();
+  EXPECT_NE(cage->reject().message().find(
+                "control cage of level 3 exceeds the frame limit; ask for a coarser level"),
+            std::string::npos)
+      << cage->reject().message();
+  wire::ClientMessage exported;
+  exported.mutable_export_document()->set_document_id(doc);
+  exported.mutable_export_document()->set_level(3);
+  auto glb = (*admin)->call(exported, 30);
+  ASSERT_TRUE(glb.isOk() && glb->has_reject()) << glb->DebugString();
+  EXPECT_NE(glb->reject().message().find("the export exceeds the frame limit"), std::string::npos)
+      << glb->reject().message();
+
+  auto one = (*admin)->call(getCage(doc, 1), 30);
+  ASSERT_TRUE(one.isOk() && one->has_cage()) << one->DebugString();
+  EXPECT_EQ(one->cage().face_sizes_size(), 24);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -20,15 +20,13 @@ struct CageArgs {
 int runCage(const ConnectionArgs& connection, const CageArgs& args) {
   auto doc = parseDocumentId(args.document);
   if (!doc.isOk()) return usage("remote cage", doc.status().message());
-  auto session = connectTo(connection);
-  if (!session.isOk()) return connectFailed("cage", session.status());
-  wire::ClientMessage open;
-  open.mutable_open_document()->set_document_id(*doc);
-  if (int rc = outcome("cage", (*session)->call(open, 30))) return rc;
+  auto opened = openDocument(connection, "cage", *doc);
+  if (!opened.session) return opened.exitCode;
+  client::Session& session = *opened.session;
   wire::ClientMessage m;
   m.mutable_get_cage()->set_document_id(*doc);
   m.mutable_get_cage()->set_level(static_cast<uint32_t>(args.level));
-  auto reply = (*session)->call(m, 120);
+  auto reply = session.call(m, 120);
   if (int rc = outcome("cage", reply)) return rc;
   const wire::Cage& cage = reply->cage();
   std::map<uint32_t, size_t> bySize;

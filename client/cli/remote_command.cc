@@ -65,17 +65,15 @@ struct ExportArgs {
 int runExport(const ConnectionArgs& connection, const ExportArgs& args) {
   auto doc = parseDocumentId(args.document);
   if (!doc.isOk()) return usage("remote export", doc.status().message());
-  auto session = connectTo(connection);
-  if (!session.isOk()) return connectFailed("export", session.status());
-  wire::ClientMessage open;
-  open.mutable_open_document()->set_document_id(*doc);
-  if (int rc = outcome("export", (*session)->call(open, 30))) return rc;
+  auto opened = openDocument(connection, "export", *doc);
+  if (!opened.session) return opened.exitCode;
+  client::Session& session = *opened.session;
   wire::ClientMessage m;
   m.mutable_export_document()->set_document_id(*doc);
   m.mutable_export_document()->set_level(static_cast<uint32_t>(args.level));
   m.mutable_export_document()->set_limit(args.limit);
   m.mutable_export_document()->set_draco(args.draco);
-  auto reply = (*session)->call(m, 120);
+  auto reply = session.call(m, 120);
   if (int rc = outcome("export", reply)) return rc;
   std::ofstream out(args.output, std::ios::binary);
   out << reply->export_result().glb();

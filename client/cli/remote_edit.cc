@@ -47,12 +47,10 @@ int runEdit(const ConnectionArgs& connection, const EditArgs& args) {
     *batch.mutable_edit_batch()->add_commands() = client::editCommandOf(c, args.key);
   }
 
-  auto session = connectTo(connection);
-  if (!session.isOk()) return connectFailed("edit", session.status());
-  wire::ClientMessage open;
-  open.mutable_open_document()->set_document_id(*doc);
-  if (int rc = outcome("edit", (*session)->call(open, 30))) return rc;
-  auto reply = (*session)->call(batch, 120);
+  auto opened = openDocument(connection, "edit", *doc);
+  if (!opened.session) return opened.exitCode;
+  client::Session& session = *opened.session;
+  auto reply = session.call(batch, 120);
   if (reply.isOk() && reply->has_reject() && reply->reject().batch_index() > 0 &&
       reply->reject().batch_index() <= commands->size()) {
     const ScriptCommand& refused = (*commands)[reply->reject().batch_index() - 1];

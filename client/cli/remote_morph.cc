@@ -36,12 +36,10 @@ int runMorphKey(const ConnectionArgs& connection, const MorphKeyArgs& args) {
     add->set_image_from(std::move(*from));
     add->set_image_to(std::move(*to));
   }
-  auto session = connectTo(connection);
-  if (!session.isOk()) return connectFailed("morph-key", session.status());
-  wire::ClientMessage open;
-  open.mutable_open_document()->set_document_id(*doc);
-  if (int rc = outcome("morph-key", (*session)->call(open, 30))) return rc;
-  auto reply = (*session)->call(m, 120);
+  auto opened = openDocument(connection, "morph-key", *doc);
+  if (!opened.session) return opened.exitCode;
+  client::Session& session = *opened.session;
+  auto reply = session.call(m, 120);
   if (int rc = outcome("morph-key", reply)) return rc;
   std::printf("document %llu is a morph document (key 1 from %s) at version %llu\n",
               static_cast<unsigned long long>(*doc), args.mesh.c_str(),

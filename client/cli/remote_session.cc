@@ -91,6 +91,15 @@ int outcome(const std::string& command, const Expected<wire::ServerMessage>& rep
   return 0;
 }
 
+OpenedDocument openDocument(const ConnectionArgs& args, const std::string& command, uint64_t doc) {
+  auto session = connectTo(args);
+  if (!session.isOk()) return {nullptr, connectFailed(command, session.status())};
+  wire::ClientMessage open;
+  open.mutable_open_document()->set_document_id(doc);
+  if (int rc = outcome(command, (*session)->call(open, 30))) return {nullptr, rc};
+  return {std::move(*session), 0};
+}
+
 Expected<uint64_t> parseDocumentId(const std::string& text) {
   uint64_t value = 0;
   std::istringstream in(text);

@@ -38,6 +38,15 @@ int connectFailed(const std::string& command, const Status& status);
 // An Ack -> 0; a Reject or a failed call -> its message on stderr, 1.
 int outcome(const std::string& command, const Expected<wire::ServerMessage>& reply);
 
+// A session with document `doc` open for `tessera remote <command>`, or,
+// with no session, the exit code of what failed, its reason already
+// printed (connectFailed, outcome).
+struct OpenedDocument {
+  std::unique_ptr<client::Session> session;
+  int exitCode = 0;
+};
+OpenedDocument openDocument(const ConnectionArgs& args, const std::string& command, uint64_t doc);
+
 // A document id as the user typed it: a whole number > 0.
 Expected<uint64_t> parseDocumentId(const std::string& text);
 

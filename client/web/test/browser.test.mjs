@@ -11,32 +11,26 @@
 // without a server build that has --ws-port, or without /usr/bin/chromium.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startServer, serverHasWebSocket, testData } from './support/server.mjs';
-import { connect, createCube, createMesh, grant, openSession, until } from './support/client.mjs';
+import { serverHasWebSocket, testData } from './support/server.mjs';
+import { createCube, createMesh, grant, openSession, until } from './support/client.mjs';
 import { toLong } from '../src/codec/uint64.js';
 import { PREVIEW_ID } from '../src/scene/tile_assembly.js';
 import { assertDecodedInWorker, chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
 import { decodePng } from './support/png.mjs';
+import { startPageServer } from './support/page_server.mjs';
 
 const skip = !serverHasWebSocket() ? 'no build/release/server/tessera-server with --ws-port'
   : !chromiumAvailable() ? 'no Chromium' : false;
 const EDITOR = 'browser-test-editor-token', VIEWER = 'browser-test-viewer-token';
-let web, server, admin, browser, documentId, base;
+let served, server, admin, browser, documentId, base;
 
 before(async () => {
   if (skip) return;
-  web = mkdtempSync(join(tmpdir(), 'tessera-web-build-'));
-  const built = spawnSync(process.execPath, [new URL('../build.mjs', import.meta.url).pathname, '--out', web, '--test-hook'], { encoding: 'utf8' });
-  assert.equal(built.status, 0, built.stderr);
-  console.log(built.stdout.trim());
-  const portFile = `${web}.ws-port`;
-  server = await startServer({ extraArgs: ['--ws-port', '0', '--ws-port-file', portFile, '--web-root', web] });
-  base = `http://127.0.0.1:${await server.waitForFile(portFile, 'its web port')}`;
-  admin = await connect(server.port, server.token, 'admin');
+  served = await startPageServer();
+  ({ server, admin, base } = served);
+  console.log(served.buildLog);
   documentId = await createCube(admin);
   await grant(admin, EDITOR, 2, documentId);
   await grant(admin, VIEWER, 1, documentId);
@@ -45,10 +39,7 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  admin?.stop();
-  await server?.stop();
-  if (web) rmSync(web, { recursive: true, force: true });
-  if (web) rmSync(`${web}.ws-port`, { force: true });
+  await served?.stop();
 });
 
 const docUrl = (token, extra = '') => `${base}/?doc=${documentId}${extra}#token=${token}`;

@@ -10,16 +10,16 @@
 // without /usr/bin/chromium.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawnSync } from 'node:child_process';
-import { copyFileSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { startServer, serverHasWebSocket } from './support/server.mjs';
-import { connect, createCube, grant } from './support/client.mjs';
+import { serverHasWebSocket } from './support/server.mjs';
+import { createCube, grant } from './support/client.mjs';
 import { toBig } from '../src/codec/uint64.js';
 import { CAGE_COLOUR } from '../src/scene/cage_layer.js';
 import { assertDecodedInWorker, chromiumAvailable, launchBrowser, openPage, state } from './support/browser.mjs';
 import { decodePng } from './support/png.mjs';
+import { startPageServer } from './support/page_server.mjs';
 
 const skip = !serverHasWebSocket() ? 'no build/release/server/tessera-server with --ws-port'
   : !chromiumAvailable() ? 'no Chromium' : false;
@@ -43,17 +43,12 @@ const QUAD_CUBE_OFF = `OFF
 4 2 3 7 6
 4 3 0 4 7
 `;
-let web, server, admin, browser, quads, triangles, base;
+let served, admin, browser, quads, triangles, base;
 
 before(async () => {
   if (skip) return;
-  web = mkdtempSync(join(tmpdir(), 'tessera-web-build-'));
-  const built = spawnSync(process.execPath, [new URL('../build.mjs', import.meta.url).pathname, '--out', web, '--test-hook'], { encoding: 'utf8' });
-  assert.equal(built.status, 0, built.stderr);
-  const portFile = `${web}.ws-port`;
-  server = await startServer({ extraArgs: ['--ws-port', '0', '--ws-port-file', portFile, '--web-root', web] });
-  base = `http://127.0.0.1:${await server.waitForFile(portFile, 'its web port')}`;
-  admin = await connect(server.port, server.token, 'admin');
+  served = await startPageServer();
+  ({ admin, base } = served);
   const created = await admin.call({
     create_document: { name: 'quad cube', mesh: Buffer.from(QUAD_CUBE_OFF), mesh_format: 2, max_level: 2, file_name: 'quad_cube.off' },
   });
@@ -65,10 +60,7 @@ before(async () => {
 
 after(async () => {
   await browser?.close();
-  admin?.stop();
-  await server?.stop();
-  if (web) rmSync(web, { recursive: true, force: true });
-  if (web) rmSync(`${web}.ws-port`, { force: true });
+  await served?.stop();
 });
 
 const ready = (page) => page.waitForSelector('body[data-state=ready]', { timeout: 30000 });

@@ -15,6 +15,7 @@
 //      see on every node (the web client's own assembly and hash, and
 //      tessera-replay's surface), which is the journal's last version; no
 //      viewer ever saw a surface hash that differs from the server's;
+//      The document's base must still be in TESSERA_BLOBS at the end.
 //   7. with offline.json (offline_replay.py): the journal replayed offline
 //      by a single-node server from the same base gives that same version
 //      and surface hash, and its base the cluster's hash at version 1.
@@ -156,6 +157,8 @@ for (const v of final.viewers ?? []) {
   if (!v.ready || !ref || v.version !== ref.version || v.hash !== ref.hash) finding('a viewer did not converge to what a fresh subscriber sees', { viewer: v.name, version: v.version, hash: v.hash, ref: ref && { version: ref.version, hash: ref.hash } });
   if (v.hashMismatches > 0) finding('a viewer assembled a surface whose hash differs from the server\'s', { viewer: v.name, mismatches: v.hashMismatches });
 }
+if (final.baseManifest?.missing) finding('the document\'s base is missing from TESSERA_BLOBS at the end', { error: final.baseManifest.missing });
+
 // 7. The journal replayed offline.
 let offline = null;
 if (existsSync(join(dir, 'offline.json'))) {

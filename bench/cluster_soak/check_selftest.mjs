@@ -65,6 +65,11 @@ const damages = [
     f.viewers[1].hash = '0x0000000000000001';
     writeFileSync(join(d, 'final.json'), JSON.stringify(f));
   }],
+  ['the document\'s base is missing from TESSERA_BLOBS at the end', (d) => {
+    const f = JSON.parse(readFileSync(join(d, 'final.json'), 'utf8'));
+    f.baseManifest = { missing: 'no message found' };
+    writeFileSync(join(d, 'final.json'), JSON.stringify(f));
+  }],
   ['the journal replayed offline differs from what the cluster serves', (d) => {
     const o = JSON.parse(readFileSync(join(d, 'offline.json'), 'utf8'));
     o.replayed.hash = '0x0000000000000002';

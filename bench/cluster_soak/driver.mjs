@@ -446,6 +446,30 @@ for (const e of editors) e.connect();
 for (const v of viewers) v.start();
 const editTimer = setInterval(() => { for (const e of editors) e.tick(); }, Math.round(1000 / EDIT_RATE));
 
+// Every 5 s, the state of the journal and blob streams as one NATS server
+// answers it (the next server each time), logged to streams.jsonl when it
+// changes: the long run lost every message of TESSERA_BLOBS, and this says
+// when. Never more than one question at a time.
+let streamWatchBusy = false, lastStreams = '';
+const streamWatch = setInterval(async () => {
+  if (streamWatchBusy) return;
+  streamWatchBusy = true;
+  const i = Math.floor(Date.now() / 5000) % 3;
+  try {
+    const c = await MiniNats.connect(natsClient(i), 1000);
+    try {
+      const out = {};
+      for (const name of ['TESSERA_JOURNAL', 'TESSERA_BLOBS']) {
+        const info = await c.json(`$JS.API.STREAM.INFO.${name}`, '', 2000);
+        out[name] = info.state ? { messages: info.state.messages, first: info.state.first_seq, last: info.state.last_seq, leader: info.cluster?.leader } : { error: info.error?.description };
+      }
+      const key = JSON.stringify(out.TESSERA_BLOBS) + (out.TESSERA_JOURNAL.error ?? '');
+      if (key !== lastStreams) { lastStreams = key; log('streams.jsonl', { asked: `nats${i}`, ...out }); }
+    } finally { c.close(); }
+  } catch { /* that server is down or slow: the next one asks next time */ }
+  streamWatchBusy = false;
+}, 5000);
+
 const slot = (DURATION * 1000) / FAULTS;
 const runStart = Date.now();
 for (let n = 1; n <= FAULTS; ++n) {
@@ -462,6 +486,7 @@ event('healing', {});
 for (const n of [0, 1, 2]) { heal(n); if (nodeState[n] === 'stopped') killGroup(nodes[n], 'SIGCONT'); if (!nodes[n] || nodes[n].exitCode !== null) startNode(n); }
 for (const i of [0, 1, 2]) if (!nats[i] || nats[i].exitCode !== null) startNats(i);
 clearInterval(editTimer);
+clearInterval(streamWatch);
 const drainUntil = Date.now() + 60000;
 while (Date.now() < drainUntil && editors.some((e) => e.s && !e.s.closed && e.s.pending.size > 0)) await sleep(250);
 event('drained', { pending: editors.map((e) => (e.s && !e.s.closed ? e.s.pending.size : 0)) });
@@ -527,6 +552,17 @@ for (let attempt = 0; attempt < 10 && !journal; ++attempt) {
     } finally { c.close(); }
   } catch (e) { event('journal-read-failed', { error: e.message }); await sleep(2000); }
 }
+try {
+  const c = await MiniNats.connect(natsClient(0), 2000);
+  try {
+    const infos = {};
+    for (const name of ['TESSERA_JOURNAL', 'TESSERA_BLOBS']) infos[name] = await c.json(`$JS.API.STREAM.INFO.${name}`, '', 5000);
+    // The base's manifest (docs/CLUSTER.md "What is stored where").
+    const base = await c.json('$JS.API.STREAM.MSG.GET.TESSERA_BLOBS', { last_by_subj: `tessera.blob.${DOC}.base` }, 5000);
+    final.baseManifest = base.message ? { seq: base.message.seq, time: base.message.time } : { missing: base.error?.description ?? 'no message' };
+    writeFileSync(join(DIR, 'streams-at-end.json'), JSON.stringify(infos, null, 2));
+  } finally { c.close(); }
+} catch (e) { event('stream-info-failed', { error: e.message }); }
 writeFileSync(join(DIR, 'journal.jsonl'), (journal ?? []).map((j) => JSON.stringify(j)).join('\n') + '\n');
 final.journalRead = journal !== null;
 final.elapsed_s = now();

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# A fault-injection soak of the cluster mode, in Jepsen's manner (issue 34
-# section 2; docs/CLUSTER.md "Fault-injection soak"). Not run in CI.
+# A fault-injection soak of the cluster mode, in Jepsen's manner
+# (docs/CLUSTER.md "Fault-injection soak"). Not run in CI.
 #
 #   bash bench/cluster_soak.sh                          # 200 faults over 1800 s
 #   FAULTS=12 DURATION=120 bash bench/cluster_soak.sh   # a short try

@@ -133,14 +133,19 @@ Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& s
   }
 }
 
-Status purgeSubject(NatsLink& link, const std::string& stream, const std::string& subject) {
-  jsOptions options;
-  jsOptions_Init(&options);
-  options.Stream.Purge.Subject = subject.c_str();
-  jsErrCode code = static_cast<jsErrCode>(0);
-  const natsStatus s = js_PurgeStream(link.jetStream(), stream.c_str(), &options, &code);
-  if (s != NATS_OK) return link.error(s, "purging " + subject, code);
-  return Status::ok();
+Status deleteMessagesOn(NatsLink& link, const std::string& stream, const std::string& subject) {
+  uint64_t from = 1;
+  for (;;) {
+    auto next = nextMessage(link, stream, subject, from);
+    if (!next.isOk()) return next.status().code() == ErrorCode::kNotFound ? Status::ok() : next.status();
+    jsErrCode code = static_cast<jsErrCode>(0);
+    const natsStatus s = js_DeleteMsg(link.jetStream(), stream.c_str(), next->sequence, nullptr, &code);
+    // NATS_NOT_FOUND: deleted meanwhile by another node.
+    if (s != NATS_OK && s != NATS_NOT_FOUND)
+      return link.error(s, "deleting stream sequence " + std::to_string(next->sequence) + " of " + subject,
+                        code);
+    from = next->sequence + 1;
+  }
 }
 
 }  // namespace tessera::cluster

@@ -43,7 +43,14 @@ Expected<LastMessage> nextMessage(NatsLink& link, const std::string& stream, con
 // by the last few messages. Still kNotFound after that.
 Expected<LastMessage> nextMessageOnReplicas(NatsLink& link, const std::string& stream,
                                             const std::string& subject, uint64_t from);
-// Removes every message on `subject` (a wildcard is allowed).
-Status purgeSubject(NatsLink& link, const std::string& stream, const std::string& subject);
+// Removes every message on `subject` (a wildcard is allowed), one at a
+// time by its stream sequence, as direct gets find them (a message a
+// lagging replica has not seen yet may stay behind). Never a purge filtered
+// by subject: nats-server before 2.9.17 replays such a purge as a purge of
+// the whole stream when a clustered stream recovers after a restart
+// (nats-io/nats-server issue 4196, fixed by its pull request 4197), and so
+// every document's base and snapshots were lost after all NATS servers
+// were killed at once (docs/CLUSTER.md "Fault-injection soak").
+Status deleteMessagesOn(NatsLink& link, const std::string& stream, const std::string& subject);
 
 }  // namespace tessera::cluster

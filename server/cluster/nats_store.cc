@@ -197,15 +197,15 @@ Status NatsStore::deleteDocument(store::DocumentId id) {
   TESSERA_ASSIGN_OR_RETURN(std::string name, documentName(id));
   (void)name;
   // Out of the catalogue first: from then on the document does not exist
-  // for any node, even if the purges below are cut short.
+  // for any node, even if the deletions below are cut short.
   natsStatus s = kvStore_Delete(catalog_.get(), catalogKey(id).c_str());
   if (s != NATS_OK) return link_->error(s, "removing " + toString(id) + " from the catalogue");
   {
     std::lock_guard<std::mutex> lock(mutex_);
     tails_.erase(id.value);
   }
-  TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kJournalStream, journalSubject(id)));
-  TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, blobPrefix(id) + ".>"));
+  TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kJournalStream, journalSubject(id)));
+  TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kBlobStream, blobPrefix(id) + ".>"));
   return tokens_.revokeDocument(id);
 }
 
@@ -532,8 +532,9 @@ Status NatsStore::putSnapshot(store::DocumentId id, uint64_t version, std::strin
   if (s != NATS_OK) return link_->error(s, "listing the snapshot of " + toString(id), code);
   for (const SnapshotRef& r : dropped) {
     const std::string gone = blobPrefix(id) + ".snap." + std::to_string(r.version);
-    TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, gone));
-    TESSERA_RETURN_IF_ERROR(purgeSubject(*link_, kBlobStream, gone + ".*"));
+    // The manifest first: a reader then finds no blob there.
+    TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kBlobStream, gone));
+    TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kBlobStream, gone + ".*"));
   }
   return Status::ok();
 }

@@ -9,6 +9,8 @@
 
 #include "cluster/nats_cluster.h"
 #include "server/cluster/journal_message.h"
+#include "server/cluster/nats_blobs.h"
+#include "server/cluster/nats_link.h"
 #include "server/cluster/nats_store.h"
 #include "server/store/store_checks.h"
 #include "server/store_test_support.h"
@@ -315,6 +317,73 @@ TEST(NatsStore, ThreeReplicasSurviveOneServerAndRefuseWritesWithoutQuorum) {
   EXPECT_LT(took, std::chrono::seconds(10)) << "a write without quorum must fail, not hang";
   std::printf("without quorum: %s (after %lld ms)\n", refused.message().c_str(),
               static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(took).count()));
+}
+
+// A document's base and snapshots share one stream, and a snapshot that
+// falls out of the newest two is removed; another document is deleted from
+// the same streams. Then every NATS server is killed at once and restarted
+// on its data: the first document's base, the snapshots kept and its
+// journal must all be there, for every node. (Seen in the fault-injection
+// soak, docs/CLUSTER.md "Fault-injection soak": nats-server 2.9.10 replays
+// a purge filtered by subject as a purge of the whole stream when a
+// clustered stream recovers, and every document's base was gone.)
+TEST(NatsStore, ABaseOutlivesDroppedSnapshotsAndTheKillOfEveryServer) {
+  auto nats = testing::NatsCluster::start(3);
+  ASSERT_TRUE(nats.isOk()) << nats.status().toString();
+  const std::string base = bigBase(600'000);
+  uint64_t doc = 0;
+  {
+    auto store = openOrFail(*nats, 3);
+    ASSERT_NE(store, nullptr);
+    auto id = store->createDocument("kept", base);
+    ASSERT_TRUE(id.isOk()) << id.status().toString();
+    doc = id->value;
+    for (uint64_t v = 1; v <= 40; ++v) ASSERT_TRUE(store->appendSync(*id, v, "a", entryBytes(v)).isOk()) << v;
+    for (uint64_t v : {10, 20, 30, 40})  // 10 and 20 fall out of the newest two
+      ASSERT_TRUE(store->putSnapshot(*id, v, "state at " + std::to_string(v)).isOk()) << v;
+    // A deleted document's journal and blobs go too, from the same streams.
+    auto other = store->createDocument("deleted", bigBase(1000));
+    ASSERT_TRUE(other.isOk()) << other.status().toString();
+    for (uint64_t v = 1; v <= 5; ++v)
+      ASSERT_TRUE(store->appendSync(*other, v, "b", entryBytes(v)).isOk()) << v;
+    ASSERT_TRUE(store->deleteDocument(*other).isOk());
+  }
+  for (int server = 0; server < 3; ++server) nats->kill9(server);
+  for (int server = 0; server < 3; ++server) ASSERT_TRUE(nats->restart(server).isOk()) << server;
+  for (int server = 0; server < 3; ++server) ASSERT_TRUE(nats->waitForJetStream(server).isOk()) << server;
+  // The streams elect their leaders again after the restart: a node opens
+  // its store and loads the document as soon as JetStream answers.
+  Expected<store::StoredDocument> loaded = notFound("not asked yet");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    NatsStoreOptions options;
+    options.link.urls = *cluster::parseNatsUrls(nats->urls());
+    options.replicas = 3;
+    auto store = NatsStore::open(options);
+    loaded = store.isOk() ? (*store)->loadDocument(store::DocumentId{doc})
+                          : Expected<store::StoredDocument>(store.status());
+    if (loaded.isOk() || loaded.status().code() == ErrorCode::kNotFound) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  ASSERT_TRUE(loaded.isOk()) << loaded.status().toString();
+  EXPECT_EQ(loaded->baseBytes, base);
+  ASSERT_TRUE(loaded->snapshot.has_value());
+  EXPECT_EQ(loaded->snapshot->version, 40u);
+  EXPECT_EQ(loaded->latestVersion(), 40u);
+  // The snapshots that fell out are gone, manifest and chunks; the kept ones
+  // are there.
+  cluster::NatsLinkOptions linkOptions;
+  linkOptions.urls = *cluster::parseNatsUrls(nats->urls());
+  auto link = cluster::NatsLink::connect(linkOptions);
+  ASSERT_TRUE(link.isOk()) << link.status().toString();
+  const std::string snap = "tessera.blob." + std::to_string(doc) + ".snap.";
+  for (const char* gone : {"10", "10.0", "20", "20.0"}) {
+    EXPECT_EQ(cluster::lastMessage(**link, "TESSERA_BLOBS", snap + gone).status().code(),
+              ErrorCode::kNotFound)
+        << snap + gone;
+  }
+  for (const char* kept : {"30", "30.0", "40", "40.0"})
+    EXPECT_TRUE(cluster::lastMessage(**link, "TESSERA_BLOBS", snap + kept).isOk()) << snap + kept;
 }
 
 }  // namespace

@@ -203,6 +203,7 @@ Status NatsStore::deleteDocument(store::DocumentId id) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     tails_.erase(id.value);
+    loadedTails_.erase(id.value);
   }
   TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kJournalStream, journalSubject(id)));
   TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kBlobStream, blobPrefix(id) + ".>"));
@@ -277,6 +278,11 @@ Expected<store::StoredDocument> NatsStore::loadDocument(store::DocumentId id) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     tails_.erase(id.value);
+    // From here the appends still queued for it are the host's this node
+    // dropped before loading it again: refused unwritten (run), so none
+    // lands behind the load. One already being written may: the fence
+    // refuses then (fenceJournal).
+    ++loads_[id.value];
   }
   TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
   uint64_t fromSequence = 0, fromVersion = 0;
@@ -307,12 +313,13 @@ Expected<store::StoredDocument> NatsStore::loadDocument(store::DocumentId id) {
                       std::to_string(document.latestVersion()) + " but its last message is " +
                       (tail.fence ? "a fence at " : "") + "version " + std::to_string(tail.version));
   }
+  std::lock_guard<std::mutex> lock(mutex_);
   if (tail.fence && document.latestVersion() > tail.version) {
-    std::lock_guard<std::mutex> lock(mutex_);
     if (auto it = tails_.find(id.value); it != tails_.end() && it->second.sequence == tail.sequence) {
       it->second.version = document.latestVersion();
     }
   }
+  loadedTails_[id.value] = tail.sequence;
   return document;
 }
 
@@ -329,7 +336,7 @@ void NatsStore::appendFrom(store::DocumentId id, uint64_t version, std::string a
     std::lock_guard<std::mutex> lock(mutex_);
     if (!closing_) {
       queue_.push_back(PendingAppend{id, version, std::move(author), std::move(bytes), std::move(done),
-                                     authorSession, clientSeq});
+                                     authorSession, clientSeq, loads_[id.value]});
       wake_.notify_one();
       return;
     }
@@ -362,6 +369,14 @@ void NatsStore::run() {
       if (queue_.empty()) return;  // closing, and every queued append is done
       next = std::move(queue_.front());
       queue_.pop_front();
+      if (next.load != loads_[next.id.value]) {
+        ++stats_.entriesRejected;
+        lock.unlock();
+        next.done(ioError(toString(next.id) + ": journal entry version " + std::to_string(next.version) +
+                          " not written: this node loaded the document again after the write was queued "
+                          "(its host was dropped)"));
+        continue;
+      }
     }
     const auto start = std::chrono::steady_clock::now();
     Status status = publishEntry(next);
@@ -445,6 +460,23 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
 Status NatsStore::fenceJournal(store::DocumentId id) {
   TESSERA_RETURN_IF_ERROR(checkOpen());
   TESSERA_ASSIGN_OR_RETURN(Tail tail, tailOf(id));
+  {
+    // The fence goes right after what this node's last load read. An entry
+    // stored since is not in the loaded document -- the queued write of a
+    // host this node dropped, which its store still sends -- and a fence
+    // after it would let the new host answer that command "not applied"
+    // (seen in the fault-injection soak, docs/CLUSTER.md: refused commands
+    // that are in the journal).
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto loaded = loadedTails_.find(id.value);
+    if (loaded != loadedTails_.end() && loaded->second != tail.sequence) {
+      const uint64_t then = loaded->second;
+      loadedTails_.erase(loaded);
+      return ioError(toString(id) + ": its journal grew after this node loaded it (to stream sequence " +
+                     std::to_string(tail.sequence) + " from " + std::to_string(then) +
+                     "); load the document again");
+    }
+  }
   // Checked like an append: if anyone wrote since this store read the
   // journal's end, the fence is refused and the caller loads again.
   const std::string payload = encodeJournalMessage(JournalMessage{.fence = true, .version = tail.version});
@@ -460,6 +492,7 @@ Status NatsStore::fenceJournal(store::DocumentId id) {
   }
   const Status alone = checkNothingBeforeFence(id, tail.sequence, published.sequence);
   std::lock_guard<std::mutex> lock(mutex_);
+  loadedTails_.erase(id.value);
   if (!alone.isOk()) {
     tails_.erase(id.value);
     return alone;

@@ -94,6 +94,7 @@ class NatsStore final : public store::Store {
     std::string author, bytes;
     store::AppendCallback done;
     uint64_t authorSession = 0, clientSeq = 0;
+    uint64_t load = 0;  // loads_[id] when it was queued
   };
 
   NatsStore(std::unique_ptr<NatsLink> link, KvStorePtr catalog, KvStorePtr tokens);
@@ -128,6 +129,12 @@ class NatsStore final : public store::Store {
   std::condition_variable wake_;
   std::deque<PendingAppend> queue_;
   std::map<uint64_t, Tail> tails_;  // guarded by mutex_
+  // Per document, the stream sequence its last load read to, until a fence
+  // follows it (fenceJournal); guarded by mutex_.
+  std::map<uint64_t, uint64_t> loadedTails_;
+  // Per document, how many loads this store began: an append queued before
+  // the latest began is a dropped host's, and is refused unwritten.
+  std::map<uint64_t, uint64_t> loads_;  // guarded by mutex_
   bool closing_ = false, closed_ = false;
   store::StoreStats stats_;
   store::Durability durability_;

@@ -187,6 +187,14 @@ std::optional<DecayedRing> refineUntilDecayed(const Level& level, Index v,
   return ring;
 }
 
+// Per position of v's ring, the side it lies on in the decayed ring
+// (limitSideOfRingFace's numbering there).
+std::vector<int> sidesOf(const DecayedRing& ring) {
+  std::vector<int> sides;
+  for (int position : ring.ringPosition) sides.push_back(limitSideOfRingFace(ring.level, 0, position));
+  return sides;
+}
+
 // The decayed limit is linear in the ring's points (every step and the
 // masks are), so it is kept as weights over the patch's points (its slots,
 // ringPatch's order: v, then its faces' corners as they come), per
@@ -272,10 +280,7 @@ DecayedWeights computeWeights(const Level& level, Index v, std::span<const Index
         options, far);
     if (!ring) return DecayedWeights{};
     const CatmarkLimitFrame frame = catmarkLimitFrame(ring->level, 0, ring->points, options);
-    if (first == 0) {
-      for (int position : ring->ringPosition)
-        w.sides.push_back(limitSideOfRingFace(ring->level, 0, position));
-    }
+    if (first == 0) w.sides = sidesOf(*ring);
     for (size_t k = 0; k < 3 && first + k < n; ++k) {
       w.position[first + k] = frame.position[static_cast<int>(k)];
       w.tangent1[first + k] = frame.tangent1[static_cast<int>(k)];
@@ -361,9 +366,8 @@ std::optional<std::vector<LimitSector>> decayedOtherLimitSectors(const Level& le
   // Renumber each side's faces into v's ring at this level: the run of
   // positions that lie on it, which is contiguous (sides are bounded by
   // sharp edges, and the decayed ring's are v's infinitely sharp ones).
-  const int n = static_cast<int>(ring->ringPosition.size());
-  std::vector<int> sides(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) sides[k] = limitSideOfRingFace(ring->level, 0, ring->ringPosition[k]);
+  const std::vector<int> sides = sidesOf(*ring);
+  const int n = static_cast<int>(sides.size());
   for (size_t j = 0; j < sectors.size(); ++j) {
     const int side = static_cast<int>(j) + 1;
     LimitSector& sector = sectors[j];

@@ -52,6 +52,26 @@ void expectClosedAndOriented(const std::vector<std::vector<uint64_t>>& faces) {
   }
 }
 
+// tests/data's cube of six quads as a Catmull-Clark document of max level
+// 4, created and opened by `admin`: its id, or 0 with the failure recorded.
+uint64_t createAndOpenQuadCube(Session& admin) {
+  wire::ClientMessage create = testing::createDocument(
+      "quads", testing::fileBytes(testing::sourceTestDataPath("good/cube_quads.obj")), "", 4);
+  create.mutable_create_document()->set_file_name("cube_quads.obj");
+  auto created = admin.call(create, 30);
+  if (!created.isOk() || !created->has_ack()) {
+    ADD_FAILURE() << "create: " << (created.isOk() ? created->DebugString() : created.status().message());
+    return 0;
+  }
+  const uint64_t doc = created->ack().document_id();
+  auto opened = admin.call(testing::openDocument(doc), 30);
+  if (!opened.isOk() || !opened->has_ack()) {
+    ADD_FAILURE() << "open: " << (opened.isOk() ? opened->DebugString() : opened.status().message());
+    return 0;
+  }
+  return doc;
+}
+
 TEST(ServerControlCage, LevelsArriveAsTheirPolygonsAndBadRequestsAreRefusedByName) {
   const std::string dir = testing::makeTempDir("tessera-cage");
   // 6 x 4^4 = 1,536 faces at level 4: above this bound, level 3's 384 below.
@@ -61,12 +81,8 @@ TEST(ServerControlCage, LevelsArriveAsTheirPolygonsAndBadRequestsAreRefusedByNam
   ASSERT_TRUE(admin.isOk());
 
   const std::string cubePath = testing::sourceTestDataPath("good/cube_quads.obj");
-  wire::ClientMessage create = testing::createDocument("quads", testing::fileBytes(cubePath), "", 4);
-  create.mutable_create_document()->set_file_name("cube_quads.obj");
-  auto created = (*admin)->call(create, 30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
-  const uint64_t doc = created->ack().document_id();
-  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 30)->has_ack());
+  const uint64_t doc = createAndOpenQuadCube(**admin);
+  ASSERT_NE(doc, 0u);
 
   // Level 0: the file's six quads, in its order (OBJ counts from 1).
   auto base = (*admin)->call(getCage(doc, 0), 30);
@@ -147,13 +163,8 @@ TEST(ServerControlCage, RepliesOverTheFrameLimitAreRefusedAndACoarserLevelStillA
   ASSERT_TRUE(server.isOk()) << server.status().message();
   auto admin = Session::connect(server->session("admin", server->adminToken()));
   ASSERT_TRUE(admin.isOk());
-  wire::ClientMessage create = testing::createDocument(
-      "quads", testing::fileBytes(testing::sourceTestDataPath("good/cube_quads.obj")), "", 4);
-  create.mutable_create_document()->set_file_name("cube_quads.obj");
-  auto created = (*admin)->call(create, 30);
-  ASSERT_TRUE(created.isOk() && created->has_ack()) << created->DebugString();
-  const uint64_t doc = created->ack().document_id();
-  ASSERT_TRUE((*admin)->call(testing::openDocument(doc), 30)->has_ack());
+  const uint64_t doc = createAndOpenQuadCube(**admin);
+  ASSERT_NE(doc, 0u);
 
   // Level 3: 384 quads over 386 vertices, more than 2,048 bytes.
   auto cage = (*admin)->call(getCage(doc, 3), 30);

@@ -47,8 +47,11 @@ TEST(CatmarkViewStream, CamerasGetWatertightTilesEncodedOnceAndADragInViewArrive
   ASSERT_EQ(created->ack().scheme(), wire::SUBDIVISION_SCHEME_CATMULL_CLARK);
   const uint64_t doc = created->ack().document_id();
 
-  // Cameras all round, from close to far.
+  // Cameras all round, from close to far. Each viewer stays: the tiles are
+  // the loaded document's, and a document nobody holds open is unloaded,
+  // its tiles with it (docs/VIEWS.md "The server").
   std::mt19937 rng(33);
+  std::vector<testing::Viewer> viewers;
   std::set<uint64_t> distinct;
   int64_t payloads = 0;
   for (int i = 0; i < 12; ++i) {
@@ -58,6 +61,7 @@ TEST(CatmarkViewStream, CamerasGetWatertightTilesEncodedOnceAndADragInViewArrive
     testing::expectWatertight(*v, m, "viewer " + std::to_string(i));
     distinct.insert(v->received.begin(), v->received.end());
     payloads += v->payloads;
+    viewers.push_back(std::move(*v));
   }
   const double encoded = testing::serverStat(**admin, "tiles_encoded");
   std::printf(

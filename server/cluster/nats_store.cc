@@ -204,6 +204,7 @@ Status NatsStore::deleteDocument(store::DocumentId id) {
     std::lock_guard<std::mutex> lock(mutex_);
     tails_.erase(id.value);
     loadedTails_.erase(id.value);
+    failedLoads_.erase(id.value);
   }
   TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kJournalStream, journalSubject(id)));
   TESSERA_RETURN_IF_ERROR(deleteMessagesOn(*link_, kBlobStream, blobPrefix(id) + ".>"));
@@ -377,6 +378,21 @@ void NatsStore::run() {
                           "(its host was dropped)"));
         continue;
       }
+      // After a failed append, the tail is read afresh (publishAfter), and
+      // it may be another owner's whose versions happen to line up with
+      // this host's: a later entry of the same load would then be written
+      // on top of a history it was not made from (seen in the
+      // fault-injection soak, docs/CLUSTER.md: refused commands that are in
+      // the journal). Nothing of that load is written any more.
+      if (auto failed = failedLoads_.find(next.id.value);
+          failed != failedLoads_.end() && failed->second == next.load) {
+        ++stats_.entriesRejected;
+        lock.unlock();
+        next.done(ioError(toString(next.id) + ": journal entry version " + std::to_string(next.version) +
+                          " not written: an earlier journal write of this node's copy of the document "
+                          "failed, and this entry follows it; load the document again"));
+        continue;
+      }
     }
     const auto start = std::chrono::steady_clock::now();
     Status status = publishEntry(next);
@@ -437,6 +453,12 @@ Status NatsStore::publishEntry(const PendingAppend& append) {
   const natsStatus s = published.status;
   const jsErrCode code = published.code;
   if (s != NATS_OK) {
+    {
+      // A refusal the arguments earned (above) leaves the journal as this
+      // host knows it; a publish that failed does not (run).
+      std::lock_guard<std::mutex> lock(mutex_);
+      failedLoads_[id.value] = append.load;
+    }
     if (code == JSStreamWrongLastSequenceErr) {
       return ioError(toString(id) + ": journal entry version " + std::to_string(append.version) +
                      " refused: another writer appended to the document's journal after stream sequence " +

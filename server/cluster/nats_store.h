@@ -19,7 +19,9 @@
 // (it took the document over), JetStream refuses the append, and the store
 // refuses it with a kIoError that says another writer appended; the host
 // then stops serving the document (docs/CLUSTER.md, "One owner per document"). No version can be written
-// twice, whatever the nodes believe.
+// twice, whatever the nodes believe. Once an append of a load of the
+// document has failed, the rest of that load's appends are refused
+// unwritten: they were made on top of it.
 //
 // Appends are published in the order they were called, each after the
 // previous one's acknowledgement, by one writer thread whose callbacks run
@@ -135,6 +137,11 @@ class NatsStore final : public store::Store {
   // Per document, how many loads this store began: an append queued before
   // the latest began is a dropped host's, and is refused unwritten.
   std::map<uint64_t, uint64_t> loads_;  // guarded by mutex_
+  // Per document, the load whose append JetStream did not take (refused,
+  // or its outcome unknown): that load's later appends are refused
+  // unwritten, since they follow a state the journal may not hold; guarded
+  // by mutex_.
+  std::map<uint64_t, uint64_t> failedLoads_;
   bool closing_ = false, closed_ = false;
   store::StoreStats stats_;
   store::Durability durability_;

@@ -399,6 +399,49 @@ TEST(NatsStore, AppendsQueuedBeforeALoadAreWrittenAndLoadedOrRefusedUnwritten) {
   EXPECT_TRUE(store->appendSync(*id, loaded->latestVersion() + 1, "owner", entryBytes(99)).isOk());
 }
 
+// A host whose append was refused because another node took its document
+// over still has appends queued, made on top of the refused one. After the
+// refusal the store reads the journal's end afresh, and the new owner's
+// entries may end at the very version the next queued append carries: it
+// must not be written there, on a history it was not made from (seen in
+// the fault-injection soak, docs/CLUSTER.md: three commands refused, yet in
+// the journal after the new owner's entries). A load starts afresh.
+TEST(NatsStore, AfterARefusedAppendTheRestOfThatLoadIsRefusedUnwrittenWhereverItsVersionsFall) {
+  auto nats = NatsCluster::start(1);
+  ASSERT_TRUE(nats.isOk()) << nats.status().toString();
+  auto former = openOrFail(*nats, 1);
+  auto owner = openOrFail(*nats, 1);
+  ASSERT_NE(former, nullptr);
+  ASSERT_NE(owner, nullptr);
+  auto id = former->createDocument("taken over", "base");
+  ASSERT_TRUE(id.isOk()) << id.status().toString();
+  ASSERT_TRUE(former->appendSync(*id, 1, "former", entryBytes(1, 1)).isOk());
+  // The takeover: loaded, fenced, and one entry of the new owner's.
+  auto taken = owner->loadDocument(*id);
+  ASSERT_TRUE(taken.isOk()) << taken.status().toString();
+  ASSERT_TRUE(owner->fenceJournal(*id).isOk());
+  ASSERT_TRUE(owner->appendSync(*id, 2, "owner", entryBytes(2, 2)).isOk());
+  // The former owner's next two entries, versions 2 and 3: the first is
+  // refused; the second lines up with the owner's tail.
+  Status second = former->appendSync(*id, 2, "former", entryBytes(2, 1));
+  EXPECT_NE(second.message().find("another writer appended"), std::string::npos) << second.toString();
+  Status third = former->appendSync(*id, 3, "former", entryBytes(3, 1));
+  EXPECT_FALSE(third.isOk()) << "an entry made after a refused one was written";
+  EXPECT_NE(third.message().find("an earlier journal write of this node's copy of the document failed"),
+            std::string::npos)
+      << third.toString();
+  auto journal = owner->loadDocument(*id);
+  ASSERT_TRUE(journal.isOk()) << journal.status().toString();
+  ASSERT_EQ(journal->entries.size(), 2u);
+  EXPECT_EQ(journal->entries[0].author, "former");
+  EXPECT_EQ(journal->entries[1].author, "owner");
+  // Loaded again, the former owner writes after what it read.
+  auto reloaded = former->loadDocument(*id);
+  ASSERT_TRUE(reloaded.isOk()) << reloaded.status().toString();
+  ASSERT_TRUE(former->fenceJournal(*id).isOk());
+  EXPECT_TRUE(former->appendSync(*id, 3, "former", entryBytes(3, 1)).isOk());
+}
+
 // A document's base and snapshots share one stream, and a snapshot that
 // falls out of the newest two is removed; another document is deleted from
 // the same streams. Then every NATS server is killed at once and restarted

@@ -60,8 +60,7 @@ Expected<std::unique_ptr<ClusterNode>> ClusterNode::start(NatsLink& link, store:
                                                  // machine) is not taken for dead; a dead
                                                  // node's sessions only go a little later.
                                                  .ttl = 3 * std::chrono::milliseconds(config.leaseMs)}));
-  uint64_t revision = 0;
-  natsStatus s = kvStore_PutString(&revision, node->alive_.get(), node->name_.c_str(),
+  natsStatus s = kvStore_PutString(&node->aliveRevision_, node->alive_.get(), node->name_.c_str(),
                                    std::to_string(node->number_).c_str());
   if (s != NATS_OK) return link.error(s, "announcing node " + node->name_);
   s = natsConnection_Subscribe(&node->forwardSubscription_, link.connection(),
@@ -337,9 +336,45 @@ void ClusterNode::handleNodeMessage(const char* data, int length, const char* su
   for (auto& who : targets) who->send(*outgoing);
 }
 
-void ClusterNode::heartbeat() {
+void ClusterNode::renewPresence() {
+  const std::string number = std::to_string(number_);
   uint64_t revision = 0;
-  (void)kvStore_PutString(&revision, alive_.get(), name_.c_str(), std::to_string(number_).c_str());
+  natsStatus s = kvStore_UpdateString(&revision, alive_.get(), name_.c_str(), number.c_str(), aliveRevision_);
+  if (s == NATS_OK) {
+    aliveRevision_ = revision;
+    return;
+  }
+  // NATS did not decide: the key is as it was, or lapsed; the next renewal
+  // tells.
+  if (NatsLink::undecided(s)) return;
+  // Refused: the key is not the one this node wrote last. Either an
+  // undecided renewal landed after all (the key holds this incarnation at
+  // a newer revision), or the key expired: nothing else writes or removes
+  // it. While it was missing an owner may have taken this node for gone
+  // (heartbeat) and dropped its sessions, after which the owner sends them
+  // nothing (seen in the fault-injection soak, docs/CLUSTER.md: a viewer of
+  // a partitioned node got no update after the partition healed).
+  kvEntry* raw = nullptr;
+  s = kvStore_Get(&raw, alive_.get(), name_.c_str());
+  KvEntryPtr entry(raw);
+  if (s == NATS_OK && number == kvEntry_ValueString(entry.get())) {
+    aliveRevision_ = kvEntry_Revision(entry.get());
+    return;
+  }
+  if (s != NATS_OK && s != NATS_NOT_FOUND) return;  // NATS unavailable: the next renewal tells
+  s = kvStore_PutString(&revision, alive_.get(), name_.c_str(), number.c_str());
+  if (s != NATS_OK) return;  // refused again next time, and handled then
+  aliveRevision_ = revision;
+  server::logEvent(server::LogLevel::kWarn, "cluster_presence_lapsed",
+                   {{"node", name_}, {"incarnation", number_}});
+  for (const auto& doc : liveDocuments()) {
+    if (!doc->ownedHere() && !doc->owner().empty())
+      doc->rehome("this node's presence in the cluster lapsed, and the owner may have dropped its sessions");
+  }
+}
+
+void ClusterNode::heartbeat() {
+  renewPresence();
   std::set<std::pair<std::string, uint64_t>> nodes;  // (name, incarnation) of other nodes' sessions here
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -99,6 +99,12 @@ class ClusterNode : public server::DocumentOpener, public NodeServices {
   // came back as another incarnation: a dead node's viewers do not stay
   // on as participants.
   void heartbeat();
+  // Renews this node's key in TESSERA_ALIVE from the revision it wrote
+  // last. A refusal means the key lapsed meanwhile (a partition, NATS
+  // without quorum): other nodes may have taken this node for gone and
+  // dropped its sessions from the documents they own, so each document
+  // this node does not own rejoins its sessions at the owner.
+  void renewPresence();
   std::vector<std::shared_ptr<ClusterDocument>> liveDocuments();
 
   NatsLink& link_;
@@ -110,6 +116,7 @@ class ClusterNode : public server::DocumentOpener, public NodeServices {
   uint64_t number_ = 0;
   std::unique_ptr<DocumentLeases> leases_;
   KvStorePtr alive_;
+  uint64_t aliveRevision_ = 0;  // of this node's key in TESSERA_ALIVE; the monitor's
   FrameRelay relay_;
   ChunkAssembler forwardChunks_, frameChunks_;  // messages larger than NATS's max_payload
   natsSubscription* forwardSubscription_ = nullptr;

@@ -1,17 +1,21 @@
 #!/usr/bin/env bash
 # A fault-injection soak of the cluster mode, in Jepsen's manner
-# (docs/CLUSTER.md "Fault-injection soak"). Not run in CI.
+# (docs/CLUSTER.md "Fault-injection soak"). CI runs the bounded form
+# (EVERY_KIND=1, tests/CMakeLists.txt: cluster_soak_every_fault_once).
 #
 #   bash bench/cluster_soak.sh                          # 200 faults over 1800 s
 #   FAULTS=12 DURATION=120 bash bench/cluster_soak.sh   # a short try
 #   SEED=7 bash bench/cluster_soak.sh                   # the same schedule again
+#   EVERY_KIND=1 DURATION=80 bash bench/cluster_soak.sh # each kind of fault once
 #
 # Environment: FAULTS (200), DURATION (seconds, 1800), SEED (default: from
 # the clock, printed), BASE_PORT (25100: it uses BASE_PORT+1 .. +39 on
 # 127.0.0.1), LEASE_MS (2000), EDIT_RATE (commands per second per editor, 4),
 # TESSERA_BIN (the directory holding tessera-server, tessera, tessera-replay;
-# default: build/release's), SOAK_DIR (the run directory; default a new one
-# under /tmp), KINDS (a comma-separated subset of the fault kinds, e.g.
+# default: copies of TESSERA_BUILD_DIR's, itself build/release by default),
+# EVERY_KIND=1 (each kind of fault once, in an order drawn from SEED; FAULTS
+# is then the number of kinds), SOAK_DIR (the run directory; default a new one
+# under $TMPDIR or /tmp), KINDS (a comma-separated subset of the fault kinds, e.g.
 # KINDS=kill-all-nats,partition-node), KEEP=1 (keep the run directory even when the check passes).
 #
 # Exit status: 0 the checker found nothing, 1 it found something (the run
@@ -24,19 +28,19 @@ seed="${SEED:-$(( $(date +%s) % 1000000 ))}"
 base="${BASE_PORT:-25100}"
 bin="${TESSERA_BIN:-}"
 if [ -z "$bin" ]; then
-  bin="$(mktemp -d /tmp/tessera-soak-bin-XXXXXX)"
+  bin="$(mktemp -d "${TMPDIR:-/tmp}/tessera-soak-bin-XXXXXX")"
   # A copy, so that a rebuild during the run cannot relink them under it.
-  cp "$repo/build/release/server/tessera-server" "$repo/build/release/client/cli/tessera" \
-     "$repo/build/release/client/replay/tessera-replay" "$bin/"
+  build="${TESSERA_BUILD_DIR:-$repo/build/release}"
+  cp "$build/server/tessera-server" "$build/client/cli/tessera" "$build/client/replay/tessera-replay" "$bin/"
   own_bin=1
 fi
-dir="${SOAK_DIR:-$(mktemp -d /tmp/tessera-soak-XXXXXX)}"
-echo "cluster soak: seed $seed, $faults faults over $duration s, run directory $dir"
+dir="${SOAK_DIR:-$(mktemp -d "${TMPDIR:-/tmp}/tessera-soak-XXXXXX")}"
+echo "cluster soak: seed $seed, ${EVERY_KIND:+each kind of fault once, not }$faults faults, over $duration s, run directory $dir"
 
 status=0
 node "$repo/bench/cluster_soak/driver.mjs" --dir "$dir" --bin "$bin" --repo "$repo" --faults "$faults" \
   --duration "$duration" --seed "$seed" --base-port "$base" --lease-ms "${LEASE_MS:-2000}" \
-  --edit-rate "${EDIT_RATE:-4}" ${KINDS:+--kinds "$KINDS"} || status=$?
+  --edit-rate "${EDIT_RATE:-4}" ${KINDS:+--kinds "$KINDS"} ${EVERY_KIND:+--every-kind "$EVERY_KIND"} || status=$?
 if [ "$status" -ne 0 ]; then
   echo "the driver failed (exit $status); its files are in $dir" >&2
   [ -n "${own_bin:-}" ] && rm -rf "$bin"

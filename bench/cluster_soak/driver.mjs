@@ -18,7 +18,7 @@ const args = Object.fromEntries(process.argv.slice(2).reduce((acc, a, i, all) =>
   return acc;
 }, []));
 const DIR = args.dir, BIN = args.bin, REPO = args.repo;
-const FAULTS = Number(args.faults ?? 200), DURATION = Number(args.duration ?? 1800);
+const DURATION = Number(args.duration ?? 1800);
 const SEED = Number(args.seed ?? 1);
 const BASE = Number(args['base-port'] ?? 25100);
 const LEASE_MS = Number(args['lease-ms'] ?? 2000);
@@ -335,7 +335,18 @@ if (args.kinds) {
   for (const k of only) if (!KINDS.some(([name]) => name === k)) { console.error(`unknown fault kind ${k}`); process.exit(2); }
   KINDS.splice(0, KINDS.length, ...only.map((k) => [k, 1]));
 }
-function chooseKind() {
+// --every-kind: each kind once, in an order drawn from SEED, and no other
+// fault (the bounded run CI makes: FAULTS is the number of kinds).
+const everyKindOrder = args['every-kind'] === '1' ? KINDS.map(([k]) => k) : null;
+if (everyKindOrder) {
+  for (let i = everyKindOrder.length - 1; i > 0; --i) {
+    const j = Math.floor(scheduleRandom() * (i + 1));
+    [everyKindOrder[i], everyKindOrder[j]] = [everyKindOrder[j], everyKindOrder[i]];
+  }
+}
+const FAULTS = everyKindOrder ? everyKindOrder.length : Number(args.faults ?? 200);
+function chooseKind(number) {
+  if (everyKindOrder) return everyKindOrder[number - 1];
   const total = KINDS.reduce((s, [, w]) => s + w, 0);
   let r = scheduleRandom() * total;
   for (const [k, w] of KINDS) { if ((r -= w) < 0) return k; }
@@ -343,7 +354,7 @@ function chooseKind() {
 }
 
 async function fault(number) {
-  const kind = chooseKind();
+  const kind = chooseKind(number);
   // Every random choice of the fault is drawn now, before anything is
   // observed, so that the schedule is the same for a seed whatever happens.
   const p = { a: scheduleRandom(), b: scheduleRandom(), c: scheduleRandom(), node: Math.floor(scheduleRandom() * 3) };

@@ -46,6 +46,9 @@ packages=(
   clang-format-14
   # the cluster tests and deploy/cluster-loopback.sh start real NATS servers
   nats-server
+  # the Python package (client/python, docs/PYTHON.md): pybind11 and Python's headers to
+  # build it, NumPy for its arrays, pytest for its tests (tests/python)
+  pybind11-dev python3-dev python3-numpy python3-pytest
   # the browser viewer's tests drive Debian's Chromium headless (docs/WEB_VIEWER.md "Tests")
   chromium
 )

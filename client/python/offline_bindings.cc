@@ -1,0 +1,124 @@
+// Work without a server, straight on core (docs/PYTHON.md "Offline"): read
+// a mesh as core imports it, and refine it uniformly with Loop's rules to
+// control points or the limit surface (core/loop/loop_refiner.h), as
+// `tessera refine` does.
+#include <pybind11/stl.h>
+
+#include "client/python/bindings.h"
+#include "client/python/errors.h"
+#include "client/python/numpy_arrays.h"
+#include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
+#include "core/loop/loop_refiner.h"
+
+namespace tessera::python {
+
+namespace {
+
+struct ImportArgs {
+  std::optional<std::string> tags;
+  bool triangulate = false, dropUnused = false;
+  std::optional<double> creaseAngle;
+};
+
+ImportOptions importOptions(const ImportArgs& a) {
+  return {
+      .triangulate = a.triangulate, .dropUnused = a.dropUnused, .creaseAngle = a.creaseAngle.value_or(-1)};
+}
+
+// A file, or (points, faces) arrays, as core's base mesh: the same
+// validation either way (mesh_validation.h), tags applied after.
+BaseMesh baseMeshOf(const py::object& source, const py::object& faces, const ImportArgs& a) {
+  ImportedMesh imported;
+  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
+    if (!faces.is_none()) throw py::value_error("faces are given with points, not with a file");
+    const std::string path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
+    py::gil_scoped_release reading;
+    imported = valueOf(importMeshWithReport(path, importOptions(a)));
+  } else {
+    if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
+    PolygonSoup soup;
+    soup.points = pointsFrom(source);
+    addFaces(faces, soup);
+    imported = valueOf(importSoupWithReport(std::move(soup), "arrays", importOptions(a)));
+  }
+  if (a.tags) check(applyTagFile(*a.tags, imported.mesh, imported.report.renumbering));
+  return std::move(imported.mesh);
+}
+
+LoopOptions loopOptions(const std::string& creaseMethod, const std::string& boundary) {
+  LoopOptions o;
+  if (creaseMethod == "chaikin")
+    o.creaseMethod = CreaseMethod::kChaikin;
+  else if (creaseMethod != "uniform")
+    throw py::value_error("crease_method must be 'uniform' or 'chaikin'");
+  if (boundary == "edge-and-corner")
+    o.boundary = BoundaryInterpolation::kEdgeAndCorner;
+  else if (boundary != "edge-only")
+    throw py::value_error("boundary must be 'edge-only' or 'edge-and-corner'");
+  return o;
+}
+
+constexpr const char* kSourceDoc =
+    "    source: a mesh file (.obj .off .ply .stl .gltf .glb), or (N, 3) points with `faces`.\n"
+    "    faces: with points, an (M, 3) integer array (or a list of index lists).\n"
+    "    tags: a tag file ('crease I J S', 'corner I S' lines, docs/FORMATS.md).\n"
+    "    triangulate, drop_unused, crease_angle: the import options of `tessera refine`.";
+
+}  // namespace
+
+void bindOffline(py::module_& m) {
+  bindMesh(m);
+  m.def(
+      "read_mesh",
+      [](const py::object& source, const py::object& faces, std::optional<std::string> tags, bool triangulate,
+         bool dropUnused, std::optional<double> creaseAngle) {
+        const BaseMesh mesh = baseMeshOf(source, faces, {tags, triangulate, dropUnused, creaseAngle});
+        SurfaceMesh surface;
+        surface.positions = mesh.positions();
+        surface.triangles = mesh.faceVertexIndices();
+        return meshArrays(surface);  // normals None: a file's own are not read
+      },
+      py::arg("source"), py::arg("faces") = py::none(), py::kw_only(), py::arg("tags") = py::none(),
+      py::arg("triangulate") = false, py::arg("drop_unused") = false, py::arg("crease_angle") = py::none(),
+      (std::string("Reads and validates a base mesh as core imports it (no server): its\n"
+                   "positions and triangles as a tessera.Mesh. Raises tessera.Error naming the\n"
+                   "file, the line and the reason for a mesh that does not import.\n\nArgs:\n") +
+       kSourceDoc)
+          .c_str());
+  m.def(
+      "refine",
+      [](const py::object& source, const py::object& faces, int level, bool limit,
+         std::optional<std::string> tags, bool triangulate, bool dropUnused,
+         std::optional<double> creaseAngle, const std::string& creaseMethod, const std::string& boundary) {
+        const BaseMesh mesh = baseMeshOf(source, faces, {tags, triangulate, dropUnused, creaseAngle});
+        const LoopOptions options = loopOptions(creaseMethod, boundary);
+        if (level < 0) throw py::value_error("level must be 0 or more");
+        SurfaceMesh surface;
+        {
+          py::gil_scoped_release refining;
+          LoopRefiner refiner = valueOf(
+              LoopRefiner::create(mesh, options, {.levels = level, .fullTopologyInLastLevel = limit}));
+          const std::vector<Vec3> points = refiner.refinePoints(mesh.positions());
+          surface = limit ? valueOf(refiner.limitSurface(points)) : refiner.controlSurface(points);
+        }
+        return meshArrays(surface);
+      },
+      py::arg("source"), py::arg("faces") = py::none(), py::kw_only(), py::arg("level"),
+      py::arg("limit") = false, py::arg("tags") = py::none(), py::arg("triangulate") = false,
+      py::arg("drop_unused") = false, py::arg("crease_angle") = py::none(),
+      py::arg("crease_method") = "uniform", py::arg("boundary") = "edge-only",
+      (std::string("Refines a triangle mesh uniformly with Loop's rules and its sharp features\n"
+                   "(OpenSubdiv 3.5 semantics, no server), as `tessera refine` does.\n\n"
+                   "Returns a tessera.Mesh: the control points of `level` with the control mesh's\n"
+                   "area-weighted vertex normals, or with limit=True their exact limit positions\n"
+                   "and unit limit normals. The first\n"
+                   "vertices of every level are the input's, in order.\n\nArgs:\n") +
+       kSourceDoc +
+       "\n    level: how many times to refine (0: the base mesh).\n"
+       "    limit: limit positions and normals instead of control points.\n"
+       "    crease_method: 'uniform' or 'chaikin'; boundary: 'edge-only' or 'edge-and-corner'.")
+          .c_str());
+}
+
+}  // namespace tessera::python

@@ -1,0 +1,71 @@
+"""Work without a server: core's import and Loop refinement. Expected values
+are Loop's rules worked by hand (Loop, "Smooth Subdivision Surfaces Based
+on Triangles"), not computed by the code under test."""
+
+import numpy as np
+import pytest
+
+import tessera
+from conftest import SAMPLES
+
+# A regular tetrahedron's corner at the origin and its three neighbours.
+POINTS = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64)
+FACES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+
+
+def test_read_mesh_returns_the_files_vertices_and_triangles():
+    mesh = tessera.read_mesh(str(SAMPLES / "cube.obj"))
+    assert mesh.positions.shape == (8, 3)
+    assert mesh.triangles.shape == (12, 3)
+    # cube.obj's `v` lines, in order.
+    expected = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]
+    assert np.array_equal(mesh.positions, np.array(expected, dtype=np.float64))
+
+
+def test_refine_counts_and_loops_vertex_and_edge_rules():
+    level1 = tessera.refine(POINTS, FACES, level=1)
+    # V1 = V + E = 4 + 6, F1 = 4F.
+    assert level1.positions.shape == (10, 3)
+    assert level1.triangles.shape == (16, 3)
+    # Vertex rule, valence 3 (beta = 3/16): 7/16 of the vertex, 3/16 of each neighbour.
+    assert np.allclose(level1.positions[0], [3 / 16, 3 / 16, 3 / 16], atol=1e-12)
+    # Every new vertex is an edge rule 3/8 (a + b) + 1/8 (c + d): on edge 0-1
+    # (opposite 2 and 3) it is (3/8, 1/8, 1/8).
+    assert any(np.allclose(p, [3 / 8, 1 / 8, 1 / 8], atol=1e-12) for p in level1.positions[4:])
+    level2 = tessera.refine(POINTS, FACES, level=2)
+    # V2 = V1 + E1 = 10 + (2 * 6 + 3 * 4), F2 = 64.
+    assert level2.positions.shape == (34, 3)
+    assert level2.triangles.shape == (64, 3)
+
+
+def test_limit_positions_follow_loops_limit_mask():
+    limit = tessera.refine(POINTS, FACES, level=0, limit=True)
+    # Valence 3: chi = 1 / (3 / (8 beta) + n) = 1 / 5; the limit of the
+    # origin is chi times the sum of its neighbours.
+    assert np.allclose(limit.positions[0], [0.2, 0.2, 0.2], atol=1e-12)
+    assert limit.normals.shape == (4, 3)
+    assert np.allclose(np.linalg.norm(limit.normals, axis=1), 1.0)
+    # The normal at the origin points away from the other corners.
+    assert np.allclose(limit.normals[0], -np.ones(3) / np.sqrt(3), atol=1e-9)
+
+
+def test_a_file_refines_like_its_arrays():
+    from_file = tessera.refine(str(SAMPLES / "cube.obj"), level=2)
+    mesh = tessera.read_mesh(str(SAMPLES / "cube.obj"))
+    from_arrays = tessera.refine(mesh.positions, mesh.triangles, level=2)
+    assert np.array_equal(from_file.positions, from_arrays.positions)
+    assert np.array_equal(from_file.triangles, from_arrays.triangles)
+
+
+def test_a_bad_mesh_raises_naming_the_problem():
+    with pytest.raises(tessera.Error) as bad:
+        tessera.refine(POINTS, np.array([[0, 1, 9]]), level=1)
+    assert bad.value.code == "invalid mesh"
+
+
+def test_ids_round_trip_between_text_and_packed():
+    packed = tessera.vertex_id("v3:1234")
+    assert packed == (3 << 58) | 1234  # docs/PROTOCOL.md 3.1: level in the top 6 bits
+    assert tessera.format_vertex_id(packed) == "v3:1234"
+    assert tessera.id_level(packed) == 3 and tessera.id_index(packed) == 1234
+    assert tessera.edge_id("e1:5") == (1 << 58) | 5

@@ -24,7 +24,7 @@ SAMPLES = pathlib.Path(__file__).resolve().parents[2] / "deploy" / "samples"
 
 
 class Server:
-    def __init__(self, binary):
+    def __init__(self, binary, extra_args=()):
         self.root = tempfile.mkdtemp(prefix="tessera-python-tests-")
         data = os.path.join(self.root, "data")
         port_file = data + ".port"
@@ -33,7 +33,7 @@ class Server:
         with open(token_file, "w") as f:
             f.write(ADMIN_TOKEN + "\n")
         args = [binary, "--data", data, "--port", "0", "--port-file", port_file,
-                "--admin-token-file", token_file]
+                "--admin-token-file", token_file, *extra_args]
         with open(self.log_path, "ab") as log:
             self.process = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=log)
         self.port = self._wait_for_port(port_file)
@@ -75,12 +75,16 @@ class Server:
         shutil.rmtree(self.root, ignore_errors=True)
 
 
-@pytest.fixture(scope="session")
-def server():
+def server_binary():
     binary = os.environ.get("TESSERA_SERVER")
     if not binary:
         pytest.fail("TESSERA_SERVER must name the tessera-server binary (ctest sets it)")
-    s = Server(binary)
+    return binary
+
+
+@pytest.fixture(scope="session")
+def server():
+    s = Server(server_binary())
     try:
         yield s
     finally:

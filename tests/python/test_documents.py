@@ -1,5 +1,8 @@
 """Documents as wholes: create (from a file and from arrays), list, open, export."""
 
+import pathlib
+import tempfile
+
 import numpy as np
 import pytest
 
@@ -47,11 +50,12 @@ def test_a_mesh_the_server_cannot_import_is_rejected_with_its_reason(session):
     assert refused.value.message
 
 
-def test_export_returns_a_glb(session, cube, tmp_path):
-    out = tmp_path / "cube.glb"
-    version, glb = session.export_document(cube, 2, limit=True, path=str(out))
+def test_export_returns_a_glb(session, cube):
+    with tempfile.TemporaryDirectory(prefix="tessera-python-export-") as d:
+        out = pathlib.Path(d) / "cube.glb"
+        version, glb = session.export_document(cube, 2, limit=True, path=str(out))
+        assert out.read_bytes() == glb
     assert version == 1
     assert glb[:4] == b"glTF"  # the GLB magic (glTF 2.0 binary header)
     assert int.from_bytes(glb[4:8], "little") == 2  # container version 2
     assert int.from_bytes(glb[8:12], "little") == len(glb)
-    assert out.read_bytes() == glb

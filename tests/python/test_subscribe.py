@@ -88,3 +88,17 @@ def test_waiting_for_a_version_that_never_comes_times_out(session, cube):
     else:
         raise AssertionError("wait_for returned without the version")
     assert time.monotonic() - started < 5
+
+
+def test_a_view_dependent_subscription_completes_its_view(session, cube):
+    # The unit cube seen from in front of its z = 1 face.
+    ack = session.subscribe_view(cube, eye=(0.5, 0.5, 3.0), forward=(0.0, 0.0, -1.0), width=640, height=480)
+    assert ack.document_id == cube
+    deadline = time.monotonic() + 30
+    view = session.view(cube)
+    while not view.view_complete and time.monotonic() < deadline:
+        session.receive(timeout=0.5)
+    assert view.view_complete
+    assert view.triangles().shape[0] > 0
+    positions = view.positions()
+    assert positions.min() > -1e-9 and positions.max() < 1 + 1e-9

@@ -59,6 +59,13 @@ def test_a_moved_vertex_arrives_in_a_delta(session, cube):
         assert np.allclose(positions[row], target, atol=QUANTIZATION)
     view.verify()
 
+    # An id picked from the arrays (a NumPy uint64) names the vertex in the next edit.
+    picked = ids[rows[0]]
+    assert isinstance(picked, np.uint64)
+    again = session.move_vertex(cube, picked, (0.1, 1.25, -0.1))
+    assert again.version == moved.version + 1
+    assert session.offset_vertices(cube, ids[rows[:1]], (0.0, 0.0, 0.01)).version == moved.version + 2
+
 
 def test_presence_lists_both_participants(server, session, cube):
     with tessera.Session.connect("127.0.0.1", server.port, ADMIN_TOKEN, name="bob", timeout=20) as bob:

@@ -1,6 +1,6 @@
-// The parts of the _tessera extension module, one function per file, each
-// adding its classes and functions to the module (module.cc calls them in
-// order: a class is bound before the functions that return it).
+// The parts of the _tessera extension module: each function adds one
+// purpose's classes and functions (module.cc calls them in order: a class
+// is bound before the functions that return it).
 #pragma once
 
 #include <pybind11/pybind11.h>

@@ -1,6 +1,7 @@
 // tessera.Session's commands on documents as wholes (docs/PROTOCOL.md §5,
-// §13.2): list, create from a file or from arrays, open, close, delete,
-// export, grant.
+// §13.2, §17): list, create from a file or from arrays, open, close,
+// delete, export, the control cage, grant.
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -272,6 +273,27 @@ void bindDocumentCommands(SessionClass& session) {
       "    draco: Draco-compress the mesh (KHR_draco_mesh_compression).\n"
       "    path: also write the GLB to this file.\n\n"
       "Returns (version, glb): the version exported and the GLB's bytes.");
+
+  session.def(
+      "cage",
+      [](RemoteSession& s, uint64_t document, uint32_t level, std::optional<double> timeout) {
+        wire::ClientMessage m;
+        m.mutable_get_cage()->set_document_id(document);
+        m.mutable_get_cage()->set_level(level);
+        const wire::ServerMessage reply = s.call(m, timeout);
+        const wire::Cage& cage = reply.cage();
+        py::array_t<uint32_t> sizes(cage.face_sizes_size());
+        std::copy(cage.face_sizes().begin(), cage.face_sizes().end(), sizes.mutable_data());
+        py::array_t<uint64_t> vertices(cage.vertices_size());
+        std::copy(cage.vertices().begin(), cage.vertices().end(), vertices.mutable_data());
+        return py::make_tuple(cage.version(), sizes, vertices);
+      },
+      py::arg("document_id"), py::arg("level") = 0, py::arg("timeout") = py::none(),
+      "The polygons of one level of the document's control mesh (docs/PROTOCOL.md\n"
+      "section 17), what a viewer draws as the control cage.\n\n"
+      "Returns (version, face_sizes, vertex_ids): face k has face_sizes[k] corners,\n"
+      "following those of face k - 1 in vertex_ids (uint64 packed ids at `level`),\n"
+      "counter-clockwise.");
 
   session.def(
       "grant_token",

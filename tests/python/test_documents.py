@@ -59,3 +59,12 @@ def test_export_returns_a_glb(session, cube):
     assert glb[:4] == b"glTF"  # the GLB magic (glTF 2.0 binary header)
     assert int.from_bytes(glb[4:8], "little") == 2  # container version 2
     assert int.from_bytes(glb[8:12], "little") == len(glb)
+
+
+def test_the_base_cage_is_the_files_triangles(session, cube):
+    version, sizes, vertices = session.cage(cube, 0)
+    assert version == 1
+    assert sizes.tolist() == [3] * 12
+    # cube.obj's first two faces, `f 1 3 2` and `f 1 4 3`, as 0-based level-0 ids.
+    assert vertices[:6].tolist() == [tessera.vertex_id(0, i) for i in (0, 2, 1, 0, 3, 2)]
+    assert vertices.dtype == np.uint64

@@ -193,6 +193,9 @@ class Session:
         path: Optional[str] = None,
         timeout: Optional[float] = None,
     ) -> Tuple[int, bytes]: ...
+    def cage(
+        self, document_id: int, level: int = 0, timeout: Optional[float] = None
+    ) -> Tuple[int, npt.NDArray[np.uint32], npt.NDArray[np.uint64]]: ...
     def grant_token(
         self, token: str, role: str, document_id: int = 0, timeout: Optional[float] = None
     ) -> Ack: ...

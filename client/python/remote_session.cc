@@ -26,43 +26,49 @@ std::shared_ptr<RemoteSession> RemoteSession::connect(const client::SessionOptio
       new RemoteSession(valueOf(std::move(session)), options.timeoutSeconds));
 }
 
-client::Session& RemoteSession::session() const {
-  if (session_ == nullptr) throw Failure(invalidArgument("the session is closed"));
-  return *session_;
+template <typename Io>
+void RemoteSession::withSession(Io io) {
+  bool open = false;
+  {
+    py::gil_scoped_release waiting;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (session_ != nullptr) {
+      open = true;
+      io(*session_);
+    }
+  }
+  if (!open) throw Failure(invalidArgument("the session is closed"));
 }
 
 wire::ServerMessage RemoteSession::call(wire::ClientMessage message, std::optional<double> timeoutSeconds) {
-  client::Session& s = session();
   Expected<wire::ServerMessage> reply = ioError("no reply");
-  {
-    py::gil_scoped_release waiting;
-    reply = s.call(std::move(message), timeoutSeconds.value_or(timeout_));
-  }
+  const double timeout = timeoutSeconds.value_or(timeout_);
+  withSession([&](client::Session& s) { reply = s.call(std::move(message), timeout); });
   return replyOf(std::move(reply));
 }
 
 void RemoteSession::send(wire::ClientMessage message) {
-  client::Session& s = session();
   Expected<uint64_t> sent = ioError("not sent");
-  {
-    py::gil_scoped_release waiting;
-    sent = s.send(std::move(message));
-  }
+  withSession([&](client::Session& s) { sent = s.send(std::move(message)); });
   check(sent.status());
 }
 
 std::optional<wire::ServerMessage> RemoteSession::receive(double timeoutSeconds) {
-  client::Session& s = session();
   Expected<wire::ServerMessage> next = ioError("nothing received");
-  {
-    py::gil_scoped_release waiting;
+  withSession([&](client::Session& s) {
     next = s.receive(timeoutSeconds);
-  }
+    // Applied before another thread may read the next message, so that
+    // the views see the messages in the order they came; the mutex is
+    // always taken before the GIL, never the other way round.
+    if (next.isOk()) {
+      py::gil_scoped_acquire held;
+      apply(*next);
+    }
+  });
   if (!next.isOk() && client::isReceiveTimeout(next.status())) return std::nullopt;
   check(next.status());
   if (next->has_error() && next->error().fatal())
     throw ServerFailure(next->error().code(), next->error().message(), true);
-  apply(*next);
   return std::move(next).value();
 }
 
@@ -92,9 +98,13 @@ std::shared_ptr<client::DocumentView> RemoteSession::view(uint64_t document) con
 }
 
 void RemoteSession::close() {
-  if (session_ == nullptr) return;
-  session_->close();
-  session_.reset();
+  {
+    py::gil_scoped_release waiting;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (session_ != nullptr) session_->close();
+    session_.reset();
+  }
+  closed_ = true;
   views_.clear();
 }
 

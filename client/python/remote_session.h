@@ -1,13 +1,16 @@
 // What a tessera.Session holds (docs/PYTHON.md "Sessions"): one
 // client::Session, the views of the documents it subscribed to and their
 // presence, kept current from every message it reads. Each blocking call
-// releases the GIL while it waits; one Session is used by one thread at a
-// time, as client::Session is.
+// releases the GIL while it waits, and holds a mutex instead: calls from
+// several Python threads take turns on the one connection, as
+// client::Session requires.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include "client/lib/document_view.h"
@@ -25,8 +28,8 @@ class RemoteSession {
   // The connection's timeout (SessionOptions::timeoutSeconds): the wait
   // for any reply when a call gives none.
   double timeout() const { return timeout_; }
-  uint64_t sessionId() const { return session().sessionId(); }
-  wire::Role role() const { return session().role(); }
+  uint64_t sessionId() const { return sessionId_; }
+  wire::Role role() const { return role_; }
 
   // Sends a command and returns its reply (Ack, DocumentList, ...); throws
   // Rejection, ServerFailure or Failure (replyOf). Messages that arrive
@@ -52,16 +55,26 @@ class RemoteSession {
   const PresenceRoster& presence() const { return roster_; }
 
   void close();
-  bool closed() const { return session_ == nullptr; }
+  bool closed() const { return closed_; }
 
  private:
   RemoteSession(std::unique_ptr<client::Session> session, double timeoutSeconds)
-      : session_(std::move(session)), timeout_(timeoutSeconds) {}
-  client::Session& session() const;
+      : session_(std::move(session)),
+        timeout_(timeoutSeconds),
+        sessionId_(session_->sessionId()),
+        role_(session_->role()) {}
+  // Runs `io` on the session with the GIL released and the mutex held;
+  // throws Failure when the session is closed.
+  template <typename Io>
+  void withSession(Io io);
   void apply(const wire::ServerMessage& message);
 
+  std::mutex mutex_;  // guards session_
   std::unique_ptr<client::Session> session_;
+  std::atomic<bool> closed_ = false;
   double timeout_;
+  uint64_t sessionId_;
+  wire::Role role_;
   std::map<uint64_t, std::shared_ptr<client::DocumentView>> views_;
   PresenceRoster roster_;
 };

@@ -56,8 +56,8 @@ SessionClass bindSession(py::module_& m) {
                        "an export) or raises tessera.Rejected with the server's reason.\n\n"
                        "Updates (snapshots, deltas, presence) are read by receive() and wait_for(),\n"
                        "which apply them to the session's views (Session.view) and presence\n"
-                       "(Session.participants). Use one Session from one thread at a time; every\n"
-                       "blocking call releases the GIL while it waits.\n\n"
+                       "(Session.participants). Every blocking call releases the GIL while it\n"
+                       "waits; calls from several threads take turns on the one connection.\n\n"
                        "    with tessera.Session.connect('127.0.0.1', 7878, token) as s:\n"
                        "        s.open_document(doc)\n"
                        "        ack = s.move_vertex(doc, 'v0:3', (0.0, 0.0, 1.5))");

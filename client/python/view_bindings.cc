@@ -4,6 +4,7 @@
 // arrays.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 
 #include "client/lib/view_wire.h"
@@ -255,7 +256,9 @@ void bindSubscriptions(SessionClass& session) {
                              " within " + std::to_string(timeout) + " s (the view holds version " +
                              std::to_string(v->version()) + ")"));
           }
-          s.receive(left);
+          // In slices, so that Ctrl-C is seen while waiting.
+          s.receive(std::min(left, 0.25));
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
         }
         return v;
       },

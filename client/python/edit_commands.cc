@@ -104,6 +104,32 @@ void bindEditCommands(SessionClass& session) {
           "edge meets it); 10 or more (or math.inf) infinitely sharp.")
           .c_str());
   session.def(
+      "set_vertex_type",
+      [](RemoteSession& s, uint64_t document, const py::object& vertex, const std::string& type, uint32_t key,
+         std::optional<double> timeout) {
+        // No edit-script form: the message itself (tessera.proto SetVertexType).
+        wire::ClientMessage m;
+        auto* set = m.mutable_set_vertex_type();
+        set->set_document_id(document);
+        set->set_vertex_id(vertexIdOf(vertex).packed());
+        set->set_key(key);
+        if (type == "smooth")
+          set->set_type(wire::VERTEX_TYPE_SMOOTH);
+        else if (type == "cusp")
+          set->set_type(wire::VERTEX_TYPE_CUSP);
+        else if (type == "corner")
+          set->set_type(wire::VERTEX_TYPE_CORNER);
+        else
+          throw py::value_error("type must be 'smooth', 'cusp' or 'corner', not '" + type + "'");
+        return ackOf(s.call(m, timeout));
+      },
+      py::arg("document_id"), py::arg("vertex_id"), py::arg("type"), py::kw_only(), py::arg("key") = 0,
+      py::arg("timeout") = py::none(),
+      doc("Sets a vertex's type by name: 'smooth' (sharpness 0), 'cusp' (infinitely sharp\n"
+          "where no sharp edge meets it) or 'corner' (infinitely sharp where sharp edges\n"
+          "meet it).")
+          .c_str());
+  session.def(
       "set_interpolation",
       [](RemoteSession& s, uint64_t document, const py::object& vertex, bool interpolating, double tension,
          std::optional<std::array<double, 3>> tangent, uint32_t key, std::optional<double> timeout) {

@@ -34,6 +34,10 @@ def test_sharpness_commands(session, cube):
     crease = session.set_edge_sharpness(cube, "e0:0", float("inf"))
     corner = session.set_vertex_sharpness(cube, "v0:0", 2.0)
     assert corner.version == crease.version + 1
+    typed = session.set_vertex_type(cube, "v0:6", "cusp")
+    assert typed.version == corner.version + 1
+    with pytest.raises(ValueError):
+        session.set_vertex_type(cube, "v0:6", "pointy")
 
 
 def test_an_unknown_vertex_is_rejected_with_reason_and_message(session, cube):

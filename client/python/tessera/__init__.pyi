@@ -216,6 +216,10 @@ class Session:
         self, document_id: int, vertex_id: ElementId, sharpness: float, *, key: int = 0,
         timeout: Optional[float] = None
     ) -> Ack: ...
+    def set_vertex_type(
+        self, document_id: int, vertex_id: ElementId, type: str, *, key: int = 0,
+        timeout: Optional[float] = None
+    ) -> Ack: ...
     def set_interpolation(
         self, document_id: int, vertex_id: ElementId, interpolating: bool = True, *,
         tension: float = 1.0, tangent: Optional[Vec3] = None, key: int = 0,

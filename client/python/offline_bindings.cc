@@ -112,8 +112,8 @@ void bindOffline(py::module_& m) {
                    "(OpenSubdiv 3.5 semantics, no server), as `tessera refine` does.\n\n"
                    "Returns a tessera.Mesh: the control points of `level` with the control mesh's\n"
                    "area-weighted vertex normals, or with limit=True their exact limit positions\n"
-                   "and unit limit normals. The first\n"
-                   "vertices of every level are the input's, in order.\n\nArgs:\n") +
+                   "and unit limit normals. The first vertices of every level are the input's, "
+                   "in order.\n\nArgs:\n") +
        kSourceDoc +
        "\n    level: how many times to refine (0: the base mesh).\n"
        "    limit: limit positions and normals instead of control points.\n"

@@ -64,7 +64,13 @@ void addFaces(const py::handle& faces, PolygonSoup& soup) {
     }
     return;
   }
-  for (const py::handle& polygon : py::iter(faces)) soup.addFace(polygon.cast<std::vector<int>>());
+  // Element by element: this file does without pybind11/stl.h's casters,
+  // whose absence made a list of lists fail to cast at all.
+  for (const py::handle& polygon : py::iter(faces)) {
+    std::vector<int> face;
+    for (const py::handle& corner : py::iter(polygon)) face.push_back(corner.cast<int>());
+    soup.addFace(face);
+  }
 }
 
 static py::array_t<int32_t> intArray(const std::vector<int>& values) {

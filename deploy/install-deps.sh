@@ -49,6 +49,9 @@ packages=(
   # the Python package (client/python, docs/PYTHON.md): pybind11 and Python's headers to
   # build it, NumPy for its arrays, pytest for its tests (tests/python)
   pybind11-dev python3-dev python3-numpy python3-pytest
+  # the Blender add-on (client/blender, docs/BLENDER.md) and its tests run Debian's Blender,
+  # whose Python is Debian's python3 (the tessera package's)
+  blender
   # the browser viewer's tests drive Debian's Chromium headless (docs/WEB_VIEWER.md "Tests")
   chromium
 )

@@ -63,6 +63,7 @@ Expected<ImportedMesh> importRead(PolygonSoup soup, const std::string& name, con
   }
   report.boundary = soup.boundary;
   report.creaseMethod = soup.creaseMethod;
+  report.scheme = soup.scheme;
   return ImportedMesh{std::move(mesh), std::move(report)};
 }
 
@@ -79,6 +80,8 @@ Expected<ImportedMesh> importText(std::string_view text, const std::string& ext,
     TESSERA_RETURN_IF_ERROR(io_detail::readOff(text, name, soup));
   } else if (ext == ".ply") {
     TESSERA_RETURN_IF_ERROR(io_detail::readPly(text, name, soup));
+  } else if (ext == ".usda") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readUsda(text, name, soup, {.usdPrim = options.usdPrim}));
   } else {
     TESSERA_RETURN_IF_ERROR(io_detail::readStl(text, name, soup));
   }
@@ -105,7 +108,7 @@ std::string describeImport(const ImportReport& report, const ImportOptions& opti
 }
 
 const std::vector<std::string>& supportedImportExtensions() {
-  static const std::vector<std::string> extensions = {".obj", ".off", ".ply", ".stl", ".gltf", ".glb"};
+  static const std::vector<std::string> extensions = {".obj", ".off", ".ply", ".stl", ".gltf", ".glb", ".usda"};
   return extensions;
 }
 
@@ -128,7 +131,7 @@ Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, con
 
 bool readsPolygonSoup(const std::string& extension) {
   const std::string ext = dottedLowerCase(extension);
-  return ext == ".obj" || ext == ".off" || ext == ".ply";
+  return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".usda";
 }
 
 Expected<ImportedMesh> importSoupWithReport(PolygonSoup soup, const std::string& displayName,
@@ -137,9 +140,9 @@ Expected<ImportedMesh> importSoupWithReport(PolygonSoup soup, const std::string&
 }
 
 Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
-                                        const std::string& displayName) {
+                                        const std::string& displayName, const std::string& usdPrim) {
   const std::string ext = dottedLowerCase(extension);
-  const io_detail::TextReadOptions checked{.checkIndices = true};
+  const io_detail::TextReadOptions checked{.checkIndices = true, .usdPrim = usdPrim};
   PolygonSoup soup;
   if (ext == ".obj") {
     TESSERA_RETURN_IF_ERROR(io_detail::readObj(bytes, displayName, soup, checked));
@@ -147,8 +150,11 @@ Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::strin
     TESSERA_RETURN_IF_ERROR(io_detail::readOff(bytes, displayName, soup, checked));
   } else if (ext == ".ply") {
     TESSERA_RETURN_IF_ERROR(io_detail::readPly(bytes, displayName, soup, checked));
+  } else if (ext == ".usda") {
+    TESSERA_RETURN_IF_ERROR(io_detail::readUsda(bytes, displayName, soup, checked));
   } else {
-    return unsupported(displayName + ": polygons are read from .obj, .off and .ply files, not '" + ext + "'");
+    return unsupported(displayName + ": polygons are read from .obj, .off, .ply and .usda files, not '" + ext +
+                       "'");
   }
   if (soup.points.empty()) return parseError(displayName + ": no vertices");
   if (soup.numFaces() == 0) return parseError(displayName + ": no faces");

@@ -1,4 +1,4 @@
-// Mesh import: OBJ, OFF, PLY and STL through Tessera's own readers
+// Mesh import: OBJ, OFF, PLY, STL and USDA (usda_parser.h) through Tessera's own readers
 // (text_mesh_readers.h: full double precision, strict, with line numbers),
 // glTF/GLB through tinygltf (Draco-compressed primitives through Draco). The
 // reader chosen follows the file extension; every error names the file.
@@ -25,6 +25,9 @@ struct ImportOptions {
   // Degrees, 0 to 180; negative: off. Edges whose dihedral angle exceeds it
   // become infinitely sharp (crease_angle.h).
   double creaseAngle = -1;
+  // USD: the Mesh prim to read, by path or name; empty: the layer's only
+  // Mesh (docs/FORMATS.md "USD").
+  std::string usdPrim;
 };
 
 // What the import did beyond reading, for the caller to report and to apply
@@ -36,6 +39,8 @@ struct ImportReport {
   // The subdivision options the file states (OBJ's `t interpolateboundary`,
   // `t creasemethod`; polygon_soup.h), empty where it does not.
   std::string boundary, creaseMethod;
+  // The scheme the file states (USD's subdivisionScheme; polygon_soup.h).
+  std::string scheme;
 };
 
 struct ImportedMesh {
@@ -71,10 +76,11 @@ Expected<ImportedMesh> importMeshFromBytesWithReport(std::string_view bytes, con
 // its line and a file without vertices or faces is refused. `extension`
 // chooses the reader (".obj", "off" or ".ply", any case); other formats are
 // unsupported here.
+// `usdPrim` names the Mesh prim of a .usda file (ImportOptions::usdPrim).
 Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::string& extension,
-                                        const std::string& displayName);
+                                        const std::string& displayName, const std::string& usdPrim = {});
 
-// Whether importPolygonSoup reads `extension` (".obj", "off", ".PLY", ...).
+// Whether importPolygonSoup reads `extension` (".obj", "off", ".PLY", ".usda", ...).
 bool readsPolygonSoup(const std::string& extension);
 
 // The import's steps after reading (--drop-unused, validation, the crease

@@ -30,6 +30,9 @@ struct TextReadOptions {
   // buildBaseMesh, which names the whole face; the polygon import
   // (importPolygonSoup) uses the soup as the file states it.
   bool checkIndices = false;
+  // USD: the Mesh prim to read, by its path ("/World/Cube") or its name
+  // ("Cube"); empty: the layer's only Mesh.
+  std::string usdPrim;
 };
 
 // OBJ: `v x y z [w | r g b]` and `f` with v, v/vt, v//vn or v/vt/vn references
@@ -56,5 +59,12 @@ Status readPly(std::string_view text, const std::string& src, PolygonSoup& soup,
 // corners with equal positions become one vertex, numbered by first
 // appearance; a facet whose corners coincide is an error naming it.
 Status readStl(std::string_view text, const std::string& src, PolygonSoup& soup);
+
+// USDA: one Mesh prim of a text USD layer (usda_parser.h: the subset read
+// and what is refused), its points, faces, creases, corners, subdivision
+// scheme, boundary rule and crease method (docs/FORMATS.md "USD"). Every
+// face index is checked against the points.
+Status readUsda(std::string_view text, const std::string& src, PolygonSoup& soup,
+                const TextReadOptions& options = {});
 
 }  // namespace tessera::io_detail

@@ -43,6 +43,10 @@ struct PolygonSoup {
   // empty when the file does not say).
   std::vector<SoupTag> tags;
   std::string boundary, creaseMethod;
+  // The subdivision scheme the file states (USD's `subdivisionScheme`):
+  // "loop", "catmull-clark", "bilinear", or "none" for a polygon mesh that
+  // is not to be subdivided; empty when the format cannot say (OBJ, OFF, PLY).
+  std::string scheme;
 
   int numFaces() const { return static_cast<int>(faceOffsets.size()) - 1; }
   void addFace(const std::vector<int>& face) {

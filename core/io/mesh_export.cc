@@ -15,11 +15,12 @@
 #include "core/io/export_common.h"
 #include "core/io/gltf_export.h"
 #include "core/io/mesh_writers.h"
+#include "core/io/usda_writer.h"
 
 namespace tessera {
 namespace {
 
-enum class ExportFormat { kObj, kOff, kPly, kStl, kGlb };
+enum class ExportFormat { kObj, kOff, kPly, kStl, kGlb, kUsda };
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -34,6 +35,7 @@ Expected<ExportFormat> formatFor(const std::string& path) {
   if (ext == ".ply") return ExportFormat::kPly;
   if (ext == ".stl") return ExportFormat::kStl;
   if (ext == ".glb") return ExportFormat::kGlb;
+  if (ext == ".usda") return ExportFormat::kUsda;
   std::string supported;
   for (const std::string& s : supportedExportExtensions()) supported += (supported.empty() ? "" : ", ") + s;
   return unsupported("cannot export to '" + (ext.empty() ? std::string("(no extension)") : ext) +
@@ -70,11 +72,12 @@ Status writeFileBytes(const std::string& path, const char* data, std::size_t siz
 bool exportKeepsPolygons(const std::string& path) {
   const Expected<ExportFormat> format = formatFor(path);
   return format.isOk() &&
-         (*format == ExportFormat::kObj || *format == ExportFormat::kOff || *format == ExportFormat::kPly);
+         (*format == ExportFormat::kObj || *format == ExportFormat::kOff || *format == ExportFormat::kPly ||
+          *format == ExportFormat::kUsda);
 }
 
 const std::vector<std::string>& supportedExportExtensions() {
-  static const std::vector<std::string> kExtensions = {".obj", ".off", ".ply", ".stl", ".glb"};
+  static const std::vector<std::string> kExtensions = {".obj", ".off", ".ply", ".stl", ".glb", ".usda"};
   return kExtensions;
 }
 
@@ -164,6 +167,9 @@ Status exportMesh(const SurfaceMesh& surface, const std::string& path, const Exp
       break;
     case ExportFormat::kGlb:
       io_detail::writePlainGlb(surface, out);
+      break;
+    case ExportFormat::kUsda:
+      io_detail::writeUsda(surface, out);
       break;
   }
   return out.close();

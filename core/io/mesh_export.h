@@ -1,4 +1,4 @@
-// Export of a refined or limit surface to OBJ, OFF, PLY, STL or glTF 2.0 GLB,
+// Export of a refined or limit surface to OBJ, OFF, PLY, STL, glTF 2.0 GLB or USDA,
 // optionally Draco-compressed via KHR_draco_mesh_compression (GLB only).
 // Every format is streamed to its file (mesh_writers.h): memory stays that
 // of the surface, whatever the file's size.
@@ -21,6 +21,8 @@
 //         16-bit indices when every index fits, 32-bit otherwise. With
 //         `draco`, the primitive is stored only in Draco form, so
 //         KHR_draco_mesh_compression is listed in extensionsRequired.
+//   .usda USD's text format, one Mesh prim: its polygons, and a cage's
+//         scheme and tags or a limit surface's vertex normals (usda_writer.h).
 //
 // Errors, all naming the file and the offending element:
 //   unsupported      the extension is none of the above, or `draco` is set

@@ -41,6 +41,10 @@ struct SurfaceMesh {
   std::vector<Crease> creases;
   std::vector<Corner> corners;
   std::string boundary, creaseMethod;
+  // The cage's subdivision scheme ("loop", "catmull-clark", "bilinear"), for
+  // the formats that state it (USD's subdivisionScheme); empty for a
+  // surface that is no cage.
+  std::string scheme;
 
   size_t numPolygons() const { return polygonOffsets.empty() ? 0 : polygonOffsets.size() - 1; }
   // Appends a polygon and its fan of triangles.

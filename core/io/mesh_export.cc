@@ -71,9 +71,13 @@ Status writeFileBytes(const std::string& path, const char* data, std::size_t siz
 
 bool exportKeepsPolygons(const std::string& path) {
   const Expected<ExportFormat> format = formatFor(path);
-  return format.isOk() &&
-         (*format == ExportFormat::kObj || *format == ExportFormat::kOff || *format == ExportFormat::kPly ||
-          *format == ExportFormat::kUsda);
+  return format.isOk() && (*format == ExportFormat::kObj || *format == ExportFormat::kOff ||
+                           *format == ExportFormat::kPly || *format == ExportFormat::kUsda);
+}
+
+bool exportStatesScheme(const std::string& path) {
+  const Expected<ExportFormat> format = formatFor(path);
+  return format.isOk() && *format == ExportFormat::kUsda;
 }
 
 const std::vector<std::string>& supportedExportExtensions() {

@@ -67,6 +67,10 @@ Status validateSurfaceMesh(const SurfaceMesh& surface);
 // OFF, PLY) rather than its triangles.
 bool exportKeepsPolygons(const std::string& path);
 
+// Whether the format of `path` states a cage's subdivision scheme and tags
+// beside its polygons (USD's subdivisionScheme); OBJ's `t` lines state tags only.
+bool exportStatesScheme(const std::string& path);
+
 // Extensions exportMesh() accepts, lower case with the dot: ".obj", ...
 const std::vector<std::string>& supportedExportExtensions();
 

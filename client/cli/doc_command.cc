@@ -12,6 +12,7 @@
 #include "client/cli/doc_view.h"
 #include "client/cli/human_format.h"
 #include "client/cli/mesh_loading.h"
+#include "core/document/document_cage.h"
 #include "core/document/document_file.h"
 #include "core/io/mesh_export.h"
 #include "core/schemes/polygon_reader.h"
@@ -85,7 +86,16 @@ int runNewLoop(const NewArgs& args, Expected<BaseMesh> mesh, const ImportReport&
   return reportNew(args, *doc);
 }
 
-int runNew(const NewArgs& args) {
+int runNew(const NewArgs& given) {
+  NewArgs args = given;
+  // A .usda file states its scheme (subdivisionScheme; USD's fallback is
+  // catmullClark): it chooses where --scheme does not.
+  auto stated = statedSchemeOf(args.mesh);
+  if (!stated.isOk()) return fail("doc new", stated.status());
+  if (Status s = withFileSubdivisionScheme(args.scheme, !given.scheme.empty(), *stated,
+                                           {"loop", "catmull-clark"}, args.mesh.input);
+      !s.isOk())
+    return usage("doc new", s.message());
   if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
     return usage("doc new", same.message());
   }
@@ -96,14 +106,14 @@ int runNew(const NewArgs& args) {
   const bool catmark = args.scheme == "catmull-clark";
   const std::string extension = std::filesystem::path(args.mesh.input).extension().string();
   if (catmark && !readsPolygonSoup(extension)) {
-    auto polygons = schemes::importPolygonMesh(args.mesh.input, args.mesh.tags);
+    auto polygons = schemes::importPolygonMesh(args.mesh.input, args.mesh.tags, args.mesh.usdPrim);
     if (!polygons.isOk()) return fail("doc new", polygons.status());
     return runNewCatmark(args, std::move(*polygons));
   }
   if (catmark || (args.scheme.empty() && !args.mesh.triangulate && readsPolygonSoup(extension))) {
     auto text = readFile(args.mesh.input);
     if (!text.isOk()) return fail("doc new", text.status());
-    auto soup = importPolygonSoup(*text, extension, args.mesh.input);
+    auto soup = importPolygonSoup(*text, extension, args.mesh.input, args.mesh.usdPrim);
     if (!soup.isOk()) return fail("doc new", soup.status());
     const int others = countFacesNotTriangles(soup->faceOffsets);
     if (catmark || others > 0) {
@@ -203,7 +213,11 @@ int runExport(const ExportArgs& args) {
   if (args.level < 0) return usage("doc export", "--level N is required (or --adaptive)");
   auto doc = loadDocument(args.document);
   if (!doc.isOk()) return fail("doc export", doc.status());
-  auto surface = doc->surface(args.level, args.limit ? SurfaceKind::kLimit : SurfaceKind::kControl);
+  // To USD, the control points are the cage they are: the level's tags and
+  // the document's scheme with them (core/document/document_cage.h).
+  auto surface = !args.limit && exportStatesScheme(args.output)
+                     ? documentCage(*doc, args.level)
+                     : doc->surface(args.level, args.limit ? SurfaceKind::kLimit : SurfaceKind::kControl);
   if (!surface.isOk()) return fail("doc export", surface.status().withContext(args.document));
   ExportOptions exportOptions;
   exportOptions.draco = args.draco;

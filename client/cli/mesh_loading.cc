@@ -1,15 +1,19 @@
 #include "client/cli/mesh_loading.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "client/cli/command_line.h"
 #include "core/io/mesh_import.h"
 #include "core/io/tag_file.h"
+#include "core/util/file_io.h"
 
 namespace tessera::cli {
 
 void addMeshInputOptions(CLI::App& app, MeshInputArgs& args) {
-  app.add_option("IN", args.input, "the base mesh: .obj .off .ply .stl .gltf .glb (Draco-compressed GLB too)")
+  app.add_option("IN", args.input,
+                 "the base mesh: .obj .off .ply .stl .gltf .glb (Draco-compressed GLB too) .usda")
       ->required();
   app.add_option("--tags", args.tags, "feature tags: 'crease I J S' and 'corner I S' lines (docs/FORMATS.md)")
       ->type_name("FILE");
@@ -21,6 +25,9 @@ void addMeshInputOptions(CLI::App& app, MeshInputArgs& args) {
                  "make edges whose dihedral angle exceeds DEG degrees infinitely sharp (0 to 180)")
       ->check(degrees())
       ->type_name("DEG");
+  app.add_option("--usd-prim", args.usdPrim,
+                 ".usda: the Mesh prim to read, by path (/World/Cube) or name, when the layer has several")
+      ->type_name("PATH");
   // The command as people type it ("doc new"), for notes on stderr.
   const CLI::App* parent = app.get_parent();
   args.command =
@@ -71,6 +78,7 @@ ImportOptions importOptions(const MeshInputArgs& args) {
   options.triangulate = args.triangulate;
   options.dropUnused = args.dropUnused;
   options.creaseAngle = args.creaseAngle;
+  options.usdPrim = args.usdPrim;
   return options;
 }
 
@@ -86,8 +94,33 @@ Status withFileScheme(SchemeArgs& args, const std::string& boundary, const std::
     return invalidArgument(std::string(option) + " " + given + ": " + file + " says " + stated + " (" + tag +
                            "); give the same, or none");
   };
-  TESSERA_RETURN_IF_ERROR(adopt(args.boundary, boundary, "--boundary", "t interpolateboundary"));
-  return adopt(args.creaseMethod, creaseMethod, "--crease-method", "t creasemethod");
+  const bool usd = file.ends_with(".usda") || file.ends_with(".USDA");
+  TESSERA_RETURN_IF_ERROR(
+      adopt(args.boundary, boundary, "--boundary", usd ? "interpolateBoundary" : "t interpolateboundary"));
+  return adopt(args.creaseMethod, creaseMethod, "--crease-method",
+               usd ? "tessera:creaseMethod" : "t creasemethod");
+}
+
+Status withFileSubdivisionScheme(std::string& scheme, bool given, const std::string& stated,
+                                 const std::vector<std::string>& accepted, const std::string& file) {
+  if (stated.empty() || stated == "none") return Status::ok();
+  if (given) {
+    if (scheme == stated) return Status::ok();
+    return invalidArgument("--scheme " + scheme + ": " + file + " says " + stated +
+                           " (subdivisionScheme); give the same, or none");
+  }
+  if (std::find(accepted.begin(), accepted.end(), stated) == accepted.end())
+    return unsupported(file + ": subdivisionScheme " + stated + " is not available here");
+  scheme = stated;
+  return Status::ok();
+}
+
+Expected<std::string> statedSchemeOf(const MeshInputArgs& args) {
+  const std::string ext = std::filesystem::path(args.input).extension().string();
+  if (ext != ".usda" && ext != ".USDA") return std::string();
+  TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(args.input));
+  TESSERA_ASSIGN_OR_RETURN(const PolygonSoup soup, importPolygonSoup(text, ext, args.input, args.usdPrim));
+  return soup.scheme;
 }
 
 namespace {

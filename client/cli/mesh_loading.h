@@ -22,6 +22,7 @@ struct MeshInputArgs {
   bool triangulate = false;
   bool dropUnused = false;
   double creaseAngle = -1;  // degrees; negative: not given
+  std::string usdPrim;      // .usda: the Mesh prim, by path or name; empty: the only one
   std::string command;      // "refine", "doc new": names the command in notes
 };
 
@@ -35,7 +36,8 @@ struct DocumentArgs {
   int maxLevel = -1;  // -1: not given
 };
 
-// IN (required), --tags FILE, --triangulate, --drop-unused, --crease-angle DEG.
+// IN (required), --tags FILE, --triangulate, --drop-unused, --crease-angle DEG,
+// --usd-prim PATH.
 void addMeshInputOptions(CLI::App& app, MeshInputArgs& args);
 // Of the import options, those given on `app`'s command line that a
 // polygon reader, which reads a file's polygons as they are, does not apply
@@ -70,5 +72,17 @@ Expected<BaseMesh> loadMeshFromSoup(const MeshInputArgs& args, PolygonSoup soup,
 // that says otherwise is refused, naming both (`file` names the mesh).
 Status withFileScheme(SchemeArgs& args, const std::string& boundary, const std::string& creaseMethod,
                       const std::string& file);
+
+// The subdivision scheme a mesh file states (USD's subdivisionScheme, read
+// into PolygonSoup::scheme) where the command line gives none (`given`
+// false); a command line that says otherwise is refused, naming both.
+// "none" and an empty statement leave `scheme` as it is; `accepted` lists
+// the schemes the command can take from a file.
+Status withFileSubdivisionScheme(std::string& scheme, bool given, const std::string& stated,
+                                 const std::vector<std::string>& accepted, const std::string& file);
+
+// The scheme a .usda file's chosen Mesh prim states (empty for other
+// formats, which cannot say), read ahead of the command's own import.
+Expected<std::string> statedSchemeOf(const MeshInputArgs& args);
 
 }  // namespace tessera::cli

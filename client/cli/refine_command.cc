@@ -10,6 +10,7 @@
 #include "core/io/mesh_export.h"
 #include "core/loop/loop_refiner.h"
 #include "core/schemes/scheme.h"
+#include "core/topology/cage_tags.h"
 
 namespace tessera::cli {
 
@@ -23,6 +24,7 @@ struct RefineArgs {
   bool draco = false;
   std::string output;
   std::string schemeName = "loop";
+  bool schemeGiven = false;  // --scheme on the command line (else a .usda file's may choose)
   // Import options given on the command line that the polygon reader of
   // the polygon schemes does not apply.
   std::vector<std::string> polygonUnsupported;
@@ -71,7 +73,7 @@ int runOtherScheme(const RefineArgs& args) {
       return usage("refine", args.polygonUnsupported.front() + ": not available with --scheme " + name +
                                  ", which reads the file's polygons as they are");
     }
-    auto mesh = importPolygonMesh(args.mesh.input, args.mesh.tags);
+    auto mesh = importPolygonMesh(args.mesh.input, args.mesh.tags, args.mesh.usdPrim);
     if (!mesh.isOk()) return fail("refine", mesh.status());
     SchemeArgs stated = args.scheme;
     if (schemeHasCreases(scheme)) {
@@ -87,14 +89,26 @@ int runOtherScheme(const RefineArgs& args) {
     surface = refineTriangles(BaseTopology::fromBaseMesh(*mesh), mesh->positions(), request);
   }
   if (!surface.isOk()) return fail("refine", surface.status().withContext(args.mesh.input));
+  // A cage of the schemes USD names states it (subdivisionScheme); others
+  // are written as plain polygon meshes.
+  if (!args.limit && (scheme == Scheme::kCatmullClark || scheme == Scheme::kBilinear)) surface->scheme = name;
   if (Status written = writeSurface(args, *surface); !written.isOk()) return fail("refine", written);
   return 0;
 }
 
-int runRefine(const RefineArgs& args) {
-  if (Status same = checkOutputIsNotInput(args.mesh.input, args.output); !same.isOk()) {
+int runRefine(const RefineArgs& given) {
+  if (Status same = checkOutputIsNotInput(given.mesh.input, given.output); !same.isOk()) {
     return usage("refine", same.message());
   }
+  // A .usda file states its scheme (subdivisionScheme; USD's fallback is
+  // catmullClark): it chooses where --scheme does not.
+  RefineArgs args = given;
+  auto fileScheme = statedSchemeOf(args.mesh);
+  if (!fileScheme.isOk()) return fail("refine", fileScheme.status());
+  if (Status s = withFileSubdivisionScheme(args.schemeName, args.schemeGiven, *fileScheme,
+                                           {"loop", "catmull-clark", "bilinear"}, args.mesh.input);
+      !s.isOk())
+    return usage("refine", s.message());
   if (args.schemeName != "loop") return runOtherScheme(args);
   ImportReport report;
   auto mesh = loadMesh(args.mesh, &report);
@@ -129,6 +143,13 @@ int runRefine(const RefineArgs& args) {
     surface = std::move(limitSurface).value();
   } else {
     surface = refiner->controlSurface(points);
+    if (exportStatesScheme(args.output)) {
+      // To USD, the finest level is the cage it is: its tags and scheme too.
+      addCageTags(refiner->finestLevel(), surface);
+      surface.boundary = stated.boundary == "edge-and-corner" ? "edge-and-corner" : "edge-only";
+      surface.creaseMethod = stated.creaseMethod == "chaikin" ? "chaikin" : "uniform";
+      surface.scheme = "loop";
+    }
   }
 
   if (showProgress) std::fprintf(stderr, "tessera refine: writing %s\n", args.output.c_str());
@@ -151,7 +172,8 @@ void addRefineCommand(CLI::App& app, Action& action) {
   auto args = std::make_shared<RefineArgs>();
   addMeshInputOptions(*refine, args->mesh);
   refine->add_option("--level", args->level, "refinement level, 0 or more")->required()->check(wholeNumber());
-  refine->add_option("-o,--output", args->output, ".obj, .off, .ply, .stl or .glb (chosen by extension)")
+  refine
+      ->add_option("-o,--output", args->output, ".obj, .off, .ply, .stl, .glb or .usda (chosen by extension)")
       ->required()
       ->type_name("OUT");
   refine->add_flag("--limit", args->limit,
@@ -165,6 +187,7 @@ void addRefineCommand(CLI::App& app, Action& action) {
       ->type_name("S");
   onChosen(*refine, action, [args, refine] {
     args->polygonUnsupported = givenTriangleImportOptions(*refine);
+    args->schemeGiven = refine->get_option("--scheme")->count() > 0;
     return runRefine(*args);
   });
 }

@@ -96,11 +96,12 @@ Expected<PolygonMesh> importPolygonMeshFromBytes(std::string_view bytes, const s
   return polygonMeshOf(std::move(soup), displayName, "");
 }
 
-Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath) {
+Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath,
+                                        const std::string& usdPrim) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (readsPolygonSoup(ext)) {
     TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
-    TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(text, ext, path));
+    TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(text, ext, path, usdPrim));
     return polygonMeshOf(std::move(soup), path, tagsPath);
   }
   TESSERA_ASSIGN_OR_RETURN(BaseMesh base, importMesh(path));

@@ -40,7 +40,9 @@ Expected<PolygonMesh> polygonMeshOf(PolygonSoup soup, const std::string& display
 // applies the tags an OBJ states (`t crease`, `t corner`), then the tag file
 // `tagsPath` unless it is empty. The topology is validated when a refiner
 // builds it.
-Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath);
+// `usdPrim` names the Mesh prim of a .usda file (empty: its only one).
+Expected<PolygonMesh> importPolygonMesh(const std::string& path, const std::string& tagsPath,
+                                        const std::string& usdPrim = {});
 // The same for an OBJ, OFF or PLY file in memory (`extension` as
 // importPolygonSoup takes it), named `displayName` in errors, without a
 // tag file (applyPolygonTags applies one).

@@ -1,7 +1,7 @@
 // One mesh importer (core/io/mesh_import.h) on untrusted file contents: the
 // file a user passes to `tessera` or a client sends with CreateDocument.
 // Compiled once per format; TESSERA_FUZZ_EXTENSION (".obj", ".off", ".ply",
-// ".stl", ".gltf", ".glb") picks the reader, as the file name does.
+// ".stl", ".gltf", ".glb", ".usda") picks the reader, as the file name does.
 //
 // The in-memory entry point (importMeshFromBytes) is what the server runs on
 // a CreateDocument's bytes and what importMesh(path) runs after reading the

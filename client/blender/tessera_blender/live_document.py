@@ -224,7 +224,11 @@ class LiveDocument:
         except TopologyChanged:
             self.reset_cage()
             raise
-        lines += self.limit_script(tessera)
+        try:
+            lines += self.limit_script(tessera)
+        except ValueError:
+            self.reset_cage()  # the limit object too: the refused move is not kept
+            raise
         if not lines:
             return None
         try:

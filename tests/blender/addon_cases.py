@@ -346,11 +346,78 @@ def case_token_and_restart(root, server):
     second.close()
 
 
+def case_open_and_limit_move(root, server):
+    """A document made elsewhere is listed and opened as a cage (the file's
+    points and quads) and a limit surface at the panel's LOD; a limit point
+    moved in the limit object lands there (a direct manipulation at the
+    panel's edit level); a level too coarse for the point is refused by name."""
+    tessera_dir = os.path.dirname(os.path.dirname(HERE))
+    check(connect(server.port) == {"FINISHED"}, "connect")
+    connection, _, _ = addon_modules()
+    tessera, second = plain_client(server.port)
+    sample = os.path.join(tessera_dir, "deploy", "samples", "quad_cube.obj")
+    made = second.create_document(sample, name="quad cube", max_level=3)
+    check(run(bpy.ops.tessera.list_documents) == {"FINISHED"}, f"list: {connection.message}")
+    check([d.name for d in connection.listed] == ["quad cube"], f"listed {connection.listed}")
+    settings = bpy.context.scene.tessera
+    settings.document = str(made.document_id)
+    settings.lod, settings.edit_level = 2, 2
+    check(run(bpy.ops.tessera.open_document) == {"FINISHED"}, f"open: {connection.message}")
+    doc = connection.documents[made.document_id]
+    with open(sample) as f:
+        file_points = [[float(x) for x in line.split()[1:4]] for line in f if line.startswith("v ")]
+    cage_points = np.array([v.co[:] for v in doc.cage_object.data.vertices])
+    check(np.abs(cage_points - np.array(file_points)).max() < 1e-6, "the cage is the file's points")
+    check({len(p.vertices) for p in doc.cage_object.data.polygons} == {4}, "the cage's faces are quads")
+    levels = np.empty(len(doc.limit_object.data.vertices), np.int32)
+    doc.limit_object.data.attributes["tessera_id_level"].data.foreach_get("value", levels)
+    check(levels.max() == 2, f"the limit surface is at LOD 2 (birth levels up to {levels.max()})")
+
+    # A point born at level 1, edited at level 2 (the panel's edit level).
+    row = int(np.nonzero(levels == 1)[0][0])
+    index = tessera.id_index(int(doc.limit_ids[row]))
+    mesh = doc.limit_object.data
+    target = np.array(mesh.vertices[row].co[:]) + (0.0, 0.0, 0.2)
+    mesh.vertices[row].co = target
+    activate(doc.limit_object)
+    check(run(bpy.ops.tessera.send_edits) == {"FINISHED"}, f"send: {connection.message}")
+    second.open_document(made.document_id)
+    got = server_limit(second, made.document_id, 2)[index]
+    check(np.abs(got - target).max() < 1e-5, f"limit v2:{index} at {got}, moved to {target}")
+
+    # Edit level 0 cannot name a vertex born at level 2.
+    settings.edit_level = 0
+    check(run(bpy.ops.tessera.apply_lod) == {"FINISHED"}, "apply")
+    wait_until(lambda: doc.limit_version >= 2, connection.poll, "the limit surface after the move")
+    born = np.array([tessera.id_level(int(i)) for i in doc.limit_ids])
+    row = int(np.nonzero(born == 2)[0][0])
+    mesh.vertices[row].co.z += 0.2
+    check(run(bpy.ops.tessera.send_edits) == {"CANCELLED"}, "a level-2 point at edit level 0")
+    check("born at level 2" in connection.message, connection.message)
+    second.close()
+
+
+def case_install_rules(root, server):
+    """`cmake --install --component tessera_blender` (run_blender_case.py
+    ran it into ROOT/prefix) gives an add-on Blender enables from its
+    system scripts folder, which finds the tessera package and connects."""
+    import addon_utils
+
+    addon_utils.enable("tessera_blender", default_set=True)
+    import tessera_blender
+
+    check(tessera_blender.__file__.startswith(os.path.join(root, "prefix")),
+          f"the add-on runs from the install, not {tessera_blender.__file__}")
+    check(connect(server.port) == {"FINISHED"}, "connect")
+
+
 CASES = {
     "create_with_creases": case_create_with_creases,
     "cage_move": case_cage_move,
     "stream_to_limit": case_stream_to_limit,
     "token_and_restart": case_token_and_restart,
+    "open_and_limit_move": case_open_and_limit_move,
+    "install_rules": case_install_rules,
 }
 
 
@@ -358,7 +425,8 @@ def main():
     argv = sys.argv[sys.argv.index("--") + 1:]
     case, root = argv[0], argv[1]
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    install_addon(root)
+    if case != "install_rules":
+        install_addon(root)
     server = Server(os.environ["TESSERA_SERVER"], root)
     try:
         CASES[case](root, server)

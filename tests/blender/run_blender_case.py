@@ -7,7 +7,8 @@ zip is installed, exports), runs
 `blender -b --factory-startup --python addon_cases.py -- CASE ROOT` bounded
 by CASE_SECONDS, and removes the root whatever happened (TESSERA_KEEP_TEST_DIRS=1
 keeps it). Environment (set by tests/blender/CMakeLists.txt):
-TESSERA_SERVER, TESSERA_CLI, TESSERA_BLENDER_ZIP, TESSERA_PYTHON_PACKAGE_PARENT.
+TESSERA_SERVER, TESSERA_CLI, TESSERA_BLENDER_ZIP, and for install_rules TESSERA_BUILD_DIR
+and CMAKE_COMMAND.
 """
 
 import os
@@ -16,7 +17,7 @@ import subprocess
 import sys
 import tempfile
 
-CASE_SECONDS = 25
+CASE_SECONDS = 18
 SKIP = 77
 
 
@@ -34,6 +35,15 @@ def main():
     env["TMPDIR"] = root
     env["PYTHONDONTWRITEBYTECODE"] = "1"
     try:
+        if case == "install_rules":
+            # The add-on's install rules into a prefix of the test's own, and
+            # Blender told to read that prefix's scripts folder (Debian's
+            # Blender has its system folder built in, /usr/share/blender/scripts).
+            prefix = os.path.join(root, "prefix")
+            subprocess.run([os.environ.get("CMAKE_COMMAND", "cmake"), "--install",
+                            os.environ["TESSERA_BUILD_DIR"], "--component", "tessera_blender",
+                            "--prefix", prefix], check=True, timeout=CASE_SECONDS)
+            env["BLENDER_USER_SCRIPTS"] = os.path.join(prefix, "share", "blender", "scripts")
         result = subprocess.run(
             [blender, "-b", "--factory-startup", "--python-exit-code", "1",
              "--python", os.path.join(here, "addon_cases.py"), "--", case, root],

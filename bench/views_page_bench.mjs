@@ -8,7 +8,8 @@
 // server sent the page over its WebSocket, the triangles shown and
 // triangles per pixel. The server is fresh per run: the first views row
 // includes building the tiles it needs.
-//   node bench/views_page_bench.mjs [--build build/release] [--screenshots DIR]
+//   node bench/views_page_bench.mjs [--build build/release] [--screenshots DIR] [--only TEXT]
+// --only runs the rows whose name contains TEXT ("phone, views").
 // Bounded: every wait has a deadline.
 import { spawn, spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -17,7 +18,9 @@ import { join, resolve } from 'node:path';
 import { parseArgs } from 'node:util';
 
 const { values: opts } = parseArgs({
-  options: { build: { type: 'string', default: 'build/release' }, screenshots: { type: 'string' } },
+  options: {
+    build: { type: 'string', default: 'build/release' }, screenshots: { type: 'string' }, only: { type: 'string' },
+  },
 });
 const SOURCE = resolve(new URL('..', import.meta.url).pathname);
 const BUILD = resolve(opts.build);
@@ -60,6 +63,7 @@ try {
     if (opts.screenshots) await page.screenshot({ path: join(opts.screenshots, `${name.replace(/[^a-z0-9]+/g, '-')}.png`) });
   };
   for (const [name, width, height, query, closeUp] of rows) {
+    if (opts.only && !name.includes(opts.only)) continue;
     const context = await browser.createBrowserContext();
     const page = await context.newPage();
     await page.setViewport({ width, height });
@@ -84,7 +88,8 @@ try {
       continue;
     }
     await shoot(page, name);
-    console.log(`${name}: first picture ${s.firstPicture.ms} ms (${s.firstPicture.triangles} triangles), ` +
+    console.log(`${name}: decoder ready ${s.milestones.decoderReady} ms, hello ${s.milestones.helloAck} ms, ` +
+      `first picture ${s.firstPicture.ms} ms (${s.firstPicture.triangles} triangles), ` +
       `whole ${whole} ms, ${(s.bytesReceived / 1048576).toFixed(2)} MiB received, ${s.triangles} triangles, ` +
       `${(s.triangles / (width * height)).toFixed(2)} per pixel${views ? `, tiles by level ${JSON.stringify(s.tileLevels)}` : ''}`);
     await context.close();

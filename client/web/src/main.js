@@ -179,6 +179,7 @@ async function main() {
       url: webSocketUrl(window.location), token, name: params.name, wire,
       createSocket: (url) => new WebSocket(url),
       onReady: (helloAck) => {
+        page.milestones.helloAck ??= Math.round(performance.now());
         page.lastError = '';
         if (params.documentId !== null) {
           if (page.session) page.session.connected(helloAck); else openDocument(params.documentId, helloAck);
@@ -290,6 +291,7 @@ async function main() {
   });
   try {
     await page.decoder.ready;
+    page.milestones.decoderReady = Math.round(performance.now());
   } catch (error) {
     showError(error.message);
     setBodyState('error');

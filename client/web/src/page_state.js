@@ -27,6 +27,9 @@ export class PageState {
     // payloads' bytes; with a view, the surface's preview or the coarsest
     // tiles, refined after.
     this.firstPicture = null;
+    // On the way to it (ms since the page started, null until reached): the
+    // decode worker's Draco module loaded, and the server's HelloAck.
+    this.milestones = { decoderReady: null, helloAck: null };
 
     // When each version was first drawn (Unix ms, Date.now()): the
     // benchmark times edit-to-pixels against the editor's clock with it

@@ -48,6 +48,7 @@ export function installTestHook(app) {
         tiles: view ? [...view.regions.keys()].map(String).sort().join(' ') : '',
         shown: app.view.shownIds().map(String).sort().join(' '),
         firstPicture: page.firstPicture,
+        milestones: page.milestones,
         firstSnapshot: view ? view.firstSnapshot : null,
         bytesReceived: connection ? connection.bytesReceived : 0,
         lastEditToDeltaMs: session?.latency.last ?? null,

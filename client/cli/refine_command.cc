@@ -119,7 +119,9 @@ int runRefine(const RefineArgs& given) {
 
   LoopRefiner::Uniform uniform;
   uniform.levels = args.level;
-  uniform.fullTopologyInLastLevel = args.limit;
+  // A limit needs the finest level's edges and rings; so does a .usda cage,
+  // whose tags are that level's edges (core/topology/cage_tags.h).
+  uniform.fullTopologyInLastLevel = args.limit || exportStatesScheme(args.output);
   // Stop multiplying once past the threshold: --level may be large (the
   // refiner then refuses it with a clear error).
   long long finestFaces = mesh->numFaces();

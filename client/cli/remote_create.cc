@@ -22,9 +22,24 @@ struct CreateArgs {
   std::string scheme;  // empty: the server chooses from the faces
 };
 
-int runCreate(const ConnectionArgs& connection, const CreateArgs& args) {
-  auto format = meshFormatOf(args.mesh.input);
+int runCreate(const ConnectionArgs& connection, const CreateArgs& given) {
+  auto format = meshFormatOf(given.mesh.input);
   if (!format.isOk()) return usage("remote create", format.status().message());
+  // The server reads a .usda layer's only Mesh prim: CreateDocument names
+  // no prim.
+  if (!given.mesh.usdPrim.empty())
+    return usage("remote create",
+                 "--usd-prim: not available here (the server reads a layer of one Mesh prim; write that "
+                 "prim alone, e.g. tessera refine IN --usd-prim PATH --level 0 -o ONE.usda)");
+  // A .usda file states its scheme (subdivisionScheme; USD's fallback is
+  // catmullClark): it chooses where --scheme does not, as for doc new.
+  CreateArgs args = given;
+  auto stated = statedSchemeOf(args.mesh);
+  if (!stated.isOk()) return fail("remote create", stated.status());
+  if (Status s = withFileSubdivisionScheme(args.scheme, !given.scheme.empty(), *stated,
+                                           {"loop", "catmull-clark"}, args.mesh.input);
+      !s.isOk())
+    return usage("remote create", s.message());
   auto bytes = readFile(args.mesh.input);
   if (!bytes.isOk()) return fail("remote create", bytes.status());
   wire::ClientMessage m;

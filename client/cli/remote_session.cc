@@ -112,16 +112,14 @@ Expected<uint64_t> parseDocumentId(const std::string& text) {
 Expected<wire::MeshFormat> meshFormatOf(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  const std::map<std::string, wire::MeshFormat> formats = {{".obj", wire::MESH_FORMAT_OBJ},
-                                                           {".off", wire::MESH_FORMAT_OFF},
-                                                           {".ply", wire::MESH_FORMAT_PLY},
-                                                           {".stl", wire::MESH_FORMAT_STL},
-                                                           {".glb", wire::MESH_FORMAT_GLB}};
+  const std::map<std::string, wire::MeshFormat> formats = {
+      {".obj", wire::MESH_FORMAT_OBJ}, {".off", wire::MESH_FORMAT_OFF}, {".ply", wire::MESH_FORMAT_PLY},
+      {".stl", wire::MESH_FORMAT_STL}, {".glb", wire::MESH_FORMAT_GLB}, {".usda", wire::MESH_FORMAT_USDA}};
   auto format = formats.find(ext);
   if (format != formats.end()) return format->second;
   if (ext == ".gltf")
     return invalidArgument(path + ": send glTF as a .glb (a .gltf may name files beside it)");
-  return invalidArgument(path + ": not .obj, .off, .ply, .stl or .glb");
+  return invalidArgument(path + ": not .obj, .off, .ply, .stl, .glb or .usda");
 }
 
 }  // namespace tessera::cli

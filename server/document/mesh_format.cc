@@ -14,6 +14,8 @@ const char* meshExtensionOf(wire::MeshFormat format) {
       return ".stl";
     case wire::MESH_FORMAT_GLB:
       return ".glb";
+    case wire::MESH_FORMAT_USDA:
+      return ".usda";
     default:
       return nullptr;
   }

@@ -108,7 +108,8 @@ std::string describeImport(const ImportReport& report, const ImportOptions& opti
 }
 
 const std::vector<std::string>& supportedImportExtensions() {
-  static const std::vector<std::string> extensions = {".obj", ".off", ".ply", ".stl", ".gltf", ".glb", ".usda"};
+  static const std::vector<std::string> extensions = {".obj",  ".off", ".ply", ".stl",
+                                                      ".gltf", ".glb", ".usda"};
   return extensions;
 }
 
@@ -153,8 +154,8 @@ Expected<PolygonSoup> importPolygonSoup(std::string_view bytes, const std::strin
   } else if (ext == ".usda") {
     TESSERA_RETURN_IF_ERROR(io_detail::readUsda(bytes, displayName, soup, checked));
   } else {
-    return unsupported(displayName + ": polygons are read from .obj, .off, .ply and .usda files, not '" + ext +
-                       "'");
+    return unsupported(displayName + ": polygons are read from .obj, .off, .ply and .usda files, not '" +
+                       ext + "'");
   }
   if (soup.points.empty()) return parseError(displayName + ": no vertices");
   if (soup.numFaces() == 0) return parseError(displayName + ": no faces");

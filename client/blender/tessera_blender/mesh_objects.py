@@ -101,6 +101,8 @@ def write_limit_surface(obj, points, triangles, levels, indices):
         return
     mesh = obj.data
     write_polygons(mesh, points, np.asarray(triangles).tolist())
+    # A limit surface is smooth: shade it so (its normals follow the mesh).
+    mesh.polygons.foreach_set("use_smooth", np.ones(len(mesh.polygons), dtype=bool))
     for name, values in ((ID_LEVEL, levels), (ID_INDEX, indices)):
         attribute = mesh.attributes.get(name) or mesh.attributes.new(name, "INT", "POINT")
         attribute.data.foreach_set("value", np.asarray(values, dtype=np.int32))

@@ -43,8 +43,8 @@ class TESSERA_PT_panel(bpy.types.Panel):
         doc = active_document(context)
         if doc is None:
             return
-        layout.label(text=f"{doc.name}: document {doc.document_id}, {doc.scheme or 'scheme ?'}, "
-                          f"version {doc.limit_version}")
+        scheme = f", {doc.scheme}" if doc.scheme else ""
+        layout.label(text=f"{doc.name} ({doc.document_id}{scheme}) at version {doc.limit_version}")
         layout.operator("tessera.send_edits")
         row = layout.row(align=True)
         row.operator("tessera.undo", text=f"Undo ({len(doc.undo_stack)})", icon="LOOP_BACK")

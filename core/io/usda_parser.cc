@@ -13,6 +13,8 @@ namespace {
 
 using Kind = UsdaToken::Kind;
 
+constexpr int kMaxPrimDepth = 256;
+
 bool isPunct(const UsdaToken& t, char c) {
   return t.kind == Kind::kPunct && t.text[0] == c;
 }
@@ -126,7 +128,11 @@ class Parser {
   }
 
   // `def [Type] "name" [( metadata )] { ... }`, its specifier already read.
-  Status prim(const UsdaToken& specifier, const std::string& parent) {
+  Status prim(const UsdaToken& specifier, const std::string& parent, int depth = 0) {
+    // Each level of nesting is a frame of this recursion: bounded, so that a
+    // hostile file cannot exhaust the stack.
+    if (depth >= kMaxPrimDepth)
+      return unsupported(lexer_.at(specifier) + "prims nested deeper than " + std::to_string(kMaxPrimDepth));
     if (isWord(specifier, "over") || isWord(specifier, "class"))
       return unsupported(lexer_.at(specifier) + "'" + std::string(specifier.text) +
                          "' prims are not supported: they compose over other prims (only 'def' is read; "
@@ -160,7 +166,7 @@ class Parser {
       if (isPunct(t, '}')) return Status::ok();
       if (isPunct(t, ';')) continue;
       if (isWord(t, "def") || isWord(t, "over") || isWord(t, "class")) {
-        TESSERA_RETURN_IF_ERROR(prim(t, path));
+        TESSERA_RETURN_IF_ERROR(prim(t, path, depth + 1));
         continue;
       }
       // Child prims may have grown meshes_: look the mesh up again.

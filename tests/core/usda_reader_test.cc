@@ -258,6 +258,24 @@ TEST(UsdaReader, MalformedValuesAreErrorsNamingTheAttributeAndElement) {
                 "t.usda: Mesh /M: no points");
 }
 
+// Nesting is bounded (the parser recurses per prim): 256 levels of prims
+// are read, the 257th is refused at its line.
+TEST(UsdaReader, PrimsNestDeepButNotWithoutBound) {
+  auto nested = [](int depth) {
+    std::string text = "#usda 1.0\n";
+    for (int d = 0; d < depth - 1; ++d) text += "def Xform \"X\" {\n";
+    text +=
+        "def Mesh \"M\" {\n int[] faceVertexCounts = [3]\n int[] faceVertexIndices = [0, 1, 2]\n"
+        " point3f[] points = [(0,0,0), (1,0,0), (0,1,0)]\n}\n";
+    for (int d = 0; d < depth - 1; ++d) text += "}\n";
+    return text;
+  };
+  auto deep = read(nested(256));
+  ASSERT_TRUE(deep.isOk()) << deep.status().toString();
+  EXPECT_EQ(deep->points.size(), 3u);
+  expectRefused(nested(257), ErrorCode::kUnsupported, "t.usda:258:1: prims nested deeper than 256");
+}
+
 // Read, write, read: the same points (every bit), faces, tags, scheme,
 // boundary rule and crease method.
 TEST(UsdaReader, ReadWriteReadGivesTheSameMeshTagsAndScheme) {

@@ -204,7 +204,7 @@ def case_create_with_creases(root, server):
 
     bpy.ops.object.empty_add()
     check(run(bpy.ops.tessera.create_from_mesh) == {"CANCELLED"}, "an empty is refused")
-    check("is not a mesh object" in connection.message, f"message: {connection.message}")
+    check("'Empty' is not a mesh object" in connection.message, f"message: {connection.message}")
     second.close()
 
 

@@ -24,7 +24,7 @@ mkdir -p "$root/scripts/addons"
 (cd "$root/scripts/addons" && cmake -E tar xf "$build/client/blender/tessera_blender.zip")
 BLENDER_USER_CONFIG="$root/config" blender -b --factory-startup \
   --python-expr "import bpy; bpy.ops.wm.save_as_mainfile(filepath='$root/empty.blend')" > /dev/null
-BLENDER_USER_SCRIPTS="$root/scripts" BLENDER_USER_CONFIG="$root/config" \
+TMPDIR="$root" BLENDER_USER_SCRIPTS="$root/scripts" BLENDER_USER_CONFIG="$root/config" \
   timeout 120 xvfb-run -a -s "-screen 0 1060x780x24" \
   blender --factory-startup --window-geometry 0 0 1060 780 --no-window-focus "$root/empty.blend" \
   --python "$here/live_document_screenshot.py" -- "$(cat "$root/port")" "$root/token" "$src/deploy/samples" "$root/shot.png"

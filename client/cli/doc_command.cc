@@ -292,7 +292,9 @@ void addExport(CLI::App& doc, Action& action) {
       "--base-level, --max-level, --angle (defaults 2, 5, 10 degrees).");
   auto args = std::make_shared<ExportArgs>();
   sub->add_option("DOC", args->document, "the document file")->required();
-  sub->add_option("-o,--output", args->output, ".obj, .ply or .glb (chosen by extension)")
+  sub->add_option("-o,--output", args->output,
+                  ".obj, .off, .ply, .stl, .glb or .usda (chosen by extension; .usda without --limit: the "
+                  "level's cage with its tags and scheme)")
       ->required()
       ->type_name("OUT");
   CLI::Option* level =

@@ -7,56 +7,33 @@
 #include "client/python/bindings.h"
 #include "client/python/errors.h"
 #include "client/python/numpy_arrays.h"
-#include "core/io/mesh_import.h"
-#include "core/io/tag_file.h"
-#include "core/loop/loop_refiner.h"
+#include "client/python/offline_work.h"
 
 namespace tessera::python {
 
 namespace {
 
-struct ImportArgs {
-  std::optional<std::string> tags;
-  bool triangulate = false, dropUnused = false;
-  std::optional<double> creaseAngle;
-};
-
-ImportOptions importOptions(const ImportArgs& a) {
-  return {
-      .triangulate = a.triangulate, .dropUnused = a.dropUnused, .creaseAngle = a.creaseAngle.value_or(-1)};
-}
-
-// A file, or (points, faces) arrays, as core's base mesh: the same
-// validation either way (mesh_validation.h), tags applied after.
+// A file, or (points, faces) arrays, as core's base mesh
+// (offline_work.h).
 BaseMesh baseMeshOf(const py::object& source, const py::object& faces, const ImportArgs& a) {
-  ImportedMesh imported;
   if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
     if (!faces.is_none()) throw py::value_error("faces are given with points, not with a file");
     const std::string path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
     py::gil_scoped_release reading;
-    imported = valueOf(importMeshWithReport(path, importOptions(a)));
-  } else {
-    if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
-    PolygonSoup soup;
-    soup.points = pointsFrom(source);
-    addFaces(faces, soup);
-    imported = valueOf(importSoupWithReport(std::move(soup), "arrays", importOptions(a)));
+    return valueOf(baseMeshFromFile(path, a));
   }
-  if (a.tags) check(applyTagFile(*a.tags, imported.mesh, imported.report.renumbering));
-  return std::move(imported.mesh);
+  if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
+  PolygonSoup soup;
+  soup.points = pointsFrom(source);
+  addFaces(faces, soup);
+  return valueOf(baseMeshFromArrays(std::move(soup), a));
 }
 
+// A bad choice of rule is the caller's argument: ValueError.
 LoopOptions loopOptions(const std::string& creaseMethod, const std::string& boundary) {
-  LoopOptions o;
-  if (creaseMethod == "chaikin")
-    o.creaseMethod = CreaseMethod::kChaikin;
-  else if (creaseMethod != "uniform")
-    throw py::value_error("crease_method must be 'uniform' or 'chaikin'");
-  if (boundary == "edge-and-corner")
-    o.boundary = BoundaryInterpolation::kEdgeAndCorner;
-  else if (boundary != "edge-only")
-    throw py::value_error("boundary must be 'edge-only' or 'edge-and-corner'");
-  return o;
+  auto options = loopOptionsNamed(creaseMethod, boundary);
+  if (!options.isOk()) throw py::value_error(options.status().message());
+  return *options;
 }
 
 constexpr const char* kSourceDoc =
@@ -94,15 +71,12 @@ void bindOffline(py::module_& m) {
         const BaseMesh mesh = baseMeshOf(source, faces, {tags, triangulate, dropUnused, creaseAngle});
         const LoopOptions options = loopOptions(creaseMethod, boundary);
         if (level < 0) throw py::value_error("level must be 0 or more");
-        SurfaceMesh surface;
+        Expected<SurfaceMesh> surface = internalError("refine: not run");
         {
           py::gil_scoped_release refining;
-          LoopRefiner refiner = valueOf(
-              LoopRefiner::create(mesh, options, {.levels = level, .fullTopologyInLastLevel = limit}));
-          const std::vector<Vec3> points = refiner.refinePoints(mesh.positions());
-          surface = limit ? valueOf(refiner.limitSurface(points)) : refiner.controlSurface(points);
+          surface = refineLoop(mesh, options, level, limit);
         }
-        return meshArrays(surface);
+        return meshArrays(valueOf(std::move(surface)));
       },
       py::arg("source"), py::arg("faces") = py::none(), py::kw_only(), py::arg("level"),
       py::arg("limit") = false, py::arg("tags") = py::none(), py::arg("triangulate") = false,

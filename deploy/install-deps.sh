@@ -38,7 +38,8 @@ packages=(
   # tests and benchmarks: OpenSubdiv is the oracle, never a runtime dependency
   libgtest-dev libgmock-dev libbenchmark-dev libosd-dev
   # test data and tools: real meshes (CGAL demo data), the Khronos glTF validator (npm),
-  # an X server for the viewer and X input events for it (xdotool)
+  # an X server for the viewer and X input events for it (xdotool), also for the Blender
+  # add-on's grab test (tests/blender/run_ui_grab.py)
   libcgal-demo xvfb xauth xdotool
   # coverage-guided fuzzing: libFuzzer with ASan and UBSan (tests/fuzz)
   clang-14 libfuzzer-14-dev libclang-rt-14-dev

@@ -80,14 +80,34 @@ void bindEditCommands(SessionClass& session) {
       [](RemoteSession& s, uint64_t document, const py::object& edge, float sharpness, uint32_t key,
          std::optional<double> timeout) {
         ScriptCommand c = command(Kind::kCrease);
-        c.edge = edgeIdOf(edge);
         c.sharpness = sharpness;
-        return sendEdit(s, document, c, key, timeout);
+        // Two vertex ids: the edge named by its ends (PROTOCOL.md §7.2,
+        // SetEdgeSharpness.end_vertex_ids), which the server resolves.
+        const bool byEnds = py::isinstance<py::tuple>(edge) || py::isinstance<py::list>(edge);
+        std::vector<VertexId> ends;
+        if (byEnds) {
+          ends = vertexIdsOf(edge);
+          if (ends.size() != 2)
+            throw py::value_error("an edge named by its ends takes two vertex ids, not " +
+                                  std::to_string(ends.size()));
+        } else {
+          c.edge = edgeIdOf(edge);
+        }
+        wire::ClientMessage m = valueOf(client::clientMessageOf(c, document, key));
+        if (byEnds) {
+          auto* set = m.mutable_set_edge_sharpness();
+          set->set_edge_id(kEdgeIdNamedByEnds);
+          for (const VertexId& v : ends) set->add_end_vertex_ids(v.packed());
+        }
+        return ackOf(s.call(std::move(m), timeout));
       },
       py::arg("document_id"), py::arg("edge_id"), py::arg("sharpness"), py::kw_only(), py::arg("key") = 0,
       py::arg("timeout") = py::none(),
-      doc("Tags an edge (packed id or 'e1:5') with a sharpness that holds at its level\n"
-          "and below: 0 smooth, (0, 10) semi-sharp, 10 or more (or math.inf) a crease.")
+      doc("Tags an edge with a sharpness that holds at its level and below: 0 smooth,\n"
+          "(0, 10) semi-sharp, 10 or more (or math.inf) a crease. `edge_id` is an edge id\n"
+          "(packed int or 'e1:5') or a tuple of its two end vertices' ids, of one level,\n"
+          "in either order (('v1:3', 'v1:40')): the server finds the edge, and refuses\n"
+          "two vertices that no edge of that level joins (REJECT_REASON_INVALID_ARGUMENT).")
           .c_str());
   session.def(
       "set_vertex_sharpness",

@@ -77,3 +77,29 @@ def test_a_script_that_does_not_parse_raises_before_sending(session, cube):
     with pytest.raises(tessera.Error) as bad:
         session.edit(cube, "move v0:2 somewhere\n")
     assert "script:1" in str(bad.value)
+
+
+def test_an_edge_named_by_its_ends_is_the_edge_the_numbering_gives(session):
+    """docs/PROTOCOL.md 3.2: base edges are numbered by a scan of the
+    triangles in order, so e0:0 joins the first triangle's first two corners:
+    cube.obj's first face is 'f 1 3 2', vertices 0 and 2. Tagging those ends
+    must give the surface tagging e0:0 gives, and another edge another."""
+    def tagged(edge):
+        doc = session.create_document(str(SAMPLES / "cube.obj"), max_level=2).document_id
+        session.open_document(doc)
+        session.set_edge_sharpness(doc, edge, float("inf"))
+        return session.export_document(doc, 2, limit=True)[1]
+
+    by_id = tagged("e0:0")
+    assert tagged(("v0:2", "v0:0")) == by_id  # either order
+    assert tagged([tessera.vertex_id("v0:0"), tessera.vertex_id("v0:2")]) == by_id
+    assert tagged(("v0:2", "v0:1")) != by_id  # e0:1, the triangle's second edge
+
+
+def test_an_edge_named_by_ends_that_no_edge_joins_is_refused(session, cube):
+    # cube.obj: vertices 0 and 6 are opposite corners of the cube.
+    with pytest.raises(tessera.Rejected) as refused:
+        session.set_edge_sharpness(cube, ("v0:0", "v0:6"), 2.0)
+    assert refused.value.reason == "REJECT_REASON_INVALID_ARGUMENT"
+    with pytest.raises(ValueError):
+        session.set_edge_sharpness(cube, ("v0:0", "v0:1", "v0:2"), 2.0)

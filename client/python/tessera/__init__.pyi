@@ -209,7 +209,8 @@ class Session:
         timeout: Optional[float] = None
     ) -> Ack: ...
     def set_edge_sharpness(
-        self, document_id: int, edge_id: ElementId, sharpness: float, *, key: int = 0,
+        self, document_id: int, edge_id: Union[ElementId, Tuple[ElementId, ElementId]], sharpness: float, *,
+        key: int = 0,
         timeout: Optional[float] = None
     ) -> Ack: ...
     def set_vertex_sharpness(

@@ -46,13 +46,18 @@ def send_all_changes():
 
 
 def tick():
-    """One poll; the timer's function (returns the delay to the next)."""
-    pointer = last_operator_pointer()
-    if pointer != last_operator[0]:
-        last_operator[0] = pointer
-        send_all_changes()
-    if CONNECTION.poll():
-        redraw()
+    """One poll; the timer's function (returns the delay to the next). An
+    exception would unregister the timer, so any failure (a document's
+    object deleted by the user, say) goes to the panel's message line."""
+    try:
+        pointer = last_operator_pointer()
+        if pointer != last_operator[0]:
+            last_operator[0] = pointer
+            send_all_changes()
+        if CONNECTION.poll():
+            redraw()
+    except Exception as e:
+        CONNECTION.set_error(f"Tessera: {e}")
     return POLL_SECONDS
 
 

@@ -16,12 +16,18 @@ class TesseraPreferences(bpy.types.AddonPreferences):
         self.layout.prop(self, "module_dir")
 
 
+# Blender keeps only pointers to a dynamic enum's strings: Python must keep
+# the items alive, or the menu shows freed memory.
+document_items_cache = []
+
+
 def document_items(self, context):
     from .connection import CONNECTION
 
     items = [(str(d.document_id), f"{d.document_id}: {d.name}", f"version {d.version}")
              for d in CONNECTION.listed]
-    return items or [("0", "(list the server's documents)", "")]
+    document_items_cache[:] = items or [("0", "(list the server's documents)", "")]
+    return document_items_cache
 
 
 class TesseraSettings(bpy.types.PropertyGroup):

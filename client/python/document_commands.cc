@@ -31,7 +31,8 @@ wire::MeshFormat meshFormatOf(const std::string& path) {
   if (ext == ".ply") return wire::MESH_FORMAT_PLY;
   if (ext == ".stl") return wire::MESH_FORMAT_STL;
   if (ext == ".glb") return wire::MESH_FORMAT_GLB;
-  throw py::value_error(path + ": not .obj, .off, .ply, .stl or .glb");
+  if (ext == ".usda") return wire::MESH_FORMAT_USDA;
+  throw py::value_error(path + ": not .obj, .off, .ply, .stl, .glb or .usda");
 }
 
 // The import and document options every create shares (tessera.proto

@@ -109,7 +109,10 @@ Expected<Document> importDocument(const wire::CreateDocument& request, int maxLe
   if (catmark || (scheme == wire::SUBDIVISION_SCHEME_UNSPECIFIED && !request.triangulate() &&
                   readsPolygonSoup(extension))) {
     TESSERA_ASSIGN_OR_RETURN(PolygonSoup soup, importPolygonSoup(request.mesh(), extension, names.mesh));
-    if (catmark || countFacesNotTriangles(soup.faceOffsets) > 0) {
+    // A scheme the file states (USD's subdivisionScheme, docs/FORMATS.md
+    // "USD") chooses where the request does not.
+    const bool statedLoop = soup.scheme == "loop", statedCatmark = soup.scheme == "catmull-clark";
+    if (catmark || statedCatmark || (!statedLoop && countFacesNotTriangles(soup.faceOffsets) > 0)) {
       TESSERA_ASSIGN_OR_RETURN(schemes::PolygonMesh polygons,
                                schemes::polygonMeshOf(std::move(soup), names.mesh, ""));
       return catmarkDocument(request, std::move(polygons), options);

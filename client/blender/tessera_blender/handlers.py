@@ -71,7 +71,11 @@ def redraw():
 
 @persistent
 def after_blender_undo(*_args):
+    """Blender's undo reloads its data, the two objects included: the cage
+    gets the server's state back, and the limit surface is rewritten from
+    the session's view at the next poll."""
     for doc in CONNECTION.documents.values():
+        doc.limit_version = 0
         doc.reset_cage()
 
 

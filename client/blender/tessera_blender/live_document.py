@@ -46,8 +46,7 @@ class LiveDocument:
         self.scheme = scheme
         self.lod = lod
         self.edit_level = edit_level
-        self.cage_object = None
-        self.limit_object = None
+        self.object_names = {}  # role ("cage", "limit") -> the object's name
         self.faces = []
         self.vertex_count = 0
         self.edges = {}
@@ -61,6 +60,47 @@ class LiveDocument:
         self.undo_stack = []
         self.redo_stack = []
         self.last_selection = None
+
+    # --- the two objects ----------------------------------------------------------
+    # Held by name, never as bpy references: Blender's undo reloads its data,
+    # and every reference taken before it is dead afterwards. A renamed
+    # object is found again by its tessera_document_id and tessera_role.
+
+    @property
+    def cage_object(self):
+        return self.find_object("cage")
+
+    @cage_object.setter
+    def cage_object(self, obj):
+        self.keep_object("cage", obj)
+
+    @property
+    def limit_object(self):
+        return self.find_object("limit")
+
+    @limit_object.setter
+    def limit_object(self, obj):
+        self.keep_object("limit", obj)
+
+    def keep_object(self, role, obj):
+        obj["tessera_document_id"] = self.document_id
+        obj["tessera_role"] = role
+        self.object_names[role] = obj.name
+
+    def find_object(self, role):
+        import bpy
+
+        name = self.object_names.get(role)
+        if name is None:
+            return None
+        obj = bpy.data.objects.get(name)
+        if obj is not None and obj.get("tessera_role") == role:
+            return obj
+        for obj in bpy.data.objects:
+            if obj.get("tessera_document_id") == self.document_id and obj.get("tessera_role") == role:
+                self.object_names[role] = obj.name
+                return obj
+        return None
 
     # --- attaching to a session -------------------------------------------------
 
@@ -107,17 +147,15 @@ class LiveDocument:
     def make_objects(self, matrix=None):
         """Creates the cage and the limit objects (once)."""
         if self.cage_object is None:
-            self.cage_object = mesh_objects.new_object(
-                f"{self.name} cage", f"{self.name} cage", matrix=matrix)
-            mesh_objects.write_polygons(self.cage_object.data, self.known_points, self.faces)
-            self.cage_object.display_type = "WIRE"
-            self.cage_object.show_in_front = True
-            self.cage_object["tessera_document_id"] = self.document_id
+            cage = mesh_objects.new_object(f"{self.name} cage", f"{self.name} cage", matrix=matrix)
+            mesh_objects.write_polygons(cage.data, self.known_points, self.faces)
+            cage.display_type = "WIRE"
+            cage.show_in_front = True
+            self.cage_object = cage
             self.write_known_creases()
         if self.limit_object is None:
             self.limit_object = mesh_objects.new_object(
                 f"{self.name} limit", f"{self.name} limit", matrix=matrix)
-            self.limit_object["tessera_document_id"] = self.document_id
 
     def write_known_creases(self):
         mesh_objects.write_cage_creases(self.cage_object, self.known_edge_creases,
@@ -129,6 +167,10 @@ class LiveDocument:
         """Rewrites the limit object when the session's view of the document
         shows a new version; rereads the cage when that version was not made
         here. Returns True when something changed."""
+        if self.cage_object is None or self.limit_object is None:
+            # Deleted, or undone by Blender's undo: the document is still open.
+            self.make_objects()
+            self.limit_version = 0
         view = session.view(self.document_id)
         if view is None or not view.ready or view.version == self.limit_version:
             return False

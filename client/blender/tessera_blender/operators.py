@@ -79,6 +79,9 @@ class TESSERA_OT_list(TesseraOperator):
 class TESSERA_OT_open(TesseraOperator):
     bl_idname = "tessera.open_document"
     bl_label = "Open"
+    # An undo step once the objects exist: Blender's undo must not go back
+    # past their creation to a state without them (docs/BLENDER.md "Undo").
+    bl_options = {"REGISTER", "UNDO"}
     bl_description = "Open the chosen document as a control cage and a live limit surface"
 
     document_id: bpy.props.IntProperty(name="Document", default=0)
@@ -97,6 +100,7 @@ class TESSERA_OT_open(TesseraOperator):
 class TESSERA_OT_create(TesseraOperator):
     bl_idname = "tessera.create_from_mesh"
     bl_label = "Create from active mesh"
+    bl_options = {"REGISTER", "UNDO"}  # as Open's
     bl_description = ("Create a document from the active mesh, its edge and vertex creases as "
                       "tags, the scheme from its Subdivision Surface modifier")
 

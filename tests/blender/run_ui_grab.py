@@ -1,6 +1,6 @@
 """A grab released with the mouse in a real Blender window sends the cage
 edit: Debian's Blender under Xvfb (Mesa's software OpenGL), driven by
-xdotool (G, two moves, a click), against a real tessera-server
+xdotool (G, two moves, a click, then Ctrl+Z), against a real tessera-server
 (server_process.py) on a temporary store; ui_grab_case.py checks the
 server from inside Blender. Exits 77 (skipped) when blender, xvfb-run or
 xdotool is missing; removes its temporary folder."""
@@ -71,7 +71,8 @@ def main():
 
 
 # Inside the X server: Blender, then the user's hand. G starts a grab of the
-# selected vertex, the moves drag it, the click releases it.
+# selected vertex, the moves drag it, the click releases it; then Ctrl+Z,
+# Blender's own undo.
 DRIVE = r"""
 set -u
 root=$1 port=$2 token=$3 empty=$4 case=$5
@@ -90,6 +91,9 @@ touch "$root/dragging"
 for _ in $(seq 100); do [ -f "$root/checked-dragging" ] && break; sleep 0.1; done
 xdotool click 1; sleep 0.5
 touch "$root/released"
+for _ in $(seq 100); do [ -f "$root/checked-released" ] && break; sleep 0.1; done
+xdotool key ctrl+z; sleep 0.5
+touch "$root/undone"
 wait $blender_pid
 """
 

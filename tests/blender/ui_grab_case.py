@@ -4,7 +4,9 @@ vertex 0 selected. run_ui_grab.py then grabs with the mouse (G, moves, a
 click) through xdotool; this script, on its timer as in a user's session,
 checks that nothing reached the server while dragging and that the release
 sent one edit batch that moved v0:0 on the server (read by a second, plain
-session). Arguments after `--`: ROOT PORT TOKEN_FILE. Exit code 0 on success."""
+session), and that Blender's own Ctrl+Z after it sends nothing and leaves
+the cage as the server has it. Arguments after `--`: ROOT PORT TOKEN_FILE.
+Exit code 0 on success."""
 
 import os
 import sys
@@ -66,6 +68,10 @@ def server_point(second, document_id):
     return version, glb_positions(glb)[0]
 
 
+def start_point():
+    return state["start"][1]
+
+
 def step():
     state["ticks"] += 1
     try:
@@ -75,7 +81,7 @@ def step():
         elif marker("dragging") and "during" not in state:
             state["during"] = server_point(state["second"], state["doc"].document_id)
             write_marker("checked-dragging")
-        elif marker("released"):
+        elif marker("released") and "released" not in state:
             start_version, start = state["start"]
             during_version, during = state["during"]
             check(during_version == start_version and np.allclose(during, start),
@@ -83,7 +89,27 @@ def step():
             version, after = server_point(state["second"], state["doc"].document_id)
             check(version == start_version + 1, f"the release sent one batch: {start_version} -> {version}")
             check(np.linalg.norm(after - start) > 1e-3, f"v0:0 moved on the server: {start} -> {after}")
-            print(f"PASSED ui_grab_release: v0:0 {start} -> {after}, version {version}")
+            state["released"] = (version, after)
+            write_marker("checked-released")
+        elif marker("undone") and "released" in state:
+            # Blender's Ctrl+Z: the cage shows the server's state again and
+            # nothing is sent (docs/BLENDER.md, "Undo").
+            version, after = state["released"]
+            now_version, now = server_point(state["second"], state["doc"].document_id)
+            check(now_version == version and np.allclose(now, after),
+                  f"Blender's undo sent nothing: version {version} -> {now_version}")
+            # The undo may land in Edit Mode or, this script having entered
+            # it without an undo step of its own, in Object Mode.
+            cage = state["doc"].cage_object
+            if cage.mode == "EDIT":
+                bm = bmesh.from_edit_mesh(cage.data)
+                bm.verts.ensure_lookup_table()
+                shown = np.array(bm.verts[0].co[:])
+            else:
+                shown = np.array(cage.data.vertices[0].co[:])
+            check(np.abs(shown - after).max() < 1e-5,
+                  f"after Blender's undo the cage shows the server's v0:0 {after}, not {shown}")
+            print(f"PASSED ui_grab_release: v0:0 {start_point()} -> {after}, version {version}")
             return finish(0)
         elif state["ticks"] > 150:
             raise AssertionError("the mouse never released the grab")

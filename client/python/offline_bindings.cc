@@ -67,31 +67,50 @@ void bindOffline(py::module_& m) {
       "refine",
       [](const py::object& source, const py::object& faces, int level, bool limit,
          std::optional<std::string> tags, bool triangulate, bool dropUnused,
-         std::optional<double> creaseAngle, const std::string& creaseMethod, const std::string& boundary) {
-        const BaseMesh mesh = baseMeshOf(source, faces, {tags, triangulate, dropUnused, creaseAngle});
+         std::optional<double> creaseAngle, const std::string& creaseMethod, const std::string& boundary,
+         const std::string& scheme) {
+        const ImportArgs args{tags, triangulate, dropUnused, creaseAngle};
         const LoopOptions options = loopOptions(creaseMethod, boundary);
-        if (level < 0) throw py::value_error("level must be 0 or more");
+        const bool defaults = creaseMethod == "uniform" && boundary == "edge-only";
+        // The caller's choice of scheme and options: ValueError; the mesh's
+        // own failures below: tessera.Error (errors.h).
+        if (Status s = checkSchemeArguments(scheme, args, defaults, level, limit); !s.isOk())
+          throw py::value_error(s.message());
+        SchemeSource from;
+        if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
+          if (!faces.is_none()) throw py::value_error("faces are given with points, not with a file");
+          from.path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
+        } else {
+          if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
+          from.soup.points = pointsFrom(source);
+          addFaces(faces, from.soup);
+        }
         Expected<SurfaceMesh> surface = internalError("refine: not run");
         {
           py::gil_scoped_release refining;
-          surface = refineLoop(mesh, options, level, limit);
+          surface = refineScheme(scheme, std::move(from), args, options, defaults, level, limit);
         }
         return meshArrays(valueOf(std::move(surface)));
       },
       py::arg("source"), py::arg("faces") = py::none(), py::kw_only(), py::arg("level"),
       py::arg("limit") = false, py::arg("tags") = py::none(), py::arg("triangulate") = false,
       py::arg("drop_unused") = false, py::arg("crease_angle") = py::none(),
-      py::arg("crease_method") = "uniform", py::arg("boundary") = "edge-only",
-      (std::string("Refines a triangle mesh uniformly with Loop's rules and its sharp features\n"
-                   "(OpenSubdiv 3.5 semantics, no server), as `tessera refine` does.\n\n"
+      py::arg("crease_method") = "uniform", py::arg("boundary") = "edge-only", py::arg("scheme") = "loop",
+      (std::string("Refines a mesh uniformly (no server), as `tessera refine --scheme` does: Loop's\n"
+                   "rules (the default) or another scheme, with sharp features where the scheme has\n"
+                   "them (OpenSubdiv 3.5 semantics for loop and catmull-clark).\n\n"
                    "Returns a tessera.Mesh: the control points of `level` with the control mesh's\n"
                    "area-weighted vertex normals, or with limit=True their exact limit positions\n"
                    "and unit limit normals. The first vertices of every level are the input's, "
-                   "in order.\n\nArgs:\n") +
+                   "in order. A polygon scheme's surface also has polygon_offsets and\n"
+                   "polygon_corners (every face of a Catmull-Clark level is a quad).\n\nArgs:\n") +
        kSourceDoc +
        "\n    level: how many times to refine (0: the base mesh).\n"
-       "    limit: limit positions and normals instead of control points.\n"
-       "    crease_method: 'uniform' or 'chaikin'; boundary: 'edge-only' or 'edge-and-corner'.")
+       "    limit: limit positions and normals instead of control points (loop,\n"
+       "      catmull-clark and sqrt3, whose limit has positions only).\n"
+       "    crease_method: 'uniform' or 'chaikin'; boundary: 'edge-only' or 'edge-and-corner'.\n"
+       "    scheme: 'loop', 'catmull-clark', 'bilinear' or 'doo-sabin' (polygons as they are,\n"
+       "      without the import options), 'butterfly' or 'sqrt3' (triangles).")
           .c_str());
 }
 

@@ -54,4 +54,47 @@ Expected<SurfaceMesh> refineLoop(const BaseMesh& mesh, const LoopOptions& option
   return refiner.controlSurface(points);
 }
 
+Status checkSchemeArguments(const std::string& schemeName, const ImportArgs& args, bool defaultOptions,
+                            int level, bool limit) {
+  TESSERA_ASSIGN_OR_RETURN(const schemes::Scheme scheme, schemes::parseScheme(schemeName));
+  if (level < 0) return invalidArgument("level must be 0 or more");
+  if (scheme == schemes::Scheme::kLoop) return {};
+  if (!schemes::schemeHasCreases(scheme) && (args.tags || !defaultOptions))
+    return invalidArgument(std::string("the ") + schemeName +
+                           " scheme has no crease rules: no tags, crease_method or boundary");
+  if (const std::string why = schemes::limitUnavailableReason(scheme); limit && !why.empty())
+    return invalidArgument("limit: " + why);
+  if (schemes::schemeTakesPolygons(scheme) && (args.triangulate || args.dropUnused || args.creaseAngle))
+    return invalidArgument(
+        std::string("triangulate, drop_unused and crease_angle are not available with the ") + schemeName +
+        " scheme, which reads the polygons as they are");
+  return {};
+}
+
+Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource source, const ImportArgs& args,
+                                   const LoopOptions& options, bool defaultOptions, int level, bool limit) {
+  TESSERA_RETURN_IF_ERROR(checkSchemeArguments(schemeName, args, defaultOptions, level, limit));
+  TESSERA_ASSIGN_OR_RETURN(const schemes::Scheme scheme, schemes::parseScheme(schemeName));
+  if (scheme == schemes::Scheme::kLoop) {
+    TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, source.path ? baseMeshFromFile(*source.path, args)
+                                                        : baseMeshFromArrays(std::move(source.soup), args));
+    return refineLoop(mesh, options, level, limit);
+  }
+  schemes::SchemeRequest request{.scheme = scheme, .levels = level, .limit = limit, .crease = options};
+  if (schemes::schemeTakesPolygons(scheme)) {
+    if (args.triangulate || args.dropUnused || args.creaseAngle)
+      return invalidArgument(
+          std::string("triangulate, drop_unused and crease_angle are not available with the ") + schemeName +
+          " scheme, which reads the polygons as they are");
+    const std::string tags = args.tags.value_or("");
+    TESSERA_ASSIGN_OR_RETURN(schemes::PolygonMesh mesh,
+                             source.path ? schemes::importPolygonMesh(*source.path, tags)
+                                         : schemes::polygonMeshOf(std::move(source.soup), "arrays", tags));
+    return schemes::refinePolygons(mesh, request);
+  }
+  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, source.path ? baseMeshFromFile(*source.path, args)
+                                                      : baseMeshFromArrays(std::move(source.soup), args));
+  return schemes::refineTriangles(BaseTopology::fromBaseMesh(mesh), mesh.positions(), request);
+}
+
 }  // namespace tessera::python

@@ -13,6 +13,7 @@
 #include "core/mesh/base_mesh.h"
 #include "core/mesh/polygon_soup.h"
 #include "core/mesh/surface_mesh.h"
+#include "core/schemes/scheme.h"
 #include "core/util/status.h"
 
 namespace tessera::python {
@@ -38,5 +39,21 @@ Expected<LoopOptions> loopOptionsNamed(const std::string& creaseMethod, const st
 // control mesh's normals), or with `limit` their exact limit positions and
 // unit normals.
 Expected<SurfaceMesh> refineLoop(const BaseMesh& mesh, const LoopOptions& options, int level, bool limit);
+
+// The other schemes of `tessera refine --scheme` (core/schemes/scheme.h),
+// by name: the polygon schemes (catmull-clark, bilinear, doo-sabin) on the
+// file's polygons as they are, or the arrays' faces; the triangle schemes
+// (butterfly, sqrt3) on the base mesh as baseMeshFrom* imports it. A scheme
+// without crease rules refuses tags and a crease option other than the
+// defaults, a polygon scheme the triangle importer's options, a scheme
+// without a limit `limit`: each an InvalidArgument that says so.
+Status checkSchemeArguments(const std::string& schemeName, const ImportArgs& args, bool defaultOptions,
+                            int level, bool limit);
+struct SchemeSource {
+  std::optional<std::string> path;  // a file, else
+  PolygonSoup soup;                 // the arrays
+};
+Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource source, const ImportArgs& args,
+                                   const LoopOptions& options, bool defaultOptions, int level, bool limit);
 
 }  // namespace tessera::python

@@ -7,7 +7,9 @@
 // Input layout: byte 0 the options (bit 0 triangulate, 1 drop unused
 // vertices, 2 a crease angle, 3 limit, 4 Chaikin, 5 edge-and-corner, 6-7
 // the level 0..2), byte 1 the crease angle in degrees (0..255, so out of
-// range too), byte 2 the number of points (at most 64), then that many
+// range too) with bit 2, else the scheme (modulo 6, in schemeNames()'s
+// order: 0 Loop as read_mesh and refine run it, the others as refine's
+// `scheme=` runs them), byte 2 the number of points (at most 64), then that many
 // points as three raw doubles each (NaN and infinities included), then
 // faces until a '\n': a corner count byte and that many 2-byte signed
 // indices (out of range too); what follows is two lines, parsed as a
@@ -73,6 +75,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   if (in.peekNewline()) in.byte();
 
+  const std::string& scheme = schemes::schemeNames()[(flags & 4) ? 0 : angle % 6];
+  if (scheme != "loop") {
+    const bool defaults = (flags & 48) == 0;
+    auto options = python::loopOptionsNamed((flags & 16) ? "chaikin" : "uniform",
+                                            (flags & 32) ? "edge-and-corner" : "edge-only");
+    auto surface = python::refineScheme(scheme, {.soup = std::move(soup)}, args, *options, defaults,
+                                        (flags >> 6) % 3, (flags & 8) != 0);
+    if (!surface.isOk()) checkError(surface.status(), "refineScheme");
+    return 0;
+  }
   auto mesh = python::baseMeshFromArrays(std::move(soup), args);
   if (!mesh.isOk()) {
     checkError(mesh.status(), "baseMeshFromArrays");

@@ -69,3 +69,46 @@ def test_ids_round_trip_between_text_and_packed():
     assert tessera.format_vertex_id(packed) == "v3:1234"
     assert tessera.id_level(packed) == 3 and tessera.id_index(packed) == 1234
     assert tessera.edge_id("e1:5") == (1 << 58) | 5
+
+
+# The unit cube as six quads, outward.
+CUBE = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float64)
+QUADS = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+
+
+def test_catmull_clark_follows_its_vertex_rule_and_keeps_quads():
+    """Catmull & Clark's rules worked by hand: a corner of valence 3 goes to
+    (F + 2E + (n - 3) V) / n, F the mean of its faces' centroids (1/3 each
+    axis) and E of its edges' midpoints (1/6): 2/9 each axis."""
+    level1 = tessera.refine(CUBE, QUADS, level=1, scheme="catmull-clark")
+    assert level1.positions.shape == (8 + 12 + 6, 3)
+    assert np.allclose(level1.positions[0], [2 / 9, 2 / 9, 2 / 9], atol=1e-12)
+    offsets = np.asarray(level1.polygon_offsets)
+    assert len(offsets) == 24 + 1 and np.all(np.diff(offsets) == 4)
+
+
+def test_catmull_clark_limit_follows_its_limit_mask():
+    """Halstead, Kass & DeRose, "Efficient, Fair Interpolation Using
+    Catmull-Clark Surfaces": the limit of a vertex of valence n among quads
+    weighs it n^2, its edge neighbours 4 and its faces' opposite corners 1,
+    over n (n + 5). The cube's corner at the origin: (4 * 1 + 2) / 24 = 1/4."""
+    limit = tessera.refine(CUBE, QUADS, level=0, limit=True, scheme="catmull-clark")
+    assert np.allclose(limit.positions[0], [0.25, 0.25, 0.25], atol=1e-12)
+    assert np.allclose(limit.normals[0], -np.ones(3) / np.sqrt(3), atol=1e-9)
+
+
+def test_an_interpolating_scheme_keeps_the_base_vertices():
+    level2 = tessera.refine(POINTS, FACES, level=2, scheme="butterfly")
+    assert np.array_equal(level2.positions[:4], POINTS)
+    assert level2.triangles.shape == (64, 3)
+
+
+def test_a_scheme_refuses_what_it_cannot_do_as_value_errors():
+    with pytest.raises(ValueError, match="limit"):
+        tessera.refine(CUBE, QUADS, level=1, limit=True, scheme="bilinear")
+    with pytest.raises(ValueError, match="no crease rules"):
+        tessera.refine(POINTS, FACES, level=1, scheme="butterfly", crease_method="chaikin")
+    with pytest.raises(ValueError, match="as they are"):
+        tessera.refine(CUBE, QUADS, level=1, scheme="catmull-clark", triangulate=True)
+    with pytest.raises(ValueError, match="pentagonal"):
+        tessera.refine(POINTS, FACES, level=1, scheme="pentagonal")

@@ -305,4 +305,5 @@ def refine(
     crease_angle: Optional[float] = None,
     crease_method: str = "uniform",
     boundary: str = "edge-only",
+    scheme: str = "loop",
 ) -> Mesh: ...

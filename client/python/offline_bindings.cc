@@ -13,20 +13,18 @@ namespace tessera::python {
 
 namespace {
 
-// A file, or (points, faces) arrays, as core's base mesh
-// (offline_work.h).
-BaseMesh baseMeshOf(const py::object& source, const py::object& faces, const ImportArgs& a) {
+// What `source` (and `faces`) name: a file, or (points, faces) arrays.
+SchemeSource sourceOf(const py::object& source, const py::object& faces) {
+  SchemeSource from;
   if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
     if (!faces.is_none()) throw py::value_error("faces are given with points, not with a file");
-    const std::string path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
-    py::gil_scoped_release reading;
-    return valueOf(baseMeshFromFile(path, a));
+    from.path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
+  } else {
+    if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
+    from.soup.points = pointsFrom(source);
+    addFaces(faces, from.soup);
   }
-  if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
-  PolygonSoup soup;
-  soup.points = pointsFrom(source);
-  addFaces(faces, soup);
-  return valueOf(baseMeshFromArrays(std::move(soup), a));
+  return from;
 }
 
 // A bad choice of rule is the caller's argument: ValueError.
@@ -50,10 +48,16 @@ void bindOffline(py::module_& m) {
       "read_mesh",
       [](const py::object& source, const py::object& faces, std::optional<std::string> tags, bool triangulate,
          bool dropUnused, std::optional<double> creaseAngle) {
-        const BaseMesh mesh = baseMeshOf(source, faces, {tags, triangulate, dropUnused, creaseAngle});
+        SchemeSource from = sourceOf(source, faces);
+        Expected<BaseMesh> mesh = internalError("read_mesh: not run");
+        {
+          py::gil_scoped_release reading;
+          mesh = baseMeshOf(std::move(from), {tags, triangulate, dropUnused, creaseAngle});
+        }
+        check(mesh.status());
         SurfaceMesh surface;
-        surface.positions = mesh.positions();
-        surface.triangles = mesh.faceVertexIndices();
+        surface.positions = mesh->positions();
+        surface.triangles = mesh->faceVertexIndices();
         return meshArrays(surface);  // normals None: a file's own are not read
       },
       py::arg("source"), py::arg("faces") = py::none(), py::kw_only(), py::arg("tags") = py::none(),
@@ -74,17 +78,9 @@ void bindOffline(py::module_& m) {
         const bool defaults = creaseMethod == "uniform" && boundary == "edge-only";
         // The caller's choice of scheme and options: ValueError; the mesh's
         // own failures below: tessera.Error (errors.h).
-        if (Status s = checkSchemeArguments(scheme, args, defaults, level, limit); !s.isOk())
-          throw py::value_error(s.message());
-        SchemeSource from;
-        if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) {
-          if (!faces.is_none()) throw py::value_error("faces are given with points, not with a file");
-          from.path = py::str(py::module_::import("os").attr("fspath")(source)).cast<std::string>();
-        } else {
-          if (faces.is_none()) throw py::value_error("points need faces: refine(points, faces, level)");
-          from.soup.points = pointsFrom(source);
-          addFaces(faces, from.soup);
-        }
+        if (auto checked = checkSchemeArguments(scheme, args, defaults, level, limit); !checked.isOk())
+          throw py::value_error(checked.status().message());
+        SchemeSource from = sourceOf(source, faces);
         Expected<SurfaceMesh> surface = internalError("refine: not run");
         {
           py::gil_scoped_release refining;

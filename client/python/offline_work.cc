@@ -31,6 +31,11 @@ Expected<BaseMesh> baseMeshFromArrays(PolygonSoup soup, const ImportArgs& args) 
   return withTags(importSoupWithReport(std::move(soup), "arrays", importOptions(args)), args);
 }
 
+Expected<BaseMesh> baseMeshOf(SchemeSource source, const ImportArgs& args) {
+  if (source.path) return baseMeshFromFile(*source.path, args);
+  return baseMeshFromArrays(std::move(source.soup), args);
+}
+
 Expected<LoopOptions> loopOptionsNamed(const std::string& creaseMethod, const std::string& boundary) {
   LoopOptions o;
   if (creaseMethod == "chaikin")
@@ -54,11 +59,11 @@ Expected<SurfaceMesh> refineLoop(const BaseMesh& mesh, const LoopOptions& option
   return refiner.controlSurface(points);
 }
 
-Status checkSchemeArguments(const std::string& schemeName, const ImportArgs& args, bool defaultOptions,
-                            int level, bool limit) {
+Expected<schemes::Scheme> checkSchemeArguments(const std::string& schemeName, const ImportArgs& args,
+                                               bool defaultOptions, int level, bool limit) {
   TESSERA_ASSIGN_OR_RETURN(const schemes::Scheme scheme, schemes::parseScheme(schemeName));
   if (level < 0) return invalidArgument("level must be 0 or more");
-  if (scheme == schemes::Scheme::kLoop) return {};
+  if (scheme == schemes::Scheme::kLoop) return scheme;
   if (!schemes::schemeHasCreases(scheme) && (args.tags || !defaultOptions))
     return invalidArgument(std::string("the ") + schemeName +
                            " scheme has no crease rules: no tags, crease_method or boundary");
@@ -68,16 +73,15 @@ Status checkSchemeArguments(const std::string& schemeName, const ImportArgs& arg
     return invalidArgument(
         std::string("triangulate, drop_unused and crease_angle are not available with the ") + schemeName +
         " scheme, which reads the polygons as they are");
-  return {};
+  return scheme;
 }
 
 Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource source, const ImportArgs& args,
                                    const LoopOptions& options, bool defaultOptions, int level, bool limit) {
-  TESSERA_RETURN_IF_ERROR(checkSchemeArguments(schemeName, args, defaultOptions, level, limit));
-  TESSERA_ASSIGN_OR_RETURN(const schemes::Scheme scheme, schemes::parseScheme(schemeName));
+  TESSERA_ASSIGN_OR_RETURN(const schemes::Scheme scheme,
+                           checkSchemeArguments(schemeName, args, defaultOptions, level, limit));
   if (scheme == schemes::Scheme::kLoop) {
-    TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, source.path ? baseMeshFromFile(*source.path, args)
-                                                        : baseMeshFromArrays(std::move(source.soup), args));
+    TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, baseMeshOf(std::move(source), args));
     return refineLoop(mesh, options, level, limit);
   }
   schemes::SchemeRequest request{.scheme = scheme, .levels = level, .limit = limit, .crease = options};
@@ -92,8 +96,7 @@ Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource s
                                          : schemes::polygonMeshOf(std::move(source.soup), "arrays", tags));
     return schemes::refinePolygons(mesh, request);
   }
-  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, source.path ? baseMeshFromFile(*source.path, args)
-                                                      : baseMeshFromArrays(std::move(source.soup), args));
+  TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, baseMeshOf(std::move(source), args));
   return schemes::refineTriangles(BaseTopology::fromBaseMesh(mesh), mesh.positions(), request);
 }
 

@@ -31,6 +31,14 @@ struct ImportArgs {
 Expected<BaseMesh> baseMeshFromFile(const std::string& path, const ImportArgs& args);
 Expected<BaseMesh> baseMeshFromArrays(PolygonSoup soup, const ImportArgs& args);
 
+// What a function's `source` named: a file, else the arrays.
+struct SchemeSource {
+  std::optional<std::string> path;
+  PolygonSoup soup;
+};
+// baseMeshFromFile or baseMeshFromArrays, as `source` says.
+Expected<BaseMesh> baseMeshOf(SchemeSource source, const ImportArgs& args);
+
 // crease_method "uniform" or "chaikin", boundary "edge-only" or
 // "edge-and-corner"; anything else is an InvalidArgument naming the choices.
 Expected<LoopOptions> loopOptionsNamed(const std::string& creaseMethod, const std::string& boundary);
@@ -47,12 +55,10 @@ Expected<SurfaceMesh> refineLoop(const BaseMesh& mesh, const LoopOptions& option
 // without crease rules refuses tags and a crease option other than the
 // defaults, a polygon scheme the triangle importer's options, a scheme
 // without a limit `limit`: each an InvalidArgument that says so.
-Status checkSchemeArguments(const std::string& schemeName, const ImportArgs& args, bool defaultOptions,
-                            int level, bool limit);
-struct SchemeSource {
-  std::optional<std::string> path;  // a file, else
-  PolygonSoup soup;                 // the arrays
-};
+// The scheme named, if it takes these arguments; else an InvalidArgument
+// that says why not.
+Expected<schemes::Scheme> checkSchemeArguments(const std::string& schemeName, const ImportArgs& args,
+                                               bool defaultOptions, int level, bool limit);
 Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource source, const ImportArgs& args,
                                    const LoopOptions& options, bool defaultOptions, int level, bool limit);
 

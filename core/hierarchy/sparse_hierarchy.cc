@@ -179,15 +179,30 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
   }
   freshLevel = freshLevel || state.limitPosition.empty();  // level 0, first marked
   if (!freshLevel && newLimits.empty()) return;
-  state.limitPosition.resize(m.numVertices);
-  state.limitNormal.resize(m.numVertices);
   const LevelLimits limits = limitsOf(l);
   if (!freshLevel) {
+    state.limitPosition.resize(m.numVertices);
+    state.limitNormal.resize(m.numVertices);
     for (Index v : newLimits) refreshLimit(l, v, limits);
     return;
   }
+  // Each limit written once, in order: a resize first would zero the
+  // arrays only for this loop to write them again (a tenth of building a
+  // Catmull-Clark level, docs/PERFORMANCE.md "Catmull-Clark in the
+  // hierarchy"). A vertex without a complete ring has none: zero.
+  state.limitPosition.clear();
+  state.limitNormal.clear();
+  state.limitPosition.reserve(m.numVertices);
+  state.limitNormal.reserve(m.numVertices);
   for (Index v = 0; v < m.numVertices; ++v) {
-    if (state.topo.isComplete(v)) refreshLimit(l, v, limits);
+    if (!state.topo.isComplete(v)) {
+      state.limitPosition.emplace_back(0, 0, 0);
+      state.limitNormal.emplace_back(0, 0, 0);
+      continue;
+    }
+    const LimitFrame frame = limits.frame(v, state.points);
+    state.limitPosition.push_back(frame.position);
+    state.limitNormal.push_back(frame.normal());
   }
 }
 
@@ -241,15 +256,17 @@ void SparseHierarchy::evaluateLevel(int l, std::span<const Edit> edits) {
   const Index n = topo.mesh.numVertices;
   state.vertexMarks.assign(n, 0);
   state.faceMarks.assign(topo.mesh.numFaces(), 0);
-  state.predicted.resize(n);
   if (l == 0) {
-    std::copy(basePoints_.begin(), basePoints_.end(), state.predicted.begin());
+    state.predicted.assign(basePoints_.begin(), basePoints_.end());
   } else {
     // A tag set on this level changes how it refines, not how it was
     // predicted: the stencils read only the parent (interpolate.h).
+    // Appended, not resized and overwritten: each point written once.
     const LevelState& parent = levels_[l - 1];
     ChildStencils stencils(parent.topo, options_, counts_.split());
-    for (Index v = 0; v < n; ++v) state.predicted[v] = stencils.predict(topo, v, parent.points);
+    state.predicted.clear();
+    state.predicted.reserve(n);
+    for (Index v = 0; v < n; ++v) state.predicted.push_back(stencils.predict(topo, v, parent.points));
     for (const auto& [v, tag] : parent.interpolationTags) applyGhostRing(l, v);
   }
   state.points = state.predicted;

@@ -1,9 +1,17 @@
 #include "client/python/offline_work.h"
 
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <span>
 #include <utility>
 #include <vector>
 
-#include "core/io/tag_file.h"
+#include "core/mesh/sharpness.h"
+#include "core/util/file_io.h"
 
 namespace tessera::python {
 
@@ -98,6 +106,95 @@ Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource s
   }
   TESSERA_ASSIGN_OR_RETURN(BaseMesh mesh, baseMeshOf(std::move(source), args));
   return schemes::refineTriangles(BaseTopology::fromBaseMesh(mesh), mesh.positions(), request);
+}
+
+SurfaceMesh surfaceOf(std::vector<Vec3> points, const PolygonSoup& faces, std::vector<Vec3> normals) {
+  SurfaceMesh surface;
+  surface.positions = std::move(points);
+  surface.normals = std::move(normals);
+  bool triangles = true;
+  for (int f = 0; f < faces.numFaces(); ++f)
+    triangles = triangles && faces.faceOffsets[f + 1] - faces.faceOffsets[f] == 3;
+  for (int f = 0; f < faces.numFaces(); ++f) {
+    const std::span<const int> corners(faces.indices.data() + faces.faceOffsets[f],
+                                       static_cast<size_t>(faces.faceOffsets[f + 1] - faces.faceOffsets[f]));
+    if (triangles)
+      surface.triangles.push_back({corners[0], corners[1], corners[2]});
+    else
+      surface.addPolygon(corners);
+  }
+  return surface;
+}
+
+Status writeSurface(const SurfaceMesh& surface, const std::string& path, bool draco) {
+  return exportMesh(surface, path, {.draco = draco});
+}
+
+Expected<std::vector<FeatureTag>> tagsFromText(const std::string& text, const std::string& sourceName) {
+  return parseTags(text, sourceName);
+}
+
+Expected<std::vector<FeatureTag>> readTagFile(const std::string& path) {
+  TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
+  return tagsFromText(text, path);
+}
+
+namespace {
+
+std::string tagName(size_t index, const FeatureTag& tag) {
+  std::string name = "tag " + std::to_string(index) + " (";
+  if (tag.kind == FeatureTag::Kind::kCorner) return name + "corner " + std::to_string(tag.v0) + ")";
+  return name + "crease " + std::to_string(tag.v0) + " " + std::to_string(tag.v1) + ")";
+}
+
+// The shortest decimal that reads back to the same float (std::to_chars),
+// which the reader's double parse then rounds back to it; `inf` where the
+// reader stores kSharpnessInfinite.
+std::string sharpnessText(float s) {
+  if (isInfinite(s)) return "inf";
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, s);
+  return std::string(buffer, end);
+}
+
+}  // namespace
+
+Expected<std::string> tagFileText(const std::vector<FeatureTag>& tags) {
+  // The reader's refusals (docs/FORMATS.md "Tag sidecar files"), said of
+  // the tag as the caller numbered it rather than of a line not yet written.
+  std::map<std::pair<int, int>, size_t> edges;
+  std::map<int, size_t> vertices;
+  std::string text;
+  for (size_t i = 0; i < tags.size(); ++i) {
+    const FeatureTag& tag = tags[i];
+    const bool crease = tag.kind == FeatureTag::Kind::kCrease;
+    if (tag.v0 < 0 || (crease && tag.v1 < 0))
+      return invalidArgument(tagName(i, tag) + ": a vertex number must be 0 or more");
+    if (crease && tag.v0 == tag.v1) return invalidArgument(tagName(i, tag) + ": names the same vertex twice");
+    if (std::isnan(tag.sharpness) || tag.sharpness < 0)
+      return invalidArgument(tagName(i, tag) + ": sharpness must be a number >= 0 or infinity");
+    const size_t firstOnIt = crease ? edges.emplace(std::minmax(tag.v0, tag.v1), i).first->second
+                                    : vertices.emplace(tag.v0, i).first->second;
+    if (firstOnIt != i) {
+      return invalidArgument(tagName(i, tag) + ": repeats " + tagName(firstOnIt, tags[firstOnIt]) +
+                             " (a tag file has one tag per edge and per vertex)");
+    }
+    text += crease ? "crease " + std::to_string(tag.v0) + " " + std::to_string(tag.v1)
+                   : "corner " + std::to_string(tag.v0);
+    text += " " + sharpnessText(tag.sharpness) + "\n";
+  }
+  return text;
+}
+
+Status writeTagFile(const std::string& path, const std::vector<FeatureTag>& tags) {
+  TESSERA_ASSIGN_OR_RETURN(const std::string text, tagFileText(tags));
+  errno = 0;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) return ioError(path + ": cannot open for writing: " + std::strerror(errno));
+  out << text;
+  out.close();
+  if (!out) return ioError(path + ": write failed");
+  return Status::ok();
 }
 
 }  // namespace tessera::python

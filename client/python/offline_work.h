@@ -1,14 +1,19 @@
 // The C++ side of the package's offline functions (docs/PYTHON.md
 // "Offline"): a base mesh from a file or from arrays, as core imports it,
-// and Loop's uniform refinement of it. Free of Python, so that the
+// its uniform refinement, a surface written as core's exporter writes it,
+// and tag files read and written. Free of Python, so that the
 // python_offline fuzz target (docs/FUZZING.md) runs exactly what
-// tessera.read_mesh and tessera.refine run once their arguments are C++.
+// tessera.read_mesh, refine, read_tags and write_tags run once their
+// arguments are C++.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "core/io/mesh_export.h"
 #include "core/io/mesh_import.h"
+#include "core/io/tag_file.h"
 #include "core/loop/loop_refiner.h"
 #include "core/mesh/base_mesh.h"
 #include "core/mesh/polygon_soup.h"
@@ -61,5 +66,29 @@ Expected<schemes::Scheme> checkSchemeArguments(const std::string& schemeName, co
                                                bool defaultOptions, int level, bool limit);
 Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource source, const ImportArgs& args,
                                    const LoopOptions& options, bool defaultOptions, int level, bool limit);
+
+// write_mesh: `points` with `faces` (all triangles: a triangle surface;
+// else polygons, which OBJ, OFF, PLY and USDA keep and STL and GLB write as
+// fans, core/io/mesh_export.h) and `normals` (none, or one per point), in
+// the format of the path's extension. exportMesh's checks name the element
+// at fault; nothing is written unless they pass.
+SurfaceMesh surfaceOf(std::vector<Vec3> points, const PolygonSoup& faces, std::vector<Vec3> normals);
+Status writeSurface(const SurfaceMesh& surface, const std::string& path, bool draco);
+
+// read_tags: a tag file's tags (docs/FORMATS.md "Tag sidecar files") in the
+// file's order, as core's parser reads them (sharpness `inf` is 10,
+// kSharpnessInfinite). They are checked against no mesh: read_mesh(tags=)
+// and refine(tags=) apply a file to one. `sourceName` names it in errors.
+Expected<std::vector<FeatureTag>> tagsFromText(const std::string& text, const std::string& sourceName);
+Expected<std::vector<FeatureTag>> readTagFile(const std::string& path);
+
+// write_tags: the text of a tag file stating `tags` in order, one line each,
+// that tagsFromText reads back to the same tags: sharpness as the shortest
+// decimal that reads back to the same float, `inf` from 10 up. Refused
+// (InvalidArgument naming the tag by its position): a negative vertex, a
+// crease naming one vertex twice, a negative or NaN sharpness, and a second
+// tag on an edge (either direction) or a vertex, which the reader refuses.
+Expected<std::string> tagFileText(const std::vector<FeatureTag>& tags);
+Status writeTagFile(const std::string& path, const std::vector<FeatureTag>& tags);
 
 }  // namespace tessera::python

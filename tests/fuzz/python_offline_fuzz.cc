@@ -13,7 +13,9 @@
 // points as three raw doubles each (NaN and infinities included), then
 // faces until a '\n': a corner count byte and that many 2-byte signed
 // indices (out of range too); what follows is two lines, parsed as a
-// vertex id and an edge id.
+// vertex id and an edge id, and the whole of it as a tag file
+// (tessera.read_tags), whose tags tessera.write_tags must write as a text
+// that reads back to the same tags, or refuse naming the tag.
 #include <cstring>
 #include <string>
 
@@ -115,6 +117,28 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (newline != std::string::npos) {
     auto edge = parseEdgeId(text.substr(newline + 1));
     if (!edge.isOk()) checkError(edge.status(), "parseEdgeId");
+  }
+
+  auto tags = python::tagsFromText(text, "fuzz.tags");
+  if (!tags.isOk()) {
+    checkError(tags.status(), "tagsFromText");
+    return 0;
+  }
+  auto written = python::tagFileText(*tags);
+  if (!written.isOk()) {
+    checkError(written.status(), "tagFileText");
+    require(written.status().message().rfind("tag ", 0) == 0,
+            "a refused tag that is not named: " + written.status().message());
+    return 0;
+  }
+  auto reread = python::tagsFromText(*written, "written.tags");
+  require(reread.isOk(), "written tags that do not read back: " + reread.status().message());
+  require(reread->size() == tags->size(), "written tags read back to another count");
+  for (size_t i = 0; i < tags->size(); ++i) {
+    const FeatureTag &a = (*tags)[i], &b = (*reread)[i];
+    require(a.kind == b.kind && a.v0 == b.v0 && (a.kind == FeatureTag::Kind::kCorner || a.v1 == b.v1) &&
+                std::memcmp(&a.sharpness, &b.sharpness, sizeof(float)) == 0,
+            "tag " + std::to_string(i) + " read back different: " + *written);
   }
   return 0;
 }

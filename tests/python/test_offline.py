@@ -112,3 +112,40 @@ def test_a_scheme_refuses_what_it_cannot_do_as_value_errors():
         tessera.refine(CUBE, QUADS, level=1, scheme="catmull-clark", triangulate=True)
     with pytest.raises(ValueError, match="pentagonal"):
         tessera.refine(POINTS, FACES, level=1, scheme="pentagonal")
+
+
+def hexagonal_bipyramid():
+    """Apex 0 of valence 6 (a regular vertex of Loop's scheme) over a ring
+    of six points at uneven radii and heights, closed by apex 7 below."""
+    angles = 2 * np.pi * np.arange(6) / 6
+    radii = np.array([1.0, 1.3, 0.8, 1.1, 0.9, 1.2])
+    heights = np.array([0.1, -0.2, 0.3, 0.0, 0.2, -0.1])
+    ring = np.stack([radii * np.cos(angles), radii * np.sin(angles), heights], axis=1)
+    points = np.vstack([[0.1, -0.05, 1.0], ring, [0.0, 0.0, -1.0]])
+    top = [[0, 1 + i, 1 + (i + 1) % 6] for i in range(6)]  # counter-clockwise seen from above
+    bottom = [[7, 1 + (i + 1) % 6, 1 + i] for i in range(6)]
+    return points, np.array(top + bottom)
+
+
+def test_limit_of_a_regular_vertex_follows_loops_masks():
+    """Loop's limit masks at a vertex of valence 6, worked by hand: beta =
+    (5/8 - (3/8 + cos(2 pi / 6) / 4)^2) / 6 = 1/16, chi = 1 / (3 / (8 beta) + 6)
+    = 1/12, so the limit point is v / 2 + (sum of the ring) / 12; the tangents
+    are sum cos(2 pi i / 6) p_i and sum sin(2 pi i / 6) p_i over the ring in
+    order (Loop, "Smooth Subdivision Surfaces Based on Triangles"; Hoppe et
+    al., "Piecewise Smooth Surface Reconstruction"), their cross product the
+    normal of a counter-clockwise ring."""
+    points, faces = hexagonal_bipyramid()
+    ring = points[1:7]
+    expected = points[0] / 2 + ring.sum(axis=0) / 12
+    limit = tessera.refine(points, faces, level=0, limit=True)
+    assert np.allclose(limit.positions[0], expected, atol=1e-12)
+    angles = 2 * np.pi * np.arange(6) / 6
+    t1 = (np.cos(angles)[:, None] * ring).sum(axis=0)
+    t2 = (np.sin(angles)[:, None] * ring).sum(axis=0)
+    normal = np.cross(t1, t2)
+    assert np.allclose(limit.normals[0], normal / np.linalg.norm(normal), atol=1e-9)
+    # A vertex's limit does not depend on the level it is evaluated from.
+    level2 = tessera.refine(points, faces, level=2, limit=True)
+    assert np.allclose(level2.positions[0], expected, atol=1e-12)
+    assert np.allclose(level2.normals[0], limit.normals[0], atol=1e-9)

@@ -1,4 +1,5 @@
-"""Tessera for Python: tessera-server sessions and offline Loop refinement.
+"""Tessera for Python: tessera-server sessions and offline work (refinement,
+limit surfaces, mesh and tag files).
 
 Everything here is Tessera's C++ client library and core, compiled into
 ``tessera._tessera`` (docs/PYTHON.md). Sessions speak the protocol of
@@ -29,14 +30,18 @@ from tessera._tessera import (
     Rejected,
     ServerError,
     Session,
+    Tags,
     Timeout,
     edge_id,
     format_vertex_id,
     id_index,
     id_level,
     read_mesh,
+    read_tags,
     refine,
     vertex_id,
+    write_mesh,
+    write_tags,
 )
 
 __all__ = [
@@ -51,12 +56,16 @@ __all__ = [
     "Rejected",
     "ServerError",
     "Session",
+    "Tags",
     "Timeout",
     "edge_id",
     "format_vertex_id",
     "id_index",
     "id_level",
     "read_mesh",
+    "read_tags",
     "refine",
     "vertex_id",
+    "write_mesh",
+    "write_tags",
 ]

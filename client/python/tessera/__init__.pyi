@@ -79,6 +79,24 @@ class Mesh:
     @property
     def polygon_corners(self) -> Optional[npt.NDArray[np.int32]]: ...
 
+class Tags:
+    def __init__(
+        self,
+        *,
+        creases: Optional[npt.ArrayLike] = None,
+        crease_sharpness: Optional[npt.ArrayLike] = None,
+        corners: Optional[npt.ArrayLike] = None,
+        corner_sharpness: Optional[npt.ArrayLike] = None,
+    ) -> None: ...
+    @property
+    def creases(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def crease_sharpness(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def corners(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def corner_sharpness(self) -> npt.NDArray[np.float64]: ...
+
 class Region:
     @property
     def region_id(self) -> int: ...
@@ -307,3 +325,13 @@ def refine(
     boundary: str = "edge-only",
     scheme: str = "loop",
 ) -> Mesh: ...
+def write_mesh(
+    path: PathLike,
+    source: Union[Mesh, npt.ArrayLike],
+    faces: Optional[Union[npt.ArrayLike, Sequence[Sequence[int]]]] = None,
+    *,
+    normals: Optional[npt.ArrayLike] = None,
+    draco: bool = False,
+) -> None: ...
+def read_tags(path: PathLike) -> Tags: ...
+def write_tags(path: PathLike, tags: Tags) -> None: ...

@@ -3,8 +3,6 @@
 // delete, export, the control cage, grant.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
-#include <stdlib.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -12,28 +10,14 @@
 
 #include "client/python/bindings.h"
 #include "client/python/errors.h"
+#include "client/python/mesh_bytes.h"
 #include "client/python/numpy_arrays.h"
 #include "client/python/replies.h"
-#include "core/io/mesh_export.h"
 #include "core/util/file_io.h"
 
 namespace tessera::python {
 
 namespace {
-
-// The wire format of a mesh file by its extension (as `tessera remote
-// create` chooses it).
-wire::MeshFormat meshFormatOf(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".obj") return wire::MESH_FORMAT_OBJ;
-  if (ext == ".off") return wire::MESH_FORMAT_OFF;
-  if (ext == ".ply") return wire::MESH_FORMAT_PLY;
-  if (ext == ".stl") return wire::MESH_FORMAT_STL;
-  if (ext == ".glb") return wire::MESH_FORMAT_GLB;
-  if (ext == ".usda") return wire::MESH_FORMAT_USDA;
-  throw py::value_error(path + ": not .obj, .off, .ply, .stl, .glb or .usda");
-}
 
 // The import and document options every create shares (tessera.proto
 // CreateDocument).
@@ -77,36 +61,6 @@ void setOptions(wire::CreateDocument& c, const CreateOptions& o) {
     c.set_boundary(wire::BOUNDARY_INTERPOLATION_EDGE_ONLY);
   else if (!o.boundary.empty())
     throw py::value_error("boundary must be 'edge-only' or 'edge-and-corner'");
-}
-
-// Points and faces as the bytes of an OFF file, written by core's exporter
-// (shortest round-trip decimals: lossless, core/io/mesh_export.h) through a
-// temporary file that is removed before returning.
-std::string offBytes(const std::vector<Vec3>& points, const PolygonSoup& faces) {
-  SurfaceMesh mesh;
-  mesh.positions = points;
-  bool triangles = true;
-  for (int f = 0; f < faces.numFaces(); ++f)
-    triangles = triangles && faces.faceOffsets[f + 1] - faces.faceOffsets[f] == 3;
-  for (int f = 0; f < faces.numFaces(); ++f) {
-    std::span<const int> corners(faces.indices.data() + faces.faceOffsets[f],
-                                 static_cast<size_t>(faces.faceOffsets[f + 1] - faces.faceOffsets[f]));
-    if (triangles) {
-      mesh.triangles.push_back({corners[0], corners[1], corners[2]});
-    } else {
-      mesh.addPolygon(corners);
-    }
-  }
-  std::string path = (std::filesystem::temp_directory_path() / "tessera-python-XXXXXX.off").string();
-  const int fd = mkstemps(path.data(), 4);
-  if (fd < 0)
-    throw Failure(
-        ioError("cannot create a temporary file in " + std::filesystem::temp_directory_path().string()));
-  ::close(fd);
-  Status written = exportMesh(mesh, path);
-  Expected<std::string> bytes = written.isOk() ? readFile(path) : Expected<std::string>(written);
-  std::filesystem::remove(path);
-  return valueOf(std::move(bytes));
 }
 
 AckReply create(RemoteSession& s, wire::ClientMessage& m, std::optional<double> timeout) {

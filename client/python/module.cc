@@ -17,5 +17,6 @@ PYBIND11_MODULE(_tessera, m) {
   SessionClass session = bindSession(m);
   bindDocumentCommands(session);
   bindEditCommands(session);
+  bindMorphCommands(m, session);
   bindSubscriptions(session);
 }

@@ -151,7 +151,7 @@ void bindSubscriptions(SessionClass& session) {
   session.def(
       "subscribe",
       [](RemoteSession& s, uint64_t document, uint32_t baseLevel, uint32_t maxLevel, double angle,
-         uint64_t budget, uint32_t fidelity, bool vertexIds, bool withCommands,
+         uint64_t budget, uint32_t fidelity, bool vertexIds, bool withCommands, std::optional<double> morphT,
          std::optional<double> timeout) {
         wire::ClientMessage m;
         auto* sub = m.mutable_subscribe();
@@ -164,6 +164,7 @@ void bindSubscriptions(SessionClass& session) {
         p->set_triangle_budget(budget);
         p->set_fidelity(fidelity);
         p->set_omit_vertex_ids(!vertexIds);
+        if (morphT) p->set_morph_t(*morphT);
         // Watched before the Ack: the snapshot follows it at once.
         ViewPtr previous = s.view(document);
         s.watch(document);
@@ -176,12 +177,16 @@ void bindSubscriptions(SessionClass& session) {
       },
       py::arg("document_id"), py::kw_only(), py::arg("base_level") = 2, py::arg("max_level") = 5,
       py::arg("angle_threshold") = 10.0, py::arg("triangle_budget") = 0, py::arg("fidelity") = 0,
-      py::arg("vertex_ids") = true, py::arg("with_commands") = false, py::arg("timeout") = py::none(),
+      py::arg("vertex_ids") = true, py::arg("with_commands") = false, py::arg("morph_t") = py::none(),
+      py::arg("timeout") = py::none(),
       "Subscribes to an open document with a level-of-detail profile\n"
       "(docs/PROTOCOL.md 7.1): every base face refined at least to base_level, never\n"
       "beyond max_level, further where limit normals differ by more than\n"
       "angle_threshold degrees; triangle_budget 0 is the server's limit. A new\n"
-      "subscription replaces the previous one and its view.\n\n"
+      "subscription replaces the previous one and its view. morph_t: a morph\n"
+      "document's surface at that time in [0, 1] (docs/PROTOCOL.md section 14), rounded\n"
+      "to a multiple of 1/10000; None: key 0 as it is. REJECT_REASON_INVALID_ARGUMENT\n"
+      "for a time on a document with one key or outside [0, 1].\n\n"
       "Returns the tessera.Ack (version: the snapshot's). The snapshot and later\n"
       "deltas are read by receive() / wait_for() into Session.view(document_id).");
   session.def(

@@ -38,7 +38,7 @@ def test_a_document_with_one_key_refuses_the_morph_commands(session, cube):
     assert "key 1 does not exist" in edit.value.message
 
 
-def test_a_key_of_another_connectivity_is_refused_naming_the_triangle(session, cube):
+def test_a_key_of_another_connectivity_or_outside_the_grid_is_refused(session, cube):
     _, triangles, points1 = cube_keys()
     other = triangles.copy()
     # The bottom square (0, 1, 2, 3) cut along its other diagonal.
@@ -49,6 +49,10 @@ def test_a_key_of_another_connectivity_is_refused_naming_the_triangle(session, c
     assert refused.value.reason == "REJECT_REASON_INVALID_ARGUMENT"
     assert "triangle 0" in refused.value.message
     assert "one connectivity" in refused.value.message
+    with pytest.raises(tessera.Rejected) as far:
+        session.add_morph_key(cube, 100 * points1, triangles)
+    assert far.value.reason == "REJECT_REASON_LIMIT_EXCEEDED"
+    assert "outside the document's bounds" in far.value.message
     # Nothing was added: the document still has one key.
     with pytest.raises(tessera.Rejected):
         session.get_morph_control(cube, 0.5)

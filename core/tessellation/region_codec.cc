@@ -8,6 +8,7 @@
 #include "core/hierarchy/ids.h"
 #include "core/tessellation/float_text.h"
 #include "core/tessellation/region_draco.h"
+#include "core/tessellation/region_meshopt.h"
 #include "core/util/byte_io.h"
 #include "core/util/crc32.h"
 #include "core/util/hex.h"
@@ -18,6 +19,7 @@ namespace {
 using region_detail::IdCoding;
 
 constexpr char kMagic[4] = {'T', 'S', 'R', 'G'};
+constexpr char kMeshoptMagic[4] = {'T', 'S', 'R', 'M'};
 constexpr double kUnitTolerance = 1e-6;
 // The header's flags: bit 0 set = the regions of a display-only profile,
 // with no vertex id attribute; bit 1 set = a profile with ids whose payload
@@ -88,7 +90,7 @@ Status checkMesh(const RegionMesh& mesh, const QuantizationGrid& grid) {
 
 void writeHeader(ByteWriter& w, const RegionHeader& header, IdCoding coding, uint32_t triangles,
                  uint32_t payloadBytes) {
-  w.bytes().append(kMagic, sizeof(kMagic));
+  w.bytes().append(header.codec == RegionCodec::kMeshopt ? kMeshoptMagic : kMagic, sizeof(kMagic));
   w.put<uint16_t>(kRegionFormatVersion);
   w.put<uint16_t>(!header.profile.vertexIds      ? kFlagNoVertexIds
                   : !header.idsInline            ? kFlagLayoutIds
@@ -119,6 +121,10 @@ int latticeDepth(const RegionFrame& frame, const LodProfile& profile) {
 }
 
 }  // namespace
+
+const char* regionCodecName(RegionCodec codec) {
+  return codec == RegionCodec::kMeshopt ? "meshopt" : "draco";
+}
 
 Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh& mesh, int compressionLevel) {
   const std::string where = "region " + std::to_string(header.regionId);
@@ -151,9 +157,13 @@ Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh&
       coding = IdCoding::kLattice;
     }
   }
-  TESSERA_ASSIGN_OR_RETURN(const std::string payload,
-                           region_detail::encodeDracoPayload(mesh, coding, lattice ? &*lattice : nullptr,
-                                                             header.grid, compressionLevel, where));
+  const RegionLattice* latticeOrNull = lattice ? &*lattice : nullptr;
+  TESSERA_ASSIGN_OR_RETURN(
+      const std::string payload,
+      header.codec == RegionCodec::kMeshopt
+          ? region_detail::encodeMeshoptPayload(mesh, coding, latticeOrNull, header.grid, where)
+          : region_detail::encodeDracoPayload(mesh, coding, latticeOrNull, header.grid, compressionLevel,
+                                              where));
 
   const uint64_t triangles = mesh.triangles.size();
   if (payload.size() > kMaxRegionBytes - kRegionHeaderBytes - kRegionTrailerBytes ||
@@ -215,11 +225,12 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
   ByteReader r(bytes.data(), bytes.size(), source);
   std::array<char, 4> magic{};
   TESSERA_RETURN_IF_ERROR(r.get(magic, "the magic"));
-  if (std::memcmp(magic.data(), kMagic, sizeof(kMagic)) != 0) {
+  const bool meshopt = std::memcmp(magic.data(), kMeshoptMagic, sizeof(kMagic)) == 0;
+  if (!meshopt && std::memcmp(magic.data(), kMagic, sizeof(kMagic)) != 0) {
     uint32_t value = 0;
     std::memcpy(&value, magic.data(), sizeof(value));
     return parseError(source + ": not a Tessera region (magic " + hexNumber(value, 8) +
-                      ", expected \"TSRG\")");
+                      ", expected \"TSRG\" or \"TSRM\")");
   }
   uint16_t version = 0, flags = 0;
   TESSERA_RETURN_IF_ERROR(r.get(version, "the format version"));
@@ -238,6 +249,7 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
                       " claim more than one way of carrying ids");
   }
   RegionHeader header;
+  header.codec = meshopt ? RegionCodec::kMeshopt : RegionCodec::kDraco;
   Counts counts;
   TESSERA_RETURN_IF_ERROR(readHeader(r, header, counts));
   header.profile.vertexIds = (flags & kFlagNoVertexIds) == 0;
@@ -293,11 +305,17 @@ Expected<std::pair<RegionHeader, RegionMesh>> decodeRegion(std::string_view byte
     lattice = std::move(*built);
   }
   const std::string_view payload = bytes.substr(payloadAt, counts.payloadBytes);
+  const bool withIds = header.profile.vertexIds && header.idsInline;
+  if (meshopt) {
+    TESSERA_ASSIGN_OR_RETURN(
+        RegionMesh mesh, region_detail::decodeMeshoptPayload(payload, header.grid, withIds, counts.triangles,
+                                                             lattice ? &*lattice : nullptr, where));
+    return std::make_pair(std::move(header), std::move(mesh));
+  }
   TESSERA_RETURN_IF_ERROR(region_detail::checkDracoCounts(payload, counts.triangles, where));
-  TESSERA_ASSIGN_OR_RETURN(
-      RegionMesh mesh,
-      region_detail::decodeDracoPayload(payload, header.grid, header.profile.vertexIds && header.idsInline,
-                                        counts.triangles, lattice ? &*lattice : nullptr, where));
+  TESSERA_ASSIGN_OR_RETURN(RegionMesh mesh,
+                           region_detail::decodeDracoPayload(payload, header.grid, withIds, counts.triangles,
+                                                             lattice ? &*lattice : nullptr, where));
   return std::make_pair(std::move(header), std::move(mesh));
 }
 

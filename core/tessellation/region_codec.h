@@ -8,7 +8,8 @@
 //         triangles using every vertex.
 // Output: little-endian bytes, format version 2:
 //           offset  size  field
-//                0     4  magic "TSRG"
+//                0     4  magic "TSRG" (Draco payload) or "TSRM"
+//                         (meshoptimizer payload, region_meshopt.h)
 //                4     2  format version (2)
 //                6     2  flags, at most one set: bit 0 = no vertex ids (a
 //                         display-only profile; the Draco mesh has no
@@ -36,7 +37,8 @@
 //                         directions u8, base counts x 3, V, E, F (x 4, and C),
 //                         the numbers as LEB128 varints (k is 12 bytes for a
 //                         cube; region_lattice.h)
-//           99 (+k)   n  Draco mesh (bitstream 2.2): POSITION quantized on
+//           99 (+k)   n  "TSRM": the meshopt payload (region_meshopt.h);
+//                         "TSRG": Draco mesh (bitstream 2.2): POSITION quantized on
 //                         the grid, NORMAL octahedral, GENERIC ids as 8 x
 //                         uint8, least significant byte first (or lattice
 //                         points, bits 2 and 3)
@@ -88,6 +90,12 @@ struct RegionMesh {
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise
 };
 
+// A region's payload codec (docs/REGION_ENCODING.md): the header, frame,
+// grid, ids and checksum are the same; the magic tells them apart.
+enum class RegionCodec : uint8_t { kDraco, kMeshopt };
+inline constexpr int kRegionCodecCount = 2;
+const char* regionCodecName(RegionCodec codec);  // "draco", "meshopt"
+
 struct RegionHeader {
   uint64_t regionId = 0;
   uint64_t documentVersion = 0;
@@ -101,6 +109,7 @@ struct RegionHeader {
   // lattice points (region_lattice.h) when the profile's depth below the
   // face allows (at most kMaxLatticeDepth), as eight bytes otherwise.
   std::optional<RegionFrame> frame = std::nullopt;
+  RegionCodec codec = RegionCodec::kDraco;
 
   friend bool operator==(const RegionHeader&, const RegionHeader&) = default;
 };
@@ -116,6 +125,7 @@ inline constexpr size_t kMaxRegionBytes = size_t{1} << 28;
 // latency in docs/REGION_ENCODING.md, is the fastest Edgebreaker setting with
 // parallelogram prediction: as fast as levels 1-2 and 20% smaller, 3.4x
 // smaller than level 0, within 7% of level 10's size at a third of its time.
+// The meshopt codec has no levels: it checks and ignores the argument.
 inline constexpr int kDefaultRegionCompressionLevel = 3;
 
 // Encodes one region. The mesh must have at least one triangle, one normal
@@ -126,7 +136,8 @@ inline constexpr int kDefaultRegionCompressionLevel = 3;
 Expected<std::string> encodeRegion(const RegionHeader& header, const RegionMesh& mesh,
                                    int compressionLevel = kDefaultRegionCompressionLevel);
 
-// Decodes what encodeRegion produced. Draco may reorder vertices and split
+// Decodes what encodeRegion produced, either codec (header.codec says
+// which). Draco may reorder vertices and split
 // non-manifold ones, so the decoded mesh describes the same triangles over
 // the same ids, not the same vertex numbering. Positions are dequantized
 // exactly as a plain Draco decoder does (float32), normals renormalized.

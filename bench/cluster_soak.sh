@@ -7,14 +7,16 @@
 #   FAULTS=12 DURATION=120 bash bench/cluster_soak.sh   # a short try
 #   SEED=7 bash bench/cluster_soak.sh                   # the same schedule again
 #   EVERY_KIND=1 DURATION=80 bash bench/cluster_soak.sh # each kind of fault once
+#   EVERY_KIND=2 DURATION=120 bash bench/cluster_soak.sh # each kind twice
 #
 # Environment: FAULTS (200), DURATION (seconds, 1800), SEED (default: from
 # the clock, printed), BASE_PORT (25100: it uses BASE_PORT+1 .. +39 on
 # 127.0.0.1), LEASE_MS (2000), EDIT_RATE (commands per second per editor, 4),
 # TESSERA_BIN (the directory holding tessera-server, tessera, tessera-replay;
 # default: copies of TESSERA_BUILD_DIR's, itself build/release by default),
-# EVERY_KIND=1 (each kind of fault once, in an order drawn from SEED; FAULTS
-# is then the number of kinds), SOAK_DIR (the run directory; default a new one
+# EVERY_KIND=N (each kind of fault N times, in an order drawn from SEED;
+# FAULTS is then N times the number of kinds; a run whose schedule was cut
+# short fails), SOAK_DIR (the run directory; default a new one
 # under $TMPDIR or /tmp), KINDS (a comma-separated subset of the fault kinds, e.g.
 # KINDS=kill-all-nats,partition-node), KEEP=1 (keep the run directory even when the check passes).
 #
@@ -35,7 +37,7 @@ if [ -z "$bin" ]; then
   own_bin=1
 fi
 dir="${SOAK_DIR:-$(mktemp -d "${TMPDIR:-/tmp}/tessera-soak-XXXXXX")}"
-echo "cluster soak: seed $seed, ${EVERY_KIND:+each kind of fault once, not }$faults faults, over $duration s, run directory $dir"
+echo "cluster soak: seed $seed, ${EVERY_KIND:+each kind of fault $EVERY_KIND times, not }$faults faults, over $duration s, run directory $dir"
 
 status=0
 node "$repo/bench/cluster_soak/driver.mjs" --dir "$dir" --bin "$bin" --repo "$repo" --faults "$faults" \

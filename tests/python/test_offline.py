@@ -149,3 +149,22 @@ def test_limit_of_a_regular_vertex_follows_loops_masks():
     level2 = tessera.refine(points, faces, level=2, limit=True)
     assert np.allclose(level2.positions[0], expected, atol=1e-12)
     assert np.allclose(level2.normals[0], limit.normals[0], atol=1e-9)
+
+
+def test_limit_on_a_boundary_follows_the_crease_mask():
+    """A boundary is an infinitely sharp crease (the default boundary rule,
+    as OpenSubdiv's EDGE_ONLY): a vertex on it with two boundary neighbours
+    goes to the limit of a cubic B-spline, (p_prev + 4 p + p_next) / 6
+    (Hoppe et al., "Piecewise Smooth Surface Reconstruction")."""
+    heights = np.array([0.0, 0.3, -0.2, 0.1, 0.5, 0.2, -0.1, 0.4, 0.0])
+    points = np.array([[i + 0.1 * j, j, heights[i + 3 * j]] for j in range(3) for i in range(3)], dtype=float)
+    faces = []
+    for j in range(2):
+        for i in range(2):
+            a = i + 3 * j
+            faces += [[a, a + 1, a + 4], [a, a + 4, a + 3]]
+    limit = tessera.refine(points, np.array(faces), level=0, limit=True)
+    # Vertex 1, on the bottom edge between vertices 0 and 2.
+    assert np.allclose(limit.positions[1], (points[0] + 4 * points[1] + points[2]) / 6, atol=1e-12)
+    assert np.allclose(tessera.refine(points, np.array(faces), level=2, limit=True).positions[1],
+                       limit.positions[1], atol=1e-12)

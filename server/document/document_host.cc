@@ -91,8 +91,15 @@ DocumentHost::~DocumentHost() {
 
 void DocumentHost::subscribe(std::shared_ptr<Subscriber> who, const wire::Subscribe& request,
                              uint64_t clientSeq, bool resync) {
+  // An unknown codec, or one views are not served in, is refused naming the
+  // field, on the caller's thread (profile_request.h).
+  auto codec = codecFromWire(request);
+  if (!codec.isOk()) {
+    who->send({frameOf(rejectFor(clientSeq, codec.status()), config_.limits.maxFrameBytes), nullptr});
+    return;
+  }
   if (!request.has_view())
-    return subscribeProfile(who, request.profile(), clientSeq, resync, request.with_commands());
+    return subscribeProfile(who, request.profile(), clientSeq, resync, request.with_commands(), *codec);
   // A bad view costs nothing: refused on the caller's thread.
   auto view = viewFromWire(request.view());
   if (!view.isOk()) {
@@ -224,7 +231,7 @@ void DocumentHost::settleViews() {
 }
 
 void DocumentHost::subscribeProfile(const std::shared_ptr<Subscriber>& who, const wire::LodProfile& requested,
-                                    uint64_t clientSeq, bool resync, bool withCommands) {
+                                    uint64_t clientSeq, bool resync, bool withCommands, RegionCodec codec) {
   // Refused from the estimate before any work, on the caller's thread: a
   // profile whose base level alone is over its budget (docs/PROTOCOL.md §9).
   const int64_t least = minimumTriangles(counts_, requested);
@@ -239,7 +246,7 @@ void DocumentHost::subscribeProfile(const std::shared_ptr<Subscriber>& who, cons
     return;
   }
   const Lane lane = laneFor(maximumTriangles(counts_, requested, config_.limits), config_);
-  queue_.post(lane, [self = shared_from_this(), who, requested, clientSeq, resync, withCommands] {
+  queue_.post(lane, [self = shared_from_this(), who, requested, clientSeq, resync, withCommands, codec] {
     // The snapshot is taken at version_: every view's encodings must reach it.
     self->flush();
     self->tileStreams_.leave(who->sessionId());  // a view it had goes
@@ -294,7 +301,7 @@ void DocumentHost::subscribeProfile(const std::shared_ptr<Subscriber>& who, cons
         self->commits_.stopRecording(who->sessionId());
       }
     }
-    self->sendSnapshot(*view, who, resync);
+    self->sendSnapshot(*view, who, resync, codec);
     // Other views may have rebuilt (the hierarchy can grow); their next
     // update notices it by itself.
   });
@@ -331,12 +338,13 @@ void DocumentHost::unsubscribe(uint64_t session) {
   });
 }
 
-void DocumentHost::sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync) {
+void DocumentHost::sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync,
+                                RegionCodec codec) {
   for (auto& frame : snapshotFrames(view, id_.value, resync, encodeContext(view), kSnapshotPartBytes,
-                                    config_.limits.maxFrameBytes)) {
+                                    config_.limits.maxFrameBytes, codec)) {
     who->send({frame, nullptr, id_.value});
   }
-  views_.attach(view, who, version_);
+  views_.attach(view, who, version_, codec);
   if (resync) ++stats_.resyncs;
 }
 
@@ -521,15 +529,19 @@ void DocumentHost::flush() {
     stats_.tessellateMicros += microsSince(start);
     stats_.tessellateLatency.addMicros(microsSince(start));
     if (!changes.isOk()) return changes.status();
-    auto delta = std::make_shared<DeltaContent>();
-    delta->documentId = id_.value;
-    delta->fromVersion = flushedVersion_;
-    delta->toVersion = version_;
-    delta->authorSession = last ? last->authorSession : 0;
-    delta->editId = last ? last->editId : 0;
-    buildDelta(view, *changes, encodeContext(view), id_.value, *delta);
-    batch.frames[key] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
-    batch.deltas[key] = std::move(delta);
+    DeltaContent base;
+    base.documentId = id_.value;
+    base.fromVersion = flushedVersion_;
+    base.toVersion = version_;
+    base.authorSession = last ? last->authorSession : 0;
+    base.editId = last ? last->editId : 0;
+    // One delta per codec the view's subscribers hold (lod_view.h).
+    for (auto& [codec, content] : buildDeltas(view, *changes, encodeContext(view), id_.value, base)) {
+      auto delta = std::make_shared<const DeltaContent>(std::move(content));
+      const std::string frameKey = deltaKey(key, codec);
+      batch.frames[frameKey] = encodeDeltaFrame(*delta, config_.limits.maxFrameBytes);
+      batch.deltas[frameKey] = std::move(delta);
+    }
     return Status::ok();
   });
   // View-dependent subscribers: the tiles the edits reached are forgotten

@@ -159,9 +159,9 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   void committed(uint64_t version, Status status);
   // Releases what the commit log holds that is durable now.
   void release();
-  void sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync);
+  void sendSnapshot(LodView& view, const std::shared_ptr<Subscriber>& who, bool resync, RegionCodec codec);
   void subscribeProfile(const std::shared_ptr<Subscriber>& who, const wire::LodProfile& requested,
-                        uint64_t clientSeq, bool resync, bool withCommands);
+                        uint64_t clientSeq, bool resync, bool withCommands, RegionCodec codec);
   // On the strand: a view-dependent subscription (tile_streams.h).
   void subscribeView(const std::shared_ptr<Subscriber>& who, const wire::Subscribe& request, const View& view,
                      uint64_t clientSeq, bool resync);

@@ -45,9 +45,11 @@ LodView& DocumentViews::add(const std::string& key, LodView view) {
   return views_.emplace(key, std::move(view)).first->second;
 }
 
-void DocumentViews::attach(LodView& view, const std::shared_ptr<Subscriber>& who, uint64_t version) {
+void DocumentViews::attach(LodView& view, const std::shared_ptr<Subscriber>& who, uint64_t version,
+                           RegionCodec codec) {
   view.subscribers[who->sessionId()] = who;
   view.knownVersion[who->sessionId()] = version;
+  view.codecOf[who->sessionId()] = codec;
   view.lastUsed = ++useClock_;
 }
 
@@ -61,7 +63,8 @@ DocumentViews::Views DocumentViews::leave(uint64_t session) {
 
 DocumentViews::Views DocumentViews::forget(uint64_t session, std::string_view keep) {
   for (auto& [key, view] : views_) {
-    if (key != keep) view.subscribers.erase(session), view.knownVersion.erase(session);
+    if (key != keep)
+      view.subscribers.erase(session), view.knownVersion.erase(session), view.codecOf.erase(session);
   }
   return dropUnwatched(keep);
 }
@@ -126,11 +129,15 @@ void DocumentViews::updateEach(const std::function<Status(const std::string& key
 
 void DocumentViews::send(FlushBatch& batch) {
   for (auto& [key, view] : views_) {
-    auto frame = batch.frames.find(key);
-    if (frame == batch.frames.end() || !frame->second) continue;
     for (auto& [session, weak] : view.subscribers) {
       if (view.knownVersion[session] >= batch.toVersion) continue;  // its snapshot holds this one
-      if (auto who = weak.lock()) who->send({frame->second, batch.deltas[key]});
+      // The delta in the subscriber's codec (lod_view.h deltaKey).
+      const auto codec = view.codecOf.find(session);
+      const std::string frameKey =
+          deltaKey(key, codec == view.codecOf.end() ? RegionCodec::kDraco : codec->second);
+      auto frame = batch.frames.find(frameKey);
+      if (frame == batch.frames.end() || !frame->second) continue;
+      if (auto who = weak.lock()) who->send({frame->second, batch.deltas[frameKey]});
     }
   }
   batch.frames.clear();  // the batch stays only to order the recorders' commands

@@ -45,8 +45,10 @@ class DocumentViews {
 
   // Adds the view of profile `key` (not there yet).
   LodView& add(const std::string& key, LodView view);
-  // `who` watches `view` from `version`, the version its snapshot holds.
-  void attach(LodView& view, const std::shared_ptr<Subscriber>& who, uint64_t version);
+  // `who` watches `view` from `version`, the version its snapshot holds,
+  // in `codec`'s encodings.
+  void attach(LodView& view, const std::shared_ptr<Subscriber>& who, uint64_t version,
+              RegionCodec codec = RegionCodec::kDraco);
   // One profile per subscriber and document: `session` leaves every view but
   // `key`'s, once `key`'s exists (a refused profile keeps the old one);
   // then the unwatched views but `key`'s are dropped (dropUnwatched): the

@@ -18,10 +18,12 @@ namespace tessera::server {
 using Clock = std::chrono::steady_clock;
 
 Expected<std::shared_ptr<const std::string>> encodeViewRegion(const LodView& view, uint64_t region,
-                                                              bool idsInline, const EncodeContext& context) {
+                                                              bool idsInline, const EncodeContext& context,
+                                                              RegionCodec codec) {
   const auto start = Clock::now();
   RegionHeader header{region,       context.version, view.layout.at(region), view.tessellation->profile(),
                       context.grid, idsInline};
+  header.codec = codec;
   if (header.profile.vertexIds && idsInline && !view.tessellation->regionsAreGroups()) {
     // Ids as points of the region's lattice: a third of the bytes they
     // took as eight-byte labels (region_lattice.h). A group of base faces
@@ -46,15 +48,37 @@ namespace {
 // i-th.
 std::vector<Expected<std::shared_ptr<const std::string>>> encodeViewRegions(
     const LodView& view, std::span<const uint64_t> regions, const std::function<bool(size_t)>& idsInline,
-    const EncodeContext& context) {
+    const EncodeContext& context, RegionCodec codec) {
   std::vector<Expected<std::shared_ptr<const std::string>>> encodings(regions.size(),
                                                                       internalError("not encoded"));
-  parallelFor(regions.size(), workThreads(),
-              [&](size_t i) { encodings[i] = encodeViewRegion(view, regions[i], idsInline(i), context); });
+  parallelFor(regions.size(), workThreads(), [&](size_t i) {
+    encodings[i] = encodeViewRegion(view, regions[i], idsInline(i), context, codec);
+  });
   return encodings;
 }
 
+size_t codecIndex(RegionCodec codec) {
+  return static_cast<size_t>(codec);
+}
+
 }  // namespace
+
+std::vector<RegionCodec> heldCodecs(const LodView& view) {
+  std::array<bool, kRegionCodecCount> held{};
+  for (const auto& [session, codec] : view.codecOf) {
+    auto who = view.subscribers.find(session);
+    if (who != view.subscribers.end() && !who->second.expired()) held[codecIndex(codec)] = true;
+  }
+  std::vector<RegionCodec> codecs;
+  for (size_t c = 0; c < held.size(); ++c) {
+    if (held[c]) codecs.push_back(static_cast<RegionCodec>(c));
+  }
+  return codecs;
+}
+
+std::string deltaKey(const std::string& viewKey, RegionCodec codec) {
+  return codec == RegionCodec::kDraco ? viewKey : viewKey + "|" + regionCodecName(codec);
+}
 
 void rehashRegion(LodView& view, uint64_t region, const QuantizationGrid& grid, bool removed) {
   auto [it, fresh] = view.regionHashes.try_emplace(region, 0);
@@ -70,14 +94,15 @@ void rehashRegion(LodView& view, uint64_t region, const QuantizationGrid& grid, 
   view.surfaceHash += it->second;
 }
 
-void buildDelta(LodView& view, const Tessellation::Changes& changes, const EncodeContext& context,
-                uint64_t documentId, DeltaContent& delta) {
+std::vector<std::pair<RegionCodec, DeltaContent>> buildDeltas(LodView& view,
+                                                              const Tessellation::Changes& changes,
+                                                              const EncodeContext& context,
+                                                              uint64_t documentId, const DeltaContent& base) {
   // A region that only moved keeps its layout: its delta leaves the ids
   // out (a third of its bytes) and a later snapshot encodes them afresh.
   const bool withIds = view.tessellation->profile().vertexIds;
   for (uint64_t region : changes.changed) rehashRegion(view, region, context.grid);
   for (uint64_t region : changes.removed) rehashRegion(view, region, context.grid, /*removed=*/true);
-  delta.surfaceHash = view.surfaceHash;
   std::vector<char> idsInlineOf(changes.changed.size());
   for (size_t i = 0; i < changes.changed.size(); ++i) {
     const uint64_t region = changes.changed[i];
@@ -85,46 +110,63 @@ void buildDelta(LodView& view, const Tessellation::Changes& changes, const Encod
     if (relaid) view.layout[region] = context.version;
     idsInlineOf[i] = relaid || !withIds;
   }
-  auto encodings = encodeViewRegions(
-      view, changes.changed, [&](size_t i) { return idsInlineOf[i] != 0; }, context);
-  for (size_t i = 0; i < changes.changed.size(); ++i) {
-    const uint64_t region = changes.changed[i];
-    const bool idsInline = idsInlineOf[i];
-    auto& encoded = encodings[i];
-    if (!encoded.isOk()) {
-      logEvent(LogLevel::kError, "encode_failed",
-               {{"doc", documentId}, {"error", encoded.status().message()}});
-      view.encoded.erase(region);
+  const std::vector<RegionCodec> codecs = heldCodecs(view);
+  std::vector<std::pair<RegionCodec, DeltaContent>> deltas;
+  for (size_t c = 0; c < view.encoded.size(); ++c) {
+    const RegionCodec codec = static_cast<RegionCodec>(c);
+    auto& cache = view.encoded[c];
+    if (std::find(codecs.begin(), codecs.end(), codec) == codecs.end()) {
+      cache.clear();  // stale from now on; a subscriber that comes back gets it encoded afresh
       continue;
     }
-    if (idsInline) {
-      view.encoded[region] = *encoded;
-    } else {
-      view.encoded.erase(region);
+    DeltaContent& delta = deltas.emplace_back(codec, base).second;
+    delta.surfaceHash = view.surfaceHash;
+    auto encodings = encodeViewRegions(
+        view, changes.changed, [&](size_t i) { return idsInlineOf[i] != 0; }, context, codec);
+    for (size_t i = 0; i < changes.changed.size(); ++i) {
+      const uint64_t region = changes.changed[i];
+      const bool idsInline = idsInlineOf[i];
+      auto& encoded = encodings[i];
+      if (!encoded.isOk()) {
+        logEvent(
+            LogLevel::kError, "encode_failed",
+            {{"doc", documentId}, {"codec", regionCodecName(codec)}, {"error", encoded.status().message()}});
+        cache.erase(region);
+        continue;
+      }
+      if (idsInline) {
+        cache[region] = *encoded;
+      } else {
+        cache.erase(region);
+      }
+      delta.regions.push_back({region, *encoded, idsInline});
+      ++context.stats.deltaRegions;
+      if (!idsInline) ++context.stats.deltaRegionsLayoutIds;
     }
-    delta.regions.push_back({region, *encoded, idsInline});
-    ++context.stats.deltaRegions;
-    if (!idsInline) ++context.stats.deltaRegionsLayoutIds;
+    for (uint64_t region : changes.removed) cache.erase(region);
+    delta.removed = changes.removed;
   }
-  for (uint64_t region : changes.removed) view.encoded.erase(region), view.layout.erase(region);
-  delta.removed = changes.removed;
+  for (uint64_t region : changes.removed) view.layout.erase(region);
+  return deltas;
 }
 
 std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, uint64_t documentId,
                                                                bool resync, const EncodeContext& context,
-                                                               size_t partBytes, uint32_t maxFrameBytes) {
-  // Encoded once per region and version; later subscribers share the bytes.
-  // Those not encoded yet are encoded on several cores.
+                                                               size_t partBytes, uint32_t maxFrameBytes,
+                                                               RegionCodec codec) {
+  // Encoded once per region, codec and version; later subscribers of the
+  // codec share the bytes. Those not encoded yet are encoded on several cores.
+  auto& cache = view.encoded[codecIndex(codec)];
   std::vector<uint64_t> missing;
   for (const auto& [region, mesh] : view.tessellation->regions()) {
-    auto found = view.encoded.find(region);
-    if (found == view.encoded.end() || !found->second) missing.push_back(region);
+    auto found = cache.find(region);
+    if (found == cache.end() || !found->second) missing.push_back(region);
   }
   auto encodings = encodeViewRegions(
-      view, missing, [](size_t) { return true; }, context);
+      view, missing, [](size_t) { return true; }, context, codec);
   for (size_t i = 0; i < missing.size(); ++i) {
     if (encodings[i].isOk()) {
-      view.encoded[missing[i]] = *encodings[i];
+      cache[missing[i]] = *encodings[i];
     } else {
       logEvent(LogLevel::kError, "encode_failed",
                {{"doc", documentId}, {"error", encodings[i].status().message()}});
@@ -132,8 +174,8 @@ std::vector<std::shared_ptr<const std::string>> snapshotFrames(LodView& view, ui
   }
   std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> regions;
   for (const auto& [region, mesh] : view.tessellation->regions()) {
-    auto found = view.encoded.find(region);
-    if (found != view.encoded.end() && found->second) regions.emplace_back(region, found->second);
+    auto found = cache.find(region);
+    if (found != cache.end() && found->second) regions.emplace_back(region, found->second);
   }
   return encodeSnapshotFrames({documentId, context.version, view.wireProfile, resync, view.surfaceHash},
                               regions, partBytes, maxFrameBytes);

@@ -42,4 +42,24 @@ Expected<ProfileRequest> checkProfileRequest(const wire::LodProfile& requested, 
   return request;
 }
 
+Expected<RegionCodec> codecFromWire(const wire::Subscribe& request) {
+  switch (request.codec()) {
+    case wire::REGION_CODEC_UNSPECIFIED:
+    case wire::REGION_CODEC_DRACO:
+      return RegionCodec::kDraco;
+    case wire::REGION_CODEC_MESHOPT:
+      if (request.has_view()) {
+        return invalidArgument(
+            "Subscribe.codec: REGION_CODEC_MESHOPT is served to LOD profile subscriptions only; a "
+            "view-dependent subscription (Subscribe.view) gets Draco tiles (leave codec unset)");
+      }
+      return RegionCodec::kMeshopt;
+    default:
+      return invalidArgument("Subscribe.codec: unknown value " +
+                             std::to_string(static_cast<int>(request.codec())) +
+                             " (this server knows REGION_CODEC_DRACO = 1 and REGION_CODEC_MESHOPT = 2; unset "
+                             "means Draco)");
+  }
+}
+
 }  // namespace tessera::server

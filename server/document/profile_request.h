@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "core/tessellation/region_codec.h"
 #include "core/tessellation/tessellation.h"
 #include "core/util/status.h"
 #include "protocol/tessera.pb.h"
@@ -36,5 +37,11 @@ int64_t budgetOf(const wire::LodProfile& requested, const Limits& limits);
 // (`isMorph` false) or outside [0, 1].
 Expected<ProfileRequest> checkProfileRequest(const wire::LodProfile& requested, const Limits& limits,
                                              store::DocumentId document, int documentMaxLevel, bool isMorph);
+
+// The region codec a subscription asks for (Subscribe.codec; unset =
+// Draco), or an invalid-argument error naming the field: a value this
+// server does not know, or meshopt for a view-dependent subscription, whose
+// tiles are Draco only (docs/REGION_ENCODING.md, "meshopt regions").
+Expected<RegionCodec> codecFromWire(const wire::Subscribe& request);
 
 }  // namespace tessera::server

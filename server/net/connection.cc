@@ -15,6 +15,7 @@
 #include "server/document/document_dispatch.h"
 #include "server/document/journal_entry.h"
 #include "server/document/mesh_intake.h"
+#include "server/document/profile_request.h"
 #include "server/document/replies.h"
 #include "server/net/catalogue_commands.h"
 
@@ -377,6 +378,11 @@ void Connection::handle(wire::ClientMessage message) {
         return reject(seq, wire::REJECT_REASON_LIMIT_EXCEEDED,
                       "this session already subscribes " + std::to_string(subscriptions_.size()) +
                           " documents, the limit (--subscriptions-per-session)");
+      }
+      // A codec the server does not serve is refused before it replaces the
+      // subscription a resync would repeat (profile_request.h).
+      if (auto codec = codecFromWire(message.subscribe()); !codec.isOk()) {
+        return reject(seq, wire::REJECT_REASON_INVALID_ARGUMENT, codec.status().message());
       }
       subscriptions_[doc] = message.subscribe();
       break;

@@ -9,10 +9,12 @@
 
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "core/document/document.h"
+#include "core/tessellation/document_grid.h"
 #include "server/document/document_views.h"
 #include "server/document/replies.h"
 #include "support/decoding_inbox.h"
@@ -79,6 +81,75 @@ TEST_F(DocumentViewsTest, ADeltaGoesOnlyToSubscribersWhoseSnapshotLacksIt) {
   EXPECT_TRUE(batch.frames.empty());
   views_->send(batch);
   EXPECT_EQ(ann_->received.size(), 1u) << "sending a batch again is a no-op";
+}
+
+TEST_F(DocumentViewsTest, ADeltaGoesInEachSubscribersCodec) {
+  // Ann decodes Draco, Bob meshopt (docs/REGION_ENCODING.md "meshopt
+  // regions"): one view, one frame per codec, keyed "a" and "a|meshopt".
+  subscribe(ann_, "a", LodView{}, /*version=*/3);
+  views_->attach(*views_->find("a"), bob_, 3, RegionCodec::kMeshopt);
+  EXPECT_EQ(heldCodecs(*views_->find("a")),
+            (std::vector<RegionCodec>{RegionCodec::kDraco, RegionCodec::kMeshopt}));
+  const auto meshoptFrame = frameOf(ackFor(41, 7), 1u << 20);
+  FlushBatch batch{4, {}, {{"a", frame_}, {"a|meshopt", meshoptFrame}}};
+  views_->send(batch);
+  ASSERT_EQ(ann_->received.size(), 1u);
+  EXPECT_EQ(ann_->received[0].ack().client_seq(), 40u);
+  ASSERT_EQ(bob_->received.size(), 1u);
+  EXPECT_EQ(bob_->received[0].ack().client_seq(), 41u);
+  // Once Bob leaves, nobody holds meshopt: the flush encodes it no more.
+  views_->leave(bob_->sessionId());
+  EXPECT_EQ(heldCodecs(*views_->find("a")), std::vector<RegionCodec>{RegionCodec::kDraco});
+}
+
+TEST_F(DocumentViewsTest, ADeltaIsEncodedOncePerCodecSomeoneHolds) {
+  LodView fresh;
+  fresh.tessellation =
+      std::make_unique<Tessellation>(*Tessellation::build(*doc_, {.baseLevel = 1, .maxLevel = 2}));
+  subscribe(ann_, "a", std::move(fresh), /*version=*/1);
+  LodView& view = *views_->find("a");
+  auto grid = documentGrid(*doc_);
+  ASSERT_TRUE(grid.isOk());
+  ServerStats stats;
+  Tessellation::Changes changes;
+  for (const auto& [region, mesh] : view.tessellation->regions()) {
+    view.layout[region] = 1;
+    changes.changed.push_back(region);
+  }
+  changes.relaid = changes.changed;
+  const auto magics = [](const DeltaContent& delta) {
+    std::set<std::string> out;
+    for (const RegionPayload& r : delta.regions) out.insert(r.bytes->substr(0, 4));
+    return out;
+  };
+  const int64_t n = static_cast<int64_t>(changes.changed.size());
+  // Draco alone: nobody holds meshopt, nothing is encoded in it.
+  auto deltas = buildDeltas(view, changes, EncodeContext{2, *grid, *doc_, stats}, 7, DeltaContent{});
+  ASSERT_EQ(deltas.size(), 1u);
+  EXPECT_EQ(deltas[0].first, RegionCodec::kDraco);
+  EXPECT_EQ(deltas[0].second.regions.size(), changes.changed.size());
+  EXPECT_EQ(magics(deltas[0].second), std::set<std::string>{"TSRG"});
+  EXPECT_EQ(stats.regionsEncoded.load(), n);
+  // Bob decodes meshopt: each region once more, in meshopt, whatever the
+  // number of meshopt subscribers.
+  views_->attach(view, bob_, 2, RegionCodec::kMeshopt);
+  auto carol = std::make_shared<Inbox>(3);
+  views_->attach(view, carol, 2, RegionCodec::kMeshopt);
+  deltas = buildDeltas(view, changes, EncodeContext{3, *grid, *doc_, stats}, 7, DeltaContent{});
+  ASSERT_EQ(deltas.size(), 2u);
+  EXPECT_EQ(deltas[1].first, RegionCodec::kMeshopt);
+  EXPECT_EQ(magics(deltas[0].second), std::set<std::string>{"TSRG"});
+  EXPECT_EQ(magics(deltas[1].second), std::set<std::string>{"TSRM"});
+  EXPECT_EQ(deltas[1].second.surfaceHash, deltas[0].second.surfaceHash);
+  EXPECT_EQ(stats.regionsEncoded.load(), 3 * n);
+  EXPECT_EQ(view.encoded[1].size(), changes.changed.size());
+  // Both leave: the meshopt cache goes at the next flush (it would be stale).
+  views_->leave(bob_->sessionId());
+  views_->leave(carol->sessionId());
+  deltas = buildDeltas(view, changes, EncodeContext{4, *grid, *doc_, stats}, 7, DeltaContent{});
+  ASSERT_EQ(deltas.size(), 1u);
+  EXPECT_TRUE(view.encoded[1].empty());
+  EXPECT_EQ(stats.regionsEncoded.load(), 4 * n);
 }
 
 TEST_F(DocumentViewsTest, ASubscriberWatchesOneViewOfADocument) {

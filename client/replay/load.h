@@ -31,11 +31,12 @@ struct LoadOptions {
   double warmupSeconds = 0;
   // Set: the latency samples also go to PREFIX-edit_to_ack.hgrm, ... (hgrm.h).
   std::string hgrmPrefix;
-  double seconds = 5;         // editing time
-  int64_t maxEdits = 100000;  // per editor
-  wire::LodProfile profile;   // the viewers' profile
-  int decodeViewers = -1;     // viewers that decode with DocumentView; -1: min(viewers, 20)
-  int vertexLevel = 0;        // edits move v<level>:0..vertexCount-1
+  double seconds = 5;                                        // editing time
+  int64_t maxEdits = 100000;                                 // per editor
+  wire::LodProfile profile;                                  // the viewers' profile
+  wire::RegionCodec codec = wire::REGION_CODEC_UNSPECIFIED;  // the viewers' region codec (unset: Draco)
+  int decodeViewers = -1;  // viewers that decode with DocumentView; -1: min(viewers, 20)
+  int vertexLevel = 0;     // edits move v<level>:0..vertexCount-1
   uint64_t vertexCount = 8;
   double step = 0.01;  // largest offset per axis
   uint64_t seed = 1;

@@ -62,6 +62,9 @@ CLI::App* addLoadCommand(CLI::App& app, LoadArgs& a) {
       ->check(CLI::Range(0, 16))
       ->capture_default_str();
   load->add_flag("--display-only", a.displayOnly, "viewers subscribe without vertex ids");
+  load->add_option("--codec", a.codec, "the viewers' region codec (docs/REGION_ENCODING.md)")
+      ->check(CLI::IsMember({"draco", "meshopt"}))
+      ->capture_default_str();
   load->add_option("--server-pid", a.serverPid, "sample this server process's CPU and RSS from /proc");
   load->add_option("--report", a.report, "write the JSON report to FILE");
   load->add_flag("--quiet", a.quiet, "no progress lines");
@@ -122,6 +125,7 @@ int runLoadCommand(const LoadArgs& a) {
   o.profile = profileOf(*header);
   // Viewers that only watch: regions without vertex ids (docs/PROTOCOL.md).
   o.profile.set_omit_vertex_ids(a.displayOnly);
+  o.codec = a.codec == "meshopt" ? wire::REGION_CODEC_MESHOPT : wire::REGION_CODEC_DRACO;
   o.progress = !a.quiet;
   if (!a.cameras.empty()) {
     auto kind = cameraPathKind(a.cameras);

@@ -29,6 +29,7 @@ struct LoadArgs {
   int64_t maxEdits = 100000;
   uint64_t vertexCount = 8, seed = 1;
   bool displayOnly = false, quiet = false;
+  std::string codec = "draco";  // --codec: the viewers' region codec
   std::string report;
   std::vector<std::string> thresholds;
   // View-dependent viewers (docs/REPLAY.md §3): a camera path and its sphere.

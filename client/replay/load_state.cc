@@ -69,6 +69,7 @@ wire::ClientMessage subscribeMessage(const LoadOptions& o, int viewer, const Sha
   } else {
     sub.mutable_subscribe()->set_document_id(o.document);
     *sub.mutable_subscribe()->mutable_profile() = o.profile;
+    sub.mutable_subscribe()->set_codec(o.codec);
   }
   return sub;
 }

@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "client/python/bindings.h"
 #include "client/python/errors.h"
@@ -84,11 +85,28 @@ py::array_t<T> arrayOf(const py::object& values, const char* name, int ndim, py:
   return a;
 }
 
+// Vertex numbers: integers that fit an int, never a float cut short or a
+// large number wrapped around into another vertex.
+py::array_t<int32_t> vertexArrayOf(const py::object& values, const char* name, int ndim) {
+  if (!values.is_none()) {
+    const py::array raw = py::array::ensure(values);
+    const char kind = raw ? raw.dtype().kind() : '?';
+    if (raw && raw.size() > 0 && kind != 'i' && kind != 'u')
+      throw py::value_error(std::string(name) + " must be integer vertex numbers");
+    const auto wide = arrayOf<int64_t>(values, name, ndim, 2);
+    for (py::ssize_t i = 0; i < wide.size(); ++i) {
+      if (wide.data()[i] < INT32_MIN || wide.data()[i] > INT32_MAX)
+        throw py::value_error(std::string(name) + ": vertex number " + std::to_string(wide.data()[i]) +
+                              " is out of range");
+    }
+  }
+  return arrayOf<int32_t>(values, name, ndim, 2);
+}
+
 TagArrays tagArraysFrom(const py::object& creases, const py::object& creaseSharpness,
                         const py::object& corners, const py::object& cornerSharpness) {
-  TagArrays a{
-      arrayOf<int32_t>(creases, "creases", 2, 2), arrayOf<double>(creaseSharpness, "crease_sharpness", 1),
-      arrayOf<int32_t>(corners, "corners", 1), arrayOf<double>(cornerSharpness, "corner_sharpness", 1)};
+  TagArrays a{vertexArrayOf(creases, "creases", 2), arrayOf<double>(creaseSharpness, "crease_sharpness", 1),
+              vertexArrayOf(corners, "corners", 1), arrayOf<double>(cornerSharpness, "corner_sharpness", 1)};
   if (a.creases.shape(0) != a.creaseSharpness.shape(0))
     throw py::value_error("creases and crease_sharpness differ in length");
   if (a.corners.shape(0) != a.cornerSharpness.shape(0))

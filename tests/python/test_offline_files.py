@@ -259,3 +259,7 @@ def test_write_tags_refuses_what_the_reader_would_and_writes_nothing(tmp_path):
         tessera.Tags(creases=[[0, 1]], crease_sharpness=[1, 2])
     with pytest.raises(ValueError):
         tessera.Tags(creases=[0, 1], crease_sharpness=[1])
+    with pytest.raises(ValueError, match="integer"):
+        tessera.Tags(corners=[1.5], corner_sharpness=[1])
+    with pytest.raises(ValueError, match="out of range"):
+        tessera.Tags(corners=[2**32 + 1], corner_sharpness=[1])

@@ -127,7 +127,7 @@ async function main() {
 
   function openDocument(documentId, helloAck) {
     page.session = new DocumentSession({
-      connection: page.connection, documentId, profile: page.profile,
+      connection: page.connection, documentId, profile: page.profile, codec: params.codec,
       // The first subscription: the coarsest tiles whatever the camera
       // (PROTOCOL.md section 16); the page frames them, then sends its own.
       view: page.views ? cameraView(256) : null,

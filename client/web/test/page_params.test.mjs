@@ -48,3 +48,13 @@ test('?level=N starts at that control level and ?cage=1 with the cage; anything 
   for (const bad of ['&level=', '&level=-1', '&level=1.5', '&level=x', '&level=123']) assert.equal(params(bad).level, null, bad);
   for (const off of ['&cage=0', '&cage=yes', '&cage=']) assert.equal(params(off).cage, false, off);
 });
+
+test('?codec=meshopt asks for meshopt regions and, without ?views=1, a profile', () => {
+  const p = (query) => readPageParams(at(`http://h/?doc=1${query}#token=t`));
+  assert.equal(p('').codec, 'draco');
+  assert.equal(p('&codec=draco').codec, 'draco');
+  assert.equal(p('&codec=zstd').codec, 'draco');
+  assert.equal(p('&codec=meshopt').codec, 'meshopt');
+  assert.equal(p('&codec=meshopt').views, false);
+  assert.equal(p('&codec=meshopt&views=1').views, true);
+});

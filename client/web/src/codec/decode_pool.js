@@ -24,6 +24,7 @@ export class DecodePool {
     this.nextId = 1;
     this.failure = null;
     this.decoded = 0; // regions the workers decoded
+    this.decodedMeshopt = 0; // of which meshopt regions (docs/REGION_ENCODING.md "meshopt regions")
     this.failed = 0; // requests answered with an error
     this.totalMs = 0;
     this.samples = []; // the last KEEP_SAMPLES decode times, ms
@@ -97,6 +98,7 @@ export class DecodePool {
       request.reject(new Error(data.error));
     } else {
       ++this.decoded;
+      if (data.region?.header?.codec === 'meshopt') ++this.decodedMeshopt;
       request.resolve(data.region);
     }
   }
@@ -110,8 +112,8 @@ export class DecodePool {
     this.onFailure?.(error);
   }
 
-  // For the panel and the test hook: {workers, decoded, failed, waiting,
-  // meanMs, p99Ms (of the last 4,096 decodes; null before any),
+  // For the panel and the test hook: {workers, decoded, decodedMeshopt,
+  // failed, waiting, meanMs, p99Ms (of the last 4,096 decodes; null before any),
   // workerDraco (every worker has its module)}.
   facts() {
     const sorted = [...this.samples].sort((a, b) => a - b);
@@ -119,6 +121,7 @@ export class DecodePool {
     return {
       workers: this.slots.length,
       decoded: this.decoded,
+      decodedMeshopt: this.decodedMeshopt,
       failed: this.failed,
       waiting: this.waiting.size,
       meanMs: count ? this.totalMs / count : null,

@@ -4,6 +4,7 @@
 // under flag 0, lattice points turned into ids under flag 4 for a triangle's
 // lattice and flag 8 for a quad's, none under flags 1 and 2). The reference
 // decoder is decodeRegion() in core/tessellation/region_codec.cc.
+import { decodeMeshoptPayload } from './meshopt_region.js';
 import { parseRegion } from './region_header.js';
 import { RegionLattice } from './region_lattice.js';
 
@@ -32,14 +33,20 @@ function findAttribute(decoder, mesh, type, name, components, where) {
   return attribute;
 }
 
-// Decodes `bytes` (a Uint8Array) with the draco3d module. Throws an Error
-// naming the region and the reason. A payload without its layout's ids
-// (flag 2) decodes with ids null; session/document_view.js adopts the held ones.
-export function decodeRegion(draco, bytes) {
+// Decodes `bytes` (a Uint8Array) with the draco3d module, or a meshopt
+// region ("TSRM") with `meshopt`, the meshoptimizer decoder
+// (meshopt_region.js). Throws an Error naming the region and the reason. A
+// payload without its layout's ids (flag 2) decodes with ids null;
+// session/document_view.js adopts the held ones.
+export function decodeRegion(draco, bytes, meshopt = null) {
   const header = parseRegion(bytes);
   const where = `region ${header.regionId} (document version ${header.documentVersion})`;
   // The frame says whether the lattice is a triangle's or a quad's.
   const lattice = header.frame ? new RegionLattice(header.frame, header.latticeDepth) : null;
+  if (header.codec === 'meshopt') {
+    if (!meshopt) throw new Error(`${where}: a meshopt region, and this decoder has no meshopt module`);
+    return decodeMeshoptPayload(meshopt, bytes, header, lattice);
+  }
   const decoder = new draco.Decoder();
   const mesh = new draco.Mesh();
   try {

@@ -14,7 +14,8 @@ export const FLAG_LAYOUT_IDS = 2; // the ids of the held layout apply (adoptLayo
 export const FLAG_LATTICE_IDS = 4; // a triangle's frame follows; GENERIC holds lattice points
 export const FLAG_QUAD_LATTICE_IDS = 8; // the same for a quad of the quad split (Catmull-Clark)
 const FLAGS = FLAG_NO_IDS | FLAG_LAYOUT_IDS | FLAG_LATTICE_IDS | FLAG_QUAD_LATTICE_IDS;
-const MAGIC = [0x54, 0x53, 0x52, 0x47]; // "TSRG"
+const MAGIC = [0x54, 0x53, 0x52, 0x47]; // "TSRG": a Draco payload
+const MESHOPT_MAGIC = 0x4d; // "TSRM": a meshopt payload (docs/REGION_ENCODING.md "meshopt regions")
 
 function hex32(x) {
   return '0x' + (x >>> 0).toString(16).padStart(8, '0');
@@ -45,8 +46,11 @@ function readFrame(r, sides) {
 export function parseRegion(bytes) {
   const r = new ByteReader(bytes, 'region payload');
   r.need(4, 'the magic');
+  const meshopt = bytes[3] === MESHOPT_MAGIC;
   for (let k = 0; k < 4; ++k) {
-    if (bytes[k] !== MAGIC[k]) throw new Error('region payload: not a Tessera region (no "TSRG" magic)');
+    if (bytes[k] !== MAGIC[k] && !(k === 3 && meshopt)) {
+      throw new Error('region payload: not a Tessera region (no "TSRG" or "TSRM" magic)');
+    }
   }
   r.offset = 4;
   const version = r.u16('the format version');
@@ -57,6 +61,7 @@ export function parseRegion(bytes) {
   if (flags & ~FLAGS) throw new Error(`region payload: unknown flags ${flags}`);
   if (flags & (flags - 1)) throw new Error(`region payload: flags ${flags} claim more than one way of carrying ids`);
   const header = {
+    codec: meshopt ? 'meshopt' : 'draco',
     flags,
     regionId: r.u64('the region id'),
     documentVersion: r.u64('the document version'),

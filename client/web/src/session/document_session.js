@@ -125,6 +125,9 @@ export class DocumentSession {
     this.profile = profile;
     const subscribe = { document_id: toLong(this.documentId), profile: profileFields(profile) };
     if (this.camera) subscribe.view = this.camera;
+    // tessera.proto RegionCodec: REGION_CODEC_MESHOPT = 2, for profiles only
+    // (a view's tiles are Draco); the decode worker reads either.
+    else if (this.o.codec === 'meshopt') subscribe.codec = 2;
     this.cameraSeq = 0n; // the subscription carries the latest camera
     const reply = await this.connection.call({ subscribe });
     return toBig(reply.message.ack.version);

@@ -8,7 +8,13 @@ export function readPageParams(location) {
   const query = new URLSearchParams(location.search);
   const fragment = new URLSearchParams(location.hash.replace(/^#/, ''));
   const doc = query.get('doc');
+  // ?codec=meshopt: the regions come as meshopt regions instead of Draco's
+  // (docs/REGION_ENCODING.md "meshopt regions"). The server serves them to
+  // LOD profiles only, so it also means a profile unless ?views=1 (whose
+  // tiles stay Draco).
+  const codec = query.get('codec') === 'meshopt' ? 'meshopt' : 'draco';
   return {
+    codec,
     documentId: doc !== null && /^\d+$/.test(doc) && BigInt(doc) > 0n ? BigInt(doc) : null,
     token: fragment.get('token') ?? '',
     name: (query.get('name') ?? 'web viewer').slice(0, 128),
@@ -17,7 +23,7 @@ export function readPageParams(location) {
     // with ?views=0 or ?lod=PRESET (docs/WEB_VIEWER.md "Views"); ?views=1
     // wins over ?lod. ?tolerance=PX is its screen-space error (0.25..256,
     // default 1).
-    views: query.has('views') ? query.get('views') !== '0' : !query.has('lod'),
+    views: query.has('views') ? query.get('views') !== '0' : !query.has('lod') && codec !== 'meshopt',
     tolerance: Math.min(256, Math.max(0.25, Number(query.get('tolerance') ?? 1) || 1)),
     // ?level=N starts the dots (and the cage) at control level N instead of
     // 1; the page keeps it within its profile's levels. ?cage=1 starts with

@@ -215,9 +215,16 @@ void bindOffline(py::module_& m) {
   m.def(
       "write_mesh",
       [](const py::object& path, const py::object& source, const py::object& faces, const py::object& normals,
-         bool draco) {
+         bool draco, const TagArrays* tags, std::optional<std::string> scheme,
+         std::optional<std::string> boundary, std::optional<std::string> creaseMethod) {
         const std::string file = pathOf(path);
-        const SurfaceMesh surface = surfaceFrom(source, faces, normals);
+        SurfaceMesh surface = surfaceFrom(source, faces, normals);
+        const CageArgs cage{.tags = tags ? featureTagsOf(*tags) : std::vector<FeatureTag>{},
+                            .scheme = scheme.value_or(""),
+                            .boundary = boundary.value_or(""),
+                            .creaseMethod = creaseMethod.value_or("")};
+        if (Status names = checkCageNames(cage); !names.isOk()) throw py::value_error(names.message());
+        check(setCage(surface, cage, file));
         Status written = internalError("write_mesh: not run");
         {
           py::gil_scoped_release writing;
@@ -226,7 +233,8 @@ void bindOffline(py::module_& m) {
         check(written);
       },
       py::arg("path"), py::arg("source"), py::arg("faces") = py::none(), py::kw_only(),
-      py::arg("normals") = py::none(), py::arg("draco") = false,
+      py::arg("normals") = py::none(), py::arg("draco") = false, py::arg("tags") = py::none(),
+      py::arg("scheme") = py::none(), py::arg("boundary") = py::none(), py::arg("crease_method") = py::none(),
       "Writes a surface to a mesh file with core's exporter (no server), the format\n"
       "chosen by the extension as `tessera refine -o` chooses it: .obj and .off (text,\n"
       "the shortest decimals that read back to the same doubles: lossless), .ply\n"
@@ -241,7 +249,14 @@ void bindOffline(py::module_& m) {
       "      index lists.\n"
       "    normals: (N, 3) per-vertex normals (OBJ, PLY, GLB, USDA write them); None:\n"
       "      the Mesh's, or none.\n"
-      "    draco: .glb only, KHR_draco_mesh_compression.\n\n"
+      "    draco: .glb only, KHR_draco_mesh_compression.\n"
+      "    tags, scheme, boundary, crease_method: the surface as a subdivision cage, for\n"
+      "      .obj (OpenSubdiv's `t` lines: tags, boundary, crease_method; no scheme) and\n"
+      "      .usda (all of them, scheme required: 'loop', 'catmull-clark' or 'bilinear');\n"
+      "      a tessera.Tags, 'edge-only' or 'edge-and-corner', 'uniform' or 'chaikin'.\n"
+      "      Other formats refuse them ('unsupported'); a tag on a vertex the surface does\n"
+      "      not have or a crease on no face's edge is 'invalid argument', as the\n"
+      "      readers would refuse it; an unknown name a ValueError.\n\n"
       "Raises tessera.Error naming the element at fault and writing nothing: 'unsupported'\n"
       "for another extension (or draco with another format), 'invalid mesh' for an index\n"
       "out of range, a non-finite position or normal, a zero normal or a normal count\n"

@@ -1,11 +1,15 @@
 #include "client/python/offline_work.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <span>
 #include <utility>
 #include <vector>
@@ -130,15 +134,6 @@ Status writeSurface(const SurfaceMesh& surface, const std::string& path, bool dr
   return exportMesh(surface, path, {.draco = draco});
 }
 
-Expected<std::vector<FeatureTag>> tagsFromText(const std::string& text, const std::string& sourceName) {
-  return parseTags(text, sourceName);
-}
-
-Expected<std::vector<FeatureTag>> readTagFile(const std::string& path) {
-  TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
-  return tagsFromText(text, path);
-}
-
 namespace {
 
 std::string tagName(size_t index, const FeatureTag& tag) {
@@ -158,6 +153,72 @@ std::string sharpnessText(float s) {
 }
 
 }  // namespace
+
+Status checkCageNames(const CageArgs& cage) {
+  if (!cage.scheme.empty() && cage.scheme != "loop" && cage.scheme != "catmull-clark" &&
+      cage.scheme != "bilinear")
+    return invalidArgument("scheme must be 'loop', 'catmull-clark' or 'bilinear', not '" + cage.scheme + "'");
+  if (!cage.boundary.empty() && cage.boundary != "edge-only" && cage.boundary != "edge-and-corner")
+    return invalidArgument("boundary must be 'edge-only' or 'edge-and-corner'");
+  if (!cage.creaseMethod.empty() && cage.creaseMethod != "uniform" && cage.creaseMethod != "chaikin")
+    return invalidArgument("crease_method must be 'uniform' or 'chaikin'");
+  return Status::ok();
+}
+
+Status setCage(SurfaceMesh& surface, const CageArgs& cage, const std::string& path) {
+  if (!cage.any()) return Status::ok();
+  const bool usda = exportStatesScheme(path);
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (!usda && ext != ".obj")
+    return unsupported(path +
+                       ": tags, scheme, boundary and crease_method are written to .obj and .usda only");
+  if (!usda && !cage.scheme.empty())
+    return invalidArgument(path + ": OBJ states no scheme (its `t` lines hold tags and options only)");
+  if (usda && cage.scheme.empty())
+    return invalidArgument(path + ": a .usda cage needs its scheme ('loop', 'catmull-clark' or 'bilinear')");
+  TESSERA_RETURN_IF_ERROR(checkCageNames(cage));
+  TESSERA_RETURN_IF_ERROR(tagFileText(cage.tags).status());
+  // The edges of the faces as written: the polygons where there are some.
+  std::set<std::pair<int, int>> edges;
+  const auto addFace = [&](std::span<const int> face) {
+    for (size_t k = 0; k < face.size(); ++k) edges.insert(std::minmax(face[k], face[(k + 1) % face.size()]));
+  };
+  if (surface.numPolygons() > 0) {
+    for (size_t f = 0; f < surface.numPolygons(); ++f)
+      addFace(std::span<const int>(
+          surface.polygonCorners.data() + surface.polygonOffsets[f],
+          static_cast<size_t>(surface.polygonOffsets[f + 1] - surface.polygonOffsets[f])));
+  } else {
+    for (const auto& t : surface.triangles) addFace(t);
+  }
+  const int n = static_cast<int>(surface.positions.size());
+  for (size_t i = 0; i < cage.tags.size(); ++i) {
+    const FeatureTag& tag = cage.tags[i];
+    const bool crease = tag.kind == FeatureTag::Kind::kCrease;
+    if (tag.v0 >= n || (crease && tag.v1 >= n))
+      return invalidArgument(tagName(i, tag) + ": the surface has " + std::to_string(n) + " vertices");
+    if (crease && !edges.contains(std::minmax(tag.v0, tag.v1)))
+      return invalidArgument(tagName(i, tag) + ": no face has an edge between these vertices");
+    if (crease)
+      surface.creases.push_back({tag.v0, tag.v1, canonicalSharpness(tag.sharpness)});
+    else
+      surface.corners.push_back({tag.v0, canonicalSharpness(tag.sharpness)});
+  }
+  surface.scheme = cage.scheme;
+  surface.boundary = cage.boundary;
+  surface.creaseMethod = cage.creaseMethod;
+  return Status::ok();
+}
+
+Expected<std::vector<FeatureTag>> tagsFromText(const std::string& text, const std::string& sourceName) {
+  return parseTags(text, sourceName);
+}
+
+Expected<std::vector<FeatureTag>> readTagFile(const std::string& path) {
+  TESSERA_ASSIGN_OR_RETURN(const std::string text, readFile(path));
+  return tagsFromText(text, path);
+}
 
 Expected<std::string> tagFileText(const std::vector<FeatureTag>& tags) {
   // The reader's refusals (docs/FORMATS.md "Tag sidecar files"), said of

@@ -75,6 +75,25 @@ Expected<SurfaceMesh> refineScheme(const std::string& schemeName, SchemeSource s
 SurfaceMesh surfaceOf(std::vector<Vec3> points, const PolygonSoup& faces, std::vector<Vec3> normals);
 Status writeSurface(const SurfaceMesh& surface, const std::string& path, bool draco);
 
+// write_mesh(tags=, scheme=, boundary=, crease_method=): the surface as a
+// subdivision cage, its sharp features and options in the file, where the
+// format has a place for them: OBJ's `t` lines (tags, boundary rule, crease
+// method; docs/FORMATS.md "Tags in OBJ") and USDA's subdivision attributes
+// (all of them; a cage there needs its scheme). Refused, each an error that
+// says why: any of them for another format (Unsupported), a scheme for OBJ,
+// which states none, a name that is none of the choices, and a tag that
+// tagFileText refuses, that names a vertex the surface does not have, or a
+// crease on two vertices no face joins by an edge (InvalidArgument): what
+// the readers would refuse.
+struct CageArgs {
+  std::vector<FeatureTag> tags;
+  std::string scheme, boundary, creaseMethod;  // "": not stated
+  bool any() const { return !tags.empty() || !scheme.empty() || !boundary.empty() || !creaseMethod.empty(); }
+};
+// The names alone (the caller's choice: a ValueError in Python).
+Status checkCageNames(const CageArgs& cage);
+Status setCage(SurfaceMesh& surface, const CageArgs& cage, const std::string& path);
+
 // read_tags: a tag file's tags (docs/FORMATS.md "Tag sidecar files") in the
 // file's order, as core's parser reads them (sharpness `inf` is 10,
 // kSharpnessInfinite). They are checked against no mesh: read_mesh(tags=)

@@ -263,3 +263,60 @@ def test_write_tags_refuses_what_the_reader_would_and_writes_nothing(tmp_path):
         tessera.Tags(corners=[1.5], corner_sharpness=[1])
     with pytest.raises(ValueError, match="out of range"):
         tessera.Tags(corners=[2**32 + 1], corner_sharpness=[1])
+
+
+def all_edges_sharp():
+    edges = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]]
+    return edges, tessera.Tags(creases=edges, crease_sharpness=[math.inf] * 6)
+
+
+def assert_corners_kept_and_edges_halved(level1, edges):
+    """Every vertex meets three sharp edges: a corner, kept; every edge point
+    of a sharp edge is its midpoint (Hoppe et al.)."""
+    assert np.array_equal(level1.positions[:4], POINTS)
+    midpoints = {tuple(np.round((POINTS[a] + POINTS[b]) / 2, 12)) for a, b in edges}
+    assert {tuple(np.round(p, 12)) for p in level1.positions[4:]} == midpoints
+
+
+def test_a_cage_is_written_with_its_tags_to_obj_and_usda(tmp_path):
+    edges, tags = all_edges_sharp()
+    obj = tmp_path / "cage.obj"
+    tessera.write_mesh(obj, POINTS, TRIANGLES, tags=tags, boundary="edge-and-corner", crease_method="chaikin")
+    # OpenSubdiv's dialect (docs/FORMATS.md "Tags in OBJ"): `t NAME I/F/S values`.
+    t_lines = [l[1:] for l in text_lines(obj) if l[0] == "t"]
+    assert ["interpolateboundary", "1/0/0", "1"] in t_lines
+    assert ["creasemethod", "0/0/1", "chaikin"] in t_lines
+    creases = [l for l in t_lines if l[0] == "crease"]
+    assert [[int(l[2]), int(l[3])] for l in creases] == edges
+    assert all(l[1] == "2/1/0" and float(l[4]) == 10.0 for l in creases)
+    assert_corners_kept_and_edges_halved(tessera.refine(str(obj), level=1), edges)
+
+    usda = tmp_path / "cage.usda"
+    tessera.write_mesh(usda, POINTS, TRIANGLES, tags=tags, scheme="loop")
+    text = usda.read_text()
+    assert 'subdivisionScheme = "loop"' in text and "creaseIndices" in text
+    assert_corners_kept_and_edges_halved(tessera.refine(str(usda), level=1), edges)
+
+
+def test_a_cage_refuses_what_its_readers_would(tmp_path):
+    _, tags = all_edges_sharp()
+    with pytest.raises(tessera.Error) as off:
+        tessera.write_mesh(tmp_path / "c.off", POINTS, TRIANGLES, tags=tags)
+    assert off.value.code == "unsupported"
+    with pytest.raises(tessera.Error) as obj_scheme:
+        tessera.write_mesh(tmp_path / "c.obj", POINTS, TRIANGLES, scheme="loop")
+    assert obj_scheme.value.code == "invalid argument" and "OBJ states no scheme" in str(obj_scheme.value)
+    with pytest.raises(tessera.Error) as usda_scheme:
+        tessera.write_mesh(tmp_path / "c.usda", POINTS, TRIANGLES, tags=tags)
+    assert "needs its scheme" in str(usda_scheme.value)
+    diagonal = tessera.Tags(creases=[[0, 3]], crease_sharpness=[1.0])  # across the quad (0, 1, 3, 2)
+    with pytest.raises(tessera.Error) as across:
+        tessera.write_mesh(tmp_path / "c.obj", CUBE, QUADS, tags=diagonal)
+    assert across.value.code == "invalid argument" and "no face has an edge" in str(across.value)
+    missing = tessera.Tags(corners=[8], corner_sharpness=[1.0])
+    with pytest.raises(tessera.Error) as vertex:
+        tessera.write_mesh(tmp_path / "c.obj", CUBE, QUADS, tags=missing)
+    assert "tag 0 (corner 8): the surface has 8 vertices" in str(vertex.value)
+    assert not any(tmp_path.iterdir())
+    with pytest.raises(ValueError, match="scheme must be"):
+        tessera.write_mesh(tmp_path / "c.usda", POINTS, TRIANGLES, scheme="pentagonal")

@@ -375,6 +375,10 @@ def write_mesh(
     *,
     normals: Optional[npt.ArrayLike] = None,
     draco: bool = False,
+    tags: Optional[Tags] = None,
+    scheme: Optional[str] = None,
+    boundary: Optional[str] = None,
+    crease_method: Optional[str] = None,
 ) -> None: ...
 def read_tags(path: PathLike) -> Tags: ...
 def write_tags(path: PathLike, tags: Tags) -> None: ...

@@ -1,6 +1,8 @@
 // Region codec: encode time, encoded size and decode time of
 // typical regions at every compression level, to choose the default for
-// latency (docs/REGION_ENCODING.md).
+// latency (docs/REGION_ENCODING.md), and of the same regions as meshopt
+// regions (EncodeMeshopt, DecodeMeshopt; docs/PERFORMANCE.md "Region
+// codecs").
 //
 //   build/release/bench/tessera_bench_region [--mesh PATH] [benchmark flags]
 //
@@ -112,6 +114,45 @@ void decode(benchmark::State& state) {
   state.counters["bytes"] = static_cast<double>(encoded->size());
 }
 
+// The same regions in the meshopt codec, which has no levels.
+RegionHeader meshoptHeader() {
+  RegionHeader header = input().header;
+  header.codec = RegionCodec::kMeshopt;
+  return header;
+}
+
+void encodeMeshopt(benchmark::State& state) {
+  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
+  const RegionHeader header = meshoptHeader();
+  size_t bytes = 0;
+  for (auto _ : state) {
+    auto encoded = encodeRegion(header, region);
+    if (!encoded.isOk()) {
+      state.SkipWithError(encoded.status().toString().c_str());
+      break;
+    }
+    bytes = encoded->size();
+    benchmark::DoNotOptimize(encoded->data());
+  }
+  state.counters["triangles"] = static_cast<double>(region.triangles.size());
+  state.counters["bytes"] = static_cast<double>(bytes);
+  state.counters["bytes_per_tri"] = static_cast<double>(bytes) / static_cast<double>(region.triangles.size());
+}
+
+void decodeMeshopt(benchmark::State& state) {
+  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
+  const auto encoded = encodeRegion(meshoptHeader(), region);
+  if (!encoded.isOk()) {
+    state.SkipWithError(encoded.status().toString().c_str());
+    return;
+  }
+  for (auto _ : state) {
+    auto decoded = decodeRegion(*encoded);
+    benchmark::DoNotOptimize(decoded);
+  }
+  state.counters["bytes"] = static_cast<double>(encoded->size());
+}
+
 // With --benchmark_repetitions, the minimum is the figure least disturbed by
 // other work on a shared machine; the median is reported beside it.
 double minimum(const std::vector<double>& v) {
@@ -128,6 +169,19 @@ BENCHMARK(decode)
     ->Name("Decode")
     ->ArgsProduct({{512, 2048, 8192}, benchmark::CreateDenseRange(0, 10, 1)})
     ->ArgNames({"tris", "level"})
+    ->ComputeStatistics("min", minimum)
+    ->Unit(benchmark::kMicrosecond);
+
+BENCHMARK(encodeMeshopt)
+    ->Name("EncodeMeshopt")
+    ->ArgsProduct({{512, 2048, 8192}})
+    ->ArgNames({"tris"})
+    ->ComputeStatistics("min", minimum)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(decodeMeshopt)
+    ->Name("DecodeMeshopt")
+    ->ArgsProduct({{512, 2048, 8192}})
+    ->ArgNames({"tris"})
     ->ComputeStatistics("min", minimum)
     ->Unit(benchmark::kMicrosecond);
 

@@ -1,6 +1,7 @@
 #include "server/cluster/cluster_document.h"
 
 #include <set>
+#include <utility>
 
 #include "server/base/log.h"
 #include "server/document/replies.h"
@@ -26,9 +27,14 @@ Status ClusterDocument::resolve() {
   return resolved;
 }
 
+bool ClusterDocument::ownerExpectedSoon() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return !host_ && owner_.empty() && ownLeaseStale_;
+}
+
 Status ClusterDocument::resolveLocked() {
   std::string owner;
-  TESSERA_ASSIGN_OR_RETURN(bool mine, node_.leases().acquire(id_, &owner));
+  TESSERA_ASSIGN_OR_RETURN(bool mine, node_.leases().acquire(id_, &owner, &ownLeaseStale_));
   if (!mine) {
     owner_ = owner;
     return Status::ok();
@@ -112,7 +118,11 @@ void ClusterDocument::resendPresence(uint64_t session) {
 void ClusterDocument::subscribe(std::shared_ptr<server::Subscriber> who, const wire::Subscribe& request,
                                 uint64_t clientSeq, bool resync) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (auto it = sessions_.find(who->sessionId()); it != sessions_.end()) it->second.subscription = request;
+  if (auto it = sessions_.find(who->sessionId()); it != sessions_.end()) {
+    it->second.subscription = request;
+    // Nobody to answer it now: the owner found next does (rejoinLocked).
+    if (!host_ && owner_.empty() && !resync) it->second.unansweredSubscribe = clientSeq;
+  }
   if (host_) return host_->subscribe(std::move(who), request, clientSeq, resync);
   forward(who->sessionId(), Forward::KIND_SUBSCRIBE, [&](Forward& f) {
     f.mutable_message()->set_client_seq(clientSeq);
@@ -396,7 +406,7 @@ void ClusterDocument::rehome(const std::string& why) {
   // retry that fails again (no owner before, none now) tells nobody anew.
   const bool tell = !from.empty() || resolved.isOk();
   const server::Outgoing notice{movedNotice(from, why, resolved), nullptr};
-  for (const auto& [session, s] : sessions_) {
+  for (auto& [session, s] : sessions_) {
     auto who = s.who.lock();
     if (!who) continue;
     if (tell) who->send(notice);
@@ -448,11 +458,15 @@ std::shared_ptr<const std::string> ClusterDocument::movedNotice(const std::strin
 }
 
 void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<server::Subscriber>& who,
-                                   const LocalSession& s) {
+                                   LocalSession& s) {
   // Its unanswered commands are asked after every session moved (rehome).
+  // A Subscribe nobody answered yet is answered now, as a first one (an
+  // Ack, then the snapshot); the others resync.
+  const uint64_t seq = std::exchange(s.unansweredSubscribe, 0);
+  const bool resync = seq == 0;
   if (host_) {
     host_->join(who, s.name, s.role);
-    if (s.subscription) host_->subscribe(who, *s.subscription, 0, true);
+    if (s.subscription) host_->subscribe(who, *s.subscription, seq, resync);
     return;
   }
   forward(session, Forward::KIND_JOIN, [&](Forward& f) {
@@ -461,8 +475,9 @@ void ClusterDocument::rejoinLocked(uint64_t session, const std::shared_ptr<serve
   });
   if (s.subscription) {
     forward(session, Forward::KIND_SUBSCRIBE, [&](Forward& f) {
+      f.mutable_message()->set_client_seq(seq);
       *f.mutable_message()->mutable_subscribe() = *s.subscription;
-      f.set_resync(true);
+      f.set_resync(resync);
     });
   }
 }

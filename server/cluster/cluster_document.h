@@ -39,6 +39,10 @@ class ClusterDocument : public server::DocumentEndpoint,
   // Takes the lease and loads the document, or finds its owner, unless an
   // owner is known already.
   Status resolve();
+  // The last resolve failed only because the lease is still under this
+  // node's name from before (DocumentLeases::acquire): the monitor's next
+  // tries will succeed within the lease time, so a new session may wait.
+  bool ownerExpectedSoon();
 
   void join(std::shared_ptr<server::Subscriber> who, std::string name, wire::Role role) override;
   void leave(uint64_t session) override;
@@ -90,6 +94,9 @@ class ClusterDocument : public server::DocumentEndpoint,
     std::string name;
     wire::Role role = wire::ROLE_VIEWER;
     std::optional<wire::Subscribe> subscription;  // its latest view, if it has one
+    // A Subscribe sent while there was no owner, not yet answered: the
+    // owner found later acknowledges it (rejoinLocked) instead of a resync.
+    uint64_t unansweredSubscribe = 0;
   };
   // Under mutex_: a Forward of `kind` for `session` to the owner.
   void forward(uint64_t session, Forward::Kind kind, const std::function<void(Forward&)>& fill);
@@ -110,7 +117,7 @@ class ClusterDocument : public server::DocumentEndpoint,
   std::set<std::string> leaveOwnerLocked();
   std::shared_ptr<const std::string> movedNotice(const std::string& from, const std::string& why,
                                                  const Status& resolved);
-  void rejoinLocked(uint64_t session, const std::shared_ptr<server::Subscriber>& who, const LocalSession& s);
+  void rejoinLocked(uint64_t session, const std::shared_ptr<server::Subscriber>& who, LocalSession& s);
 
   const store::DocumentId id_;
   NodeServices& node_;
@@ -118,6 +125,7 @@ class ClusterDocument : public server::DocumentEndpoint,
   std::shared_ptr<server::DocumentHost> host_;  // set while this node owns the document
   std::string owner_;                           // otherwise: the owner's node name
   std::string whyUnowned_;                      // no owner: why the last attempt to find or load one failed
+  bool ownLeaseStale_ = false;                  // ... and that was this node's lease from before
   std::string whyLost_;                         // no owner: why the last one was given up (rehome), if it was
   std::map<uint64_t, LocalSession> sessions_;
   std::map<uint64_t, std::string> remoteSessions_;  // other nodes' sessions joined to host_ -> their node

@@ -127,8 +127,18 @@ Expected<std::shared_ptr<server::DocumentEndpoint>> ClusterNode::openEndpoint(st
   // document while holding its lock; and a load from JetStream (seconds
   // when NATS is in trouble) stalls no other document's frames. A document
   // between owners (a takeover failed, e.g. on a damaged journal) is tried
-  // again, so a new client hears why instead of waiting.
-  TESSERA_RETURN_IF_ERROR(doc->resolve());
+  // again, so a new client hears why instead of waiting. Except when all
+  // that stands in the way is this node's own lease from before (a restart,
+  // or a lease NATS let lapse): that ends within the lease time, so the
+  // session joins as the document's other sessions do and is served when
+  // the monitor takes the document (ClusterDocument::rehome; docs/CLUSTER.md
+  // "Fault-injection soak", finding 4).
+  const Status resolved = doc->resolve();
+  if (!resolved.isOk()) {
+    if (!doc->ownerExpectedSoon()) return resolved;
+    server::logEvent(server::LogLevel::kInfo, "document_awaits_own_lease",
+                     {{"doc", id.value}, {"node", name_}, {"reason", resolved.message()}});
+  }
   return std::shared_ptr<server::DocumentEndpoint>(doc);
 }
 

@@ -19,7 +19,8 @@ Expected<std::unique_ptr<DocumentLeases>> DocumentLeases::open(NatsLink& link, s
       new DocumentLeases(link, std::move(bucket), std::move(node), leaseTime));
 }
 
-Expected<bool> DocumentLeases::acquire(store::DocumentId id, std::string* owner) {
+Expected<bool> DocumentLeases::acquire(store::DocumentId id, std::string* owner, bool* ownStale) {
+  if (ownStale) *ownStale = false;
   if (holds(id)) return true;
   uint64_t revision = 0;
   const auto sent = Clock::now();
@@ -41,6 +42,7 @@ Expected<bool> DocumentLeases::acquire(store::DocumentId id, std::string* owner)
     // node loads next, and a late Leave would take a local session off it
     // (seen in tests/cluster/cluster_quorum_test.cc: the viewer got no more
     // deltas). So: no owner yet, and the caller tries again.
+    if (ownStale) *ownStale = true;
     return ioError(toString(id) + ": its lease is still held under this node's name (" + node_ +
                    ") from before; it expires within the lease time");
   }

@@ -33,8 +33,9 @@ class DocumentLeases {
   // `owner` set when another node holds it. kIoError when NATS does not
   // answer, or when the lease is held under this node's own name but not
   // by this process (from before a restart, or expired while NATS had no
-  // quorum): never an owner to forward to.
-  Expected<bool> acquire(store::DocumentId id, std::string* owner = nullptr);
+  // quorum): never an owner to forward to; `ownStale`, if given, is then
+  // set: a refusal that ends by itself within the lease time.
+  Expected<bool> acquire(store::DocumentId id, std::string* owner = nullptr, bool* ownStale = nullptr);
   // Renews a held lease. kNotFound: taken by another node or expired, this
   // node no longer owns the document. kIoError: NATS did not answer (no
   // quorum, disconnected): ownership is unknown but nobody can take it.

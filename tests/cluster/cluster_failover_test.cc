@@ -388,5 +388,58 @@ TEST(ClusterFailover, ANodeTakenForDeadGetsItsViewerBackWhenItRunsAgain) {
   }
 }
 
+// A node restarted at once under its name finds the document's lease
+// still under that name, its first process's: for up to a lease time no
+// node can take the document. A viewer that opens it there meanwhile is
+// served once the lease lapses, not refused for good (docs/CLUSTER.md
+// "Fault-injection soak", finding 4: a refused viewer never asked again).
+TEST(ClusterFailover, AViewerOfARestartedOwnerIsServedOnceItsOldLeaseLapses) {
+  // Long enough that the restart comes well within the old lease.
+  constexpr int kLeaseMs = 8000;
+  auto run = ClusterRun::start(2, kLeaseMs);
+  ASSERT_TRUE(run.isOk()) << run.status().message();
+  ClusterRun& c = **run;
+  auto doc = c.createCube();
+  ASSERT_TRUE(doc.isOk()) << doc.status().message();
+  // Open through the kill: a document whose last session leaves gives its
+  // lease up, and then there is no old lease to wait for.
+  testing::ClusterViewer first = testing::viewerOn(c, 0, *doc);  // node 0 takes the lease
+  ASSERT_TRUE(first.session) << first.error;
+  auto editor = Session::connect(c.session(0, "editor@node0", testing::kEditorToken));
+  ASSERT_TRUE(editor.isOk());
+  ASSERT_TRUE((*editor)->call(testing::openDocument(*doc), 30)->has_ack());
+  std::mt19937 rng(5);
+  auto moved = (*editor)->call(testing::smallMove(*doc, rng), 10);
+  ASSERT_TRUE(moved.isOk() && moved->has_ack()) << (moved.isOk() ? moved->DebugString() : "no answer");
+  c.nodes[0]->kill9();
+  ASSERT_TRUE(c.startNode(0).isOk());
+
+  testing::ClusterViewer again = testing::viewerOn(c, 0, *doc);
+  ASSERT_TRUE(again.session) << "refused: " << again.error;
+  auto journal = testing::journalState(c.nats, *doc);
+  ASSERT_TRUE(journal.isOk()) << journal.status().message();
+  // The notice says the session waited for an owner (ClusterDocument::
+  // rehome, from no owner): the case under test, not a lease that had
+  // lapsed before the viewer came.
+  bool waited = false;
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
+  while (Clock::now() < deadline && !(again.view->ready() && again.view->version() >= journal->version)) {
+    auto m = again.session->receive(0.5);
+    if (!m.isOk()) {
+      ASSERT_TRUE(client::isReceiveTimeout(m.status())) << m.status().message();
+      continue;
+    }
+    if (m->has_error()) {
+      waited = waited || m->error().message().find("moved from node ? to node node0") != std::string::npos;
+      continue;
+    }
+    ASSERT_TRUE(again.view->apply(*m).isOk());
+  }
+  EXPECT_TRUE(waited) << "no notice of an owner found after the open: the old lease had lapsed already";
+  ASSERT_TRUE(again.view->ready());
+  EXPECT_EQ(again.view->version(), journal->version);
+  EXPECT_EQ(again.view->surfaceHash(), journal->surfaceHash);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # A fault-injection soak of the cluster mode, in Jepsen's manner
 # (docs/CLUSTER.md "Fault-injection soak"). CI runs the bounded form
-# (EVERY_KIND=1, tests/CMakeLists.txt: cluster_soak_every_fault_once).
+# (EVERY_KIND=2, tests/CMakeLists.txt: cluster_soak_every_fault_twice).
 #
 #   bash bench/cluster_soak.sh                          # 200 faults over 1800 s
 #   FAULTS=12 DURATION=120 bash bench/cluster_soak.sh   # a short try
 #   SEED=7 bash bench/cluster_soak.sh                   # the same schedule again
 #   EVERY_KIND=1 DURATION=80 bash bench/cluster_soak.sh # each kind of fault once
-#   EVERY_KIND=2 DURATION=120 bash bench/cluster_soak.sh # each kind twice
+#   EVERY_KIND=2 DURATION=120 bash bench/cluster_soak.sh # each kind twice (CI)
 #
 # Environment: FAULTS (200), DURATION (seconds, 1800), SEED (default: from
 # the clock, printed), BASE_PORT (25100: it uses BASE_PORT+1 .. +39 on

@@ -133,8 +133,12 @@ async function drawnBox(page, skip) {
 
 test('with ?codec=meshopt the page shows the cube from meshopt regions decoded in its worker, hashed like the server, through an edit', { skip }, async () => {
   const timings = {};
+  // A cube of its own: its edits leave the document the other tests pick on
+  // as they expect it.
+  const cube = await createCube(admin);
+  await grant(admin, EDITOR, 2, cube);
   for (const codec of ['draco', 'meshopt']) {
-    const page = await openPage(browser, docUrl(EDITOR, `&lod=balanced&codec=${codec}`));
+    const page = await openPage(browser, `${base}/?doc=${cube}&lod=balanced&codec=${codec}#token=${EDITOR}`);
     try {
       await readyWithRole(page);
       const s = await state(page);
@@ -143,9 +147,10 @@ test('with ?codec=meshopt the page shows the cube from meshopt regions decoded i
       assert.equal(d.decodedMeshopt, codec === 'meshopt' ? d.decoded : 0, JSON.stringify(d));
       // An edit: the delta comes in the same codec, and the hash still holds.
       const version = s.version;
-      await admin.call({ open_document: { document_id: toLong(documentId) } });
-      await admin.call({ move_vertex: { document_id: toLong(documentId), vertex_ids: [toLong(2n << 58n)],
+      await admin.call({ open_document: { document_id: toLong(cube) } });
+      const moved = await admin.call({ move_vertex: { document_id: toLong(cube), vertex_ids: [toLong(2n << 58n)],
         target: { x: 0.0004, y: -0.0003, z: 0.0005 }, mode: 2 } });
+      assert.ok(moved.message?.ack, JSON.stringify(moved.message));
       await page.waitForFunction((v) => window.tesseraViewer.state().version > v && window.tesseraViewer.state().hashMatches,
         { timeout: 20000 }, version);
       const after = (await state(page)).decoding;

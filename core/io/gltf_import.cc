@@ -12,6 +12,7 @@
 
 #include <tiny_gltf.h>
 
+#include "core/io/glb_container.h"
 #include "core/io/gltf_draco.h"
 
 namespace tessera {
@@ -308,6 +309,8 @@ Expected<GltfContent> readGltf(const std::string& path, const std::string& origi
   if (baseDir == nullptr) loader.SetFsCallbacks(noFiles());
   tinygltf::Model model;
   std::string err, warn;
+  if (original.size() >= 4 && original.compare(0, 4, "glTF") == 0)
+    TESSERA_RETURN_IF_ERROR(io_detail::checkGlbContainer(original, path));
   TESSERA_ASSIGN_OR_RETURN(const std::string data, io_detail::dropDracoIndices(original, path));
   const std::string dir = baseDir == nullptr ? std::string() : *baseDir;
   const bool binary = data.size() >= 4 && data.compare(0, 4, "glTF") == 0;

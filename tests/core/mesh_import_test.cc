@@ -190,6 +190,15 @@ TEST(MeshImportErrors, TruncatedFiles) {
   expectImportError("bad/truncated.glb", ErrorCode::kParseError, {"malformed glTF"});
 }
 
+// Found by the fuzz smoke: a JSON chunk of 615 bytes (not a multiple of 4)
+// and a BIN chunk that runs 3 bytes past the end; tinygltf 2.7 read 168
+// bytes beyond the buffer (AddressSanitizer). Refused before it gets there.
+TEST(MeshImportErrors, AGlbChunkOffItsAlignmentOrPastTheEndIsRefused) {
+  expectImportError(
+      "bad/fuzz_glb_chunk_past_the_end.glb", ErrorCode::kParseError,
+      {"malformed glTF", "GLB container", "chunk 0 at byte 12", "615 bytes, not a multiple of 4"});
+}
+
 TEST(MeshImportErrors, TruncatedObjStopsAtTheBrokenLine) {
   const std::string dir = makeTempDir("tessera-import");
   const std::string text = readBytes(sourceTestDataPath("good/tetra.obj"));

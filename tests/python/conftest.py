@@ -108,3 +108,13 @@ def cube(session):
     ack = session.create_document(str(SAMPLES / "cube.obj"), name="cube", max_level=4)
     session.open_document(ack.document_id)
     return ack.document_id
+
+
+@pytest.fixture
+def tmp_path():
+    """A directory of the test's own, removed after it. pytest's own
+    tmp_path keeps the last runs' directories under TMPDIR, and the suite
+    must leave TMPDIR as it found it (deploy/test.sh)."""
+    path = pathlib.Path(tempfile.mkdtemp(prefix="tessera-pytest-"))
+    yield path
+    shutil.rmtree(path, ignore_errors=True)

@@ -5,12 +5,21 @@
 // when the JSON chunk's length is not a multiple of 4 (docs/FUZZING.md).
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <string_view>
 
 #include "core/util/status.h"
 
 namespace tessera::io_detail {
+
+inline constexpr uint32_t kGlbMagic = 0x46546C67;      // "glTF"
+inline constexpr uint32_t kGlbJsonChunk = 0x4E4F534A;  // "JSON"
+inline constexpr size_t kGlbHeaderBytes = 12, kGlbChunkHeaderBytes = 8;
+
+// The little-endian word at byte `at` (at + 4 <= data.size()).
+uint32_t glbU32At(std::string_view data, size_t at);
 
 // OK, or a parse error naming `name`, the chunk and its byte offset.
 Status checkGlbContainer(std::string_view data, const std::string& name);

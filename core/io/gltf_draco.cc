@@ -8,19 +8,11 @@
 #include <draco/mesh/mesh.h>
 #include <nlohmann/json.hpp>
 
+#include "core/io/glb_container.h"
+
 namespace tessera::io_detail {
 
 namespace {
-
-constexpr uint32_t kGlbMagic = 0x46546C67;   // "glTF"
-constexpr uint32_t kJsonChunk = 0x4E4F534A;  // "JSON"
-constexpr size_t kGlbHeaderBytes = 12, kChunkHeaderBytes = 8;
-
-uint32_t readU32(const std::string& data, size_t at) {
-  uint32_t value = 0;
-  std::memcpy(&value, data.data() + at, 4);
-  return value;
-}
 
 void appendU32(std::string& out, uint32_t value) {
   out.append(reinterpret_cast<const char*>(&value), 4);
@@ -47,19 +39,19 @@ bool dropIndices(nlohmann::json& gltf) {
 Expected<std::string> dropDracoIndices(const std::string& data, const std::string& name) {
   // Cheap test first: most files never name the extension.
   if (data.find(kDracoExtension) == std::string::npos) return data;
-  const bool binary = data.size() >= 4 && readU32(data, 0) == kGlbMagic;
+  const bool binary = data.size() >= 4 && glbU32At(data, 0) == kGlbMagic;
   std::string json;
   size_t rest = 0;  // where the GLB's chunks after the JSON start
   if (binary) {
-    if (data.size() < kGlbHeaderBytes + kChunkHeaderBytes ||
-        readU32(data, kGlbHeaderBytes + 4) != kJsonChunk) {
+    if (data.size() < kGlbHeaderBytes + kGlbChunkHeaderBytes ||
+        glbU32At(data, kGlbHeaderBytes + 4) != kGlbJsonChunk) {
       return parseError(name + ": malformed GLB: no JSON chunk after the header");
     }
-    const uint64_t jsonBytes = readU32(data, kGlbHeaderBytes);
-    rest = kGlbHeaderBytes + kChunkHeaderBytes + jsonBytes;
+    const uint64_t jsonBytes = glbU32At(data, kGlbHeaderBytes);
+    rest = kGlbHeaderBytes + kGlbChunkHeaderBytes + jsonBytes;
     if (rest > data.size())
       return parseError(name + ": malformed GLB: the JSON chunk runs past the end of the file");
-    json = data.substr(kGlbHeaderBytes + kChunkHeaderBytes, jsonBytes);
+    json = data.substr(kGlbHeaderBytes + kGlbChunkHeaderBytes, jsonBytes);
   } else {
     json = data;
   }
@@ -70,13 +62,13 @@ Expected<std::string> dropDracoIndices(const std::string& data, const std::strin
   if (!binary) return text;
   while (text.size() % 4 != 0) text.push_back(' ');  // chunks are 4-byte aligned, JSON padded with spaces
   std::string out;
-  out.reserve(kGlbHeaderBytes + kChunkHeaderBytes + text.size() + (data.size() - rest));
+  out.reserve(kGlbHeaderBytes + kGlbChunkHeaderBytes + text.size() + (data.size() - rest));
   appendU32(out, kGlbMagic);
-  appendU32(out, readU32(data, 4));  // version
-  appendU32(out,
-            static_cast<uint32_t>(kGlbHeaderBytes + kChunkHeaderBytes + text.size() + (data.size() - rest)));
+  appendU32(out, glbU32At(data, 4));  // version
+  appendU32(out, static_cast<uint32_t>(kGlbHeaderBytes + kGlbChunkHeaderBytes + text.size() +
+                                       (data.size() - rest)));
   appendU32(out, static_cast<uint32_t>(text.size()));
-  appendU32(out, kJsonChunk);
+  appendU32(out, kGlbJsonChunk);
   out += text;
   out.append(data, rest, std::string::npos);
   return out;

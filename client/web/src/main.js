@@ -81,6 +81,7 @@ async function main() {
 
   const page = new PageState({ ...presetNamed(params.lod ?? DEFAULT_PRESET) }, performance.now());
   page.views = params.views;
+  page.codec = params.codec;
   const showError = (text) => { page.lastError = text; };
   // The control cage (docs/WEB_VIEWER.md "The control cage"), of the
   // level the dots show.
@@ -97,6 +98,15 @@ async function main() {
     onPreset: (name) => {
       page.profile = { ...presetNamed(name) };
       page.session?.subscribeOrShallower(page.profile).catch((e) => showError(`subscribe: ${e.message}`));
+    },
+    // Another region codec: the same profile again, now in that codec
+    // (docs/REGION_ENCODING.md "meshopt regions"); the server answers with
+    // a snapshot in it.
+    onCodec: (codec) => {
+      page.codec = codec;
+      if (!page.session) return;
+      page.session.codec = codec;
+      page.session.subscribeOrShallower(page.profile).catch((e) => showError(`subscribe: ${e.message}`));
     },
     onWireframe: (on) => view.setWireframe(on),
     onRegionColours: (on) => view.setRegionColours(on),
@@ -127,7 +137,7 @@ async function main() {
 
   function openDocument(documentId, helloAck) {
     page.session = new DocumentSession({
-      connection: page.connection, documentId, profile: page.profile, codec: params.codec,
+      connection: page.connection, documentId, profile: page.profile, codec: page.codec,
       // The first subscription: the coarsest tiles whatever the camera
       // (PROTOCOL.md section 16); the page frames them, then sends its own.
       view: page.views ? cameraView(256) : null,
@@ -264,6 +274,7 @@ async function main() {
       version: page.session?.view.version ?? 0n, documentId: page.session?.documentId ?? null, documentName: page.documentName,
       role: page.session?.role ?? page.connection?.helloAck?.role ?? 0, latencyMs: page.session?.latency.last ?? null,
       bytesPerSecond: page.bytesPerSecond, hash: page.session?.lastHash ?? null, preset: page.profile.name?.split(' ')[0] ?? DEFAULT_PRESET,
+      codec: page.codec,
       wireframe: view.wireframe, regionColours: view.regionColours, cage: cage.facts(), level: editor.level,
       views: page.views ? {
         complete: page.session?.viewComplete() ?? false, frozen: sender.frozen, tolerance: params.tolerance,

@@ -13,6 +13,9 @@ export class PageState {
     // than the profile: the address's choice, off for a morph document.
     this.views = false;
     this.documentName = '';
+    // The region codec subscribed with, 'draco' or 'meshopt': ?codec= at
+    // first, then the panel's choice (docs/REGION_ENCODING.md "meshopt regions").
+    this.codec = 'draco';
 
     // What the panel says.
     this.status = 'starting';

@@ -17,6 +17,15 @@ export function tileLevels(regions) {
   return out;
 }
 
+export function regionCodecs(regions) {
+  const out = {};
+  for (const r of regions.values()) {
+    const codec = r.header?.codec ?? 'draco';
+    out[codec] = (out[codec] ?? 0) + 1;
+  }
+  return out;
+}
+
 const ROLE_NAMES = ['ROLE_UNSPECIFIED', 'ROLE_VIEWER', 'ROLE_EDITOR', 'ROLE_ADMIN'];
 
 // app: {page (PageState), view (SceneView), picker, vertices, editor, cage (CageControl)}
@@ -37,6 +46,10 @@ export function installTestHook(app) {
         serverSurfaceHash: hash ? hex64(hash.server) : hex64(0n),
         hashMatches: Boolean(hash?.matches),
         triangles: view ? view.triangles() : 0,
+        // The codec subscribed with (?codec=, then the panel), and the
+        // regions held by the codec they came in ({"draco": n, "meshopt": m}).
+        codec: page.codec,
+        regionCodecs: view ? regionCodecs(view.regions) : {},
         regions: view ? view.regions.size : 0,
         // Whether the page subscribes with a view (main.js); then whether
         // the latest camera's tiles are all here, the tiles held by level
@@ -126,6 +139,13 @@ export function installTestHook(app) {
 
     renderedFrames() {
       return app.view.frames;
+    },
+
+    // The decode worker's answers, one per WebSocket message decoded (a
+    // snapshot part or a delta), oldest first: [{regions, meshopt, bytes,
+    // ms}] (codec/decode_pool.js).
+    decodeBatches() {
+      return page.decoder ? page.decoder.batches.slice() : [];
     },
 
     // [version, Unix ms of the first frame drawn at it] for the versions

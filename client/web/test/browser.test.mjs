@@ -82,6 +82,7 @@ test('the cube shows through a view by default, anti-aliased, hashed like the se
   assert.equal(s.firstPicture.shown.includes(String(PREVIEW_ID)), false, 'a small document has no preview');
   // The panel (refreshed four times a second) has the tolerance, not the LOD preset.
   await page.waitForFunction(() => document.querySelector('select[data-f=preset]').disabled &&
+    document.querySelector('select[data-f=codec]').disabled &&
     !document.querySelector('[data-f="toleranceRow"]').hidden, { timeout: 5000 });
   assert.equal(s.connected, true);
   assert.equal(s.ready, true);
@@ -162,6 +163,53 @@ test('with ?codec=meshopt the page shows the cube from meshopt regions decoded i
     }
   }
   console.log(`[ measured ] page decode per region, in its worker: ${JSON.stringify(timings)}`);
+});
+
+test('the panel\'s codec control resubscribes in the chosen codec: the page then holds and draws that codec\'s regions, same triangles and hash', { skip }, async () => {
+  // A profile: the server serves meshopt regions to profiles only, and the
+  // control is disabled with a view (docs/REGION_ENCODING.md "meshopt regions").
+  const page = await openPage(browser, docUrl(VIEWER, '&lod=balanced'));
+  try {
+    await ready(page);
+    const s0 = await state(page);
+    assert.equal(s0.codec, 'draco');
+    assert.deepEqual(s0.regionCodecs, { draco: s0.regions });
+    await page.waitForFunction(() => !document.querySelector('select[data-f=codec]').disabled &&
+      document.querySelector('select[data-f=codec]').value === 'draco', { timeout: 5000 });
+    let previous = s0;
+    for (const codec of ['meshopt', 'draco']) {
+      const frames = await page.evaluate(() => window.tesseraViewer.renderedFrames());
+      await page.select('select[data-f=codec]', codec);
+      await page.waitForFunction((c, n) => {
+        const s = window.tesseraViewer.state();
+        return s.codec === c && s.regions > 0 && s.regionCodecs[c] === s.regions && s.hashMatches &&
+          window.tesseraViewer.renderedFrames() > n;
+      }, { timeout: 30000 }, codec, frames);
+      const s = await state(page);
+      console.log(`codec ${previous.codec} -> ${codec}: ${s.regions} regions, ${s.triangles} triangles, ` +
+        `${s.decoding.decodedMeshopt} of ${s.decoding.decoded} decoded as meshopt`);
+      assert.equal(s.triangles, s0.triangles, 'the same surface in either codec');
+      assert.equal(s.surfaceHash, s0.surfaceHash);
+      assert.equal(s.shown, s.tiles, 'every region held is drawn');
+      assert.equal(s.error, '');
+      previous = s;
+    }
+    const d = await assertDecodedInWorker(page);
+    assert.ok(d.decodedMeshopt >= s0.regions && d.decoded >= 3 * s0.regions, JSON.stringify(d));
+    assert.deepEqual(page.problems, []);
+  } finally {
+    await page.close();
+  }
+  // ?codec=meshopt is the control's first value.
+  const meshopt = await openPage(browser, docUrl(VIEWER, '&codec=meshopt'));
+  try {
+    await ready(meshopt);
+    await meshopt.waitForFunction(() => document.querySelector('select[data-f=codec]').value === 'meshopt', { timeout: 5000 });
+    const s = await state(meshopt);
+    assert.deepEqual(s.regionCodecs, { meshopt: s.regions });
+  } finally {
+    await meshopt.close();
+  }
 });
 
 test('on a phone-sized page the panel starts folded, never covers the model, and the fit centres it below the panel', { skip }, async () => {

@@ -13,6 +13,7 @@
 // onFailure(error) says so once: the page then stops rather than
 // resubscribing forever to payloads nobody can decode.
 const KEEP_SAMPLES = 4096;
+const KEEP_BATCHES = 1024;
 
 export class DecodePool {
   // options: {createWorker() -> a Worker, or a stand-in with postMessage,
@@ -28,6 +29,12 @@ export class DecodePool {
     this.failed = 0; // requests answered with an error
     this.totalMs = 0;
     this.samples = []; // the last KEEP_SAMPLES decode times, ms
+    // The last KEEP_BATCHES answers of a worker, each the regions asked for
+    // in one task (one WebSocket message: a snapshot part or a delta):
+    // {regions, meshopt (of them), bytes (of their payloads), ms (the
+    // worker's decode time, summed)}. The benchmark's decode time per delta
+    // (bench/web_viewer_bench.mjs).
+    this.batches = [];
     this.slots = [];
     this.flushAsked = false;
     const started = [];
@@ -57,7 +64,7 @@ export class DecodePool {
       queueMicrotask(() => this.flush());
     }
     return new Promise((resolve, reject) => {
-      this.waiting.set(id, { resolve, reject, slot });
+      this.waiting.set(id, { resolve, reject, slot, bytes: copy.length });
     });
   }
 
@@ -82,7 +89,20 @@ export class DecodePool {
       this.fail(new Error(data.loadFailed));
       return;
     }
-    for (const answer of data.answers ?? []) this.answered(slot, answer);
+    const batch = { regions: 0, meshopt: 0, bytes: 0, ms: 0 };
+    for (const answer of data.answers ?? []) {
+      const request = this.waiting.get(answer.id);
+      if (request) {
+        ++batch.regions;
+        batch.bytes += request.bytes;
+        batch.ms += answer.ms;
+        if (answer.region?.header?.codec === 'meshopt') ++batch.meshopt;
+      }
+      this.answered(slot, answer);
+    }
+    if (batch.regions === 0) return;
+    this.batches.push(batch);
+    if (this.batches.length > KEEP_BATCHES) this.batches.shift();
   }
 
   answered(slot, data) {

@@ -20,7 +20,8 @@ const EDGE_NAMED_BY_ENDS = (1n << 64n) - 1n;
 
 export class DocumentSession {
   // options: {connection, decode (bytes -> a decoded region, or a Promise
-  // of one: the page's Web Worker), documentId, profile, view (a View's
+  // of one: the page's Web Worker), documentId, profile, codec ('draco',
+  // the default, or 'meshopt': profiles only), view (a View's
   // fields: a view-dependent subscription, PROTOCOL.md section 16; null for
   // a profile), onView(change), onPresence(), onStatus(text),
   // onError(text), onHash(result), onProfileOnly() (a view was asked for
@@ -31,6 +32,8 @@ export class DocumentSession {
     this.connection = options.connection;
     this.documentId = BigInt(options.documentId);
     this.profile = options.profile;
+    // 'draco' or 'meshopt': the page's choice, read at every subscription.
+    this.codec = options.codec ?? 'draco';
     this.camera = options.view ?? null; // the latest view sent, for (re)subscribing
     this.cameraSeq = 0n; // the client_seq of the latest SetView sent
     this.view = new DocumentView(this.documentId);
@@ -127,7 +130,7 @@ export class DocumentSession {
     if (this.camera) subscribe.view = this.camera;
     // tessera.proto RegionCodec: REGION_CODEC_MESHOPT = 2, for profiles only
     // (a view's tiles are Draco); the decode worker reads either.
-    else if (this.o.codec === 'meshopt') subscribe.codec = 2;
+    else if (this.codec === 'meshopt') subscribe.codec = 2;
     this.cameraSeq = 0n; // the subscription carries the latest camera
     const reply = await this.connection.call({ subscribe });
     return toBig(reply.message.ack.version);

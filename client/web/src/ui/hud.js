@@ -45,7 +45,7 @@ function setClass(element, name) {
 }
 
 export class Hud {
-  // handlers: {onPreset(name), onWireframe(on), onRegionColours(on),
+  // handlers: {onPreset(name), onCodec(name), onWireframe(on), onRegionColours(on),
   // onCage(on), onLevel(delta), onTolerance(px)}
   constructor(root, handlers) {
     this.root = root;
@@ -60,6 +60,7 @@ export class Hud {
         <div class="hud-row" data-f="hash"></div>
         <div class="hud-row hud-controls">
           <label>LOD <select data-f="preset"></select></label>
+          <label>codec <select data-f="codec" aria-label="region codec"><option value="draco">Draco</option><option value="meshopt">meshopt</option></select></label>
           <span class="hud-level">level <button data-f="down" aria-label="coarser edit level">−</button><b data-f="level"></b><button data-f="up" aria-label="finer edit level">+</button></span>
         </div>
         <div class="hud-row hud-controls" data-f="toleranceRow" hidden>
@@ -90,6 +91,7 @@ export class Hud {
       this.f.preset.append(option);
     }
     this.f.preset.addEventListener('change', () => this.h.onPreset(this.f.preset.value));
+    this.f.codec.addEventListener('change', () => this.h.onCodec(this.f.codec.value));
     this.f.wire.addEventListener('change', () => this.h.onWireframe(this.f.wire.checked));
     this.f.colours.addEventListener('change', () => this.h.onRegionColours(this.f.colours.checked));
     this.f.cageOn.addEventListener('change', () => this.h.onCage(this.f.cageOn.checked));
@@ -115,7 +117,7 @@ export class Hud {
 
   // facts: {fps, triangles, regions, version, documentName, documentId,
   // role, latencyMs, bytesPerSecond, hash: {ours, server, matches} | null,
-  // preset, wireframe, regionColours, cage (CageControl.facts()), level,
+  // preset, codec ('draco' | 'meshopt'), wireframe, regionColours, cage (CageControl.facts()), level,
   // pick, points, pointsDrawn, people: [{sessionId, name, role, selection,
   // self}], views: {complete, frozen, tolerance, preview} | null, status,
   // error}
@@ -149,6 +151,10 @@ export class Hud {
     // A view-dependent subscription has a tolerance, not a preset.
     if (f.toleranceRow.hidden !== !facts.views) f.toleranceRow.hidden = !facts.views;
     if (f.preset.disabled !== Boolean(facts.views)) f.preset.disabled = Boolean(facts.views);
+    // The server serves meshopt regions to LOD profiles only: a view's tiles
+    // are Draco (docs/REGION_ENCODING.md "meshopt regions").
+    if (f.codec.value !== facts.codec && document.activeElement !== f.codec) f.codec.value = facts.codec;
+    if (f.codec.disabled !== Boolean(facts.views)) f.codec.disabled = Boolean(facts.views);
     if (facts.views) {
       const slider = String(Math.log2(facts.views.tolerance));
       if (f.tolerance.value !== slider && document.activeElement !== f.tolerance) f.tolerance.value = slider;

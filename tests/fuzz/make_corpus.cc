@@ -125,7 +125,9 @@ void journals() {
     write("journal_entry", "edit" + std::to_string(i + 1), prefixed({entries[i]}));
 }
 
-void regions() {
+// The edited cube's first two regions in each id coding, in `codec`'s
+// payload, for `target`'s seeds.
+void regions(const std::string& target, RegionCodec codec) {
   Document doc = editedCube();
   const QuantizationGrid grid = value(documentGrid(doc), "grid");
   const LodProfile profile{.baseLevel = 1, .maxLevel = 3, .angleThresholdDegrees = 15};
@@ -134,20 +136,21 @@ void regions() {
   for (const auto& [id, mesh] : t.regions()) {
     if (n++ == 2) break;
     RegionHeader header{id, 6, 5, profile, grid, true};
-    write("region_decoder", "ids_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+    header.codec = codec;
+    write(target, "ids_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
     // A group of base faces has no one root face, so no lattice frame
     // (Tessellation::regionsAreGroups); the lattice seeds written before
     // groups existed stay in the corpus.
     if (!t.regionsAreGroups()) {
       header.frame = value(regionFrame(doc.hierarchy(), doc.counts(), FaceId::fromPacked(id)), "frame");
-      write("region_decoder", "lattice_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+      write(target, "lattice_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
       header.frame.reset();
     }
     header.idsInline = false;
-    write("region_decoder", "layout_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+    write(target, "layout_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
     header.idsInline = true;
     header.profile.vertexIds = false;
-    write("region_decoder", "noids_" + std::to_string(n), value(encodeRegion(header, mesh, 0), "encode"));
+    write(target, "noids_" + std::to_string(n), value(encodeRegion(header, mesh, 0), "encode"));
   }
 }
 
@@ -305,8 +308,8 @@ void frames() {
 
 // Regions of a Catmull-Clark document (the cube as six quads, a level-1
 // vertex moved): one per base quad at max level 4, their ids on the quad's
-// lattice (flag 8, region_lattice.h).
-void quadRegions() {
+// lattice (flag 8, region_lattice.h), in `codec`'s payload.
+void quadRegions(const std::string& target, RegionCodec codec) {
   PolyTopology quads;
   quads.numVertices = 8;
   for (const auto& face : {std::array{0, 3, 2, 1}, std::array{4, 5, 6, 7}, std::array{0, 1, 5, 4},
@@ -325,9 +328,44 @@ void quadRegions() {
   for (const auto& [id, mesh] : t.regions()) {
     if (n++ == 2) break;
     RegionHeader header{id, 2, 2, profile, grid, true};
+    header.codec = codec;
     header.frame = value(regionFrame(doc.hierarchy(), doc.counts(), FaceId::fromPacked(id)), "quad frame");
-    write("region_decoder", "quad_lattice_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
+    write(target, "quad_lattice_" + std::to_string(n), value(encodeRegion(header, mesh), "encode"));
   }
+}
+
+// Meshopt regions of shapes a document's regions do not have: a bow tie
+// (two triangles on one vertex) beside a lone triangle, with 8-byte ids and
+// without, and one triangle at the grid's corners on the coarsest grid the
+// decoder takes (1 position bit, 2 normal bits).
+void meshoptShapes() {
+  RegionMesh bowTie;
+  bowTie.positions = {{0, 0, 0},  {1, 0, 0}, {0, 1, 0}, {-1, 0, 0},
+                      {0, -1, 0}, {2, 2, 0}, {3, 2, 0}, {2, 3, 0}};
+  bowTie.normals.assign(bowTie.positions.size(), Vec3(0, 0, 1));
+  for (size_t i = 0; i < bowTie.positions.size(); ++i) bowTie.vertexIds.push_back(VertexId(2, i).packed());
+  bowTie.triangles = {{0, 1, 2}, {0, 3, 4}, {5, 6, 7}};
+  const QuantizationGrid grid = value(gridFor(Vec3(-1, -1, 0), Vec3(3, 3, 0)), "bow tie grid");
+  const LodProfile profile{.baseLevel = 1, .maxLevel = 2, .angleThresholdDegrees = 15};
+  RegionHeader header{FaceId(0, 0).packed(), 3, 3, profile, grid, true};
+  header.codec = RegionCodec::kMeshopt;
+  write("region_meshopt", "bow_tie_ids", value(encodeRegion(header, bowTie), "encode"));
+  header.profile.vertexIds = false;
+  write("region_meshopt", "bow_tie_noids", value(encodeRegion(header, bowTie), "encode"));
+
+  RegionMesh corner;
+  corner.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 1}};
+  corner.normals = {Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(0, 0, -1)};
+  corner.vertexIds = {VertexId(0, 0).packed(), VertexId(0, 1).packed(), VertexId(0, 2).packed()};
+  corner.triangles = {{0, 1, 2}};
+  QuantizationGrid coarse;
+  coarse.origin = Vec3(0, 0, 0);
+  coarse.range = 1;
+  coarse.positionBits = 1;
+  coarse.normalBits = 2;
+  RegionHeader one{FaceId(0, 1).packed(), 1, 1, profile, coarse, true};
+  one.codec = RegionCodec::kMeshopt;
+  write("region_meshopt", "one_triangle_coarse", value(encodeRegion(one, corner), "encode"));
 }
 
 // Cameras around the creased cube (view_selection): a far and a near one,
@@ -377,8 +415,11 @@ int main(int argc, char** argv) {
   tessera::fuzz::root = argv[1];
   tessera::fuzz::documents();
   tessera::fuzz::journals();
-  tessera::fuzz::regions();
-  tessera::fuzz::quadRegions();
+  tessera::fuzz::regions("region_decoder", tessera::RegionCodec::kDraco);
+  tessera::fuzz::quadRegions("region_decoder", tessera::RegionCodec::kDraco);
+  tessera::fuzz::regions("region_meshopt", tessera::RegionCodec::kMeshopt);
+  tessera::fuzz::quadRegions("region_meshopt", tessera::RegionCodec::kMeshopt);
+  tessera::fuzz::meshoptShapes();
   tessera::fuzz::hostSessions();
   tessera::fuzz::frames();
   tessera::fuzz::views();

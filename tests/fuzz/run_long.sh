@@ -26,7 +26,7 @@ FORK=${FORK:-0}
 TIMEOUT=${TIMEOUT:-30}
 BIN=${BIN:-build/fuzz/tests/fuzz}
 OUT=${OUT:-build/fuzz/long}
-ALL="frame_decoder document_host region_decoder document_file journal_entry tag_file edit_script
+ALL="frame_decoder document_host region_decoder region_meshopt document_file journal_entry tag_file edit_script
      import_obj import_off import_ply import_stl import_gltf import_glb"
 TARGETS=${*:-$ALL}
 

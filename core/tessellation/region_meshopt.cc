@@ -269,6 +269,17 @@ Expected<RegionMesh> decodeMeshoptPayload(std::string_view payload, const Quanti
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
       return parseError(source + ": triangle " + std::to_string(f) + " repeats a vertex");
   }
+  // encodeRegion writes no vertex that no triangle uses (its mesh rules), so
+  // such a vertex is a forged or corrupted count: the vertex codec can decode
+  // V + 1 vertices from a stream of V without complaint (docs/FUZZING.md,
+  // the region_meshopt target).
+  std::vector<char> used(n, 0);
+  for (const auto& t : out.triangles)
+    for (int c : t) used[static_cast<size_t>(c)] = 1;
+  if (const auto unused = std::find(used.begin(), used.end(), 0); unused != used.end()) {
+    return parseError(source + ": vertex " + std::to_string(unused - used.begin()) + " of " +
+                      std::to_string(n) + " is used by no triangle");
+  }
   return out;
 }
 

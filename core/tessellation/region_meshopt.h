@@ -57,7 +57,8 @@ Expected<std::string> encodeMeshoptPayload(const RegionMesh& mesh, IdCoding codi
 // against the triangles and the payload size before anything is allocated,
 // the codecs' version bytes, every lattice index inside the grid, every
 // lattice point inside the face, every triangle index below V with three
-// distinct corners. Errors are parse errors naming `where`.
+// distinct corners, and every vertex used by some triangle (encodeRegion
+// writes no other). Errors are parse errors naming `where`.
 Expected<RegionMesh> decodeMeshoptPayload(std::string_view payload, const QuantizationGrid& grid,
                                           bool withIds, uint32_t triangles, const RegionLattice* lattice,
                                           const std::string& where);

@@ -327,6 +327,28 @@ TEST(RegionMeshopt, RefusesTruncationCorruptionAndForeignStreams) {
   }
 }
 
+// The vertex count raised by one behind a valid checksum: meshoptimizer's
+// vertex codec decodes the bow tie's 8-vertex stream as 9 vertices, the
+// last used by no triangle, which no encoder writes (found by the
+// region_meshopt fuzz target, docs/FUZZING.md; its corpus keeps the input).
+TEST(RegionMeshopt, RefusesAVertexNoTriangleUses) {
+  const Shape s = shapes()[2];
+  auto encoded = encodeRegion(headerWith(s.grid, RegionCodec::kMeshopt), s.mesh);
+  ASSERT_TRUE(encoded.isOk()) << encoded.status().toString();
+  std::string bytes = *encoded;
+  uint32_t count = 0;
+  std::memcpy(&count, &bytes[kRegionHeaderBytes], 4);
+  ASSERT_EQ(count, 8u);
+  ++count;
+  std::memcpy(&bytes[kRegionHeaderBytes], &count, 4);
+  refreshRegionChecksum(bytes);
+  auto refused = decodeRegion(bytes);
+  ASSERT_FALSE(refused.isOk());
+  EXPECT_EQ(refused.status().code(), ErrorCode::kParseError);
+  EXPECT_NE(refused.status().message().find("vertex 8 of 9 is used by no triangle"), std::string::npos)
+      << refused.status().toString();
+}
+
 TEST(RegionMeshopt, RefusesNormalsFinerThanItsTwoBytes) {
   Shape s = shapes()[2];
   s.grid.normalBits = 17;

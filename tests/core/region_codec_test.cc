@@ -28,10 +28,9 @@
 #include <vector>
 
 #include "core/hierarchy/ids.h"
-#include "core/loop/loop_refiner.h"
 #include "core/tessellation/region_codec.h"
-#include "support/procedural_meshes.h"
 #include "support/region_checks.h"
+#include "support/region_meshes.h"
 
 namespace tessera {
 namespace {
@@ -45,8 +44,7 @@ double normalBoundDegrees(int normalBits) {
   return 1.02 * 3.0 * std::sqrt(2.0) / (std::ldexp(1.0, normalBits) - 2.0) * kDegrees;
 }
 
-// A closed smooth surface: the Loop limit of a jittered torus, with each
-// vertex's id that of the level-`levels` vertex it is the limit of.
+// A closed smooth surface (region_meshes.h's torus limit) and its box.
 struct Surface {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;
@@ -56,18 +54,12 @@ struct Surface {
 };
 
 Surface torusSurface(int levels) {
-  const auto mesh = testing::withJitter(testing::torus(8, 6), 0.03, 11);
-  auto refiner = LoopRefiner::create(mesh.topology, {}, {.levels = levels});
-  EXPECT_TRUE(refiner.isOk()) << refiner.status().toString();
-  auto limit = refiner->limitSurface(refiner->refinePoints(mesh.points));
-  EXPECT_TRUE(limit.isOk()) << limit.status().toString();
+  RegionMesh m = testing::torusLimitRegion(levels);
   Surface s;
-  s.positions = limit->positions;
-  s.normals = limit->normals;
-  s.triangles = limit->triangles;
-  // No creases: the limit surface has no split copies, one vertex per id.
-  EXPECT_EQ(s.positions.size(), static_cast<size_t>(refiner->finestLevel().numVertices));
-  for (size_t i = 0; i < s.positions.size(); ++i) s.ids.push_back(VertexId(levels, i).packed());
+  s.positions = std::move(m.positions);
+  s.normals = std::move(m.normals);
+  s.ids = std::move(m.vertexIds);
+  s.triangles = std::move(m.triangles);
   s.bboxMin = s.bboxMax = s.positions[0];
   for (const Vec3& p : s.positions) s.bboxMin.minimize(p), s.bboxMax.maximize(p);
   return s;
@@ -193,13 +185,7 @@ TEST(RegionCodec, ExtremeVertexIdsSurviveExactly) {
 }
 
 TEST(RegionCodec, NonManifoldAndDisconnectedRegionsKeepTheirTriangles) {
-  // A bow tie (two triangles sharing one vertex, which Edgebreaker splits)
-  // next to a separate triangle.
-  RegionMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {2, 2, 0}, {3, 2, 0}, {2, 3, 0}};
-  m.normals.assign(m.positions.size(), Vec3(0, 0, 1));
-  for (size_t i = 0; i < m.positions.size(); ++i) m.vertexIds.push_back(VertexId(0, 100 + i).packed());
-  m.triangles = {{0, 1, 2}, {0, 3, 4}, {5, 6, 7}};
+  const RegionMesh m = testing::bowTieAndIsland();
   RegionHeader header;
   header.grid = *gridFor({-1, -1, 0}, {3, 3, 0});
   for (int level = 0; level <= 10; ++level) {

@@ -22,13 +22,12 @@
 
 #include "core/document/document.h"
 #include "core/hierarchy/ids.h"
-#include "core/loop/loop_refiner.h"
 #include "core/tessellation/document_grid.h"
 #include "core/tessellation/region_codec.h"
 #include "core/tessellation/region_lattice.h"
 #include "core/tessellation/tessellation.h"
-#include "support/procedural_meshes.h"
 #include "support/region_checks.h"
+#include "support/region_meshes.h"
 #include "support/test_meshes.h"
 
 namespace tessera {
@@ -62,28 +61,6 @@ QuantizationGrid gridAround(const RegionMesh& m) {
   return *grid;
 }
 
-// The Loop limit surface of a jittered torus, ids of level `levels`.
-RegionMesh torusLimit(int levels) {
-  const auto mesh = testing::withJitter(testing::torus(8, 6), 0.03, 11);
-  auto refiner = LoopRefiner::create(mesh.topology, {}, {.levels = levels});
-  EXPECT_TRUE(refiner.isOk());
-  auto limit = refiner->limitSurface(refiner->refinePoints(mesh.points));
-  EXPECT_TRUE(limit.isOk());
-  RegionMesh m{limit->positions, limit->normals, {}, limit->triangles};
-  for (size_t i = 0; i < m.positions.size(); ++i) m.vertexIds.push_back(VertexId(levels, i).packed());
-  return m;
-}
-
-// A bow tie (two triangles on one vertex) beside a lone triangle.
-RegionMesh bowTieAndIsland() {
-  RegionMesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {2, 2, 0}, {3, 2, 0}, {2, 3, 0}};
-  m.normals.assign(m.positions.size(), Vec3(0, 0, 1));
-  for (size_t i = 0; i < m.positions.size(); ++i) m.vertexIds.push_back(VertexId(0, 100 + i).packed());
-  m.triangles = {{0, 1, 2}, {0, 3, 4}, {5, 6, 7}};
-  return m;
-}
-
 // Random triangles over random points and random normals in a thin slab
 // far from the origin, with extreme ids: nothing the codec could predict.
 RegionMesh randomSoup(uint32_t seed) {
@@ -108,7 +85,8 @@ RegionMesh randomSoup(uint32_t seed) {
 
 std::vector<Shape> shapes() {
   std::vector<Shape> out;
-  for (RegionMesh m : {torusLimit(1), torusLimit(3), bowTieAndIsland(), randomSoup(7)}) {
+  for (RegionMesh m : {testing::torusLimitRegion(1), testing::torusLimitRegion(3), testing::bowTieAndIsland(),
+                       randomSoup(7)}) {
     const QuantizationGrid grid = gridAround(m);
     out.push_back({"shape " + std::to_string(out.size()), std::move(m), grid});
   }

@@ -49,11 +49,17 @@ test('?level=N starts at that control level and ?cage=1 with the cage; anything 
   for (const off of ['&cage=0', '&cage=yes', '&cage=']) assert.equal(params(off).cage, false, off);
 });
 
-test('?codec=meshopt asks for meshopt regions and, without ?views=1, a profile', () => {
+test('?codec=meshopt asks for meshopt regions and, without ?views=1, a profile; without ?codec= a profile is meshopt, a view Draco', () => {
   const p = (query) => readPageParams(at(`http://h/?doc=1${query}#token=t`));
   assert.equal(p('').codec, 'draco');
+  assert.equal(p('&views=1').codec, 'draco');
+  assert.equal(p('&lod=fine').codec, 'meshopt');
+  assert.equal(p('&views=0').codec, 'meshopt');
+  assert.equal(p('&lod=fine&codec=draco').codec, 'draco');
+  assert.equal(p('&lod=fine&views=1').codec, 'draco');
   assert.equal(p('&codec=draco').codec, 'draco');
   assert.equal(p('&codec=zstd').codec, 'draco');
+  assert.equal(p('&lod=fine&codec=zstd').codec, 'meshopt');
   assert.equal(p('&codec=meshopt').codec, 'meshopt');
   assert.equal(p('&codec=meshopt').views, false);
   assert.equal(p('&codec=meshopt&views=1').views, true);

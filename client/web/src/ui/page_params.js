@@ -8,13 +8,17 @@ export function readPageParams(location) {
   const query = new URLSearchParams(location.search);
   const fragment = new URLSearchParams(location.hash.replace(/^#/, ''));
   const doc = query.get('doc');
-  // ?codec=meshopt: the regions come as meshopt regions instead of Draco's
-  // (docs/REGION_ENCODING.md "meshopt regions"). The server serves them to
-  // LOD profiles only, so it also means a profile unless ?views=1 (whose
-  // tiles stay Draco).
-  const codec = query.get('codec') === 'meshopt' ? 'meshopt' : 'draco';
+  // ?codec=meshopt or draco: the regions' codec (docs/REGION_ENCODING.md
+  // "meshopt regions"). The server serves meshopt to LOD profiles only, so
+  // ?codec=meshopt also means a profile unless ?views=1 (whose tiles stay
+  // Draco). Without ?codec=, a profile is asked for in meshopt and a view
+  // in Draco: in the page, meshopt decoded fandisk's snapshot about three
+  // times faster for 1.3 times its bytes (docs/PERFORMANCE.md "Region
+  // codecs: the page's default").
+  const asked = ['meshopt', 'draco'].includes(query.get('codec')) ? query.get('codec') : null;
+  const views = query.has('views') ? query.get('views') !== '0' : !query.has('lod') && asked !== 'meshopt';
   return {
-    codec,
+    codec: asked ?? (views ? 'draco' : 'meshopt'),
     documentId: doc !== null && /^\d+$/.test(doc) && BigInt(doc) > 0n ? BigInt(doc) : null,
     token: fragment.get('token') ?? '',
     name: (query.get('name') ?? 'web viewer').slice(0, 128),
@@ -23,7 +27,7 @@ export function readPageParams(location) {
     // with ?views=0 or ?lod=PRESET (docs/WEB_VIEWER.md "Views"); ?views=1
     // wins over ?lod. ?tolerance=PX is its screen-space error (0.25..256,
     // default 1).
-    views: query.has('views') ? query.get('views') !== '0' : !query.has('lod') && codec !== 'meshopt',
+    views,
     tolerance: Math.min(256, Math.max(0.25, Number(query.get('tolerance') ?? 1) || 1)),
     // ?level=N starts the dots (and the cage) at control level N instead of
     // 1; the page keeps it within its profile's levels. ?cage=1 starts with

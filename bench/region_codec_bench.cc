@@ -82,12 +82,13 @@ RegionMesh patch(const RegionMesh& s, size_t seed, size_t count) {
   return out;
 }
 
-void encode(benchmark::State& state) {
-  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
-  const int level = static_cast<int>(state.range(1));
+// The timing loops of every codec: encoding `region` under `header` at
+// `level` (the meshopt codec checks and ignores it), with its size per
+// triangle, and decoding that encoding.
+void timeEncode(benchmark::State& state, const RegionHeader& header, const RegionMesh& region, int level) {
   size_t bytes = 0;
   for (auto _ : state) {
-    auto encoded = encodeRegion(input().header, region, level);
+    auto encoded = encodeRegion(header, region, level);
     if (!encoded.isOk()) {
       state.SkipWithError(encoded.status().toString().c_str());
       break;
@@ -100,9 +101,8 @@ void encode(benchmark::State& state) {
   state.counters["bytes_per_tri"] = static_cast<double>(bytes) / static_cast<double>(region.triangles.size());
 }
 
-void decode(benchmark::State& state) {
-  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
-  const auto encoded = encodeRegion(input().header, region, static_cast<int>(state.range(1)));
+void timeDecode(benchmark::State& state, const RegionHeader& header, const RegionMesh& region, int level) {
+  const auto encoded = encodeRegion(header, region, level);
   if (!encoded.isOk()) {
     state.SkipWithError(encoded.status().toString().c_str());
     return;
@@ -112,6 +112,18 @@ void decode(benchmark::State& state) {
     benchmark::DoNotOptimize(decoded);
   }
   state.counters["bytes"] = static_cast<double>(encoded->size());
+}
+
+const RegionMesh& regionOf(const benchmark::State& state) {
+  return input().regions.at(static_cast<int>(state.range(0)));
+}
+
+void encode(benchmark::State& state) {
+  timeEncode(state, input().header, regionOf(state), static_cast<int>(state.range(1)));
+}
+
+void decode(benchmark::State& state) {
+  timeDecode(state, input().header, regionOf(state), static_cast<int>(state.range(1)));
 }
 
 // The same regions in the meshopt codec, which has no levels.
@@ -122,35 +134,11 @@ RegionHeader meshoptHeader() {
 }
 
 void encodeMeshopt(benchmark::State& state) {
-  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
-  const RegionHeader header = meshoptHeader();
-  size_t bytes = 0;
-  for (auto _ : state) {
-    auto encoded = encodeRegion(header, region);
-    if (!encoded.isOk()) {
-      state.SkipWithError(encoded.status().toString().c_str());
-      break;
-    }
-    bytes = encoded->size();
-    benchmark::DoNotOptimize(encoded->data());
-  }
-  state.counters["triangles"] = static_cast<double>(region.triangles.size());
-  state.counters["bytes"] = static_cast<double>(bytes);
-  state.counters["bytes_per_tri"] = static_cast<double>(bytes) / static_cast<double>(region.triangles.size());
+  timeEncode(state, meshoptHeader(), regionOf(state), kDefaultRegionCompressionLevel);
 }
 
 void decodeMeshopt(benchmark::State& state) {
-  const RegionMesh& region = input().regions.at(static_cast<int>(state.range(0)));
-  const auto encoded = encodeRegion(meshoptHeader(), region);
-  if (!encoded.isOk()) {
-    state.SkipWithError(encoded.status().toString().c_str());
-    return;
-  }
-  for (auto _ : state) {
-    auto decoded = decodeRegion(*encoded);
-    benchmark::DoNotOptimize(decoded);
-  }
-  state.counters["bytes"] = static_cast<double>(encoded->size());
+  timeDecode(state, meshoptHeader(), regionOf(state), kDefaultRegionCompressionLevel);
 }
 
 // With --benchmark_repetitions, the minimum is the figure least disturbed by

@@ -53,6 +53,16 @@ async function readyWithRole(page) {
   await page.waitForFunction(() => window.tesseraViewer.state().role !== 'ROLE_UNSPECIFIED', { timeout: 10000 });
 }
 
+// With a view, the first picture (data-state=ready) is the coarsest tiles
+// (docs/WEB_VIEWER.md "Views"): the cube's level-0 tile, which holds no
+// vertex of level 1, so a pick of level 1 finds none until the camera's
+// own tiles come. They came late enough for that after a level-2 edit and
+// a phone-sized page on the same document; waiting for them is the test's
+// part, not the page's.
+async function cameraTilesHere(page) {
+  await page.waitForFunction(() => { const s = window.tesseraViewer.state(); return !s.views || s.viewComplete; }, { timeout: 30000 });
+}
+
 async function screenshot(page) {
   return decodePng(await page.screenshot({ type: 'png' }));
 }
@@ -240,6 +250,7 @@ test('on a phone-sized page the panel starts folded, never covers the model, and
 test('a drag edits the document as one undo step; undo and redo come back to the hashes', { skip }, async () => {
   const page = await openPage(browser, docUrl(EDITOR, '&name=dragger'));
   await readyWithRole(page);
+  await cameraTilesHere(page);
   const s0 = await state(page);
   assert.equal(s0.role, 'ROLE_EDITOR');
   const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
@@ -281,6 +292,34 @@ test('a drag edits the document as one undo step; undo and redo come back to the
   await page.close();
 });
 
+test('after a level-2 edit and a phone-sized page, a new page picks near the centre once its camera\'s tiles are here', { skip }, async () => {
+  // The order that once left the drag test's pick empty: the pick came
+  // before the camera's tiles (cameraTilesHere above), not after a
+  // hierarchy it could not pick in.
+  const cube = await createCube(admin);
+  await grant(admin, EDITOR, 2, cube);
+  await grant(admin, VIEWER, 1, cube);
+  await admin.call({ open_document: { document_id: toLong(cube) } });
+  const moved = await admin.call({ move_vertex: { document_id: toLong(cube), vertex_ids: [toLong(2n << 58n)],
+    target: { x: 0.0004, y: -0.0003, z: 0.0005 }, mode: 2 } });
+  assert.ok(moved.message?.ack, JSON.stringify(moved.message));
+  const phone = await openPage(browser, `${base}/?doc=${cube}#token=${VIEWER}`, { width: 390, height: 844 });
+  await ready(phone);
+  await phone.close();
+  const page = await openPage(browser, `${base}/?doc=${cube}#token=${EDITOR}`);
+  try {
+    await readyWithRole(page);
+    await cameraTilesHere(page);
+    const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
+    assert.ok(v, JSON.stringify((await state(page)).tileLevels));
+    assert.match(v.id, /^v1:\d+$/);
+    assert.equal((await state(page)).hashMatches, true);
+    assert.deepEqual(page.problems, []);
+  } finally {
+    await page.close();
+  }
+});
+
 test('picks travel both ways through presence', { skip }, async () => {
   const page = await openPage(browser, docUrl(VIEWER, '&name=watcher'));
   await ready(page);
@@ -290,6 +329,7 @@ test('picks travel both ways through presence', { skip }, async () => {
     { timeout: 10000 });
   const people = (await state(page)).collaborators.map((c) => `${c.name}${c.self ? '*' : ''}:${c.role}`);
   assert.ok(people.includes('bob:ROLE_EDITOR') && people.includes('watcher*:ROLE_VIEWER'), people.join());
+  await cameraTilesHere(page);
   const v = await page.evaluate(() => window.tesseraViewer.someVertexNearCentre());
   await page.mouse.click(v.x, v.y);
   await until(() => bob.session.collaborators.list().some((c) => c.name === 'watcher' && c.selection.length === 1 &&

@@ -1,5 +1,6 @@
 #include "core/catmark/limit.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -187,10 +188,12 @@ CatmarkLimitFrame dartFrame(const Level& level, Index v, std::span<const Vec3> p
   return frame;
 }
 
+// `mayDecay` false: the caller knows no vertex of the level has a
+// semi-sharp feature (CatmarkLimitEvaluator::Scope::kWholeLevel).
 CatmarkLimitFrame frameWith(const Level& level, Index v, std::span<const Vec3> points,
                             const TangentTables& tables, const CreaseOptions& options,
-                            const FarRingSharpness* far) {
-  if (takesDecayedLimit(level, v, options)) {
+                            const FarRingSharpness* far, bool mayDecay = true) {
+  if (mayDecay && takesDecayedLimit(level, v, options)) {
     if (auto decayed = decayedLimitFrame(level, v, points, options, far)) return *decayed;
   }
   switch (level.vertexRules[v]) {
@@ -276,17 +279,31 @@ CatmarkLimitFrame catmarkLimitFrame(const Level& level, Index v, std::span<const
   return frameWith(level, v, points, TangentTables(level.valence(v)), options, far);
 }
 
+namespace {
+
+// Whether some vertex of the level may take the decayed limit: a superset
+// of hasUndecayedSemiSharpness over its vertices, which reads only the
+// vertex's own sharpness and its ring edges'.
+bool anySemiSharpness(const Level& level) {
+  auto semiSharp = [](float s) { return isSemiSharp(s); };
+  return std::any_of(level.edgeSharpness.begin(), level.edgeSharpness.end(), semiSharp) ||
+         std::any_of(level.vertexSharpness.begin(), level.vertexSharpness.end(), semiSharp);
+}
+
+}  // namespace
+
 CatmarkLimitEvaluator::CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options,
-                                             const FarRingSharpness* far)
+                                             const FarRingSharpness* far, Scope scope)
     : level_(level),
       options_(options),
       far_(far),
-      tables_(std::make_unique<const TangentTables>(level.maxValence)) {}
+      tables_(std::make_unique<const TangentTables>(level.maxValence)),
+      mayDecay_(scope == Scope::kSomeVertices || anySemiSharpness(level)) {}
 
 CatmarkLimitEvaluator::~CatmarkLimitEvaluator() = default;
 
 CatmarkLimitFrame CatmarkLimitEvaluator::frame(Index v, std::span<const Vec3> points) const {
-  return frameWith(level_, v, points, *tables_, options_, far_);
+  return frameWith(level_, v, points, *tables_, options_, far_, mayDecay_);
 }
 
 double catmarkSelfLimitWeight(const Level& level, Index v, const CreaseOptions& options,

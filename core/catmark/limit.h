@@ -42,9 +42,15 @@ class FarRingSharpness;  // core/loop/local_ring.h
 // sparse hierarchy's use; one call builds them per vertex).
 class CatmarkLimitEvaluator {
  public:
+  // How many of the level's vertices frame() is asked for. For the whole
+  // level, the constructor first looks once over the level's sharpness for
+  // a semi-sharp value: without one, no vertex takes the decayed limit, and
+  // frame() skips looking at each vertex's ring for one (a linear pass over
+  // a few floats per edge, where a few vertices would not repay it).
+  enum class Scope { kSomeVertices, kWholeLevel };
   // `far`, if given, outlives the evaluator.
   CatmarkLimitEvaluator(const Level& level, const CreaseOptions& options,
-                        const FarRingSharpness* far = nullptr);
+                        const FarRingSharpness* far = nullptr, Scope scope = Scope::kSomeVertices);
   ~CatmarkLimitEvaluator();
   CatmarkLimitFrame frame(Index v, std::span<const Vec3> points) const;
 
@@ -53,6 +59,7 @@ class CatmarkLimitEvaluator {
   CreaseOptions options_;
   const FarRingSharpness* far_;
   std::unique_ptr<const detail::CatmarkTangentTables> tables_;
+  bool mayDecay_;  // whether some vertex may have a semi-sharp feature
 };
 
 // One vertex of an all-quad level with full topology, or a complete vertex

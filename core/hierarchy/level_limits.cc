@@ -6,12 +6,12 @@
 namespace tessera {
 
 LevelLimits::LevelLimits(const SparseLevel& level, const SparseLevel* parent, const LoopOptions& options,
-                         SplitKind split)
+                         SplitKind split, CatmarkLimitEvaluator::Scope scope)
     : level_(level), options_(options), far_(level, parent, options) {
   if (split == SplitKind::kTriangles) {
     loop_.emplace(level.mesh, options.creaseMethod, &far_);
   } else if (hasLimits(level.mesh, split)) {
-    catmark_.emplace(level.mesh, options, &far_);
+    catmark_.emplace(level.mesh, options, &far_, scope);
   }
 }
 

@@ -24,8 +24,11 @@ namespace tessera {
 class LevelLimits {
  public:
   // `parent` is the level `level` was split from (null at level 0).
+  // `scope` says whether the limits of the whole level are asked for
+  // (CatmarkLimitEvaluator::Scope: a pass over the level first).
   LevelLimits(const SparseLevel& level, const SparseLevel* parent, const LoopOptions& options,
-              SplitKind split);
+              SplitKind split,
+              CatmarkLimitEvaluator::Scope scope = CatmarkLimitEvaluator::Scope::kSomeVertices);
   LevelLimits(const LevelLimits&) = delete;
   LevelLimits& operator=(const LevelLimits&) = delete;
 
@@ -43,6 +46,16 @@ class LevelLimits {
     if (!catmark_) return {points[v], Vec3(0, 0, 0), Vec3(0, 0, 0)};
     const CatmarkLimitFrame f = catmark_->frame(v, points);
     return {f.position, f.tangent1, f.tangent2};
+  }
+  // What the hierarchy stores of complete vertex v's limit: its position
+  // and unit normal (LimitFrame::normal), from frame().
+  struct PositionNormal {
+    Vec3 position;
+    Vec3 normal;
+  };
+  PositionNormal positionAndNormal(Index v, std::span<const Vec3> points) const {
+    const LimitFrame f = frame(v, points);
+    return {f.position, f.normal()};
   }
   // The control point of complete vertex v whose limit position is
   // `target`, the others fixed (direct manipulation, Pulli & Lounsbery,

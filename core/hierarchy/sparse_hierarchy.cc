@@ -179,13 +179,14 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
   }
   freshLevel = freshLevel || state.limitPosition.empty();  // level 0, first marked
   if (!freshLevel && newLimits.empty()) return;
-  const LevelLimits limits = limitsOf(l);
   if (!freshLevel) {
+    const LevelLimits limits = limitsOf(l);
     state.limitPosition.resize(m.numVertices);
     state.limitNormal.resize(m.numVertices);
     for (Index v : newLimits) refreshLimit(l, v, limits);
     return;
   }
+  const LevelLimits limits = limitsOf(l, CatmarkLimitEvaluator::Scope::kWholeLevel);
   // Each limit written once, in order: a resize first would zero the
   // arrays only for this loop to write them again (a tenth of building a
   // Catmull-Clark level, docs/PERFORMANCE.md "Catmull-Clark in the
@@ -200,9 +201,9 @@ void SparseHierarchy::markLeaves(int l, bool freshLevel, const std::vector<Index
       state.limitNormal.emplace_back(0, 0, 0);
       continue;
     }
-    const LimitFrame frame = limits.frame(v, state.points);
-    state.limitPosition.push_back(frame.position);
-    state.limitNormal.push_back(frame.normal());
+    const LevelLimits::PositionNormal limit = limits.positionAndNormal(v, state.points);
+    state.limitPosition.push_back(limit.position);
+    state.limitNormal.push_back(limit.normal);
   }
 }
 
@@ -235,15 +236,16 @@ Vec3 SparseHierarchy::solveControlPoint(int l, Index v, const Vec3& target) cons
   return levels_[l].points[v] + (1.0 / alpha) * (target - levels_[l + 1].limitPosition[c]);
 }
 
-LevelLimits SparseHierarchy::limitsOf(int l) const {
-  return LevelLimits(levels_[l].topo, l > 0 ? &levels_[l - 1].topo : nullptr, options_, counts_.split());
+LevelLimits SparseHierarchy::limitsOf(int l, CatmarkLimitEvaluator::Scope scope) const {
+  return LevelLimits(levels_[l].topo, l > 0 ? &levels_[l - 1].topo : nullptr, options_, counts_.split(),
+                     scope);
 }
 
 void SparseHierarchy::refreshLimit(int l, Index v, const LevelLimits& limits) {
   LevelState& state = levels_[l];
-  const LimitFrame frame = limits.frame(v, state.points);
-  state.limitPosition[v] = frame.position;
-  state.limitNormal[v] = frame.normal();
+  const LevelLimits::PositionNormal limit = limits.positionAndNormal(v, state.points);
+  state.limitPosition[v] = limit.position;
+  state.limitNormal[v] = limit.normal;
 }
 
 // ---- One level's points and tags -------------------------------------

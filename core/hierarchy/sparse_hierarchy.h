@@ -226,7 +226,8 @@ class SparseHierarchy {
   // growth completed).
   void markLeaves(int l, bool freshLevel, const std::vector<Index>& newLimits);
   void refreshLimit(int l, Index vertex, const LevelLimits& limits);
-  LevelLimits limitsOf(int l) const;
+  LevelLimits limitsOf(
+      int l, CatmarkLimitEvaluator::Scope scope = CatmarkLimitEvaluator::Scope::kSomeVertices) const;
 
   // Edits at one level (sparse_hierarchy.cc).
   void resolveTags(int l, std::span<const Edit> edits);

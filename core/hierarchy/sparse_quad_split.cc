@@ -8,6 +8,7 @@
 #include "core/hierarchy/sparse_split.h"
 #include "core/loop/sharpness_inheritance.h"
 #include "core/topology/quad_split_parts.h"
+#include "core/util/buffer.h"
 
 namespace tessera {
 
@@ -21,13 +22,15 @@ constexpr auto kFromFace = static_cast<uint8_t>(LevelCounts::Origin::kFace);
 
 // Local indices of everything the refined faces of a parent produce, as
 // the split's parts read them (quad_split_parts.h).
+// Of the parent's links' type, so that they are moved there once the level
+// is built, not copied.
 struct QuadChildMap {
-  std::vector<Index> vertexChildOf;  // parent vertex -> child vertex
-  std::vector<Index> faceVertexOf;   // parent face -> the vertex in it
-  std::vector<Index> edgeVertexOf;   // parent edge -> the vertex on it
-  std::vector<Index> edgeHalves;     // parent edge -> first of its two halves
-  std::vector<Index> interiorOf;     // parent face -> first of its interior edges
-  std::vector<Index> firstFaceOf;    // parent face -> first of its children
+  Buffer<Index> vertexChildOf;  // parent vertex -> child vertex
+  Buffer<Index> faceVertexOf;   // parent face -> the vertex in it
+  Buffer<Index> edgeVertexOf;   // parent edge -> the vertex on it
+  Buffer<Index> edgeHalves;     // parent edge -> first of its two halves
+  Buffer<Index> interiorOf;     // parent face -> first of its interior edges
+  Buffer<Index> firstFaceOf;    // parent face -> first of its children
   Index vertexChild(Index v) const { return vertexChildOf[v]; }
   Index faceVertex(Index f) const { return faceVertexOf[f]; }
   Index edgeVertex(Index e) const { return edgeVertexOf[e]; }
@@ -240,7 +243,7 @@ void sizeQuadLevel(SparseLevel& child, Index numVertices) {
 SparseLevel refineSparseQuads(SparseLevel& parent, std::span<const uint8_t> refine, const LevelCounts& counts,
                               const LoopOptions& options) {
   SparseLevel child;
-  const QuadChildMap map = numberChildren(parent, refine, counts, child);
+  QuadChildMap map = numberChildren(parent, refine, counts, child);
   const Level& p = parent.mesh;
   Level& c = child.mesh;
   sizeQuadLevel(child, static_cast<Index>(child.vertexIds.size()));
@@ -260,11 +263,11 @@ SparseLevel refineSparseQuads(SparseLevel& parent, std::span<const uint8_t> refi
     if (map.edgeHalves[e] >= 0) sharpness.halves(p, e, map.edgeHalves[e], c);
   }
   child.firstChildFace.assign(child.faceIds.size(), kNoIndex);
-  parent.firstChildFace.assign(map.firstFaceOf.begin(), map.firstFaceOf.end());
-  parent.childOfVertex.assign(map.vertexChildOf.begin(), map.vertexChildOf.end());
-  parent.childOfEdge.assign(map.edgeVertexOf.begin(), map.edgeVertexOf.end());
-  parent.childOfFace.assign(map.faceVertexOf.begin(), map.faceVertexOf.end());
-  parent.halvesOfEdge.assign(map.edgeHalves.begin(), map.edgeHalves.end());
+  parent.firstChildFace = std::move(map.firstFaceOf);
+  parent.childOfVertex = std::move(map.vertexChildOf);
+  parent.childOfEdge = std::move(map.edgeVertexOf);
+  parent.childOfFace = std::move(map.faceVertexOf);
+  parent.halvesOfEdge = std::move(map.edgeHalves);
   sparse_split::orderIfUnsorted(child.vertexIds, child.vertexOrder);
   sparse_split::orderIfUnsorted(child.edgeIds, child.edgeOrder);
   sparse_split::orderIfUnsorted(child.faceIds, child.faceOrder);

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_edit.h"
 #include "bench/bench_mesh.h"
 #include "bench/percentile.h"
 #include "core/document/document.h"
@@ -87,12 +88,9 @@ void editToDelta(benchmark::State& bm) {
   std::vector<double> total, encode, decode;
   double bytes = 0, regions = 0;
   for (auto _ : bm) {
-    const VertexId v(level,
-                     std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
-    const Index local = *doc.hierarchy().completeVertex(v);
-    const Vec3 limit = doc.hierarchy().limitFrameOf(level, local).position;
+    const tessera::bench::LimitEdit edit = tessera::bench::randomLimitEdit(doc, level, rng);
     const auto start = Clock::now();
-    auto id = doc.moveToLimit(std::span(&v, 1), limit + Vec3(0.002, -0.001, 0.003));
+    auto id = doc.moveToLimit(std::span(&edit.vertex, 1), edit.target);
     auto changes = s.tessellation->update(doc);
     ++s.version;
     const auto encoding = Clock::now();
@@ -189,9 +187,7 @@ BENCHMARK(snapshot)
 int main(int argc, char** argv) {
   auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_codecs");
   if (!mesh.isOk()) return 1;
-  Vec3 lo = mesh->positions()[0], hi = lo;
-  for (const Vec3& p : mesh->positions()) lo.minimize(p), hi.maximize(p);
-  auto grid = gridFor(lo, hi);
+  auto grid = tessera::bench::gridAround(*mesh);
   if (!grid.isOk()) return 1;
   State& s = state();
   auto doc = Document::create(*mesh, {.maxLevel = 5, .uniformLevel = 4});

@@ -25,6 +25,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_edit.h"
 #include "bench/bench_mesh.h"
 #include "bench/percentile.h"
 #include "core/document/document.h"
@@ -88,12 +89,9 @@ void editToDelta(benchmark::State& bm) {
   std::vector<double> samples, evaluate, tessellate, hash, encode;  // the stages, seconds
   double bytes = 0, regions = 0, rebuilds = 0;
   for (auto _ : bm) {
-    const VertexId v(level,
-                     std::uniform_int_distribution<uint64_t>(0, doc.counts().vertices(level) - 1)(rng));
-    const Index local = *doc.hierarchy().completeVertex(v);
-    const Vec3 limit = doc.hierarchy().limitFrameOf(level, local).position;
+    const tessera::bench::LimitEdit edit = tessera::bench::randomLimitEdit(doc, level, rng);
     const auto start = Clock::now();
-    auto id = doc.moveToLimit(std::span(&v, 1), limit + Vec3(0.002, -0.001, 0.003));
+    auto id = doc.moveToLimit(std::span(&edit.vertex, 1), edit.target);
     const auto evaluated = Clock::now();
     auto changes = s.tessellation->update(doc);
     const auto tessellated = Clock::now();
@@ -210,11 +208,7 @@ bool prepare(int scheme, const BaseMesh& mesh, const QuantizationGrid& grid) {
 int main(int argc, char** argv) {
   auto mesh = tessera::bench::benchMesh(argc, argv, "tessera_bench_delta");
   if (!mesh.isOk()) return 1;
-  Vec3 lo = mesh->positions()[0], hi = lo;
-  for (const Vec3& p : mesh->positions()) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  }
-  auto grid = gridFor(lo, hi);
+  auto grid = tessera::bench::gridAround(*mesh);
   if (!grid.isOk()) return 1;
   for (int scheme = 0; scheme < kSchemes; ++scheme) {
     if (!prepare(scheme, *mesh, *grid)) return 1;

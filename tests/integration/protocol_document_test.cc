@@ -19,6 +19,7 @@
 #include "client/lib/document_view.h"
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
+#include "integration/cube_server.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
@@ -28,39 +29,15 @@ namespace {
 
 using client::DocumentView;
 using client::Session;
+using testing::CubeServer;
 using testing::ServerProcess;
+using testing::startWithCube;
 
 std::string protocolText() {
   std::ifstream in(std::string(TESSERA_SOURCE_TESTDATA_DIR) + "/../../docs/PROTOCOL.md");
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-struct Server {
-  std::optional<ServerProcess> process;
-  std::unique_ptr<Session> admin;
-  uint64_t doc = 0;
-};
-
-// A server with the creased cube (max level `maxLevel`), opened by an admin.
-void startWithCube(Server& s, const std::string& name, int maxLevel) {
-  const std::string dir = testing::makeTempDir(name);
-  auto process = ServerProcess::start(dir + "/data");
-  ASSERT_TRUE(process.isOk()) << process.status().message();
-  s.process.emplace(std::move(*process));
-  auto admin = Session::connect(s.process->session("admin", s.process->adminToken()));
-  ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  s.admin = std::move(*admin);
-  auto created = s.admin->call(
-      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), maxLevel),
-      30);
-  ASSERT_TRUE(created.isOk() && created->has_ack())
-      << (created.isOk() ? created->DebugString() : created.status().message());
-  s.doc = created->ack().document_id();
-  auto opened = s.admin->call(testing::openDocument(s.doc), 10);
-  ASSERT_TRUE(opened.isOk() && opened->has_ack());
 }
 
 // ---------------------------------------------------------------------------
@@ -87,7 +64,7 @@ std::vector<std::string> documentedStats(const std::string& text) {
 }
 
 TEST(ProtocolDocument, StatsListMatchesTheServersReply) {
-  Server s;
+  CubeServer s;
   startWithCube(s, "tessera-protocol-stats", 3);
   if (::testing::Test::HasFatalFailure()) return;
   const std::vector<std::string> documented = documentedStats(protocolText());
@@ -175,7 +152,7 @@ void readUntil(Session& s, DocumentView& view, uint64_t version) {
 }
 
 TEST(ProtocolDocument, SurfaceHashIsRecomputedFromTheText) {
-  Server s;
+  CubeServer s;
   startWithCube(s, "tessera-protocol-hash", 5);
   if (::testing::Test::HasFatalFailure()) return;
   // A viewer with ids and a display-only one (ids hashed as 0).
@@ -427,7 +404,7 @@ std::vector<std::array<uint64_t, 3>> withoutCopies(const Glb& glb, uint64_t vert
 }
 
 TEST(ProtocolDocument, ExportVertexOrderFollowsTheNumbering) {
-  Server s;
+  CubeServer s;
   startWithCube(s, "tessera-protocol-export", 3);
   if (::testing::Test::HasFatalFailure()) return;
   // Some edits, so that positions are not those of a plain cube.
@@ -496,7 +473,7 @@ wire::RejectReason rejectOf(Session& s, wire::ClientMessage m) {
 }
 
 TEST(ProtocolDocument, AMissingIdWinsOverHowTheIdsRelate) {
-  Server s;
+  CubeServer s;
   startWithCube(s, "tessera-protocol-precedence", 3);
   if (::testing::Test::HasFatalFailure()) return;
   const LevelCounts counts(8, 18, 12, 3);

@@ -16,6 +16,7 @@
 #include "client/lib/session.h"
 #include "core/hierarchy/ids.h"
 #include "core/tessellation/region_codec.h"
+#include "integration/cube_server.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/region_checks.h"
@@ -26,31 +27,11 @@ namespace {
 
 using client::DocumentView;
 using client::Session;
-using testing::ServerProcess;
+using testing::CubeServer;
+using testing::startWithCube;
 
-struct Server {
-  std::optional<ServerProcess> process;
-  std::unique_ptr<Session> admin;
-  uint64_t doc = 0;
-};
-
-void startWithCube(Server& s, const std::string& name) {
-  const std::string dir = testing::makeTempDir(name);
-  auto process = ServerProcess::start(dir + "/data");
-  ASSERT_TRUE(process.isOk()) << process.status().message();
-  s.process.emplace(std::move(*process));
-  auto admin = Session::connect(s.process->session("admin", s.process->adminToken()));
-  ASSERT_TRUE(admin.isOk()) << admin.status().message();
-  s.admin = std::move(*admin);
-  auto created = s.admin->call(
-      testing::createDocument("cube", testing::fileBytes(testing::sourceTestDataPath("cube.obj")),
-                              testing::fileBytes(testing::sourceTestDataPath("cube.tags")), 5),
-      30);
-  ASSERT_TRUE(created.isOk() && created->has_ack())
-      << (created.isOk() ? created->DebugString() : created.status().message());
-  s.doc = created->ack().document_id();
-  ASSERT_TRUE(s.admin->call(testing::openDocument(s.doc), 10)->has_ack());
-}
+// The cube's max level, the one the subscribers below ask for.
+constexpr int kMaxLevel = 5;
 
 // A subscriber that checks the magic of every region it receives.
 struct Viewer {
@@ -87,7 +68,8 @@ void readUntil(Viewer& v, uint64_t version) {
   ASSERT_EQ(v.view->version(), version);
 }
 
-Viewer subscribeWith(Server& s, const std::string& name, wire::RegionCodec codec, const std::string& magic) {
+Viewer subscribeWith(CubeServer& s, const std::string& name, wire::RegionCodec codec,
+                     const std::string& magic) {
   Viewer v;
   auto session = Session::connect(s.process->session(name, s.process->adminToken()));
   EXPECT_TRUE(session.isOk()) << session.status().message();
@@ -135,8 +117,8 @@ void expectSameSurface(const Viewer& draco, const Viewer& meshopt) {
 }
 
 TEST(RegionCodecStream, DracoAndMeshoptSubscribersDecodeTheSameSurfaceThroughEdits) {
-  Server s;
-  startWithCube(s, "tessera-codec-stream");
+  CubeServer s;
+  startWithCube(s, "tessera-codec-stream", kMaxLevel);
   if (::testing::Test::HasFatalFailure()) return;
   Viewer draco = subscribeWith(s, "draco", wire::REGION_CODEC_UNSPECIFIED, "TSRG");
   Viewer meshopt = subscribeWith(s, "meshopt", wire::REGION_CODEC_MESHOPT, "TSRM");
@@ -190,8 +172,8 @@ TEST(RegionCodecStream, DracoAndMeshoptSubscribersDecodeTheSameSurfaceThroughEdi
 }
 
 TEST(RegionCodecStream, AnUnknownCodecIsRefusedNamingTheField) {
-  Server s;
-  startWithCube(s, "tessera-codec-reject");
+  CubeServer s;
+  startWithCube(s, "tessera-codec-reject", kMaxLevel);
   if (::testing::Test::HasFatalFailure()) return;
   auto sub = testing::subscribe(s.doc, 2, 5, 10);
   sub.mutable_subscribe()->set_codec(static_cast<wire::RegionCodec>(7));

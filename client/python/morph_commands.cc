@@ -44,9 +44,7 @@ py::array_t<T> arrayOf(const Repeated& values, py::ssize_t columns) {
 }
 
 MorphControlArrays morphControlOf(const wire::ServerMessage& reply, bool withTopology) {
-  if (!reply.has_morph_control())
-    throw Failure(
-        internalError("the server answered get_morph_control with something other than MorphControl"));
+  requireReply(reply.has_morph_control(), "get_morph_control", "MorphControl");
   const wire::MorphControl& c = reply.morph_control();
   if (c.points_size() % 3 != 0 || c.triangles_size() % 3 != 0 || c.crease_vertices_size() % 2 != 0)
     throw Failure(parseError("MorphControl: points, triangles or crease ends not whole (" +
@@ -65,8 +63,8 @@ MorphControlArrays morphControlOf(const wire::ServerMessage& reply, bool withTop
   a.creases = arrayOf<uint32_t>(c.crease_vertices(), 2);
   a.creaseSharpness = arrayOf<float>(c.crease_sharpness(), 0);
   a.vertexSharpness = arrayOf<float>(c.vertex_sharpness(), 0);
-  a.creaseMethod = c.crease_method() == wire::CREASE_METHOD_CHAIKIN ? "chaikin" : "uniform";
-  a.boundary = c.boundary() == wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER ? "edge-and-corner" : "edge-only";
+  a.creaseMethod = creaseMethodName(c.crease_method());
+  a.boundary = boundaryName(c.boundary());
   a.maxLevel = c.max_level();
   return a;
 }

@@ -6,8 +6,15 @@
 
 namespace tessera::python {
 
+void requireReply(bool present, const std::string& command, const std::string& expected) {
+  if (!present) {
+    throw Failure(internalError("the server answered " + (command.empty() ? "" : command + " ") +
+                                "with something other than " + expected));
+  }
+}
+
 AckReply ackOf(const wire::ServerMessage& reply) {
-  if (!reply.has_ack()) throw Failure(internalError("the server answered with something other than an Ack"));
+  requireReply(reply.has_ack(), "", "an Ack");
   const wire::Ack& a = reply.ack();
   return {.documentId = a.document_id(),
           .version = a.version(),
@@ -40,6 +47,14 @@ std::string roleName(wire::Role role) {
     default:
       return "";
   }
+}
+
+std::string creaseMethodName(wire::CreaseMethod method) {
+  return method == wire::CREASE_METHOD_CHAIKIN ? "chaikin" : "uniform";
+}
+
+std::string boundaryName(wire::BoundaryInterpolation boundary) {
+  return boundary == wire::BOUNDARY_INTERPOLATION_EDGE_AND_CORNER ? "edge-and-corner" : "edge-only";
 }
 
 void bindReplies(py::module_& m) {

@@ -24,11 +24,21 @@ struct AckReply {
   std::string scheme;  // "loop", "catmull-clark", or "" when the Ack names none
 };
 
+// Failure (an internal error: a reply the protocol does not give that
+// command) unless `present`, i.e. unless the reply a command waited for is
+// of the kind `expected` names ("an Ack"); `command` names the command in
+// the message, or is empty.
+void requireReply(bool present, const std::string& command, const std::string& expected);
 // The Ack in `reply`; Failure when the reply is something else.
 AckReply ackOf(const wire::ServerMessage& reply);
 // "loop" / "catmull-clark" / "", and "viewer" / "editor" / "admin" / "".
 std::string schemeName(wire::SubdivisionScheme scheme);
 std::string roleName(wire::Role role);
+// "uniform" / "chaikin", and "edge-only" / "edge-and-corner": the names
+// create_document takes (document_commands.cc); unknown values read as
+// the first, the protocol's default.
+std::string creaseMethodName(wire::CreaseMethod method);
+std::string boundaryName(wire::BoundaryInterpolation boundary);
 
 void bindReplies(py::module_& m);
 

@@ -124,12 +124,12 @@ int runDocView(const DocViewArgs& args) {
     rootBytes += encodedBytes(*doc, root, (*tile)->mesh, *grid, true);
   }
   if (previewPays(rootTriangles)) {
-    auto preview = surfacePreview(catalogue);
+    auto preview = surfacePreview(*doc);
     if (!preview.isOk()) return fail("doc view", preview.status());
     std::printf(
         "first picture: the surface's preview, %s triangles, %s with ids (the level-0 tiles: %s, %s)\n",
-        formatCount(preview->triangles.size()).c_str(),
-        formatBytes(encodedBytes(*doc, TileKey::preview(), *preview, *grid, true)).c_str(),
+        formatCount(preview->mesh.triangles.size()).c_str(),
+        formatBytes(encodedBytes(*doc, TileKey::preview(), preview->mesh, *grid, true)).c_str(),
         formatCount(rootTriangles).c_str(), formatBytes(rootBytes).c_str());
   } else {
     std::printf("first picture: the level-0 tiles, %s triangles, %s with ids\n",

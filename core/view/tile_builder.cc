@@ -11,7 +11,11 @@ Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKe
     return invalidArgument(tile.toString() + " is deeper than the document's level " +
                            std::to_string(doc.counts().maxLevel()));
   }
-  const std::vector<FaceId> faces = tree.facesShown(tile);
+  return buildFacesAt(doc, tile.level, tree.facesShown(tile), tile.toString());
+}
+
+Expected<RegionMesh> buildFacesAt(Document& doc, int level, const std::vector<FaceId>& faces,
+                                  const std::string& what) {
   doc.refineHierarchy(faces);
   // Growing for the limits' levels adds faces and vertices the gathering
   // may need: the triangles are gathered again until nothing more is
@@ -22,19 +26,17 @@ Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKe
     std::vector<VertexRef> leaves;
     triangles.reserve(faces.size());
     for (const FaceId& f : faces) {
-      const Index local = h.level(tile.level).findFace(f.index());
-      if (local == kNoIndex)
-        return internalError(tile.toString() + ": the hierarchy does not hold " + f.toString());
-      triangulateFace(h, tile.level, local, triangles);
-      leaves.resize(triangles.size(), VertexRef{tile.level, local});
+      const Index local = h.level(level).findFace(f.index());
+      if (local == kNoIndex) return internalError(what + ": the hierarchy does not hold " + f.toString());
+      triangulateFace(h, level, local, triangles);
+      leaves.resize(triangles.size(), VertexRef{level, local});
     }
     std::vector<FaceId> growth;
     RegionMesh mesh = meshOfTriangles(h, doc.counts(), triangles, leaves, growth);
     if (growth.empty()) return mesh;
     doc.refineHierarchy(growth);
   }
-  return internalError(tile.toString() +
-                       ": the hierarchy does not hold the limits' rings after repeated growth");
+  return internalError(what + ": the hierarchy does not hold the limits' rings after repeated growth");
 }
 
 }  // namespace tessera

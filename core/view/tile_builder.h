@@ -6,6 +6,9 @@
 // looks.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "core/document/document.h"
 #include "core/tessellation/region_codec.h"
 #include "core/util/status.h"
@@ -15,5 +18,11 @@ namespace tessera {
 
 // Errors: a tile the tree does not have, or a level beyond the document's.
 Expected<RegionMesh> buildTile(Document& doc, const TileTree& tree, const TileKey& tile);
+
+// The same for any faces of one level (`level`, which must be within the
+// document's): what a tile shows, without a tile tree. `what` names them in
+// errors.
+Expected<RegionMesh> buildFacesAt(Document& doc, int level, const std::vector<FaceId>& faces,
+                                  const std::string& what);
 
 }  // namespace tessera

@@ -7,6 +7,8 @@
 #include <map>
 #include <tuple>
 
+#include "core/view/tile_builder.h"
+
 namespace tessera {
 
 namespace {
@@ -85,13 +87,15 @@ Expected<RegionMesh> surfacePreview(const std::vector<const RegionMesh*>& roots)
   return out;
 }
 
-Expected<RegionMesh> surfacePreview(TileCatalogue& catalogue) {
-  std::vector<const RegionMesh*> roots;
-  for (const TileKey& root : catalogue.tree().roots()) {
-    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue.mesh(root));
-    roots.push_back(mesh);
-  }
-  return surfacePreview(roots);
+Expected<SurfacePreview> surfacePreview(Document& doc) {
+  std::vector<FaceId> faces;
+  faces.reserve(doc.counts().faces(0));
+  for (uint64_t f = 0; f < doc.counts().faces(0); ++f) faces.emplace_back(0, f);
+  TESSERA_ASSIGN_OR_RETURN(RegionMesh levelZero, buildFacesAt(doc, 0, faces, "the surface's preview"));
+  SurfacePreview out;
+  out.levelZeroTriangles = static_cast<int64_t>(levelZero.triangles.size());
+  TESSERA_ASSIGN_OR_RETURN(out.mesh, surfacePreview({&levelZero}));
+  return out;
 }
 
 }  // namespace tessera

@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/document/document.h"
 #include "core/tessellation/region_codec.h"
 #include "core/util/status.h"
-#include "core/view/tile_catalogue.h"
 
 namespace tessera {
 
@@ -31,7 +31,15 @@ inline bool previewPays(int64_t levelZeroTriangles) {
 // and id. Errors: more vertices than 32-bit indices hold.
 Expected<RegionMesh> surfacePreview(const std::vector<const RegionMesh*>& roots);
 
-// The same from a catalogue's roots, built (or built again) where needed.
-Expected<RegionMesh> surfacePreview(TileCatalogue& catalogue);
+// The same from the document's level-0 faces directly, without a tile
+// tree: the level-0 surface the roots show together, so a server can send
+// it before it has built the tree (docs/VIEWS.md "The first picture").
+// `levelZeroTriangles`: that surface's triangles before simplifying, what
+// every root together shows.
+struct SurfacePreview {
+  RegionMesh mesh;
+  int64_t levelZeroTriangles = 0;
+};
+Expected<SurfacePreview> surfacePreview(Document& doc);
 
 }  // namespace tessera

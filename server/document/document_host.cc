@@ -118,7 +118,27 @@ void DocumentHost::subscribeView(const std::shared_ptr<Subscriber>& who, const w
   // Tiles are chosen and encoded at version_: every edit before is flushed.
   flush();
   const int64_t budget = budgetOf(request.profile(), config_.limits);
-  auto target = tileCache().select(view, budget);
+  TileCache& tiles = tileCache();
+  // The preview needs no tile tree: it goes before the tree is built and the
+  // tiles are chosen, which takes most of a large document's first second,
+  // wherever the budget holds every root, the most the coarsest tiles a view
+  // needs can be, so that no refusal can follow the Ack (docs/VIEWS.md "The
+  // first picture").
+  if (tiles.hasPreview()) {
+    auto preview = tiles.encoded(TileKey::preview(), version_);
+    if (preview.isOk() && tiles.levelZeroTriangles().value_or(budget + 1) <= budget) {
+      acceptView(who, request, clientSeq, resync);
+      Status sent = tileStreams_.open(tiles, who, view, budget, request.profile(), version_, resync);
+      if (sent.isOk()) {
+        auto target = tiles.select(view, budget);
+        sent =
+            target.isOk() ? tileStreams_.start(tiles, who->sessionId(), *target, version_) : target.status();
+      }
+      if (!sent.isOk()) viewFailed(who, sent);
+      return;
+    }
+  }
+  auto target = tiles.select(view, budget);
   if (!target.isOk()) {
     who->send({frameOf(rejectFor(clientSeq, target.status()), config_.limits.maxFrameBytes), nullptr});
     return;
@@ -131,28 +151,34 @@ void DocumentHost::subscribeView(const std::shared_ptr<Subscriber>& who, const w
                nullptr});
     return;
   }
+  acceptView(who, request, clientSeq, resync);
+  Status sent = tileStreams_.open(tiles, who, view, budget, request.profile(), version_, resync);
+  if (sent.isOk()) sent = tileStreams_.start(tiles, who->sessionId(), *target, version_);
+  if (!sent.isOk()) viewFailed(who, sent);
+}
+
+void DocumentHost::acceptView(const std::shared_ptr<Subscriber>& who, const wire::Subscribe& request,
+                              uint64_t clientSeq, bool resync) {
   // One subscription per subscriber and document: a profile it had goes.
   releaseViews(views_.leave(who->sessionId()));
-  if (!resync) {
-    wire::ServerMessage ack = ackFor(clientSeq, id_.value);
-    ack.mutable_ack()->set_version(version_);
-    who->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
-    if (request.with_commands()) {
-      commits_.record(who->sessionId(), who, version_);
-    } else {
-      commits_.stopRecording(who->sessionId());
-    }
+  if (resync) return;
+  wire::ServerMessage ack = ackFor(clientSeq, id_.value);
+  ack.mutable_ack()->set_version(version_);
+  who->send({frameOf(ack, config_.limits.maxFrameBytes), nullptr});
+  if (request.with_commands()) {
+    commits_.record(who->sessionId(), who, version_);
+  } else {
+    commits_.stopRecording(who->sessionId());
   }
-  Status sent =
-      tileStreams_.subscribe(*tileCache_, who, view, budget, *target, request.profile(), version_, resync);
-  if (!sent.isOk()) {
-    logEvent(LogLevel::kError, "view_failed", {{"doc", id_.value}, {"error", sent.message()}});
-    wire::ServerMessage error;
-    error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
-    error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": view: " + sent.message());
-    who->send({frameOf(error, config_.limits.maxFrameBytes), nullptr});
-    tileStreams_.leave(who->sessionId());
-  }
+}
+
+void DocumentHost::viewFailed(const std::shared_ptr<Subscriber>& who, const Status& status) {
+  logEvent(LogLevel::kError, "view_failed", {{"doc", id_.value}, {"error", status.message()}});
+  wire::ServerMessage error;
+  error.mutable_error()->set_code(wire::ERROR_CODE_INTERNAL);
+  error.mutable_error()->set_message("document " + std::to_string(id_.value) + ": view: " + status.message());
+  who->send({frameOf(error, config_.limits.maxFrameBytes), nullptr});
+  tileStreams_.leave(who->sessionId());
 }
 
 TileCache& DocumentHost::tileCache() {

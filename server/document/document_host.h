@@ -165,6 +165,13 @@ class DocumentHost : public DocumentEndpoint, public std::enable_shared_from_thi
   // On the strand: a view-dependent subscription (tile_streams.h).
   void subscribeView(const std::shared_ptr<Subscriber>& who, const wire::Subscribe& request, const View& view,
                      uint64_t clientSeq, bool resync);
+  // A view subscription goes ahead: the subscriber's profile goes, and the
+  // Ack (not on a resync) starts its commands, if it asked for them.
+  void acceptView(const std::shared_ptr<Subscriber>& who, const wire::Subscribe& request, uint64_t clientSeq,
+                  bool resync);
+  // After its Ack, a view's tiles could not be encoded: an Error, and its
+  // stream goes.
+  void viewFailed(const std::shared_ptr<Subscriber>& who, const Status& status);
   // The tile cache, made on the first view (on key 0 as it is now).
   TileCache& tileCache();
   // Applies the views that are due, and waits for the next.

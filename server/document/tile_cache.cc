@@ -7,7 +7,7 @@
 namespace tessera::server {
 
 TileCache::TileCache(Document& doc, const QuantizationGrid& grid, uint64_t maxBytes, ServerStats& stats)
-    : catalogue_(doc),
+    : doc_(doc),
       grid_(grid),
       maxBytes_(maxBytes),
       stats_(stats),
@@ -17,14 +17,20 @@ TileCache::~TileCache() {
   stats_.tileCacheBytes -= static_cast<int64_t>(bytes_);
 }
 
+TileCatalogue& TileCache::catalogue() {
+  if (!catalogue_) catalogue_.emplace(doc_);
+  return *catalogue_;
+}
+
 void TileCache::countBuilt() {
-  const int64_t built = catalogue_.built() + catalogue_.rebuilt();
+  if (!catalogue_) return;
+  const int64_t built = catalogue_->built() + catalogue_->rebuilt();
   stats_.tilesBuilt += built - builtCounted_;
   builtCounted_ = built;
 }
 
 Expected<TileSelection> TileCache::select(const View& view, int64_t budget) {
-  auto selection = selectTiles(view, catalogue_, budget);
+  auto selection = selectTiles(view, catalogue(), budget);
   countBuilt();
   return selection;
 }
@@ -33,13 +39,13 @@ Expected<std::vector<TileSelection>> TileCache::selectForEach(std::span<const Vi
                                                               std::span<const int64_t> budgets,
                                                               int64_t newTiles,
                                                               const std::function<bool()>& stopBuilding) {
-  auto selections = selectTilesForEach(views, catalogue_, budgets, newTiles, stopBuilding);
+  auto selections = selectTilesForEach(views, catalogue(), budgets, newTiles, stopBuilding);
   countBuilt();
   return selections;
 }
 
 Expected<TileBounds> TileCache::bounds(const TileKey& key) {
-  auto tile = catalogue_.get(key);
+  auto tile = catalogue().get(key);
   countBuilt();
   if (!tile.isOk()) return tile.status();
   return (*tile)->bounds;
@@ -57,16 +63,15 @@ Expected<EncodedTile> TileCache::encoded(const TileKey& key, uint64_t version) {
   const auto start = std::chrono::steady_clock::now();
   EncodedTile tile;
   if (key.isPreview()) {
-    auto preview = surfacePreview(catalogue_);
-    countBuilt();  // the roots it built
-    if (!preview.isOk()) return preview.status();
-    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, *preview, grid_, version));
+    TESSERA_ASSIGN_OR_RETURN(SurfacePreview preview, surfacePreview(doc_));
+    levelZeroTriangles_ = preview.levelZeroTriangles;
+    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(doc_, key, preview.mesh, grid_, version));
   } else {
-    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue_.mesh(key));
-    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(catalogue_.document(), key, *mesh, grid_, version));
+    TESSERA_ASSIGN_OR_RETURN(const RegionMesh* mesh, catalogue().mesh(key));
+    TESSERA_ASSIGN_OR_RETURN(tile, encodeTile(doc_, key, *mesh, grid_, version));
     // The encoding is what is kept: the mesh goes, the bounds stay for
     // selecting (docs/VIEWS.md "The server").
-    catalogue_.releaseMesh(key);
+    catalogue_->releaseMesh(key);
   }
   stats_.encodeLatency.addMicros(
       std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - start)
@@ -106,8 +111,14 @@ void TileCache::forgetEncoding(const TileKey& key) {
 }
 
 std::vector<TileKey> TileCache::invalidate(std::span<const VertexId> changedLimits) {
+  // Before the tree exists only the preview can be held: any change may
+  // reach a root, so it goes.
+  if (!catalogue_) {
+    if (!changedLimits.empty()) forgetEncoding(TileKey::preview());
+    return {};
+  }
   const std::vector<TileKey> gone =
-      catalogue_.forget(TouchedTiles(catalogue_.document().hierarchy(), catalogue_.tree(), changedLimits));
+      catalogue_->forget(TouchedTiles(doc_.hierarchy(), catalogue_->tree(), changedLimits));
   for (const TileKey& key : gone) {
     forgetEncoding(key);
     // The preview is made of every root: a root that changed changes it.

@@ -10,6 +10,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -29,7 +30,9 @@ class TileCache {
   TileCache(const TileCache&) = delete;
   TileCache& operator=(const TileCache&) = delete;
 
-  const TileTree& tree() const { return catalogue_.tree(); }
+  // The tile tree, built on first use: a new viewer's preview needs none,
+  // and goes before it (docs/VIEWS.md "The first picture").
+  const TileTree& tree() { return catalogue().tree(); }
   // The tiles `view` needs (tile_selection.h), in sending order.
   Expected<TileSelection> select(const View& view, int64_t budget);
   // The same for many views at once (selectTilesForEach): what a flush or a
@@ -42,14 +45,18 @@ class TileCache {
   // A tile's bounds at the document's state, built if an edit forgot them.
   Expected<TileBounds> bounds(const TileKey& key);
   // Whether bounds() has them without building.
-  bool hasBounds(const TileKey& key) const { return catalogue_.isBuilt(key); }
+  bool hasBounds(const TileKey& key) const { return catalogue_ && catalogue_->isBuilt(key); }
   // The tile encoded at the document's state: cached, or built (if its mesh
   // was released) and encoded once now; `version` goes into its header.
   // TileKey::preview() is the surface's preview (core/view/tile_preview.h),
-  // cached the same way and forgotten with any root.
+  // made from the document without the tile tree, cached the same way and
+  // forgotten with any root.
   Expected<EncodedTile> encoded(const TileKey& key, uint64_t version);
   // Whether a new viewer's first picture is the preview (previewPays).
   bool hasPreview() const { return hasPreview_; }
+  // The triangles of the level-0 surface (every root together), known once
+  // the preview was made: the most a view's coarsest tiles can hold.
+  std::optional<int64_t> levelZeroTriangles() const { return levelZeroTriangles_; }
   // An edit changed these limits: the tiles it reached are forgotten,
   // encodings and bounds; returns them in key order.
   std::vector<TileKey> invalidate(std::span<const VertexId> changedLimits);
@@ -60,8 +67,10 @@ class TileCache {
   void countBuilt();
   // Forgets one encoding, if cached.
   void forgetEncoding(const TileKey& key);
+  TileCatalogue& catalogue();
 
-  TileCatalogue catalogue_;
+  Document& doc_;
+  std::optional<TileCatalogue> catalogue_;
   const QuantizationGrid& grid_;
   const uint64_t maxBytes_;
   ServerStats& stats_;
@@ -74,6 +83,7 @@ class TileCache {
   uint64_t useClock_ = 0, bytes_ = 0;
   int64_t builtCounted_ = 0;
   bool hasPreview_ = false;
+  std::optional<int64_t> levelZeroTriangles_;
 };
 
 }  // namespace tessera::server

@@ -33,9 +33,8 @@ TileStreams::~TileStreams() {
   stats_.viewSubscribers -= static_cast<int64_t>(streams_.size());
 }
 
-Status TileStreams::subscribe(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view,
-                              int64_t budget, const TileSelection& target, const wire::LodProfile& profile,
-                              uint64_t version, bool resync) {
+Status TileStreams::open(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view,
+                         int64_t budget, const wire::LodProfile& profile, uint64_t version, bool resync) {
   Stream s;
   s.who = who;
   s.view = view;
@@ -58,9 +57,16 @@ Status TileStreams::subscribe(TileCache& tiles, const std::shared_ptr<Subscriber
     who->send({frame, nullptr, documentId_});
   }
   if (!streams_.count(who->sessionId())) ++stats_.viewSubscribers;
-  Stream& stream = streams_[who->sessionId()] = std::move(s);
+  streams_[who->sessionId()] = std::move(s);
   if (resync) ++stats_.resyncs;
-  return moveTo(tiles, stream, target, version, version, 0, 0, /*announce=*/true);
+  return Status::ok();
+}
+
+Status TileStreams::start(TileCache& tiles, uint64_t session, const TileSelection& target, uint64_t version) {
+  auto found = streams_.find(session);
+  if (found == streams_.end())
+    return internalError("view of session " + std::to_string(session) + " was not opened");
+  return moveTo(tiles, found->second, target, version, version, 0, 0, /*announce=*/true);
 }
 
 void TileStreams::leave(uint64_t session) {

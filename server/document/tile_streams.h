@@ -45,13 +45,17 @@ class TileStreams {
         editsWait_(std::move(editsWait)) {}
   ~TileStreams();
 
-  // `who` watches the document through `view` (whose tiles are `target`,
-  // within `budget`) from `version`, the document's, every tile current;
-  // its previous stream, if any, goes. `profile` is echoed in the
-  // snapshot. Errors: a tile that cannot be encoded.
-  Status subscribe(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view, int64_t budget,
-                   const TileSelection& target, const wire::LodProfile& profile, uint64_t version,
-                   bool resync);
+  // `who` watches the document through `view`, within `budget`, from
+  // `version`, the document's, every tile current: its first picture goes
+  // now, one snapshot (the preview, or the roots where the document has no
+  // preview), and its previous stream, if any, goes. `profile` is echoed
+  // in the snapshot. Errors: a tile that cannot be encoded.
+  Status open(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view, int64_t budget,
+              const wire::LodProfile& profile, uint64_t version, bool resync);
+  // Then the tiles its camera needs, `target`, as deltas in the
+  // selection's order, at `version` still. Errors: a stream not opened, a
+  // tile that cannot be encoded.
+  Status start(TileCache& tiles, uint64_t session, const TileSelection& target, uint64_t version);
   bool has(uint64_t session) const { return streams_.count(session) > 0; }
   size_t size() const { return streams_.size(); }
   void leave(uint64_t session);

@@ -55,13 +55,11 @@ TEST(TilePreview, IsAFewKilobytesOfLevelZeroLimitPointsCloseToTheSurface) {
     const double radius = 0.5 * (hi - lo).norm();
 
     TileCatalogue catalogue(*doc);
-    std::vector<const RegionMesh*> roots;
     std::map<uint64_t, Vec3> limit;  // level-0 vertex id -> its limit point, as the roots show it
     int64_t rootBytes = 0, rootTriangles = 0;
     for (const TileKey& root : catalogue.tree().roots()) {
       auto tile = catalogue.get(root);
       ASSERT_TRUE(tile.isOk());
-      roots.push_back(&(*tile)->mesh);
       const RegionMesh& m = (*tile)->mesh;
       for (size_t v = 0; v < m.positions.size(); ++v) limit.emplace(m.vertexIds[v], m.positions[v]);
       auto encoded = encodeTile(*doc, root, m, *grid, 1);
@@ -69,8 +67,12 @@ TEST(TilePreview, IsAFewKilobytesOfLevelZeroLimitPointsCloseToTheSurface) {
       rootBytes += static_cast<int64_t>(encoded->bytes->size());
       rootTriangles += static_cast<int64_t>(m.triangles.size());
     }
-    auto preview = surfacePreview(roots);
-    ASSERT_TRUE(preview.isOk()) << preview.status().message();
+    // Made from the document's level-0 faces, without the tree, as a server
+    // makes it before it has one: the same level-0 surface as the roots'.
+    auto fromDocument = surfacePreview(*doc);
+    ASSERT_TRUE(fromDocument.isOk()) << fromDocument.status().message();
+    EXPECT_EQ(fromDocument->levelZeroTriangles, rootTriangles) << name;
+    const RegionMesh* preview = &fromDocument->mesh;
     EXPECT_LE(preview->triangles.size(), kPreviewTriangles) << name;
     EXPECT_GT(preview->triangles.size(), kPreviewTriangles / 4) << name << ": not reduced to a handful";
     for (size_t v = 0; v < preview->positions.size(); ++v) {

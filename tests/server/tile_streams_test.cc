@@ -58,7 +58,8 @@ class TileStreamsTest : public ::testing::Test {
   void subscribe(const View& view, TileStreams& streams) {
     auto target = cache_->select(view, kBudget);
     ASSERT_TRUE(target.isOk()) << target.status().message();
-    ASSERT_TRUE(streams.subscribe(*cache_, viewer_, view, kBudget, *target, {}, 1, false).isOk());
+    ASSERT_TRUE(streams.open(*cache_, viewer_, view, kBudget, {}, 1, false).isOk());
+    ASSERT_TRUE(streams.start(*cache_, viewer_->sessionId(), *target, 1).isOk());
   }
   void subscribe(const View& view) { subscribe(view, streams_); }
   bool lastDeltaCompletes(uint64_t viewSeq) const {

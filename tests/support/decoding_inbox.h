@@ -31,6 +31,7 @@ class DecodingInbox final : public server::Subscriber {
       m.mutable_error()->set_message("bad frame");
     std::lock_guard lock(mutex_);
     received.push_back(std::move(m));
+    if (note) noted.push_back(note());
     arrived_.notify_all();
   }
   // Acks and Rejects that answer client_seq `seq`.
@@ -65,6 +66,10 @@ class DecodingInbox final : public server::Subscriber {
   }
 
   std::vector<wire::ServerMessage> received;
+  // If set, called as each message is queued, and its value kept in
+  // `noted` beside it: what the sender's state was at that moment.
+  std::function<int64_t()> note;
+  std::vector<int64_t> noted;
 
  private:
   const uint64_t session_;

@@ -16,6 +16,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
     for (const wire::Region& r : s.regions()) {
       bytes_ += r.draco().size();
       TESSERA_ASSIGN_OR_RETURN(auto decoded, decodeRegion(r.draco()));
+      ++regionsByCodec_[static_cast<size_t>(decoded.first.codec)];
       TESSERA_RETURN_IF_ERROR(adoptIds(decoded.first, decoded.second));
       staging_[r.region_id()] = std::move(decoded.second);
       stagingLayouts_[r.region_id()] = decoded.first.layoutVersion;
@@ -48,6 +49,7 @@ Status DocumentView::apply(const wire::ServerMessage& message) {
   for (const wire::Region& r : d.regions()) {
     bytes_ += r.draco().size();
     TESSERA_ASSIGN_OR_RETURN(auto decoded, decodeRegion(r.draco()));
+    ++regionsByCodec_[static_cast<size_t>(decoded.first.codec)];
     if (Status adopted = adoptIds(decoded.first, decoded.second); !adopted.isOk()) {
       // Ids this view does not hold: as good as a gap, resync.
       ++gaps_;

@@ -4,6 +4,7 @@
 // is a gap, after which the view waits for a resync snapshot.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 
@@ -58,6 +59,9 @@ class DocumentView {
   Status verifySurface() const;
   uint64_t gaps() const { return gaps_; }
   uint64_t bytesReceived() const { return bytes_; }
+  // Regions decoded from snapshots and deltas in `codec` (their header's,
+  // docs/REGION_ENCODING.md "meshopt regions"): which codec the server sent.
+  uint64_t regionsReceived(RegionCodec codec) const { return regionsByCodec_[static_cast<size_t>(codec)]; }
 
  private:
   uint64_t documentId_;
@@ -79,6 +83,7 @@ class DocumentView {
   bool viewComplete_ = false;
   uint64_t viewSeq_ = 0;
   uint64_t gaps_ = 0, bytes_ = 0;
+  std::array<uint64_t, kRegionCodecCount> regionsByCodec_{};
 };
 
 }  // namespace tessera::client

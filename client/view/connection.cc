@@ -27,14 +27,21 @@ Status expectAck(const Expected<wire::ServerMessage>& reply, const std::string& 
 }
 
 // With a camera, a view-dependent subscription (the profile then serves
-// only its triangle budget).
+// only its triangle budget). Views are Draco only (checkCodec), so a
+// camera goes with the default codec.
 wire::ClientMessage subscribeMessage(uint64_t document, const wire::LodProfile& profile,
+                                     wire::RegionCodec codec = wire::REGION_CODEC_DRACO,
                                      const std::optional<wire::View>& camera = std::nullopt) {
   wire::ClientMessage m;
   m.mutable_subscribe()->set_document_id(document);
   *m.mutable_subscribe()->mutable_profile() = profile;
+  m.mutable_subscribe()->set_codec(codec);
   if (camera) *m.mutable_subscribe()->mutable_view() = *camera;
   return m;
+}
+
+wire::RegionCodec wireCodec(RegionCodec codec) {
+  return codec == RegionCodec::kMeshopt ? wire::REGION_CODEC_MESHOPT : wire::REGION_CODEC_DRACO;
 }
 
 // Before the model is framed: a camera far down +Z at the coarsest
@@ -50,9 +57,10 @@ View placeholderView() {
   return v;
 }
 
-// Connect, open the document and subscribe with `profile` (and `camera`).
+// Connect, open the document and subscribe with `profile` in `codec` (and `camera`).
 Expected<std::unique_ptr<client::Session>> establish(const client::SessionOptions& s, uint64_t document,
                                                      const wire::LodProfile& profile,
+                                                     wire::RegionCodec codec = wire::REGION_CODEC_DRACO,
                                                      const std::optional<wire::View>& camera = std::nullopt) {
   TESSERA_ASSIGN_OR_RETURN(std::unique_ptr<client::Session> session, client::Session::connect(s));
   wire::ClientMessage open;
@@ -60,7 +68,7 @@ Expected<std::unique_ptr<client::Session>> establish(const client::SessionOption
   TESSERA_RETURN_IF_ERROR(
       expectAck(session->call(open, s.timeoutSeconds), "open document " + std::to_string(document)));
   TESSERA_RETURN_IF_ERROR(
-      expectAck(session->call(subscribeMessage(document, profile, camera), s.timeoutSeconds),
+      expectAck(session->call(subscribeMessage(document, profile, codec, camera), s.timeoutSeconds),
                 "subscribe to document " + std::to_string(document)));
   return session;
 }
@@ -68,6 +76,8 @@ Expected<std::unique_ptr<client::Session>> establish(const client::SessionOption
 }  // namespace
 
 Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& options) {
+  TESSERA_RETURN_IF_ERROR(checkCodec(options));
+  const wire::RegionCodec codec = wireCodec(options.codec);
   client::SessionOptions s;
   s.host = options.host;
   s.port = options.port;
@@ -85,14 +95,14 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     first.tolerancePixels = std::max(first.tolerancePixels, options.tolerancePixels);
     camera = client::viewToWire(first);
   }
-  auto established = establish(s, options.document, profile, camera);
+  auto established = establish(s, options.document, profile, codec, camera);
   if (!established.isOk() && camera) {
     // A document that takes no views (a Catmull-Clark document,
     // docs/LIMITS.md) is shown by its profile; the reason is said.
     std::fprintf(stderr, "tessera-view: %s; showing the LOD profile instead\n",
                  established.status().message().c_str());
     camera.reset();
-    established = establish(s, options.document, profile);
+    established = establish(s, options.document, profile, codec);
   }
   if (!established.isOk()) return established.status();
   std::unique_ptr<client::Session> session = std::move(*established);
@@ -115,7 +125,7 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   const bool views = camera.has_value() && !c->morph_;
   if (camera && c->morph_ && c->imageFrom_.empty()) {
     TESSERA_RETURN_IF_ERROR(
-        expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
+        expectAck(c->session_->call(subscribeMessage(options.document, profile, codec), s.timeoutSeconds),
                   "subscribe to document " + std::to_string(options.document)));
     camera.reset();
   }
@@ -125,7 +135,7 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     // texture coordinates); two more sessions follow the keys.
     profile.set_base_level(options.maxLevel);
     TESSERA_RETURN_IF_ERROR(
-        expectAck(c->session_->call(subscribeMessage(options.document, profile), s.timeoutSeconds),
+        expectAck(c->session_->call(subscribeMessage(options.document, profile, codec), s.timeoutSeconds),
                   "subscribe to document " + std::to_string(options.document)));
     std::array<std::unique_ptr<client::Session>, 2> keySessions;
     for (int k = 0; k < 2; ++k) {
@@ -137,6 +147,7 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
     c->keys_ = std::make_unique<MorphKeyFollower>(options.document, std::move(keySessions));
   }
   c->viewDependent_ = views;
+  c->codec_ = codec;
   c->camera_ = views ? camera : std::nullopt;
   c->morphT_ = options.morphT;
   c->wanted_ = profile;
@@ -170,7 +181,7 @@ bool Connection::reconnect() {
     const auto until = Clock::now() + std::chrono::duration<double>(delay);
     while (!stop_ && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(10));
     if (stop_) return false;
-    auto session = establish(s, document_, profile_, cameraNow());
+    auto session = establish(s, document_, profile_, codec_, cameraNow());
     if (session.isOk()) {
       session_ = std::move(*session);
       view_ = client::DocumentView(document_);
@@ -361,7 +372,7 @@ void Connection::changeProfile(uint32_t baseLevel, uint32_t maxLevel, double ang
     wanted_ = p;
     if (morphT_) p.set_morph_t(*morphT_);
   }
-  enqueue(subscribeMessage(document_, p), {});
+  enqueue(subscribeMessage(document_, p, codec_), {});
 }
 
 void Connection::showMorphTime(double t) {
@@ -372,7 +383,7 @@ void Connection::showMorphTime(double t) {
     p = wanted_;
   }
   p.set_morph_t(t);
-  enqueue(subscribeMessage(document_, p), {});
+  enqueue(subscribeMessage(document_, p, codec_), {});
 }
 
 void Connection::playMorphTime(double t) {
@@ -527,7 +538,7 @@ void Connection::handle(const wire::ServerMessage& m) {
     const Status applied = view_.apply(m);
     if (!applied.isOk()) {
       // A gap: ask for a fresh snapshot with the same profile.
-      auto resent = session_->send(subscribeMessage(document_, profile_, cameraNow()));
+      auto resent = session_->send(subscribeMessage(document_, profile_, codec_, cameraNow()));
       cameraSeq_ = 0;  // the new subscription carries the latest camera
       std::lock_guard lock(mutex_);
       stats_.lastError = applied.message();
@@ -577,6 +588,8 @@ void Connection::handle(const wire::ServerMessage& m) {
     stats_.ready = view_.ready();
     stats_.version = view_.version();
     stats_.bytesReceived = view_.bytesReceived();
+    stats_.dracoRegions = view_.regionsReceived(RegionCodec::kDraco);
+    stats_.meshoptRegions = view_.regionsReceived(RegionCodec::kMeshopt);
     stats_.gaps = view_.gaps();
     return;
   }

@@ -50,6 +50,9 @@ struct ConnectionStats {
   uint64_t sessionId = 0;
   uint64_t version = 0;
   uint64_t bytesReceived = 0;  // region bytes
+  // Regions received in each codec (--codec; their header's, as decoded),
+  // since the latest connection: which codec the server sent.
+  uint64_t dracoRegions = 0, meshoptRegions = 0;
   uint64_t gaps = 0;
   uint64_t snapshots = 0, deltas = 0;
   uint64_t coarseFrames = 0;   // morph frames refined here from control points (coarse_morph.h)
@@ -176,7 +179,10 @@ class Connection {
   bool coarseShown_ = false;                   // network thread only: the regions shown are a coarse frame
   void showCoarse(const wire::MorphControl& frame);
 
-  bool viewDependent_ = false;        // set at open, read-only after
+  bool viewDependent_ = false;  // set at open, read-only after
+  // Subscribe.codec of every subscription of the shown document (--codec);
+  // set at open, read-only after. A 2D morph's key sessions stay Draco.
+  wire::RegionCodec codec_ = wire::REGION_CODEC_DRACO;
   std::optional<wire::View> camera_;  // guarded by mutex_: the latest view sent, for resubscribing
   uint64_t cameraSeq_ = 0;            // network thread only: the client_seq of the latest SetView sent
   std::optional<wire::View> cameraNow() const;

@@ -156,6 +156,15 @@ int renderFrames(const ViewOptions& options, Connection& connection, Viewer& vie
     };
     std::printf("first picture %.0f ms, whole picture %.0f ms, %llu region bytes received\n", ms(*firstDrawn),
                 ms(wholeDrawn.value_or(Clock::now())), static_cast<unsigned long long>(after.bytesReceived));
+    // Which codec the server sent (--codec) and, with --surface-hash, the
+    // hash of what was decoded: equal for either codec (docs/REGION_ENCODING.md
+    // "meshopt regions").
+    std::printf("regions received: %llu draco, %llu meshopt",
+                static_cast<unsigned long long>(after.dracoRegions),
+                static_cast<unsigned long long>(after.meshoptRegions));
+    if (options.hashSurfaces)
+      std::printf("; surface hash %llu", static_cast<unsigned long long>(after.surfaceHash));
+    std::printf("\n");
     return 0;
   }
 }

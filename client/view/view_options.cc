@@ -16,6 +16,7 @@ namespace {
 // Options whose text is split after parsing (HOST:PORT, WxH, DX,DY, a file).
 struct RawOptions {
   std::string connect, size, drag, tokenFile;
+  std::string codec = "draco";
   bool profile = false;
 };
 
@@ -110,6 +111,12 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
                 "a morph document: show every time from its control points refined here, paused too "
                 "(by default only playing does; paused shows the server's exact surface)")
       ->group(connection);
+  app->add_option("--codec", raw.codec,
+                  "region codec, draco (the default) or meshopt; meshopt needs a profile subscription, "
+                  "views come in Draco only (docs/REGION_ENCODING.md \"meshopt regions\")")
+      ->type_name("CODEC")
+      ->check(CLI::IsMember({"draco", "meshopt"}))
+      ->group(connection);
   app->add_option("--timeout", o.timeoutSeconds, "to connect and get the first snapshot (default 30)")
       ->type_name("SECONDS")
       ->check(within(0.1, 3600.0))
@@ -166,6 +173,10 @@ std::unique_ptr<CLI::App> makeApp(ViewOptions& o, RawOptions& raw, bool& noHud, 
                 "self-test: first pick an edge and press E, 2, K, Ctrl+Z three times and Ctrl+Y, "
                 "printing the surface hash after each")
       ->group(headless);
+  app->add_flag("--surface-hash", o.hashSurfaces,
+                "print the surface hash (docs/PROTOCOL.md 6.5) of the regions received at the end, "
+                "the same for either codec")
+      ->group(headless);
   return app;
 }
 
@@ -175,6 +186,14 @@ Status usageError(const CLI::Error& e) {
 }
 
 }  // namespace
+
+Status checkCodec(const ViewOptions& options) {
+  if (options.codec != RegionCodec::kMeshopt || !options.views) return Status::ok();
+  return invalidArgument(
+      "--codec meshopt: the server sends a view-dependent subscription (--views, the default) in "
+      "Draco only (docs/REGION_ENCODING.md \"meshopt regions\"); pass --profile (or --base-level, "
+      "--max-level, --angle) to receive meshopt regions, or leave out --codec for a view");
+}
 
 std::string viewHelp() {
   ViewOptions o;
@@ -212,6 +231,8 @@ Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
         "--views: the LOD profile options (--base-level, --max-level, --angle, --morph-*) "
         "choose a profile; give one or the other");
   o.views = !profileNamed;
+  o.codec = raw.codec == "meshopt" ? RegionCodec::kMeshopt : RegionCodec::kDraco;
+  TESSERA_RETURN_IF_ERROR(checkCodec(o));
   if (raw.connect.empty()) return invalidArgument("--connect HOST:PORT is required");
   const size_t colon = raw.connect.rfind(':');
   if (colon == std::string::npos || colon == 0)
@@ -236,6 +257,7 @@ Expected<ViewOptions> parseViewOptions(const std::vector<std::string>& args) {
   if (o.drag && o.screenshot.empty()) return invalidArgument("--drag needs --screenshot");
   if (o.editKeys && o.screenshot.empty()) return invalidArgument("--edit-keys needs --screenshot");
   if (o.editKeys && o.drag) return invalidArgument("--edit-keys and --drag are separate self-tests");
+  if (o.hashSurfaces && o.screenshot.empty()) return invalidArgument("--surface-hash needs --screenshot");
   if (o.baseLevel > o.maxLevel) return invalidArgument("--base-level must not exceed --max-level");
   // The self-tests pick control vertices, which needs them shown.
   if (o.drag || o.editKeys) o.controlPoints = true;

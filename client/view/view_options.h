@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/tessellation/region_codec.h"
 #include "core/util/status.h"
 
 namespace tessera::view {
@@ -23,6 +24,10 @@ struct ViewOptions {
   // built in code choose it themselves.
   bool views = false;
   double tolerancePixels = 1;
+  // The region codec asked for (Subscribe.codec, docs/REGION_ENCODING.md
+  // "meshopt regions"). The server serves views in Draco only, so meshopt
+  // goes with a profile subscription (checkCodec).
+  RegionCodec codec = RegionCodec::kDraco;
   bool levelColours = false;  // with views: tiles coloured by level (key L)
   // The LOD profile to subscribe with when not `views`.
   uint32_t baseLevel = 1;
@@ -63,7 +68,8 @@ struct ViewOptions {
   // Headless self-test of the edit keys: pick an edge, press E, K, Ctrl+Z,
   // Ctrl+Z, Ctrl+Y (self_test.h) and print the surface hash after each.
   bool editKeys = false;
-  // Keep ConnectionStats::surfaceHash (set by editKeys, and by tests).
+  // Keep ConnectionStats::surfaceHash (set by editKeys and --surface-hash,
+  // and by tests); headless mode prints it at the end.
   bool hashSurfaces = false;
   double timeoutSeconds = 30;  // to connect and receive the first snapshot
   // When the process started: headless mode times its first and whole
@@ -75,6 +81,11 @@ struct ViewOptions {
 
 // The --help text.
 std::string viewHelp();
+
+// Meshopt with a view-dependent subscription is refused, naming the
+// conflict and what to pass instead: the server sends tiles in Draco only
+// (docs/REGION_ENCODING.md "meshopt regions", "Where it is served").
+Status checkCodec(const ViewOptions& options);
 
 // Errors name the option and the reason. --help and --version set `help`
 // and `version` and skip the checks of the other options.

@@ -9,7 +9,10 @@
 // triangles per pixel. The server is fresh per run: the first views row
 // includes building the tiles it needs.
 //   node bench/views_page_bench.mjs [--build build/release] [--screenshots DIR] [--only TEXT]
+//       [--web-root DIR]
 // --only runs the rows whose name contains TEXT ("phone, views").
+// --web-root serves a page built elsewhere (client/web/build.mjs --out DIR
+// --test-hook), to compare two revisions of the page on one server.
 // Bounded: every wait has a deadline.
 import { spawn, spawnSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -20,6 +23,7 @@ import { parseArgs } from 'node:util';
 const { values: opts } = parseArgs({
   options: {
     build: { type: 'string', default: 'build/release' }, screenshots: { type: 'string' }, only: { type: 'string' },
+    'web-root': { type: 'string' },
   },
 });
 const SOURCE = resolve(new URL('..', import.meta.url).pathname);
@@ -34,7 +38,8 @@ writeFileSync(join(dir, 'admin.token'), `${ADMIN}\n`);
 spawnSync('tar', ['xzf', '/usr/share/doc/libcgal-dev/data.tar.gz', '-C', dir, 'data/meshes/armadillo.off']);
 const portFile = join(dir, 'port'), wsPortFile = join(dir, 'ws.port');
 const server = spawn(join(BUILD, 'server/tessera-server'), ['--data', join(dir, 'data'), '--admin-token-file', join(dir, 'admin.token'),
-  '--port', '0', '--port-file', portFile, '--ws-port', '0', '--ws-port-file', wsPortFile, '--max-level', '4'], { stdio: 'ignore' });
+  '--port', '0', '--port-file', portFile, '--ws-port', '0', '--ws-port-file', wsPortFile, '--max-level', '4',
+  ...(opts['web-root'] ? ['--web-root', resolve(opts['web-root'])] : [])], { stdio: 'ignore' });
 let browser;
 try {
   await until(() => existsSync(wsPortFile) && readFileSync(wsPortFile, 'utf8').trim(), 'the server', 300000);

@@ -82,7 +82,9 @@ async function main() {
   const page = new PageState({ ...presetNamed(params.lod ?? DEFAULT_PRESET) }, performance.now());
   page.views = params.views;
   page.codec = params.codec;
-  const showError = (text) => { page.lastError = text; };
+  // Once the decoder has failed the page is stopped, and that stays the
+  // error shown, not what stopping the connection makes fail after it.
+  const showError = (text) => { if (!page.decoder?.failure) page.lastError = text; };
   // The control cage (docs/WEB_VIEWER.md "The control cage"), of the
   // level the dots show.
   const cage = new CageControl({ layer: cageLayer, session: () => page.session, level: () => editor.level, onError: showError });
@@ -289,33 +291,30 @@ async function main() {
   setInterval(hudTick, HUD_INTERVAL_MS);
 
   // The worker fetches draco_decoder.wasm and instantiates it; this thread
-  // never does.
+  // never does. The page connects meanwhile (docs/WEB_VIEWER.md "Decoding
+  // in a worker"): the worker holds the payloads it is sent until its
+  // decoders are ready, so the server's load of the document and its first
+  // answers overlap the module's download and compilation.
   page.decoder = new DecodePool({
     createWorker: () => new Worker('decode_worker.js', { name: 'tessera region decoder' }),
     size: DECODE_WORKERS,
     onFailure: (error) => {
       // Nothing more can decode: stop rather than resubscribe for ever.
-      showError(error.message);
+      page.lastError = error.message;
       page.connection?.stop();
       setBodyState('error');
+      start.message(`The region decoder did not load: ${error.message}`);
     },
   });
-  try {
-    await page.decoder.ready;
-    page.milestones.decoderReady = Math.round(performance.now());
-  } catch (error) {
-    showError(error.message);
-    setBodyState('error');
-    start.message(`The Draco decoder did not load: ${error.message}`);
-    return;
-  }
+  page.decoder.ready.then(() => { page.milestones.decoderReady = Math.round(performance.now()); }, () => {});
+  const connectUnlessFailed = (token) => { if (!page.decoder.failure) begin(token); };
   if (params.token) {
-    begin(params.token);
+    connectUnlessFailed(params.token);
   } else {
     setBodyState('token');
     start.askToken((token) => {
       setTokenInAddress(token);
-      begin(token);
+      connectUnlessFailed(token);
     });
   }
 }

@@ -413,6 +413,58 @@ test('without a token the page asks for one; a refused one is shown and not retr
   await list.close();
 });
 
+// The page connects while its worker loads the decoders (docs/WEB_VIEWER.md
+// "Decoding in a worker"): with the worker's script held back, the
+// HelloAck comes before the decoder is ready, and the payloads that came
+// meanwhile are decoded once it is. A worker that cannot load is a clear
+// error, and the page stops its connection.
+// The worker's script alone is paused (the DevTools protocol's Fetch domain
+// with that one pattern): puppeteer's request interception pauses every
+// request, the worker's own fetch of draco_decoder.wasm too, which it then
+// does not always hand on.
+async function pageWithWorker(url, answer) {
+  const page = await browser.newPage();
+  page.problems = [];
+  page.on('pageerror', (e) => page.problems.push(`pageerror: ${e.message}`));
+  const devtools = await page.createCDPSession();
+  devtools.on('Fetch.requestPaused', (e) => answer(devtools, e.requestId));
+  await devtools.send('Fetch.enable', { patterns: [{ urlPattern: '*/decode_worker.js', requestStage: 'Request' }] });
+  await page.setViewport({ width: 1000, height: 680 });
+  await page.goto(url);
+  return page;
+}
+
+test('the page connects while its decoder loads, and shows the cube once it has; a decoder that cannot load is a clear error', { skip }, async () => {
+  const HELD_MS = 1500;
+  let held = 0;
+  const slow = await pageWithWorker(docUrl(VIEWER), (devtools, requestId) => {
+    ++held;
+    setTimeout(() => devtools.send('Fetch.continueRequest', { requestId }).catch(() => {}), HELD_MS);
+  });
+  await ready(slow);
+  const s = await state(slow);
+  assert.equal(held, 1, 'the worker\'s script was asked for once, and held back');
+  assert.ok(s.milestones.helloAck < s.milestones.decoderReady,
+    `connected before the decoder was ready: ${JSON.stringify(s.milestones)}`);
+  assert.equal(s.hashMatches, true);
+  assert.ok(s.triangles > 0, JSON.stringify(s));
+  await assertDecodedInWorker(slow);
+  assert.deepEqual(slow.problems, []);
+  await slow.close();
+
+  const missing = await pageWithWorker(docUrl(VIEWER), (devtools, requestId) => devtools.send('Fetch.fulfillRequest', {
+    requestId, responseCode: 404, responseHeaders: [{ name: 'Content-Type', value: 'text/plain' }], body: Buffer.from('not here').toString('base64'),
+  }).catch(() => {}));
+  await missing.waitForSelector('body[data-state=error]', { timeout: 20000 });
+  assert.match(await missing.$eval('#start', (e) => e.textContent), /region decoder did not load: the decode worker stopped/);
+  const after = await state(missing);
+  assert.match(after.error, /the decode worker stopped/);
+  assert.equal(after.ready, false);
+  assert.equal(after.connected, false, 'the connection was stopped');
+  assert.equal(after.triangles, 0);
+  await missing.close();
+});
+
 // A view-dependent subscription (the default, asked for here with
 // ?views=1, which still works; docs/WEB_VIEWER.md "Views"): the
 // first picture is the coarsest tiles, refined once the page has framed

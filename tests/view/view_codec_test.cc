@@ -17,11 +17,13 @@
 #include "client/lib/session.h"
 #include "client/view/connection.h"
 #include "client/view/view_options.h"
+#include "core/hierarchy/ids.h"
 #include "integration/messages.h"
 #include "integration/server_process.h"
 #include "support/test_meshes.h"
 #include "view/cube_document.h"
 #include "view/png_image.h"
+#include "view/wait_for.h"
 #include "view/x_display.h"
 
 namespace tessera {
@@ -165,6 +167,48 @@ TEST(ViewCodec, MeshoptWithAViewIsRefusedAtStartNamingTheProfileOptions) {
   ASSERT_FALSE(connection.isOk());
   EXPECT_NE(connection.status().message().find("--codec meshopt"), std::string::npos)
       << connection.status().message();
+}
+
+// The Connection under the viewer: its edits' deltas and a new profile
+// chosen in the HUD (changeProfile) come in meshopt too, and its surface
+// hash follows a Draco connection's through them.
+TEST(ViewCodec, AMeshoptConnectionKeepsItsCodecThroughEditsAndAProfileChange) {
+  const std::string dir = testing::makeTempDir("tessera-view-codec-connection");
+  auto server = testing::ServerProcess::start(dir + "/data");
+  ASSERT_TRUE(server.isOk()) << server.status().message();
+  auto created = testing::createCube(*server, true, 5);
+  ASSERT_TRUE(created.isOk()) << created.status().message();
+  auto open = [&](RegionCodec codec) {
+    view::ViewOptions options = testing::viewOptionsFor(*server, *created, 2, 3);
+    options.codec = codec;
+    options.hashSurfaces = true;
+    return view::Connection::open(options);
+  };
+  auto draco = open(RegionCodec::kDraco), meshopt = open(RegionCodec::kMeshopt);
+  ASSERT_TRUE(draco.isOk()) << draco.status().message();
+  ASSERT_TRUE(meshopt.isOk()) << meshopt.status().message();
+  view::Connection &d = **draco, &m = **meshopt;
+  ASSERT_TRUE(testing::waitFor([&] { return d.stats().ready && m.stats().ready; }));
+  const auto expectSame = [&](const char* when) {
+    const view::ConnectionStats a = d.stats(), b = m.stats();
+    EXPECT_EQ(b.surfaceHash, a.surfaceHash) << when;
+    EXPECT_EQ(b.dracoRegions, 0u) << when;
+    EXPECT_EQ(b.meshoptRegions, a.dracoRegions) << when;
+    EXPECT_EQ(a.meshoptRegions, 0u) << when;
+  };
+  expectSame("first snapshot");
+  const uint64_t firstRegions = m.stats().meshoptRegions;
+  ASSERT_GT(firstRegions, 0u);
+
+  m.moveVertex(VertexId(2, 0).packed(), Vec3(0.1, 0.2, 1.4));
+  ASSERT_TRUE(testing::waitFor([&] { return d.stats().version == 2 && m.stats().version == 2; }));
+  expectSame("after an edit");
+  EXPECT_GT(m.stats().meshoptRegions, firstRegions) << "the edit's delta brought no meshopt region";
+
+  d.changeProfile(1, 3, 10);
+  m.changeProfile(1, 3, 10);
+  ASSERT_TRUE(testing::waitFor([&] { return d.stats().snapshots == 2 && m.stats().snapshots == 2; }));
+  expectSame("after a profile change");
 }
 
 TEST(ViewCodec, DracoIsTheDefaultAndMeshoptGoesWithTheProfile) {

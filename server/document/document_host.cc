@@ -128,7 +128,8 @@ void DocumentHost::subscribeView(const std::shared_ptr<Subscriber>& who, const w
     auto preview = tiles.encoded(TileKey::preview(), version_);
     if (preview.isOk() && tiles.levelZeroTriangles().value_or(budget + 1) <= budget) {
       acceptView(who, request, clientSeq, resync);
-      Status sent = tileStreams_.open(tiles, who, view, budget, request.profile(), version_, resync);
+      Status sent =
+          tileStreams_.open(tiles, who, view, budget, request.profile(), version_, resync, *preview);
       if (sent.isOk()) {
         auto target = tiles.select(view, budget);
         sent =

@@ -34,7 +34,8 @@ TileStreams::~TileStreams() {
 }
 
 Status TileStreams::open(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view,
-                         int64_t budget, const wire::LodProfile& profile, uint64_t version, bool resync) {
+                         int64_t budget, const wire::LodProfile& profile, uint64_t version, bool resync,
+                         std::optional<EncodedTile> preview) {
   Stream s;
   s.who = who;
   s.view = view;
@@ -47,7 +48,12 @@ Status TileStreams::open(TileCache& tiles, const std::shared_ptr<Subscriber>& wh
       tiles.hasPreview() ? std::vector<TileKey>{TileKey::preview()} : tiles.tree().roots();
   std::vector<std::pair<uint64_t, std::shared_ptr<const std::string>>> payloads;
   for (const TileKey& key : first) {
-    TESSERA_ASSIGN_OR_RETURN(EncodedTile tile, tiles.encoded(key, version));
+    EncodedTile tile;
+    if (key.isPreview() && preview) {
+      tile = std::move(*preview);
+    } else {
+      TESSERA_ASSIGN_OR_RETURN(tile, tiles.encoded(key, version));
+    }
     s.held[key] = {tile.hash, false};
     s.surfaceHash += tile.hash;
     payloads.emplace_back(key.regionId(), tile.bytes);

@@ -49,9 +49,12 @@ class TileStreams {
   // `version`, the document's, every tile current: its first picture goes
   // now, one snapshot (the preview, or the roots where the document has no
   // preview), and its previous stream, if any, goes. `profile` is echoed
-  // in the snapshot. Errors: a tile that cannot be encoded.
+  // in the snapshot. `preview` is the preview at `version` where the caller
+  // has asked the cache for it already, so that one viewer is one cache
+  // lookup. Errors: a tile that cannot be encoded.
   Status open(TileCache& tiles, const std::shared_ptr<Subscriber>& who, const View& view, int64_t budget,
-              const wire::LodProfile& profile, uint64_t version, bool resync);
+              const wire::LodProfile& profile, uint64_t version, bool resync,
+              std::optional<EncodedTile> preview = std::nullopt);
   // Then the tiles its camera needs, `target`, as deltas in the
   // selection's order, at `version` still. Errors: a stream not opened, a
   // tile that cannot be encoded.

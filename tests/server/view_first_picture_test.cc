@@ -113,6 +113,10 @@ TEST_F(ViewFirstPicture, ThePreviewGoesBeforeAnyTileIsBuilt) {
   EXPECT_GT(deltas, 0);
   EXPECT_TRUE(removed) << "the preview was replaced by the view's tiles";
   EXPECT_GT(stats_.tilesBuilt.load(), 0);
+  // The first viewer's tiles, the preview included, were each looked up in
+  // the cache once, to be encoded: no lookup found one there.
+  EXPECT_EQ(stats_.tileCacheHits.load(), 0) << "a tile asked of the cache twice for one viewer";
+  EXPECT_GT(stats_.tilesEncoded.load(), 1);
 }
 
 // A budget below the level-0 surface may be too small for the view's

@@ -9,8 +9,9 @@
 // triangles per pixel. The server is fresh per run: the first views row
 // includes building the tiles it needs.
 //   node bench/views_page_bench.mjs [--build build/release] [--screenshots DIR] [--only TEXT]
-//       [--web-root DIR]
-// --only runs the rows whose name contains TEXT ("phone, views").
+//       [--web-root DIR] [--no-close-up]
+// --only runs the rows whose name contains TEXT ("phone, views");
+// --no-close-up leaves out the close-up row.
 // --web-root serves a page built elsewhere (client/web/build.mjs --out DIR
 // --test-hook), to compare two revisions of the page on one server.
 // Bounded: every wait has a deadline.
@@ -23,7 +24,7 @@ import { parseArgs } from 'node:util';
 const { values: opts } = parseArgs({
   options: {
     build: { type: 'string', default: 'build/release' }, screenshots: { type: 'string' }, only: { type: 'string' },
-    'web-root': { type: 'string' },
+    'web-root': { type: 'string' }, 'no-close-up': { type: 'boolean', default: false },
   },
 });
 const SOURCE = resolve(new URL('..', import.meta.url).pathname);
@@ -69,6 +70,7 @@ try {
   };
   for (const [name, width, height, query, closeUp] of rows) {
     if (opts.only && !name.includes(opts.only)) continue;
+    if (closeUp && opts['no-close-up']) continue;
     const context = await browser.createBrowserContext();
     const page = await context.newPage();
     await page.setViewport({ width, height });

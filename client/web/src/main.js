@@ -46,6 +46,18 @@ async function main() {
   setBodyState('loading');
   window.addEventListener('hashchange', () => window.location.reload());
   const params = readPageParams(window.location);
+  // The decode worker starts first: it fetches draco_decoder.wasm and
+  // instantiates it (this thread never does) while this thread builds the
+  // scene and connects. The worker holds the payloads it is sent until its
+  // decoders are ready, so the page need not wait for them: on a network,
+  // the HelloAck, the subscription and the server's first answers overlap
+  // the module's download and compilation (docs/PERFORMANCE.md "The page's
+  // first second").
+  const decoder = new DecodePool({
+    createWorker: () => new Worker('decode_worker.js', { name: 'tessera region decoder' }),
+    size: DECODE_WORKERS,
+    onFailure: (error) => decodingFailed(error),
+  });
   const wire = createWire(protoText);
   const view = new SceneView(document.getElementById('stage'), params.views);
   // A view-dependent subscription (the default, docs/WEB_VIEWER.md "Views"):
@@ -80,6 +92,8 @@ async function main() {
   const start = new StartPanel(document.getElementById('start'));
 
   const page = new PageState({ ...presetNamed(params.lod ?? DEFAULT_PRESET) }, performance.now());
+  page.decoder = decoder;
+  decoder.ready.then(() => { page.milestones.decoderReady = Math.round(performance.now()); }, () => {});
   page.views = params.views;
   page.codec = params.codec;
   // Once the decoder has failed the page is stopped, and that stays the
@@ -290,23 +304,13 @@ async function main() {
   };
   setInterval(hudTick, HUD_INTERVAL_MS);
 
-  // The worker fetches draco_decoder.wasm and instantiates it; this thread
-  // never does. The page connects meanwhile (docs/WEB_VIEWER.md "Decoding
-  // in a worker"): the worker holds the payloads it is sent until its
-  // decoders are ready, so the server's load of the document and its first
-  // answers overlap the module's download and compilation.
-  page.decoder = new DecodePool({
-    createWorker: () => new Worker('decode_worker.js', { name: 'tessera region decoder' }),
-    size: DECODE_WORKERS,
-    onFailure: (error) => {
-      // Nothing more can decode: stop rather than resubscribe for ever.
-      page.lastError = error.message;
-      page.connection?.stop();
-      setBodyState('error');
-      start.message(`The region decoder did not load: ${error.message}`);
-    },
-  });
-  page.decoder.ready.then(() => { page.milestones.decoderReady = Math.round(performance.now()); }, () => {});
+  // Nothing more can decode: stop rather than resubscribe for ever.
+  function decodingFailed(error) {
+    page.lastError = error.message;
+    page.connection?.stop();
+    setBodyState('error');
+    start.message(`The region decoder did not load: ${error.message}`);
+  }
   const connectUnlessFailed = (token) => { if (!page.decoder.failure) begin(token); };
   if (params.token) {
     connectUnlessFailed(params.token);

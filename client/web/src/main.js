@@ -98,7 +98,7 @@ async function main() {
   page.codec = params.codec;
   // Once the decoder has failed the page is stopped, and that stays the
   // error shown, not what stopping the connection makes fail after it.
-  const showError = (text) => { if (!page.decoder?.failure) page.lastError = text; };
+  const showError = (text) => { if (!decoder.failure) page.lastError = text; };
   // The control cage (docs/WEB_VIEWER.md "The control cage"), of the
   // level the dots show.
   const cage = new CageControl({ layer: cageLayer, session: () => page.session, level: () => editor.level, onError: showError });
@@ -311,7 +311,7 @@ async function main() {
     setBodyState('error');
     start.message(`The region decoder did not load: ${error.message}`);
   }
-  const connectUnlessFailed = (token) => { if (!page.decoder.failure) begin(token); };
+  const connectUnlessFailed = (token) => { if (!decoder.failure) begin(token); };
   if (params.token) {
     connectUnlessFailed(params.token);
   } else {

@@ -97,8 +97,8 @@ Expected<std::unique_ptr<Connection>> Connection::open(const ViewOptions& option
   }
   auto established = establish(s, options.document, profile, codec, camera);
   if (!established.isOk() && camera) {
-    // A document that takes no views (a Catmull-Clark document,
-    // docs/LIMITS.md) is shown by its profile; the reason is said.
+    // A view the server refuses is answered by showing the profile; the
+    // reason is said.
     std::fprintf(stderr, "tessera-view: %s; showing the LOD profile instead\n",
                  established.status().message().c_str());
     camera.reset();
